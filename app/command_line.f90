@@ -1,0 +1,2 @@
+module ddc_app_command_line
+end module ddc_app_command_line

@@ -1,0 +1,2 @@
+program ddc2d
+end program ddc2d

@@ -1,0 +1,42 @@
+!> Error type that travels up to the program, and the exit codes of SPEC section 6.
+module ddc_error
+    implicit none
+    private
+
+    public :: error_type, set_error
+    public :: exit_success, exit_solver_failure, exit_bad_input, exit_io_failure
+
+    !> The run succeeded.
+    integer, parameter :: exit_success = 0
+    !> The model has no solution or the solver failed.
+    integer, parameter :: exit_solver_failure = 1
+    !> Bad input or bad usage.
+    integer, parameter :: exit_bad_input = 2
+    !> Reading or writing a file failed.
+    integer, parameter :: exit_io_failure = 3
+
+    !> An error: the exit code it maps to and one sentence for the user.
+    type :: error_type
+        !> Exit code (exit_solver_failure, exit_bad_input or exit_io_failure)
+        integer :: code = exit_bad_input
+        !> Message for the user, naming file, group and variable where it applies
+        character(len=:), allocatable :: message
+    end type error_type
+
+contains
+
+    !> Allocate an error with its exit code and message.
+    subroutine set_error(error, code, message)
+        !> The error to create
+        type(error_type), allocatable, intent(out) :: error
+        !> Exit code the program will return
+        integer, intent(in) :: code
+        !> One sentence for the user
+        character(len=*), intent(in) :: message
+
+        allocate (error)
+        error%code = code
+        error%message = message
+    end subroutine set_error
+
+end module ddc_error

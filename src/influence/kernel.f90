@@ -1,0 +1,116 @@
+!> Crouch & Starfield constant displacement discontinuity kernel (full plane).
+!>
+!> Displacement and stress at a point due to unit Ds and unit Dn on one straight element,
+!> in the element's local frame (s along the element, n = s rotated +90 degrees, origin at
+!> the midpoint). Crouch & Starfield (1983) eqs. 5.2.x with F2..F7 as in SPEC section 2.
+!> Pure: no input, output or solver knowledge.
+module ddc_influence_kernel
+    use ddc_kinds, only: wp
+    implicit none
+    private
+
+    public :: dd_kernel_at, dd_kernel_global, kernel_functions
+    public :: face_negative, face_positive, pi
+
+    real(wp), parameter :: pi = 3.14159265358979323846264338327950288_wp
+
+    !> On the element itself (y = 0, |x| < a) the displacement jumps: which face to report
+    integer, parameter :: face_negative = -1, face_positive = +1
+
+    !> Local displacement and stress for unit Ds (index 1) and unit Dn (index 2).
+    type, public :: dd_kernel
+        !> Displacement per unit DD [-]
+        real(wp) :: ux(2), uy(2)
+        !> Stress per unit DD [stress unit / length unit]
+        real(wp) :: sxx(2), syy(2), sxy(2)
+    end type dd_kernel
+
+contains
+
+    !> The functions F2..F7 of SPEC section 2 at local point (x, y) of an element of
+    !> half-length a. On the element (y = 0, |x| < a) F3 takes the value of the given face.
+    pure subroutine kernel_functions(x, y, a, nu, face, f)
+        !> Local coordinates of the point [length unit]
+        real(wp), intent(in) :: x, y
+        !> Element half-length [length unit]
+        real(wp), intent(in) :: a
+        !> Poisson's ratio
+        real(wp), intent(in) :: nu
+        !> face_negative or face_positive, used only on the element itself
+        integer, intent(in) :: face
+        !> F2 .. F7, shape (2:7)
+        real(wp), intent(out) :: f(2:7)
+        real(wp) :: con, xm, xp, r1s, r2s
+
+        con = 1.0_wp / (4.0_wp * pi * (1.0_wp - nu))
+        xm = x - a
+        xp = x + a
+        r1s = xm**2 + y**2
+        r2s = xp**2 + y**2
+        f(2) = con * 0.5_wp * (log(r1s) - log(r2s))
+        if (y == 0.0_wp .and. abs(x) < a) then
+            ! The jump of atan2 lies on the element: take the face's one-sided limit.
+            f(3) = real(face, wp) * con * pi
+        else
+            f(3) = -con * (atan2(y, xm) - atan2(y, xp))
+        end if
+        f(4) = con * (y / r1s - y / r2s)
+        f(5) = con * (xm / r1s - xp / r2s)
+        f(6) = con * ((xm**2 - y**2) / r1s**2 - (xp**2 - y**2) / r2s**2)
+        f(7) = 2.0_wp * con * y * (xm / r1s**2 - xp / r2s**2)
+    end subroutine kernel_functions
+
+    !> Local displacement and stress at (x, y) for unit Ds and unit Dn (C&S eq. 5.2.5).
+    !> The point must not be an element end (singular there).
+    pure function dd_kernel_at(x, y, a, shear_modulus, nu, face) result(k)
+        real(wp), intent(in) :: x, y, a, shear_modulus, nu
+        integer, intent(in) :: face
+        type(dd_kernel) :: k
+        real(wp) :: f(2:7), g2
+
+        call kernel_functions(x, y, a, nu, face, f)
+        g2 = 2.0_wp * shear_modulus
+        ! Unit Ds
+        k%ux(1) = 2.0_wp * (1.0_wp - nu) * f(3) - y * f(5)
+        k%uy(1) = (1.0_wp - 2.0_wp * nu) * f(2) - y * f(4)
+        k%sxx(1) = g2 * (2.0_wp * f(4) + y * f(6))
+        k%syy(1) = g2 * (-y * f(6))
+        k%sxy(1) = g2 * (-f(5) + y * f(7))
+        ! Unit Dn
+        k%ux(2) = -(1.0_wp - 2.0_wp * nu) * f(2) - y * f(4)
+        k%uy(2) = 2.0_wp * (1.0_wp - nu) * f(3) - y * f(5)
+        k%sxx(2) = g2 * (-f(5) + y * f(7))
+        k%syy(2) = g2 * (-f(5) - y * f(7))
+        k%sxy(2) = g2 * (-y * f(6))
+    end function dd_kernel_at
+
+    !> Global-frame displacement and stress at global point (x, y) for unit Ds and unit Dn on
+    !> the element with midpoint (xm, ym), half-length a and direction (cosb, sinb).
+    pure function dd_kernel_global(x, y, xm, ym, a, cosb, sinb, shear_modulus, nu, face) &
+        result(k)
+        !> Observation point [length unit]
+        real(wp), intent(in) :: x, y
+        !> Element midpoint [length unit], half-length [length unit], direction cosines
+        real(wp), intent(in) :: xm, ym, a, cosb, sinb
+        !> Shear modulus [stress unit] and Poisson's ratio
+        real(wp), intent(in) :: shear_modulus, nu
+        !> Face reported for a point on the element itself
+        integer, intent(in) :: face
+        type(dd_kernel) :: k
+        type(dd_kernel) :: kl
+        real(wp) :: xl, yl, c2, s2, cs
+
+        xl = (x - xm) * cosb + (y - ym) * sinb
+        yl = -(x - xm) * sinb + (y - ym) * cosb
+        kl = dd_kernel_at(xl, yl, a, shear_modulus, nu, face)
+        c2 = cosb**2
+        s2 = sinb**2
+        cs = cosb * sinb
+        k%ux = kl%ux * cosb - kl%uy * sinb
+        k%uy = kl%ux * sinb + kl%uy * cosb
+        k%sxx = kl%sxx * c2 - 2.0_wp * kl%sxy * cs + kl%syy * s2
+        k%syy = kl%sxx * s2 + 2.0_wp * kl%sxy * cs + kl%syy * c2
+        k%sxy = (kl%sxx - kl%syy) * cs + kl%sxy * (c2 - s2)
+    end function dd_kernel_global
+
+end module ddc_influence_kernel

@@ -1,0 +1,48 @@
+!> Geometry derived from element end points: midpoint, half-length, orientation.
+module ddc_mesh_geometry
+    use ddc_kinds, only: wp
+    use ddc_model_types, only: element_set
+    implicit none
+    private
+
+    public :: compute_geometry, allocate_elements
+
+contains
+
+    !> Allocate every array of an element set for n elements (values unset).
+    subroutine allocate_elements(elements, n)
+        !> The set to allocate
+        type(element_set), intent(inout) :: elements
+        !> Number of elements
+        integer, intent(in) :: n
+
+        elements%n = n
+        allocate (elements%x_begin(n), elements%y_begin(n), elements%x_end(n), &
+                  elements%y_end(n), elements%fracture_id(n), elements%condition(n), &
+                  elements%bc_s(n), elements%bc_n(n), elements%mu(n), elements%sf(n), &
+                  elements%pressure(n))
+    end subroutine allocate_elements
+
+    !> Fill midpoint, half-length and direction cosines from the end points.
+    subroutine compute_geometry(elements)
+        !> Elements whose end points are set
+        type(element_set), intent(inout) :: elements
+        real(wp) :: dx(elements%n), dy(elements%n), length(elements%n)
+
+        dx = elements%x_end - elements%x_begin
+        dy = elements%y_end - elements%y_begin
+        length = hypot(dx, dy)
+        elements%x_mid = 0.5_wp * (elements%x_begin + elements%x_end)
+        elements%y_mid = 0.5_wp * (elements%y_begin + elements%y_end)
+        elements%half_length = 0.5_wp * length
+        ! Zero-length elements are rejected by the mesh checks; avoid 0/0 before that.
+        where (length > 0.0_wp)
+            elements%cos_beta = dx / length
+            elements%sin_beta = dy / length
+        elsewhere
+            elements%cos_beta = 1.0_wp
+            elements%sin_beta = 0.0_wp
+        end where
+    end subroutine compute_geometry
+
+end module ddc_mesh_geometry

@@ -1,0 +1,82 @@
+!> Results of a solve: element values, tips, fields and the solver record.
+module ddc_model_results
+    use ddc_kinds, only: wp
+    implicit none
+    private
+
+    public :: element_results, tip_set, field_result, solver_record, model_results
+    public :: state_free, state_stick, state_slip, state_open, state_names
+    public :: point_clear, point_near, point_on_element
+
+    !> Element states; free = a TWODD-style condition, not a contact element
+    integer, parameter :: state_free = 0, state_stick = 1, state_slip = 2, state_open = 3
+    !> Names of the states, indexed by state + 1
+    character(len=*), parameter :: state_names(0:3) = [character(len=5) :: &
+        'free', 'stick', 'slip', 'open']
+
+    !> Observation point flags: clear of every element; within one element length of an
+    !> element centre (TWODD skips these; accuracy reduced); on an element or at its end
+    !> (field discontinuous or singular there: values are NaN)
+    integer, parameter :: point_clear = 0, point_near = 1, point_on_element = 2
+
+    !> Per-element results, shape (n) for every array.
+    type :: element_results
+        !> Displacement discontinuities, Crouch & Starfield signs [length unit]
+        real(wp), allocatable :: ds(:), dn(:)
+        !> Total shear and normal traction, tension positive [stress unit]
+        real(wp), allocatable :: shear_traction(:), normal_traction(:)
+        !> Displacement of the negative and positive face at the midpoint, in the element's
+        !> s and n directions [length unit]
+        real(wp), allocatable :: us_minus(:), un_minus(:), us_plus(:), un_plus(:)
+        !> Element state (state_free ... state_open)
+        integer, allocatable :: state(:)
+    end type element_results
+
+    !> Crack tips: element ends shared with no other element.
+    type :: tip_set
+        !> Number of tips
+        integer :: n = 0
+        !> Tip position [length unit]
+        real(wp), allocatable :: x(:), y(:)
+        !> Fracture and element of the tip (1-based)
+        integer, allocatable :: fracture_id(:), element(:)
+        !> Stress intensity factors [stress unit * length unit**0.5]
+        real(wp), allocatable :: k1(:), k2(:)
+    end type tip_set
+
+    !> Displacement and stress at the points of one observation set, shape (npoints).
+    type :: field_result
+        !> Displacement relative to the far field [length unit]
+        real(wp), allocatable :: ux(:), uy(:)
+        !> Total stress (remote plus induced), tension positive [stress unit]
+        real(wp), allocatable :: sxx(:), syy(:), sxy(:)
+        !> point_clear, point_near or point_on_element
+        integer, allocatable :: flag(:)
+    end type field_result
+
+    !> What the solver did and how long it took.
+    type :: solver_record
+        !> Method used for the elastic or contact solve
+        character(len=:), allocatable :: method
+        !> Number of OpenMP threads
+        integer :: threads = 1
+        !> LCP pivots (0 when there are no contact elements)
+        integer :: pivots = 0
+        !> Relative residual of the recovered DDs against the unfactored system
+        real(wp) :: equilibrium_residual = 0.0_wp
+        !> Wall time of each phase [s]
+        real(wp) :: seconds_assembly = 0.0_wp, seconds_factorization = 0.0_wp
+        real(wp) :: seconds_lcp = 0.0_wp, seconds_fields = 0.0_wp
+        real(wp) :: seconds_output = 0.0_wp, seconds_total = 0.0_wp
+    end type solver_record
+
+    !> Everything a solve produces.
+    type :: model_results
+        type(element_results) :: elements
+        type(tip_set) :: tips
+        !> One per observation set of the model
+        type(field_result), allocatable :: fields(:)
+        type(solver_record) :: solver
+    end type model_results
+
+end module ddc_model_results

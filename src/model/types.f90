@@ -1,0 +1,108 @@
+!> The model as every input format produces it and every solver consumes it.
+!>
+!> Elements are stored as arrays (structure of arrays), ordered fracture by fracture,
+!> vertex to vertex. Geometry derived from the end points (midpoint, half-length,
+!> orientation) is filled by ddc_mesh_geometry.
+module ddc_model_types
+    use ddc_kinds, only: wp
+    implicit none
+    private
+
+    public :: model_type, element_set, fracture_type, observation_set, solver_options
+    public :: condition_traction, condition_displacement, condition_mixed_us_sn
+    public :: condition_mixed_ss_un, condition_contact, condition_names
+    public :: observation_grid, observation_line, observation_points, observation_kind_names
+
+    !> Boundary conditions; 1-4 are the TWODD KODE values.
+    integer, parameter :: condition_traction = 1
+    integer, parameter :: condition_displacement = 2
+    integer, parameter :: condition_mixed_us_sn = 3
+    integer, parameter :: condition_mixed_ss_un = 4
+    integer, parameter :: condition_contact = 5
+    !> Input names of the conditions, indexed by condition code
+    character(len=*), parameter :: condition_names(5) = [character(len=12) :: &
+        'traction', 'displacement', 'mixed_us_sn', 'mixed_ss_un', 'contact']
+
+    !> Kinds of observation sets
+    integer, parameter :: observation_grid = 1
+    integer, parameter :: observation_line = 2
+    integer, parameter :: observation_points = 3
+    !> Names of the observation kinds, indexed by kind
+    character(len=*), parameter :: observation_kind_names(3) = [character(len=6) :: &
+        'grid', 'line', 'points']
+
+    !> All boundary elements of the model, shape (n) for every array.
+    type :: element_set
+        !> Number of elements
+        integer :: n = 0
+        !> End points [length unit]
+        real(wp), allocatable :: x_begin(:), y_begin(:), x_end(:), y_end(:)
+        !> Index of the fracture each element belongs to (1-based)
+        integer, allocatable :: fracture_id(:)
+        !> Boundary condition code (condition_traction ... condition_contact)
+        integer, allocatable :: condition(:)
+        !> Given shear and normal value for TWODD-style conditions
+        !> [stress unit for tractions, length unit for displacements]
+        real(wp), allocatable :: bc_s(:), bc_n(:)
+        !> Friction coefficient [-], cohesion (frictional strength) [stress unit],
+        !> internal fluid pressure [stress unit], for contact elements
+        real(wp), allocatable :: mu(:), sf(:), pressure(:)
+        !> Derived geometry: midpoint, half-length [length unit], cos and sin of the
+        !> element angle beta (counter-clockwise from +x)
+        real(wp), allocatable :: x_mid(:), y_mid(:), half_length(:)
+        real(wp), allocatable :: cos_beta(:), sin_beta(:)
+    end type element_set
+
+    !> One fracture: a name and its contiguous range of elements.
+    type :: fracture_type
+        !> Name given by the user (or fracture_<k>)
+        character(len=:), allocatable :: name
+        !> First and last element index of this fracture
+        integer :: first_element = 0, last_element = -1
+    end type fracture_type
+
+    !> A set of observation points: a regular grid, a line or a list.
+    type :: observation_set
+        !> Name given by the user; the HDF5 group under /fields
+        character(len=:), allocatable :: name
+        !> observation_grid, observation_line or observation_points
+        integer :: kind = observation_points
+        !> Grid shape (nx, ny); a line or list has ny = 1
+        integer :: nx = 0, ny = 1
+        !> Point coordinates [length unit], shape (nx*ny), x varying fastest on a grid
+        real(wp), allocatable :: x(:), y(:)
+    end type observation_set
+
+    !> Options of the contact solver.
+    type :: solver_options
+        !> LCP method: 'auto' or 'lemke'
+        character(len=:), allocatable :: lcp_method
+        !> Cohesion on open elements: 'kept' (the paper) or 'lost'
+        character(len=:), allocatable :: open_cohesion
+    end type solver_options
+
+    !> A complete model, independent of the input format it came from.
+    type :: model_type
+        !> Title of the model
+        character(len=:), allocatable :: title
+        !> Young's modulus [stress unit] and Poisson's ratio [-]
+        real(wp) :: youngs_modulus = 0.0_wp, poissons_ratio = 0.0_wp
+        !> Unit names, stored in the output
+        character(len=:), allocatable :: length_unit, stress_unit
+        !> Remote stress, tension positive [stress unit]
+        real(wp) :: sxx = 0.0_wp, syy = 0.0_wp, sxy = 0.0_wp
+        !> The boundary elements
+        type(element_set) :: elements
+        !> The fractures, in element order
+        type(fracture_type), allocatable :: fractures(:)
+        !> Observation sets for field output
+        type(observation_set), allocatable :: observations(:)
+        !> Solver options
+        type(solver_options) :: solver
+        !> Output file (after -o and &output are applied)
+        character(len=:), allocatable :: output_file
+        !> Input file path and its full text, kept for self-description
+        character(len=:), allocatable :: input_file, input_text
+    end type model_type
+
+end module ddc_model_types

@@ -1,0 +1,5 @@
+!> Placeholder, being written.
+module ddc_output_hdf5
+    implicit none
+    private
+end module ddc_output_hdf5

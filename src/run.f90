@@ -1,0 +1,5 @@
+!> Placeholder, being written.
+module ddc_run
+    implicit none
+    private
+end module ddc_run

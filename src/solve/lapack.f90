@@ -1,0 +1,5 @@
+!> Placeholder, being written.
+module ddc_solve_lapack
+    implicit none
+    private
+end module ddc_solve_lapack
