@@ -1,5 +1,96 @@
-!> Placeholder, being written.
+!> Solve one model: influence, solve, then element results, tips and fields.
 module ddc_run
+    !$ use omp_lib, only: omp_get_max_threads
+    use ddc_kinds, only: wp
+    use ddc_error, only: error_type, set_error, exit_solver_failure
+    use ddc_model_types, only: model_type, condition_contact
+    use ddc_model_results, only: model_results, state_free
+    use ddc_influence_assembly, only: midpoint_response, resolve_remote_stress
+    use ddc_solve_elastic, only: solve_elastic
+    use ddc_post_tips, only: find_tips
+    use ddc_post_fields, only: evaluate_field
     implicit none
     private
+
+    public :: run_model, shear_modulus_of
+
+contains
+
+    !> Shear modulus G = E / (2 (1 + nu)) of a model [stress unit].
+    pure real(wp) function shear_modulus_of(model)
+        type(model_type), intent(in) :: model
+
+        shear_modulus_of = model%youngs_modulus / (2.0_wp * (1.0_wp + model%poissons_ratio))
+    end function shear_modulus_of
+
+    !> Wall-clock seconds since an arbitrary origin.
+    real(wp) function wall_seconds()
+        integer(8) :: count, rate
+
+        call system_clock(count, rate)
+        wall_seconds = real(count, wp) / real(rate, wp)
+    end function wall_seconds
+
+    !> Solve a validated model and compute every result the output needs.
+    subroutine run_model(model, results, error)
+        !> A validated model with element geometry computed
+        type(model_type), intent(in) :: model
+        !> Element results, tips, fields and the solver record
+        type(model_results), intent(out) :: results
+        !> Set when the model has no solution or the solver failed
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: remote_shear(:), remote_normal(:)
+        real(wp) :: g, nu, t_start, t0
+        integer :: n, i
+
+        t_start = wall_seconds()
+        n = model%elements%n
+        g = shear_modulus_of(model)
+        nu = model%poissons_ratio
+        results%solver%threads = 1
+        !$ results%solver%threads = omp_get_max_threads()
+
+        allocate (remote_shear(n), remote_normal(n))
+        call resolve_remote_stress(model%elements, model%sxx, model%syy, model%sxy, &
+                                   remote_shear, remote_normal)
+        associate (e => results%elements, rec => results%solver)
+            allocate (e%ds(n), e%dn(n), e%shear_traction(n), e%normal_traction(n), &
+                      e%us_minus(n), e%un_minus(n), e%us_plus(n), e%un_plus(n), e%state(n))
+            if (any(model%elements%condition == condition_contact)) then
+                call set_error(error, exit_solver_failure, &
+                    "condition 'contact' is not available in this build")
+                return
+            end if
+            rec%method = 'lu'
+            call solve_elastic(model%elements, g, nu, remote_shear, remote_normal, e%ds, e%dn, &
+                               rec%equilibrium_residual, rec%seconds_assembly, &
+                               rec%seconds_factorization, error)
+            if (allocated(error)) return
+            e%state = state_free
+
+            t0 = wall_seconds()
+            call midpoint_response(model%elements, g, nu, e%ds, e%dn, e%shear_traction, &
+                                   e%normal_traction, e%us_minus, e%un_minus)
+            e%shear_traction = e%shear_traction + remote_shear
+            e%normal_traction = e%normal_traction + remote_normal
+            ! ds = us(-) - us(+), dn = un(-) - un(+)
+            e%us_plus = e%us_minus - e%ds
+            e%un_plus = e%un_minus - e%dn
+            call find_tips(model%elements, g, nu, e%ds, e%dn, results%tips)
+
+            allocate (results%fields(0))
+            if (allocated(model%observations)) then
+                deallocate (results%fields)
+                allocate (results%fields(size(model%observations)))
+            end if
+            do i = 1, size(results%fields)
+                call evaluate_field(model%elements, g, nu, [model%sxx, model%syy, model%sxy], &
+                                    e%ds, e%dn, model%observations(i)%x, &
+                                    model%observations(i)%y, results%fields(i))
+            end do
+            rec%seconds_fields = wall_seconds() - t0
+            rec%seconds_total = wall_seconds() - t_start
+        end associate
+    end subroutine run_model
+
 end module ddc_run

@@ -1,5 +1,143 @@
-!> Placeholder, being written.
+!> Influence matrices and midpoint responses of a set of constant-DD elements.
+!>
+!> Unknowns are ordered in blocks [Ds(1:n); Dn(1:n)], rows [shear rows; normal rows]. A row
+!> is either a traction row (stress resolved on element i, tension positive) or a
+!> displacement row (displacement of the negative face of element i in its s, n frame).
 module ddc_influence_assembly
+    use ddc_kinds, only: wp
+    use ddc_model_types, only: element_set
+    use ddc_influence_kernel, only: dd_kernel, dd_kernel_global, face_negative
     implicit none
     private
+
+    public :: assemble_influence, midpoint_response, resolve_remote_stress
+    public :: row_traction, row_displacement
+
+    !> Kinds of matrix rows
+    integer, parameter :: row_traction = 1, row_displacement = 2
+
+    !> Influence of unit Ds and Dn on element j at the midpoint of element i, in i's frame.
+    type, public :: pair_influence
+        !> Shear and normal traction per unit (Ds, Dn) [stress unit / length unit]
+        real(wp) :: ts(2), tn(2)
+        !> Negative-face displacement along s and n per unit (Ds, Dn) [-]
+        real(wp) :: us(2), un(2)
+    end type pair_influence
+
+contains
+
+    !> Influence of element j on the midpoint of element i, resolved in i's s, n frame.
+    pure function pair_at_midpoint(elements, i, j, shear_modulus, nu) result(p)
+        type(element_set), intent(in) :: elements
+        integer, intent(in) :: i, j
+        real(wp), intent(in) :: shear_modulus, nu
+        type(pair_influence) :: p
+        type(dd_kernel) :: k
+        real(wp) :: c, s
+
+        k = dd_kernel_global(elements%x_mid(i), elements%y_mid(i), elements%x_mid(j), &
+                             elements%y_mid(j), elements%half_length(j), elements%cos_beta(j), &
+                             elements%sin_beta(j), shear_modulus, nu, face_negative)
+        c = elements%cos_beta(i)
+        s = elements%sin_beta(i)
+        p%ts = -(k%sxx - k%syy) * s * c + k%sxy * (c**2 - s**2)
+        p%tn = k%sxx * s**2 - 2.0_wp * k%sxy * s * c + k%syy * c**2
+        p%us = k%ux * c + k%uy * s
+        p%un = -k%ux * s + k%uy * c
+    end function pair_at_midpoint
+
+    !> Fill the 2n x 2n influence matrix; each row is a traction or a displacement row.
+    subroutine assemble_influence(elements, shear_modulus, nu, shear_row, normal_row, matrix)
+        !> Elements with geometry computed
+        type(element_set), intent(in) :: elements
+        !> Shear modulus [stress unit] and Poisson's ratio [-]
+        real(wp), intent(in) :: shear_modulus, nu
+        !> Kind of the shear row and of the normal row of each element, shape (n)
+        integer, intent(in) :: shear_row(:), normal_row(:)
+        !> Influence matrix, shape (2n, 2n)
+        real(wp), intent(out) :: matrix(:, :)
+        type(pair_influence) :: p
+        integer :: i, j, n
+
+        n = elements%n
+        ! Each thread owns whole columns j and n+j: disjoint, contiguous writes.
+        !$omp parallel do default(none) schedule(static) private(i, j, p) &
+        !$omp shared(elements, shear_modulus, nu, shear_row, normal_row, matrix, n)
+        do j = 1, n
+            do i = 1, n
+                p = pair_at_midpoint(elements, i, j, shear_modulus, nu)
+                if (shear_row(i) == row_traction) then
+                    matrix(i, j) = p%ts(1)
+                    matrix(i, n + j) = p%ts(2)
+                else
+                    matrix(i, j) = p%us(1)
+                    matrix(i, n + j) = p%us(2)
+                end if
+                if (normal_row(i) == row_traction) then
+                    matrix(n + i, j) = p%tn(1)
+                    matrix(n + i, n + j) = p%tn(2)
+                else
+                    matrix(n + i, j) = p%un(1)
+                    matrix(n + i, n + j) = p%un(2)
+                end if
+            end do
+        end do
+        !$omp end parallel do
+    end subroutine assemble_influence
+
+    !> Induced tractions and negative-face displacements at every element midpoint.
+    subroutine midpoint_response(elements, shear_modulus, nu, ds, dn, shear_traction, &
+                                 normal_traction, us_minus, un_minus)
+        !> Elements with geometry computed
+        type(element_set), intent(in) :: elements
+        !> Shear modulus [stress unit] and Poisson's ratio [-]
+        real(wp), intent(in) :: shear_modulus, nu
+        !> Displacement discontinuities [length unit], shape (n)
+        real(wp), intent(in) :: ds(:), dn(:)
+        !> Induced shear and normal traction [stress unit], shape (n)
+        real(wp), intent(out) :: shear_traction(:), normal_traction(:)
+        !> Negative-face displacement along s and n [length unit], shape (n)
+        real(wp), intent(out) :: us_minus(:), un_minus(:)
+        type(pair_influence) :: p
+        real(wp) :: ts, tn, us, un
+        integer :: i, j
+
+        !$omp parallel do default(none) schedule(static) private(i, j, p, ts, tn, us, un) &
+        !$omp shared(elements, shear_modulus, nu, ds, dn, shear_traction, normal_traction, &
+        !$omp        us_minus, un_minus)
+        do i = 1, elements%n
+            ts = 0.0_wp
+            tn = 0.0_wp
+            us = 0.0_wp
+            un = 0.0_wp
+            do j = 1, elements%n
+                p = pair_at_midpoint(elements, i, j, shear_modulus, nu)
+                ts = ts + p%ts(1) * ds(j) + p%ts(2) * dn(j)
+                tn = tn + p%tn(1) * ds(j) + p%tn(2) * dn(j)
+                us = us + p%us(1) * ds(j) + p%us(2) * dn(j)
+                un = un + p%un(1) * ds(j) + p%un(2) * dn(j)
+            end do
+            shear_traction(i) = ts
+            normal_traction(i) = tn
+            us_minus(i) = us
+            un_minus(i) = un
+        end do
+        !$omp end parallel do
+    end subroutine midpoint_response
+
+    !> Remote stress resolved on every element (SPEC section 2), tension positive.
+    pure subroutine resolve_remote_stress(elements, sxx, syy, sxy, shear, normal)
+        !> Elements with geometry computed
+        type(element_set), intent(in) :: elements
+        !> Remote stress [stress unit]
+        real(wp), intent(in) :: sxx, syy, sxy
+        !> Resolved shear and normal traction [stress unit], shape (n)
+        real(wp), intent(out) :: shear(:), normal(:)
+
+        associate (c => elements%cos_beta, s => elements%sin_beta)
+            shear = -(sxx - syy) * s * c + sxy * (c**2 - s**2)
+            normal = sxx * s**2 - 2.0_wp * sxy * s * c + syy * c**2
+        end associate
+    end subroutine resolve_remote_stress
+
 end module ddc_influence_assembly

@@ -50,7 +50,7 @@ contains
         f(2) = con * 0.5_wp * (log(r1s) - log(r2s))
         if (y == 0.0_wp .and. abs(x) < a) then
             ! The jump of atan2 lies on the element: take the face's one-sided limit.
-            f(3) = real(face, wp) * con * pi
+            f(3) = -real(face, wp) * con * pi
         else
             f(3) = -con * (atan2(y, xm) - atan2(y, xp))
         end if
@@ -78,7 +78,7 @@ contains
         k%sxy(1) = g2 * (-f(5) + y * f(7))
         ! Unit Dn
         k%ux(2) = -(1.0_wp - 2.0_wp * nu) * f(2) - y * f(4)
-        k%uy(2) = 2.0_wp * (1.0_wp - nu) * f(3) - y * f(5)
+        k%uy(2) = 2.0_wp * (1.0_wp - nu) * f(3) + y * f(5)
         k%sxx(2) = g2 * (-f(5) + y * f(7))
         k%syy(2) = g2 * (-f(5) - y * f(7))
         k%sxy(2) = g2 * (-y * f(6))

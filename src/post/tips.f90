@@ -1,5 +1,89 @@
-!> Placeholder, being written.
+!> Crack tips and their stress intensity factors (SPEC section 5).
 module ddc_post_tips
+    use ddc_kinds, only: wp
+    use ddc_model_types, only: element_set
+    use ddc_model_results, only: tip_set
     implicit none
     private
+
+    public :: find_tips
+
+    !> End points closer than this fraction of the shorter element's length are shared.
+    real(wp), parameter :: shared_end_tolerance = 1.0e-8_wp
+
+contains
+
+    !> True when end `side` (1 begin, 2 end) of element i coincides with an end of another element.
+    pure logical function end_is_shared(elements, i, side)
+        type(element_set), intent(in) :: elements
+        integer, intent(in) :: i, side
+        real(wp) :: x, y, tol
+        integer :: j
+
+        if (side == 1) then
+            x = elements%x_begin(i)
+            y = elements%y_begin(i)
+        else
+            x = elements%x_end(i)
+            y = elements%y_end(i)
+        end if
+        end_is_shared = .false.
+        do j = 1, elements%n
+            if (j == i) cycle
+            tol = shared_end_tolerance * 2.0_wp * min(elements%half_length(i), elements%half_length(j))
+            if (hypot(elements%x_begin(j) - x, elements%y_begin(j) - y) <= tol .or. &
+                hypot(elements%x_end(j) - x, elements%y_end(j) - y) <= tol) then
+                end_is_shared = .true.
+                return
+            end if
+        end do
+    end function end_is_shared
+
+    !> Tips (element ends shared with no other element) with K_I and K_II from the tip
+    !> element's DDs: K = -G D / (2 (1 - nu) sqrt(h)), h the tip element's half-length.
+    subroutine find_tips(elements, shear_modulus, nu, ds, dn, tips)
+        !> Elements with geometry computed
+        type(element_set), intent(in) :: elements
+        !> Shear modulus [stress unit] and Poisson's ratio [-]
+        real(wp), intent(in) :: shear_modulus, nu
+        !> Displacement discontinuities [length unit], shape (n)
+        real(wp), intent(in) :: ds(:), dn(:)
+        !> The tips found, in element order (begin before end)
+        type(tip_set), intent(out) :: tips
+        logical :: is_tip(2, elements%n)
+        integer :: i, side, k
+        real(wp) :: factor
+
+        !$omp parallel do default(none) private(i, side) shared(elements, is_tip)
+        do i = 1, elements%n
+            do side = 1, 2
+                is_tip(side, i) = .not. end_is_shared(elements, i, side)
+            end do
+        end do
+        !$omp end parallel do
+
+        tips%n = count(is_tip)
+        allocate (tips%x(tips%n), tips%y(tips%n), tips%fracture_id(tips%n), &
+                  tips%element(tips%n), tips%k1(tips%n), tips%k2(tips%n))
+        k = 0
+        do i = 1, elements%n
+            do side = 1, 2
+                if (.not. is_tip(side, i)) cycle
+                k = k + 1
+                if (side == 1) then
+                    tips%x(k) = elements%x_begin(i)
+                    tips%y(k) = elements%y_begin(i)
+                else
+                    tips%x(k) = elements%x_end(i)
+                    tips%y(k) = elements%y_end(i)
+                end if
+                tips%fracture_id(k) = elements%fracture_id(i)
+                tips%element(k) = i
+                factor = -shear_modulus / (2.0_wp * (1.0_wp - nu) * sqrt(elements%half_length(i)))
+                tips%k1(k) = factor * dn(i)
+                tips%k2(k) = factor * ds(i)
+            end do
+        end do
+    end subroutine find_tips
+
 end module ddc_post_tips

@@ -1,5 +1,116 @@
-!> Placeholder, being written.
+!> Elastic solve for TWODD-style conditions (traction, displacement, mixed).
 module ddc_solve_elastic
+    use ddc_kinds, only: wp
+    use ddc_error, only: error_type, set_error, exit_solver_failure
+    use ddc_model_types, only: element_set, condition_traction, condition_displacement, &
+        condition_mixed_us_sn, condition_mixed_ss_un, condition_contact
+    use ddc_influence_assembly, only: assemble_influence, row_traction, row_displacement
+    use ddc_solve_lapack, only: lu_factor, lu_solve
     implicit none
     private
+
+    public :: solve_elastic, row_kinds, singular_message
+
+contains
+
+    !> Row kinds of each element's shear and normal equation from its condition.
+    pure subroutine row_kinds(condition, shear_row, normal_row)
+        !> Condition code of each element, shape (n)
+        integer, intent(in) :: condition(:)
+        !> row_traction or row_displacement, shape (n)
+        integer, intent(out) :: shear_row(:), normal_row(:)
+
+        where (condition == condition_displacement .or. condition == condition_mixed_us_sn)
+            shear_row = row_displacement
+        elsewhere
+            shear_row = row_traction
+        end where
+        where (condition == condition_displacement .or. condition == condition_mixed_ss_un)
+            normal_row = row_displacement
+        elsewhere
+            normal_row = row_traction
+        end where
+    end subroutine row_kinds
+
+    !> Message for a singular system: which element and which equation.
+    function singular_message(n, info) result(message)
+        !> Number of elements
+        integer, intent(in) :: n
+        !> Zero pivot index from LAPACK (1 .. 2n)
+        integer, intent(in) :: info
+        character(len=:), allocatable :: message
+        character(len=160) :: line
+
+        if (info <= n) then
+            write (line, '(a,i0,a)') 'influence matrix is singular at the shear unknown of element ', &
+                info, ': duplicate or overlapping elements, or no condition fixing it?'
+        else
+            write (line, '(a,i0,a)') 'influence matrix is singular at the normal unknown of element ', &
+                info - n, ': duplicate or overlapping elements, or no condition fixing it?'
+        end if
+        message = trim(line)
+    end function singular_message
+
+    !> Solve for Ds, Dn of elements whose conditions are all TWODD-style (no contact).
+    subroutine solve_elastic(elements, shear_modulus, nu, remote_shear, remote_normal, &
+                             ds, dn, residual, seconds_assembly, seconds_factorization, error)
+        !> Elements with geometry computed
+        type(element_set), intent(in) :: elements
+        !> Shear modulus [stress unit] and Poisson's ratio [-]
+        real(wp), intent(in) :: shear_modulus, nu
+        !> Remote stress resolved on each element [stress unit], shape (n)
+        real(wp), intent(in) :: remote_shear(:), remote_normal(:)
+        !> Displacement discontinuities [length unit], shape (n)
+        real(wp), intent(out) :: ds(:), dn(:)
+        !> Relative residual |K x - b| / |b| against the unfactored system
+        real(wp), intent(out) :: residual
+        !> Wall time of assembly and factorization + solve [s]
+        real(wp), intent(out) :: seconds_assembly, seconds_factorization
+        !> Set when the system is singular
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: matrix(:, :), factors(:, :), rhs(:, :), given(:)
+        integer, allocatable :: shear_row(:), normal_row(:), ipiv(:)
+        integer :: n, info
+        integer(8) :: t0, t1, t2, rate
+
+        n = elements%n
+        if (any(elements%condition == condition_contact)) then
+            call set_error(error, exit_solver_failure, 'solve_elastic called with contact elements')
+            return
+        end if
+        call system_clock(t0, rate)
+        allocate (shear_row(n), normal_row(n), matrix(2 * n, 2 * n), rhs(2 * n, 1), ipiv(2 * n))
+        call row_kinds(elements%condition, shear_row, normal_row)
+        call assemble_influence(elements, shear_modulus, nu, shear_row, normal_row, matrix)
+        ! Traction rows take the given total traction minus the remote part; displacement
+        ! rows take the given negative-face displacement (remote stress adds none).
+        where (shear_row == row_traction)
+            rhs(1:n, 1) = elements%bc_s - remote_shear
+        elsewhere
+            rhs(1:n, 1) = elements%bc_s
+        end where
+        where (normal_row == row_traction)
+            rhs(n + 1:, 1) = elements%bc_n - remote_normal
+        elsewhere
+            rhs(n + 1:, 1) = elements%bc_n
+        end where
+        call system_clock(t1)
+
+        factors = matrix
+        call lu_factor(factors, ipiv, info)
+        if (info > 0) then
+            call set_error(error, exit_solver_failure, singular_message(n, info))
+            return
+        end if
+        given = rhs(:, 1)
+        call lu_solve(factors, ipiv, rhs)
+        call system_clock(t2)
+
+        residual = norm2(matmul(matrix, rhs(:, 1)) - given) / max(norm2(given), tiny(1.0_wp))
+        ds = rhs(1:n, 1)
+        dn = rhs(n + 1:, 1)
+        seconds_assembly = real(t1 - t0, wp) / real(rate, wp)
+        seconds_factorization = real(t2 - t1, wp) / real(rate, wp)
+    end subroutine solve_elastic
+
 end module ddc_solve_elastic
