@@ -1,5 +1,329 @@
-!> Placeholder, being written.
+!> Read a CSV file of numbers with a known header.
+!>
+!> The first non-comment line is the header (compared case-insensitively, spaces ignored);
+!> every other line is one row of numbers. Blank lines and lines starting with `#` are
+!> skipped. Every bad row is reported with the file and its line number.
 module ddc_input_csv
+    use ddc_kinds, only: wp
+    use ddc_error, only: error_type, set_error, exit_bad_input
+    use ddc_input_text_file, only: read_text_file
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     implicit none
     private
+
+    public :: read_csv
+
+    !> At most this many bad lines are listed in one message
+    integer, parameter :: max_messages = 20
+
+    character(len=*), parameter :: newline = achar(10)
+
+contains
+
+    !> Read the CSV file at path whose columns are header; values has shape (ncols, nrows).
+    !> A two-column x,y file may omit its header line.
+    subroutine read_csv(path, header, values, error, line_numbers)
+        !> Path of the file
+        character(len=*), intent(in) :: path
+        !> Expected column names, in order
+        character(len=*), intent(in) :: header(:)
+        !> The numbers, shape (size(header), number of rows)
+        real(wp), allocatable, intent(out) :: values(:,:)
+        !> Allocated when the file is missing or any line is bad
+        type(error_type), allocatable, intent(out) :: error
+        !> Line number in the file of each row, shape (number of rows)
+        integer, allocatable, intent(out), optional :: line_numbers(:)
+        character(len=:), allocatable :: text, line, expected, messages
+        integer, allocatable :: row_line(:)
+        integer :: ncols, nrows, max_rows, pos, line_no, nbad, i
+        logical :: header_seen, header_optional
+
+        call read_text_file(path, text, error)
+        if (allocated(error)) return
+
+        ncols = size(header)
+        expected = lower(trim(adjustl(header(1))))
+        do i = 2, ncols
+            expected = expected//','//lower(trim(adjustl(header(i))))
+        end do
+        header_optional = expected == 'x,y'
+        ! Skip a UTF-8 byte order mark (spreadsheet exports).
+        if (len(text) >= 3) then
+            if (text(1:3) == char(239)//char(187)//char(191)) text = text(4:)
+        end if
+
+        max_rows = count_lines(text)
+        allocate (values(ncols, max_rows), row_line(max_rows))
+        nrows = 0
+        nbad = 0
+        messages = ''
+        header_seen = .false.
+        pos = 1
+        line_no = 0
+        do while (pos <= len(text))
+            call next_line(text, pos, line)
+            line_no = line_no + 1
+            line = trim(adjustl(line))
+            if (len(line) == 0) cycle
+            if (line(1:1) == '#') cycle
+            if (.not. header_seen) then
+                header_seen = .true.
+                if (normalized_header(line) == expected) cycle
+                if (.not. header_optional) then
+                    call set_error(error, exit_bad_input, path//' line '//itoa(line_no)// &
+                        ": the header '"//line//"' is not the expected '"//expected//"'")
+                    return
+                end if
+            end if
+            nrows = nrows + 1
+            row_line(nrows) = line_no
+            call parse_row(line, values(:, nrows), path//' line '//itoa(line_no)//': ', &
+                           expected, messages, nbad)
+        end do
+
+        if (nbad > max_messages) then
+            messages = messages//newline//'... and '//itoa(nbad - max_messages)// &
+                       ' more bad lines'
+        end if
+        if (nbad > 0) then
+            call set_error(error, exit_bad_input, messages)
+            return
+        end if
+        if (nrows == 0) then
+            call set_error(error, exit_bad_input, path//': no data rows (expected columns '// &
+                           expected//')')
+            return
+        end if
+        values = values(:, 1:nrows)
+        if (present(line_numbers)) line_numbers = row_line(1:nrows)
+    end subroutine read_csv
+
+    !> Parse one row into row; append a message for every bad field.
+    subroutine parse_row(line, row, prefix, expected, messages, nbad)
+        character(len=*), intent(in) :: line
+        real(wp), intent(out) :: row(:)
+        character(len=*), intent(in) :: prefix, expected
+        character(len=:), allocatable, intent(inout) :: messages
+        integer, intent(inout) :: nbad
+        character(len=:), allocatable :: field
+        integer :: nfields, start, comma, k, stat
+
+        row = 0.0_wp
+        nfields = count_fields(line)
+        if (nfields /= size(row)) then
+            call add_message(messages, nbad, prefix//itoa(nfields)//' fields, expected '// &
+                             itoa(size(row))//' ('//expected//')')
+            return
+        end if
+        start = 1
+        do k = 1, nfields
+            comma = index(line(start:), ',')
+            if (comma == 0) then
+                field = trim(adjustl(line(start:)))
+            else
+                field = trim(adjustl(line(start:start + comma - 2)))
+                start = start + comma
+            end if
+            ! Tabs around a field are blanks too.
+            field = strip(field)
+            if (len(field) == 0) then
+                call add_message(messages, nbad, prefix//'field '//itoa(k)//' is empty')
+            else if (.not. is_number(field)) then
+                if (is_nonfinite_word(field)) then
+                    call add_message(messages, nbad, prefix//'field '//itoa(k)//" '"//field// &
+                                     "' is not a finite number")
+                else
+                    call add_message(messages, nbad, prefix//'field '//itoa(k)//" '"//field// &
+                                     "' is not a number")
+                end if
+            else
+                read (field, *, iostat=stat) row(k)
+                if (stat /= 0) then
+                    call add_message(messages, nbad, prefix//'field '//itoa(k)//" '"//field// &
+                                     "' is not a number")
+                else if (.not. ieee_is_finite(row(k))) then
+                    call add_message(messages, nbad, prefix//'field '//itoa(k)//" '"//field// &
+                                     "' is not a finite number")
+                    row(k) = 0.0_wp
+                end if
+            end if
+        end do
+    end subroutine parse_row
+
+    !> Append a line to the messages (up to max_messages of them) and count it.
+    subroutine add_message(messages, nbad, message)
+        character(len=:), allocatable, intent(inout) :: messages
+        integer, intent(inout) :: nbad
+        character(len=*), intent(in) :: message
+
+        nbad = nbad + 1
+        if (nbad > max_messages) return
+        if (len(messages) > 0) messages = messages//newline
+        messages = messages//message
+    end subroutine add_message
+
+    !> Return the line starting at pos (without its newline or carriage return); move pos on.
+    subroutine next_line(text, pos, line)
+        character(len=*), intent(in) :: text
+        integer, intent(inout) :: pos
+        character(len=:), allocatable, intent(out) :: line
+        integer :: eol
+
+        eol = index(text(pos:), newline)
+        if (eol == 0) then
+            line = text(pos:)
+            pos = len(text) + 1
+        else
+            line = text(pos:pos + eol - 2)
+            pos = pos + eol
+        end if
+        if (len(line) > 0) then
+            if (line(len(line):len(line)) == achar(13)) line = line(1:len(line) - 1)
+        end if
+    end subroutine next_line
+
+    !> Number of lines in text (an upper bound on the rows).
+    pure function count_lines(text) result(n)
+        character(len=*), intent(in) :: text
+        integer :: n
+        integer :: i
+
+        n = 1
+        do i = 1, len(text)
+            if (text(i:i) == newline) n = n + 1
+        end do
+    end function count_lines
+
+    !> Number of comma-separated fields in a line.
+    pure function count_fields(line) result(n)
+        character(len=*), intent(in) :: line
+        integer :: n
+        integer :: i
+
+        n = 1
+        do i = 1, len(line)
+            if (line(i:i) == ',') n = n + 1
+        end do
+    end function count_fields
+
+    !> Header line in lower case without blanks, tabs or double quotes.
+    pure function normalized_header(line) result(out)
+        character(len=*), intent(in) :: line
+        character(len=:), allocatable :: out
+        integer :: i
+
+        out = ''
+        do i = 1, len(line)
+            select case (line(i:i))
+            case (' ', achar(9), '"')
+            case default
+                out = out//lower(line(i:i))
+            end select
+        end do
+    end function normalized_header
+
+    !> The string without leading and trailing blanks and tabs.
+    pure function strip(s) result(out)
+        character(len=*), intent(in) :: s
+        character(len=:), allocatable :: out
+        integer :: first, last
+
+        first = verify(s, ' '//achar(9))
+        last = verify(s, ' '//achar(9), back=.true.)
+        if (first == 0) then
+            out = ''
+        else
+            out = s(first:last)
+        end if
+    end function strip
+
+    !> True when s is a decimal number: [sign] digits [. digits] [e|d [sign] digits].
+    pure function is_number(s) result(ok)
+        character(len=*), intent(in) :: s
+        logical :: ok
+        integer :: i, n, ndigits
+
+        ok = .false.
+        n = len(s)
+        i = 1
+        if (n == 0) return
+        if (s(1:1) == '+' .or. s(1:1) == '-') i = 2
+        ndigits = 0
+        do while (i <= n)
+            if (.not. is_digit(s(i:i))) exit
+            ndigits = ndigits + 1
+            i = i + 1
+        end do
+        if (i <= n) then
+            if (s(i:i) == '.') then
+                i = i + 1
+                do while (i <= n)
+                    if (.not. is_digit(s(i:i))) exit
+                    ndigits = ndigits + 1
+                    i = i + 1
+                end do
+            end if
+        end if
+        if (ndigits == 0) return
+        if (i <= n) then
+            if (index('eEdD', s(i:i)) == 0) return
+            i = i + 1
+            if (i <= n) then
+                if (s(i:i) == '+' .or. s(i:i) == '-') i = i + 1
+            end if
+            if (i > n) return
+            do while (i <= n)
+                if (.not. is_digit(s(i:i))) return
+                i = i + 1
+            end do
+        end if
+        ok = .true.
+    end function is_number
+
+    !> True for the spellings of NaN and infinity.
+    pure function is_nonfinite_word(s) result(yes)
+        character(len=*), intent(in) :: s
+        logical :: yes
+        character(len=:), allocatable :: t
+
+        t = lower(s)
+        if (len(t) > 0) then
+            if (t(1:1) == '+' .or. t(1:1) == '-') t = t(2:)
+        end if
+        yes = t == 'nan' .or. t == 'inf' .or. t == 'infinity'
+    end function is_nonfinite_word
+
+    pure function is_digit(c) result(yes)
+        character(len=1), intent(in) :: c
+        logical :: yes
+
+        yes = c >= '0' .and. c <= '9'
+    end function is_digit
+
+    !> Lower-case copy of s (ASCII).
+    pure function lower(s) result(out)
+        character(len=*), intent(in) :: s
+        character(len=len(s)) :: out
+        integer :: i, code
+
+        do i = 1, len(s)
+            code = iachar(s(i:i))
+            if (code >= iachar('A') .and. code <= iachar('Z')) then
+                out(i:i) = achar(code + 32)
+            else
+                out(i:i) = s(i:i)
+            end if
+        end do
+    end function lower
+
+    !> Integer as text without blanks.
+    pure function itoa(i) result(out)
+        integer, intent(in) :: i
+        character(len=:), allocatable :: out
+        character(len=24) :: buffer
+
+        write (buffer, '(i0)') i
+        out = trim(buffer)
+    end function itoa
+
 end module ddc_input_csv

@@ -1,5 +1,62 @@
-!> Placeholder, being written.
+!> Read a whole text file into one string (lines separated by newline characters).
 module ddc_input_text_file
+    use ddc_error, only: error_type, set_error, exit_bad_input
     implicit none
     private
+
+    public :: read_text_file
+
+contains
+
+    !> Read the whole file at path into text. A missing, unreadable, empty or binary file
+    !> (one that contains a NUL byte) is an error with code exit_bad_input naming the path.
+    subroutine read_text_file(path, text, error)
+        !> Path of the file, as given by the user
+        character(len=*), intent(in) :: path
+        !> Content of the file, newlines included
+        character(len=:), allocatable, intent(out) :: text
+        !> Allocated when the file cannot be used
+        type(error_type), allocatable, intent(out) :: error
+        integer :: unit, stat, file_size
+        logical :: exists
+        character(len=512) :: message
+
+        if (len_trim(path) == 0) then
+            call set_error(error, exit_bad_input, 'empty file name')
+            return
+        end if
+        inquire (file=path, exist=exists)
+        if (.not. exists) then
+            call set_error(error, exit_bad_input, path//': file not found')
+            return
+        end if
+        open (newunit=unit, file=path, access='stream', form='unformatted', &
+              action='read', status='old', iostat=stat, iomsg=message)
+        if (stat /= 0) then
+            call set_error(error, exit_bad_input, path//': cannot open: '//trim(message))
+            return
+        end if
+        inquire (unit=unit, size=file_size)
+        if (file_size < 0) then
+            close (unit)
+            call set_error(error, exit_bad_input, path//': cannot tell the file size')
+            return
+        end if
+        allocate (character(len=file_size) :: text)
+        if (file_size > 0) then
+            read (unit, iostat=stat, iomsg=message) text
+            if (stat /= 0) then
+                close (unit)
+                call set_error(error, exit_bad_input, path//': cannot read: '//trim(message))
+                return
+            end if
+        end if
+        close (unit)
+        if (verify(text, ' '//achar(9)//achar(10)//achar(13)) == 0) then
+            call set_error(error, exit_bad_input, path//': the file is empty')
+        else if (index(text, achar(0)) > 0) then
+            call set_error(error, exit_bad_input, path//': not a text file (contains NUL bytes)')
+        end if
+    end subroutine read_text_file
+
 end module ddc_input_text_file

@@ -1,5 +1,308 @@
-!> Placeholder, being written.
+!> Geometric checks of a mesh: no zero-length, duplicate, overlapping or crossing elements.
+!>
+!> Elements may share end points (polyline vertices, branches, closed loops); any other
+!> contact between two elements is an error. A T-junction must put a vertex at the branch
+!> point. Tolerances are relative to the element lengths (1e-10) plus a few ulps of the
+!> coordinates. Pairs are found with a sweep over the x-extents (sorted), so typical
+!> meshes cost about N log N; the worst case stays O(N^2).
 module ddc_mesh_checks
+    use ddc_kinds, only: wp
+    use ddc_error, only: error_type, set_error, exit_bad_input
+    use ddc_model_types, only: element_set, fracture_type
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     implicit none
     private
+
+    public :: check_elements
+
+    !> Relative tolerance on element lengths
+    real(wp), parameter :: relative_tolerance = 1.0e-10_wp
+    !> At most this many problems are listed in one message
+    integer, parameter :: max_messages = 20
+
+    integer, parameter :: pair_ok = 0, pair_duplicate = 1, pair_overlap = 2, &
+                          pair_cross = 3, pair_t_first_end = 4, pair_t_second_end = 5
+
+    character(len=*), parameter :: newline = achar(10)
+
+contains
+
+    !> Reject zero-length, duplicate, overlapping and crossing elements, and elements whose
+    !> end touches another element's interior. The message names fractures and elements.
+    subroutine check_elements(elements, fractures, error)
+        !> The elements, with end points set
+        type(element_set), intent(in) :: elements
+        !> The fractures, for naming elements in messages
+        type(fracture_type), intent(in) :: fractures(:)
+        !> Allocated (code exit_bad_input) listing every problem found
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: length(:), tol(:), xmin(:), xmax(:), ymin(:), ymax(:)
+        integer, allocatable :: order(:)
+        logical, allocatable :: degenerate(:)
+        character(len=:), allocatable :: messages
+        real(wp) :: scale, extent, absolute_tol, pair_tol, tol_max
+        integer :: n, i, j, a, b, kind, nbad
+
+        n = elements%n
+        messages = ''
+        nbad = 0
+        if (n == 0) return
+        do i = 1, n
+            if (.not. (ieee_is_finite(elements%x_begin(i)) .and. &
+                       ieee_is_finite(elements%y_begin(i)) .and. &
+                       ieee_is_finite(elements%x_end(i)) .and. &
+                       ieee_is_finite(elements%y_end(i)))) then
+                call add_message(messages, nbad, describe(i)// &
+                                 ' has a coordinate that is NaN or Inf')
+            end if
+        end do
+        if (nbad > 0) then
+            call finish(messages, nbad, error)
+            return
+        end if
+
+        allocate (length(n), tol(n), xmin(n), xmax(n), ymin(n), ymax(n), degenerate(n))
+        length = hypot(elements%x_end - elements%x_begin, elements%y_end - elements%y_begin)
+        xmin = min(elements%x_begin, elements%x_end)
+        xmax = max(elements%x_begin, elements%x_end)
+        ymin = min(elements%y_begin, elements%y_end)
+        ymax = max(elements%y_begin, elements%y_end)
+        scale = max(maxval(abs(xmin)), maxval(abs(xmax)), maxval(abs(ymin)), maxval(abs(ymax)))
+        extent = max(maxval(xmax) - minval(xmin), maxval(ymax) - minval(ymin))
+        absolute_tol = 16.0_wp * epsilon(1.0_wp) * scale
+        tol = relative_tolerance * length + absolute_tol
+        degenerate = length <= max(1.0e-12_wp * extent, absolute_tol)
+        do i = 1, n
+            if (degenerate(i)) then
+                call add_message(messages, nbad, describe(i)//' has zero length')
+            end if
+        end do
+
+        ! Sweep: sort by xmin, compare each element with those starting before it ends.
+        order = sorted_order(xmin)
+        tol_max = maxval(tol)
+        do a = 1, n
+            i = order(a)
+            if (degenerate(i)) cycle
+            do b = a + 1, n
+                j = order(b)
+                if (xmin(j) > xmax(i) + tol(i) + tol_max) exit
+                if (degenerate(j)) cycle
+                if (xmin(j) - tol(j) > xmax(i) + tol(i)) cycle
+                if (ymin(j) - tol(j) > ymax(i) + tol(i)) cycle
+                if (ymax(j) + tol(j) < ymin(i) - tol(i)) cycle
+                pair_tol = max(tol(i), tol(j))
+                kind = classify_pair(elements%x_begin(i), elements%y_begin(i), &
+                                     elements%x_end(i), elements%y_end(i), &
+                                     elements%x_begin(j), elements%y_begin(j), &
+                                     elements%x_end(j), elements%y_end(j), pair_tol)
+                if (kind /= pair_ok) call report_pair(min(i, j), max(i, j), i, kind)
+            end do
+        end do
+        if (nbad > 0) call finish(messages, nbad, error)
+
+    contains
+
+        !> Append the message for the pair (first, second); kind refers to (i, other).
+        subroutine report_pair(first, second, i_of_kind, kind)
+            integer, intent(in) :: first, second, i_of_kind, kind
+            integer :: touching, touched
+
+            select case (kind)
+            case (pair_duplicate)
+                call add_message(messages, nbad, describe(first)//' and '//describe(second)// &
+                                 ' are duplicates (same end points)')
+            case (pair_overlap)
+                call add_message(messages, nbad, describe(first)//' and '//describe(second)// &
+                                 ' overlap (collinear and sharing a stretch)')
+            case (pair_cross)
+                call add_message(messages, nbad, describe(first)//' and '//describe(second)// &
+                                 ' cross each other; put a vertex at the intersection')
+            case (pair_t_first_end, pair_t_second_end)
+                ! kind is relative to the order (i_of_kind, other) of classify_pair
+                if ((kind == pair_t_first_end) .eqv. (i_of_kind == first)) then
+                    touching = first
+                    touched = second
+                else
+                    touching = second
+                    touched = first
+                end if
+                call add_message(messages, nbad, 'an end of '//describe(touching)// &
+                                 ' touches the interior of '//describe(touched)// &
+                                 ' (T-junction): split the fracture with a vertex at the '// &
+                                 'branch point so that the elements share it')
+            end select
+        end subroutine report_pair
+
+        !> "fracture 'name' element k (model element i)"
+        function describe(element) result(text)
+            integer, intent(in) :: element
+            character(len=:), allocatable :: text
+            integer :: f
+
+            f = 0
+            if (allocated(elements%fracture_id)) then
+                if (element <= size(elements%fracture_id)) f = elements%fracture_id(element)
+            end if
+            if (f >= 1 .and. f <= size(fractures)) then
+                if (allocated(fractures(f)%name)) then
+                    text = "fracture '"//fractures(f)%name//"' element "// &
+                           itoa(element - fractures(f)%first_element + 1)// &
+                           ' (model element '//itoa(element)//')'
+                    return
+                end if
+            end if
+            text = 'element '//itoa(element)
+        end function describe
+
+    end subroutine check_elements
+
+    !> Classify two segments P = p0-p1 and Q = q0-q1 (both of non-zero length).
+    pure function classify_pair(p0x, p0y, p1x, p1y, q0x, q0y, q1x, q1y, tol) result(kind)
+        real(wp), intent(in) :: p0x, p0y, p1x, p1y, q0x, q0y, q1x, q1y
+        !> Distance below which points coincide [length unit]
+        real(wp), intent(in) :: tol
+        integer :: kind
+        real(wp) :: dx, dy, ex, ey, lp, lq, dq0, dq1, dp0, dp1, denominator, t, u
+        real(wp) :: ux, uy, tp(2), tq(2), overlap
+        logical :: s00, s01, s10, s11, shared, p_end, q_end
+
+        kind = pair_ok
+        s00 = hypot(p0x - q0x, p0y - q0y) <= tol
+        s01 = hypot(p0x - q1x, p0y - q1y) <= tol
+        s10 = hypot(p1x - q0x, p1y - q0y) <= tol
+        s11 = hypot(p1x - q1x, p1y - q1y) <= tol
+        if ((s00 .and. s11) .or. (s01 .and. s10)) then
+            kind = pair_duplicate
+            return
+        end if
+        shared = s00 .or. s01 .or. s10 .or. s11
+
+        dx = p1x - p0x
+        dy = p1y - p0y
+        ex = q1x - q0x
+        ey = q1y - q0y
+        lp = hypot(dx, dy)
+        lq = hypot(ex, ey)
+        ! Signed distances of each segment's ends from the other segment's line.
+        dq0 = (dx * (q0y - p0y) - dy * (q0x - p0x)) / lp
+        dq1 = (dx * (q1y - p0y) - dy * (q1x - p0x)) / lp
+        dp0 = (ex * (p0y - q0y) - ey * (p0x - q0x)) / lq
+        dp1 = (ex * (p1y - q0y) - ey * (p1x - q0x)) / lq
+
+        if ((abs(dq0) <= tol .and. abs(dq1) <= tol) .or. &
+            (abs(dp0) <= tol .and. abs(dp1) <= tol)) then
+            ! Collinear: measure the common stretch along the longer element.
+            if (lp >= lq) then
+                ux = dx / lp
+                uy = dy / lp
+            else
+                ux = ex / lq
+                uy = ey / lq
+            end if
+            tp = [0.0_wp, (p1x - p0x) * ux + (p1y - p0y) * uy]
+            tq = [(q0x - p0x) * ux + (q0y - p0y) * uy, (q1x - p0x) * ux + (q1y - p0y) * uy]
+            overlap = min(maxval(tp), maxval(tq)) - max(minval(tp), minval(tq))
+            if (overlap > tol) kind = pair_overlap
+            return
+        end if
+
+        ! Not collinear: each segment must reach the other's line for any contact.
+        if ((dq0 > tol .and. dq1 > tol) .or. (dq0 < -tol .and. dq1 < -tol)) return
+        if ((dp0 > tol .and. dp1 > tol) .or. (dp0 < -tol .and. dp1 < -tol)) return
+        ! Two straight elements meet at most once: at a shared vertex that is allowed.
+        if (shared) return
+        denominator = dx * ey - dy * ex
+        if (denominator == 0.0_wp) return
+        ! Intersection of the lines, as distances along P and along Q.
+        t = ((q0x - p0x) * ey - (q0y - p0y) * ex) / denominator * lp
+        u = ((q0x - p0x) * dy - (q0y - p0y) * dx) / denominator * lq
+        if (t < -tol .or. t > lp + tol .or. u < -tol .or. u > lq + tol) return
+        p_end = t <= tol .or. t >= lp - tol
+        q_end = u <= tol .or. u >= lq - tol
+        if (p_end) then
+            kind = pair_t_first_end
+        else if (q_end) then
+            kind = pair_t_second_end
+        else
+            kind = pair_cross
+        end if
+    end function classify_pair
+
+    !> Indices that sort keys in ascending order (heap sort).
+    pure function sorted_order(keys) result(order)
+        real(wp), intent(in) :: keys(:)
+        integer :: order(size(keys))
+        integer :: n, i, last, tmp
+
+        n = size(keys)
+        order = [(i, i = 1, n)]
+        do i = n / 2, 1, -1
+            call sift_down(i, n)
+        end do
+        do last = n, 2, -1
+            tmp = order(1)
+            order(1) = order(last)
+            order(last) = tmp
+            call sift_down(1, last - 1)
+        end do
+
+    contains
+
+        pure subroutine sift_down(start, end)
+            integer, intent(in) :: start, end
+            integer :: root, child, swap
+
+            root = start
+            do while (2 * root <= end)
+                child = 2 * root
+                if (child < end) then
+                    if (keys(order(child + 1)) > keys(order(child))) child = child + 1
+                end if
+                if (keys(order(child)) <= keys(order(root))) return
+                swap = order(root)
+                order(root) = order(child)
+                order(child) = swap
+                root = child
+            end do
+        end subroutine sift_down
+
+    end function sorted_order
+
+    !> Append a message (up to max_messages of them) and count it.
+    subroutine add_message(messages, nbad, message)
+        character(len=:), allocatable, intent(inout) :: messages
+        integer, intent(inout) :: nbad
+        character(len=*), intent(in) :: message
+
+        nbad = nbad + 1
+        if (nbad > max_messages) return
+        if (len(messages) > 0) messages = messages//newline
+        messages = messages//message
+    end subroutine add_message
+
+    !> Turn the collected messages into the error.
+    subroutine finish(messages, nbad, error)
+        character(len=*), intent(in) :: messages
+        integer, intent(in) :: nbad
+        type(error_type), allocatable, intent(out) :: error
+
+        if (nbad > max_messages) then
+            call set_error(error, exit_bad_input, messages//newline//'... and '// &
+                           itoa(nbad - max_messages)//' more mesh problems')
+        else
+            call set_error(error, exit_bad_input, messages)
+        end if
+    end subroutine finish
+
+    !> Integer as text without blanks.
+    pure function itoa(i) result(out)
+        integer, intent(in) :: i
+        character(len=:), allocatable :: out
+        character(len=24) :: buffer
+
+        write (buffer, '(i0)') i
+        out = trim(buffer)
+    end function itoa
+
 end module ddc_mesh_checks

@@ -1,5 +1,805 @@
-!> Placeholder, being written.
+!> The HDF5 result file of SPEC sections 5 and 6, written atomically.
+!>
+!> The file is written under partial_name(path) and renamed to path only when every group,
+!> dataset and attribute has been written and the file closed; on any failure the partial
+!> file is removed. Every routine closes every handle it opens on every path (chained
+!> status: a routine does nothing when the error is already set, but closing always runs).
+!> The plain HDF5 Fortran API is used (no HL library). Layout as seen from h5py:
+!>
+!> - root attributes: program, version, git_commit, created (UTC), title, input_file,
+!>   input_text, units, elastic constants, remote_stress [sxx, syy, sxy], conventions,
+!>   open_cohesion, lcp_method, and last complete = 1;
+!> - /elements/<quantity> shape (n), every real dataset with a `units` attribute;
+!> - /fractures/{name, first_element, last_element};
+!> - /tips/{x, y, fracture_id, element, k1, k2} (empty datasets when there are no tips);
+!> - /fields/<name>/{x, y, ux, uy, sxx, syy, sxy, near_element}, grids shaped (ny, nx)
+!>   in h5py (Fortran dims (nx, ny)), lines and point lists 1-D;
+!> - /solver attributes and /solver/seconds/<phase> scalar datasets.
 module ddc_output_hdf5
+    use, intrinsic :: iso_c_binding, only: c_char, c_null_char, c_loc
+    use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5close_f, h5eset_auto_f, &
+        h5fcreate_f, h5fclose_f, H5F_ACC_TRUNC_F, h5gcreate_f, h5gclose_f, &
+        h5screate_f, h5screate_simple_f, h5sclose_f, H5S_SCALAR_F, &
+        h5dcreate_f, h5dwrite_f, h5dclose_f, h5acreate_f, h5awrite_f, h5aclose_f, &
+        h5tcopy_f, h5tset_size_f, h5tset_strpad_f, h5tset_cset_f, h5tclose_f, &
+        H5T_FORTRAN_S1, H5T_STR_NULLPAD_F, H5T_CSET_UTF8_F, H5T_NATIVE_DOUBLE, &
+        H5T_NATIVE_INTEGER
+    use ddc_kinds, only: wp
+    use ddc_error, only: error_type, set_error, exit_io_failure
+    use ddc_version, only: program_name, program_version, git_commit
+    use ddc_model_types, only: model_type, observation_grid, observation_kind_names
+    use ddc_model_results, only: model_results, state_free, state_stick, state_slip, &
+        state_open
+    use ddc_output_atomic, only: partial_name, publish_file, remove_file
     implicit none
     private
+
+    public :: write_results
+
+    !> Sign and face conventions stored in every file
+    character(len=*), parameter :: conventions = 'stress tension positive; Crouch & ' &
+        //'Starfield displacement discontinuities: ds = us(-) - us(+), dn = un(-) - un(+), ' &
+        //'opening = -dn; positive face on the left of the element direction'
+    !> Codings stored as attributes of the integer datasets
+    character(len=*), parameter :: condition_coding = '1 traction, 2 displacement, ' &
+        //'3 mixed_us_sn, 4 mixed_ss_un, 5 contact'
+    character(len=*), parameter :: state_coding = '0 free (TWODD-style condition), ' &
+        //'1 stick, 2 slip, 3 open'
+    character(len=*), parameter :: near_coding = '0 clear, 1 within one element length ' &
+        //'of an element centre (reduced accuracy), 2 on an element or at an element end ' &
+        //'(value NaN)'
+
+    !> An open HDF5 object (file, group or dataset) with its path, for messages.
+    type :: h5_object
+        !> HDF5 identifier
+        integer(hid_t) :: id = -1
+        !> Path of the object inside the file ('/' for the root)
+        character(len=:), allocatable :: path
+        !> Name of the file, for messages
+        character(len=:), allocatable :: file
+    end type h5_object
+
+    !> Attributes of any object: strings, reals (scalar or 1-D) and integers.
+    interface write_attribute
+        module procedure write_string_attribute, write_real_attribute, &
+            write_real_array_attribute, write_int_attribute
+    end interface write_attribute
+
+contains
+
+    !> Write the result file: to partial_name(path) first, published to path on success.
+    subroutine write_results(path, model, results, error)
+        !> Path of the final result file
+        character(len=*), intent(in) :: path
+        !> The model that was solved
+        type(model_type), intent(in) :: model
+        !> Its results; results%fields(i) belongs to model%observations(i)
+        type(model_results), intent(in) :: results
+        !> Allocated with exit_io_failure when the file cannot be written
+        type(error_type), allocatable, intent(out) :: error
+        type(h5_object) :: root
+        character(len=:), allocatable :: temporary
+        integer :: status, close_status
+
+        call check_consistency(model, results, error)
+        if (allocated(error)) return
+        temporary = partial_name(path)
+        call h5open_f(status)
+        if (status /= 0) then
+            call set_error(error, exit_io_failure, 'HDF5 library could not be initialised')
+            return
+        end if
+        call h5eset_auto_f(0, status)  ! errors become messages here, not stack dumps
+
+        root%path = '/'
+        root%file = temporary
+        call h5fcreate_f(temporary, H5F_ACC_TRUNC_F, root%id, status)
+        if (status /= 0) then
+            call set_error(error, exit_io_failure, 'HDF5 could not create file ' &
+                //temporary)
+        else
+            call write_root_attributes(root, model, error)
+            call write_elements(root, model, results, error)
+            call write_fractures(root, model, error)
+            call write_tips(root, model, results, error)
+            call write_fields(root, model, results, error)
+            call write_solver(root, results, error)
+            call write_attribute(root, 'complete', 1, error)
+            call h5fclose_f(root%id, close_status)
+            if (close_status /= 0 .and. .not. allocated(error)) then
+                call set_error(error, exit_io_failure, 'HDF5 could not close file ' &
+                    //temporary//' (disk full?)')
+            end if
+        end if
+        call h5close_f(status)
+
+        if (.not. allocated(error)) call publish_file(temporary, path, error)
+        if (allocated(error)) call remove_file(temporary)
+    end subroutine write_results
+
+    !> Refuse results whose sizes do not match the model (a programming error).
+    subroutine check_consistency(model, results, error)
+        type(model_type), intent(in) :: model
+        type(model_results), intent(in) :: results
+        type(error_type), allocatable, intent(out) :: error
+        integer :: n, n_sets
+
+        n = model%elements%n
+        if (.not. allocated(results%elements%ds) .or. .not. allocated(results%elements%state)) &
+            then
+            call set_error(error, exit_io_failure, 'internal error: no element results ' &
+                //'to write')
+            return
+        end if
+        if (size(results%elements%ds) /= n .or. size(results%elements%state) /= n) then
+            call set_error(error, exit_io_failure, 'internal error: element results ' &
+                //'and model differ in size')
+            return
+        end if
+        n_sets = 0
+        if (allocated(model%observations)) n_sets = size(model%observations)
+        if (n_sets > 0) then
+            if (.not. allocated(results%fields)) then
+                call set_error(error, exit_io_failure, 'internal error: no field results')
+            else if (size(results%fields) /= n_sets) then
+                call set_error(error, exit_io_failure, 'internal error: field results ' &
+                    //'and observation sets differ in number')
+            end if
+        end if
+    end subroutine check_consistency
+
+    !> Self-description: program, version, date, input, units, elasticity, conventions.
+    subroutine write_root_attributes(root, model, error)
+        type(h5_object), intent(in) :: root
+        type(model_type), intent(in) :: model
+        type(error_type), allocatable, intent(inout) :: error
+        real(wp) :: shear_modulus
+
+        shear_modulus = model%youngs_modulus / (2.0_wp * (1.0_wp + model%poissons_ratio))
+        call write_attribute(root, 'program', program_name, error)
+        call write_attribute(root, 'version', program_version, error)
+        call write_attribute(root, 'git_commit', git_commit, error)
+        call write_attribute(root, 'created', utc_timestamp(), error)
+        call write_attribute(root, 'title', text(model%title), error)
+        call write_attribute(root, 'input_file', text(model%input_file), error)
+        call write_attribute(root, 'input_text', text(model%input_text), error)
+        call write_attribute(root, 'length_unit', text(model%length_unit), error)
+        call write_attribute(root, 'stress_unit', text(model%stress_unit), error)
+        call write_attribute(root, 'youngs_modulus', model%youngs_modulus, error)
+        call write_attribute(root, 'poissons_ratio', model%poissons_ratio, error)
+        call write_attribute(root, 'shear_modulus', shear_modulus, error)
+        call write_attribute(root, 'remote_stress', [model%sxx, model%syy, model%sxy], error)
+        call write_attribute(root, 'conventions', conventions, error)
+        call write_attribute(root, 'open_cohesion', text(model%solver%open_cohesion), error)
+        call write_attribute(root, 'lcp_method', text(model%solver%lcp_method), error)
+    end subroutine write_root_attributes
+
+    !> /elements: geometry, conditions, results and contact properties, shape (n).
+    subroutine write_elements(root, model, results, error)
+        type(h5_object), intent(in) :: root
+        type(model_type), intent(in) :: model
+        type(model_results), intent(in) :: results
+        type(error_type), allocatable, intent(inout) :: error
+        type(h5_object) :: group
+        character(len=:), allocatable :: length, stress, given
+
+        length = text(model%length_unit)
+        stress = text(model%stress_unit)
+        given = stress//' or '//length//' (by condition)'
+        call create_group(root, 'elements', group, error)
+        if (allocated(error)) return
+        associate (e => model%elements, r => results%elements)
+            call write_real_1d(group, 'x_begin', e%x_begin, length, error)
+            call write_real_1d(group, 'y_begin', e%y_begin, length, error)
+            call write_real_1d(group, 'x_end', e%x_end, length, error)
+            call write_real_1d(group, 'y_end', e%y_end, length, error)
+            call write_real_1d(group, 'x_mid', e%x_mid, length, error)
+            call write_real_1d(group, 'y_mid', e%y_mid, length, error)
+            call write_real_1d(group, 'half_length', e%half_length, length, error)
+            call write_int_1d(group, 'fracture_id', e%fracture_id, error)
+            call write_int_1d(group, 'condition', e%condition, error, condition_coding)
+            call write_real_1d(group, 'bc_s', e%bc_s, given, error)
+            call write_real_1d(group, 'bc_n', e%bc_n, given, error)
+            call write_real_1d(group, 'ds', r%ds, length, error)
+            call write_real_1d(group, 'dn', r%dn, length, error)
+            call write_real_1d(group, 'opening', -r%dn, length, error)
+            call write_real_1d(group, 'shear_traction', r%shear_traction, stress, error)
+            call write_real_1d(group, 'normal_traction', r%normal_traction, stress, error)
+            call write_real_1d(group, 'us_minus', r%us_minus, length, error)
+            call write_real_1d(group, 'un_minus', r%un_minus, length, error)
+            call write_real_1d(group, 'us_plus', r%us_plus, length, error)
+            call write_real_1d(group, 'un_plus', r%un_plus, length, error)
+            call write_int_1d(group, 'state', r%state, error, state_coding)
+            call write_real_1d(group, 'mu', e%mu, '1', error)
+            call write_real_1d(group, 'sf', e%sf, stress, error)
+            call write_real_1d(group, 'pressure', e%pressure, stress, error)
+        end associate
+        call close_group(group, error)
+    end subroutine write_elements
+
+    !> /fractures: name, first_element, last_element (1-based), one entry per fracture.
+    subroutine write_fractures(root, model, error)
+        type(h5_object), intent(in) :: root
+        type(model_type), intent(in) :: model
+        type(error_type), allocatable, intent(inout) :: error
+        type(h5_object) :: group
+        integer :: i, n, width
+
+        n = 0
+        if (allocated(model%fractures)) n = size(model%fractures)
+        width = 1
+        do i = 1, n
+            width = max(width, len(text(model%fractures(i)%name)))
+        end do
+        call create_group(root, 'fractures', group, error)
+        if (allocated(error)) return
+        block
+            character(len=width) :: names(n)
+            integer :: first(n), last(n)
+
+            do i = 1, n
+                names(i) = text(model%fractures(i)%name)
+                first(i) = model%fractures(i)%first_element
+                last(i) = model%fractures(i)%last_element
+            end do
+            call write_string_1d(group, 'name', names, error)
+            call write_int_1d(group, 'first_element', first, error)
+            call write_int_1d(group, 'last_element', last, error)
+        end block
+        call close_group(group, error)
+    end subroutine write_fractures
+
+    !> /tips: position, fracture, element and stress intensity factors; empty if no tips.
+    subroutine write_tips(root, model, results, error)
+        type(h5_object), intent(in) :: root
+        type(model_type), intent(in) :: model
+        type(model_results), intent(in) :: results
+        type(error_type), allocatable, intent(inout) :: error
+        type(h5_object) :: group
+        character(len=:), allocatable :: length, k_unit
+        real(wp), allocatable :: none_real(:)
+        integer, allocatable :: none_int(:)
+
+        length = text(model%length_unit)
+        k_unit = text(model%stress_unit)//' '//length//'^0.5'
+        call create_group(root, 'tips', group, error)
+        if (allocated(error)) return
+        associate (t => results%tips)
+            if (t%n > 0) then
+                call write_real_1d(group, 'x', t%x, length, error)
+                call write_real_1d(group, 'y', t%y, length, error)
+                call write_int_1d(group, 'fracture_id', t%fracture_id, error)
+                call write_int_1d(group, 'element', t%element, error)
+                call write_real_1d(group, 'k1', t%k1, k_unit, error)
+                call write_real_1d(group, 'k2', t%k2, k_unit, error)
+            else
+                allocate (none_real(0), none_int(0))
+                call write_real_1d(group, 'x', none_real, length, error)
+                call write_real_1d(group, 'y', none_real, length, error)
+                call write_int_1d(group, 'fracture_id', none_int, error)
+                call write_int_1d(group, 'element', none_int, error)
+                call write_real_1d(group, 'k1', none_real, k_unit, error)
+                call write_real_1d(group, 'k2', none_real, k_unit, error)
+            end if
+        end associate
+        call close_group(group, error)
+    end subroutine write_tips
+
+    !> /fields/<name> for every observation set; grids as (nx, ny) Fortran arrays.
+    subroutine write_fields(root, model, results, error)
+        type(h5_object), intent(in) :: root
+        type(model_type), intent(in) :: model
+        type(model_results), intent(in) :: results
+        type(error_type), allocatable, intent(inout) :: error
+        type(h5_object) :: fields, set
+        character(len=:), allocatable :: length, stress
+        integer, allocatable :: dims(:)
+        integer :: i
+
+        length = text(model%length_unit)
+        stress = text(model%stress_unit)
+        call create_group(root, 'fields', fields, error)
+        if (allocated(error)) return
+        if (allocated(model%observations)) then
+            do i = 1, size(model%observations)
+                associate (o => model%observations(i), f => results%fields(i))
+                    if (o%kind == observation_grid) then
+                        dims = [o%nx, o%ny]
+                    else
+                        dims = [size(o%x)]
+                    end if
+                    call create_group(fields, text(o%name), set, error)
+                    if (allocated(error)) exit
+                    call write_attribute(set, 'kind', trim(observation_kind_names(o%kind)), &
+                        error)
+                    call write_attribute(set, 'nx', o%nx, error)
+                    call write_attribute(set, 'ny', o%ny, error)
+                    call write_real_dataset(set, 'x', o%x, dims, length, error)
+                    call write_real_dataset(set, 'y', o%y, dims, length, error)
+                    call write_real_dataset(set, 'ux', f%ux, dims, length, error)
+                    call write_real_dataset(set, 'uy', f%uy, dims, length, error)
+                    call write_real_dataset(set, 'sxx', f%sxx, dims, stress, error)
+                    call write_real_dataset(set, 'syy', f%syy, dims, stress, error)
+                    call write_real_dataset(set, 'sxy', f%sxy, dims, stress, error)
+                    call write_int_dataset(set, 'near_element', f%flag, dims, error, &
+                        near_coding)
+                    call close_group(set, error)
+                end associate
+                if (allocated(error)) exit
+            end do
+        end if
+        call close_group(fields, error)
+    end subroutine write_fields
+
+    !> /solver: method, threads, pivots, residual and state counts as attributes;
+    !> /solver/seconds/<phase> wall times as scalar datasets.
+    subroutine write_solver(root, results, error)
+        type(h5_object), intent(in) :: root
+        type(model_results), intent(in) :: results
+        type(error_type), allocatable, intent(inout) :: error
+        type(h5_object) :: solver, seconds
+        integer, parameter :: no_dims(0) = [integer ::]
+
+        call create_group(root, 'solver', solver, error)
+        if (allocated(error)) return
+        associate (s => results%solver, state => results%elements%state)
+            call write_attribute(solver, 'method', text(s%method), error)
+            call write_attribute(solver, 'threads', s%threads, error)
+            call write_attribute(solver, 'pivots', s%pivots, error)
+            call write_attribute(solver, 'equilibrium_residual', s%equilibrium_residual, error)
+            call write_attribute(solver, 'elements_free', count(state == state_free), error)
+            call write_attribute(solver, 'elements_stick', count(state == state_stick), error)
+            call write_attribute(solver, 'elements_slip', count(state == state_slip), error)
+            call write_attribute(solver, 'elements_open', count(state == state_open), error)
+            call create_group(solver, 'seconds', seconds, error)
+            if (.not. allocated(error)) then
+                call write_real_dataset(seconds, 'assembly', [s%seconds_assembly], no_dims, &
+                    's', error)
+                call write_real_dataset(seconds, 'factorization', &
+                    [s%seconds_factorization], no_dims, 's', error)
+                call write_real_dataset(seconds, 'lcp', [s%seconds_lcp], no_dims, 's', error)
+                call write_real_dataset(seconds, 'fields', [s%seconds_fields], no_dims, 's', &
+                    error)
+                call write_real_dataset(seconds, 'output', [s%seconds_output], no_dims, 's', &
+                    error)
+                call write_real_dataset(seconds, 'total', [s%seconds_total], no_dims, 's', &
+                    error)
+                call close_group(seconds, error)
+            end if
+        end associate
+        call close_group(solver, error)
+    end subroutine write_solver
+
+    ! ---------------------------------------------------------------- generic helpers
+
+    !> A 1-D real dataset with a `units` attribute.
+    subroutine write_real_1d(parent, name, values, units, error)
+        type(h5_object), intent(in) :: parent
+        character(len=*), intent(in) :: name
+        real(wp), intent(in) :: values(:)
+        character(len=*), intent(in) :: units
+        type(error_type), allocatable, intent(inout) :: error
+
+        call write_real_dataset(parent, name, values, [size(values)], units, error)
+    end subroutine write_real_1d
+
+    !> A 1-D integer dataset, with an optional `coding` attribute.
+    subroutine write_int_1d(parent, name, values, error, coding)
+        type(h5_object), intent(in) :: parent
+        character(len=*), intent(in) :: name
+        integer, intent(in) :: values(:)
+        type(error_type), allocatable, intent(inout) :: error
+        character(len=*), intent(in), optional :: coding
+
+        call write_int_dataset(parent, name, values, [size(values)], error, coding)
+    end subroutine write_int_1d
+
+    !> A real dataset of Fortran dims `dims` (scalar when dims is empty) from values in
+    !> array element order, with a `units` attribute.
+    subroutine write_real_dataset(parent, name, values, dims, units, error)
+        type(h5_object), intent(in) :: parent
+        character(len=*), intent(in) :: name
+        real(wp), intent(in) :: values(:)
+        integer, intent(in) :: dims(:)
+        character(len=*), intent(in) :: units
+        type(error_type), allocatable, intent(inout) :: error
+        type(h5_object) :: dataset
+        integer :: status
+
+        call create_dataset(parent, name, H5T_NATIVE_DOUBLE, dims, dataset, error)
+        if (allocated(error)) return
+        if (size(values) > 0) then
+            call h5dwrite_f(dataset%id, H5T_NATIVE_DOUBLE, values, &
+                int(max(dims, 1), hsize_t), status)
+            if (status /= 0) call fail(error, 'write dataset', dataset)
+        end if
+        call write_attribute(dataset, 'units', units, error)
+        call close_dataset(dataset, error)
+    end subroutine write_real_dataset
+
+    !> An integer dataset of Fortran dims `dims`, with an optional `coding` attribute.
+    subroutine write_int_dataset(parent, name, values, dims, error, coding)
+        type(h5_object), intent(in) :: parent
+        character(len=*), intent(in) :: name
+        integer, intent(in) :: values(:)
+        integer, intent(in) :: dims(:)
+        type(error_type), allocatable, intent(inout) :: error
+        character(len=*), intent(in), optional :: coding
+        type(h5_object) :: dataset
+        integer :: status
+
+        call create_dataset(parent, name, H5T_NATIVE_INTEGER, dims, dataset, error)
+        if (allocated(error)) return
+        if (size(values) > 0) then
+            call h5dwrite_f(dataset%id, H5T_NATIVE_INTEGER, values, &
+                int(max(dims, 1), hsize_t), status)
+            if (status /= 0) call fail(error, 'write dataset', dataset)
+        end if
+        if (present(coding)) call write_attribute(dataset, 'coding', coding, error)
+        call close_dataset(dataset, error)
+    end subroutine write_int_dataset
+
+    !> A 1-D dataset of fixed-length, NUL-padded UTF-8 strings (trailing blanks dropped).
+    subroutine write_string_1d(parent, name, values, error)
+        type(h5_object), intent(in) :: parent
+        character(len=*), intent(in) :: name
+        character(len=*), intent(in) :: values(:)
+        type(error_type), allocatable, intent(inout) :: error
+        type(h5_object) :: dataset
+        character(kind=c_char), allocatable, target :: buffer(:)
+        integer(hid_t) :: string_type
+        integer :: i, width, status
+
+        if (allocated(error)) return
+        width = max(1, len(values))
+        allocate (buffer(width * size(values)))
+        do i = 1, size(values)
+            buffer((i - 1) * width + 1:i * width) = c_chars(trim(values(i)), width)
+        end do
+        call create_string_type(width, string_type, status)
+        if (status /= 0) then
+            call fail(error, 'create a string type for', parent, name)
+        else
+            call create_dataset(parent, name, string_type, [size(values)], dataset, error)
+            if (.not. allocated(error)) then
+                if (size(values) > 0) then
+                    call h5dwrite_f(dataset%id, string_type, c_loc(buffer), status)
+                    if (status /= 0) call fail(error, 'write dataset', dataset)
+                end if
+                call close_dataset(dataset, error)
+            end if
+        end if
+        call h5tclose_f(string_type, status)
+    end subroutine write_string_1d
+
+    !> A scalar string attribute (fixed length, NUL-padded, UTF-8).
+    subroutine write_string_attribute(object, name, value, error)
+        type(h5_object), intent(in) :: object
+        character(len=*), intent(in) :: name
+        character(len=*), intent(in) :: value
+        type(error_type), allocatable, intent(inout) :: error
+        character(kind=c_char), allocatable, target :: buffer(:)
+        integer(hid_t) :: string_type, attribute
+        integer :: width, status
+
+        if (allocated(error)) return
+        width = max(1, len(value))
+        buffer = c_chars(value, width)
+        call create_string_type(width, string_type, status)
+        if (status /= 0) then
+            call fail(error, 'create a string type for attribute '//name//' of', object)
+        else
+            call create_attribute(object, name, string_type, [integer ::], attribute, error)
+            if (.not. allocated(error)) then
+                call h5awrite_f(attribute, string_type, c_loc(buffer), status)
+                if (status /= 0) call fail(error, 'write attribute '//name//' of', object)
+                call close_attribute(object, name, attribute, error)
+            end if
+        end if
+        call h5tclose_f(string_type, status)
+    end subroutine write_string_attribute
+
+    !> A scalar real attribute.
+    subroutine write_real_attribute(object, name, value, error)
+        type(h5_object), intent(in) :: object
+        character(len=*), intent(in) :: name
+        real(wp), intent(in) :: value
+        type(error_type), allocatable, intent(inout) :: error
+
+        call put_real_attribute(object, name, [value], [integer ::], error)
+    end subroutine write_real_attribute
+
+    !> A 1-D real attribute.
+    subroutine write_real_array_attribute(object, name, values, error)
+        type(h5_object), intent(in) :: object
+        character(len=*), intent(in) :: name
+        real(wp), intent(in) :: values(:)
+        type(error_type), allocatable, intent(inout) :: error
+
+        call put_real_attribute(object, name, values, [size(values)], error)
+    end subroutine write_real_array_attribute
+
+    !> A real attribute of dims `dims` (scalar when empty).
+    subroutine put_real_attribute(object, name, values, dims, error)
+        type(h5_object), intent(in) :: object
+        character(len=*), intent(in) :: name
+        real(wp), intent(in) :: values(:)
+        integer, intent(in) :: dims(:)
+        type(error_type), allocatable, intent(inout) :: error
+        integer(hid_t) :: attribute
+        integer :: status
+
+        call create_attribute(object, name, H5T_NATIVE_DOUBLE, dims, attribute, error)
+        if (allocated(error)) return
+        call h5awrite_f(attribute, H5T_NATIVE_DOUBLE, values, int([size(values)], hsize_t), &
+            status)
+        if (status /= 0) call fail(error, 'write attribute '//name//' of', object)
+        call close_attribute(object, name, attribute, error)
+    end subroutine put_real_attribute
+
+    !> A scalar integer attribute.
+    subroutine write_int_attribute(object, name, value, error)
+        type(h5_object), intent(in) :: object
+        character(len=*), intent(in) :: name
+        integer, intent(in) :: value
+        type(error_type), allocatable, intent(inout) :: error
+        integer(hid_t) :: attribute
+        integer :: status
+
+        call create_attribute(object, name, H5T_NATIVE_INTEGER, [integer ::], attribute, &
+            error)
+        if (allocated(error)) return
+        call h5awrite_f(attribute, H5T_NATIVE_INTEGER, [value], [1_hsize_t], status)
+        if (status /= 0) call fail(error, 'write attribute '//name//' of', object)
+        call close_attribute(object, name, attribute, error)
+    end subroutine write_int_attribute
+
+    ! ------------------------------------------------------ handles, always closed
+
+    !> Create a group below parent.
+    subroutine create_group(parent, name, group, error)
+        type(h5_object), intent(in) :: parent
+        character(len=*), intent(in) :: name
+        type(h5_object), intent(out) :: group
+        type(error_type), allocatable, intent(inout) :: error
+        integer :: status
+
+        group%path = child_path(parent, name)
+        group%file = parent%file
+        if (allocated(error)) return
+        call h5gcreate_f(parent%id, name, group%id, status)
+        if (status /= 0) then
+            group%id = -1
+            call fail(error, 'create group', group)
+        end if
+    end subroutine create_group
+
+    !> Close a group (always attempted; reports only when no error is set yet).
+    subroutine close_group(group, error)
+        type(h5_object), intent(inout) :: group
+        type(error_type), allocatable, intent(inout) :: error
+        integer :: status
+
+        if (group%id < 0) return
+        call h5gclose_f(group%id, status)
+        if (status /= 0) call fail(error, 'close group', group)
+        group%id = -1
+    end subroutine close_group
+
+    !> Create a dataset of Fortran dims `dims` (scalar when empty) below parent.
+    subroutine create_dataset(parent, name, data_type, dims, dataset, error)
+        type(h5_object), intent(in) :: parent
+        character(len=*), intent(in) :: name
+        integer(hid_t), intent(in) :: data_type
+        integer, intent(in) :: dims(:)
+        type(h5_object), intent(out) :: dataset
+        type(error_type), allocatable, intent(inout) :: error
+        integer(hid_t) :: space
+        integer :: status, close_status
+
+        dataset%path = child_path(parent, name)
+        dataset%file = parent%file
+        if (allocated(error)) return
+        call create_space(dims, space, status)
+        if (status /= 0) then
+            call fail(error, 'create the dataspace of dataset', dataset)
+            return
+        end if
+        call h5dcreate_f(parent%id, name, data_type, space, dataset%id, status)
+        if (status /= 0) then
+            dataset%id = -1
+            call fail(error, 'create dataset', dataset)
+        end if
+        call h5sclose_f(space, close_status)
+    end subroutine create_dataset
+
+    !> Close a dataset (always attempted; reports only when no error is set yet).
+    subroutine close_dataset(dataset, error)
+        type(h5_object), intent(inout) :: dataset
+        type(error_type), allocatable, intent(inout) :: error
+        integer :: status
+
+        if (dataset%id < 0) return
+        call h5dclose_f(dataset%id, status)
+        if (status /= 0) call fail(error, 'close dataset', dataset)
+        dataset%id = -1
+    end subroutine close_dataset
+
+    !> Create an attribute of dims `dims` (scalar when empty) on an object.
+    subroutine create_attribute(object, name, data_type, dims, attribute, error)
+        type(h5_object), intent(in) :: object
+        character(len=*), intent(in) :: name
+        integer(hid_t), intent(in) :: data_type
+        integer, intent(in) :: dims(:)
+        integer(hid_t), intent(out) :: attribute
+        type(error_type), allocatable, intent(inout) :: error
+        integer(hid_t) :: space
+        integer :: status, close_status
+
+        attribute = -1
+        if (allocated(error)) return
+        call create_space(dims, space, status)
+        if (status /= 0) then
+            call fail(error, 'create the dataspace of attribute '//name//' of', object)
+            return
+        end if
+        call h5acreate_f(object%id, name, data_type, space, attribute, status)
+        if (status /= 0) then
+            attribute = -1
+            call fail(error, 'create attribute '//name//' of', object)
+        end if
+        call h5sclose_f(space, close_status)
+    end subroutine create_attribute
+
+    !> Close an attribute (always attempted; reports only when no error is set yet).
+    subroutine close_attribute(object, name, attribute, error)
+        type(h5_object), intent(in) :: object
+        character(len=*), intent(in) :: name
+        integer(hid_t), intent(inout) :: attribute
+        type(error_type), allocatable, intent(inout) :: error
+        integer :: status
+
+        if (attribute < 0) return
+        call h5aclose_f(attribute, status)
+        if (status /= 0) call fail(error, 'close attribute '//name//' of', object)
+        attribute = -1
+    end subroutine close_attribute
+
+    !> A simple dataspace of Fortran dims `dims`, or a scalar one when dims is empty.
+    subroutine create_space(dims, space, status)
+        integer, intent(in) :: dims(:)
+        integer(hid_t), intent(out) :: space
+        integer, intent(out) :: status
+
+        if (size(dims) == 0) then
+            call h5screate_f(H5S_SCALAR_F, space, status)
+        else
+            call h5screate_simple_f(size(dims), int(dims, hsize_t), space, status)
+        end if
+    end subroutine create_space
+
+    !> A fixed-length, NUL-padded UTF-8 string type of `width` bytes.
+    subroutine create_string_type(width, string_type, status)
+        integer, intent(in) :: width
+        integer(hid_t), intent(out) :: string_type
+        integer, intent(out) :: status
+
+        call h5tcopy_f(H5T_FORTRAN_S1, string_type, status)
+        if (status /= 0) return
+        call h5tset_size_f(string_type, int(width, size_t), status)
+        if (status == 0) call h5tset_strpad_f(string_type, H5T_STR_NULLPAD_F, status)
+        if (status == 0) call h5tset_cset_f(string_type, H5T_CSET_UTF8_F, status)
+    end subroutine create_string_type
+
+    ! ------------------------------------------------------------------ small utilities
+
+    !> Set an I/O error "HDF5 could not <action> <path> in <file>" unless one is set.
+    subroutine fail(error, action, object, name)
+        type(error_type), allocatable, intent(inout) :: error
+        character(len=*), intent(in) :: action
+        type(h5_object), intent(in) :: object
+        !> Name of a child of object the action was about
+        character(len=*), intent(in), optional :: name
+
+        if (allocated(error)) return
+        if (present(name)) then
+            call set_error(error, exit_io_failure, 'HDF5 could not '//action//' ' &
+                //child_path(object, name)//' in '//object%file)
+        else
+            call set_error(error, exit_io_failure, 'HDF5 could not '//action//' ' &
+                //object%path//' in '//object%file)
+        end if
+    end subroutine fail
+
+    !> Path of a child object: parent path / name.
+    pure function child_path(parent, name) result(path)
+        type(h5_object), intent(in) :: parent
+        character(len=*), intent(in) :: name
+        character(len=:), allocatable :: path
+
+        if (parent%path == '/') then
+            path = '/'//name
+        else
+            path = parent%path//'/'//name
+        end if
+    end function child_path
+
+    !> The characters of text, NUL-padded to width, for C.
+    pure function c_chars(text, width) result(chars)
+        character(len=*), intent(in) :: text
+        integer, intent(in) :: width
+        character(kind=c_char) :: chars(width)
+        integer :: i
+
+        chars = c_null_char
+        do i = 1, min(len(text), width)
+            chars(i) = text(i:i)
+        end do
+    end function c_chars
+
+    !> The value of an optional string, '' when it is not allocated.
+    pure function text(value) result(string)
+        character(len=:), allocatable, intent(in) :: value
+        character(len=:), allocatable :: string
+
+        if (allocated(value)) then
+            string = value
+        else
+            string = ''
+        end if
+    end function text
+
+    !> The current date and time in UTC, ISO 8601 (YYYY-MM-DDThh:mm:ssZ).
+    function utc_timestamp() result(stamp)
+        character(len=20) :: stamp
+        integer :: values(8), days, minutes, year, month, day
+
+        call date_and_time(values=values)
+        ! values: year, month, day, offset from UTC [min], hour, minute, second, ms
+        if (values(4) == -huge(0)) values(4) = 0  ! offset unknown: take local as UTC
+        days = days_from_civil(values(1), values(2), values(3))
+        minutes = values(5) * 60 + values(6) - values(4)
+        days = days + floor(real(minutes, wp) / 1440.0_wp)
+        minutes = modulo(minutes, 1440)
+        call civil_from_days(days, year, month, day)
+        write (stamp, '(i4.4,"-",i2.2,"-",i2.2,"T",i2.2,":",i2.2,":",i2.2,"Z")') &
+            year, month, day, minutes / 60, modulo(minutes, 60), values(7)
+    end function utc_timestamp
+
+    !> Days since 1970-01-01 of a proleptic Gregorian date (H. Hinnant's algorithm).
+    pure function days_from_civil(year, month, day) result(days)
+        integer, intent(in) :: year, month, day
+        integer :: days, y, era, yoe, doy, doe
+
+        y = year
+        if (month <= 2) y = y - 1
+        era = floor(real(y, wp) / 400.0_wp)
+        yoe = y - era * 400
+        doy = (153 * (month + 9 - 12 * ((month + 9) / 12)) + 2) / 5 + day - 1
+        doe = yoe * 365 + yoe / 4 - yoe / 100 + doy
+        days = era * 146097 + doe - 719468
+    end function days_from_civil
+
+    !> Proleptic Gregorian date of a day count since 1970-01-01 (H. Hinnant's algorithm).
+    pure subroutine civil_from_days(days, year, month, day)
+        integer, intent(in) :: days
+        integer, intent(out) :: year, month, day
+        integer :: z, era, doe, yoe, doy, mp
+
+        z = days + 719468
+        era = floor(real(z, wp) / 146097.0_wp)
+        doe = z - era * 146097
+        yoe = (doe - doe / 1460 + doe / 36524 - doe / 146096) / 365
+        doy = doe - (365 * yoe + yoe / 4 - yoe / 100)
+        mp = (5 * doy + 2) / 153
+        day = doy - (153 * mp + 2) / 5 + 1
+        if (mp < 10) then
+            month = mp + 3
+        else
+            month = mp - 9
+        end if
+        year = yoe + era * 400
+        if (month <= 2) year = year + 1
+    end subroutine civil_from_days
+
 end module ddc_output_hdf5

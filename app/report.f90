@@ -1,0 +1,77 @@
+!> What the program tells the user on standard output: the effective model and a summary.
+module ddc_app_report
+    use ddc_kinds, only: wp
+    use ddc_model_types, only: model_type, condition_names, observation_kind_names
+    use ddc_model_results, only: model_results, state_names
+    implicit none
+    private
+
+    public :: print_model_summary, print_results_summary
+
+contains
+
+    !> Echo the effective model: material, remote stress, fractures, observations, output.
+    subroutine print_model_summary(unit, model)
+        !> Unit to write to
+        integer, intent(in) :: unit
+        !> The model as read
+        type(model_type), intent(in) :: model
+        integer :: i, first
+
+        write (unit, '(a)') 'ddc2d model: '//model%title
+        write (unit, '(a,g0,1x,a,a,g0)') '  youngs_modulus = ', model%youngs_modulus, &
+            model%stress_unit, ', poissons_ratio = ', model%poissons_ratio
+        write (unit, '(a,3(g0,1x),a)') '  remote stress sxx, syy, sxy = ', model%sxx, model%syy, &
+            model%sxy, model%stress_unit
+        do i = 1, size(model%fractures)
+            first = model%fractures(i)%first_element
+            write (unit, '(a,i0,a,a,a,i0,a,a)') '  fracture ', i, ' ', model%fractures(i)%name, &
+                ': ', model%fractures(i)%last_element - first + 1, ' elements, condition ', &
+                trim(condition_names(model%elements%condition(first)))
+        end do
+        if (allocated(model%observations)) then
+            do i = 1, size(model%observations)
+                write (unit, '(a,a,a,a,a,i0,a)') '  ', trim(observation_kind_names( &
+                    model%observations(i)%kind)), ' ', model%observations(i)%name, ': ', &
+                    size(model%observations(i)%x), ' points'
+            end do
+        end if
+        write (unit, '(a,a,a,a)') '  solver: lcp_method = ', model%solver%lcp_method, &
+            ', open_cohesion = ', model%solver%open_cohesion
+        write (unit, '(a)') '  output: '//model%output_file
+    end subroutine print_model_summary
+
+    !> Summary of the results: states, peak DDs, tips with K, timings.
+    subroutine print_results_summary(unit, model, results)
+        !> Unit to write to
+        integer, intent(in) :: unit
+        !> The model solved
+        type(model_type), intent(in) :: model
+        !> Its results
+        type(model_results), intent(in) :: results
+        integer :: i, state
+
+        associate (e => results%elements, s => results%solver)
+            write (unit, '(a,a,a,i0,a,es10.3)') 'solved with ', s%method, ' on ', s%threads, &
+                ' thread(s); equilibrium residual ', s%equilibrium_residual
+            do state = 0, 3
+                if (count(e%state == state) > 0) write (unit, '(2x,a,a,i0)') &
+                    trim(state_names(state)), ' elements: ', count(e%state == state)
+            end do
+            write (unit, '(a,es12.5,1x,a)') '  peak |ds| = ', maxval(abs(e%ds)), model%length_unit
+            write (unit, '(a,es12.5,1x,a)') '  peak opening = ', max(0.0_wp, maxval(-e%dn)), &
+                model%length_unit
+            do i = 1, results%tips%n
+                write (unit, '(a,i0,a,2(es12.5,1x),a,es12.5,a,es12.5)') '  tip ', i, ' at ', &
+                    results%tips%x(i), results%tips%y(i), ' K_I = ', results%tips%k1(i), &
+                    ', K_II = ', results%tips%k2(i)
+            end do
+            write (unit, '(a,6(f0.3,a))') '  seconds: assembly ', s%seconds_assembly, &
+                ', factorization ', s%seconds_factorization, ', lcp ', s%seconds_lcp, &
+                ', fields ', s%seconds_fields, ', output ', s%seconds_output, ', total ', &
+                s%seconds_total + s%seconds_output, ''
+        end associate
+        write (unit, '(a)') 'wrote '//model%output_file
+    end subroutine print_results_summary
+
+end module ddc_app_report

@@ -1,0 +1,449 @@
+!> A small reader for ddc2d result files: datasets, their dims and attributes.
+!>
+!> Meant for tests and tools (regression comparisons), not for the solver. Every routine
+!> opens the file read-only, reads one thing and closes every handle on every path.
+!> Each routine calls h5open_f/h5close_f itself: do not call it while another part of
+!> the program holds HDF5 handles open.
+module ddc_output_hdf5_read
+    use, intrinsic :: iso_c_binding, only: c_char, c_null_char, c_loc, c_ptr
+    use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5close_f, h5eset_auto_f, &
+        h5fopen_f, h5fclose_f, H5F_ACC_RDONLY_F, h5dopen_f, h5dclose_f, h5dread_f, &
+        h5dget_space_f, h5dget_type_f, h5aopen_by_name_f, h5aclose_f, h5aread_f, &
+        h5aget_space_f, h5aget_type_f, h5sget_simple_extent_ndims_f, &
+        h5sget_simple_extent_dims_f, h5sget_simple_extent_npoints_f, h5sclose_f, &
+        h5tget_size_f, h5tget_class_f, h5tis_variable_str_f, h5tclose_f, &
+        H5T_STRING_F, H5T_NATIVE_DOUBLE, H5T_NATIVE_INTEGER
+    use ddc_kinds, only: wp
+    use ddc_error, only: error_type, set_error, exit_io_failure
+    implicit none
+    private
+
+    public :: read_real_dataset, read_int_dataset, read_string_dataset, read_dataset_dims
+    public :: read_string_attribute, read_real_attribute, read_int_attribute
+
+contains
+
+    !> Values of a real dataset in array element order (any rank, flattened).
+    subroutine read_real_dataset(path, dataset, values, error)
+        !> Path of the HDF5 file
+        character(len=*), intent(in) :: path
+        !> Path of the dataset inside the file, e.g. '/elements/ds'
+        character(len=*), intent(in) :: dataset
+        !> The values, shape (number of elements of the dataset)
+        real(wp), allocatable, target, intent(out) :: values(:)
+        !> Allocated with exit_io_failure when the dataset cannot be read
+        type(error_type), allocatable, intent(out) :: error
+        integer(hid_t) :: file, dset
+        type(c_ptr) :: pointer
+        integer :: status
+
+        call open_dataset(path, dataset, file, dset, error)
+        if (allocated(error)) return
+        allocate (values(dataset_size(dset)))
+        pointer = c_loc(values)
+        call h5dread_f(dset, H5T_NATIVE_DOUBLE, pointer, status)
+        if (status /= 0) call fail(error, 'read dataset '//dataset//' as reals', path)
+        call close_dataset(file, dset, path, error)
+    end subroutine read_real_dataset
+
+    !> Values of an integer dataset in array element order (any rank, flattened).
+    subroutine read_int_dataset(path, dataset, values, error)
+        !> Path of the HDF5 file
+        character(len=*), intent(in) :: path
+        !> Path of the dataset inside the file, e.g. '/elements/state'
+        character(len=*), intent(in) :: dataset
+        !> The values, shape (number of elements of the dataset)
+        integer, allocatable, target, intent(out) :: values(:)
+        !> Allocated with exit_io_failure when the dataset cannot be read
+        type(error_type), allocatable, intent(out) :: error
+        integer(hid_t) :: file, dset
+        type(c_ptr) :: pointer
+        integer :: status
+
+        call open_dataset(path, dataset, file, dset, error)
+        if (allocated(error)) return
+        allocate (values(dataset_size(dset)))
+        pointer = c_loc(values)
+        call h5dread_f(dset, H5T_NATIVE_INTEGER, pointer, status)
+        if (status /= 0) call fail(error, 'read dataset '//dataset//' as integers', path)
+        call close_dataset(file, dset, path, error)
+    end subroutine read_int_dataset
+
+    !> Values of a 1-D dataset of fixed-length strings, trailing NULs and blanks removed.
+    subroutine read_string_dataset(path, dataset, values, error)
+        !> Path of the HDF5 file
+        character(len=*), intent(in) :: path
+        !> Path of the dataset inside the file, e.g. '/fractures/name'
+        character(len=*), intent(in) :: dataset
+        !> The strings, blank-padded, shape (number of strings); the caller chooses the
+        !> length, a longer stored string is an error
+        character(len=*), allocatable, intent(out) :: values(:)
+        !> Allocated with exit_io_failure when the dataset cannot be read
+        type(error_type), allocatable, intent(out) :: error
+        character(kind=c_char), allocatable, target :: buffer(:)
+        character(len=:), allocatable :: text
+        integer(hid_t) :: file, dset, data_type
+        type(c_ptr) :: pointer
+        integer :: status, width, n, i
+
+        call open_dataset(path, dataset, file, dset, error)
+        if (allocated(error)) return
+        call h5dget_type_f(dset, data_type, status)
+        if (status /= 0) then
+            call fail(error, 'get the type of dataset '//dataset, path)
+        else
+            call string_width(data_type, width, status)
+            if (status /= 0) then
+                call fail(error, 'read dataset '//dataset//' as fixed-length strings', path)
+            else
+                n = dataset_size(dset)
+                allocate (buffer(max(1, width * n)))
+                allocate (values(n))
+                status = 0
+                if (n > 0) then
+                    pointer = c_loc(buffer)
+                    call h5dread_f(dset, data_type, pointer, status)
+                end if
+                if (status /= 0) then
+                    call fail(error, 'read dataset '//dataset, path)
+                else
+                    do i = 1, n
+                        text = from_c_chars(buffer((i - 1) * width + 1:i * width))
+                        if (len(text) > len(values)) then
+                            call fail(error, 'fit a string of dataset '//dataset &
+                                //' into the length the caller gave', path)
+                            exit
+                        end if
+                        values(i) = text
+                    end do
+                end if
+            end if
+            call h5tclose_f(data_type, status)
+        end if
+        call close_dataset(file, dset, path, error)
+    end subroutine read_string_dataset
+
+    !> Dims of a dataset in Fortran order (h5py shows them reversed); empty for a scalar.
+    subroutine read_dataset_dims(path, dataset, dims, error)
+        !> Path of the HDF5 file
+        character(len=*), intent(in) :: path
+        !> Path of the dataset inside the file
+        character(len=*), intent(in) :: dataset
+        !> Extent of each dimension, Fortran order, shape (rank)
+        integer, allocatable, intent(out) :: dims(:)
+        !> Allocated with exit_io_failure when the dataset cannot be read
+        type(error_type), allocatable, intent(out) :: error
+        integer(hid_t) :: file, dset, space
+        integer(hsize_t), allocatable :: extent(:), max_extent(:)
+        integer :: status, rank
+
+        call open_dataset(path, dataset, file, dset, error)
+        if (allocated(error)) return
+        call h5dget_space_f(dset, space, status)
+        if (status /= 0) then
+            call fail(error, 'get the dataspace of dataset '//dataset, path)
+        else
+            call h5sget_simple_extent_ndims_f(space, rank, status)
+            if (status == 0) then
+                allocate (extent(max(rank, 1)), max_extent(max(rank, 1)))
+                if (rank > 0) call h5sget_simple_extent_dims_f(space, extent, max_extent, &
+                    status)
+            end if
+            if (status < 0) then
+                call fail(error, 'get the dims of dataset '//dataset, path)
+            else
+                dims = int(extent(:rank))
+            end if
+            call h5sclose_f(space, status)
+        end if
+        call close_dataset(file, dset, path, error)
+    end subroutine read_dataset_dims
+
+    !> A fixed-length string attribute, trailing NULs removed.
+    subroutine read_string_attribute(path, object, name, value, error)
+        !> Path of the HDF5 file
+        character(len=*), intent(in) :: path
+        !> Path of the object carrying the attribute, e.g. '/' or '/elements/ds'
+        character(len=*), intent(in) :: object
+        !> Name of the attribute
+        character(len=*), intent(in) :: name
+        !> Its value
+        character(len=:), allocatable, intent(out) :: value
+        !> Allocated with exit_io_failure when the attribute cannot be read
+        type(error_type), allocatable, intent(out) :: error
+        character(kind=c_char), allocatable, target :: buffer(:)
+        integer(hid_t) :: file, attribute, data_type
+        type(c_ptr) :: pointer
+        integer :: status, width
+
+        call open_attribute(path, object, name, file, attribute, error)
+        if (allocated(error)) return
+        call h5aget_type_f(attribute, data_type, status)
+        if (status /= 0) then
+            call fail(error, 'get the type of attribute '//name//' of '//object, path)
+        else
+            call string_width(data_type, width, status)
+            if (status /= 0) then
+                call fail(error, 'read attribute '//name//' of '//object &
+                    //' as a fixed-length string', path)
+            else
+                allocate (buffer(width))
+                pointer = c_loc(buffer)
+                call h5aread_f(attribute, data_type, pointer, status)
+                if (status /= 0) then
+                    call fail(error, 'read attribute '//name//' of '//object, path)
+                else
+                    value = from_c_chars(buffer)
+                end if
+            end if
+            call h5tclose_f(data_type, status)
+        end if
+        call close_attribute(file, attribute, path, error)
+    end subroutine read_string_attribute
+
+    !> A real attribute, scalar or 1-D, as an array.
+    subroutine read_real_attribute(path, object, name, values, error)
+        !> Path of the HDF5 file
+        character(len=*), intent(in) :: path
+        !> Path of the object carrying the attribute
+        character(len=*), intent(in) :: object
+        !> Name of the attribute
+        character(len=*), intent(in) :: name
+        !> Its values, shape (1) for a scalar
+        real(wp), allocatable, target, intent(out) :: values(:)
+        !> Allocated with exit_io_failure when the attribute cannot be read
+        type(error_type), allocatable, intent(out) :: error
+        integer(hid_t) :: file, attribute
+        type(c_ptr) :: pointer
+        integer :: status
+
+        call open_attribute(path, object, name, file, attribute, error)
+        if (allocated(error)) return
+        allocate (values(attribute_size(attribute)))
+        pointer = c_loc(values)
+        call h5aread_f(attribute, H5T_NATIVE_DOUBLE, pointer, status)
+        if (status /= 0) call fail(error, 'read attribute '//name//' of '//object, path)
+        call close_attribute(file, attribute, path, error)
+    end subroutine read_real_attribute
+
+    !> A scalar integer attribute.
+    subroutine read_int_attribute(path, object, name, value, error)
+        !> Path of the HDF5 file
+        character(len=*), intent(in) :: path
+        !> Path of the object carrying the attribute
+        character(len=*), intent(in) :: object
+        !> Name of the attribute
+        character(len=*), intent(in) :: name
+        !> Its value
+        integer, intent(out) :: value
+        !> Allocated with exit_io_failure when the attribute cannot be read
+        type(error_type), allocatable, intent(out) :: error
+        integer, target :: buffer(1)
+        integer(hid_t) :: file, attribute
+        type(c_ptr) :: pointer
+        integer :: status
+
+        value = 0
+        call open_attribute(path, object, name, file, attribute, error)
+        if (allocated(error)) return
+        if (attribute_size(attribute) /= 1) then
+            call fail(error, 'read attribute '//name//' of '//object//' as a scalar', path)
+        else
+            pointer = c_loc(buffer)
+            call h5aread_f(attribute, H5T_NATIVE_INTEGER, pointer, status)
+            if (status /= 0) then
+                call fail(error, 'read attribute '//name//' of '//object, path)
+            else
+                value = buffer(1)
+            end if
+        end if
+        call close_attribute(file, attribute, path, error)
+    end subroutine read_int_attribute
+
+    ! ------------------------------------------------------ handles, always closed
+
+    !> Start HDF5, open the file read-only; on failure HDF5 is closed again.
+    subroutine open_file(path, file, error)
+        character(len=*), intent(in) :: path
+        integer(hid_t), intent(out) :: file
+        type(error_type), allocatable, intent(inout) :: error
+        integer :: status
+
+        file = -1
+        call h5open_f(status)
+        if (status /= 0) then
+            call set_error(error, exit_io_failure, 'HDF5 library could not be initialised')
+            return
+        end if
+        call h5eset_auto_f(0, status)
+        call h5fopen_f(path, H5F_ACC_RDONLY_F, file, status)
+        if (status /= 0) then
+            file = -1
+            call fail(error, 'open file', path)
+            call h5close_f(status)
+        end if
+    end subroutine open_file
+
+    !> Close the file and HDF5.
+    subroutine close_file(file, path, error)
+        integer(hid_t), intent(inout) :: file
+        character(len=*), intent(in) :: path
+        type(error_type), allocatable, intent(inout) :: error
+        integer :: status
+
+        if (file >= 0) then
+            call h5fclose_f(file, status)
+            if (status /= 0) call fail(error, 'close file', path)
+            file = -1
+        end if
+        call h5close_f(status)
+    end subroutine close_file
+
+    !> Open the file and one of its datasets; on failure everything is closed again.
+    subroutine open_dataset(path, dataset, file, dset, error)
+        character(len=*), intent(in) :: path, dataset
+        integer(hid_t), intent(out) :: file, dset
+        type(error_type), allocatable, intent(inout) :: error
+        integer :: status
+
+        dset = -1
+        call open_file(path, file, error)
+        if (allocated(error)) return
+        call h5dopen_f(file, dataset, dset, status)
+        if (status /= 0) then
+            dset = -1
+            call fail(error, 'open dataset '//dataset, path)
+            call close_file(file, path, error)
+        end if
+    end subroutine open_dataset
+
+    !> Close a dataset and its file.
+    subroutine close_dataset(file, dset, path, error)
+        integer(hid_t), intent(inout) :: file, dset
+        character(len=*), intent(in) :: path
+        type(error_type), allocatable, intent(inout) :: error
+        integer :: status
+
+        call h5dclose_f(dset, status)
+        if (status /= 0) call fail(error, 'close a dataset', path)
+        call close_file(file, path, error)
+    end subroutine close_dataset
+
+    !> Open the file and an attribute of one of its objects; closes all on failure.
+    subroutine open_attribute(path, object, name, file, attribute, error)
+        character(len=*), intent(in) :: path, object, name
+        integer(hid_t), intent(out) :: file, attribute
+        type(error_type), allocatable, intent(inout) :: error
+        integer :: status
+
+        attribute = -1
+        call open_file(path, file, error)
+        if (allocated(error)) return
+        call h5aopen_by_name_f(file, object, name, attribute, status)
+        if (status /= 0) then
+            attribute = -1
+            call fail(error, 'open attribute '//name//' of '//object, path)
+            call close_file(file, path, error)
+        end if
+    end subroutine open_attribute
+
+    !> Close an attribute and its file.
+    subroutine close_attribute(file, attribute, path, error)
+        integer(hid_t), intent(inout) :: file, attribute
+        character(len=*), intent(in) :: path
+        type(error_type), allocatable, intent(inout) :: error
+        integer :: status
+
+        call h5aclose_f(attribute, status)
+        if (status /= 0) call fail(error, 'close an attribute', path)
+        call close_file(file, path, error)
+    end subroutine close_attribute
+
+    ! ------------------------------------------------------------------ small utilities
+
+    !> Number of elements of a dataset (0 when it cannot be told).
+    function dataset_size(dset) result(n)
+        integer(hid_t), intent(in) :: dset
+        integer :: n
+        integer(hid_t) :: space
+        integer(hsize_t) :: points
+        integer :: status
+
+        n = 0
+        call h5dget_space_f(dset, space, status)
+        if (status /= 0) return
+        call h5sget_simple_extent_npoints_f(space, points, status)
+        if (status == 0) n = int(points)
+        call h5sclose_f(space, status)
+    end function dataset_size
+
+    !> Number of elements of an attribute (1 for a scalar; 0 when it cannot be told).
+    function attribute_size(attribute) result(n)
+        integer(hid_t), intent(in) :: attribute
+        integer :: n
+        integer(hid_t) :: space
+        integer(hsize_t) :: points
+        integer :: status
+
+        n = 0
+        call h5aget_space_f(attribute, space, status)
+        if (status /= 0) return
+        call h5sget_simple_extent_npoints_f(space, points, status)
+        if (status == 0) n = int(points)
+        call h5sclose_f(space, status)
+    end function attribute_size
+
+    !> Width in bytes of a fixed-length string type; status /= 0 for other types.
+    subroutine string_width(data_type, width, status)
+        integer(hid_t), intent(in) :: data_type
+        integer, intent(out) :: width, status
+        integer(size_t) :: bytes
+        integer :: type_class
+        logical :: variable
+
+        width = 0
+        call h5tget_class_f(data_type, type_class, status)
+        if (status /= 0) return
+        if (type_class /= H5T_STRING_F) then
+            status = -1
+            return
+        end if
+        call h5tis_variable_str_f(data_type, variable, status)
+        if (status /= 0) return
+        if (variable) then
+            status = -1
+            return
+        end if
+        call h5tget_size_f(data_type, bytes, status)
+        width = int(bytes)
+    end subroutine string_width
+
+    !> A Fortran string from C characters, cut at the first NUL.
+    pure function from_c_chars(chars) result(text)
+        character(kind=c_char), intent(in) :: chars(:)
+        character(len=:), allocatable :: text
+        integer :: i, n
+
+        n = size(chars)
+        do i = 1, size(chars)
+            if (chars(i) == c_null_char) then
+                n = i - 1
+                exit
+            end if
+        end do
+        allocate (character(len=n) :: text)
+        do i = 1, n
+            text(i:i) = chars(i)
+        end do
+    end function from_c_chars
+
+    !> Set an I/O error "HDF5 could not <action> in <file>" unless one is set.
+    subroutine fail(error, action, path)
+        type(error_type), allocatable, intent(inout) :: error
+        character(len=*), intent(in) :: action, path
+
+        if (allocated(error)) return
+        call set_error(error, exit_io_failure, 'HDF5 could not '//action//' in '//path)
+    end subroutine fail
+
+end module ddc_output_hdf5_read

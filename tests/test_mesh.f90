@@ -1,0 +1,295 @@
+!> Tests of the mesh layer: polyline subdivision and the geometric checks.
+module test_mesh
+    use ddc_kinds, only: wp
+    use ddc_testing, only: test_case, new_test, check, error_type
+    use ddc_error, only: exit_bad_input
+    use ddc_model_types, only: element_set, fracture_type
+    use ddc_mesh_geometry, only: allocate_elements
+    use ddc_mesh_polyline, only: polyline_elements, expand_per_segment
+    use ddc_mesh_checks, only: check_elements
+    implicit none
+    private
+    public :: collect_mesh
+
+    real(wp), parameter :: tight = 1.0e-14_wp
+    real(wp), parameter :: pi = 3.14159265358979323846_wp
+
+    !> A mesh under construction: fractures appended one by one.
+    type :: mesh_builder
+        type(element_set) :: elements
+        type(fracture_type), allocatable :: fractures(:)
+    end type mesh_builder
+
+contains
+
+    !> Cases of the mesh suite.
+    subroutine collect_mesh(tests)
+        !> The cases
+        type(test_case), allocatable, intent(out) :: tests(:)
+
+        tests = [ &
+            new_test('polyline_subdivision', test_polyline_subdivision), &
+            new_test('expand_per_segment', test_expand_per_segment), &
+            new_test('zero_length', test_zero_length), &
+            new_test('duplicate', test_duplicate), &
+            new_test('overlap', test_overlap), &
+            new_test('overlap_folded_polyline', test_overlap_folded), &
+            new_test('crossing', test_crossing), &
+            new_test('t_junction', test_t_junction), &
+            new_test('t_junction_within_tolerance', test_t_junction_tolerance), &
+            new_test('near_miss_passes', test_near_miss), &
+            new_test('closed_loop_passes', test_closed_loop), &
+            new_test('branch_at_shared_vertex_passes', test_branch), &
+            new_test('large_meshes_pass', test_large) &
+            ]
+    end subroutine collect_mesh
+
+    ! ---- helpers ------------------------------------------------------------------------
+
+    !> Append a fracture along the polyline (x, y) with counts elements per segment.
+    subroutine add_fracture(mesh, name, x, y, counts)
+        type(mesh_builder), intent(inout) :: mesh
+        character(len=*), intent(in) :: name
+        real(wp), intent(in) :: x(:), y(:)
+        integer, intent(in) :: counts(:)
+        real(wp), allocatable :: xb(:), yb(:), xe(:), ye(:)
+        type(element_set) :: old, grown
+        type(fracture_type) :: fracture
+        integer :: n0, n
+
+        call polyline_elements(x, y, counts, xb, yb, xe, ye)
+        old = mesh%elements
+        n0 = old%n
+        n = n0 + size(xb)
+        call allocate_elements(grown, n)
+        if (n0 > 0) then
+            grown%x_begin(1:n0) = old%x_begin
+            grown%y_begin(1:n0) = old%y_begin
+            grown%x_end(1:n0) = old%x_end
+            grown%y_end(1:n0) = old%y_end
+            grown%fracture_id(1:n0) = old%fracture_id
+        end if
+        mesh%elements = grown
+        mesh%elements%x_begin(n0 + 1:) = xb
+        mesh%elements%y_begin(n0 + 1:) = yb
+        mesh%elements%x_end(n0 + 1:) = xe
+        mesh%elements%y_end(n0 + 1:) = ye
+        if (.not. allocated(mesh%fractures)) allocate (mesh%fractures(0))
+        mesh%elements%fracture_id(n0 + 1:) = size(mesh%fractures) + 1
+        fracture%name = name
+        fracture%first_element = n0 + 1
+        fracture%last_element = n
+        mesh%fractures = [mesh%fractures, fracture]
+    end subroutine add_fracture
+
+    !> The checks must reject the mesh with a message holding every fragment.
+    subroutine expect_rejected(error, mesh, fragments)
+        type(error_type), allocatable, intent(inout) :: error
+        type(mesh_builder), intent(in) :: mesh
+        character(len=*), intent(in) :: fragments(:)
+        type(error_type), allocatable :: check_error
+        integer :: i
+
+        call check_elements(mesh%elements, mesh%fractures, check_error)
+        call check(error, allocated(check_error), 'bad mesh accepted')
+        if (allocated(error)) return
+        call check(error, check_error%code, exit_bad_input, 'error code')
+        do i = 1, size(fragments)
+            call check(error, index(check_error%message, trim(fragments(i))) > 0, &
+                       "the message lacks '"//trim(fragments(i))//"': "//check_error%message)
+        end do
+    end subroutine expect_rejected
+
+    !> The checks must accept the mesh.
+    subroutine expect_accepted(error, mesh)
+        type(error_type), allocatable, intent(inout) :: error
+        type(mesh_builder), intent(in) :: mesh
+        type(error_type), allocatable :: check_error
+
+        call check_elements(mesh%elements, mesh%fractures, check_error)
+        if (allocated(check_error)) then
+            call check(error, .false., 'good mesh rejected: '//check_error%message)
+        end if
+    end subroutine expect_accepted
+
+    ! ---- polyline -----------------------------------------------------------------------
+
+    subroutine test_polyline_subdivision(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: xb(:), yb(:), xe(:), ye(:)
+        integer :: i
+
+        call polyline_elements([0.0_wp, 1.0_wp, 1.0_wp], [0.0_wp, 0.0_wp, 2.0_wp], [2, 4], &
+                               xb, yb, xe, ye)
+        call check(error, size(xb), 6, 'number of elements')
+        if (allocated(error)) return
+        call check(error, xe(1), 0.5_wp, 'x_end(1)', abs_tol=tight)
+        call check(error, xe(2), 1.0_wp, 'x_end(2) is the vertex', abs_tol=0.0_wp)
+        call check(error, xb(3), 1.0_wp, 'x_begin(3) is the vertex', abs_tol=0.0_wp)
+        call check(error, yb(3), 0.0_wp, 'y_begin(3) is the vertex', abs_tol=0.0_wp)
+        call check(error, ye(3), 0.5_wp, 'y_end(3)', abs_tol=tight)
+        call check(error, ye(5), 1.5_wp, 'y_end(5)', abs_tol=tight)
+        call check(error, ye(6), 2.0_wp, 'last end is the last vertex', abs_tol=0.0_wp)
+        do i = 1, 5
+            call check(error, xe(i) == xb(i + 1) .and. ye(i) == yb(i + 1), &
+                       'consecutive elements share their end point exactly')
+        end do
+    end subroutine test_polyline_subdivision
+
+    subroutine test_expand_per_segment(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: per_element(:)
+
+        allocate (per_element(5))
+        per_element = expand_per_segment([0.5_wp, 0.7_wp], [2, 3])
+        call check(error, size(per_element), 5, 'size')
+        if (allocated(error)) return
+        call check(error, per_element(2), 0.5_wp, 'element 2', abs_tol=0.0_wp)
+        call check(error, per_element(3), 0.7_wp, 'element 3', abs_tol=0.0_wp)
+        call check(error, per_element(5), 0.7_wp, 'element 5', abs_tol=0.0_wp)
+    end subroutine test_expand_per_segment
+
+    ! ---- checks: rejected ---------------------------------------------------------------
+
+    subroutine test_zero_length(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(mesh_builder) :: mesh
+
+        call add_fracture(mesh, 'a', [0.0_wp, 1.0_wp], [0.0_wp, 0.0_wp], [2])
+        call add_fracture(mesh, 'b', [0.0_wp, 1.0_wp, 1.0_wp], [1.0_wp, 1.0_wp, 1.0_wp], [1, 1])
+        call expect_rejected(error, mesh, [character(len=60) :: &
+                             "fracture 'b' element 2 (model element 4) has zero length"])
+    end subroutine test_zero_length
+
+    subroutine test_duplicate(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(mesh_builder) :: mesh
+
+        call add_fracture(mesh, 'a', [0.0_wp, 1.0_wp], [0.0_wp, 0.0_wp], [1])
+        call add_fracture(mesh, 'b', [1.0_wp, 0.0_wp], [0.0_wp, 0.0_wp], [1])
+        call expect_rejected(error, mesh, [character(len=60) :: "fracture 'a' element 1", &
+                             "fracture 'b' element 1", 'duplicates'])
+    end subroutine test_duplicate
+
+    subroutine test_overlap(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(mesh_builder) :: mesh
+
+        call add_fracture(mesh, 'a', [0.0_wp, 2.0_wp], [0.0_wp, 0.0_wp], [1])
+        call add_fracture(mesh, 'b', [1.0_wp, 3.0_wp], [0.0_wp, 0.0_wp], [2])
+        call expect_rejected(error, mesh, [character(len=60) :: "fracture 'a' element 1", &
+                             "fracture 'b' element 1", 'overlap'])
+    end subroutine test_overlap
+
+    subroutine test_overlap_folded(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(mesh_builder) :: mesh
+
+        ! the polyline turns back on itself at the shared vertex (2, 0)
+        call add_fracture(mesh, 'fold', [0.0_wp, 2.0_wp, 1.0_wp], [0.0_wp, 0.0_wp, 0.0_wp], &
+                          [1, 1])
+        call expect_rejected(error, mesh, [character(len=60) :: "fracture 'fold' element 1", &
+                             "fracture 'fold' element 2", 'overlap'])
+    end subroutine test_overlap_folded
+
+    subroutine test_crossing(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(mesh_builder) :: mesh
+
+        call add_fracture(mesh, 'a', [-1.0_wp, 1.0_wp], [0.0_wp, 0.0_wp], [1])
+        call add_fracture(mesh, 'b', [0.1_wp, -0.1_wp], [-1.0_wp, 1.0_wp], [1])
+        call expect_rejected(error, mesh, [character(len=60) :: "fracture 'a' element 1", &
+                             "fracture 'b' element 1", 'cross'])
+    end subroutine test_crossing
+
+    subroutine test_t_junction(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(mesh_builder) :: mesh
+
+        call add_fracture(mesh, 'main', [-1.0_wp, 1.0_wp], [0.0_wp, 0.0_wp], [1])
+        call add_fracture(mesh, 'splay', [0.0_wp, 0.5_wp], [0.0_wp, 1.0_wp], [3])
+        call expect_rejected(error, mesh, [character(len=80) :: &
+            "an end of fracture 'splay' element 1 (model element 2) touches the interior", &
+            "fracture 'main' element 1", 'T-junction', 'vertex at the branch point'])
+    end subroutine test_t_junction
+
+    subroutine test_t_junction_tolerance(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(mesh_builder) :: mesh
+
+        ! the branch ends 1e-13 (relative to a length of 2) away from the main fault
+        call add_fracture(mesh, 'main', [-1.0_wp, 1.0_wp], [0.0_wp, 0.0_wp], [1])
+        call add_fracture(mesh, 'splay', [0.0_wp, 0.0_wp], [1.0_wp, 1.0e-13_wp], [1])
+        call expect_rejected(error, mesh, [character(len=60) :: 'T-junction'])
+    end subroutine test_t_junction_tolerance
+
+    ! ---- checks: accepted ---------------------------------------------------------------
+
+    subroutine test_near_miss(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(mesh_builder) :: mesh
+
+        ! a gap of 1e-6 is real geometry, not a touch; parallel neighbours too
+        call add_fracture(mesh, 'main', [-1.0_wp, 1.0_wp], [0.0_wp, 0.0_wp], [4])
+        call add_fracture(mesh, 'branch', [0.0_wp, 0.0_wp], [1.0e-6_wp, 1.0_wp], [2])
+        call add_fracture(mesh, 'parallel', [-1.0_wp, 1.0_wp], [-1.0e-3_wp, -1.0e-3_wp], [4])
+        ! collinear, end to end with a gap, and end to end sharing a vertex
+        call add_fracture(mesh, 'gap', [1.5_wp, 2.0_wp], [0.0_wp, 0.0_wp], [1])
+        call add_fracture(mesh, 'joined', [2.0_wp, 3.0_wp], [0.0_wp, 0.0_wp], [1])
+        call expect_accepted(error, mesh)
+    end subroutine test_near_miss
+
+    subroutine test_closed_loop(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(mesh_builder) :: mesh
+        integer, parameter :: n = 64
+        real(wp) :: x(n + 1), y(n + 1)
+        integer :: i
+
+        do i = 1, n
+            x(i) = cos(2.0_wp * pi * real(i - 1, wp) / real(n, wp))
+            y(i) = sin(2.0_wp * pi * real(i - 1, wp) / real(n, wp))
+        end do
+        x(n + 1) = x(1)
+        y(n + 1) = y(1)
+        call add_fracture(mesh, 'circle', x, y, [(1, i = 1, n)])
+        call expect_accepted(error, mesh)
+    end subroutine test_closed_loop
+
+    subroutine test_branch(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(mesh_builder) :: mesh
+
+        ! four fractures meeting at the origin, where each has a vertex
+        call add_fracture(mesh, 'east', [0.0_wp, 1.0_wp], [0.0_wp, 0.0_wp], [2])
+        call add_fracture(mesh, 'west', [-2.0_wp, 0.0_wp], [0.0_wp, 0.0_wp], [3])
+        call add_fracture(mesh, 'north_west', [0.0_wp, -1.0_wp], [0.0_wp, 1.0_wp], [2])
+        call add_fracture(mesh, 'south_east', [1.0_wp, 0.0_wp], [-1.0_wp, 0.0_wp], [2])
+        ! a kinked fault
+        call add_fracture(mesh, 'kink', [3.0_wp, 4.0_wp, 5.0_wp], [0.0_wp, 0.0_wp, 1.0_wp], &
+                          [5, 5])
+        call expect_accepted(error, mesh)
+    end subroutine test_branch
+
+    !> 4000-element meshes: a circle and a vertical line (every element in one x-range,
+    !> the sweep's worst case). Not timed here; the benchmark measures speed.
+    subroutine test_large(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(mesh_builder) :: circle, vertical
+        integer, parameter :: n = 4000
+        real(wp) :: x(n + 1), y(n + 1)
+        integer :: i
+
+        do i = 1, n
+            x(i) = 10.0_wp * cos(2.0_wp * pi * real(i - 1, wp) / real(n, wp))
+            y(i) = 10.0_wp * sin(2.0_wp * pi * real(i - 1, wp) / real(n, wp))
+        end do
+        x(n + 1) = x(1)
+        y(n + 1) = y(1)
+        call add_fracture(circle, 'circle', x, y, [(1, i = 1, n)])
+        call expect_accepted(error, circle)
+        call add_fracture(vertical, 'vertical', [5.0_wp, 5.0_wp], [0.0_wp, 1.0_wp], [n])
+        call expect_accepted(error, vertical)
+    end subroutine test_large
+
+end module test_mesh
