@@ -1,7 +1,17 @@
 !> The tester: `ddc2d_tester SUITE` runs one suite and exits non-zero on any failure.
 program ddc2d_tester
     use ddc_testing, only: test_case, run_suite
+    use test_output, only: collect_output
     use test_kernel, only: collect_kernel
+    use test_input, only: collect_input
+    use test_mesh, only: collect_mesh
+    use test_lemke, only: collect_lemke
+    use test_contact, only: collect_contact
+    use test_crack, only: collect_crack
+    use test_fields, only: collect_fields
+    use test_twodd_reference, only: collect_twodd_reference
+    use test_hole, only: collect_hole
+    use test_threads, only: collect_threads
     implicit none
     type(test_case), allocatable :: tests(:)
     character(len=64) :: suite
@@ -15,6 +25,26 @@ program ddc2d_tester
     select case (trim(suite))
     case ('kernel')
         call collect_kernel(tests)
+    case ('input')
+        call collect_input(tests)
+    case ('mesh')
+        call collect_mesh(tests)
+    case ('crack')
+        call collect_crack(tests)
+    case ('fields')
+        call collect_fields(tests)
+    case ('output')
+        call collect_output(tests)
+    case ('lemke')
+        call collect_lemke(tests)
+    case ('twodd_reference')
+        call collect_twodd_reference(tests)
+    case ('hole')
+        call collect_hole(tests)
+    case ('threads')
+        call collect_threads(tests)
+    case ('contact')
+        call collect_contact(tests)
     case default
         write (*, '(a)') 'unknown suite: '//trim(suite)
         error stop 2

@@ -1,10 +1,13 @@
-!> Thin wrappers with explicit interfaces over the LAPACK routines ddc2d uses.
+!> Explicit interfaces for the LAPACK and BLAS routines ddc2d calls, and thin wrappers.
+!> Every module that calls LAPACK or BLAS takes the interface from here, so argument
+!> mismatches are compile-time errors.
 module ddc_solve_lapack
     use ddc_kinds, only: wp
     implicit none
     private
 
     public :: lu_factor, lu_solve
+    public :: dgetrf, dgetrs, dgetri, dgecon, dgesv, dlange, dgemv, dger, dgemm
 
     interface
         subroutine dgetrf(m, n, a, lda, ipiv, info)
@@ -22,6 +25,58 @@ module ddc_solve_lapack
             real(wp), intent(inout) :: b(ldb, *)
             integer, intent(out) :: info
         end subroutine dgetrs
+        subroutine dgetri(n, a, lda, ipiv, work, lwork, info)
+            import :: wp
+            integer, intent(in) :: n, lda, lwork
+            real(wp), intent(inout) :: a(lda, *)
+            integer, intent(in) :: ipiv(*)
+            real(wp), intent(inout) :: work(*)
+            integer, intent(out) :: info
+        end subroutine dgetri
+        subroutine dgecon(norm, n, a, lda, anorm, rcond, work, iwork, info)
+            import :: wp
+            character, intent(in) :: norm
+            integer, intent(in) :: n, lda
+            real(wp), intent(in) :: a(lda, *), anorm
+            real(wp), intent(out) :: rcond
+            real(wp), intent(inout) :: work(*)
+            integer, intent(inout) :: iwork(*)
+            integer, intent(out) :: info
+        end subroutine dgecon
+        subroutine dgesv(n, nrhs, a, lda, ipiv, b, ldb, info)
+            import :: wp
+            integer, intent(in) :: n, nrhs, lda, ldb
+            real(wp), intent(inout) :: a(lda, *), b(ldb, *)
+            integer, intent(out) :: ipiv(*), info
+        end subroutine dgesv
+        function dlange(norm, m, n, a, lda, work) result(val)
+            import :: wp
+            character, intent(in) :: norm
+            integer, intent(in) :: m, n, lda
+            real(wp), intent(in) :: a(lda, *)
+            real(wp), intent(inout) :: work(*)
+            real(wp) :: val
+        end function dlange
+        subroutine dgemv(trans, m, n, alpha, a, lda, x, incx, beta, y, incy)
+            import :: wp
+            character, intent(in) :: trans
+            integer, intent(in) :: m, n, lda, incx, incy
+            real(wp), intent(in) :: alpha, beta, a(lda, *), x(*)
+            real(wp), intent(inout) :: y(*)
+        end subroutine dgemv
+        subroutine dger(m, n, alpha, x, incx, y, incy, a, lda)
+            import :: wp
+            integer, intent(in) :: m, n, incx, incy, lda
+            real(wp), intent(in) :: alpha, x(*), y(*)
+            real(wp), intent(inout) :: a(lda, *)
+        end subroutine dger
+        subroutine dgemm(transa, transb, m, n, k, alpha, a, lda, b, ldb, beta, c, ldc)
+            import :: wp
+            character, intent(in) :: transa, transb
+            integer, intent(in) :: m, n, k, lda, ldb, ldc
+            real(wp), intent(in) :: alpha, beta, a(lda, *), b(ldb, *)
+            real(wp), intent(inout) :: c(ldc, *)
+        end subroutine dgemm
     end interface
 
 contains

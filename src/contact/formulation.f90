@@ -1,0 +1,394 @@
+!> Frictional contact on displacement discontinuity elements as an LCP (SPEC section 4).
+!>
+!> The paper's formulation (Ritz, Mutlu & Pollard 2012): with A the 2N x 2N influence
+!> matrix of the contact elements ordered [s; n] (traction t = S_r + A D), C = A^-1 from
+!> LAPACK, D0 = C S_r' (normal rows shifted by the fluid pressure p) and dMU = diag(mu),
+!>
+!>     z = [ -S_n' ; S_R ; D_L ]      w = [ -Dn ; D_R ; S_L ]      Ds = D_L - D_R
+!>     M = [ CNN - CNS dMU , CNS , 0 ;  CSN - CSS dMU , CSS , I ;  2 dMU , -I , 0 ]
+!>     q = [ D0_n - CNS Sf ; D0_s - CSS Sf ; 2 Sf ]
+!>
+!> solved by Lemke's method (ddc_contact_lemke) after scaling stresses by a stress scale
+!> sigma0 (largest resolved remote stress, strength or pressure) and displacements by
+!> delta0 = sigma0 / max_i A_ii, so that every entry is O(1). The solution is certified
+!> (ddc_contact_certificate) against the unfactored M, and the recovered DDs are checked
+!> against the unfactored A (equilibrium residual per block). A failed LAPACK call, an
+!> LCP that Lemke cannot solve, a failed certificate or a large residual is an error
+!> (exit_solver_failure), never a result.
+!>
+!> States (codes of ddc_model_results): open when the opening -Dn exceeds
+!> state_dd_tol * dd_scale; otherwise slip when |Ds| exceeds that tolerance or the element
+!> is on its friction limit (tau_s - |s_s| <= state_stress_tol * sigma0); otherwise stick.
+!> dd_scale = max(max |Ds|, max |Dn|, delta0): DDs that are exactly zero in the LCP (its
+!> nonbasic variables) are exactly zero here; basic variables that are zero in exact
+!> arithmetic come out at round-off level, far below the tolerance.
+!>
+!> open_cohesion: 'kept' (the paper) lets an open element carry shear up to Sf;
+!> 'lost' sets Sf = 0 on every element that opens and solves again until no open
+!> element has cohesion left (the set of such elements only grows, so this terminates).
+module ddc_contact_formulation
+    use ddc_kinds, only: wp
+    use ddc_error, only: error_type, set_error, exit_solver_failure, exit_bad_input
+    use ddc_model_results, only: state_stick, state_slip, state_open
+    use ddc_contact_lemke, only: solve_lcp_lemke
+    use ddc_contact_certificate, only: lcp_certificate, certify_lcp
+    use ddc_solve_lapack, only: dgetrf, dgetri, dgecon, dlange, dgemv
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+    use, intrinsic :: iso_fortran_env, only: int64
+    implicit none
+    private
+
+    public :: contact_result, solve_contact
+    public :: state_dd_tol, state_stress_tol, residual_tol
+
+    !> Relative tolerance on DDs for the state rule (times dd_scale) [-]
+    real(wp), parameter :: state_dd_tol = 1.0e-9_wp
+    !> Relative tolerance on the friction limit for the state rule (times sigma0) [-]
+    real(wp), parameter :: state_stress_tol = 1.0e-9_wp
+    !> Largest accepted relative equilibrium residual per block [-]
+    real(wp), parameter :: residual_tol = 1.0e-8_wp
+    !> Largest accepted reciprocal condition number of A before it is called singular
+    real(wp), parameter :: rcond_min = 1.0e3_wp * epsilon(1.0_wp)
+
+    !> Solution of a contact problem on n elements; arrays shape (n).
+    type :: contact_result
+        !> Shear and normal displacement discontinuity, C&S signs (opening = -dn) [length]
+        real(wp), allocatable :: ds(:), dn(:)
+        !> Total shear and normal traction, tension positive, not shifted by p [stress]
+        real(wp), allocatable :: shear_traction(:), normal_traction(:)
+        !> state_stick, state_slip or state_open
+        integer, allocatable :: state(:)
+        !> Frictional strength in force at the end (0 where cohesion was lost) [stress]
+        real(wp), allocatable :: sf_effective(:)
+        !> Lemke pivots, summed over all LCP solves
+        integer :: pivots = 0
+        !> Number of LCP solves (1 unless open_cohesion = 'lost' re-solved)
+        integer :: solves = 0
+        !> Certificate of the last LCP solve
+        type(lcp_certificate) :: certificate
+        !> Relative equilibrium residual ||A D + S_r - t|| / scale, shear and normal block
+        real(wp) :: equilibrium_residual(2) = 0.0_wp
+        !> Stress scale sigma0 [stress] and displacement scale delta0 [length] used
+        real(wp) :: stress_scale = 1.0_wp, dd_scale = 1.0_wp
+        !> Wall time of the inversion of A (LAPACK) and of the LCP solves (building M,
+        !> Lemke, certificate and recovery, summed over solves) [s]
+        real(wp) :: seconds_inverse = 0.0_wp, seconds_lcp = 0.0_wp
+    end type contact_result
+
+
+contains
+
+    !> Solve the frictional contact problem of n elements (SPEC section 4).
+    subroutine solve_contact(a, s_r_s, s_r_n, mu, sf, pressure, open_cohesion, res, &
+        error, rule)
+        !> Influence matrix ordered [s; n]: traction = s_r + a [Ds; Dn], shape (2n, 2n)
+        !> [stress / length]
+        real(wp), intent(in) :: a(:, :)
+        !> Remote shear traction resolved on each element (plus any traction from
+        !> non-contact elements), shape (n) [stress]
+        real(wp), intent(in) :: s_r_s(:)
+        !> Remote normal traction resolved on each element, tension positive, shape (n)
+        !> [stress]
+        real(wp), intent(in) :: s_r_n(:)
+        !> Friction coefficient, shape (n) [-]
+        real(wp), intent(in) :: mu(:)
+        !> Frictional strength (cohesion), shape (n) [stress]
+        real(wp), intent(in) :: sf(:)
+        !> Fluid pressure inside the crack, compression positive, shape (n) [stress]
+        real(wp), intent(in) :: pressure(:)
+        !> 'kept' (open elements keep cohesion Sf) or 'lost' (open elements carry no shear)
+        character(len=*), intent(in) :: open_cohesion
+        !> The solution
+        type(contact_result), intent(out) :: res
+        !> Allocated on failure (exit_solver_failure, or exit_bad_input for bad arguments)
+        type(error_type), allocatable, intent(out) :: error
+        !> Tie-breaking rule of Lemke (tests only; default lexicographic)
+        integer, intent(in), optional :: rule
+
+        real(wp), allocatable :: c(:, :), sf_eff(:)
+        logical, allocatable :: lose(:)
+        integer :: n, i
+        integer(int64) :: t0, t1, rate
+        logical :: lost
+        character(len=200) :: line
+
+        n = size(mu)
+        if (size(a, 1) /= 2 * n .or. size(a, 2) /= 2 * n .or. size(s_r_s) /= n &
+            .or. size(s_r_n) /= n .or. size(sf) /= n .or. size(pressure) /= n) then
+            call set_error(error, exit_bad_input, 'contact: array sizes do not match')
+            return
+        end if
+        select case (open_cohesion)
+        case ('kept')
+            lost = .false.
+        case ('lost')
+            lost = .true.
+        case default
+            call set_error(error, exit_bad_input, "contact: open_cohesion must be 'kept' or &
+                &'lost', not '"//open_cohesion//"'")
+            return
+        end select
+        if (.not. (all(ieee_is_finite(a)) .and. all(ieee_is_finite(s_r_s)) .and. &
+            all(ieee_is_finite(s_r_n)) .and. all(ieee_is_finite(mu)) .and. &
+            all(ieee_is_finite(sf)) .and. all(ieee_is_finite(pressure)))) then
+            call set_error(error, exit_bad_input, 'contact: NaN or Inf in the input arrays')
+            return
+        end if
+        if (any(mu < 0.0_wp) .or. any(sf < 0.0_wp)) then
+            call set_error(error, exit_bad_input, 'contact: mu and sf must not be negative')
+            return
+        end if
+        if (n == 0) then
+            allocate (res%ds(0), res%dn(0), res%shear_traction(0), res%normal_traction(0), &
+                res%state(0), res%sf_effective(0))
+            res%certificate%passed = .true.
+            return
+        end if
+
+        call system_clock(t0, rate)
+        call invert_influence(a, c, error)
+        call system_clock(t1)
+        res%seconds_inverse = real(t1 - t0, wp) / real(max(rate, 1_int64), wp)
+        if (allocated(error)) return
+
+        sf_eff = sf
+        do
+            call system_clock(t0)
+            call solve_once(a, c, s_r_s, s_r_n, mu, sf_eff, pressure, res, error, rule)
+            call system_clock(t1)
+            res%seconds_lcp = res%seconds_lcp + real(t1 - t0, wp) / real(max(rate, 1_int64), wp)
+            if (allocated(error)) then
+                if (res%solves > 1) then
+                    write (line, '(a,i0,a)') ' (LCP solve ', res%solves, &
+                        ", after cohesion was lost on opening elements)"
+                    error%message = error%message//trim(line)
+                end if
+                return
+            end if
+            if (.not. lost) exit
+            lose = res%state == state_open .and. sf_eff > 0.0_wp
+            if (.not. any(lose)) exit
+            do i = 1, n
+                if (lose(i)) sf_eff(i) = 0.0_wp
+            end do
+        end do
+    end subroutine solve_contact
+
+    !> C = A^-1 by LAPACK (dgetrf, dgetri); singular or numerically singular A is an error.
+    subroutine invert_influence(a, c, error)
+        real(wp), intent(in) :: a(:, :)
+        real(wp), allocatable, intent(out) :: c(:, :)
+        type(error_type), allocatable, intent(out) :: error
+        integer, allocatable :: ipiv(:), iwork(:)
+        real(wp), allocatable :: work(:)
+        real(wp) :: anorm, rcond
+        integer :: n2, n, info, lwork, i, k
+        character(len=200) :: line
+
+        n2 = size(a, 1)
+        n = n2 / 2
+        c = a
+        allocate (ipiv(n2), iwork(n2), work(max(1, 4 * n2)))
+        anorm = dlange('1', n2, n2, c, n2, work)
+        call dgetrf(n2, n2, c, n2, ipiv, info)
+        if (info < 0) then
+            write (line, '(a,i0)') 'contact: dgetrf rejected argument ', -info
+            call set_error(error, exit_solver_failure, trim(line))
+            return
+        end if
+        if (info > 0) then
+            call set_error(error, exit_solver_failure, 'contact: influence matrix singular &
+                &at element '//unknown_name(info, n)//': duplicate or overlapping elements?')
+            return
+        end if
+        call dgecon('1', n2, c, n2, anorm, rcond, work, iwork, info)
+        if (info /= 0 .or. .not. rcond > rcond_min) then
+            ! Columns are not permuted by dgetrf: the smallest pivot names the DD unknown.
+            k = 1
+            do i = 2, n2
+                if (abs(c(i, i)) < abs(c(k, k))) k = i
+            end do
+            write (line, '(a,es10.3,a)') ' (reciprocal condition number ', rcond, ')'
+            call set_error(error, exit_solver_failure, 'contact: influence matrix &
+                &numerically singular near element '//unknown_name(k, n)//trim(line)// &
+                ': duplicate or overlapping elements?')
+            return
+        end if
+        lwork = -1
+        call dgetri(n2, c, n2, ipiv, work, lwork, info)
+        lwork = max(int(work(1)), n2)
+        deallocate (work)
+        allocate (work(lwork))
+        call dgetri(n2, c, n2, ipiv, work, lwork, info)
+        if (info /= 0) then
+            write (line, '(a,i0)') 'contact: dgetri failed with info = ', info
+            call set_error(error, exit_solver_failure, trim(line))
+            return
+        end if
+    end subroutine invert_influence
+
+    !> One LCP solve with frictional strength sf: build, scale, solve, certify, recover.
+    subroutine solve_once(a, c, s_r_s, s_r_n, mu, sf, p, res, error, rule)
+        real(wp), intent(in) :: a(:, :), c(:, :), s_r_s(:), s_r_n(:), mu(:), sf(:), p(:)
+        type(contact_result), intent(inout) :: res
+        type(error_type), allocatable, intent(out) :: error
+        integer, intent(in), optional :: rule
+
+        real(wp), allocatable :: m(:, :), q(:), mt(:, :), qt(:), z(:), w(:), zt(:), wt(:)
+        real(wp), allocatable :: d0(:), srp(:), zs(:), ws(:), dd(:), ad(:), t(:)
+        real(wp), allocatable :: snp(:), tau(:)
+        real(wp) :: sigma0, delta0, dscale, amax, tol_d, tol_s
+        integer :: n, n2, n3, i, j, pivots
+        character(len=300) :: line
+
+        n = size(mu)
+        n2 = 2 * n
+        n3 = 3 * n
+
+        ! Scales: stresses by sigma0, displacements by delta0 = sigma0 / max A_ii.
+        sigma0 = max(maxval(abs(s_r_s)), maxval(abs(s_r_n)), maxval(abs(s_r_n + p)), &
+            maxval(abs(sf)), maxval(abs(p)))
+        if (.not. sigma0 > 0.0_wp) sigma0 = 1.0_wp
+        amax = 0.0_wp
+        do i = 1, n2
+            amax = max(amax, abs(a(i, i)))
+        end do
+        if (.not. amax > 0.0_wp) amax = maxval(abs(a))
+        delta0 = sigma0 / amax
+        res%stress_scale = sigma0
+        res%dd_scale = delta0
+
+        ! D0 = C S_r' with S_r' = [s_r_s; s_r_n + p].
+        srp = [s_r_s, s_r_n + p]
+        allocate (d0(n2))
+        call dgemv('N', n2, n2, 1.0_wp, c, n2, srp, 1, 0.0_wp, d0, 1)
+
+        ! M and q exactly as SPEC section 4 writes them; C blocks are
+        ! CSS = c(1:n, 1:n), CSN = c(1:n, n+1:2n), CNS = c(n+1:2n, 1:n), CNN = c(n+1:, n+1:).
+        allocate (m(n3, n3), q(n3))
+        m = 0.0_wp
+        do j = 1, n
+            m(1:n, j) = c(n + 1:n2, n + j) - c(n + 1:n2, j) * mu(j)
+            m(1:n, n + j) = c(n + 1:n2, j)
+            m(n + 1:n2, j) = c(1:n, n + j) - c(1:n, j) * mu(j)
+            m(n + 1:n2, n + j) = c(1:n, j)
+            m(n + j, n2 + j) = 1.0_wp
+            m(n2 + j, j) = 2.0_wp * mu(j)
+            m(n2 + j, n + j) = -1.0_wp
+        end do
+        q(1:n) = d0(n + 1:n2) - matmul(c(n + 1:n2, 1:n), sf)
+        q(n + 1:n2) = d0(1:n) - matmul(c(1:n, 1:n), sf)
+        q(n2 + 1:n3) = 2.0_wp * sf
+
+        ! Scaled problem: z = zs * zt, w = ws * wt with z = [stress; stress; length] and
+        ! w = [length; length; stress].
+        allocate (zs(n3), ws(n3))
+        zs(1:n2) = sigma0
+        zs(n2 + 1:n3) = delta0
+        ws(1:n2) = delta0
+        ws(n2 + 1:n3) = sigma0
+        allocate (mt(n3, n3))
+        do j = 1, n3
+            mt(:, j) = m(:, j) * (zs(j) / ws)
+        end do
+        qt = q / ws
+
+        allocate (zt(n3), wt(n3))
+        call solve_lcp_lemke(mt, qt, zt, wt, pivots, error, rule=rule)
+        res%pivots = res%pivots + pivots
+        res%solves = res%solves + 1
+        if (allocated(error)) then
+            write (line, '(a,i0,a)') '; LCP rows k, N + k and 2N + k belong to contact &
+                &element k (N = ', n, ')'
+            error%code = exit_solver_failure
+            error%message = 'contact: '//error%message//trim(line)
+            return
+        end if
+        z = zt * zs
+        w = wt * ws
+
+        ! Recovery.
+        res%dn = -w(1:n)
+        res%ds = z(n2 + 1:n3) - w(n + 1:n2)
+        snp = -z(1:n)
+        res%shear_traction = -z(n + 1:n2) - mu * snp + sf
+        res%normal_traction = snp - p
+        res%sf_effective = sf
+
+        ! Certificate against the unfactored M, with the block magnitudes: sigma0 for
+        ! stresses and the larger of delta0 and the largest DD for displacements.
+        dscale = max(delta0, maxval(abs(res%ds)), maxval(abs(res%dn)))
+        zs(n2 + 1:n3) = dscale
+        ws(1:n2) = dscale
+        res%certificate = certify_lcp(m, q, z, w, z_scale=zs, w_scale=ws)
+        if (.not. res%certificate%passed) then
+            write (line, '(a,4(es10.3,a))') 'contact: the LCP solution fails its &
+                &certificate (scaled min z ', res%certificate%min_z, ', min w ', &
+                res%certificate%min_w, ', max |z w| ', res%certificate%max_complementarity, &
+                ', w mismatch ', res%certificate%max_w_mismatch, ')'
+            call set_error(error, exit_solver_failure, trim(line))
+            return
+        end if
+
+        ! Equilibrium of the recovered DDs against the unfactored A.
+        dd = [res%ds, res%dn]
+        t = [res%shear_traction, res%normal_traction]
+        allocate (ad(n2))
+        call dgemv('N', n2, n2, 1.0_wp, a, n2, dd, 1, 0.0_wp, ad, 1)
+        res%equilibrium_residual(1) = block_residual(ad(1:n), s_r_s, t(1:n))
+        res%equilibrium_residual(2) = block_residual(ad(n + 1:n2), s_r_n, t(n + 1:n2))
+        if (.not. maxval(res%equilibrium_residual) <= residual_tol) then
+            write (line, '(a,2(es10.3,a))') 'contact: the recovered DDs are not in &
+                &equilibrium (relative residual ', res%equilibrium_residual(1), &
+                ' shear, ', res%equilibrium_residual(2), ' normal)'
+            call set_error(error, exit_solver_failure, trim(line))
+            return
+        end if
+
+        ! States.
+        tol_d = state_dd_tol * dscale
+        tol_s = state_stress_tol * sigma0
+        tau = sf - mu * snp
+        if (allocated(res%state)) deallocate (res%state)
+        allocate (res%state(n))
+        do i = 1, n
+            if (-res%dn(i) > tol_d) then
+                res%state(i) = state_open
+            else if (abs(res%ds(i)) > tol_d .or. tau(i) - abs(res%shear_traction(i)) <= tol_s) &
+                then
+                res%state(i) = state_slip
+            else
+                res%state(i) = state_stick
+            end if
+        end do
+    end subroutine solve_once
+
+    !> 'k (shear DD)' or 'k (normal DD)' for unknown j of the [s; n] ordering.
+    function unknown_name(j, n) result(name)
+        integer, intent(in) :: j, n
+        character(len=:), allocatable :: name
+        character(len=40) :: buffer
+
+        if (j <= n) then
+            write (buffer, '(i0,a)') j, ' (shear DD)'
+        else
+            write (buffer, '(i0,a)') j - n, ' (normal DD)'
+        end if
+        name = trim(buffer)
+    end function unknown_name
+
+    !> ||ad + s_r - t|| / max(||ad||, ||s_r||, ||t||), 0 when all vanish.
+    pure function block_residual(ad, s_r, t) result(r)
+        real(wp), intent(in) :: ad(:), s_r(:), t(:)
+        real(wp) :: r
+        real(wp) :: scale
+
+        scale = max(norm2(ad), norm2(s_r), norm2(t))
+        if (scale > 0.0_wp) then
+            r = norm2(ad + s_r - t) / scale
+        else
+            r = 0.0_wp
+        end if
+    end function block_residual
+
+end module ddc_contact_formulation
