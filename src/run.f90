@@ -2,11 +2,12 @@
 module ddc_run
     !$ use omp_lib, only: omp_get_max_threads
     use ddc_kinds, only: wp
-    use ddc_error, only: error_type, set_error, exit_solver_failure
+    use ddc_error, only: error_type
     use ddc_model_types, only: model_type, condition_contact
     use ddc_model_results, only: model_results, state_free
     use ddc_influence_assembly, only: midpoint_response, resolve_remote_stress
     use ddc_solve_elastic, only: solve_elastic
+    use ddc_solve_frictional, only: solve_frictional
     use ddc_post_tips, only: find_tips
     use ddc_post_fields, only: evaluate_field
     implicit none
@@ -57,16 +58,17 @@ contains
             allocate (e%ds(n), e%dn(n), e%shear_traction(n), e%normal_traction(n), &
                       e%us_minus(n), e%un_minus(n), e%us_plus(n), e%un_plus(n), e%state(n))
             if (any(model%elements%condition == condition_contact)) then
-                call set_error(error, exit_solver_failure, &
-                    "condition 'contact' is not available in this build")
-                return
+                call solve_frictional(model%elements, g, nu, remote_shear, remote_normal, &
+                                      model%solver%open_cohesion, e%ds, e%dn, e%state, rec, &
+                                      error)
+            else
+                rec%method = 'lu'
+                call solve_elastic(model%elements, g, nu, remote_shear, remote_normal, e%ds, &
+                                   e%dn, rec%equilibrium_residual, rec%seconds_assembly, &
+                                   rec%seconds_factorization, error)
+                e%state = state_free
             end if
-            rec%method = 'lu'
-            call solve_elastic(model%elements, g, nu, remote_shear, remote_normal, e%ds, e%dn, &
-                               rec%equilibrium_residual, rec%seconds_assembly, &
-                               rec%seconds_factorization, error)
             if (allocated(error)) return
-            e%state = state_free
 
             t0 = wall_seconds()
             call midpoint_response(model%elements, g, nu, e%ds, e%dn, e%shear_traction, &

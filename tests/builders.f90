@@ -1,67 +1,35 @@
 !> Models built in code for the physics tests (no input files involved).
 module ddc_test_builders
     use ddc_kinds, only: wp
-    use ddc_model_types, only: model_type, fracture_type
+    use ddc_model_types, only: model_type, fracture_type, solver_options
     use ddc_mesh_geometry, only: allocate_elements, compute_geometry
+    use ddc_mesh_polyline, only: polyline_elements
     use ddc_influence_kernel, only: pi
     implicit none
     private
 
-    public :: straight_crack, circular_hole
+    public :: polyline_model, straight_crack, circular_hole, join_fractures
 
 contains
 
-    !> A straight crack of half-length a centred on the origin at angle beta [rad], n equal
-    !> elements, every element with the same condition and given values.
-    function straight_crack(n, a, beta, condition, bc_s, bc_n, youngs_modulus, nu) result(model)
-        integer, intent(in) :: n, condition
-        real(wp), intent(in) :: a, beta, bc_s, bc_n, youngs_modulus, nu
+    !> One fracture along a polyline with counts(k) equal elements on segment k, every
+    !> element with the same condition and given values; contact values mu = sf = p = 0.
+    function polyline_model(x, y, counts, condition, bc_s, bc_n, youngs_modulus, nu) &
+        result(model)
+        real(wp), intent(in) :: x(:), y(:)
+        integer, intent(in) :: counts(:), condition
+        real(wp), intent(in) :: bc_s, bc_n, youngs_modulus, nu
         type(model_type) :: model
-        real(wp) :: t(0:n)
-        integer :: i
 
-        model%title = 'straight crack'
+        model%title = 'test model'
         model%youngs_modulus = youngs_modulus
         model%poissons_ratio = nu
-        call allocate_elements(model%elements, n)
-        t = [(-a + 2.0_wp * a * real(i, wp) / real(n, wp), i = 0, n)]
-        model%elements%x_begin = t(0:n - 1) * cos(beta)
-        model%elements%y_begin = t(0:n - 1) * sin(beta)
-        model%elements%x_end = t(1:n) * cos(beta)
-        model%elements%y_end = t(1:n) * sin(beta)
-        call fill_common(model, condition, bc_s, bc_n)
-    end function straight_crack
-
-    !> A circular hole of radius r0 around the origin, n elements ordered counter-clockwise
-    !> so that the body (outside) lies on the negative face of every element.
-    function circular_hole(n, r0, condition, bc_s, bc_n, youngs_modulus, nu) result(model)
-        integer, intent(in) :: n, condition
-        real(wp), intent(in) :: r0, bc_s, bc_n, youngs_modulus, nu
-        type(model_type) :: model
-        real(wp) :: theta(0:n)
-        integer :: i
-
-        model%title = 'circular hole'
-        model%youngs_modulus = youngs_modulus
-        model%poissons_ratio = nu
-        call allocate_elements(model%elements, n)
-        theta = [(2.0_wp * pi * real(i, wp) / real(n, wp), i = 0, n)]
-        model%elements%x_begin = r0 * cos(theta(0:n - 1))
-        model%elements%y_begin = r0 * sin(theta(0:n - 1))
-        model%elements%x_end = r0 * cos(theta(1:n))
-        model%elements%y_end = r0 * sin(theta(1:n))
-        ! Close the loop exactly so the last end is the first begin.
-        model%elements%x_end(n) = model%elements%x_begin(1)
-        model%elements%y_end(n) = model%elements%y_begin(1)
-        call fill_common(model, condition, bc_s, bc_n)
-    end function circular_hole
-
-    !> Conditions, material values and the single fracture record shared by the builders.
-    subroutine fill_common(model, condition, bc_s, bc_n)
-        type(model_type), intent(inout) :: model
-        integer, intent(in) :: condition
-        real(wp), intent(in) :: bc_s, bc_n
-
+        model%length_unit = 'm'
+        model%stress_unit = 'MPa'
+        model%solver = solver_options(lcp_method='auto', open_cohesion='kept')
+        call allocate_elements(model%elements, sum(counts))
+        call polyline_elements(x, y, counts, model%elements%x_begin, model%elements%y_begin, &
+                               model%elements%x_end, model%elements%y_end)
         model%elements%fracture_id = 1
         model%elements%condition = condition
         model%elements%bc_s = bc_s
@@ -74,6 +42,57 @@ contains
         model%fractures(1) = fracture_type(name='fracture_1', first_element=1, &
                                            last_element=model%elements%n)
         allocate (model%observations(0))
-    end subroutine fill_common
+    end function polyline_model
+
+    !> A straight crack of half-length a centred on the origin at angle beta [rad].
+    function straight_crack(n, a, beta, condition, bc_s, bc_n, youngs_modulus, nu) result(model)
+        integer, intent(in) :: n, condition
+        real(wp), intent(in) :: a, beta, bc_s, bc_n, youngs_modulus, nu
+        type(model_type) :: model
+
+        model = polyline_model([-a * cos(beta), a * cos(beta)], [-a * sin(beta), a * sin(beta)], &
+                               [n], condition, bc_s, bc_n, youngs_modulus, nu)
+    end function straight_crack
+
+    !> A circular hole of radius r0 around the origin, n elements ordered counter-clockwise
+    !> so that the body (outside) lies on the negative face of every element.
+    function circular_hole(n, r0, condition, bc_s, bc_n, youngs_modulus, nu) result(model)
+        integer, intent(in) :: n, condition
+        real(wp), intent(in) :: r0, bc_s, bc_n, youngs_modulus, nu
+        type(model_type) :: model
+        real(wp) :: theta(0:n)
+        integer :: i
+
+        theta = [(2.0_wp * pi * real(i, wp) / real(n, wp), i = 0, n)]
+        ! Closing the loop exactly: the last vertex is the first.
+        model = polyline_model([r0 * cos(theta(0:n - 1)), r0], [r0 * sin(theta(0:n - 1)), 0.0_wp], &
+                               [(1, i = 1, n)], condition, bc_s, bc_n, youngs_modulus, nu)
+    end function circular_hole
+
+    !> Append the fractures of `other` to `model` (same material and loading assumed).
+    subroutine join_fractures(model, other)
+        type(model_type), intent(inout) :: model
+        type(model_type), intent(in) :: other
+        integer :: n
+
+        n = model%elements%n
+        associate (a => model%elements, b => other%elements)
+            a%x_begin = [a%x_begin, b%x_begin]
+            a%y_begin = [a%y_begin, b%y_begin]
+            a%x_end = [a%x_end, b%x_end]
+            a%y_end = [a%y_end, b%y_end]
+            a%fracture_id = [a%fracture_id, b%fracture_id + size(model%fractures)]
+            a%condition = [a%condition, b%condition]
+            a%bc_s = [a%bc_s, b%bc_s]
+            a%bc_n = [a%bc_n, b%bc_n]
+            a%mu = [a%mu, b%mu]
+            a%sf = [a%sf, b%sf]
+            a%pressure = [a%pressure, b%pressure]
+            a%n = n + b%n
+        end associate
+        call compute_geometry(model%elements)
+        model%fractures = [model%fractures, fracture_type(name='fracture_2', &
+            first_element=n + 1, last_element=n + other%elements%n)]
+    end subroutine join_fractures
 
 end module ddc_test_builders

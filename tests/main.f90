@@ -12,6 +12,7 @@ program ddc2d_tester
     use test_twodd_reference, only: collect_twodd_reference
     use test_hole, only: collect_hole
     use test_threads, only: collect_threads
+    use test_frictional, only: collect_frictional
     implicit none
     type(test_case), allocatable :: tests(:)
     character(len=64) :: suite
@@ -45,6 +46,8 @@ program ddc2d_tester
         call collect_threads(tests)
     case ('contact')
         call collect_contact(tests)
+    case ('frictional')
+        call collect_frictional(tests)
     case default
         write (*, '(a)') 'unknown suite: '//trim(suite)
         error stop 2

@@ -60,10 +60,15 @@ module ddc_model_results
         character(len=:), allocatable :: method
         !> Number of OpenMP threads
         integer :: threads = 1
-        !> LCP pivots (0 when there are no contact elements)
-        integer :: pivots = 0
+        !> LCP pivots summed over LCP solves, and the number of LCP solves (more than one
+        !> when open_cohesion = 'lost' re-solves); 0 without contact elements
+        integer :: pivots = 0, lcp_solves = 0
         !> Relative residual of the recovered DDs against the unfactored system
         real(wp) :: equilibrium_residual = 0.0_wp
+        !> LCP certificate of the last solve, each scaled by its block's magnitude:
+        !> min z, min w (>= -tolerance) and max |z_i w_i| (<= tolerance)
+        real(wp) :: certificate_min_z = 0.0_wp, certificate_min_w = 0.0_wp
+        real(wp) :: certificate_max_complementarity = 0.0_wp, certificate_tolerance = 0.0_wp
         !> Wall time of each phase [s]
         real(wp) :: seconds_assembly = 0.0_wp, seconds_factorization = 0.0_wp
         real(wp) :: seconds_lcp = 0.0_wp, seconds_fields = 0.0_wp

@@ -346,6 +346,12 @@ contains
             call write_attribute(solver, 'method', text(s%method), error)
             call write_attribute(solver, 'threads', s%threads, error)
             call write_attribute(solver, 'pivots', s%pivots, error)
+            call write_attribute(solver, 'lcp_solves', s%lcp_solves, error)
+            call write_attribute(solver, 'certificate_min_z', s%certificate_min_z, error)
+            call write_attribute(solver, 'certificate_min_w', s%certificate_min_w, error)
+            call write_attribute(solver, 'certificate_max_complementarity', &
+                                 s%certificate_max_complementarity, error)
+            call write_attribute(solver, 'certificate_tolerance', s%certificate_tolerance, error)
             call write_attribute(solver, 'equilibrium_residual', s%equilibrium_residual, error)
             call write_attribute(solver, 'elements_free', count(state == state_free), error)
             call write_attribute(solver, 'elements_stick', count(state == state_stick), error)

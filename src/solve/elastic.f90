@@ -9,7 +9,7 @@ module ddc_solve_elastic
     implicit none
     private
 
-    public :: solve_elastic, row_kinds, singular_message
+    public :: solve_elastic, row_kinds, given_values, singular_message
 
 contains
 
@@ -33,23 +33,45 @@ contains
     end subroutine row_kinds
 
     !> Message for a singular system: which element and which equation.
-    function singular_message(n, info) result(message)
-        !> Number of elements
+    function singular_message(n, info, elements_of) result(message)
+        !> Number of elements in the system
         integer, intent(in) :: n
         !> Zero pivot index from LAPACK (1 .. 2n)
         integer, intent(in) :: info
+        !> Model element of each system element, shape (n); identity when absent
+        integer, intent(in), optional :: elements_of(:)
         character(len=:), allocatable :: message
         character(len=160) :: line
+        integer :: element
 
-        if (info <= n) then
-            write (line, '(a,i0,a)') 'influence matrix is singular at the shear unknown of element ', &
-                info, ': duplicate or overlapping elements, or no condition fixing it?'
-        else
-            write (line, '(a,i0,a)') 'influence matrix is singular at the normal unknown of element ', &
-                info - n, ': duplicate or overlapping elements, or no condition fixing it?'
-        end if
+        element = modulo(info - 1, n) + 1
+        if (present(elements_of)) element = elements_of(element)
+        write (line, '(a,a,a,i0,a)') 'influence matrix is singular at the ', &
+            trim(merge('shear ', 'normal', info <= n)), ' unknown of element ', element, &
+            ': duplicate or overlapping elements, or no condition fixing it?'
         message = trim(line)
     end function singular_message
+
+    !> Right-hand side of the given elements' rows, ordered [s; n]: traction rows take the
+    !> given total traction minus the remote part; displacement rows take the given
+    !> negative-face displacement (remote stress adds none).
+    pure function given_values(elements, shear_row, normal_row, remote_shear, remote_normal, &
+                               subset) result(b)
+        !> All elements
+        type(element_set), intent(in) :: elements
+        !> Row kinds of every element, shape (n)
+        integer, intent(in) :: shear_row(:), normal_row(:)
+        !> Remote stress resolved on every element [stress unit], shape (n)
+        real(wp), intent(in) :: remote_shear(:), remote_normal(:)
+        !> Elements whose rows are wanted
+        integer, intent(in) :: subset(:)
+        real(wp) :: b(2 * size(subset))
+
+        b(:size(subset)) = elements%bc_s(subset) - merge(remote_shear(subset), 0.0_wp, &
+                                                         shear_row(subset) == row_traction)
+        b(size(subset) + 1:) = elements%bc_n(subset) - merge(remote_normal(subset), 0.0_wp, &
+                                                             normal_row(subset) == row_traction)
+    end function given_values
 
     !> Solve for Ds, Dn of elements whose conditions are all TWODD-style (no contact).
     subroutine solve_elastic(elements, shear_modulus, nu, remote_shear, remote_normal, &
@@ -70,7 +92,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         real(wp), allocatable :: matrix(:, :), factors(:, :), rhs(:, :), given(:)
         integer, allocatable :: shear_row(:), normal_row(:), ipiv(:)
-        integer :: n, info
+        integer :: n, info, i
         integer(8) :: t0, t1, t2, rate
 
         n = elements%n
@@ -82,18 +104,8 @@ contains
         allocate (shear_row(n), normal_row(n), matrix(2 * n, 2 * n), rhs(2 * n, 1), ipiv(2 * n))
         call row_kinds(elements%condition, shear_row, normal_row)
         call assemble_influence(elements, shear_modulus, nu, shear_row, normal_row, matrix)
-        ! Traction rows take the given total traction minus the remote part; displacement
-        ! rows take the given negative-face displacement (remote stress adds none).
-        where (shear_row == row_traction)
-            rhs(1:n, 1) = elements%bc_s - remote_shear
-        elsewhere
-            rhs(1:n, 1) = elements%bc_s
-        end where
-        where (normal_row == row_traction)
-            rhs(n + 1:, 1) = elements%bc_n - remote_normal
-        elsewhere
-            rhs(n + 1:, 1) = elements%bc_n
-        end where
+        rhs(:, 1) = given_values(elements, shear_row, normal_row, remote_shear, remote_normal, &
+                                 [(i, i = 1, n)])
         call system_clock(t1)
 
         factors = matrix
