@@ -9,6 +9,7 @@ module ddc_model_types
     private
 
     public :: model_type, element_set, fracture_type, observation_set, solver_options
+    public :: symmetry_options, symmetry_none, symmetry_x, symmetry_y, symmetry_both
     public :: condition_traction, condition_displacement, condition_mixed_us_sn
     public :: condition_mixed_ss_un, condition_contact, condition_names
     public :: observation_grid, observation_line, observation_points, observation_kind_names
@@ -73,6 +74,18 @@ module ddc_model_types
         real(wp), allocatable :: x(:), y(:)
     end type observation_set
 
+    !> TWODD's symmetry conditions (KSYM 1-4): the model is mirrored about the line
+    !> x = xsym (symmetry_x), y = ysym (symmetry_y) or both; image elements are implicit.
+    integer, parameter :: symmetry_none = 1, symmetry_x = 2, symmetry_y = 3, symmetry_both = 4
+
+    !> Symmetry of the model (TWODD KSYM and its lines).
+    type :: symmetry_options
+        !> symmetry_none, symmetry_x (about x = xsym), symmetry_y (about y = ysym), both
+        integer :: kind = symmetry_none
+        !> Position of the symmetry lines [length unit]
+        real(wp) :: xsym = 0.0_wp, ysym = 0.0_wp
+    end type symmetry_options
+
     !> Options of the contact solver.
     type :: solver_options
         !> LCP method: 'auto' or 'lemke'
@@ -99,6 +112,8 @@ module ddc_model_types
         type(observation_set), allocatable :: observations(:)
         !> Solver options
         type(solver_options) :: solver
+        !> Symmetry conditions (none unless a TWODD deck or the input asks for them)
+        type(symmetry_options) :: symmetry
         !> Output file (after -o and &output are applied)
         character(len=:), allocatable :: output_file
         !> Input file path and its full text, kept for self-description
