@@ -1,12 +1,15 @@
 !> Tests of the frictional contact formulation (suite `contact`).
 !>
-!> The influence matrix is built here from the kernel alone (ddc_influence_kernel), so
-!> that the suite depends on no other part of the solver.
+!> Faults come from the test builders (ddc_test_builders) and the influence matrix from
+!> ddc_influence_assembly, with every row a traction row.
 module test_contact
     use ddc_kinds, only: wp
     use ddc_error, only: exit_solver_failure, exit_bad_input
     use ddc_testing, only: test_case, new_test, check, error_type
-    use ddc_influence_kernel, only: dd_kernel, dd_kernel_global, face_negative, pi
+    use ddc_influence_kernel, only: pi
+    use ddc_influence_assembly, only: assemble_influence, resolve_remote_stress, row_traction
+    use ddc_model_types, only: model_type, condition_contact
+    use ddc_test_builders, only: polyline_model, join_fractures
     use ddc_model_results, only: state_stick, state_slip, state_open
     use ddc_contact_formulation, only: contact_result, solve_contact
     implicit none
@@ -22,13 +25,6 @@ module test_contact
     !> Loading of the kinked fault: remote stress and fluid pressure
     real(wp), parameter :: kink_sxx = -5.0_wp, kink_syy = -20.0_wp, kink_sxy = 0.5_wp
     real(wp), parameter :: kink_pressure = 17.5_wp
-
-    !> Straight-line elements: ends, midpoints, half-lengths and direction cosines.
-    type :: mesh
-        integer :: n = 0
-        real(wp), allocatable :: xb(:), yb(:), xe(:), ye(:)
-        real(wp), allocatable :: xm(:), ym(:), a(:), cosb(:), sinb(:)
-    end type mesh
 
 contains
 
@@ -50,88 +46,50 @@ contains
 
     ! ------------------------------------------------------------------ builders
 
-    !> Elements from a polyline: segment k from vertex k to k+1 with nel(k) equal elements.
-    function polyline_mesh(x, y, nel) result(msh)
+    !> A contact fault along a polyline: segment k from vertex k to k+1 with counts(k)
+    !> equal elements, the paper's elastic constants.
+    function contact_fault(x, y, counts) result(model)
         real(wp), intent(in) :: x(:), y(:)
-        integer, intent(in) :: nel(:)
-        type(mesh) :: msh
-        integer :: k, i, e
+        integer, intent(in) :: counts(:)
+        type(model_type) :: model
 
-        msh%n = sum(nel)
-        allocate (msh%xb(msh%n), msh%yb(msh%n), msh%xe(msh%n), msh%ye(msh%n))
-        e = 0
-        do k = 1, size(nel)
-            do i = 1, nel(k)
-                e = e + 1
-                msh%xb(e) = x(k) + (x(k + 1) - x(k)) * real(i - 1, wp) / nel(k)
-                msh%yb(e) = y(k) + (y(k + 1) - y(k)) * real(i - 1, wp) / nel(k)
-                msh%xe(e) = x(k) + (x(k + 1) - x(k)) * real(i, wp) / nel(k)
-                msh%ye(e) = y(k) + (y(k + 1) - y(k)) * real(i, wp) / nel(k)
-            end do
-        end do
-        call complete_mesh(msh)
-    end function polyline_mesh
+        model = polyline_model(x, y, counts, condition_contact, 0.0_wp, 0.0_wp, youngs, poisson)
+    end function contact_fault
 
-    !> Midpoints, half-lengths and direction cosines from the end points.
-    subroutine complete_mesh(msh)
-        type(mesh), intent(inout) :: msh
-        real(wp), allocatable :: len(:)
-
-        msh%n = size(msh%xb)
-        len = hypot(msh%xe - msh%xb, msh%ye - msh%yb)
-        msh%xm = 0.5_wp * (msh%xb + msh%xe)
-        msh%ym = 0.5_wp * (msh%yb + msh%ye)
-        msh%a = 0.5_wp * len
-        msh%cosb = (msh%xe - msh%xb) / len
-        msh%sinb = (msh%ye - msh%yb) / len
-    end subroutine complete_mesh
-
-    !> Shear and normal traction of a global stress on a plane of direction (c, s).
-    elemental subroutine resolve(sxx, syy, sxy, c, s, ss, sn)
-        real(wp), intent(in) :: sxx, syy, sxy, c, s
-        real(wp), intent(out) :: ss, sn
-
-        ss = -(sxx - syy) * s * c + sxy * (c**2 - s**2)
-        sn = sxx * s**2 - 2.0_wp * sxy * s * c + syy * c**2
-    end subroutine resolve
-
-    !> Influence matrix ordered [s; n]: column j unit Ds_j, column n+j unit Dn_j.
-    function influence_matrix(msh, g, nu) result(a)
-        type(mesh), intent(in) :: msh
-        real(wp), intent(in) :: g, nu
-        real(wp), allocatable :: a(:, :)
-        type(dd_kernel) :: k
-        integer :: i, j, n, c
-
-        n = msh%n
-        allocate (a(2 * n, 2 * n))
-        do j = 1, n
-            do i = 1, n
-                k = dd_kernel_global(msh%xm(i), msh%ym(i), msh%xm(j), msh%ym(j), msh%a(j), &
-                    msh%cosb(j), msh%sinb(j), g, nu, face_negative)
-                do c = 1, 2
-                    call resolve(k%sxx(c), k%syy(c), k%sxy(c), msh%cosb(i), msh%sinb(i), &
-                        a(i, j + (c - 1) * n), a(n + i, j + (c - 1) * n))
-                end do
-            end do
-        end do
-    end function influence_matrix
-
-    !> Build A and the resolved remote stress, and solve.
-    subroutine solve_mesh(msh, e, nu, sxx, syy, sxy, mu, sf, p, cohesion, res, error, rule)
-        type(mesh), intent(in) :: msh
-        real(wp), intent(in) :: e, nu, sxx, syy, sxy, mu(:), sf(:), p(:)
+    !> Build A (all rows traction rows) and the resolved remote stress, and solve.
+    subroutine solve_model(model, sxx, syy, sxy, mu, sf, p, cohesion, res, error)
+        type(model_type), intent(in) :: model
+        real(wp), intent(in) :: sxx, syy, sxy, mu(:), sf(:), p(:)
         character(len=*), intent(in) :: cohesion
         type(contact_result), intent(out) :: res
         type(error_type), allocatable, intent(out) :: error
-        integer, intent(in), optional :: rule
         real(wp), allocatable :: a(:, :), ss(:), sn(:)
+        integer, allocatable :: rows(:)
+        integer :: n
 
-        a = influence_matrix(msh, shear_modulus(e, nu), nu)
-        allocate (ss(msh%n), sn(msh%n))
-        call resolve(sxx, syy, sxy, msh%cosb, msh%sinb, ss, sn)
-        call solve_contact(a, ss, sn, mu, sf, p, cohesion, res, error, rule)
-    end subroutine solve_mesh
+        n = model%elements%n
+        allocate (a(2 * n, 2 * n), ss(n), sn(n))
+        rows = spread(row_traction, 1, n)
+        call assemble_influence(model%elements, &
+            shear_modulus(model%youngs_modulus, model%poissons_ratio), model%poissons_ratio, &
+            rows, rows, a)
+        call resolve_remote_stress(model%elements, sxx, syy, sxy, ss, sn)
+        call solve_contact(a, ss, sn, mu, sf, p, cohesion, res, error)
+    end subroutine solve_model
+
+    !> solve_model with the same mu, Sf and fluid pressure on every element.
+    subroutine solve_uniform(model, sxx, syy, sxy, mu, sf, p, cohesion, res, error)
+        type(model_type), intent(in) :: model
+        real(wp), intent(in) :: sxx, syy, sxy, mu, sf, p
+        character(len=*), intent(in) :: cohesion
+        type(contact_result), intent(out) :: res
+        type(error_type), allocatable, intent(out) :: error
+        integer :: n
+
+        n = model%elements%n
+        call solve_model(model, sxx, syy, sxy, spread(mu, 1, n), spread(sf, 1, n), &
+            spread(p, 1, n), cohesion, res, error)
+    end subroutine solve_uniform
 
     pure real(wp) function shear_modulus(e, nu)
         real(wp), intent(in) :: e, nu
@@ -166,23 +124,20 @@ contains
     !> profile (constant elements sit about 0.5/N high at the centre).
     subroutine test_all_slip(error)
         type(error_type), allocatable, intent(out) :: error
-        type(mesh) :: msh
+        type(model_type) :: model
         type(contact_result) :: res
-        real(wp), allocatable :: mu(:), sf(:), p(:), exact(:)
+        real(wp), allocatable :: exact(:)
         real(wp) :: g, centre
         integer :: n, i
 
         n = 100
-        msh = polyline_mesh([-1.0_wp, 1.0_wp], [0.0_wp, 0.0_wp], [n])
-        mu = spread(0.6_wp, 1, n)
-        sf = spread(1.0_wp, 1, n)
-        p = spread(0.0_wp, 1, n)
-        call solve_mesh(msh, youngs, poisson, paper_sxx, paper_syy, paper_sxy, mu, sf, p, &
+        model = contact_fault([-1.0_wp, 1.0_wp], [0.0_wp, 0.0_wp], [n])
+        call solve_uniform(model, paper_sxx, paper_syy, paper_sxy, 0.6_wp, 1.0_wp, 0.0_wp, &
             'kept', res, error)
         if (allocated(error)) return
         call check_certified(error, res)
         g = shear_modulus(youngs, poisson)
-        exact = -crack_profile(msh%xm, 1.0_wp, 4.38_wp, g, poisson)
+        exact = -crack_profile(model%elements%x_mid, 1.0_wp, 4.38_wp, g, poisson)
         call check(error, count(res%state == state_slip), n, 'slipping elements')
         call check(error, res%pivots >= n .and. res%pivots <= 3 * n, 'pivot count out of range')
         do i = 1, n
@@ -191,8 +146,8 @@ contains
                 rel_tol=1.0e-10_wp)
             call check(error, res%normal_traction(i), paper_syy, 'normal traction', &
                 rel_tol=1.0e-10_wp)
-            if (abs(msh%xm(i)) < 0.5_wp) call check(error, res%ds(i), exact(i), 'ds', &
-                rel_tol=1.0e-2_wp)
+            if (abs(model%elements%x_mid(i)) < 0.5_wp) call check(error, res%ds(i), exact(i), &
+                'ds', rel_tol=1.0e-2_wp)
         end do
         ! Centre: about 0.5 / N = 0.5 % above the analytic peak.
         centre = res%ds(n / 2) / exact(n / 2)
@@ -203,17 +158,13 @@ contains
     !> exactly zero and the tractions are the remote ones.
     subroutine test_all_stick(error)
         type(error_type), allocatable, intent(out) :: error
-        type(mesh) :: msh
+        type(model_type) :: model
         type(contact_result) :: res
-        real(wp), allocatable :: mu(:), sf(:), p(:)
         integer :: n, i
 
         n = 100
-        msh = polyline_mesh([-1.0_wp, 1.0_wp], [0.0_wp, 0.0_wp], [n])
-        mu = spread(0.7_wp, 1, n)
-        sf = spread(1.0_wp, 1, n)
-        p = spread(0.0_wp, 1, n)
-        call solve_mesh(msh, youngs, poisson, paper_sxx, paper_syy, paper_sxy, mu, sf, p, &
+        model = contact_fault([-1.0_wp, 1.0_wp], [0.0_wp, 0.0_wp], [n])
+        call solve_uniform(model, paper_sxx, paper_syy, paper_sxy, 0.7_wp, 1.0_wp, 0.0_wp, &
             'kept', res, error)
         if (allocated(error)) return
         call check_certified(error, res)
@@ -232,7 +183,7 @@ contains
     !> block of q is zero): Ds within 1e-8 relative, tractions within 1e-8.
     subroutine test_ritz_reference(error)
         type(error_type), allocatable, intent(out) :: error
-        type(mesh) :: msh
+        type(model_type) :: model
         type(contact_result) :: res
         real(wp) :: parm(12)
         real(wp), allocatable :: px(:), py(:), mu(:), sf(:), p(:), ref(:, :)
@@ -253,13 +204,11 @@ contains
         call check(error, size(sf), n, 'sf.csv rows')
         call read_reference(ritz_dir//'reference_elements.csv', n, ref, error)
         if (allocated(error)) return
-        msh%xb = px(1:n)
-        msh%xe = px(2:n + 1)
-        msh%yb = py(1:n)
-        msh%ye = py(2:n + 1)
-        call complete_mesh(msh)
+        ! One element per polyline segment: the element ends are the paper's vertices.
+        model = polyline_model(px, py, spread(1, 1, n), condition_contact, 0.0_wp, 0.0_wp, &
+            parm(2), parm(1))
         p = spread(0.0_wp, 1, n)
-        call solve_mesh(msh, parm(2), parm(1), parm(3), parm(4), parm(5), mu, sf, p, &
+        call solve_model(model, parm(3), parm(4), parm(5), mu, sf, p, &
             'kept', res, error)
         if (allocated(error)) return
         call check_certified(error, res)
@@ -293,18 +242,15 @@ contains
         type(error_type), allocatable, intent(out) :: error
         character(len=*), intent(in) :: cohesion
         real(wp), intent(in) :: shear_carried
-        type(mesh) :: msh
+        type(model_type) :: model
         type(contact_result) :: res
-        real(wp), allocatable :: mu(:), sf(:), p(:), opening(:), slip(:)
+        real(wp), allocatable :: opening(:), slip(:)
         real(wp) :: g
         integer :: n, i
 
         n = 50
-        msh = polyline_mesh([-1.0_wp, 1.0_wp], [0.0_wp, 0.0_wp], [n])
-        mu = spread(0.6_wp, 1, n)
-        sf = spread(2.0_wp, 1, n)
-        p = spread(12.0_wp, 1, n)
-        call solve_mesh(msh, youngs, poisson, -10.0_wp, -10.0_wp, 3.0_wp, mu, sf, p, &
+        model = contact_fault([-1.0_wp, 1.0_wp], [0.0_wp, 0.0_wp], [n])
+        call solve_uniform(model, -10.0_wp, -10.0_wp, 3.0_wp, 0.6_wp, 2.0_wp, 12.0_wp, &
             cohesion, res, error)
         if (allocated(error)) return
         call check_certified(error, res)
@@ -316,14 +262,14 @@ contains
             call check(error, res%solves, 1, 'LCP solves')
         end if
         g = shear_modulus(youngs, poisson)
-        opening = crack_profile(msh%xm, 1.0_wp, 2.0_wp, g, poisson)
-        slip = -crack_profile(msh%xm, 1.0_wp, 3.0_wp - shear_carried, g, poisson)
+        opening = crack_profile(model%elements%x_mid, 1.0_wp, 2.0_wp, g, poisson)
+        slip = -crack_profile(model%elements%x_mid, 1.0_wp, 3.0_wp - shear_carried, g, poisson)
         do i = 1, n
             call check(error, res%normal_traction(i), -12.0_wp, 'normal traction', &
                 rel_tol=1.0e-10_wp)
             call check(error, res%shear_traction(i), shear_carried, 'shear traction', &
                 abs_tol=1.0e-10_wp)
-            if (abs(msh%xm(i)) < 0.5_wp) then
+            if (abs(model%elements%x_mid(i)) < 0.5_wp) then
                 call check(error, -res%dn(i), opening(i), 'opening', rel_tol=2.0e-2_wp)
                 call check(error, res%ds(i), slip(i), 'ds', rel_tol=2.0e-2_wp)
             end if
@@ -339,19 +285,13 @@ contains
     !> kink makes the horizontal segment slip over about two thirds of its length.
     subroutine test_kink(error)
         type(error_type), allocatable, intent(out) :: error
-        type(mesh) :: msh
+        type(model_type) :: model
         type(contact_result) :: res
-        real(wp), allocatable :: mu(:), sf(:), p(:)
         real(wp) :: b
-        integer :: n
 
         b = 35.0_wp * pi / 180.0_wp
-        msh = polyline_mesh([-1.0_wp, 0.0_wp, cos(b)], [0.0_wp, 0.0_wp, sin(b)], [30, 30])
-        n = msh%n
-        mu = spread(0.6_wp, 1, n)
-        sf = spread(0.0_wp, 1, n)
-        p = spread(kink_pressure, 1, n)
-        call solve_mesh(msh, youngs, poisson, kink_sxx, kink_syy, kink_sxy, mu, sf, p, &
+        model = contact_fault([-1.0_wp, 0.0_wp, cos(b)], [0.0_wp, 0.0_wp, sin(b)], [30, 30])
+        call solve_uniform(model, kink_sxx, kink_syy, kink_sxy, 0.6_wp, 0.0_wp, kink_pressure, &
             'kept', res, error)
         if (allocated(error)) return
         call check_certified(error, res)
@@ -370,17 +310,15 @@ contains
     !> Two coincident elements: A is singular, an error naming an element.
     subroutine test_singular(error)
         type(error_type), allocatable, intent(out) :: error
-        type(mesh) :: msh
+        type(model_type) :: model, other
         type(contact_result) :: res
         real(wp), allocatable :: v(:)
 
-        msh%xb = [-1.0_wp, -1.0_wp]
-        msh%xe = [1.0_wp, 1.0_wp]
-        msh%yb = [0.0_wp, 0.0_wp]
-        msh%ye = [0.0_wp, 0.0_wp]
-        call complete_mesh(msh)
+        model = contact_fault([-1.0_wp, 1.0_wp], [0.0_wp, 0.0_wp], [1])
+        other = model
+        call join_fractures(model, other)
         v = [0.6_wp, 0.6_wp]
-        call solve_mesh(msh, youngs, poisson, paper_sxx, paper_syy, paper_sxy, v, 0.0_wp * v, &
+        call solve_model(model, paper_sxx, paper_syy, paper_sxy, v, 0.0_wp * v, &
             0.0_wp * v, 'kept', res, error)
         call check(error, allocated(error), 'a singular influence matrix must be an error')
         if (.not. allocated(error)) return

@@ -82,6 +82,40 @@ contains
         mesh%fractures = [mesh%fractures, fracture]
     end subroutine add_fracture
 
+    !> Append a closed circle of radius r around the origin: n elements, the last ending
+    !> exactly on the first vertex.
+    subroutine add_circle(mesh, name, r, n)
+        type(mesh_builder), intent(inout) :: mesh
+        character(len=*), intent(in) :: name
+        real(wp), intent(in) :: r
+        integer, intent(in) :: n
+        real(wp) :: x(n + 1), y(n + 1)
+        integer :: i
+
+        do i = 1, n
+            x(i) = r * cos(2.0_wp * pi * real(i - 1, wp) / real(n, wp))
+            y(i) = r * sin(2.0_wp * pi * real(i - 1, wp) / real(n, wp))
+        end do
+        x(n + 1) = x(1)
+        y(n + 1) = y(1)
+        call add_fracture(mesh, name, x, y, [(1, i = 1, n)])
+    end subroutine add_circle
+
+    !> Fractures 'a' and 'b' must be rejected with a message naming the first element of
+    !> each and the problem.
+    subroutine expect_pair_rejected(error, xa, ya, counts_a, xb, yb, counts_b, problem)
+        type(error_type), allocatable, intent(inout) :: error
+        real(wp), intent(in) :: xa(:), ya(:), xb(:), yb(:)
+        integer, intent(in) :: counts_a(:), counts_b(:)
+        character(len=*), intent(in) :: problem
+        type(mesh_builder) :: mesh
+
+        call add_fracture(mesh, 'a', xa, ya, counts_a)
+        call add_fracture(mesh, 'b', xb, yb, counts_b)
+        call expect_rejected(error, mesh, [character(len=60) :: "fracture 'a' element 1", &
+                             "fracture 'b' element 1", problem])
+    end subroutine expect_pair_rejected
+
     !> The checks must reject the mesh with a message holding every fragment.
     subroutine expect_rejected(error, mesh, fragments)
         type(error_type), allocatable, intent(inout) :: error
@@ -163,22 +197,16 @@ contains
 
     subroutine test_duplicate(error)
         type(error_type), allocatable, intent(out) :: error
-        type(mesh_builder) :: mesh
 
-        call add_fracture(mesh, 'a', [0.0_wp, 1.0_wp], [0.0_wp, 0.0_wp], [1])
-        call add_fracture(mesh, 'b', [1.0_wp, 0.0_wp], [0.0_wp, 0.0_wp], [1])
-        call expect_rejected(error, mesh, [character(len=60) :: "fracture 'a' element 1", &
-                             "fracture 'b' element 1", 'duplicates'])
+        call expect_pair_rejected(error, [0.0_wp, 1.0_wp], [0.0_wp, 0.0_wp], [1], &
+                                  [1.0_wp, 0.0_wp], [0.0_wp, 0.0_wp], [1], 'duplicates')
     end subroutine test_duplicate
 
     subroutine test_overlap(error)
         type(error_type), allocatable, intent(out) :: error
-        type(mesh_builder) :: mesh
 
-        call add_fracture(mesh, 'a', [0.0_wp, 2.0_wp], [0.0_wp, 0.0_wp], [1])
-        call add_fracture(mesh, 'b', [1.0_wp, 3.0_wp], [0.0_wp, 0.0_wp], [2])
-        call expect_rejected(error, mesh, [character(len=60) :: "fracture 'a' element 1", &
-                             "fracture 'b' element 1", 'overlap'])
+        call expect_pair_rejected(error, [0.0_wp, 2.0_wp], [0.0_wp, 0.0_wp], [1], &
+                                  [1.0_wp, 3.0_wp], [0.0_wp, 0.0_wp], [2], 'overlap')
     end subroutine test_overlap
 
     subroutine test_overlap_folded(error)
@@ -194,12 +222,9 @@ contains
 
     subroutine test_crossing(error)
         type(error_type), allocatable, intent(out) :: error
-        type(mesh_builder) :: mesh
 
-        call add_fracture(mesh, 'a', [-1.0_wp, 1.0_wp], [0.0_wp, 0.0_wp], [1])
-        call add_fracture(mesh, 'b', [0.1_wp, -0.1_wp], [-1.0_wp, 1.0_wp], [1])
-        call expect_rejected(error, mesh, [character(len=60) :: "fracture 'a' element 1", &
-                             "fracture 'b' element 1", 'cross'])
+        call expect_pair_rejected(error, [-1.0_wp, 1.0_wp], [0.0_wp, 0.0_wp], [1], &
+                                  [0.1_wp, -0.1_wp], [-1.0_wp, 1.0_wp], [1], 'cross')
     end subroutine test_crossing
 
     subroutine test_t_junction(error)
@@ -242,17 +267,8 @@ contains
     subroutine test_closed_loop(error)
         type(error_type), allocatable, intent(out) :: error
         type(mesh_builder) :: mesh
-        integer, parameter :: n = 64
-        real(wp) :: x(n + 1), y(n + 1)
-        integer :: i
 
-        do i = 1, n
-            x(i) = cos(2.0_wp * pi * real(i - 1, wp) / real(n, wp))
-            y(i) = sin(2.0_wp * pi * real(i - 1, wp) / real(n, wp))
-        end do
-        x(n + 1) = x(1)
-        y(n + 1) = y(1)
-        call add_fracture(mesh, 'circle', x, y, [(1, i = 1, n)])
+        call add_circle(mesh, 'circle', 1.0_wp, 64)
         call expect_accepted(error, mesh)
     end subroutine test_closed_loop
 
@@ -277,16 +293,8 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(mesh_builder) :: circle, vertical
         integer, parameter :: n = 4000
-        real(wp) :: x(n + 1), y(n + 1)
-        integer :: i
 
-        do i = 1, n
-            x(i) = 10.0_wp * cos(2.0_wp * pi * real(i - 1, wp) / real(n, wp))
-            y(i) = 10.0_wp * sin(2.0_wp * pi * real(i - 1, wp) / real(n, wp))
-        end do
-        x(n + 1) = x(1)
-        y(n + 1) = y(1)
-        call add_fracture(circle, 'circle', x, y, [(1, i = 1, n)])
+        call add_circle(circle, 'circle', 10.0_wp, n)
         call expect_accepted(error, circle)
         call add_fracture(vertical, 'vertical', [5.0_wp, 5.0_wp], [0.0_wp, 1.0_wp], [n])
         call expect_accepted(error, vertical)

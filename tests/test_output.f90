@@ -332,7 +332,6 @@ contains
 
     subroutine test_no_tips(error)
         type(error_type), allocatable, intent(out) :: error
-        type(error_type), allocatable :: write_error
         type(model_type) :: model
         type(model_results) :: results
         character(len=:), allocatable :: path
@@ -342,11 +341,8 @@ contains
         deallocate (results%tips%x, results%tips%y, results%tips%fracture_id, &
             results%tips%element, results%tips%k1, results%tips%k2)
         path = unique_path('no_tips')//'.h5'
-        call write_results(path, model, results, write_error)
-        if (allocated(write_error)) then
-            call check(error, .false., 'write_results: '//write_error%message)
-            return
-        end if
+        call write_or_fail(path, model, results, 'write_results', error)
+        if (allocated(error)) return
         call check_real_dataset(error, path, '/tips/x', [real(wp) ::], [0])
         call check_real_dataset(error, path, '/tips/k2', [real(wp) ::], [0])
         call check_int_dataset(error, path, '/tips/element', [integer ::], [0])
@@ -434,7 +430,6 @@ contains
 
     subroutine test_rewrite_replaces(error)
         type(error_type), allocatable, intent(out) :: error
-        type(error_type), allocatable :: write_error
         type(model_type) :: model
         type(model_results) :: results
         character(len=:), allocatable :: path
@@ -442,11 +437,8 @@ contains
         call write_sample(path, error, model, results)
         if (allocated(error)) return
         results%elements%ds(2) = 42.0_wp
-        call write_results(path, model, results, write_error)
-        if (allocated(write_error)) then
-            call check(error, .false., 'second write_results: '//write_error%message)
-            return
-        end if
+        call write_or_fail(path, model, results, 'second write_results', error)
+        if (allocated(error)) return
         call check_real_dataset(error, path, '/elements/ds', results%elements%ds, [3])
         call check(error, .not. exists(partial_name(path)), 'no .partial file left')
         call remove_file(path)
@@ -474,7 +466,6 @@ contains
 
     subroutine test_empty_strings(error)
         type(error_type), allocatable, intent(out) :: error
-        type(error_type), allocatable :: write_error
         type(model_type) :: model
         type(model_results) :: results
         character(len=:), allocatable :: path
@@ -483,11 +474,8 @@ contains
         model%title = ''
         deallocate (model%input_text)
         path = unique_path('empty')//'.h5'
-        call write_results(path, model, results, write_error)
-        if (allocated(write_error)) then
-            call check(error, .false., 'write_results: '//write_error%message)
-            return
-        end if
+        call write_or_fail(path, model, results, 'write_results', error)
+        if (allocated(error)) return
         call check_string_attribute(error, path, '/', 'title', '')
         call check_string_attribute(error, path, '/', 'input_text', '')
         call remove_file(path)
@@ -606,18 +594,28 @@ contains
         type(model_results), intent(out), optional :: results
         type(model_type) :: model_local
         type(model_results) :: results_local
-        type(error_type), allocatable :: write_error
 
         call sample(model_local, results_local)
         path = unique_path('result')//'.h5'
-        call write_results(path, model_local, results_local, write_error)
-        if (allocated(write_error)) then
-            call check(error, .false., 'write_results failed: '//write_error%message)
-            return
-        end if
+        call write_or_fail(path, model_local, results_local, 'write_results failed', error)
+        if (allocated(error)) return
         if (present(model)) model = model_local
         if (present(results)) results = results_local
     end subroutine write_sample
+
+    !> Write model and results to path; a failure of write_results fails the test with
+    !> "<label>: <message>".
+    subroutine write_or_fail(path, model, results, label, error)
+        character(len=*), intent(in) :: path
+        type(model_type), intent(in) :: model
+        type(model_results), intent(in) :: results
+        character(len=*), intent(in) :: label
+        type(error_type), allocatable, intent(inout) :: error
+        type(error_type), allocatable :: write_error
+
+        call write_results(path, model, results, write_error)
+        if (allocated(write_error)) call check(error, .false., label//': '//write_error%message)
+    end subroutine write_or_fail
 
     !> Compare a real dataset with expected values and Fortran dims, exactly (NaN = NaN).
     subroutine check_real_dataset(error, path, dataset, expected, dims)

@@ -7,16 +7,12 @@ module ddc_input_csv
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_input_text_file, only: read_text_file
+    use ddc_input_messages, only: newline, add_message, messages_error, itoa, lower
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     implicit none
     private
 
     public :: read_csv
-
-    !> At most this many bad lines are listed in one message
-    integer, parameter :: max_messages = 20
-
-    character(len=*), parameter :: newline = achar(10)
 
 contains
 
@@ -52,7 +48,7 @@ contains
             if (text(1:3) == char(239)//char(187)//char(191)) text = text(4:)
         end if
 
-        max_rows = count_lines(text)
+        max_rows = count_pieces(text, newline)
         allocate (values(ncols, max_rows), row_line(max_rows))
         nrows = 0
         nbad = 0
@@ -81,12 +77,8 @@ contains
                            expected, messages, nbad)
         end do
 
-        if (nbad > max_messages) then
-            messages = messages//newline//'... and '//itoa(nbad - max_messages)// &
-                       ' more bad lines'
-        end if
         if (nbad > 0) then
-            call set_error(error, exit_bad_input, messages)
+            call messages_error(messages, nbad, 'bad lines', error)
             return
         end if
         if (nrows == 0) then
@@ -109,7 +101,7 @@ contains
         integer :: nfields, start, comma, k, stat
 
         row = 0.0_wp
-        nfields = count_fields(line)
+        nfields = count_pieces(line, ',')
         if (nfields /= size(row)) then
             call add_message(messages, nbad, prefix//itoa(nfields)//' fields, expected '// &
                              itoa(size(row))//' ('//expected//')')
@@ -150,18 +142,6 @@ contains
         end do
     end subroutine parse_row
 
-    !> Append a line to the messages (up to max_messages of them) and count it.
-    subroutine add_message(messages, nbad, message)
-        character(len=:), allocatable, intent(inout) :: messages
-        integer, intent(inout) :: nbad
-        character(len=*), intent(in) :: message
-
-        nbad = nbad + 1
-        if (nbad > max_messages) return
-        if (len(messages) > 0) messages = messages//newline
-        messages = messages//message
-    end subroutine add_message
-
     !> Return the line starting at pos (without its newline or carriage return); move pos on.
     subroutine next_line(text, pos, line)
         character(len=*), intent(in) :: text
@@ -182,29 +162,19 @@ contains
         end if
     end subroutine next_line
 
-    !> Number of lines in text (an upper bound on the rows).
-    pure function count_lines(text) result(n)
+    !> Number of pieces of text between separators: lines (an upper bound on the rows)
+    !> for newline, fields of a line for ','.
+    pure function count_pieces(text, separator) result(n)
         character(len=*), intent(in) :: text
+        character(len=1), intent(in) :: separator
         integer :: n
         integer :: i
 
         n = 1
         do i = 1, len(text)
-            if (text(i:i) == newline) n = n + 1
+            if (text(i:i) == separator) n = n + 1
         end do
-    end function count_lines
-
-    !> Number of comma-separated fields in a line.
-    pure function count_fields(line) result(n)
-        character(len=*), intent(in) :: line
-        integer :: n
-        integer :: i
-
-        n = 1
-        do i = 1, len(line)
-            if (line(i:i) == ',') n = n + 1
-        end do
-    end function count_fields
+    end function count_pieces
 
     !> Header line in lower case without blanks, tabs or double quotes.
     pure function normalized_header(line) result(out)
@@ -299,31 +269,5 @@ contains
 
         yes = c >= '0' .and. c <= '9'
     end function is_digit
-
-    !> Lower-case copy of s (ASCII).
-    pure function lower(s) result(out)
-        character(len=*), intent(in) :: s
-        character(len=len(s)) :: out
-        integer :: i, code
-
-        do i = 1, len(s)
-            code = iachar(s(i:i))
-            if (code >= iachar('A') .and. code <= iachar('Z')) then
-                out(i:i) = achar(code + 32)
-            else
-                out(i:i) = s(i:i)
-            end if
-        end do
-    end function lower
-
-    !> Integer as text without blanks.
-    pure function itoa(i) result(out)
-        integer, intent(in) :: i
-        character(len=:), allocatable :: out
-        character(len=24) :: buffer
-
-        write (buffer, '(i0)') i
-        out = trim(buffer)
-    end function itoa
 
 end module ddc_input_csv

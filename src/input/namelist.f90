@@ -17,6 +17,7 @@ module ddc_input_namelist
         observation_points, observation_kind_names
     use ddc_input_text_file, only: read_text_file
     use ddc_input_csv, only: read_csv
+    use ddc_input_messages, only: newline, itoa, rtoa, lower
     use ddc_mesh_polyline, only: polyline_elements, expand_per_segment
     use ddc_mesh_geometry, only: allocate_elements, compute_geometry
     use ddc_mesh_checks, only: check_elements
@@ -49,8 +50,6 @@ module ddc_input_namelist
     !> Sentinels of values the user did not give
     real(wp), parameter :: unset_real = huge(1.0_wp)
     integer, parameter :: unset_integer = -huge(1)
-
-    character(len=*), parameter :: newline = achar(10)
 
     !> Where the occurrences of one group are in the file.
     type :: group_record
@@ -302,13 +301,11 @@ contains
         stress_unit = 'MPa'
         rewind (unit)
         read (unit, nml=model, iostat=stat, iomsg=iomsg)
-        prefix = path//': '//group_label(g_model, 1, info%lines(1), '')//': '
         if (stat /= 0) then
-            call add(messages, malformed_message(prefix, stat, iomsg, &
-                     variables, &
-                     text(info%starts(1):info%ends(1))))
+            call report_malformed(text, path, g_model, info, 1, stat, iomsg, variables, messages)
             return
         end if
+        prefix = group_prefix(path, g_model, info, 1)
         if (len_trim(title) > 0) the_model%title = trim(adjustl(title))
         if (len_trim(length_unit) == 0) then
             call add(messages, prefix//'length_unit is empty')
@@ -360,12 +357,12 @@ contains
         sxy = 0.0_wp
         rewind (unit)
         read (unit, nml=remote_stress, iostat=stat, iomsg=iomsg)
-        prefix = path//': '//group_label(g_remote_stress, 1, info%lines(1), '')//': '
         if (stat /= 0) then
-            call add(messages, malformed_message(prefix, stat, iomsg, variables, &
-                     text(info%starts(1):info%ends(1))))
+            call report_malformed(text, path, g_remote_stress, info, 1, stat, iomsg, variables, &
+                                  messages)
             return
         end if
+        prefix = group_prefix(path, g_remote_stress, info, 1)
         if (check_scalar(sxx, 'sxx', .false., prefix, messages)) model%sxx = sxx
         if (check_scalar(syy, 'syy', .false., prefix, messages)) model%syy = syy
         if (check_scalar(sxy, 'sxy', .false., prefix, messages)) model%sxy = sxy
@@ -417,17 +414,11 @@ contains
             elements = unset_integer
             read (unit, nml=fracture, iostat=stat, iomsg=iomsg)
             if (stat /= 0) then
-                prefix = path//': '//group_label(g_fracture, k, info%lines(k), '')//': '
-                call add(messages, malformed_message(prefix, stat, iomsg, variables, &
-                     text(info%starts(k):info%ends(k))))
-                call diagnose_rest(text, path, g_fracture, info, variables, k + 1, messages)
+                call report_malformed(text, path, g_fracture, info, k, stat, iomsg, variables, &
+                                      messages)
                 exit
             end if
-            if (len_trim(name) > 0) then
-                fractures(k)%name = trim(adjustl(name))
-            else
-                fractures(k)%name = 'fracture_'//itoa(k)
-            end if
+            fractures(k)%name = default_name(name, 'fracture', k)
             fractures(k)%label = group_label(g_fracture, k, info%lines(k), trim(adjustl(name)))
             prefix = path//': '//fractures(k)%label//': '
             nbefore = messages%n
@@ -619,19 +610,13 @@ contains
             ny = unset_integer
             read (unit, nml=grid, iostat=stat, iomsg=iomsg)
             if (stat /= 0) then
-                prefix = path//': '//group_label(g_grid, k, info%lines(k), '')//': '
-                call add(messages, malformed_message(prefix, stat, iomsg, &
-                         variables, &
-                     text(info%starts(k):info%ends(k))))
-                call diagnose_rest(text, path, g_grid, info, variables, k + 1, messages)
+                call report_malformed(text, path, g_grid, info, k, stat, iomsg, variables, &
+                                      messages)
                 exit
             end if
             slot = info%slot(k)
-            observations(slot)%label = group_label(g_grid, k, info%lines(k), &
-                                                   trim(adjustl(name)))
-            observations(slot)%set%name = default_name(name, 'grid', k)
-            observations(slot)%set%kind = observation_grid
-            prefix = path//': '//observations(slot)%label//': '
+            call start_observation(observations(slot), path, g_grid, info, k, name, &
+                                   observation_grid, prefix)
             nbefore = messages%n
             ok_x = check_axis(xmin, xmax, nx, 'x', prefix, messages, xs)
             ok_y = check_axis(ymin, ymax, ny, 'y', prefix, messages, ys)
@@ -687,19 +672,13 @@ contains
             points = unset_integer
             read (unit, nml=line, iostat=stat, iomsg=iomsg)
             if (stat /= 0) then
-                prefix = path//': '//group_label(g_line, k, info%lines(k), '')//': '
-                call add(messages, malformed_message(prefix, stat, iomsg, &
-                         variables, &
-                     text(info%starts(k):info%ends(k))))
-                call diagnose_rest(text, path, g_line, info, variables, k + 1, messages)
+                call report_malformed(text, path, g_line, info, k, stat, iomsg, variables, &
+                                      messages)
                 exit
             end if
             slot = info%slot(k)
-            observations(slot)%label = group_label(g_line, k, info%lines(k), &
-                                                   trim(adjustl(name)))
-            observations(slot)%set%name = default_name(name, 'line', k)
-            observations(slot)%set%kind = observation_line
-            prefix = path//': '//observations(slot)%label//': '
+            call start_observation(observations(slot), path, g_line, info, k, name, &
+                                   observation_line, prefix)
             nbefore = messages%n
             ok = check_scalar(x_begin, 'x_begin', .true., prefix, messages)
             ok = check_scalar(y_begin, 'y_begin', .true., prefix, messages) .and. ok
@@ -767,18 +746,13 @@ contains
             file = ''
             read (unit, nml=points, iostat=stat, iomsg=iomsg)
             if (stat /= 0) then
-                prefix = path//': '//group_label(g_points, k, info%lines(k), '')//': '
-                call add(messages, malformed_message(prefix, stat, iomsg, variables, &
-                     text(info%starts(k):info%ends(k))))
-                call diagnose_rest(text, path, g_points, info, variables, k + 1, messages)
+                call report_malformed(text, path, g_points, info, k, stat, iomsg, variables, &
+                                      messages)
                 exit
             end if
             slot = info%slot(k)
-            observations(slot)%label = group_label(g_points, k, info%lines(k), &
-                                                   trim(adjustl(name)))
-            observations(slot)%set%name = default_name(name, 'points', k)
-            observations(slot)%set%kind = observation_points
-            prefix = path//': '//observations(slot)%label//': '
+            call start_observation(observations(slot), path, g_points, info, k, name, &
+                                   observation_points, prefix)
             if (len_trim(file) == 0) then
                 call add(messages, prefix//'file is required (a CSV of x,y rows)')
                 cycle
@@ -825,13 +799,11 @@ contains
         open_cohesion = 'kept'
         rewind (unit)
         read (unit, nml=solver, iostat=stat, iomsg=iomsg)
-        prefix = path//': '//group_label(g_solver, 1, info%lines(1), '')//': '
         if (stat /= 0) then
-            call add(messages, malformed_message(prefix, stat, iomsg, &
-                     variables, &
-                     text(info%starts(1):info%ends(1))))
+            call report_malformed(text, path, g_solver, info, 1, stat, iomsg, variables, messages)
             return
         end if
+        prefix = group_prefix(path, g_solver, info, 1)
         model%solver%lcp_method = lower(trim(adjustl(lcp_method)))
         model%solver%open_cohesion = lower(trim(adjustl(open_cohesion)))
         if (find_name(model%solver%lcp_method, [character(len=5) :: 'auto', 'lemke']) == 0) then
@@ -855,7 +827,6 @@ contains
         type(message_list), intent(inout) :: messages
         character(len=text_length) :: file
         character(len=512) :: iomsg
-        character(len=:), allocatable :: prefix
         integer :: stat
         !> Variables of the group and their types (c text, r real, i integer)
         character(len=*), parameter :: variables = 'file:c'
@@ -866,10 +837,8 @@ contains
         file = ''
         rewind (unit)
         read (unit, nml=output, iostat=stat, iomsg=iomsg)
-        prefix = path//': '//group_label(g_output, 1, info%lines(1), '')//': '
         if (stat /= 0) then
-            call add(messages, malformed_message(prefix, stat, iomsg, variables, &
-                     text(info%starts(1):info%ends(1))))
+            call report_malformed(text, path, g_output, info, 1, stat, iomsg, variables, messages)
             return
         end if
         if (len_trim(file) > 0) model%output_file = resolve(dir, trim(adjustl(file)))
@@ -996,6 +965,54 @@ contains
         message = message//'; the variables of this group are: '//spec_names(spec)
     end function malformed_message
 
+    !> "file: &group k (line n): ", the prefix of occurrence k of a group before its name
+    !> is known.
+    function group_prefix(path, group, info, k) result(prefix)
+        character(len=*), intent(in) :: path
+        integer, intent(in) :: group, k
+        type(group_record), intent(in) :: info
+        character(len=:), allocatable :: prefix
+
+        prefix = path//': '//group_label(group, k, info%lines(k), '')//': '
+    end function group_prefix
+
+    !> Report occurrence k of a group that could not be read; for a repeatable group also
+    !> diagnose the occurrences after it, which are then not read.
+    subroutine report_malformed(text, path, group, info, k, stat, iomsg, spec, messages)
+        character(len=*), intent(in) :: text, path
+        integer, intent(in) :: group, k
+        type(group_record), intent(in) :: info
+        !> iostat and iomsg of the failed read
+        integer, intent(in) :: stat
+        character(len=*), intent(in) :: iomsg
+        !> Variables of the group with their types: "name:c x:r n:i"
+        character(len=*), intent(in) :: spec
+        type(message_list), intent(inout) :: messages
+
+        call add(messages, malformed_message(group_prefix(path, group, info, k), stat, iomsg, &
+                 spec, text(info%starts(k):info%ends(k))))
+        if (repeatable(group)) call diagnose_rest(text, path, group, info, spec, k + 1, messages)
+    end subroutine report_malformed
+
+    !> Label, name (or <kind>_<k>), kind and message prefix of the observation set made by
+    !> occurrence k of a &grid, &line or &points group.
+    subroutine start_observation(observation, path, group, info, k, name, kind, prefix)
+        type(observation_input), intent(inout) :: observation
+        character(len=*), intent(in) :: path
+        integer, intent(in) :: group, k
+        type(group_record), intent(in) :: info
+        !> The name given in the group ('' when none)
+        character(len=*), intent(in) :: name
+        !> observation_grid, observation_line or observation_points
+        integer, intent(in) :: kind
+        character(len=:), allocatable, intent(out) :: prefix
+
+        observation%label = group_label(group, k, info%lines(k), trim(adjustl(name)))
+        observation%set%name = default_name(name, trim(namelist_group_names(group)), k)
+        observation%set%kind = kind
+        prefix = path//': '//observation%label//': '
+    end subroutine start_observation
+
     !> After a failed read (the file position is then unreliable), diagnose the text of
     !> the remaining occurrences of a repeated group without reading them.
     subroutine diagnose_rest(text, path, group, info, spec, first, messages)
@@ -1009,8 +1026,7 @@ contains
         do k = first, info%count
             problem = diagnose_group(text(info%starts(k):info%ends(k)), spec)
             if (len(problem) > 0) then
-                call add(messages, path//': '//group_label(group, k, info%lines(k), '')// &
-                         ': '//problem)
+                call add(messages, group_prefix(path, group, info, k)//problem)
             end if
         end do
     end subroutine diagnose_rest
@@ -1521,41 +1537,5 @@ contains
         yes = (c >= 'a' .and. c <= 'z') .or. (c >= 'A' .and. c <= 'Z') .or. &
               (c >= '0' .and. c <= '9') .or. c == '_'
     end function is_name_character
-
-    !> Lower-case copy of s (ASCII).
-    pure function lower(s) result(out)
-        character(len=*), intent(in) :: s
-        character(len=len(s)) :: out
-        integer :: i, code
-
-        do i = 1, len(s)
-            code = iachar(s(i:i))
-            if (code >= iachar('A') .and. code <= iachar('Z')) then
-                out(i:i) = achar(code + 32)
-            else
-                out(i:i) = s(i:i)
-            end if
-        end do
-    end function lower
-
-    !> Integer as text without blanks.
-    pure function itoa(i) result(out)
-        integer, intent(in) :: i
-        character(len=:), allocatable :: out
-        character(len=24) :: buffer
-
-        write (buffer, '(i0)') i
-        out = trim(buffer)
-    end function itoa
-
-    !> Real as short text (NaN and Inf spelled out).
-    pure function rtoa(x) result(out)
-        real(wp), intent(in) :: x
-        character(len=:), allocatable :: out
-        character(len=32) :: buffer
-
-        write (buffer, '(g0.6)') x
-        out = trim(adjustl(buffer))
-    end function rtoa
 
 end module ddc_input_namelist

@@ -7,8 +7,9 @@
 !> meshes cost about N log N; the worst case stays O(N^2).
 module ddc_mesh_checks
     use ddc_kinds, only: wp
-    use ddc_error, only: error_type, set_error, exit_bad_input
+    use ddc_error, only: error_type
     use ddc_model_types, only: element_set, fracture_type
+    use ddc_input_messages, only: add_message, messages_error, itoa
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     implicit none
     private
@@ -17,13 +18,9 @@ module ddc_mesh_checks
 
     !> Relative tolerance on element lengths
     real(wp), parameter :: relative_tolerance = 1.0e-10_wp
-    !> At most this many problems are listed in one message
-    integer, parameter :: max_messages = 20
 
     integer, parameter :: pair_ok = 0, pair_duplicate = 1, pair_overlap = 2, &
                           pair_cross = 3, pair_t_first_end = 4, pair_t_second_end = 5
-
-    character(len=*), parameter :: newline = achar(10)
 
 contains
 
@@ -57,7 +54,7 @@ contains
             end if
         end do
         if (nbad > 0) then
-            call finish(messages, nbad, error)
+            call messages_error(messages, nbad, 'mesh problems', error)
             return
         end if
 
@@ -99,7 +96,7 @@ contains
                 if (kind /= pair_ok) call report_pair(min(i, j), max(i, j), i, kind)
             end do
         end do
-        if (nbad > 0) call finish(messages, nbad, error)
+        if (nbad > 0) call messages_error(messages, nbad, 'mesh problems', error)
 
     contains
 
@@ -268,41 +265,5 @@ contains
         end subroutine sift_down
 
     end function sorted_order
-
-    !> Append a message (up to max_messages of them) and count it.
-    subroutine add_message(messages, nbad, message)
-        character(len=:), allocatable, intent(inout) :: messages
-        integer, intent(inout) :: nbad
-        character(len=*), intent(in) :: message
-
-        nbad = nbad + 1
-        if (nbad > max_messages) return
-        if (len(messages) > 0) messages = messages//newline
-        messages = messages//message
-    end subroutine add_message
-
-    !> Turn the collected messages into the error.
-    subroutine finish(messages, nbad, error)
-        character(len=*), intent(in) :: messages
-        integer, intent(in) :: nbad
-        type(error_type), allocatable, intent(out) :: error
-
-        if (nbad > max_messages) then
-            call set_error(error, exit_bad_input, messages//newline//'... and '// &
-                           itoa(nbad - max_messages)//' more mesh problems')
-        else
-            call set_error(error, exit_bad_input, messages)
-        end if
-    end subroutine finish
-
-    !> Integer as text without blanks.
-    pure function itoa(i) result(out)
-        integer, intent(in) :: i
-        character(len=:), allocatable :: out
-        character(len=24) :: buffer
-
-        write (buffer, '(i0)') i
-        out = trim(buffer)
-    end function itoa
 
 end module ddc_mesh_checks

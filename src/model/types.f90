@@ -32,6 +32,18 @@ module ddc_model_types
     character(len=*), parameter :: observation_kind_names(3) = [character(len=6) :: &
         'grid', 'line', 'points']
 
+    !> TWODD's symmetry conditions (KSYM 1-4): the model is mirrored about the line
+    !> x = xsym (symmetry_x), y = ysym (symmetry_y) or both; image elements are implicit.
+    integer, parameter :: symmetry_none = 1, symmetry_x = 2, symmetry_y = 3, symmetry_both = 4
+
+    !> Symmetry of the model (TWODD KSYM and its lines).
+    type :: symmetry_options
+        !> symmetry_none, symmetry_x (about x = xsym), symmetry_y (about y = ysym), both
+        integer :: kind = symmetry_none
+        !> Position of the symmetry lines [length unit]
+        real(wp) :: xsym = 0.0_wp, ysym = 0.0_wp
+    end type symmetry_options
+
     !> All boundary elements of the model, shape (n) for every array.
     type :: element_set
         !> Number of elements
@@ -52,6 +64,9 @@ module ddc_model_types
         !> element angle beta (counter-clockwise from +x)
         real(wp), allocatable :: x_mid(:), y_mid(:), half_length(:)
         real(wp), allocatable :: cos_beta(:), sin_beta(:)
+        !> Symmetry lines whose implicit image elements every influence sum includes (a copy
+        !> of model_type%symmetry, set by the input readers; none by default)
+        type(symmetry_options) :: symmetry
     end type element_set
 
     !> One fracture: a name and its contiguous range of elements.
@@ -73,18 +88,6 @@ module ddc_model_types
         !> Point coordinates [length unit], shape (nx*ny), x varying fastest on a grid
         real(wp), allocatable :: x(:), y(:)
     end type observation_set
-
-    !> TWODD's symmetry conditions (KSYM 1-4): the model is mirrored about the line
-    !> x = xsym (symmetry_x), y = ysym (symmetry_y) or both; image elements are implicit.
-    integer, parameter :: symmetry_none = 1, symmetry_x = 2, symmetry_y = 3, symmetry_both = 4
-
-    !> Symmetry of the model (TWODD KSYM and its lines).
-    type :: symmetry_options
-        !> symmetry_none, symmetry_x (about x = xsym), symmetry_y (about y = ysym), both
-        integer :: kind = symmetry_none
-        !> Position of the symmetry lines [length unit]
-        real(wp) :: xsym = 0.0_wp, ysym = 0.0_wp
-    end type symmetry_options
 
     !> Options of the contact solver.
     type :: solver_options

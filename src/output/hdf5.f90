@@ -600,23 +600,18 @@ contains
         integer, intent(in) :: dims(:)
         type(h5_object), intent(out) :: dataset
         type(error_type), allocatable, intent(inout) :: error
-        integer(hid_t) :: space
-        integer :: status, close_status
+        integer :: space_status, status
 
         dataset%path = child_path(parent, name)
         dataset%file = parent%file
         if (allocated(error)) return
-        call create_space(dims, space, status)
-        if (status /= 0) then
+        call create_with_space(parent%id, name, data_type, dims, .false., dataset%id, &
+                               space_status, status)
+        if (space_status /= 0) then
             call fail(error, 'create the dataspace of dataset', dataset)
-            return
-        end if
-        call h5dcreate_f(parent%id, name, data_type, space, dataset%id, status)
-        if (status /= 0) then
-            dataset%id = -1
+        else if (status /= 0) then
             call fail(error, 'create dataset', dataset)
         end if
-        call h5sclose_f(space, close_status)
     end subroutine create_dataset
 
     !> Close a dataset (always attempted; reports only when no error is set yet).
@@ -639,22 +634,17 @@ contains
         integer, intent(in) :: dims(:)
         integer(hid_t), intent(out) :: attribute
         type(error_type), allocatable, intent(inout) :: error
-        integer(hid_t) :: space
-        integer :: status, close_status
+        integer :: space_status, status
 
         attribute = -1
         if (allocated(error)) return
-        call create_space(dims, space, status)
-        if (status /= 0) then
+        call create_with_space(object%id, name, data_type, dims, .true., attribute, &
+                               space_status, status)
+        if (space_status /= 0) then
             call fail(error, 'create the dataspace of attribute '//name//' of', object)
-            return
-        end if
-        call h5acreate_f(object%id, name, data_type, space, attribute, status)
-        if (status /= 0) then
-            attribute = -1
+        else if (status /= 0) then
             call fail(error, 'create attribute '//name//' of', object)
         end if
-        call h5sclose_f(space, close_status)
     end subroutine create_attribute
 
     !> Close an attribute (always attempted; reports only when no error is set yet).
@@ -670,6 +660,34 @@ contains
         if (status /= 0) call fail(error, 'close attribute '//name//' of', object)
         attribute = -1
     end subroutine close_attribute
+
+    !> Create a dataset, or an attribute when is_attribute, of Fortran dims `dims` (scalar
+    !> when empty) named name on the object loc. space_status /= 0 when the dataspace could
+    !> not be made; status /= 0 when the object could not be created. id is -1 unless made.
+    subroutine create_with_space(loc, name, data_type, dims, is_attribute, id, space_status, &
+                                 status)
+        integer(hid_t), intent(in) :: loc
+        character(len=*), intent(in) :: name
+        integer(hid_t), intent(in) :: data_type
+        integer, intent(in) :: dims(:)
+        logical, intent(in) :: is_attribute
+        integer(hid_t), intent(out) :: id
+        integer, intent(out) :: space_status, status
+        integer(hid_t) :: space
+        integer :: close_status
+
+        id = -1
+        status = 0
+        call create_space(dims, space, space_status)
+        if (space_status /= 0) return
+        if (is_attribute) then
+            call h5acreate_f(loc, name, data_type, space, id, status)
+        else
+            call h5dcreate_f(loc, name, data_type, space, id, status)
+        end if
+        if (status /= 0) id = -1
+        call h5sclose_f(space, close_status)
+    end subroutine create_with_space
 
     !> A simple dataspace of Fortran dims `dims`, or a scalar one when dims is empty.
     subroutine create_space(dims, space, status)

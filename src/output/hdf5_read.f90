@@ -34,16 +34,12 @@ contains
         !> Allocated with exit_io_failure when the dataset cannot be read
         type(error_type), allocatable, intent(out) :: error
         integer(hid_t) :: file, dset
-        type(c_ptr) :: pointer
-        integer :: status
 
         call open_dataset(path, dataset, file, dset, error)
         if (allocated(error)) return
         allocate (values(dataset_size(dset)))
-        pointer = c_loc(values)
-        call h5dread_f(dset, H5T_NATIVE_DOUBLE, pointer, status)
-        if (status /= 0) call fail(error, 'read dataset '//dataset//' as reals', path)
-        call close_dataset(file, dset, path, error)
+        call read_and_close(file, dset, H5T_NATIVE_DOUBLE, c_loc(values), &
+                            dataset//' as reals', path, error)
     end subroutine read_real_dataset
 
     !> Values of an integer dataset in array element order (any rank, flattened).
@@ -57,16 +53,12 @@ contains
         !> Allocated with exit_io_failure when the dataset cannot be read
         type(error_type), allocatable, intent(out) :: error
         integer(hid_t) :: file, dset
-        type(c_ptr) :: pointer
-        integer :: status
 
         call open_dataset(path, dataset, file, dset, error)
         if (allocated(error)) return
         allocate (values(dataset_size(dset)))
-        pointer = c_loc(values)
-        call h5dread_f(dset, H5T_NATIVE_INTEGER, pointer, status)
-        if (status /= 0) call fail(error, 'read dataset '//dataset//' as integers', path)
-        call close_dataset(file, dset, path, error)
+        call read_and_close(file, dset, H5T_NATIVE_INTEGER, c_loc(values), &
+                            dataset//' as integers', path, error)
     end subroutine read_int_dataset
 
     !> Values of a 1-D dataset of fixed-length strings, trailing NULs and blanks removed.
@@ -310,11 +302,7 @@ contains
         call open_file(path, file, error)
         if (allocated(error)) return
         call h5dopen_f(file, dataset, dset, status)
-        if (status /= 0) then
-            dset = -1
-            call fail(error, 'open dataset '//dataset, path)
-            call close_file(file, path, error)
-        end if
+        call check_opened(status, 'dataset '//dataset, path, file, dset, error)
     end subroutine open_dataset
 
     !> Close a dataset and its file.
@@ -329,6 +317,22 @@ contains
         call close_file(file, path, error)
     end subroutine close_dataset
 
+    !> Read a whole open dataset into memory of the given type, then close it and its file.
+    subroutine read_and_close(file, dset, mem_type, pointer, what, path, error)
+        integer(hid_t), intent(inout) :: file, dset
+        integer(hid_t), intent(in) :: mem_type
+        type(c_ptr), intent(in) :: pointer
+        character(len=*), intent(in) :: what, path
+        type(error_type), allocatable, intent(inout) :: error
+        type(c_ptr) :: buffer
+        integer :: status
+
+        buffer = pointer
+        call h5dread_f(dset, mem_type, buffer, status)
+        if (status /= 0) call fail(error, 'read dataset '//what, path)
+        call close_dataset(file, dset, path, error)
+    end subroutine read_and_close
+
     !> Open the file and an attribute of one of its objects; closes all on failure.
     subroutine open_attribute(path, object, name, file, attribute, error)
         character(len=*), intent(in) :: path, object, name
@@ -340,12 +344,23 @@ contains
         call open_file(path, file, error)
         if (allocated(error)) return
         call h5aopen_by_name_f(file, object, name, attribute, status)
-        if (status /= 0) then
-            attribute = -1
-            call fail(error, 'open attribute '//name//' of '//object, path)
-            call close_file(file, path, error)
-        end if
+        call check_opened(status, 'attribute '//name//' of '//object, path, file, attribute, &
+                          error)
     end subroutine open_attribute
+
+    !> After opening an object of the file: on failure (status /= 0) mark the handle
+    !> closed, set the error "could not open <what>" and close the file again.
+    subroutine check_opened(status, what, path, file, handle, error)
+        integer, intent(in) :: status
+        character(len=*), intent(in) :: what, path
+        integer(hid_t), intent(inout) :: file, handle
+        type(error_type), allocatable, intent(inout) :: error
+
+        if (status == 0) return
+        handle = -1
+        call fail(error, 'open '//what, path)
+        call close_file(file, path, error)
+    end subroutine check_opened
 
     !> Close an attribute and its file.
     subroutine close_attribute(file, attribute, path, error)
@@ -366,15 +381,10 @@ contains
         integer(hid_t), intent(in) :: dset
         integer :: n
         integer(hid_t) :: space
-        integer(hsize_t) :: points
         integer :: status
 
-        n = 0
         call h5dget_space_f(dset, space, status)
-        if (status /= 0) return
-        call h5sget_simple_extent_npoints_f(space, points, status)
-        if (status == 0) n = int(points)
-        call h5sclose_f(space, status)
+        n = space_points(space, status)
     end function dataset_size
 
     !> Number of elements of an attribute (1 for a scalar; 0 when it cannot be told).
@@ -382,16 +392,27 @@ contains
         integer(hid_t), intent(in) :: attribute
         integer :: n
         integer(hid_t) :: space
+        integer :: status
+
+        call h5aget_space_f(attribute, space, status)
+        n = space_points(space, status)
+    end function attribute_size
+
+    !> Number of points of a dataspace, which is then closed; got is the status of getting
+    !> the space (0 when the space could not be had or its size told).
+    function space_points(space, got) result(n)
+        integer(hid_t), intent(in) :: space
+        integer, intent(in) :: got
+        integer :: n
         integer(hsize_t) :: points
         integer :: status
 
         n = 0
-        call h5aget_space_f(attribute, space, status)
-        if (status /= 0) return
+        if (got /= 0) return
         call h5sget_simple_extent_npoints_f(space, points, status)
         if (status == 0) n = int(points)
         call h5sclose_f(space, status)
-    end function attribute_size
+    end function space_points
 
     !> Width in bytes of a fixed-length string type; status /= 0 for other types.
     subroutine string_width(data_type, width, status)

@@ -1,0 +1,92 @@
+!> Small text helpers shared by the input readers and the mesh checks: a capped list of
+!> problem lines joined with newlines, numbers as text, ASCII lower case.
+module ddc_input_messages
+    use ddc_kinds, only: wp
+    use ddc_error, only: error_type, set_error, exit_bad_input
+    implicit none
+    private
+
+    public :: newline, max_messages, add_message, messages_error, itoa, rtoa, lower
+
+    !> Separator of the lines of a message
+    character(len=*), parameter :: newline = achar(10)
+    !> At most this many problems are listed in one message
+    integer, parameter :: max_messages = 20
+
+contains
+
+    !> Append a line to the messages (up to max_messages of them) and count it.
+    subroutine add_message(messages, nbad, message)
+        !> Lines so far, joined with newlines ('' when none)
+        character(len=:), allocatable, intent(inout) :: messages
+        !> Number of problems so far, listed or not
+        integer, intent(inout) :: nbad
+        !> The new line
+        character(len=*), intent(in) :: message
+
+        nbad = nbad + 1
+        if (nbad > max_messages) return
+        if (len(messages) > 0) messages = messages//newline
+        messages = messages//message
+    end subroutine add_message
+
+    !> Turn the collected messages into an exit_bad_input error, with a last line
+    !> "... and N more <what>" when some were not listed.
+    subroutine messages_error(messages, nbad, what, error)
+        !> Lines collected by add_message
+        character(len=*), intent(in) :: messages
+        !> Number of problems counted by add_message (> 0)
+        integer, intent(in) :: nbad
+        !> Plural noun of the problems, e.g. 'bad lines'
+        character(len=*), intent(in) :: what
+        !> The error made
+        type(error_type), allocatable, intent(out) :: error
+
+        if (nbad > max_messages) then
+            call set_error(error, exit_bad_input, messages//newline//'... and '// &
+                           itoa(nbad - max_messages)//' more '//what)
+        else
+            call set_error(error, exit_bad_input, messages)
+        end if
+    end subroutine messages_error
+
+    !> Integer as text without blanks.
+    pure function itoa(i) result(out)
+        !> The integer
+        integer, intent(in) :: i
+        character(len=:), allocatable :: out
+        character(len=24) :: buffer
+
+        write (buffer, '(i0)') i
+        out = trim(buffer)
+    end function itoa
+
+    !> Real as short text (NaN and Inf spelled out).
+    pure function rtoa(x) result(out)
+        !> The number
+        real(wp), intent(in) :: x
+        character(len=:), allocatable :: out
+        character(len=32) :: buffer
+
+        write (buffer, '(g0.6)') x
+        out = trim(adjustl(buffer))
+    end function rtoa
+
+    !> Lower-case copy of s (ASCII).
+    pure function lower(s) result(out)
+        !> The text
+        character(len=*), intent(in) :: s
+        character(len=len(s)) :: out
+        integer :: i, code
+
+        do i = 1, len(s)
+            code = iachar(s(i:i))
+            if (code >= iachar('A') .and. code <= iachar('Z')) then
+                out(i:i) = achar(code + 32)
+            else
+                out(i:i) = s(i:i)
+            end if
+        end do
+    end function lower
+
+end module ddc_input_messages
