@@ -14,10 +14,14 @@ module ddc_app_command_line
     type :: command_line_options
         !> action_run, action_version or action_help
         integer :: action = action_run
-        !> Namelist input file
+        !> Input file: a namelist file, or a classic TWODD deck when twodd is true
         character(len=:), allocatable :: input_file
+        !> The input file is a TWODD deck (--twodd DECK)
+        logical :: twodd = .false.
         !> Output file from -o (overrides &output file); unallocated when absent
         character(len=:), allocatable :: output_file
+        !> TWODD-style result tables from --res; unallocated when absent
+        character(len=:), allocatable :: res_file
     end type command_line_options
 
 contains
@@ -27,11 +31,20 @@ contains
         character(len=:), allocatable :: text
         character(len=*), parameter :: nl = new_line('a')
 
-        text = 'usage: ddc2d INPUT.nml [-o OUT.h5]'//nl// &
+        text = 'usage: ddc2d INPUT.nml [-o OUT.h5] [--res RES.txt]'//nl// &
+               '       ddc2d --twodd DECK [-o OUT.h5] [--res RES.txt]'//nl// &
                '       ddc2d --version | --help'//nl//nl// &
                'Solves a 2D displacement discontinuity model of faults and fractures given as'//nl// &
                'a namelist file and writes the results to an HDF5 file (default: the input'//nl// &
                'file name with extension .h5 in the current folder, or &output file).'//nl//nl// &
+               '  --twodd DECK    read a classic TWODD deck (Crouch & Starfield 1983, ch. 5:'//nl// &
+               '                  KODE 1-4, symmetry KSYM 1-4) instead of a namelist file'//nl// &
+               '  -o OUT.h5       the HDF5 result file'//nl// &
+               '  --res RES.txt   also write the result tables in the layout of the TWODD'//nl// &
+               '                  print, at full precision (es24.15); observation points'//nl// &
+               '                  that TWODD would skip (within one element length of an'//nl// &
+               '                  element centre) are computed and marked * (** on an'//nl// &
+               '                  element: NaN)'//nl//nl// &
                'Exit status: 0 success; 1 no solution or solver failure; 2 bad input or'//nl// &
                'usage; 3 I/O failure. A failed run leaves no output file.'
     end function usage_text
@@ -75,6 +88,29 @@ contains
                 end if
                 i = i + 1
                 options%output_file = argument(i)
+            case ('--res')
+                if (i == n) then
+                    call set_error(error, exit_bad_input, 'option '//arg//' needs a file name')
+                    return
+                end if
+                i = i + 1
+                options%res_file = argument(i)
+                if (len(options%res_file) == 0) then
+                    call set_error(error, exit_bad_input, 'the --res file name is empty')
+                    return
+                end if
+            case ('--twodd')
+                if (i == n) then
+                    call set_error(error, exit_bad_input, 'option '//arg//' needs a deck file')
+                    return
+                end if
+                if (options%twodd .or. allocated(options%input_file)) then
+                    call set_error(error, exit_bad_input, 'more than one input file given')
+                    return
+                end if
+                i = i + 1
+                options%input_file = argument(i)
+                options%twodd = .true.
             case default
                 if (arg(1:min(1, len(arg))) == '-') then
                     call set_error(error, exit_bad_input, 'unknown option '//arg)

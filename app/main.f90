@@ -8,9 +8,12 @@ program ddc2d
     use ddc_version, only: program_name, program_version, git_commit
     use ddc_model_types, only: model_type
     use ddc_model_results, only: model_results
+    use ddc_model_types, only: symmetry_none
     use ddc_input_namelist, only: read_namelist_model
+    use ddc_input_twodd_deck, only: read_twodd_deck
     use ddc_output_atomic, only: check_writable
     use ddc_output_hdf5, only: write_results
+    use ddc_output_twodd_tables, only: write_twodd_tables
     use ddc_run, only: run_model
     use ddc_app_command_line, only: command_line_options, parse_command_line, usage_text, &
         action_version, action_help
@@ -34,7 +37,8 @@ program ddc2d
     call parse_command_line(options, error)
     if (allocated(error)) then
         write (error_unit, '(a)') program_name//': error: '//error%message
-        write (error_unit, '(a)') 'usage: ddc2d INPUT.nml [-o OUT.h5]   (ddc2d --help for more)'
+        write (error_unit, '(a)') 'usage: ddc2d INPUT.nml [-o OUT.h5] [--res RES.txt] | '// &
+            'ddc2d --twodd DECK [-o OUT.h5] [--res RES.txt]   (ddc2d --help for more)'
         call finish(error%code)
     end if
     select case (options%action)
@@ -46,18 +50,35 @@ program ddc2d
         call finish(exit_success)
     end select
 
-    call read_namelist_model(options%input_file, model, error)
+    if (options%twodd) then
+        call read_twodd_deck(options%input_file, model, error)
+    else
+        call read_namelist_model(options%input_file, model, error)
+    end if
     call stop_on(error)
     if (allocated(options%output_file)) model%output_file = options%output_file
     call check_writable(model%output_file, error)
     call stop_on(error)
+    if (allocated(options%res_file)) then
+        call check_writable(options%res_file, error)
+        call stop_on(error)
+    end if
     call print_model_summary(output_unit, model)
+    if (model%elements%symmetry%kind /= symmetry_none) then
+        write (output_unit, '(a,i0,a,g0,a,g0,a)') '  symmetry KSYM = ', model%elements%symmetry%kind, &
+            ' (xsym = ', model%elements%symmetry%xsym, ', ysym = ', model%elements%symmetry%ysym, &
+            '): image elements implicit'
+    end if
 
     call run_model(model, results, error)
     call stop_on(error)
     call system_clock(t0, rate)
     call write_results(model%output_file, model, results, error)
     call stop_on(error)
+    if (allocated(options%res_file)) then
+        call write_twodd_tables(options%res_file, model, results, error)
+        call stop_on(error)
+    end if
     call system_clock(t1)
     results%solver%seconds_output = real(t1 - t0, wp) / real(rate, wp)
     call print_results_summary(output_unit, model, results)

@@ -13,6 +13,7 @@ program ddc2d_tester
     use test_hole, only: collect_hole
     use test_threads, only: collect_threads
     use test_frictional, only: collect_frictional
+    use test_twodd_deck, only: collect_twodd_deck
     implicit none
     type(test_case), allocatable :: tests(:)
     character(len=64) :: suite
@@ -48,6 +49,8 @@ program ddc2d_tester
         call collect_contact(tests)
     case ('frictional')
         call collect_frictional(tests)
+    case ('twodd_deck')
+        call collect_twodd_deck(tests)
     case default
         write (*, '(a)') 'unknown suite: '//trim(suite)
         error stop 2

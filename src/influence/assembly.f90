@@ -3,15 +3,35 @@
 !> Unknowns are ordered in blocks [Ds(1:n); Dn(1:n)], rows [shear rows; normal rows]. A row
 !> is either a traction row (stress resolved on element i, tension positive) or a
 !> displacement row (displacement of the negative face of element i in its s, n frame).
+!>
+!> Symmetry (TWODD KSYM 2-4, Crouch & Starfield ch. 5): every element j has implicit images
+!> mirrored about x = xsym, y = ysym or both. Mirrored with its end order kept, an element
+!> (midpoint m, direction s) becomes (R m, R s); a single reflection (det R = -1) swaps the
+!> faces, so the image carries (-Ds, Dn); the double reflection (a half turn) carries
+!> (Ds, Dn). Only the given elements are unknowns; their columns sum the real element and
+!> its images. Without symmetry the image list is empty and the loops cost nothing.
 module ddc_influence_assembly
     use ddc_kinds, only: wp
-    use ddc_model_types, only: element_set
+    use ddc_model_types, only: element_set, symmetry_options, symmetry_none, symmetry_x, &
+        symmetry_y, symmetry_both
     use ddc_influence_kernel, only: dd_kernel, dd_kernel_global, face_negative
     implicit none
     private
 
     public :: assemble_influence, midpoint_response, resolve_remote_stress
     public :: row_traction, row_displacement
+    public :: image_transform, image_transforms, image_of, kernel_with_images
+
+    !> One implicit image of every element: reflection about x = xsym and/or y = ysym.
+    type :: image_transform
+        !> Mirror the x coordinate about x = xsym; mirror y about y = ysym
+        logical :: mirror_x = .false., mirror_y = .false.
+        !> Positions of the symmetry lines [length unit]
+        real(wp) :: xsym = 0.0_wp, ysym = 0.0_wp
+        !> Factor on Ds of the image (-1 for a single reflection, +1 for both); Dn keeps
+        !> its sign
+        real(wp) :: sign_s = 1.0_wp
+    end type image_transform
 
     !> Kinds of matrix rows
     integer, parameter :: row_traction = 1, row_displacement = 2
@@ -26,18 +46,104 @@ module ddc_influence_assembly
 
 contains
 
-    !> Influence of element j on the midpoint of element i, resolved in i's s, n frame.
-    pure function pair_at_midpoint(elements, i, j, shear_modulus, nu) result(p)
+    !> The images implied by a symmetry option: none, one (x or y) or three (both).
+    pure function image_transforms(symmetry) result(images)
+        !> Symmetry of the model
+        type(symmetry_options), intent(in) :: symmetry
+        !> The image transforms, shape (0), (1) or (3)
+        type(image_transform), allocatable :: images(:)
+
+        associate (xs => symmetry%xsym, ys => symmetry%ysym)
+            select case (symmetry%kind)
+            case (symmetry_x)
+                images = [image_transform(.true., .false., xs, ys, -1.0_wp)]
+            case (symmetry_y)
+                images = [image_transform(.false., .true., xs, ys, -1.0_wp)]
+            case (symmetry_both)
+                images = [image_transform(.true., .false., xs, ys, -1.0_wp), &
+                          image_transform(.false., .true., xs, ys, -1.0_wp), &
+                          image_transform(.true., .true., xs, ys, 1.0_wp)]
+            case default
+                allocate (images(0))
+            end select
+        end associate
+    end function image_transforms
+
+    !> Midpoint and direction cosines of the image of element j under transform t.
+    pure subroutine image_of(elements, j, t, xm, ym, cosb, sinb)
+        !> Elements with geometry computed
+        type(element_set), intent(in) :: elements
+        !> Element index
+        integer, intent(in) :: j
+        !> The image transform
+        type(image_transform), intent(in) :: t
+        !> Image midpoint [length unit] and direction cosines
+        real(wp), intent(out) :: xm, ym, cosb, sinb
+
+        xm = elements%x_mid(j)
+        ym = elements%y_mid(j)
+        cosb = elements%cos_beta(j)
+        sinb = elements%sin_beta(j)
+        if (t%mirror_x) then
+            xm = 2.0_wp * t%xsym - xm
+            cosb = -cosb
+        end if
+        if (t%mirror_y) then
+            ym = 2.0_wp * t%ysym - ym
+            sinb = -sinb
+        end if
+    end subroutine image_of
+
+    !> Global-frame kernel of element j plus its images at (x, y), per unit Ds and Dn of j.
+    pure function kernel_with_images(x, y, elements, j, images, shear_modulus, nu, face) &
+        result(k)
+        !> Point [length unit]
+        real(wp), intent(in) :: x, y
+        !> Elements with geometry computed
+        type(element_set), intent(in) :: elements
+        !> Element index
+        integer, intent(in) :: j
+        !> Image transforms from image_transforms (empty without symmetry)
+        type(image_transform), intent(in) :: images(:)
+        !> Shear modulus [stress unit] and Poisson's ratio [-]
+        real(wp), intent(in) :: shear_modulus, nu
+        !> Face reported for a point on an element (face_negative or face_positive)
+        integer, intent(in) :: face
+        !> Displacement and stress per unit Ds (index 1) and Dn (index 2) of element j
+        type(dd_kernel) :: k
+        type(dd_kernel) :: ki
+        real(wp) :: xm, ym, cosb, sinb, f(2)
+        integer :: t
+
+        k = dd_kernel_global(x, y, elements%x_mid(j), elements%y_mid(j), &
+                             elements%half_length(j), elements%cos_beta(j), &
+                             elements%sin_beta(j), shear_modulus, nu, face)
+        do t = 1, size(images)
+            call image_of(elements, j, images(t), xm, ym, cosb, sinb)
+            ki = dd_kernel_global(x, y, xm, ym, elements%half_length(j), cosb, sinb, &
+                                  shear_modulus, nu, face)
+            f = [images(t)%sign_s, 1.0_wp]
+            k%ux = k%ux + f * ki%ux
+            k%uy = k%uy + f * ki%uy
+            k%sxx = k%sxx + f * ki%sxx
+            k%syy = k%syy + f * ki%syy
+            k%sxy = k%sxy + f * ki%sxy
+        end do
+    end function kernel_with_images
+
+    !> Influence of element j (and its images) on the midpoint of element i, resolved in
+    !> i's s, n frame.
+    pure function pair_at_midpoint(elements, i, j, images, shear_modulus, nu) result(p)
         type(element_set), intent(in) :: elements
         integer, intent(in) :: i, j
+        type(image_transform), intent(in) :: images(:)
         real(wp), intent(in) :: shear_modulus, nu
         type(pair_influence) :: p
         type(dd_kernel) :: k
         real(wp) :: c, s
 
-        k = dd_kernel_global(elements%x_mid(i), elements%y_mid(i), elements%x_mid(j), &
-                             elements%y_mid(j), elements%half_length(j), elements%cos_beta(j), &
-                             elements%sin_beta(j), shear_modulus, nu, face_negative)
+        k = kernel_with_images(elements%x_mid(i), elements%y_mid(i), elements, j, images, &
+                               shear_modulus, nu, face_negative)
         c = elements%cos_beta(i)
         s = elements%sin_beta(i)
         p%ts = -(k%sxx - k%syy) * s * c + k%sxy * (c**2 - s**2)
@@ -57,15 +163,17 @@ contains
         !> Influence matrix, shape (2n, 2n)
         real(wp), intent(out) :: matrix(:, :)
         type(pair_influence) :: p
+        type(image_transform), allocatable :: images(:)
         integer :: i, j, n
 
         n = elements%n
+        images = image_transforms(elements%symmetry)
         ! Each thread owns whole columns j and n+j: disjoint, contiguous writes.
         !$omp parallel do default(none) schedule(static) private(i, j, p) &
-        !$omp shared(elements, shear_modulus, nu, shear_row, normal_row, matrix, n)
+        !$omp shared(elements, shear_modulus, nu, shear_row, normal_row, matrix, n, images)
         do j = 1, n
             do i = 1, n
-                p = pair_at_midpoint(elements, i, j, shear_modulus, nu)
+                p = pair_at_midpoint(elements, i, j, images, shear_modulus, nu)
                 if (shear_row(i) == row_traction) then
                     matrix(i, j) = p%ts(1)
                     matrix(i, n + j) = p%ts(2)
@@ -99,19 +207,21 @@ contains
         !> Negative-face displacement along s and n [length unit], shape (n)
         real(wp), intent(out) :: us_minus(:), un_minus(:)
         type(pair_influence) :: p
+        type(image_transform), allocatable :: images(:)
         real(wp) :: ts, tn, us, un
         integer :: i, j
 
+        images = image_transforms(elements%symmetry)
         !$omp parallel do default(none) schedule(static) private(i, j, p, ts, tn, us, un) &
         !$omp shared(elements, shear_modulus, nu, ds, dn, shear_traction, normal_traction, &
-        !$omp        us_minus, un_minus)
+        !$omp        us_minus, un_minus, images)
         do i = 1, elements%n
             ts = 0.0_wp
             tn = 0.0_wp
             us = 0.0_wp
             un = 0.0_wp
             do j = 1, elements%n
-                p = pair_at_midpoint(elements, i, j, shear_modulus, nu)
+                p = pair_at_midpoint(elements, i, j, images, shear_modulus, nu)
                 ts = ts + p%ts(1) * ds(j) + p%ts(2) * dn(j)
                 tn = tn + p%tn(1) * ds(j) + p%tn(2) * dn(j)
                 us = us + p%us(1) * ds(j) + p%us(2) * dn(j)

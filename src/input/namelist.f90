@@ -14,8 +14,8 @@ module ddc_input_namelist
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type, fracture_type, observation_set, &
         condition_names, condition_contact, observation_grid, observation_line, &
-        observation_points, observation_kind_names
-    use ddc_input_text_file, only: read_text_file
+        observation_points, observation_kind_names, symmetry_none, symmetry_names
+    use ddc_input_text_file, only: read_text_file, base_name
     use ddc_input_csv, only: read_csv
     use ddc_input_messages, only: newline, itoa, rtoa, lower
     use ddc_mesh_polyline, only: polyline_elements, expand_per_segment
@@ -29,13 +29,14 @@ module ddc_input_namelist
     public :: max_vertices, max_elements, max_observation_points
 
     !> Names of the namelist groups ddc2d knows
-    character(len=*), parameter :: namelist_group_names(8) = [character(len=13) :: &
-        'model', 'remote_stress', 'fracture', 'grid', 'line', 'points', 'solver', 'output']
+    character(len=*), parameter :: namelist_group_names(9) = [character(len=13) :: &
+        'model', 'remote_stress', 'fracture', 'grid', 'line', 'points', 'solver', 'output', &
+        'symmetry']
     integer, parameter :: g_model = 1, g_remote_stress = 2, g_fracture = 3, g_grid = 4, &
-                          g_line = 5, g_points = 6, g_solver = 7, g_output = 8
+                          g_line = 5, g_points = 6, g_solver = 7, g_output = 8, g_symmetry = 9
     !> Groups that may appear more than once
-    logical, parameter :: repeatable(8) = [.false., .false., .true., .true., .true., &
-                                           .true., .false., .false.]
+    logical, parameter :: repeatable(9) = [.false., .false., .true., .true., .true., &
+                                           .true., .false., .false., .false.]
 
     !> Largest number of polyline vertices of one &fracture (size of the namelist arrays)
     integer, parameter :: max_vertices = 100000
@@ -138,6 +139,7 @@ contains
         call read_points_groups(unit, text, path, dir, groups(g_points), observations, messages)
         call read_solver_group(unit, text, path, groups(g_solver), model, messages)
         call read_output_group(unit, text, path, dir, groups(g_output), model, messages)
+        call read_symmetry_group(unit, text, path, groups(g_symmetry), model, messages)
         close (unit)
 
         call check_names(path, fractures, observations, messages)
@@ -816,6 +818,52 @@ contains
         end if
     end subroutine read_solver_group
 
+    !> &symmetry kind, xsym, ysym / (optional; TWODD's KSYM: kind 'none', 'x' (mirror about
+    !> the line x = xsym), 'y' (about y = ysym) or 'both'; image elements are implicit)
+    subroutine read_symmetry_group(unit, text, path, info, model, messages)
+        integer, intent(in) :: unit
+        character(len=*), intent(in) :: text
+        character(len=*), intent(in) :: path
+        type(group_record), intent(in) :: info
+        type(model_type), intent(inout) :: model
+        type(message_list), intent(inout) :: messages
+        character(len=text_length) :: kind
+        real(wp) :: xsym, ysym
+        character(len=512) :: iomsg
+        character(len=:), allocatable :: prefix
+        integer :: stat, k
+        logical :: ok
+        !> Variables of the group and their types (c text, r real, i integer)
+        character(len=*), parameter :: variables = 'kind:c xsym:r ysym:r'
+        namelist /symmetry/ kind, xsym, ysym
+
+        model%elements%symmetry%kind = symmetry_none
+        if (info%count == 0) return
+        kind = 'none'
+        xsym = 0.0_wp
+        ysym = 0.0_wp
+        rewind (unit)
+        read (unit, nml=symmetry, iostat=stat, iomsg=iomsg)
+        if (stat /= 0) then
+            call report_malformed(text, path, g_symmetry, info, 1, stat, iomsg, variables, &
+                                  messages)
+            return
+        end if
+        prefix = group_prefix(path, g_symmetry, info, 1)
+        k = find_name(lower(trim(adjustl(kind))), symmetry_names)
+        if (k == 0) then
+            call add(messages, prefix//"kind = '"//trim(adjustl(kind))// &
+                     "' is not one of 'none', 'x', 'y', 'both'")
+        end if
+        ok = check_scalar(xsym, 'xsym', .false., prefix, messages)
+        ok = check_scalar(ysym, 'ysym', .false., prefix, messages) .and. ok
+        if (k == 0 .or. .not. ok) return
+        ! The kinds are numbered in the order of their names.
+        model%elements%symmetry%kind = k
+        model%elements%symmetry%xsym = xsym
+        model%elements%symmetry%ysym = ysym
+    end subroutine read_symmetry_group
+
     !> &output file / (relative to the input file's folder; default: the input file's
     !> base name with extension .h5, in the current folder)
     subroutine read_output_group(unit, text, path, dir, info, model, messages)
@@ -1482,20 +1530,6 @@ contains
         slash = index(path, '/', back=.true.)
         dir = path(1:slash)
     end function folder_of
-
-    !> The file name of a path, with or without its extension.
-    pure function base_name(path, keep_extension) result(name)
-        character(len=*), intent(in) :: path
-        logical, intent(in) :: keep_extension
-        character(len=:), allocatable :: name
-        integer :: dot
-
-        name = path(index(path, '/', back=.true.) + 1:)
-        if (.not. keep_extension) then
-            dot = index(name, '.', back=.true.)
-            if (dot > 1) name = name(1:dot - 1)
-        end if
-    end function base_name
 
     !> A path written in the input file, relative to the input file's folder.
     pure function resolve(dir, file) result(path)

@@ -4,7 +4,7 @@ module ddc_input_text_file
     implicit none
     private
 
-    public :: read_text_file
+    public :: read_text_file, base_name
 
 contains
 
@@ -58,5 +58,21 @@ contains
             call set_error(error, exit_bad_input, path//': not a text file (contains NUL bytes)')
         end if
     end subroutine read_text_file
+
+    !> The file name of a path, with or without its extension.
+    pure function base_name(path, keep_extension) result(name)
+        !> A file path
+        character(len=*), intent(in) :: path
+        !> Keep the part after the last dot
+        logical, intent(in) :: keep_extension
+        character(len=:), allocatable :: name
+        integer :: dot
+
+        name = path(index(path, '/', back=.true.) + 1:)
+        if (.not. keep_extension) then
+            dot = index(name, '.', back=.true.)
+            if (dot > 1) name = name(1:dot - 1)
+        end if
+    end function base_name
 
 end module ddc_input_text_file

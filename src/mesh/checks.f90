@@ -8,8 +8,8 @@
 module ddc_mesh_checks
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
-    use ddc_model_types, only: element_set, fracture_type
-    use ddc_input_messages, only: add_message, messages_error, itoa
+    use ddc_model_types, only: element_set, fracture_type, symmetry_x, symmetry_y, symmetry_both
+    use ddc_input_messages, only: add_message, messages_error, itoa, rtoa
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     implicit none
     private
@@ -96,9 +96,49 @@ contains
                 if (kind /= pair_ok) call report_pair(min(i, j), max(i, j), i, kind)
             end do
         end do
+        call check_symmetry_lines()
         if (nbad > 0) call messages_error(messages, nbad, 'mesh problems', error)
 
     contains
+
+        !> With symmetry every element must lie on one side of each symmetry line (ends on
+        !> the line are fine: the image continues the fracture); an element on the line or
+        !> elements on both sides would overlap their images.
+        subroutine check_symmetry_lines()
+            associate (sym => elements%symmetry)
+                if (sym%kind == symmetry_x .or. sym%kind == symmetry_both) call one_side( &
+                    elements%x_begin - sym%xsym, elements%x_end - sym%xsym, 'x', sym%xsym)
+                if (sym%kind == symmetry_y .or. sym%kind == symmetry_both) call one_side( &
+                    elements%y_begin - sym%ysym, elements%y_end - sym%ysym, 'y', sym%ysym)
+            end associate
+        end subroutine check_symmetry_lines
+
+        !> d1, d2: signed distances of the element ends from the line `axis` = position.
+        subroutine one_side(d1, d2, axis, position)
+            real(wp), intent(in) :: d1(:), d2(:), position
+            character(len=*), intent(in) :: axis
+            integer :: first_side, k, side
+
+            first_side = 0
+            do k = 1, n
+                side = 0
+                if (max(d1(k), d2(k)) > tol(k)) side = 1
+                if (min(d1(k), d2(k)) < -tol(k)) side = side - 1
+                if (side == 0) then
+                    ! Both ends within tolerance of the line, or one on each side.
+                    call add_message(messages, nbad, describe(k)//' lies on or crosses the '// &
+                        'symmetry line '//axis//' = '//rtoa(position)//'; model one side only')
+                else if (first_side == 0) then
+                    first_side = k
+                else if (sign(1.0_wp, d1(k) + d2(k)) /= sign(1.0_wp, d1(first_side) + &
+                                                             d2(first_side))) then
+                    call add_message(messages, nbad, describe(first_side)//' and '// &
+                        describe(k)//' lie on opposite sides of the symmetry line '//axis// &
+                        ' = '//rtoa(position)//'; model one side only')
+                    return
+                end if
+            end do
+        end subroutine one_side
 
         !> Append the message for the pair (first, second); kind refers to (i, other).
         subroutine report_pair(first, second, i_of_kind, kind)

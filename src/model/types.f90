@@ -10,6 +10,7 @@ module ddc_model_types
 
     public :: model_type, element_set, fracture_type, observation_set, solver_options
     public :: symmetry_options, symmetry_none, symmetry_x, symmetry_y, symmetry_both
+    public :: symmetry_names
     public :: condition_traction, condition_displacement, condition_mixed_us_sn
     public :: condition_mixed_ss_un, condition_contact, condition_names
     public :: observation_grid, observation_line, observation_points, observation_kind_names
@@ -35,6 +36,9 @@ module ddc_model_types
     !> TWODD's symmetry conditions (KSYM 1-4): the model is mirrored about the line
     !> x = xsym (symmetry_x), y = ysym (symmetry_y) or both; image elements are implicit.
     integer, parameter :: symmetry_none = 1, symmetry_x = 2, symmetry_y = 3, symmetry_both = 4
+    !> Input names of the symmetry kinds, indexed by kind
+    character(len=*), parameter :: symmetry_names(4) = [character(len=4) :: &
+        'none', 'x', 'y', 'both']
 
     !> Symmetry of the model (TWODD KSYM and its lines).
     type :: symmetry_options
@@ -64,8 +68,8 @@ module ddc_model_types
         !> element angle beta (counter-clockwise from +x)
         real(wp), allocatable :: x_mid(:), y_mid(:), half_length(:)
         real(wp), allocatable :: cos_beta(:), sin_beta(:)
-        !> Symmetry lines whose implicit image elements every influence sum includes (a copy
-        !> of model_type%symmetry, set by the input readers; none by default)
+        !> Symmetry lines whose implicit image elements every influence sum includes (set by
+        !> the input readers; none by default)
         type(symmetry_options) :: symmetry
     end type element_set
 
@@ -115,8 +119,6 @@ module ddc_model_types
         type(observation_set), allocatable :: observations(:)
         !> Solver options
         type(solver_options) :: solver
-        !> Symmetry conditions (none unless a TWODD deck or the input asks for them)
-        type(symmetry_options) :: symmetry
         !> Output file (after -o and &output are applied)
         character(len=:), allocatable :: output_file
         !> Input file path and its full text, kept for self-description

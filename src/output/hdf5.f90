@@ -27,7 +27,8 @@ module ddc_output_hdf5
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_io_failure
     use ddc_version, only: program_name, program_version, git_commit
-    use ddc_model_types, only: model_type, observation_grid, observation_kind_names
+    use ddc_model_types, only: model_type, observation_grid, observation_kind_names, &
+        symmetry_names
     use ddc_model_results, only: model_results, state_free, state_stick, state_slip, &
         state_open
     use ddc_output_atomic, only: partial_name, publish_file, remove_file
@@ -172,6 +173,11 @@ contains
         call write_attribute(root, 'conventions', conventions, error)
         call write_attribute(root, 'open_cohesion', text(model%solver%open_cohesion), error)
         call write_attribute(root, 'lcp_method', text(model%solver%lcp_method), error)
+        ! TWODD's symmetry: 'none', 'x' (about x = xsym), 'y' (about y = ysym) or 'both'
+        call write_attribute(root, 'symmetry', &
+                             trim(symmetry_names(model%elements%symmetry%kind)), error)
+        call write_attribute(root, 'symmetry_lines', [model%elements%symmetry%xsym, &
+                                                      model%elements%symmetry%ysym], error)
     end subroutine write_root_attributes
 
     !> /elements: geometry, conditions, results and contact properties, shape (n).

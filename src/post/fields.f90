@@ -4,7 +4,9 @@ module ddc_post_fields
     use ddc_kinds, only: wp
     use ddc_model_types, only: element_set
     use ddc_model_results, only: field_result, point_clear, point_near, point_on_element
-    use ddc_influence_kernel, only: dd_kernel, dd_kernel_global, face_positive
+    use ddc_influence_kernel, only: dd_kernel, face_positive
+    use ddc_influence_assembly, only: image_transform, image_transforms, image_of, &
+        kernel_with_images
     implicit none
     private
 
@@ -16,18 +18,16 @@ module ddc_post_fields
 
 contains
 
-    !> Where a point lies relative to one element: clear, near (within one element length
-    !> of its centre, where TWODD skips points) or on it (including its ends).
-    pure function point_flag(x, y, elements, j) result(flag)
-        real(wp), intent(in) :: x, y
-        type(element_set), intent(in) :: elements
-        integer, intent(in) :: j
+    !> Where a point lies relative to one element (midpoint xm, ym, half-length a, direction
+    !> cosb, sinb): clear, near (within one element length of its centre, where TWODD skips
+    !> points) or on it (including its ends).
+    pure function point_flag(x, y, xm, ym, a, cosb, sinb) result(flag)
+        real(wp), intent(in) :: x, y, xm, ym, a, cosb, sinb
         integer :: flag
-        real(wp) :: xl, yl, a
+        real(wp) :: xl, yl
 
-        a = elements%half_length(j)
-        xl = (x - elements%x_mid(j)) * elements%cos_beta(j) + (y - elements%y_mid(j)) * elements%sin_beta(j)
-        yl = -(x - elements%x_mid(j)) * elements%sin_beta(j) + (y - elements%y_mid(j)) * elements%cos_beta(j)
+        xl = (x - xm) * cosb + (y - ym) * sinb
+        yl = -(x - xm) * sinb + (y - ym) * cosb
         if (abs(yl) <= on_element_tolerance * a .and. abs(xl) <= a * (1.0_wp + on_element_tolerance)) then
             flag = point_on_element
         else if (xl**2 + yl**2 < (2.0_wp * a)**2) then
@@ -37,7 +37,27 @@ contains
         end if
     end function point_flag
 
+    !> The worst flag of a point over element j and its images.
+    pure function element_flag(x, y, elements, j, images) result(flag)
+        real(wp), intent(in) :: x, y
+        type(element_set), intent(in) :: elements
+        integer, intent(in) :: j
+        type(image_transform), intent(in) :: images(:)
+        integer :: flag
+        real(wp) :: xm, ym, cosb, sinb
+        integer :: t
+
+        flag = point_flag(x, y, elements%x_mid(j), elements%y_mid(j), elements%half_length(j), &
+                          elements%cos_beta(j), elements%sin_beta(j))
+        do t = 1, size(images)
+            call image_of(elements, j, images(t), xm, ym, cosb, sinb)
+            flag = max(flag, point_flag(x, y, xm, ym, elements%half_length(j), cosb, sinb))
+        end do
+    end function element_flag
+
     !> Fields at the points (x, y): displacement relative to the far field and total stress.
+    !> With symmetry (elements%symmetry) the images of every element contribute and count
+    !> for the flags.
     subroutine evaluate_field(elements, shear_modulus, nu, remote, ds, dn, x, y, field)
         !> Elements with geometry computed
         type(element_set), intent(in) :: elements
@@ -52,19 +72,21 @@ contains
         !> Fields at the points; a point on an element gets NaN and flag point_on_element
         type(field_result), intent(out) :: field
         type(dd_kernel) :: k
+        type(image_transform), allocatable :: images(:)
         real(wp) :: acc(5), nan
         integer :: ip, j, np, flag
 
         np = size(x)
+        images = image_transforms(elements%symmetry)
         allocate (field%ux(np), field%uy(np), field%sxx(np), field%syy(np), field%sxy(np), &
                   field%flag(np))
         nan = ieee_value(1.0_wp, ieee_quiet_nan)
         !$omp parallel do default(none) schedule(dynamic, 16) private(ip, j, k, acc, flag) &
-        !$omp shared(elements, shear_modulus, nu, remote, ds, dn, x, y, field, np, nan)
+        !$omp shared(elements, shear_modulus, nu, remote, ds, dn, x, y, field, np, nan, images)
         do ip = 1, np
             field%flag(ip) = point_clear
             do j = 1, elements%n
-                flag = point_flag(x(ip), y(ip), elements, j)
+                flag = element_flag(x(ip), y(ip), elements, j, images)
                 field%flag(ip) = max(field%flag(ip), flag)
                 if (flag == point_on_element) exit
             end do
@@ -78,9 +100,8 @@ contains
             end if
             acc = [0.0_wp, 0.0_wp, remote]
             do j = 1, elements%n
-                k = dd_kernel_global(x(ip), y(ip), elements%x_mid(j), elements%y_mid(j), &
-                                     elements%half_length(j), elements%cos_beta(j), &
-                                     elements%sin_beta(j), shear_modulus, nu, face_positive)
+                k = kernel_with_images(x(ip), y(ip), elements, j, images, shear_modulus, nu, &
+                                       face_positive)
                 acc(1) = acc(1) + k%ux(1) * ds(j) + k%ux(2) * dn(j)
                 acc(2) = acc(2) + k%uy(1) * ds(j) + k%uy(2) * dn(j)
                 acc(3) = acc(3) + k%sxx(1) * ds(j) + k%sxx(2) * dn(j)

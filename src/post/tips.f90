@@ -1,7 +1,7 @@
 !> Crack tips and their stress intensity factors (SPEC section 5).
 module ddc_post_tips
     use ddc_kinds, only: wp
-    use ddc_model_types, only: element_set
+    use ddc_model_types, only: element_set, symmetry_x, symmetry_y, symmetry_both
     use ddc_model_results, only: tip_set
     implicit none
     private
@@ -13,7 +13,8 @@ module ddc_post_tips
 
 contains
 
-    !> True when end `side` (1 begin, 2 end) of element i coincides with an end of another element.
+    !> True when end `side` (1 begin, 2 end) of element i coincides with an end of another
+    !> element, or lies on a symmetry line (where it meets its own image).
     pure logical function end_is_shared(elements, i, side)
         type(element_set), intent(in) :: elements
         integer, intent(in) :: i, side
@@ -27,6 +28,14 @@ contains
             x = elements%x_end(i)
             y = elements%y_end(i)
         end if
+        end_is_shared = .true.
+        tol = shared_end_tolerance * 2.0_wp * elements%half_length(i)
+        associate (sym => elements%symmetry)
+            if ((sym%kind == symmetry_x .or. sym%kind == symmetry_both) .and. &
+                abs(x - sym%xsym) <= tol) return
+            if ((sym%kind == symmetry_y .or. sym%kind == symmetry_both) .and. &
+                abs(y - sym%ysym) <= tol) return
+        end associate
         end_is_shared = .false.
         do j = 1, elements%n
             if (j == i) cycle
