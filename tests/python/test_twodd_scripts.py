@@ -13,23 +13,12 @@ import h5py
 import numpy as np
 import pytest
 
-REPO_ROOT = Path(__file__).resolve().parents[2]
+from conftest import REPO_ROOT, ddc2d_exe
+
 SCRIPTS = REPO_ROOT / "scripts"
 REFERENCE = REPO_ROOT / "tests" / "reference" / "twodd"
 DATA = REPO_ROOT / "tests" / "data" / "twodd"
 CASES = ["A1_press_n20", "B1_rshear_n20"]
-
-
-def ddc2d_exe():
-    exe = os.environ.get("DDC2D_EXE")
-    if exe:
-        return Path(exe)
-    for exe in sorted(REPO_ROOT.glob("build/*/app/ddc2d")):
-        done = subprocess.run([str(exe), "--help"], capture_output=True, text=True)
-        if "--twodd" in done.stdout:
-            return exe
-    raise AssertionError("set DDC2D_EXE to a ddc2d executable with --twodd (none found "
-                         "under build/)")
 
 
 def run(args, cwd):

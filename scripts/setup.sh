@@ -1,0 +1,93 @@
+#!/usr/bin/env bash
+# Install what ddc2d needs to build, test and plot, and nothing that is already there.
+#
+#   scripts/setup.sh
+#
+# 1. Debian packages (compiler, CMake, Ninja, OpenBLAS/LAPACK, serial HDF5, h5dump,
+#    python3 + venv): installed with apt-get only when one of them is missing.
+# 2. A Python virtual environment in build/venv with numpy, h5py, matplotlib and pytest
+#    from PyPI: created/installed only when missing or broken.
+#
+# Idempotent: a second run only checks and takes a few seconds. Works from any folder.
+# Needs root (or sudo) only when Debian packages are missing.
+set -euo pipefail
+
+repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$repo_root"
+
+debian_packages=(gfortran cmake ninja-build libopenblas-dev liblapack-dev libhdf5-dev
+                 hdf5-tools python3 python3-venv)
+python_packages=(numpy h5py matplotlib pytest)
+python_modules="numpy, h5py, matplotlib, pytest"
+venv_dir="$repo_root/build/venv"
+
+say() { printf 'setup: %s\n' "$*"; }
+die() { printf 'setup: error: %s\n' "$*" >&2; exit 1; }
+
+# ---------------------------------------------------------------- Debian packages
+is_installed() {
+    # dpkg-query prints nothing (and fails) for unknown packages; removed packages
+    # report "deinstall ok config-files", so look for the exact installed status.
+    [[ "$(dpkg-query -W -f='${Status}' "$1" 2>/dev/null || true)" == "install ok installed" ]]
+}
+
+if ! command -v dpkg-query > /dev/null 2>&1; then
+    die "dpkg-query not found: this script supports Debian (12) and derivatives only"
+fi
+
+missing=()
+for package in "${debian_packages[@]}"; do
+    is_installed "$package" || missing+=("$package")
+done
+
+if ((${#missing[@]} > 0)); then
+    say "missing Debian packages: ${missing[*]}"
+    if ((EUID == 0)); then
+        as_root=()
+    elif command -v sudo > /dev/null 2>&1; then
+        as_root=(sudo)
+    else
+        die "not root and no sudo: install as root: apt-get install ${missing[*]}"
+    fi
+    say "running apt-get update"
+    "${as_root[@]}" env DEBIAN_FRONTEND=noninteractive \
+        apt-get update -o DPkg::Lock::Timeout=900
+    say "running apt-get install ${missing[*]}"
+    "${as_root[@]}" env DEBIAN_FRONTEND=noninteractive \
+        apt-get install -y -o DPkg::Lock::Timeout=900 "${missing[@]}"
+    for package in "${missing[@]}"; do
+        is_installed "$package" || die "Debian package '$package' is still not installed"
+    done
+else
+    say "Debian packages present: ${debian_packages[*]}"
+fi
+
+for tool in gfortran cmake ninja h5dump python3; do
+    command -v "$tool" > /dev/null 2>&1 || die "'$tool' not found on PATH after installation"
+done
+
+# ---------------------------------------------------------------- Python venv
+venv_python="$venv_dir/bin/python"
+
+venv_works() {
+    [[ -x "$venv_python" ]] && "$venv_python" -c 'import sys' > /dev/null 2>&1
+}
+venv_complete() {
+    venv_works && "$venv_python" -c "import $python_modules" > /dev/null 2>&1
+}
+
+if venv_complete; then
+    say "Python venv ready: $venv_dir ($python_modules)"
+else
+    if ! venv_works; then
+        # Absent, or left broken (e.g. its base interpreter was removed): (re)create it.
+        say "creating Python venv $venv_dir with $(command -v python3)"
+        mkdir -p "$(dirname "$venv_dir")"
+        python3 -m venv --clear "$venv_dir" \
+            || die "'python3 -m venv' failed (on Debian, is python3-venv installed?)"
+    fi
+    say "installing into the venv from PyPI: ${python_packages[*]}"
+    "$venv_python" -m pip install --quiet "${python_packages[@]}"
+    venv_complete || die "the venv still cannot import $python_modules"
+    say "Python venv ready: $venv_dir"
+fi

@@ -1,0 +1,120 @@
+"""The ddc2d command line (SPEC section 6): usage, exit codes, output files, bad input.
+
+Every failing run must exit with its documented status, print one message naming what was
+wrong, and leave neither the output file nor a .partial file behind.
+"""
+
+import subprocess
+
+import h5py
+import numpy as np
+import pytest
+
+from conftest import ddc2d_exe
+
+GOOD_MODEL = """\
+&model youngs_modulus = 1.0, poissons_ratio = 0.25 /
+&fracture x = -1.0, 1.0, y = 0.0, 0.0, elements = 20, condition = 'traction',
+          bc_n = -1.0 /
+"""
+
+
+def run(args, cwd):
+    return subprocess.run([str(ddc2d_exe()), *map(str, args)], cwd=cwd, capture_output=True,
+                          text=True, timeout=120)
+
+
+def leftovers(folder):
+    return sorted(p.name for p in folder.iterdir() if p.suffix in (".h5", ".partial"))
+
+
+def test_version_and_help(tmp_path):
+    done = run(["--version"], tmp_path)
+    assert done.returncode == 0
+    assert done.stdout.startswith("ddc2d ")
+    done = run(["--help"], tmp_path)
+    assert done.returncode == 0
+    assert "usage: ddc2d INPUT.nml" in done.stdout
+
+
+@pytest.mark.parametrize("args, words", [
+    ([], "no input file"),
+    (["--frobnicate"], "unknown option --frobnicate"),
+    (["model.nml", "-o"], "needs a file name"),
+])
+def test_bad_usage_exits_2(tmp_path, args, words):
+    done = run(args, tmp_path)
+    assert done.returncode == 2
+    assert words in done.stderr
+
+
+def test_good_model_writes_complete_file(tmp_path):
+    (tmp_path / "crack.nml").write_text(GOOD_MODEL)
+    done = run(["crack.nml"], tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert leftovers(tmp_path) == ["crack.h5"]  # default name: input base name + .h5
+    with h5py.File(tmp_path / "crack.h5") as f:
+        assert f.attrs["complete"] == 1
+        dn = f["elements/dn"][:]
+        assert dn.shape == (20,)
+        assert np.all(dn < 0.0)  # the pressurized crack opens
+        assert b"bc_n = -1.0" in f.attrs["input_text"]
+
+
+def test_output_option_overrides_default(tmp_path):
+    (tmp_path / "crack.nml").write_text(GOOD_MODEL)
+    done = run(["crack.nml", "-o", "other.h5"], tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert leftovers(tmp_path) == ["other.h5"]
+
+
+def test_missing_input_file(tmp_path):
+    done = run(["absent.nml"], tmp_path)
+    assert done.returncode == 2
+    assert "absent.nml" in done.stderr
+    assert leftovers(tmp_path) == []
+
+
+def test_unwritable_output_path_is_bad_input(tmp_path):
+    (tmp_path / "crack.nml").write_text(GOOD_MODEL)
+    done = run(["crack.nml", "-o", "no/such/folder/out.h5"], tmp_path)
+    assert done.returncode == 2
+    assert "no/such/folder/out.h5" in done.stderr
+    assert leftovers(tmp_path) == []
+
+
+@pytest.mark.parametrize("text, words", [
+    (GOOD_MODEL.replace("youngs_modulus", "youngs_modulu"), ["youngs_modulu"]),
+    (GOOD_MODEL.replace("youngs_modulus = 1.0", "youngs_modulus = -1.0"),
+     ["&model", "youngs_modulus"]),
+    (GOOD_MODEL.replace("poissons_ratio = 0.25", "poissons_ratio = 0.5"),
+     ["&model", "poissons_ratio"]),
+    (GOOD_MODEL.replace("elements = 20", "elements = 0"), ["&fracture", "elements"]),
+    (GOOD_MODEL.replace("bc_n = -1.0", "bc_n = NaN"), ["&fracture", "bc_n"]),
+    (GOOD_MODEL.replace("y = 0.0, 0.0", "y = 0.0"), ["&fracture", "y"]),
+    (GOOD_MODEL.split("&fracture")[0], ["&fracture"]),
+    (GOOD_MODEL + "&grid nx = 0, ny = 3, xmin = 0, xmax = 1, ymin = 0, ymax = 1 /\n",
+     ["&grid", "nx"]),
+    (GOOD_MODEL.replace("condition = 'traction',", "condition = 'contact', mu = -0.1,")
+     .replace("bc_n = -1.0", ""), ["&fracture", "mu"]),
+])
+def test_bad_input_exits_2_without_output(tmp_path, text, words):
+    (tmp_path / "bad.nml").write_text(text)
+    done = run(["bad.nml"], tmp_path)
+    assert done.returncode == 2, done.stdout + done.stderr
+    assert "bad.nml" in done.stderr
+    for word in words:
+        assert word in done.stderr
+    assert leftovers(tmp_path) == []
+
+
+def test_duplicate_fracture_is_bad_input(tmp_path):
+    # Elements on top of each other would make the influence matrix singular; the mesh
+    # checks reject them before any solve.
+    text = GOOD_MODEL + ("&fracture x = -1.0, 1.0, y = 0.0, 0.0, elements = 20, "
+                         "condition = 'traction' /\n")
+    (tmp_path / "dup.nml").write_text(text)
+    done = run(["dup.nml"], tmp_path)
+    assert done.returncode == 2
+    assert "duplicates" in done.stderr
+    assert leftovers(tmp_path) == []
