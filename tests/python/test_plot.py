@@ -227,8 +227,16 @@ def test_map_uses_clim_and_draws_every_element(plot_module, result_file):
 def test_default_clim_is_symmetric_for_signed_quantities(plot_module, result_file):
     field = plot_module.load_result(result_file)["fields"]["grid1"]
     _, _, sxy = plot_module.grid_quantity(field, "sxy")
+    assert sxy.min() < 0.0 < sxy.max()
     low, high = plot_module.default_clim(sxy, "sxy")
     assert low == -high and high > 0.0
     _, _, shear = plot_module.grid_quantity(field, "max_shear")
     low, high = plot_module.default_clim(shear, "max_shear")
-    assert low == 0.0 and 0.0 < high <= shear.max()
+    assert shear.min() <= low < high <= shear.max()
+
+
+def test_default_clim_follows_one_signed_data(plot_module):
+    # A compressive tectonic sxx never crosses zero: the limits keep to the data.
+    values = plot_module.np.ma.masked_array(-150.0 + plot_module.np.linspace(0.0, 10.0, 101))
+    low, high = plot_module.default_clim(values, "sxx")
+    assert -150.0 <= low < high <= -140.0
