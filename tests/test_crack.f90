@@ -112,8 +112,10 @@ contains
         model%syy = sigma
         call solve(model, r, error)
         if (allocated(error)) return
-        call check(error, r%tips%k1(1), sigma * sin(b)**2 * sqrt(pi * a), 'K_I tip 1', rel_tol=1.0e-3_wp)
-        call check(error, r%tips%k1(2), sigma * sin(b)**2 * sqrt(pi * a), 'K_I tip 2', rel_tol=1.0e-3_wp)
+        call check(error, r%tips%k1(1), sigma * sin(b)**2 * sqrt(pi * a), 'K_I tip 1', &
+                   rel_tol=1.0e-3_wp)
+        call check(error, r%tips%k1(2), sigma * sin(b)**2 * sqrt(pi * a), 'K_I tip 2', &
+                   rel_tol=1.0e-3_wp)
         call check(error, r%tips%k2(1), sigma * sin(b) * cos(b) * sqrt(pi * a), 'K_II tip 1', &
                    rel_tol=1.0e-3_wp)
         call check(error, r%tips%k2(2), sigma * sin(b) * cos(b) * sqrt(pi * a), 'K_II tip 2', &

@@ -54,8 +54,10 @@ contains
         call omp_set_num_threads(saved)
         if (allocated(error)) return
         call check(error, two%solver%threads, 2, 'threads recorded')
-        call check(error, difference(one%elements%ds, two%elements%ds), 0.0_wp, 'ds', abs_tol=1.0e-12_wp)
-        call check(error, difference(one%elements%dn, two%elements%dn), 0.0_wp, 'dn', abs_tol=1.0e-12_wp)
+        call check(error, difference(one%elements%ds, two%elements%ds), 0.0_wp, 'ds', &
+                   abs_tol=1.0e-12_wp)
+        call check(error, difference(one%elements%dn, two%elements%dn), 0.0_wp, 'dn', &
+                   abs_tol=1.0e-12_wp)
         call check(error, difference(one%elements%us_minus, two%elements%us_minus), 0.0_wp, &
                    'us(-)', abs_tol=1.0e-12_wp)
         call check(error, difference(one%fields(1)%sxx, two%fields(1)%sxx), 0.0_wp, 'sxx', &

@@ -36,8 +36,10 @@ contains
         elements%y_mid = 0.5_wp * (elements%y_begin + elements%y_end)
         elements%half_length = 0.5_wp * length
         ! Zero-length elements are rejected by the mesh checks; avoid 0/0 before that.
-        elements%cos_beta = merge(dx, 1.0_wp, length > 0.0_wp) / merge(length, 1.0_wp, length > 0.0_wp)
-        elements%sin_beta = merge(dy, 0.0_wp, length > 0.0_wp) / merge(length, 1.0_wp, length > 0.0_wp)
+        elements%cos_beta = merge(dx, 1.0_wp, length > 0.0_wp) / &
+                            merge(length, 1.0_wp, length > 0.0_wp)
+        elements%sin_beta = merge(dy, 0.0_wp, length > 0.0_wp) / &
+                            merge(length, 1.0_wp, length > 0.0_wp)
     end subroutine compute_geometry
 
 end module ddc_mesh_geometry

@@ -98,7 +98,8 @@ contains
                 model%elements%symmetry%ysym, ' IS A LINE OF SYMMETRY.'
         case (symmetry_both)
             write (unit, '(a,es11.4,a,es11.4,a/)', iostat=stat, iomsg=iomsg) &
-                ' THE LINES X =', model%elements%symmetry%xsym, ' AND Y =', model%elements%symmetry%ysym, &
+                ' THE LINES X =', model%elements%symmetry%xsym, ' AND Y =', &
+                model%elements%symmetry%ysym, &
                 ' ARE LINES OF SYMMETRY.'
         case default
             write (unit, '(a/)', iostat=stat, iomsg=iomsg) ' NO SYMMETRY CONDITIONS IMPOSED.'

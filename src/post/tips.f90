@@ -39,7 +39,8 @@ contains
         end_is_shared = .false.
         do j = 1, elements%n
             if (j == i) cycle
-            tol = shared_end_tolerance * 2.0_wp * min(elements%half_length(i), elements%half_length(j))
+            tol = shared_end_tolerance * 2.0_wp * &
+                  min(elements%half_length(i), elements%half_length(j))
             if (hypot(elements%x_begin(j) - x, elements%y_begin(j) - y) <= tol .or. &
                 hypot(elements%x_end(j) - x, elements%y_end(j) - y) <= tol) then
                 end_is_shared = .true.
