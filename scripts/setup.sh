@@ -4,7 +4,8 @@
 #   scripts/setup.sh
 #
 # 1. Debian packages (compiler, CMake, Ninja, OpenBLAS/LAPACK, serial HDF5, h5dump,
-#    python3 + venv): installed with apt-get only when one of them is missing.
+#    python3 + venv, valgrind for the memcheck tests): installed with apt-get only when
+#    one of them is missing.
 # 2. A Python virtual environment in build/venv with numpy, h5py, matplotlib and pytest
 #    from PyPI: created/installed only when missing or broken.
 #
@@ -16,7 +17,7 @@ repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$repo_root"
 
 debian_packages=(gfortran cmake ninja-build libopenblas-dev liblapack-dev libhdf5-dev
-                 hdf5-tools python3 python3-venv)
+                 hdf5-tools python3 python3-venv valgrind)
 python_packages=(numpy h5py matplotlib pytest)
 python_modules="numpy, h5py, matplotlib, pytest"
 venv_dir="$repo_root/build/venv"

@@ -3,6 +3,7 @@ program ddc2d_tester
     use ddc_testing, only: test_case, run_suite
     use test_output, only: collect_output
     use test_kernel, only: collect_kernel
+    use test_half_plane_kernel, only: collect_half_plane_kernel
     use test_input, only: collect_input
     use test_mesh, only: collect_mesh
     use test_lemke, only: collect_lemke
@@ -27,6 +28,8 @@ program ddc2d_tester
     select case (trim(suite))
     case ('kernel')
         call collect_kernel(tests)
+    case ('half_plane_kernel')
+        call collect_half_plane_kernel(tests)
     case ('input')
         call collect_input(tests)
     case ('mesh')

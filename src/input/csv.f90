@@ -8,7 +8,7 @@ module ddc_input_csv
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_input_text_file, only: read_text_file
     use ddc_input_messages, only: newline, add_message, messages_error, itoa, lower
-    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+    use ddc_input_limits, only: within_limits, limits_text
     implicit none
     private
 
@@ -133,9 +133,9 @@ contains
                 if (stat /= 0) then
                     call add_message(messages, nbad, prefix//'field '//itoa(k)//" '"//field// &
                                      "' is not a number")
-                else if (.not. ieee_is_finite(row(k))) then
+                else if (.not. within_limits(row(k))) then
                     call add_message(messages, nbad, prefix//'field '//itoa(k)//" '"//field// &
-                                     "' is not a finite number")
+                                     "'"//limits_text)
                     row(k) = 0.0_wp
                 end if
             end if

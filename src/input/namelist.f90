@@ -21,22 +21,23 @@ module ddc_input_namelist
     use ddc_mesh_polyline, only: polyline_elements, expand_per_segment
     use ddc_mesh_geometry, only: allocate_elements, compute_geometry
     use ddc_mesh_checks, only: check_elements
-    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+    use ddc_input_limits, only: within_limits, limits_text
     implicit none
     private
 
-    public :: read_namelist_model, namelist_group_names
+    public :: read_namelist_model, namelist_group_names, group_line, group_problem
     public :: max_vertices, max_elements, max_observation_points
 
     !> Names of the namelist groups ddc2d knows
-    character(len=*), parameter :: namelist_group_names(9) = [character(len=13) :: &
+    !> (&sweep is read by ddc_input_sweep; the model reader skips it)
+    character(len=*), parameter :: namelist_group_names(10) = [character(len=13) :: &
         'model', 'remote_stress', 'fracture', 'grid', 'line', 'points', 'solver', 'output', &
-        'symmetry']
+        'symmetry', 'sweep']
     integer, parameter :: g_model = 1, g_remote_stress = 2, g_fracture = 3, g_grid = 4, &
                           g_line = 5, g_points = 6, g_solver = 7, g_output = 8, g_symmetry = 9
     !> Groups that may appear more than once
-    logical, parameter :: repeatable(9) = [.false., .false., .true., .true., .true., &
-                                           .true., .false., .false., .false.]
+    logical, parameter :: repeatable(10) = [.false., .false., .true., .true., .true., &
+                                            .true., .false., .false., .false., .false.]
 
     !> Largest number of polyline vertices of one &fracture (size of the namelist arrays)
     integer, parameter :: max_vertices = 100000
@@ -158,6 +159,50 @@ contains
     ! ------------------------------------------------------------------------------------
     ! Scanning the text for groups
     ! ------------------------------------------------------------------------------------
+
+    !> Line of the first occurrence of the known group `name` in the text of an input
+    !> file, 0 when it is absent (comments and quoted text are ignored).
+    function group_line(text, name) result(line)
+        !> Text of the input file
+        character(len=*), intent(in) :: text
+        !> Name of the group, without '&'
+        character(len=*), intent(in) :: name
+        !> Line number, 0 when the group is absent
+        integer :: line
+        type(group_record) :: groups(size(namelist_group_names))
+        type(message_list) :: ignored
+        integer :: nobs, g
+
+        line = 0
+        g = find_name(name, namelist_group_names)
+        if (g == 0) return
+        call scan_groups(text, '', groups, nobs, ignored)
+        if (groups(g)%count > 0) line = groups(g)%lines(1)
+    end function group_line
+
+    !> The message for a failed namelist read of the first occurrence of the known group
+    !> `name` (present in text), naming the unknown variable or the bad value when found.
+    function group_problem(text, path, name, stat, iomsg, spec) result(message)
+        !> Text and path of the input file
+        character(len=*), intent(in) :: text, path
+        !> Name of the group, without '&'
+        character(len=*), intent(in) :: name
+        !> iostat and iomsg of the failed read
+        integer, intent(in) :: stat
+        character(len=*), intent(in) :: iomsg
+        !> Variables of the group with their types: "name:c x:r n:i"
+        character(len=*), intent(in) :: spec
+        !> The message, one line
+        character(len=:), allocatable :: message
+        type(group_record) :: groups(size(namelist_group_names))
+        type(message_list) :: ignored
+        integer :: nobs, g
+
+        g = find_name(name, namelist_group_names)
+        call scan_groups(text, path, groups, nobs, ignored)
+        message = malformed_message(group_prefix(path, g, groups(g), 1), stat, iomsg, spec, &
+                                    text(groups(g)%starts(1):groups(g)%ends(1)))
+    end function group_problem
 
     !> Count every group in text and note its lines; report unknown and repeated groups.
     subroutine scan_groups(text, path, groups, nobs, messages)
@@ -808,9 +853,10 @@ contains
         prefix = group_prefix(path, g_solver, info, 1)
         model%solver%lcp_method = lower(trim(adjustl(lcp_method)))
         model%solver%open_cohesion = lower(trim(adjustl(open_cohesion)))
-        if (find_name(model%solver%lcp_method, [character(len=5) :: 'auto', 'lemke']) == 0) then
+        if (find_name(model%solver%lcp_method, [character(len=6) :: 'auto', 'lemke', 'newton']) &
+            == 0) then
             call add(messages, prefix//"lcp_method = '"//trim(adjustl(lcp_method))// &
-                     "' is not one of 'auto', 'lemke'")
+                     "' is not one of 'auto', 'lemke', 'newton'")
         end if
         if (find_name(model%solver%open_cohesion, [character(len=4) :: 'kept', 'lost']) == 0) then
             call add(messages, prefix//"open_cohesion = '"//trim(adjustl(open_cohesion))// &
@@ -1278,10 +1324,10 @@ contains
         logical :: ok
 
         ok = .false.
-        if (.not. ieee_is_finite(value)) then
-            call add(messages, prefix//name//' = '//rtoa(value)//' is not a finite number')
-        else if (value == unset_real) then
+        if (value == unset_real) then
             if (required) call add(messages, prefix//name//' is required')
+        else if (.not. within_limits(value)) then
+            call add(messages, prefix//name//' = '//rtoa(value)//limits_text)
         else
             ok = .true.
         end if
@@ -1309,9 +1355,9 @@ contains
             end if
         end do
         do i = 1, n
-            if (.not. ieee_is_finite(values(i))) then
+            if (.not. within_limits(values(i))) then
                 call add(messages, prefix//name//'('//itoa(i)//') = '//rtoa(values(i))// &
-                         ' is not a finite number')
+                         limits_text)
                 exit
             end if
         end do
@@ -1362,7 +1408,7 @@ contains
         integer :: i
 
         do i = 1, size(values)
-            if (.not. ieee_is_finite(values(i))) cycle
+            if (.not. within_limits(values(i))) cycle
             if (values(i) < 0.0_wp) then
                 call add(messages, prefix//name//'('//itoa(i)//') = '//rtoa(values(i))// &
                          ' must be >= 0')
@@ -1385,7 +1431,7 @@ contains
         ok = .false.
         min_ok = check_scalar(vmin, axis//'min', .true., prefix, messages)
         max_ok = check_scalar(vmax, axis//'max', .false., prefix, messages)
-        if (.not. ieee_is_finite(vmax)) return
+        if (vmax /= unset_real .and. .not. within_limits(vmax)) return
         if (n == unset_integer) then
             call add(messages, prefix//'n'//axis//' is required (the number of grid lines)')
             return

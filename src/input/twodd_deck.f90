@@ -10,10 +10,10 @@
 !> record (NUMPB interior points plus both ends; one point when the ends coincide).
 !> Every problem is reported with the file name and the line number.
 module ddc_input_twodd_deck
-    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+    use ddc_input_limits, only: within_limits
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
-    use ddc_model_types, only: model_type, solver_options, fracture_type, observation_line, &
+    use ddc_model_types, only: model_type, solver_options, observation_line, &
         symmetry_x, symmetry_y, symmetry_both, condition_traction, &
         condition_mixed_ss_un
     use ddc_input_text_file, only: read_text_file, base_name
@@ -125,8 +125,9 @@ contains
                             iomsg)
             return
         end if
-        if (.not. all(ieee_is_finite([pr, e, xsym, ysym]))) then
-            call fail(error, deck, first_line, 'PR, E, XSYM, YSYM must be finite numbers')
+        if (.not. all(within_limits([pr, e, xsym, ysym]))) then
+            call fail(error, deck, first_line, 'PR, E, XSYM, YSYM must be finite numbers '// &
+                      'of magnitude 0 or 1e-50 .. 1e50')
             return
         end if
         if (.not. (pr > -1.0_wp .and. pr < 0.5_wp)) then
@@ -151,8 +152,9 @@ contains
             call bad_record(error, deck, first_line, 'PXX, PYY, PXY (three reals)', stat, iomsg)
             return
         end if
-        if (.not. all(ieee_is_finite([pxx, pyy, pxy]))) then
-            call fail(error, deck, first_line, 'PXX, PYY, PXY must be finite numbers')
+        if (.not. all(within_limits([pxx, pyy, pxy]))) then
+            call fail(error, deck, first_line, 'PXX, PYY, PXY must be finite numbers '// &
+                      'of magnitude 0 or 1e-50 .. 1e50')
             return
         end if
 
@@ -217,10 +219,11 @@ contains
                 call fail(error, deck, first_line, 'segment '//itoa(k)//': KODE = '// &
                           itoa(s%kode)//' must be 1 (tractions), 2 (displacements), '// &
                           '3 (us and sigma_n) or 4 (sigma_s and un)')
-            else if (.not. all(ieee_is_finite([s%xbeg, s%ybeg, s%xend, s%yend, s%bvs, &
+            else if (.not. all(within_limits([s%xbeg, s%ybeg, s%xend, s%yend, s%bvs, &
                                                s%bvn]))) then
                 call fail(error, deck, first_line, 'segment '//itoa(k)// &
-                          ': coordinates and boundary values must be finite numbers')
+                          ': coordinates and boundary values must be finite numbers '// &
+                          'of magnitude 0 or 1e-50 .. 1e50')
             else if (s%xbeg == s%xend .and. s%ybeg == s%yend) then
                 call fail(error, deck, first_line, 'segment '//itoa(k)// &
                           ': its ends coincide (zero length)')
@@ -252,8 +255,11 @@ contains
                 model%elements%condition(first:last) = s%kode
                 model%elements%bc_s(first:last) = s%bvs
                 model%elements%bc_n(first:last) = s%bvn
-                model%fractures(k) = fracture_type(name='segment_'//itoa(k), &
-                                                   first_element=first, last_element=last)
+                ! Component by component: gfortran 12 leaks the temporary of a structure
+                ! constructor with an allocatable character component.
+                model%fractures(k)%name = 'segment_'//itoa(k)
+                model%fractures(k)%first_element = first
+                model%fractures(k)%last_element = last
             end associate
         end do
         model%elements%mu = 0.0_wp
@@ -288,9 +294,10 @@ contains
                                 ': four reals and an integer', stat, iomsg)
                 return
             end if
-            if (.not. all(ieee_is_finite([xb, yb, xe, ye]))) then
+            if (.not. all(within_limits([xb, yb, xe, ye]))) then
                 call fail(error, deck, first_line, 'observation line '//itoa(k)// &
-                          ': coordinates must be finite numbers')
+                          ': coordinates must be finite numbers of magnitude 0 or '// &
+                          '1e-50 .. 1e50')
                 return
             end if
             if (numpb < 0 .or. numpb > max_count) then
