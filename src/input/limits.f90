@@ -14,7 +14,7 @@ module ddc_input_limits
 
     !> What a value outside the limits is told, after "x = value".
     character(len=*), parameter :: limits_text = &
-        ' is not 0 or a finite number of magnitude between 1e-50 and 1e50'
+        ' is not a finite number of magnitude 0 or 1e-50 .. 1e50'
 
 contains
 
