@@ -5,7 +5,7 @@ module ddc_app_command_line
     private
 
     public :: command_line_options, parse_command_line, usage_text
-    public :: action_run, action_version, action_help
+    public :: action_run, action_version, action_help, task_number
 
     !> What the program was asked to do
     integer, parameter :: action_run = 1, action_version = 2, action_help = 3
@@ -22,6 +22,12 @@ module ddc_app_command_line
         character(len=:), allocatable :: output_file
         !> TWODD-style result tables from --res; unallocated when absent
         character(len=:), allocatable :: res_file
+        !> List the tasks of a sweep (--list) instead of running
+        logical :: list = .false.
+        !> Sweep task from --task K; -1 when absent
+        integer :: task = -1
+        !> Value of SLURM_ARRAY_TASK_ID when --task is absent and the variable is set
+        character(len=:), allocatable :: environment_task
     end type command_line_options
 
 contains
@@ -32,6 +38,7 @@ contains
         character(len=*), parameter :: nl = new_line('a')
 
         text = 'usage: ddc2d INPUT.nml [-o OUT.h5] [--res RES.txt]'//nl// &
+               '       ddc2d SWEEP.nml --list | --task K [-o OUT.h5]'//nl// &
                '       ddc2d --twodd DECK [-o OUT.h5] [--res RES.txt]'//nl// &
                '       ddc2d --version | --help'//nl//nl// &
                'Solves a 2D displacement discontinuity model of faults and fractures given as'//nl// &
@@ -44,7 +51,13 @@ contains
                '                  print, at full precision (es24.15); observation points'//nl// &
                '                  that TWODD would skip (within one element length of an'//nl// &
                '                  element centre) are computed and marked * (** on an'//nl// &
-               '                  element: NaN)'//nl//nl// &
+               '                  element: NaN)'//nl// &
+               '  --list          print the tasks of the &sweep group: "tasks: N", then one'//nl// &
+               '                  line per task with its parameters and output file'//nl// &
+               '  --task K        run task K (0 to N-1) of the &sweep group (without'//nl// &
+               '                  --task: $SLURM_ARRAY_TASK_ID when set); the output is'//nl// &
+               '                  OUT.h5 with _task<K> (zero-padded) before .h5; a task'//nl// &
+               '                  with a complete output is skipped (exit status 0)'//nl//nl// &
                'Exit status: 0 success; 1 no solution or solver failure; 2 bad input or'//nl// &
                'usage; 3 I/O failure. A failed run leaves no output file.'
     end function usage_text
@@ -99,6 +112,17 @@ contains
                     call set_error(error, exit_bad_input, 'the --res file name is empty')
                     return
                 end if
+            case ('--list')
+                options%list = .true.
+            case ('--task')
+                if (i == n) then
+                    call set_error(error, exit_bad_input, 'option '//arg//' needs a task number')
+                    return
+                end if
+                i = i + 1
+                arg = argument(i)
+                options%task = task_number(arg, '--task '//arg, error)
+                if (allocated(error)) return
             case ('--twodd')
                 if (i == n) then
                     call set_error(error, exit_bad_input, 'option '//arg//' needs a deck file')
@@ -124,11 +148,49 @@ contains
                 options%input_file = arg
             end select
         end do
+        if (options%twodd .and. (options%list .or. options%task >= 0)) then
+            call set_error(error, exit_bad_input, '--list and --task need a namelist file '// &
+                           'with a &sweep group, not a TWODD deck')
+            return
+        end if
+        if (options%list .and. options%task >= 0) then
+            call set_error(error, exit_bad_input, 'give --list or --task, not both')
+            return
+        end if
+        if (options%task < 0) then
+            call get_environment_variable('SLURM_ARRAY_TASK_ID', length=n, status=i)
+            if (i == 0) then
+                allocate (character(len=n) :: options%environment_task)
+                call get_environment_variable('SLURM_ARRAY_TASK_ID', options%environment_task)
+            end if
+        end if
         if (.not. allocated(options%input_file)) then
             call set_error(error, exit_bad_input, 'no input file given')
         else if (len(options%input_file) == 0) then
             call set_error(error, exit_bad_input, 'the input file name is empty')
         end if
     end subroutine parse_command_line
+
+    !> A task number (a non-negative integer) from text; source names it in the message.
+    function task_number(text, source, error) result(task)
+        !> The text, e.g. '7'
+        character(len=*), intent(in) :: text
+        !> Where it came from, e.g. '--task 7' or 'SLURM_ARRAY_TASK_ID=7'
+        character(len=*), intent(in) :: source
+        !> Allocated with exit_bad_input when text is not a non-negative integer
+        type(error_type), allocatable, intent(out) :: error
+        !> The task number
+        integer :: task
+        integer :: stat
+
+        task = -1
+        stat = 1
+        if (len(text) > 0 .and. len(text) < 10 .and. verify(text, '0123456789') == 0) &
+            read (text, *, iostat=stat) task
+        if (stat /= 0) then
+            call set_error(error, exit_bad_input, source//': the task must be a number '// &
+                           '0, 1, 2, ...')
+        end if
+    end function task_number
 
 end module ddc_app_command_line

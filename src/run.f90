@@ -59,8 +59,8 @@ contains
                       e%us_minus(n), e%un_minus(n), e%us_plus(n), e%un_plus(n), e%state(n))
             if (any(model%elements%condition == condition_contact)) then
                 call solve_frictional(model%elements, g, nu, remote_shear, remote_normal, &
-                                      model%solver%open_cohesion, e%ds, e%dn, e%state, rec, &
-                                      error)
+                                      model%solver%open_cohesion, model%solver%lcp_method, &
+                                      e%ds, e%dn, e%state, rec, error)
             else
                 rec%method = 'lu'
                 call solve_elastic(model%elements, g, nu, remote_shear, remote_normal, e%ds, &

@@ -15,6 +15,8 @@ program ddc2d_tester
     use test_threads, only: collect_threads
     use test_frictional, only: collect_frictional
     use test_twodd_deck, only: collect_twodd_deck
+    use test_fast_contact, only: collect_fast_contact
+    use test_sweep, only: collect_sweep
     implicit none
     type(test_case), allocatable :: tests(:)
     character(len=64) :: suite
@@ -54,6 +56,10 @@ program ddc2d_tester
         call collect_frictional(tests)
     case ('twodd_deck')
         call collect_twodd_deck(tests)
+    case ('fast_contact')
+        call collect_fast_contact(tests)
+    case ('sweep')
+        call collect_sweep(tests)
     case default
         write (*, '(a)') 'unknown suite: '//trim(suite)
         error stop 2

@@ -23,6 +23,19 @@
 !> nonbasic variables) are exactly zero here; basic variables that are zero in exact
 !> arithmetic come out at round-off level, far below the tolerance.
 !>
+!> Methods (argument method of solve_contact, &solver lcp_method):
+!> - 'lemke': the paper's LCP above, solved by the lexicographic Lemke method (reference);
+!> - 'newton': a semismooth Newton / primal-dual active-set method on the stiffness system
+!>   t = S_r + A D (ddc_contact_active_set): no inverse of A, one LU of a reduced system
+!>   per iteration. Its result is certified as the equivalent LCP: z and w of the
+!>   paper's formulation are computed from the DDs and the tractions A D + S_r of the
+!>   unfactored A (so w = M z + q holds by construction) and must pass the same sign and
+!>   complementarity tolerances; the tractions the iteration imposed (s_s = +-tau_s on
+!>   slipping elements, S_n' = 0 on open ones) must match A D + S_r within residual_tol.
+!>   When the iteration does not converge, a reduced system is singular or a check
+!>   fails, the solve falls back to Lemke and the reason is kept (contact_result%fallback);
+!> - 'auto': 'newton' above auto_newton_min_elements contact elements, else 'lemke'.
+!>
 !> open_cohesion: 'kept' (the paper) lets an open element carry shear up to Sf;
 !> 'lost' sets Sf = 0 on every element that opens and solves again until no open
 !> element has cohesion left (the set of such elements only grows, so this terminates).
@@ -31,7 +44,9 @@ module ddc_contact_formulation
     use ddc_error, only: error_type, set_error, exit_solver_failure, exit_bad_input
     use ddc_model_results, only: state_stick, state_slip, state_open
     use ddc_contact_lemke, only: solve_lcp_lemke
-    use ddc_contact_certificate, only: lcp_certificate, certify_lcp
+    use ddc_contact_certificate, only: lcp_certificate, certify_lcp, &
+        certify_complementarity, default_certificate_tolerance
+    use ddc_contact_active_set, only: active_set_result, solve_contact_active_set
     use ddc_solve_lapack, only: dgetrf, dgetri, dgecon, dlange, dgemv
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use, intrinsic :: iso_fortran_env, only: int64
@@ -40,6 +55,7 @@ module ddc_contact_formulation
 
     public :: contact_result, solve_contact
     public :: state_dd_tol, state_stress_tol, residual_tol
+    public :: auto_newton_min_elements, newton_max_iterations
 
     !> Relative tolerance on DDs for the state rule (times dd_scale) [-]
     real(wp), parameter :: state_dd_tol = 1.0e-9_wp
@@ -49,6 +65,10 @@ module ddc_contact_formulation
     real(wp), parameter :: residual_tol = 1.0e-8_wp
     !> Largest accepted reciprocal condition number of A before it is called singular
     real(wp), parameter :: rcond_min = 1.0e3_wp * epsilon(1.0_wp)
+    !> lcp_method = 'auto' uses 'newton' from this many contact elements on, else 'lemke'
+    integer, parameter :: auto_newton_min_elements = 300
+    !> Default iteration limit of the 'newton' method
+    integer, parameter :: newton_max_iterations = 100
 
     !> Solution of a contact problem on n elements; arrays shape (n).
     type :: contact_result
@@ -60,6 +80,12 @@ module ddc_contact_formulation
         integer, allocatable :: state(:)
         !> Frictional strength in force at the end (0 where cohesion was lost) [stress]
         real(wp), allocatable :: sf_effective(:)
+        !> Method that produced the result: 'lemke' or 'newton'
+        character(len=:), allocatable :: method
+        !> Why the 'newton' method fell back to Lemke (empty when it did not)
+        character(len=:), allocatable :: fallback
+        !> Newton (active-set) iterations, summed over solves
+        integer :: iterations = 0
         !> Lemke pivots, summed over all LCP solves
         integer :: pivots = 0
         !> Number of LCP solves (1 unless open_cohesion = 'lost' re-solved)
@@ -70,9 +96,13 @@ module ddc_contact_formulation
         real(wp) :: equilibrium_residual(2) = 0.0_wp
         !> Stress scale sigma0 [stress] and displacement scale delta0 [length] used
         real(wp) :: stress_scale = 1.0_wp, dd_scale = 1.0_wp
-        !> Wall time of the inversion of A (LAPACK) and of the LCP solves (building M,
-        !> Lemke, certificate and recovery, summed over solves) [s]
-        real(wp) :: seconds_inverse = 0.0_wp, seconds_lcp = 0.0_wp
+        !> Wall time of the factorizations (the inverse of A for Lemke, the LU of the reduced
+        !> systems for newton) and of the rest of the contact solves (building M, Lemke or
+        !> the active-set iteration, certificate and recovery, summed over solves) [s]
+        real(wp) :: seconds_factorization = 0.0_wp, seconds_lcp = 0.0_wp
+        !> Nominal flop count of those factorizations (2/3 m^3 per LU of size m; 2 m^3 for
+        !> the inverse of A) [-]
+        real(wp) :: factorization_flops = 0.0_wp
     end type contact_result
 
 
@@ -80,7 +110,7 @@ contains
 
     !> Solve the frictional contact problem of n elements (SPEC section 4).
     subroutine solve_contact(a, s_r_s, s_r_n, mu, sf, pressure, open_cohesion, res, &
-        error, rule)
+        error, rule, method, max_iterations)
         !> Influence matrix ordered [s; n]: traction = s_r + a [Ds; Dn], shape (2n, 2n)
         !> [stress / length]
         real(wp), intent(in) :: a(:, :)
@@ -104,12 +134,18 @@ contains
         type(error_type), allocatable, intent(out) :: error
         !> Tie-breaking rule of Lemke (tests only; default lexicographic)
         integer, intent(in), optional :: rule
+        !> 'lemke' (default), 'newton' or 'auto'
+        character(len=*), intent(in), optional :: method
+        !> Iteration limit of 'newton' (default newton_max_iterations)
+        integer, intent(in), optional :: max_iterations
 
         real(wp), allocatable :: c(:, :), sf_eff(:)
         logical, allocatable :: lose(:)
-        integer :: n, i
+        type(active_set_result) :: states
+        integer :: n, i, limit
         integer(int64) :: t0, t1, rate
-        logical :: lost
+        logical :: lost, newton
+        character(len=:), allocatable :: reason
         character(len=200) :: line
 
         n = size(mu)
@@ -134,6 +170,22 @@ contains
             call set_error(error, exit_bad_input, 'contact: NaN or Inf in the input arrays')
             return
         end if
+        newton = .false.
+        if (present(method)) then
+            select case (method)
+            case ('lemke')
+            case ('newton')
+                newton = .true.
+            case ('auto')
+                newton = n >= auto_newton_min_elements
+            case default
+                call set_error(error, exit_bad_input, "contact: method must be 'auto', &
+                    &'lemke' or 'newton', not '"//method//"'")
+                return
+            end select
+        end if
+        limit = newton_max_iterations
+        if (present(max_iterations)) limit = max_iterations
         if (any(mu < 0.0_wp) .or. any(sf < 0.0_wp)) then
             call set_error(error, exit_bad_input, 'contact: mu and sf must not be negative')
             return
@@ -145,24 +197,35 @@ contains
             return
         end if
 
+        res%method = merge('newton', 'lemke ', newton)
+        res%fallback = ''
         call system_clock(t0, rate)
-        call invert_influence(a, c, error)
-        call system_clock(t1)
-        res%seconds_inverse = real(t1 - t0, wp) / real(max(rate, 1_int64), wp)
-        if (allocated(error)) return
-
         sf_eff = sf
         do
-            call system_clock(t0)
-            call solve_once(a, c, s_r_s, s_r_n, mu, sf_eff, pressure, res, error, rule)
-            call system_clock(t1)
-            res%seconds_lcp = res%seconds_lcp + real(t1 - t0, wp) / real(max(rate, 1_int64), wp)
+            if (newton) then
+                call solve_once_newton(a, s_r_s, s_r_n, mu, sf_eff, pressure, limit, res, &
+                    states, reason)
+                if (len(reason) > 0) then
+                    newton = .false.
+                    res%method = 'lemke'
+                    res%fallback = reason
+                end if
+            end if
+            if (.not. newton) then
+                if (.not. allocated(c)) then
+                    call invert_influence(a, c, res, error)
+                    if (allocated(error)) return
+                end if
+                call solve_once(a, c, s_r_s, s_r_n, mu, sf_eff, pressure, res, error, rule)
+            end if
             if (allocated(error)) then
                 if (res%solves > 1) then
                     write (line, '(a,i0,a)') ' (LCP solve ', res%solves, &
                         ", after cohesion was lost on opening elements)"
                     error%message = error%message//trim(line)
                 end if
+                if (len(res%fallback) > 0) error%message = error%message// &
+                    ' (Lemke was the fallback: '//res%fallback//')'
                 return
             end if
             if (.not. lost) exit
@@ -172,19 +235,26 @@ contains
                 if (lose(i)) sf_eff(i) = 0.0_wp
             end do
         end do
+        call system_clock(t1)
+        res%seconds_lcp = real(t1 - t0, wp) / real(max(rate, 1_int64), wp) - &
+            res%seconds_factorization
     end subroutine solve_contact
 
     !> C = A^-1 by LAPACK (dgetrf, dgetri); singular or numerically singular A is an error.
-    subroutine invert_influence(a, c, error)
+    !> Its time and nominal flops (2 (2n)^3) are added to res.
+    subroutine invert_influence(a, c, res, error)
         real(wp), intent(in) :: a(:, :)
         real(wp), allocatable, intent(out) :: c(:, :)
+        type(contact_result), intent(inout) :: res
         type(error_type), allocatable, intent(out) :: error
+        integer(int64) :: t0, t1, rate
         integer, allocatable :: ipiv(:), iwork(:)
         real(wp), allocatable :: work(:)
         real(wp) :: anorm, rcond
         integer :: n2, n, info, lwork, i, k
         character(len=200) :: line
 
+        call system_clock(t0, rate)
         n2 = size(a, 1)
         n = n2 / 2
         c = a
@@ -225,7 +295,31 @@ contains
             call set_error(error, exit_solver_failure, trim(line))
             return
         end if
+        call system_clock(t1)
+        res%seconds_factorization = res%seconds_factorization + &
+            real(t1 - t0, wp) / real(max(rate, 1_int64), wp)
+        res%factorization_flops = res%factorization_flops + 2.0_wp * real(n2, wp)**3
     end subroutine invert_influence
+
+    !> Stress scale sigma0 (largest resolved remote stress, strength or pressure) and
+    !> displacement scale delta0 = sigma0 / max_i A_ii of a problem; both stored in res.
+    subroutine problem_scales(a, s_r_s, s_r_n, sf, p, res)
+        real(wp), intent(in) :: a(:, :), s_r_s(:), s_r_n(:), sf(:), p(:)
+        type(contact_result), intent(inout) :: res
+        real(wp) :: sigma0, amax
+        integer :: i
+
+        sigma0 = max(maxval(abs(s_r_s)), maxval(abs(s_r_n)), maxval(abs(s_r_n + p)), &
+            maxval(abs(sf)), maxval(abs(p)))
+        if (.not. sigma0 > 0.0_wp) sigma0 = 1.0_wp
+        amax = 0.0_wp
+        do i = 1, size(a, 1)
+            amax = max(amax, abs(a(i, i)))
+        end do
+        if (.not. amax > 0.0_wp) amax = maxval(abs(a))
+        res%stress_scale = sigma0
+        res%dd_scale = sigma0 / amax
+    end subroutine problem_scales
 
     !> One LCP solve with frictional strength sf: build, scale, solve, certify, recover.
     subroutine solve_once(a, c, s_r_s, s_r_n, mu, sf, p, res, error, rule)
@@ -235,10 +329,10 @@ contains
         integer, intent(in), optional :: rule
 
         real(wp), allocatable :: m(:, :), q(:), mt(:, :), qt(:), z(:), w(:), zt(:), wt(:)
-        real(wp), allocatable :: d0(:), srp(:), zs(:), ws(:), dd(:), ad(:), t(:)
-        real(wp), allocatable :: snp(:), tau(:)
-        real(wp) :: sigma0, delta0, dscale, amax, tol_d, tol_s
-        integer :: n, n2, n3, i, j, pivots
+        real(wp), allocatable :: d0(:), srp(:), zs(:), ws(:)
+        real(wp), allocatable :: snp(:)
+        real(wp) :: sigma0, delta0, dscale
+        integer :: n, n2, n3, j, pivots
         character(len=300) :: line
 
         n = size(mu)
@@ -246,17 +340,9 @@ contains
         n3 = 3 * n
 
         ! Scales: stresses by sigma0, displacements by delta0 = sigma0 / max A_ii.
-        sigma0 = max(maxval(abs(s_r_s)), maxval(abs(s_r_n)), maxval(abs(s_r_n + p)), &
-            maxval(abs(sf)), maxval(abs(p)))
-        if (.not. sigma0 > 0.0_wp) sigma0 = 1.0_wp
-        amax = 0.0_wp
-        do i = 1, n2
-            amax = max(amax, abs(a(i, i)))
-        end do
-        if (.not. amax > 0.0_wp) amax = maxval(abs(a))
-        delta0 = sigma0 / amax
-        res%stress_scale = sigma0
-        res%dd_scale = delta0
+        call problem_scales(a, s_r_s, s_r_n, sf, p, res)
+        sigma0 = res%stress_scale
+        delta0 = res%dd_scale
 
         ! D0 = C S_r' with S_r' = [s_r_s; s_r_n + p].
         srp = [s_r_s, s_r_n + p]
@@ -321,33 +407,118 @@ contains
         zs(n2 + 1:n3) = dscale
         ws(1:n2) = dscale
         res%certificate = certify_lcp(m, q, z, w, z_scale=zs, w_scale=ws)
+        call check_solution(a, s_r_s, s_r_n, mu, sf, snp, dscale, res, line)
+        if (len_trim(line) > 0) call set_error(error, exit_solver_failure, trim(line))
+    end subroutine solve_once
+
+    !> One solve by the active-set Newton method (no inverse of A), certified as the
+    !> equivalent LCP. reason is empty on success, else why Lemke must take over.
+    subroutine solve_once_newton(a, s_r_s, s_r_n, mu, sf, p, limit, res, states, reason)
+        real(wp), intent(in) :: a(:, :), s_r_s(:), s_r_n(:), mu(:), sf(:), p(:)
+        integer, intent(in) :: limit
+        type(contact_result), intent(inout) :: res
+        !> States of the previous solve on entry (warm start when allocated); this solve's
+        !> on exit
+        type(active_set_result), intent(inout) :: states
+        character(len=:), allocatable, intent(out) :: reason
+        type(active_set_result) :: next
+        real(wp), allocatable :: tau(:), z(:), w(:), zs(:), ws(:), snp(:)
+        real(wp) :: dscale
+        integer :: n, n2, i
+        character(len=300) :: line
+
+        n = size(mu)
+        n2 = 2 * n
+        call problem_scales(a, s_r_s, s_r_n, sf, p, res)
+        if (allocated(states%open)) then
+            call solve_contact_active_set(a, s_r_s, s_r_n + p, mu, sf, res%stress_scale, &
+                next, limit, states%open, states%shear_state)
+        else
+            call solve_contact_active_set(a, s_r_s, s_r_n + p, mu, sf, res%stress_scale, &
+                next, limit)
+        end if
+        res%iterations = res%iterations + next%iterations
+        res%solves = res%solves + 1
+        res%seconds_factorization = res%seconds_factorization + next%seconds_factorization
+        res%factorization_flops = res%factorization_flops + next%factorization_flops
+        if (.not. next%converged) then
+            reason = 'newton: '//next%reason
+            return
+        end if
+        states = next
+
+        ! z and w of the paper's LCP from the DDs and the tractions A D + S_r of the
+        ! unfactored A; Ds split as D_L - D_R with the smaller part zero.
+        associate (ss => next%shear, snf => next%normal_effective)
+            tau = sf - mu * snf
+            z = [-snf, tau - ss, max(next%ds, 0.0_wp)]
+            w = [-next%dn, max(-next%ds, 0.0_wp), tau + ss]
+        end associate
+        dscale = max(res%dd_scale, maxval(abs(next%ds)), maxval(abs(next%dn)))
+        zs = [spread(res%stress_scale, 1, n2), spread(dscale, 1, n)]
+        ws = [spread(dscale, 1, n2), spread(res%stress_scale, 1, n)]
+        res%certificate = certify_complementarity(z, w, zs, ws, default_certificate_tolerance)
+
+        ! The tractions the iteration imposed: S_n' = 0 on open elements, s_s = +-tau_s
+        ! on slipping ones; elsewhere those of A D + S_r.
+        snp = merge(0.0_wp, next%normal_effective, next%open)
+        res%shear_traction = next%shear
+        do i = 1, n
+            if (next%shear_state(i) /= 0) res%shear_traction(i) = &
+                real(next%shear_state(i), wp) * (sf(i) - mu(i) * snp(i))
+        end do
+        res%normal_traction = snp - p
+        res%ds = next%ds
+        res%dn = next%dn
+        res%sf_effective = sf
+        call check_solution(a, s_r_s, s_r_n, mu, sf, snp, dscale, res, line)
+        reason = 'newton: '//trim(line)
+        if (len_trim(line) == 0) reason = ''
+    end subroutine solve_once_newton
+
+    !> Checks common to both methods on a recovered solution (res%ds, dn, tractions):
+    !> the certificate passed and the DDs are in equilibrium with the tractions against the
+    !> unfactored A; then the states. message is blank on success, else says what failed.
+    subroutine check_solution(a, s_r_s, s_r_n, mu, sf, snp, dscale, res, message)
+        real(wp), intent(in) :: a(:, :), s_r_s(:), s_r_n(:), mu(:), sf(:), snp(:), dscale
+        type(contact_result), intent(inout) :: res
+        character(len=*), intent(out) :: message
+        real(wp), allocatable :: dd(:), ad(:), tau(:)
+        real(wp) :: tol_d, tol_s, scale
+        integer :: n, n2, i
+
+        message = ''
+        n = size(mu)
+        n2 = 2 * n
         if (.not. res%certificate%passed) then
-            write (line, '(a,4(es10.3,a))') 'contact: the LCP solution fails its &
+            write (message, '(a,4(es10.3,a))') 'contact: the LCP solution fails its &
                 &certificate (scaled min z ', res%certificate%min_z, ', min w ', &
                 res%certificate%min_w, ', max |z w| ', res%certificate%max_complementarity, &
                 ', w mismatch ', res%certificate%max_w_mismatch, ')'
-            call set_error(error, exit_solver_failure, trim(line))
             return
         end if
 
         ! Equilibrium of the recovered DDs against the unfactored A.
         dd = [res%ds, res%dn]
-        t = [res%shear_traction, res%normal_traction]
         allocate (ad(n2))
         call dgemv('N', n2, n2, 1.0_wp, a, n2, dd, 1, 0.0_wp, ad, 1)
-        res%equilibrium_residual(1) = block_residual(ad(1:n), s_r_s, t(1:n))
-        res%equilibrium_residual(2) = block_residual(ad(n + 1:n2), s_r_n, t(n + 1:n2))
+        ! Both blocks are tractions: one scale for both, so that a block that vanishes (no
+        ! resolved shear at all) is not measured against its own round-off.
+        scale = max(norm2(ad), norm2([s_r_s, s_r_n]), &
+                    norm2([res%shear_traction, res%normal_traction]))
+        res%equilibrium_residual(1) = block_residual(ad(1:n), s_r_s, res%shear_traction, scale)
+        res%equilibrium_residual(2) = block_residual(ad(n + 1:n2), s_r_n, &
+            res%normal_traction, scale)
         if (.not. maxval(res%equilibrium_residual) <= residual_tol) then
-            write (line, '(a,2(es10.3,a))') 'contact: the recovered DDs are not in &
+            write (message, '(a,2(es10.3,a))') 'contact: the recovered DDs are not in &
                 &equilibrium (relative residual ', res%equilibrium_residual(1), &
                 ' shear, ', res%equilibrium_residual(2), ' normal)'
-            call set_error(error, exit_solver_failure, trim(line))
             return
         end if
 
         ! States.
         tol_d = state_dd_tol * dscale
-        tol_s = state_stress_tol * sigma0
+        tol_s = state_stress_tol * res%stress_scale
         tau = sf - mu * snp
         if (allocated(res%state)) deallocate (res%state)
         allocate (res%state(n))
@@ -361,7 +532,7 @@ contains
                 res%state(i) = state_stick
             end if
         end do
-    end subroutine solve_once
+    end subroutine check_solution
 
     !> 'k (shear DD)' or 'k (normal DD)' for unknown j of the [s; n] ordering.
     function unknown_name(j, n) result(name)
@@ -377,13 +548,11 @@ contains
         name = trim(buffer)
     end function unknown_name
 
-    !> ||ad + s_r - t|| / max(||ad||, ||s_r||, ||t||), 0 when all vanish.
-    pure function block_residual(ad, s_r, t) result(r)
-        real(wp), intent(in) :: ad(:), s_r(:), t(:)
+    !> ||ad + s_r - t|| / scale, 0 when the scale vanishes.
+    pure function block_residual(ad, s_r, t, scale) result(r)
+        real(wp), intent(in) :: ad(:), s_r(:), t(:), scale
         real(wp) :: r
-        real(wp) :: scale
 
-        scale = max(norm2(ad), norm2(s_r), norm2(t))
         if (scale > 0.0_wp) then
             r = norm2(ad + s_r - t) / scale
         else

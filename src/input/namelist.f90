@@ -26,6 +26,7 @@ module ddc_input_namelist
     private
 
     public :: read_namelist_model, namelist_group_names, group_line, group_problem
+    public :: join_integers
     public :: max_vertices, max_elements, max_observation_points
 
     !> Names of the namelist groups ddc2d knows
@@ -1554,9 +1555,11 @@ contains
         end do
     end function quoted_list
 
-    !> "1, 9, 12"
+    !> "1, 9, 12": integers joined with commas.
     function join_integers(values) result(out)
+        !> The integers
         integer, intent(in) :: values(:)
+        !> The text
         character(len=:), allocatable :: out
         integer :: i
 

@@ -56,8 +56,14 @@ module ddc_model_results
 
     !> What the solver did and how long it took.
     type :: solver_record
-        !> Method used for the elastic or contact solve
+        !> Method used for the elastic or contact solve ('lu', 'lemke' or 'newton')
         character(len=:), allocatable :: method
+        !> Why the 'newton' contact method fell back to Lemke ('' when it did not)
+        character(len=:), allocatable :: fallback
+        !> Newton (active-set) iterations summed over contact solves
+        integer :: newton_iterations = 0
+        !> Nominal flop count of the timed factorizations (2/3 m^3 per LU of size m) [-]
+        real(wp) :: factorization_flops = 0.0_wp
         !> Number of OpenMP threads
         integer :: threads = 1
         !> LCP pivots summed over LCP solves, and the number of LCP solves (more than one

@@ -10,7 +10,7 @@ module ddc_model_types
 
     public :: model_type, element_set, fracture_type, observation_set, solver_options
     public :: symmetry_options, symmetry_none, symmetry_x, symmetry_y, symmetry_both
-    public :: symmetry_names
+    public :: symmetry_names, sweep_task_record
     public :: condition_traction, condition_displacement, condition_mixed_us_sn
     public :: condition_mixed_ss_un, condition_contact, condition_names
     public :: observation_grid, observation_line, observation_points, observation_kind_names
@@ -95,11 +95,23 @@ module ddc_model_types
 
     !> Options of the contact solver.
     type :: solver_options
-        !> LCP method: 'auto' or 'lemke'
+        !> LCP method: 'auto', 'lemke' or 'newton'
         character(len=:), allocatable :: lcp_method
         !> Cohesion on open elements: 'kept' (the paper) or 'lost'
         character(len=:), allocatable :: open_cohesion
     end type solver_options
+
+    !> The task of a parameter sweep a model is (SPEC section 6), stored in its output.
+    type :: sweep_task_record
+        !> Task number, 0-based; -1 when the model is not a sweep task
+        integer :: task = -1
+        !> Number of tasks of the sweep; 0 when the model is not a sweep task
+        integer :: tasks = 0
+        !> Parameter names as written in &sweep, shape (number of parameters)
+        character(len=64), allocatable :: names(:)
+        !> The task's value of each parameter, shape (number of parameters)
+        real(wp), allocatable :: values(:)
+    end type sweep_task_record
 
     !> A complete model, independent of the input format it came from.
     type :: model_type
@@ -123,6 +135,8 @@ module ddc_model_types
         character(len=:), allocatable :: output_file
         !> Input file path and its full text, kept for self-description
         character(len=:), allocatable :: input_file, input_text
+        !> The sweep task this model is, when it is one
+        type(sweep_task_record) :: sweep
     end type model_type
 
 end module ddc_model_types

@@ -14,7 +14,8 @@
 !> - /tips/{x, y, fracture_id, element, k1, k2} (empty datasets when there are no tips);
 !> - /fields/<name>/{x, y, ux, uy, sxx, syy, sxy, near_element}, grids shaped (ny, nx)
 !>   in h5py (Fortran dims (nx, ny)), lines and point lists 1-D;
-!> - /solver attributes and /solver/seconds/<phase> scalar datasets.
+!> - /solver attributes and /solver/seconds/<phase> scalar datasets;
+!> - /sweep attributes task, tasks, parameters and one per parameter (sweep tasks only).
 module ddc_output_hdf5
     use, intrinsic :: iso_c_binding, only: c_char, c_null_char, c_loc
     use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5close_f, h5eset_auto_f, &
@@ -105,6 +106,7 @@ contains
             call write_tips(root, model, results, error)
             call write_fields(root, model, results, error)
             call write_solver(root, results, error)
+            if (model%sweep%tasks > 0) call write_sweep(root, model, error)
             call write_attribute(root, 'complete', 1, error)
             call h5fclose_f(root%id, close_status)
             if (close_status /= 0 .and. .not. allocated(error)) then
@@ -255,6 +257,32 @@ contains
         call close_group(group, error)
     end subroutine write_fractures
 
+    !> /sweep (sweep tasks only): attributes task, tasks, parameters (the names, comma
+    !> separated, in &sweep order) and one real attribute per parameter with its value.
+    subroutine write_sweep(root, model, error)
+        type(h5_object), intent(in) :: root
+        type(model_type), intent(in) :: model
+        type(error_type), allocatable, intent(inout) :: error
+        type(h5_object) :: group
+        character(len=:), allocatable :: names
+        integer :: i
+
+        call create_group(root, 'sweep', group, error)
+        if (allocated(error)) return
+        call write_attribute(group, 'task', model%sweep%task, error)
+        call write_attribute(group, 'tasks', model%sweep%tasks, error)
+        names = trim(model%sweep%names(1))
+        do i = 2, size(model%sweep%names)
+            names = names//', '//trim(model%sweep%names(i))
+        end do
+        call write_attribute(group, 'parameters', names, error)
+        do i = 1, size(model%sweep%names)
+            call write_attribute(group, trim(model%sweep%names(i)), model%sweep%values(i), &
+                                 error)
+        end do
+        call close_group(group, error)
+    end subroutine write_sweep
+
     !> /tips: position, fracture, element and stress intensity factors; empty if no tips.
     subroutine write_tips(root, model, results, error)
         type(h5_object), intent(in) :: root
@@ -350,6 +378,9 @@ contains
         if (allocated(error)) return
         associate (s => results%solver, state => results%elements%state)
             call write_attribute(solver, 'method', text(s%method), error)
+            call write_attribute(solver, 'fallback', text(s%fallback), error)
+            call write_attribute(solver, 'newton_iterations', s%newton_iterations, error)
+            call write_attribute(solver, 'factorization_flops', s%factorization_flops, error)
             call write_attribute(solver, 'threads', s%threads, error)
             call write_attribute(solver, 'pivots', s%pivots, error)
             call write_attribute(solver, 'lcp_solves', s%lcp_solves, error)

@@ -23,7 +23,7 @@ contains
 
     !> Solve a model with at least one contact element.
     subroutine solve_frictional(elements, shear_modulus, nu, remote_shear, remote_normal, &
-                                open_cohesion, ds, dn, state, record, error)
+                                open_cohesion, lcp_method, ds, dn, state, record, error)
         !> Elements with geometry computed
         type(element_set), intent(in) :: elements
         !> Shear modulus [stress unit] and Poisson's ratio [-]
@@ -32,6 +32,8 @@ contains
         real(wp), intent(in) :: remote_shear(:), remote_normal(:)
         !> 'kept' or 'lost' (SPEC section 4)
         character(len=*), intent(in) :: open_cohesion
+        !> 'auto', 'lemke' or 'newton' (SPEC section 4; ddc_contact_formulation)
+        character(len=*), intent(in) :: lcp_method
         !> Displacement discontinuities [length unit], shape (n)
         real(wp), intent(out) :: ds(:), dn(:)
         !> Element states (state_free for TWODD-style elements), shape (n)
@@ -64,9 +66,12 @@ contains
         call system_clock(t1)
         record%seconds_assembly = real(t1 - t0, wp) / real(rate, wp)
 
-        a_contact = matrix(cu, cu)
         shift = [remote_shear(contact), remote_normal(contact)]
-        if (nf > 0) then
+        if (nf == 0) then
+            ! Every element is a contact element: A is the whole matrix (no copy).
+            call move_alloc(matrix, a_contact)
+        else
+            a_contact = matrix(cu, cu)
             ! y = K_FF^-1 [b_F, K_FC]
             kff = matrix(fu, fu)
             allocate (y(2 * nf, 1 + 2 * nc), ipiv(2 * nf))
@@ -89,20 +94,26 @@ contains
 
         call solve_contact(a_contact, shift(1:nc), shift(nc + 1:), elements%mu(contact), &
                            elements%sf(contact), elements%pressure(contact), open_cohesion, &
-                           res, error)
+                           res, error, method=lcp_method)
         if (allocated(error)) then
             if (nc < n) error%message = error%message// &
                 ' (element numbers count the contact elements only)'
             return
         end if
-        record%method = 'lemke'
+        record%method = res%method
+        record%fallback = res%fallback
+        record%newton_iterations = res%iterations
+        ! Condensation: LU of K_FF, its solve for 2 nc + 1 right-hand sides and the product.
+        record%factorization_flops = res%factorization_flops + 2.0_wp / 3.0_wp * &
+            real(2 * nf, wp)**3 + 2.0_wp * real(2 * nf, wp)**2 * real(2 * nc + 1, wp) + &
+            2.0_wp * real(2 * nc, wp)**2 * real(2 * nf, wp)
         record%pivots = res%pivots
         record%lcp_solves = res%solves
         record%certificate_min_z = res%certificate%min_z
         record%certificate_min_w = res%certificate%min_w
         record%certificate_max_complementarity = res%certificate%max_complementarity
         record%certificate_tolerance = res%certificate%tolerance
-        record%seconds_factorization = record%seconds_factorization + res%seconds_inverse
+        record%seconds_factorization = record%seconds_factorization + res%seconds_factorization
         record%seconds_lcp = res%seconds_lcp
         record%equilibrium_residual = maxval(res%equilibrium_residual)
 

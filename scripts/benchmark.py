@@ -1,0 +1,251 @@
+#!/usr/bin/env python3
+"""Benchmark ddc2d (SPEC sections 6 and 8).
+
+    benchmark.py --exe PATH --sizes 250,500,1000 --case straight|mixed --json FILE
+                 [--threads T] [--lcp-method auto|lemke|newton] [--grid NX]
+                 [--lu-exe PATH] [--workdir DIR]
+
+For every size N it writes a namelist model with N contact elements, runs ``ddc2d`` on it,
+reads the phase times from ``/solver/seconds`` of the HDF5 output (the output phase from
+the run summary, as the file is written during that phase), measures the peak resident
+memory of the run (``os.wait4``), and times one LAPACK LU (DGETRF) of a 2N x 2N random
+matrix with ``ddc2d_lu_benchmark`` (tests/lu_benchmark.f90, linked to the same LAPACK as
+ddc2d; by default next to the executable's build: ``<build>/tests/ddc2d_lu_benchmark``).
+
+Cases:
+  straight  the paper's fault: (-1, 0)-(1, 0), mu = 0.6, Sf = 1, principal stresses -175 and
+            -50 MPa at 30 degrees (every element slips);
+  mixed     a kinked fault network (two faults, each with a flat, a 35-degree and a flat
+            segment) under fluid pressure on part of it: elements stick, slip and open.
+
+Threads: ``OMP_NUM_THREADS`` and ``OPENBLAS_NUM_THREADS`` are both set to T (default: the
+number of CPUs); ddc2d calls BLAS outside its OpenMP regions only, so the two never nest.
+
+The table printed and the JSON records (a list) hold
+``{n, case, threads, seconds: {assembly, factorization, lcp, fields, output, total},
+lu_reference_seconds, peak_rss_mb}`` and, in addition, the contact method used, any
+fallback, Newton iterations, LCP pivots, element states, the nominal factorization flops
+and rates (``factorization_gflops``, ``lu_reference_gflops``), ``total_over_lu`` and the
+wall time of the run.
+"""
+
+import argparse
+import json
+import math
+import os
+import re
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import h5py
+
+CASES = ("straight", "mixed")
+PHASES = ("assembly", "factorization", "lcp", "fields", "output", "total")
+
+
+def straight_model(n, grid):
+    """The paper's fault with n elements (SPEC section 7)."""
+    return (
+        "&model title = 'benchmark: straight fault', youngs_modulus = 50000.0,\n"
+        "       poissons_ratio = 0.25, length_unit = 'm', stress_unit = 'MPa' /\n"
+        "&remote_stress sxx = -143.75, syy = -81.25, sxy = 54.13 /\n"
+        f"&fracture name = 'fault', x = -1.0, 1.0, y = 0.0, 0.0, elements = {n},\n"
+        "          condition = 'contact', mu = 0.6, sf = 1.0 /\n" + grid_group(grid))
+
+
+def split(n, parts):
+    """n elements over `parts` segments, as equal as possible (sum is n)."""
+    base = [n // parts] * parts
+    for k in range(n - sum(base)):
+        base[k] += 1
+    return base
+
+
+def mixed_model(n, grid):
+    """A kinked fault network: two faults of three segments each (flat, 35 degrees up,
+    flat), fluid pressure above the normal compression on the inclined segments, under
+    sxx = -5, syy = -20, sxy = 0.5 (the contact suite's kink, doubled and extended)."""
+    b = math.radians(35.0)
+    counts = split(n, 6)
+    faults = []
+    for k, (x0, y0) in enumerate(((-1.0, 0.0), (-0.6, -0.9))):
+        xs = [x0, x0 + 1.0, x0 + 1.0 + math.cos(b), x0 + 2.0 + math.cos(b)]
+        ys = [y0, y0, y0 + math.sin(b), y0 + math.sin(b)]
+        c = counts[3 * k:3 * k + 3]
+        faults.append(
+            f"&fracture name = 'fault_{k + 1}',\n"
+            f"          x = {', '.join(f'{v:.12g}' for v in xs)},\n"
+            f"          y = {', '.join(f'{v:.12g}' for v in ys)},\n"
+            f"          elements = {c[0]}, {c[1]}, {c[2]}, condition = 'contact',\n"
+            "          mu = 0.6, 0.6, 0.6, sf = 0.0, 0.0, 0.5,\n"
+            "          pressure = 12.0, 17.5, 5.0 /\n")
+    return (
+        "&model title = 'benchmark: kinked fault network', youngs_modulus = 50000.0,\n"
+        "       poissons_ratio = 0.25, length_unit = 'm', stress_unit = 'MPa' /\n"
+        "&remote_stress sxx = -5.0, syy = -20.0, sxy = 0.5 /\n" + "".join(faults)
+        + grid_group(grid))
+
+
+def grid_group(nx):
+    """A nx x nx grid around the faults (none when nx is 0)."""
+    if nx <= 0:
+        return ""
+    return (f"&grid name = 'map', xmin = -2.5, xmax = 2.5, nx = {nx}, "
+            f"ymin = -2.0, ymax = 2.0, ny = {nx} /\n")
+
+
+def solver_group(method):
+    return f"&solver lcp_method = '{method}' /\n"
+
+
+def run_measured(command, env):
+    """Run a command; return (stdout, wall seconds, peak RSS in MB of that process)."""
+    start = time.perf_counter()
+    process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                               env=env, text=True)
+    stdout = process.stdout.read()
+    stderr = process.stderr.read()
+    process.stdout.close()
+    process.stderr.close()
+    # os.wait4 reports the resource usage of this child alone.
+    _, status, usage = os.wait4(process.pid, 0)
+    process.returncode = os.waitstatus_to_exitcode(status)
+    wall = time.perf_counter() - start
+    if process.returncode != 0:
+        raise RuntimeError(f"{' '.join(map(str, command))} failed with exit status "
+                           f"{process.returncode}:\n{stdout}\n{stderr}")
+    return stdout, wall, usage.ru_maxrss / 1024.0
+
+
+def lu_reference(lu_exe, n2, env):
+    """Seconds and GFLOP/s of one DGETRF of an n2 x n2 random matrix."""
+    out, _, _ = run_measured([str(lu_exe), str(n2)], env)
+    match = re.search(r"seconds\s+(\S+)\s+gflops\s+(\S+)", out)
+    if not match:
+        raise RuntimeError(f"unexpected output of {lu_exe}: {out!r}")
+    return float(match.group(1)), float(match.group(2))
+
+
+def benchmark_one(exe, lu_exe, n, case, threads, method, grid, workdir):
+    """Run one model of n elements; return its JSON record."""
+    env = dict(os.environ, OMP_NUM_THREADS=str(threads),
+               OPENBLAS_NUM_THREADS=str(threads))
+    model = straight_model(n, grid) if case == "straight" else mixed_model(n, grid)
+    nml = Path(workdir) / f"{case}_{n}.nml"
+    h5 = Path(workdir) / f"{case}_{n}.h5"
+    nml.write_text(model + solver_group(method) + f"&output file = '{h5.name}' /\n")
+    stdout, wall, rss = run_measured([str(exe), str(nml), "-o", str(h5)], env)
+    seconds = {}
+    with h5py.File(h5, "r") as f:
+        solver = f["solver"]
+        for phase in PHASES:
+            seconds[phase] = float(solver["seconds"][phase][()])
+        attrs = {k: solver.attrs[k] for k in solver.attrs}
+    # The output phase is timed while the file is written: take it from the summary.
+    match = re.search(r"output\s+([0-9.]+)", stdout)
+    if match:
+        seconds["output"] = float(match.group(1))
+        seconds["total"] += seconds["output"]
+    lu_seconds, lu_gflops = lu_reference(lu_exe, 2 * n, env)
+
+    def text(value):
+        return value.decode().strip() if isinstance(value, bytes) else str(value)
+
+    flops = float(attrs.get("factorization_flops", 0.0))
+    fact = seconds["factorization"]
+    record = {
+        "n": n, "case": case, "threads": threads, "seconds": seconds,
+        "lu_reference_seconds": lu_seconds, "peak_rss_mb": rss,
+        "lcp_method": method, "method": text(attrs.get("method", "")),
+        "fallback": text(attrs.get("fallback", "")),
+        "newton_iterations": int(attrs.get("newton_iterations", 0)),
+        "pivots": int(attrs.get("pivots", 0)),
+        "states": {s: int(attrs.get(f"elements_{s}", 0)) for s in ("stick", "slip", "open")},
+        "factorization_flops": flops,
+        "factorization_gflops": flops / fact * 1e-9 if fact > 0 else None,
+        "lu_reference_gflops": lu_gflops,
+        "total_over_lu": seconds["total"] / lu_seconds if lu_seconds > 0 else None,
+        "wall_seconds": wall,
+    }
+    h5.unlink()
+    return record
+
+
+def print_table(records, out=sys.stdout):
+    head = ("n", "case", "thr", "method", "assembly", "factor", "lcp", "fields", "output",
+            "total", "LU ref", "tot/LU", "fact GF/s", "LU GF/s", "RSS MB", "stk/slp/opn")
+    rows = []
+    for r in records:
+        s = r["seconds"]
+        gf = r["factorization_gflops"]
+        st = r["states"]
+        rows.append((str(r["n"]), r["case"], str(r["threads"]),
+                     r["method"] + ("*" if r["fallback"] else ""),
+                     *(f"{s[p]:.3f}" for p in PHASES), f"{r['lu_reference_seconds']:.3f}",
+                     f"{r['total_over_lu']:.2f}", "-" if gf is None else f"{gf:.1f}",
+                     f"{r['lu_reference_gflops']:.1f}", f"{r['peak_rss_mb']:.0f}",
+                     f"{st['stick']}/{st['slip']}/{st['open']}"))
+    widths = [max(len(h), *(len(row[i]) for row in rows)) for i, h in enumerate(head)]
+    print(" ".join(h.rjust(w) for h, w in zip(head, widths)), file=out)
+    for row in rows:
+        print(" ".join(c.rjust(w) for c, w in zip(row, widths)), file=out)
+    for r in records:
+        if r["fallback"]:
+            print(f"* n = {r['n']}: fell back to Lemke: {r['fallback']}", file=out)
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--exe", required=True, type=Path, help="the ddc2d executable")
+    parser.add_argument("--sizes", required=True,
+                        help="comma-separated numbers of contact elements")
+    parser.add_argument("--case", required=True, choices=CASES)
+    parser.add_argument("--json", required=True, type=Path, help="JSON file to write")
+    parser.add_argument("--threads", type=int, default=os.cpu_count() or 1,
+                        help="OpenMP and OpenBLAS threads (default: all CPUs)")
+    parser.add_argument("--lcp-method", default="auto", choices=("auto", "lemke", "newton"))
+    parser.add_argument("--grid", type=int, default=100,
+                        help="observation grid of GRID x GRID points (0: none)")
+    parser.add_argument("--lu-exe", type=Path, default=None,
+                        help="reference LU program (default: <build>/tests/"
+                             "ddc2d_lu_benchmark beside the executable's app/ folder)")
+    parser.add_argument("--workdir", type=Path, default=None,
+                        help="folder for the models (default: a temporary folder)")
+    args = parser.parse_args(argv)
+
+    try:
+        sizes = [int(s) for s in args.sizes.split(",") if s.strip()]
+    except ValueError:
+        parser.error(f"--sizes must be comma-separated integers, not {args.sizes!r}")
+    if not sizes or min(sizes) < 6 and args.case == "mixed" or min(sizes) < 1:
+        parser.error("--sizes must be positive (at least 6 for the mixed case)")
+    if args.threads < 1:
+        parser.error("--threads must be at least 1")
+    exe = args.exe.resolve()
+    if not exe.is_file():
+        parser.error(f"--exe {exe} does not exist")
+    lu_exe = args.lu_exe or exe.parent.parent / "tests" / "ddc2d_lu_benchmark"
+    if not Path(lu_exe).is_file():
+        parser.error(f"reference LU program {lu_exe} not found (build the tests, or give "
+                     "--lu-exe)")
+
+    records = []
+    with tempfile.TemporaryDirectory() as tmp:
+        workdir = args.workdir or Path(tmp)
+        workdir.mkdir(parents=True, exist_ok=True)
+        for n in sizes:
+            records.append(benchmark_one(exe, lu_exe, n, args.case, args.threads,
+                                         args.lcp_method, args.grid, workdir))
+    print(f"# ddc2d benchmark, case {args.case}, {args.threads} thread(s), "
+          f"lcp_method = {args.lcp_method}, grid {args.grid} x {args.grid}, "
+          f"{time.strftime('%Y-%m-%d')}")
+    print_table(records)
+    args.json.write_text(json.dumps(records, indent=2) + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

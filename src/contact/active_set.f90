@@ -1,0 +1,286 @@
+!> Frictional contact solved on the stiffness system by a semismooth Newton method in its
+!> primal-dual active-set form (Hintermueller, Ito & Kunisch 2002; Hueeber & Wohlmuth 2005
+!> for friction), without the inverse of the influence matrix.
+!>
+!> Every contact element has a normal state (closed: Dn = 0; open: S_n' = 0) and a shear
+!> state (stick: Ds = 0; slip with s_s = +tau_s or s_s = -tau_s, tau_s = Sf - mu S_n').
+!> For given states the DDs that are not fixed at zero (Ds on slipping elements, Dn on open
+!> ones) solve one dense linear system made of rows of A (a slip row is the shear row plus
+!> +-mu times the normal row of the same element), factorized by LAPACK. The states are
+!> then updated from the Newton complementarity functions with the stiffness scale c
+!> (largest diagonal entry of A): closed while -S_n' + c Dn > 0, open otherwise; stick
+!> while |s_s - c Ds| <= tau_s, else slip towards the sign of s_s - c Ds. Unchanged states
+!> end the iteration. Round-off cannot make states flip back and forth: a state is kept while
+!> its condition is violated by less than the state tolerances (relative 1e-9 of the stress
+!> scale and of the stiffness times it), which the certificate of the caller accepts.
+!>
+!> The method is not guaranteed to converge with Coulomb friction: it stops when the states
+!> repeat with period two (a cycle), when the iteration limit is reached or when a reduced
+!> system is numerically singular, and says why; the caller then falls back to Lemke.
+!> One iteration costs one LU of the reduced system (2/3 m^3 flops for m unknowns not fixed
+!> at zero, at most 2N) and one product with A (8 N^2 flops).
+module ddc_contact_active_set
+    use ddc_kinds, only: wp
+    use ddc_solve_lapack, only: dgetrf, dgetrs, dgecon, dlange, dgemv
+    use ddc_input_messages, only: itoa
+    use, intrinsic :: iso_fortran_env, only: int64
+    implicit none
+    private
+
+    public :: active_set_result, solve_contact_active_set
+    public :: shear_stick, shear_slip_plus, shear_slip_minus
+
+    !> Shear states: stick (Ds = 0), slip with s_s = +tau_s (Ds <= 0), slip with
+    !> s_s = -tau_s (Ds >= 0)
+    integer, parameter :: shear_stick = 0, shear_slip_plus = 1, shear_slip_minus = -1
+
+    !> Relative tolerance of the state updates (stress scale and stiffness times it) [-]
+    real(wp), parameter :: state_tol = 1.0e-9_wp
+    !> Smallest accepted reciprocal condition number of a reduced system
+    real(wp), parameter :: rcond_min = 1.0e3_wp * epsilon(1.0_wp)
+
+    !> Outcome of the active-set iteration on n contact elements; arrays shape (n).
+    type :: active_set_result
+        !> States unchanged by the last update (a candidate solution for the caller to
+        !> certify); when false, reason says why the iteration stopped
+        logical :: converged = .false.
+        !> Why the iteration did not converge (empty when it did)
+        character(len=:), allocatable :: reason
+        !> Iterations done (linear solves)
+        integer :: iterations = 0
+        !> DDs [length] and total tractions from the unfactored A: shear s_s and effective
+        !> normal S_n' = s_n + p [stress]
+        real(wp), allocatable :: ds(:), dn(:), shear(:), normal_effective(:)
+        !> Final states: open (normal) and shear_stick / shear_slip_plus / shear_slip_minus
+        logical, allocatable :: open(:)
+        integer, allocatable :: shear_state(:)
+        !> Wall time of the LU factorizations [s] and their nominal flop count (2/3 m^3
+        !> each)
+        real(wp) :: seconds_factorization = 0.0_wp, factorization_flops = 0.0_wp
+    end type active_set_result
+
+contains
+
+    !> Solve the contact conditions on the stiffness system, t = S_r + A D.
+    subroutine solve_contact_active_set(a, s_r_s, s_r_np, mu, sf, sigma0, res, &
+                                        max_iterations, start_open, start_shear)
+        !> Influence matrix ordered [s; n], shape (2n, 2n) [stress / length]
+        real(wp), intent(in) :: a(:, :)
+        !> Remote shear traction and effective normal traction (s_n + p) on each element,
+        !> shape (n) [stress]
+        real(wp), intent(in) :: s_r_s(:), s_r_np(:)
+        !> Friction coefficient [-] and frictional strength [stress], shape (n)
+        real(wp), intent(in) :: mu(:), sf(:)
+        !> Stress scale of the problem (> 0) [stress]
+        real(wp), intent(in) :: sigma0
+        !> The outcome; converged tells whether res holds a candidate solution
+        type(active_set_result), intent(out) :: res
+        !> Iteration limit
+        integer, intent(in) :: max_iterations
+        !> Initial states (default: from the remote stress alone), shape (n)
+        logical, intent(in), optional :: start_open(:)
+        integer, intent(in), optional :: start_shear(:)
+
+        real(wp), allocatable :: t(:), dd(:), tau(:)
+        logical, allocatable :: open_old(:)
+        integer, allocatable :: shear_old(:)
+        real(wp) :: c, tol_s, tol_d
+        integer :: n, n2, i, info
+        logical :: changed, cycling
+
+        n = size(mu)
+        n2 = 2 * n
+        c = 0.0_wp
+        do i = 1, n2
+            c = max(c, abs(a(i, i)))
+        end do
+        if (.not. c > 0.0_wp) c = 1.0_wp
+        tol_s = state_tol * sigma0
+        tol_d = state_tol * sigma0 / c
+        allocate (res%ds(n), res%dn(n), dd(n2), t(n2), tau(n))
+
+        ! Initial states from the remote stress (D = 0), unless given.
+        if (present(start_open)) then
+            res%open = start_open
+        else
+            res%open = s_r_np > tol_s
+        end if
+        if (present(start_shear)) then
+            res%shear_state = start_shear
+        else
+            allocate (res%shear_state(n))
+            tau = merge(sf, sf - mu * min(s_r_np, 0.0_wp), res%open)
+            do i = 1, n
+                res%shear_state(i) = shear_stick
+                if (abs(s_r_s(i)) > tau(i) + tol_s) res%shear_state(i) = &
+                    int(sign(1.0_wp, s_r_s(i)))
+            end do
+        end if
+        allocate (open_old(n), shear_old(n))
+        open_old = .not. res%open
+        shear_old = shear_stick
+
+        do
+            if (res%iterations >= max_iterations) then
+                res%reason = 'no convergence within '//itoa(max_iterations)//' iterations'
+                return
+            end if
+            res%iterations = res%iterations + 1
+            call solve_states(a, s_r_s, s_r_np, mu, sf, res, dd, info)
+            if (info /= 0) then
+                res%reason = 'the reduced system of iteration '//itoa(res%iterations)// &
+                    ' is numerically singular'
+                return
+            end if
+            res%ds = dd(1:n)
+            res%dn = dd(n + 1:n2)
+            t(1:n) = s_r_s
+            t(n + 1:n2) = s_r_np
+            call dgemv('N', n2, n2, 1.0_wp, a, n2, dd, 1, 1.0_wp, t, 1)
+            res%shear = t(1:n)
+            res%normal_effective = t(n + 1:n2)
+
+            ! cycling: the new states equal those before the last update.
+            cycling = .true.
+            changed = .false.
+            do i = 1, n
+                call update_states(res%open(i), res%shear_state(i), res%ds(i), res%dn(i), &
+                    res%shear(i), res%normal_effective(i), mu(i), sf(i), c, tol_s, tol_d, &
+                    open_old(i), shear_old(i), changed, cycling)
+            end do
+            if (.not. changed) then
+                res%converged = .true.
+                res%reason = ''
+                return
+            end if
+            if (cycling) then
+                res%reason = 'the element states cycle (period 2) after '// &
+                    itoa(res%iterations)//' iterations'
+                return
+            end if
+        end do
+    end subroutine solve_contact_active_set
+
+    !> New states of one element from its DDs and tractions; changed is set when the
+    !> linear system changes, cycling is cleared when the new states differ from the old.
+    pure subroutine update_states(open, shear_state, ds, dn, ss, snp, mu, sf, c, tol_s, &
+                                  tol_d, open_old, shear_old, changed, cycling)
+        logical, intent(inout) :: open, changed, cycling
+        integer, intent(inout) :: shear_state
+        real(wp), intent(in) :: ds, dn, ss, snp, mu, sf, c, tol_s, tol_d
+        logical, intent(inout) :: open_old
+        integer, intent(inout) :: shear_old
+        logical :: open_new
+        integer :: shear_new
+        real(wp) :: tau, sigma
+
+        ! Normal: closed while -S_n' + c Dn > 0.
+        if (open) then
+            open_new = .not. dn > tol_d
+        else
+            open_new = snp > tol_s
+        end if
+        ! Shear: tau_s of the current iterate (S_n' = 0 on open elements).
+        tau = sf - mu * min(snp, 0.0_wp)
+        if (open) tau = sf
+        select case (shear_state)
+        case (shear_stick)
+            shear_new = shear_stick
+            if (abs(ss) > tau + tol_s) shear_new = int(sign(1.0_wp, ss))
+        case default
+            shear_new = shear_state
+            if (real(shear_state, wp) * ds > tol_d) then
+                sigma = ss - c * ds
+                if (abs(sigma) <= tau) then
+                    shear_new = shear_stick
+                else
+                    shear_new = int(sign(1.0_wp, sigma))
+                end if
+            end if
+        end select
+
+        if (open_new .neqv. open) changed = .true.
+        ! On an open element without cohesion slip +tau_s and -tau_s are the same equation.
+        if (shear_new /= shear_state .and. .not. (open .and. open_new .and. .not. sf > 0.0_wp &
+            .and. shear_new /= shear_stick .and. shear_state /= shear_stick)) changed = .true.
+        if ((open_new .neqv. open_old) .or. shear_new /= shear_old) cycling = .false.
+        open_old = open
+        shear_old = shear_state
+        open = open_new
+        shear_state = shear_new
+    end subroutine update_states
+
+    !> Solve for the DDs of the current states: dd = [Ds; Dn], zero where fixed.
+    !> info /= 0 when the reduced system is (numerically) singular.
+    subroutine solve_states(a, s_r_s, s_r_np, mu, sf, res, dd, info)
+        real(wp), intent(in) :: a(:, :), s_r_s(:), s_r_np(:), mu(:), sf(:)
+        type(active_set_result), intent(inout) :: res
+        real(wp), intent(out) :: dd(:)
+        integer, intent(out) :: info
+        real(wp), allocatable :: j(:, :), x(:, :), coef(:), work(:)
+        integer, allocatable :: unknown(:), partner(:), ipiv(:), iwork(:)
+        real(wp) :: anorm, rcond
+        integer :: n, m, k, l, i
+        integer(int64) :: t0, t1, rate
+
+        n = size(mu)
+        ! Active unknowns: Ds of slipping elements (rows: shear row + coef * normal row),
+        ! Dn of open elements (rows: normal row).
+        allocate (unknown(2 * n), partner(2 * n), coef(2 * n), x(2 * n, 1))
+        m = 0
+        do i = 1, n
+            if (res%shear_state(i) /= shear_stick) then
+                m = m + 1
+                unknown(m) = i
+                partner(m) = n + i
+                coef(m) = 0.0_wp
+                ! s_s - sign tau_s = 0 with tau_s = Sf - mu S_n' (closed) or Sf (open).
+                x(m, 1) = real(res%shear_state(i), wp) * sf(i) - s_r_s(i)
+                if (.not. res%open(i)) then
+                    coef(m) = real(res%shear_state(i), wp) * mu(i)
+                    x(m, 1) = x(m, 1) - coef(m) * s_r_np(i)
+                end if
+            end if
+        end do
+        do i = 1, n
+            if (res%open(i)) then
+                m = m + 1
+                unknown(m) = n + i
+                partner(m) = n + i
+                coef(m) = 0.0_wp
+                x(m, 1) = -s_r_np(i)
+            end if
+        end do
+        dd = 0.0_wp
+        info = 0
+        if (m == 0) return
+
+        allocate (j(m, m), ipiv(m), iwork(m), work(4 * m))
+        !$omp parallel do default(none) schedule(static) private(k, l) &
+        !$omp shared(a, j, unknown, partner, coef, m)
+        do l = 1, m
+            do k = 1, m
+                j(k, l) = a(unknown(k), unknown(l)) + coef(k) * a(partner(k), unknown(l))
+            end do
+        end do
+        !$omp end parallel do
+        anorm = dlange('1', m, m, j, m, work)
+        call system_clock(t0, rate)
+        call dgetrf(m, m, j, m, ipiv, info)
+        call system_clock(t1)
+        res%seconds_factorization = res%seconds_factorization + &
+            real(t1 - t0, wp) / real(max(rate, 1_int64), wp)
+        res%factorization_flops = res%factorization_flops + 2.0_wp / 3.0_wp * real(m, wp)**3
+        if (info /= 0) return
+        call dgecon('1', m, j, m, anorm, rcond, work, iwork, info)
+        if (info /= 0 .or. .not. rcond > rcond_min) then
+            info = 1
+            return
+        end if
+        call dgetrs('N', m, 1, j, m, ipiv, x, 2 * n, info)
+        do k = 1, m
+            dd(unknown(k)) = x(k, 1)
+        end do
+    end subroutine solve_states
+
+end module ddc_contact_active_set

@@ -1,0 +1,392 @@
+!> Parameter sweeps (SPEC section 6): the tasks of a sweep, their parameter values, their
+!> output file names, and the substitution of a task's values into the base model.
+!>
+!> A sweep drives the solver from outside: each task is the base model with a few values
+!> replaced, solved and written like any model. Tasks are numbered from 0. With
+!> combine_product the tasks run through every combination of the value lists, the last
+!> parameter varying fastest (nested loops in the order the parameters are written); with
+!> combine_zip task k takes the k-th value of every list.
+!>
+!> Sweepable parameters (names lower case, written without blanks):
+!> - youngs_modulus, poissons_ratio;
+!> - sxx, syy, sxy: remote stress components;
+!> - remote_s1, remote_s3, remote_angle: the remote stress as principal stresses, s1
+!>   along the axis at remote_angle degrees counter-clockwise from +x, s3 across it; the
+!>   ones not swept keep the base model's values (s1 its most compressive principal
+!>   stress, the angle in (-90, 90]); not combinable with sxx, syy, sxy;
+!> - mu, sf, pressure: on every element of every fracture;
+!> - fracture(K)%mu, fracture(K)%sf, fracture(K)%pressure: on every element of fracture K
+!>   (1-based, in input order).
+module ddc_sweep_tasks
+    use ddc_kinds, only: wp
+    use ddc_error, only: error_type, set_error, exit_bad_input
+    use ddc_model_types, only: model_type
+    use ddc_input_messages, only: itoa, lower
+    use ddc_output_hdf5_read, only: read_int_attribute
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+    implicit none
+    private
+
+    public :: sweep_definition, combine_product, combine_zip, combine_names
+    public :: max_parameters, max_tasks, parameter_help
+    public :: parse_parameter, check_value, task_values, task_label, task_file_name
+    public :: check_task, apply_task, output_is_complete
+    public :: target_sxx, target_syy, target_sxy, target_s1, target_s3, target_angle
+
+    !> How the value lists make tasks
+    integer, parameter :: combine_product = 1, combine_zip = 2
+    !> Input names of the ways to combine, indexed by code
+    character(len=*), parameter :: combine_names(2) = [character(len=7) :: 'product', 'zip']
+    !> Largest number of swept parameters
+    integer, parameter :: max_parameters = 6
+    !> Largest number of tasks of one sweep
+    integer, parameter :: max_tasks = 10000000
+
+    !> What a parameter changes in the model
+    integer, parameter :: target_youngs = 1, target_poisson = 2, target_sxx = 3, &
+                          target_syy = 4, target_sxy = 5, target_s1 = 6, target_s3 = 7, &
+                          target_angle = 8, target_mu = 9, target_sf = 10, target_pressure = 11
+    !> Names of the targets, indexed by target (per fracture: fracture(K)%<name>)
+    character(len=*), parameter :: target_names(11) = [character(len=14) :: &
+        'youngs_modulus', 'poissons_ratio', 'sxx', 'syy', 'sxy', 'remote_s1', 'remote_s3', &
+        'remote_angle', 'mu', 'sf', 'pressure']
+    !> The list of parameter names, for messages and the help text
+    character(len=*), parameter :: parameter_help = 'youngs_modulus, poissons_ratio, '// &
+        'sxx, syy, sxy, remote_s1, remote_s3, remote_angle, mu, sf, pressure, '// &
+        'fracture(K)%mu, fracture(K)%sf, fracture(K)%pressure'
+
+    real(wp), parameter :: degree = acos(-1.0_wp) / 180.0_wp
+
+    !> A validated sweep: parameters, their value lists and how they combine.
+    type :: sweep_definition
+        !> combine_product or combine_zip
+        integer :: combine = combine_product
+        !> Parameter names as written (lower case, no blanks), shape (np)
+        character(len=64), allocatable :: names(:)
+        !> Target of each parameter (target_youngs ... target_pressure), shape (np)
+        integer, allocatable :: targets(:)
+        !> Fracture of each per-fracture parameter (1-based), 0 for all, shape (np)
+        integer, allocatable :: fractures(:)
+        !> Number of values of each parameter, shape (np)
+        integer, allocatable :: counts(:)
+        !> Value lists, column p holds counts(p) values, shape (max(counts), np)
+        real(wp), allocatable :: values(:, :)
+        !> Number of tasks
+        integer :: tasks = 0
+    end type sweep_definition
+
+contains
+
+    !> Parse a parameter name: its target and fracture; problem is '' when the name is good.
+    subroutine parse_parameter(name, nfractures, target, fracture, problem)
+        !> The name as written (case and blanks do not matter)
+        character(len=*), intent(in) :: name
+        !> Number of fractures of the base model
+        integer, intent(in) :: nfractures
+        !> target_youngs ... target_pressure; 0 when the name is bad
+        integer, intent(out) :: target
+        !> Fracture number for fracture(K)%..., 0 otherwise
+        integer, intent(out) :: fracture
+        !> Why the name is bad, '' when it is good
+        character(len=:), allocatable, intent(out) :: problem
+        character(len=:), allocatable :: key
+        integer :: close_paren, stat, i
+
+        key = squeeze(lower(name))
+        target = 0
+        fracture = 0
+        problem = ''
+        if (index(key, 'fracture(') == 1) then
+            close_paren = index(key, ')%')
+            stat = 1
+            if (close_paren > 10) then
+                if (verify(key(10:close_paren - 1), '0123456789') == 0) &
+                    read (key(10:close_paren - 1), *, iostat=stat) fracture
+            end if
+            if (stat /= 0) then
+                problem = "'"//trim(name)//"' is not a sweep parameter: write fracture(K)%mu"// &
+                          ' with K the fracture number (1-based)'
+                return
+            end if
+            if (fracture < 1 .or. fracture > nfractures) then
+                problem = "'"//trim(name)//"': the model has "//itoa(nfractures)// &
+                          ' fracture(s); K must be 1 to '//itoa(nfractures)
+                return
+            end if
+            key = key(close_paren + 2:)
+            if (key /= 'mu' .and. key /= 'sf' .and. key /= 'pressure') then
+                problem = "'"//trim(name)//"': a fracture's sweep parameters are mu, sf "// &
+                          'and pressure'
+                return
+            end if
+        end if
+        do i = 1, size(target_names)
+            if (key == trim(target_names(i))) target = i
+        end do
+        if (target == 0) then
+            problem = "'"//trim(name)//"' is not a sweep parameter; the parameters are: "// &
+                      parameter_help
+        end if
+    end subroutine parse_parameter
+
+    !> Check a value of a parameter; problem is '' when it is acceptable.
+    function check_value(target, value) result(problem)
+        !> target_youngs ... target_pressure
+        integer, intent(in) :: target
+        !> The value
+        real(wp), intent(in) :: value
+        !> Why the value is bad, '' when it is good
+        character(len=:), allocatable :: problem
+
+        problem = ''
+        if (.not. ieee_is_finite(value)) then
+            problem = 'is not a finite number'
+            return
+        end if
+        select case (target)
+        case (target_youngs)
+            if (value <= 0.0_wp) problem = 'must be positive'
+        case (target_poisson)
+            if (value <= -1.0_wp .or. value >= 0.5_wp) problem = 'must lie in (-1, 0.5)'
+        case (target_mu, target_sf)
+            if (value < 0.0_wp) problem = 'must be >= 0'
+        end select
+    end function check_value
+
+    !> The parameter values of task (0-based), shape (np).
+    pure function task_values(sweep, task) result(values)
+        !> The sweep
+        type(sweep_definition), intent(in) :: sweep
+        !> Task number, 0 <= task < sweep%tasks
+        integer, intent(in) :: task
+        !> Value of each parameter
+        real(wp) :: values(size(sweep%names))
+        integer :: p, rest
+
+        rest = task
+        do p = size(sweep%names), 1, -1
+            if (sweep%combine == combine_zip) then
+                values(p) = sweep%values(task + 1, p)
+            else
+                values(p) = sweep%values(mod(rest, sweep%counts(p)) + 1, p)
+                rest = rest / sweep%counts(p)
+            end if
+        end do
+    end function task_values
+
+    !> "mu = 0.2, remote_angle = -30": the parameters of a task.
+    function task_label(sweep, task) result(label)
+        !> The sweep
+        type(sweep_definition), intent(in) :: sweep
+        !> Task number, 0 <= task < sweep%tasks
+        integer, intent(in) :: task
+        !> The label
+        character(len=:), allocatable :: label
+        real(wp) :: values(size(sweep%names))
+        integer :: p
+
+        values = task_values(sweep, task)
+        label = ''
+        do p = 1, size(values)
+            if (p > 1) label = label//', '
+            label = label//trim(sweep%names(p))//' = '//short_real(values(p))
+        end do
+    end function task_label
+
+    !> Output file of a task: base with _task<id> before its extension, the id zero-padded
+    !> to the width of the largest task number (at least 4 digits): out.h5 -> out_task0007.h5.
+    pure function task_file_name(base, task, tasks) result(name)
+        !> Output file of the base model
+        character(len=*), intent(in) :: base
+        !> Task number (0-based)
+        integer, intent(in) :: task
+        !> Number of tasks of the sweep
+        integer, intent(in) :: tasks
+        !> The task's output file
+        character(len=:), allocatable :: name
+        character(len=24) :: digits
+        integer :: dot, slash, width
+
+        width = max(4, len_trim(itoa(max(tasks - 1, 0))))
+        write (digits, '(i0.'//itoa(width)//')') task
+        dot = index(base, '.', back=.true.)
+        slash = index(base, '/', back=.true.)
+        if (dot <= slash + 1) dot = len(base) + 1
+        name = base(1:dot - 1)//'_task'//trim(digits)//base(dot:)
+    end function task_file_name
+
+    !> Refuse a task number outside 0 .. tasks-1.
+    subroutine check_task(sweep, task, error)
+        !> The sweep
+        type(sweep_definition), intent(in) :: sweep
+        !> The task asked for
+        integer, intent(in) :: task
+        !> Allocated with exit_bad_input when the task does not exist
+        type(error_type), allocatable, intent(out) :: error
+
+        if (task < 0 .or. task >= sweep%tasks) then
+            call set_error(error, exit_bad_input, 'task '//itoa(task)//' is out of range: '// &
+                           'the sweep has '//itoa(sweep%tasks)//' tasks, numbered 0 to '// &
+                           itoa(sweep%tasks - 1))
+        end if
+    end subroutine check_task
+
+    !> Make the base model task `task` of the sweep: substitute its values, record them
+    !> in model%sweep and give the model the task's output file name.
+    subroutine apply_task(model, sweep, task)
+        !> The base model in, the task's model out
+        type(model_type), intent(inout) :: model
+        !> The sweep (validated against this model)
+        type(sweep_definition), intent(in) :: sweep
+        !> Task number, checked with check_task
+        integer, intent(in) :: task
+        real(wp) :: values(size(sweep%names)), s1, s3, angle, c, s
+        integer :: p, first, last
+
+        values = task_values(sweep, task)
+        call principal_stresses(model%sxx, model%syy, model%sxy, s1, s3, angle)
+        do p = 1, size(values)
+            first = 1
+            last = model%elements%n
+            if (sweep%fractures(p) > 0) then
+                first = model%fractures(sweep%fractures(p))%first_element
+                last = model%fractures(sweep%fractures(p))%last_element
+            end if
+            select case (sweep%targets(p))
+            case (target_youngs)
+                model%youngs_modulus = values(p)
+            case (target_poisson)
+                model%poissons_ratio = values(p)
+            case (target_sxx)
+                model%sxx = values(p)
+            case (target_syy)
+                model%syy = values(p)
+            case (target_sxy)
+                model%sxy = values(p)
+            case (target_s1)
+                s1 = values(p)
+            case (target_s3)
+                s3 = values(p)
+            case (target_angle)
+                angle = values(p)
+            case (target_mu)
+                model%elements%mu(first:last) = values(p)
+            case (target_sf)
+                model%elements%sf(first:last) = values(p)
+            case (target_pressure)
+                model%elements%pressure(first:last) = values(p)
+            end select
+        end do
+        if (any(sweep%targets == target_s1 .or. sweep%targets == target_s3 .or. &
+                sweep%targets == target_angle)) then
+            c = cos_degrees(angle)
+            s = cos_degrees(angle - 90.0_wp)
+            model%sxx = s1 * c**2 + s3 * s**2
+            model%syy = s1 * s**2 + s3 * c**2
+            model%sxy = (s1 - s3) * s * c
+        end if
+        model%sweep%task = task
+        model%sweep%tasks = sweep%tasks
+        model%sweep%names = sweep%names
+        model%sweep%values = values
+        model%output_file = task_file_name(model%output_file, task, sweep%tasks)
+    end subroutine apply_task
+
+    !> True when path holds a readable ddc2d result with the root attribute complete = 1.
+    function output_is_complete(path) result(complete)
+        !> Path of the result file
+        character(len=*), intent(in) :: path
+        !> The file exists, is readable HDF5 and is complete
+        logical :: complete
+        type(error_type), allocatable :: error
+        integer :: flag
+
+        inquire (file=path, exist=complete)
+        if (.not. complete) return
+        call read_int_attribute(path, '/', 'complete', flag, error)
+        complete = .not. allocated(error)
+        if (complete) complete = flag == 1
+    end function output_is_complete
+
+    !> Principal stresses of (sxx, syy, sxy): s1 the most compressive (algebraically
+    !> least), s3 the other, angle of the s1 axis from +x [degrees] in (-90, 90].
+    pure subroutine principal_stresses(sxx, syy, sxy, s1, s3, angle)
+        real(wp), intent(in) :: sxx, syy, sxy
+        real(wp), intent(out) :: s1, s3, angle
+        real(wp) :: centre, radius
+
+        centre = 0.5_wp * (sxx + syy)
+        radius = hypot(0.5_wp * (sxx - syy), sxy)
+        s1 = centre - radius
+        s3 = centre + radius
+        angle = 0.0_wp
+        if (radius > 0.0_wp) angle = 0.5_wp * atan2(-2.0_wp * sxy, syy - sxx) / degree
+        if (angle <= -90.0_wp) angle = angle + 180.0_wp
+    end subroutine principal_stresses
+
+    !> Cosine of an angle in degrees, exact (0, +-1) at multiples of 90 degrees, so that
+    !> axes along x and y give exactly zero shear.
+    pure function cos_degrees(angle) result(c)
+        real(wp), intent(in) :: angle
+        real(wp) :: c
+        real(wp) :: reduced
+
+        reduced = modulo(angle, 360.0_wp)
+        if (reduced == 90.0_wp .or. reduced == 270.0_wp) then
+            c = 0.0_wp
+        else if (reduced == 180.0_wp) then
+            c = -1.0_wp
+        else
+            c = cos(reduced * degree)
+        end if
+    end function cos_degrees
+
+    !> A real as short text: integers without a point, others to 8 significant digits
+    !> without trailing zeros (0.2, -30, 0.15E-04).
+    pure function short_real(x) result(out)
+        real(wp), intent(in) :: x
+        character(len=:), allocatable :: out
+        character(len=32) :: buffer
+        integer :: e
+
+        if (x == anint(x) .and. abs(x) < 1.0e9_wp) then
+            write (buffer, '(i0)') nint(x, kind=8)
+            out = trim(buffer)
+            return
+        end if
+        write (buffer, '(g0.8)') x
+        buffer = adjustl(buffer)
+        e = scan(buffer, 'Ee')
+        if (e == 0) then
+            out = trim_zeros(buffer)
+        else
+            out = trim_zeros(buffer(1:e - 1))//trim(buffer(e:))
+        end if
+    end function short_real
+
+    !> A decimal number without trailing zeros (and without a trailing point).
+    pure function trim_zeros(text) result(out)
+        character(len=*), intent(in) :: text
+        character(len=:), allocatable :: out
+
+        out = trim(text)
+        if (index(out, '.') == 0) return
+        do while (out(len(out):len(out)) == '0')
+            out = out(1:len(out) - 1)
+        end do
+        if (out(len(out):len(out)) == '.') out = out(1:len(out) - 1)
+    end function trim_zeros
+
+    !> Text without blanks.
+    pure function squeeze(text) result(out)
+        character(len=*), intent(in) :: text
+        character(len=:), allocatable :: out
+        integer :: i
+
+        out = ''
+        do i = 1, len(text)
+            if (text(i:i) /= ' ') out = out//text(i:i)
+        end do
+    end function squeeze
+
+end module ddc_sweep_tasks

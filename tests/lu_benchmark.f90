@@ -1,0 +1,41 @@
+!> `ddc2d_lu_benchmark N [REPEATS]`: the reference LU of SPEC section 8. Times one LAPACK
+!> DGETRF (partial pivoting, with row interchanges) of an N x N uniform random matrix,
+!> linked to the same LAPACK as ddc2d, and prints `seconds <s> gflops <rate>` (the fastest
+!> of REPEATS runs, default 1). scripts/benchmark.py calls it with N = 2 x elements.
+program ddc2d_lu_benchmark
+    use ddc_kinds, only: wp
+    use ddc_solve_lapack, only: lu_factor
+    implicit none
+    real(wp), allocatable :: a(:, :), a0(:, :)
+    integer, allocatable :: ipiv(:)
+    character(len=32) :: arg
+    integer :: n, repeats, r, info
+    integer(8) :: t0, t1, rate
+    real(wp) :: best
+
+    if (command_argument_count() < 1) then
+        write (*, '(a)') 'usage: ddc2d_lu_benchmark N [REPEATS]'
+        error stop 2
+    end if
+    call get_command_argument(1, arg)
+    read (arg, *) n
+    repeats = 1
+    if (command_argument_count() >= 2) then
+        call get_command_argument(2, arg)
+        read (arg, *) repeats
+    end if
+    allocate (a0(n, n), a(n, n), ipiv(n))
+    call random_number(a0)
+    a0 = a0 - 0.5_wp
+    best = huge(1.0_wp)
+    do r = 1, max(repeats, 1)
+        a = a0
+        call system_clock(t0, rate)
+        call lu_factor(a, ipiv, info)
+        call system_clock(t1)
+        best = min(best, real(t1 - t0, wp) / real(rate, wp))
+    end do
+    if (info /= 0) error stop 1
+    write (*, '(a,es12.5,a,f10.3)') 'seconds ', best, ' gflops ', &
+        2.0_wp / 3.0_wp * real(n, wp)**3 / best * 1.0e-9_wp
+end program ddc2d_lu_benchmark

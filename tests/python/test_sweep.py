@@ -1,0 +1,217 @@
+"""Parameter sweeps from the command line: --list, --task, SLURM_ARRAY_TASK_ID, skip and
+redo, bad sweep input; scripts/submit-sweep (dry run and a stand-in sbatch) and
+scripts/collect-sweep (tables and plot)."""
+
+import csv
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import h5py
+import numpy as np
+
+from conftest import REPO_ROOT, ddc2d_exe
+
+EXAMPLE = REPO_ROOT / "input" / "sweep_friction_orientation.nml"
+SUBMIT = REPO_ROOT / "scripts" / "submit-sweep"
+COLLECT = REPO_ROOT / "scripts" / "collect-sweep"
+
+SMALL = """&model youngs_modulus = 50000.0, poissons_ratio = 0.25 /
+&remote_stress sxx = -143.75, syy = -81.25, sxy = 54.13 /
+&fracture name = 'fault', x = -1.0, 1.0, y = 0.0, 0.0, elements = 20, mu = 0.6, sf = 1.0 /
+"""
+
+
+def run(args, cwd, env_task=None):
+    env = {key: value for key, value in os.environ.items() if key != "SLURM_ARRAY_TASK_ID"}
+    env["OMP_NUM_THREADS"] = "1"
+    if env_task is not None:
+        env["SLURM_ARRAY_TASK_ID"] = env_task
+    return subprocess.run([str(ddc2d_exe()), *map(str, args)], cwd=cwd, env=env,
+                          capture_output=True, text=True, timeout=120)
+
+
+def write_sweep(folder, text, name="small.nml"):
+    path = Path(folder) / name
+    path.write_text(SMALL + text)
+    return path
+
+
+def test_list_prints_tasks_and_parameters(tmp_path):
+    done = run([EXAMPLE, "--list", "-o", "runs/out.h5"], tmp_path)
+    assert done.returncode == 0, done.stderr
+    lines = done.stdout.splitlines()
+    assert lines[0] == "tasks: 40"
+    assert len(lines) == 41
+    assert lines[1] == "task 0: mu = 0.2, remote_angle = -80 -> runs/out_task0000.h5"
+    assert lines[40] == "task 39: mu = 1, remote_angle = -10 -> runs/out_task0039.h5"
+    assert not list(tmp_path.iterdir()), "--list writes nothing"
+
+
+def test_task_output_skip_and_redo(tmp_path):
+    sweep = write_sweep(tmp_path, "&sweep parameters = 'mu', 'remote_angle', "
+                        "values_1 = 0.2, 0.6, values_2 = -30, -45 /\n")
+    done = run([sweep, "--task", "2", "-o", "out.h5"], tmp_path)
+    assert done.returncode == 0, done.stderr
+    output = tmp_path / "out_task0002.h5"
+    with h5py.File(output, "r") as f:
+        assert f.attrs["complete"] == 1
+        attrs = f["sweep"].attrs
+        assert (attrs["task"], attrs["tasks"]) == (2, 4)
+        assert attrs["parameters"] == b"mu, remote_angle"
+        assert attrs["mu"] == 0.6 and attrs["remote_angle"] == -30.0
+        assert np.all(f["elements/mu"][()] == 0.6)
+        sxx, syy, sxy = f.attrs["remote_stress"]
+        # s1 = -175 at -30 degrees, s3 = -50 (the base model's principal stresses)
+        np.testing.assert_allclose([sxx, syy, sxy], [-143.75, -81.25, 54.13], atol=0.01)
+    stamp = output.stat().st_mtime_ns
+
+    again = run([sweep, "--task", "2", "-o", "out.h5"], tmp_path)
+    assert again.returncode == 0, again.stderr
+    assert "exists; skipped" in again.stdout
+    assert output.stat().st_mtime_ns == stamp
+
+    output.write_text("not an HDF5 file")
+    redo = run([sweep, "--task", "2", "-o", "out.h5"], tmp_path)
+    assert redo.returncode == 0, redo.stderr
+    assert "incomplete or unreadable; running the task again" in redo.stdout
+    with h5py.File(output, "r") as f:
+        assert f.attrs["complete"] == 1
+
+
+def test_task_from_slurm_array_task_id(tmp_path):
+    sweep = write_sweep(tmp_path, "&sweep parameters = 'sf', values_1 = 0, 1, 2 /\n")
+    done = run([sweep, "-o", "out.h5"], tmp_path, env_task="1")
+    assert done.returncode == 0, done.stderr
+    with h5py.File(tmp_path / "out_task0001.h5", "r") as f:
+        assert f["sweep"].attrs["sf"] == 1.0
+    # --task wins over the variable
+    done = run([sweep, "--task", "2", "-o", "out.h5"], tmp_path, env_task="0")
+    assert done.returncode == 0, done.stderr
+    assert (tmp_path / "out_task0002.h5").is_file()
+    assert not (tmp_path / "out_task0000.h5").exists()
+    # a model without &sweep ignores the variable
+    plain = tmp_path / "plain.nml"
+    plain.write_text(SMALL)
+    done = run([plain, "-o", "plain.h5"], tmp_path, env_task="5")
+    assert done.returncode == 0, done.stderr
+    assert (tmp_path / "plain.h5").is_file()
+
+
+def test_bad_sweep_usage_exits_2(tmp_path):
+    sweep = write_sweep(tmp_path, "&sweep parameters = 'mu', values_1 = 0.2, 0.4 /\n")
+    plain = tmp_path / "plain.nml"
+    plain.write_text(SMALL)
+    cases = [
+        ([sweep, "--task", "2"], "task 2 is out of range: the sweep has 2 tasks"),
+        ([sweep], "is a sweep of 2 tasks: give --task K (0 to 1) or --list"),
+        ([sweep, "--task", "x1"], "--task x1: the task must be a number"),
+        ([sweep, "--task", "-1"], "--task -1: the task must be a number"),
+        ([sweep, "--list", "--task", "0"], "give --list or --task, not both"),
+        ([plain, "--task", "0"], "has no &sweep group: --list and --task are for"),
+        ([plain, "--list"], "has no &sweep group"),
+    ]
+    for args, message in cases:
+        done = run(args, tmp_path)
+        assert done.returncode == 2, (args, done.stdout, done.stderr)
+        assert message in done.stderr, (args, done.stderr)
+    done = run([sweep], tmp_path, env_task="7")
+    assert done.returncode == 2 and "task 7 is out of range" in done.stderr
+    bad = write_sweep(tmp_path, "&sweep parameters = 'friction', values_1 = 0.2 /\n",
+                      name="bad.nml")
+    done = run([bad, "--task", "0"], tmp_path)
+    assert done.returncode == 2
+    assert "&sweep (line 4): parameters(1): 'friction' is not a sweep parameter" in done.stderr
+    assert not list(tmp_path.glob("*.h5")), "bad input leaves no output"
+
+
+def test_submit_sweep_dry_run_script(tmp_path):
+    done = subprocess.run(
+        [sys.executable, str(SUBMIT), str(EXAMPLE), "--exe", str(ddc2d_exe()), "--dry-run",
+         "--max-parallel", "3", "--cpus-per-task", "2", "--output-dir", str(tmp_path / "o")],
+        capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    script = Path(done.stdout.strip())
+    assert script == tmp_path / "o" / "sweep_friction_orientation.sbatch"
+    text = script.read_text()
+    assert "#SBATCH --array=0-39%3\n" in text
+    assert "#SBATCH --cpus-per-task=2\n" in text
+    assert f"#SBATCH --output={tmp_path}/o/logs/sweep_friction_orientation_%A_%a.out" in text
+    assert 'threads="${SLURM_CPUS_PER_TASK:-1}"' in text
+    assert 'export OMP_NUM_THREADS="$threads"' in text
+    assert 'export OPENBLAS_NUM_THREADS="$threads"' in text
+    assert (f"exec {ddc2d_exe().resolve()} {EXAMPLE} -o {tmp_path}/o/sweep_friction_orientation.h5"
+            ' --task "$SLURM_ARRAY_TASK_ID"') in text
+    assert (tmp_path / "o" / "logs").is_dir()
+
+
+def test_submit_sweep_calls_sbatch(tmp_path):
+    fake = tmp_path / "bin"
+    fake.mkdir()
+    record = tmp_path / "sbatch_args"
+    (fake / "sbatch").write_text(f'#!/bin/sh\necho "$@" > {record}\necho "4321;cluster"\n')
+    (fake / "sbatch").chmod(0o755)
+    env = dict(os.environ, PATH=f"{fake}:{os.environ['PATH']}")
+    done = subprocess.run(
+        [sys.executable, str(SUBMIT), str(EXAMPLE), "--exe", str(ddc2d_exe()),
+         "--output-dir", str(tmp_path / "o"), "--partition=long", "--time=00:05:00"],
+        capture_output=True, text=True, env=env, timeout=60)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip() == "4321"
+    assert record.read_text().split() == [
+        "--parsable", "--partition=long", "--time=00:05:00",
+        str(tmp_path / "o" / "sweep_friction_orientation.sbatch")]
+
+
+def test_submit_sweep_bad_sweep_exits_2(tmp_path):
+    bad = write_sweep(tmp_path, "&sweep parameters = 'mu', values_1 = -1 /\n", name="bad.nml")
+    done = subprocess.run([sys.executable, str(SUBMIT), str(bad), "--exe", str(ddc2d_exe()),
+                           "--dry-run"], capture_output=True, text=True, cwd=tmp_path,
+                          timeout=60)
+    assert done.returncode == 2
+    assert "mu must be >= 0" in done.stderr
+
+
+def test_collect_sweep_tables_and_plot(tmp_path):
+    sweep = write_sweep(tmp_path, "&sweep parameters = 'mu', 'remote_angle', "
+                        "values_1 = 0.2, 0.8, values_2 = -60, -30 /\n")
+    runs = tmp_path / "runs"
+    runs.mkdir()
+    for task in (0, 1, 3):
+        done = run([sweep, "--task", str(task), "-o", runs / "small.h5"], tmp_path)
+        assert done.returncode == 0, done.stderr
+    done = subprocess.run([sys.executable, str(COLLECT), str(runs), "--plot", "peak_slip",
+                           "--against", "remote_angle"], capture_output=True, text=True,
+                          timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert "1 of 4 tasks have no complete output: 2" in done.stderr
+    with open(runs / "small_summary.csv") as handle:
+        rows = list(csv.DictReader(handle))
+    assert [row["task"] for row in rows] == ["0", "1", "3"]
+    assert list(rows[0]) == ["task", "mu", "remote_angle", "peak_slip", "peak_opening",
+                             "stick", "slip", "open", "max_abs_k1", "max_abs_k2"]
+    for row, task in zip(rows, (0, 1, 3)):
+        with h5py.File(runs / f"small_task{task:04d}.h5", "r") as f:
+            assert float(row["peak_slip"]) == np.max(np.abs(f["elements/ds"][()]))
+            assert int(row["slip"]) == np.count_nonzero(f["elements/state"][()] == 2)
+            assert int(row["stick"]) == np.count_nonzero(f["elements/state"][()] == 1)
+            assert float(row["max_abs_k2"]) == np.max(np.abs(f["tips/k2"][()]))
+            assert float(row["mu"]) == f["sweep"].attrs["mu"]
+    # mu = 0.2 slips at -30 degrees, mu = 0.8 sticks
+    assert int(rows[1]["slip"]) == 20 and float(rows[1]["peak_slip"]) > 1e-3
+    assert int(rows[2]["stick"]) == 20 and float(rows[2]["peak_slip"]) == 0.0
+    with h5py.File(runs / "small_summary.h5", "r") as f:
+        assert list(f["task"][()]) == [0, 1, 3]
+        np.testing.assert_array_equal(f["peak_slip"][()],
+                                      [float(row["peak_slip"]) for row in rows])
+    plot = runs / "small_peak_slip_vs_remote_angle.png"
+    assert plot.stat().st_size > 5000
+
+    done = subprocess.run([sys.executable, str(COLLECT), str(runs), "--plot", "peak_slip",
+                           "--against", "sf"], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 2
+    assert "the parameters of this sweep are mu, remote_angle" in done.stderr
+    done = subprocess.run([sys.executable, str(COLLECT), str(tmp_path / "nothing")],
+                          capture_output=True, text=True, timeout=60)
+    assert done.returncode == 2
