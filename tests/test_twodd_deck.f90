@@ -6,21 +6,20 @@ module test_twodd_deck
     use ddc_testing, only: test_case, new_test, check, error_type
     use ddc_error, only: set_error, exit_bad_input
     use ddc_model_types, only: model_type, element_set, symmetry_none, symmetry_both
-    use ddc_model_results, only: model_results, point_clear
+    use ddc_model_results, only: model_results
     use ddc_run, only: run_model, shear_modulus_of
     use ddc_input_twodd_deck, only: read_twodd_deck
     use ddc_input_namelist, only: read_namelist_model
     use ddc_influence_assembly, only: image_transform, image_transforms
     use ddc_mesh_geometry, only: allocate_elements, compute_geometry
     use ddc_output_twodd_tables, only: write_twodd_tables
-    use test_twodd_reference, only: read_reference_table
+    use test_twodd_reference, only: check_against_reference
     implicit none
     private
 
     public :: collect_twodd_deck
 
     character(len=*), parameter :: inputs = 'reference/twodd/inputs/'
-    character(len=*), parameter :: csv_dir = 'reference/twodd/csv/'
     character(len=*), parameter :: wide_dir = 'reference/twodd/output_double_precision/'
     character(len=*), parameter :: data = 'data/twodd/'
 
@@ -53,78 +52,19 @@ contains
     ! Reference decks
     ! ------------------------------------------------------------------------------------
 
-    !> Run a reference deck and compare with the double-precision TWODD print (CSV copy):
-    !> element columns to 1e-9 and points to 1e-8 of each column's largest magnitude (or
-    !> of the load for traction columns that vanish).
+    !> Run a reference deck and compare with the double-precision TWODD print.
     subroutine compare_reference(error, name)
         type(error_type), allocatable, intent(out) :: error
         character(len=*), intent(in) :: name
         type(model_type) :: model
         type(model_results) :: r
-        real(wp), allocatable :: elements(:, :), points(:, :), ours(:, :), x(:), y(:)
-        character(len=8), parameter :: columns(12) = [character(len=8) :: 'DS', 'US(-)', &
-            'US(+)', 'DN', 'UN(-)', 'UN(+)', 'UX(-)', 'UY(-)', 'UX(+)', 'UY(+)', 'SIGMA-S', &
-            'SIGMA-N']
-        character(len=5), parameter :: point_columns(5) = ['UX   ', 'UY   ', 'SIGXX', &
-                                                          'SIGYY', 'SIGXY']
-        real(wp) :: load, scale
-        integer :: k
 
-        call read_reference_table(csv_dir//name//'_elements.csv', 20, elements, error)
-        if (allocated(error)) return
-        call read_reference_table(csv_dir//name//'_points.csv', 8, points, error)
-        if (allocated(error)) return
         call read_twodd_deck(inputs//name//'.f60.txt', model, error)
         if (allocated(error)) return
         call run_model(model, r, error)
         if (allocated(error)) return
-        call check(error, model%elements%n, size(elements, 2), 'element count')
-        call check(error, size(r%fields), 4, 'observation lines')
-        if (allocated(error)) return
-        x = [(model%observations(k)%x, k = 1, 4)]
-        y = [(model%observations(k)%y, k = 1, 4)]
-        call check(error, size(x), size(points, 2), 'point count')
-        if (allocated(error)) return
-        call check(error, maxval(abs(x - points(2, :))), 0.0_wp, 'point x', abs_tol=1.0e-14_wp)
-        call check(error, maxval(abs(y - points(3, :))), 0.0_wp, 'point y', abs_tol=1.0e-14_wp)
-        call check(error, maxval(abs(model%elements%x_mid - elements(3, :))), 0.0_wp, &
-                   'element centres', abs_tol=1.0e-14_wp)
-        ours = element_columns(model, r)
-        load = max(maxval(abs(model%elements%bc_s)), maxval(abs(model%elements%bc_n)), &
-                   abs(model%sxx), abs(model%syy), abs(model%sxy))
-        do k = 1, 12
-            scale = maxval(abs(elements(8 + k, :)))
-            if (k > 10) scale = max(scale, load)
-            call check(error, maxval(abs(ours(:, k) - elements(8 + k, :))), 0.0_wp, &
-                       name//' element '//trim(columns(k)), abs_tol=1.0e-9_wp * scale)
-        end do
-        associate (f => r%fields)
-            ours = reshape([(f(k)%ux, k = 1, 4), (f(k)%uy, k = 1, 4), (f(k)%sxx, k = 1, 4), &
-                            (f(k)%syy, k = 1, 4), (f(k)%sxy, k = 1, 4)], [size(points, 2), 5])
-        end associate
-        do k = 1, 5
-            call check(error, maxval(abs(ours(:, k) - points(3 + k, :))), 0.0_wp, &
-                       name//' point '//trim(point_columns(k)), &
-                       abs_tol=1.0e-8_wp * maxval(abs(points(3 + k, :))))
-        end do
-        ! The reference decks keep clear of their elements: no point is flagged.
-        call check(error, all([(all(r%fields(k)%flag == point_clear), k = 1, 4)]), &
-                   'no flagged points')
+        call check_against_reference(error, name, model, r)
     end subroutine compare_reference
-
-    !> The 12 midpoint columns of the TWODD print, shape (n, 12).
-    function element_columns(model, r) result(table)
-        type(model_type), intent(in) :: model
-        type(model_results), intent(in) :: r
-        real(wp), allocatable :: table(:, :)
-
-        associate (e => r%elements, c => model%elements%cos_beta, s => model%elements%sin_beta)
-            table = reshape([e%ds, e%us_minus, e%us_plus, e%dn, e%un_minus, e%un_plus, &
-                             e%us_minus * c - e%un_minus * s, e%us_minus * s + e%un_minus * c, &
-                             e%us_plus * c - e%un_plus * s, e%us_plus * s + e%un_plus * c, &
-                             e%shear_traction, e%normal_traction], [model%elements%n, 12])
-        end associate
-    end function element_columns
 
     !> A1: crack under internal pressure 1.
     subroutine test_reference_a1(error)
