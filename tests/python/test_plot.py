@@ -1,5 +1,7 @@
-"""Tests of scripts/ddc2d-plot on small synthetic result files (see conftest.py)."""
+"""Tests of scripts/ddc2d-plot on small synthetic result files (see conftest.py) and on a
+small model solved by ddc2d."""
 
+import csv
 import subprocess
 import sys
 
@@ -7,7 +9,8 @@ import h5py
 import numpy as np
 import pytest
 
-from conftest import GRID_NAN_POINT, GRID_NEAR_POINT, LENGTH_UNIT, PLOT_SCRIPT, STRESS_UNIT
+from conftest import (GRID_NAN_POINT, GRID_NEAR_POINT, LENGTH_UNIT, PLOT_SCRIPT, STRESS_UNIT,
+                      ddc2d_exe, write_result)
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 
@@ -29,18 +32,22 @@ def test_writes_profile_per_fracture_and_map_per_grid(result_file, tmp_path):
     out = tmp_path / "figures"  # does not exist yet: the script creates it
     proc = run_plot(result_file, "-o", out)
     assert proc.returncode == 0, proc.stderr
-    expected = ["synthetic_map_grid1_max_shear.png", "synthetic_profile_B.png",
-                "synthetic_profile_fault_A.png"]
-    assert figure_files(out) == expected  # no map for the 'line' field
-    for name in expected:
+    figures = ["synthetic_map_grid1_max_shear.png", "synthetic_profile_B.png",
+               "synthetic_profile_fault_A.png", "synthetic_profiles.png"]
+    tables = ["synthetic_tips.csv", "synthetic_tips.txt"]
+    assert figure_files(out) == sorted(figures + tables)  # no map for the 'line' field
+    for name in figures:
         assert (out / name).read_bytes()[:8] == PNG_MAGIC
         assert (out / name).stat().st_size > 5000
-    printed = sorted(line.rsplit("/", 1)[-1] for line in proc.stdout.split())
-    assert printed == expected
+    # stdout: the tips table (as in _tips.txt), then the files written, one per line
+    table = (out / "synthetic_tips.txt").read_text()
+    assert proc.stdout.startswith(table)
+    printed = sorted(line.rsplit("/", 1)[-1] for line in proc.stdout[len(table):].split())
+    assert printed == sorted(figures + tables)
     assert proc.stderr == ""
 
 
-@pytest.mark.parametrize("quantity", ["sxx", "syy", "sxy", "mean", "max_shear",
+@pytest.mark.parametrize("quantity", ["sxx", "syy", "sxy", "mean", "max_shear", "coulomb",
                                       "displacement"])
 def test_every_quantity_names_its_map(plot_module, result_file, tmp_path, quantity):
     out = tmp_path / quantity
@@ -51,9 +58,9 @@ def test_every_quantity_names_its_map(plot_module, result_file, tmp_path, quanti
 def test_svg_format(result_file, tmp_path):
     proc = run_plot(result_file, "-o", tmp_path / "svg", "--format", "svg")
     assert proc.returncode == 0, proc.stderr
-    names = figure_files(tmp_path / "svg")
+    names = [n for n in figure_files(tmp_path / "svg") if n.endswith(".svg")]
     assert names == ["synthetic_map_grid1_max_shear.svg", "synthetic_profile_B.svg",
-                     "synthetic_profile_fault_A.svg"]
+                     "synthetic_profile_fault_A.svg", "synthetic_profiles.svg"]
     for name in names:
         assert "<svg" in (tmp_path / "svg" / name).read_text()[:2000]
 
@@ -69,7 +76,9 @@ def test_file_without_fields_still_plots_profiles(result_file_without_fields, tm
     proc = run_plot(result_file_without_fields, "-o", tmp_path / "out")
     assert proc.returncode == 0, proc.stderr
     assert figure_files(tmp_path / "out") == ["nofields_profile_B.png",
-                                              "nofields_profile_fault_A.png"]
+                                              "nofields_profile_fault_A.png",
+                                              "nofields_profiles.png", "nofields_tips.csv",
+                                              "nofields_tips.txt"]
 
 
 # ------------------------------------------------------------------ bad input
@@ -97,8 +106,6 @@ def test_corrupt_file_exits_2_with_message(tmp_path):
 
 
 def test_file_without_elements_exits_2(tmp_path):
-    from conftest import write_result
-
     path = write_result(tmp_path / "noelements.h5", with_elements=False)
     proc = run_plot(path, "-o", tmp_path / "out")
     assert proc.returncode == 2
@@ -240,3 +247,232 @@ def test_default_clim_follows_one_signed_data(plot_module):
     values = plot_module.np.ma.masked_array(-150.0 + plot_module.np.linspace(0.0, 10.0, 101))
     low, high = plot_module.default_clim(values, "sxx")
     assert -150.0 <= low < high <= -140.0
+
+
+# ------------------------------------------------------------------ Coulomb stress change
+
+REMOTE = np.array([-143.75, -81.25, 54.13])  # the synthetic file's remote_stress
+
+
+def hand_coulomb(sxx, syy, sxy, angle_deg, mu, sense):
+    """dCFS by rotating the stress-change tensor: tau = t . dS . n, sigma_n = n . dS . n."""
+    a = np.radians(angle_deg)
+    t = np.array([np.cos(a), np.sin(a)])
+    n = np.array([-np.sin(a), np.cos(a)])
+    out = np.empty(np.shape(sxx))
+    for index in np.ndindex(out.shape):
+        change = np.array([[sxx[index], sxy[index]], [sxy[index], syy[index]]]) \
+            - np.array([[REMOTE[0], REMOTE[2]], [REMOTE[2], REMOTE[1]]])
+        out[index] = sense * (t @ change @ n) + mu * (n @ change @ n)
+    return out
+
+
+def test_coulomb_matches_hand_computation(plot_module, result_file):
+    result = plot_module.load_result(result_file)
+    np.testing.assert_array_equal(result["remote_stress"], REMOTE)
+    field = result["fields"]["grid1"]
+    receiver = plot_module.Receiver(result["remote_stress"], 30.0, 0.4, "right")
+    x, y, cfs = plot_module.grid_quantity(field, "coulomb", receiver)
+    sxx, syy, sxy = -10.0 + x + 2.0 * y, -5.0 - x * y, 0.5 * x - y
+    expected = hand_coulomb(sxx, syy, sxy, 30.0, 0.4, 1.0)
+    keep = ~np.ma.getmaskarray(cfs)
+    assert keep.sum() == 19
+    np.testing.assert_allclose(cfs[keep], expected[keep], rtol=1e-12, atol=1e-12)
+    # Point (x, y) = (-2, -1.5): sxx = -15, syy = -8, sxy = 0.5; by hand on paper:
+    # d_tau = (73.25 - 128.75) sin30 cos30 - 53.63 cos60 = -50.8472050,
+    # d_sigma_n = 128.75 / 4 + 73.25 * 3 / 4 + 2 * 53.63 sin30 cos30 = 133.5699424.
+    assert cfs[0, 0] == pytest.approx(-50.8472050 + 0.4 * 133.5699424, abs=1e-6)
+    left = plot_module.Receiver(result["remote_stress"], 30.0, 0.4, "left")
+    _, _, cfs_left = plot_module.grid_quantity(field, "coulomb", left)
+    np.testing.assert_allclose(cfs_left[keep], hand_coulomb(sxx, syy, sxy, 30.0, 0.4, -1.0)
+                               [keep], rtol=1e-12, atol=1e-12)
+
+
+def test_remote_stress_gives_no_coulomb_change(plot_module):
+    receiver = plot_module.Receiver(REMOTE, 17.0, 0.6, "right")
+    assert plot_module.coulomb_stress_change(*REMOTE, receiver) == pytest.approx(0.0,
+                                                                                 abs=1e-12)
+
+
+def test_receiver_auto_sense_follows_the_remote_shear(plot_module):
+    # On a plane along x the remote shear is sxy = 54.13 > 0: right-lateral. On the
+    # conjugate plane at -60 degrees it is -54.13: left-lateral.
+    assert plot_module.Receiver(REMOTE, 0.0).sense == "right"
+    assert plot_module.Receiver(REMOTE, -60.0).sense == "left"
+    tau, sigma_n = plot_module.resolved_traction(*REMOTE, -60.0)
+    assert tau == pytest.approx(-54.13, abs=1e-2)
+    assert sigma_n == pytest.approx(-81.25, abs=1e-2)
+
+
+def test_coulomb_map_from_the_command_line(plot_module, result_file, tmp_path):
+    args = [str(result_file), "-o", str(tmp_path), "--quantity", "coulomb", "--receiver",
+            "30", "--friction", "0.4", "--sense", "right", "--clim", "-5", "5"]
+    assert plot_module.main(args) == 0
+    assert (tmp_path / "synthetic_map_grid1_coulomb.png").is_file()
+    result = plot_module.load_result(result_file)
+    receiver = plot_module.Receiver(result["remote_stress"], 30.0, 0.4, "right")
+    fig = plot_module.plot_map(result, "grid1", "coulomb", (-5.0, 5.0), receiver)
+    try:
+        ax = fig.axes[0]
+        mesh = ax.collections[0]
+        x, y = result["fields"]["grid1"]["x"], result["fields"]["grid1"]["y"]
+        expected = hand_coulomb(-10.0 + x + 2.0 * y, -5.0 - x * y, 0.5 * x - y, 30.0, 0.4,
+                                1.0)
+        plotted = np.ma.masked_invalid(np.ma.filled(mesh.get_array(), np.nan)).reshape(4, 5)
+        keep = ~np.ma.getmaskarray(plotted)
+        np.testing.assert_allclose(plotted[keep], expected[keep], rtol=1e-12, atol=1e-12)
+        assert "receiver 30 deg from +x, right-lateral, mu = 0.4" in ax.get_title()
+    finally:
+        plot_module.plt.close(fig)
+
+
+def test_coulomb_without_remote_stress_exits_2(result_file, tmp_path):
+    with h5py.File(result_file, "a") as f:
+        del f.attrs["remote_stress"]
+    proc = run_plot(result_file, "-o", tmp_path / "out", "--quantity", "coulomb")
+    assert proc.returncode == 2
+    assert "remote_stress" in proc.stderr and "Traceback" not in proc.stderr
+    assert run_plot(result_file, "-o", tmp_path / "out").returncode == 0  # other maps do
+
+
+def test_quantity_lists(plot_module, result_file, tmp_path):
+    assert plot_module.main([str(result_file), "-o", str(tmp_path / "two"),
+                             "--quantity", "sxx,mean"]) == 0
+    assert [p.name for p in sorted((tmp_path / "two").glob("*_map_*"))] == [
+        "synthetic_map_grid1_mean.png", "synthetic_map_grid1_sxx.png"]
+    assert plot_module.main([str(result_file), "-o", str(tmp_path / "all"),
+                             "--quantity", "all", "--format", "svg"]) == 0
+    assert len(list((tmp_path / "all").glob("*_map_*.svg"))) == 7
+    proc = run_plot(result_file, "-o", tmp_path / "bad", "--quantity", "sxx,tau")
+    assert proc.returncode == 2 and "tau" in proc.stderr
+
+
+def test_default_clim_centres_signed_maps_on_the_remote_value(plot_module, result_file):
+    result = plot_module.load_result(result_file)
+    assert plot_module.remote_value(result, "mean") == pytest.approx(-112.5)
+    assert plot_module.remote_value(result, "sxy") == pytest.approx(54.13)
+    assert plot_module.remote_value(result, "coulomb") == 0.0
+    values = np.ma.masked_array(-112.5 + np.linspace(-3.0, 1.0, 101))
+    low, high = plot_module.default_clim(values, "mean", centre=-112.5)
+    assert low + high == pytest.approx(-225.0) and high > -112.5
+
+
+# ------------------------------------------------------------------ vectors, overview, tips
+
+
+def test_displacement_map_draws_the_displacement_vectors(plot_module, result_file):
+    result = plot_module.load_result(result_file)
+    fig = plot_module.plot_map(result, "grid1", "displacement")
+    try:
+        (quiver,) = [c for c in fig.axes[0].collections if c.get_gid() == "vectors"]
+        field = result["fields"]["grid1"]
+        keep = np.isfinite(field["ux"])  # 5 x 4 grid: every point, step 1, but the NaN
+        assert plot_module.quiver_step(5, 4) == 1
+        np.testing.assert_array_equal(quiver.U, field["ux"][keep])
+        np.testing.assert_array_equal(quiver.V, field["uy"][keep])
+        np.testing.assert_array_equal(quiver.X, field["x"][keep])
+    finally:
+        plot_module.plt.close(fig)
+    assert plot_module.quiver_step(101, 76) == 5  # at most 24 arrows on a side
+
+
+def test_overview_profile_shows_every_fracture(plot_module, result_file):
+    result = plot_module.load_result(result_file)
+    elements = result["elements"]
+    # The elements span 2 in x (A: -1..1) and 2.4 in y (B: 0..2.4): profiles against y.
+    assert plot_module.overview_axis(elements) == "y"
+    fig = plot_module.plot_overview(result)
+    try:
+        for row, key in ((0, "slip"), (1, "opening")):
+            lines = {ln.get_gid(): ln for ln in fig.axes[row].get_lines() if ln.get_gid()}
+            for label, sl in (("fault_A", slice(0, 4)), ("B", slice(4, 7))):
+                line = lines[f"{key}:{label}"]
+                np.testing.assert_allclose(line.get_xdata(), elements["y_mid"][sl],
+                                           rtol=1e-14)
+                data = -elements["ds" if key == "slip" else "dn"][sl]
+                np.testing.assert_array_equal(line.get_ydata(), data)
+        legend = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+        assert legend == ["fault A", "B", "stick", "slip", "open", "free"]
+        assert fig.axes[1].get_xlabel() == f"y of element midpoint [{LENGTH_UNIT}]"
+    finally:
+        plot_module.plt.close(fig)
+
+
+def test_tips_table_files(result_file, tmp_path):
+    proc = run_plot(result_file, "-o", tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    with open(tmp_path / "synthetic_tips.csv", newline="") as handle:
+        rows = list(csv.reader(handle))
+    assert rows[0] == ["tip", "fracture", "element", f"x [{LENGTH_UNIT}]",
+                       f"y [{LENGTH_UNIT}]", f"K_I [{STRESS_UNIT} {LENGTH_UNIT}^0.5]",
+                       f"K_II [{STRESS_UNIT} {LENGTH_UNIT}^0.5]"]
+    assert [r[:3] for r in rows[1:]] == [["1", "fault A", "1"], ["2", "fault A", "4"],
+                                        ["3", "B", "5"], ["4", "B", "7"]]
+    numbers = np.array([[float(v) for v in r[3:]] for r in rows[1:]])
+    np.testing.assert_array_equal(numbers, [[-1.0, 0.0, 0.0, 1.2], [1.0, 0.0, 0.0, 1.1],
+                                            [0.0, 1.0, 0.1, -0.2], [0.3, 2.4, 0.0, 0.3]])
+    text = (tmp_path / "synthetic_tips.txt").read_text().splitlines()
+    assert text[0] == "crack tips of synthetic.h5: stress intensity factors"
+    assert text[1].split() == ["tip", "fracture", "element", "x", f"[{LENGTH_UNIT}]", "y",
+                               f"[{LENGTH_UNIT}]", "K_I", f"[{STRESS_UNIT}",
+                               f"{LENGTH_UNIT}^0.5]", "K_II", f"[{STRESS_UNIT}",
+                               f"{LENGTH_UNIT}^0.5]"]
+    assert text[2].split() == ["1", "fault", "A", "1", "-1", "0", "0", "1.2"]
+    assert text[4].split() == ["3", "B", "5", "0", "1", "0.1", "-0.2"]
+    assert len(text) == 6
+
+
+def test_tips_table_without_tips(plot_module, result_file, tmp_path):
+    with h5py.File(result_file, "a") as f:
+        del f["tips"]
+    result = plot_module.load_result(result_file)
+    assert plot_module.tips_csv(result).splitlines()[1:] == []
+    assert "no crack tips" in plot_module.tips_text(result)
+
+
+# ------------------------------------------------------------------ a model solved by ddc2d
+
+SOLVED_MODEL = """\
+! A pressurized crack beside a frictional fault, small enough for a Debug build.
+&model title = 'small solved model', youngs_modulus = 50000.0, poissons_ratio = 0.25,
+       length_unit = 'm', stress_unit = 'MPa' /
+&remote_stress sxx = -143.75, syy = -81.25, sxy = 54.13 /
+&fracture name = 'fault', x = -1.0, 1.0, y = 0.0, 0.0, elements = 30, mu = 0.6, sf = 1.0 /
+&fracture name = 'crack', x = -0.2, 0.2, y = 0.5, 0.3, elements = 10, mu = 0.6,
+          pressure = 70.0 /
+&grid name = 'area', xmin = -1.5, xmax = 1.5, nx = 16, ymin = -1.0, ymax = 1.0, ny = 11 /
+"""
+
+
+def test_plots_a_model_solved_by_ddc2d(plot_module, tmp_path):
+    model = tmp_path / "solved.nml"
+    model.write_text(SOLVED_MODEL)
+    done = subprocess.run([str(ddc2d_exe()), str(model), "-o", str(tmp_path / "solved.h5")],
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    proc = run_plot(tmp_path / "solved.h5", "-o", tmp_path / "fig", "--quantity",
+                    "coulomb,displacement")
+    assert proc.returncode == 0, proc.stderr
+    assert figure_files(tmp_path / "fig") == [
+        "solved_map_area_coulomb.png", "solved_map_area_displacement.png",
+        "solved_profile_crack.png", "solved_profile_fault.png", "solved_profiles.png",
+        "solved_tips.csv", "solved_tips.txt"]
+    result = plot_module.load_result(tmp_path / "solved.h5")
+    with h5py.File(tmp_path / "solved.h5", "r") as f:
+        ds, dn, state = f["elements/ds"][()], f["elements/dn"][()], f["elements/state"][()]
+        k2 = f["tips/k2"][()]
+    (fault, fault_profile), (crack, crack_profile) = plot_module.fracture_profiles(result)
+    assert (fault["first"], fault["last"], crack["first"], crack["last"]) == (1, 30, 31, 40)
+    fig = plot_module.plot_profile(result, crack, crack_profile)
+    try:
+        (line,) = [ln for ln in fig.axes[1].get_lines() if ln.get_gid() == "opening"]
+        np.testing.assert_array_equal(line.get_ydata(), -dn[30:40])
+    finally:
+        plot_module.plt.close(fig)
+    np.testing.assert_array_equal(fault_profile["slip"], -ds[:30])
+    np.testing.assert_array_equal(fault_profile["state"], state[:30])
+    assert np.all(crack_profile["state"] == 3)  # 70 MPa > 50 MPa on the crack: open
+    with open(tmp_path / "fig" / "solved_tips.csv", newline="") as handle:
+        rows = list(csv.reader(handle))[1:]
+    assert [r[1] for r in rows] == ["fault", "fault", "crack", "crack"]
+    np.testing.assert_array_equal([float(r[6]) for r in rows], k2)

@@ -1,0 +1,160 @@
+"""Every example model in input/ runs to exit 0 with the executable under test (DDC2D_EXE).
+
+The examples run at full size: in a Debug build (-fcheck=all) each takes under about 3 s
+on 2 cores (about 15 s for the set), so no reduced copy is needed. Parameter sweeps
+(a &sweep group) run their first task. Only namelist models count as examples: files
+without a &model group (e.g. classic TWODD decks) are not run here.
+
+Besides the exit status, each gallery model is checked for what its comment block says
+it shows (states, which tips slip more), so that a figure in the README gallery cannot
+silently turn into something else.
+"""
+
+import re
+import subprocess
+
+import h5py
+import numpy as np
+import pytest
+
+from conftest import REPO_ROOT, ddc2d_exe
+
+INPUT = REPO_ROOT / "input"
+EXAMPLES = sorted(p for p in INPUT.glob("*.nml")
+                  if re.search(r"^\s*&model\b", p.read_text(), re.IGNORECASE | re.MULTILINE))
+STATE = {"free": 0, "stick": 1, "slip": 2, "open": 3}
+
+
+def is_sweep(path):
+    return re.search(r"^\s*&sweep\b", path.read_text(), re.IGNORECASE | re.MULTILINE)
+
+
+def run_example(path, out):
+    args = [str(ddc2d_exe()), str(path), "-o", str(out)]
+    if is_sweep(path):
+        args += ["--task", "0"]
+    return subprocess.run(args, capture_output=True, text=True, timeout=300)
+
+
+def states_of(f, name):
+    """The element states of fracture `name` (numpy array)."""
+    names = [n.decode().strip() for n in f["fractures/name"][()]]
+    index = names.index(name)
+    first = f["fractures/first_element"][index]
+    last = f["fractures/last_element"][index]
+    return f["elements/state"][first - 1:last]
+
+
+def tip_k2(f):
+    return np.abs(f["tips/k2"][()])
+
+
+def test_there_are_enough_examples():
+    gallery = [p for p in EXAMPLES if not is_sweep(p)]
+    assert len(gallery) >= 8
+    for name in ("paper_fault_slip", "paper_fault_stick", "segmented_right_step",
+                 "segmented_left_step", "ramped_fault", "intersecting_faults",
+                 "branching_fault", "splayed_fault", "curved_fault", "en_echelon",
+                 "pressurized_fracture_near_fault"):
+        assert INPUT / f"{name}.nml" in EXAMPLES
+
+
+@pytest.mark.parametrize("path", EXAMPLES, ids=[p.stem for p in EXAMPLES])
+def test_example_runs(path, tmp_path):
+    text = path.read_text()
+    assert text.startswith("!"), f"{path.name} must start with a comment block"
+    out = tmp_path / f"{path.stem}.h5"
+    done = run_example(path, out)
+    assert done.returncode == 0, f"{path.name}: {done.stderr}"
+    if is_sweep(path):
+        assert list(tmp_path.glob(f"{path.stem}_task*.h5")), done.stdout
+        return
+    with h5py.File(out, "r") as f:
+        assert f.attrs["complete"] == 1
+        kinds = [f["fields"][g].attrs["kind"].decode().strip() for g in f.get("fields", {})]
+        assert "grid" in kinds, f"{path.name} has no grid"
+        check = EXPECTED.get(path.stem)
+        if check is not None:
+            check(f)
+
+
+# ------------------------------------------------------------------ what each example shows
+
+
+def _all(f, name, state):
+    assert np.all(states_of(f, name) == STATE[state]), (name, states_of(f, name))
+
+
+def _some(f, name, state):
+    assert np.any(states_of(f, name) == STATE[state]), (name, state)
+
+
+def check_right_step(f):
+    _all(f, "west", "slip")
+    _all(f, "east", "slip")
+    k2 = tip_k2(f)  # tips: west outer, west inner, east inner, east outer
+    assert k2[1] > k2[0] and k2[2] > k2[3]  # releasing: the inner tips slip more
+
+
+def check_left_step(f):
+    _all(f, "west", "slip")
+    _all(f, "east", "slip")
+    k2 = tip_k2(f)
+    assert k2[1] < 0.9 * k2[0] and k2[2] < 0.9 * k2[3]  # restraining: inner tips clamped
+    # The mean stress midway between the overlapping tips is more compressive than remote.
+    grid = f["fields/map"]
+    x, y = grid["x"][()], grid["y"][()]
+    j, i = np.unravel_index(np.argmin(np.hypot(x, y)), x.shape)
+    remote = f.attrs["remote_stress"]
+    assert 0.5 * (grid["sxx"][j, i] + grid["syy"][j, i]) < 0.5 * (remote[0] + remote[1])
+
+
+def check_ramp(f):
+    state = states_of(f, "flat-ramp-flat")
+    assert np.all(state[:150] == STATE["slip"]) and np.all(state[266:] == STATE["slip"])
+    assert np.all(state[150:266] == STATE["stick"])  # the ramp
+
+
+def check_branching(f):
+    _all(f, "main", "slip")
+    state = states_of(f, "branch")
+    assert state[0] == STATE["stick"] and state[-1] == STATE["slip"]
+
+
+def check_curved(f):
+    state = states_of(f, "arc")
+    assert state[0] == STATE["stick"] and state[-1] == STATE["stick"]
+    assert state[150] == STATE["slip"]
+
+
+def check_pressurized_near_fault(f):
+    _all(f, "hydrofracture", "open")
+    _some(f, "fault", "slip")
+    _some(f, "fault", "stick")
+
+
+def check_splayed(f):
+    _all(f, "main", "slip")
+    _all(f, "splay_north", "stick")
+
+
+def check_all_slip(*names):
+    def check(f):
+        for name in names:
+            _all(f, name, "slip")
+    return check
+
+
+EXPECTED = {
+    "segmented_right_step": check_right_step,
+    "segmented_left_step": check_left_step,
+    "ramped_fault": check_ramp,
+    "branching_fault": check_branching,
+    "curved_fault": check_curved,
+    "pressurized_fracture_near_fault": check_pressurized_near_fault,
+    "splayed_fault": check_splayed,
+    "intersecting_faults": check_all_slip("right-lateral", "left-lateral"),
+    "en_echelon": check_all_slip(*[f"segment_{k}" for k in range(1, 6)]),
+    "paper_fault_slip": check_all_slip("fault"),
+    "paper_fault_stick": lambda f: _all(f, "fault", "stick"),
+}
