@@ -15,6 +15,7 @@ program ddc2d
     use ddc_output_hdf5, only: write_results
     use ddc_output_twodd_tables, only: write_twodd_tables
     use ddc_run, only: run_model
+    use ddc_history_solve, only: solve_history
     use ddc_input_messages, only: itoa
     use ddc_input_sweep, only: read_sweep
     use ddc_sweep_tasks, only: sweep_definition, task_label, task_file_name, check_task, &
@@ -76,7 +77,11 @@ program ddc2d
             '): image elements implicit'
     end if
 
-    call run_model(model, results, error)
+    if (allocated(model%load_path%vertex)) then
+        call solve_history(model, results, error)
+    else
+        call run_model(model, results, error)
+    end if
     call stop_on(error)
     call system_clock(t0, rate)
     call write_results(model%output_file, model, results, error)

@@ -2,10 +2,10 @@
 module ddc_run
     !$ use omp_lib, only: omp_get_max_threads
     use ddc_kinds, only: wp
-    use ddc_error, only: error_type
-    use ddc_model_types, only: model_type, condition_contact
+    use ddc_error, only: error_type, set_error, exit_bad_input
+    use ddc_model_types, only: model_type, element_set, condition_contact, domain_half_plane
     use ddc_model_results, only: model_results, state_free
-    use ddc_influence_assembly, only: midpoint_response, resolve_remote_stress
+    use ddc_influence_assembly, only: midpoint_response, resolve_remote_stress, total_pressure
     use ddc_solve_elastic, only: solve_elastic
     use ddc_solve_frictional, only: solve_frictional
     use ddc_post_tips, only: find_tips
@@ -41,10 +41,18 @@ contains
         !> Set when the model has no solution or the solver failed
         type(error_type), allocatable, intent(out) :: error
         real(wp), allocatable :: remote_shear(:), remote_normal(:)
+        type(element_set) :: loaded
         real(wp) :: g, nu, t_start, t0
         integer :: n, i
 
         t_start = wall_seconds()
+        ! The input readers check this too; a sweep may change the remote stress after them.
+        if (model%elements%domain == domain_half_plane .and. (model%syy /= 0.0_wp .or. &
+            model%sxy /= 0.0_wp .or. model%stress_gradient(3) /= 0.0_wp)) then
+            call set_error(error, exit_bad_input, 'half-plane: the remote syy, sxy and '// &
+                           'dsxy_dy must be 0 (traction-free surface y = 0)')
+            return
+        end if
         n = model%elements%n
         g = shear_modulus_of(model)
         nu = model%poissons_ratio
@@ -53,12 +61,15 @@ contains
 
         allocate (remote_shear(n), remote_normal(n))
         call resolve_remote_stress(model%elements, model%sxx, model%syy, model%sxy, &
-                                   remote_shear, remote_normal)
+                                   remote_shear, remote_normal, model%stress_gradient)
         associate (e => results%elements, rec => results%solver)
             allocate (e%ds(n), e%dn(n), e%shear_traction(n), e%normal_traction(n), &
                       e%us_minus(n), e%un_minus(n), e%us_plus(n), e%un_plus(n), e%state(n))
             if (any(model%elements%condition == condition_contact)) then
-                call solve_frictional(model%elements, g, nu, remote_shear, remote_normal, &
+                ! The contact elements see their pressure plus the pore fluid.
+                loaded = model%elements
+                loaded%pressure = total_pressure(model%elements, model%pore_fluid)
+                call solve_frictional(loaded, g, nu, remote_shear, remote_normal, &
                                       model%solver%open_cohesion, model%solver%lcp_method, &
                                       e%ds, e%dn, e%state, rec, error)
             else
@@ -88,7 +99,8 @@ contains
             do i = 1, size(results%fields)
                 call evaluate_field(model%elements, g, nu, [model%sxx, model%syy, model%sxy], &
                                     e%ds, e%dn, model%observations(i)%x, &
-                                    model%observations(i)%y, results%fields(i))
+                                    model%observations(i)%y, results%fields(i), &
+                                    model%stress_gradient)
             end do
             rec%seconds_fields = wall_seconds() - t0
             rec%seconds_total = wall_seconds() - t_start

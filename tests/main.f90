@@ -4,6 +4,7 @@ program ddc2d_tester
     use test_output, only: collect_output
     use test_kernel, only: collect_kernel
     use test_half_plane_kernel, only: collect_half_plane_kernel
+    use test_half_plane, only: collect_half_plane
     use test_input, only: collect_input
     use test_mesh, only: collect_mesh
     use test_lemke, only: collect_lemke
@@ -17,6 +18,7 @@ program ddc2d_tester
     use test_twodd_deck, only: collect_twodd_deck
     use test_fast_contact, only: collect_fast_contact
     use test_sweep, only: collect_sweep
+    use test_history, only: collect_history
     implicit none
     type(test_case), allocatable :: tests(:)
     character(len=64) :: suite
@@ -32,6 +34,8 @@ program ddc2d_tester
         call collect_kernel(tests)
     case ('half_plane_kernel')
         call collect_half_plane_kernel(tests)
+    case ('half_plane')
+        call collect_half_plane(tests)
     case ('input')
         call collect_input(tests)
     case ('mesh')
@@ -60,6 +64,8 @@ program ddc2d_tester
         call collect_fast_contact(tests)
     case ('sweep')
         call collect_sweep(tests)
+    case ('history')
+        call collect_history(tests)
     case default
         write (*, '(a)') 'unknown suite: '//trim(suite)
         error stop 2

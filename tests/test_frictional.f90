@@ -4,6 +4,7 @@
 module test_frictional
     use ddc_kinds, only: wp
     use ddc_testing, only: test_case, new_test, check, error_type
+    use ddc_error, only: exit_solver_failure
     use ddc_model_types, only: model_type, condition_contact, condition_traction
     use ddc_model_results, only: model_results, state_stick, state_slip, state_open, state_free
     use ddc_run, only: run_model
@@ -29,7 +30,8 @@ contains
                  new_test('fluid_pressure_opens_cohesion_kept', test_pressure_kept), &
                  new_test('fluid_pressure_opens_cohesion_lost', test_pressure_lost), &
                  new_test('kinked_fault_stick_slip_open', test_kink), &
-                 new_test('hydrofracture_next_to_fault', test_mixed)]
+                 new_test('hydrofracture_next_to_fault', test_mixed), &
+                 new_test('acute_branch_lemke_ray_auto_newton', test_acute_branch)]
     end subroutine collect_frictional
 
     !> The paper's fault: 2 m long, contact with uniform mu and Sf, its remote stress.
@@ -234,6 +236,43 @@ contains
         call check(error, all(r_mixed%elements%state(41:) == r_contact%elements%state(41:)), &
                    'same fault states')
     end subroutine test_mixed
+
+    !> A branch at 40 degrees below a fault under the paper's loading (84 elements): Lemke
+    !> ends on a ray (exit 1); 'auto' then solves it with the Newton method, certified, and
+    !> records why.
+    subroutine test_acute_branch(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(error_type), allocatable :: ray
+        type(model_type) :: model, branch
+        type(model_results) :: r
+        real(wp), parameter :: angle = -40.0_wp * pi / 180.0_wp
+
+        model = polyline_model([-1.0_wp, 0.0_wp, 1.0_wp], [0.0_wp, 0.0_wp, 0.0_wp], [30, 30], &
+                               condition_contact, 0.0_wp, 0.0_wp, e_modulus, nu)
+        branch = polyline_model([0.0_wp, 0.8_wp * cos(angle)], [0.0_wp, 0.8_wp * sin(angle)], &
+                                [24], condition_contact, 0.0_wp, 0.0_wp, e_modulus, nu)
+        call join_fractures(model, branch)
+        model%elements%mu = 0.6_wp
+        model%elements%sf = 1.0_wp
+        model%sxx = -143.75_wp
+        model%syy = -81.25_wp
+        model%sxy = 54.13_wp
+        model%solver%lcp_method = 'lemke'
+        call run_model(model, r, ray)
+        call check(error, allocated(ray), 'Lemke alone ends on a ray')
+        if (allocated(error)) return
+        call check(error, ray%code, exit_solver_failure, 'exit code of the ray')
+        if (allocated(error)) return
+        model%solver%lcp_method = 'auto'
+        call run_model(model, r, error)
+        if (allocated(error)) return
+        call check(error, r%solver%method == 'newton', 'the Newton method produced the result')
+        call check(error, index(r%solver%fallback, 'Lemke ended on a ray') > 0, &
+                   'the reason is recorded')
+        call check(error, count(r%elements%state == state_slip) > 0, 'the fault slips')
+        call check(error, r%solver%certificate_max_complementarity <= &
+                   r%solver%certificate_tolerance, 'certificate')
+    end subroutine test_acute_branch
 
     !> A vertical hydrofracture (40 elements, given condition) above a horizontal frictional
     !> fault (60 elements, mu = 0.6, Sf = 0); sxx = -10, syy = -20, sxy = 13.

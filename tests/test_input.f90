@@ -11,7 +11,7 @@ module test_input
     use ddc_input_namelist, only: read_namelist_model
     implicit none
     private
-    public :: collect_input
+    public :: collect_input, check_bad_input
 
     character(len=*), parameter :: data = 'data/input/'
     character(len=*), parameter :: element_header(7) = [character(len=8) :: 'x_begin', &

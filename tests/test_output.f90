@@ -290,7 +290,8 @@ contains
         call check_string_attribute(error, path, '/elements/state', 'coding', &
             '0 free (TWODD-style condition), 1 stick, 2 slip, 3 open')
         call check_string_attribute(error, path, '/elements/condition', 'coding', &
-            '1 traction, 2 displacement, 3 mixed_us_sn, 4 mixed_ss_un, 5 contact')
+            '1 traction, 2 displacement, 3 mixed_us_sn, 4 mixed_ss_un, 5 contact, '// &
+            '6 prescribed_dd')
         call remove_file(path)
     end subroutine test_element_units
 

@@ -17,8 +17,13 @@
 !> (exit_solver_failure), never a result.
 !>
 !> States (codes of ddc_model_results): open when the opening -Dn exceeds
-!> state_dd_tol * dd_scale; otherwise slip when |Ds| exceeds that tolerance or the element
-!> is on its friction limit (tau_s - |s_s| <= state_stress_tol * sigma0); otherwise stick.
+!> state_dd_tol * dd_scale; otherwise slip when |Ds| (in a loading history the slip
+!> increment of the step) exceeds that tolerance or the element is on its friction limit
+!> (tau_s - |s_s| <= state_stress_tol * sigma0); otherwise stick.
+!>
+!> Loading history (SPEC-EARTH section 3; build_contact_lcp once, then
+!> solve_contact_increment per step): the same M, q with the previous total slip,
+!> Ds = Ds_previous + dD_L - dD_R; always Lemke, warm-started from the previous basis.
 !> dd_scale = max(max |Ds|, max |Dn|, delta0): DDs that are exactly zero in the LCP (its
 !> nonbasic variables) are exactly zero here; basic variables that are zero in exact
 !> arithmetic come out at round-off level, far below the tolerance.
@@ -34,7 +39,9 @@
 !>   slipping elements, S_n' = 0 on open ones) must match A D + S_r within residual_tol.
 !>   When the iteration does not converge, a reduced system is singular or a check
 !>   fails, the solve falls back to Lemke and the reason is kept (contact_result%fallback);
-!> - 'auto': 'newton' above auto_newton_min_elements contact elements, else 'lemke'.
+!> - 'auto': 'newton' above auto_newton_min_elements contact elements, else 'lemke'; when
+!>   that Lemke solve fails (a ray: M is not copositive-plus, seen at acute branches), the
+!>   Newton method is tried before the solve is reported as failed.
 !>
 !> open_cohesion: 'kept' (the paper) lets an open element carry shear up to Sf;
 !> 'lost' sets Sf = 0 on every element that opens and solves again until no open
@@ -54,6 +61,7 @@ module ddc_contact_formulation
     private
 
     public :: contact_result, solve_contact
+    public :: contact_lcp, build_contact_lcp, solve_contact_increment, contact_stress_scale
     public :: state_dd_tol, state_stress_tol, residual_tol
     public :: auto_newton_min_elements, newton_max_iterations
 
@@ -82,7 +90,8 @@ module ddc_contact_formulation
         real(wp), allocatable :: sf_effective(:)
         !> Method that produced the result: 'lemke' or 'newton'
         character(len=:), allocatable :: method
-        !> Why the 'newton' method fell back to Lemke (empty when it did not)
+        !> Why the first method failed and the other one produced the result: Newton falling
+        !> back to Lemke, or (lcp_method 'auto') Lemke to Newton; empty when neither did
         character(len=:), allocatable :: fallback
         !> Newton (active-set) iterations, summed over solves
         integer :: iterations = 0
@@ -105,6 +114,22 @@ module ddc_contact_formulation
         real(wp) :: factorization_flops = 0.0_wp
     end type contact_result
 
+
+    !> The paper's LCP matrix of a set of contact elements, built once for a sequence of
+    !> loads (a loading history, SPEC-EARTH section 3): only q changes from step to step.
+    type :: contact_lcp
+        !> Influence matrix ordered [s; n], shape (2n, 2n) [stress / length]
+        real(wp), allocatable :: a(:, :)
+        !> Its inverse C = A^-1, shape (2n, 2n) [length / stress]
+        real(wp), allocatable :: c(:, :)
+        !> M of the LCP (unscaled, for the certificate) and M scaled for Lemke (stresses by
+        !> sigma0, displacements by sigma0 / max A_ii: independent of sigma0), shape (3n, 3n)
+        real(wp), allocatable :: m(:, :), m_scaled(:, :)
+        !> Friction coefficient, shape (n) [-]
+        real(wp), allocatable :: mu(:)
+        !> max_i A_ii [stress / length]
+        real(wp) :: a_max = 1.0_wp
+    end type contact_lcp
 
 contains
 
@@ -139,12 +164,12 @@ contains
         !> Iteration limit of 'newton' (default newton_max_iterations)
         integer, intent(in), optional :: max_iterations
 
-        real(wp), allocatable :: c(:, :), sf_eff(:)
-        logical, allocatable :: lose(:)
+        real(wp), allocatable :: sf_eff(:), no_slip(:)
+        type(contact_lcp) :: lcp
         type(active_set_result) :: states
-        integer :: n, i, limit
+        integer :: n, limit
         integer(int64) :: t0, t1, rate
-        logical :: lost, newton
+        logical :: lost, newton, automatic
         character(len=:), allocatable :: reason
         character(len=200) :: line
 
@@ -171,6 +196,7 @@ contains
             return
         end if
         newton = .false.
+        automatic = .false.
         if (present(method)) then
             select case (method)
             case ('lemke')
@@ -178,6 +204,7 @@ contains
                 newton = .true.
             case ('auto')
                 newton = n >= auto_newton_min_elements
+                automatic = .true.
             case default
                 call set_error(error, exit_bad_input, "contact: method must be 'auto', &
                     &'lemke' or 'newton', not '"//method//"'")
@@ -212,11 +239,28 @@ contains
                 end if
             end if
             if (.not. newton) then
-                if (.not. allocated(c)) then
-                    call invert_influence(a, c, res, error)
+                if (.not. allocated(lcp%m)) then
+                    call build_contact_lcp(a, mu, lcp, res, error)
                     if (allocated(error)) return
+                    allocate (no_slip(n), source=0.0_wp)
                 end if
-                call solve_once(a, c, s_r_s, s_r_n, mu, sf_eff, pressure, res, error, rule)
+                call solve_once(lcp, s_r_s, s_r_n, sf_eff, pressure, no_slip, &
+                    contact_stress_scale(s_r_s, s_r_n, sf, pressure), res, error, rule=rule)
+                if (allocated(error) .and. automatic .and. len(res%fallback) == 0) then
+                    ! M is not copositive-plus: Lemke can end on a ray where the contact
+                    ! problem has a solution (seen at acute fault branches). 'auto' then
+                    ! asks the Newton method, whose answer is checked the same way.
+                    call solve_once_newton(a, s_r_s, s_r_n, mu, sf_eff, pressure, limit, res, &
+                        states, reason)
+                    if (len(reason) == 0) then
+                        res%method = 'newton'
+                        res%fallback = 'lemke failed: '//error%message
+                        deallocate (error)
+                    else
+                        error%message = error%message//' (the Newton method failed too: '// &
+                            reason//')'
+                    end if
+                end if
             end if
             if (allocated(error)) then
                 if (res%solves > 1) then
@@ -229,16 +273,151 @@ contains
                 return
             end if
             if (.not. lost) exit
-            lose = res%state == state_open .and. sf_eff > 0.0_wp
-            if (.not. any(lose)) exit
-            do i = 1, n
-                if (lose(i)) sf_eff(i) = 0.0_wp
-            end do
+            if (.not. cohesion_lost(res%state, sf_eff)) exit
         end do
         call system_clock(t1)
         res%seconds_lcp = real(t1 - t0, wp) / real(max(rate, 1_int64), wp) - &
             res%seconds_factorization
     end subroutine solve_contact
+
+    !> Zero the cohesion of every open element that still has some; true when any did.
+    function cohesion_lost(state, sf_eff) result(changed)
+        integer, intent(in) :: state(:)
+        real(wp), intent(inout) :: sf_eff(:)
+        logical :: changed
+        logical :: lose(size(state))
+
+        lose = state == state_open .and. sf_eff > 0.0_wp
+        changed = any(lose)
+        where (lose) sf_eff = 0.0_wp
+    end function cohesion_lost
+
+    !> Build the LCP matrix M of n contact elements once (SPEC section 4): C = A^-1 by
+    !> LAPACK, M from C and mu, and M scaled for Lemke. The time and flops of the inverse
+    !> are added to res.
+    subroutine build_contact_lcp(a, mu, lcp, res, error)
+        !> Influence matrix ordered [s; n], shape (2n, 2n) [stress / length]
+        real(wp), intent(in) :: a(:, :)
+        !> Friction coefficient, shape (n) [-]
+        real(wp), intent(in) :: mu(:)
+        !> The LCP matrix and what it was built from
+        type(contact_lcp), intent(out) :: lcp
+        !> Factorization time and flops are added
+        type(contact_result), intent(inout) :: res
+        !> Allocated when A is singular (exit_solver_failure) or sizes differ
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: zs(:), ws(:)
+        integer :: n, n2, n3, i, j
+
+        n = size(mu)
+        n2 = 2 * n
+        n3 = 3 * n
+        if (size(a, 1) /= n2 .or. size(a, 2) /= n2) then
+            call set_error(error, exit_bad_input, 'contact: array sizes do not match')
+            return
+        end if
+        call invert_influence(a, lcp%c, res, error)
+        if (allocated(error)) return
+        lcp%a = a
+        lcp%mu = mu
+        lcp%a_max = 0.0_wp
+        do i = 1, n2
+            lcp%a_max = max(lcp%a_max, abs(a(i, i)))
+        end do
+        if (.not. lcp%a_max > 0.0_wp) lcp%a_max = maxval(abs(a))
+        if (.not. lcp%a_max > 0.0_wp) lcp%a_max = 1.0_wp
+
+        ! M exactly as SPEC section 4 writes it; C blocks are CSS = c(1:n, 1:n),
+        ! CSN = c(1:n, n+1:2n), CNS = c(n+1:2n, 1:n), CNN = c(n+1:, n+1:).
+        associate (c => lcp%c)
+            allocate (lcp%m(n3, n3))
+            lcp%m = 0.0_wp
+            do j = 1, n
+                lcp%m(1:n, j) = c(n + 1:n2, n + j) - c(n + 1:n2, j) * mu(j)
+                lcp%m(1:n, n + j) = c(n + 1:n2, j)
+                lcp%m(n + 1:n2, j) = c(1:n, n + j) - c(1:n, j) * mu(j)
+                lcp%m(n + 1:n2, n + j) = c(1:n, j)
+                lcp%m(n + j, n2 + j) = 1.0_wp
+                lcp%m(n2 + j, j) = 2.0_wp * mu(j)
+                lcp%m(n2 + j, n + j) = -1.0_wp
+            end do
+        end associate
+        ! Scaled problem: z = zs * zt, w = ws * wt with z = [stress; stress; length] and
+        ! w = [length; length; stress]; with sigma0 = 1 (the ratios do not depend on it).
+        call block_scales(n, 1.0_wp, 1.0_wp / lcp%a_max, zs, ws)
+        allocate (lcp%m_scaled(n3, n3))
+        do j = 1, n3
+            lcp%m_scaled(:, j) = lcp%m(:, j) * (zs(j) / ws)
+        end do
+    end subroutine build_contact_lcp
+
+    !> Magnitude of each row of z = [stress; stress; length] and w = [length; length;
+    !> stress] of an LCP on n elements, for a stress scale and a displacement scale.
+    pure subroutine block_scales(n, stress, length, zs, ws)
+        integer, intent(in) :: n
+        real(wp), intent(in) :: stress, length
+        real(wp), allocatable, intent(out) :: zs(:), ws(:)
+
+        zs = [spread(stress, 1, 2 * n), spread(length, 1, n)]
+        ws = [spread(length, 1, 2 * n), spread(stress, 1, n)]
+    end subroutine block_scales
+
+    !> One step of a loading history (SPEC-EARTH section 3) on an LCP built once: q for
+    !> the step's load with the previous total slip, solved by Lemke (warm-started from
+    !> the previous step's basis when that basis is still feasible), certified and
+    !> recovered; total DDs in res. open_cohesion 'lost' re-solves the step until no open
+    !> element keeps cohesion; sf_effective carries the lost cohesion to later steps.
+    subroutine solve_contact_increment(lcp, s_r_s, s_r_n, sf_effective, pressure, &
+                                       open_cohesion, ds_previous, stress_scale, basis, res, &
+                                       error, max_pivots)
+        !> The LCP matrix (build_contact_lcp)
+        type(contact_lcp), intent(in) :: lcp
+        !> Remote shear and normal traction on each element at this step, shape (n) [stress]
+        real(wp), intent(in) :: s_r_s(:), s_r_n(:)
+        !> Frictional strength in force, shape (n) [stress]; set to 0 where cohesion is lost
+        real(wp), intent(inout) :: sf_effective(:)
+        !> Fluid pressure inside each element at this step, shape (n) [stress]
+        real(wp), intent(in) :: pressure(:)
+        !> 'kept' or 'lost'
+        character(len=*), intent(in) :: open_cohesion
+        !> Total shear DD at the end of the previous step, shape (n) [length]
+        real(wp), intent(in) :: ds_previous(:)
+        !> Stress scale sigma0 of the whole history (contact_stress_scale, largest over
+        !> the steps) [stress]
+        real(wp), intent(in) :: stress_scale
+        !> LCP basis of the previous step on entry (0 entries: none), this step's on exit,
+        !> shape (3n)
+        integer, intent(inout) :: basis(:)
+        !> This step's solution (total DDs, tractions, states, certificate, pivots)
+        type(contact_result), intent(out) :: res
+        !> Allocated when the step has no certified solution (exit_solver_failure)
+        type(error_type), allocatable, intent(out) :: error
+        !> Pivot limit of each Lemke solve (default that of solve_lcp_lemke)
+        integer, intent(in), optional :: max_pivots
+
+        res%method = 'lemke'
+        res%fallback = ''
+        do
+            call solve_once(lcp, s_r_s, s_r_n, sf_effective, pressure, ds_previous, &
+                            stress_scale, res, error, basis=basis, max_pivots=max_pivots)
+            if (allocated(error)) return
+            if (open_cohesion /= 'lost') exit
+            if (.not. cohesion_lost(res%state, sf_effective)) exit
+        end do
+    end subroutine solve_contact_increment
+
+    !> Stress scale sigma0 of a contact problem: the largest resolved remote stress,
+    !> strength or pressure (1 when all vanish) [stress].
+    pure function contact_stress_scale(s_r_s, s_r_n, sf, p) result(sigma0)
+        !> Remote shear and normal traction, strength and pressure, shape (n) [stress]
+        real(wp), intent(in) :: s_r_s(:), s_r_n(:), sf(:), p(:)
+        !> The scale [stress]
+        real(wp) :: sigma0
+
+        sigma0 = max(maxval(abs(s_r_s)), maxval(abs(s_r_n)), maxval(abs(s_r_n + p)), &
+            maxval(abs(sf)), maxval(abs(p)))
+        if (.not. sigma0 > 0.0_wp) sigma0 = 1.0_wp
+    end function contact_stress_scale
 
     !> C = A^-1 by LAPACK (dgetrf, dgetri); singular or numerically singular A is an error.
     !> Its time and nominal flops (2 (2n)^3) are added to res.
@@ -301,86 +480,72 @@ contains
         res%factorization_flops = res%factorization_flops + 2.0_wp * real(n2, wp)**3
     end subroutine invert_influence
 
-    !> Stress scale sigma0 (largest resolved remote stress, strength or pressure) and
-    !> displacement scale delta0 = sigma0 / max_i A_ii of a problem; both stored in res.
+    !> Stress scale sigma0 (contact_stress_scale) and displacement scale delta0 =
+    !> sigma0 / max_i A_ii of a problem; both stored in res.
     subroutine problem_scales(a, s_r_s, s_r_n, sf, p, res)
         real(wp), intent(in) :: a(:, :), s_r_s(:), s_r_n(:), sf(:), p(:)
         type(contact_result), intent(inout) :: res
-        real(wp) :: sigma0, amax
+        real(wp) :: amax
         integer :: i
 
-        sigma0 = max(maxval(abs(s_r_s)), maxval(abs(s_r_n)), maxval(abs(s_r_n + p)), &
-            maxval(abs(sf)), maxval(abs(p)))
-        if (.not. sigma0 > 0.0_wp) sigma0 = 1.0_wp
         amax = 0.0_wp
         do i = 1, size(a, 1)
             amax = max(amax, abs(a(i, i)))
         end do
         if (.not. amax > 0.0_wp) amax = maxval(abs(a))
-        res%stress_scale = sigma0
-        res%dd_scale = sigma0 / amax
+        res%stress_scale = contact_stress_scale(s_r_s, s_r_n, sf, p)
+        res%dd_scale = res%stress_scale / amax
     end subroutine problem_scales
 
-    !> One LCP solve with frictional strength sf: build, scale, solve, certify, recover.
-    subroutine solve_once(a, c, s_r_s, s_r_n, mu, sf, p, res, error, rule)
-        real(wp), intent(in) :: a(:, :), c(:, :), s_r_s(:), s_r_n(:), mu(:), sf(:), p(:)
+    !> One LCP solve with frictional strength sf on a built LCP: q for the load (and the
+    !> previous total slip ds_previous, SPEC-EARTH section 3; zero for a one-shot solve),
+    !> scale, solve, certify, recover total DDs.
+    subroutine solve_once(lcp, s_r_s, s_r_n, sf, p, ds_previous, sigma0, res, error, rule, &
+                          basis, max_pivots)
+        type(contact_lcp), intent(in) :: lcp
+        real(wp), intent(in) :: s_r_s(:), s_r_n(:), sf(:), p(:), ds_previous(:), sigma0
         type(contact_result), intent(inout) :: res
         type(error_type), allocatable, intent(out) :: error
-        integer, intent(in), optional :: rule
+        integer, intent(in), optional :: rule, max_pivots
+        integer, intent(inout), optional :: basis(:)
 
-        real(wp), allocatable :: m(:, :), q(:), mt(:, :), qt(:), z(:), w(:), zt(:), wt(:)
-        real(wp), allocatable :: d0(:), srp(:), zs(:), ws(:)
+        real(wp), allocatable :: q(:), z(:), w(:), zt(:), wt(:), d0(:), srp(:), zs(:), ws(:)
         real(wp), allocatable :: snp(:)
-        real(wp) :: sigma0, delta0, dscale
-        integer :: n, n2, n3, j, pivots
+        real(wp) :: delta0, dscale
+        integer, allocatable :: warm(:)
+        integer :: n, n2, n3, pivots
         character(len=300) :: line
 
-        n = size(mu)
+        n = size(lcp%mu)
         n2 = 2 * n
         n3 = 3 * n
 
         ! Scales: stresses by sigma0, displacements by delta0 = sigma0 / max A_ii.
-        call problem_scales(a, s_r_s, s_r_n, sf, p, res)
-        sigma0 = res%stress_scale
-        delta0 = res%dd_scale
+        delta0 = sigma0 / lcp%a_max
+        res%stress_scale = sigma0
+        res%dd_scale = delta0
 
         ! D0 = C S_r' with S_r' = [s_r_s; s_r_n + p].
         srp = [s_r_s, s_r_n + p]
         allocate (d0(n2))
-        call dgemv('N', n2, n2, 1.0_wp, c, n2, srp, 1, 0.0_wp, d0, 1)
+        call dgemv('N', n2, n2, 1.0_wp, lcp%c, n2, srp, 1, 0.0_wp, d0, 1)
 
-        ! M and q exactly as SPEC section 4 writes them; C blocks are
-        ! CSS = c(1:n, 1:n), CSN = c(1:n, n+1:2n), CNS = c(n+1:2n, 1:n), CNN = c(n+1:, n+1:).
-        allocate (m(n3, n3), q(n3))
-        m = 0.0_wp
-        do j = 1, n
-            m(1:n, j) = c(n + 1:n2, n + j) - c(n + 1:n2, j) * mu(j)
-            m(1:n, n + j) = c(n + 1:n2, j)
-            m(n + 1:n2, j) = c(1:n, n + j) - c(1:n, j) * mu(j)
-            m(n + 1:n2, n + j) = c(1:n, j)
-            m(n + j, n2 + j) = 1.0_wp
-            m(n2 + j, j) = 2.0_wp * mu(j)
-            m(n2 + j, n + j) = -1.0_wp
-        end do
-        q(1:n) = d0(n + 1:n2) - matmul(c(n + 1:n2, 1:n), sf)
-        q(n + 1:n2) = d0(1:n) - matmul(c(1:n, 1:n), sf)
+        ! q as SPEC section 4 writes it, with the previous slip (SPEC-EARTH section 3).
+        allocate (q(n3))
+        q(1:n) = d0(n + 1:n2) - matmul(lcp%c(n + 1:n2, 1:n), sf)
+        q(n + 1:n2) = d0(1:n) - matmul(lcp%c(1:n, 1:n), sf) + ds_previous
         q(n2 + 1:n3) = 2.0_wp * sf
 
-        ! Scaled problem: z = zs * zt, w = ws * wt with z = [stress; stress; length] and
-        ! w = [length; length; stress].
-        allocate (zs(n3), ws(n3))
-        zs(1:n2) = sigma0
-        zs(n2 + 1:n3) = delta0
-        ws(1:n2) = delta0
-        ws(n2 + 1:n3) = sigma0
-        allocate (mt(n3, n3))
-        do j = 1, n3
-            mt(:, j) = m(:, j) * (zs(j) / ws)
-        end do
-        qt = q / ws
-
+        call block_scales(n, sigma0, delta0, zs, ws)
         allocate (zt(n3), wt(n3))
-        call solve_lcp_lemke(mt, qt, zt, wt, pivots, error, rule=rule)
+        if (present(basis)) then
+            warm = basis
+            call solve_lcp_lemke(lcp%m_scaled, q / ws, zt, wt, pivots, error, rule=rule, &
+                max_pivots=max_pivots, warm_basis=warm, basis=basis)
+        else
+            call solve_lcp_lemke(lcp%m_scaled, q / ws, zt, wt, pivots, error, rule=rule, &
+                max_pivots=max_pivots)
+        end if
         res%pivots = res%pivots + pivots
         res%solves = res%solves + 1
         if (allocated(error)) then
@@ -393,21 +558,21 @@ contains
         z = zt * zs
         w = wt * ws
 
-        ! Recovery.
+        ! Recovery: Ds = Ds_previous + dD_L - dD_R.
         res%dn = -w(1:n)
-        res%ds = z(n2 + 1:n3) - w(n + 1:n2)
+        res%ds = ds_previous + z(n2 + 1:n3) - w(n + 1:n2)
         snp = -z(1:n)
-        res%shear_traction = -z(n + 1:n2) - mu * snp + sf
+        res%shear_traction = -z(n + 1:n2) - lcp%mu * snp + sf
         res%normal_traction = snp - p
         res%sf_effective = sf
 
         ! Certificate against the unfactored M, with the block magnitudes: sigma0 for
         ! stresses and the larger of delta0 and the largest DD for displacements.
         dscale = max(delta0, maxval(abs(res%ds)), maxval(abs(res%dn)))
-        zs(n2 + 1:n3) = dscale
-        ws(1:n2) = dscale
-        res%certificate = certify_lcp(m, q, z, w, z_scale=zs, w_scale=ws)
-        call check_solution(a, s_r_s, s_r_n, mu, sf, snp, dscale, res, line)
+        call block_scales(n, sigma0, dscale, zs, ws)
+        res%certificate = certify_lcp(lcp%m, q, z, w, z_scale=zs, w_scale=ws)
+        call check_solution(lcp%a, s_r_s, s_r_n, lcp%mu, sf, snp, dscale, res, line, &
+                            ds_previous)
         if (len_trim(line) > 0) call set_error(error, exit_solver_failure, trim(line))
     end subroutine solve_once
 
@@ -455,8 +620,7 @@ contains
             w = [-next%dn, max(-next%ds, 0.0_wp), tau + ss]
         end associate
         dscale = max(res%dd_scale, maxval(abs(next%ds)), maxval(abs(next%dn)))
-        zs = [spread(res%stress_scale, 1, n2), spread(dscale, 1, n)]
-        ws = [spread(dscale, 1, n2), spread(res%stress_scale, 1, n)]
+        call block_scales(n, res%stress_scale, dscale, zs, ws)
         res%certificate = certify_complementarity(z, w, zs, ws, default_certificate_tolerance)
 
         ! The tractions the iteration imposed: S_n' = 0 on open elements, s_s = +-tau_s
@@ -478,12 +642,14 @@ contains
 
     !> Checks common to both methods on a recovered solution (res%ds, dn, tractions):
     !> the certificate passed and the DDs are in equilibrium with the tractions against the
-    !> unfactored A; then the states. message is blank on success, else says what failed.
-    subroutine check_solution(a, s_r_s, s_r_n, mu, sf, snp, dscale, res, message)
+    !> unfactored A; then the states (slip: a slip increment over ds_previous, when given, or
+    !> on the friction limit). message is blank on success, else says what failed.
+    subroutine check_solution(a, s_r_s, s_r_n, mu, sf, snp, dscale, res, message, ds_previous)
         real(wp), intent(in) :: a(:, :), s_r_s(:), s_r_n(:), mu(:), sf(:), snp(:), dscale
         type(contact_result), intent(inout) :: res
         character(len=*), intent(out) :: message
-        real(wp), allocatable :: dd(:), ad(:), tau(:)
+        real(wp), intent(in), optional :: ds_previous(:)
+        real(wp), allocatable :: dd(:), ad(:), tau(:), slip(:)
         real(wp) :: tol_d, tol_s, scale
         integer :: n, n2, i
 
@@ -520,12 +686,14 @@ contains
         tol_d = state_dd_tol * dscale
         tol_s = state_stress_tol * res%stress_scale
         tau = sf - mu * snp
+        slip = res%ds
+        if (present(ds_previous)) slip = res%ds - ds_previous
         if (allocated(res%state)) deallocate (res%state)
         allocate (res%state(n))
         do i = 1, n
             if (-res%dn(i) > tol_d) then
                 res%state(i) = state_open
-            else if (abs(res%ds(i)) > tol_d .or. tau(i) - abs(res%shear_traction(i)) <= tol_s) &
+            else if (abs(slip(i)) > tol_d .or. tau(i) - abs(res%shear_traction(i)) <= tol_s) &
                 then
                 res%state(i) = state_slip
             else

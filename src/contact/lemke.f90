@@ -47,7 +47,13 @@ contains
     !> for the entering variable: the LCP has no solution or Lemke cannot find one) and
     !> exceeding max_pivots are errors with code exit_solver_failure; pivots is set in
     !> every case. Nonbasic variables are exactly zero in z and w.
-    subroutine solve_lcp_lemke(m, q, z, w, pivots, error, max_pivots, cover, rule)
+    !>
+    !> Warm start (a sequence of LCPs with the same M, e.g. a loading history): when
+    !> warm_basis names a complementary basis whose basic values B^-1 q are all
+    !> non-negative, that basis is the solution (0 pivots, one LAPACK solve); otherwise the
+    !> method starts from scratch. basis returns the final complementary basis.
+    subroutine solve_lcp_lemke(m, q, z, w, pivots, error, max_pivots, cover, rule, &
+                               warm_basis, basis)
         !> The LCP matrix, shape (n, n)
         real(wp), intent(in) :: m(:, :)
         !> The LCP vector, shape (n)
@@ -66,11 +72,18 @@ contains
         real(wp), intent(in), optional :: cover(:)
         !> Tie-breaking rule (default lemke_rule_lexicographic)
         integer, intent(in), optional :: rule
+        !> A complementary basis to try first: variable indices, 1..n for w_i and n+1..2n
+        !> for z_i, shape (n)
+        integer, intent(in), optional :: warm_basis(:)
+        !> The final complementary basis, same coding, shape (n) (all w when q >= 0;
+        !> meaningless after an error)
+        integer, intent(out), optional :: basis(:)
 
-        real(wp), allocatable :: binv(:, :), bbar(:), col(:), d(:)
-        integer, allocatable :: basis(:)
+        real(wp), allocatable :: binv(:, :), bbar(:), col(:), d(:), x(:)
+        integer, allocatable :: rows(:)
         integer :: n, limit, tie_rule, entering, leaving, r, i, z0
         real(wp) :: qscale
+        logical :: ok
         character(len=200) :: line
 
         n = size(q)
@@ -106,16 +119,34 @@ contains
 
         ! Trivial solution.
         w = q
+        if (present(basis)) basis = [(i, i = 1, n)]
         if (all(q >= 0.0_wp)) return
         w = 0.0_wp
 
+        ! Warm start: the given basis when it is complementary and feasible for this q.
+        if (present(warm_basis)) then
+            if (size(warm_basis) == n) then
+                ok = all(warm_basis >= 1 .and. warm_basis <= 2 * n)
+                ! One of w_i, z_i for every i, in any row order.
+                if (ok) ok = all([(count(modulo(warm_basis - 1, n) + 1 == i) == 1, &
+                                   i = 1, n)])
+                if (ok) call basis_values(m, q, warm_basis, x, ok)
+                if (ok) ok = minval(x) >= -tie_tol * maxval(abs(q))
+                if (ok) then
+                    call current_solution(warm_basis, x, n, z, w)
+                    if (present(basis)) basis = warm_basis
+                    return
+                end if
+            end if
+        end if
+
         ! Variables: 1..n are w_i, n+1..2n are z_i, 2n+1 is the covering variable z0.
         z0 = 2 * n + 1
-        allocate (binv(n, n), bbar(n), col(n), basis(n))
+        allocate (binv(n, n), bbar(n), col(n), rows(n))
         binv = 0.0_wp
         do i = 1, n
             binv(i, i) = 1.0_wp
-            basis(i) = i
+            rows(i) = i
         end do
         bbar = q
         qscale = maxval(abs(q))
@@ -123,10 +154,10 @@ contains
         ! First pivot: z0 enters (column -d); the leaving row is the lexicographic
         ! minimum of (q_i, e_i') / d_i, which makes every row lexico-positive.
         col = -d
-        r = select_row(bbar, binv, d, qscale, tie_rule, basis, 0)
+        r = select_row(bbar, binv, d, qscale, tie_rule, rows, 0)
         call pivot(binv, bbar, col, r)
-        leaving = basis(r)
-        basis(r) = z0
+        leaving = rows(r)
+        rows(r) = z0
         pivots = 1
 
         do
@@ -135,28 +166,29 @@ contains
                 write (line, '(a,i0,a,i0,a)') 'LCP: Lemke reached its pivot limit (', &
                     limit, ') without a solution (n = ', n, ')'
                 call set_error(error, exit_solver_failure, trim(line))
-                call current_solution(basis, bbar, n, z, w)
+                call current_solution(rows, bbar, n, z, w)
                 return
             end if
             call entering_column(entering, n, m, binv, col)
-            r = select_row(bbar, binv, col, qscale, tie_rule, basis, z0)
+            r = select_row(bbar, binv, col, qscale, tie_rule, rows, z0)
             if (r == 0) then
                 write (line, '(a,i0,a,a,a,i0,a)') 'LCP: Lemke ended on a ray after ', &
                     pivots, ' pivots (entering ', trim(variable_name(entering, n)), &
                     ', n = ', n, '): the problem has no solution that Lemke can reach'
                 call set_error(error, exit_solver_failure, trim(line))
-                call current_solution(basis, bbar, n, z, w)
+                call current_solution(rows, bbar, n, z, w)
                 return
             end if
             call pivot(binv, bbar, col, r)
-            leaving = basis(r)
-            basis(r) = entering
+            leaving = rows(r)
+            rows(r) = entering
             pivots = pivots + 1
             if (leaving == z0) exit
         end do
 
-        call current_solution(basis, bbar, n, z, w)
-        call refine_solution(m, q, basis, n, z, w)
+        call current_solution(rows, bbar, n, z, w)
+        call refine_solution(m, q, rows, n, z, w)
+        if (present(basis)) basis = rows
     end subroutine solve_lcp_lemke
 
     !> The complement of a variable: w_i <-> z_i.
@@ -303,11 +335,32 @@ contains
         real(wp), intent(in) :: m(:, :), q(:)
         integer, intent(in) :: basis(:), n
         real(wp), intent(inout) :: z(:), w(:)
-        real(wp), allocatable :: b(:, :), x(:, :), z2(:), w2(:)
-        integer, allocatable :: ipiv(:)
-        integer :: i, info
+        real(wp), allocatable :: x(:), z2(:), w2(:)
+        logical :: ok
 
-        allocate (b(n, n), x(n, 1), ipiv(n), z2(n), w2(n))
+        call basis_values(m, q, basis, x, ok)
+        if (.not. ok) return
+        allocate (z2(n), w2(n))
+        call current_solution(basis, x, n, z2, w2)
+        if (violation(m, q, z2, w2) < violation(m, q, z, w)) then
+            z = z2
+            w = w2
+        end if
+    end subroutine refine_solution
+
+    !> Basic values x = B^-1 q of a basis (columns e_i for w_i, -M(:, j) for z_j) by one
+    !> LAPACK solve; ok is false when B is singular or x is not finite.
+    subroutine basis_values(m, q, basis, x, ok)
+        real(wp), intent(in) :: m(:, :), q(:)
+        integer, intent(in) :: basis(:)
+        real(wp), allocatable, intent(out) :: x(:)
+        logical, intent(out) :: ok
+        real(wp), allocatable :: b(:, :), rhs(:, :)
+        integer, allocatable :: ipiv(:)
+        integer :: i, n, info
+
+        n = size(q)
+        allocate (b(n, n), rhs(n, 1), ipiv(n))
         b = 0.0_wp
         do i = 1, n
             if (basis(i) <= n) then
@@ -316,16 +369,12 @@ contains
                 b(:, i) = -m(:, basis(i) - n)
             end if
         end do
-        x(:, 1) = q
-        call dgesv(n, 1, b, n, ipiv, x, n, info)
-        if (info /= 0) return
-        if (.not. all(ieee_is_finite(x))) return
-        call current_solution(basis, x(:, 1), n, z2, w2)
-        if (violation(m, q, z2, w2) < violation(m, q, z, w)) then
-            z = z2
-            w = w2
-        end if
-    end subroutine refine_solution
+        rhs(:, 1) = q
+        call dgesv(n, 1, b, n, ipiv, rhs, n, info)
+        x = rhs(:, 1)
+        ok = info == 0
+        if (ok) ok = all(ieee_is_finite(x))
+    end subroutine basis_values
 
     !> Largest violation of the LCP by (z, w), relative to the size of the terms of M z + q.
     pure function violation(m, q, z, w) result(v)

@@ -1,8 +1,12 @@
 !> Influence matrices and midpoint responses of a set of constant-DD elements.
 !>
 !> Unknowns are ordered in blocks [Ds(1:n); Dn(1:n)], rows [shear rows; normal rows]. A row
-!> is either a traction row (stress resolved on element i, tension positive) or a
-!> displacement row (displacement of the negative face of element i in its s, n frame).
+!> is a traction row (stress resolved on element i, tension positive), a displacement row
+!> (displacement of the negative face of element i in its s, n frame) or an identity row
+!> (the DD of element i itself: prescribed DDs).
+!>
+!> The kernel (full plane or half-plane, SPEC-EARTH 1) is chosen once per model by
+!> select_kernel and passed down as a procedure argument: the loops hold no branch on it.
 !>
 !> Symmetry (TWODD KSYM 2-4, Crouch & Starfield ch. 5): every element j has implicit images
 !> mirrored about x = xsym, y = ysym or both. Mirrored with its end order kept, an element
@@ -13,14 +17,32 @@
 module ddc_influence_assembly
     use ddc_kinds, only: wp
     use ddc_model_types, only: element_set, symmetry_options, symmetry_none, symmetry_x, &
-        symmetry_y, symmetry_both
+        symmetry_y, symmetry_both, domain_half_plane, condition_contact
     use ddc_influence_kernel, only: dd_kernel, dd_kernel_global, face_negative
+    use ddc_influence_kernel_half_plane, only: dd_kernel_half_plane
     implicit none
     private
 
-    public :: assemble_influence, midpoint_response, resolve_remote_stress
-    public :: row_traction, row_displacement
+    public :: assemble_influence, midpoint_response, resolve_remote_stress, total_pressure
+    public :: row_traction, row_displacement, row_identity
     public :: image_transform, image_transforms, image_of, kernel_with_images
+    public :: kernel_function, select_kernel
+
+    !> Interface of a kernel: dd_kernel_global or dd_kernel_half_plane.
+    abstract interface
+        pure function kernel_function(x, y, xm, ym, a, cosb, sinb, shear_modulus, nu, face) &
+            result(k)
+            import :: wp, dd_kernel
+            !> Observation point, element midpoint, half-length [length unit]
+            real(wp), intent(in) :: x, y, xm, ym, a
+            !> Element direction cosines, shear modulus [stress unit], Poisson's ratio [-]
+            real(wp), intent(in) :: cosb, sinb, shear_modulus, nu
+            !> Face reported for a point on the element itself
+            integer, intent(in) :: face
+            !> Global-frame displacement and stress per unit Ds (1) and Dn (2)
+            type(dd_kernel) :: k
+        end function kernel_function
+    end interface
 
     !> One implicit image of every element: reflection about x = xsym and/or y = ysym.
     type :: image_transform
@@ -34,7 +56,7 @@ module ddc_influence_assembly
     end type image_transform
 
     !> Kinds of matrix rows
-    integer, parameter :: row_traction = 1, row_displacement = 2
+    integer, parameter :: row_traction = 1, row_displacement = 2, row_identity = 3
 
     !> Influence of unit Ds and Dn on element j at the midpoint of element i, in i's frame.
     type, public :: pair_influence
@@ -45,6 +67,20 @@ module ddc_influence_assembly
     end type pair_influence
 
 contains
+
+    !> The kernel of the elements' domain: the only place the choice is made.
+    subroutine select_kernel(elements, kernel)
+        !> Elements (their domain is used)
+        type(element_set), intent(in) :: elements
+        !> Associated with dd_kernel_half_plane or dd_kernel_global
+        procedure(kernel_function), pointer, intent(out) :: kernel
+
+        if (elements%domain == domain_half_plane) then
+            kernel => dd_kernel_half_plane
+        else
+            kernel => dd_kernel_global
+        end if
+    end subroutine select_kernel
 
     !> The images implied by a symmetry option: none, one (x or y) or three (both).
     pure function image_transforms(symmetry) result(images)
@@ -95,8 +131,10 @@ contains
     end subroutine image_of
 
     !> Global-frame kernel of element j plus its images at (x, y), per unit Ds and Dn of j.
-    pure function kernel_with_images(x, y, elements, j, images, shear_modulus, nu, face) &
-        result(k)
+    pure function kernel_with_images(kernel, x, y, elements, j, images, shear_modulus, nu, &
+                                     face) result(k)
+        !> The kernel of the model (from select_kernel)
+        procedure(kernel_function) :: kernel
         !> Point [length unit]
         real(wp), intent(in) :: x, y
         !> Elements with geometry computed
@@ -115,13 +153,12 @@ contains
         real(wp) :: xm, ym, cosb, sinb, f(2)
         integer :: t
 
-        k = dd_kernel_global(x, y, elements%x_mid(j), elements%y_mid(j), &
-                             elements%half_length(j), elements%cos_beta(j), &
-                             elements%sin_beta(j), shear_modulus, nu, face)
+        k = kernel(x, y, elements%x_mid(j), elements%y_mid(j), elements%half_length(j), &
+                   elements%cos_beta(j), elements%sin_beta(j), shear_modulus, nu, face)
         do t = 1, size(images)
             call image_of(elements, j, images(t), xm, ym, cosb, sinb)
-            ki = dd_kernel_global(x, y, xm, ym, elements%half_length(j), cosb, sinb, &
-                                  shear_modulus, nu, face)
+            ki = kernel(x, y, xm, ym, elements%half_length(j), cosb, sinb, shear_modulus, nu, &
+                        face)
             f = [images(t)%sign_s, 1.0_wp]
             k%ux = k%ux + f * ki%ux
             k%uy = k%uy + f * ki%uy
@@ -133,7 +170,8 @@ contains
 
     !> Influence of element j (and its images) on the midpoint of element i, resolved in
     !> i's s, n frame.
-    pure function pair_at_midpoint(elements, i, j, images, shear_modulus, nu) result(p)
+    pure function pair_at_midpoint(kernel, elements, i, j, images, shear_modulus, nu) result(p)
+        procedure(kernel_function) :: kernel
         type(element_set), intent(in) :: elements
         integer, intent(in) :: i, j
         type(image_transform), intent(in) :: images(:)
@@ -142,8 +180,8 @@ contains
         type(dd_kernel) :: k
         real(wp) :: c, s
 
-        k = kernel_with_images(elements%x_mid(i), elements%y_mid(i), elements, j, images, &
-                               shear_modulus, nu, face_negative)
+        k = kernel_with_images(kernel, elements%x_mid(i), elements%y_mid(i), elements, j, &
+                               images, shear_modulus, nu, face_negative)
         c = elements%cos_beta(i)
         s = elements%sin_beta(i)
         p%ts = -(k%sxx - k%syy) * s * c + k%sxy * (c**2 - s**2)
@@ -152,7 +190,8 @@ contains
         p%un = -k%ux * s + k%uy * c
     end function pair_at_midpoint
 
-    !> Fill the 2n x 2n influence matrix; each row is a traction or a displacement row.
+    !> Fill the 2n x 2n influence matrix; each row is a traction, displacement or identity
+    !> row.
     subroutine assemble_influence(elements, shear_modulus, nu, shear_row, normal_row, matrix)
         !> Elements with geometry computed
         type(element_set), intent(in) :: elements
@@ -161,6 +200,19 @@ contains
         !> Kind of the shear row and of the normal row of each element, shape (n)
         integer, intent(in) :: shear_row(:), normal_row(:)
         !> Influence matrix, shape (2n, 2n)
+        real(wp), intent(out) :: matrix(:, :)
+        procedure(kernel_function), pointer :: kernel
+
+        call select_kernel(elements, kernel)
+        call assemble_with(kernel, elements, shear_modulus, nu, shear_row, normal_row, matrix)
+    end subroutine assemble_influence
+
+    !> assemble_influence with the kernel given.
+    subroutine assemble_with(kernel, elements, shear_modulus, nu, shear_row, normal_row, matrix)
+        procedure(kernel_function) :: kernel
+        type(element_set), intent(in) :: elements
+        real(wp), intent(in) :: shear_modulus, nu
+        integer, intent(in) :: shear_row(:), normal_row(:)
         real(wp), intent(out) :: matrix(:, :)
         type(pair_influence) :: p
         type(image_transform), allocatable :: images(:)
@@ -173,25 +225,33 @@ contains
         !$omp shared(elements, shear_modulus, nu, shear_row, normal_row, matrix, n, images)
         do j = 1, n
             do i = 1, n
-                p = pair_at_midpoint(elements, i, j, images, shear_modulus, nu)
-                if (shear_row(i) == row_traction) then
+                p = pair_at_midpoint(kernel, elements, i, j, images, shear_modulus, nu)
+                select case (shear_row(i))
+                case (row_traction)
                     matrix(i, j) = p%ts(1)
                     matrix(i, n + j) = p%ts(2)
-                else
+                case (row_displacement)
                     matrix(i, j) = p%us(1)
                     matrix(i, n + j) = p%us(2)
-                end if
-                if (normal_row(i) == row_traction) then
+                case default
+                    matrix(i, j) = merge(1.0_wp, 0.0_wp, i == j)
+                    matrix(i, n + j) = 0.0_wp
+                end select
+                select case (normal_row(i))
+                case (row_traction)
                     matrix(n + i, j) = p%tn(1)
                     matrix(n + i, n + j) = p%tn(2)
-                else
+                case (row_displacement)
                     matrix(n + i, j) = p%un(1)
                     matrix(n + i, n + j) = p%un(2)
-                end if
+                case default
+                    matrix(n + i, j) = 0.0_wp
+                    matrix(n + i, n + j) = merge(1.0_wp, 0.0_wp, i == j)
+                end select
             end do
         end do
         !$omp end parallel do
-    end subroutine assemble_influence
+    end subroutine assemble_with
 
     !> Induced tractions and negative-face displacements at every element midpoint.
     subroutine midpoint_response(elements, shear_modulus, nu, ds, dn, shear_traction, &
@@ -205,6 +265,22 @@ contains
         !> Induced shear and normal traction [stress unit], shape (n)
         real(wp), intent(out) :: shear_traction(:), normal_traction(:)
         !> Negative-face displacement along s and n [length unit], shape (n)
+        real(wp), intent(out) :: us_minus(:), un_minus(:)
+        procedure(kernel_function), pointer :: kernel
+
+        call select_kernel(elements, kernel)
+        call response_with(kernel, elements, shear_modulus, nu, ds, dn, shear_traction, &
+                           normal_traction, us_minus, un_minus)
+    end subroutine midpoint_response
+
+    !> midpoint_response with the kernel given.
+    subroutine response_with(kernel, elements, shear_modulus, nu, ds, dn, shear_traction, &
+                             normal_traction, us_minus, un_minus)
+        procedure(kernel_function) :: kernel
+        type(element_set), intent(in) :: elements
+        real(wp), intent(in) :: shear_modulus, nu
+        real(wp), intent(in) :: ds(:), dn(:)
+        real(wp), intent(out) :: shear_traction(:), normal_traction(:)
         real(wp), intent(out) :: us_minus(:), un_minus(:)
         type(pair_influence) :: p
         type(image_transform), allocatable :: images(:)
@@ -221,7 +297,7 @@ contains
             us = 0.0_wp
             un = 0.0_wp
             do j = 1, elements%n
-                p = pair_at_midpoint(elements, i, j, images, shear_modulus, nu)
+                p = pair_at_midpoint(kernel, elements, i, j, images, shear_modulus, nu)
                 ts = ts + p%ts(1) * ds(j) + p%ts(2) * dn(j)
                 tn = tn + p%tn(1) * ds(j) + p%tn(2) * dn(j)
                 us = us + p%us(1) * ds(j) + p%us(2) * dn(j)
@@ -233,21 +309,45 @@ contains
             un_minus(i) = un
         end do
         !$omp end parallel do
-    end subroutine midpoint_response
+    end subroutine response_with
 
-    !> Remote stress resolved on every element (SPEC section 2), tension positive.
-    pure subroutine resolve_remote_stress(elements, sxx, syy, sxy, shear, normal)
+    !> Remote stress resolved on every element (SPEC section 2), tension positive; with a
+    !> gradient, the stress at each midpoint (exact element average of a linear field,
+    !> SPEC-EARTH 2).
+    pure subroutine resolve_remote_stress(elements, sxx, syy, sxy, shear, normal, gradient)
         !> Elements with geometry computed
         type(element_set), intent(in) :: elements
-        !> Remote stress [stress unit]
+        !> Remote stress [stress unit] (at y = 0 when a gradient is given)
         real(wp), intent(in) :: sxx, syy, sxy
         !> Resolved shear and normal traction [stress unit], shape (n)
         real(wp), intent(out) :: shear(:), normal(:)
+        !> d(sxx, syy, sxy)/dy [stress unit / length unit]; zero when absent
+        real(wp), intent(in), optional :: gradient(3)
+        real(wp) :: g(3)
 
-        associate (c => elements%cos_beta, s => elements%sin_beta)
-            shear = -(sxx - syy) * s * c + sxy * (c**2 - s**2)
-            normal = sxx * s**2 - 2.0_wp * sxy * s * c + syy * c**2
+        g = 0.0_wp
+        if (present(gradient)) g = gradient
+        associate (c => elements%cos_beta, s => elements%sin_beta, y => elements%y_mid)
+            shear = -((sxx + g(1) * y) - (syy + g(2) * y)) * s * c &
+                    + (sxy + g(3) * y) * (c**2 - s**2)
+            normal = (sxx + g(1) * y) * s**2 - 2.0_wp * (sxy + g(3) * y) * s * c &
+                     + (syy + g(2) * y) * c**2
         end associate
     end subroutine resolve_remote_stress
+
+    !> Fluid pressure inside every contact element: its own pressure plus the pore fluid
+    !> p0 + dp_dy * y at its midpoint (SPEC-EARTH 2); other elements keep their value.
+    pure function total_pressure(elements, pore_fluid) result(pressure)
+        !> Elements with geometry computed
+        type(element_set), intent(in) :: elements
+        !> Pore fluid (p0 [stress unit], dp_dy [stress unit / length unit])
+        real(wp), intent(in) :: pore_fluid(2)
+        !> Total pressure, compression positive [stress unit], shape (n)
+        real(wp) :: pressure(elements%n)
+
+        pressure = elements%pressure
+        where (elements%condition == condition_contact) &
+            pressure = pressure + pore_fluid(1) + pore_fluid(2) * elements%y_mid
+    end function total_pressure
 
 end module ddc_influence_assembly

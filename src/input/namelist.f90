@@ -14,7 +14,8 @@ module ddc_input_namelist
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type, fracture_type, observation_set, &
         condition_names, condition_contact, observation_grid, observation_line, &
-        observation_points, observation_kind_names, symmetry_none, symmetry_names
+        observation_points, observation_kind_names, symmetry_none, symmetry_names, &
+        symmetry_x, domain_names, domain_half_plane, load_path_names
     use ddc_input_text_file, only: read_text_file, base_name
     use ddc_input_csv, only: read_csv
     use ddc_input_messages, only: newline, itoa, rtoa, lower
@@ -31,14 +32,18 @@ module ddc_input_namelist
 
     !> Names of the namelist groups ddc2d knows
     !> (&sweep is read by ddc_input_sweep; the model reader skips it)
-    character(len=*), parameter :: namelist_group_names(10) = [character(len=13) :: &
+    character(len=*), parameter :: namelist_group_names(12) = [character(len=13) :: &
         'model', 'remote_stress', 'fracture', 'grid', 'line', 'points', 'solver', 'output', &
-        'symmetry', 'sweep']
+        'symmetry', 'sweep', 'pore_fluid', 'load_path']
     integer, parameter :: g_model = 1, g_remote_stress = 2, g_fracture = 3, g_grid = 4, &
-                          g_line = 5, g_points = 6, g_solver = 7, g_output = 8, g_symmetry = 9
+                          g_line = 5, g_points = 6, g_solver = 7, g_output = 8, g_symmetry = 9, &
+                          g_pore_fluid = 11, g_load_path = 12
     !> Groups that may appear more than once
-    logical, parameter :: repeatable(10) = [.false., .false., .true., .true., .true., &
-                                            .true., .false., .false., .false., .false.]
+    logical, parameter :: repeatable(12) = [.false., .false., .true., .true., .true., &
+                                            .true., .false., .false., .false., .false., .false., &
+                                            .false.]
+    !> Largest number of vertices of a &load_path, and of steps along it
+    integer, parameter :: max_path_vertices = 10000, max_path_steps = 1000000
 
     !> Largest number of polyline vertices of one &fracture (size of the namelist arrays)
     integer, parameter :: max_vertices = 100000
@@ -142,9 +147,13 @@ contains
         call read_solver_group(unit, text, path, groups(g_solver), model, messages)
         call read_output_group(unit, text, path, dir, groups(g_output), model, messages)
         call read_symmetry_group(unit, text, path, groups(g_symmetry), model, messages)
+        call read_pore_fluid_group(unit, text, path, groups(g_pore_fluid), model, messages)
+        call read_load_path_group(unit, text, path, groups(g_load_path), fractures, model, &
+                                  messages)
         close (unit)
 
         call check_names(path, fractures, observations, messages)
+        call check_half_plane(path, model, fractures, observations, messages)
         if (messages%n > 0) then
             call set_error(error, exit_bad_input, messages%text)
             return
@@ -328,15 +337,15 @@ contains
         type(group_record), intent(in) :: info
         type(model_type), intent(inout) :: the_model
         type(message_list), intent(inout) :: messages
-        character(len=text_length) :: title, length_unit, stress_unit
+        character(len=text_length) :: title, length_unit, stress_unit, domain
         real(wp) :: youngs_modulus, poissons_ratio
         character(len=512) :: iomsg
         character(len=:), allocatable :: prefix
         integer :: stat
         !> Variables of the group and their types (c text, r real, i integer)
         character(len=*), parameter :: variables = 'title:c youngs_modulus:r '// &
-            'poissons_ratio:r length_unit:c stress_unit:c'
-        namelist /model/ title, youngs_modulus, poissons_ratio, length_unit, stress_unit
+            'poissons_ratio:r length_unit:c stress_unit:c domain:c'
+        namelist /model/ title, youngs_modulus, poissons_ratio, length_unit, stress_unit, domain
 
         the_model%title = base_name(path, .false.)
         the_model%length_unit = 'm'
@@ -347,6 +356,7 @@ contains
         poissons_ratio = unset_real
         length_unit = 'm'
         stress_unit = 'MPa'
+        domain = 'full_plane'
         rewind (unit)
         read (unit, nml=model, iostat=stat, iomsg=iomsg)
         if (stat /= 0) then
@@ -363,6 +373,13 @@ contains
         end if
         the_model%length_unit = trim(adjustl(length_unit))
         the_model%stress_unit = trim(adjustl(stress_unit))
+        stat = find_name(lower(trim(adjustl(domain))), domain_names)
+        if (stat == 0) then
+            call add(messages, prefix//"domain = '"//trim(adjustl(domain))//"' is not one of "// &
+                     quoted_list(domain_names))
+        else
+            the_model%elements%domain = stat
+        end if
 
         if (check_scalar(youngs_modulus, 'youngs_modulus', .true., prefix, messages)) then
             if (youngs_modulus <= 0.0_wp) then
@@ -380,7 +397,8 @@ contains
         end if
     end subroutine read_model_group
 
-    !> &remote_stress sxx, syy, sxy / (tension positive, default 0)
+    !> &remote_stress sxx, syy, sxy, dsxx_dy, dsyy_dy, dsxy_dy / (tension positive, default 0;
+    !> the stress at depth y is s + ds_dy * y)
     subroutine read_remote_stress_group(unit, text, path, info, model, messages)
         integer, intent(in) :: unit
         character(len=*), intent(in) :: text
@@ -388,13 +406,14 @@ contains
         type(group_record), intent(in) :: info
         type(model_type), intent(inout) :: model
         type(message_list), intent(inout) :: messages
-        real(wp) :: sxx, syy, sxy
+        real(wp) :: sxx, syy, sxy, dsxx_dy, dsyy_dy, dsxy_dy
         character(len=512) :: iomsg
         character(len=:), allocatable :: prefix
         integer :: stat
         !> Variables of the group and their types (c text, r real, i integer)
-        character(len=*), parameter :: variables = 'sxx:r syy:r sxy:r'
-        namelist /remote_stress/ sxx, syy, sxy
+        character(len=*), parameter :: variables = 'sxx:r syy:r sxy:r dsxx_dy:r dsyy_dy:r '// &
+            'dsxy_dy:r'
+        namelist /remote_stress/ sxx, syy, sxy, dsxx_dy, dsyy_dy, dsxy_dy
 
         model%sxx = 0.0_wp
         model%syy = 0.0_wp
@@ -403,6 +422,9 @@ contains
         sxx = 0.0_wp
         syy = 0.0_wp
         sxy = 0.0_wp
+        dsxx_dy = 0.0_wp
+        dsyy_dy = 0.0_wp
+        dsxy_dy = 0.0_wp
         rewind (unit)
         read (unit, nml=remote_stress, iostat=stat, iomsg=iomsg)
         if (stat /= 0) then
@@ -414,7 +436,201 @@ contains
         if (check_scalar(sxx, 'sxx', .false., prefix, messages)) model%sxx = sxx
         if (check_scalar(syy, 'syy', .false., prefix, messages)) model%syy = syy
         if (check_scalar(sxy, 'sxy', .false., prefix, messages)) model%sxy = sxy
+        if (check_scalar(dsxx_dy, 'dsxx_dy', .false., prefix, messages)) &
+            model%stress_gradient(1) = dsxx_dy
+        if (check_scalar(dsyy_dy, 'dsyy_dy', .false., prefix, messages)) &
+            model%stress_gradient(2) = dsyy_dy
+        if (check_scalar(dsxy_dy, 'dsxy_dy', .false., prefix, messages)) &
+            model%stress_gradient(3) = dsxy_dy
     end subroutine read_remote_stress_group
+
+    !> &pore_fluid p0, dp_dy / (fluid pressure p0 + dp_dy * y inside every contact element,
+    !> compression positive, added to its pressure; default 0)
+    subroutine read_pore_fluid_group(unit, text, path, info, model, messages)
+        integer, intent(in) :: unit
+        character(len=*), intent(in) :: text
+        character(len=*), intent(in) :: path
+        type(group_record), intent(in) :: info
+        type(model_type), intent(inout) :: model
+        type(message_list), intent(inout) :: messages
+        real(wp) :: p0, dp_dy
+        character(len=512) :: iomsg
+        character(len=:), allocatable :: prefix
+        integer :: stat
+        !> Variables of the group and their types (c text, r real, i integer)
+        character(len=*), parameter :: variables = 'p0:r dp_dy:r'
+        namelist /pore_fluid/ p0, dp_dy
+
+        model%pore_fluid = 0.0_wp
+        if (info%count == 0) return
+        p0 = 0.0_wp
+        dp_dy = 0.0_wp
+        rewind (unit)
+        read (unit, nml=pore_fluid, iostat=stat, iomsg=iomsg)
+        if (stat /= 0) then
+            call report_malformed(text, path, g_pore_fluid, info, 1, stat, iomsg, variables, &
+                                  messages)
+            return
+        end if
+        prefix = group_prefix(path, g_pore_fluid, info, 1)
+        if (check_scalar(p0, 'p0', .false., prefix, messages)) model%pore_fluid(1) = p0
+        if (check_scalar(dp_dy, 'dp_dy', .false., prefix, messages)) model%pore_fluid(2) = dp_dy
+    end subroutine read_pore_fluid_group
+
+    !> &load_path sxx, syy, sxy, dsxx_dy, dsyy_dy, dsxy_dy, p0, steps / (SPEC-EARTH 3;
+    !> optional): the load at the path's vertices (the first is the starting state), each
+    !> quantity either absent (held at its &remote_stress or &pore_fluid value) or given at
+    !> every vertex, and steps(l) increments on leg l. Needs contact elements.
+    subroutine read_load_path_group(unit, text, path, info, fractures, model, messages)
+        integer, intent(in) :: unit
+        character(len=*), intent(in) :: text
+        character(len=*), intent(in) :: path
+        type(group_record), intent(in) :: info
+        type(fracture_input), intent(in) :: fractures(:)
+        type(model_type), intent(inout) :: model
+        type(message_list), intent(inout) :: messages
+        real(wp), allocatable :: sxx(:), syy(:), sxy(:), dsxx_dy(:), dsyy_dy(:), dsxy_dy(:), &
+                                 p0(:), values(:, :), fixed(:)
+        integer, allocatable :: steps(:)
+        character(len=512) :: iomsg
+        character(len=:), allocatable :: prefix
+        integer :: stat, nlegs, nv, q, given
+        logical :: ok
+        !> Variables of the group and their types (c text, r real, i integer)
+        character(len=*), parameter :: variables = 'sxx:r syy:r sxy:r dsxx_dy:r dsyy_dy:r '// &
+            'dsxy_dy:r p0:r steps:i'
+        namelist /load_path/ sxx, syy, sxy, dsxx_dy, dsyy_dy, dsxy_dy, p0, steps
+
+        if (info%count == 0) return
+        allocate (sxx(max_path_vertices), syy(max_path_vertices), sxy(max_path_vertices), &
+                  dsxx_dy(max_path_vertices), dsyy_dy(max_path_vertices), &
+                  dsxy_dy(max_path_vertices), p0(max_path_vertices), steps(max_path_vertices))
+        sxx = unset_real
+        syy = unset_real
+        sxy = unset_real
+        dsxx_dy = unset_real
+        dsyy_dy = unset_real
+        dsxy_dy = unset_real
+        p0 = unset_real
+        steps = unset_integer
+        rewind (unit)
+        read (unit, nml=load_path, iostat=stat, iomsg=iomsg)
+        if (stat /= 0) then
+            call report_malformed(text, path, g_load_path, info, 1, stat, iomsg, variables, &
+                                  messages)
+            return
+        end if
+        prefix = group_prefix(path, g_load_path, info, 1)
+        ok = .true.
+        nlegs = count_given_integers(steps, 'steps', prefix, messages)
+        if (nlegs == 0) then
+            call add(messages, prefix//'steps is required: the number of increments on '// &
+                     'each leg of the path (one value per leg)')
+            ok = .false.
+        else if (any(steps(1:nlegs) < 1)) then
+            call add(messages, prefix//'steps('//itoa(findloc(steps(1:nlegs) < 1, .true., 1))// &
+                     ') must be at least 1')
+            ok = .false.
+        else if (sum(real(steps(1:nlegs), wp)) > real(max_path_steps, wp)) then
+            call add(messages, prefix//'steps add up to more than '//itoa(max_path_steps)// &
+                     ' steps')
+            ok = .false.
+        end if
+        nv = nlegs + 1
+        values = reshape([sxx, syy, sxy, dsxx_dy, dsyy_dy, dsxy_dy, p0], &
+                         [max_path_vertices, 7])
+        fixed = [model%sxx, model%syy, model%sxy, model%stress_gradient, model%pore_fluid(1)]
+        allocate (model%load_path%vertex(7, nv))
+        given = 0
+        do q = 1, 7
+            stat = count_given(values(:, q), trim(load_path_names(q)), prefix, messages)
+            if (stat == 0) then
+                model%load_path%vertex(q, :) = fixed(q)
+            else if (stat /= nv .and. nlegs > 0) then
+                call add(messages, prefix//trim(load_path_names(q))//' has '//itoa(stat)// &
+                         ' values; give one per vertex: '//itoa(nv)//' (one more than steps)')
+                ok = .false.
+            else
+                given = given + 1
+                model%load_path%varies(q) = .true.
+                model%load_path%vertex(q, :) = values(1:nv, q)
+            end if
+        end do
+        if (given == 0) then
+            call add(messages, prefix//'give the load at each vertex: at least one of sxx, '// &
+                     'syy, sxy, dsxx_dy, dsyy_dy, dsxy_dy, p0')
+            ok = .false.
+        end if
+        if (.not. any(fractures%valid .and. fractures%condition == condition_contact)) then
+            call add(messages, prefix//'a load path needs contact elements (condition = '// &
+                     "'contact'): without them the response is elastic and loads superpose")
+            ok = .false.
+        end if
+        if (ok .and. model%elements%domain == domain_half_plane) then
+            if (any(model%load_path%vertex([2, 3, 6], :) /= 0.0_wp)) then
+                call add(messages, prefix//"with &model domain = 'half_plane' syy, sxy and "// &
+                         'dsxy_dy must be 0 at every vertex (traction-free surface y = 0)')
+                ok = .false.
+            end if
+        end if
+        if (ok) then
+            model%load_path%steps = steps(1:nlegs)
+        else
+            deallocate (model%load_path%vertex)
+        end if
+    end subroutine read_load_path_group
+
+    !> Half-plane rules (SPEC-EARTH 1): every vertex and field point at y <= 0, no element on
+    !> the surface, a remote stress that is traction-free at y = 0, symmetry about x only.
+    subroutine check_half_plane(path, model, fractures, observations, messages)
+        character(len=*), intent(in) :: path
+        type(model_type), intent(in) :: model
+        type(fracture_input), intent(in) :: fractures(:)
+        type(observation_input), intent(in) :: observations(:)
+        type(message_list), intent(inout) :: messages
+        character(len=:), allocatable :: prefix
+        integer :: k, i
+
+        if (model%elements%domain /= domain_half_plane) return
+        prefix = path//": &model domain = 'half_plane': "
+        if (model%syy /= 0.0_wp .or. model%sxy /= 0.0_wp .or. &
+            model%stress_gradient(3) /= 0.0_wp) then
+            call add(messages, prefix//'&remote_stress sxy = '//rtoa(model%sxy)//', syy = '// &
+                     rtoa(model%syy)//', dsxy_dy = '//rtoa(model%stress_gradient(3))// &
+                     ' must all be 0: the remote stress must be traction-free at the '// &
+                     'surface y = 0 (give syy by its gradient dsyy_dy, sxx and dsxx_dy freely)')
+        end if
+        if (model%elements%symmetry%kind /= symmetry_none .and. &
+            model%elements%symmetry%kind /= symmetry_x) then
+            call add(messages, prefix//"&symmetry kind = '"// &
+                     trim(symmetry_names(model%elements%symmetry%kind))//"' is not "// &
+                     "available with a free surface; only kind = 'x' (a vertical line)")
+        end if
+        do k = 1, size(fractures)
+            if (.not. fractures(k)%valid) cycle
+            do i = 1, size(fractures(k)%y_begin)
+                if (max(fractures(k)%y_begin(i), fractures(k)%y_end(i)) > 0.0_wp) then
+                    call add(messages, path//': '//fractures(k)%label//': element '//itoa(i)// &
+                             ' has a vertex above the free surface (y > 0) of the half-plane')
+                    exit
+                else if (fractures(k)%y_begin(i) == 0.0_wp .and. &
+                         fractures(k)%y_end(i) == 0.0_wp) then
+                    call add(messages, path//': '//fractures(k)%label//': element '//itoa(i)// &
+                             ' lies on the free surface y = 0 of the half-plane')
+                    exit
+                end if
+            end do
+        end do
+        do k = 1, size(observations)
+            if (.not. observations(k)%valid) cycle
+            i = findloc(observations(k)%set%y > 0.0_wp, .true., 1)
+            if (i > 0) then
+                call add(messages, path//': '//observations(k)%label//': point '//itoa(i)// &
+                         ' (y = '//rtoa(observations(k)%set%y(i))//') is above the free '// &
+                         'surface y = 0 of the half-plane')
+            end if
+        end do
+    end subroutine check_half_plane
 
     !> &fracture name, x, y, elements, mu, sf, pressure, condition, bc_s, bc_n,
     !> elements_file / (repeated, one per fracture)

@@ -5,6 +5,7 @@ module ddc_model_results
     private
 
     public :: element_results, tip_set, field_result, solver_record, model_results
+    public :: history_record
     public :: state_free, state_stick, state_slip, state_open, state_names
     public :: point_clear, point_near, point_on_element
 
@@ -81,6 +82,25 @@ module ddc_model_results
         real(wp) :: seconds_output = 0.0_wp, seconds_total = 0.0_wp
     end type solver_record
 
+    !> Every step of a loading history (SPEC-EARTH section 3); k steps (the starting state
+    !> is step 1), n elements. Not allocated when the model has no load path.
+    type :: history_record
+        !> The load of each step, rows as ddc_model_types' load_path_names (remote stress,
+        !> its gradients d/dy, pore pressure p0), shape (7, k)
+        real(wp), allocatable :: load(:, :)
+        !> Total DDs at the end of each step [length unit], shape (n, k)
+        real(wp), allocatable :: ds(:, :), dn(:, :)
+        !> Element state at the end of each step, shape (n, k)
+        integer, allocatable :: state(:, :)
+        !> Lemke pivots of each step (0: the previous step's basis was still feasible),
+        !> shape (k)
+        integer, allocatable :: pivots(:)
+        !> Certificate of each step (scaled min z, min w, max |z w|) and the relative
+        !> equilibrium residual, shape (k) [-]
+        real(wp), allocatable :: certificate_min_z(:), certificate_min_w(:)
+        real(wp), allocatable :: certificate_max_complementarity(:), equilibrium_residual(:)
+    end type history_record
+
     !> Everything a solve produces.
     type :: model_results
         type(element_results) :: elements
@@ -88,6 +108,8 @@ module ddc_model_results
         !> One per observation set of the model
         type(field_result), allocatable :: fields(:)
         type(solver_record) :: solver
+        !> Every step of the loading history, when the model has one
+        type(history_record) :: history
     end type model_results
 
 end module ddc_model_results

@@ -10,9 +10,10 @@ module ddc_model_types
 
     public :: model_type, element_set, fracture_type, observation_set, solver_options
     public :: symmetry_options, symmetry_none, symmetry_x, symmetry_y, symmetry_both
-    public :: symmetry_names, sweep_task_record
+    public :: symmetry_names, sweep_task_record, load_path_type, load_path_names
     public :: condition_traction, condition_displacement, condition_mixed_us_sn
-    public :: condition_mixed_ss_un, condition_contact, condition_names
+    public :: condition_mixed_ss_un, condition_contact, condition_prescribed_dd, condition_names
+    public :: domain_full_plane, domain_half_plane, domain_names
     public :: observation_grid, observation_line, observation_points, observation_kind_names
 
     !> Boundary conditions; 1-4 are the TWODD KODE values.
@@ -21,9 +22,17 @@ module ddc_model_types
     integer, parameter :: condition_mixed_us_sn = 3
     integer, parameter :: condition_mixed_ss_un = 4
     integer, parameter :: condition_contact = 5
+    !> Kinematic DDs: bc_s, bc_n are Ds, Dn themselves (SPEC-EARTH 1)
+    integer, parameter :: condition_prescribed_dd = 6
     !> Input names of the conditions, indexed by condition code
-    character(len=*), parameter :: condition_names(5) = [character(len=12) :: &
-        'traction', 'displacement', 'mixed_us_sn', 'mixed_ss_un', 'contact']
+    character(len=*), parameter :: condition_names(6) = [character(len=13) :: &
+        'traction', 'displacement', 'mixed_us_sn', 'mixed_ss_un', 'contact', 'prescribed_dd']
+
+    !> Elastic domain: the full plane, or the half-plane y < 0 with a free surface y = 0
+    integer, parameter :: domain_full_plane = 1, domain_half_plane = 2
+    !> Input names of the domains, indexed by domain
+    character(len=*), parameter :: domain_names(2) = [character(len=10) :: &
+        'full_plane', 'half_plane']
 
     !> Kinds of observation sets
     integer, parameter :: observation_grid = 1
@@ -71,6 +80,8 @@ module ddc_model_types
         !> Symmetry lines whose implicit image elements every influence sum includes (set by
         !> the input readers; none by default)
         type(symmetry_options) :: symmetry
+        !> domain_full_plane or domain_half_plane: the kernel of every influence sum
+        integer :: domain = domain_full_plane
     end type element_set
 
     !> One fracture: a name and its contiguous range of elements.
@@ -113,6 +124,24 @@ module ddc_model_types
         real(wp), allocatable :: values(:)
     end type sweep_task_record
 
+    !> Names of the quantities a loading history varies (SPEC-EARTH section 3), in the
+    !> order of load_path_type%vertex: remote stress, its gradients d/dy, pore pressure p0
+    character(len=*), parameter :: load_path_names(7) = [character(len=7) :: &
+        'sxx', 'syy', 'sxy', 'dsxx_dy', 'dsyy_dy', 'dsxy_dy', 'p0']
+
+    !> A loading history (&load_path, SPEC-EARTH section 3): the load at the path's
+    !> vertices (the first is the starting state) and the increments on each leg.
+    type :: load_path_type
+        !> The load at each vertex, rows in the order of load_path_names (quantities not
+        !> given in &load_path hold the model's fixed value), shape (7, vertices)
+        !> [stress unit; stress unit / length unit for the gradients]
+        real(wp), allocatable :: vertex(:, :)
+        !> Number of increments on each leg, shape (vertices - 1)
+        integer, allocatable :: steps(:)
+        !> Which quantities were given per vertex, shape (7)
+        logical :: varies(7) = .false.
+    end type load_path_type
+
     !> A complete model, independent of the input format it came from.
     type :: model_type
         !> Title of the model
@@ -123,6 +152,12 @@ module ddc_model_types
         character(len=:), allocatable :: length_unit, stress_unit
         !> Remote stress, tension positive [stress unit]
         real(wp) :: sxx = 0.0_wp, syy = 0.0_wp, sxy = 0.0_wp
+        !> Remote stress gradients d(sxx, syy, sxy)/dy [stress unit / length unit]:
+        !> the remote stress at depth y is (sxx, syy, sxy) + y * stress_gradient
+        real(wp) :: stress_gradient(3) = 0.0_wp
+        !> Pore fluid pressure p0 [stress unit] and dp/dy [stress unit / length unit],
+        !> compression positive; already added to elements%pressure of contact elements
+        real(wp) :: pore_fluid(2) = 0.0_wp
         !> The boundary elements
         type(element_set) :: elements
         !> The fractures, in element order
@@ -137,6 +172,8 @@ module ddc_model_types
         character(len=:), allocatable :: input_file, input_text
         !> The sweep task this model is, when it is one
         type(sweep_task_record) :: sweep
+        !> Loading history; vertex not allocated when the model has none (one state)
+        type(load_path_type) :: load_path
     end type model_type
 
 end module ddc_model_types

@@ -8,14 +8,20 @@
 !>
 !> - root attributes: program, version, git_commit, created (UTC), title, input_file,
 !>   input_text, units, elastic constants, remote_stress [sxx, syy, sxy], conventions,
-!>   open_cohesion, lcp_method, and last complete = 1;
+!>   open_cohesion, lcp_method, domain, remote_stress_gradient, pore_fluid, and last
+!>   complete = 1;
 !> - /elements/<quantity> shape (n), every real dataset with a `units` attribute;
 !> - /fractures/{name, first_element, last_element};
 !> - /tips/{x, y, fracture_id, element, k1, k2} (empty datasets when there are no tips);
 !> - /fields/<name>/{x, y, ux, uy, sxx, syy, sxy, near_element}, grids shaped (ny, nx)
 !>   in h5py (Fortran dims (nx, ny)), lines and point lists 1-D;
 !> - /solver attributes and /solver/seconds/<phase> scalar datasets;
-!> - /sweep attributes task, tasks, parameters and one per parameter (sweep tasks only).
+!> - /sweep attributes task, tasks, parameters and one per parameter (sweep tasks only);
+!> - /history (loading history only, SPEC-EARTH 3; k steps, the first the starting state):
+!>   {sxx, syy, sxy} and each other quantity the path varies, shape (k); {ds, dn, state}
+!>   shaped (k, n) in h5py (Fortran dims (n, k)); pivots, certificate_min_z,
+!>   certificate_min_w, certificate_max_complementarity, equilibrium_residual, shape (k);
+!>   leg_steps (increments per leg); /elements hold the last step.
 module ddc_output_hdf5
     use, intrinsic :: iso_c_binding, only: c_char, c_null_char, c_loc
     use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5close_f, h5eset_auto_f, &
@@ -29,7 +35,8 @@ module ddc_output_hdf5
     use ddc_error, only: error_type, set_error, exit_io_failure
     use ddc_version, only: program_name, program_version, git_commit
     use ddc_model_types, only: model_type, observation_grid, observation_kind_names, &
-        symmetry_names
+        symmetry_names, domain_names, load_path_names
+    use ddc_influence_assembly, only: total_pressure
     use ddc_model_results, only: model_results, state_free, state_stick, state_slip, &
         state_open
     use ddc_output_atomic, only: partial_name, publish_file, remove_file
@@ -44,7 +51,7 @@ module ddc_output_hdf5
         //'opening = -dn; positive face on the left of the element direction'
     !> Codings stored as attributes of the integer datasets
     character(len=*), parameter :: condition_coding = '1 traction, 2 displacement, ' &
-        //'3 mixed_us_sn, 4 mixed_ss_un, 5 contact'
+        //'3 mixed_us_sn, 4 mixed_ss_un, 5 contact, 6 prescribed_dd'
     character(len=*), parameter :: state_coding = '0 free (TWODD-style condition), ' &
         //'1 stick, 2 slip, 3 open'
     character(len=*), parameter :: near_coding = '0 clear, 1 within one element length ' &
@@ -107,6 +114,7 @@ contains
             call write_fields(root, model, results, error)
             call write_solver(root, results, error)
             if (model%sweep%tasks > 0) call write_sweep(root, model, error)
+            if (allocated(results%history%ds)) call write_history(root, model, results, error)
             call write_attribute(root, 'complete', 1, error)
             call h5fclose_f(root%id, close_status)
             if (close_status /= 0 .and. .not. allocated(error)) then
@@ -180,6 +188,11 @@ contains
                              trim(symmetry_names(model%elements%symmetry%kind)), error)
         call write_attribute(root, 'symmetry_lines', [model%elements%symmetry%xsym, &
                                                       model%elements%symmetry%ysym], error)
+        ! SPEC-EARTH: 'full_plane' or 'half_plane' (free surface y = 0), d(sxx, syy, sxy)/dy
+        ! and the pore fluid (p0, dp_dy)
+        call write_attribute(root, 'domain', trim(domain_names(model%elements%domain)), error)
+        call write_attribute(root, 'remote_stress_gradient', model%stress_gradient, error)
+        call write_attribute(root, 'pore_fluid', model%pore_fluid, error)
     end subroutine write_root_attributes
 
     !> /elements: geometry, conditions, results and contact properties, shape (n).
@@ -220,7 +233,9 @@ contains
             call write_int_1d(group, 'state', r%state, error, state_coding)
             call write_real_1d(group, 'mu', e%mu, '1', error)
             call write_real_1d(group, 'sf', e%sf, stress, error)
-            call write_real_1d(group, 'pressure', e%pressure, stress, error)
+            ! Contact elements: the given pressure plus the pore fluid
+            call write_real_1d(group, 'pressure', total_pressure(e, model%pore_fluid), stress, &
+                               error)
         end associate
         call close_group(group, error)
     end subroutine write_elements
@@ -414,6 +429,46 @@ contains
     end subroutine write_solver
 
     ! ---------------------------------------------------------------- generic helpers
+
+    !> /history: the load, DDs, states and certificate of every step of a loading history.
+    subroutine write_history(root, model, results, error)
+        type(h5_object), intent(in) :: root
+        type(model_type), intent(in) :: model
+        type(model_results), intent(in) :: results
+        type(error_type), allocatable, intent(inout) :: error
+        type(h5_object) :: group
+        character(len=:), allocatable :: length, stress, units
+        integer :: q, dims(2)
+
+        length = text(model%length_unit)
+        stress = text(model%stress_unit)
+        call create_group(root, 'history', group, error)
+        if (allocated(error)) return
+        associate (h => results%history)
+            dims = shape(h%ds)
+            do q = 1, size(load_path_names)
+                if (q > 3 .and. .not. model%load_path%varies(q)) cycle
+                units = stress
+                if (q >= 4 .and. q <= 6) units = stress//'/'//length
+                call write_real_1d(group, trim(load_path_names(q)), h%load(q, :), units, error)
+            end do
+            call write_real_dataset(group, 'ds', reshape(h%ds, [size(h%ds)]), dims, length, &
+                                    error)
+            call write_real_dataset(group, 'dn', reshape(h%dn, [size(h%dn)]), dims, length, &
+                                    error)
+            call write_int_dataset(group, 'state', reshape(h%state, [size(h%state)]), dims, &
+                                   error, state_coding)
+            call write_int_1d(group, 'pivots', h%pivots, error)
+            call write_real_1d(group, 'certificate_min_z', h%certificate_min_z, '1', error)
+            call write_real_1d(group, 'certificate_min_w', h%certificate_min_w, '1', error)
+            call write_real_1d(group, 'certificate_max_complementarity', &
+                               h%certificate_max_complementarity, '1', error)
+            call write_real_1d(group, 'equilibrium_residual', h%equilibrium_residual, '1', &
+                               error)
+            call write_int_1d(group, 'leg_steps', model%load_path%steps, error)
+        end associate
+        call close_group(group, error)
+    end subroutine write_history
 
     !> A 1-D real dataset with a `units` attribute.
     subroutine write_real_1d(parent, name, values, units, error)

@@ -6,7 +6,7 @@ module ddc_post_fields
     use ddc_model_results, only: field_result, point_clear, point_near, point_on_element
     use ddc_influence_kernel, only: dd_kernel, face_positive
     use ddc_influence_assembly, only: image_transform, image_transforms, image_of, &
-        kernel_with_images
+        kernel_with_images, kernel_function, select_kernel
     implicit none
     private
 
@@ -28,7 +28,8 @@ contains
 
         xl = (x - xm) * cosb + (y - ym) * sinb
         yl = -(x - xm) * sinb + (y - ym) * cosb
-        if (abs(yl) <= on_element_tolerance * a .and. abs(xl) <= a * (1.0_wp + on_element_tolerance)) then
+        if (abs(yl) <= on_element_tolerance * a .and. &
+            abs(xl) <= a * (1.0_wp + on_element_tolerance)) then
             flag = point_on_element
         else if (xl**2 + yl**2 < (2.0_wp * a)**2) then
             flag = point_near
@@ -57,19 +58,41 @@ contains
 
     !> Fields at the points (x, y): displacement relative to the far field and total stress.
     !> With symmetry (elements%symmetry) the images of every element contribute and count
-    !> for the flags.
-    subroutine evaluate_field(elements, shear_modulus, nu, remote, ds, dn, x, y, field)
+    !> for the flags. In a half-plane (elements%domain) a point on the free surface y = 0 is
+    !> an ordinary point unless it lies on an element end.
+    subroutine evaluate_field(elements, shear_modulus, nu, remote, ds, dn, x, y, field, &
+                              gradient)
         !> Elements with geometry computed
         type(element_set), intent(in) :: elements
         !> Shear modulus [stress unit] and Poisson's ratio [-]
         real(wp), intent(in) :: shear_modulus, nu
-        !> Remote stress (sxx, syy, sxy) [stress unit]
+        !> Remote stress (sxx, syy, sxy) [stress unit] (at y = 0 when a gradient is given)
         real(wp), intent(in) :: remote(3)
         !> Displacement discontinuities [length unit], shape (n)
         real(wp), intent(in) :: ds(:), dn(:)
         !> Observation points [length unit], shape (npoints)
         real(wp), intent(in) :: x(:), y(:)
         !> Fields at the points; a point on an element gets NaN and flag point_on_element
+        type(field_result), intent(out) :: field
+        !> d(sxx, syy, sxy)/dy of the remote stress [stress unit / length unit]; 0 if absent
+        real(wp), intent(in), optional :: gradient(3)
+        procedure(kernel_function), pointer :: kernel
+        real(wp) :: g(3)
+
+        g = 0.0_wp
+        if (present(gradient)) g = gradient
+        call select_kernel(elements, kernel)
+        call field_with(kernel, elements, shear_modulus, nu, remote, g, ds, dn, x, y, field)
+    end subroutine evaluate_field
+
+    !> evaluate_field with the kernel and the gradient given.
+    subroutine field_with(kernel, elements, shear_modulus, nu, remote, gradient, ds, dn, x, y, &
+                          field)
+        procedure(kernel_function) :: kernel
+        type(element_set), intent(in) :: elements
+        real(wp), intent(in) :: shear_modulus, nu, remote(3), gradient(3)
+        real(wp), intent(in) :: ds(:), dn(:)
+        real(wp), intent(in) :: x(:), y(:)
         type(field_result), intent(out) :: field
         type(dd_kernel) :: k
         type(image_transform), allocatable :: images(:)
@@ -82,7 +105,8 @@ contains
                   field%flag(np))
         nan = ieee_value(1.0_wp, ieee_quiet_nan)
         !$omp parallel do default(none) schedule(dynamic, 16) private(ip, j, k, acc, flag) &
-        !$omp shared(elements, shear_modulus, nu, remote, ds, dn, x, y, field, np, nan, images)
+        !$omp shared(elements, shear_modulus, nu, remote, gradient, ds, dn, x, y, field, np, &
+        !$omp        nan, images)
         do ip = 1, np
             field%flag(ip) = point_clear
             do j = 1, elements%n
@@ -98,10 +122,10 @@ contains
                 field%sxy(ip) = nan
                 cycle
             end if
-            acc = [0.0_wp, 0.0_wp, remote]
+            acc = [0.0_wp, 0.0_wp, remote + gradient * y(ip)]
             do j = 1, elements%n
-                k = kernel_with_images(x(ip), y(ip), elements, j, images, shear_modulus, nu, &
-                                       face_positive)
+                k = kernel_with_images(kernel, x(ip), y(ip), elements, j, images, &
+                                       shear_modulus, nu, face_positive)
                 acc(1) = acc(1) + k%ux(1) * ds(j) + k%ux(2) * dn(j)
                 acc(2) = acc(2) + k%uy(1) * ds(j) + k%uy(2) * dn(j)
                 acc(3) = acc(3) + k%sxx(1) * ds(j) + k%sxx(2) * dn(j)
@@ -115,6 +139,6 @@ contains
             field%sxy(ip) = acc(5)
         end do
         !$omp end parallel do
-    end subroutine evaluate_field
+    end subroutine field_with
 
 end module ddc_post_fields

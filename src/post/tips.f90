@@ -1,7 +1,8 @@
 !> Crack tips and their stress intensity factors (SPEC section 5).
 module ddc_post_tips
     use ddc_kinds, only: wp
-    use ddc_model_types, only: element_set, symmetry_x, symmetry_y, symmetry_both
+    use ddc_model_types, only: element_set, symmetry_x, symmetry_y, symmetry_both, &
+        domain_half_plane
     use ddc_model_results, only: tip_set
     implicit none
     private
@@ -14,7 +15,8 @@ module ddc_post_tips
 contains
 
     !> True when end `side` (1 begin, 2 end) of element i coincides with an end of another
-    !> element, or lies on a symmetry line (where it meets its own image).
+    !> element, lies on a symmetry line (where it meets its own image) or, in a half-plane,
+    !> on the free surface y = 0 (a crack mouth, SPEC-EARTH 1).
     pure logical function end_is_shared(elements, i, side)
         type(element_set), intent(in) :: elements
         integer, intent(in) :: i, side
@@ -36,6 +38,7 @@ contains
             if ((sym%kind == symmetry_y .or. sym%kind == symmetry_both) .and. &
                 abs(y - sym%ysym) <= tol) return
         end associate
+        if (elements%domain == domain_half_plane .and. abs(y) <= tol) return
         end_is_shared = .false.
         do j = 1, elements%n
             if (j == i) cycle

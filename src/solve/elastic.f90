@@ -1,10 +1,12 @@
-!> Elastic solve for TWODD-style conditions (traction, displacement, mixed).
+!> Elastic solve for TWODD-style conditions (traction, displacement, mixed) and prescribed
+!> DDs (identity rows: such elements take no unknowns in effect but act on the others).
 module ddc_solve_elastic
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_solver_failure
     use ddc_model_types, only: element_set, condition_traction, condition_displacement, &
-        condition_mixed_us_sn, condition_mixed_ss_un, condition_contact
-    use ddc_influence_assembly, only: assemble_influence, row_traction, row_displacement
+        condition_mixed_us_sn, condition_mixed_ss_un, condition_contact, condition_prescribed_dd
+    use ddc_influence_assembly, only: assemble_influence, row_traction, row_displacement, &
+        row_identity
     use ddc_solve_lapack, only: lu_factor, lu_solve
     implicit none
     private
@@ -17,16 +19,20 @@ contains
     pure subroutine row_kinds(condition, shear_row, normal_row)
         !> Condition code of each element, shape (n)
         integer, intent(in) :: condition(:)
-        !> row_traction or row_displacement, shape (n)
+        !> row_traction, row_displacement or row_identity, shape (n)
         integer, intent(out) :: shear_row(:), normal_row(:)
 
         where (condition == condition_displacement .or. condition == condition_mixed_us_sn)
             shear_row = row_displacement
+        elsewhere (condition == condition_prescribed_dd)
+            shear_row = row_identity
         elsewhere
             shear_row = row_traction
         end where
         where (condition == condition_displacement .or. condition == condition_mixed_ss_un)
             normal_row = row_displacement
+        elsewhere (condition == condition_prescribed_dd)
+            normal_row = row_identity
         elsewhere
             normal_row = row_traction
         end where
@@ -54,7 +60,7 @@ contains
 
     !> Right-hand side of the given elements' rows, ordered [s; n]: traction rows take the
     !> given total traction minus the remote part; displacement rows take the given
-    !> negative-face displacement (remote stress adds none).
+    !> negative-face displacement and identity rows the given DD (remote stress adds none).
     pure function given_values(elements, shear_row, normal_row, remote_shear, remote_normal, &
                                subset) result(b)
         !> All elements

@@ -5,12 +5,16 @@
 !> as their conditions say) and contact unknowns C (traction rows t_C = S_r,C + K_CC x_C +
 !> K_CF x_F):  x_F = K_FF^-1 (b_F - K_FC x_C), so the contact elements see
 !> A = K_CC - K_CF K_FF^-1 K_FC and the remote traction S_r,C + K_CF K_FF^-1 b_F.
+!>
+!> The condensation depends on the geometry only (condense_contact, once); the remote
+!> traction on the contact elements and the free DDs depend on the load (contact_load and
+!> complete_dds, once per load): a loading history condenses once.
 module ddc_solve_frictional
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_solver_failure
     use ddc_model_types, only: element_set, condition_contact
     use ddc_model_results, only: solver_record, state_free
-    use ddc_influence_assembly, only: assemble_influence, row_traction
+    use ddc_influence_assembly, only: assemble_influence
     use ddc_solve_elastic, only: row_kinds, given_values, singular_message
     use ddc_solve_lapack, only: lu_factor, lu_solve, dgemm
     use ddc_contact_formulation, only: contact_result, solve_contact
@@ -18,6 +22,29 @@ module ddc_solve_frictional
     private
 
     public :: solve_frictional
+    public :: condensed_contact, condense_contact, contact_load, complete_dds, record_contact
+
+    !> The contact elements' view of a model with TWODD-style elements condensed out.
+    type :: condensed_contact
+        !> Number of contact and of free (TWODD-style) elements
+        integer :: nc = 0, nf = 0
+        !> Indices of the contact and of the free elements in the model, shape (nc), (nf)
+        integer, allocatable :: contact(:), free(:)
+        !> Row kinds of every element (ddc_solve_elastic), shape (n)
+        integer, allocatable :: shear_row(:), normal_row(:)
+        !> Influence matrix of the contact elements with the free ones condensed out,
+        !> ordered [s; n], shape (2 nc, 2 nc) [stress / length]
+        real(wp), allocatable :: a(:, :)
+        !> The whole system (kept only when nf > 0), shape (2n, 2n)
+        real(wp), allocatable :: matrix(:, :)
+        !> LU factors of K_FF and their pivots, shape (2 nf, 2 nf), (2 nf)
+        real(wp), allocatable :: kff(:, :)
+        integer, allocatable :: ipiv(:)
+        !> K_FF^-1 K_FC, shape (2 nf, 2 nc)
+        real(wp), allocatable :: y(:, :)
+        !> Nominal flops of the condensation [-]
+        real(wp) :: flops = 0.0_wp
+    end type condensed_contact
 
 contains
 
@@ -42,71 +69,180 @@ contains
         type(solver_record), intent(inout) :: record
         !> Set when the model has no solution or the solver failed
         type(error_type), allocatable, intent(out) :: error
-        real(wp), allocatable :: matrix(:, :), a_contact(:, :), kff(:, :), y(:, :)
-        real(wp), allocatable :: shift(:), x_contact(:), x_free(:), residual_free(:)
-        integer, allocatable :: shear_row(:), normal_row(:), contact(:), free(:), cu(:), fu(:)
-        integer, allocatable :: ipiv(:)
+        type(condensed_contact) :: sys
         type(contact_result) :: res
+        real(wp), allocatable :: shift(:), y_load(:)
+
+        call condense_contact(elements, shear_modulus, nu, sys, record, error)
+        if (allocated(error)) return
+        allocate (shift(2 * sys%nc), y_load(2 * sys%nf))
+        call contact_load(sys, elements, remote_shear, remote_normal, shift, y_load)
+        call solve_contact(sys%a, shift(1:sys%nc), shift(sys%nc + 1:), &
+                           elements%mu(sys%contact), elements%sf(sys%contact), &
+                           elements%pressure(sys%contact), open_cohesion, res, error, &
+                           method=lcp_method)
+        if (allocated(error)) then
+            if (sys%nf > 0) error%message = error%message// &
+                ' (element numbers count the contact elements only)'
+            return
+        end if
+        call record_contact(sys, res, record)
+        call complete_dds(sys, elements, remote_shear, remote_normal, res, y_load, ds, dn, &
+                          state, record%equilibrium_residual)
+    end subroutine solve_frictional
+
+    !> Assemble the influence matrix and condense the TWODD-style elements out (timed into
+    !> record: assembly and factorization).
+    subroutine condense_contact(elements, shear_modulus, nu, sys, record, error)
+        !> Elements with geometry computed, at least one contact element
+        type(element_set), intent(in) :: elements
+        !> Shear modulus [stress unit] and Poisson's ratio [-]
+        real(wp), intent(in) :: shear_modulus, nu
+        !> The condensed system
+        type(condensed_contact), intent(out) :: sys
+        !> seconds_assembly and seconds_factorization are set
+        type(solver_record), intent(inout) :: record
+        !> Set when K_FF is singular
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: matrix(:, :)
+        integer, allocatable :: cu(:), fu(:)
         integer :: n, nc, nf, info, i
         integer(8) :: t0, t1, t2, rate
 
         n = elements%n
         call system_clock(t0, rate)
-        contact = pack([(i, i = 1, n)], elements%condition == condition_contact)
-        free = pack([(i, i = 1, n)], elements%condition /= condition_contact)
-        nc = size(contact)
-        nf = size(free)
+        sys%contact = pack([(i, i = 1, n)], elements%condition == condition_contact)
+        sys%free = pack([(i, i = 1, n)], elements%condition /= condition_contact)
+        nc = size(sys%contact)
+        nf = size(sys%free)
+        sys%nc = nc
+        sys%nf = nf
         ! Unknown indices in the full system, ordered [s; n] within each set.
-        cu = [contact, n + contact]
-        fu = [free, n + free]
+        cu = [sys%contact, n + sys%contact]
+        fu = [sys%free, n + sys%free]
 
-        allocate (shear_row(n), normal_row(n), matrix(2 * n, 2 * n))
-        call row_kinds(elements%condition, shear_row, normal_row)
-        call assemble_influence(elements, shear_modulus, nu, shear_row, normal_row, matrix)
+        allocate (sys%shear_row(n), sys%normal_row(n), matrix(2 * n, 2 * n))
+        call row_kinds(elements%condition, sys%shear_row, sys%normal_row)
+        call assemble_influence(elements, shear_modulus, nu, sys%shear_row, sys%normal_row, &
+                                matrix)
         call system_clock(t1)
         record%seconds_assembly = real(t1 - t0, wp) / real(rate, wp)
 
-        shift = [remote_shear(contact), remote_normal(contact)]
         if (nf == 0) then
             ! Every element is a contact element: A is the whole matrix (no copy).
-            call move_alloc(matrix, a_contact)
+            call move_alloc(matrix, sys%a)
         else
-            a_contact = matrix(cu, cu)
-            ! y = K_FF^-1 [b_F, K_FC]
-            kff = matrix(fu, fu)
-            allocate (y(2 * nf, 1 + 2 * nc), ipiv(2 * nf))
-            y(:, 1) = given_values(elements, shear_row, normal_row, remote_shear, &
-                                   remote_normal, free)
-            y(:, 2:) = matrix(fu, cu)
-            call lu_factor(kff, ipiv, info)
+            sys%a = matrix(cu, cu)
+            ! y = K_FF^-1 K_FC
+            sys%kff = matrix(fu, fu)
+            sys%y = matrix(fu, cu)
+            allocate (sys%ipiv(2 * nf))
+            call lu_factor(sys%kff, sys%ipiv, info)
             if (info > 0) then
-                call set_error(error, exit_solver_failure, singular_message(nf, info, free)// &
-                               ' (among the elements with TWODD-style conditions)')
+                call set_error(error, exit_solver_failure, singular_message(nf, info, &
+                    sys%free)//' (among the elements with TWODD-style conditions)')
                 return
             end if
-            call lu_solve(kff, ipiv, y)
+            call lu_solve(sys%kff, sys%ipiv, sys%y)
             call dgemm('N', 'N', 2 * nc, 2 * nc, 2 * nf, -1.0_wp, matrix(cu, fu), 2 * nc, &
-                       y(:, 2:), 2 * nf, 1.0_wp, a_contact, 2 * nc)
-            shift = shift + matmul(matrix(cu, fu), y(:, 1))
+                       sys%y, 2 * nf, 1.0_wp, sys%a, 2 * nc)
+            call move_alloc(matrix, sys%matrix)
         end if
+        ! LU of K_FF, its solve for 2 nc + 1 right-hand sides and the product.
+        sys%flops = 2.0_wp / 3.0_wp * real(2 * nf, wp)**3 + 2.0_wp * real(2 * nf, wp)**2 * &
+            real(2 * nc + 1, wp) + 2.0_wp * real(2 * nc, wp)**2 * real(2 * nf, wp)
         call system_clock(t2)
         record%seconds_factorization = real(t2 - t1, wp) / real(rate, wp)
+    end subroutine condense_contact
 
-        call solve_contact(a_contact, shift(1:nc), shift(nc + 1:), elements%mu(contact), &
-                           elements%sf(contact), elements%pressure(contact), open_cohesion, &
-                           res, error, method=lcp_method)
-        if (allocated(error)) then
-            if (nc < n) error%message = error%message// &
-                ' (element numbers count the contact elements only)'
-            return
+    !> Remote traction on the contact elements for one load, free elements condensed out:
+    !> shift = [S_r,C shear; S_r,C normal] + K_CF K_FF^-1 b_F.
+    subroutine contact_load(sys, elements, remote_shear, remote_normal, shift, y_load)
+        !> The condensed system
+        type(condensed_contact), intent(in) :: sys
+        !> The model's elements (their given values b_F)
+        type(element_set), intent(in) :: elements
+        !> Remote stress resolved on each element [stress unit], shape (n)
+        real(wp), intent(in) :: remote_shear(:), remote_normal(:)
+        !> Remote shear then normal traction on the contact elements, shape (2 nc) [stress]
+        real(wp), intent(out) :: shift(:)
+        !> K_FF^-1 b_F, shape (2 nf) (complete_dds needs it)
+        real(wp), intent(out) :: y_load(:)
+        real(wp), allocatable :: b(:, :)
+        integer :: n
+
+        n = elements%n
+        shift = [remote_shear(sys%contact), remote_normal(sys%contact)]
+        allocate (b(2 * sys%nf, 1))
+        if (sys%nf > 0) then
+            b(:, 1) = given_values(elements, sys%shear_row, sys%normal_row, remote_shear, &
+                                   remote_normal, sys%free)
+            call lu_solve(sys%kff, sys%ipiv, b)
+            shift = shift + matmul(sys%matrix([sys%contact, n + sys%contact], &
+                                              [sys%free, n + sys%free]), b(:, 1))
         end if
+        y_load = b(:, 1)
+    end subroutine contact_load
+
+    !> DDs and states of every element from a contact solution: contact elements from res,
+    !> free ones from x_F = K_FF^-1 b_F - K_FF^-1 K_FC x_C, checked against the unfactored
+    !> free rows.
+    subroutine complete_dds(sys, elements, remote_shear, remote_normal, res, y_load, ds, dn, &
+                            state, residual)
+        !> The condensed system
+        type(condensed_contact), intent(in) :: sys
+        !> The model's elements (their given values b_F)
+        type(element_set), intent(in) :: elements
+        !> Remote stress resolved on each element of the same load [stress unit], shape (n)
+        real(wp), intent(in) :: remote_shear(:), remote_normal(:)
+        !> The contact solution
+        type(contact_result), intent(in) :: res
+        !> K_FF^-1 b_F of the same load (contact_load), shape (2 nf)
+        real(wp), intent(in) :: y_load(:)
+        !> Displacement discontinuities [length unit], shape (n)
+        real(wp), intent(out) :: ds(:), dn(:)
+        !> Element states (state_free for TWODD-style elements), shape (n)
+        integer, intent(out) :: state(:)
+        !> Relative equilibrium residual: raised to that of the free rows when larger [-]
+        real(wp), intent(inout) :: residual
+        real(wp), allocatable :: x_contact(:), x_free(:), residual_free(:), b_free(:)
+        integer, allocatable :: cu(:), fu(:)
+        integer :: n
+
+        n = size(ds)
+        state = state_free
+        state(sys%contact) = res%state
+        ds(sys%contact) = res%ds
+        dn(sys%contact) = res%dn
+        if (sys%nf == 0) return
+        cu = [sys%contact, n + sys%contact]
+        fu = [sys%free, n + sys%free]
+        x_contact = [res%ds, res%dn]
+        x_free = y_load - matmul(sys%y, x_contact)
+        ds(sys%free) = x_free(1:sys%nf)
+        dn(sys%free) = x_free(sys%nf + 1:)
+        ! The free rows against the unfactored system: K_FF x_F + K_FC x_C = b_F.
+        b_free = given_values(elements, sys%shear_row, sys%normal_row, remote_shear, &
+                              remote_normal, sys%free)
+        residual_free = matmul(sys%matrix(fu, fu), x_free) + &
+            matmul(sys%matrix(fu, cu), x_contact) - b_free
+        residual = max(residual, norm2(residual_free) / max(norm2(b_free), tiny(1.0_wp)))
+    end subroutine complete_dds
+
+    !> Fill the solver record from a contact solution on a condensed system.
+    subroutine record_contact(sys, res, record)
+        !> The condensed system
+        type(condensed_contact), intent(in) :: sys
+        !> The contact solution
+        type(contact_result), intent(in) :: res
+        !> Method, pivots, certificate, residual, flops and LCP time are set; the
+        !> factorization time is added to
+        type(solver_record), intent(inout) :: record
+
         record%method = res%method
         record%fallback = res%fallback
         record%newton_iterations = res%iterations
-        ! Condensation: LU of K_FF, its solve for 2 nc + 1 right-hand sides and the product.
-        record%factorization_flops = res%factorization_flops + 2.0_wp / 3.0_wp * &
-            real(2 * nf, wp)**3 + 2.0_wp * real(2 * nf, wp)**2 * real(2 * nc + 1, wp) + &
-            2.0_wp * real(2 * nc, wp)**2 * real(2 * nf, wp)
+        record%factorization_flops = res%factorization_flops + sys%flops
         record%pivots = res%pivots
         record%lcp_solves = res%solves
         record%certificate_min_z = res%certificate%min_z
@@ -116,21 +252,5 @@ contains
         record%seconds_factorization = record%seconds_factorization + res%seconds_factorization
         record%seconds_lcp = res%seconds_lcp
         record%equilibrium_residual = maxval(res%equilibrium_residual)
-
-        state = state_free
-        state(contact) = res%state
-        ds(contact) = res%ds
-        dn(contact) = res%dn
-        if (nf > 0) then
-            x_contact = [res%ds, res%dn]
-            x_free = y(:, 1) - matmul(y(:, 2:), x_contact)
-            ds(free) = x_free(1:nf)
-            dn(free) = x_free(nf + 1:)
-            ! The free rows against the unfactored system.
-            residual_free = matmul(matrix(fu, fu), x_free) + matmul(matrix(fu, cu), x_contact) &
-                            - y(:, 1)
-            record%equilibrium_residual = max(record%equilibrium_residual, &
-                norm2(residual_free) / max(norm2(y(:, 1)), tiny(1.0_wp)))
-        end if
-    end subroutine solve_frictional
+    end subroutine record_contact
 end module ddc_solve_frictional

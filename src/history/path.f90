@@ -1,0 +1,77 @@
+!> A loading history's steps (SPEC-EARTH section 3): the load at every step of a path.
+!>
+!> Step 1 is the path's first vertex (the starting state); leg l from vertex l to l + 1
+!> adds steps(l) equal increments, the last of which lands on vertex l + 1 exactly.
+module ddc_history_path
+    use ddc_kinds, only: wp
+    use ddc_model_types, only: model_type, load_path_type
+    implicit none
+    private
+
+    public :: path_step_count, path_loads, load_at, apply_load
+
+contains
+
+    !> Number of steps of a path: 1 (the starting state) plus every increment.
+    pure integer function path_step_count(path)
+        !> The path
+        type(load_path_type), intent(in) :: path
+
+        path_step_count = 1 + sum(path%steps)
+    end function path_step_count
+
+    !> The load at every step, shape (7, path_step_count(path)), rows as load_path_names.
+    pure function path_loads(path) result(loads)
+        !> The path
+        type(load_path_type), intent(in) :: path
+        !> The loads [stress unit; stress unit / length unit for the gradients]
+        real(wp), allocatable :: loads(:, :)
+        integer :: leg, j, k
+
+        allocate (loads(size(path%vertex, 1), path_step_count(path)))
+        loads(:, 1) = path%vertex(:, 1)
+        k = 1
+        do leg = 1, size(path%steps)
+            do j = 1, path%steps(leg)
+                k = k + 1
+                loads(:, k) = load_at(path%vertex(:, leg), path%vertex(:, leg + 1), j, &
+                                      path%steps(leg))
+            end do
+        end do
+    end function path_loads
+
+    !> The load after j of steps increments from vertex a to vertex b (b itself at j = steps).
+    pure function load_at(a, b, j, steps) result(load)
+        !> The leg's first and last vertex, shape (7)
+        real(wp), intent(in) :: a(:), b(:)
+        !> Increment and number of increments on the leg
+        integer, intent(in) :: j, steps
+        !> The load, shape (7)
+        real(wp) :: load(size(a))
+
+        if (j == steps) then
+            load = b
+        else
+            load = a + (b - a) * (real(j, wp) / real(steps, wp))
+        end if
+    end function load_at
+
+    !> A copy of the model at one load: remote stress, gradients and pore pressure p0
+    !> replaced (dp_dy and everything else kept).
+    pure function apply_load(model, load) result(loaded)
+        !> The model
+        type(model_type), intent(in) :: model
+        !> The load, rows as load_path_names, shape (7)
+        real(wp), intent(in) :: load(:)
+        !> The model at that load
+        type(model_type) :: loaded
+
+        loaded = model
+        loaded%sxx = load(1)
+        loaded%syy = load(2)
+        loaded%sxy = load(3)
+        loaded%stress_gradient = load(4:6)
+        loaded%pore_fluid(1) = load(7)
+    end function apply_load
+
+end module ddc_history_path

@@ -1,0 +1,86 @@
+"""The loading history end to end: ddc2d on a &load_path model writes /history, and
+scripts/ddc2d-plot draws its hysteresis from exactly those values."""
+
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+
+from conftest import PLOT_SCRIPT, ddc2d_exe
+
+# The play-operator crack of SPEC-EARTH 3, coarse: slips above 6 MPa, sticks while the
+# shear is unloaded by less than 12 MPa, slips back below -2 MPa.
+PATH_MODEL = """\
+&model title = 'play', youngs_modulus = 50000, poissons_ratio = 0.25 /
+&remote_stress syy = -10 /
+&fracture name = 'fault', x = -1, 1, y = 0, 0, elements = 20, mu = 0.6 /
+&load_path sxy = 0, 10, -10, steps = 10, 20 /
+"""
+
+
+def solve(tmp_path, text=PATH_MODEL):
+    model = tmp_path / "path.nml"
+    model.write_text(text)
+    return subprocess.run([str(ddc2d_exe()), str(model), "-o", str(tmp_path / "path.h5")],
+                          capture_output=True, text=True, timeout=120)
+
+
+def test_history_layout_and_last_step(tmp_path):
+    done = solve(tmp_path)
+    assert done.returncode == 0, done.stderr
+    with h5py.File(tmp_path / "path.h5", "r") as f:
+        h = f["history"]
+        assert h["ds"].shape == h["dn"].shape == h["state"].shape == (31, 20)
+        np.testing.assert_array_equal(h["sxy"][()], np.r_[np.arange(0, 10.5, 1.0),
+                                                          np.arange(9.0, -10.5, -1.0)])
+        assert "p0" not in h  # only the quantities the path varies beyond the stress
+        np.testing.assert_array_equal(f["elements/ds"][()], h["ds"][-1])
+        assert np.all(h["certificate_max_complementarity"][()] <= 1e-8)
+        assert list(h["leg_steps"][()]) == [10, 20]
+        assert np.all(h["ds"][:7] == 0.0)  # no slip up to 6 MPa
+        assert np.all(h["state"][11:22] == 1)  # sticks from 9 down to -2 MPa
+        np.testing.assert_array_equal(h["ds"][11:22], np.repeat(h["ds"][10:11], 11, axis=0))
+        assert tuple(f.attrs["remote_stress"]) == (0.0, -10.0, -10.0)
+
+
+def test_path_without_contact_is_bad_input(tmp_path):
+    done = solve(tmp_path, PATH_MODEL.replace("mu = 0.6", "condition = 'traction'"))
+    assert done.returncode == 2
+    assert "a load path needs contact elements" in done.stderr
+    assert not (tmp_path / "path.h5").exists()
+
+
+def test_hysteresis_figure_draws_the_history(plot_module, tmp_path):
+    assert solve(tmp_path).returncode == 0
+    proc = subprocess.run([sys.executable, str(PLOT_SCRIPT), str(tmp_path / "path.h5"), "-o",
+                           str(tmp_path / "fig"), "--history-elements", "10,20",
+                           "--history-steps", "11,31"],
+                          capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    assert (tmp_path / "fig" / "path_history.png").read_bytes()[:4] == b"\x89PNG"
+    result = plot_module.load_result(tmp_path / "path.h5")
+    with h5py.File(tmp_path / "path.h5", "r") as f:
+        ds, sxy = f["history/ds"][()], f["history/sxy"][()]
+    elements, steps = plot_module.history_choices(result["history"], [10, 20], [11, 31])
+    fig = plot_module.plot_history(result, elements, steps)
+    try:
+        loop, profile = fig.axes
+        (line,) = [ln for ln in loop.get_lines() if ln.get_gid() == "element_20"]
+        np.testing.assert_array_equal(line.get_xdata(), sxy)
+        np.testing.assert_array_equal(line.get_ydata(), -ds[:, 19])
+        (line,) = [ln for ln in profile.get_lines() if ln.get_gid() == "step_31"]
+        np.testing.assert_array_equal(line.get_ydata(), -ds[30])
+    finally:
+        plot_module.plt.close(fig)
+    # Defaults: the element of largest slip, the path's vertices.
+    assert plot_module.history_choices(result["history"]) == ([9], [0, 10, 30])
+
+
+def test_history_step_out_of_range_exits_2(tmp_path):
+    assert solve(tmp_path).returncode == 0
+    proc = subprocess.run([sys.executable, str(PLOT_SCRIPT), str(tmp_path / "path.h5"), "-o",
+                           str(tmp_path / "fig"), "--history-steps", "32"],
+                          capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 2
+    assert "step 32 is not in 1..31" in proc.stderr
