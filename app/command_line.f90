@@ -41,10 +41,12 @@ contains
                '       ddc2d SWEEP.nml --list | --task K [-o OUT.h5]'//nl// &
                '       ddc2d --twodd DECK [-o OUT.h5] [--res RES.txt]'//nl// &
                '       ddc2d --version | --help'//nl//nl// &
-               'Solves a 2D displacement discontinuity model of faults and fractures given as'//nl// &
-               'a namelist file and writes the results to an HDF5 file (default: the input'//nl// &
-               'file name with extension .h5 in the current folder, or &output file).'//nl//nl// &
-               '  --twodd DECK    read a classic TWODD deck (Crouch & Starfield 1983, ch. 5:'//nl// &
+               'Solves a 2D displacement discontinuity model of faults and fractures given'//nl// &
+               'as a namelist file and writes the results to an HDF5 file (default: the'//nl// &
+               'input file name with extension .h5 in the current folder, or &output'//nl// &
+               'file).'//nl//nl// &
+               '  --twodd DECK    read a classic TWODD deck (Crouch & Starfield 1983, ch. 5:'// &
+               nl// &
                '                  KODE 1-4, symmetry KSYM 1-4) instead of a namelist file'//nl// &
                '  -o OUT.h5       the HDF5 result file'//nl// &
                '  --res RES.txt   also write the result tables in the layout of the TWODD'//nl// &

@@ -8,7 +8,6 @@ program ddc2d
     use ddc_version, only: program_name, program_version, git_commit
     use ddc_model_types, only: model_type
     use ddc_model_results, only: model_results
-    use ddc_model_types, only: symmetry_none
     use ddc_input_namelist, only: read_namelist_model
     use ddc_input_twodd_deck, only: read_twodd_deck
     use ddc_output_atomic, only: check_writable
@@ -71,11 +70,6 @@ program ddc2d
         call stop_on(error)
     end if
     call print_model_summary(output_unit, model)
-    if (model%elements%symmetry%kind /= symmetry_none) then
-        write (output_unit, '(a,i0,a,g0,a,g0,a)') '  symmetry KSYM = ', model%elements%symmetry%kind, &
-            ' (xsym = ', model%elements%symmetry%xsym, ', ysym = ', model%elements%symmetry%ysym, &
-            '): image elements implicit'
-    end if
 
     if (allocated(model%load_path%vertex)) then
         call solve_history(model, results, error)

@@ -1,7 +1,8 @@
 !> What the program tells the user on standard output: the effective model and a summary.
 module ddc_app_report
     use ddc_kinds, only: wp
-    use ddc_model_types, only: model_type, condition_names, observation_kind_names
+    use ddc_model_types, only: model_type, condition_names, observation_kind_names, &
+        symmetry_none, symmetry_names
     use ddc_model_results, only: model_results, state_names
     implicit none
     private
@@ -21,6 +22,10 @@ contains
         write (unit, '(a)') 'ddc2d model: '//model%title
         write (unit, '(a,g0,1x,a,a,g0)') '  youngs_modulus = ', model%youngs_modulus, &
             model%stress_unit, ', poissons_ratio = ', model%poissons_ratio
+        if (model%elements%symmetry%kind /= symmetry_none) write (unit, '(a,a,a,g0,a,g0,a)') &
+            '  symmetry ', trim(symmetry_names(model%elements%symmetry%kind)), ' (xsym = ', &
+            model%elements%symmetry%xsym, ', ysym = ', model%elements%symmetry%ysym, &
+            '): image elements implicit'
         write (unit, '(a,3(g0,1x),a)') '  remote stress sxx, syy, sxy = ', model%sxx, model%syy, &
             model%sxy, model%stress_unit
         do i = 1, size(model%fractures)
@@ -38,6 +43,9 @@ contains
         end if
         write (unit, '(a,a,a,a)') '  solver: lcp_method = ', model%solver%lcp_method, &
             ', open_cohesion = ', model%solver%open_cohesion
+        if (allocated(model%load_path%steps) .and. model%solver%lcp_method /= 'lemke') &
+            write (unit, '(a)') '  (the loading history is solved step by step with '// &
+            "Lemke's method, whatever lcp_method says)"
         write (unit, '(a)') '  output: '//model%output_file
     end subroutine print_model_summary
 
@@ -65,6 +73,8 @@ contains
                 write (unit, '(a,i0,a,2(es12.5,1x),a,es12.5,a,es12.5)') '  tip ', i, ' at ', &
                     results%tips%x(i), results%tips%y(i), ' K_I = ', results%tips%k1(i), &
                     ', K_II = ', results%tips%k2(i)
+                if (results%tips%graded(i) == 1) write (unit, '(a)') '    (graded mesh at '// &
+                    'this tip: the tip element differs from its neighbour, K is less accurate)'
             end do
             write (unit, '(a,6(f0.3,a))') '  seconds: assembly ', s%seconds_assembly, &
                 ', factorization ', s%seconds_factorization, ', lcp ', s%seconds_lcp, &

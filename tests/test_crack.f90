@@ -6,7 +6,7 @@ module test_crack
     use ddc_model_results, only: model_results
     use ddc_run, only: run_model
     use ddc_influence_kernel, only: pi
-    use ddc_test_builders, only: straight_crack
+    use ddc_test_builders, only: straight_crack, polyline_model
     implicit none
     private
 
@@ -22,7 +22,8 @@ contains
 
         tests = [new_test('pressurized_n500', test_pressurized), &
                  new_test('sheared_n500', test_sheared), &
-                 new_test('inclined_30_degrees_uniaxial', test_inclined)]
+                 new_test('inclined_30_degrees_uniaxial', test_inclined), &
+                 new_test('graded_tip_flagged', test_graded_tip)]
     end subroutine collect_crack
 
     !> Solve a model, turning a solver error into a test failure.
@@ -76,6 +77,7 @@ contains
         call check_elliptic(error, r%elements%dn, r%tips%k1, p, n, 'opening')
         call check(error, maxval(abs(r%elements%ds)), 0.0_wp, 'no slip', abs_tol=1.0e-15_wp)
         call check(error, maxval(abs(r%tips%k2)), 0.0_wp, 'K_II', abs_tol=1.0e-12_wp)
+        call check(error, all(r%tips%graded == 0), 'equal elements: no tip is graded')
     end subroutine test_pressurized
 
     !> Traction-free crack under remote shear sxy: Ds < 0 along +x, K_II = sxy sqrt(pi a) > 0.
@@ -121,5 +123,20 @@ contains
         call check(error, r%tips%k2(2), sigma * sin(b) * cos(b) * sqrt(pi * a), 'K_II tip 2', &
                    rel_tol=1.0e-3_wp)
     end subroutine test_inclined
+
+    !> Twenty elements of 0.075 then one of 0.5 at the right tip: only that tip is graded.
+    subroutine test_graded_tip(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_results) :: r
+
+        call solve(polyline_model([-1.0_wp, 0.5_wp, 1.0_wp], [0.0_wp, 0.0_wp, 0.0_wp], &
+                                  [20, 1], condition_traction, 0.0_wp, -1.0_wp, e_modulus, nu), &
+                   r, error)
+        if (allocated(error)) return
+        call check(error, r%tips%n, 2, 'number of tips')
+        if (allocated(error)) return
+        call check(error, r%tips%graded(1), 0, 'left tip (equal elements)')
+        call check(error, r%tips%graded(2), 1, 'right tip (0.5 next to 0.075)')
+    end subroutine test_graded_tip
 
 end module test_crack

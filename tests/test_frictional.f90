@@ -272,6 +272,16 @@ contains
         call check(error, count(r%elements%state == state_slip) > 0, 'the fault slips')
         call check(error, r%solver%certificate_max_complementarity <= &
                    r%solver%certificate_tolerance, 'certificate')
+        if (allocated(error)) return
+        ! Fluid pressure 60 opens the branch; with cohesion lost on opening the second
+        ! round must stay with the Newton method (Lemke would end on the ray again).
+        model%elements%pressure(61:) = 60.0_wp
+        model%solver%open_cohesion = 'lost'
+        call run_model(model, r, error)
+        if (allocated(error)) return
+        call check(error, r%solver%method == 'newton', 'Newton kept after cohesion was lost')
+        call check(error, count(r%elements%state == state_open) > 0, 'the branch opens')
+        call check(error, r%solver%lcp_solves >= 2, 'a second round after cohesion was lost')
     end subroutine test_acute_branch
 
     !> A vertical hydrofracture (40 elements, given condition) above a horizontal frictional

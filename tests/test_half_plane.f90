@@ -163,10 +163,15 @@ contains
         model%elements%pressure = 40.0_wp
         call solve(error, model, results)
         if (allocated(error)) return
-        ! Elements run upward: the open ones are the last ones.
+        ! Elements run upward: the open ones must be the last ones, every element below the
+        ! boundary closed.
         last_open = findloc(results%elements%state /= state_open, .true., 1, back=.true.)
-        call check(error, count(results%elements%state(last_open + 1:) == state_open), &
-                   400 - last_open, 'open elements are contiguous up to the top')
+        call check(error, last_open > 0 .and. last_open < 400, 'open and closed elements')
+        if (allocated(error)) return
+        call check(error, all(results%elements%state(last_open + 1:) == state_open), &
+                   'open from the boundary up to the top')
+        call check(error, .not. any(results%elements%state(:last_open) == state_open), &
+                   'closed below the boundary')
         y_open = model%elements%y_end(last_open)
         call check(error, y_open, -1800.0_wp, 'open/closed boundary', abs_tol=5.0_wp)
         g = e_rock / (2.0_wp * (1.0_wp + nu_rock))

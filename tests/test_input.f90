@@ -527,7 +527,7 @@ contains
     subroutine test_bad_misspelled(error)
         type(error_type), allocatable, intent(out) :: error
 
-        call check_bad_input(error, data//'bad_misspelled.nml', [character(len=40) :: &
+        call check_bad_input(error, data//'bad_misspelled.nml', [character(len=80) :: &
                              "&model (line 1): unknown variable 'youngs_modulos'", &
                              'the variables of this group are: title, youngs_modulus'], lines=1)
     end subroutine test_bad_misspelled
@@ -535,14 +535,14 @@ contains
     subroutine test_bad_type_last(error)
         type(error_type), allocatable, intent(out) :: error
 
-        call check_bad_input(error, data//'bad_type_last.nml', [character(len=40) :: &
+        call check_bad_input(error, data//'bad_type_last.nml', [character(len=80) :: &
                              '&grid 1 (line 3): nx = 2.5 is not an integer'], lines=1)
     end subroutine test_bad_type_last
 
     subroutine test_bad_type_middle(error)
         type(error_type), allocatable, intent(out) :: error
 
-        call check_bad_input(error, data//'bad_type_middle.nml', [character(len=40) :: &
+        call check_bad_input(error, data//'bad_type_middle.nml', [character(len=80) :: &
                              "&model (line 1): youngs_modulus = 'stiff' is not a number"], &
                              lines=1)
     end subroutine test_bad_type_middle
@@ -574,7 +574,7 @@ contains
     subroutine test_bad_duplicate_names(error)
         type(error_type), allocatable, intent(out) :: error
 
-        call check_bad_input(error, data//'bad_duplicate_names.nml', [character(len=60) :: &
+        call check_bad_input(error, data//'bad_duplicate_names.nml', [character(len=80) :: &
                              "&line 1 'map' (line 4): name 'map' is already used by &grid 1"], &
                              lines=1)
     end subroutine test_bad_duplicate_names

@@ -203,6 +203,7 @@ contains
     !> seeded search over small integer P-matrices.
     subroutine test_degenerate_cycling(error)
         type(error_type), allocatable, intent(out) :: error
+        type(error_type), allocatable :: failure
         real(wp) :: m(3, 3), q(3), z(3), w(3), zb(3)
         integer :: pivots, nsol
 
@@ -217,14 +218,12 @@ contains
         call solve_lcp_lemke(m, q, z, w, pivots, error, rule=lemke_rule_lexicographic)
         if (allocated(error)) return
         call check(error, pivots, 4, 'lexicographic pivots')
-        call solve_lcp_lemke(m, q, z, w, pivots, error, max_pivots=100, &
+        call solve_lcp_lemke(m, q, z, w, pivots, failure, max_pivots=100, &
             rule=lemke_rule_first_index)
-        call check(error, allocated(error), 'the naive rule should cycle on this problem')
-        if (.not. allocated(error)) return
-        call check(error, index(error%message, 'pivot limit') > 0, &
-            'the naive rule should stop at the pivot limit: '//error%message)
-        if (.not. allocated(error)) return
-        deallocate (error)
+        call check(error, allocated(failure), 'the naive rule should cycle on this problem')
+        if (allocated(error)) return
+        call check(error, index(failure%message, 'pivot limit') > 0, &
+            'the naive rule should stop at the pivot limit: '//failure%message)
         call check(error, pivots, 100, 'naive pivots')
     end subroutine test_degenerate_cycling
 
@@ -236,6 +235,7 @@ contains
     !> pivot, so naive Lemke reports "no solution" for a solvable problem.
     subroutine test_degenerate_zero_q(error)
         type(error_type), allocatable, intent(out) :: error
+        type(error_type), allocatable :: failure
         real(wp) :: m(3, 3), q(3), z(3), w(3), zb(3)
         integer :: pivots, nsol
 
@@ -250,45 +250,42 @@ contains
         call check(error, pivots, 3, 'lexicographic pivots')
         call check(error, is_solution(m, q, z), 'lexicographic z is not a solution')
         if (allocated(error)) return
-        call solve_lcp_lemke(m, q, z, w, pivots, error, rule=lemke_rule_first_index)
-        call check(error, allocated(error), 'the naive rule should end on a ray')
-        if (.not. allocated(error)) return
-        call check(error, index(error%message, 'ray') > 0, 'expected a ray: '//error%message)
-        if (.not. allocated(error)) return
-        deallocate (error)
+        call solve_lcp_lemke(m, q, z, w, pivots, failure, rule=lemke_rule_first_index)
+        call check(error, allocated(failure), 'the naive rule should end on a ray')
+        if (allocated(error)) return
+        call check(error, index(failure%message, 'ray') > 0, 'expected a ray: '//failure%message)
         call check(error, pivots, 1, 'naive pivots')
     end subroutine test_degenerate_zero_q
 
     !> w = -z - 1 >= 0 has no solution with z >= 0: ray termination, reported.
     subroutine test_infeasible(error)
         type(error_type), allocatable, intent(out) :: error
+        type(error_type), allocatable :: failure
         real(wp) :: z(1), w(1)
         integer :: pivots
 
-        call solve_lcp_lemke(reshape([-1.0_wp], [1, 1]), [-1.0_wp], z, w, pivots, error)
-        call check(error, allocated(error), 'an infeasible LCP must be an error')
-        if (.not. allocated(error)) return
-        call check(error, error%code == exit_solver_failure, 'wrong code: '//error%message)
-        if (.not. allocated(error)) return
-        call check(error, index(error%message, 'ray') > 0, 'not a ray: '//error%message)
-        if (.not. allocated(error)) return
-        deallocate (error)
+        call solve_lcp_lemke(reshape([-1.0_wp], [1, 1]), [-1.0_wp], z, w, pivots, failure)
+        call check(error, allocated(failure), 'an infeasible LCP must be an error')
+        if (allocated(error)) return
+        call check(error, failure%code == exit_solver_failure, 'wrong code: '//failure%message)
+        call check(error, index(failure%message, 'ray') > 0, 'not a ray: '//failure%message)
         call check(error, pivots, 1, 'pivots')
     end subroutine test_infeasible
 
     !> A solvable problem stopped by a pivot limit of 1 is an error, not a result.
     subroutine test_pivot_limit(error)
         type(error_type), allocatable, intent(out) :: error
+        type(error_type), allocatable :: failure
         real(wp) :: m(2, 2), z(2), w(2)
         integer :: pivots
 
         m = reshape([2.0_wp, 1.0_wp, 1.0_wp, 2.0_wp], [2, 2])
-        call solve_lcp_lemke(m, [-5.0_wp, -6.0_wp], z, w, pivots, error, max_pivots=1)
-        call check(error, allocated(error), 'the pivot limit must be an error')
-        if (.not. allocated(error)) return
-        call check(error, error%code == exit_solver_failure, 'wrong code: '//error%message)
-        if (.not. allocated(error)) return
-        deallocate (error)
+        call solve_lcp_lemke(m, [-5.0_wp, -6.0_wp], z, w, pivots, failure, max_pivots=1)
+        call check(error, allocated(failure), 'the pivot limit must be an error')
+        if (allocated(error)) return
+        call check(error, failure%code == exit_solver_failure, 'wrong code: '//failure%message)
+        call check(error, index(failure%message, 'pivot limit') > 0, &
+                   'not the pivot limit: '//failure%message)
         call check(error, pivots, 1, 'pivots')
     end subroutine test_pivot_limit
 

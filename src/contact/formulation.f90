@@ -170,6 +170,7 @@ contains
         integer :: n, limit
         integer(int64) :: t0, t1, rate
         logical :: lost, newton, automatic
+        integer :: rounds
         character(len=:), allocatable :: reason
         character(len=200) :: line
 
@@ -224,18 +225,24 @@ contains
             return
         end if
 
-        res%method = merge('newton', 'lemke ', newton)
+        if (newton) then
+            res%method = 'newton'
+        else
+            res%method = 'lemke'
+        end if
         res%fallback = ''
+        rounds = 0
         call system_clock(t0, rate)
         sf_eff = sf
         do
+            rounds = rounds + 1
             if (newton) then
                 call solve_once_newton(a, s_r_s, s_r_n, mu, sf_eff, pressure, limit, res, &
                     states, reason)
                 if (len(reason) > 0) then
                     newton = .false.
                     res%method = 'lemke'
-                    res%fallback = reason
+                    res%fallback = 'newton failed: '//reason
                 end if
             end if
             if (.not. newton) then
@@ -249,10 +256,12 @@ contains
                 if (allocated(error) .and. automatic .and. len(res%fallback) == 0) then
                     ! M is not copositive-plus: Lemke can end on a ray where the contact
                     ! problem has a solution (seen at acute fault branches). 'auto' then
-                    ! asks the Newton method, whose answer is checked the same way.
+                    ! asks the Newton method, whose answer is checked the same way, and
+                    ! keeps it for the rounds after cohesion is lost.
                     call solve_once_newton(a, s_r_s, s_r_n, mu, sf_eff, pressure, limit, res, &
                         states, reason)
                     if (len(reason) == 0) then
+                        newton = .true.
                         res%method = 'newton'
                         res%fallback = 'lemke failed: '//error%message
                         deallocate (error)
@@ -263,13 +272,13 @@ contains
                 end if
             end if
             if (allocated(error)) then
-                if (res%solves > 1) then
-                    write (line, '(a,i0,a)') ' (LCP solve ', res%solves, &
+                if (rounds > 1) then
+                    write (line, '(a,i0,a)') ' (solve ', rounds, &
                         ", after cohesion was lost on opening elements)"
                     error%message = error%message//trim(line)
                 end if
                 if (len(res%fallback) > 0) error%message = error%message// &
-                    ' (Lemke was the fallback: '//res%fallback//')'
+                    ' (after the first method failed: '//res%fallback//')'
                 return
             end if
             if (.not. lost) exit

@@ -43,6 +43,9 @@ module ddc_model_results
         integer, allocatable :: fracture_id(:), element(:)
         !> Stress intensity factors [stress unit * length unit**0.5]
         real(wp), allocatable :: k1(:), k2(:)
+        !> 1 when the tip element's length differs from its neighbour's by more than 1 %
+        !> (the K formula assumes equal elements: K is less accurate there), else 0
+        integer, allocatable :: graded(:)
     end type tip_set
 
     !> Displacement and stress at the points of one observation set, shape (npoints).

@@ -11,6 +11,9 @@ module ddc_post_tips
 
     !> End points closer than this fraction of the shorter element's length are shared.
     real(wp), parameter :: shared_end_tolerance = 1.0e-8_wp
+    !> A tip element longer or shorter than its neighbour by more than this fraction makes
+    !> the tip graded
+    real(wp), parameter :: graded_tolerance = 1.0e-2_wp
 
 contains
 
@@ -21,7 +24,6 @@ contains
         type(element_set), intent(in) :: elements
         integer, intent(in) :: i, side
         real(wp) :: x, y, tol
-        integer :: j
 
         if (side == 1) then
             x = elements%x_begin(i)
@@ -39,18 +41,30 @@ contains
                 abs(y - sym%ysym) <= tol) return
         end associate
         if (elements%domain == domain_half_plane .and. abs(y) <= tol) return
-        end_is_shared = .false.
+        end_is_shared = element_at_end(elements, i, side) > 0
+    end function end_is_shared
+
+    !> Another element with an end at end `side` (1 begin, 2 end) of element i; 0 if none.
+    pure integer function element_at_end(elements, i, side)
+        type(element_set), intent(in) :: elements
+        integer, intent(in) :: i, side
+        real(wp) :: x, y, tol
+        integer :: j
+
+        x = merge(elements%x_begin(i), elements%x_end(i), side == 1)
+        y = merge(elements%y_begin(i), elements%y_end(i), side == 1)
         do j = 1, elements%n
             if (j == i) cycle
             tol = shared_end_tolerance * 2.0_wp * &
                   min(elements%half_length(i), elements%half_length(j))
             if (hypot(elements%x_begin(j) - x, elements%y_begin(j) - y) <= tol .or. &
                 hypot(elements%x_end(j) - x, elements%y_end(j) - y) <= tol) then
-                end_is_shared = .true.
+                element_at_end = j
                 return
             end if
         end do
-    end function end_is_shared
+        element_at_end = 0
+    end function element_at_end
 
     !> Tips (element ends shared with no other element) with K_I and K_II from the tip
     !> element's DDs: K = -G D / (2 (1 - nu) sqrt(h)), h the tip element's half-length.
@@ -64,7 +78,7 @@ contains
         !> The tips found, in element order (begin before end)
         type(tip_set), intent(out) :: tips
         logical :: is_tip(2, elements%n)
-        integer :: i, side, k
+        integer :: i, side, k, neighbour
         real(wp) :: factor
 
         !$omp parallel do default(none) private(i, side) shared(elements, is_tip)
@@ -77,7 +91,7 @@ contains
 
         tips%n = count(is_tip)
         allocate (tips%x(tips%n), tips%y(tips%n), tips%fracture_id(tips%n), &
-                  tips%element(tips%n), tips%k1(tips%n), tips%k2(tips%n))
+                  tips%element(tips%n), tips%k1(tips%n), tips%k2(tips%n), tips%graded(tips%n))
         k = 0
         do i = 1, elements%n
             do side = 1, 2
@@ -95,6 +109,13 @@ contains
                 factor = -shear_modulus / (2.0_wp * (1.0_wp - nu) * sqrt(elements%half_length(i)))
                 tips%k1(k) = factor * dn(i)
                 tips%k2(k) = factor * ds(i)
+                ! The neighbour shares the tip element's other end.
+                neighbour = element_at_end(elements, i, 3 - side)
+                tips%graded(k) = 0
+                if (neighbour > 0) then
+                    if (abs(elements%half_length(neighbour) - elements%half_length(i)) > &
+                        graded_tolerance * elements%half_length(i)) tips%graded(k) = 1
+                end if
             end do
         end do
     end subroutine find_tips
