@@ -10,7 +10,7 @@ import h5py
 import numpy as np
 import pytest
 
-from conftest import ddc2d_exe
+from conftest import REPO_ROOT, ddc2d_exe
 
 GOOD_MODEL = """\
 &model youngs_modulus = 1.0, poissons_ratio = 0.25 /
@@ -121,3 +121,47 @@ def test_duplicate_fracture_is_bad_input(tmp_path):
     assert done.returncode == 2
     assert "duplicates" in done.stderr
     assert leftovers(tmp_path) == []
+
+
+BAD_FILES = sorted(p for folder in ("input", "half_plane", "history")
+                   for p in (REPO_ROOT / "tests" / "data" / folder).glob("bad_*.nml"))
+
+
+@pytest.mark.parametrize("bad", BAD_FILES, ids=lambda p: f"{p.parent.name}/{p.name}")
+def test_every_bad_input_file_exits_2_without_output(tmp_path, bad):
+    # The Fortran suites check each message in detail; here the executable itself must
+    # answer each of them with exit 2, a message naming the file, and no output file.
+    done = run([bad, "-o", tmp_path / "out.h5"], tmp_path)
+    assert done.returncode == 2, done.stdout + done.stderr
+    assert bad.name in done.stderr
+    assert done.stderr.count("ddc2d: error:") == 1
+    assert leftovers(tmp_path) == []
+
+
+BRANCH_MODEL = """\
+&model youngs_modulus = 50000.0, poissons_ratio = 0.25 /
+&remote_stress sxx = -143.75, syy = -81.25, sxy = 54.13 /
+&fracture name = 'main', x = -1.0, 0.0, 1.0, y = 0.0, 0.0, 0.0, elements = 30, 30,
+          mu = 0.6, sf = 1.0 /
+&fracture name = 'branch', x = 0.0, 0.6128355545, y = 0.0, -0.5142300877, elements = 24,
+          mu = 0.6, sf = 1.0 /
+&solver lcp_method = '{method}' /
+"""
+
+
+def test_solver_failure_exits_1_and_auto_records_its_fallback(tmp_path):
+    # A branch at 40 degrees: Lemke ends on a ray (exit 1, no file); 'auto' then asks the
+    # Newton method and says so in /solver.
+    (tmp_path / "lemke.nml").write_text(BRANCH_MODEL.format(method="lemke"))
+    done = run(["lemke.nml"], tmp_path)
+    assert done.returncode == 1, done.stdout + done.stderr
+    assert "Lemke ended on a ray" in done.stderr
+    assert leftovers(tmp_path) == []
+    (tmp_path / "auto.nml").write_text(BRANCH_MODEL.format(method="auto"))
+    done = run(["auto.nml"], tmp_path)
+    assert done.returncode == 0, done.stderr
+    with h5py.File(tmp_path / "auto.h5") as f:
+        assert f["solver"].attrs["method"] == b"newton"
+        assert b"Lemke ended on a ray" in f["solver"].attrs["fallback"]
+        assert f["solver"].attrs["certificate_max_complementarity"] <= \
+            f["solver"].attrs["certificate_tolerance"]

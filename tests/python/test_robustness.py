@@ -201,6 +201,21 @@ MEMCHECK_MODELS = {
 }
 
 
+def memcheck(args, cwd):
+    """Run ddc2d under valgrind memcheck (one thread); return the finished process."""
+    return subprocess.run(["valgrind", "--error-exitcode=99", "--leak-check=full",
+                           "--errors-for-leak-kinds=definite", str(ddc2d_exe()), *args,
+                           "-o", "out.h5"], cwd=cwd, capture_output=True, text=True,
+                          timeout=600, env={**os.environ, "OMP_NUM_THREADS": "1",
+                                            "OPENBLAS_NUM_THREADS": "1"})
+
+
+def assert_memcheck_clean(done, status):
+    assert done.returncode != 99, done.stderr[-3000:]
+    assert "ERROR SUMMARY: 0 errors" in done.stderr
+    assert done.returncode == status, done.stderr[-2000:]
+
+
 @pytest.mark.parametrize("model", sorted(MEMCHECK_MODELS) + ["A1_press_n20.f60.txt"])
 def test_memcheck_clean(tmp_path, model):
     if model.endswith(".txt"):
@@ -209,11 +224,14 @@ def test_memcheck_clean(tmp_path, model):
     else:
         (tmp_path / model).write_text(MEMCHECK_MODELS[model])
         args = [model]
-    done = subprocess.run(["valgrind", "--error-exitcode=99", "--leak-check=full",
-                           "--errors-for-leak-kinds=definite", str(ddc2d_exe()), *args,
-                           "-o", "out.h5"], cwd=tmp_path, capture_output=True, text=True,
-                          timeout=600, env={**os.environ, "OMP_NUM_THREADS": "1",
-                                            "OPENBLAS_NUM_THREADS": "1"})
-    assert done.returncode != 99, done.stderr[-3000:]
-    assert "ERROR SUMMARY: 0 errors" in done.stderr
-    assert done.returncode == (2 if model == "bad.nml" else 0), done.stderr[-2000:]
+    assert_memcheck_clean(memcheck(args, tmp_path), 2 if model == "bad.nml" else 0)
+
+
+@pytest.mark.parametrize("example", sorted(p.name for p in (REPO_ROOT / "input").glob("*.nml")))
+def test_memcheck_examples(tmp_path, example):
+    # Every example, shrunk to at most 8 elements per segment and 6 x 6 grid points so that
+    # valgrind takes seconds; a sweep runs its first task.
+    text = shrink((REPO_ROOT / "input" / example).read_text())
+    (tmp_path / example).write_text(text)
+    args = [example] + (["--task", "0"] if "&sweep" in text.lower() else [])
+    assert_memcheck_clean(memcheck(args, tmp_path), 0)
