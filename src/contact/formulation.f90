@@ -242,7 +242,7 @@ contains
                 if (len(reason) > 0) then
                     newton = .false.
                     res%method = 'lemke'
-                    res%fallback = 'newton failed: '//reason
+                    res%fallback = reason
                 end if
             end if
             if (.not. newton) then

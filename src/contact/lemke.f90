@@ -172,8 +172,9 @@ contains
             call entering_column(entering, n, m, binv, col)
             r = select_row(bbar, binv, col, qscale, tie_rule, rows, z0)
             if (r == 0) then
-                write (line, '(a,i0,a,a,a,i0,a)') 'LCP: Lemke ended on a ray after ', &
-                    pivots, ' pivots (entering ', trim(variable_name(entering, n)), &
+                write (line, '(a,i0,a,a,a,a,i0,a)') 'LCP: Lemke ended on a ray after ', &
+                    pivots, trim(merge(' pivot ', ' pivots', pivots == 1)), ' (entering ', &
+                    trim(variable_name(entering, n)), &
                     ', n = ', n, '): the problem has no solution that Lemke can reach'
                 call set_error(error, exit_solver_failure, trim(line))
                 call current_solution(rows, bbar, n, z, w)
