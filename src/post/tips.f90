@@ -107,8 +107,9 @@ contains
                 tips%fracture_id(k) = elements%fracture_id(i)
                 tips%element(k) = i
                 factor = -shear_modulus / (2.0_wp * (1.0_wp - nu) * sqrt(elements%half_length(i)))
-                tips%k1(k) = factor * dn(i)
-                tips%k2(k) = factor * ds(i)
+                ! + 0 turns the -0 of an unloaded mode into 0 for printing.
+                tips%k1(k) = factor * dn(i) + 0.0_wp
+                tips%k2(k) = factor * ds(i) + 0.0_wp
                 ! The neighbour shares the tip element's other end.
                 neighbour = element_at_end(elements, i, 3 - side)
                 tips%graded(k) = 0
