@@ -6,7 +6,6 @@ ddc2d): strings are stored as blank-padded fixed-length bytes, as the Fortran wr
 
 import importlib.machinery
 import os
-import subprocess
 import importlib.util
 import sys
 from pathlib import Path
@@ -190,13 +189,15 @@ def plot_module():
 
 
 def ddc2d_exe():
-    """The ddc2d executable under test: $DDC2D_EXE, else the first build found."""
+    """The ddc2d executable under test: $DDC2D_EXE, else the Debug build of scripts/test.sh.
+
+    No other build is guessed: an old build elsewhere under build/ would be tested silently.
+    """
     exe = os.environ.get("DDC2D_EXE")
     if exe:
-        return Path(exe)
-    for exe in sorted(REPO_ROOT.glob("build/*/app/ddc2d")):
-        done = subprocess.run([str(exe), "--help"], capture_output=True, text=True)
-        if "--twodd" in done.stdout:
-            return exe
-    raise AssertionError("set DDC2D_EXE to a ddc2d executable with --twodd (none found "
-                         "under build/)")
+        return Path(exe).resolve()
+    exe = REPO_ROOT / "build" / "debug" / "app" / "ddc2d"
+    if exe.is_file():
+        return exe
+    raise AssertionError("set DDC2D_EXE to the ddc2d executable to test (there is no "
+                         "build/debug/app/ddc2d; scripts/test.sh builds it)")
