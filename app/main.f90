@@ -1,7 +1,7 @@
 !> ddc2d: read a model, solve it, write the results. The only place that prints errors and
 !> sets the exit status.
 program ddc2d
-    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
+    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit, int64
     use, intrinsic :: iso_c_binding, only: c_int
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_success, exit_bad_input
@@ -36,7 +36,7 @@ program ddc2d
     type(model_type) :: model
     type(model_results) :: results
     type(error_type), allocatable :: error
-    integer(8) :: t0, t1, rate
+    integer(int64) :: t0, t1, rate
 
     call parse_command_line(options, error)
     if (allocated(error)) then

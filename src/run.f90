@@ -1,6 +1,7 @@
 !> Solve one model: influence, solve, then element results, tips and fields.
 module ddc_run
     !$ use omp_lib, only: omp_get_max_threads
+    use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type, element_set, condition_contact, domain_half_plane
@@ -26,7 +27,7 @@ contains
 
     !> Wall-clock seconds since an arbitrary origin.
     real(wp) function wall_seconds()
-        integer(8) :: count, rate
+        integer(int64) :: count, rate
 
         call system_clock(count, rate)
         wall_seconds = real(count, wp) / real(rate, wp)
@@ -91,10 +92,10 @@ contains
             e%un_plus = e%un_minus - e%dn
             call find_tips(model%elements, g, nu, e%ds, e%dn, results%tips)
 
-            allocate (results%fields(0))
             if (allocated(model%observations)) then
-                deallocate (results%fields)
                 allocate (results%fields(size(model%observations)))
+            else
+                allocate (results%fields(0))
             end if
             do i = 1, size(results%fields)
                 call evaluate_field(model%elements, g, nu, [model%sxx, model%syy, model%sxy], &

@@ -3,6 +3,7 @@
 !> linked to the same LAPACK as ddc2d, and prints `seconds <s> gflops <rate>` (the fastest
 !> of REPEATS runs, default 1). scripts/benchmark.py calls it with N = 2 x elements.
 program ddc2d_lu_benchmark
+    use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
     use ddc_solve_lapack, only: lu_factor
     implicit none
@@ -10,7 +11,7 @@ program ddc2d_lu_benchmark
     integer, allocatable :: ipiv(:)
     character(len=32) :: arg
     integer :: n, repeats, r, info
-    integer(8) :: t0, t1, rate
+    integer(int64) :: t0, t1, rate
     real(wp) :: best
 
     if (command_argument_count() < 1) then

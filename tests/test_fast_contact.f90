@@ -3,6 +3,7 @@
 !> frictional suites, seeded random kinked and stepping faults, and the fallback to Lemke.
 !> Same states, DDs within 1e-8 relative (to the largest DD of the model).
 module test_fast_contact
+    use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
     use ddc_testing, only: test_case, new_test, check, error_type
     use ddc_model_types, only: model_type, condition_contact, condition_traction
@@ -214,7 +215,7 @@ contains
 
     !> Next value of a 64-bit linear congruential generator, uniform in [0, 1).
     function uniform(state) result(u)
-        integer(8), intent(inout) :: state
+        integer(int64), intent(inout) :: state
         real(wp) :: u
 
         state = ieor(state, ishft(state, 13))
@@ -225,7 +226,7 @@ contains
 
     !> Uniform in [lo, hi).
     function between(state, lo, hi) result(v)
-        integer(8), intent(inout) :: state
+        integer(int64), intent(inout) :: state
         real(wp), intent(in) :: lo, hi
         real(wp) :: v
 
@@ -236,7 +237,7 @@ contains
     !> the normal stress on the elements beyond a random x (seeded state).
     subroutine random_loading(model, state)
         type(model_type), intent(inout) :: model
-        integer(8), intent(inout) :: state
+        integer(int64), intent(inout) :: state
         real(wp) :: p, cut
 
         model%syy = between(state, -30.0_wp, -10.0_wp)
@@ -255,13 +256,13 @@ contains
     subroutine test_random_kinked(error)
         type(error_type), allocatable, intent(out) :: error
         type(model_type) :: model
-        integer(8) :: state
+        integer(int64) :: state
         real(wp) :: x(4), y(4), angle
         integer :: trial, k, counts(3)
 
         counts = 0
 
-        state = 20240611_8
+        state = 20240611_int64
         do trial = 1, 8
             x(1) = -1.0_wp
             y(1) = 0.0_wp
@@ -285,13 +286,13 @@ contains
     subroutine test_random_stepping(error)
         type(error_type), allocatable, intent(out) :: error
         type(model_type) :: model, other
-        integer(8) :: state
+        integer(int64) :: state
         real(wp) :: overlap, offset
         integer :: trial, counts(3)
 
         counts = 0
 
-        state = 77123_8
+        state = 77123_int64
         do trial = 1, 8
             overlap = between(state, -0.2_wp, 0.3_wp)
             offset = between(state, 0.05_wp, 0.3_wp)

@@ -12,6 +12,7 @@
 !> field evaluation is shared with one-shot solves; states and the solver record are the
 !> history's.
 module ddc_history_solve
+    use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type, condition_contact, condition_prescribed_dd, &
@@ -55,7 +56,7 @@ contains
         integer, allocatable :: basis(:)
         integer :: n, nc, k, nsteps, pivots, solves
         real(wp) :: sigma0, seconds_lcp
-        integer(8) :: t_start, t0, t1, rate
+        integer(int64) :: t_start, t0, t1, rate
 
         if (.not. allocated(model%load_path%vertex)) then
             call set_error(error, exit_bad_input, 'loading history: the model has no load path')

@@ -1,6 +1,7 @@
 !> Elastic solve for TWODD-style conditions (traction, displacement, mixed) and prescribed
 !> DDs (identity rows: such elements take no unknowns in effect but act on the others).
 module ddc_solve_elastic
+    use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_solver_failure
     use ddc_model_types, only: element_set, condition_traction, condition_displacement, &
@@ -99,7 +100,7 @@ contains
         real(wp), allocatable :: matrix(:, :), factors(:, :), rhs(:, :), given(:)
         integer, allocatable :: shear_row(:), normal_row(:), ipiv(:)
         integer :: n, info, i
-        integer(8) :: t0, t1, t2, rate
+        integer(int64) :: t0, t1, t2, rate
 
         n = elements%n
         if (any(elements%condition == condition_contact)) then

@@ -10,6 +10,7 @@
 !> traction on the contact elements and the free DDs depend on the load (contact_load and
 !> complete_dds, once per load): a loading history condenses once.
 module ddc_solve_frictional
+    use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_solver_failure
     use ddc_model_types, only: element_set, condition_contact
@@ -107,7 +108,7 @@ contains
         real(wp), allocatable :: matrix(:, :)
         integer, allocatable :: cu(:), fu(:)
         integer :: n, nc, nf, info, i
-        integer(8) :: t0, t1, t2, rate
+        integer(int64) :: t0, t1, t2, rate
 
         n = elements%n
         call system_clock(t0, rate)
