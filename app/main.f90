@@ -13,9 +13,9 @@ program ddc2d
     use ddc_output_atomic, only: check_writable
     use ddc_output_hdf5, only: write_results
     use ddc_output_twodd_tables, only: write_twodd_tables
-    use ddc_run, only: run_model
+    use ddc_run_model, only: run_model
     use ddc_history_solve, only: solve_history
-    use ddc_input_messages, only: itoa
+    use ddc_text, only: itoa
     use ddc_input_sweep, only: read_sweep
     use ddc_sweep_tasks, only: sweep_definition, task_label, task_file_name, check_task, &
         apply_task, output_is_complete

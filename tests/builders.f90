@@ -4,7 +4,7 @@ module ddc_test_builders
     use ddc_model_types, only: model_type, fracture_type, solver_options
     use ddc_mesh_geometry, only: allocate_elements, compute_geometry
     use ddc_mesh_polyline, only: polyline_elements
-    use ddc_influence_kernel, only: pi
+    use ddc_constants, only: pi
     implicit none
     private
 

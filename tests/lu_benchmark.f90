@@ -5,7 +5,7 @@
 program ddc2d_lu_benchmark
     use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
-    use ddc_solve_lapack, only: lu_factor
+    use ddc_linalg_lapack, only: lu_factor
     implicit none
     real(wp), allocatable :: a(:, :), a0(:, :)
     integer, allocatable :: ipiv(:)

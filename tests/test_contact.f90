@@ -6,8 +6,9 @@ module test_contact
     use ddc_kinds, only: wp
     use ddc_error, only: exit_solver_failure, exit_bad_input
     use ddc_testing, only: test_case, new_test, check, error_type
-    use ddc_influence_kernel, only: pi
-    use ddc_influence_assembly, only: assemble_influence, resolve_remote_stress, row_traction
+    use ddc_constants, only: pi
+    use ddc_influence_assembly, only: assemble_influence, row_traction
+    use ddc_model_loads, only: resolve_remote_stress
     use ddc_model_types, only: model_type, condition_contact
     use ddc_test_builders, only: polyline_model, join_fractures
     use ddc_model_results, only: state_stick, state_slip, state_open

@@ -4,8 +4,8 @@ module test_crack
     use ddc_testing, only: test_case, new_test, check, error_type
     use ddc_model_types, only: model_type, condition_traction
     use ddc_model_results, only: model_results
-    use ddc_run, only: run_model
-    use ddc_influence_kernel, only: pi
+    use ddc_run_model, only: run_model
+    use ddc_constants, only: pi
     use ddc_test_builders, only: straight_crack, polyline_model
     implicit none
     private

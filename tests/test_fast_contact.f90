@@ -8,9 +8,10 @@ module test_fast_contact
     use ddc_testing, only: test_case, new_test, check, error_type
     use ddc_model_types, only: model_type, condition_contact, condition_traction
     use ddc_model_results, only: model_results, state_open, state_slip, state_stick
-    use ddc_run, only: run_model
-    use ddc_influence_kernel, only: pi
-    use ddc_influence_assembly, only: assemble_influence, resolve_remote_stress, row_traction
+    use ddc_run_model, only: run_model
+    use ddc_constants, only: pi
+    use ddc_influence_assembly, only: assemble_influence, row_traction
+    use ddc_model_loads, only: resolve_remote_stress
     use ddc_contact_formulation, only: contact_result, solve_contact
     use ddc_test_builders, only: polyline_model, straight_crack, join_fractures
     implicit none

@@ -6,7 +6,7 @@ module test_fields
     use ddc_testing, only: test_case, new_test, check, error_type
     use ddc_model_types, only: model_type, condition_traction, observation_set, observation_points
     use ddc_model_results, only: model_results, point_clear, point_near, point_on_element
-    use ddc_run, only: run_model
+    use ddc_run_model, only: run_model
     use ddc_test_builders, only: straight_crack
     implicit none
     private

@@ -7,8 +7,8 @@ module test_frictional
     use ddc_error, only: exit_solver_failure
     use ddc_model_types, only: model_type, condition_contact, condition_traction
     use ddc_model_results, only: model_results, state_stick, state_slip, state_open, state_free
-    use ddc_run, only: run_model
-    use ddc_influence_kernel, only: pi
+    use ddc_run_model, only: run_model
+    use ddc_constants, only: pi
     use ddc_test_builders, only: polyline_model, straight_crack, join_fractures
     implicit none
     private

@@ -8,12 +8,13 @@ module test_half_plane
         symmetry_x
     use ddc_model_results, only: model_results, state_open, point_clear, point_near, &
         point_on_element
-    use ddc_influence_kernel, only: dd_kernel, pi, face_positive
+    use ddc_influence_kernel, only: dd_kernel, face_positive
+    use ddc_constants, only: pi
     use ddc_influence_kernel_half_plane, only: dd_kernel_half_plane
     use ddc_input_namelist, only: read_namelist_model
     use ddc_test_builders, only: polyline_model, join_fractures
     use test_input, only: check_bad_input
-    use ddc_run, only: run_model
+    use ddc_run_model, only: run_model
     implicit none
     private
 

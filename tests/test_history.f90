@@ -7,7 +7,7 @@ module test_history
     use ddc_error, only: exit_solver_failure, exit_bad_input
     use ddc_model_types, only: model_type, condition_contact, condition_traction
     use ddc_model_results, only: model_results, state_stick, state_slip
-    use ddc_run, only: run_model
+    use ddc_run_model, only: run_model
     use ddc_history_solve, only: solve_history
     use ddc_input_namelist, only: read_namelist_model
     use ddc_test_builders, only: straight_crack

@@ -2,8 +2,9 @@
 module test_kernel
     use ddc_kinds, only: wp
     use ddc_testing, only: test_case, new_test, check, error_type
-    use ddc_influence_kernel, only: kernel_functions, face_positive, face_negative, pi, &
-        dd_kernel, dd_kernel_at
+    use ddc_influence_kernel, only: kernel_functions, face_positive, face_negative, dd_kernel, &
+        dd_kernel_at
+    use ddc_constants, only: pi
     use ddc_influence_assembly, only: assemble_influence, row_traction, row_displacement
     use ddc_model_types, only: model_type, condition_traction
     use ddc_test_builders, only: straight_crack

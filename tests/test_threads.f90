@@ -5,7 +5,7 @@ module test_threads
     use ddc_testing, only: test_case, new_test, check, error_type
     use ddc_model_types, only: model_type, observation_set, observation_grid, condition_traction
     use ddc_model_results, only: model_results
-    use ddc_run, only: run_model
+    use ddc_run_model, only: run_model
     use ddc_test_builders, only: straight_crack
     implicit none
     private

@@ -7,7 +7,8 @@ module test_twodd_deck
     use ddc_error, only: set_error, exit_bad_input
     use ddc_model_types, only: model_type, element_set, symmetry_none, symmetry_both
     use ddc_model_results, only: model_results
-    use ddc_run, only: run_model, shear_modulus_of
+    use ddc_run_model, only: run_model
+    use ddc_model_loads, only: shear_modulus_of
     use ddc_input_twodd_deck, only: read_twodd_deck
     use ddc_input_namelist, only: read_namelist_model
     use ddc_influence_assembly, only: image_transform, image_transforms

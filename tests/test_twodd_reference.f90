@@ -7,7 +7,7 @@ module test_twodd_reference
     use ddc_error, only: set_error
     use ddc_model_types, only: model_type
     use ddc_model_results, only: model_results, point_clear
-    use ddc_run, only: run_model
+    use ddc_run_model, only: run_model
     use ddc_input_namelist, only: read_namelist_model
     implicit none
     private

@@ -21,8 +21,8 @@
 !> at zero, at most 2N) and one product with A (8 N^2 flops).
 module ddc_contact_active_set
     use ddc_kinds, only: wp
-    use ddc_solve_lapack, only: dgetrf, dgetrs, dgecon, dlange, dgemv
-    use ddc_input_messages, only: itoa
+    use ddc_linalg_lapack, only: dgetrf, dgetrs, dgecon, dlange, dgemv
+    use ddc_text, only: itoa
     use, intrinsic :: iso_fortran_env, only: int64
     implicit none
     private

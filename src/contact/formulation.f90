@@ -54,7 +54,7 @@ module ddc_contact_formulation
     use ddc_contact_certificate, only: lcp_certificate, certify_lcp, &
         certify_complementarity, default_certificate_tolerance
     use ddc_contact_active_set, only: active_set_result, solve_contact_active_set
-    use ddc_solve_lapack, only: dgetrf, dgetri, dgecon, dlange, dgemv
+    use ddc_linalg_lapack, only: dgetrf, dgetri, dgecon, dlange, dgemv
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use, intrinsic :: iso_fortran_env, only: int64
     implicit none

@@ -19,7 +19,7 @@ module ddc_contact_lemke
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_solver_failure, exit_bad_input
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-    use ddc_solve_lapack, only: dgemv, dger, dgesv
+    use ddc_linalg_lapack, only: dgemv, dger, dgesv
     implicit none
     private
 

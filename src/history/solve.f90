@@ -18,14 +18,15 @@ module ddc_history_solve
     use ddc_model_types, only: model_type, condition_contact, condition_prescribed_dd, &
         load_path_names
     use ddc_model_results, only: model_results, history_record
-    use ddc_influence_assembly, only: resolve_remote_stress, total_pressure
+    use ddc_model_loads, only: resolve_remote_stress, total_pressure
     use ddc_contact_formulation, only: contact_result, contact_lcp, build_contact_lcp, &
         solve_contact_increment, contact_stress_scale
     use ddc_solve_frictional, only: condensed_contact, condense_contact, contact_load, &
         complete_dds, record_contact
     use ddc_history_path, only: path_loads, apply_load
-    use ddc_run, only: run_model, shear_modulus_of
-    use ddc_input_messages, only: itoa, rtoa
+    use ddc_run_model, only: run_model
+    use ddc_model_loads, only: shear_modulus_of
+    use ddc_text, only: itoa, rtoa
     implicit none
     private
 

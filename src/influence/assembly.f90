@@ -17,13 +17,13 @@
 module ddc_influence_assembly
     use ddc_kinds, only: wp
     use ddc_model_types, only: element_set, symmetry_options, symmetry_none, symmetry_x, &
-        symmetry_y, symmetry_both, domain_half_plane, condition_contact
+        symmetry_y, symmetry_both, domain_half_plane
     use ddc_influence_kernel, only: dd_kernel, dd_kernel_global, face_negative
     use ddc_influence_kernel_half_plane, only: dd_kernel_half_plane
     implicit none
     private
 
-    public :: assemble_influence, midpoint_response, resolve_remote_stress, total_pressure
+    public :: assemble_influence, midpoint_response
     public :: row_traction, row_displacement, row_identity
     public :: image_transform, image_transforms, image_of, kernel_with_images
     public :: kernel_function, select_kernel
@@ -310,44 +310,5 @@ contains
         end do
         !$omp end parallel do
     end subroutine response_with
-
-    !> Remote stress resolved on every element (SPEC section 2), tension positive; with a
-    !> gradient, the stress at each midpoint (exact element average of a linear field,
-    !> SPEC-EARTH 2).
-    pure subroutine resolve_remote_stress(elements, sxx, syy, sxy, shear, normal, gradient)
-        !> Elements with geometry computed
-        type(element_set), intent(in) :: elements
-        !> Remote stress [stress unit] (at y = 0 when a gradient is given)
-        real(wp), intent(in) :: sxx, syy, sxy
-        !> Resolved shear and normal traction [stress unit], shape (n)
-        real(wp), intent(out) :: shear(:), normal(:)
-        !> d(sxx, syy, sxy)/dy [stress unit / length unit]; zero when absent
-        real(wp), intent(in), optional :: gradient(3)
-        real(wp) :: g(3)
-
-        g = 0.0_wp
-        if (present(gradient)) g = gradient
-        associate (c => elements%cos_beta, s => elements%sin_beta, y => elements%y_mid)
-            shear = -((sxx + g(1) * y) - (syy + g(2) * y)) * s * c &
-                    + (sxy + g(3) * y) * (c**2 - s**2)
-            normal = (sxx + g(1) * y) * s**2 - 2.0_wp * (sxy + g(3) * y) * s * c &
-                     + (syy + g(2) * y) * c**2
-        end associate
-    end subroutine resolve_remote_stress
-
-    !> Fluid pressure inside every contact element: its own pressure plus the pore fluid
-    !> p0 + dp_dy * y at its midpoint (SPEC-EARTH 2); other elements keep their value.
-    pure function total_pressure(elements, pore_fluid) result(pressure)
-        !> Elements with geometry computed
-        type(element_set), intent(in) :: elements
-        !> Pore fluid (p0 [stress unit], dp_dy [stress unit / length unit])
-        real(wp), intent(in) :: pore_fluid(2)
-        !> Total pressure, compression positive [stress unit], shape (n)
-        real(wp) :: pressure(elements%n)
-
-        pressure = elements%pressure
-        where (elements%condition == condition_contact) &
-            pressure = pressure + pore_fluid(1) + pore_fluid(2) * elements%y_mid
-    end function total_pressure
 
 end module ddc_influence_assembly

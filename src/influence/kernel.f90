@@ -6,13 +6,12 @@
 !> Pure: no input, output or solver knowledge.
 module ddc_influence_kernel
     use ddc_kinds, only: wp
+    use ddc_constants, only: pi
     implicit none
     private
 
     public :: dd_kernel_at, dd_kernel_global, kernel_functions
-    public :: face_negative, face_positive, pi
-
-    real(wp), parameter :: pi = 3.14159265358979323846264338327950288_wp
+    public :: face_negative, face_positive
 
     !> On the element itself (y = 0, |x| < a) the displacement jumps: which face to report
     integer, parameter :: face_negative = -1, face_positive = +1

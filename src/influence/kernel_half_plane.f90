@@ -6,8 +6,9 @@
 !> Pure: no input, output or solver knowledge.
 module ddc_influence_kernel_half_plane
     use ddc_kinds, only: wp
-    use ddc_influence_kernel, only: dd_kernel, dd_kernel_global, kernel_functions, pi, &
+    use ddc_influence_kernel, only: dd_kernel, dd_kernel_global, kernel_functions, &
         face_positive
+    use ddc_constants, only: pi
     implicit none
     private
 

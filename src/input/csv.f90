@@ -7,8 +7,8 @@ module ddc_input_csv
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_input_text_file, only: read_text_file
-    use ddc_input_messages, only: newline, add_message, messages_error, itoa, lower
-    use ddc_input_limits, only: within_limits, limits_text
+    use ddc_text, only: newline, add_message, messages_error, itoa, lower
+    use ddc_model_limits, only: within_limits, limits_text
     implicit none
     private
 

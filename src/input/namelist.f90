@@ -18,11 +18,11 @@ module ddc_input_namelist
         symmetry_x, domain_names, domain_half_plane, load_path_names
     use ddc_input_text_file, only: read_text_file, base_name
     use ddc_input_csv, only: read_csv
-    use ddc_input_messages, only: newline, itoa, rtoa, lower
+    use ddc_text, only: newline, itoa, rtoa, lower
     use ddc_mesh_polyline, only: polyline_elements, expand_per_segment
     use ddc_mesh_geometry, only: allocate_elements, compute_geometry
     use ddc_mesh_checks, only: check_elements
-    use ddc_input_limits, only: within_limits, limits_text
+    use ddc_model_limits, only: within_limits, limits_text
     implicit none
     private
 

@@ -16,7 +16,7 @@ module ddc_input_sweep
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type
     use ddc_input_text_file, only: read_text_file
-    use ddc_input_messages, only: itoa, rtoa, lower, add_message, messages_error
+    use ddc_text, only: itoa, rtoa, lower, add_message, messages_error
     use ddc_input_namelist, only: group_line, group_problem, join_integers
     use ddc_sweep_tasks, only: sweep_definition, combine_names, combine_product, combine_zip, &
         max_parameters, max_tasks, parse_parameter, check_value, target_sxx, target_syy, &

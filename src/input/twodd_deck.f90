@@ -10,7 +10,7 @@
 !> record (NUMPB interior points plus both ends; one point when the ends coincide).
 !> Every problem is reported with the file name and the line number.
 module ddc_input_twodd_deck
-    use ddc_input_limits, only: within_limits
+    use ddc_model_limits, only: within_limits
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type, solver_options, observation_line, &
@@ -20,7 +20,7 @@ module ddc_input_twodd_deck
     use ddc_mesh_polyline, only: polyline_elements
     use ddc_mesh_geometry, only: allocate_elements, compute_geometry
     use ddc_mesh_checks, only: check_elements
-    use ddc_input_messages, only: itoa, rtoa
+    use ddc_text, only: itoa, rtoa
     implicit none
     private
 

@@ -9,7 +9,7 @@ module ddc_mesh_checks
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
     use ddc_model_types, only: element_set, fracture_type, symmetry_x, symmetry_y, symmetry_both
-    use ddc_input_messages, only: add_message, messages_error, itoa, rtoa
+    use ddc_text, only: add_message, messages_error, itoa, rtoa
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     implicit none
     private

@@ -38,7 +38,7 @@ module ddc_output_hdf5
     use ddc_version, only: program_name, program_version, git_commit
     use ddc_model_types, only: model_type, observation_grid, observation_kind_names, &
         symmetry_names, domain_names, load_path_names
-    use ddc_influence_assembly, only: total_pressure
+    use ddc_model_loads, only: total_pressure, shear_modulus_of
     use ddc_model_results, only: model_results, state_free, state_stick, state_slip, &
         state_open
     use ddc_output_atomic, only: partial_name, publish_file, remove_file
@@ -172,9 +172,7 @@ contains
         type(h5_object), intent(in) :: root
         type(model_type), intent(in) :: model
         type(error_type), allocatable, intent(inout) :: error
-        real(wp) :: shear_modulus
 
-        shear_modulus = model%youngs_modulus / (2.0_wp * (1.0_wp + model%poissons_ratio))
         call write_attribute(root, 'program', program_name, error)
         call write_attribute(root, 'version', program_version, error)
         call write_attribute(root, 'git_commit', git_commit, error)
@@ -186,7 +184,7 @@ contains
         call write_attribute(root, 'stress_unit', text(model%stress_unit), error)
         call write_attribute(root, 'youngs_modulus', model%youngs_modulus, error)
         call write_attribute(root, 'poissons_ratio', model%poissons_ratio, error)
-        call write_attribute(root, 'shear_modulus', shear_modulus, error)
+        call write_attribute(root, 'shear_modulus', shear_modulus_of(model), error)
         call write_attribute(root, 'remote_stress', [model%sxx, model%syy, model%sxy], error)
         call write_attribute(root, 'conventions', conventions, error)
         call write_attribute(root, 'open_cohesion', text(model%solver%open_cohesion), error)

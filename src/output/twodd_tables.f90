@@ -15,7 +15,7 @@ module ddc_output_twodd_tables
     use ddc_model_types, only: model_type, symmetry_x, symmetry_y, symmetry_both
     use ddc_model_results, only: model_results, point_near, point_on_element
     use ddc_output_atomic, only: partial_name, publish_file, remove_file
-    use ddc_influence_kernel, only: pi
+    use ddc_constants, only: pi
     implicit none
     private
 

@@ -8,7 +8,7 @@ module ddc_solve_elastic
         condition_mixed_us_sn, condition_mixed_ss_un, condition_contact, condition_prescribed_dd
     use ddc_influence_assembly, only: assemble_influence, row_traction, row_displacement, &
         row_identity
-    use ddc_solve_lapack, only: lu_factor, lu_solve
+    use ddc_linalg_lapack, only: lu_factor, lu_solve
     implicit none
     private
 

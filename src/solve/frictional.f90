@@ -17,7 +17,7 @@ module ddc_solve_frictional
     use ddc_model_results, only: solver_record, state_free
     use ddc_influence_assembly, only: assemble_influence
     use ddc_solve_elastic, only: row_kinds, given_values, singular_message
-    use ddc_solve_lapack, only: lu_factor, lu_solve, dgemm
+    use ddc_linalg_lapack, only: lu_factor, lu_solve, dgemm
     use ddc_contact_formulation, only: contact_result, solve_contact
     implicit none
     private

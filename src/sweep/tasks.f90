@@ -21,7 +21,7 @@ module ddc_sweep_tasks
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type
-    use ddc_input_messages, only: itoa, lower
+    use ddc_text, only: itoa, lower
     use ddc_output_hdf5_read, only: read_int_attribute
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     implicit none

@@ -1,6 +1,6 @@
 !> Small text helpers shared by the input readers and the mesh checks: a capped list of
 !> problem lines joined with newlines, numbers as text, ASCII lower case.
-module ddc_input_messages
+module ddc_text
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     implicit none
@@ -89,4 +89,4 @@ contains
         end do
     end function lower
 
-end module ddc_input_messages
+end module ddc_text

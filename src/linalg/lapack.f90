@@ -1,7 +1,7 @@
 !> Explicit interfaces for the LAPACK and BLAS routines ddc2d calls, and thin wrappers.
 !> Every module that calls LAPACK or BLAS takes the interface from here, so argument
 !> mismatches are compile-time errors.
-module ddc_solve_lapack
+module ddc_linalg_lapack
     use ddc_kinds, only: wp
     implicit none
     private
@@ -108,4 +108,4 @@ contains
         call dgetrs('N', size(lu, 1), size(b, 2), lu, size(lu, 1), ipiv, b, size(b, 1), info)
     end subroutine lu_solve
 
-end module ddc_solve_lapack
+end module ddc_linalg_lapack

@@ -1,12 +1,13 @@
 !> Solve one model: influence, solve, then element results, tips and fields.
-module ddc_run
+module ddc_run_model
     !$ use omp_lib, only: omp_get_max_threads
     use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type, element_set, condition_contact, domain_half_plane
     use ddc_model_results, only: model_results, state_free
-    use ddc_influence_assembly, only: midpoint_response, resolve_remote_stress, total_pressure
+    use ddc_influence_assembly, only: midpoint_response
+    use ddc_model_loads, only: resolve_remote_stress, total_pressure, shear_modulus_of
     use ddc_solve_elastic, only: solve_elastic
     use ddc_solve_frictional, only: solve_frictional
     use ddc_post_tips, only: find_tips
@@ -14,16 +15,9 @@ module ddc_run
     implicit none
     private
 
-    public :: run_model, shear_modulus_of
+    public :: run_model
 
 contains
-
-    !> Shear modulus G = E / (2 (1 + nu)) of a model [stress unit].
-    pure real(wp) function shear_modulus_of(model)
-        type(model_type), intent(in) :: model
-
-        shear_modulus_of = model%youngs_modulus / (2.0_wp * (1.0_wp + model%poissons_ratio))
-    end function shear_modulus_of
 
     !> Wall-clock seconds since an arbitrary origin.
     real(wp) function wall_seconds()
@@ -108,4 +102,4 @@ contains
         end associate
     end subroutine run_model
 
-end module ddc_run
+end module ddc_run_model

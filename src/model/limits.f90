@@ -1,5 +1,5 @@
 !> The range of real input values ddc2d accepts.
-module ddc_input_limits
+module ddc_model_limits
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use ddc_kinds, only: wp
     implicit none
@@ -28,4 +28,4 @@ contains
             (abs(x) <= max_input_magnitude .and. abs(x) >= min_input_magnitude)
     end function within_limits
 
-end module ddc_input_limits
+end module ddc_model_limits

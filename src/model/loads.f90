@@ -1,0 +1,61 @@
+!> The loads of a model: elastic constants, the remote stress resolved on elements and the
+!> fluid pressure inside them (SPEC section 2, SPEC-EARTH 2). Used by the solvers, the post
+!> processing and the output alike.
+module ddc_model_loads
+    use ddc_kinds, only: wp
+    use ddc_model_types, only: model_type, element_set, condition_contact
+    implicit none
+    private
+
+    public :: shear_modulus_of, resolve_remote_stress, total_pressure
+
+contains
+
+    !> Shear modulus G = E / (2 (1 + nu)) of a model [stress unit].
+    pure real(wp) function shear_modulus_of(model)
+        !> The model (its Young's modulus and Poisson's ratio)
+        type(model_type), intent(in) :: model
+
+        shear_modulus_of = model%youngs_modulus / (2.0_wp * (1.0_wp + model%poissons_ratio))
+    end function shear_modulus_of
+
+    !> Remote stress resolved on every element (SPEC section 2), tension positive; with a
+    !> gradient, the stress at each midpoint (exact element average of a linear field,
+    !> SPEC-EARTH 2).
+    pure subroutine resolve_remote_stress(elements, sxx, syy, sxy, shear, normal, gradient)
+        !> Elements with geometry computed
+        type(element_set), intent(in) :: elements
+        !> Remote stress [stress unit] (at y = 0 when a gradient is given)
+        real(wp), intent(in) :: sxx, syy, sxy
+        !> Resolved shear and normal traction [stress unit], shape (n)
+        real(wp), intent(out) :: shear(:), normal(:)
+        !> d(sxx, syy, sxy)/dy [stress unit / length unit]; zero when absent
+        real(wp), intent(in), optional :: gradient(3)
+        real(wp) :: g(3)
+
+        g = 0.0_wp
+        if (present(gradient)) g = gradient
+        associate (c => elements%cos_beta, s => elements%sin_beta, y => elements%y_mid)
+            shear = -((sxx + g(1) * y) - (syy + g(2) * y)) * s * c &
+                    + (sxy + g(3) * y) * (c**2 - s**2)
+            normal = (sxx + g(1) * y) * s**2 - 2.0_wp * (sxy + g(3) * y) * s * c &
+                     + (syy + g(2) * y) * c**2
+        end associate
+    end subroutine resolve_remote_stress
+
+    !> Fluid pressure inside every contact element: its own pressure plus the pore fluid
+    !> p0 + dp_dy * y at its midpoint (SPEC-EARTH 2); other elements keep their value.
+    pure function total_pressure(elements, pore_fluid) result(pressure)
+        !> Elements with geometry computed
+        type(element_set), intent(in) :: elements
+        !> Pore fluid (p0 [stress unit], dp_dy [stress unit / length unit])
+        real(wp), intent(in) :: pore_fluid(2)
+        !> Total pressure, compression positive [stress unit], shape (n)
+        real(wp) :: pressure(elements%n)
+
+        pressure = elements%pressure
+        where (elements%condition == condition_contact) &
+            pressure = pressure + pore_fluid(1) + pore_fluid(2) * elements%y_mid
+    end function total_pressure
+
+end module ddc_model_loads
