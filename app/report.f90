@@ -4,6 +4,7 @@ module ddc_app_report
     use ddc_model_types, only: model_type, condition_names, observation_kind_names, &
         symmetry_none, symmetry_names
     use ddc_model_results, only: model_results, state_names
+    use ddc_contact_options, only: lcp_method_names, open_cohesion_names, lcp_lemke
     implicit none
     private
 
@@ -41,9 +42,10 @@ contains
                     size(model%observations(i)%x), ' points'
             end do
         end if
-        write (unit, '(a,a,a,a)') '  solver: lcp_method = ', model%solver%lcp_method, &
-            ', open_cohesion = ', model%solver%open_cohesion
-        if (allocated(model%load_path%steps) .and. model%solver%lcp_method /= 'lemke') &
+        write (unit, '(a,a,a,a)') '  solver: lcp_method = ', &
+            trim(lcp_method_names(model%solver%lcp_method)), ', open_cohesion = ', &
+            trim(open_cohesion_names(model%solver%open_cohesion))
+        if (allocated(model%load_path%steps) .and. model%solver%lcp_method /= lcp_lemke) &
             write (unit, '(a)') '  (the loading history is solved step by step with '// &
             "Lemke's method, whatever lcp_method says)"
         write (unit, '(a)') '  output: '//model%output_file

@@ -3,8 +3,9 @@ module ddc_error
     implicit none
     private
 
-    public :: error_type, set_error
+    public :: error_type, set_error, set_internal_error
     public :: exit_success, exit_solver_failure, exit_bad_input, exit_io_failure
+    public :: exit_internal_error
 
     !> The run succeeded.
     integer, parameter :: exit_success = 0
@@ -14,10 +15,13 @@ module ddc_error
     integer, parameter :: exit_bad_input = 2
     !> Reading or writing a file failed.
     integer, parameter :: exit_io_failure = 3
+    !> A contract between two parts of ddc2d was broken: a bug, not the user's input
+    integer, parameter :: exit_internal_error = 4
 
     !> An error: the exit code it maps to and one sentence for the user.
     type :: error_type
-        !> Exit code (exit_solver_failure, exit_bad_input or exit_io_failure)
+        !> Exit code (exit_solver_failure, exit_bad_input, exit_io_failure or
+        !> exit_internal_error)
         integer :: code = exit_bad_input
         !> Message for the user, naming file, group and variable where it applies
         character(len=:), allocatable :: message
@@ -38,5 +42,19 @@ contains
         error%code = code
         error%message = message
     end subroutine set_error
+
+    !> Allocate an internal error (exit_internal_error): a broken contract between two parts
+    !> of ddc2d, reported with where it was found.
+    subroutine set_internal_error(error, where, what)
+        !> The error to create
+        type(error_type), allocatable, intent(out) :: error
+        !> The procedure that found it
+        character(len=*), intent(in) :: where
+        !> What was wrong
+        character(len=*), intent(in) :: what
+
+        call set_error(error, exit_internal_error, 'internal error in '//where//': '//what// &
+                       ' (a bug in ddc2d: please report it with the input file)')
+    end subroutine set_internal_error
 
 end module ddc_error

@@ -1,7 +1,8 @@
 !> Models built in code for the physics tests (no input files involved).
 module ddc_test_builders
     use ddc_kinds, only: wp
-    use ddc_model_types, only: model_type, fracture_type, solver_options
+    use ddc_model_types, only: model_type, fracture_type
+    use ddc_contact_options, only: solver_options
     use ddc_mesh_geometry, only: allocate_elements, compute_geometry
     use ddc_mesh_polyline, only: polyline_elements
     use ddc_constants, only: pi
@@ -26,7 +27,7 @@ contains
         model%poissons_ratio = nu
         model%length_unit = 'm'
         model%stress_unit = 'MPa'
-        model%solver = solver_options(lcp_method='auto', open_cohesion='kept')
+        model%solver = solver_options()
         call allocate_elements(model%elements, sum(counts))
         call polyline_elements(x, y, counts, model%elements%x_begin, model%elements%y_begin, &
                                model%elements%x_end, model%elements%y_end)

@@ -12,6 +12,8 @@ module test_contact
     use ddc_model_types, only: model_type, condition_contact
     use ddc_test_builders, only: polyline_model, join_fractures
     use ddc_model_results, only: state_stick, state_slip, state_open
+    use ddc_contact_options, only: solver_options, parse_solver_options, option_code, &
+        open_cohesion_names, lcp_lemke
     use ddc_contact_formulation, only: contact_result, solve_contact
     implicit none
     private
@@ -75,7 +77,8 @@ contains
             shear_modulus(model%youngs_modulus, model%poissons_ratio), model%poissons_ratio, &
             rows, rows, a)
         call resolve_remote_stress(model%elements, sxx, syy, sxy, ss, sn)
-        call solve_contact(a, ss, sn, mu, sf, p, cohesion, res, error)
+        call solve_contact(a, ss, sn, mu, sf, p, solver_options(lcp_method=lcp_lemke, &
+            open_cohesion=option_code(cohesion, open_cohesion_names)), res, error)
     end subroutine solve_model
 
     !> solve_model with the same mu, Sf and fluid pressure on every element.
@@ -333,12 +336,9 @@ contains
     subroutine test_bad_cohesion(error)
         type(error_type), allocatable, intent(out) :: error
         type(error_type), allocatable :: failure
-        type(contact_result) :: res
-        real(wp) :: a(2, 2)
+        type(solver_options) :: options
 
-        a = reshape([1.0_wp, 0.0_wp, 0.0_wp, 1.0_wp], [2, 2])
-        call solve_contact(a, [1.0_wp], [-1.0_wp], [0.6_wp], [0.0_wp], [0.0_wp], 'keep', &
-            res, failure)
+        call parse_solver_options('lemke', 'keep', options, failure)
         call check(error, allocated(failure), 'open_cohesion = keep must be an error')
         if (allocated(error)) return
         call check(error, failure%code == exit_bad_input, 'wrong code: '//failure%message)

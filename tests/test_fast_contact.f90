@@ -13,6 +13,8 @@ module test_fast_contact
     use ddc_influence_assembly, only: assemble_influence, row_traction
     use ddc_model_loads, only: resolve_remote_stress
     use ddc_contact_formulation, only: contact_result, solve_contact
+    use ddc_contact_options, only: solver_options, parse_solver_options, option_code, &
+        open_cohesion_names, lcp_lemke, lcp_newton
     use ddc_test_builders, only: polyline_model, straight_crack, join_fractures
     implicit none
     private
@@ -57,13 +59,13 @@ contains
         real(wp) :: scale
 
         m = model
-        m%solver%lcp_method = 'lemke'
+        m%solver%lcp_method = lcp_lemke
         call run_model(m, r_lemke, error)
         if (allocated(error)) then
             error%message = label//' (lemke): '//error%message
             return
         end if
-        m%solver%lcp_method = 'newton'
+        m%solver%lcp_method = lcp_newton
         call run_model(m, r_newton, error)
         if (allocated(error)) then
             error%message = label//' (newton): '//error%message
@@ -160,7 +162,7 @@ contains
         call compare_methods(pressurized('lost'), error, 'pressure lost')
         if (allocated(error)) return
         model = pressurized('lost')
-        model%solver%lcp_method = 'newton'
+        model%solver%lcp_method = lcp_newton
         call run_model(model, r, error)
         if (allocated(error)) return
         call check(error, r%solver%lcp_solves, 2, 'newton solves (second after cohesion lost)')
@@ -173,7 +175,7 @@ contains
 
         model = loaded_polyline([-1.0_wp, 1.0_wp], [0.0_wp, 0.0_wp], [100], 0.6_wp, 2.0_wp, &
             12.0_wp, 0.0_wp, -10.0_wp, 5.0_wp)
-        model%solver%open_cohesion = cohesion
+        model%solver%open_cohesion = option_code(cohesion, open_cohesion_names)
     end function pressurized
 
     !> The kink of both suites: flat then 35 degrees up, Sf = 0, p = 17.5.
@@ -349,11 +351,12 @@ contains
             rows, rows, a)
         call resolve_remote_stress(model%elements, model%sxx, model%syy, model%sxy, ss, sn)
         associate (e => model%elements)
-            call solve_contact(a, ss, sn, e%mu, e%sf, e%pressure, 'kept', ref, error, &
-                method='lemke')
+            call solve_contact(a, ss, sn, e%mu, e%sf, e%pressure, &
+                               solver_options(lcp_method=lcp_lemke), ref, error)
             if (allocated(error)) return
-            call solve_contact(a, ss, sn, e%mu, e%sf, e%pressure, 'kept', fast, error, &
-                method='newton', max_iterations=1)
+            call solve_contact(a, ss, sn, e%mu, e%sf, e%pressure, &
+                               solver_options(lcp_method=lcp_newton), fast, error, &
+                               max_iterations=1)
             if (allocated(error)) return
         end associate
         call check(error, fast%method == 'lemke', 'method after fallback: '//fast%method)
@@ -368,12 +371,9 @@ contains
     !> A method other than auto, lemke or newton is bad input.
     subroutine test_bad_method(error)
         type(error_type), allocatable, intent(out) :: error
-        type(contact_result) :: res
-        real(wp) :: a(2, 2)
+        type(solver_options) :: options
 
-        a = reshape([1.0_wp, 0.0_wp, 0.0_wp, 1.0_wp], [2, 2])
-        call solve_contact(a, [1.0_wp], [-1.0_wp], [0.6_wp], [0.0_wp], [0.0_wp], 'kept', &
-            res, error, method='path')
+        call parse_solver_options('path', 'kept', options, error)
         call check(error, allocated(error), 'method = path must be an error')
         if (allocated(error)) then
             if (index(error%message, "'path'") > 0) deallocate (error)

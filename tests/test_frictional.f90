@@ -3,6 +3,8 @@
 !> fracture (TWODD condition) next to a frictional fault.
 module test_frictional
     use ddc_kinds, only: wp
+    use ddc_contact_options, only: option_code, open_cohesion_names, lcp_lemke, lcp_auto, &
+        cohesion_lost
     use ddc_testing, only: test_case, new_test, check, error_type
     use ddc_error, only: exit_solver_failure
     use ddc_model_types, only: model_type, condition_contact, condition_traction
@@ -146,7 +148,7 @@ contains
         model%elements%pressure = 12.0_wp
         model%syy = -10.0_wp
         model%sxy = 5.0_wp
-        model%solver%open_cohesion = cohesion
+        model%solver%open_cohesion = option_code(cohesion, open_cohesion_names)
     end function pressurized_fault
 
     !> Open elements keep shear strength Sf (the paper's model).
@@ -257,13 +259,13 @@ contains
         model%sxx = -143.75_wp
         model%syy = -81.25_wp
         model%sxy = 54.13_wp
-        model%solver%lcp_method = 'lemke'
+        model%solver%lcp_method = lcp_lemke
         call run_model(model, r, ray)
         call check(error, allocated(ray), 'Lemke alone ends on a ray')
         if (allocated(error)) return
         call check(error, ray%code, exit_solver_failure, 'exit code of the ray')
         if (allocated(error)) return
-        model%solver%lcp_method = 'auto'
+        model%solver%lcp_method = lcp_auto
         call run_model(model, r, error)
         if (allocated(error)) return
         call check(error, r%solver%method == 'newton', 'the Newton method produced the result')
@@ -276,7 +278,7 @@ contains
         ! Fluid pressure 60 opens the branch; with cohesion lost on opening the second
         ! round must stay with the Newton method (Lemke would end on the ray again).
         model%elements%pressure(61:) = 60.0_wp
-        model%solver%open_cohesion = 'lost'
+        model%solver%open_cohesion = cohesion_lost
         call run_model(model, r, error)
         if (allocated(error)) return
         call check(error, r%solver%method == 'newton', 'Newton kept after cohesion was lost')

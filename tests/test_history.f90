@@ -3,6 +3,7 @@
 !> certificate of every step, a failing step, and the &load_path reader.
 module test_history
     use ddc_kinds, only: wp
+    use ddc_contact_options, only: lcp_lemke
     use ddc_testing, only: test_case, new_test, check, error_type
     use ddc_error, only: exit_solver_failure, exit_bad_input
     use ddc_model_types, only: model_type, condition_contact, condition_traction
@@ -66,7 +67,7 @@ contains
         model%elements%mu = 0.6_wp
         model%elements%sf = sf
         model%syy = -10.0_wp
-        model%solver%lcp_method = 'lemke'
+        model%solver%lcp_method = lcp_lemke
     end function straight_fault
 
     !> The weak patch of SPEC.md 7: Sf = 0 for |x| < 0.4, Sf = 6 beyond.

@@ -2,6 +2,7 @@
 !> Data files are under tests/data/input/ (the tests run in tests/).
 module test_input
     use ddc_kinds, only: wp
+    use ddc_contact_options, only: lcp_lemke, lcp_auto, cohesion_lost, cohesion_kept
     use ddc_testing, only: test_case, new_test, check, error_type
     use ddc_error, only: exit_bad_input
     use ddc_model_types, only: model_type, condition_contact, condition_traction, &
@@ -370,8 +371,8 @@ contains
         call check(error, model%sxy, 5.0_wp, 'sxy', rel_tol=tight)
         call check(error, model%length_unit == 'km', 'length unit')
         call check(error, model%stress_unit == 'MPa', 'stress unit')
-        call check(error, model%solver%lcp_method == 'lemke', 'lcp_method')
-        call check(error, model%solver%open_cohesion == 'lost', 'open_cohesion')
+        call check(error, model%solver%lcp_method == lcp_lemke, 'lcp_method')
+        call check(error, model%solver%open_cohesion == cohesion_lost, 'open_cohesion')
         call check(error, model%output_file == 'good_polyline.h5', &
                    'default output file: '//model%output_file)
         call check(error, model%input_file == data//'good_polyline.nml', 'input file')
@@ -392,8 +393,8 @@ contains
         call check(error, model%title == 'good_output', 'default title: '//model%title)
         call check(error, model%length_unit == 'm', 'default length unit')
         call check(error, model%stress_unit == 'MPa', 'default stress unit')
-        call check(error, model%solver%lcp_method == 'auto', 'default lcp_method')
-        call check(error, model%solver%open_cohesion == 'kept', 'default open_cohesion')
+        call check(error, model%solver%lcp_method == lcp_auto, 'default lcp_method')
+        call check(error, model%solver%open_cohesion == cohesion_kept, 'default open_cohesion')
         call check(error, model%sxx, 0.0_wp, 'default sxx', abs_tol=0.0_wp)
         call check(error, model%elements%n, 1, 'elements')
         call check(error, model%elements%sf(1), 0.0_wp, 'default sf', abs_tol=0.0_wp)

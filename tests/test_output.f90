@@ -3,6 +3,7 @@ module test_output
     use, intrinsic :: iso_fortran_env, only: int64
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_nan
     use ddc_kinds, only: wp
+    use ddc_contact_options, only: lcp_lemke, cohesion_kept
     use ddc_testing, only: test_case, new_test, check, error_type
     use ddc_error, only: exit_bad_input, exit_io_failure
     use ddc_version, only: program_version, git_commit
@@ -512,8 +513,8 @@ contains
         model%input_file = 'input/test.nml'
         model%input_text = '&model title = ''output test'' /'//new_line('a') &
             //'&remote_stress sxx = -143.75 /'//new_line('a')
-        model%solver%lcp_method = 'lemke'
-        model%solver%open_cohesion = 'kept'
+        model%solver%lcp_method = lcp_lemke
+        model%solver%open_cohesion = cohesion_kept
 
         call allocate_elements(model%elements, 3)
         model%elements%x_begin = [-1.0_wp, 0.0_wp, 0.0_wp]

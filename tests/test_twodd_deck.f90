@@ -3,6 +3,7 @@
 !> full models, KODE 2-4 decks against the Lame hole, malformed decks.
 module test_twodd_deck
     use ddc_kinds, only: wp
+    use ddc_contact_options, only: lcp_auto, cohesion_kept
     use ddc_testing, only: test_case, new_test, check, error_type
     use ddc_error, only: set_error, exit_bad_input
     use ddc_model_types, only: model_type, element_set, symmetry_none, symmetry_both
@@ -112,8 +113,8 @@ contains
         end do
         call check(error, deck%elements%symmetry%kind == symmetry_none, 'no symmetry')
         call check(error, deck%output_file == 'A1_press_n20.f60.h5', 'default output file')
-        call check(error, deck%solver%lcp_method == 'auto' .and. &
-                   deck%solver%open_cohesion == 'kept', 'solver defaults')
+        call check(error, deck%solver%lcp_method == lcp_auto .and. &
+                   deck%solver%open_cohesion == cohesion_kept, 'solver defaults')
         call check(error, deck%fractures(1)%name == 'segment_1', 'fracture name')
         call check(error, index(deck%input_text, 'A1_pressurized_crack_a1_n20') == 1, &
                    'input text kept')

@@ -28,7 +28,7 @@
 !> nonbasic variables) are exactly zero here; basic variables that are zero in exact
 !> arithmetic come out at round-off level, far below the tolerance.
 !>
-!> Methods (argument method of solve_contact, &solver lcp_method):
+!> Methods (options%lcp_method of solve_contact, &solver lcp_method):
 !> - 'lemke': the paper's LCP above, solved by the lexicographic Lemke method (reference);
 !> - 'newton': a semismooth Newton / primal-dual active-set method on the stiffness system
 !>   t = S_r + A D (ddc_contact_active_set): no inverse of A, one LU of a reduced system
@@ -48,8 +48,10 @@
 !> element has cohesion left (the set of such elements only grows, so this terminates).
 module ddc_contact_formulation
     use ddc_kinds, only: wp
-    use ddc_error, only: error_type, set_error, exit_solver_failure, exit_bad_input
-    use ddc_model_results, only: state_stick, state_slip, state_open
+    use ddc_error, only: error_type, set_error, set_internal_error, exit_solver_failure, &
+        exit_bad_input
+    use ddc_contact_states, only: state_stick, state_slip, state_open
+    use ddc_contact_options, only: solver_options, lcp_auto, lcp_newton, cohesion_lost
     use ddc_contact_lemke, only: solve_lcp_lemke
     use ddc_contact_certificate, only: lcp_certificate, certify_lcp, &
         certify_complementarity, default_certificate_tolerance
@@ -134,8 +136,8 @@ module ddc_contact_formulation
 contains
 
     !> Solve the frictional contact problem of n elements (SPEC section 4).
-    subroutine solve_contact(a, s_r_s, s_r_n, mu, sf, pressure, open_cohesion, res, &
-        error, rule, method, max_iterations)
+    subroutine solve_contact(a, s_r_s, s_r_n, mu, sf, pressure, options, res, error, rule, &
+                             max_iterations)
         !> Influence matrix ordered [s; n]: traction = s_r + a [Ds; Dn], shape (2n, 2n)
         !> [stress / length]
         real(wp), intent(in) :: a(:, :)
@@ -151,16 +153,15 @@ contains
         real(wp), intent(in) :: sf(:)
         !> Fluid pressure inside the crack, compression positive, shape (n) [stress]
         real(wp), intent(in) :: pressure(:)
-        !> 'kept' (open elements keep cohesion Sf) or 'lost' (open elements carry no shear)
-        character(len=*), intent(in) :: open_cohesion
+        !> LCP method and cohesion of open elements
+        type(solver_options), intent(in) :: options
         !> The solution
         type(contact_result), intent(out) :: res
-        !> Allocated on failure (exit_solver_failure, or exit_bad_input for bad arguments)
+        !> Allocated on failure (exit_solver_failure; exit_bad_input for NaN or Inf data,
+        !> exit_internal_error for inconsistent arguments)
         type(error_type), allocatable, intent(out) :: error
         !> Tie-breaking rule of Lemke (tests only; default lexicographic)
         integer, intent(in), optional :: rule
-        !> 'lemke' (default), 'newton' or 'auto'
-        character(len=*), intent(in), optional :: method
         !> Iteration limit of 'newton' (default newton_max_iterations)
         integer, intent(in), optional :: max_iterations
 
@@ -177,45 +178,23 @@ contains
         n = size(mu)
         if (size(a, 1) /= 2 * n .or. size(a, 2) /= 2 * n .or. size(s_r_s) /= n &
             .or. size(s_r_n) /= n .or. size(sf) /= n .or. size(pressure) /= n) then
-            call set_error(error, exit_bad_input, 'contact: array sizes do not match')
+            call set_internal_error(error, 'solve_contact', 'array sizes do not match')
             return
         end if
-        select case (open_cohesion)
-        case ('kept')
-            lost = .false.
-        case ('lost')
-            lost = .true.
-        case default
-            call set_error(error, exit_bad_input, "contact: open_cohesion must be 'kept' or &
-                &'lost', not '"//open_cohesion//"'")
-            return
-        end select
+        lost = options%open_cohesion == cohesion_lost
         if (.not. (all(ieee_is_finite(a)) .and. all(ieee_is_finite(s_r_s)) .and. &
             all(ieee_is_finite(s_r_n)) .and. all(ieee_is_finite(mu)) .and. &
             all(ieee_is_finite(sf)) .and. all(ieee_is_finite(pressure)))) then
             call set_error(error, exit_bad_input, 'contact: NaN or Inf in the input arrays')
             return
         end if
-        newton = .false.
-        automatic = .false.
-        if (present(method)) then
-            select case (method)
-            case ('lemke')
-            case ('newton')
-                newton = .true.
-            case ('auto')
-                newton = n >= auto_newton_min_elements
-                automatic = .true.
-            case default
-                call set_error(error, exit_bad_input, "contact: method must be 'auto', &
-                    &'lemke' or 'newton', not '"//method//"'")
-                return
-            end select
-        end if
+        automatic = options%lcp_method == lcp_auto
+        newton = options%lcp_method == lcp_newton .or. &
+            (automatic .and. n >= auto_newton_min_elements)
         limit = newton_max_iterations
         if (present(max_iterations)) limit = max_iterations
         if (any(mu < 0.0_wp) .or. any(sf < 0.0_wp)) then
-            call set_error(error, exit_bad_input, 'contact: mu and sf must not be negative')
+            call set_internal_error(error, 'solve_contact', 'mu and sf must not be negative')
             return
         end if
         if (n == 0) then
@@ -282,7 +261,7 @@ contains
                 return
             end if
             if (.not. lost) exit
-            if (.not. cohesion_lost(res%state, sf_eff)) exit
+            if (.not. drop_open_cohesion(res%state, sf_eff)) exit
         end do
         call system_clock(t1)
         res%seconds_lcp = real(t1 - t0, wp) / real(max(rate, 1_int64), wp) - &
@@ -290,7 +269,7 @@ contains
     end subroutine solve_contact
 
     !> Zero the cohesion of every open element that still has some; true when any did.
-    function cohesion_lost(state, sf_eff) result(changed)
+    function drop_open_cohesion(state, sf_eff) result(changed)
         integer, intent(in) :: state(:)
         real(wp), intent(inout) :: sf_eff(:)
         logical :: changed
@@ -299,7 +278,7 @@ contains
         lose = state == state_open .and. sf_eff > 0.0_wp
         changed = any(lose)
         where (lose) sf_eff = 0.0_wp
-    end function cohesion_lost
+    end function drop_open_cohesion
 
     !> Build the LCP matrix M of n contact elements once (SPEC section 4): C = A^-1 by
     !> LAPACK, M from C and mu, and M scaled for Lemke. The time and flops of the inverse
@@ -322,7 +301,7 @@ contains
         n2 = 2 * n
         n3 = 3 * n
         if (size(a, 1) /= n2 .or. size(a, 2) /= n2) then
-            call set_error(error, exit_bad_input, 'contact: array sizes do not match')
+            call set_internal_error(error, 'build_contact_lcp', 'array sizes do not match')
             return
         end if
         call invert_influence(a, lcp%c, res, error)
@@ -387,8 +366,8 @@ contains
         real(wp), intent(inout) :: sf_effective(:)
         !> Fluid pressure inside each element at this step, shape (n) [stress]
         real(wp), intent(in) :: pressure(:)
-        !> 'kept' or 'lost'
-        character(len=*), intent(in) :: open_cohesion
+        !> cohesion_kept or cohesion_lost
+        integer, intent(in) :: open_cohesion
         !> Total shear DD at the end of the previous step, shape (n) [length]
         real(wp), intent(in) :: ds_previous(:)
         !> Stress scale sigma0 of the whole history (contact_stress_scale, largest over
@@ -410,8 +389,8 @@ contains
             call solve_once(lcp, s_r_s, s_r_n, sf_effective, pressure, ds_previous, &
                             stress_scale, res, error, basis=basis, max_pivots=max_pivots)
             if (allocated(error)) return
-            if (open_cohesion /= 'lost') exit
-            if (.not. cohesion_lost(res%state, sf_effective)) exit
+            if (open_cohesion /= cohesion_lost) exit
+            if (.not. drop_open_cohesion(res%state, sf_effective)) exit
         end do
     end subroutine solve_contact_increment
 

@@ -17,7 +17,7 @@
 !> to O(1) before calling). Knows nothing of elasticity.
 module ddc_contact_lemke
     use ddc_kinds, only: wp
-    use ddc_error, only: error_type, set_error, exit_solver_failure, exit_bad_input
+    use ddc_error, only: error_type, set_error, set_internal_error, exit_solver_failure
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use ddc_linalg_lapack, only: dgemv, dger, dgesv
     implicit none
@@ -91,23 +91,23 @@ contains
         z = 0.0_wp
         w = 0.0_wp
         if (size(m, 1) /= n .or. size(m, 2) /= n .or. size(z) /= n .or. size(w) /= n) then
-            call set_error(error, exit_bad_input, 'LCP: matrix and vector sizes differ')
+            call set_internal_error(error, 'solve_lcp_lemke', 'matrix and vector sizes differ')
             return
         end if
         if (.not. all(ieee_is_finite(q)) .or. .not. all(ieee_is_finite(m))) then
-            call set_error(error, exit_bad_input, 'LCP: M or q holds NaN or Inf')
+            call set_internal_error(error, 'solve_lcp_lemke', 'M or q holds NaN or Inf')
             return
         end if
         allocate (d(n))
         d = 1.0_wp
         if (present(cover)) then
             if (size(cover) /= n) then
-                call set_error(error, exit_bad_input, 'LCP: covering vector has the wrong size')
+                call set_internal_error(error, 'solve_lcp_lemke', 'covering vector has the wrong size')
                 return
             end if
             if (any(.not. (cover > 0.0_wp))) then
-                call set_error(error, exit_bad_input, &
-                    'LCP: covering vector must be positive')
+                call set_internal_error(error, 'solve_lcp_lemke', &
+                                        'covering vector must be positive')
                 return
             end if
             d = cover

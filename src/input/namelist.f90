@@ -16,6 +16,7 @@ module ddc_input_namelist
         condition_names, condition_contact, observation_grid, observation_line, &
         observation_points, observation_kind_names, symmetry_none, symmetry_names, &
         symmetry_x, domain_names, domain_half_plane, load_path_names
+    use ddc_contact_options, only: parse_solver_options
     use ddc_input_text_file, only: read_text_file, base_name
     use ddc_input_csv, only: read_csv
     use ddc_text, only: newline, itoa, rtoa, lower
@@ -1050,14 +1051,12 @@ contains
         type(message_list), intent(inout) :: messages
         character(len=text_length) :: lcp_method, open_cohesion
         character(len=512) :: iomsg
-        character(len=:), allocatable :: prefix
+        type(error_type), allocatable :: problems
         integer :: stat
         !> Variables of the group and their types (c text, r real, i integer)
         character(len=*), parameter :: variables = 'lcp_method:c open_cohesion:c'
         namelist /solver/ lcp_method, open_cohesion
 
-        model%solver%lcp_method = 'auto'
-        model%solver%open_cohesion = 'kept'
         if (info%count == 0) return
         lcp_method = 'auto'
         open_cohesion = 'kept'
@@ -1067,17 +1066,10 @@ contains
             call report_malformed(text, path, g_solver, info, 1, stat, iomsg, variables, messages)
             return
         end if
-        prefix = group_prefix(path, g_solver, info, 1)
-        model%solver%lcp_method = lower(trim(adjustl(lcp_method)))
-        model%solver%open_cohesion = lower(trim(adjustl(open_cohesion)))
-        if (find_name(model%solver%lcp_method, [character(len=6) :: 'auto', 'lemke', 'newton']) &
-            == 0) then
-            call add(messages, prefix//"lcp_method = '"//trim(adjustl(lcp_method))// &
-                     "' is not one of 'auto', 'lemke', 'newton'")
-        end if
-        if (find_name(model%solver%open_cohesion, [character(len=4) :: 'kept', 'lost']) == 0) then
-            call add(messages, prefix//"open_cohesion = '"//trim(adjustl(open_cohesion))// &
-                     "' is not one of 'kept', 'lost'")
+        call parse_solver_options(lcp_method, open_cohesion, model%solver, problems)
+        if (allocated(problems)) then
+            call add(messages, prefix_lines(group_prefix(path, g_solver, info, 1), &
+                                            problems%message))
         end if
     end subroutine read_solver_group
 

@@ -13,7 +13,7 @@ module ddc_input_twodd_deck
     use ddc_model_limits, only: within_limits
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
-    use ddc_model_types, only: model_type, solver_options, observation_line, &
+    use ddc_model_types, only: model_type, observation_line, &
         symmetry_x, symmetry_y, symmetry_both, condition_traction, &
         condition_mixed_ss_un
     use ddc_input_text_file, only: read_text_file, base_name
@@ -179,7 +179,6 @@ contains
 
         model%length_unit = 'm'
         model%stress_unit = 'Pa'
-        model%solver = solver_options(lcp_method='auto', open_cohesion='kept')
         model%output_file = base_name(path, .false.)//'.h5'
 
         call check_elements(model%elements, model%fractures, error)

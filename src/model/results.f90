@@ -1,6 +1,7 @@
 !> Results of a solve: element values, tips, fields and the solver record.
 module ddc_model_results
     use ddc_kinds, only: wp
+    use ddc_contact_states, only: state_stick, state_slip, state_open
     implicit none
     private
 
@@ -10,7 +11,8 @@ module ddc_model_results
     public :: point_clear, point_near, point_on_element
 
     !> Element states; free = a TWODD-style condition, not a contact element
-    integer, parameter :: state_free = 0, state_stick = 1, state_slip = 2, state_open = 3
+    !> (stick, slip and open are the contact solvers' codes, ddc_contact_states)
+    integer, parameter :: state_free = 0
     !> Names of the states, indexed by state + 1
     character(len=*), parameter :: state_names(0:3) = [character(len=5) :: &
         'free', 'stick', 'slip', 'open']

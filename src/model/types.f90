@@ -5,10 +5,11 @@
 !> orientation) is filled by ddc_mesh_geometry.
 module ddc_model_types
     use ddc_kinds, only: wp
+    use ddc_contact_options, only: solver_options
     implicit none
     private
 
-    public :: model_type, element_set, fracture_type, observation_set, solver_options
+    public :: model_type, element_set, fracture_type, observation_set
     public :: symmetry_options, symmetry_none, symmetry_x, symmetry_y, symmetry_both
     public :: symmetry_names, sweep_task_record, load_path_type, load_path_names
     public :: condition_traction, condition_displacement, condition_mixed_us_sn
@@ -103,14 +104,6 @@ module ddc_model_types
         !> Point coordinates [length unit], shape (nx*ny), x varying fastest on a grid
         real(wp), allocatable :: x(:), y(:)
     end type observation_set
-
-    !> Options of the contact solver.
-    type :: solver_options
-        !> LCP method: 'auto', 'lemke' or 'newton'
-        character(len=:), allocatable :: lcp_method
-        !> Cohesion on open elements: 'kept' (the paper) or 'lost'
-        character(len=:), allocatable :: open_cohesion
-    end type solver_options
 
     !> The task of a parameter sweep a model is (SPEC section 6), stored in its output.
     type :: sweep_task_record

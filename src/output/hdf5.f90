@@ -34,13 +34,14 @@ module ddc_output_hdf5
         H5T_NATIVE_INTEGER
     use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
-    use ddc_error, only: error_type, set_error, exit_io_failure
+    use ddc_error, only: error_type, set_error, set_internal_error, exit_io_failure
     use ddc_version, only: program_name, program_version, git_commit
     use ddc_model_types, only: model_type, observation_grid, observation_kind_names, &
         symmetry_names, domain_names, load_path_names
     use ddc_model_loads, only: total_pressure, shear_modulus_of
     use ddc_model_results, only: model_results, state_free, state_stick, state_slip, &
         state_open
+    use ddc_contact_options, only: lcp_method_names, open_cohesion_names
     use ddc_output_atomic, only: partial_name, publish_file, remove_file
     implicit none
     private
@@ -146,23 +147,22 @@ contains
         n = model%elements%n
         if (.not. allocated(results%elements%ds) .or. .not. allocated(results%elements%state)) &
             then
-            call set_error(error, exit_io_failure, 'internal error: no element results ' &
-                //'to write')
+            call set_internal_error(error, 'write_results', 'no element results to write')
             return
         end if
         if (size(results%elements%ds) /= n .or. size(results%elements%state) /= n) then
-            call set_error(error, exit_io_failure, 'internal error: element results ' &
-                //'and model differ in size')
+            call set_internal_error(error, 'write_results', &
+                                    'element results and model differ in size')
             return
         end if
         n_sets = 0
         if (allocated(model%observations)) n_sets = size(model%observations)
         if (n_sets > 0) then
             if (.not. allocated(results%fields)) then
-                call set_error(error, exit_io_failure, 'internal error: no field results')
+                call set_internal_error(error, 'write_results', 'no field results')
             else if (size(results%fields) /= n_sets) then
-                call set_error(error, exit_io_failure, 'internal error: field results ' &
-                    //'and observation sets differ in number')
+                call set_internal_error(error, 'write_results', &
+                                        'field results and observation sets differ in number')
             end if
         end if
     end subroutine check_consistency
@@ -187,8 +187,10 @@ contains
         call write_attribute(root, 'shear_modulus', shear_modulus_of(model), error)
         call write_attribute(root, 'remote_stress', [model%sxx, model%syy, model%sxy], error)
         call write_attribute(root, 'conventions', conventions, error)
-        call write_attribute(root, 'open_cohesion', text(model%solver%open_cohesion), error)
-        call write_attribute(root, 'lcp_method', text(model%solver%lcp_method), error)
+        call write_attribute(root, 'open_cohesion', &
+                             trim(open_cohesion_names(model%solver%open_cohesion)), error)
+        call write_attribute(root, 'lcp_method', trim(lcp_method_names(model%solver%lcp_method)), &
+                             error)
         ! TWODD's symmetry: 'none', 'x' (about x = xsym), 'y' (about y = ysym) or 'both'
         call write_attribute(root, 'symmetry', &
                              trim(symmetry_names(model%elements%symmetry%kind)), error)

@@ -64,8 +64,7 @@ contains
                 ! The contact elements see their pressure plus the pore fluid.
                 loaded = model%elements
                 loaded%pressure = total_pressure(model%elements, model%pore_fluid)
-                call solve_frictional(loaded, g, nu, remote_shear, remote_normal, &
-                                      model%solver%open_cohesion, model%solver%lcp_method, &
+                call solve_frictional(loaded, g, nu, remote_shear, remote_normal, model%solver, &
                                       e%ds, e%dn, e%state, rec, error)
             else
                 rec%method = 'lu'

@@ -3,7 +3,7 @@
 module ddc_solve_elastic
     use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
-    use ddc_error, only: error_type, set_error, exit_solver_failure
+    use ddc_error, only: error_type, set_error, set_internal_error, exit_solver_failure
     use ddc_model_types, only: element_set, condition_traction, condition_displacement, &
         condition_mixed_us_sn, condition_mixed_ss_un, condition_contact, condition_prescribed_dd
     use ddc_influence_assembly, only: assemble_influence, row_traction, row_displacement, &
@@ -104,7 +104,7 @@ contains
 
         n = elements%n
         if (any(elements%condition == condition_contact)) then
-            call set_error(error, exit_solver_failure, 'solve_elastic called with contact elements')
+            call set_internal_error(error, 'solve_elastic', 'called with contact elements')
             return
         end if
         call system_clock(t0, rate)

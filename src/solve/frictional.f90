@@ -19,6 +19,7 @@ module ddc_solve_frictional
     use ddc_solve_elastic, only: row_kinds, given_values, singular_message
     use ddc_linalg_lapack, only: lu_factor, lu_solve, dgemm
     use ddc_contact_formulation, only: contact_result, solve_contact
+    use ddc_contact_options, only: solver_options
     implicit none
     private
 
@@ -51,17 +52,15 @@ contains
 
     !> Solve a model with at least one contact element.
     subroutine solve_frictional(elements, shear_modulus, nu, remote_shear, remote_normal, &
-                                open_cohesion, lcp_method, ds, dn, state, record, error)
+                                options, ds, dn, state, record, error)
         !> Elements with geometry computed
         type(element_set), intent(in) :: elements
         !> Shear modulus [stress unit] and Poisson's ratio [-]
         real(wp), intent(in) :: shear_modulus, nu
         !> Remote stress resolved on each element [stress unit], shape (n)
         real(wp), intent(in) :: remote_shear(:), remote_normal(:)
-        !> 'kept' or 'lost' (SPEC section 4)
-        character(len=*), intent(in) :: open_cohesion
-        !> 'auto', 'lemke' or 'newton' (SPEC section 4; ddc_contact_formulation)
-        character(len=*), intent(in) :: lcp_method
+        !> LCP method and cohesion of open elements (SPEC section 4)
+        type(solver_options), intent(in) :: options
         !> Displacement discontinuities [length unit], shape (n)
         real(wp), intent(out) :: ds(:), dn(:)
         !> Element states (state_free for TWODD-style elements), shape (n)
@@ -80,8 +79,7 @@ contains
         call contact_load(sys, elements, remote_shear, remote_normal, shift, y_load)
         call solve_contact(sys%a, shift(1:sys%nc), shift(sys%nc + 1:), &
                            elements%mu(sys%contact), elements%sf(sys%contact), &
-                           elements%pressure(sys%contact), open_cohesion, res, error, &
-                           method=lcp_method)
+                           elements%pressure(sys%contact), options, res, error)
         if (allocated(error)) then
             if (sys%nf > 0) error%message = error%message// &
                 ' (element numbers count the contact elements only)'

@@ -1,0 +1,98 @@
+!> Options of the contact solver (&solver, SPEC section 4): the LCP method and what open
+!> elements do with their cohesion. Their input names are parsed here, once; everything
+!> downstream holds the integer codes.
+module ddc_contact_options
+    use ddc_error, only: error_type, set_error, exit_bad_input
+    use ddc_text, only: lower, newline
+    implicit none
+    private
+
+    public :: solver_options, parse_solver_options, option_code
+    public :: lcp_auto, lcp_lemke, lcp_newton, lcp_method_names
+    public :: cohesion_kept, cohesion_lost, open_cohesion_names
+
+    !> LCP methods: 'auto' (Newton from auto_newton_min_elements contact elements on, else
+    !> Lemke), 'lemke' (the paper's LCP, the reference), 'newton' (active set)
+    integer, parameter :: lcp_auto = 1, lcp_lemke = 2, lcp_newton = 3
+    !> Input names of the LCP methods, indexed by code
+    character(len=*), parameter :: lcp_method_names(3) = [character(len=6) :: &
+        'auto', 'lemke', 'newton']
+
+    !> Cohesion of open elements: 'kept' (the paper: an open element carries shear up to
+    !> Sf) or 'lost' (open faces carry no shear)
+    integer, parameter :: cohesion_kept = 1, cohesion_lost = 2
+    !> Input names of the cohesion modes, indexed by code
+    character(len=*), parameter :: open_cohesion_names(2) = [character(len=4) :: &
+        'kept', 'lost']
+
+    !> Options of the contact solver, passed as one object.
+    type :: solver_options
+        !> lcp_auto, lcp_lemke or lcp_newton
+        integer :: lcp_method = lcp_auto
+        !> cohesion_kept or cohesion_lost
+        integer :: open_cohesion = cohesion_kept
+    end type solver_options
+
+contains
+
+    !> Code of a name in a list of input names (case-insensitive, blanks ignored); 0 when
+    !> it is not there.
+    pure integer function option_code(name, names)
+        !> The name as given
+        character(len=*), intent(in) :: name
+        !> The input names, indexed by code
+        character(len=*), intent(in) :: names(:)
+        integer :: i
+
+        option_code = 0
+        do i = 1, size(names)
+            if (trim(names(i)) == lower(trim(adjustl(name)))) then
+                option_code = i
+                return
+            end if
+        end do
+    end function option_code
+
+    !> Solver options from their input names; a bad name is an error (exit_bad_input) with
+    !> one line per bad name: "lcp_method = 'x' is not one of 'auto', 'lemke', 'newton'".
+    subroutine parse_solver_options(lcp_method, open_cohesion, options, error)
+        !> Input names of the LCP method and of the cohesion mode
+        character(len=*), intent(in) :: lcp_method, open_cohesion
+        !> The options (the defaults where a name is bad)
+        type(solver_options), intent(out) :: options
+        !> Allocated when a name is bad
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: problems
+        integer :: code
+
+        problems = ''
+        code = option_code(lcp_method, lcp_method_names)
+        if (code == 0) then
+            call add_problem('lcp_method', lcp_method, lcp_method_names)
+        else
+            options%lcp_method = code
+        end if
+        code = option_code(open_cohesion, open_cohesion_names)
+        if (code == 0) then
+            call add_problem('open_cohesion', open_cohesion, open_cohesion_names)
+        else
+            options%open_cohesion = code
+        end if
+        if (len(problems) > 0) call set_error(error, exit_bad_input, problems)
+
+    contains
+
+        subroutine add_problem(variable, value, names)
+            character(len=*), intent(in) :: variable, value, names(:)
+            integer :: i
+
+            if (len(problems) > 0) problems = problems//newline
+            problems = problems//variable//" = '"//trim(adjustl(value))//"' is not one of "
+            do i = 1, size(names)
+                if (i > 1) problems = problems//', '
+                problems = problems//"'"//trim(names(i))//"'"
+            end do
+        end subroutine add_problem
+    end subroutine parse_solver_options
+
+end module ddc_contact_options
