@@ -21,7 +21,9 @@
 !> at zero, at most 2N) and one product with A (8 N^2 flops).
 module ddc_contact_active_set
     use ddc_kinds, only: wp
-    use ddc_linalg_lapack, only: dgetrf, dgetrs, dgecon, dlange, dgemv
+    use ddc_error, only: error_type
+    use ddc_linalg_lapack, only: dgemv
+    use ddc_linalg_lu, only: lu_factor, lu_solve
     use ddc_text, only: itoa
     use, intrinsic :: iso_fortran_env, only: int64
     implicit none
@@ -36,8 +38,6 @@ module ddc_contact_active_set
 
     !> Relative tolerance of the state updates (stress scale and stiffness times it) [-]
     real(wp), parameter :: state_tol = 1.0e-9_wp
-    !> Smallest accepted reciprocal condition number of a reduced system
-    real(wp), parameter :: rcond_min = 1.0e3_wp * epsilon(1.0_wp)
 
     !> Outcome of the active-set iteration on n contact elements; arrays shape (n).
     type :: active_set_result
@@ -85,8 +85,9 @@ contains
         logical, allocatable :: open_old(:)
         integer, allocatable :: shear_old(:)
         real(wp) :: c, tol_s, tol_d
-        integer :: n, n2, i, info
+        integer :: n, n2, i
         logical :: changed, cycling
+        type(error_type), allocatable :: singular
 
         n = size(mu)
         n2 = 2 * n
@@ -126,10 +127,9 @@ contains
                 return
             end if
             res%iterations = res%iterations + 1
-            call solve_states(a, s_r_s, s_r_np, mu, sf, res, dd, info)
-            if (info /= 0) then
-                res%reason = 'the reduced system of iteration '//itoa(res%iterations)// &
-                    ' is numerically singular'
+            call solve_states(a, s_r_s, s_r_np, mu, sf, res, dd, singular)
+            if (allocated(singular)) then
+                res%reason = singular%message
                 return
             end if
             res%ds = dd(1:n)
@@ -211,15 +211,14 @@ contains
     end subroutine update_states
 
     !> Solve for the DDs of the current states: dd = [Ds; Dn], zero where fixed.
-    !> info /= 0 when the reduced system is (numerically) singular.
-    subroutine solve_states(a, s_r_s, s_r_np, mu, sf, res, dd, info)
+    !> singular is allocated when the reduced system is (numerically) singular.
+    subroutine solve_states(a, s_r_s, s_r_np, mu, sf, res, dd, singular)
         real(wp), intent(in) :: a(:, :), s_r_s(:), s_r_np(:), mu(:), sf(:)
         type(active_set_result), intent(inout) :: res
         real(wp), intent(out) :: dd(:)
-        integer, intent(out) :: info
-        real(wp), allocatable :: j(:, :), x(:, :), coef(:), work(:)
-        integer, allocatable :: unknown(:), partner(:), ipiv(:), iwork(:)
-        real(wp) :: anorm, rcond
+        type(error_type), allocatable, intent(out) :: singular
+        real(wp), allocatable :: j(:, :), x(:, :), coef(:)
+        integer, allocatable :: unknown(:), partner(:), ipiv(:)
         integer :: n, m, k, l, i
         integer(int64) :: t0, t1, rate
 
@@ -252,10 +251,9 @@ contains
             end if
         end do
         dd = 0.0_wp
-        info = 0
         if (m == 0) return
 
-        allocate (j(m, m), ipiv(m), iwork(m), work(4 * m))
+        allocate (j(m, m), ipiv(m))
         !$omp parallel do default(none) schedule(static) private(k, l) &
         !$omp shared(a, j, unknown, partner, coef, m)
         do l = 1, m
@@ -264,20 +262,16 @@ contains
             end do
         end do
         !$omp end parallel do
-        anorm = dlange('1', m, m, j, m, work)
         call system_clock(t0, rate)
-        call dgetrf(m, m, j, m, ipiv, info)
+        call lu_factor(j, ipiv, 'the reduced system of iteration '//itoa(res%iterations), &
+                       singular, element=modulo(unknown(1:m) - 1, n) + 1, &
+                       shear=unknown(1:m) <= n)
         call system_clock(t1)
         res%seconds_factorization = res%seconds_factorization + &
             real(t1 - t0, wp) / real(max(rate, 1_int64), wp)
         res%factorization_flops = res%factorization_flops + 2.0_wp / 3.0_wp * real(m, wp)**3
-        if (info /= 0) return
-        call dgecon('1', m, j, m, anorm, rcond, work, iwork, info)
-        if (info /= 0 .or. .not. rcond > rcond_min) then
-            info = 1
-            return
-        end if
-        call dgetrs('N', m, 1, j, m, ipiv, x, 2 * n, info)
+        if (allocated(singular)) return
+        call lu_solve(j, ipiv, x(1:m, :))
         do k = 1, m
             dd(unknown(k)) = x(k, 1)
         end do

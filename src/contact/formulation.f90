@@ -56,7 +56,8 @@ module ddc_contact_formulation
     use ddc_contact_certificate, only: lcp_certificate, certify_lcp, &
         certify_complementarity, default_certificate_tolerance
     use ddc_contact_active_set, only: active_set_result, solve_contact_active_set
-    use ddc_linalg_lapack, only: dgetrf, dgetri, dgecon, dlange, dgemv
+    use ddc_linalg_lapack, only: dgemv
+    use ddc_linalg_lu, only: lu_invert, influence_hint, residual_tol
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use, intrinsic :: iso_fortran_env, only: int64
     implicit none
@@ -71,10 +72,6 @@ module ddc_contact_formulation
     real(wp), parameter :: state_dd_tol = 1.0e-9_wp
     !> Relative tolerance on the friction limit for the state rule (times sigma0) [-]
     real(wp), parameter :: state_stress_tol = 1.0e-9_wp
-    !> Largest accepted relative equilibrium residual per block [-]
-    real(wp), parameter :: residual_tol = 1.0e-8_wp
-    !> Largest accepted reciprocal condition number of A before it is called singular
-    real(wp), parameter :: rcond_min = 1.0e3_wp * epsilon(1.0_wp)
     !> lcp_method = 'auto' uses 'newton' from this many contact elements on, else 'lemke'
     integer, parameter :: auto_newton_min_elements = 300
     !> Default iteration limit of the 'newton' method
@@ -407,65 +404,25 @@ contains
         if (.not. sigma0 > 0.0_wp) sigma0 = 1.0_wp
     end function contact_stress_scale
 
-    !> C = A^-1 by LAPACK (dgetrf, dgetri); singular or numerically singular A is an error.
-    !> Its time and nominal flops (2 (2n)^3) are added to res.
+    !> C = A^-1 by the checked LU (ddc_linalg_lu); singular or numerically singular A is an
+    !> error. Its time and nominal flops (2 (2n)^3) are added to res.
     subroutine invert_influence(a, c, res, error)
         real(wp), intent(in) :: a(:, :)
         real(wp), allocatable, intent(out) :: c(:, :)
         type(contact_result), intent(inout) :: res
         type(error_type), allocatable, intent(out) :: error
         integer(int64) :: t0, t1, rate
-        integer, allocatable :: ipiv(:), iwork(:)
-        real(wp), allocatable :: work(:)
-        real(wp) :: anorm, rcond
-        integer :: n2, n, info, lwork, i, k
-        character(len=200) :: line
 
         call system_clock(t0, rate)
-        n2 = size(a, 1)
-        n = n2 / 2
-        c = a
-        allocate (ipiv(n2), iwork(n2), work(max(1, 4 * n2)))
-        anorm = dlange('1', n2, n2, c, n2, work)
-        call dgetrf(n2, n2, c, n2, ipiv, info)
-        if (info < 0) then
-            write (line, '(a,i0)') 'contact: dgetrf rejected argument ', -info
-            call set_error(error, exit_solver_failure, trim(line))
-            return
-        end if
-        if (info > 0) then
-            call set_error(error, exit_solver_failure, 'contact: influence matrix singular &
-                &at element '//unknown_name(info, n)//': duplicate or overlapping elements?')
-            return
-        end if
-        call dgecon('1', n2, c, n2, anorm, rcond, work, iwork, info)
-        if (info /= 0 .or. .not. rcond > rcond_min) then
-            ! Columns are not permuted by dgetrf: the smallest pivot names the DD unknown.
-            k = 1
-            do i = 2, n2
-                if (abs(c(i, i)) < abs(c(k, k))) k = i
-            end do
-            write (line, '(a,es10.3,a)') ' (reciprocal condition number ', rcond, ')'
-            call set_error(error, exit_solver_failure, 'contact: influence matrix &
-                &numerically singular near element '//unknown_name(k, n)//trim(line)// &
-                ': duplicate or overlapping elements?')
-            return
-        end if
-        lwork = -1
-        call dgetri(n2, c, n2, ipiv, work, lwork, info)
-        lwork = max(int(work(1)), n2)
-        deallocate (work)
-        allocate (work(lwork))
-        call dgetri(n2, c, n2, ipiv, work, lwork, info)
-        if (info /= 0) then
-            write (line, '(a,i0)') 'contact: dgetri failed with info = ', info
-            call set_error(error, exit_solver_failure, trim(line))
+        call lu_invert(a, c, 'contact: influence matrix', error)
+        if (allocated(error)) then
+            error%message = error%message//influence_hint
             return
         end if
         call system_clock(t1)
         res%seconds_factorization = res%seconds_factorization + &
             real(t1 - t0, wp) / real(max(rate, 1_int64), wp)
-        res%factorization_flops = res%factorization_flops + 2.0_wp * real(n2, wp)**3
+        res%factorization_flops = res%factorization_flops + 2.0_wp * real(size(a, 1), wp)**3
     end subroutine invert_influence
 
     !> Stress scale sigma0 (contact_stress_scale) and displacement scale delta0 =
@@ -689,20 +646,6 @@ contains
             end if
         end do
     end subroutine check_solution
-
-    !> 'k (shear DD)' or 'k (normal DD)' for unknown j of the [s; n] ordering.
-    function unknown_name(j, n) result(name)
-        integer, intent(in) :: j, n
-        character(len=:), allocatable :: name
-        character(len=40) :: buffer
-
-        if (j <= n) then
-            write (buffer, '(i0,a)') j, ' (shear DD)'
-        else
-            write (buffer, '(i0,a)') j - n, ' (normal DD)'
-        end if
-        name = trim(buffer)
-    end function unknown_name
 
     !> ||ad + s_r - t|| / scale, 0 when the scale vanishes.
     pure function block_residual(ad, s_r, t, scale) result(r)

@@ -9,7 +9,7 @@
 !> The tableau is kept dense in revised form: the explicit basis inverse B^-1 (n x n) and
 !> the basic values B^-1 q. A pivot costs one matrix-vector product (the entering column,
 !> BLAS dgemv) and one rank-1 update (BLAS dger): O(n^2). On termination the basic values
-!> are recomputed from the final basis with one LAPACK solve (dgesv) when that makes the
+!> are recomputed from the final basis with one checked LU solve when that makes the
 !> solution more accurate than the accumulated tableau.
 !>
 !> Tolerances are relative to the data, so the problem should be scaled so that its
@@ -19,7 +19,8 @@ module ddc_contact_lemke
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, set_internal_error, exit_solver_failure
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-    use ddc_linalg_lapack, only: dgemv, dger, dgesv
+    use ddc_linalg_lapack, only: dgemv, dger
+    use ddc_linalg_lu, only: lu_factor, lu_solve
     implicit none
     private
 
@@ -350,7 +351,7 @@ contains
     end subroutine refine_solution
 
     !> Basic values x = B^-1 q of a basis (columns e_i for w_i, -M(:, j) for z_j) by one
-    !> LAPACK solve; ok is false when B is singular or x is not finite.
+    !> checked LU solve; ok is false when B is (numerically) singular or x is not finite.
     subroutine basis_values(m, q, basis, x, ok)
         real(wp), intent(in) :: m(:, :), q(:)
         integer, intent(in) :: basis(:)
@@ -358,7 +359,8 @@ contains
         logical, intent(out) :: ok
         real(wp), allocatable :: b(:, :), rhs(:, :)
         integer, allocatable :: ipiv(:)
-        integer :: i, n, info
+        type(error_type), allocatable :: singular, ill_conditioned
+        integer :: i, n
 
         n = size(q)
         allocate (b(n, n), rhs(n, 1), ipiv(n))
@@ -371,9 +373,11 @@ contains
             end if
         end do
         rhs(:, 1) = q
-        call dgesv(n, 1, b, n, ipiv, rhs, n, info)
+        ! An ill-conditioned basis is still tried: the caller compares the violations.
+        call lu_factor(b, ipiv, 'LCP basis', singular, ill_conditioned=ill_conditioned)
+        ok = .not. allocated(singular)
+        if (ok) call lu_solve(b, ipiv, rhs)
         x = rhs(:, 1)
-        ok = info == 0
         if (ok) ok = all(ieee_is_finite(x))
     end subroutine basis_values
 

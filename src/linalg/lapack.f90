@@ -1,4 +1,4 @@
-!> Explicit interfaces for the LAPACK and BLAS routines ddc2d calls, and thin wrappers.
+!> Explicit interfaces for the LAPACK and BLAS routines ddc2d calls.
 !> Every module that calls LAPACK or BLAS takes the interface from here, so argument
 !> mismatches are compile-time errors.
 module ddc_linalg_lapack
@@ -6,8 +6,7 @@ module ddc_linalg_lapack
     implicit none
     private
 
-    public :: lu_factor, lu_solve
-    public :: dgetrf, dgetrs, dgetri, dgecon, dgesv, dlange, dgemv, dger, dgemm
+    public :: dgetrf, dgetrs, dgetri, dgecon, dlange, dgemv, dger, dgemm
 
     interface
         subroutine dgetrf(m, n, a, lda, ipiv, info)
@@ -43,12 +42,6 @@ module ddc_linalg_lapack
             integer, intent(inout) :: iwork(*)
             integer, intent(out) :: info
         end subroutine dgecon
-        subroutine dgesv(n, nrhs, a, lda, ipiv, b, ldb, info)
-            import :: wp
-            integer, intent(in) :: n, nrhs, lda, ldb
-            real(wp), intent(inout) :: a(lda, *), b(ldb, *)
-            integer, intent(out) :: ipiv(*), info
-        end subroutine dgesv
         function dlange(norm, m, n, a, lda, work) result(val)
             import :: wp
             character, intent(in) :: norm
@@ -78,34 +71,5 @@ module ddc_linalg_lapack
             real(wp), intent(inout) :: c(ldc, *)
         end subroutine dgemm
     end interface
-
-contains
-
-    !> LU factorization with partial pivoting in place (DGETRF).
-    !> info > 0: U(info, info) is exactly zero, the matrix is singular.
-    subroutine lu_factor(a, ipiv, info)
-        !> Square matrix on entry; L and U factors on exit, shape (n, n)
-        real(wp), intent(inout) :: a(:, :)
-        !> Pivot indices, shape (n)
-        integer, intent(out) :: ipiv(:)
-        !> LAPACK status: 0 success, > 0 index of the zero pivot
-        integer, intent(out) :: info
-
-        call dgetrf(size(a, 1), size(a, 2), a, size(a, 1), ipiv, info)
-    end subroutine lu_factor
-
-    !> Solve A X = B with the factors from lu_factor (DGETRS); B is overwritten by X.
-    subroutine lu_solve(lu, ipiv, b)
-        !> LU factors from lu_factor, shape (n, n)
-        real(wp), intent(in) :: lu(:, :)
-        !> Pivot indices from lu_factor, shape (n)
-        integer, intent(in) :: ipiv(:)
-        !> Right-hand sides on entry, solutions on exit, shape (n, nrhs)
-        real(wp), intent(inout) :: b(:, :)
-        integer :: info
-
-        ! With valid factors and consistent shapes DGETRS cannot fail.
-        call dgetrs('N', size(lu, 1), size(b, 2), lu, size(lu, 1), ipiv, b, size(b, 1), info)
-    end subroutine lu_solve
 
 end module ddc_linalg_lapack

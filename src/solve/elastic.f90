@@ -8,11 +8,12 @@ module ddc_solve_elastic
         condition_mixed_us_sn, condition_mixed_ss_un, condition_contact, condition_prescribed_dd
     use ddc_influence_assembly, only: assemble_influence, row_traction, row_displacement, &
         row_identity
-    use ddc_linalg_lapack, only: lu_factor, lu_solve
+    use ddc_linalg_lu, only: lu_factor, lu_solve, influence_hint, residual_tol
+    use ddc_text, only: rtoa
     implicit none
     private
 
-    public :: solve_elastic, row_kinds, given_values, singular_message
+    public :: solve_elastic, row_kinds, given_values
 
 contains
 
@@ -38,26 +39,6 @@ contains
             normal_row = row_traction
         end where
     end subroutine row_kinds
-
-    !> Message for a singular system: which element and which equation.
-    function singular_message(n, info, elements_of) result(message)
-        !> Number of elements in the system
-        integer, intent(in) :: n
-        !> Zero pivot index from LAPACK (1 .. 2n)
-        integer, intent(in) :: info
-        !> Model element of each system element, shape (n); identity when absent
-        integer, intent(in), optional :: elements_of(:)
-        character(len=:), allocatable :: message
-        character(len=160) :: line
-        integer :: element
-
-        element = modulo(info - 1, n) + 1
-        if (present(elements_of)) element = elements_of(element)
-        write (line, '(a,a,a,i0,a)') 'influence matrix is singular at the ', &
-            trim(merge('shear ', 'normal', info <= n)), ' unknown of element ', element, &
-            ': duplicate or overlapping elements, or no condition fixing it?'
-        message = trim(line)
-    end function singular_message
 
     !> Right-hand side of the given elements' rows, ordered [s; n]: traction rows take the
     !> given total traction minus the remote part; displacement rows take the given
@@ -99,7 +80,8 @@ contains
         type(error_type), allocatable, intent(out) :: error
         real(wp), allocatable :: matrix(:, :), factors(:, :), rhs(:, :), given(:)
         integer, allocatable :: shear_row(:), normal_row(:), ipiv(:)
-        integer :: n, info, i
+        type(error_type), allocatable :: ill_conditioned
+        integer :: n, i
         integer(int64) :: t0, t1, t2, rate
 
         n = elements%n
@@ -116,9 +98,9 @@ contains
         call system_clock(t1)
 
         factors = matrix
-        call lu_factor(factors, ipiv, info)
-        if (info > 0) then
-            call set_error(error, exit_solver_failure, singular_message(n, info))
+        call lu_factor(factors, ipiv, 'influence matrix', error, ill_conditioned=ill_conditioned)
+        if (allocated(error)) then
+            error%message = error%message//influence_hint
             return
         end if
         given = rhs(:, 1)
@@ -126,6 +108,12 @@ contains
         call system_clock(t2)
 
         residual = norm2(matmul(matrix, rhs(:, 1)) - given) / max(norm2(given), tiny(1.0_wp))
+        ! A hole (closed contour) is numerically singular but consistent: its residual is small.
+        if (allocated(ill_conditioned) .and. .not. residual <= residual_tol) then
+            call set_error(error, exit_solver_failure, ill_conditioned%message// &
+                           influence_hint//' (relative residual '//rtoa(residual)//')')
+            return
+        end if
         ds = rhs(1:n, 1)
         dn = rhs(n + 1:, 1)
         seconds_assembly = real(t1 - t0, wp) / real(rate, wp)

@@ -16,8 +16,10 @@ module ddc_solve_frictional
     use ddc_model_types, only: element_set, condition_contact
     use ddc_model_results, only: solver_record, state_free
     use ddc_influence_assembly, only: assemble_influence
-    use ddc_solve_elastic, only: row_kinds, given_values, singular_message
-    use ddc_linalg_lapack, only: lu_factor, lu_solve, dgemm
+    use ddc_solve_elastic, only: row_kinds, given_values
+    use ddc_linalg_lapack, only: dgemm
+    use ddc_linalg_lu, only: lu_factor, lu_solve, influence_hint, residual_tol
+    use ddc_text, only: rtoa
     use ddc_contact_formulation, only: contact_result, solve_contact
     use ddc_contact_options, only: solver_options
     implicit none
@@ -105,7 +107,11 @@ contains
         type(error_type), allocatable, intent(out) :: error
         real(wp), allocatable :: matrix(:, :)
         integer, allocatable :: cu(:), fu(:)
-        integer :: n, nc, nf, info, i
+        type(error_type), allocatable :: ill_conditioned
+        real(wp) :: residual
+        integer :: n, nc, nf, i
+        character(len=*), parameter :: among_free = &
+            ' (among the elements with TWODD-style conditions)'
         integer(int64) :: t0, t1, t2, rate
 
         n = elements%n
@@ -136,13 +142,24 @@ contains
             sys%kff = matrix(fu, fu)
             sys%y = matrix(fu, cu)
             allocate (sys%ipiv(2 * nf))
-            call lu_factor(sys%kff, sys%ipiv, info)
-            if (info > 0) then
-                call set_error(error, exit_solver_failure, singular_message(nf, info, &
-                    sys%free)//' (among the elements with TWODD-style conditions)')
+            call lu_factor(sys%kff, sys%ipiv, 'influence matrix', error, &
+                           element=[sys%free, sys%free], ill_conditioned=ill_conditioned)
+            if (allocated(error)) then
+                error%message = error%message//influence_hint//among_free
                 return
             end if
             call lu_solve(sys%kff, sys%ipiv, sys%y)
+            ! A hole (closed contour) is numerically singular but consistent: K_FF y = K_FC.
+            if (allocated(ill_conditioned)) then
+                residual = norm2(matmul(matrix(fu, fu), sys%y) - matrix(fu, cu)) / &
+                    max(norm2(matrix(fu, cu)), tiny(1.0_wp))
+                if (.not. residual <= residual_tol) then
+                    call set_error(error, exit_solver_failure, ill_conditioned%message// &
+                                   influence_hint//among_free//' (relative residual '// &
+                                   rtoa(residual)//')')
+                    return
+                end if
+            end if
             call dgemm('N', 'N', 2 * nc, 2 * nc, 2 * nf, -1.0_wp, matrix(cu, fu), 2 * nc, &
                        sys%y, 2 * nf, 1.0_wp, sys%a, 2 * nc)
             call move_alloc(matrix, sys%matrix)
