@@ -1,5 +1,5 @@
-!> Small text helpers shared by the input readers and the mesh checks: a capped list of
-!> problem lines joined with newlines, numbers as text, ASCII lower case.
+!> Small text helpers shared by every layer: a capped list of problem lines joined with
+!> newlines, numbers and lists as text, ASCII lower case, lookup of a name in a list.
 module ddc_text
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
@@ -7,6 +7,7 @@ module ddc_text
     private
 
     public :: newline, max_messages, add_message, messages_error, itoa, rtoa, lower
+    public :: join_integers, prefix_lines, quoted_list, find_name
 
     !> Separator of the lines of a message
     character(len=*), parameter :: newline = achar(10)
@@ -88,5 +89,68 @@ contains
             end if
         end do
     end function lower
+
+
+    !> "1, 9, 12": integers joined with commas.
+    function join_integers(values) result(out)
+        !> The integers
+        integer, intent(in) :: values(:)
+        !> The text
+        character(len=:), allocatable :: out
+        integer :: i
+
+        out = ''
+        do i = 1, size(values)
+            if (i > 1) out = out//', '
+            out = out//itoa(values(i))
+        end do
+    end function join_integers
+
+    !> Prefix every line of text.
+    pure function prefix_lines(prefix, text) result(out)
+        character(len=*), intent(in) :: prefix, text
+        character(len=:), allocatable :: out
+        integer :: start, eol
+
+        out = ''
+        start = 1
+        do
+            eol = index(text(start:), newline)
+            if (eol == 0) then
+                out = out//prefix//text(start:)
+                exit
+            end if
+            out = out//prefix//text(start:start + eol - 1)
+            start = start + eol
+        end do
+    end function prefix_lines
+
+    !> "'a', 'b', 'c'"
+    function quoted_list(list) result(out)
+        character(len=*), intent(in) :: list(:)
+        character(len=:), allocatable :: out
+        integer :: i
+
+        out = "'"//trim(list(1))//"'"
+        do i = 2, size(list)
+            out = out//", '"//trim(list(i))//"'"
+        end do
+    end function quoted_list
+
+    !> Index of name in list (exact match after trimming), 0 when absent.
+    pure function find_name(name, list) result(found)
+        character(len=*), intent(in) :: name
+        character(len=*), intent(in) :: list(:)
+        integer :: found
+        integer :: i
+
+        found = 0
+        do i = 1, size(list)
+            if (trim(list(i)) == trim(name)) then
+                found = i
+                return
+            end if
+        end do
+    end function find_name
 
 end module ddc_text

@@ -16,8 +16,9 @@ module ddc_input_sweep
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type
     use ddc_input_text_file, only: read_text_file
-    use ddc_text, only: itoa, rtoa, lower, add_message, messages_error
-    use ddc_input_namelist, only: group_line, group_problem, join_integers
+    use ddc_text, only: itoa, rtoa, lower, add_message, messages_error, join_integers
+    use ddc_input_namelist_groups, only: group_line
+    use ddc_input_namelist_diagnosis, only: group_problem
     use ddc_sweep_tasks, only: sweep_definition, combine_names, combine_product, combine_zip, &
         max_parameters, max_tasks, parse_parameter, check_value, target_sxx, target_syy, &
         target_sxy, target_s1, target_s3, target_angle
@@ -30,9 +31,6 @@ module ddc_input_sweep
     integer, parameter :: max_values = 10000
     !> Sentinel of values the user did not give
     real(wp), parameter :: unset_real = huge(1.0_wp)
-    !> Variables of the group with their types, for messages
-    character(len=*), parameter :: variables = 'combine:c parameters:c values_1:r '// &
-        'values_2:r values_3:r values_4:r values_5:r values_6:r'
 
 contains
 
@@ -87,7 +85,7 @@ contains
         close (unit)
         if (stat /= 0) then
             call set_error(error, exit_bad_input, &
-                           group_problem(text, path, 'sweep', stat, iomsg, variables))
+                           group_problem(text, path, 'sweep', stat, iomsg))
             return
         end if
 

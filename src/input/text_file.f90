@@ -1,10 +1,11 @@
-!> Read a whole text file into one string (lines separated by newline characters).
+!> Read a whole text file into one string (lines separated by newline characters), and the
+!> paths written inside input files.
 module ddc_input_text_file
     use ddc_error, only: error_type, set_error, exit_bad_input
     implicit none
     private
 
-    public :: read_text_file, base_name
+    public :: read_text_file, base_name, folder_of, resolve
 
 contains
 
@@ -74,5 +75,31 @@ contains
             if (dot > 1) name = name(1:dot - 1)
         end if
     end function base_name
+
+    !> Folder of a path including its trailing '/', or '' when there is none.
+    pure function folder_of(path) result(dir)
+        !> A file path
+        character(len=*), intent(in) :: path
+        character(len=:), allocatable :: dir
+        integer :: slash
+
+        slash = index(path, '/', back=.true.)
+        dir = path(1:slash)
+    end function folder_of
+
+    !> A path written in the input file, relative to the input file's folder.
+    pure function resolve(dir, file) result(path)
+        !> Folder of the input file (folder_of), and the path written in it
+        character(len=*), intent(in) :: dir, file
+        character(len=:), allocatable :: path
+
+        if (len(file) > 0) then
+            if (file(1:1) == '/') then
+                path = file
+                return
+            end if
+        end if
+        path = dir//file
+    end function resolve
 
 end module ddc_input_text_file

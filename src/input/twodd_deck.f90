@@ -10,7 +10,8 @@
 !> record (NUMPB interior points plus both ends; one point when the ends coincide).
 !> Every problem is reported with the file name and the line number.
 module ddc_input_twodd_deck
-    use ddc_model_limits, only: within_limits
+    use ddc_model_limits, only: within_limits, range_problem, quantity_poissons_ratio, &
+        quantity_youngs_modulus
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type, observation_line, &
@@ -130,14 +131,14 @@ contains
                       'of magnitude 0 or 1e-50 .. 1e50')
             return
         end if
-        if (.not. (pr > -1.0_wp .and. pr < 0.5_wp)) then
-            call fail(error, deck, first_line, "Poisson's ratio PR = "//rtoa(pr)// &
-                      ' must lie in (-1, 0.5)')
+        if (len(range_problem(quantity_poissons_ratio, pr)) > 0) then
+            call fail(error, deck, first_line, "Poisson's ratio PR = "//rtoa(pr)//' '// &
+                      range_problem(quantity_poissons_ratio, pr))
             return
         end if
-        if (.not. (e > 0.0_wp)) then
-            call fail(error, deck, first_line, "Young's modulus E = "//rtoa(e)// &
-                      ' must be positive')
+        if (len(range_problem(quantity_youngs_modulus, e)) > 0) then
+            call fail(error, deck, first_line, "Young's modulus E = "//rtoa(e)//' '// &
+                      range_problem(quantity_youngs_modulus, e))
             return
         end if
 

@@ -23,7 +23,8 @@ module ddc_sweep_tasks
     use ddc_model_types, only: model_type
     use ddc_text, only: itoa, lower
     use ddc_output_hdf5_read, only: read_int_attribute
-    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+    use ddc_model_limits, only: range_problem, quantity_any, quantity_youngs_modulus, &
+        quantity_poissons_ratio, quantity_non_negative
     implicit none
     private
 
@@ -138,18 +139,15 @@ contains
         !> Why the value is bad, '' when it is good
         character(len=:), allocatable :: problem
 
-        problem = ''
-        if (.not. ieee_is_finite(value)) then
-            problem = 'is not a finite number'
-            return
-        end if
         select case (target)
         case (target_youngs)
-            if (value <= 0.0_wp) problem = 'must be positive'
+            problem = range_problem(quantity_youngs_modulus, value)
         case (target_poisson)
-            if (value <= -1.0_wp .or. value >= 0.5_wp) problem = 'must lie in (-1, 0.5)'
+            problem = range_problem(quantity_poissons_ratio, value)
         case (target_mu, target_sf)
-            if (value < 0.0_wp) problem = 'must be >= 0'
+            problem = range_problem(quantity_non_negative, value)
+        case default
+            problem = range_problem(quantity_any, value)
         end select
     end function check_value
 

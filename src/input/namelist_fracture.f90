@@ -1,0 +1,252 @@
+!> The &fracture groups of a namelist input file (SPEC section 6): one per fracture, given as
+!> a polyline (x, y, elements per segment, per-segment values) or as a CSV of elements
+!> (elements_file); validated and expanded to elements.
+module ddc_input_namelist_fracture
+    use ddc_kinds, only: wp
+    use ddc_error, only: error_type
+    use ddc_model_types, only: condition_names, condition_contact
+    use ddc_model_limits, only: range_problem, quantity_non_negative
+    use ddc_text, only: itoa, rtoa, lower, find_name, quoted_list, prefix_lines
+    use ddc_input_text_file, only: resolve
+    use ddc_input_csv, only: read_csv
+    use ddc_mesh_polyline, only: polyline_elements, expand_per_segment
+    use ddc_input_namelist_groups, only: group_record, message_list, add, group_label, g_fracture
+    use ddc_input_namelist_diagnosis, only: report_malformed
+    use ddc_input_namelist_values, only: unset_real, unset_integer, text_length, count_given, &
+        count_given_integers, check_length, check_range, broadcast, broadcast_integers, &
+        default_name
+    implicit none
+    private
+
+    public :: fracture_input, read_fracture_groups, max_vertices, max_elements
+
+    !> Largest number of polyline vertices of one &fracture (size of the namelist arrays)
+    integer, parameter :: max_vertices = 100000
+    !> Largest number of elements in a model
+    integer, parameter :: max_elements = 1000000
+
+    !> One fracture as read, expanded to elements (valid when its group had no problem).
+    type :: fracture_input
+        !> Name given by the user, or fracture_<k>
+        character(len=:), allocatable :: name
+        !> Group label for messages
+        character(len=:), allocatable :: label
+        !> The group had no problem: the arrays below are set
+        logical :: valid = .false.
+        !> Condition code of every element (ddc_model_types)
+        integer :: condition = condition_contact
+        !> Element end points [length unit], shape (elements)
+        real(wp), allocatable :: x_begin(:), y_begin(:), x_end(:), y_end(:)
+        !> Per-element values (SPEC section 6), shape (elements)
+        real(wp), allocatable :: mu(:), sf(:), pressure(:), bc_s(:), bc_n(:)
+    end type fracture_input
+
+contains
+
+    !> &fracture name, x, y, elements, mu, sf, pressure, condition, bc_s, bc_n,
+    !> elements_file / (repeated, one per fracture)
+    subroutine read_fracture_groups(unit, text, path, dir, info, fractures, messages)
+        integer, intent(in) :: unit
+        character(len=*), intent(in) :: text
+        character(len=*), intent(in) :: path, dir
+        type(group_record), intent(in) :: info
+        type(fracture_input), allocatable, intent(out) :: fractures(:)
+        type(message_list), intent(inout) :: messages
+        character(len=text_length) :: name, condition, elements_file
+        real(wp), allocatable :: x(:), y(:), mu(:), sf(:), pressure(:), bc_s(:), bc_n(:)
+        integer, allocatable :: elements(:)
+        character(len=512) :: iomsg
+        character(len=:), allocatable :: prefix, csv_path
+        real(wp), allocatable :: rows(:,:), seg_mu(:), seg_sf(:), seg_pressure(:), &
+                                 seg_bc_s(:), seg_bc_n(:)
+        integer, allocatable :: counts(:), row_lines(:)
+        type(error_type), allocatable :: csv_error
+        integer :: stat, k, i, nx, ny, ne, nmu, nsf, npr, nbs, nbn, nseg, nbefore, cond
+        logical :: from_csv, geometry_ok
+        namelist /fracture/ name, x, y, elements, mu, sf, pressure, condition, bc_s, bc_n, &
+            elements_file
+
+        allocate (fractures(info%count))
+        if (info%count == 0) return
+        allocate (x(max_vertices), y(max_vertices), mu(max_vertices), sf(max_vertices), &
+                  pressure(max_vertices), bc_s(max_vertices), bc_n(max_vertices), &
+                  elements(max_vertices))
+        rewind (unit)
+        do k = 1, info%count
+            name = ''
+            condition = 'contact'
+            elements_file = ''
+            x = unset_real
+            y = unset_real
+            mu = unset_real
+            sf = unset_real
+            pressure = unset_real
+            bc_s = unset_real
+            bc_n = unset_real
+            elements = unset_integer
+            read (unit, nml=fracture, iostat=stat, iomsg=iomsg)
+            if (stat /= 0) then
+                call report_malformed(text, path, g_fracture, info, k, stat, iomsg, messages)
+                exit
+            end if
+            fractures(k)%name = default_name(name, 'fracture', k)
+            fractures(k)%label = group_label(g_fracture, k, info%lines(k), trim(adjustl(name)))
+            prefix = path//': '//fractures(k)%label//': '
+            nbefore = messages%n
+
+            nx = count_given(x, 'x', prefix, messages)
+            ny = count_given(y, 'y', prefix, messages)
+            ne = count_given_integers(elements, 'elements', prefix, messages)
+            nmu = count_given(mu, 'mu', prefix, messages)
+            nsf = count_given(sf, 'sf', prefix, messages)
+            npr = count_given(pressure, 'pressure', prefix, messages)
+            nbs = count_given(bc_s, 'bc_s', prefix, messages)
+            nbn = count_given(bc_n, 'bc_n', prefix, messages)
+
+            cond = find_name(lower(trim(adjustl(condition))), condition_names)
+            if (cond == 0) then
+                call add(messages, prefix//"condition = '"//trim(adjustl(condition))// &
+                         "' is not one of "//quoted_list(condition_names))
+            end if
+            from_csv = len_trim(elements_file) > 0
+            geometry_ok = .false.
+            nseg = 0
+            if (from_csv) then
+                if (nx > 0 .or. ny > 0 .or. ne > 0) then
+                    call add(messages, prefix//'give either x, y and elements or '// &
+                             'elements_file, not both')
+                end if
+                if (nmu > 0 .or. nsf > 0 .or. npr > 0) then
+                    call add(messages, prefix//'mu, sf and pressure come from elements_file;'// &
+                             ' do not give them in the group as well')
+                end if
+                csv_path = resolve(dir, trim(adjustl(elements_file)))
+                call read_csv(csv_path, [character(len=8) :: 'x_begin', 'y_begin', 'x_end', &
+                              'y_end', 'mu', 'sf', 'pressure'], rows, csv_error, row_lines)
+                if (allocated(csv_error)) then
+                    call add(messages, prefix_lines(prefix//'elements_file: ', csv_error%message))
+                    deallocate (csv_error)
+                else
+                    nseg = size(rows, 2)
+                    geometry_ok = nseg <= max_elements
+                    if (.not. geometry_ok) then
+                        call add(messages, prefix//'elements_file '//csv_path//' has '// &
+                                 itoa(nseg)//' rows; at most '//itoa(max_elements)//' elements')
+                    end if
+                    do i = 1, nseg
+                        if (len(range_problem(quantity_non_negative, rows(5, i))) > 0) then
+                            call add(messages, prefix//'elements_file '//csv_path//' line '// &
+                                     itoa(row_lines(i))//': mu = '//rtoa(rows(5, i))//' '// &
+                                     range_problem(quantity_non_negative, rows(5, i)))
+                        end if
+                        if (len(range_problem(quantity_non_negative, rows(6, i))) > 0) then
+                            call add(messages, prefix//'elements_file '//csv_path//' line '// &
+                                     itoa(row_lines(i))//': sf = '//rtoa(rows(6, i))//' '// &
+                                     range_problem(quantity_non_negative, rows(6, i)))
+                        end if
+                    end do
+                end if
+            else
+                if (nx /= ny) then
+                    call add(messages, prefix//'x has '//itoa(nx)//' values but y has '// &
+                             itoa(ny)//'; give one x and one y per vertex')
+                else if (nx < 2) then
+                    call add(messages, prefix//'x and y give '//itoa(nx)//' vertices; a '// &
+                             'fracture needs at least 2 (or an elements_file)')
+                else
+                    nseg = nx - 1
+                    geometry_ok = .true.
+                end if
+                if (ne == 0) then
+                    call add(messages, prefix//'elements is required (the number of '// &
+                             'elements on each segment)')
+                    geometry_ok = .false.
+                else if (geometry_ok) then
+                    geometry_ok = check_length(ne, nseg, 'elements', prefix, messages)
+                end if
+                if (geometry_ok) then
+                    counts = broadcast_integers(elements(1:ne), nseg)
+                    do i = 1, ne
+                        if (elements(i) < 1) then
+                            call add(messages, prefix//'elements('//itoa(i)//') = '// &
+                                     itoa(elements(i))//' must be at least 1')
+                            geometry_ok = .false.
+                        else if (elements(i) > max_elements) then
+                            call add(messages, prefix//'elements('//itoa(i)//') = '// &
+                                     itoa(elements(i))//' is more than the '// &
+                                     itoa(max_elements)//' elements a model may have')
+                            geometry_ok = .false.
+                        end if
+                    end do
+                    if (geometry_ok) then
+                        if (sum(real(counts, wp)) > real(max_elements, wp)) then
+                            call add(messages, prefix//'elements give more than the '// &
+                                     itoa(max_elements)//' elements a model may have')
+                            geometry_ok = .false.
+                        end if
+                    end if
+                end if
+            end if
+
+            if (cond == condition_contact) then
+                if (.not. from_csv) then
+                    if (nmu == 0) then
+                        call add(messages, prefix//"mu is required for condition 'contact'")
+                    end if
+                    call check_range(mu(1:nmu), 'mu', quantity_non_negative, prefix, messages)
+                    call check_range(sf(1:nsf), 'sf', quantity_non_negative, prefix, messages)
+                end if
+                if (nbs > 0 .or. nbn > 0) then
+                    call add(messages, prefix//'bc_s and bc_n are for the TWODD-style '// &
+                             "conditions, not for condition 'contact'")
+                end if
+            else if (cond /= 0) then
+                if (.not. from_csv .and. (nmu > 0 .or. nsf > 0 .or. npr > 0)) then
+                    call add(messages, prefix//"mu, sf and pressure are for condition "// &
+                             "'contact', not for condition '"//trim(condition_names(cond))//"'")
+                end if
+            end if
+
+            if (geometry_ok) then
+                if (.not. from_csv) then
+                    if (check_length(nmu, nseg, 'mu', prefix, messages)) &
+                        seg_mu = broadcast(mu(1:nmu), nseg, 0.0_wp)
+                    if (check_length(nsf, nseg, 'sf', prefix, messages)) &
+                        seg_sf = broadcast(sf(1:nsf), nseg, 0.0_wp)
+                    if (check_length(npr, nseg, 'pressure', prefix, messages)) &
+                        seg_pressure = broadcast(pressure(1:npr), nseg, 0.0_wp)
+                end if
+                if (check_length(nbs, nseg, 'bc_s', prefix, messages)) &
+                    seg_bc_s = broadcast(bc_s(1:nbs), nseg, 0.0_wp)
+                if (check_length(nbn, nseg, 'bc_n', prefix, messages)) &
+                    seg_bc_n = broadcast(bc_n(1:nbn), nseg, 0.0_wp)
+            end if
+            if (messages%n > nbefore) cycle
+
+            ! Valid: expand to elements.
+            fractures(k)%valid = .true.
+            fractures(k)%condition = cond
+            if (from_csv) then
+                fractures(k)%x_begin = rows(1, :)
+                fractures(k)%y_begin = rows(2, :)
+                fractures(k)%x_end = rows(3, :)
+                fractures(k)%y_end = rows(4, :)
+                fractures(k)%mu = rows(5, :)
+                fractures(k)%sf = rows(6, :)
+                fractures(k)%pressure = rows(7, :)
+                fractures(k)%bc_s = seg_bc_s
+                fractures(k)%bc_n = seg_bc_n
+            else
+                call polyline_elements(x(1:nx), y(1:ny), counts, fractures(k)%x_begin, &
+                                       fractures(k)%y_begin, fractures(k)%x_end, &
+                                       fractures(k)%y_end)
+                fractures(k)%mu = expand_per_segment(seg_mu, counts)
+                fractures(k)%sf = expand_per_segment(seg_sf, counts)
+                fractures(k)%pressure = expand_per_segment(seg_pressure, counts)
+                fractures(k)%bc_s = expand_per_segment(seg_bc_s, counts)
+                fractures(k)%bc_n = expand_per_segment(seg_bc_n, counts)
+            end if
+        end do
+    end subroutine read_fracture_groups
+
+end module ddc_input_namelist_fracture

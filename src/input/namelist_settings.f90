@@ -1,0 +1,357 @@
+!> The groups of a namelist input file that describe the whole model rather than one of
+!> its parts (SPEC section 6, SPEC-EARTH): &model, &remote_stress, &pore_fluid, &solver,
+!> &symmetry, &output and &load_path. Each sets its defaults, then reads its group if
+!> present and checks every value.
+module ddc_input_namelist_settings
+    use ddc_kinds, only: wp
+    use ddc_error, only: error_type
+    use ddc_model_types, only: model_type, condition_contact, symmetry_none, symmetry_names, &
+        domain_names, domain_half_plane, load_path_names
+    use ddc_model_limits, only: quantity_youngs_modulus, quantity_poissons_ratio
+    use ddc_contact_options, only: parse_solver_options
+    use ddc_text, only: itoa, rtoa, lower, find_name, quoted_list, prefix_lines
+    use ddc_input_text_file, only: base_name, resolve
+    use ddc_input_namelist_groups, only: group_record, message_list, add, group_prefix, &
+        g_model, g_remote_stress, g_pore_fluid, g_solver, g_symmetry, g_output, g_load_path
+    use ddc_input_namelist_diagnosis, only: report_malformed
+    use ddc_input_namelist_values, only: unset_real, unset_integer, text_length, check_scalar, &
+        count_given, count_given_integers
+    implicit none
+    private
+
+    public :: read_model_group, read_remote_stress_group, read_pore_fluid_group
+    public :: read_solver_group, read_symmetry_group, read_output_group, read_load_path_group
+
+    !> Largest number of vertices of a &load_path, and of steps along it
+    integer, parameter :: max_path_vertices = 10000, max_path_steps = 1000000
+
+contains
+
+    !> &model title, youngs_modulus, poissons_ratio, length_unit, stress_unit /
+    subroutine read_model_group(unit, text, path, info, the_model, messages)
+        integer, intent(in) :: unit
+        character(len=*), intent(in) :: text
+        character(len=*), intent(in) :: path
+        type(group_record), intent(in) :: info
+        type(model_type), intent(inout) :: the_model
+        type(message_list), intent(inout) :: messages
+        character(len=text_length) :: title, length_unit, stress_unit, domain
+        real(wp) :: youngs_modulus, poissons_ratio
+        character(len=512) :: iomsg
+        character(len=:), allocatable :: prefix
+        integer :: stat
+        namelist /model/ title, youngs_modulus, poissons_ratio, length_unit, stress_unit, domain
+
+        the_model%title = base_name(path, .false.)
+        the_model%length_unit = 'm'
+        the_model%stress_unit = 'MPa'
+        if (info%count == 0) return
+        title = ''
+        youngs_modulus = unset_real
+        poissons_ratio = unset_real
+        length_unit = 'm'
+        stress_unit = 'MPa'
+        domain = 'full_plane'
+        rewind (unit)
+        read (unit, nml=model, iostat=stat, iomsg=iomsg)
+        if (stat /= 0) then
+            call report_malformed(text, path, g_model, info, 1, stat, iomsg, messages)
+            return
+        end if
+        prefix = group_prefix(path, g_model, info, 1)
+        if (len_trim(title) > 0) the_model%title = trim(adjustl(title))
+        if (len_trim(length_unit) == 0) then
+            call add(messages, prefix//'length_unit is empty')
+        end if
+        if (len_trim(stress_unit) == 0) then
+            call add(messages, prefix//'stress_unit is empty')
+        end if
+        the_model%length_unit = trim(adjustl(length_unit))
+        the_model%stress_unit = trim(adjustl(stress_unit))
+        stat = find_name(lower(trim(adjustl(domain))), domain_names)
+        if (stat == 0) then
+            call add(messages, prefix//"domain = '"//trim(adjustl(domain))//"' is not one of "// &
+                     quoted_list(domain_names))
+        else
+            the_model%elements%domain = stat
+        end if
+
+        if (check_scalar(youngs_modulus, 'youngs_modulus', .true., prefix, messages, &
+                         quantity_youngs_modulus)) the_model%youngs_modulus = youngs_modulus
+        if (check_scalar(poissons_ratio, 'poissons_ratio', .true., prefix, messages, &
+                         quantity_poissons_ratio)) the_model%poissons_ratio = poissons_ratio
+    end subroutine read_model_group
+
+    !> &remote_stress sxx, syy, sxy, dsxx_dy, dsyy_dy, dsxy_dy / (tension positive, default 0;
+    !> the stress at depth y is s + ds_dy * y)
+    subroutine read_remote_stress_group(unit, text, path, info, model, messages)
+        integer, intent(in) :: unit
+        character(len=*), intent(in) :: text
+        character(len=*), intent(in) :: path
+        type(group_record), intent(in) :: info
+        type(model_type), intent(inout) :: model
+        type(message_list), intent(inout) :: messages
+        real(wp) :: sxx, syy, sxy, dsxx_dy, dsyy_dy, dsxy_dy
+        character(len=512) :: iomsg
+        character(len=:), allocatable :: prefix
+        integer :: stat
+        namelist /remote_stress/ sxx, syy, sxy, dsxx_dy, dsyy_dy, dsxy_dy
+
+        model%sxx = 0.0_wp
+        model%syy = 0.0_wp
+        model%sxy = 0.0_wp
+        if (info%count == 0) return
+        sxx = 0.0_wp
+        syy = 0.0_wp
+        sxy = 0.0_wp
+        dsxx_dy = 0.0_wp
+        dsyy_dy = 0.0_wp
+        dsxy_dy = 0.0_wp
+        rewind (unit)
+        read (unit, nml=remote_stress, iostat=stat, iomsg=iomsg)
+        if (stat /= 0) then
+            call report_malformed(text, path, g_remote_stress, info, 1, stat, iomsg, messages)
+            return
+        end if
+        prefix = group_prefix(path, g_remote_stress, info, 1)
+        if (check_scalar(sxx, 'sxx', .false., prefix, messages)) model%sxx = sxx
+        if (check_scalar(syy, 'syy', .false., prefix, messages)) model%syy = syy
+        if (check_scalar(sxy, 'sxy', .false., prefix, messages)) model%sxy = sxy
+        if (check_scalar(dsxx_dy, 'dsxx_dy', .false., prefix, messages)) &
+            model%stress_gradient(1) = dsxx_dy
+        if (check_scalar(dsyy_dy, 'dsyy_dy', .false., prefix, messages)) &
+            model%stress_gradient(2) = dsyy_dy
+        if (check_scalar(dsxy_dy, 'dsxy_dy', .false., prefix, messages)) &
+            model%stress_gradient(3) = dsxy_dy
+    end subroutine read_remote_stress_group
+
+    !> &pore_fluid p0, dp_dy / (fluid pressure p0 + dp_dy * y inside every contact element,
+    !> compression positive, added to its pressure; default 0)
+    subroutine read_pore_fluid_group(unit, text, path, info, model, messages)
+        integer, intent(in) :: unit
+        character(len=*), intent(in) :: text
+        character(len=*), intent(in) :: path
+        type(group_record), intent(in) :: info
+        type(model_type), intent(inout) :: model
+        type(message_list), intent(inout) :: messages
+        real(wp) :: p0, dp_dy
+        character(len=512) :: iomsg
+        character(len=:), allocatable :: prefix
+        integer :: stat
+        namelist /pore_fluid/ p0, dp_dy
+
+        model%pore_fluid = 0.0_wp
+        if (info%count == 0) return
+        p0 = 0.0_wp
+        dp_dy = 0.0_wp
+        rewind (unit)
+        read (unit, nml=pore_fluid, iostat=stat, iomsg=iomsg)
+        if (stat /= 0) then
+            call report_malformed(text, path, g_pore_fluid, info, 1, stat, iomsg, messages)
+            return
+        end if
+        prefix = group_prefix(path, g_pore_fluid, info, 1)
+        if (check_scalar(p0, 'p0', .false., prefix, messages)) model%pore_fluid(1) = p0
+        if (check_scalar(dp_dy, 'dp_dy', .false., prefix, messages)) model%pore_fluid(2) = dp_dy
+    end subroutine read_pore_fluid_group
+
+    !> &solver lcp_method, open_cohesion /
+    subroutine read_solver_group(unit, text, path, info, model, messages)
+        integer, intent(in) :: unit
+        character(len=*), intent(in) :: text
+        character(len=*), intent(in) :: path
+        type(group_record), intent(in) :: info
+        type(model_type), intent(inout) :: model
+        type(message_list), intent(inout) :: messages
+        character(len=text_length) :: lcp_method, open_cohesion
+        character(len=512) :: iomsg
+        type(error_type), allocatable :: problems
+        integer :: stat
+        namelist /solver/ lcp_method, open_cohesion
+
+        if (info%count == 0) return
+        lcp_method = 'auto'
+        open_cohesion = 'kept'
+        rewind (unit)
+        read (unit, nml=solver, iostat=stat, iomsg=iomsg)
+        if (stat /= 0) then
+            call report_malformed(text, path, g_solver, info, 1, stat, iomsg, messages)
+            return
+        end if
+        call parse_solver_options(lcp_method, open_cohesion, model%solver, problems)
+        if (allocated(problems)) then
+            call add(messages, prefix_lines(group_prefix(path, g_solver, info, 1), &
+                                            problems%message))
+        end if
+    end subroutine read_solver_group
+
+    !> &symmetry kind, xsym, ysym / (optional; TWODD's KSYM: kind 'none', 'x' (mirror about
+    !> the line x = xsym), 'y' (about y = ysym) or 'both'; image elements are implicit)
+    subroutine read_symmetry_group(unit, text, path, info, model, messages)
+        integer, intent(in) :: unit
+        character(len=*), intent(in) :: text
+        character(len=*), intent(in) :: path
+        type(group_record), intent(in) :: info
+        type(model_type), intent(inout) :: model
+        type(message_list), intent(inout) :: messages
+        character(len=text_length) :: kind
+        real(wp) :: xsym, ysym
+        character(len=512) :: iomsg
+        character(len=:), allocatable :: prefix
+        integer :: stat, k
+        logical :: ok
+        namelist /symmetry/ kind, xsym, ysym
+
+        model%elements%symmetry%kind = symmetry_none
+        if (info%count == 0) return
+        kind = 'none'
+        xsym = 0.0_wp
+        ysym = 0.0_wp
+        rewind (unit)
+        read (unit, nml=symmetry, iostat=stat, iomsg=iomsg)
+        if (stat /= 0) then
+            call report_malformed(text, path, g_symmetry, info, 1, stat, iomsg, messages)
+            return
+        end if
+        prefix = group_prefix(path, g_symmetry, info, 1)
+        k = find_name(lower(trim(adjustl(kind))), symmetry_names)
+        if (k == 0) then
+            call add(messages, prefix//"kind = '"//trim(adjustl(kind))// &
+                     "' is not one of 'none', 'x', 'y', 'both'")
+        end if
+        ok = check_scalar(xsym, 'xsym', .false., prefix, messages)
+        ok = check_scalar(ysym, 'ysym', .false., prefix, messages) .and. ok
+        if (k == 0 .or. .not. ok) return
+        ! The kinds are numbered in the order of their names.
+        model%elements%symmetry%kind = k
+        model%elements%symmetry%xsym = xsym
+        model%elements%symmetry%ysym = ysym
+    end subroutine read_symmetry_group
+
+    !> &output file / (relative to the input file's folder; default: the input file's
+    !> base name with extension .h5, in the current folder)
+    subroutine read_output_group(unit, text, path, dir, info, model, messages)
+        integer, intent(in) :: unit
+        character(len=*), intent(in) :: text
+        character(len=*), intent(in) :: path, dir
+        type(group_record), intent(in) :: info
+        type(model_type), intent(inout) :: model
+        type(message_list), intent(inout) :: messages
+        character(len=text_length) :: file
+        character(len=512) :: iomsg
+        integer :: stat
+        namelist /output/ file
+
+        model%output_file = base_name(path, .false.)//'.h5'
+        if (info%count == 0) return
+        file = ''
+        rewind (unit)
+        read (unit, nml=output, iostat=stat, iomsg=iomsg)
+        if (stat /= 0) then
+            call report_malformed(text, path, g_output, info, 1, stat, iomsg, messages)
+            return
+        end if
+        if (len_trim(file) > 0) model%output_file = resolve(dir, trim(adjustl(file)))
+    end subroutine read_output_group
+
+    !> &load_path sxx, syy, sxy, dsxx_dy, dsyy_dy, dsxy_dy, p0, steps / (SPEC-EARTH 3;
+    !> optional): the load at the path's vertices (the first is the starting state), each
+    !> quantity either absent (held at its &remote_stress or &pore_fluid value) or given at
+    !> every vertex, and steps(l) increments on leg l. Needs contact elements.
+    subroutine read_load_path_group(unit, text, path, info, has_contact, model, messages)
+        integer, intent(in) :: unit
+        character(len=*), intent(in) :: text
+        character(len=*), intent(in) :: path
+        type(group_record), intent(in) :: info
+        !> The model has contact elements
+        logical, intent(in) :: has_contact
+        type(model_type), intent(inout) :: model
+        type(message_list), intent(inout) :: messages
+        real(wp), allocatable :: sxx(:), syy(:), sxy(:), dsxx_dy(:), dsyy_dy(:), dsxy_dy(:), &
+                                 p0(:), values(:, :), fixed(:)
+        integer, allocatable :: steps(:)
+        character(len=512) :: iomsg
+        character(len=:), allocatable :: prefix
+        integer :: stat, nlegs, nv, q, given
+        logical :: ok
+        namelist /load_path/ sxx, syy, sxy, dsxx_dy, dsyy_dy, dsxy_dy, p0, steps
+
+        if (info%count == 0) return
+        allocate (sxx(max_path_vertices), syy(max_path_vertices), sxy(max_path_vertices), &
+                  dsxx_dy(max_path_vertices), dsyy_dy(max_path_vertices), &
+                  dsxy_dy(max_path_vertices), p0(max_path_vertices), steps(max_path_vertices))
+        sxx = unset_real
+        syy = unset_real
+        sxy = unset_real
+        dsxx_dy = unset_real
+        dsyy_dy = unset_real
+        dsxy_dy = unset_real
+        p0 = unset_real
+        steps = unset_integer
+        rewind (unit)
+        read (unit, nml=load_path, iostat=stat, iomsg=iomsg)
+        if (stat /= 0) then
+            call report_malformed(text, path, g_load_path, info, 1, stat, iomsg, messages)
+            return
+        end if
+        prefix = group_prefix(path, g_load_path, info, 1)
+        ok = .true.
+        nlegs = count_given_integers(steps, 'steps', prefix, messages)
+        if (nlegs == 0) then
+            call add(messages, prefix//'steps is required: the number of increments on '// &
+                     'each leg of the path (one value per leg)')
+            ok = .false.
+        else if (any(steps(1:nlegs) < 1)) then
+            call add(messages, prefix//'steps('//itoa(findloc(steps(1:nlegs) < 1, .true., 1))// &
+                     ') must be at least 1')
+            ok = .false.
+        else if (sum(real(steps(1:nlegs), wp)) > real(max_path_steps, wp)) then
+            call add(messages, prefix//'steps add up to more than '//itoa(max_path_steps)// &
+                     ' steps')
+            ok = .false.
+        end if
+        nv = nlegs + 1
+        values = reshape([sxx, syy, sxy, dsxx_dy, dsyy_dy, dsxy_dy, p0], &
+                         [max_path_vertices, 7])
+        fixed = [model%sxx, model%syy, model%sxy, model%stress_gradient, model%pore_fluid(1)]
+        allocate (model%load_path%vertex(7, nv))
+        given = 0
+        do q = 1, 7
+            stat = count_given(values(:, q), trim(load_path_names(q)), prefix, messages)
+            if (stat == 0) then
+                model%load_path%vertex(q, :) = fixed(q)
+            else if (stat /= nv .and. nlegs > 0) then
+                call add(messages, prefix//trim(load_path_names(q))//' has '//itoa(stat)// &
+                         ' values; give one per vertex: '//itoa(nv)//' (one more than steps)')
+                ok = .false.
+            else
+                given = given + 1
+                model%load_path%varies(q) = .true.
+                model%load_path%vertex(q, :) = values(1:nv, q)
+            end if
+        end do
+        if (given == 0) then
+            call add(messages, prefix//'give the load at each vertex: at least one of sxx, '// &
+                     'syy, sxy, dsxx_dy, dsyy_dy, dsxy_dy, p0')
+            ok = .false.
+        end if
+        if (.not. has_contact) then
+            call add(messages, prefix//'a load path needs contact elements (condition = '// &
+                     "'contact'): without them the response is elastic and loads superpose")
+            ok = .false.
+        end if
+        if (ok .and. model%elements%domain == domain_half_plane) then
+            if (any(model%load_path%vertex([2, 3, 6], :) /= 0.0_wp)) then
+                call add(messages, prefix//"with &model domain = 'half_plane' syy, sxy and "// &
+                         'dsxy_dy must be 0 at every vertex (traction-free surface y = 0)')
+                ok = .false.
+            end if
+        end if
+        if (ok) then
+            model%load_path%steps = steps(1:nlegs)
+        else
+            deallocate (model%load_path%vertex)
+        end if
+    end subroutine read_load_path_group
+
+end module ddc_input_namelist_settings
