@@ -2,9 +2,8 @@
 !>
 !> The file is written under partial_name(path) and renamed to path only when every group,
 !> dataset and attribute has been written and the file closed; on any failure the partial
-!> file is removed. Every routine closes every handle it opens on every path (chained
-!> status: a routine does nothing when the error is already set, but closing always runs).
-!> The plain HDF5 Fortran API is used (no HL library). Layout as seen from h5py:
+!> file is removed. Handles and typed writes are ddc_output_hdf5_handles' and
+!> ddc_output_hdf5_write's; this module holds the layout. As seen from h5py:
 !>
 !> - root attributes: program, version, git_commit, created (UTC), title, input_file,
 !>   input_text, units, elastic constants, remote_stress [sxx, syy, sxy], conventions,
@@ -24,17 +23,9 @@
 !>   certificate_min_w, certificate_max_complementarity, equilibrium_residual, shape (k);
 !>   leg_steps (increments per leg); /elements hold the last step.
 module ddc_output_hdf5
-    use, intrinsic :: iso_c_binding, only: c_char, c_null_char, c_loc
-    use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5close_f, h5eset_auto_f, &
-        h5fcreate_f, h5fclose_f, H5F_ACC_TRUNC_F, h5gcreate_f, h5gclose_f, &
-        h5screate_f, h5screate_simple_f, h5sclose_f, H5S_SCALAR_F, &
-        h5dcreate_f, h5dwrite_f, h5dclose_f, h5acreate_f, h5awrite_f, h5aclose_f, &
-        h5tcopy_f, h5tset_size_f, h5tset_strpad_f, h5tset_cset_f, h5tclose_f, &
-        H5T_FORTRAN_S1, H5T_STR_NULLPAD_F, H5T_CSET_UTF8_F, H5T_NATIVE_DOUBLE, &
-        H5T_NATIVE_INTEGER
     use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
-    use ddc_error, only: error_type, set_error, set_internal_error, exit_io_failure
+    use ddc_error, only: error_type, set_internal_error
     use ddc_version, only: program_name, program_version, git_commit
     use ddc_model_types, only: model_type, observation_grid, observation_kind_names, &
         symmetry_names, domain_names, load_path_names
@@ -43,6 +34,11 @@ module ddc_output_hdf5
         state_open
     use ddc_contact_options, only: lcp_method_names, open_cohesion_names
     use ddc_output_atomic, only: partial_name, publish_file, remove_file
+    use ddc_output_hdf5_handles, only: h5_object, open_session, close_session, create_file, &
+        close_file, create_group, close_group
+    use ddc_output_hdf5_write, only: write_real_1d, write_int_1d, write_real_dataset, &
+        write_int_dataset, write_string_1d, write_attribute
+    use ddc_output_timestamp, only: utc_timestamp
     implicit none
     private
 
@@ -63,22 +59,6 @@ module ddc_output_hdf5
         //'of an element centre (reduced accuracy), 2 on an element or at an element end ' &
         //'(value NaN)'
 
-    !> An open HDF5 object (file, group or dataset) with its path, for messages.
-    type :: h5_object
-        !> HDF5 identifier
-        integer(hid_t) :: id = -1
-        !> Path of the object inside the file ('/' for the root)
-        character(len=:), allocatable :: path
-        !> Name of the file, for messages
-        character(len=:), allocatable :: file
-    end type h5_object
-
-    !> Attributes of any object: strings, reals (scalar or 1-D) and integers.
-    interface write_attribute
-        module procedure write_string_attribute, write_real_attribute, &
-            write_real_array_attribute, write_int_attribute
-    end interface write_attribute
-
 contains
 
     !> Write the result file: to partial_name(path) first, published to path on success.
@@ -93,27 +73,16 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(h5_object) :: root
         character(len=:), allocatable :: temporary
-        integer :: status, close_status
         integer(int64) :: start, now, rate
 
         call check_consistency(model, results, error)
         if (allocated(error)) return
         call system_clock(start, rate)
         temporary = partial_name(path)
-        call h5open_f(status)
-        if (status /= 0) then
-            call set_error(error, exit_io_failure, 'HDF5 library could not be initialised')
-            return
-        end if
-        call h5eset_auto_f(0, status)  ! errors become messages here, not stack dumps
-
-        root%path = '/'
-        root%file = temporary
-        call h5fcreate_f(temporary, H5F_ACC_TRUNC_F, root%id, status)
-        if (status /= 0) then
-            call set_error(error, exit_io_failure, 'HDF5 could not create file ' &
-                //temporary)
-        else
+        call open_session(error)
+        if (allocated(error)) return
+        call create_file(temporary, root, error)
+        if (.not. allocated(error)) then
             call write_root_attributes(root, model, error)
             call write_elements(root, model, results, error)
             call write_fractures(root, model, error)
@@ -125,13 +94,9 @@ contains
             if (model%sweep%tasks > 0) call write_sweep(root, model, error)
             if (allocated(results%history%ds)) call write_history(root, model, results, error)
             call write_attribute(root, 'complete', 1, error)
-            call h5fclose_f(root%id, close_status)
-            if (close_status /= 0 .and. .not. allocated(error)) then
-                call set_error(error, exit_io_failure, 'HDF5 could not close file ' &
-                    //temporary//' (disk full?)')
-            end if
+            call close_file(root, error)
         end if
-        call h5close_f(status)
+        call close_session()
 
         if (.not. allocated(error)) call publish_file(temporary, path, error)
         if (allocated(error)) call remove_file(temporary)
@@ -440,8 +405,6 @@ contains
         call close_group(solver, error)
     end subroutine write_solver
 
-    ! ---------------------------------------------------------------- generic helpers
-
     !> /history: the load, DDs, states and certificate of every step of a loading history.
     subroutine write_history(root, model, results, error)
         type(h5_object), intent(in) :: root
@@ -482,389 +445,6 @@ contains
         call close_group(group, error)
     end subroutine write_history
 
-    !> A 1-D real dataset with a `units` attribute.
-    subroutine write_real_1d(parent, name, values, units, error)
-        type(h5_object), intent(in) :: parent
-        character(len=*), intent(in) :: name
-        real(wp), intent(in) :: values(:)
-        character(len=*), intent(in) :: units
-        type(error_type), allocatable, intent(inout) :: error
-
-        call write_real_dataset(parent, name, values, [size(values)], units, error)
-    end subroutine write_real_1d
-
-    !> A 1-D integer dataset, with an optional `coding` attribute.
-    subroutine write_int_1d(parent, name, values, error, coding)
-        type(h5_object), intent(in) :: parent
-        character(len=*), intent(in) :: name
-        integer, intent(in) :: values(:)
-        type(error_type), allocatable, intent(inout) :: error
-        character(len=*), intent(in), optional :: coding
-
-        call write_int_dataset(parent, name, values, [size(values)], error, coding)
-    end subroutine write_int_1d
-
-    !> A real dataset of Fortran dims `dims` (scalar when dims is empty) from values in
-    !> array element order, with a `units` attribute.
-    subroutine write_real_dataset(parent, name, values, dims, units, error)
-        type(h5_object), intent(in) :: parent
-        character(len=*), intent(in) :: name
-        real(wp), intent(in) :: values(:)
-        integer, intent(in) :: dims(:)
-        character(len=*), intent(in) :: units
-        type(error_type), allocatable, intent(inout) :: error
-        type(h5_object) :: dataset
-        integer :: status
-
-        call create_dataset(parent, name, H5T_NATIVE_DOUBLE, dims, dataset, error)
-        if (allocated(error)) return
-        if (size(values) > 0) then
-            call h5dwrite_f(dataset%id, H5T_NATIVE_DOUBLE, values, &
-                int(max(dims, 1), hsize_t), status)
-            if (status /= 0) call fail(error, 'write dataset', dataset)
-        end if
-        call write_attribute(dataset, 'units', units, error)
-        call close_dataset(dataset, error)
-    end subroutine write_real_dataset
-
-    !> An integer dataset of Fortran dims `dims`, with an optional `coding` attribute.
-    subroutine write_int_dataset(parent, name, values, dims, error, coding)
-        type(h5_object), intent(in) :: parent
-        character(len=*), intent(in) :: name
-        integer, intent(in) :: values(:)
-        integer, intent(in) :: dims(:)
-        type(error_type), allocatable, intent(inout) :: error
-        character(len=*), intent(in), optional :: coding
-        type(h5_object) :: dataset
-        integer :: status
-
-        call create_dataset(parent, name, H5T_NATIVE_INTEGER, dims, dataset, error)
-        if (allocated(error)) return
-        if (size(values) > 0) then
-            call h5dwrite_f(dataset%id, H5T_NATIVE_INTEGER, values, &
-                int(max(dims, 1), hsize_t), status)
-            if (status /= 0) call fail(error, 'write dataset', dataset)
-        end if
-        if (present(coding)) call write_attribute(dataset, 'coding', coding, error)
-        call close_dataset(dataset, error)
-    end subroutine write_int_dataset
-
-    !> A 1-D dataset of fixed-length, NUL-padded UTF-8 strings (trailing blanks dropped).
-    subroutine write_string_1d(parent, name, values, error)
-        type(h5_object), intent(in) :: parent
-        character(len=*), intent(in) :: name
-        character(len=*), intent(in) :: values(:)
-        type(error_type), allocatable, intent(inout) :: error
-        type(h5_object) :: dataset
-        character(kind=c_char), allocatable, target :: buffer(:)
-        integer(hid_t) :: string_type
-        integer :: i, width, status
-
-        if (allocated(error)) return
-        width = max(1, len(values))
-        allocate (buffer(width * size(values)))
-        do i = 1, size(values)
-            buffer((i - 1) * width + 1:i * width) = c_chars(trim(values(i)), width)
-        end do
-        call create_string_type(width, string_type, status)
-        if (status /= 0) then
-            call fail(error, 'create a string type for', parent, name)
-        else
-            call create_dataset(parent, name, string_type, [size(values)], dataset, error)
-            if (.not. allocated(error)) then
-                if (size(values) > 0) then
-                    call h5dwrite_f(dataset%id, string_type, c_loc(buffer), status)
-                    if (status /= 0) call fail(error, 'write dataset', dataset)
-                end if
-                call close_dataset(dataset, error)
-            end if
-        end if
-        call h5tclose_f(string_type, status)
-    end subroutine write_string_1d
-
-    !> A scalar string attribute (fixed length, NUL-padded, UTF-8).
-    subroutine write_string_attribute(object, name, value, error)
-        type(h5_object), intent(in) :: object
-        character(len=*), intent(in) :: name
-        character(len=*), intent(in) :: value
-        type(error_type), allocatable, intent(inout) :: error
-        character(kind=c_char), allocatable, target :: buffer(:)
-        integer(hid_t) :: string_type, attribute
-        integer :: width, status
-
-        if (allocated(error)) return
-        width = max(1, len(value))
-        buffer = c_chars(value, width)
-        call create_string_type(width, string_type, status)
-        if (status /= 0) then
-            call fail(error, 'create a string type for attribute '//name//' of', object)
-        else
-            call create_attribute(object, name, string_type, [integer ::], attribute, error)
-            if (.not. allocated(error)) then
-                call h5awrite_f(attribute, string_type, c_loc(buffer), status)
-                if (status /= 0) call fail(error, 'write attribute '//name//' of', object)
-                call close_attribute(object, name, attribute, error)
-            end if
-        end if
-        call h5tclose_f(string_type, status)
-    end subroutine write_string_attribute
-
-    !> A scalar real attribute.
-    subroutine write_real_attribute(object, name, value, error)
-        type(h5_object), intent(in) :: object
-        character(len=*), intent(in) :: name
-        real(wp), intent(in) :: value
-        type(error_type), allocatable, intent(inout) :: error
-
-        call put_real_attribute(object, name, [value], [integer ::], error)
-    end subroutine write_real_attribute
-
-    !> A 1-D real attribute.
-    subroutine write_real_array_attribute(object, name, values, error)
-        type(h5_object), intent(in) :: object
-        character(len=*), intent(in) :: name
-        real(wp), intent(in) :: values(:)
-        type(error_type), allocatable, intent(inout) :: error
-
-        call put_real_attribute(object, name, values, [size(values)], error)
-    end subroutine write_real_array_attribute
-
-    !> A real attribute of dims `dims` (scalar when empty).
-    subroutine put_real_attribute(object, name, values, dims, error)
-        type(h5_object), intent(in) :: object
-        character(len=*), intent(in) :: name
-        real(wp), intent(in) :: values(:)
-        integer, intent(in) :: dims(:)
-        type(error_type), allocatable, intent(inout) :: error
-        integer(hid_t) :: attribute
-        integer :: status
-
-        call create_attribute(object, name, H5T_NATIVE_DOUBLE, dims, attribute, error)
-        if (allocated(error)) return
-        call h5awrite_f(attribute, H5T_NATIVE_DOUBLE, values, int([size(values)], hsize_t), &
-            status)
-        if (status /= 0) call fail(error, 'write attribute '//name//' of', object)
-        call close_attribute(object, name, attribute, error)
-    end subroutine put_real_attribute
-
-    !> A scalar integer attribute.
-    subroutine write_int_attribute(object, name, value, error)
-        type(h5_object), intent(in) :: object
-        character(len=*), intent(in) :: name
-        integer, intent(in) :: value
-        type(error_type), allocatable, intent(inout) :: error
-        integer(hid_t) :: attribute
-        integer :: status
-
-        call create_attribute(object, name, H5T_NATIVE_INTEGER, [integer ::], attribute, &
-            error)
-        if (allocated(error)) return
-        call h5awrite_f(attribute, H5T_NATIVE_INTEGER, [value], [1_hsize_t], status)
-        if (status /= 0) call fail(error, 'write attribute '//name//' of', object)
-        call close_attribute(object, name, attribute, error)
-    end subroutine write_int_attribute
-
-    ! ------------------------------------------------------ handles, always closed
-
-    !> Create a group below parent.
-    subroutine create_group(parent, name, group, error)
-        type(h5_object), intent(in) :: parent
-        character(len=*), intent(in) :: name
-        type(h5_object), intent(out) :: group
-        type(error_type), allocatable, intent(inout) :: error
-        integer :: status
-
-        group%path = child_path(parent, name)
-        group%file = parent%file
-        if (allocated(error)) return
-        call h5gcreate_f(parent%id, name, group%id, status)
-        if (status /= 0) then
-            group%id = -1
-            call fail(error, 'create group', group)
-        end if
-    end subroutine create_group
-
-    !> Close a group (always attempted; reports only when no error is set yet).
-    subroutine close_group(group, error)
-        type(h5_object), intent(inout) :: group
-        type(error_type), allocatable, intent(inout) :: error
-        integer :: status
-
-        if (group%id < 0) return
-        call h5gclose_f(group%id, status)
-        if (status /= 0) call fail(error, 'close group', group)
-        group%id = -1
-    end subroutine close_group
-
-    !> Create a dataset of Fortran dims `dims` (scalar when empty) below parent.
-    subroutine create_dataset(parent, name, data_type, dims, dataset, error)
-        type(h5_object), intent(in) :: parent
-        character(len=*), intent(in) :: name
-        integer(hid_t), intent(in) :: data_type
-        integer, intent(in) :: dims(:)
-        type(h5_object), intent(out) :: dataset
-        type(error_type), allocatable, intent(inout) :: error
-        integer :: space_status, status
-
-        dataset%path = child_path(parent, name)
-        dataset%file = parent%file
-        if (allocated(error)) return
-        call create_with_space(parent%id, name, data_type, dims, .false., dataset%id, &
-                               space_status, status)
-        if (space_status /= 0) then
-            call fail(error, 'create the dataspace of dataset', dataset)
-        else if (status /= 0) then
-            call fail(error, 'create dataset', dataset)
-        end if
-    end subroutine create_dataset
-
-    !> Close a dataset (always attempted; reports only when no error is set yet).
-    subroutine close_dataset(dataset, error)
-        type(h5_object), intent(inout) :: dataset
-        type(error_type), allocatable, intent(inout) :: error
-        integer :: status
-
-        if (dataset%id < 0) return
-        call h5dclose_f(dataset%id, status)
-        if (status /= 0) call fail(error, 'close dataset', dataset)
-        dataset%id = -1
-    end subroutine close_dataset
-
-    !> Create an attribute of dims `dims` (scalar when empty) on an object.
-    subroutine create_attribute(object, name, data_type, dims, attribute, error)
-        type(h5_object), intent(in) :: object
-        character(len=*), intent(in) :: name
-        integer(hid_t), intent(in) :: data_type
-        integer, intent(in) :: dims(:)
-        integer(hid_t), intent(out) :: attribute
-        type(error_type), allocatable, intent(inout) :: error
-        integer :: space_status, status
-
-        attribute = -1
-        if (allocated(error)) return
-        call create_with_space(object%id, name, data_type, dims, .true., attribute, &
-                               space_status, status)
-        if (space_status /= 0) then
-            call fail(error, 'create the dataspace of attribute '//name//' of', object)
-        else if (status /= 0) then
-            call fail(error, 'create attribute '//name//' of', object)
-        end if
-    end subroutine create_attribute
-
-    !> Close an attribute (always attempted; reports only when no error is set yet).
-    subroutine close_attribute(object, name, attribute, error)
-        type(h5_object), intent(in) :: object
-        character(len=*), intent(in) :: name
-        integer(hid_t), intent(inout) :: attribute
-        type(error_type), allocatable, intent(inout) :: error
-        integer :: status
-
-        if (attribute < 0) return
-        call h5aclose_f(attribute, status)
-        if (status /= 0) call fail(error, 'close attribute '//name//' of', object)
-        attribute = -1
-    end subroutine close_attribute
-
-    !> Create a dataset, or an attribute when is_attribute, of Fortran dims `dims` (scalar
-    !> when empty) named name on the object loc. space_status /= 0 when the dataspace could
-    !> not be made; status /= 0 when the object could not be created. id is -1 unless made.
-    subroutine create_with_space(loc, name, data_type, dims, is_attribute, id, space_status, &
-                                 status)
-        integer(hid_t), intent(in) :: loc
-        character(len=*), intent(in) :: name
-        integer(hid_t), intent(in) :: data_type
-        integer, intent(in) :: dims(:)
-        logical, intent(in) :: is_attribute
-        integer(hid_t), intent(out) :: id
-        integer, intent(out) :: space_status, status
-        integer(hid_t) :: space
-        integer :: close_status
-
-        id = -1
-        status = 0
-        call create_space(dims, space, space_status)
-        if (space_status /= 0) return
-        if (is_attribute) then
-            call h5acreate_f(loc, name, data_type, space, id, status)
-        else
-            call h5dcreate_f(loc, name, data_type, space, id, status)
-        end if
-        if (status /= 0) id = -1
-        call h5sclose_f(space, close_status)
-    end subroutine create_with_space
-
-    !> A simple dataspace of Fortran dims `dims`, or a scalar one when dims is empty.
-    subroutine create_space(dims, space, status)
-        integer, intent(in) :: dims(:)
-        integer(hid_t), intent(out) :: space
-        integer, intent(out) :: status
-
-        if (size(dims) == 0) then
-            call h5screate_f(H5S_SCALAR_F, space, status)
-        else
-            call h5screate_simple_f(size(dims), int(dims, hsize_t), space, status)
-        end if
-    end subroutine create_space
-
-    !> A fixed-length, NUL-padded UTF-8 string type of `width` bytes.
-    subroutine create_string_type(width, string_type, status)
-        integer, intent(in) :: width
-        integer(hid_t), intent(out) :: string_type
-        integer, intent(out) :: status
-
-        call h5tcopy_f(H5T_FORTRAN_S1, string_type, status)
-        if (status /= 0) return
-        call h5tset_size_f(string_type, int(width, size_t), status)
-        if (status == 0) call h5tset_strpad_f(string_type, H5T_STR_NULLPAD_F, status)
-        if (status == 0) call h5tset_cset_f(string_type, H5T_CSET_UTF8_F, status)
-    end subroutine create_string_type
-
-    ! ------------------------------------------------------------------ small utilities
-
-    !> Set an I/O error "HDF5 could not <action> <path> in <file>" unless one is set.
-    subroutine fail(error, action, object, name)
-        type(error_type), allocatable, intent(inout) :: error
-        character(len=*), intent(in) :: action
-        type(h5_object), intent(in) :: object
-        !> Name of a child of object the action was about
-        character(len=*), intent(in), optional :: name
-
-        if (allocated(error)) return
-        if (present(name)) then
-            call set_error(error, exit_io_failure, 'HDF5 could not '//action//' ' &
-                //child_path(object, name)//' in '//object%file)
-        else
-            call set_error(error, exit_io_failure, 'HDF5 could not '//action//' ' &
-                //object%path//' in '//object%file)
-        end if
-    end subroutine fail
-
-    !> Path of a child object: parent path / name.
-    pure function child_path(parent, name) result(path)
-        type(h5_object), intent(in) :: parent
-        character(len=*), intent(in) :: name
-        character(len=:), allocatable :: path
-
-        if (parent%path == '/') then
-            path = '/'//name
-        else
-            path = parent%path//'/'//name
-        end if
-    end function child_path
-
-    !> The characters of text, NUL-padded to width, for C.
-    pure function c_chars(text, width) result(chars)
-        character(len=*), intent(in) :: text
-        integer, intent(in) :: width
-        character(kind=c_char) :: chars(width)
-        integer :: i
-
-        chars = c_null_char
-        do i = 1, min(len(text), width)
-            chars(i) = text(i:i)
-        end do
-    end function c_chars
-
     !> The value of an optional string, '' when it is not allocated.
     pure function text(value) result(string)
         character(len=:), allocatable, intent(in) :: value
@@ -876,58 +456,5 @@ contains
             string = ''
         end if
     end function text
-
-    !> The current date and time in UTC, ISO 8601 (YYYY-MM-DDThh:mm:ssZ).
-    function utc_timestamp() result(stamp)
-        character(len=20) :: stamp
-        integer :: values(8), days, minutes, year, month, day
-
-        call date_and_time(values=values)
-        ! values: year, month, day, offset from UTC [min], hour, minute, second, ms
-        if (values(4) == -huge(0)) values(4) = 0  ! offset unknown: take local as UTC
-        days = days_from_civil(values(1), values(2), values(3))
-        minutes = values(5) * 60 + values(6) - values(4)
-        days = days + floor(real(minutes, wp) / 1440.0_wp)
-        minutes = modulo(minutes, 1440)
-        call civil_from_days(days, year, month, day)
-        write (stamp, '(i4.4,"-",i2.2,"-",i2.2,"T",i2.2,":",i2.2,":",i2.2,"Z")') &
-            year, month, day, minutes / 60, modulo(minutes, 60), values(7)
-    end function utc_timestamp
-
-    !> Days since 1970-01-01 of a proleptic Gregorian date (H. Hinnant's algorithm).
-    pure function days_from_civil(year, month, day) result(days)
-        integer, intent(in) :: year, month, day
-        integer :: days, y, era, yoe, doy, doe
-
-        y = year
-        if (month <= 2) y = y - 1
-        era = floor(real(y, wp) / 400.0_wp)
-        yoe = y - era * 400
-        doy = (153 * (month + 9 - 12 * ((month + 9) / 12)) + 2) / 5 + day - 1
-        doe = yoe * 365 + yoe / 4 - yoe / 100 + doy
-        days = era * 146097 + doe - 719468
-    end function days_from_civil
-
-    !> Proleptic Gregorian date of a day count since 1970-01-01 (H. Hinnant's algorithm).
-    pure subroutine civil_from_days(days, year, month, day)
-        integer, intent(in) :: days
-        integer, intent(out) :: year, month, day
-        integer :: z, era, doe, yoe, doy, mp
-
-        z = days + 719468
-        era = floor(real(z, wp) / 146097.0_wp)
-        doe = z - era * 146097
-        yoe = (doe - doe / 1460 + doe / 36524 - doe / 146096) / 365
-        doy = doe - (365 * yoe + yoe / 4 - yoe / 100)
-        mp = (5 * doy + 2) / 153
-        day = doy - (153 * mp + 2) / 5 + 1
-        if (mp < 10) then
-            month = mp + 3
-        else
-            month = mp - 9
-        end if
-        year = yoe + era * 400
-        if (month <= 2) year = year + 1
-    end subroutine civil_from_days
 
 end module ddc_output_hdf5

@@ -5,16 +5,17 @@
 !> Each routine calls h5open_f/h5close_f itself: do not call it while another part of
 !> the program holds HDF5 handles open.
 module ddc_output_hdf5_read
-    use, intrinsic :: iso_c_binding, only: c_char, c_null_char, c_loc, c_ptr
-    use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5close_f, h5eset_auto_f, &
-        h5fopen_f, h5fclose_f, H5F_ACC_RDONLY_F, h5dopen_f, h5dclose_f, h5dread_f, &
-        h5dget_space_f, h5dget_type_f, h5aopen_by_name_f, h5aclose_f, h5aread_f, &
-        h5aget_space_f, h5aget_type_f, h5sget_simple_extent_ndims_f, &
-        h5sget_simple_extent_dims_f, h5sget_simple_extent_npoints_f, h5sclose_f, &
-        h5tget_size_f, h5tget_class_f, h5tis_variable_str_f, h5tclose_f, &
-        H5T_STRING_F, H5T_NATIVE_DOUBLE, H5T_NATIVE_INTEGER
+    use, intrinsic :: iso_c_binding, only: c_char, c_loc, c_ptr
+    use hdf5, only: hid_t, hsize_t, h5dopen_f, h5dclose_f, h5dread_f, h5dget_space_f, &
+        h5dget_type_f, h5aopen_by_name_f, h5aclose_f, h5aread_f, h5aget_space_f, &
+        h5aget_type_f, h5sget_simple_extent_ndims_f, h5sget_simple_extent_dims_f, &
+        h5sget_simple_extent_npoints_f, h5sclose_f, h5tclose_f, H5T_NATIVE_DOUBLE, &
+        H5T_NATIVE_INTEGER
     use ddc_kinds, only: wp
-    use ddc_error, only: error_type, set_error, exit_io_failure
+    use ddc_error, only: error_type
+    use ddc_output_hdf5_handles, only: h5_object, open_session, close_session, &
+        handle_open_file => open_file, handle_close_file => close_file, string_width, fail, &
+        from_c_chars
     implicit none
     private
 
@@ -33,7 +34,8 @@ contains
         real(wp), allocatable, target, intent(out) :: values(:)
         !> Allocated with exit_io_failure when the dataset cannot be read
         type(error_type), allocatable, intent(out) :: error
-        integer(hid_t) :: file, dset
+        type(h5_object) :: file
+        integer(hid_t) :: dset
 
         call open_dataset(path, dataset, file, dset, error)
         if (allocated(error)) return
@@ -52,7 +54,8 @@ contains
         integer, allocatable, target, intent(out) :: values(:)
         !> Allocated with exit_io_failure when the dataset cannot be read
         type(error_type), allocatable, intent(out) :: error
-        integer(hid_t) :: file, dset
+        type(h5_object) :: file
+        integer(hid_t) :: dset
 
         call open_dataset(path, dataset, file, dset, error)
         if (allocated(error)) return
@@ -74,7 +77,8 @@ contains
         type(error_type), allocatable, intent(out) :: error
         character(kind=c_char), allocatable, target :: buffer(:)
         character(len=:), allocatable :: text
-        integer(hid_t) :: file, dset, data_type
+        type(h5_object) :: file
+        integer(hid_t) :: dset, data_type
         type(c_ptr) :: pointer
         integer :: status, width, n, i
 
@@ -125,7 +129,8 @@ contains
         integer, allocatable, intent(out) :: dims(:)
         !> Allocated with exit_io_failure when the dataset cannot be read
         type(error_type), allocatable, intent(out) :: error
-        integer(hid_t) :: file, dset, space
+        type(h5_object) :: file
+        integer(hid_t) :: dset, space
         integer(hsize_t), allocatable :: extent(:), max_extent(:)
         integer :: status, rank
 
@@ -164,7 +169,8 @@ contains
         !> Allocated with exit_io_failure when the attribute cannot be read
         type(error_type), allocatable, intent(out) :: error
         character(kind=c_char), allocatable, target :: buffer(:)
-        integer(hid_t) :: file, attribute, data_type
+        type(h5_object) :: file
+        integer(hid_t) :: attribute, data_type
         type(c_ptr) :: pointer
         integer :: status, width
 
@@ -205,7 +211,8 @@ contains
         real(wp), allocatable, target, intent(out) :: values(:)
         !> Allocated with exit_io_failure when the attribute cannot be read
         type(error_type), allocatable, intent(out) :: error
-        integer(hid_t) :: file, attribute
+        type(h5_object) :: file
+        integer(hid_t) :: attribute
         type(c_ptr) :: pointer
         integer :: status
 
@@ -231,7 +238,8 @@ contains
         !> Allocated with exit_io_failure when the attribute cannot be read
         type(error_type), allocatable, intent(out) :: error
         integer, target :: buffer(1)
-        integer(hid_t) :: file, attribute
+        type(h5_object) :: file
+        integer(hid_t) :: attribute
         type(c_ptr) :: pointer
         integer :: status
 
@@ -254,72 +262,59 @@ contains
 
     ! ------------------------------------------------------ handles, always closed
 
-    !> Start HDF5, open the file read-only; on failure HDF5 is closed again.
+    !> Start HDF5 and open the file read-only; on failure HDF5 is stopped again.
     subroutine open_file(path, file, error)
         character(len=*), intent(in) :: path
-        integer(hid_t), intent(out) :: file
+        type(h5_object), intent(out) :: file
         type(error_type), allocatable, intent(inout) :: error
-        integer :: status
 
-        file = -1
-        call h5open_f(status)
-        if (status /= 0) then
-            call set_error(error, exit_io_failure, 'HDF5 library could not be initialised')
-            return
-        end if
-        call h5eset_auto_f(0, status)
-        call h5fopen_f(path, H5F_ACC_RDONLY_F, file, status)
-        if (status /= 0) then
-            file = -1
-            call fail(error, 'open file', path)
-            call h5close_f(status)
-        end if
+        call open_session(error)
+        if (allocated(error)) return
+        call handle_open_file(path, file, error)
+        if (allocated(error)) call close_session()
     end subroutine open_file
 
     !> Close the file and HDF5.
-    subroutine close_file(file, path, error)
-        integer(hid_t), intent(inout) :: file
-        character(len=*), intent(in) :: path
+    subroutine close_file(file, error)
+        type(h5_object), intent(inout) :: file
         type(error_type), allocatable, intent(inout) :: error
-        integer :: status
 
-        if (file >= 0) then
-            call h5fclose_f(file, status)
-            if (status /= 0) call fail(error, 'close file', path)
-            file = -1
-        end if
-        call h5close_f(status)
+        call handle_close_file(file, error)
+        call close_session()
     end subroutine close_file
 
     !> Open the file and one of its datasets; on failure everything is closed again.
     subroutine open_dataset(path, dataset, file, dset, error)
         character(len=*), intent(in) :: path, dataset
-        integer(hid_t), intent(out) :: file, dset
+        type(h5_object), intent(out) :: file
+        integer(hid_t), intent(out) :: dset
         type(error_type), allocatable, intent(inout) :: error
         integer :: status
 
         dset = -1
         call open_file(path, file, error)
         if (allocated(error)) return
-        call h5dopen_f(file, dataset, dset, status)
+        call h5dopen_f(file%id, dataset, dset, status)
         call check_opened(status, 'dataset '//dataset, path, file, dset, error)
     end subroutine open_dataset
 
     !> Close a dataset and its file.
     subroutine close_dataset(file, dset, path, error)
-        integer(hid_t), intent(inout) :: file, dset
+        type(h5_object), intent(inout) :: file
+        integer(hid_t), intent(inout) :: dset
         character(len=*), intent(in) :: path
         type(error_type), allocatable, intent(inout) :: error
         integer :: status
 
         call h5dclose_f(dset, status)
         if (status /= 0) call fail(error, 'close a dataset', path)
-        call close_file(file, path, error)
+        call close_file(file, error)
     end subroutine close_dataset
 
     !> Read a whole open dataset into memory of the given type, then close it and its file.
     subroutine read_and_close(file, dset, mem_type, pointer, what, path, error)
-        integer(hid_t), intent(inout) :: file, dset
+        type(h5_object), intent(inout) :: file
+        integer(hid_t), intent(inout) :: dset
         integer(hid_t), intent(in) :: mem_type
         type(c_ptr), intent(in) :: pointer
         character(len=*), intent(in) :: what, path
@@ -336,14 +331,15 @@ contains
     !> Open the file and an attribute of one of its objects; closes all on failure.
     subroutine open_attribute(path, object, name, file, attribute, error)
         character(len=*), intent(in) :: path, object, name
-        integer(hid_t), intent(out) :: file, attribute
+        type(h5_object), intent(out) :: file
+        integer(hid_t), intent(out) :: attribute
         type(error_type), allocatable, intent(inout) :: error
         integer :: status
 
         attribute = -1
         call open_file(path, file, error)
         if (allocated(error)) return
-        call h5aopen_by_name_f(file, object, name, attribute, status)
+        call h5aopen_by_name_f(file%id, object, name, attribute, status)
         call check_opened(status, 'attribute '//name//' of '//object, path, file, attribute, &
                           error)
     end subroutine open_attribute
@@ -353,28 +349,28 @@ contains
     subroutine check_opened(status, what, path, file, handle, error)
         integer, intent(in) :: status
         character(len=*), intent(in) :: what, path
-        integer(hid_t), intent(inout) :: file, handle
+        type(h5_object), intent(inout) :: file
+        integer(hid_t), intent(inout) :: handle
         type(error_type), allocatable, intent(inout) :: error
 
         if (status == 0) return
         handle = -1
         call fail(error, 'open '//what, path)
-        call close_file(file, path, error)
+        call close_file(file, error)
     end subroutine check_opened
 
     !> Close an attribute and its file.
     subroutine close_attribute(file, attribute, path, error)
-        integer(hid_t), intent(inout) :: file, attribute
+        type(h5_object), intent(inout) :: file
+        integer(hid_t), intent(inout) :: attribute
         character(len=*), intent(in) :: path
         type(error_type), allocatable, intent(inout) :: error
         integer :: status
 
         call h5aclose_f(attribute, status)
         if (status /= 0) call fail(error, 'close an attribute', path)
-        call close_file(file, path, error)
+        call close_file(file, error)
     end subroutine close_attribute
-
-    ! ------------------------------------------------------------------ small utilities
 
     !> Number of elements of a dataset (0 when it cannot be told).
     function dataset_size(dset) result(n)
@@ -413,58 +409,5 @@ contains
         if (status == 0) n = int(points)
         call h5sclose_f(space, status)
     end function space_points
-
-    !> Width in bytes of a fixed-length string type; status /= 0 for other types.
-    subroutine string_width(data_type, width, status)
-        integer(hid_t), intent(in) :: data_type
-        integer, intent(out) :: width, status
-        integer(size_t) :: bytes
-        integer :: type_class
-        logical :: variable
-
-        width = 0
-        call h5tget_class_f(data_type, type_class, status)
-        if (status /= 0) return
-        if (type_class /= H5T_STRING_F) then
-            status = -1
-            return
-        end if
-        call h5tis_variable_str_f(data_type, variable, status)
-        if (status /= 0) return
-        if (variable) then
-            status = -1
-            return
-        end if
-        call h5tget_size_f(data_type, bytes, status)
-        width = int(bytes)
-    end subroutine string_width
-
-    !> A Fortran string from C characters, cut at the first NUL.
-    pure function from_c_chars(chars) result(text)
-        character(kind=c_char), intent(in) :: chars(:)
-        character(len=:), allocatable :: text
-        integer :: i, n
-
-        n = size(chars)
-        do i = 1, size(chars)
-            if (chars(i) == c_null_char) then
-                n = i - 1
-                exit
-            end if
-        end do
-        allocate (character(len=n) :: text)
-        do i = 1, n
-            text(i:i) = chars(i)
-        end do
-    end function from_c_chars
-
-    !> Set an I/O error "HDF5 could not <action> in <file>" unless one is set.
-    subroutine fail(error, action, path)
-        type(error_type), allocatable, intent(inout) :: error
-        character(len=*), intent(in) :: action, path
-
-        if (allocated(error)) return
-        call set_error(error, exit_io_failure, 'HDF5 could not '//action//' in '//path)
-    end subroutine fail
 
 end module ddc_output_hdf5_read
