@@ -14,7 +14,8 @@ module test_contact
     use ddc_model_results, only: state_stick, state_slip, state_open
     use ddc_contact_options, only: solver_options, parse_solver_options, option_code, &
         open_cohesion_names, lcp_lemke
-    use ddc_contact_formulation, only: contact_result, solve_contact
+    use ddc_contact_result, only: contact_result
+    use ddc_contact_formulation, only: solve_contact
     implicit none
     private
     public :: collect_contact

@@ -12,7 +12,8 @@ module test_fast_contact
     use ddc_constants, only: pi
     use ddc_influence_assembly, only: assemble_influence, row_traction
     use ddc_model_loads, only: resolve_remote_stress
-    use ddc_contact_formulation, only: contact_result, solve_contact
+    use ddc_contact_result, only: contact_result
+    use ddc_contact_formulation, only: solve_contact
     use ddc_contact_options, only: solver_options, parse_solver_options, option_code, &
         open_cohesion_names, lcp_lemke, lcp_newton
     use ddc_test_builders, only: polyline_model, straight_crack, join_fractures

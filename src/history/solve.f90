@@ -19,8 +19,8 @@ module ddc_history_solve
         load_path_names
     use ddc_model_results, only: model_results, history_record
     use ddc_model_loads, only: resolve_remote_stress, total_pressure
-    use ddc_contact_formulation, only: contact_result, contact_lcp, build_contact_lcp, &
-        solve_contact_increment, contact_stress_scale
+    use ddc_contact_result, only: contact_result, contact_stress_scale
+    use ddc_contact_paper_lcp, only: contact_lcp, build_contact_lcp, solve_contact_increment
     use ddc_solve_frictional, only: condensed_contact, condense_contact, contact_load, &
         complete_dds, record_contact
     use ddc_history_path, only: path_loads, apply_load

@@ -20,7 +20,8 @@ module ddc_solve_frictional
     use ddc_linalg_lapack, only: dgemm
     use ddc_linalg_lu, only: lu_factor, lu_solve, influence_hint, residual_tol
     use ddc_text, only: rtoa
-    use ddc_contact_formulation, only: contact_result, solve_contact
+    use ddc_contact_result, only: contact_result
+    use ddc_contact_formulation, only: solve_contact
     use ddc_contact_options, only: solver_options
     implicit none
     private

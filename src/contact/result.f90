@@ -1,0 +1,194 @@
+!> The solution of a contact problem (SPEC section 4), whichever method produced it, and the
+!> checks every solution passes before it is a result: the LCP certificate has passed, the
+!> recovered DDs are in equilibrium with the tractions against the unfactored influence
+!> matrix (relative residual per block at most residual_tol), and each element gets its
+!> state.
+!>
+!> States (ddc_contact_states): open when the opening -Dn exceeds state_dd_tol * dd_scale;
+!> otherwise slip when |Ds| (in a loading history the slip increment of the step) exceeds
+!> that tolerance or the element is on its friction limit (tau_s - |s_s| <=
+!> state_stress_tol * sigma0); otherwise stick. dd_scale = max(max |Ds|, max |Dn|, delta0).
+module ddc_contact_result
+    use ddc_kinds, only: wp
+    use ddc_contact_states, only: state_stick, state_slip, state_open
+    use ddc_contact_certificate, only: lcp_certificate
+    use ddc_linalg_lapack, only: dgemv
+    use ddc_linalg_lu, only: residual_tol
+    implicit none
+    private
+
+    public :: contact_result, state_dd_tol, state_stress_tol, residual_tol
+    public :: contact_stress_scale, problem_scales, block_scales, check_solution
+    public :: drop_open_cohesion
+
+    !> Relative tolerance on DDs for the state rule (times dd_scale) [-]
+    real(wp), parameter :: state_dd_tol = 1.0e-9_wp
+    !> Relative tolerance on the friction limit for the state rule (times sigma0) [-]
+    real(wp), parameter :: state_stress_tol = 1.0e-9_wp
+
+    !> Solution of a contact problem on n elements; arrays shape (n).
+    type :: contact_result
+        !> Shear and normal displacement discontinuity, C&S signs (opening = -dn) [length]
+        real(wp), allocatable :: ds(:), dn(:)
+        !> Total shear and normal traction, tension positive, not shifted by p [stress]
+        real(wp), allocatable :: shear_traction(:), normal_traction(:)
+        !> state_stick, state_slip or state_open
+        integer, allocatable :: state(:)
+        !> Frictional strength in force at the end (0 where cohesion was lost) [stress]
+        real(wp), allocatable :: sf_effective(:)
+        !> Method that produced the result: 'lemke' or 'newton'
+        character(len=:), allocatable :: method
+        !> Why the first method failed and the other one produced the result: Newton falling
+        !> back to Lemke, or (lcp_method 'auto') Lemke to Newton; empty when neither did
+        character(len=:), allocatable :: fallback
+        !> Newton (active-set) iterations, summed over solves
+        integer :: iterations = 0
+        !> Lemke pivots, summed over all LCP solves
+        integer :: pivots = 0
+        !> Number of LCP solves (1 unless open_cohesion = 'lost' re-solved)
+        integer :: solves = 0
+        !> Certificate of the last LCP solve
+        type(lcp_certificate) :: certificate
+        !> Relative equilibrium residual ||A D + S_r - t|| / scale, shear and normal block
+        real(wp) :: equilibrium_residual(2) = 0.0_wp
+        !> Stress scale sigma0 [stress] and displacement scale delta0 [length] used
+        real(wp) :: stress_scale = 1.0_wp, dd_scale = 1.0_wp
+        !> Wall time of the factorizations (the inverse of A for Lemke, the LU of the reduced
+        !> systems for newton) and of the rest of the contact solves (building M, Lemke or
+        !> the active-set iteration, certificate and recovery, summed over solves) [s]
+        real(wp) :: seconds_factorization = 0.0_wp, seconds_lcp = 0.0_wp
+        !> Nominal flop count of those factorizations (2/3 m^3 per LU of size m; 2 m^3 for
+        !> the inverse of A) [-]
+        real(wp) :: factorization_flops = 0.0_wp
+    end type contact_result
+
+contains
+
+    !> Stress scale sigma0 of a contact problem: the largest resolved remote stress,
+    !> strength or pressure (1 when all vanish) [stress].
+    pure function contact_stress_scale(s_r_s, s_r_n, sf, p) result(sigma0)
+        !> Remote shear and normal traction, strength and pressure, shape (n) [stress]
+        real(wp), intent(in) :: s_r_s(:), s_r_n(:), sf(:), p(:)
+        !> The scale [stress]
+        real(wp) :: sigma0
+
+        sigma0 = max(maxval(abs(s_r_s)), maxval(abs(s_r_n)), maxval(abs(s_r_n + p)), &
+            maxval(abs(sf)), maxval(abs(p)))
+        if (.not. sigma0 > 0.0_wp) sigma0 = 1.0_wp
+    end function contact_stress_scale
+
+    !> Stress scale sigma0 (contact_stress_scale) and displacement scale delta0 =
+    !> sigma0 / max_i A_ii of a problem; both stored in res.
+    subroutine problem_scales(a, s_r_s, s_r_n, sf, p, res)
+        real(wp), intent(in) :: a(:, :), s_r_s(:), s_r_n(:), sf(:), p(:)
+        type(contact_result), intent(inout) :: res
+        real(wp) :: amax
+        integer :: i
+
+        amax = 0.0_wp
+        do i = 1, size(a, 1)
+            amax = max(amax, abs(a(i, i)))
+        end do
+        if (.not. amax > 0.0_wp) amax = maxval(abs(a))
+        res%stress_scale = contact_stress_scale(s_r_s, s_r_n, sf, p)
+        res%dd_scale = res%stress_scale / amax
+    end subroutine problem_scales
+
+    !> Magnitude of each row of z = [stress; stress; length] and w = [length; length;
+    !> stress] of an LCP on n elements, for a stress scale and a displacement scale.
+    pure subroutine block_scales(n, stress, length, zs, ws)
+        integer, intent(in) :: n
+        real(wp), intent(in) :: stress, length
+        real(wp), allocatable, intent(out) :: zs(:), ws(:)
+
+        zs = [spread(stress, 1, 2 * n), spread(length, 1, n)]
+        ws = [spread(length, 1, 2 * n), spread(stress, 1, n)]
+    end subroutine block_scales
+
+    !> Checks common to both methods on a recovered solution (res%ds, dn, tractions):
+    !> the certificate passed and the DDs are in equilibrium with the tractions against the
+    !> unfactored A; then the states (slip: a slip increment over ds_previous, when given, or
+    !> on the friction limit). message is blank on success, else says what failed.
+    subroutine check_solution(a, s_r_s, s_r_n, mu, sf, snp, dscale, res, message, ds_previous)
+        real(wp), intent(in) :: a(:, :), s_r_s(:), s_r_n(:), mu(:), sf(:), snp(:), dscale
+        type(contact_result), intent(inout) :: res
+        character(len=*), intent(out) :: message
+        real(wp), intent(in), optional :: ds_previous(:)
+        real(wp), allocatable :: dd(:), ad(:), tau(:), slip(:)
+        real(wp) :: tol_d, tol_s, scale
+        integer :: n, n2, i
+
+        message = ''
+        n = size(mu)
+        n2 = 2 * n
+        if (.not. res%certificate%passed) then
+            write (message, '(a,4(es10.3,a))') 'contact: the LCP solution fails its &
+                &certificate (scaled min z ', res%certificate%min_z, ', min w ', &
+                res%certificate%min_w, ', max |z w| ', res%certificate%max_complementarity, &
+                ', w mismatch ', res%certificate%max_w_mismatch, ')'
+            return
+        end if
+
+        ! Equilibrium of the recovered DDs against the unfactored A.
+        dd = [res%ds, res%dn]
+        allocate (ad(n2))
+        call dgemv('N', n2, n2, 1.0_wp, a, n2, dd, 1, 0.0_wp, ad, 1)
+        ! Both blocks are tractions: one scale for both, so that a block that vanishes (no
+        ! resolved shear at all) is not measured against its own round-off.
+        scale = max(norm2(ad), norm2([s_r_s, s_r_n]), &
+                    norm2([res%shear_traction, res%normal_traction]))
+        res%equilibrium_residual(1) = block_residual(ad(1:n), s_r_s, res%shear_traction, scale)
+        res%equilibrium_residual(2) = block_residual(ad(n + 1:n2), s_r_n, &
+            res%normal_traction, scale)
+        if (.not. maxval(res%equilibrium_residual) <= residual_tol) then
+            write (message, '(a,2(es10.3,a))') 'contact: the recovered DDs are not in &
+                &equilibrium (relative residual ', res%equilibrium_residual(1), &
+                ' shear, ', res%equilibrium_residual(2), ' normal)'
+            return
+        end if
+
+        ! States.
+        tol_d = state_dd_tol * dscale
+        tol_s = state_stress_tol * res%stress_scale
+        tau = sf - mu * snp
+        slip = res%ds
+        if (present(ds_previous)) slip = res%ds - ds_previous
+        if (allocated(res%state)) deallocate (res%state)
+        allocate (res%state(n))
+        do i = 1, n
+            if (-res%dn(i) > tol_d) then
+                res%state(i) = state_open
+            else if (abs(slip(i)) > tol_d .or. tau(i) - abs(res%shear_traction(i)) <= tol_s) &
+                then
+                res%state(i) = state_slip
+            else
+                res%state(i) = state_stick
+            end if
+        end do
+    end subroutine check_solution
+
+    !> ||ad + s_r - t|| / scale, 0 when the scale vanishes.
+    pure function block_residual(ad, s_r, t, scale) result(r)
+        real(wp), intent(in) :: ad(:), s_r(:), t(:), scale
+        real(wp) :: r
+
+        if (scale > 0.0_wp) then
+            r = norm2(ad + s_r - t) / scale
+        else
+            r = 0.0_wp
+        end if
+    end function block_residual
+
+    !> Zero the cohesion of every open element that still has some; true when any did.
+    function drop_open_cohesion(state, sf_eff) result(changed)
+        integer, intent(in) :: state(:)
+        real(wp), intent(inout) :: sf_eff(:)
+        logical :: changed
+        logical :: lose(size(state))
+
+        lose = state == state_open .and. sf_eff > 0.0_wp
+        changed = any(lose)
+        where (lose) sf_eff = 0.0_wp
+    end function drop_open_cohesion
+
+end module ddc_contact_result
