@@ -4,7 +4,7 @@
 !> ddc_influence_assembly, with every row a traction row.
 module test_contact
     use ddc_kinds, only: wp
-    use ddc_error, only: exit_solver_failure, exit_bad_input
+    use ddc_error, only: exit_solver_failure, exit_bad_input, exit_internal_error
     use ddc_testing, only: test_case, new_test, check, error_type
     use ddc_constants, only: pi
     use ddc_influence_assembly, only: assemble_influence, row_traction
@@ -44,7 +44,8 @@ contains
             new_test('fluid_pressure_cohesion_lost', test_pressure_lost), &
             new_test('kinked_stick_slip_open', test_kink), &
             new_test('singular_influence_matrix', test_singular), &
-            new_test('bad_open_cohesion', test_bad_cohesion) &
+            new_test('bad_open_cohesion', test_bad_cohesion), &
+            new_test('inconsistent_sizes_are_an_internal_error', test_internal_error) &
             ]
     end subroutine collect_contact
 
@@ -346,6 +347,25 @@ contains
         call check(error, index(failure%message, 'open_cohesion') > 0, &
                    'message: '//failure%message)
     end subroutine test_bad_cohesion
+
+    !> Arrays of inconsistent sizes are a broken contract inside ddc2d, not bad input: exit
+    !> status 4 with a message naming the procedure.
+    subroutine test_internal_error(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(error_type), allocatable :: failure
+        type(contact_result) :: res
+        real(wp) :: a(2, 2)
+
+        a = reshape([1.0_wp, 0.0_wp, 0.0_wp, 1.0_wp], [2, 2])
+        call solve_contact(a, [1.0_wp, 2.0_wp], [-1.0_wp], [0.6_wp], [0.0_wp], [0.0_wp], &
+                           solver_options(), res, failure)
+        call check(error, allocated(failure), 'inconsistent sizes must be an error')
+        if (allocated(error)) return
+        call check(error, failure%code, exit_internal_error, 'exit code')
+        if (allocated(error)) return
+        call check(error, index(failure%message, 'internal error in solve_contact') == 1, &
+                   'message: '//failure%message)
+    end subroutine test_internal_error
 
     ! ------------------------------------------------------------------ CSV reading
 
