@@ -538,7 +538,8 @@ BAD_CASES = [
     ("n_fractures_below_no", put("parm", 1, 6, 1), "no", 1, 2,
      "a value for fracture 2, but n_fractures = 1"),
     ("column_missing", drop_column("px", 2), "px", 1, 2,
-     "the cell is empty; expected the column of fracture 2, but there are 2 fractures"),
+     ("the cell is empty; expected the column of fracture 2, but there are 2 fractures "
+      "(n_fractures and sheet 'no'); the values of the sheet span column {first_column}")),
     ("column_extra", put("mu", 1, 3, 0.4), "mu", 1, 3,
      "a column of values for fracture 3, but there are 2 fractures"),
     ("label_column_inside", column_to_labels("mu", 2), "mu", 1, 2,
@@ -546,15 +547,18 @@ BAD_CASES = [
     ("nx_not_integer", put("parm", 1, 8, 12.5), "parm", 1, 8,
      "nx (the number of grid points in x, value 8 of 12) = 12.5 must be a positive integer"),
     ("ny_zero", put("parm", 1, 11, 0), "parm", 1, 11,
-     "ny (the number of grid points in y, value 11 of 12) = 0.0 must be a positive integer"),
+     "ny (the number of grid points in y, value 11 of 12) = 0 must be a positive integer"),
     ("n_fractures_negative", put("parm", 1, 6, -2), "parm", 1, 6,
-     ("n_fractures (the number of fractures, value 6 of 12) = -2.0 must be a positive "
+     ("n_fractures (the number of fractures, value 6 of 12) = -2 must be a positive "
       "integer")),
     ("no_not_integer", put("no", 1, 2, 4.5), "no", 1, 2,
      "the number of elements of fracture 2 = 4.5 must be a positive integer"),
     ("parm_short", remove("parm", 1, 12), "parm", 1, 12,
      "the cell is empty; expected ymax (grid ymax, value 12 of 12)"),
     ("parm_13_values", put("parm", 1, 13, 1.0), "parm", 1, 13, "a 13th value"),
+    ("parm_value_far_right", put("parm", 1, 16, 7.0), "parm", 1, 16, "a 13th value"),
+    ("no_value_far_right", put("no", 1, 5, 7.0), "no", 1, 5,
+     "a value for fracture 5, but n_fractures = 2"),
     ("parm_second_row", put("parm", 2, 1, 0.3), "parm", 2, 1, "a second row of values"),
     ("parm_text", put("parm", 1, 2, "50 GPa"), "parm", 1, 2,
      ("expected E (Young's modulus, value 2 of 12), a number, but the cell holds the text "
@@ -562,11 +566,11 @@ BAD_CASES = [
     ("poissons_ratio", put("parm", 1, 1, 0.5), "parm", 1, 1,
      "nu (Poisson's ratio) = 0.5 must lie in (-1, 0.5)"),
     ("youngs_modulus", put("parm", 1, 2, -5.0), "parm", 1, 2,
-     "E (Young's modulus) = -5.0 must be positive"),
+     "E (Young's modulus) = -5 must be positive"),
     ("negative_friction", put("mu", 2, 2, -0.1), "mu", 2, 2,
      "friction coefficient of element 2 of fracture 2 = -0.1 must be >= 0"),
     ("negative_cohesion", put("sf", 3, 1, -1.0), "sf", 3, 1,
-     "frictional strength of element 3 of fracture 1 = -1.0 must be >= 0"),
+     "frictional strength of element 3 of fracture 1 = -1 must be >= 0"),
     ("zero_length_element", both(put("px", 3, 2, 0.1), put("py", 3, 2, -0.4)), "px", 3, 2,
      ("vertex 3 of fracture 2 equals vertex 2 (sheets 'px' and 'py'): element 2 has zero "
       "length")),
@@ -607,7 +611,7 @@ def test_bad_workbook(case, fmt, labels, tmp_path):
         where += f"sheet '{sheet}': "
     assert lines[0].startswith(where), lines[0]
     cells = {"no1": f"{chr(65 + shift)}{1 + shift}", "no2": f"{chr(66 + shift)}{1 + shift}",
-             "parm6": f"{chr(70 + shift)}{1 + shift}"}
+             "parm6": f"{chr(70 + shift)}{1 + shift}", "first_column": chr(65 + shift)}
     if isinstance(fragment, dict):
         fragment = fragment[fmt]
     assert fragment.format(**cells) in lines[0], lines[0]
