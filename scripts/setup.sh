@@ -7,7 +7,8 @@
 #    python3 + venv, valgrind for the memcheck tests): installed with apt-get only when
 #    one of them is missing.
 # 2. A Python virtual environment in build/venv with numpy, h5py, matplotlib and pytest
-#    from PyPI: created/installed only when missing or broken.
+#    from PyPI, xlrd and openpyxl (scripts/comp2ddm2nml reads .xls / .xlsx workbooks) and
+#    xlwt (the tests write .xls workbooks): created/installed only when missing or broken.
 #
 # Idempotent: a second run only checks and takes a few seconds. Works from any folder.
 # Needs root (or sudo) only when Debian packages are missing.
@@ -18,8 +19,9 @@ cd "$repo_root"
 
 debian_packages=(gfortran cmake ninja-build libopenblas-dev liblapack-dev libhdf5-dev
                  hdf5-tools python3 python3-venv valgrind)
-python_packages=(numpy h5py matplotlib pytest)
-python_modules="numpy, h5py, matplotlib, pytest"
+# PyPI package names; each one's import name is the same.
+python_packages=(numpy h5py matplotlib pytest xlrd openpyxl xlwt)
+python_modules="numpy, h5py, matplotlib, pytest, xlrd, openpyxl, xlwt"
 venv_dir="$repo_root/build/venv"
 
 say() { printf 'setup: %s\n' "$*"; }
@@ -87,8 +89,12 @@ else
         python3 -m venv --clear "$venv_dir" \
             || die "'python3 -m venv' failed (on Debian, is python3-venv installed?)"
     fi
-    say "installing into the venv from PyPI: ${python_packages[*]}"
-    "$venv_python" -m pip install --quiet "${python_packages[@]}"
+    missing_python=()
+    for package in "${python_packages[@]}"; do
+        "$venv_python" -c "import $package" > /dev/null 2>&1 || missing_python+=("$package")
+    done
+    say "installing into the venv from PyPI: ${missing_python[*]}"
+    "$venv_python" -m pip install --quiet "${missing_python[@]}"
     venv_complete || die "the venv still cannot import $python_modules"
     say "Python venv ready: $venv_dir"
 fi
