@@ -204,22 +204,23 @@ contains
         procedure(kernel_function), pointer :: kernel
 
         call select_kernel(elements, kernel)
-        call assemble_with(kernel, elements, shear_modulus, nu, shear_row, normal_row, matrix)
+        call assemble_with(kernel, elements, image_transforms(elements%symmetry), shear_modulus, &
+                           nu, shear_row, normal_row, matrix)
     end subroutine assemble_influence
 
-    !> assemble_influence with the kernel given.
-    subroutine assemble_with(kernel, elements, shear_modulus, nu, shear_row, normal_row, matrix)
+    !> assemble_influence with the kernel and the image transforms given.
+    subroutine assemble_with(kernel, elements, images, shear_modulus, nu, shear_row, &
+                             normal_row, matrix)
         procedure(kernel_function) :: kernel
         type(element_set), intent(in) :: elements
+        type(image_transform), intent(in) :: images(:)
         real(wp), intent(in) :: shear_modulus, nu
         integer, intent(in) :: shear_row(:), normal_row(:)
         real(wp), intent(out) :: matrix(:, :)
         type(pair_influence) :: p
-        type(image_transform), allocatable :: images(:)
         integer :: i, j, n
 
         n = elements%n
-        images = image_transforms(elements%symmetry)
         ! Each thread owns whole columns j and n+j: disjoint, contiguous writes.
         !$omp parallel do default(none) schedule(static) private(i, j, p) &
         !$omp shared(elements, shear_modulus, nu, shear_row, normal_row, matrix, n, images)
@@ -269,25 +270,24 @@ contains
         procedure(kernel_function), pointer :: kernel
 
         call select_kernel(elements, kernel)
-        call response_with(kernel, elements, shear_modulus, nu, ds, dn, shear_traction, &
-                           normal_traction, us_minus, un_minus)
+        call response_with(kernel, elements, image_transforms(elements%symmetry), shear_modulus, &
+                           nu, ds, dn, shear_traction, normal_traction, us_minus, un_minus)
     end subroutine midpoint_response
 
-    !> midpoint_response with the kernel given.
-    subroutine response_with(kernel, elements, shear_modulus, nu, ds, dn, shear_traction, &
-                             normal_traction, us_minus, un_minus)
+    !> midpoint_response with the kernel and the image transforms given.
+    subroutine response_with(kernel, elements, images, shear_modulus, nu, ds, dn, &
+                             shear_traction, normal_traction, us_minus, un_minus)
         procedure(kernel_function) :: kernel
         type(element_set), intent(in) :: elements
+        type(image_transform), intent(in) :: images(:)
         real(wp), intent(in) :: shear_modulus, nu
         real(wp), intent(in) :: ds(:), dn(:)
         real(wp), intent(out) :: shear_traction(:), normal_traction(:)
         real(wp), intent(out) :: us_minus(:), un_minus(:)
         type(pair_influence) :: p
-        type(image_transform), allocatable :: images(:)
         real(wp) :: ts, tn, us, un
         integer :: i, j
 
-        images = image_transforms(elements%symmetry)
         !$omp parallel do default(none) schedule(static) private(i, j, p, ts, tn, us, un) &
         !$omp shared(elements, shear_modulus, nu, ds, dn, shear_traction, normal_traction, &
         !$omp        us_minus, un_minus, images)
