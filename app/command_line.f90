@@ -188,8 +188,9 @@ contains
 
         task = -1
         stat = 1
-        if (len(text) > 0 .and. len(text) < 10 .and. verify(text, '0123456789') == 0) &
+        if (len(text) > 0 .and. len(text) < 10 .and. verify(text, '0123456789') == 0) then
             read (text, *, iostat=stat) task
+        end if
         if (stat /= 0) then
             call set_error(error, exit_bad_input, source//': the task must be a number '// &
                            '0, 1, 2, ...')

@@ -28,6 +28,7 @@ program ddc2d
         !> C exit(): the exit status without the compiler's STOP banner.
         subroutine c_exit(status) bind(C, name='exit')
             import :: c_int
+            implicit none
             integer(c_int), value :: status
         end subroutine c_exit
     end interface
@@ -53,6 +54,8 @@ program ddc2d
     case (action_help)
         write (output_unit, '(a)') usage_text()
         call finish(exit_success)
+    case default
+        ! action_run: go on below
     end select
 
     if (options%twodd) then

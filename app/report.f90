@@ -45,9 +45,10 @@ contains
         write (unit, '(a,a,a,a)') '  solver: lcp_method = ', &
             trim(lcp_method_names(model%solver%lcp_method)), ', open_cohesion = ', &
             trim(open_cohesion_names(model%solver%open_cohesion))
-        if (allocated(model%load_path%steps) .and. model%solver%lcp_method /= lcp_lemke) &
+        if (allocated(model%load_path%steps) .and. model%solver%lcp_method /= lcp_lemke) then
             write (unit, '(a)') '  (the loading history is solved step by step with '// &
             "Lemke's method, whatever lcp_method says)"
+        end if
         write (unit, '(a)') '  output: '//model%output_file
     end subroutine print_model_summary
 

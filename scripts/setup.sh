@@ -7,8 +7,9 @@
 #    python3 + venv, valgrind for the memcheck tests): installed with apt-get only when
 #    one of them is missing.
 # 2. A Python virtual environment in build/venv with numpy, h5py, matplotlib and pytest
-#    from PyPI, xlrd and openpyxl (scripts/comp2ddm2nml reads .xls / .xlsx workbooks) and
-#    xlwt (the tests write .xls workbooks): created/installed only when missing or broken.
+#    from PyPI, xlrd and openpyxl (scripts/comp2ddm2nml reads .xls / .xlsx workbooks),
+#    xlwt (the tests write .xls workbooks) and the linters fortitude-lint and ruff:
+#    created/installed only when missing or broken.
 #
 # Idempotent: a second run only checks and takes a few seconds. Works from any folder.
 # Needs root (or sudo) only when Debian packages are missing.
@@ -22,6 +23,8 @@ debian_packages=(gfortran cmake ninja-build libopenblas-dev liblapack-dev libhdf
 # PyPI package names; each one's import name is the same.
 python_packages=(numpy h5py matplotlib pytest xlrd openpyxl xlwt)
 python_modules="numpy, h5py, matplotlib, pytest, xlrd, openpyxl, xlwt"
+# Linters run by the tests, as PyPI package:executable in the venv's bin/.
+python_tools=(fortitude-lint:fortitude ruff:ruff)
 venv_dir="$repo_root/build/venv"
 
 say() { printf 'setup: %s\n' "$*"; }
@@ -75,8 +78,15 @@ venv_python="$venv_dir/bin/python"
 venv_works() {
     [[ -x "$venv_python" ]] && "$venv_python" -c 'import sys' > /dev/null 2>&1
 }
+missing_tools() {
+    local tool
+    for tool in "${python_tools[@]}"; do
+        [[ -x "$venv_dir/bin/${tool#*:}" ]] || printf '%s\n' "${tool%%:*}"
+    done
+}
 venv_complete() {
-    venv_works && "$venv_python" -c "import $python_modules" > /dev/null 2>&1
+    venv_works && "$venv_python" -c "import $python_modules" > /dev/null 2>&1 \
+        && [[ -z "$(missing_tools)" ]]
 }
 
 if venv_complete; then
@@ -93,6 +103,7 @@ else
     for package in "${python_packages[@]}"; do
         "$venv_python" -c "import $package" > /dev/null 2>&1 || missing_python+=("$package")
     done
+    mapfile -t -O "${#missing_python[@]}" missing_python < <(missing_tools)
     say "installing into the venv from PyPI: ${missing_python[*]}"
     "$venv_python" -m pip install --quiet "${missing_python[@]}"
     venv_complete || die "the venv still cannot import $python_modules"

@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # Set everything up and run the whole test suite:
 #   1. scripts/setup.sh (Debian packages and the Python venv, only what is missing);
-#   2. the Debug build (-fcheck=all, -ffpe-trap=invalid,zero) and its CTest suites, through
-#      the `debug` workflow preset (configure, build, test);
-#   3. pytest on tests/python (plot script, TWODD scripts and the command line), with the
-#      Debug executable.
-# Exits non-zero when any step fails (pytest's "no tests collected" counts as a failure).
+#   2. the Debug build (-fcheck=all, -ffpe-trap=invalid,zero, -Werror) and every CTest test
+#      through the `debug` workflow preset (configure, build, test): the Fortran suites, the
+#      pytest files, the lint, valgrind memcheck and the sweep on a local Slurm
+#      (labels fortran, python, lint, memcheck, slurm);
+#   3. the numerical suites again under other OpenBLAS kernels (scripts/test-kernels.sh).
+# Exits non-zero when any step fails.
 set -euo pipefail
 
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -13,4 +14,4 @@ cd "$repo_root"
 
 scripts/setup.sh
 cmake --workflow --preset debug
-DDC2D_EXE="$repo_root/build/debug/app/ddc2d" build/venv/bin/python -m pytest tests/python
+scripts/test-kernels.sh

@@ -175,6 +175,7 @@ contains
         if (allocated(error)) return
         call check_certified(error, res)
         call check(error, count(res%state == state_stick), n, 'sticking elements')
+        ! Exactly zero by construction: Lemke leaves the DDs of sticking elements nonbasic.
         do i = 1, n
             call check(error, res%ds(i), 0.0_wp, 'ds', abs_tol=0.0_wp)
             call check(error, res%dn(i), 0.0_wp, 'dn', abs_tol=0.0_wp)

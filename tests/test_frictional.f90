@@ -79,6 +79,7 @@ contains
         call run_model(paper_fault(500, 0.7_wp, 1.0_wp), r, error)
         if (allocated(error)) return
         call check(error, count(r%elements%state == state_stick), 500, 'sticking elements')
+        ! Exactly zero by construction: no DD of a sticking element is an unknown.
         call check(error, maxval(abs(r%elements%ds)), 0.0_wp, 'ds', abs_tol=0.0_wp)
         call check(error, maxval(abs(r%elements%dn)), 0.0_wp, 'dn', abs_tol=0.0_wp)
         call check(error, r%elements%shear_traction(250), 54.13_wp, 'shear traction = remote', &
@@ -98,6 +99,7 @@ contains
         call run_model(model, r, error)
         if (allocated(error)) return
         call check(error, count(r%elements%state == state_stick), 20, 'sticking elements')
+        ! Exactly zero by construction: no DD of a sticking element is an unknown.
         call check(error, maxval(abs(r%elements%ds)), 0.0_wp, 'ds', abs_tol=0.0_wp)
     end subroutine test_no_shear
 

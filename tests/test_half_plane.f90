@@ -251,7 +251,8 @@ contains
         type(model_type) :: model
         type(model_results) :: results(2)
         type(dd_kernel) :: k
-        real(wp) :: ux, uy, scale, nus(2) = [0.25_wp, 0.4_wp]
+        real(wp), parameter :: nus(2) = [0.25_wp, 0.4_wp]
+        real(wp) :: ux, uy, scale
         integer :: m, i, j
 
         do m = 1, 2

@@ -3,7 +3,6 @@ module test_half_plane_kernel
     use ddc_kinds, only: wp
     use ddc_testing, only: test_case, new_test, check, error_type
     use ddc_influence_kernel, only: dd_kernel, dd_kernel_global, face_positive
-    use ddc_constants, only: pi
     use ddc_influence_kernel_half_plane, only: dd_kernel_half_plane
     implicit none
     private

@@ -131,6 +131,7 @@ contains
                 worst
             call check(error, worst, 0.0_wp, 'every step against the play operator', &
                        abs_tol=tight)
+            ! Exactly zero by construction: no slip increment is basic while the fault sticks.
             call check(error, maxval(abs(h%ds(:, 1:13))), 0.0_wp, 'no slip up to 6 MPa', &
                        abs_tol=0.0_wp)
             call check(error, all(h%state(:, 14) == state_slip), 'every element slips at 6.5')
@@ -158,6 +159,7 @@ contains
                        'equilibrium of every step')
             call check(error, count(h%pivots > 0) < nsteps / 4, &
                        'the previous basis serves most steps (warm start)')
+            ! The same values copied: exact.
             call check(error, maxval(abs(r%elements%ds - h%ds(:, nsteps))), 0.0_wp, &
                        '/elements hold the last step', abs_tol=0.0_wp)
             call check(error, model%sxy, 10.0_wp, 'the model is left at the last load', &

@@ -7,7 +7,6 @@ module test_hole
         condition_traction, condition_displacement, condition_mixed_us_sn, condition_mixed_ss_un
     use ddc_model_results, only: model_results
     use ddc_run_model, only: run_model
-    use ddc_constants, only: pi
     use ddc_test_builders, only: circular_hole
     implicit none
     private

@@ -14,6 +14,7 @@ module test_lemke
     interface
         subroutine dgesv(n, nrhs, a, lda, ipiv, b, ldb, info)
             import :: wp
+            implicit none
             integer, intent(in) :: n, nrhs, lda, ldb
             real(wp), intent(inout) :: a(lda, *), b(ldb, *)
             integer, intent(out) :: ipiv(*), info

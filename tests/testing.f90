@@ -17,6 +17,7 @@ module ddc_testing
         !> One test case: allocates error when it fails.
         subroutine test_procedure(error)
             import :: error_type
+            implicit none
             !> Allocated on failure, with the reason
             type(error_type), allocatable, intent(out) :: error
         end subroutine test_procedure

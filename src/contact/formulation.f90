@@ -193,7 +193,7 @@ contains
         real(wp), allocatable :: tau(:), z(:), w(:), zs(:), ws(:), snp(:)
         real(wp) :: dscale
         integer :: n, n2, i
-        character(len=300) :: line
+        character(len=:), allocatable :: problem
 
         n = size(mu)
         n2 = 2 * n
@@ -238,9 +238,9 @@ contains
         res%ds = next%ds
         res%dn = next%dn
         res%sf_effective = sf
-        call check_solution(a, s_r_s, s_r_n, mu, sf, snp, dscale, res, line)
-        reason = 'newton: '//trim(line)
-        if (len_trim(line) == 0) reason = ''
+        call check_solution(a, s_r_s, s_r_n, mu, sf, snp, dscale, res, problem)
+        reason = ''
+        if (len(problem) > 0) reason = 'newton: '//problem
     end subroutine solve_once_newton
 
 end module ddc_contact_formulation

@@ -103,7 +103,8 @@ contains
         d = 1.0_wp
         if (present(cover)) then
             if (size(cover) /= n) then
-                call set_internal_error(error, 'solve_lcp_lemke', 'covering vector has the wrong size')
+                call set_internal_error(error, 'solve_lcp_lemke', &
+                                        'covering vector has the wrong size')
                 return
             end if
             if (any(.not. (cover > 0.0_wp))) then

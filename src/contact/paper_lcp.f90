@@ -148,6 +148,7 @@ contains
         integer, allocatable :: warm(:)
         integer :: n, n2, n3, pivots
         character(len=300) :: line
+        character(len=:), allocatable :: problem
 
         n = size(lcp%mu)
         n2 = 2 * n
@@ -204,9 +205,9 @@ contains
         dscale = max(delta0, maxval(abs(res%ds)), maxval(abs(res%dn)))
         call block_scales(n, sigma0, dscale, zs, ws)
         res%certificate = certify_lcp(lcp%m, q, z, w, z_scale=zs, w_scale=ws)
-        call check_solution(lcp%a, s_r_s, s_r_n, lcp%mu, sf, snp, dscale, res, line, &
+        call check_solution(lcp%a, s_r_s, s_r_n, lcp%mu, sf, snp, dscale, res, problem, &
                             ds_previous)
-        if (len_trim(line) > 0) call set_error(error, exit_solver_failure, trim(line))
+        if (len(problem) > 0) call set_error(error, exit_solver_failure, problem)
     end subroutine solve_paper_lcp
 
     !> One step of a loading history (SPEC-EARTH section 3) on an LCP built once: q for

@@ -108,24 +108,26 @@ contains
     !> Checks common to both methods on a recovered solution (res%ds, dn, tractions):
     !> the certificate passed and the DDs are in equilibrium with the tractions against the
     !> unfactored A; then the states (slip: a slip increment over ds_previous, when given, or
-    !> on the friction limit). message is blank on success, else says what failed.
+    !> on the friction limit). message is empty on success, else says what failed.
     subroutine check_solution(a, s_r_s, s_r_n, mu, sf, snp, dscale, res, message, ds_previous)
         real(wp), intent(in) :: a(:, :), s_r_s(:), s_r_n(:), mu(:), sf(:), snp(:), dscale
         type(contact_result), intent(inout) :: res
-        character(len=*), intent(out) :: message
+        character(len=:), allocatable, intent(out) :: message
         real(wp), intent(in), optional :: ds_previous(:)
         real(wp), allocatable :: dd(:), ad(:), tau(:), slip(:)
         real(wp) :: tol_d, tol_s, scale
         integer :: n, n2, i
+        character(len=300) :: line
 
         message = ''
         n = size(mu)
         n2 = 2 * n
         if (.not. res%certificate%passed) then
-            write (message, '(a,4(es10.3,a))') 'contact: the LCP solution fails its &
+            write (line, '(a,4(es10.3,a))') 'contact: the LCP solution fails its &
                 &certificate (scaled min z ', res%certificate%min_z, ', min w ', &
                 res%certificate%min_w, ', max |z w| ', res%certificate%max_complementarity, &
                 ', w mismatch ', res%certificate%max_w_mismatch, ')'
+            message = trim(line)
             return
         end if
 
@@ -141,9 +143,10 @@ contains
         res%equilibrium_residual(2) = block_residual(ad(n + 1:n2), s_r_n, &
             res%normal_traction, scale)
         if (.not. maxval(res%equilibrium_residual) <= residual_tol) then
-            write (message, '(a,2(es10.3,a))') 'contact: the recovered DDs are not in &
+            write (line, '(a,2(es10.3,a))') 'contact: the recovered DDs are not in &
                 &equilibrium (relative residual ', res%equilibrium_residual(1), &
                 ' shear, ', res%equilibrium_residual(2), ' normal)'
+            message = trim(line)
             return
         end if
 

@@ -16,8 +16,8 @@
 !> its images. Without symmetry the image list is empty and the loops cost nothing.
 module ddc_influence_assembly
     use ddc_kinds, only: wp
-    use ddc_model_types, only: element_set, symmetry_options, symmetry_none, symmetry_x, &
-        symmetry_y, symmetry_both, domain_half_plane
+    use ddc_model_types, only: element_set, symmetry_options, symmetry_x, symmetry_y, &
+        symmetry_both, domain_half_plane
     use ddc_influence_kernel, only: dd_kernel, dd_kernel_global, face_negative
     use ddc_influence_kernel_half_plane, only: dd_kernel_half_plane
     implicit none
@@ -33,6 +33,7 @@ module ddc_influence_assembly
         pure function kernel_function(x, y, xm, ym, a, cosb, sinb, shear_modulus, nu, face) &
             result(k)
             import :: wp, dd_kernel
+            implicit none
             !> Observation point, element midpoint, half-length [length unit]
             real(wp), intent(in) :: x, y, xm, ym, a
             !> Element direction cosines, shear modulus [stress unit], Poisson's ratio [-]

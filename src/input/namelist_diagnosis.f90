@@ -248,6 +248,8 @@ contains
                     problem = current//' = '//token//' is not an integer'
                     return
                 end if
+            case default
+                ! spec_type gives only 'c', 'r' or 'i' for a known variable
             end select
         end do
     end function diagnose_group

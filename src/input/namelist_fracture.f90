@@ -209,17 +209,22 @@ contains
 
             if (geometry_ok) then
                 if (.not. from_csv) then
-                    if (check_length(nmu, nseg, 'mu', prefix, messages)) &
+                    if (check_length(nmu, nseg, 'mu', prefix, messages)) then
                         seg_mu = broadcast(mu(1:nmu), nseg, 0.0_wp)
-                    if (check_length(nsf, nseg, 'sf', prefix, messages)) &
+                    end if
+                    if (check_length(nsf, nseg, 'sf', prefix, messages)) then
                         seg_sf = broadcast(sf(1:nsf), nseg, 0.0_wp)
-                    if (check_length(npr, nseg, 'pressure', prefix, messages)) &
+                    end if
+                    if (check_length(npr, nseg, 'pressure', prefix, messages)) then
                         seg_pressure = broadcast(pressure(1:npr), nseg, 0.0_wp)
+                    end if
                 end if
-                if (check_length(nbs, nseg, 'bc_s', prefix, messages)) &
+                if (check_length(nbs, nseg, 'bc_s', prefix, messages)) then
                     seg_bc_s = broadcast(bc_s(1:nbs), nseg, 0.0_wp)
-                if (check_length(nbn, nseg, 'bc_n', prefix, messages)) &
+                end if
+                if (check_length(nbn, nseg, 'bc_n', prefix, messages)) then
                     seg_bc_n = broadcast(bc_n(1:nbn), nseg, 0.0_wp)
+                end if
             end if
             if (messages%n > nbefore) cycle
 

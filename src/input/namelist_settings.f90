@@ -5,11 +5,11 @@
 module ddc_input_namelist_settings
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
-    use ddc_model_types, only: model_type, condition_contact, symmetry_none, symmetry_names, &
-        domain_names, domain_half_plane, load_path_names
+    use ddc_model_types, only: model_type, symmetry_none, symmetry_names, domain_names, &
+        domain_half_plane, load_path_names
     use ddc_model_limits, only: quantity_youngs_modulus, quantity_poissons_ratio
     use ddc_contact_options, only: parse_solver_options
-    use ddc_text, only: itoa, rtoa, lower, find_name, quoted_list, prefix_lines
+    use ddc_text, only: itoa, lower, find_name, quoted_list, prefix_lines
     use ddc_input_text_file, only: base_name, resolve
     use ddc_input_namelist_groups, only: group_record, message_list, add, group_prefix, &
         g_model, g_remote_stress, g_pore_fluid, g_solver, g_symmetry, g_output, g_load_path
@@ -117,12 +117,15 @@ contains
         if (check_scalar(sxx, 'sxx', .false., prefix, messages)) model%sxx = sxx
         if (check_scalar(syy, 'syy', .false., prefix, messages)) model%syy = syy
         if (check_scalar(sxy, 'sxy', .false., prefix, messages)) model%sxy = sxy
-        if (check_scalar(dsxx_dy, 'dsxx_dy', .false., prefix, messages)) &
+        if (check_scalar(dsxx_dy, 'dsxx_dy', .false., prefix, messages)) then
             model%stress_gradient(1) = dsxx_dy
-        if (check_scalar(dsyy_dy, 'dsyy_dy', .false., prefix, messages)) &
+        end if
+        if (check_scalar(dsyy_dy, 'dsyy_dy', .false., prefix, messages)) then
             model%stress_gradient(2) = dsyy_dy
-        if (check_scalar(dsxy_dy, 'dsxy_dy', .false., prefix, messages)) &
+        end if
+        if (check_scalar(dsxy_dy, 'dsxy_dy', .false., prefix, messages)) then
             model%stress_gradient(3) = dsxy_dy
+        end if
     end subroutine read_remote_stress_group
 
     !> &pore_fluid p0, dp_dy / (fluid pressure p0 + dp_dy * y inside every contact element,

@@ -14,8 +14,7 @@ module ddc_input_twodd_deck
         quantity_youngs_modulus
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
-    use ddc_model_types, only: model_type, observation_line, &
-        symmetry_x, symmetry_y, symmetry_both, condition_traction, &
+    use ddc_model_types, only: model_type, observation_line, condition_traction, &
         condition_mixed_ss_un
     use ddc_input_text_file, only: read_text_file, base_name
     use ddc_mesh_polyline, only: polyline_elements

@@ -11,12 +11,14 @@ module ddc_linalg_lapack
     interface
         subroutine dgetrf(m, n, a, lda, ipiv, info)
             import :: wp
+            implicit none
             integer, intent(in) :: m, n, lda
             real(wp), intent(inout) :: a(lda, *)
             integer, intent(out) :: ipiv(*), info
         end subroutine dgetrf
         subroutine dgetrs(trans, n, nrhs, a, lda, ipiv, b, ldb, info)
             import :: wp
+            implicit none
             character(len=1), intent(in) :: trans
             integer, intent(in) :: n, nrhs, lda, ldb
             real(wp), intent(in) :: a(lda, *)
@@ -26,6 +28,7 @@ module ddc_linalg_lapack
         end subroutine dgetrs
         subroutine dgetri(n, a, lda, ipiv, work, lwork, info)
             import :: wp
+            implicit none
             integer, intent(in) :: n, lda, lwork
             real(wp), intent(inout) :: a(lda, *)
             integer, intent(in) :: ipiv(*)
@@ -34,6 +37,7 @@ module ddc_linalg_lapack
         end subroutine dgetri
         subroutine dgecon(norm, n, a, lda, anorm, rcond, work, iwork, info)
             import :: wp
+            implicit none
             character, intent(in) :: norm
             integer, intent(in) :: n, lda
             real(wp), intent(in) :: a(lda, *), anorm
@@ -44,6 +48,7 @@ module ddc_linalg_lapack
         end subroutine dgecon
         function dlange(norm, m, n, a, lda, work) result(val)
             import :: wp
+            implicit none
             character, intent(in) :: norm
             integer, intent(in) :: m, n, lda
             real(wp), intent(in) :: a(lda, *)
@@ -52,6 +57,7 @@ module ddc_linalg_lapack
         end function dlange
         subroutine dgemv(trans, m, n, alpha, a, lda, x, incx, beta, y, incy)
             import :: wp
+            implicit none
             character, intent(in) :: trans
             integer, intent(in) :: m, n, lda, incx, incy
             real(wp), intent(in) :: alpha, beta, a(lda, *), x(*)
@@ -59,12 +65,14 @@ module ddc_linalg_lapack
         end subroutine dgemv
         subroutine dger(m, n, alpha, x, incx, y, incy, a, lda)
             import :: wp
+            implicit none
             integer, intent(in) :: m, n, incx, incy, lda
             real(wp), intent(in) :: alpha, x(*), y(*)
             real(wp), intent(inout) :: a(lda, *)
         end subroutine dger
         subroutine dgemm(transa, transb, m, n, k, alpha, a, lda, b, ldb, beta, c, ldc)
             import :: wp
+            implicit none
             character, intent(in) :: transa, transb
             integer, intent(in) :: m, n, k, lda, ldb, ldc
             real(wp), intent(in) :: alpha, beta, a(lda, *), b(ldb, *)

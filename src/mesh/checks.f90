@@ -168,6 +168,8 @@ contains
                                  ' touches the interior of '//describe(touched)// &
                                  ' (T-junction): split the fracture with a vertex at the '// &
                                  'branch point so that the elements share it')
+            case default
+                ! pair_ok: nothing to report
             end select
         end subroutine report_pair
 

@@ -18,6 +18,7 @@ module ddc_output_atomic
         !> POSIX rename(2): atomically replace new_path by old_path; 0 on success.
         function c_rename(old_path, new_path) result(status) bind(C, name='rename')
             import :: c_char, c_int
+            implicit none
             character(kind=c_char), intent(in) :: old_path(*)
             character(kind=c_char), intent(in) :: new_path(*)
             integer(c_int) :: status
@@ -62,6 +63,8 @@ contains
         open (newunit=unit, file=path, status='old', action='read', iostat=status)
         if (status /= 0) return
         close (unit, status='delete', iostat=status)
+        ! Best effort: the caller reports the failure that made it remove the file.
+        if (status /= 0) return
     end subroutine remove_file
 
     !> Prove before any solve that the result file can be written: create and delete its

@@ -65,6 +65,7 @@ contains
     end subroutine read_int_dataset
 
     !> Values of a 1-D dataset of fixed-length strings, trailing NULs and blanks removed.
+    ! allow(C072): the caller chooses the length of the strings
     subroutine read_string_dataset(path, dataset, values, error)
         !> Path of the HDF5 file
         character(len=*), intent(in) :: path

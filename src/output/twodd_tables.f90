@@ -35,7 +35,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: temporary
         character(len=512) :: iomsg
-        integer :: unit, stat
+        integer :: unit, stat, close_stat
 
         temporary = partial_name(path)
         open (newunit=unit, file=temporary, status='replace', action='write', &
@@ -50,7 +50,9 @@ contains
         if (stat == 0) call write_midpoints(unit, model, results, stat, iomsg)
         if (stat == 0) call write_points(unit, model, results, stat, iomsg)
         if (stat /= 0) then
-            close (unit, status='delete', iostat=stat)
+            ! Best effort: the write's failure is the one reported.
+            close (unit, status='delete', iostat=close_stat)
+            if (close_stat /= 0) call remove_file(temporary)
             call set_error(error, exit_io_failure, 'cannot write '//temporary//': '// &
                            trim(iomsg))
             return
@@ -67,6 +69,7 @@ contains
     end subroutine write_twodd_tables
 
     !> Title, counts, symmetry, elastic constants and field stress.
+    ! allow(C072, C181): iomsg is the caller's buffer for the writes' iomsg=; stat is returned
     subroutine write_header(unit, model, stat, iomsg)
         integer, intent(in) :: unit
         type(model_type), intent(in) :: model
@@ -115,6 +118,7 @@ contains
     end subroutine write_header
 
     !> Element number, KODE, centre, length, angle [degrees] and the given values.
+    ! allow(C072): iomsg is the caller's buffer for the write statements' iomsg=
     subroutine write_element_data(unit, model, stat, iomsg)
         integer, intent(in) :: unit
         type(model_type), intent(in) :: model
@@ -138,6 +142,7 @@ contains
     end subroutine write_element_data
 
     !> DS, US(-), US(+), DN, UN(-), UN(+), UX(-), UY(-), UX(+), UY(+), SIGMA-S, SIGMA-N.
+    ! allow(C072): iomsg is the caller's buffer for the write statements' iomsg=
     subroutine write_midpoints(unit, model, results, stat, iomsg)
         integer, intent(in) :: unit
         type(model_type), intent(in) :: model
@@ -168,6 +173,7 @@ contains
     end subroutine write_midpoints
 
     !> Every observation point, numbered on through all sets, with its flag mark.
+    ! allow(C072, C181): iomsg is the caller's buffer for the writes' iomsg=; stat is returned
     subroutine write_points(unit, model, results, stat, iomsg)
         integer, intent(in) :: unit
         type(model_type), intent(in) :: model

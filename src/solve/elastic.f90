@@ -4,8 +4,8 @@ module ddc_solve_elastic
     use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, set_internal_error, exit_solver_failure
-    use ddc_model_types, only: element_set, condition_traction, condition_displacement, &
-        condition_mixed_us_sn, condition_mixed_ss_un, condition_contact, condition_prescribed_dd
+    use ddc_model_types, only: element_set, condition_displacement, condition_mixed_us_sn, &
+        condition_mixed_ss_un, condition_contact, condition_prescribed_dd
     use ddc_influence_assembly, only: assemble_influence, row_traction, row_displacement, &
         row_identity
     use ddc_linalg_lu, only: lu_factor, lu_solve, influence_hint, residual_tol

@@ -101,8 +101,9 @@ contains
             close_paren = index(key, ')%')
             stat = 1
             if (close_paren > 10) then
-                if (verify(key(10:close_paren - 1), '0123456789') == 0) &
+                if (verify(key(10:close_paren - 1), '0123456789') == 0) then
                     read (key(10:close_paren - 1), *, iostat=stat) fracture
+                end if
             end if
             if (stat /= 0) then
                 problem = "'"//trim(name)//"' is not a sweep parameter: write fracture(K)%mu"// &
@@ -273,6 +274,8 @@ contains
                 model%elements%sf(first:last) = values(p)
             case (target_pressure)
                 model%elements%pressure(first:last) = values(p)
+            case default
+                ! parse_parameter makes only the targets above
             end select
         end do
         if (any(sweep%targets == target_s1 .or. sweep%targets == target_s3 .or. &

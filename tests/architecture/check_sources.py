@@ -9,6 +9,8 @@
    holds ddc_app_b), so a reader finds a module from its name.
 3. Every namelist statement of src/input/ declares exactly the variables of its group in
    the table of src/input/namelist_groups.f90, which the error messages print.
+4. Every name imported by `use ..., only:` in src/, app/ and tests/ is used in its file
+   (gfortran does not warn about unused imports at module level).
 
 Prints every violation and exits 1 when there is one; --graph prints the folder graph.
 """
@@ -129,6 +131,26 @@ def check_namelists(root, problems):
     return checked
 
 
+USE_ONLY = re.compile(r"^\s*use\b[^\n]*?\bonly\s*:((?:[^\n]*&\s*\n)*[^\n]*)", re.I | re.M)
+
+
+def check_imports(root, problems):
+    """Names imported with `use ..., only:` that the file never mentions again."""
+    for path in sorted(fortran_files(root) + sorted((root / "tests").glob("*.f90"))):
+        text = strip_comments(path.read_text())
+        rest = USE_ONLY.sub("", text)
+        words = set(w.lower() for w in re.findall(r"\b\w+\b", rest))
+        words |= set(k.lower() for k in re.findall(r"[\d.]_(\w+)", rest))  # 1.0_wp
+        for names in USE_ONLY.findall(text):
+            for item in names.replace("&", " ").split(","):
+                local = item.split("=>")[0].strip().lower()
+                if local.startswith("operator(") or local.startswith("assignment("):
+                    continue
+                if local and local not in words:
+                    problems.append(f"{path.relative_to(root)}: imports {local} but does not "
+                                    "use it")
+
+
 def main(argv):
     graph_wanted = "--graph" in argv
     args = [a for a in argv if a != "--graph"]
@@ -139,6 +161,7 @@ def main(argv):
     problems = []
     graph = check_folders(root, problems)
     namelists = check_namelists(root, problems)
+    check_imports(root, problems)
     if graph_wanted:
         for folder in sorted(graph):
             print(f"{folder}: {', '.join(sorted(graph[folder])) or '-'}")
@@ -146,7 +169,7 @@ def main(argv):
         print(problem)
     if not problems:
         print(f"architecture: {len(graph)} folders, no cycle; module names follow their paths; "
-              f"the {namelists} namelist statements match the group table")
+              f"the {namelists} namelist statements match the group table; every import is used")
     return 1 if problems else 0
 
 
