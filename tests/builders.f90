@@ -1,7 +1,7 @@
 !> Models built in code for the physics tests (no input files involved).
 module ddc_test_builders
     use ddc_kinds, only: wp
-    use ddc_model_types, only: model_type, fracture_type
+    use ddc_model_types, only: model_type, fracture_type, symmetry_options, condition_traction
     use ddc_contact_options, only: solver_options
     use ddc_mesh_geometry, only: allocate_elements, compute_geometry
     use ddc_mesh_polyline, only: polyline_elements
@@ -9,7 +9,7 @@ module ddc_test_builders
     implicit none
     private
 
-    public :: polyline_model, straight_crack, circular_hole, join_fractures
+    public :: polyline_model, straight_crack, circular_hole, join_fractures, kinked_network
 
 contains
 
@@ -95,5 +95,23 @@ contains
         model%fractures = [model%fractures, fracture_type(name='fracture_2', &
             first_element=n + 1, last_element=n + other%elements%n)]
     end subroutine join_fractures
+
+    !> Two fractures of traction elements, one kinked (12 elements of unequal lengths) and
+    !> one straight (6), in x > 0 and y > -0.6, with the given symmetry about x = 0 and
+    !> y = -0.6; E = 1000, nu = 0.25.
+    function kinked_network(symmetry_kind) result(model)
+        integer, intent(in) :: symmetry_kind
+        type(model_type) :: model
+        type(model_type) :: other
+
+        model = polyline_model([0.3_wp, 1.0_wp, 1.5_wp], [0.2_wp, 0.25_wp, 0.7_wp], [7, 5], &
+                               condition_traction, 0.0_wp, 0.0_wp, 1000.0_wp, 0.25_wp)
+        other = polyline_model([0.4_wp, 1.3_wp], [-0.3_wp, -0.1_wp], [6], condition_traction, &
+                               0.0_wp, 0.0_wp, &
+                               1000.0_wp, 0.25_wp)
+        call join_fractures(model, other)
+        model%elements%symmetry = symmetry_options(kind=symmetry_kind, xsym=0.0_wp, &
+                                                   ysym=-0.6_wp)
+    end function kinked_network
 
 end module ddc_test_builders

@@ -4,10 +4,13 @@ module test_fields
     use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
     use ddc_kinds, only: wp
     use ddc_testing, only: test_case, new_test, check, error_type
-    use ddc_model_types, only: model_type, condition_traction, observation_set, observation_points
-    use ddc_model_results, only: model_results, point_clear, point_near, point_on_element
+    use ddc_model_types, only: model_type, condition_traction, observation_set, &
+        observation_points, symmetry_none, symmetry_both
+    use ddc_model_results, only: model_results, field_result, point_clear, point_near, &
+        point_on_element
     use ddc_run_model, only: run_model
-    use ddc_test_builders, only: straight_crack
+    use ddc_post_fields, only: evaluate_field
+    use ddc_test_builders, only: straight_crack, kinked_network
     implicit none
     private
 
@@ -23,7 +26,8 @@ contains
         type(test_case), allocatable, intent(out) :: tests(:)
 
         tests = [new_test('westergaard_pressurized_n500', test_westergaard), &
-                 new_test('point_flags', test_point_flags)]
+                 new_test('point_flags', test_point_flags), &
+                 new_test('fast_fields_equal_general', test_fast_fields)]
     end subroutine collect_fields
 
     !> Westergaard / Pollard & Segall (1987) field of a crack |x| < a under internal pressure
@@ -123,5 +127,64 @@ contains
                        (expected(i) == point_on_element), 'NaN exactly on flagged-on points')
         end do
     end subroutine test_point_flags
+
+    !> The full-plane path (fused, vectorized sum over the elements and their images) gives
+    !> the general kernel's fields within 1e-12 of each quantity's largest value, and the
+    !> same flags exactly, on a grid around a kinked network, at its midpoints and ends
+    !> and at points near it, with every symmetry.
+    subroutine test_fast_fields(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model
+        type(field_result) :: fast, general
+        real(wp), allocatable :: x(:), y(:), ds(:), dn(:)
+        real(wp) :: d
+        integer :: i, j, sym, n
+        character(len=40) :: label
+
+        do sym = symmetry_none, symmetry_both
+            model = kinked_network(sym)
+            n = model%elements%n
+            ds = [(1.0e-3_wp * sin(real(i, wp)), i = 1, n)]
+            dn = [(-5.0e-4_wp * cos(2.0_wp * i), i = 1, n)]
+            associate (e => model%elements)
+                x = [((-0.2_wp + 0.07_wp * i, i = 0, 31), j = 0, 24), e%x_mid, e%x_begin, &
+                     e%x_end, e%x_mid + 0.01_wp * e%sin_beta, e%x_begin - 1.0e-12_wp]
+                y = [((-0.55_wp + 0.065_wp * j, i = 0, 31), j = 0, 24), e%y_mid, e%y_begin, &
+                     e%y_end, e%y_mid - 0.01_wp * e%cos_beta, e%y_begin]
+            end associate
+            call evaluate_field(model%elements, g, nu, [-1.0_wp, -2.0_wp, 0.5_wp], ds, dn, x, &
+                                y, fast, [0.1_wp, 0.2_wp, 0.0_wp])
+            call evaluate_field(model%elements, g, nu, [-1.0_wp, -2.0_wp, 0.5_wp], ds, dn, x, &
+                                y, general, [0.1_wp, 0.2_wp, 0.0_wp], general=.true.)
+            write (label, '(a,i0)') 'symmetry ', sym
+            call check(error, all(fast%flag == general%flag), trim(label)//': same flags')
+            call check(error, count(fast%flag == point_on_element) >= 3 * n .and. &
+                       count(fast%flag == point_near) > n, trim(label)//': on and near points')
+            call check(error, all(ieee_is_nan(fast%sxx) .eqv. (fast%flag == point_on_element)), &
+                       trim(label)//': NaN exactly on the elements')
+            if (allocated(error)) return
+            d = max(field_difference(fast%ux, general%ux, fast%flag), &
+                    field_difference(fast%uy, general%uy, fast%flag))
+            write (*, '(a,es10.3)') '    '//trim(label)//': displacement ', d
+            call check(error, d, 0.0_wp, trim(label)//': displacement', abs_tol=1.0e-12_wp)
+            d = max(field_difference(fast%sxx, general%sxx, fast%flag), &
+                    field_difference(fast%syy, general%syy, fast%flag), &
+                    field_difference(fast%sxy, general%sxy, fast%flag))
+            write (*, '(a,es10.3)') '    '//trim(label)//': stress ', d
+            call check(error, d, 0.0_wp, trim(label)//': stress', abs_tol=1.0e-12_wp)
+            ! Two computations (the fast path is taken): round-off differs somewhere.
+            call check(error, d > 0.0_wp, trim(label)//': the full-plane path is its own')
+        end do
+    end subroutine test_fast_fields
+
+    !> Largest difference off the elements relative to the largest |b| there.
+    pure real(wp) function field_difference(a, b, flag) result(d)
+        real(wp), intent(in) :: a(:), b(:)
+        integer, intent(in) :: flag(:)
+        logical :: off(size(flag))
+
+        off = flag /= point_on_element
+        d = maxval(abs(a - b), off) / maxval(abs(b), off)
+    end function field_difference
 
 end module test_fields

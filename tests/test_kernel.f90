@@ -5,9 +5,11 @@ module test_kernel
     use ddc_influence_kernel, only: kernel_functions, face_positive, face_negative, dd_kernel, &
         dd_kernel_at
     use ddc_constants, only: pi
-    use ddc_influence_assembly, only: assemble_influence, row_traction, row_displacement
-    use ddc_model_types, only: model_type, condition_traction
-    use ddc_test_builders, only: straight_crack
+    use ddc_influence_assembly, only: assemble_influence, row_traction, row_displacement, &
+        row_identity
+    use ddc_influence_response, only: midpoint_response
+    use ddc_model_types, only: model_type, condition_traction, symmetry_none, symmetry_both
+    use ddc_test_builders, only: straight_crack, kinked_network
     implicit none
     private
 
@@ -25,7 +27,9 @@ contains
                  new_test('derivatives_of_f1', test_derivatives_of_f1), &
                  new_test('face_jump', test_face_jump), &
                  new_test('hooke_law', test_hooke_law), &
-                 new_test('collinear_symmetry', test_collinear_symmetry)]
+                 new_test('collinear_symmetry', test_collinear_symmetry), &
+                 new_test('fast_assembly_equals_general', test_fast_assembly), &
+                 new_test('fast_responses_equal_general', test_fast_responses)]
     end subroutine collect_kernel
 
     !> The potential F1 = f(x, y) of Crouch & Starfield eq. 5.2.x, atan2 branch as F3.
@@ -173,5 +177,93 @@ contains
             end do
         end do
     end subroutine test_collinear_symmetry
+
+    !> Row kinds of the kinked network (18 elements): mostly traction rows, some
+    !> displacement and identity rows.
+    subroutine network_rows(shear_row, normal_row)
+        integer, intent(out) :: shear_row(18), normal_row(18)
+
+        shear_row = row_traction
+        normal_row = row_traction
+        shear_row([3, 14]) = row_displacement
+        normal_row([4, 14, 16]) = row_displacement
+        shear_row(9) = row_identity
+        normal_row(9) = row_identity
+    end subroutine network_rows
+
+    !> Largest |a - b| over the rows of one kind, relative to the largest |b| there.
+    pure real(wp) function rows_difference(a, b, kinds, kind) result(d)
+        real(wp), intent(in) :: a(:, :), b(:, :)
+        integer, intent(in) :: kinds(:), kind
+        integer, allocatable :: rows(:)
+        integer :: i
+
+        rows = pack([(i, i = 1, size(kinds))], kinds == kind)
+        d = maxval(abs(a(rows, :) - b(rows, :))) / max(maxval(abs(b(rows, :))), tiny(1.0_wp))
+    end function rows_difference
+
+    !> The full-plane assembly (traction rows from the stress part alone, vectorized) gives
+    !> the general kernel's matrix within 1e-12 of each row kind's largest entry, with
+    !> every symmetry; identity rows exactly.
+    subroutine test_fast_assembly(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model
+        real(wp) :: fast(36, 36), general(36, 36), d
+        integer :: shear_row(18), normal_row(18), kind, sym
+        character(len=40) :: label
+
+        call network_rows(shear_row, normal_row)
+        do sym = symmetry_none, symmetry_both
+            model = kinked_network(sym)
+            call assemble_influence(model%elements, 400.0_wp, nu, shear_row, normal_row, fast)
+            call assemble_influence(model%elements, 400.0_wp, nu, shear_row, normal_row, &
+                                    general, general=.true.)
+            do kind = row_traction, row_identity
+                d = rows_difference(fast, general, [shear_row, normal_row], kind)
+                write (label, '(a,i0,a,i0)') 'symmetry ', sym, ', row kind ', kind
+                if (kind == row_traction) write (*, '(a,es10.3)') '    '//trim(label)//': ', d
+                call check(error, d, 0.0_wp, trim(label), abs_tol=merge(0.0_wp, 1.0e-12_wp, &
+                           kind == row_identity))
+                ! Two computations (the fast path is taken): round-off differs somewhere.
+                if (kind == row_traction) call check(error, d > 0.0_wp, trim(label)// &
+                    ': the full-plane path is its own')
+            end do
+            if (allocated(error)) return
+        end do
+    end subroutine test_fast_assembly
+
+    !> Tractions and face displacements at the midpoints from the assembled matrix and the
+    !> fused full-plane sum equal the general kernel's sums over every pair within 1e-12
+    !> (of the largest value), with every symmetry and mixed row kinds.
+    subroutine test_fast_responses(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model
+        real(wp) :: matrix(36, 36), ds(18), dn(18), fast(18, 4), general(18, 4), d
+        integer :: shear_row(18), normal_row(18), sym, q, i
+        character(len=40) :: label
+
+        call network_rows(shear_row, normal_row)
+        ds = [(1.0e-3_wp * sin(real(i, wp)), i = 1, 18)]
+        dn = [(-5.0e-4_wp * cos(2.0_wp * i), i = 1, 18)]
+        do sym = symmetry_none, symmetry_both
+            model = kinked_network(sym)
+            call assemble_influence(model%elements, 400.0_wp, nu, shear_row, normal_row, matrix)
+            call midpoint_response(model%elements, 400.0_wp, nu, matrix, shear_row, &
+                normal_row, ds, dn, fast(:, 1), fast(:, 2), fast(:, 3), fast(:, 4))
+            call midpoint_response(model%elements, 400.0_wp, nu, matrix, shear_row, &
+                normal_row, ds, dn, general(:, 1), general(:, 2), general(:, 3), &
+                general(:, 4), general=.true.)
+            do q = 1, 3, 2
+                d = maxval(abs(fast(:, q:q + 1) - general(:, q:q + 1))) / &
+                    maxval(abs(general(:, q:q + 1)))
+                write (label, '(a,i0,a)') 'symmetry ', sym, merge(': tractions    ', &
+                                                                   ': displacements', q == 1)
+                write (*, '(a,es10.3)') '    '//trim(label)//' ', d
+                call check(error, d, 0.0_wp, trim(label), abs_tol=1.0e-12_wp)
+                call check(error, d > 0.0_wp, trim(label)//': the matrix and the fused sum')
+            end do
+            if (allocated(error)) return
+        end do
+    end subroutine test_fast_responses
 
 end module test_kernel

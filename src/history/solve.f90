@@ -15,16 +15,15 @@ module ddc_history_solve
     use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
-    use ddc_model_types, only: model_type, condition_contact, condition_prescribed_dd, &
-        load_path_names
+    use ddc_model_types, only: model_type, condition_contact, load_path_names
     use ddc_model_results, only: model_results, history_record
     use ddc_model_loads, only: resolve_remote_stress, total_pressure
     use ddc_contact_result, only: contact_result, contact_stress_scale
     use ddc_contact_paper_lcp, only: contact_lcp, build_contact_lcp, solve_contact_increment
     use ddc_solve_frictional, only: condensed_contact, condense_contact, contact_load, &
-        complete_dds, record_contact
+        complete_dds, record_contact, release_matrix
     use ddc_history_path, only: path_loads, apply_load
-    use ddc_run_model, only: run_model
+    use ddc_run_model, only: finish_model
     use ddc_model_loads, only: shear_modulus_of
     use ddc_text, only: itoa, rtoa
     implicit none
@@ -50,10 +49,10 @@ contains
         type(condensed_contact) :: sys
         type(contact_lcp) :: lcp
         type(contact_result) :: res, built
-        type(model_type) :: at_load
         type(history_record) :: h
         real(wp), allocatable :: loads(:, :), shear(:, :), normal(:, :), shift(:, :)
         real(wp), allocatable :: y_load(:, :), pressure(:, :), sf_eff(:), ds_previous(:), v(:)
+        real(wp), allocatable :: matrix(:, :)
         integer, allocatable :: basis(:)
         integer :: n, nc, k, nsteps, pivots, solves
         real(wp) :: sigma0, seconds_lcp
@@ -132,14 +131,13 @@ contains
         seconds_lcp = real(t1 - t0, wp) / real(rate, wp)
 
         ! The last step: tractions, face displacements, tips and fields for its DDs.
-        at_load = apply_load(model, loads(:, nsteps))
-        at_load%elements%condition = condition_prescribed_dd
-        at_load%elements%bc_s = h%ds(:, nsteps)
-        at_load%elements%bc_n = h%dn(:, nsteps)
-        call finish_last_step(at_load, results, error)
-        if (allocated(error)) return
-        results%elements%state = h%state(:, nsteps)
         call record_contact(sys, res, results%solver)
+        results%elements%ds = h%ds(:, nsteps)
+        results%elements%dn = h%dn(:, nsteps)
+        results%elements%state = h%state(:, nsteps)
+        call release_matrix(sys, matrix)
+        call finish_model(apply_load(model, loads(:, nsteps)), matrix, shear(:, nsteps), &
+                          normal(:, nsteps), results)
         results%solver%seconds_factorization = results%solver%seconds_factorization + &
             built%seconds_factorization
         results%solver%factorization_flops = results%solver%factorization_flops + &
@@ -153,24 +151,6 @@ contains
         call system_clock(t1)
         results%solver%seconds_total = real(t1 - t_start, wp) / real(rate, wp)
     end subroutine solve_history
-
-    !> run_model on the model with prescribed DDs: its element results, tips and fields
-    !> go into results; the solver record keeps the history's assembly and factorization
-    !> times and adds the field time.
-    subroutine finish_last_step(at_load, results, error)
-        type(model_type), intent(in) :: at_load
-        type(model_results), intent(inout) :: results
-        type(error_type), allocatable, intent(out) :: error
-        type(model_results) :: last
-
-        call run_model(at_load, last, error)
-        if (allocated(error)) return
-        results%elements = last%elements
-        results%tips = last%tips
-        call move_alloc(last%fields, results%fields)
-        results%solver%threads = last%solver%threads
-        results%solver%seconds_fields = last%solver%seconds_fields
-    end subroutine finish_last_step
 
     !> 'sxy = 10, p0 = 3' for the quantities a path varies (all seven when none is marked).
     function load_text(load, varies) result(text)

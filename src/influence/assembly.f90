@@ -1,4 +1,4 @@
-!> Influence matrices and midpoint responses of a set of constant-DD elements.
+!> Influence matrices of a set of constant-DD elements.
 !>
 !> Unknowns are ordered in blocks [Ds(1:n); Dn(1:n)], rows [shear rows; normal rows]. A row
 !> is a traction row (stress resolved on element i, tension positive), a displacement row
@@ -7,6 +7,14 @@
 !>
 !> The kernel (full plane or half-plane, SPEC-EARTH 1) is chosen once per model by
 !> select_kernel and passed down as a procedure argument: the loops hold no branch on it.
+!>
+!> Two paths fill the matrix. The general one evaluates the whole kernel (displacement and
+!> stress, any domain) at every pair. The full-plane path fills the traction rows, by far
+!> the most common, from the stress part alone (rational in the coordinates: no logarithm or
+!> angle), one column at a time in a loop over the receivers that vectorizes, the stress of
+!> the source resolved directly on the receiver's plane (relative angle); the other rows of
+!> that path come from the general kernel. Both give the same matrix within round-off
+!> (suite `kernel` compares them).
 !>
 !> Symmetry (TWODD KSYM 2-4, Crouch & Starfield ch. 5): every element j has implicit images
 !> mirrored about x = xsym, y = ysym or both. Mirrored with its end order kept, an element
@@ -20,10 +28,11 @@ module ddc_influence_assembly
         symmetry_both, domain_half_plane
     use ddc_influence_kernel, only: dd_kernel, dd_kernel_global, face_negative
     use ddc_influence_kernel_half_plane, only: dd_kernel_half_plane
+    use ddc_constants, only: pi
     implicit none
     private
 
-    public :: assemble_influence, midpoint_response
+    public :: assemble_influence, pair_at_midpoint
     public :: row_traction, row_displacement, row_identity
     public :: image_transform, image_transforms, image_of, kernel_with_images
     public :: kernel_function, select_kernel
@@ -172,11 +181,17 @@ contains
     !> Influence of element j (and its images) on the midpoint of element i, resolved in
     !> i's s, n frame.
     pure function pair_at_midpoint(kernel, elements, i, j, images, shear_modulus, nu) result(p)
+        !> The kernel of the model (from select_kernel)
         procedure(kernel_function) :: kernel
+        !> Elements with geometry computed
         type(element_set), intent(in) :: elements
+        !> Receiver and source element
         integer, intent(in) :: i, j
+        !> Image transforms from image_transforms (empty without symmetry)
         type(image_transform), intent(in) :: images(:)
+        !> Shear modulus [stress unit] and Poisson's ratio [-]
         real(wp), intent(in) :: shear_modulus, nu
+        !> Tractions and negative-face displacements per unit Ds and Dn of j
         type(pair_influence) :: p
         type(dd_kernel) :: k
         real(wp) :: c, s
@@ -193,7 +208,8 @@ contains
 
     !> Fill the 2n x 2n influence matrix; each row is a traction, displacement or identity
     !> row.
-    subroutine assemble_influence(elements, shear_modulus, nu, shear_row, normal_row, matrix)
+    subroutine assemble_influence(elements, shear_modulus, nu, shear_row, normal_row, matrix, &
+                                  general)
         !> Elements with geometry computed
         type(element_set), intent(in) :: elements
         !> Shear modulus [stress unit] and Poisson's ratio [-]
@@ -201,12 +217,22 @@ contains
         !> Kind of the shear row and of the normal row of each element, shape (n)
         integer, intent(in) :: shear_row(:), normal_row(:)
         !> Influence matrix, shape (2n, 2n)
-        real(wp), intent(out) :: matrix(:, :)
+        real(wp), contiguous, intent(out) :: matrix(:, :)
+        !> Take the general path even in the full plane (tests; default false)
+        logical, intent(in), optional :: general
         procedure(kernel_function), pointer :: kernel
+        logical :: use_general
 
-        call select_kernel(elements, kernel)
-        call assemble_with(kernel, elements, image_transforms(elements%symmetry), shear_modulus, &
-                           nu, shear_row, normal_row, matrix)
+        use_general = elements%domain == domain_half_plane
+        if (present(general)) use_general = use_general .or. general
+        if (use_general) then
+            call select_kernel(elements, kernel)
+            call assemble_with(kernel, elements, image_transforms(elements%symmetry), &
+                               shear_modulus, nu, shear_row, normal_row, matrix)
+        else
+            call assemble_full_plane(elements, image_transforms(elements%symmetry), &
+                                     shear_modulus, nu, shear_row, normal_row, matrix)
+        end if
     end subroutine assemble_influence
 
     !> assemble_influence with the kernel and the image transforms given.
@@ -228,88 +254,142 @@ contains
         do j = 1, n
             do i = 1, n
                 p = pair_at_midpoint(kernel, elements, i, j, images, shear_modulus, nu)
-                select case (shear_row(i))
-                case (row_traction)
-                    matrix(i, j) = p%ts(1)
-                    matrix(i, n + j) = p%ts(2)
-                case (row_displacement)
-                    matrix(i, j) = p%us(1)
-                    matrix(i, n + j) = p%us(2)
-                case default
-                    matrix(i, j) = merge(1.0_wp, 0.0_wp, i == j)
-                    matrix(i, n + j) = 0.0_wp
-                end select
-                select case (normal_row(i))
-                case (row_traction)
-                    matrix(n + i, j) = p%tn(1)
-                    matrix(n + i, n + j) = p%tn(2)
-                case (row_displacement)
-                    matrix(n + i, j) = p%un(1)
-                    matrix(n + i, n + j) = p%un(2)
-                case default
-                    matrix(n + i, j) = 0.0_wp
-                    matrix(n + i, n + j) = merge(1.0_wp, 0.0_wp, i == j)
-                end select
+                call set_entries(matrix, n, i, j, shear_row(i), normal_row(i), p)
             end do
         end do
         !$omp end parallel do
     end subroutine assemble_with
 
-    !> Induced tractions and negative-face displacements at every element midpoint.
-    subroutine midpoint_response(elements, shear_modulus, nu, ds, dn, shear_traction, &
-                                 normal_traction, us_minus, un_minus)
-        !> Elements with geometry computed
-        type(element_set), intent(in) :: elements
-        !> Shear modulus [stress unit] and Poisson's ratio [-]
-        real(wp), intent(in) :: shear_modulus, nu
-        !> Displacement discontinuities [length unit], shape (n)
-        real(wp), intent(in) :: ds(:), dn(:)
-        !> Induced shear and normal traction [stress unit], shape (n)
-        real(wp), intent(out) :: shear_traction(:), normal_traction(:)
-        !> Negative-face displacement along s and n [length unit], shape (n)
-        real(wp), intent(out) :: us_minus(:), un_minus(:)
-        procedure(kernel_function), pointer :: kernel
+    !> The entries of rows i and n + i in columns j and n + j for the rows' kinds.
+    pure subroutine set_entries(matrix, n, i, j, shear_row, normal_row, p)
+        real(wp), intent(inout) :: matrix(:, :)
+        integer, intent(in) :: n, i, j, shear_row, normal_row
+        type(pair_influence), intent(in) :: p
 
-        call select_kernel(elements, kernel)
-        call response_with(kernel, elements, image_transforms(elements%symmetry), shear_modulus, &
-                           nu, ds, dn, shear_traction, normal_traction, us_minus, un_minus)
-    end subroutine midpoint_response
+        select case (shear_row)
+        case (row_traction)
+            matrix(i, j) = p%ts(1)
+            matrix(i, n + j) = p%ts(2)
+        case (row_displacement)
+            matrix(i, j) = p%us(1)
+            matrix(i, n + j) = p%us(2)
+        case default
+            matrix(i, j) = merge(1.0_wp, 0.0_wp, i == j)
+            matrix(i, n + j) = 0.0_wp
+        end select
+        select case (normal_row)
+        case (row_traction)
+            matrix(n + i, j) = p%tn(1)
+            matrix(n + i, n + j) = p%tn(2)
+        case (row_displacement)
+            matrix(n + i, j) = p%un(1)
+            matrix(n + i, n + j) = p%un(2)
+        case default
+            matrix(n + i, j) = 0.0_wp
+            matrix(n + i, n + j) = merge(1.0_wp, 0.0_wp, i == j)
+        end select
+    end subroutine set_entries
 
-    !> midpoint_response with the kernel and the image transforms given.
-    subroutine response_with(kernel, elements, images, shear_modulus, nu, ds, dn, &
-                             shear_traction, normal_traction, us_minus, un_minus)
-        procedure(kernel_function) :: kernel
+    !> The full-plane path: traction rows from traction_column, one column pair (j, n + j)
+    !> per iteration (each thread owns whole columns), the other rows from the general
+    !> kernel.
+    subroutine assemble_full_plane(elements, images, shear_modulus, nu, shear_row, normal_row, &
+                                   matrix)
         type(element_set), intent(in) :: elements
         type(image_transform), intent(in) :: images(:)
         real(wp), intent(in) :: shear_modulus, nu
-        real(wp), intent(in) :: ds(:), dn(:)
-        real(wp), intent(out) :: shear_traction(:), normal_traction(:)
-        real(wp), intent(out) :: us_minus(:), un_minus(:)
-        type(pair_influence) :: p
-        real(wp) :: ts, tn, us, un
-        integer :: i, j
+        integer, intent(in) :: shear_row(:), normal_row(:)
+        real(wp), contiguous, intent(out) :: matrix(:, :)
+        integer, allocatable :: other(:)
+        real(wp) :: xm, ym, cosb, sinb
+        integer :: i, j, k, n, t
 
-        !$omp parallel do default(none) schedule(static) private(i, j, p, ts, tn, us, un) &
-        !$omp shared(elements, shear_modulus, nu, ds, dn, shear_traction, normal_traction, &
-        !$omp        us_minus, un_minus, images)
-        do i = 1, elements%n
-            ts = 0.0_wp
-            tn = 0.0_wp
-            us = 0.0_wp
-            un = 0.0_wp
-            do j = 1, elements%n
-                p = pair_at_midpoint(kernel, elements, i, j, images, shear_modulus, nu)
-                ts = ts + p%ts(1) * ds(j) + p%ts(2) * dn(j)
-                tn = tn + p%tn(1) * ds(j) + p%tn(2) * dn(j)
-                us = us + p%us(1) * ds(j) + p%us(2) * dn(j)
-                un = un + p%un(1) * ds(j) + p%un(2) * dn(j)
+        n = elements%n
+        other = pack([(i, i = 1, n)], shear_row /= row_traction .or. normal_row /= row_traction)
+        !$omp parallel do default(none) schedule(static) private(i, j, k, t, xm, ym, cosb, sinb) &
+        !$omp shared(elements, shear_modulus, nu, shear_row, normal_row, matrix, n, images, other)
+        do j = 1, n
+            matrix(:, j) = 0.0_wp
+            matrix(:, n + j) = 0.0_wp
+            call traction_column(elements%x_mid(j), elements%y_mid(j), elements%half_length(j), &
+                elements%cos_beta(j), elements%sin_beta(j), 1.0_wp, elements%x_mid, &
+                elements%y_mid, elements%cos_beta, elements%sin_beta, shear_modulus, nu, &
+                matrix(1:n, j), matrix(n + 1:, j), matrix(1:n, n + j), matrix(n + 1:, n + j))
+            do t = 1, size(images)
+                call image_of(elements, j, images(t), xm, ym, cosb, sinb)
+                call traction_column(xm, ym, elements%half_length(j), cosb, sinb, &
+                    images(t)%sign_s, elements%x_mid, elements%y_mid, elements%cos_beta, &
+                    elements%sin_beta, shear_modulus, nu, matrix(1:n, j), matrix(n + 1:, j), &
+                    matrix(1:n, n + j), matrix(n + 1:, n + j))
             end do
-            shear_traction(i) = ts
-            normal_traction(i) = tn
-            us_minus(i) = us
-            un_minus(i) = un
+            do k = 1, size(other)
+                i = other(k)
+                call set_entries(matrix, n, i, j, shear_row(i), normal_row(i), &
+                    pair_at_midpoint(dd_kernel_global, elements, i, j, images, shear_modulus, &
+                                     nu))
+            end do
         end do
         !$omp end parallel do
-    end subroutine response_with
+    end subroutine assemble_full_plane
+
+    !> Add the full-plane tractions that unit Ds (sign_s times it) and unit Dn of one
+    !> source element cause at the receivers' midpoints, resolved on each receiver's plane:
+    !> the stress part of Crouch & Starfield's kernel (F4..F7) in the source's frame and
+    !> the traction on the plane at the relative angle. No receiver may be at a source end.
+    pure subroutine traction_column(xm, ym, a, cosb, sinb, sign_s, x, y, cosr, sinr, &
+                                    shear_modulus, nu, ts_s, tn_s, ts_n, tn_n)
+        !> Source midpoint, half-length [length unit], direction cosines, factor on its Ds
+        real(wp), intent(in) :: xm, ym, a, cosb, sinb, sign_s
+        !> Receiver midpoints [length unit] and direction cosines, shape (n)
+        real(wp), contiguous, intent(in) :: x(:), y(:), cosr(:), sinr(:)
+        !> Shear modulus [stress unit] and Poisson's ratio [-]
+        real(wp), intent(in) :: shear_modulus, nu
+        !> Shear and normal traction per unit Ds and per unit Dn, added to, shape (n)
+        !> [stress unit / length unit]
+        real(wp), contiguous, intent(inout) :: ts_s(:), tn_s(:), ts_n(:), tn_n(:)
+        real(wp) :: con, g2, dx, dy, xl, yl, xa, xb, r1, r2, inv, i1, i2, f4, f5, f6, f7
+        real(wp) :: ct, st, cc, ss, cs, sxx, syy, sxy
+        integer :: i
+
+        con = 1.0_wp / (4.0_wp * pi * (1.0_wp - nu))
+        g2 = 2.0_wp * shear_modulus
+        !$omp simd private(dx, dy, xl, yl, xa, xb, r1, r2, inv, i1, i2, f4, f5, f6, f7, ct, st, &
+        !$omp              cc, ss, cs, sxx, syy, sxy)
+        do i = 1, size(x)
+            dx = x(i) - xm
+            dy = y(i) - ym
+            xl = dx * cosb + dy * sinb
+            yl = -dx * sinb + dy * cosb
+            xa = xl - a
+            xb = xl + a
+            r1 = xa**2 + yl**2
+            r2 = xb**2 + yl**2
+            inv = 1.0_wp / (r1 * r2)
+            i1 = r2 * inv
+            i2 = r1 * inv
+            f4 = con * (yl * i1 - yl * i2)
+            f5 = con * (xa * i1 - xb * i2)
+            f6 = con * ((xa**2 - yl**2) * i1**2 - (xb**2 - yl**2) * i2**2)
+            f7 = 2.0_wp * con * yl * (xa * i1**2 - xb * i2**2)
+            ! The receiver's direction in the source's frame.
+            ct = cosr(i) * cosb + sinr(i) * sinb
+            st = sinr(i) * cosb - cosr(i) * sinb
+            cc = ct**2
+            ss = st**2
+            cs = st * ct
+            ! Unit Ds (C&S eq. 5.2.5)
+            sxx = g2 * (2.0_wp * f4 + yl * f6)
+            syy = g2 * (-yl * f6)
+            sxy = g2 * (-f5 + yl * f7)
+            ts_s(i) = ts_s(i) + sign_s * (-(sxx - syy) * cs + sxy * (cc - ss))
+            tn_s(i) = tn_s(i) + sign_s * (sxx * ss - 2.0_wp * sxy * cs + syy * cc)
+            ! Unit Dn
+            sxx = g2 * (-f5 + yl * f7)
+            syy = g2 * (-f5 - yl * f7)
+            sxy = g2 * (-yl * f6)
+            ts_n(i) = ts_n(i) + (-(sxx - syy) * cs + sxy * (cc - ss))
+            tn_n(i) = tn_n(i) + (sxx * ss - 2.0_wp * sxy * cs + syy * cc)
+        end do
+    end subroutine traction_column
 
 end module ddc_influence_assembly

@@ -10,6 +10,7 @@ module ddc_mesh_checks
     use ddc_error, only: error_type
     use ddc_model_types, only: element_set, fracture_type, symmetry_x, symmetry_y, symmetry_both
     use ddc_text, only: add_message, messages_error, itoa, rtoa
+    use ddc_sorting, only: sorted_order
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     implicit none
     private
@@ -267,45 +268,5 @@ contains
             kind = pair_cross
         end if
     end function classify_pair
-
-    !> Indices that sort keys in ascending order (heap sort).
-    pure function sorted_order(keys) result(order)
-        real(wp), intent(in) :: keys(:)
-        integer :: order(size(keys))
-        integer :: n, i, last, tmp
-
-        n = size(keys)
-        order = [(i, i = 1, n)]
-        do i = n / 2, 1, -1
-            call sift_down(i, n)
-        end do
-        do last = n, 2, -1
-            tmp = order(1)
-            order(1) = order(last)
-            order(last) = tmp
-            call sift_down(1, last - 1)
-        end do
-
-    contains
-
-        pure subroutine sift_down(start, end)
-            integer, intent(in) :: start, end
-            integer :: root, child, swap
-
-            root = start
-            do while (2 * root <= end)
-                child = 2 * root
-                if (child < end) then
-                    if (keys(order(child + 1)) > keys(order(child))) child = child + 1
-                end if
-                if (keys(order(child)) <= keys(order(root))) return
-                swap = order(root)
-                order(root) = order(child)
-                order(child) = swap
-                root = child
-            end do
-        end subroutine sift_down
-
-    end function sorted_order
 
 end module ddc_mesh_checks

@@ -1,42 +1,26 @@
 !> Displacement and stress at observation points: remote stress plus every element's part.
+!>
+!> In the full plane every point is one fused, vectorized sum over the elements and their
+!> symmetry images (ddc_influence_superposition: geometry and DDs precomputed, one pass for
+!> the point's flag, one for its values); in the half-plane (and for tests) the general
+!> kernel is summed pair by pair. Both paths flag points the same way (point_flag) and give
+!> the same values within round-off (suite `fields`).
 module ddc_post_fields
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use ddc_kinds, only: wp
-    use ddc_model_types, only: element_set
-    use ddc_model_results, only: field_result, point_clear, point_near, point_on_element
+    use ddc_model_types, only: element_set, domain_half_plane
+    use ddc_model_results, only: field_result, point_clear, point_on_element
     use ddc_influence_kernel, only: dd_kernel, face_positive
     use ddc_influence_assembly, only: image_transform, image_transforms, image_of, &
         kernel_with_images, kernel_function, select_kernel
+    use ddc_influence_superposition, only: source_table, build_sources, point_flag, flag_at, &
+        superpose
     implicit none
     private
 
     public :: evaluate_field
 
-    !> A point closer to an element's line than this fraction of its half-length, within
-    !> its extent, is on the element (the field is discontinuous or singular there).
-    real(wp), parameter :: on_element_tolerance = 1.0e-10_wp
-
 contains
-
-    !> Where a point lies relative to one element (midpoint xm, ym, half-length a, direction
-    !> cosb, sinb): clear, near (within one element length of its centre, where TWODD skips
-    !> points) or on it (including its ends).
-    pure function point_flag(x, y, xm, ym, a, cosb, sinb) result(flag)
-        real(wp), intent(in) :: x, y, xm, ym, a, cosb, sinb
-        integer :: flag
-        real(wp) :: xl, yl
-
-        xl = (x - xm) * cosb + (y - ym) * sinb
-        yl = -(x - xm) * sinb + (y - ym) * cosb
-        if (abs(yl) <= on_element_tolerance * a .and. &
-            abs(xl) <= a * (1.0_wp + on_element_tolerance)) then
-            flag = point_on_element
-        else if (xl**2 + yl**2 < (2.0_wp * a)**2) then
-            flag = point_near
-        else
-            flag = point_clear
-        end if
-    end function point_flag
 
     !> The worst flag of a point over element j and its images.
     pure function element_flag(x, y, elements, j, images) result(flag)
@@ -61,7 +45,7 @@ contains
     !> for the flags. In a half-plane (elements%domain) a point on the free surface y = 0 is
     !> an ordinary point unless it lies on an element end.
     subroutine evaluate_field(elements, shear_modulus, nu, remote, ds, dn, x, y, field, &
-                              gradient)
+                              gradient, general)
         !> Elements with geometry computed
         type(element_set), intent(in) :: elements
         !> Shear modulus [stress unit] and Poisson's ratio [-]
@@ -76,14 +60,61 @@ contains
         type(field_result), intent(out) :: field
         !> d(sxx, syy, sxy)/dy of the remote stress [stress unit / length unit]; 0 if absent
         real(wp), intent(in), optional :: gradient(3)
+        !> Sum the general kernel pair by pair even in the full plane (tests; default false)
+        logical, intent(in), optional :: general
         procedure(kernel_function), pointer :: kernel
         real(wp) :: g(3)
+        logical :: use_general
 
         g = 0.0_wp
         if (present(gradient)) g = gradient
-        call select_kernel(elements, kernel)
-        call field_with(kernel, elements, shear_modulus, nu, remote, g, ds, dn, x, y, field)
+        use_general = elements%domain == domain_half_plane
+        if (present(general)) use_general = use_general .or. general
+        if (use_general) then
+            call select_kernel(elements, kernel)
+            call field_with(kernel, elements, shear_modulus, nu, remote, g, ds, dn, x, y, field)
+        else
+            call field_full_plane(elements, shear_modulus, nu, remote, g, ds, dn, x, y, field)
+        end if
     end subroutine evaluate_field
+
+    !> The full-plane path: per point, the worst flag over every source, then (off the
+    !> elements) the fused sum of displacement and stress.
+    subroutine field_full_plane(elements, shear_modulus, nu, remote, gradient, ds, dn, x, y, &
+                                field)
+        type(element_set), intent(in) :: elements
+        real(wp), intent(in) :: shear_modulus, nu, remote(3), gradient(3)
+        real(wp), intent(in) :: ds(:), dn(:)
+        real(wp), intent(in) :: x(:), y(:)
+        type(field_result), intent(out) :: field
+        type(source_table) :: src
+        real(wp) :: u(2), stress(3), nan
+        integer :: ip, np
+
+        np = size(x)
+        call build_sources(elements, image_transforms(elements%symmetry), ds, dn, src)
+        allocate (field%ux(np), field%uy(np), field%sxx(np), field%syy(np), field%sxy(np), &
+                  field%flag(np))
+        nan = ieee_value(1.0_wp, ieee_quiet_nan)
+        !$omp parallel do default(none) schedule(dynamic, 16) private(ip, u, stress) &
+        !$omp shared(src, shear_modulus, nu, remote, gradient, x, y, field, np, nan)
+        do ip = 1, np
+            field%flag(ip) = flag_at(src, x(ip), y(ip))
+            if (field%flag(ip) == point_on_element) then
+                u = nan
+                stress = nan
+            else
+                call superpose(src, shear_modulus, nu, x(ip), y(ip), 0, u, stress)
+                stress = stress + remote + gradient * y(ip)
+            end if
+            field%ux(ip) = u(1)
+            field%uy(ip) = u(2)
+            field%sxx(ip) = stress(1)
+            field%syy(ip) = stress(2)
+            field%sxy(ip) = stress(3)
+        end do
+        !$omp end parallel do
+    end subroutine field_full_plane
 
     !> evaluate_field with the kernel and the gradient given.
     subroutine field_with(kernel, elements, shear_modulus, nu, remote, gradient, ds, dn, x, y, &

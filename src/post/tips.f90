@@ -4,10 +4,11 @@ module ddc_post_tips
     use ddc_model_types, only: element_set, symmetry_x, symmetry_y, symmetry_both, &
         domain_half_plane
     use ddc_model_results, only: tip_set
+    use ddc_sorting, only: sorted_order
     implicit none
     private
 
-    public :: find_tips
+    public :: find_tips, stress_intensity
 
     !> End points closer than this fraction of the shorter element's length are shared.
     real(wp), parameter :: shared_end_tolerance = 1.0e-8_wp
@@ -15,13 +16,35 @@ module ddc_post_tips
     !> the tip graded
     real(wp), parameter :: graded_tolerance = 1.0e-2_wp
 
+    !> The ends of every element sorted by x, for finding the elements at a point.
+    type :: end_index
+        !> x of the ends in ascending order, shape (2n) [length unit]
+        real(wp), allocatable :: x(:)
+        !> End number of each: k <= n is the begin of element k, else the end of k - n,
+        !> shape (2n)
+        integer, allocatable :: end(:)
+    end type end_index
+
 contains
+
+    !> The sorted ends of the elements.
+    pure function index_ends(elements) result(index)
+        type(element_set), intent(in) :: elements
+        type(end_index) :: index
+        real(wp) :: x(2 * elements%n)
+
+        x(1:elements%n) = elements%x_begin
+        x(elements%n + 1:) = elements%x_end
+        index%end = sorted_order(x)
+        index%x = x(index%end)
+    end function index_ends
 
     !> True when end `side` (1 begin, 2 end) of element i coincides with an end of another
     !> element, lies on a symmetry line (where it meets its own image) or, in a half-plane,
     !> on the free surface y = 0 (a crack mouth, SPEC-EARTH 1).
-    pure logical function end_is_shared(elements, i, side)
+    pure logical function end_is_shared(elements, index, i, side)
         type(element_set), intent(in) :: elements
+        type(end_index), intent(in) :: index
         integer, intent(in) :: i, side
         real(wp) :: x, y, tol
 
@@ -41,30 +64,60 @@ contains
                 abs(y - sym%ysym) <= tol) return
         end associate
         if (elements%domain == domain_half_plane .and. abs(y) <= tol) return
-        end_is_shared = element_at_end(elements, i, side) > 0
+        end_is_shared = element_at_end(elements, index, i, side) > 0
     end function end_is_shared
 
-    !> Another element with an end at end `side` (1 begin, 2 end) of element i; 0 if none.
-    pure integer function element_at_end(elements, i, side)
+    !> The lowest-numbered other element with an end at end `side` (1 begin, 2 end) of
+    !> element i; 0 if none. Only the ends within the tolerance in x are looked at.
+    pure integer function element_at_end(elements, index, i, side)
         type(element_set), intent(in) :: elements
+        type(end_index), intent(in) :: index
         integer, intent(in) :: i, side
-        real(wp) :: x, y, tol
-        integer :: j
+        real(wp) :: x, y, xe, ye, tol, window
+        integer :: k, e, j, n
 
+        n = elements%n
         x = merge(elements%x_begin(i), elements%x_end(i), side == 1)
         y = merge(elements%y_begin(i), elements%y_end(i), side == 1)
-        do j = 1, elements%n
+        ! Every pair tolerance is at most half this window (it takes the shorter element).
+        window = shared_end_tolerance * 4.0_wp * elements%half_length(i)
+        element_at_end = 0
+        do k = first_at_least(index%x, x - window), size(index%x)
+            if (index%x(k) > x + window) exit
+            e = index%end(k)
+            j = modulo(e - 1, n) + 1
             if (j == i) cycle
+            if (element_at_end > 0 .and. j >= element_at_end) cycle
+            if (e <= n) then
+                xe = elements%x_begin(j)
+                ye = elements%y_begin(j)
+            else
+                xe = elements%x_end(j)
+                ye = elements%y_end(j)
+            end if
             tol = shared_end_tolerance * 2.0_wp * &
                   min(elements%half_length(i), elements%half_length(j))
-            if (hypot(elements%x_begin(j) - x, elements%y_begin(j) - y) <= tol .or. &
-                hypot(elements%x_end(j) - x, elements%y_end(j) - y) <= tol) then
-                element_at_end = j
-                return
+            if (hypot(xe - x, ye - y) <= tol) element_at_end = j
+        end do
+    end function element_at_end
+
+    !> The first position k of ascending keys with keys(k) >= value (size + 1 if none).
+    pure integer function first_at_least(keys, value)
+        real(wp), intent(in) :: keys(:), value
+        integer :: lo, hi, mid
+
+        lo = 1
+        hi = size(keys) + 1
+        do while (lo < hi)
+            mid = (lo + hi) / 2
+            if (keys(mid) < value) then
+                lo = mid + 1
+            else
+                hi = mid
             end if
         end do
-        element_at_end = 0
-    end function element_at_end
+        first_at_least = lo
+    end function first_at_least
 
     !> Tips (element ends shared with no other element) with K_I and K_II from the tip
     !> element's DDs: K = -G D / (2 (1 - nu) sqrt(h)), h the tip element's half-length.
@@ -78,13 +131,14 @@ contains
         !> The tips found, in element order (begin before end)
         type(tip_set), intent(out) :: tips
         logical :: is_tip(2, elements%n)
+        type(end_index) :: index
         integer :: i, side, k, neighbour
-        real(wp) :: factor
 
-        !$omp parallel do default(none) private(i, side) shared(elements, is_tip)
+        index = index_ends(elements)
+        !$omp parallel do default(none) private(i, side) shared(elements, index, is_tip)
         do i = 1, elements%n
             do side = 1, 2
-                is_tip(side, i) = .not. end_is_shared(elements, i, side)
+                is_tip(side, i) = .not. end_is_shared(elements, index, i, side)
             end do
         end do
         !$omp end parallel do
@@ -106,12 +160,8 @@ contains
                 end if
                 tips%fracture_id(k) = elements%fracture_id(i)
                 tips%element(k) = i
-                factor = -shear_modulus / (2.0_wp * (1.0_wp - nu) * sqrt(elements%half_length(i)))
-                ! + 0 turns the -0 of an unloaded mode into 0 for printing.
-                tips%k1(k) = factor * dn(i) + 0.0_wp
-                tips%k2(k) = factor * ds(i) + 0.0_wp
                 ! The neighbour shares the tip element's other end.
-                neighbour = element_at_end(elements, i, 3 - side)
+                neighbour = element_at_end(elements, index, i, 3 - side)
                 tips%graded(k) = 0
                 if (neighbour > 0) then
                     if (abs(elements%half_length(neighbour) - elements%half_length(i)) > &
@@ -119,6 +169,33 @@ contains
                 end if
             end do
         end do
+        call stress_intensity(elements, shear_modulus, nu, tips%element, ds, dn, tips%k1, &
+                              tips%k2)
     end subroutine find_tips
+
+    !> K_I and K_II of tips from their elements' DDs: K = -G D / (2 (1 - nu) sqrt(h)), h the
+    !> tip element's half-length.
+    pure subroutine stress_intensity(elements, shear_modulus, nu, element, ds, dn, k1, k2)
+        !> Elements with geometry computed
+        type(element_set), intent(in) :: elements
+        !> Shear modulus [stress unit] and Poisson's ratio [-]
+        real(wp), intent(in) :: shear_modulus, nu
+        !> Tip element of each tip, shape (tips)
+        integer, intent(in) :: element(:)
+        !> Displacement discontinuities of every element [length unit], shape (n)
+        real(wp), intent(in) :: ds(:), dn(:)
+        !> Stress intensity factors [stress unit * length unit**0.5], shape (tips)
+        real(wp), intent(out) :: k1(:), k2(:)
+        real(wp) :: factor
+        integer :: k, i
+
+        do k = 1, size(element)
+            i = element(k)
+            factor = -shear_modulus / (2.0_wp * (1.0_wp - nu) * sqrt(elements%half_length(i)))
+            ! + 0 turns the -0 of an unloaded mode into 0 for printing.
+            k1(k) = factor * dn(i) + 0.0_wp
+            k2(k) = factor * ds(i) + 0.0_wp
+        end do
+    end subroutine stress_intensity
 
 end module ddc_post_tips

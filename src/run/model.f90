@@ -6,16 +6,16 @@ module ddc_run_model
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type, element_set, condition_contact, domain_half_plane
     use ddc_model_results, only: model_results, state_free
-    use ddc_influence_assembly, only: midpoint_response
+    use ddc_influence_response, only: midpoint_response
     use ddc_model_loads, only: resolve_remote_stress, total_pressure, shear_modulus_of
-    use ddc_solve_elastic, only: solve_elastic
+    use ddc_solve_elastic, only: solve_elastic, row_kinds
     use ddc_solve_frictional, only: solve_frictional
     use ddc_post_tips, only: find_tips
     use ddc_post_fields, only: evaluate_field
     implicit none
     private
 
-    public :: run_model
+    public :: run_model, finish_model
 
 contains
 
@@ -35,10 +35,10 @@ contains
         type(model_results), intent(out) :: results
         !> Set when the model has no solution or the solver failed
         type(error_type), allocatable, intent(out) :: error
-        real(wp), allocatable :: remote_shear(:), remote_normal(:)
+        real(wp), allocatable :: remote_shear(:), remote_normal(:), matrix(:, :)
         type(element_set) :: loaded
-        real(wp) :: g, nu, t_start, t0
-        integer :: n, i
+        real(wp) :: g, nu, t_start
+        integer :: n
 
         t_start = wall_seconds()
         ! The input readers check this too; a sweep may change the remote stress after them.
@@ -51,33 +51,62 @@ contains
         n = model%elements%n
         g = shear_modulus_of(model)
         nu = model%poissons_ratio
-        results%solver%threads = 1
-        !$ results%solver%threads = omp_get_max_threads()
 
         allocate (remote_shear(n), remote_normal(n))
         call resolve_remote_stress(model%elements, model%sxx, model%syy, model%sxy, &
                                    remote_shear, remote_normal, model%stress_gradient)
         associate (e => results%elements, rec => results%solver)
-            allocate (e%ds(n), e%dn(n), e%shear_traction(n), e%normal_traction(n), &
-                      e%us_minus(n), e%un_minus(n), e%us_plus(n), e%un_plus(n), e%state(n))
+            allocate (e%ds(n), e%dn(n), e%state(n))
             if (any(model%elements%condition == condition_contact)) then
                 ! The contact elements see their pressure plus the pore fluid.
                 loaded = model%elements
                 loaded%pressure = total_pressure(model%elements, model%pore_fluid)
                 call solve_frictional(loaded, g, nu, remote_shear, remote_normal, model%solver, &
-                                      e%ds, e%dn, e%state, rec, error)
+                                      e%ds, e%dn, e%state, rec, matrix, error)
             else
                 rec%method = 'lu'
                 call solve_elastic(model%elements, g, nu, remote_shear, remote_normal, e%ds, &
                                    e%dn, rec%equilibrium_residual, rec%seconds_assembly, &
-                                   rec%seconds_factorization, error)
+                                   rec%seconds_factorization, matrix, error)
                 e%state = state_free
             end if
             if (allocated(error)) return
+        end associate
+        call finish_model(model, matrix, remote_shear, remote_normal, results)
+        results%solver%seconds_total = wall_seconds() - t_start
+    end subroutine run_model
 
-            t0 = wall_seconds()
-            call midpoint_response(model%elements, g, nu, e%ds, e%dn, e%shear_traction, &
-                                   e%normal_traction, e%us_minus, e%un_minus)
+    !> The results that follow from the DDs of a solved model (results%elements%ds, dn):
+    !> tractions and face displacements at the midpoints (ddc_influence_response), tips
+    !> with K and the fields; the time goes to results%solver%seconds_fields, and the
+    !> number of threads is recorded.
+    subroutine finish_model(model, matrix, remote_shear, remote_normal, results)
+        !> The model at the load the DDs were solved for
+        type(model_type), intent(in) :: model
+        !> The influence matrix of the solve, rows as row_kinds of the elements' conditions,
+        !> shape (2n, 2n)
+        real(wp), intent(in) :: matrix(:, :)
+        !> Remote stress resolved on each element [stress unit], shape (n)
+        real(wp), intent(in) :: remote_shear(:), remote_normal(:)
+        !> ds and dn set on entry; tractions, face displacements, tips and fields added
+        type(model_results), intent(inout) :: results
+        integer, allocatable :: shear_row(:), normal_row(:)
+        real(wp) :: g, nu, t0
+        integer :: n, i
+
+        t0 = wall_seconds()
+        n = model%elements%n
+        g = shear_modulus_of(model)
+        nu = model%poissons_ratio
+        results%solver%threads = 1
+        !$ results%solver%threads = omp_get_max_threads()
+        associate (e => results%elements)
+            allocate (e%shear_traction(n), e%normal_traction(n), e%us_minus(n), e%un_minus(n), &
+                      shear_row(n), normal_row(n))
+            call row_kinds(model%elements%condition, shear_row, normal_row)
+            call midpoint_response(model%elements, g, nu, matrix, shear_row, normal_row, e%ds, &
+                                   e%dn, e%shear_traction, e%normal_traction, e%us_minus, &
+                                   e%un_minus)
             e%shear_traction = e%shear_traction + remote_shear
             e%normal_traction = e%normal_traction + remote_normal
             ! ds = us(-) - us(+), dn = un(-) - un(+)
@@ -96,9 +125,8 @@ contains
                                     model%observations(i)%y, results%fields(i), &
                                     model%stress_gradient)
             end do
-            rec%seconds_fields = wall_seconds() - t0
-            rec%seconds_total = wall_seconds() - t_start
         end associate
-    end subroutine run_model
+        results%solver%seconds_fields = wall_seconds() - t0
+    end subroutine finish_model
 
 end module ddc_run_model

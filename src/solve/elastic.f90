@@ -63,7 +63,8 @@ contains
 
     !> Solve for Ds, Dn of elements whose conditions are all TWODD-style (no contact).
     subroutine solve_elastic(elements, shear_modulus, nu, remote_shear, remote_normal, &
-                             ds, dn, residual, seconds_assembly, seconds_factorization, error)
+                             ds, dn, residual, seconds_assembly, seconds_factorization, matrix, &
+                             error)
         !> Elements with geometry computed
         type(element_set), intent(in) :: elements
         !> Shear modulus [stress unit] and Poisson's ratio [-]
@@ -76,9 +77,12 @@ contains
         real(wp), intent(out) :: residual
         !> Wall time of assembly and factorization + solve [s]
         real(wp), intent(out) :: seconds_assembly, seconds_factorization
+        !> The influence matrix assembled with the rows of row_kinds (unfactored), shape
+        !> (2n, 2n)
+        real(wp), allocatable, intent(out) :: matrix(:, :)
         !> Set when the system is singular
         type(error_type), allocatable, intent(out) :: error
-        real(wp), allocatable :: matrix(:, :), factors(:, :), rhs(:, :), given(:)
+        real(wp), allocatable :: factors(:, :), rhs(:, :), given(:)
         integer, allocatable :: shear_row(:), normal_row(:), ipiv(:)
         type(error_type), allocatable :: ill_conditioned
         integer :: n, i

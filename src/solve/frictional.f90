@@ -28,6 +28,7 @@ module ddc_solve_frictional
 
     public :: solve_frictional
     public :: condensed_contact, condense_contact, contact_load, complete_dds, record_contact
+    public :: release_matrix
 
     !> The contact elements' view of a model with TWODD-style elements condensed out.
     type :: condensed_contact
@@ -55,7 +56,7 @@ contains
 
     !> Solve a model with at least one contact element.
     subroutine solve_frictional(elements, shear_modulus, nu, remote_shear, remote_normal, &
-                                options, ds, dn, state, record, error)
+                                options, ds, dn, state, record, matrix, error)
         !> Elements with geometry computed
         type(element_set), intent(in) :: elements
         !> Shear modulus [stress unit] and Poisson's ratio [-]
@@ -70,6 +71,9 @@ contains
         integer, intent(out) :: state(:)
         !> Method, pivots, certificate, residual and timings are filled in
         type(solver_record), intent(inout) :: record
+        !> The influence matrix of every element, rows as row_kinds (unfactored), shape
+        !> (2n, 2n)
+        real(wp), allocatable, intent(out) :: matrix(:, :)
         !> Set when the model has no solution or the solver failed
         type(error_type), allocatable, intent(out) :: error
         type(condensed_contact) :: sys
@@ -91,7 +95,23 @@ contains
         call record_contact(sys, res, record)
         call complete_dds(sys, elements, remote_shear, remote_normal, res, y_load, ds, dn, &
                           state, record%equilibrium_residual)
+        call release_matrix(sys, matrix)
     end subroutine solve_frictional
+
+    !> Hand over the influence matrix of every element (no copy): the contact block itself
+    !> when every element is a contact element, else the whole system.
+    subroutine release_matrix(sys, matrix)
+        !> The condensed system; its matrix is moved out
+        type(condensed_contact), intent(inout) :: sys
+        !> The influence matrix of every element, shape (2n, 2n)
+        real(wp), allocatable, intent(out) :: matrix(:, :)
+
+        if (sys%nf == 0) then
+            call move_alloc(sys%a, matrix)
+        else
+            call move_alloc(sys%matrix, matrix)
+        end if
+    end subroutine release_matrix
 
     !> Assemble the influence matrix and condense the TWODD-style elements out (timed into
     !> record: assembly and factorization).

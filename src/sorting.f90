@@ -1,0 +1,53 @@
+!> Sorting: the order that puts keys in ascending order (heap sort, O(n log n), no recursion).
+module ddc_sorting
+    use ddc_kinds, only: wp
+    implicit none
+    private
+
+    public :: sorted_order
+
+contains
+
+    !> Indices that sort keys in ascending order (heap sort).
+    pure function sorted_order(keys) result(order)
+        !> The keys, shape (n)
+        real(wp), intent(in) :: keys(:)
+        !> keys(order) is ascending, shape (n)
+        integer :: order(size(keys))
+        integer :: n, i, last, tmp
+
+        n = size(keys)
+        order = [(i, i = 1, n)]
+        do i = n / 2, 1, -1
+            call sift_down(i, n)
+        end do
+        do last = n, 2, -1
+            tmp = order(1)
+            order(1) = order(last)
+            order(last) = tmp
+            call sift_down(1, last - 1)
+        end do
+
+    contains
+
+        pure subroutine sift_down(start, end)
+            integer, intent(in) :: start, end
+            integer :: root, child, swap
+
+            root = start
+            do while (2 * root <= end)
+                child = 2 * root
+                if (child < end) then
+                    if (keys(order(child + 1)) > keys(order(child))) child = child + 1
+                end if
+                if (keys(order(child)) <= keys(order(root))) return
+                swap = order(root)
+                order(root) = order(child)
+                order(child) = swap
+                root = child
+            end do
+        end subroutine sift_down
+
+    end function sorted_order
+
+end module ddc_sorting
