@@ -22,6 +22,7 @@ program ddc2d
     use ddc_app_command_line, only: command_line_options, parse_command_line, usage_text, &
         action_version, action_help, task_number
     use ddc_app_report, only: print_model_summary, print_results_summary
+    use ddc_progress, only: set_progress_handler
     implicit none
 
     interface
@@ -73,6 +74,7 @@ program ddc2d
         call stop_on(error)
     end if
     call print_model_summary(output_unit, model)
+    call set_progress_handler(print_progress)
 
     if (allocated(model%load_path%vertex)) then
         call solve_history(model, results, error)
@@ -93,6 +95,15 @@ program ddc2d
     call finish(exit_success)
 
 contains
+
+    !> One line of progress on standard output, flushed at once.
+    subroutine print_progress(line)
+        !> The line
+        character(len=*), intent(in) :: line
+
+        write (output_unit, '(a)') '  '//line
+        flush (output_unit)
+    end subroutine print_progress
 
     !> Sweeps (SPEC section 6): --list prints the tasks and exits; otherwise the task from
     !> --task or SLURM_ARRAY_TASK_ID replaces the base model, or is skipped (exit 0) when

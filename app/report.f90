@@ -4,7 +4,7 @@ module ddc_app_report
     use ddc_model_types, only: model_type, condition_names, observation_kind_names, &
         symmetry_none, symmetry_names
     use ddc_model_results, only: model_results, state_names
-    use ddc_contact_options, only: lcp_method_names, open_cohesion_names, lcp_lemke
+    use ddc_contact_options, only: lcp_method_names, open_cohesion_names
     implicit none
     private
 
@@ -45,10 +45,9 @@ contains
         write (unit, '(a,a,a,a)') '  solver: lcp_method = ', &
             trim(lcp_method_names(model%solver%lcp_method)), ', open_cohesion = ', &
             trim(open_cohesion_names(model%solver%open_cohesion))
-        if (allocated(model%load_path%steps) .and. model%solver%lcp_method /= lcp_lemke) then
-            write (unit, '(a)') '  (the loading history is solved step by step with '// &
-            "Lemke's method, whatever lcp_method says)"
-        end if
+        if (allocated(model%load_path%steps)) write (unit, '(a,i0,a)') &
+            '  loading history: ', 1 + sum(model%load_path%steps), &
+            ' steps, each solved with lcp_method as a one-shot solve'
         write (unit, '(a)') '  output: '//model%output_file
     end subroutine print_model_summary
 

@@ -3,7 +3,7 @@
 !> certificate of every step, a failing step, and the &load_path reader.
 module test_history
     use ddc_kinds, only: wp
-    use ddc_contact_options, only: lcp_lemke
+    use ddc_contact_options, only: lcp_lemke, lcp_newton
     use ddc_testing, only: test_case, new_test, check, error_type
     use ddc_error, only: exit_solver_failure, exit_bad_input
     use ddc_model_types, only: model_type, condition_contact, condition_traction
@@ -11,7 +11,8 @@ module test_history
     use ddc_run_model, only: run_model
     use ddc_history_solve, only: solve_history
     use ddc_input_namelist, only: read_namelist_model
-    use ddc_test_builders, only: straight_crack
+    use ddc_test_builders, only: straight_crack, polyline_model
+    use ddc_constants, only: pi
     use ddc_contact_lemke, only: solve_lcp_lemke
     implicit none
     private
@@ -35,6 +36,11 @@ contains
                  new_test('reloading_restores_loaded_state_weak_patch', test_reload_patch), &
                  new_test('failing_step_is_named', test_failing_step), &
                  new_test('lemke_warm_start', test_lemke_warm_start), &
+                 new_test('play_operator_newton_equals_lemke', test_play_newton), &
+                 new_test('kinked_pore_pressure_newton_equals_lemke', test_kinked_newton), &
+                 new_test('weak_patch_growth_low_rank_updates', test_patch_updates), &
+                 new_test('newton_failure_falls_back_to_lemke', test_step_fallback), &
+                 new_test('per_step_tractions_and_k', test_step_tractions), &
                  new_test('load_path_input_good', test_input_good), &
                  new_test('load_path_input_bad', test_input_bad)]
     end subroutine collect_history
@@ -343,6 +349,189 @@ contains
             'a load path needs contact elements', 'at least one of sxx'])
         call check_bad(error, 'bad_malformed.nml', [character(len=60) :: '&load_path', 'sxz'])
     end subroutine test_input_bad
+
+    !> Solve a history with Lemke and with Newton: every step solved by the method asked
+    !> (no fallback), the same states at every step, DDs within 1e-10 of the largest.
+    subroutine compare_methods(model, label, lemke, newton, error)
+        type(model_type), intent(in) :: model
+        character(len=*), intent(in) :: label
+        type(model_results), intent(out) :: lemke, newton
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: m
+        real(wp) :: diff
+
+        m = model
+        m%solver%lcp_method = lcp_lemke
+        call solve_history(m, lemke, error)
+        if (allocated(error)) return
+        m = model
+        m%solver%lcp_method = lcp_newton
+        call solve_history(m, newton, error)
+        if (allocated(error)) return
+        call check(error, all(lemke%history%method == 'lemke'), label//': Lemke every step')
+        call check(error, all(newton%history%method == 'newton'), label// &
+                   ': Newton every step, no fallback: '//newton%solver%fallback)
+        call check(error, all(newton%history%state == lemke%history%state), &
+                   label//': the same states at every step')
+        diff = max(dd_difference(reshape(newton%history%ds, [size(newton%history%ds)]), &
+                                 reshape(lemke%history%ds, [size(lemke%history%ds)])), &
+                   dd_difference(reshape(newton%history%dn, [size(newton%history%dn)]), &
+                                 reshape(lemke%history%dn, [size(lemke%history%dn)])))
+        write (*, '(a,es10.3,a,4(i0,a))') '    '//label//': Newton against Lemke ', diff, &
+            ' (factorizations ', newton%solver%factorizations, ', low-rank updates ', &
+            newton%solver%low_rank_updates, ', reuses ', newton%solver%factorization_reuses, &
+            ', pivots ', lemke%solver%pivots, ')'
+        call check(error, diff, 0.0_wp, label//': DDs of every step', abs_tol=tight)
+    end subroutine compare_methods
+
+    !> The play-operator path by Newton equals Lemke's; the Newton method factorizes only
+    !> where the states change (stick to slip, slip to stick, the reversal) and reuses the
+    !> factors at every other step.
+    subroutine test_play_newton(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model
+        type(model_results) :: lemke, newton
+
+        model = straight_fault(200, 0.0_wp)
+        call set_shear_path(model, [0.0_wp, 10.0_wp, -10.0_wp, 10.0_wp], [20, 40, 40])
+        call compare_methods(model, 'play operator', lemke, newton, error)
+        if (allocated(error)) return
+        call check(error, newton%solver%factorizations <= 6, 'a few factorizations')
+        call check(error, newton%solver%factorization_reuses >= 90, &
+                   'the factors of unchanged states reused')
+        call check(error, newton%solver%pivots, 0, 'no Lemke pivot')
+    end subroutine test_play_newton
+
+    !> The kinked fault under pore-pressure cycles (input/kinked_fault_pore_pressure_cycle):
+    !> slip couples to normal stress; Newton equals Lemke at every step.
+    subroutine test_kinked_newton(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model
+        type(model_results) :: lemke, newton
+        real(wp), parameter :: b = 35.0_wp * pi / 180.0_wp
+        real(wp), parameter :: p0(5) = [0.0_wp, 16.0_wp, 0.0_wp, 20.0_wp, 0.0_wp]
+        integer :: i
+
+        model = polyline_model([-1.0_wp, 0.0_wp, cos(b)], [0.0_wp, 0.0_wp, sin(b)], &
+                               [40, 40], condition_contact, 0.0_wp, 0.0_wp, e_modulus, nu)
+        model%elements%mu = 0.6_wp
+        model%sxx = -20.0_wp
+        model%syy = -30.0_wp
+        model%sxy = 10.0_wp
+        allocate (model%load_path%vertex(7, 5))
+        do i = 1, 5
+            model%load_path%vertex(:, i) = [model%sxx, model%syy, model%sxy, 0.0_wp, 0.0_wp, &
+                                            0.0_wp, p0(i)]
+        end do
+        model%load_path%steps = [16, 16, 20, 20]
+        model%load_path%varies = .false.
+        model%load_path%varies(7) = .true.
+        call compare_methods(model, 'kinked fault, pore pressure', lemke, newton, error)
+        if (allocated(error)) return
+        call check(error, count(lemke%history%state == state_slip) > 0 .and. &
+                   count(lemke%history%state == state_stick) > 0, 'stick and slip seen')
+    end subroutine test_kinked_newton
+
+    !> The weak patch loaded slowly: the slip zone grows by a few elements per step, which
+    !> the Newton method follows by low-rank updates of its factors, not new ones; the same
+    !> states and DDs as Lemke.
+    subroutine test_patch_updates(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model
+        type(model_results) :: lemke, newton
+
+        model = weak_patch_fault(200)
+        model%elements%sf = 6.0_wp * max(0.0_wp, min(1.0_wp, (abs(model%elements%x_mid) - &
+                                                              0.2_wp) / 0.6_wp))
+        call set_shear_path(model, [0.0_wp, 9.0_wp], [30])
+        call compare_methods(model, 'graded weak patch', lemke, newton, error)
+        if (allocated(error)) return
+        call check(error, newton%solver%low_rank_updates > 5, 'low-rank updates')
+        call check(error, newton%solver%factorizations < newton%solver%low_rank_updates, &
+                   'fewer new factorizations than updates')
+    end subroutine test_patch_updates
+
+    !> With one Newton iteration allowed, every step whose states change falls back to Lemke
+    !> (recorded per step and in the solver record) and the history is Lemke's.
+    subroutine test_step_fallback(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model
+        type(model_results) :: lemke, mixed
+        integer :: k, fallbacks
+        real(wp) :: diff
+
+        model = straight_fault(100, 0.0_wp)
+        call set_shear_path(model, [0.0_wp, 10.0_wp, -10.0_wp], [10, 20])
+        call solve_history(model, lemke, error)
+        if (allocated(error)) return
+        model = straight_fault(100, 0.0_wp)
+        call set_shear_path(model, [0.0_wp, 10.0_wp, -10.0_wp], [10, 20])
+        model%solver%lcp_method = lcp_newton
+        call solve_history(model, mixed, error, max_iterations=1)
+        if (allocated(error)) return
+        fallbacks = 0
+        do k = 1, size(mixed%history%method)
+            if (mixed%history%method(k) == 'lemke') then
+                fallbacks = fallbacks + 1
+                call check(error, index(mixed%history%fallback(k), &
+                           'no convergence within 1 iterations') > 0, 'reason of the fallback')
+            else
+                call check(error, len_trim(mixed%history%fallback(k)) == 0, 'no reason')
+            end if
+        end do
+        write (*, '(a,i0,a)') '    ', fallbacks, ' steps fell back: '//mixed%solver%fallback
+        call check(error, fallbacks > 0 .and. fallbacks < size(mixed%history%method), &
+                   'some steps fell back to Lemke, not all')
+        call check(error, index(mixed%solver%fallback, 'steps fell back') > 0, &
+                   'the solver record says so')
+        call check(error, all(mixed%history%state == lemke%history%state), 'states')
+        diff = dd_difference(reshape(mixed%history%ds, [size(mixed%history%ds)]), &
+                             reshape(lemke%history%ds, [size(lemke%history%ds)]))
+        call check(error, diff, 0.0_wp, 'DDs as Lemke', abs_tol=tight)
+    end subroutine test_step_fallback
+
+    !> /history tractions and K: the last step's equal /elements and /tips; at every step
+    !> the shear traction of a slipping element is on its friction limit and K follows the
+    !> tip elements' DDs.
+    subroutine test_step_tractions(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model
+        type(model_results) :: r
+        real(wp) :: factor, scale
+        integer :: k, nsteps, tip
+
+        model = straight_fault(100, 0.0_wp)
+        model%solver%lcp_method = lcp_newton
+        call set_shear_path(model, [0.0_wp, 10.0_wp], [10])
+        call solve_history(model, r, error)
+        if (allocated(error)) return
+        associate (h => r%history)
+            nsteps = size(h%ds, 2)
+            call check(error, size(h%shear_traction, 1), 100, 'tractions of every element')
+            call check(error, size(h%k1, 1), r%tips%n, 'K of every tip')
+            call check(error, size(h%k2, 2), nsteps, 'K at every step')
+            scale = maxval(abs(h%shear_traction))
+            call check(error, maxval(abs(h%shear_traction(:, nsteps) - &
+                       r%elements%shear_traction)), 0.0_wp, 'last step = /elements', &
+                       abs_tol=1.0e-12_wp * scale)
+            call check(error, maxval(abs(h%normal_traction(:, nsteps) - &
+                       r%elements%normal_traction)), 0.0_wp, 'last step = /elements', &
+                       abs_tol=1.0e-12_wp * scale)
+            call check(error, maxval(abs(h%k2(:, nsteps) - r%tips%k2)), 0.0_wp, &
+                       'last K = /tips', abs_tol=1.0e-12_wp * maxval(abs(r%tips%k2)))
+            do k = 1, nsteps
+                if (all(h%state(:, k) == state_slip)) call check(error, &
+                    maxval(abs(abs(h%shear_traction(:, k)) - 6.0_wp)), 0.0_wp, &
+                    'slip on the friction limit (mu 10 MPa)', abs_tol=1.0e-9_wp)
+                do tip = 1, r%tips%n
+                    factor = -(e_modulus / (2.0_wp * (1.0_wp + nu))) / (2.0_wp * (1.0_wp - nu) &
+                        * sqrt(model%elements%half_length(r%tips%element(tip))))
+                    call check(error, h%k2(tip, k), factor * h%ds(r%tips%element(tip), k), &
+                               'K_II of a tip', rel_tol=1.0e-14_wp, abs_tol=1.0e-300_wp)
+                end do
+            end do
+        end associate
+    end subroutine test_step_tractions
 
     !> Read a bad file: exit_bad_input and every fragment in the message.
     subroutine check_bad(error, file, fragments)

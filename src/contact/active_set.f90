@@ -7,29 +7,46 @@
 !> For given states the DDs that are not fixed at zero (Ds on slipping elements, Dn on open
 !> ones) solve one dense linear system made of rows of A (a slip row is the shear row plus
 !> +-mu times the normal row of the same element), factorized by LAPACK. The states are
-!> then updated from the Newton complementarity functions with the stiffness scale c
-!> (largest diagonal entry of A): closed while -S_n' + c Dn > 0, open otherwise; stick
-!> while |s_s - c Ds| <= tau_s, else slip towards the sign of s_s - c Ds. Unchanged states
-!> end the iteration. Round-off cannot make states flip back and forth: a state is kept while
-!> its condition is violated by less than the state tolerances (relative 1e-9 of the stress
-!> scale and of the stiffness times it), which the certificate of the caller accepts.
+!> then updated from the complementarity conditions: a closed element opens when S_n' > 0,
+!> an open one closes when its opening would be negative; a sticking element slips towards
+!> the sign of s_s when |s_s| > tau_s; a slipping element sticks when its slip runs against
+!> the sense its traction imposes (from there it may slip the other way in the next
+!> iteration: the direct reversal of the complementarity function s_s - c Ds, with c one
+!> element's stiffness, overshoots when many elements unload together, and made the states
+!> cycle). Unchanged states end the iteration. Round-off cannot make states flip back and
+!> forth: a state is kept while its condition is violated by less than the state tolerances
+!> (relative 1e-9 of the stress scale and of the largest diagonal entry of A times it),
+!> which the certificate of the caller accepts.
 !>
 !> The method is not guaranteed to converge with Coulomb friction: it stops when the states
 !> repeat with period two (a cycle), when the iteration limit is reached or when a reduced
 !> system is numerically singular, and says why; the caller then falls back to Lemke.
-!> One iteration costs one LU of the reduced system (2/3 m^3 flops for m unknowns not fixed
-!> at zero, at most 2N) and one product with A (8 N^2 flops).
+!>
+!> Loading history (SPEC-EARTH section 3): given the total slip ds_previous of the step
+!> before, a sticking element keeps it (stick = no slip increment: Ds = ds_previous), the
+!> slip increment Ds - ds_previous opposes the shear traction and Signorini acts on the
+!> total Dn; the unknowns stay the total DDs, the fixed slips enter the right-hand side
+!> (A times them, kept while they do not change). One-shot solves have ds_previous = 0.
+!>
+!> One iteration costs one product with A (8 N^2 flops) and one solve of the reduced
+!> system (ddc_contact_reduced_system): a new LU (2/3 m^3 flops for m unknowns, at most
+!> 2N) only when the states changed much; unchanged states reuse the factors (two
+!> triangular solves) and a few changes update them (low rank). A solve through an update
+!> is checked: the imposed tractions of the unknowns' rows must hold against A D from the
+!> unfactored A (to update_tol of the stress scale), else the system is factorized anew.
+!> The workspace keeps the factors between iterations and between solves (the steps of a
+!> loading history).
 module ddc_contact_active_set
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
     use ddc_linalg_lapack, only: dgemv
-    use ddc_linalg_lu, only: lu_factor, lu_solve
+    use ddc_contact_reduced_system, only: reduced_system, set_system, solve_system, refactor, &
+        action_updated
     use ddc_text, only: itoa
-    use, intrinsic :: iso_fortran_env, only: int64
     implicit none
     private
 
-    public :: active_set_result, solve_contact_active_set
+    public :: active_set_result, active_set_workspace, solve_contact_active_set
     public :: shear_stick, shear_slip_plus, shear_slip_minus
 
     !> Shear states: stick (Ds = 0), slip with s_s = +tau_s (Ds <= 0), slip with
@@ -38,6 +55,18 @@ module ddc_contact_active_set
 
     !> Relative tolerance of the state updates (stress scale and stiffness times it) [-]
     real(wp), parameter :: state_tol = 1.0e-9_wp
+    !> Largest residual of the unknowns' rows, relative to the stress scale, accepted from a
+    !> solve through a low-rank update [-]
+    real(wp), parameter :: update_tol = 1.0e-11_wp
+
+    !> What the method keeps between iterations and between solves on the same A.
+    type :: active_set_workspace
+        !> The reduced system and its factors
+        type(reduced_system) :: system
+        !> The DDs held at non-zero values by the states (the previous slip of sticking
+        !> elements), shape (2n), and A times them, shape (2n) [length], [stress]
+        real(wp), allocatable :: fixed(:), fixed_traction(:)
+    end type active_set_workspace
 
     !> Outcome of the active-set iteration on n contact elements; arrays shape (n).
     type :: active_set_result
@@ -51,19 +80,19 @@ module ddc_contact_active_set
         !> DDs [length] and total tractions from the unfactored A: shear s_s and effective
         !> normal S_n' = s_n + p [stress]
         real(wp), allocatable :: ds(:), dn(:), shear(:), normal_effective(:)
+        !> A [Ds; Dn] from the unfactored A, shape (2n) [stress]
+        real(wp), allocatable :: ad(:)
         !> Final states: open (normal) and shear_stick / shear_slip_plus / shear_slip_minus
         logical, allocatable :: open(:)
         integer, allocatable :: shear_state(:)
-        !> Wall time of the LU factorizations [s] and their nominal flop count (2/3 m^3
-        !> each)
-        real(wp) :: seconds_factorization = 0.0_wp, factorization_flops = 0.0_wp
     end type active_set_result
 
 contains
 
     !> Solve the contact conditions on the stiffness system, t = S_r + A D.
     subroutine solve_contact_active_set(a, s_r_s, s_r_np, mu, sf, sigma0, res, &
-                                        max_iterations, start_open, start_shear)
+                                        max_iterations, work, start_open, start_shear, &
+                                        ds_previous)
         !> Influence matrix ordered [s; n], shape (2n, 2n) [stress / length]
         real(wp), intent(in) :: a(:, :)
         !> Remote shear traction and effective normal traction (s_n + p) on each element,
@@ -77,11 +106,17 @@ contains
         type(active_set_result), intent(out) :: res
         !> Iteration limit
         integer, intent(in) :: max_iterations
+        !> Factors and fixed tractions kept from earlier solves on the same A (empty at
+        !> first)
+        type(active_set_workspace), intent(inout) :: work
         !> Initial states (default: from the remote stress alone), shape (n)
         logical, intent(in), optional :: start_open(:)
         integer, intent(in), optional :: start_shear(:)
+        !> Total slip of the previous step of a loading history (default 0), shape (n)
+        !> [length]
+        real(wp), intent(in), optional :: ds_previous(:)
 
-        real(wp), allocatable :: t(:), dd(:), tau(:)
+        real(wp), allocatable :: t(:), dd(:), tau(:), held(:)
         logical, allocatable :: open_old(:)
         integer, allocatable :: shear_old(:)
         real(wp) :: c, tol_s, tol_d
@@ -98,7 +133,9 @@ contains
         if (.not. c > 0.0_wp) c = 1.0_wp
         tol_s = state_tol * sigma0
         tol_d = state_tol * sigma0 / c
-        allocate (res%ds(n), res%dn(n), dd(n2), t(n2), tau(n))
+        allocate (res%ds(n), res%dn(n), dd(n2), t(n2), tau(n), res%ad(n2))
+        allocate (held(n), source=0.0_wp)
+        if (present(ds_previous)) held = ds_previous
 
         ! Initial states from the remote stress (D = 0), unless given.
         if (present(start_open)) then
@@ -127,16 +164,14 @@ contains
                 return
             end if
             res%iterations = res%iterations + 1
-            call solve_states(a, s_r_s, s_r_np, mu, sf, res, dd, singular)
+            call solve_states(a, s_r_s, s_r_np, mu, sf, held, sigma0, res, work, dd, t, &
+                              singular)
             if (allocated(singular)) then
                 res%reason = singular%message
                 return
             end if
             res%ds = dd(1:n)
             res%dn = dd(n + 1:n2)
-            t(1:n) = s_r_s
-            t(n + 1:n2) = s_r_np
-            call dgemv('N', n2, n2, 1.0_wp, a, n2, dd, 1, 1.0_wp, t, 1)
             res%shear = t(1:n)
             res%normal_effective = t(n + 1:n2)
 
@@ -144,9 +179,9 @@ contains
             cycling = .true.
             changed = .false.
             do i = 1, n
-                call update_states(res%open(i), res%shear_state(i), res%ds(i), res%dn(i), &
-                    res%shear(i), res%normal_effective(i), mu(i), sf(i), c, tol_s, tol_d, &
-                    open_old(i), shear_old(i), changed, cycling)
+                call update_states(res%open(i), res%shear_state(i), res%ds(i) - held(i), &
+                    res%dn(i), res%shear(i), res%normal_effective(i), mu(i), sf(i), tol_s, &
+                    tol_d, open_old(i), shear_old(i), changed, cycling)
             end do
             if (.not. changed) then
                 res%converged = .true.
@@ -163,16 +198,16 @@ contains
 
     !> New states of one element from its DDs and tractions; changed is set when the
     !> linear system changes, cycling is cleared when the new states differ from the old.
-    pure subroutine update_states(open, shear_state, ds, dn, ss, snp, mu, sf, c, tol_s, &
-                                  tol_d, open_old, shear_old, changed, cycling)
+    pure subroutine update_states(open, shear_state, ds, dn, ss, snp, mu, sf, tol_s, tol_d, &
+                                  open_old, shear_old, changed, cycling)
         logical, intent(inout) :: open, changed, cycling
         integer, intent(inout) :: shear_state
-        real(wp), intent(in) :: ds, dn, ss, snp, mu, sf, c, tol_s, tol_d
+        real(wp), intent(in) :: ds, dn, ss, snp, mu, sf, tol_s, tol_d
         logical, intent(inout) :: open_old
         integer, intent(inout) :: shear_old
         logical :: open_new
         integer :: shear_new
-        real(wp) :: tau, sigma
+        real(wp) :: tau
 
         ! Normal: closed while -S_n' + c Dn > 0.
         if (open) then
@@ -188,15 +223,10 @@ contains
             shear_new = shear_stick
             if (abs(ss) > tau + tol_s) shear_new = int(sign(1.0_wp, ss))
         case default
+            ! Slip against the imposed traction's sense: the element sticks (it may slip the
+            ! other way from there, by the stick rule above, in the next iteration).
             shear_new = shear_state
-            if (real(shear_state, wp) * ds > tol_d) then
-                sigma = ss - c * ds
-                if (abs(sigma) <= tau) then
-                    shear_new = shear_stick
-                else
-                    shear_new = int(sign(1.0_wp, sigma))
-                end if
-            end if
+            if (real(shear_state, wp) * ds > tol_d) shear_new = shear_stick
         end select
 
         if (open_new .neqv. open) changed = .true.
@@ -210,22 +240,26 @@ contains
         shear_state = shear_new
     end subroutine update_states
 
-    !> Solve for the DDs of the current states: dd = [Ds; Dn], zero where fixed.
-    !> singular is allocated when the reduced system is (numerically) singular.
-    subroutine solve_states(a, s_r_s, s_r_np, mu, sf, res, dd, singular)
-        real(wp), intent(in) :: a(:, :), s_r_s(:), s_r_np(:), mu(:), sf(:)
+    !> Solve for the DDs of the current states: dd = [Ds; Dn] (Ds = held on sticking
+    !> elements, Dn = 0 on closed ones), and t = S + A dd with A dd in res%ad. singular is
+    !> allocated when the reduced system is (numerically) singular.
+    subroutine solve_states(a, s_r_s, s_r_np, mu, sf, held, sigma0, res, work, dd, t, singular)
+        real(wp), intent(in) :: a(:, :), s_r_s(:), s_r_np(:), mu(:), sf(:), held(:), sigma0
         type(active_set_result), intent(inout) :: res
-        real(wp), intent(out) :: dd(:)
+        type(active_set_workspace), intent(inout) :: work
+        real(wp), intent(out) :: dd(:), t(:)
         type(error_type), allocatable, intent(out) :: singular
-        real(wp), allocatable :: j(:, :), x(:, :), coef(:)
-        integer, allocatable :: unknown(:), partner(:), ipiv(:)
-        integer :: n, m, k, l, i
-        integer(int64) :: t0, t1, rate
+        real(wp), allocatable :: coef(:), target(:), x(:), fixed(:), s(:)
+        integer, allocatable :: unknown(:), partner(:)
+        integer :: n, m, i
+        logical :: known
+        character(len=:), allocatable :: subject
 
         n = size(mu)
-        ! Active unknowns: Ds of slipping elements (rows: shear row + coef * normal row),
-        ! Dn of open elements (rows: normal row).
-        allocate (unknown(2 * n), partner(2 * n), coef(2 * n), x(2 * n, 1))
+        ! Active unknowns: Ds of slipping elements (rows: shear row + coef * normal row,
+        ! s_s - sign tau_s = 0 with tau_s = Sf - mu S_n' (closed) or Sf (open)), Dn of open
+        ! elements (rows: normal row, S_n' = 0).
+        allocate (unknown(2 * n), partner(2 * n), coef(2 * n), target(2 * n))
         m = 0
         do i = 1, n
             if (res%shear_state(i) /= shear_stick) then
@@ -233,12 +267,8 @@ contains
                 unknown(m) = i
                 partner(m) = n + i
                 coef(m) = 0.0_wp
-                ! s_s - sign tau_s = 0 with tau_s = Sf - mu S_n' (closed) or Sf (open).
-                x(m, 1) = real(res%shear_state(i), wp) * sf(i) - s_r_s(i)
-                if (.not. res%open(i)) then
-                    coef(m) = real(res%shear_state(i), wp) * mu(i)
-                    x(m, 1) = x(m, 1) - coef(m) * s_r_np(i)
-                end if
+                if (.not. res%open(i)) coef(m) = real(res%shear_state(i), wp) * mu(i)
+                target(m) = real(res%shear_state(i), wp) * sf(i)
             end if
         end do
         do i = 1, n
@@ -247,34 +277,60 @@ contains
                 unknown(m) = n + i
                 partner(m) = n + i
                 coef(m) = 0.0_wp
-                x(m, 1) = -s_r_np(i)
+                target(m) = 0.0_wp
             end if
         end do
-        dd = 0.0_wp
-        if (m == 0) return
 
-        allocate (j(m, m), ipiv(m))
-        !$omp parallel do default(none) schedule(static) private(k, l) &
-        !$omp shared(a, j, unknown, partner, coef, m)
-        do l = 1, m
-            do k = 1, m
-                j(k, l) = a(unknown(k), unknown(l)) + coef(k) * a(partner(k), unknown(l))
-            end do
-        end do
-        !$omp end parallel do
-        call system_clock(t0, rate)
-        call lu_factor(j, ipiv, 'the reduced system of iteration '//itoa(res%iterations), &
-                       singular, element=modulo(unknown(1:m) - 1, n) + 1, &
-                       shear=unknown(1:m) <= n)
-        call system_clock(t1)
-        res%seconds_factorization = res%seconds_factorization + &
-            real(t1 - t0, wp) / real(max(rate, 1_int64), wp)
-        res%factorization_flops = res%factorization_flops + 2.0_wp / 3.0_wp * real(m, wp)**3
+        ! The DDs the states fix: the held slip of sticking elements; S with A times them.
+        allocate (fixed(2 * n), source=0.0_wp)
+        where (res%shear_state == shear_stick) fixed(1:n) = held
+        s = [s_r_s, s_r_np]
+        if (any(fixed /= 0.0_wp)) then
+            ! Exact comparison: the kept product serves exactly the same fixed DDs.
+            known = allocated(work%fixed)
+            if (known) known = size(work%fixed) == size(fixed)
+            if (known) known = all(work%fixed == fixed)
+            if (.not. known) then
+                work%fixed = fixed
+                if (allocated(work%fixed_traction)) deallocate (work%fixed_traction)
+                allocate (work%fixed_traction(2 * n))
+                call dgemv('N', 2 * n, n, 1.0_wp, a, 2 * n, fixed, 1, 0.0_wp, &
+                           work%fixed_traction, 1)
+            end if
+            s = s + work%fixed_traction
+        end if
+        x = target(1:m) - s(unknown(1:m)) - coef(1:m) * s(partner(1:m))
+        subject = 'the reduced system of iteration '//itoa(res%iterations)
+        call set_system(work%system, a, unknown(1:m), partner(1:m), coef(1:m), subject, &
+                        singular)
         if (allocated(singular)) return
-        call lu_solve(j, ipiv, x(1:m, :))
-        do k = 1, m
-            dd(unknown(k)) = x(k, 1)
-        end do
+        call solve_system(work%system, x)
+        call tractions(x)
+        ! A solve through a low-rank update must meet the unknowns' equations against the
+        ! unfactored A; else factorize anew and solve again.
+        if (work%system%action == action_updated .and. m > 0) then
+            if (.not. maxval(abs(t(unknown(1:m)) + coef(1:m) * t(partner(1:m)) - &
+                                 target(1:m))) <= update_tol * sigma0) then
+                call refactor(work%system, a, subject, singular)
+                if (allocated(singular)) return
+                x = target(1:m) - s(unknown(1:m)) - coef(1:m) * s(partner(1:m))
+                call solve_system(work%system, x)
+                call tractions(x)
+            end if
+        end if
+
+    contains
+
+        !> dd from the fixed DDs and the solution, A dd and t = S_r + A dd.
+        subroutine tractions(solution)
+            real(wp), intent(in) :: solution(:)
+
+            dd = fixed
+            dd(unknown(1:m)) = solution
+            call dgemv('N', 2 * n, 2 * n, 1.0_wp, a, 2 * n, dd, 1, 0.0_wp, res%ad, 1)
+            t = [s_r_s, s_r_np] + res%ad
+        end subroutine tractions
+
     end subroutine solve_states
 
 end module ddc_contact_active_set

@@ -23,12 +23,20 @@
 !> open_cohesion: 'kept' (the paper) lets an open element carry shear up to Sf;
 !> 'lost' sets Sf = 0 on every element that opens and solves again until no open
 !> element has cohesion left (the set of such elements only grows, so this terminates).
+!>
+!> A loading history (SPEC-EARTH section 3) solves one step after the other with the same
+!> methods and fallbacks: each step gives the total slip of the step before
+!> (ds_previous) and a contact_session that keeps what the steps share: the paper's LCP
+!> once Lemke needed it and Lemke's last basis (warm start), the Newton method's states
+!> (warm start) and its factorizations (reused or updated, ddc_contact_reduced_system).
 module ddc_contact_formulation
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, set_internal_error, exit_bad_input
     use ddc_contact_options, only: solver_options, lcp_auto, lcp_newton, cohesion_lost
+    use ddc_contact_states, only: state_stick, state_open
     use ddc_contact_certificate, only: certify_complementarity, default_certificate_tolerance
-    use ddc_contact_active_set, only: active_set_result, solve_contact_active_set
+    use ddc_contact_active_set, only: active_set_result, active_set_workspace, &
+        solve_contact_active_set
     use ddc_contact_result, only: contact_result, contact_stress_scale, problem_scales, &
         block_scales, check_solution, drop_open_cohesion
     use ddc_contact_paper_lcp, only: contact_lcp, build_contact_lcp, solve_paper_lcp
@@ -37,18 +45,34 @@ module ddc_contact_formulation
     implicit none
     private
 
-    public :: solve_contact, auto_newton_min_elements, newton_max_iterations
+    public :: solve_contact, contact_session, auto_newton_min_elements, newton_max_iterations
 
     !> lcp_method = 'auto' uses 'newton' from this many contact elements on, else 'lemke'
     integer, parameter :: auto_newton_min_elements = 300
     !> Default iteration limit of the 'newton' method
     integer, parameter :: newton_max_iterations = 100
 
+    !> What successive solves on the same contact elements (the steps of a loading history)
+    !> keep: the paper's LCP once built and Lemke's last basis, the Newton method's
+    !> factorizations and states.
+    type :: contact_session
+        !> The paper's LCP (built on the first Lemke solve)
+        type(contact_lcp) :: lcp
+        !> Lemke's last basis, shape (3n); 0 entries: none yet
+        integer, allocatable :: basis(:)
+        !> The Newton method's factors and fixed tractions
+        type(active_set_workspace) :: newton
+        !> States of the last solve (warm start of the Newton method), shape (n)
+        logical, allocatable :: open(:)
+        integer, allocatable :: shear_state(:)
+    end type contact_session
+
 contains
 
-    !> Solve the frictional contact problem of n elements (SPEC section 4).
+    !> Solve the frictional contact problem of n elements (SPEC section 4), or one step of
+    !> a loading history (ds_previous, session).
     subroutine solve_contact(a, s_r_s, s_r_n, mu, sf, pressure, options, res, error, rule, &
-                             max_iterations)
+                             max_iterations, ds_previous, session, stress_scale, max_pivots)
         !> Influence matrix ordered [s; n]: traction = s_r + a [Ds; Dn], shape (2n, 2n)
         !> [stress / length]
         real(wp), intent(in) :: a(:, :)
@@ -75,16 +99,21 @@ contains
         integer, intent(in), optional :: rule
         !> Iteration limit of 'newton' (default newton_max_iterations)
         integer, intent(in), optional :: max_iterations
-
-        real(wp), allocatable :: sf_eff(:), no_slip(:)
-        type(contact_lcp) :: lcp
-        type(active_set_result) :: states
+        !> Total slip at the end of the previous step of a loading history (default 0),
+        !> shape (n) [length]
+        real(wp), intent(in), optional :: ds_previous(:)
+        !> What the steps of a loading history share (default: a fresh one); with it, Lemke
+        !> starts from its last basis
+        type(contact_session), intent(inout), optional :: session
+        !> Stress scale of the certificate and of Lemke's scaling (default: from this
+        !> load, contact_stress_scale) [stress]
+        real(wp), intent(in), optional :: stress_scale
+        !> Pivot limit of each Lemke solve (tests; default that of solve_lcp_lemke)
+        integer, intent(in), optional :: max_pivots
+        type(contact_session) :: fresh
+        real(wp), allocatable :: held(:)
+        real(wp) :: sigma0
         integer :: n, limit
-        integer(int64) :: t0, t1, rate
-        logical :: lost, newton, automatic
-        integer :: rounds
-        character(len=:), allocatable :: reason
-        character(len=200) :: line
 
         n = size(mu)
         if (size(a, 1) /= 2 * n .or. size(a, 2) /= 2 * n .or. size(s_r_s) /= n &
@@ -92,16 +121,21 @@ contains
             call set_internal_error(error, 'solve_contact', 'array sizes do not match')
             return
         end if
-        lost = options%open_cohesion == cohesion_lost
+        allocate (held(n), source=0.0_wp)
+        if (present(ds_previous)) then
+            if (size(ds_previous) /= n) then
+                call set_internal_error(error, 'solve_contact', 'array sizes do not match')
+                return
+            end if
+            held = ds_previous
+        end if
         if (.not. (all(ieee_is_finite(a)) .and. all(ieee_is_finite(s_r_s)) .and. &
             all(ieee_is_finite(s_r_n)) .and. all(ieee_is_finite(mu)) .and. &
-            all(ieee_is_finite(sf)) .and. all(ieee_is_finite(pressure)))) then
+            all(ieee_is_finite(sf)) .and. all(ieee_is_finite(pressure)) .and. &
+            all(ieee_is_finite(held)))) then
             call set_error(error, exit_bad_input, 'contact: NaN or Inf in the input arrays')
             return
         end if
-        automatic = options%lcp_method == lcp_auto
-        newton = options%lcp_method == lcp_newton .or. &
-            (automatic .and. n >= auto_newton_min_elements)
         limit = newton_max_iterations
         if (present(max_iterations)) limit = max_iterations
         if (any(mu < 0.0_wp) .or. any(sf < 0.0_wp)) then
@@ -114,113 +148,184 @@ contains
             res%certificate%passed = .true.
             return
         end if
-
-        if (newton) then
-            res%method = 'newton'
+        sigma0 = contact_stress_scale(s_r_s, s_r_n, sf, pressure)
+        if (present(stress_scale)) sigma0 = stress_scale
+        if (present(session)) then
+            call solve_in_session(session, .true.)
         else
-            res%method = 'lemke'
+            call solve_in_session(fresh, .false.)
         end if
-        res%fallback = ''
-        rounds = 0
-        call system_clock(t0, rate)
-        sf_eff = sf
-        do
-            rounds = rounds + 1
+
+    contains
+
+        !> The methods and fallbacks, with what the session keeps; warm: Lemke starts from
+        !> the session's basis.
+        subroutine solve_in_session(s, warm)
+            type(contact_session), intent(inout) :: s
+            logical, intent(in) :: warm
+            real(wp), allocatable :: sf_eff(:)
+            integer(int64) :: t0, t1, rate
+            logical :: newton, automatic
+            integer :: rounds
+            character(len=:), allocatable :: reason
+            character(len=200) :: line
+
+            automatic = options%lcp_method == lcp_auto
+            newton = options%lcp_method == lcp_newton .or. &
+                (automatic .and. n >= auto_newton_min_elements)
             if (newton) then
-                call solve_once_newton(a, s_r_s, s_r_n, mu, sf_eff, pressure, limit, res, &
-                    states, reason)
-                if (len(reason) > 0) then
-                    newton = .false.
-                    res%method = 'lemke'
-                    res%fallback = reason
-                end if
+                res%method = 'newton'
+            else
+                res%method = 'lemke'
             end if
-            if (.not. newton) then
-                if (.not. allocated(lcp%m)) then
-                    call build_contact_lcp(a, mu, lcp, res, error)
-                    if (allocated(error)) return
-                    allocate (no_slip(n), source=0.0_wp)
-                end if
-                call solve_paper_lcp(lcp, s_r_s, s_r_n, sf_eff, pressure, no_slip, &
-                    contact_stress_scale(s_r_s, s_r_n, sf, pressure), res, error, rule=rule)
-                if (allocated(error) .and. automatic .and. len(res%fallback) == 0) then
-                    ! M is not copositive-plus: Lemke can end on a ray where the contact
-                    ! problem has a solution (seen at acute fault branches). 'auto' then
-                    ! asks the Newton method, whose answer is checked the same way, and
-                    ! keeps it for the rounds after cohesion is lost.
-                    call solve_once_newton(a, s_r_s, s_r_n, mu, sf_eff, pressure, limit, res, &
-                        states, reason)
-                    if (len(reason) == 0) then
-                        newton = .true.
-                        res%method = 'newton'
-                        res%fallback = 'lemke failed: '//error%message
-                        deallocate (error)
-                    else
-                        error%message = error%message//' (the Newton method failed too: '// &
-                            reason//')'
+            res%fallback = ''
+            rounds = 0
+            call system_clock(t0, rate)
+            sf_eff = sf
+            do
+                rounds = rounds + 1
+                if (newton) then
+                    call solve_once_newton(a, s_r_s, s_r_n, mu, sf_eff, pressure, limit, held, &
+                        sigma0, present(stress_scale), res, s, reason)
+                    if (len(reason) > 0) then
+                        newton = .false.
+                        res%method = 'lemke'
+                        res%fallback = reason
                     end if
                 end if
-            end if
-            if (allocated(error)) then
-                if (rounds > 1) then
-                    write (line, '(a,i0,a)') ' (solve ', rounds, &
-                        ", after cohesion was lost on opening elements)"
-                    error%message = error%message//trim(line)
+                if (.not. newton) then
+                    call solve_once_lemke(s, warm, sf_eff)
+                    if (allocated(error) .and. automatic .and. len(res%fallback) == 0) then
+                        ! M is not copositive-plus: Lemke can end on a ray where the contact
+                        ! problem has a solution (seen at acute fault branches). 'auto' then
+                        ! asks the Newton method, whose answer is checked the same way, and
+                        ! keeps it for the rounds after cohesion is lost.
+                        call solve_once_newton(a, s_r_s, s_r_n, mu, sf_eff, pressure, limit, &
+                            held, sigma0, present(stress_scale), res, s, reason)
+                        if (len(reason) == 0) then
+                            newton = .true.
+                            res%method = 'newton'
+                            res%fallback = 'lemke failed: '//error%message
+                            deallocate (error)
+                        else
+                            error%message = error%message//' (the Newton method failed too: '// &
+                                reason//')'
+                        end if
+                    end if
                 end if
-                if (len(res%fallback) > 0) error%message = error%message// &
-                    ' (after the first method failed: '//res%fallback//')'
-                return
+                if (allocated(error)) then
+                    if (rounds > 1) then
+                        write (line, '(a,i0,a)') ' (solve ', rounds, &
+                            ", after cohesion was lost on opening elements)"
+                        error%message = error%message//trim(line)
+                    end if
+                    if (len(res%fallback) > 0) error%message = error%message// &
+                        ' (after the first method failed: '//res%fallback//')'
+                    return
+                end if
+                if (.not. newton) call keep_states(res, s)
+                if (options%open_cohesion /= cohesion_lost) exit
+                if (.not. drop_open_cohesion(res%state, sf_eff)) exit
+            end do
+            call system_clock(t1)
+            res%seconds_lcp = real(t1 - t0, wp) / real(max(rate, 1_int64), wp) - &
+                res%seconds_factorization
+            res%factorizations = s%newton%system%factorizations
+            res%low_rank_updates = s%newton%system%updates
+            res%factorization_reuses = s%newton%system%reuses
+        end subroutine solve_in_session
+
+        !> One Lemke solve of the paper's LCP (built once per session), from the session's
+        !> last basis when warm.
+        subroutine solve_once_lemke(s, warm, sf_eff)
+            type(contact_session), intent(inout) :: s
+            logical, intent(in) :: warm
+            real(wp), intent(in) :: sf_eff(:)
+
+            if (.not. allocated(s%lcp%m)) then
+                call build_contact_lcp(a, mu, s%lcp, res, error)
+                if (allocated(error)) return
+                allocate (s%basis(3 * n), source=0)
             end if
-            if (.not. lost) exit
-            if (.not. drop_open_cohesion(res%state, sf_eff)) exit
-        end do
-        call system_clock(t1)
-        res%seconds_lcp = real(t1 - t0, wp) / real(max(rate, 1_int64), wp) - &
-            res%seconds_factorization
+            if (warm) then
+                call solve_paper_lcp(s%lcp, s_r_s, s_r_n, sf_eff, pressure, held, sigma0, res, &
+                                     error, rule=rule, basis=s%basis, max_pivots=max_pivots)
+            else
+                call solve_paper_lcp(s%lcp, s_r_s, s_r_n, sf_eff, pressure, held, sigma0, res, &
+                                     error, rule=rule, max_pivots=max_pivots)
+            end if
+        end subroutine solve_once_lemke
+
     end subroutine solve_contact
+
+    !> Newton states from a Lemke solution, for the next solve's warm start: open elements
+    !> open; shear stick where the element sticks, else slip towards its shear traction.
+    subroutine keep_states(res, s)
+        type(contact_result), intent(in) :: res
+        type(contact_session), intent(inout) :: s
+
+        s%open = res%state == state_open
+        s%shear_state = merge(0, int(sign(1.0_wp, res%shear_traction)), &
+                              res%state == state_stick)
+    end subroutine keep_states
 
     !> One solve by the active-set Newton method (no inverse of A), certified as the
     !> equivalent LCP. reason is empty on success, else why Lemke must take over.
-    subroutine solve_once_newton(a, s_r_s, s_r_n, mu, sf, p, limit, res, states, reason)
+    subroutine solve_once_newton(a, s_r_s, s_r_n, mu, sf, p, limit, held, sigma0, given, res, &
+                                 s, reason)
         real(wp), intent(in) :: a(:, :), s_r_s(:), s_r_n(:), mu(:), sf(:), p(:)
         integer, intent(in) :: limit
+        !> Total slip of the previous step (0 for a one-shot solve), shape (n)
+        real(wp), intent(in) :: held(:)
+        !> Stress scale [stress], used when given (else that of this problem)
+        real(wp), intent(in) :: sigma0
+        logical, intent(in) :: given
         type(contact_result), intent(inout) :: res
-        !> States of the previous solve on entry (warm start when allocated); this solve's
-        !> on exit
-        type(active_set_result), intent(inout) :: states
+        !> The session: its states are the warm start and take this solve's; its
+        !> factorizations are reused
+        type(contact_session), intent(inout) :: s
         character(len=:), allocatable, intent(out) :: reason
         type(active_set_result) :: next
-        real(wp), allocatable :: tau(:), z(:), w(:), zs(:), ws(:), snp(:)
-        real(wp) :: dscale
-        integer :: n, n2, i
+        real(wp), allocatable :: tau(:), z(:), w(:), zs(:), ws(:), snp(:), slip(:)
+        real(wp) :: dscale, seconds, flops
+        integer :: n, i
         character(len=:), allocatable :: problem
 
         n = size(mu)
-        n2 = 2 * n
         call problem_scales(a, s_r_s, s_r_n, sf, p, res)
-        if (allocated(states%open)) then
+        if (given) then
+            res%dd_scale = res%dd_scale * sigma0 / res%stress_scale
+            res%stress_scale = sigma0
+        end if
+        seconds = s%newton%system%seconds_factorization
+        flops = s%newton%system%factorization_flops
+        if (allocated(s%open)) then
             call solve_contact_active_set(a, s_r_s, s_r_n + p, mu, sf, res%stress_scale, &
-                next, limit, states%open, states%shear_state)
+                next, limit, s%newton, s%open, s%shear_state, ds_previous=held)
         else
             call solve_contact_active_set(a, s_r_s, s_r_n + p, mu, sf, res%stress_scale, &
-                next, limit)
+                next, limit, s%newton, ds_previous=held)
         end if
         res%iterations = res%iterations + next%iterations
         res%solves = res%solves + 1
-        res%seconds_factorization = res%seconds_factorization + next%seconds_factorization
-        res%factorization_flops = res%factorization_flops + next%factorization_flops
+        res%seconds_factorization = res%seconds_factorization + &
+            s%newton%system%seconds_factorization - seconds
+        res%factorization_flops = res%factorization_flops + &
+            s%newton%system%factorization_flops - flops
         if (.not. next%converged) then
             reason = 'newton: '//next%reason
             return
         end if
-        states = next
+        s%open = next%open
+        s%shear_state = next%shear_state
 
         ! z and w of the paper's LCP from the DDs and the tractions A D + S_r of the
-        ! unfactored A; Ds split as D_L - D_R with the smaller part zero.
+        ! unfactored A; the slip increment split as D_L - D_R with the smaller part zero.
+        slip = next%ds - held
         associate (ss => next%shear, snf => next%normal_effective)
             tau = sf - mu * snf
-            z = [-snf, tau - ss, max(next%ds, 0.0_wp)]
-            w = [-next%dn, max(-next%ds, 0.0_wp), tau + ss]
+            z = [-snf, tau - ss, max(slip, 0.0_wp)]
+            w = [-next%dn, max(-slip, 0.0_wp), tau + ss]
         end associate
         dscale = max(res%dd_scale, maxval(abs(next%ds)), maxval(abs(next%dn)))
         call block_scales(n, res%stress_scale, dscale, zs, ws)
@@ -238,7 +343,7 @@ contains
         res%ds = next%ds
         res%dn = next%dn
         res%sf_effective = sf
-        call check_solution(a, s_r_s, s_r_n, mu, sf, snp, dscale, res, problem)
+        call check_solution(a, s_r_s, s_r_n, mu, sf, snp, dscale, res, problem, held, next%ad)
         reason = ''
         if (len(problem) > 0) reason = 'newton: '//problem
     end subroutine solve_once_newton

@@ -12,25 +12,23 @@
 !> delta0 = sigma0 / max_i A_ii, so that every entry is O(1). The solution is certified
 !> (ddc_contact_certificate) against the unfactored M and checked (ddc_contact_result).
 !>
-!> Loading history (SPEC-EARTH section 3; build_contact_lcp once, then
-!> solve_contact_increment per step): the same M, q with the previous total slip,
-!> Ds = Ds_previous + dD_L - dD_R, warm-started from the previous basis. DDs that are
+!> Loading history (SPEC-EARTH section 3; build_contact_lcp once, then solve_paper_lcp
+!> per step with the previous total slip and basis): the same M, q with the previous total
+!> slip, Ds = Ds_previous + dD_L - dD_R, warm-started from the previous basis. DDs that are
 !> exactly zero in the LCP (its nonbasic variables) are exactly zero here.
 module ddc_contact_paper_lcp
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, set_internal_error, exit_solver_failure
-    use ddc_contact_options, only: cohesion_lost
     use ddc_contact_lemke, only: solve_lcp_lemke
     use ddc_contact_certificate, only: certify_lcp
-    use ddc_contact_result, only: contact_result, block_scales, check_solution, &
-        drop_open_cohesion
+    use ddc_contact_result, only: contact_result, block_scales, check_solution
     use ddc_linalg_lapack, only: dgemv
     use ddc_linalg_lu, only: lu_invert, influence_hint
     use, intrinsic :: iso_fortran_env, only: int64
     implicit none
     private
 
-    public :: contact_lcp, build_contact_lcp, solve_paper_lcp, solve_contact_increment
+    public :: contact_lcp, build_contact_lcp, solve_paper_lcp
 
     !> The paper's LCP matrix of a set of contact elements, built once for a sequence of
     !> loads (a loading history, SPEC-EARTH section 3): only q changes from step to step.
@@ -209,49 +207,5 @@ contains
                             ds_previous)
         if (len(problem) > 0) call set_error(error, exit_solver_failure, problem)
     end subroutine solve_paper_lcp
-
-    !> One step of a loading history (SPEC-EARTH section 3) on an LCP built once: q for
-    !> the step's load with the previous total slip, solved by Lemke (warm-started from
-    !> the previous step's basis when that basis is still feasible), certified and
-    !> recovered; total DDs in res. open_cohesion 'lost' re-solves the step until no open
-    !> element keeps cohesion; sf_effective carries the lost cohesion to later steps.
-    subroutine solve_contact_increment(lcp, s_r_s, s_r_n, sf_effective, pressure, &
-                                       open_cohesion, ds_previous, stress_scale, basis, res, &
-                                       error, max_pivots)
-        !> The LCP matrix (build_contact_lcp)
-        type(contact_lcp), intent(in) :: lcp
-        !> Remote shear and normal traction on each element at this step, shape (n) [stress]
-        real(wp), intent(in) :: s_r_s(:), s_r_n(:)
-        !> Frictional strength in force, shape (n) [stress]; set to 0 where cohesion is lost
-        real(wp), intent(inout) :: sf_effective(:)
-        !> Fluid pressure inside each element at this step, shape (n) [stress]
-        real(wp), intent(in) :: pressure(:)
-        !> cohesion_kept or cohesion_lost
-        integer, intent(in) :: open_cohesion
-        !> Total shear DD at the end of the previous step, shape (n) [length]
-        real(wp), intent(in) :: ds_previous(:)
-        !> Stress scale sigma0 of the whole history (contact_stress_scale, largest over
-        !> the steps) [stress]
-        real(wp), intent(in) :: stress_scale
-        !> LCP basis of the previous step on entry (0 entries: none), this step's on exit,
-        !> shape (3n)
-        integer, intent(inout) :: basis(:)
-        !> This step's solution (total DDs, tractions, states, certificate, pivots)
-        type(contact_result), intent(out) :: res
-        !> Allocated when the step has no certified solution (exit_solver_failure)
-        type(error_type), allocatable, intent(out) :: error
-        !> Pivot limit of each Lemke solve (default that of solve_lcp_lemke)
-        integer, intent(in), optional :: max_pivots
-
-        res%method = 'lemke'
-        res%fallback = ''
-        do
-            call solve_paper_lcp(lcp, s_r_s, s_r_n, sf_effective, pressure, ds_previous, &
-                            stress_scale, res, error, basis=basis, max_pivots=max_pivots)
-            if (allocated(error)) return
-            if (open_cohesion /= cohesion_lost) exit
-            if (.not. drop_open_cohesion(res%state, sf_effective)) exit
-        end do
-    end subroutine solve_contact_increment
 
 end module ddc_contact_paper_lcp

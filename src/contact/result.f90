@@ -47,6 +47,10 @@ module ddc_contact_result
         integer :: pivots = 0
         !> Number of LCP solves (1 unless open_cohesion = 'lost' re-solved)
         integer :: solves = 0
+        !> Solves of the Newton method's reduced systems so far (of the session, in a
+        !> loading history): new factorizations, low-rank updates, reuses of unchanged
+        !> factors
+        integer :: factorizations = 0, low_rank_updates = 0, factorization_reuses = 0
         !> Certificate of the last LCP solve
         type(lcp_certificate) :: certificate
         !> Relative equilibrium residual ||A D + S_r - t|| / scale, shear and normal block
@@ -108,12 +112,17 @@ contains
     !> Checks common to both methods on a recovered solution (res%ds, dn, tractions):
     !> the certificate passed and the DDs are in equilibrium with the tractions against the
     !> unfactored A; then the states (slip: a slip increment over ds_previous, when given, or
-    !> on the friction limit). message is empty on success, else says what failed.
-    subroutine check_solution(a, s_r_s, s_r_n, mu, sf, snp, dscale, res, message, ds_previous)
+    !> on the friction limit). message is empty on success, else says what failed. On
+    !> success the result's tractions become S_r + A D of the unfactored A (those the method
+    !> imposed or recovered agree with them within the residual).
+    subroutine check_solution(a, s_r_s, s_r_n, mu, sf, snp, dscale, res, message, &
+                              ds_previous, product)
         real(wp), intent(in) :: a(:, :), s_r_s(:), s_r_n(:), mu(:), sf(:), snp(:), dscale
         type(contact_result), intent(inout) :: res
         character(len=:), allocatable, intent(out) :: message
         real(wp), intent(in), optional :: ds_previous(:)
+        !> A [ds; dn] of the unfactored A when the method has it, shape (2n)
+        real(wp), intent(in), optional :: product(:)
         real(wp), allocatable :: dd(:), ad(:), tau(:), slip(:)
         real(wp) :: tol_d, tol_s, scale
         integer :: n, n2, i
@@ -132,9 +141,13 @@ contains
         end if
 
         ! Equilibrium of the recovered DDs against the unfactored A.
-        dd = [res%ds, res%dn]
-        allocate (ad(n2))
-        call dgemv('N', n2, n2, 1.0_wp, a, n2, dd, 1, 0.0_wp, ad, 1)
+        if (present(product)) then
+            ad = product
+        else
+            dd = [res%ds, res%dn]
+            allocate (ad(n2))
+            call dgemv('N', n2, n2, 1.0_wp, a, n2, dd, 1, 0.0_wp, ad, 1)
+        end if
         ! Both blocks are tractions: one scale for both, so that a block that vanishes (no
         ! resolved shear at all) is not measured against its own round-off.
         scale = max(norm2(ad), norm2([s_r_s, s_r_n]), &
@@ -168,6 +181,8 @@ contains
                 res%state(i) = state_stick
             end if
         end do
+        res%shear_traction = s_r_s + ad(1:n)
+        res%normal_traction = s_r_n + ad(n + 1:n2)
     end subroutine check_solution
 
     !> ||ad + s_r - t|| / scale, 0 when the scale vanishes.

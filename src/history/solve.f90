@@ -1,30 +1,35 @@
 !> Incremental quasi-static loading along a load path (SPEC-EARTH section 3).
 !>
-!> The influence matrix is assembled, the TWODD-style elements condensed out and the LCP
-!> matrix M built once (one inverse of A); every step changes q only: its load and the
-!> total slip of the previous step. Each step is solved by Lemke's method (the active-set
-!> Newton method stays a one-shot solver), warm-started from the previous step's basis
-!> when that basis is still feasible (0 pivots), certified and checked for equilibrium.
-!> A step that fails is an error naming the step; nothing is returned as a result.
+!> The influence matrix is assembled and the TWODD-style elements condensed out once; every
+!> step is then one contact solve (ddc_contact_formulation, with &solver lcp_method and its
+!> fallbacks, as a one-shot solve) for the step's load and the total slip of the step
+!> before, in a contact_session that the steps share: the Newton method starts from the
+!> previous step's states and reuses its factorization (two triangular solves when no
+!> state changes, a low-rank update when a few do); Lemke builds the paper's LCP (one
+!> inverse of A) the first time it is needed and starts from its previous basis. Every
+!> step is certified and checked for equilibrium; a step that fails is an error naming the
+!> step, and nothing is returned as a result. A step where the first method fails and the
+!> other one solves it is recorded (/history method and fallback).
 !>
-!> The last step's element results, tips and fields are those of run_model for the model
-!> at the last load with every element's DDs prescribed (condition_prescribed_dd), so that
-!> field evaluation is shared with one-shot solves; states and the solver record are the
-!> history's.
+!> Each step records DDs, states, tractions and the stress intensity factors of the tips
+!> (found once). The last step's element results, tips and fields are those of
+!> finish_model (ddc_run_model) for the model at the last load.
 module ddc_history_solve
     use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type, condition_contact, load_path_names
     use ddc_model_results, only: model_results, history_record
-    use ddc_model_loads, only: resolve_remote_stress, total_pressure
+    use ddc_model_loads, only: resolve_remote_stress, total_pressure, shear_modulus_of
     use ddc_contact_result, only: contact_result, contact_stress_scale
-    use ddc_contact_paper_lcp, only: contact_lcp, build_contact_lcp, solve_contact_increment
+    use ddc_contact_formulation, only: solve_contact, contact_session
     use ddc_solve_frictional, only: condensed_contact, condense_contact, contact_load, &
         complete_dds, record_contact, release_matrix
+    use ddc_influence_response, only: listed_tractions
+    use ddc_post_tips, only: find_tips, stress_intensity
     use ddc_history_path, only: path_loads, apply_load
     use ddc_run_model, only: finish_model
-    use ddc_model_loads, only: shear_modulus_of
+    use ddc_progress, only: report_progress
     use ddc_text, only: itoa, rtoa
     implicit none
     private
@@ -36,7 +41,7 @@ contains
     !> Solve a model along its load path; results hold the last step and the history.
     !> On success the model's remote stress, gradients and pore pressure p0 are those of
     !> the last step (the state /elements and the fields describe).
-    subroutine solve_history(model, results, error, max_pivots)
+    subroutine solve_history(model, results, error, max_pivots, max_iterations)
         !> A validated model with a load path and at least one contact element
         type(model_type), intent(inout) :: model
         !> The last step's element results, tips and fields, and every step's history
@@ -46,16 +51,17 @@ contains
         type(error_type), allocatable, intent(out) :: error
         !> Pivot limit of each Lemke solve (tests; default that of solve_lcp_lemke)
         integer, intent(in), optional :: max_pivots
+        !> Iteration limit of each Newton solve (tests; default that of solve_contact)
+        integer, intent(in), optional :: max_iterations
         type(condensed_contact) :: sys
-        type(contact_lcp) :: lcp
-        type(contact_result) :: res, built
+        type(contact_session) :: session
+        type(contact_result) :: res
         type(history_record) :: h
         real(wp), allocatable :: loads(:, :), shear(:, :), normal(:, :), shift(:, :)
         real(wp), allocatable :: y_load(:, :), pressure(:, :), sf_eff(:), ds_previous(:), v(:)
-        real(wp), allocatable :: matrix(:, :)
-        integer, allocatable :: basis(:)
-        integer :: n, nc, k, nsteps, pivots, solves
-        real(wp) :: sigma0, seconds_lcp
+        real(wp), allocatable :: matrix(:, :), no_dd(:), ts(:), tn(:)
+        integer :: n, nc, k, nsteps, pivots, solves, iterations, fallbacks, first_fallback
+        real(wp) :: sigma0, g, seconds_lcp, seconds_factorization, flops
         integer(int64) :: t_start, t0, t1, rate
 
         if (.not. allocated(model%load_path%vertex)) then
@@ -69,8 +75,9 @@ contains
         end if
         call system_clock(t_start, rate)
         n = model%elements%n
-        call condense_contact(model%elements, shear_modulus_of(model), model%poissons_ratio, &
-                              sys, results%solver, error)
+        g = shear_modulus_of(model)
+        call condense_contact(model%elements, g, model%poissons_ratio, sys, results%solver, &
+                              error)
         if (allocated(error)) return
         nc = sys%nc
 
@@ -91,44 +98,74 @@ contains
                 model%elements%sf(sys%contact), pressure(:, k)))
         end do
 
-        call build_contact_lcp(sys%a, model%elements%mu(sys%contact), lcp, built, error)
-        if (allocated(error)) return
-
-        allocate (h%ds(n, nsteps), h%dn(n, nsteps), h%state(n, nsteps), h%pivots(nsteps), &
-                  h%certificate_min_z(nsteps), h%certificate_min_w(nsteps), &
-                  h%certificate_max_complementarity(nsteps), h%equilibrium_residual(nsteps))
+        ! The tips, found once; their K at every step.
+        allocate (no_dd(n), source=0.0_wp)
+        call find_tips(model%elements, g, model%poissons_ratio, no_dd, no_dd, results%tips)
+        call allocate_history(h, n, results%tips%n, nsteps)
         h%load = loads
+        allocate (ts(sys%nf), tn(sys%nf))
         sf_eff = model%elements%sf(sys%contact)
-        allocate (ds_previous(nc), basis(3 * nc))
-        ds_previous = 0.0_wp
-        basis = 0
+        allocate (ds_previous(nc), source=0.0_wp)
         pivots = 0
         solves = 0
+        iterations = 0
+        fallbacks = 0
+        first_fallback = 0
+        seconds_factorization = 0.0_wp
+        flops = 0.0_wp
         call system_clock(t0, rate)
         do k = 1, nsteps
-            call solve_contact_increment(lcp, shift(1:nc, k), shift(nc + 1:, k), sf_eff, &
-                                         pressure(:, k), model%solver%open_cohesion, &
-                                         ds_previous, sigma0, basis, res, error, max_pivots)
+            call solve_contact(sys%a, shift(1:nc, k), shift(nc + 1:, k), &
+                               model%elements%mu(sys%contact), sf_eff, pressure(:, k), &
+                               model%solver, res, error, max_iterations=max_iterations, &
+                               ds_previous=ds_previous, session=session, stress_scale=sigma0, &
+                               max_pivots=max_pivots)
             if (allocated(error)) then
                 error%message = 'loading history: step '//itoa(k)//' of '//itoa(nsteps)// &
                     ' ('//load_text(loads(:, k), model%load_path%varies)//') failed: '// &
                     error%message//'; no result is written'
                 return
             end if
+            sf_eff = res%sf_effective
             ds_previous = res%ds
             pivots = pivots + res%pivots
             solves = solves + res%solves
+            iterations = iterations + res%iterations
+            seconds_factorization = seconds_factorization + res%seconds_factorization
+            flops = flops + res%factorization_flops
             h%equilibrium_residual(k) = maxval(res%equilibrium_residual)
             call complete_dds(sys, model%elements, shear(:, k), normal(:, k), res, &
                               y_load(:, k), h%ds(:, k), h%dn(:, k), h%state(:, k), &
                               h%equilibrium_residual(k))
             h%pivots(k) = res%pivots
+            h%newton_iterations(k) = res%iterations
+            h%method(k) = res%method
+            h%fallback(k) = res%fallback
+            if (len(res%fallback) > 0) then
+                fallbacks = fallbacks + 1
+                if (first_fallback == 0) first_fallback = k
+            end if
             h%certificate_min_z(k) = res%certificate%min_z
             h%certificate_min_w(k) = res%certificate%min_w
             h%certificate_max_complementarity(k) = res%certificate%max_complementarity
+            ! Tractions S_r + A D: the contact solution's, the free elements' from their rows.
+            h%shear_traction(sys%contact, k) = res%shear_traction
+            h%normal_traction(sys%contact, k) = res%normal_traction
+            if (sys%nf > 0) then
+                call listed_tractions(model%elements, g, model%poissons_ratio, sys%matrix, &
+                    sys%shear_row, sys%normal_row, sys%free, h%ds(:, k), h%dn(:, k), ts, tn)
+                h%shear_traction(sys%free, k) = ts + shear(sys%free, k)
+                h%normal_traction(sys%free, k) = tn + normal(sys%free, k)
+            end if
+            call stress_intensity(model%elements, g, model%poissons_ratio, &
+                                  results%tips%element, h%ds(:, k), h%dn(:, k), h%k1(:, k), &
+                                  h%k2(:, k))
+            call system_clock(t1)
+            call report_progress(step_line(k, nsteps, loads(:, k), model%load_path%varies, &
+                                           res, real(t1 - t_start, wp) / real(rate, wp)))
         end do
         call system_clock(t1)
-        seconds_lcp = real(t1 - t0, wp) / real(rate, wp)
+        seconds_lcp = real(t1 - t0, wp) / real(rate, wp) - seconds_factorization
 
         ! The last step: tractions, face displacements, tips and fields for its DDs.
         call record_contact(sys, res, results%solver)
@@ -139,18 +176,59 @@ contains
         call finish_model(apply_load(model, loads(:, nsteps)), matrix, shear(:, nsteps), &
                           normal(:, nsteps), results)
         results%solver%seconds_factorization = results%solver%seconds_factorization + &
-            built%seconds_factorization
-        results%solver%factorization_flops = results%solver%factorization_flops + &
-            built%factorization_flops
+            seconds_factorization - res%seconds_factorization
+        results%solver%factorization_flops = results%solver%factorization_flops + flops - &
+            res%factorization_flops
         results%solver%pivots = pivots
         results%solver%lcp_solves = solves
+        results%solver%newton_iterations = iterations
         results%solver%seconds_lcp = seconds_lcp
         results%solver%equilibrium_residual = maxval(h%equilibrium_residual)
+        results%solver%fallback = ''
+        if (fallbacks > 0) results%solver%fallback = itoa(fallbacks)//' of '//itoa(nsteps)// &
+            ' steps fell back to the other method; the first, step '//itoa(first_fallback)// &
+            ': '//trim(h%fallback(first_fallback))
         results%history = h
         model = apply_load(model, loads(:, nsteps))
         call system_clock(t1)
         results%solver%seconds_total = real(t1 - t_start, wp) / real(rate, wp)
     end subroutine solve_history
+
+    !> The history arrays of n elements, tips tips and k steps.
+    subroutine allocate_history(h, n, tips, k)
+        type(history_record), intent(out) :: h
+        integer, intent(in) :: n, tips, k
+
+        allocate (h%ds(n, k), h%dn(n, k), h%state(n, k), h%pivots(k), &
+                  h%newton_iterations(k), h%method(k), h%fallback(k), &
+                  h%certificate_min_z(k), h%certificate_min_w(k), &
+                  h%certificate_max_complementarity(k), h%equilibrium_residual(k), &
+                  h%shear_traction(n, k), h%normal_traction(n, k), h%k1(tips, k), &
+                  h%k2(tips, k))
+    end subroutine allocate_history
+
+    !> 'step 12 of 101 (sxy = 10): newton, 1 iteration, 0.53 s'.
+    function step_line(k, nsteps, load, varies, res, seconds) result(line)
+        integer, intent(in) :: k, nsteps
+        real(wp), intent(in) :: load(:), seconds
+        logical, intent(in) :: varies(:)
+        type(contact_result), intent(in) :: res
+        character(len=:), allocatable :: line
+        character(len=20) :: elapsed
+
+        write (elapsed, '(f0.2)') seconds
+        line = 'step '//itoa(k)//' of '//itoa(nsteps)//' ('//load_text(load, varies)//'): '// &
+            res%method
+        if (res%method == 'newton') then
+            line = line//', '//itoa(res%iterations)//' iteration'
+            if (res%iterations /= 1) line = line//'s'
+        else
+            line = line//', '//itoa(res%pivots)//' pivot'
+            if (res%pivots /= 1) line = line//'s'
+        end if
+        if (len(res%fallback) > 0) line = line//' (fell back: '//res%fallback//')'
+        line = line//', '//trim(adjustl(elapsed))//' s'
+    end function step_line
 
     !> 'sxy = 10, p0 = 3' for the quantities a path varies (all seven when none is marked).
     function load_text(load, varies) result(text)

@@ -16,7 +16,7 @@ module ddc_influence_response
     implicit none
     private
 
-    public :: midpoint_response
+    public :: midpoint_response, listed_tractions
 
 contains
 
@@ -79,6 +79,50 @@ contains
         us_minus = merge(y(1:n), us, shear_row == row_displacement)
         un_minus = merge(y(n + 1:), un, normal_row == row_displacement)
     end subroutine midpoint_response
+
+    !> Induced tractions at the midpoints of the listed (distinct) elements: from their rows
+    !> of the assembled matrix where those are traction rows, else from the general kernel.
+    subroutine listed_tractions(elements, shear_modulus, nu, matrix, shear_row, normal_row, &
+                                list, ds, dn, shear_traction, normal_traction)
+        !> Elements with geometry computed
+        type(element_set), intent(in) :: elements
+        !> Shear modulus [stress unit] and Poisson's ratio [-]
+        real(wp), intent(in) :: shear_modulus, nu
+        !> The influence matrix assembled with these row kinds, shape (2n, 2n)
+        real(wp), intent(in) :: matrix(:, :)
+        !> Kind of the shear row and of the normal row of each element, shape (n)
+        integer, intent(in) :: shear_row(:), normal_row(:)
+        !> The elements wanted, shape (m)
+        integer, intent(in) :: list(:)
+        !> Displacement discontinuities of every element [length unit], shape (n)
+        real(wp), intent(in) :: ds(:), dn(:)
+        !> Induced shear and normal traction of the listed elements [stress unit], shape (m)
+        real(wp), intent(out) :: shear_traction(:), normal_traction(:)
+        real(wp), allocatable :: ts(:), tn(:), us(:), un(:)
+        integer, allocatable :: other(:)
+        integer :: n, k, i
+
+        n = elements%n
+        allocate (ts(n), tn(n), us(n), un(n))
+        other = pack(list, shear_row(list) /= row_traction .or. normal_row(list) /= row_traction)
+        if (size(other) > 0) call general_sums(elements, shear_modulus, nu, ds, dn, other, ts, &
+                                               tn, us, un)
+        do k = 1, size(list)
+            i = list(k)
+            if (shear_row(i) == row_traction) then
+                shear_traction(k) = dot_product(matrix(i, 1:n), ds) + &
+                    dot_product(matrix(i, n + 1:), dn)
+            else
+                shear_traction(k) = ts(i)
+            end if
+            if (normal_row(i) == row_traction) then
+                normal_traction(k) = dot_product(matrix(n + i, 1:n), ds) + &
+                    dot_product(matrix(n + i, n + 1:), dn)
+            else
+                normal_traction(k) = tn(i)
+            end if
+        end do
+    end subroutine listed_tractions
 
     !> Tractions and face displacements at the midpoints of the listed (distinct) elements
     !> from the general kernel (every pair, images included).

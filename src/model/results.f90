@@ -68,6 +68,9 @@ module ddc_model_results
         character(len=:), allocatable :: fallback
         !> Newton (active-set) iterations summed over contact solves
         integer :: newton_iterations = 0
+        !> The Newton method's reduced systems: new LU factorizations, low-rank updates of a
+        !> factorization, and solves with unchanged factors (states unchanged)
+        integer :: factorizations = 0, low_rank_updates = 0, factorization_reuses = 0
         !> Nominal flop count of the timed factorizations (2/3 m^3 per LU of size m) [-]
         real(wp) :: factorization_flops = 0.0_wp
         !> Number of OpenMP threads
@@ -97,9 +100,19 @@ module ddc_model_results
         real(wp), allocatable :: ds(:, :), dn(:, :)
         !> Element state at the end of each step, shape (n, k)
         integer, allocatable :: state(:, :)
-        !> Lemke pivots of each step (0: the previous step's basis was still feasible),
-        !> shape (k)
-        integer, allocatable :: pivots(:)
+        !> Lemke pivots of each step (0: the previous step's basis was still feasible, or
+        !> the Newton method solved it) and Newton iterations of each step, shape (k)
+        integer, allocatable :: pivots(:), newton_iterations(:)
+        !> The method that solved each step ('lemke' or 'newton') and why the other one
+        !> failed first (empty when it did not), shape (k)
+        character(len=6), allocatable :: method(:)
+        character(len=256), allocatable :: fallback(:)
+        !> Total shear and normal traction at the end of each step, tension positive
+        !> [stress unit], shape (n, k)
+        real(wp), allocatable :: shear_traction(:, :), normal_traction(:, :)
+        !> Stress intensity factors of each tip (the tips of /tips) at the end of each step
+        !> [stress unit * length unit**0.5], shape (tips, k)
+        real(wp), allocatable :: k1(:, :), k2(:, :)
         !> Certificate of each step (scaled min z, min w, max |z w|) and the relative
         !> equilibrium residual, shape (k) [-]
         real(wp), allocatable :: certificate_min_z(:), certificate_min_w(:)

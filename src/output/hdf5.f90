@@ -18,8 +18,9 @@
 !> - /solver attributes and /solver/seconds/<phase> scalar datasets;
 !> - /sweep attributes task, tasks, parameters and one per parameter (sweep tasks only);
 !> - /history (loading history only, SPEC-EARTH 3; k steps, the first the starting state):
-!>   {sxx, syy, sxy} and each other quantity the path varies, shape (k); {ds, dn, state}
-!>   shaped (k, n) in h5py (Fortran dims (n, k)); pivots, certificate_min_z,
+!>   {sxx, syy, sxy} and each other quantity the path varies, shape (k); {ds, dn, state,
+!>   shear_traction, normal_traction} shaped (k, n) in h5py (Fortran dims (n, k)); {k1, k2}
+!>   shaped (k, tips); method, fallback, pivots, newton_iterations, certificate_min_z,
 !>   certificate_min_w, certificate_max_complementarity, equilibrium_residual, shape (k);
 !>   leg_steps (increments per leg); /elements hold the last step.
 module ddc_output_hdf5
@@ -372,6 +373,9 @@ contains
             call write_attribute(solver, 'method', text(s%method), error)
             call write_attribute(solver, 'fallback', text(s%fallback), error)
             call write_attribute(solver, 'newton_iterations', s%newton_iterations, error)
+            call write_attribute(solver, 'factorizations', s%factorizations, error)
+            call write_attribute(solver, 'low_rank_updates', s%low_rank_updates, error)
+            call write_attribute(solver, 'factorization_reuses', s%factorization_reuses, error)
             call write_attribute(solver, 'factorization_flops', s%factorization_flops, error)
             call write_attribute(solver, 'threads', s%threads, error)
             call write_attribute(solver, 'pivots', s%pivots, error)
@@ -413,7 +417,7 @@ contains
         type(error_type), allocatable, intent(inout) :: error
         type(h5_object) :: group
         character(len=:), allocatable :: length, stress, units
-        integer :: q, dims(2)
+        integer :: q, dims(2), tip_dims(2)
 
         length = text(model%length_unit)
         stress = text(model%stress_unit)
@@ -433,7 +437,20 @@ contains
                                     error)
             call write_int_dataset(group, 'state', reshape(h%state, [size(h%state)]), dims, &
                                    error, state_coding)
+            call write_real_dataset(group, 'shear_traction', reshape(h%shear_traction, &
+                                    [size(h%shear_traction)]), dims, stress, error)
+            call write_real_dataset(group, 'normal_traction', reshape(h%normal_traction, &
+                                    [size(h%normal_traction)]), dims, stress, error)
+            tip_dims = shape(h%k1)
+            units = stress//' '//length//'^0.5'
+            call write_real_dataset(group, 'k1', reshape(h%k1, [size(h%k1)]), tip_dims, units, &
+                                    error)
+            call write_real_dataset(group, 'k2', reshape(h%k2, [size(h%k2)]), tip_dims, units, &
+                                    error)
+            call write_string_1d(group, 'method', h%method, error)
+            call write_string_1d(group, 'fallback', h%fallback, error)
             call write_int_1d(group, 'pivots', h%pivots, error)
+            call write_int_1d(group, 'newton_iterations', h%newton_iterations, error)
             call write_real_1d(group, 'certificate_min_z', h%certificate_min_z, '1', error)
             call write_real_1d(group, 'certificate_min_w', h%certificate_min_w, '1', error)
             call write_real_1d(group, 'certificate_max_complementarity', &

@@ -279,6 +279,9 @@ contains
         record%method = res%method
         record%fallback = res%fallback
         record%newton_iterations = res%iterations
+        record%factorizations = res%factorizations
+        record%low_rank_updates = res%low_rank_updates
+        record%factorization_reuses = res%factorization_reuses
         record%factorization_flops = res%factorization_flops + sys%flops
         record%pivots = res%pivots
         record%lcp_solves = res%solves

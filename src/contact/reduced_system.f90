@@ -1,0 +1,325 @@
+!> The linear system of the active-set method for one set of element states
+!> (ddc_contact_active_set), factorized once and then reused while the states change little.
+!>
+!> Its unknowns are the DDs not fixed by the states, each named by its index g in the [s; n]
+!> ordering of the influence matrix A (Ds of a slipping element, Dn of an open one); the
+!> row of unknown g is A(g, :) + coef A(p, :) on the unknowns' columns, p the normal row
+!> of g's element. The LU factors of one such system (the base) are kept:
+!> - the same unknowns and coefficients: the factors as they are (two triangular solves);
+!> - a few changes (unknowns added or removed, coefficients changed): a low-rank update
+!>   of the base. In the order base unknowns, then added ones, the system is
+!>   [K B; C D]: K is the base matrix with the rows r of the changed base unknowns
+!>   replaced (a new coefficient; a removed unknown's row by d e_r, d its old diagonal, so
+!>   that its value is 0), solved through the base factors by the Sherman-Morrison-Woodbury
+!>   formula K^-1 = J^-1 - Z (I + Delta Z)^-1 Delta J^-1 (Z = J^-1 on the changed rows'
+!>   unit vectors, Delta their new rows minus the old); the added unknowns are eliminated
+!>   by the Schur complement S = D - C K^-1 B (bordering), which keeps the scale of A;
+!> - more than max(16, m / 8) changed plus added unknowns, or a numerically singular
+!>   I + Delta Z or S: a new factorization, which becomes the base.
+!> The caller checks every solution against the unfactored A (ddc_contact_active_set) and
+!> asks for a new factorization (refactor) when an update has lost accuracy.
+module ddc_contact_reduced_system
+    use, intrinsic :: iso_fortran_env, only: int64
+    use ddc_kinds, only: wp
+    use ddc_error, only: error_type
+    use ddc_linalg_lapack, only: dgemm
+    use ddc_linalg_lu, only: lu_factor, lu_solve
+    implicit none
+    private
+
+    public :: reduced_system, set_system, solve_system, refactor
+    public :: action_factorized, action_updated, action_reused
+
+    !> What set_system did: a new factorization, a low-rank update of the base, or nothing
+    integer, parameter :: action_factorized = 1, action_updated = 2, action_reused = 3
+
+    !> Most changes handled by an update: max(min_update_rank, m / update_fraction)
+    integer, parameter :: min_update_rank = 16, update_fraction = 8
+
+    !> The reduced system of the current states and the factors it is solved with.
+    type :: reduced_system
+        !> The current unknowns ([s; n] indices of A), the partner row of each and its
+        !> coefficient, shape (m)
+        integer, allocatable :: unknown(:), partner(:)
+        real(wp), allocatable :: coef(:)
+        !> The base: unknowns, partners, coefficients and the diagonal of its matrix, shape
+        !> (mb); its LU factors and pivots, shape (mb, mb) and (mb); mb < 0 before the first
+        integer :: mb = -1
+        integer, allocatable :: base_unknown(:), base_partner(:), ipiv(:)
+        real(wp), allocatable :: base_coef(:), base_diag(:), factors(:, :)
+        !> Position of each current unknown in the order base, then added, shape (m);
+        !> numbers of changed base rows and of added unknowns (both 0: the base itself)
+        integer, allocatable :: position(:)
+        integer :: nr = 0, na = 0
+        !> Z = J^-1 on the changed rows' unit vectors, shape (mb, nr); Delta, shape (nr, mb);
+        !> LU factors and pivots of I + Delta Z, shape (nr, nr)
+        real(wp), allocatable :: z(:, :), delta(:, :), capacitance(:, :)
+        integer, allocatable :: capacitance_ipiv(:)
+        !> W = K^-1 B, shape (mb, na); C, shape (na, mb); LU factors and pivots of the
+        !> Schur complement S = D - C W, shape (na, na)
+        real(wp), allocatable :: w(:, :), c(:, :), schur(:, :)
+        integer, allocatable :: schur_ipiv(:)
+        !> What the last set_system did (action_*)
+        integer :: action = 0
+        !> Counts of new factorizations, low-rank updates and reuses of unchanged factors
+        integer :: factorizations = 0, updates = 0, reuses = 0
+        !> Wall time of the factorizations and updates [s] and the nominal flops of the
+        !> factorizations (2/3 m^3 each) [-]
+        real(wp) :: seconds_factorization = 0.0_wp, factorization_flops = 0.0_wp
+    end type reduced_system
+
+contains
+
+    !> Make (unknown, partner, coef) the current system: reuse the factors, update them or
+    !> factorize anew. error is allocated when a new factorization is (numerically)
+    !> singular; it names the iteration's subject and the element.
+    subroutine set_system(sys, a, unknown, partner, coef, subject, error)
+        !> The system and its factors
+        type(reduced_system), intent(inout) :: sys
+        !> Influence matrix ordered [s; n], shape (2n, 2n) [stress / length]
+        real(wp), intent(in) :: a(:, :)
+        !> Unknowns ([s; n] indices), partner rows and coefficients, shape (m)
+        integer, intent(in) :: unknown(:), partner(:)
+        real(wp), intent(in) :: coef(:)
+        !> What the system is, for the message of a singular factorization
+        character(len=*), intent(in) :: subject
+        !> Allocated when the system is (numerically) singular
+        type(error_type), allocatable, intent(out) :: error
+        integer, allocatable :: base_at(:), current_at(:), changed(:), added(:)
+        logical, allocatable :: differs(:)
+        integer :: n2, m, r, rank
+        integer(int64) :: t0, t1, rate
+
+        call system_clock(t0, rate)
+        sys%unknown = unknown
+        sys%partner = partner
+        sys%coef = coef
+        m = size(unknown)
+        n2 = size(a, 1)
+        if (sys%mb >= 0) then
+            allocate (base_at(n2), current_at(n2))
+            base_at = 0
+            current_at = 0
+            base_at(sys%base_unknown) = [(r, r = 1, sys%mb)]
+            current_at(unknown) = [(r, r = 1, m)]
+            ! Base rows whose unknown left or whose coefficient changed; added unknowns.
+            allocate (differs(sys%mb))
+            do r = 1, sys%mb
+                differs(r) = current_at(sys%base_unknown(r)) == 0
+                if (.not. differs(r)) differs(r) = &
+                    coef(current_at(sys%base_unknown(r))) /= sys%base_coef(r)
+            end do
+            changed = pack([(r, r = 1, sys%mb)], differs)
+            added = pack([(r, r = 1, m)], base_at(unknown) == 0)
+            rank = size(changed) + size(added)
+            if (rank == 0) then
+                sys%position = base_at(unknown)
+                sys%nr = 0
+                sys%na = 0
+                sys%action = action_reused
+                sys%reuses = sys%reuses + 1
+                return
+            end if
+            if (sys%mb > 0 .and. rank <= max(min_update_rank, m / update_fraction)) then
+                call update_base(sys, a, changed, added, current_at, base_at)
+                if (sys%action == action_updated) then
+                    call system_clock(t1)
+                    sys%seconds_factorization = sys%seconds_factorization + &
+                        real(t1 - t0, wp) / real(max(rate, 1_int64), wp)
+                    return
+                end if
+            end if
+        end if
+        call refactor(sys, a, subject, error)
+    end subroutine set_system
+
+    !> Factorize the current system anew; it becomes the base.
+    subroutine refactor(sys, a, subject, error)
+        !> The system: the current unknowns are set (set_system)
+        type(reduced_system), intent(inout) :: sys
+        !> Influence matrix ordered [s; n], shape (2n, 2n) [stress / length]
+        real(wp), intent(in) :: a(:, :)
+        !> What the system is, for the message of a singular factorization
+        character(len=*), intent(in) :: subject
+        !> Allocated when the system is (numerically) singular
+        type(error_type), allocatable, intent(out) :: error
+        integer :: m, k, l, n
+        integer(int64) :: t0, t1, rate
+
+        call system_clock(t0, rate)
+        m = size(sys%unknown)
+        n = size(a, 1) / 2
+        sys%mb = m
+        sys%base_unknown = sys%unknown
+        sys%base_partner = sys%partner
+        sys%base_coef = sys%coef
+        sys%position = [(k, k = 1, m)]
+        sys%nr = 0
+        sys%na = 0
+        sys%action = action_factorized
+        sys%factorizations = sys%factorizations + 1
+        if (allocated(sys%factors)) deallocate (sys%factors)
+        allocate (sys%factors(m, m))
+        !$omp parallel do default(none) schedule(static) private(k, l) shared(a, sys, m)
+        do l = 1, m
+            do k = 1, m
+                sys%factors(k, l) = a(sys%unknown(k), sys%unknown(l)) + &
+                    sys%coef(k) * a(sys%partner(k), sys%unknown(l))
+            end do
+        end do
+        !$omp end parallel do
+        sys%base_diag = [(sys%factors(k, k), k = 1, m)]
+        if (allocated(sys%ipiv)) deallocate (sys%ipiv)
+        allocate (sys%ipiv(m))
+        call lu_factor(sys%factors, sys%ipiv, subject, error, &
+                       element=modulo(sys%unknown - 1, n) + 1, shear=sys%unknown <= n)
+        if (allocated(error)) sys%mb = -1
+        call system_clock(t1)
+        sys%seconds_factorization = sys%seconds_factorization + &
+            real(t1 - t0, wp) / real(max(rate, 1_int64), wp)
+        sys%factorization_flops = sys%factorization_flops + 2.0_wp / 3.0_wp * real(m, wp)**3
+    end subroutine refactor
+
+    !> The low-rank update of the base for the changed base rows and the added unknowns
+    !> (positions in the current system); sys%action is action_updated unless I + Delta Z
+    !> or the Schur complement is numerically singular.
+    subroutine update_base(sys, a, changed, added, current_at, base_at)
+        type(reduced_system), intent(inout) :: sys
+        real(wp), intent(in) :: a(:, :)
+        integer, intent(in) :: changed(:), added(:), current_at(:), base_at(:)
+        type(error_type), allocatable :: singular, ill_conditioned
+        integer, allocatable :: ga(:), pa(:)
+        real(wp), allocatable :: ca(:)
+        real(wp) :: d, scale
+        integer :: mb, nr, na, r, q, g, p, c
+
+        sys%action = 0
+        mb = sys%mb
+        nr = size(changed)
+        na = size(added)
+        sys%nr = nr
+        sys%na = na
+        sys%position = base_at(sys%unknown)
+        do q = 1, na
+            sys%position(added(q)) = mb + q
+        end do
+        scale = maxval(abs(sys%base_diag))
+        if (.not. scale > 0.0_wp) scale = 1.0_wp
+        if (allocated(sys%z)) deallocate (sys%z, sys%delta, sys%capacitance, &
+                                          sys%capacitance_ipiv, sys%w, sys%c, sys%schur, &
+                                          sys%schur_ipiv)
+        allocate (sys%z(mb, nr), sys%delta(nr, mb), sys%capacitance(nr, nr), &
+                  sys%capacitance_ipiv(nr), sys%w(mb, na), sys%c(na, mb), sys%schur(na, na), &
+                  sys%schur_ipiv(na))
+
+        ! The changed base rows: Z = J^-1 E_R, Delta = new rows - old rows, I + Delta Z.
+        sys%z = 0.0_wp
+        do q = 1, nr
+            r = changed(q)
+            g = sys%base_unknown(r)
+            p = sys%base_partner(r)
+            sys%z(r, q) = 1.0_wp
+            c = current_at(g)
+            if (c > 0) then
+                sys%delta(q, :) = (sys%coef(c) - sys%base_coef(r)) * a(p, sys%base_unknown)
+            else
+                d = sys%base_diag(r)
+                if (d == 0.0_wp) d = scale
+                sys%delta(q, :) = -(a(g, sys%base_unknown) + sys%base_coef(r) * &
+                                    a(p, sys%base_unknown))
+                sys%delta(q, r) = sys%delta(q, r) + d
+            end if
+        end do
+        if (nr > 0) then
+            call lu_solve(sys%factors, sys%ipiv, sys%z)
+            sys%capacitance = 0.0_wp
+            do q = 1, nr
+                sys%capacitance(q, q) = 1.0_wp
+            end do
+            call dgemm('N', 'N', nr, nr, mb, 1.0_wp, sys%delta, nr, sys%z, mb, 1.0_wp, &
+                       sys%capacitance, nr)
+            call lu_factor(sys%capacitance, sys%capacitance_ipiv, 'the update', singular, &
+                           ill_conditioned=ill_conditioned)
+            if (allocated(singular) .or. allocated(ill_conditioned)) return
+        end if
+
+        ! The added unknowns: B (the current base rows on their columns; 0 in removed
+        ! rows), W = K^-1 B, C and D (their rows), S = D - C W.
+        if (na > 0) then
+            ga = sys%unknown(added)
+            pa = sys%partner(added)
+            ca = sys%coef(added)
+            do q = 1, na
+                g = ga(q)
+                do r = 1, mb
+                    c = current_at(sys%base_unknown(r))
+                    if (c > 0) then
+                        sys%w(r, q) = a(sys%base_unknown(r), g) + sys%coef(c) * &
+                            a(sys%base_partner(r), g)
+                    else
+                        sys%w(r, q) = 0.0_wp
+                    end if
+                end do
+                sys%schur(:, q) = a(ga, g) + ca * a(pa, g)
+            end do
+            do q = 1, na
+                sys%c(q, :) = a(ga(q), sys%base_unknown) + ca(q) * a(pa(q), sys%base_unknown)
+            end do
+            call solve_k(sys, sys%w)
+            call dgemm('N', 'N', na, na, mb, -1.0_wp, sys%c, na, sys%w, mb, 1.0_wp, &
+                       sys%schur, na)
+            call lu_factor(sys%schur, sys%schur_ipiv, 'the update', singular, &
+                           ill_conditioned=ill_conditioned)
+            if (allocated(singular) .or. allocated(ill_conditioned)) return
+        end if
+        sys%action = action_updated
+        sys%updates = sys%updates + 1
+    end subroutine update_base
+
+    !> Y = K^-1 Y: the base factors corrected for the changed rows (Woodbury).
+    subroutine solve_k(sys, y)
+        type(reduced_system), intent(in) :: sys
+        real(wp), intent(inout) :: y(:, :)
+        real(wp), allocatable :: t(:, :)
+        integer :: k
+
+        k = size(y, 2)
+        if (sys%mb > 0) call lu_solve(sys%factors, sys%ipiv, y)
+        if (sys%nr == 0 .or. k == 0) return
+        allocate (t(sys%nr, k))
+        call dgemm('N', 'N', sys%nr, k, sys%mb, 1.0_wp, sys%delta, sys%nr, y, sys%mb, 0.0_wp, &
+                   t, sys%nr)
+        call lu_solve(sys%capacitance, sys%capacitance_ipiv, t)
+        call dgemm('N', 'N', sys%mb, k, sys%nr, -1.0_wp, sys%z, sys%mb, t, sys%nr, 1.0_wp, y, &
+                   sys%mb)
+    end subroutine solve_k
+
+    !> Solve the current system: rhs (current order) in, solution out.
+    subroutine solve_system(sys, rhs)
+        !> The system (set_system done)
+        type(reduced_system), intent(in) :: sys
+        !> Right-hand side on entry, solution on exit, shape (m)
+        real(wp), intent(inout) :: rhs(:)
+        real(wp), allocatable :: x(:), xb(:, :), xa(:, :)
+        integer :: mb
+
+        mb = sys%mb
+        if (size(rhs) == 0) return
+        allocate (x(mb + sys%na))
+        x = 0.0_wp
+        x(sys%position) = rhs
+        xb = reshape(x(1:mb), [mb, 1])
+        call solve_k(sys, xb)
+        if (sys%na > 0) then
+            xa = reshape(x(mb + 1:), [sys%na, 1])
+            call dgemm('N', 'N', sys%na, 1, mb, -1.0_wp, sys%c, sys%na, xb, mb, 1.0_wp, xa, &
+                       sys%na)
+            call lu_solve(sys%schur, sys%schur_ipiv, xa)
+            call dgemm('N', 'N', mb, 1, sys%na, -1.0_wp, sys%w, mb, xa, sys%na, 1.0_wp, xb, mb)
+            x(mb + 1:) = xa(:, 1)
+        end if
+        x(1:mb) = xb(:, 1)
+        rhs = x(sys%position)
+    end subroutine solve_system
+
+end module ddc_contact_reduced_system
