@@ -7,7 +7,7 @@ module ddc_text
     private
 
     public :: newline, max_messages, add_message, messages_error, itoa, rtoa, lower
-    public :: join_integers, prefix_lines, quoted_list, find_name
+    public :: join_integers, prefix_lines, quoted_list, find_name, seconds_text
 
     !> Separator of the lines of a message
     character(len=*), parameter :: newline = achar(10)
@@ -72,6 +72,18 @@ contains
         write (buffer, '(g0.6)') x
         out = trim(adjustl(buffer))
     end function rtoa
+
+    !> A duration as '1.23 s'.
+    pure function seconds_text(seconds) result(out)
+        !> The duration [s]
+        real(wp), intent(in) :: seconds
+        character(len=:), allocatable :: out
+        character(len=24) :: buffer
+
+        write (buffer, '(f0.2)') seconds
+        out = trim(buffer)//' s'
+        if (out(1:1) == '.') out = '0'//out
+    end function seconds_text
 
     !> Lower-case copy of s (ASCII).
     pure function lower(s) result(out)

@@ -41,8 +41,10 @@ module ddc_contact_active_set
     use ddc_error, only: error_type
     use ddc_linalg_lapack, only: dgemv
     use ddc_contact_reduced_system, only: reduced_system, set_system, solve_system, refactor, &
-        action_updated
-    use ddc_text, only: itoa
+        action_updated, action_names
+    use ddc_text, only: itoa, seconds_text
+    use ddc_progress, only: report_progress, reports_phases
+    use, intrinsic :: iso_fortran_env, only: int64
     implicit none
     private
 
@@ -121,6 +123,7 @@ contains
         integer, allocatable :: shear_old(:)
         real(wp) :: c, tol_s, tol_d
         integer :: n, n2, i
+        integer(int64) :: t0, t1, rate
         logical :: changed, cycling
         type(error_type), allocatable :: singular
 
@@ -164,12 +167,18 @@ contains
                 return
             end if
             res%iterations = res%iterations + 1
+            call system_clock(t0, rate)
             call solve_states(a, s_r_s, s_r_np, mu, sf, held, sigma0, res, work, dd, t, &
                               singular)
             if (allocated(singular)) then
                 res%reason = singular%message
                 return
             end if
+            call system_clock(t1)
+            if (reports_phases(n)) call report_progress('newton iteration '// &
+                itoa(res%iterations)//': '//itoa(size(work%system%unknown))//' unknowns, '// &
+                trim(action_names(work%system%action))//', '// &
+                seconds_text(real(t1 - t0, wp) / real(max(rate, 1_int64), wp)))
             res%ds = dd(1:n)
             res%dn = dd(n + 1:n2)
             res%shear = t(1:n)

@@ -24,6 +24,8 @@ module ddc_contact_paper_lcp
     use ddc_contact_result, only: contact_result, block_scales, check_solution
     use ddc_linalg_lapack, only: dgemv
     use ddc_linalg_lu, only: lu_invert, influence_hint
+    use ddc_text, only: seconds_text
+    use ddc_progress, only: report_progress, reports_phases
     use, intrinsic :: iso_fortran_env, only: int64
     implicit none
     private
@@ -126,6 +128,8 @@ contains
         res%seconds_factorization = res%seconds_factorization + &
             real(t1 - t0, wp) / real(max(rate, 1_int64), wp)
         res%factorization_flops = res%factorization_flops + 2.0_wp * real(size(a, 1), wp)**3
+        if (reports_phases(size(a, 1) / 2)) call report_progress('inverse of A for '// &
+            "Lemke's LCP done in "//seconds_text(real(t1 - t0, wp) / real(max(rate, 1_int64), wp)))
     end subroutine invert_influence
 
     !> One LCP solve with frictional strength sf on a built LCP: q for the load (and the

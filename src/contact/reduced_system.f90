@@ -28,10 +28,13 @@ module ddc_contact_reduced_system
     private
 
     public :: reduced_system, set_system, solve_system, refactor
-    public :: action_factorized, action_updated, action_reused
+    public :: action_factorized, action_updated, action_reused, action_names
 
     !> What set_system did: a new factorization, a low-rank update of the base, or nothing
     integer, parameter :: action_factorized = 1, action_updated = 2, action_reused = 3
+    !> Their names, for progress lines
+    character(len=*), parameter :: action_names(3) = [character(len=21) :: &
+        'new factorization', 'low-rank update', 'factorization reused']
 
     !> Most changes handled by an update: max(min_update_rank, m / update_fraction)
     integer, parameter :: min_update_rank = 16, update_fraction = 8

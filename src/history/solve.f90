@@ -30,7 +30,7 @@ module ddc_history_solve
     use ddc_history_path, only: path_loads, apply_load
     use ddc_run_model, only: finish_model
     use ddc_progress, only: report_progress
-    use ddc_text, only: itoa, rtoa
+    use ddc_text, only: itoa, rtoa, seconds_text
     implicit none
     private
 
@@ -207,16 +207,14 @@ contains
                   h%k2(tips, k))
     end subroutine allocate_history
 
-    !> 'step 12 of 101 (sxy = 10): newton, 1 iteration, 0.53 s'.
+    !> 'step 12 of 101 (sxy = 10): newton, 1 iteration, 0.53 s' (the time since the start).
     function step_line(k, nsteps, load, varies, res, seconds) result(line)
         integer, intent(in) :: k, nsteps
         real(wp), intent(in) :: load(:), seconds
         logical, intent(in) :: varies(:)
         type(contact_result), intent(in) :: res
         character(len=:), allocatable :: line
-        character(len=20) :: elapsed
 
-        write (elapsed, '(f0.2)') seconds
         line = 'step '//itoa(k)//' of '//itoa(nsteps)//' ('//load_text(load, varies)//'): '// &
             res%method
         if (res%method == 'newton') then
@@ -227,7 +225,7 @@ contains
             if (res%pivots /= 1) line = line//'s'
         end if
         if (len(res%fallback) > 0) line = line//' (fell back: '//res%fallback//')'
-        line = line//', '//trim(adjustl(elapsed))//' s'
+        line = line//', '//seconds_text(seconds)
     end function step_line
 
     !> 'sxy = 10, p0 = 3' for the quantities a path varies (all seven when none is marked).

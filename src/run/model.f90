@@ -12,10 +12,15 @@ module ddc_run_model
     use ddc_solve_frictional, only: solve_frictional
     use ddc_post_tips, only: find_tips
     use ddc_post_fields, only: evaluate_field
+    use ddc_progress, only: report_progress, reports_phases
+    use ddc_text, only: itoa, seconds_text
     implicit none
     private
 
     public :: run_model, finish_model
+
+    !> A field of at least this many point-element pairs reports its end (progress)
+    real(wp), parameter :: field_report_pairs = 1.0e8_wp
 
 contains
 
@@ -71,6 +76,8 @@ contains
                 e%state = state_free
             end if
             if (allocated(error)) return
+            if (reports_phases(n)) call report_progress('solved ('//rec%method//') in '// &
+                seconds_text(wall_seconds() - t_start))
         end associate
         call finish_model(model, matrix, remote_shear, remote_normal, results)
         results%solver%seconds_total = wall_seconds() - t_start
@@ -91,7 +98,7 @@ contains
         !> ds and dn set on entry; tractions, face displacements, tips and fields added
         type(model_results), intent(inout) :: results
         integer, allocatable :: shear_row(:), normal_row(:)
-        real(wp) :: g, nu, t0
+        real(wp) :: g, nu, t0, pairs
         integer :: n, i
 
         t0 = wall_seconds()
@@ -113,6 +120,8 @@ contains
             e%us_plus = e%us_minus - e%ds
             e%un_plus = e%un_minus - e%dn
             call find_tips(model%elements, g, nu, e%ds, e%dn, results%tips)
+            if (reports_phases(n)) call report_progress('tractions, face displacements '// &
+                'and tips done in '//seconds_text(wall_seconds() - t0))
 
             if (allocated(model%observations)) then
                 allocate (results%fields(size(model%observations)))
@@ -124,6 +133,11 @@ contains
                                     e%ds, e%dn, model%observations(i)%x, &
                                     model%observations(i)%y, results%fields(i), &
                                     model%stress_gradient)
+                pairs = real(n, wp) * real(size(model%observations(i)%x), wp)
+                if (reports_phases(n) .or. pairs >= field_report_pairs) call report_progress( &
+                    'field '//model%observations(i)%name//' ('// &
+                    itoa(size(model%observations(i)%x))//' points) done after '// &
+                    seconds_text(wall_seconds() - t0))
             end do
         end associate
         results%solver%seconds_fields = wall_seconds() - t0

@@ -9,7 +9,8 @@ module ddc_solve_elastic
     use ddc_influence_assembly, only: assemble_influence, row_traction, row_displacement, &
         row_identity
     use ddc_linalg_lu, only: lu_factor, lu_solve, influence_hint, residual_tol
-    use ddc_text, only: rtoa
+    use ddc_text, only: rtoa, itoa, seconds_text
+    use ddc_progress, only: report_progress, reports_phases
     implicit none
     private
 
@@ -100,6 +101,9 @@ contains
         rhs(:, 1) = given_values(elements, shear_row, normal_row, remote_shear, remote_normal, &
                                  [(i, i = 1, n)])
         call system_clock(t1)
+        if (reports_phases(n)) call report_progress('assembly done in '// &
+            seconds_text(real(t1 - t0, wp) / real(rate, wp))//' ('//itoa(2 * n)//' x '// &
+            itoa(2 * n)//' influence matrix)')
 
         factors = matrix
         call lu_factor(factors, ipiv, 'influence matrix', error, ill_conditioned=ill_conditioned)
@@ -110,6 +114,8 @@ contains
         given = rhs(:, 1)
         call lu_solve(factors, ipiv, rhs)
         call system_clock(t2)
+        if (reports_phases(n)) call report_progress('LU factorization and solve done in '// &
+            seconds_text(real(t2 - t1, wp) / real(rate, wp)))
 
         residual = norm2(matmul(matrix, rhs(:, 1)) - given) / max(norm2(given), tiny(1.0_wp))
         ! A hole (closed contour) is numerically singular but consistent: its residual is small.

@@ -19,7 +19,8 @@ module ddc_solve_frictional
     use ddc_solve_elastic, only: row_kinds, given_values
     use ddc_linalg_lapack, only: dgemm
     use ddc_linalg_lu, only: lu_factor, lu_solve, influence_hint, residual_tol
-    use ddc_text, only: rtoa
+    use ddc_text, only: rtoa, itoa, seconds_text
+    use ddc_progress, only: report_progress, reports_phases
     use ddc_contact_result, only: contact_result
     use ddc_contact_formulation, only: solve_contact
     use ddc_contact_options, only: solver_options
@@ -153,6 +154,9 @@ contains
                                 matrix)
         call system_clock(t1)
         record%seconds_assembly = real(t1 - t0, wp) / real(rate, wp)
+        if (reports_phases(n)) call report_progress('assembly done in '// &
+            seconds_text(record%seconds_assembly)//' ('//itoa(2 * n)//' x '//itoa(2 * n)// &
+            ' influence matrix)')
 
         if (nf == 0) then
             ! Every element is a contact element: A is the whole matrix (no copy).
@@ -190,6 +194,8 @@ contains
             real(2 * nc + 1, wp) + 2.0_wp * real(2 * nc, wp)**2 * real(2 * nf, wp)
         call system_clock(t2)
         record%seconds_factorization = real(t2 - t1, wp) / real(rate, wp)
+        if (reports_phases(n) .and. nf > 0) call report_progress('condensation of '// &
+            itoa(nf)//' elements done in '//seconds_text(record%seconds_factorization))
     end subroutine condense_contact
 
     !> Remote traction on the contact elements for one load, free elements condensed out:
