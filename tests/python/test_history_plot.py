@@ -8,6 +8,7 @@ import h5py
 import numpy as np
 
 from conftest import PLOT_SCRIPT, ddc2d_exe
+from ddc2d_h5 import STATE_CODES
 
 # The play-operator crack of SPEC-EARTH 3, coarse: slips above 6 MPa, sticks while the
 # shear is unloaded by less than 12 MPa, slips back below -2 MPa.
@@ -39,7 +40,7 @@ def test_history_layout_and_last_step(tmp_path):
         assert np.all(h["certificate_max_complementarity"][()] <= 1e-8)
         assert list(h["leg_steps"][()]) == [10, 20]
         assert np.all(h["ds"][:7] == 0.0)  # no slip up to 6 MPa
-        assert np.all(h["state"][11:22] == 1)  # sticks from 9 down to -2 MPa
+        assert np.all(h["state"][11:22] == STATE_CODES["stick"])  # sticks from 9 down to -2 MPa
         np.testing.assert_array_equal(h["ds"][11:22], np.repeat(h["ds"][10:11], 11, axis=0))
         assert tuple(f.attrs["remote_stress"]) == (0.0, -10.0, -10.0)
 

@@ -11,6 +11,7 @@ import pytest
 
 from conftest import (GRID_NAN_POINT, GRID_NEAR_POINT, LENGTH_UNIT, PLOT_SCRIPT, STRESS_UNIT,
                       ddc2d_exe, write_result)
+from ddc2d_h5 import STATE_CODES
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 
@@ -471,7 +472,7 @@ def test_plots_a_model_solved_by_ddc2d(plot_module, tmp_path):
         plot_module.plt.close(fig)
     np.testing.assert_array_equal(fault_profile["slip"], -ds[:30])
     np.testing.assert_array_equal(fault_profile["state"], state[:30])
-    assert np.all(crack_profile["state"] == 3)  # 70 MPa > 50 MPa on the crack: open
+    assert np.all(crack_profile["state"] == STATE_CODES["open"])  # 70 MPa > 50 MPa: open
     with open(tmp_path / "fig" / "solved_tips.csv", newline="") as handle:
         rows = list(csv.reader(handle))[1:]
     assert [r[1] for r in rows] == ["fault", "fault", "crack", "crack"]

@@ -12,6 +12,7 @@ import h5py
 import numpy as np
 
 from conftest import REPO_ROOT, ddc2d_exe
+from ddc2d_h5 import STATE_CODES, is_complete
 
 EXAMPLE = REPO_ROOT / "input" / "sweep_friction_orientation.nml"
 SUBMIT = REPO_ROOT / "scripts" / "submit-sweep"
@@ -56,7 +57,7 @@ def test_task_output_skip_and_redo(tmp_path):
     assert done.returncode == 0, done.stderr
     output = tmp_path / "out_task0002.h5"
     with h5py.File(output, "r") as f:
-        assert f.attrs["complete"] == 1
+        assert is_complete(f.attrs)
         attrs = f["sweep"].attrs
         assert (attrs["task"], attrs["tasks"]) == (2, 4)
         assert attrs["parameters"] == b"mu, remote_angle"
@@ -77,7 +78,7 @@ def test_task_output_skip_and_redo(tmp_path):
     assert redo.returncode == 0, redo.stderr
     assert "incomplete or unreadable; running the task again" in redo.stdout
     with h5py.File(output, "r") as f:
-        assert f.attrs["complete"] == 1
+        assert is_complete(f.attrs)
 
 
 def test_task_from_slurm_array_task_id(tmp_path):
@@ -194,8 +195,9 @@ def test_collect_sweep_tables_and_plot(tmp_path):
     for row, task in zip(rows, (0, 1, 3)):
         with h5py.File(runs / f"small_task{task:04d}.h5", "r") as f:
             assert float(row["peak_slip"]) == np.max(np.abs(f["elements/ds"][()]))
-            assert int(row["slip"]) == np.count_nonzero(f["elements/state"][()] == 2)
-            assert int(row["stick"]) == np.count_nonzero(f["elements/state"][()] == 1)
+            state = f["elements/state"][()]
+            assert int(row["slip"]) == np.count_nonzero(state == STATE_CODES["slip"])
+            assert int(row["stick"]) == np.count_nonzero(state == STATE_CODES["stick"])
             assert float(row["max_abs_k2"]) == np.max(np.abs(f["tips/k2"][()]))
             assert float(row["mu"]) == f["sweep"].attrs["mu"]
     # mu = 0.2 slips at -30 degrees, mu = 0.8 sticks
