@@ -182,14 +182,20 @@ def result_file_without_fields(tmp_path):
     return write_result(tmp_path / "nofields.h5", with_fields=False)
 
 
-@pytest.fixture(scope="session")
-def plot_module():
-    """scripts/ddc2d-plot loaded as a module (its name has no .py suffix)."""
-    loader = importlib.machinery.SourceFileLoader("ddc2d_plot", str(PLOT_SCRIPT))
-    spec = importlib.util.spec_from_loader("ddc2d_plot", loader)
+def load_script(name):
+    """scripts/<name> loaded as a module (the scripts' names have no .py suffix)."""
+    module_name = name.replace("-", "_")
+    loader = importlib.machinery.SourceFileLoader(module_name, str(SCRIPTS / name))
+    spec = importlib.util.spec_from_loader(module_name, loader)
     module = importlib.util.module_from_spec(spec)
     loader.exec_module(module)
     return module
+
+
+@pytest.fixture(scope="session")
+def plot_module():
+    """scripts/ddc2d-plot loaded as a module."""
+    return load_script("ddc2d-plot")
 
 
 def ddc2d_exe():

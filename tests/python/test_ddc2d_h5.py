@@ -171,3 +171,64 @@ def test_elements_of_different_lengths_are_refused(tmp_path):
         f["elements"].create_dataset("dn", data=np.zeros(3))
     with pytest.raises(ddc2d_h5.ResultError, match="/elements/dn has 3 values"):
         ddc2d_h5.load_result(path)
+
+
+# ------------------------------------------------------------------ the tie rule
+
+
+@pytest.mark.parametrize("kind, values, expected", [
+    ("max", [1.0, 3.0, 3.0, 1.0], 1),  # symmetric: an exact tie
+    ("min", [3.0, 1.0, 2.0, 1.0, 3.0], 1),
+    ("max", [-2.0, -1.0, -1.0], 1),  # negative extremes
+    ("min", [0.0, 5.0, 0.0], 0),  # a zero extreme ties with exact zeros only
+    ("max", [0.0, 0.0], 0),
+])
+def test_exact_ties_give_the_lowest_index(kind, values, expected):
+    assert ddc2d_h5.index_of_extreme(values, kind) == expected
+
+
+@pytest.mark.parametrize("kind, sign", [("max", 1.0), ("min", -1.0)])
+def test_near_ties_within_1e_9_give_the_lowest_index(kind, sign):
+    # The later value is the extreme by a relative 1e-10 (or 5e-10): still a tie.
+    for relative in (1e-10, 5e-10):
+        values = sign * np.array([1.0, 3.0, 3.0 * (1.0 + relative), 1.0])
+        assert ddc2d_h5.index_of_extreme(values, kind) == 1, relative
+    # Beyond the tolerance (a relative 2e-9) the later value is the extreme.
+    values = sign * np.array([1.0, 3.0, 3.0 * (1.0 + 2e-9), 1.0])
+    assert ddc2d_h5.index_of_extreme(values, kind) == 2
+
+
+def test_rtol_is_a_parameter():
+    values = [1.0, 1.0 + 1e-6]
+    assert ddc2d_h5.index_of_extreme(values) == 1
+    assert ddc2d_h5.index_of_extreme(values, rtol=1e-5) == 0
+    assert ddc2d_h5.index_of_extreme(values, rtol=0.0) == 1
+    assert ddc2d_h5.index_of_extreme([2.0, 2.0], rtol=0.0) == 0
+
+
+def test_nan_is_ignored_and_infinity_ties_only_with_itself():
+    assert ddc2d_h5.index_of_extreme([np.nan, 2.0, 2.0]) == 1
+    assert ddc2d_h5.index_of_extreme([np.nan, 2.0, np.nan, 1.0], "min") == 3
+    assert ddc2d_h5.index_of_extreme([1e300, np.inf, np.inf]) == 1
+    assert ddc2d_h5.index_of_extreme([-np.inf, -1e300], "min") == 0
+    with pytest.raises(ValueError, match="no value that is not NaN"):
+        ddc2d_h5.index_of_extreme([np.nan, np.nan])
+    with pytest.raises(ValueError, match="no value that is not NaN"):
+        ddc2d_h5.index_of_extreme([])
+    with pytest.raises(ValueError, match="kind"):
+        ddc2d_h5.index_of_extreme([1.0], "largest")
+
+
+def test_two_dimensional_values_give_the_flat_index():
+    grid = np.array([[1.0, 4.0], [4.0, 1.0]])
+    assert ddc2d_h5.index_of_extreme(grid) == 1
+    assert np.unravel_index(ddc2d_h5.index_of_extreme(grid, "min"), grid.shape) == (0, 0)
+
+
+def test_is_tie():
+    assert ddc2d_h5.is_tie(3.0, 3.0)
+    assert ddc2d_h5.is_tie(3.0, 3.0 * (1.0 + 1e-10))
+    assert not ddc2d_h5.is_tie(3.0, 3.0 * (1.0 + 2e-9))
+    assert ddc2d_h5.is_tie(0.0, 0.0) and not ddc2d_h5.is_tie(0.0, 1e-300)
+    assert ddc2d_h5.is_tie(1e-12, 0.0, scale=100.0)  # zero relative to the data's scale
+    assert not ddc2d_h5.is_tie(1e-6, 0.0, scale=100.0)
