@@ -9,8 +9,15 @@ import h5py
 import numpy as np
 import pytest
 
-from conftest import (GRID_NAN_POINT, GRID_NEAR_POINT, LENGTH_UNIT, PLOT_SCRIPT, STRESS_UNIT,
-                      ddc2d_exe, write_result)
+from conftest import (
+    GRID_NAN_POINT,
+    GRID_NEAR_POINT,
+    LENGTH_UNIT,
+    PLOT_SCRIPT,
+    STRESS_UNIT,
+    ddc2d_exe,
+    write_result,
+)
 from ddc2d_h5 import STATE_CODES
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
@@ -142,7 +149,7 @@ def test_profile_data_equal_hdf5_values(plot_module, result_file):
         state = f["elements/state"][()]
     profiles = plot_module.fracture_profiles(plot_module.load_result(result_file))
     assert len(profiles) == 2
-    (frac_a, prof_a), (frac_b, prof_b) = profiles
+    (_, prof_a), (_, prof_b) = profiles
     np.testing.assert_array_equal(prof_a["slip"], -ds[0:4])
     np.testing.assert_array_equal(prof_a["opening"], -dn[0:4])
     np.testing.assert_array_equal(prof_a["state"], state[0:4])

@@ -16,7 +16,6 @@ import signal
 import subprocess
 import time
 from concurrent.futures import ThreadPoolExecutor
-from pathlib import Path
 
 import h5py
 import pytest
@@ -74,7 +73,7 @@ def mutate(text, rng):
         new = rng.choice(["1e308", "-1e308", "1e400", "1e-320"]) if kind == 2 else \
             rng.choice(["NaN", "Inf", "-Infinity", "nan"])
         return text[: m.start()] + new + text[m.end():]
-    groups = list(re.finditer(r"&\w+[^&]*?/", text, flags=re.S))
+    groups = list(re.finditer(r"&\w+[^&]*?/", text, flags=re.DOTALL))
     if kind == 4 and groups:  # a repeated group
         g = rng.choice(groups)
         return text[: g.end()] + "\n" + g.group(0) + text[g.end():]

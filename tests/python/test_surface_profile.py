@@ -30,8 +30,9 @@ def test_surface_line_of_a_half_plane_is_plotted(plot_module, tmp_path):
     result = plot_module.load_result(out)
     assert plot_module.surface_lines(result) == ["surface"]
     fig = plot_module.plot_surface(result, "surface")
-    uy_line = [line for line in fig.axes[0].get_lines() if line.get_gid() == "uy"][0]
+    (uy_line,) = [line for line in fig.axes[0].get_lines() if line.get_gid() == "uy"]
     x, uy = uy_line.get_data()
+    plot_module.plt.close(fig)
     field = result["fields"]["surface"]
     # The line runs along +x, so the figure draws the stored values in their order: exact.
     assert np.array_equal(x, field["x"])
