@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import ddc2d_h5
-from conftest import ddc2d_exe, write_result
+from conftest import ddc2d_exe, load_script, write_result
 
 # ------------------------------------------------------------------ strings
 
@@ -49,6 +49,12 @@ def test_codings_are_inverse_pairs():
     for names, codes in ((ddc2d_h5.STATE_NAMES, ddc2d_h5.STATE_CODES),
                          (ddc2d_h5.CONDITION_NAMES, ddc2d_h5.CONDITION_CODES)):
         assert {code: name for name, code in codes.items()} == names
+
+
+def test_twodd2nml_kode_is_the_condition_code():
+    # twodd2nml keeps its own table (it runs without numpy and h5py): the same names.
+    kodes = load_script("twodd2nml").CONDITIONS
+    assert kodes == {code: ddc2d_h5.CONDITION_NAMES[code] for code in (1, 2, 3, 4)}
 
 
 def test_parse_coding_takes_the_first_word_after_each_code():
