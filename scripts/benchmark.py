@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """Benchmark ddc2d (SPEC sections 6 and 8).
 
-    benchmark.py --exe PATH --sizes 250,500,1000 --case straight|mixed --json FILE
-                 [--threads T] [--lcp-method auto|lemke|newton] [--grid NX]
-                 [--lu-exe PATH] [--workdir DIR]
+    benchmark.py --exe PATH --sizes 250,500,1000 --case straight|mixed|history|fields
+                 --json FILE [--threads T] [--lcp-method auto|lemke|newton] [--grid NX]
+                 [--steps K] [--compare-lemke] [--lu-exe PATH] [--workdir DIR]
 
 For every size N it writes a namelist model with N contact elements, runs ``ddc2d`` on it,
 reads the phase times from ``/solver/seconds`` of the HDF5 output (the output phase from
@@ -12,11 +12,22 @@ memory of the run (``os.wait4``), and times one LAPACK LU (DGETRF) of a 2N x 2N 
 matrix with ``ddc2d_lu_benchmark`` (tests/lu_benchmark.f90, linked to the same LAPACK as
 ddc2d; by default next to the executable's build: ``<build>/tests/ddc2d_lu_benchmark``).
 
-Cases:
+Cases (CASES: a model builder per case; a new case adds one):
   straight  the paper's fault: (-1, 0)-(1, 0), mu = 0.6, Sf = 1, principal stresses -175 and
             -50 MPa at 30 degrees (every element slips);
   mixed     a kinked fault network (two faults, each with a flat, a 35-degree and a flat
-            segment) under fluid pressure on part of it: elements stick, slip and open.
+            segment) under fluid pressure on part of it: elements stick, slip and open;
+  history   the paper's fault along a loading history of K increments (--steps, default
+            100): sxy from 0 to 54.13 MPa (it slips), back to 0 (it sticks) and on to
+            -54.13 MPa (it slips back), in legs of about K/3 increments;
+  fields    the straight case with a GRID x GRID map (--grid, default 500 for this case;
+            0 for history, 100 for the others): the field evaluation, reported as
+            ``fields_over_lu``.
+
+--compare-lemke runs every model a second time with lcp_method = 'lemke' and adds to its
+record ``lemke``: Lemke's seconds, peak memory and ratio to the LU, whether the states are
+the same, and the largest DD difference relative to the largest DD (of every step for a
+history).
 
 Threads: ``OMP_NUM_THREADS`` and ``OPENBLAS_NUM_THREADS`` are both set to T (default: the
 number of CPUs); ddc2d calls BLAS outside its OpenMP regions only, so the two never nest.
@@ -24,9 +35,11 @@ number of CPUs); ddc2d calls BLAS outside its OpenMP regions only, so the two ne
 The table printed and the JSON records (a list) hold
 ``{n, case, threads, seconds: {assembly, factorization, lcp, fields, output, total},
 lu_reference_seconds, peak_rss_mb}`` and, in addition, the contact method used, any
-fallback, Newton iterations, LCP pivots, element states, the nominal factorization flops
-and rates (``factorization_gflops``, ``lu_reference_gflops``), ``total_over_lu`` and the
-wall time of the run.
+fallback, Newton iterations, LCP pivots, the Newton method's new factorizations, low-rank
+updates and reuses of its factors, element states, the nominal factorization flops and
+rates (``factorization_gflops``, ``lu_reference_gflops``), ``total_over_lu``,
+``fields_over_lu`` and the wall time of the run; a history adds ``steps`` and
+``fallback_steps``.
 """
 
 import argparse
@@ -41,11 +54,13 @@ import time
 from pathlib import Path
 
 import h5py
+import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))  # ddc2d_h5 lives beside this script
-from ddc2d_h5 import SOLVER_PHASES, read_solver
+from ddc2d_h5 import SOLVER_PHASES, read_history, read_solver
 
-CASES = ("straight", "mixed")
+#: Default grid (GRID x GRID points) of each case
+DEFAULT_GRID = {"straight": 100, "mixed": 100, "history": 0, "fields": 500}
 
 
 def straight_model(n, grid):
@@ -91,6 +106,24 @@ def mixed_model(n, grid):
         + grid_group(grid))
 
 
+def history_model(n, grid, steps=100):
+    """The paper's fault loaded by sxy to 54.13 MPa, unloaded to 0 and loaded the other way
+    to -54.13 MPa, in `steps` increments."""
+    legs = split(steps, 3)
+    return (straight_model(n, grid).replace("sxy = 54.13", "sxy = 0.0")
+            + "&load_path sxy = 0.0, 54.13, 0.0, -54.13, "
+            f"steps = {legs[0]}, {legs[1]}, {legs[2]} /\n")
+
+
+#: The model of each case: n elements, a grid of nx x nx points (0: none), history steps.
+CASES = {
+    "straight": lambda n, grid, steps: straight_model(n, grid),
+    "mixed": lambda n, grid, steps: mixed_model(n, grid),
+    "history": history_model,
+    "fields": lambda n, grid, steps: straight_model(n, grid),
+}
+
+
 def grid_group(nx):
     """A nx x nx grid around the faults (none when nx is 0)."""
     if nx <= 0:
@@ -131,17 +164,48 @@ def lu_reference(lu_exe, n2, env):
     return float(match.group(1)), float(match.group(2))
 
 
-def benchmark_one(exe, lu_exe, n, case, threads, method, grid, workdir):
-    """Run one model of n elements; return its JSON record."""
-    env = dict(os.environ, OMP_NUM_THREADS=str(threads),
-               OPENBLAS_NUM_THREADS=str(threads))
-    model = straight_model(n, grid) if case == "straight" else mixed_model(n, grid)
-    nml = Path(workdir) / f"{case}_{n}.nml"
-    h5 = Path(workdir) / f"{case}_{n}.h5"
-    nml.write_text(model + solver_group(method) + f"&output file = '{h5.name}' /\n")
+def run_model(exe, text, method, name, workdir, env):
+    """Run one model with a method; return (stdout, wall seconds, peak RSS MB, the result
+    file's /solver and /history (None without a path), its element states and DDs)."""
+    nml = Path(workdir) / f"{name}_{method}.nml"
+    h5 = Path(workdir) / f"{name}_{method}.h5"
+    nml.write_text(text + solver_group(method) + f"&output file = '{h5.name}' /\n")
     stdout, wall, rss = run_measured([str(exe), str(nml), "-o", str(h5)], env)
     with h5py.File(h5, "r") as f:
         solver = read_solver(f)
+        history = read_history(h5, f, f["elements/ds"].shape[0])
+        states = f["elements/state"][()]
+        dds = [f["elements/ds"][()], f["elements/dn"][()]]
+    h5.unlink()
+    if history is not None:
+        states = history["state"]
+        dds = [history["ds"], history["dn"]]
+    return stdout, wall, rss, solver, history, states, dds
+
+
+def compare_with_lemke(exe, text, name, workdir, env, lu_seconds, states, dds):
+    """Lemke on the same model: its time, memory and ratio to the LU; same states; largest
+    DD difference relative to the largest DD."""
+    _, _, rss, solver, _, lemke_states, lemke_dds = run_model(exe, text, "lemke", name,
+                                                              workdir, env)
+    scale = max(float(np.max(np.abs(d))) for d in lemke_dds) or 1.0
+    total = solver["seconds"]["total"]
+    return {"seconds": total, "peak_rss_mb": rss, "total_over_lu": total / lu_seconds,
+            "pivots": int(solver["attrs"].get("pivots", 0)),
+            "same_states": bool(np.array_equal(states, lemke_states)),
+            "max_dd_difference": max(float(np.max(np.abs(a - b)))
+                                     for a, b in zip(dds, lemke_dds)) / scale}
+
+
+def benchmark_one(exe, lu_exe, n, case, threads, method, grid, workdir, steps=100,
+                  compare_lemke=False):
+    """Run one model of n elements; return its JSON record."""
+    env = dict(os.environ, OMP_NUM_THREADS=str(threads),
+               OPENBLAS_NUM_THREADS=str(threads))
+    text = CASES[case](n, grid, steps)
+    name = f"{case}_{n}"
+    stdout, wall, rss, solver, history, states, dds = run_model(exe, text, method, name,
+                                                                workdir, env)
     seconds, attrs = solver["seconds"], solver["attrs"]
     # The output phase is timed while the file is written: take it from the summary.
     match = re.search(r"output\s+([0-9.]+)", stdout)
@@ -151,6 +215,7 @@ def benchmark_one(exe, lu_exe, n, case, threads, method, grid, workdir):
     lu_seconds, lu_gflops = lu_reference(lu_exe, 2 * n, env)
     flops = float(attrs.get("factorization_flops", 0.0))
     fact = seconds["factorization"]
+    final = states[-1] if history is not None else states
     record = {
         "n": n, "case": case, "threads": threads, "seconds": seconds,
         "lu_reference_seconds": lu_seconds, "peak_rss_mb": rss,
@@ -158,20 +223,31 @@ def benchmark_one(exe, lu_exe, n, case, threads, method, grid, workdir):
         "fallback": attrs.get("fallback", ""),
         "newton_iterations": int(attrs.get("newton_iterations", 0)),
         "pivots": int(attrs.get("pivots", 0)),
-        "states": {s: int(attrs.get(f"elements_{s}", 0)) for s in ("stick", "slip", "open")},
+        "factorizations": int(attrs.get("factorizations", 0)),
+        "low_rank_updates": int(attrs.get("low_rank_updates", 0)),
+        "factorization_reuses": int(attrs.get("factorization_reuses", 0)),
+        "states": {s: int(np.sum(final == code)) for s, code in (("stick", 1), ("slip", 2),
+                                                                 ("open", 3))},
         "factorization_flops": flops,
         "factorization_gflops": flops / fact * 1e-9 if fact > 0 else None,
         "lu_reference_gflops": lu_gflops,
         "total_over_lu": seconds["total"] / lu_seconds if lu_seconds > 0 else None,
+        "fields_over_lu": seconds["fields"] / lu_seconds if lu_seconds > 0 else None,
         "wall_seconds": wall,
     }
-    h5.unlink()
+    if history is not None:
+        record["steps"] = int(history["state"].shape[0])
+        record["fallback_steps"] = int(sum(1 for f in history.get("fallback", []) if f))
+    if compare_lemke:
+        record["lemke"] = compare_with_lemke(exe, text, name, workdir, env, lu_seconds,
+                                             states, dds)
     return record
 
 
 def print_table(records, out=sys.stdout):
     head = ("n", "case", "thr", "method", "assembly", "factor", "lcp", "fields", "output",
-            "total", "LU ref", "tot/LU", "fact GF/s", "LU GF/s", "RSS MB", "stk/slp/opn")
+            "total", "LU ref", "tot/LU", "fld/LU", "fact GF/s", "LU GF/s", "RSS MB",
+            "stk/slp/opn", "fact/upd/reuse")
     rows = []
     for r in records:
         s = r["seconds"]
@@ -180,17 +256,29 @@ def print_table(records, out=sys.stdout):
         rows.append((str(r["n"]), r["case"], str(r["threads"]),
                      r["method"] + ("*" if r["fallback"] else ""),
                      *(f"{s[p]:.3f}" for p in SOLVER_PHASES),
-                     f"{r['lu_reference_seconds']:.3f}",
-                     f"{r['total_over_lu']:.2f}", "-" if gf is None else f"{gf:.1f}",
+                     f"{r['lu_reference_seconds']:.3f}", f"{r['total_over_lu']:.2f}",
+                     f"{r['fields_over_lu']:.2f}", "-" if gf is None else f"{gf:.1f}",
                      f"{r['lu_reference_gflops']:.1f}", f"{r['peak_rss_mb']:.0f}",
-                     f"{st['stick']}/{st['slip']}/{st['open']}"))
+                     f"{st['stick']}/{st['slip']}/{st['open']}",
+                     "/".join(str(r[k]) for k in ("factorizations", "low_rank_updates",
+                                                  "factorization_reuses"))))
     widths = [max(len(h), *(len(row[i]) for row in rows)) for i, h in enumerate(head)]
     print(" ".join(h.rjust(w) for h, w in zip(head, widths)), file=out)
     for row in rows:
         print(" ".join(c.rjust(w) for c, w in zip(row, widths)), file=out)
     for r in records:
+        if "steps" in r:
+            print(f"  n = {r['n']}: {r['steps']} steps, {r['newton_iterations']} Newton "
+                  f"iterations, {r['pivots']} Lemke pivots, {r['fallback_steps']} steps fell "
+                  "back", file=out)
         if r["fallback"]:
-            print(f"* n = {r['n']}: fell back to Lemke: {r['fallback']}", file=out)
+            print(f"* n = {r['n']}: {r['fallback']}", file=out)
+        if "lemke" in r:
+            lk = r["lemke"]
+            print(f"  n = {r['n']}: lemke {lk['seconds']:.3f} s ({lk['total_over_lu']:.2f} x "
+                  f"LU, {lk['peak_rss_mb']:.0f} MB, {lk['pivots']} pivots); same states: "
+                  f"{lk['same_states']}, largest DD difference {lk['max_dd_difference']:.1e}",
+                  file=out)
 
 
 def main(argv=None):
@@ -198,13 +286,18 @@ def main(argv=None):
     parser.add_argument("--exe", required=True, type=Path, help="the ddc2d executable")
     parser.add_argument("--sizes", required=True,
                         help="comma-separated numbers of contact elements")
-    parser.add_argument("--case", required=True, choices=CASES)
+    parser.add_argument("--case", required=True, choices=sorted(CASES))
     parser.add_argument("--json", required=True, type=Path, help="JSON file to write")
     parser.add_argument("--threads", type=int, default=os.cpu_count() or 1,
                         help="OpenMP and OpenBLAS threads (default: all CPUs)")
     parser.add_argument("--lcp-method", default="auto", choices=("auto", "lemke", "newton"))
-    parser.add_argument("--grid", type=int, default=100,
-                        help="observation grid of GRID x GRID points (0: none)")
+    parser.add_argument("--grid", type=int, default=None,
+                        help="observation grid of GRID x GRID points (0: none; default "
+                             "500 for the fields case, 0 for history, else 100)")
+    parser.add_argument("--steps", type=int, default=100,
+                        help="increments of the history case (default 100)")
+    parser.add_argument("--compare-lemke", action="store_true",
+                        help="also run every model with lcp_method = 'lemke' and compare")
     parser.add_argument("--lu-exe", type=Path, default=None,
                         help="reference LU program (default: <build>/tests/"
                              "ddc2d_lu_benchmark beside the executable's app/ folder)")
@@ -220,6 +313,10 @@ def main(argv=None):
         parser.error("--sizes must be positive (at least 6 for the mixed case)")
     if args.threads < 1:
         parser.error("--threads must be at least 1")
+    if args.steps < 3:
+        parser.error("--steps must be at least 3")
+    if args.grid is None:
+        args.grid = DEFAULT_GRID[args.case]
     exe = args.exe.resolve()
     if not exe.is_file():
         parser.error(f"--exe {exe} does not exist")
@@ -234,7 +331,8 @@ def main(argv=None):
         workdir.mkdir(parents=True, exist_ok=True)
         for n in sizes:
             records.append(benchmark_one(exe, lu_exe, n, args.case, args.threads,
-                                         args.lcp_method, args.grid, workdir))
+                                         args.lcp_method, args.grid, workdir, args.steps,
+                                         args.compare_lemke))
     print(f"# ddc2d benchmark, case {args.case}, {args.threads} thread(s), "
           f"lcp_method = {args.lcp_method}, grid {args.grid} x {args.grid}, "
           f"{time.strftime('%Y-%m-%d')}")

@@ -39,6 +39,9 @@ ELEMENT_DATASETS = ("x_begin", "y_begin", "x_end", "y_end", "ds", "dn")
 TIP_DATASETS = ("x", "y", "fracture_id", "element", "k1", "k2")
 #: Load quantities a /history may hold, in the order ddc2d writes them.
 HISTORY_LOADS = ("sxx", "syy", "sxy", "dsxx_dy", "dsyy_dy", "dsxy_dy", "p0")
+#: Per-step /history datasets beyond the loads, DDs and states (read when present).
+HISTORY_STEP_DATASETS = ("shear_traction", "normal_traction", "k1", "k2", "pivots",
+                         "newton_iterations")
 #: Phases timed in /solver/seconds.
 SOLVER_PHASES = ("assembly", "factorization", "lcp", "fields", "output", "total")
 
@@ -315,13 +318,22 @@ def read_remote_stress(path, handle):
 
 def read_history(path, handle, count):
     """/history as a dict (``loads``: name -> (steps,), ``ds``, ``dn``, ``state``:
-    (steps, elements), ``leg_steps``), or None when the file has no loading history."""
+    (steps, elements), ``leg_steps``; when the file has them, ``shear_traction``,
+    ``normal_traction`` (steps, elements), ``k1``, ``k2`` (steps, tips), ``pivots``,
+    ``newton_iterations`` (steps,) and ``method``, ``fallback``: one str per step), or None
+    when the file has no loading history."""
     if "history" not in handle:
         return None
     group = handle["history"]
     history = {"loads": {k: np.asarray(group[k][()]) for k in HISTORY_LOADS if k in group}}
     for key in ("ds", "dn", "state", "leg_steps"):
         history[key] = np.asarray(group[key][()])
+    for key in HISTORY_STEP_DATASETS:
+        if key in group:
+            history[key] = np.asarray(group[key][()])
+    for key in ("method", "fallback"):
+        if key in group:
+            history[key] = [decode(v) for v in group[key][()]]
     if history["ds"].ndim != 2 or history["ds"].shape[1] != count:
         raise ResultError(f"'{path}': /history/ds has shape {history['ds'].shape}, "
                           f"expected (steps, {count})")

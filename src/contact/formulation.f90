@@ -65,6 +65,8 @@ module ddc_contact_formulation
         !> States of the last solve (warm start of the Newton method), shape (n)
         logical, allocatable :: open(:)
         integer, allocatable :: shear_state(:)
+        !> Whether A was found finite (it is checked once)
+        logical :: a_checked = .false.
     end type contact_session
 
 contains
@@ -114,6 +116,7 @@ contains
         real(wp), allocatable :: held(:)
         real(wp) :: sigma0
         integer :: n, limit
+        logical :: checked
 
         n = size(mu)
         if (size(a, 1) /= 2 * n .or. size(a, 2) /= 2 * n .or. size(s_r_s) /= n &
@@ -129,13 +132,18 @@ contains
             end if
             held = ds_previous
         end if
-        if (.not. (all(ieee_is_finite(a)) .and. all(ieee_is_finite(s_r_s)) .and. &
+        ! A is checked once per session (the steps of a history share it).
+        checked = .false.
+        if (present(session)) checked = session%a_checked
+        if (.not. checked) checked = all(ieee_is_finite(a))
+        if (.not. (checked .and. all(ieee_is_finite(s_r_s)) .and. &
             all(ieee_is_finite(s_r_n)) .and. all(ieee_is_finite(mu)) .and. &
             all(ieee_is_finite(sf)) .and. all(ieee_is_finite(pressure)) .and. &
             all(ieee_is_finite(held)))) then
             call set_error(error, exit_bad_input, 'contact: NaN or Inf in the input arrays')
             return
         end if
+        if (present(session)) session%a_checked = .true.
         limit = newton_max_iterations
         if (present(max_iterations)) limit = max_iterations
         if (any(mu < 0.0_wp) .or. any(sf < 0.0_wp)) then

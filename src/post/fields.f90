@@ -107,11 +107,7 @@ contains
                 call superpose(src, shear_modulus, nu, x(ip), y(ip), 0, u, stress)
                 stress = stress + remote + gradient * y(ip)
             end if
-            field%ux(ip) = u(1)
-            field%uy(ip) = u(2)
-            field%sxx(ip) = stress(1)
-            field%syy(ip) = stress(2)
-            field%sxy(ip) = stress(3)
+            call store_point(field, ip, [u, stress])
         end do
         !$omp end parallel do
     end subroutine field_full_plane
@@ -146,11 +142,7 @@ contains
                 if (flag == point_on_element) exit
             end do
             if (field%flag(ip) == point_on_element) then
-                field%ux(ip) = nan
-                field%uy(ip) = nan
-                field%sxx(ip) = nan
-                field%syy(ip) = nan
-                field%sxy(ip) = nan
+                call store_point(field, ip, spread(nan, 1, 5))
                 cycle
             end if
             acc = [0.0_wp, 0.0_wp, remote + gradient * y(ip)]
@@ -163,13 +155,22 @@ contains
                 acc(4) = acc(4) + k%syy(1) * ds(j) + k%syy(2) * dn(j)
                 acc(5) = acc(5) + k%sxy(1) * ds(j) + k%sxy(2) * dn(j)
             end do
-            field%ux(ip) = acc(1)
-            field%uy(ip) = acc(2)
-            field%sxx(ip) = acc(3)
-            field%syy(ip) = acc(4)
-            field%sxy(ip) = acc(5)
+            call store_point(field, ip, acc)
         end do
         !$omp end parallel do
     end subroutine field_with
+
+    !> Point ip of a field: ux, uy, sxx, syy, sxy.
+    pure subroutine store_point(field, ip, values)
+        type(field_result), intent(inout) :: field
+        integer, intent(in) :: ip
+        real(wp), intent(in) :: values(5)
+
+        field%ux(ip) = values(1)
+        field%uy(ip) = values(2)
+        field%sxx(ip) = values(3)
+        field%syy(ip) = values(4)
+        field%sxy(ip) = values(5)
+    end subroutine store_point
 
 end module ddc_post_fields

@@ -48,13 +48,7 @@ contains
         integer, intent(in) :: i, side
         real(wp) :: x, y, tol
 
-        if (side == 1) then
-            x = elements%x_begin(i)
-            y = elements%y_begin(i)
-        else
-            x = elements%x_end(i)
-            y = elements%y_end(i)
-        end if
+        call end_point(elements, i, side, x, y)
         end_is_shared = .true.
         tol = shared_end_tolerance * 2.0_wp * elements%half_length(i)
         associate (sym => elements%symmetry)
@@ -77,8 +71,7 @@ contains
         integer :: k, e, j, n
 
         n = elements%n
-        x = merge(elements%x_begin(i), elements%x_end(i), side == 1)
-        y = merge(elements%y_begin(i), elements%y_end(i), side == 1)
+        call end_point(elements, i, side, x, y)
         ! Every pair tolerance is at most half this window (it takes the shorter element).
         window = shared_end_tolerance * 4.0_wp * elements%half_length(i)
         element_at_end = 0
@@ -88,18 +81,27 @@ contains
             j = modulo(e - 1, n) + 1
             if (j == i) cycle
             if (element_at_end > 0 .and. j >= element_at_end) cycle
-            if (e <= n) then
-                xe = elements%x_begin(j)
-                ye = elements%y_begin(j)
-            else
-                xe = elements%x_end(j)
-                ye = elements%y_end(j)
-            end if
+            call end_point(elements, j, merge(1, 2, e <= n), xe, ye)
             tol = shared_end_tolerance * 2.0_wp * &
                   min(elements%half_length(i), elements%half_length(j))
             if (hypot(xe - x, ye - y) <= tol) element_at_end = j
         end do
     end function element_at_end
+
+    !> End `side` (1 begin, 2 end) of element i.
+    pure subroutine end_point(elements, i, side, x, y)
+        type(element_set), intent(in) :: elements
+        integer, intent(in) :: i, side
+        real(wp), intent(out) :: x, y
+
+        if (side == 1) then
+            x = elements%x_begin(i)
+            y = elements%y_begin(i)
+        else
+            x = elements%x_end(i)
+            y = elements%y_end(i)
+        end if
+    end subroutine end_point
 
     !> The first position k of ascending keys with keys(k) >= value (size + 1 if none).
     pure integer function first_at_least(keys, value)

@@ -47,6 +47,36 @@ def test_benchmark_records(tmp_path, case, method):
             assert all(r["states"][s] > 0 for s in ("stick", "slip", "open")), r["states"]
 
 
+def run_benchmark(tmp_path, *options):
+    out = tmp_path / "bench.json"
+    done = subprocess.run(
+        [sys.executable, str(BENCHMARK), "--exe", str(ddc2d_exe()), "--sizes", "12,30",
+         "--json", str(out), "--threads", "1", "--lu-exe", str(lu_exe()), *options],
+        capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    return done.stdout, json.loads(out.read_text())
+
+
+def test_benchmark_history_against_lemke(tmp_path):
+    stdout, records = run_benchmark(tmp_path, "--case", "history", "--steps", "9",
+                                    "--lcp-method", "newton", "--compare-lemke")
+    assert "10 steps" in stdout and "same states: True" in stdout
+    for r in records:
+        assert r["steps"] == 10 and r["fallback_steps"] == 0
+        assert r["method"] == "newton" and r["newton_iterations"] >= 10
+        # The states change at most at the vertices: the factors are reused in between.
+        assert r["factorization_reuses"] > 0
+        assert r["lemke"]["same_states"] and r["lemke"]["max_dd_difference"] < 1e-10
+        assert r["lemke"]["seconds"] > 0.0 and r["lemke"]["pivots"] > 0
+
+
+def test_benchmark_fields(tmp_path):
+    _, records = run_benchmark(tmp_path, "--case", "fields", "--grid", "8")
+    for r in records:
+        assert r["case"] == "fields"
+        assert r["fields_over_lu"] == r["seconds"]["fields"] / r["lu_reference_seconds"]
+
+
 def test_benchmark_bad_sizes(tmp_path):
     done = subprocess.run(
         [sys.executable, str(BENCHMARK), "--exe", str(ddc2d_exe()), "--sizes", "ten",

@@ -54,6 +54,17 @@ def test_history_layout_and_last_step(tmp_path):
         # The last step's load is the path's last vertex itself, sxx and syy are not varied:
         # stored unchanged, exact.
         assert tuple(f.attrs["remote_stress"]) == (0.0, -10.0, -10.0)
+        # Per step: tractions of every element, K of every tip, the method of each step.
+        assert h["shear_traction"].shape == h["normal_traction"].shape == (31, 20)
+        assert h["k1"].shape == h["k2"].shape == (31, 2)
+        np.testing.assert_allclose(h["shear_traction"][-1], f["elements/shear_traction"][()],
+                                   rtol=0, atol=1e-12 * np.max(np.abs(h["shear_traction"])))
+        np.testing.assert_allclose(h["k2"][-1], f["tips/k2"][()], rtol=1e-12)
+        assert [m.decode().strip("\x00 ") for m in h["method"][()]] == ["lemke"] * 31
+        assert list(h["newton_iterations"][()]) == [0] * 31
+    # One progress line per step, flushed as it goes.
+    steps = [line for line in done.stdout.splitlines() if line.strip().startswith("step ")]
+    assert len(steps) == 31 and steps[-1].strip().startswith("step 31 of 31 (sxy = -10")
 
 
 def test_path_without_contact_is_bad_input(tmp_path):
