@@ -17,6 +17,8 @@ module test_fast_contact
     use ddc_contact_options, only: solver_options, parse_solver_options, option_code, &
         open_cohesion_names, lcp_lemke, lcp_newton
     use ddc_test_builders, only: polyline_model, join_fractures
+    use ddc_contact_reduced_system, only: reduced_system, set_system, solve_system, &
+        action_factorized, action_updated, action_reused
     implicit none
     private
 
@@ -43,6 +45,7 @@ contains
                  new_test('random_kinked_faults', test_random_kinked), &
                  new_test('random_stepping_faults', test_random_stepping), &
                  new_test('fallback_to_lemke', test_fallback), &
+                 new_test('reduced_system_updates', test_reduced_updates), &
                  new_test('bad_method', test_bad_method)]
     end subroutine collect_fast_contact
 
@@ -369,6 +372,57 @@ contains
         call check(error, maxval(abs(fast%ds - ref%ds)), 0.0_wp, 'ds as Lemke', &
             abs_tol=0.0_wp)
     end subroutine test_fallback
+
+    !> The reduced system of the active-set method on the kink's influence matrix: a few
+    !> states changed (unknowns added and removed, a coefficient changed) are solved
+    !> through a low-rank update of the kept factors, unchanged ones with the factors
+    !> themselves, and the solutions equal those of a fresh factorization within 1e-12.
+    subroutine test_reduced_updates(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model
+        type(reduced_system) :: kept, fresh
+        real(wp), allocatable :: a(:, :), x(:), y(:), coef(:)
+        integer, allocatable :: rows(:), unknown(:), partner(:)
+        integer :: n, k, i
+
+        model = kinked()
+        n = model%elements%n
+        allocate (a(2 * n, 2 * n))
+        rows = spread(row_traction, 1, n)
+        call assemble_influence(model%elements, e_modulus / (2.0_wp * (1.0_wp + nu)), nu, &
+            rows, rows, a)
+        ! Base: Ds of elements 1..40 slipping (coefficient mu), Dn of 41..60 open.
+        unknown = [(i, i = 1, 40), (n + i, i = 41, 60)]
+        partner = [(n + i, i = 1, 40), (n + i, i = 41, 60)]
+        coef = [(0.6_wp, i = 1, 40), (0.0_wp, i = 41, 60)]
+        call set_system(kept, a, unknown, partner, coef, 'base', error)
+        if (allocated(error)) return
+        call check(error, kept%action, action_factorized, 'first: a factorization')
+        call set_system(kept, a, unknown, partner, coef, 'same', error)
+        if (allocated(error)) return
+        call check(error, kept%action, action_reused, 'unchanged: the factors reused')
+        ! Element 3 leaves, element 41 slips too, element 7 slips the other way, Dn of 20
+        ! opens: 2 changed base rows, 2 added unknowns.
+        unknown = [(i, i = 1, 2), (i, i = 4, 40), 41, (n + i, i = 41, 60), n + 20]
+        partner = [(n + i, i = 1, 2), (n + i, i = 4, 40), n + 41, (n + i, i = 41, 60), n + 20]
+        coef = [(0.6_wp, i = 1, 2), (0.6_wp, i = 4, 40), 0.6_wp, (0.0_wp, i = 41, 60), 0.0_wp]
+        coef(6) = -0.6_wp
+        call set_system(kept, a, unknown, partner, coef, 'changed', error)
+        if (allocated(error)) return
+        call check(error, kept%action, action_updated, 'a few changes: an update')
+        call set_system(fresh, a, unknown, partner, coef, 'fresh', error)
+        if (allocated(error)) return
+        do k = 1, 3
+            x = [(sin(real(k * i, wp)), i = 1, size(unknown))]
+            y = x
+            call solve_system(kept, x)
+            call solve_system(fresh, y)
+            call check(error, maxval(abs(x - y)), 0.0_wp, 'update = fresh factorization', &
+                       abs_tol=1.0e-12_wp * maxval(abs(y)))
+        end do
+        call check(error, kept%factorizations == 1 .and. kept%updates == 1 .and. &
+                   kept%reuses == 1, 'counts of factorizations, updates and reuses')
+    end subroutine test_reduced_updates
 
     !> A method other than auto, lemke or newton is bad input.
     subroutine test_bad_method(error)

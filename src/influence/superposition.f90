@@ -3,7 +3,9 @@
 !> displacements at element midpoints.
 !>
 !> Every source (an element, or one of its symmetry images carrying (sign_s Ds, Dn)) is
-!> stored once with its geometry and DDs (source_table), so a sum over the sources is one
+!> stored once with its geometry and DDs (source_table), and sorted into cells of about
+!> an element's length, so that the sources a point is near or on (point_flag) are found
+!> among those of its cell and the neighbouring ones; a sum over the sources is one
 !> loop without branches that the compiler vectorizes (with the SIMD logarithm and atan2 of
 !> glibc's libmvec where gfortran declares them). Off the element's segment the angle it
 !> subtends is one atan2, atan2(y, x - a) - atan2(y, x + a) = atan2(2 a y, (x - a)(x + a)
@@ -19,6 +21,8 @@ module ddc_influence_superposition
     use ddc_model_types, only: element_set
     use ddc_model_results, only: point_clear, point_near, point_on_element
     use ddc_influence_assembly, only: image_transform, image_of
+    use ddc_sorting, only: sorted_order
+    use, intrinsic :: iso_fortran_env, only: int64
     implicit none
     private
 
@@ -51,6 +55,15 @@ module ddc_influence_superposition
         !> Shear and normal DD [length unit] (the image's Ds carries the sign of its
         !> reflection), shape (n)
         real(wp), allocatable :: ds(:), dn(:)
+        !> Cells of side h (the largest element length, a little more) over the midpoints,
+        !> from (x0, y0), nx by ny of them [length unit]: a point is near or on a source
+        !> only if the source's midpoint lies in the point's cell or a neighbouring one
+        real(wp) :: x0 = 0.0_wp, y0 = 0.0_wp, h = 1.0_wp
+        integer(int64) :: nx = 0, ny = 0
+        !> Cell number of each source (ix ny + iy) in ascending order, and the sources in
+        !> that order, shape (n)
+        integer(int64), allocatable :: cell(:)
+        integer, allocatable :: by_cell(:)
     end type source_table
 
 contains
@@ -90,7 +103,28 @@ contains
         end do
         src%c2 = src%c**2 - src%s**2
         src%s2 = 2.0_wp * src%c * src%s
+        call index_cells(src)
     end subroutine build_sources
+
+    !> Sort the sources into cells of side h = 2 (1 + 1e-6) max a: every point within 2a
+    !> of a source's midpoint (where it can be near or on the source) lies in the source's
+    !> cell or one of its eight neighbours.
+    pure subroutine index_cells(src)
+        type(source_table), intent(inout) :: src
+        integer(int64), allocatable :: cell(:)
+
+        if (src%n == 0) return
+        src%h = 2.0_wp * (1.0_wp + 1.0e-6_wp) * maxval(src%a)
+        src%x0 = minval(src%xm)
+        src%y0 = minval(src%ym)
+        src%nx = int((maxval(src%xm) - src%x0) / src%h, int64) + 1
+        src%ny = int((maxval(src%ym) - src%y0) / src%h, int64) + 1
+        cell = int((src%xm - src%x0) / src%h, int64) * src%ny + &
+            int((src%ym - src%y0) / src%h, int64)
+        ! Cell numbers are below 2^53 for any mesh that fits in memory: exact as reals.
+        src%by_cell = sorted_order(real(cell, wp))
+        src%cell = cell(src%by_cell)
+    end subroutine index_cells
 
     !> Where a point lies relative to one element (midpoint xm, ym, half-length a, direction
     !> cosb, sinb): clear, near (within one element length of its centre, where TWODD skips
@@ -112,21 +146,54 @@ contains
         end if
     end function point_flag
 
-    !> The worst flag of a point over all sources.
+    !> The worst flag of a point over all sources: point_flag on the sources of its cell
+    !> and the eight around it (every other source is clear of it).
     pure integer function flag_at(src, x, y) result(flag)
         !> The sources
         type(source_table), intent(in) :: src
         !> The point [length unit]
         real(wp), intent(in) :: x, y
-        integer :: j
+        real(wp) :: fx, fy
+        integer(int64) :: ix, iy, key
+        integer :: i, k, j
 
         flag = point_clear
-        !$omp simd reduction(max:flag)
-        do j = 1, src%n
-            flag = max(flag, point_flag(x, y, src%xm(j), src%ym(j), src%a(j), src%c(j), &
-                                        src%s(j)))
+        fx = (x - src%x0) / src%h
+        fy = (y - src%y0) / src%h
+        if (.not. (fx > -2.0_wp .and. fx < real(src%nx + 1, wp) .and. fy > -2.0_wp .and. &
+                   fy < real(src%ny + 1, wp))) return
+        do ix = int(floor(fx), int64) - 1, int(floor(fx), int64) + 1
+            if (ix < 0 .or. ix >= src%nx) cycle
+            do iy = int(floor(fy), int64) - 1, int(floor(fy), int64) + 1
+                if (iy < 0 .or. iy >= src%ny) cycle
+                key = ix * src%ny + iy
+                do k = first_cell(src%cell, key), size(src%cell)
+                    if (src%cell(k) /= key) exit
+                    j = src%by_cell(k)
+                    i = point_flag(x, y, src%xm(j), src%ym(j), src%a(j), src%c(j), src%s(j))
+                    flag = max(flag, i)
+                end do
+            end do
         end do
     end function flag_at
+
+    !> The first position k of ascending cells with cells(k) >= key (size + 1 if none).
+    pure integer function first_cell(cells, key)
+        integer(int64), intent(in) :: cells(:), key
+        integer :: lo, hi, mid
+
+        lo = 1
+        hi = size(cells) + 1
+        do while (lo < hi)
+            mid = (lo + hi) / 2
+            if (cells(mid) < key) then
+                lo = mid + 1
+            else
+                hi = mid
+            end if
+        end do
+        first_cell = lo
+    end function first_cell
 
     !> Displacement and stress at (x, y) caused by every source but source `skip`, in the
     !> global frame. The point must not be on a source (flag_at), except on the skipped one.
