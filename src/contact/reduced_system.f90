@@ -94,6 +94,12 @@ contains
         integer(int64) :: t0, t1, rate
 
         call system_clock(t0, rate)
+        if (sys%mb >= 0 .and. same_system(sys, unknown, coef)) then
+            ! The current system again (unchanged states): its factors or update as they are.
+            sys%action = action_reused
+            sys%reuses = sys%reuses + 1
+            return
+        end if
         sys%unknown = unknown
         sys%partner = partner
         sys%coef = coef
@@ -135,6 +141,19 @@ contains
         end if
         call refactor(sys, a, subject, error)
     end subroutine set_system
+
+    !> Whether the unknowns and coefficients are those of the current system (exactly:
+    !> the same states give the same numbers).
+    pure logical function same_system(sys, unknown, coef)
+        type(reduced_system), intent(in) :: sys
+        integer, intent(in) :: unknown(:)
+        real(wp), intent(in) :: coef(:)
+
+        same_system = .false.
+        if (.not. allocated(sys%unknown)) return
+        if (size(sys%unknown) /= size(unknown)) return
+        same_system = all(sys%unknown == unknown) .and. all(sys%coef == coef)
+    end function same_system
 
     !> Factorize the current system anew; it becomes the base.
     subroutine refactor(sys, a, subject, error)
