@@ -54,14 +54,17 @@ module ddc_contact_reduced_system
         !> numbers of changed base rows and of added unknowns (both 0: the base itself)
         integer, allocatable :: position(:)
         integer :: nr = 0, na = 0
-        !> Z = J^-1 on the changed rows' unit vectors, shape (mb, nr); Delta, shape (nr, mb);
-        !> LU factors and pivots of I + Delta Z, shape (nr, nr)
-        real(wp), allocatable :: z(:, :), delta(:, :), capacitance(:, :)
+        !> The changed base rows and their new coefficients (huge: removed), shape (nr);
+        !> Z = J^-1 on their unit vectors, shape (mb, nr); Delta^T, shape (mb, nr); LU
+        !> factors and pivots of I + Delta Z, shape (nr, nr)
+        integer, allocatable :: changed_rows(:)
+        real(wp), allocatable :: changed_coef(:), z(:, :), delta_t(:, :), capacitance(:, :)
         integer, allocatable :: capacitance_ipiv(:)
-        !> W = K^-1 B, shape (mb, na); C, shape (na, mb); LU factors and pivots of the
-        !> Schur complement S = D - C W, shape (na, na)
-        real(wp), allocatable :: w(:, :), c(:, :), schur(:, :)
-        integer, allocatable :: schur_ipiv(:)
+        !> W = K^-1 B, shape (mb, na), and the unknown of each column, shape (na); C^T,
+        !> shape (mb, na); LU factors and pivots of the Schur complement S = D - C W,
+        !> shape (na, na)
+        real(wp), allocatable :: w(:, :), c_t(:, :), schur(:, :)
+        integer, allocatable :: w_of(:), schur_ipiv(:)
         !> What the last set_system did (action_*)
         integer :: action = 0
         !> Counts of new factorizations, low-rank updates and reuses of unchanged factors
@@ -178,6 +181,8 @@ contains
         sys%position = [(k, k = 1, m)]
         sys%nr = 0
         sys%na = 0
+        if (allocated(sys%changed_rows)) deallocate (sys%changed_rows)
+        if (allocated(sys%w_of)) deallocate (sys%w_of)
         sys%action = action_factorized
         sys%factorizations = sys%factorizations + 1
         if (allocated(sys%factors)) deallocate (sys%factors)
@@ -204,91 +209,142 @@ contains
 
     !> The low-rank update of the base for the changed base rows and the added unknowns
     !> (positions in the current system); sys%action is action_updated unless I + Delta Z
-    !> or the Schur complement is numerically singular.
+    !> or the Schur complement is numerically singular. When the changed rows are those of
+    !> the last update (the usual case between Newton iterations: only unknowns added),
+    !> its Z, Delta and I + Delta Z and the columns of W of the unknowns it added already
+    !> serve; only the new unknowns' columns are computed.
     subroutine update_base(sys, a, changed, added, current_at, base_at)
         type(reduced_system), intent(inout) :: sys
         real(wp), intent(in) :: a(:, :)
         integer, intent(in) :: changed(:), added(:), current_at(:), base_at(:)
         type(error_type), allocatable :: singular, ill_conditioned
-        integer, allocatable :: ga(:), pa(:)
-        real(wp), allocatable :: ca(:)
+        integer, allocatable :: ga(:), pa(:), fresh(:), column_of(:)
+        real(wp), allocatable :: ca(:), row_coef(:), w(:, :), wf(:, :)
         real(wp) :: d, scale
-        integer :: mb, nr, na, r, q, g, p, c
+        integer :: mb, nr, na, r, q, g, p, c, l
+        logical :: same_rows
 
         sys%action = 0
         mb = sys%mb
         nr = size(changed)
         na = size(added)
-        sys%nr = nr
-        sys%na = na
         sys%position = base_at(sys%unknown)
         do q = 1, na
             sys%position(added(q)) = mb + q
         end do
         scale = maxval(abs(sys%base_diag))
         if (.not. scale > 0.0_wp) scale = 1.0_wp
-        if (allocated(sys%z)) deallocate (sys%z, sys%delta, sys%capacitance, &
-                                          sys%capacitance_ipiv, sys%w, sys%c, sys%schur, &
-                                          sys%schur_ipiv)
-        allocate (sys%z(mb, nr), sys%delta(nr, mb), sys%capacitance(nr, nr), &
-                  sys%capacitance_ipiv(nr), sys%w(mb, na), sys%c(na, mb), sys%schur(na, na), &
-                  sys%schur_ipiv(na))
-
-        ! The changed base rows: Z = J^-1 E_R, Delta = new rows - old rows, I + Delta Z.
-        sys%z = 0.0_wp
+        ! The new coefficient of each changed base row (huge: its unknown was removed).
+        allocate (row_coef(nr))
         do q = 1, nr
-            r = changed(q)
-            g = sys%base_unknown(r)
-            p = sys%base_partner(r)
-            sys%z(r, q) = 1.0_wp
-            c = current_at(g)
-            if (c > 0) then
-                sys%delta(q, :) = (sys%coef(c) - sys%base_coef(r)) * a(p, sys%base_unknown)
-            else
-                d = sys%base_diag(r)
-                if (d == 0.0_wp) d = scale
-                sys%delta(q, :) = -(a(g, sys%base_unknown) + sys%base_coef(r) * &
-                                    a(p, sys%base_unknown))
-                sys%delta(q, r) = sys%delta(q, r) + d
-            end if
+            c = current_at(sys%base_unknown(changed(q)))
+            row_coef(q) = huge(1.0_wp)
+            if (c > 0) row_coef(q) = sys%coef(c)
         end do
-        if (nr > 0) then
-            call lu_solve(sys%factors, sys%ipiv, sys%z)
-            sys%capacitance = 0.0_wp
-            do q = 1, nr
-                sys%capacitance(q, q) = 1.0_wp
+        ! Exact comparison: the same rows with the same coefficients give the same K.
+        same_rows = allocated(sys%changed_rows)
+        if (same_rows) same_rows = size(sys%changed_rows) == nr
+        if (same_rows) same_rows = all(sys%changed_rows == changed) .and. &
+            all(sys%changed_coef == row_coef)
+        sys%nr = nr
+
+        if (.not. same_rows) then
+            ! The changed base rows: Z = J^-1 E_R, Delta^T (new rows - old rows, by
+            ! columns of A), I + Delta Z.
+            sys%changed_rows = changed
+            sys%changed_coef = row_coef
+            if (allocated(sys%z)) deallocate (sys%z, sys%delta_t, sys%capacitance, &
+                                              sys%capacitance_ipiv)
+            allocate (sys%z(mb, nr), sys%delta_t(mb, nr), sys%capacitance(nr, nr), &
+                      sys%capacitance_ipiv(nr))
+            sys%z = 0.0_wp
+            do l = 1, mb
+                g = sys%base_unknown(l)
+                do q = 1, nr
+                    r = changed(q)
+                    p = sys%base_partner(r)
+                    if (row_coef(q) < huge(1.0_wp)) then
+                        sys%delta_t(l, q) = (row_coef(q) - sys%base_coef(r)) * a(p, g)
+                    else
+                        sys%delta_t(l, q) = -(a(sys%base_unknown(r), g) + &
+                                              sys%base_coef(r) * a(p, g))
+                    end if
+                end do
             end do
-            call dgemm('N', 'N', nr, nr, mb, 1.0_wp, sys%delta, nr, sys%z, mb, 1.0_wp, &
-                       sys%capacitance, nr)
-            call lu_factor(sys%capacitance, sys%capacitance_ipiv, 'the update', singular, &
-                           ill_conditioned=ill_conditioned)
-            if (allocated(singular) .or. allocated(ill_conditioned)) return
+            do q = 1, nr
+                r = changed(q)
+                sys%z(r, q) = 1.0_wp
+                if (row_coef(q) == huge(1.0_wp)) then
+                    d = sys%base_diag(r)
+                    if (d == 0.0_wp) d = scale
+                    ! The removed unknown's row becomes d e_r: its value is 0.
+                    sys%delta_t(r, q) = sys%delta_t(r, q) + d
+                end if
+            end do
+            if (nr > 0) then
+                call lu_solve(sys%factors, sys%ipiv, sys%z)
+                sys%capacitance = 0.0_wp
+                do q = 1, nr
+                    sys%capacitance(q, q) = 1.0_wp
+                end do
+                call dgemm('T', 'N', nr, nr, mb, 1.0_wp, sys%delta_t, mb, sys%z, mb, 1.0_wp, &
+                           sys%capacitance, nr)
+                call lu_factor(sys%capacitance, sys%capacitance_ipiv, 'the update', singular, &
+                               ill_conditioned=ill_conditioned)
+                if (allocated(singular) .or. allocated(ill_conditioned)) then
+                    deallocate (sys%changed_rows)
+                    return
+                end if
+            end if
+            if (allocated(sys%w_of)) deallocate (sys%w_of)
         end if
 
-        ! The added unknowns: B (the current base rows on their columns; 0 in removed
-        ! rows), W = K^-1 B, C and D (their rows), S = D - C W.
-        if (na > 0) then
-            ga = sys%unknown(added)
-            pa = sys%partner(added)
-            ca = sys%coef(added)
+        ! The added unknowns: W = K^-1 B (B: the current base rows on their columns, 0 in
+        ! removed rows; columns kept from the last update when K is the same), C^T and D
+        ! (their rows, by columns of A), S = D - C W.
+        ga = sys%unknown(added)
+        pa = sys%partner(added)
+        ca = sys%coef(added)
+        allocate (w(mb, na), column_of(na))
+        column_of = 0
+        if (allocated(sys%w_of)) then
             do q = 1, na
-                g = ga(q)
+                column_of(q) = findloc(sys%w_of, ga(q), 1)
+                if (column_of(q) > 0) w(:, q) = sys%w(:, column_of(q))
+            end do
+        end if
+        fresh = pack([(q, q = 1, na)], column_of == 0)
+        if (size(fresh) > 0) then
+            allocate (wf(mb, size(fresh)))
+            do q = 1, size(fresh)
+                g = ga(fresh(q))
                 do r = 1, mb
                     c = current_at(sys%base_unknown(r))
                     if (c > 0) then
-                        sys%w(r, q) = a(sys%base_unknown(r), g) + sys%coef(c) * &
+                        wf(r, q) = a(sys%base_unknown(r), g) + sys%coef(c) * &
                             a(sys%base_partner(r), g)
                     else
-                        sys%w(r, q) = 0.0_wp
+                        wf(r, q) = 0.0_wp
                     end if
                 end do
-                sys%schur(:, q) = a(ga, g) + ca * a(pa, g)
             end do
-            do q = 1, na
-                sys%c(q, :) = a(ga(q), sys%base_unknown) + ca(q) * a(pa(q), sys%base_unknown)
-            end do
-            call solve_k(sys, sys%w)
-            call dgemm('N', 'N', na, na, mb, -1.0_wp, sys%c, na, sys%w, mb, 1.0_wp, &
+            call solve_k(sys, wf)
+            w(:, fresh) = wf
+        end if
+        call move_alloc(w, sys%w)
+        sys%w_of = ga
+        sys%na = na
+        if (allocated(sys%c_t)) deallocate (sys%c_t, sys%schur, sys%schur_ipiv)
+        allocate (sys%c_t(mb, na), sys%schur(na, na), sys%schur_ipiv(na))
+        do l = 1, mb
+            g = sys%base_unknown(l)
+            sys%c_t(l, :) = a(ga, g) + ca * a(pa, g)
+        end do
+        do q = 1, na
+            sys%schur(:, q) = a(ga, ga(q)) + ca * a(pa, ga(q))
+        end do
+        if (na > 0) then
+            call dgemm('T', 'N', na, na, mb, -1.0_wp, sys%c_t, mb, sys%w, mb, 1.0_wp, &
                        sys%schur, na)
             call lu_factor(sys%schur, sys%schur_ipiv, 'the update', singular, &
                            ill_conditioned=ill_conditioned)
@@ -309,8 +365,8 @@ contains
         if (sys%mb > 0) call lu_solve(sys%factors, sys%ipiv, y)
         if (sys%nr == 0 .or. k == 0) return
         allocate (t(sys%nr, k))
-        call dgemm('N', 'N', sys%nr, k, sys%mb, 1.0_wp, sys%delta, sys%nr, y, sys%mb, 0.0_wp, &
-                   t, sys%nr)
+        call dgemm('T', 'N', sys%nr, k, sys%mb, 1.0_wp, sys%delta_t, sys%mb, y, sys%mb, &
+                   0.0_wp, t, sys%nr)
         call lu_solve(sys%capacitance, sys%capacitance_ipiv, t)
         call dgemm('N', 'N', sys%mb, k, sys%nr, -1.0_wp, sys%z, sys%mb, t, sys%nr, 1.0_wp, y, &
                    sys%mb)
@@ -334,7 +390,7 @@ contains
         call solve_k(sys, xb)
         if (sys%na > 0) then
             xa = reshape(x(mb + 1:), [sys%na, 1])
-            call dgemm('N', 'N', sys%na, 1, mb, -1.0_wp, sys%c, sys%na, xb, mb, 1.0_wp, xa, &
+            call dgemm('T', 'N', sys%na, 1, mb, -1.0_wp, sys%c_t, mb, xb, mb, 1.0_wp, xa, &
                        sys%na)
             call lu_solve(sys%schur, sys%schur_ipiv, xa)
             call dgemm('N', 'N', mb, 1, sys%na, -1.0_wp, sys%w, mb, xa, sys%na, 1.0_wp, xb, mb)
