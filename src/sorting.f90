@@ -1,10 +1,11 @@
-!> Sorting: the order that puts keys in ascending order (heap sort, O(n log n), no recursion).
+!> Sorting and searching: the order that puts keys in ascending order (heap sort,
+!> O(n log n), no recursion) and the first of sorted keys at or above a value (bisection).
 module ddc_sorting
     use ddc_kinds, only: wp
     implicit none
     private
 
-    public :: sorted_order
+    public :: sorted_order, first_at_least
 
 contains
 
@@ -49,5 +50,26 @@ contains
         end subroutine sift_down
 
     end function sorted_order
+
+    !> The first position k of ascending keys with keys(k) >= value (size + 1 if none).
+    pure integer function first_at_least(keys, value)
+        !> Keys in ascending order, shape (n)
+        real(wp), intent(in) :: keys(:)
+        !> The value looked for
+        real(wp), intent(in) :: value
+        integer :: lo, hi, mid
+
+        lo = 1
+        hi = size(keys) + 1
+        do while (lo < hi)
+            mid = (lo + hi) / 2
+            if (keys(mid) < value) then
+                lo = mid + 1
+            else
+                hi = mid
+            end if
+        end do
+        first_at_least = lo
+    end function first_at_least
 
 end module ddc_sorting

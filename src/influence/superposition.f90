@@ -21,7 +21,7 @@ module ddc_influence_superposition
     use ddc_model_types, only: element_set
     use ddc_model_results, only: point_clear, point_near, point_on_element
     use ddc_influence_assembly, only: image_transform, image_of
-    use ddc_sorting, only: sorted_order
+    use ddc_sorting, only: sorted_order, first_at_least
     use, intrinsic :: iso_fortran_env, only: int64
     implicit none
     private
@@ -60,9 +60,9 @@ module ddc_influence_superposition
         !> only if the source's midpoint lies in the point's cell or a neighbouring one
         real(wp) :: x0 = 0.0_wp, y0 = 0.0_wp, h = 1.0_wp
         integer(int64) :: nx = 0, ny = 0
-        !> Cell number of each source (ix ny + iy) in ascending order, and the sources in
-        !> that order, shape (n)
-        integer(int64), allocatable :: cell(:)
+        !> Cell number of each source (ix ny + iy, exact as a real below 2^53) in ascending
+        !> order, and the sources in that order, shape (n)
+        real(wp), allocatable :: cell(:)
         integer, allocatable :: by_cell(:)
     end type source_table
 
@@ -111,7 +111,7 @@ contains
     !> cell or one of its eight neighbours.
     pure subroutine index_cells(src)
         type(source_table), intent(inout) :: src
-        integer(int64), allocatable :: cell(:)
+        real(wp), allocatable :: cell(:)
 
         if (src%n == 0) return
         src%h = 2.0_wp * (1.0_wp + 1.0e-6_wp) * maxval(src%a)
@@ -119,10 +119,10 @@ contains
         src%y0 = minval(src%ym)
         src%nx = int((maxval(src%xm) - src%x0) / src%h, int64) + 1
         src%ny = int((maxval(src%ym) - src%y0) / src%h, int64) + 1
-        cell = int((src%xm - src%x0) / src%h, int64) * src%ny + &
-            int((src%ym - src%y0) / src%h, int64)
         ! Cell numbers are below 2^53 for any mesh that fits in memory: exact as reals.
-        src%by_cell = sorted_order(real(cell, wp))
+        cell = real(int((src%xm - src%x0) / src%h, int64) * src%ny + &
+                    int((src%ym - src%y0) / src%h, int64), wp)
+        src%by_cell = sorted_order(cell)
         src%cell = cell(src%by_cell)
     end subroutine index_cells
 
@@ -153,8 +153,8 @@ contains
         type(source_table), intent(in) :: src
         !> The point [length unit]
         real(wp), intent(in) :: x, y
-        real(wp) :: fx, fy
-        integer(int64) :: ix, iy, key
+        real(wp) :: fx, fy, key
+        integer(int64) :: ix, iy
         integer :: i, k, j
 
         flag = point_clear
@@ -166,8 +166,8 @@ contains
             if (ix < 0 .or. ix >= src%nx) cycle
             do iy = int(floor(fy), int64) - 1, int(floor(fy), int64) + 1
                 if (iy < 0 .or. iy >= src%ny) cycle
-                key = ix * src%ny + iy
-                do k = first_cell(src%cell, key), size(src%cell)
+                key = real(ix * src%ny + iy, wp)
+                do k = first_at_least(src%cell, key), size(src%cell)
                     if (src%cell(k) /= key) exit
                     j = src%by_cell(k)
                     i = point_flag(x, y, src%xm(j), src%ym(j), src%a(j), src%c(j), src%s(j))
@@ -176,24 +176,6 @@ contains
             end do
         end do
     end function flag_at
-
-    !> The first position k of ascending cells with cells(k) >= key (size + 1 if none).
-    pure integer function first_cell(cells, key)
-        integer(int64), intent(in) :: cells(:), key
-        integer :: lo, hi, mid
-
-        lo = 1
-        hi = size(cells) + 1
-        do while (lo < hi)
-            mid = (lo + hi) / 2
-            if (cells(mid) < key) then
-                lo = mid + 1
-            else
-                hi = mid
-            end if
-        end do
-        first_cell = lo
-    end function first_cell
 
     !> Displacement and stress at (x, y) caused by every source but source `skip`, in the
     !> global frame. The point must not be on a source (flag_at), except on the skipped one.

@@ -4,7 +4,7 @@ module ddc_post_tips
     use ddc_model_types, only: element_set, symmetry_x, symmetry_y, symmetry_both, &
         domain_half_plane
     use ddc_model_results, only: tip_set
-    use ddc_sorting, only: sorted_order
+    use ddc_sorting, only: sorted_order, first_at_least
     implicit none
     private
 
@@ -102,24 +102,6 @@ contains
             y = elements%y_end(i)
         end if
     end subroutine end_point
-
-    !> The first position k of ascending keys with keys(k) >= value (size + 1 if none).
-    pure integer function first_at_least(keys, value)
-        real(wp), intent(in) :: keys(:), value
-        integer :: lo, hi, mid
-
-        lo = 1
-        hi = size(keys) + 1
-        do while (lo < hi)
-            mid = (lo + hi) / 2
-            if (keys(mid) < value) then
-                lo = mid + 1
-            else
-                hi = mid
-            end if
-        end do
-        first_at_least = lo
-    end function first_at_least
 
     !> Tips (element ends shared with no other element) with K_I and K_II from the tip
     !> element's DDs: K = -G D / (2 (1 - nu) sqrt(h)), h the tip element's half-length.
