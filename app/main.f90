@@ -15,13 +15,14 @@ program ddc2d
     use ddc_output_twodd_tables, only: write_twodd_tables
     use ddc_run_model, only: run_model
     use ddc_history_solve, only: solve_history
+    use ddc_growth_driver, only: grow_fractures
     use ddc_text, only: itoa
     use ddc_input_sweep, only: read_sweep
     use ddc_sweep_tasks, only: sweep_definition, task_label, task_file_name, check_task, &
         apply_task, output_is_complete
     use ddc_app_command_line, only: command_line_options, parse_command_line, usage_text, &
         action_version, action_help, task_number
-    use ddc_app_report, only: print_model_summary, print_results_summary
+    use ddc_app_report, only: print_model_summary, print_results_summary, print_growth_step
     implicit none
 
     interface
@@ -76,6 +77,8 @@ program ddc2d
 
     if (allocated(model%load_path%vertex)) then
         call solve_history(model, results, error)
+    else if (model%growth%active) then
+        call grow_fractures(model, results, error, print_growth_step)
     else
         call run_model(model, results, error)
     end if

@@ -1,14 +1,18 @@
 !> What the program tells the user on standard output: the effective model and a summary.
 module ddc_app_report
+    use, intrinsic :: iso_fortran_env, only: output_unit
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type, condition_names, observation_kind_names, &
-        symmetry_none, symmetry_names
-    use ddc_model_results, only: model_results, state_names
+        symmetry_none, symmetry_names, growth_tips_names, growth_criterion_names
+    use ddc_model_results, only: model_results, state_names, growth_reason_names, &
+        growth_end_names, growth_subcritical, growth_intersection, growth_surface, &
+        growth_waiting
+    use ddc_growth_summary, only: tip_summary, summarize_tips
     use ddc_contact_options, only: lcp_method_names, open_cohesion_names, lcp_lemke
     implicit none
     private
 
-    public :: print_model_summary, print_results_summary
+    public :: print_model_summary, print_results_summary, print_growth_step
 
 contains
 
@@ -49,8 +53,109 @@ contains
             write (unit, '(a)') '  (the loading history is solved step by step with '// &
             "Lemke's method, whatever lcp_method says)"
         end if
+        if (model%growth%active) call print_growth_options(unit, model)
         write (unit, '(a)') '  output: '//model%output_file
     end subroutine print_model_summary
+
+    !> Echo the effective &growth options.
+    subroutine print_growth_options(unit, model)
+        integer, intent(in) :: unit
+        type(model_type), intent(in) :: model
+        character(len=:), allocatable :: names
+        integer :: f
+
+        associate (g => model%growth)
+            write (unit, '(a,i0,a,g0,1x,a)') '  growth: at most ', g%steps, &
+                ' steps, toughness = ', g%toughness, model%stress_unit//' '// &
+                model%length_unit//'^0.5'
+            if (g%increment > 0.0_wp) then
+                write (unit, '(a,g0,1x,a)') '    increment = ', g%increment, model%length_unit
+            else
+                write (unit, '(a)') '    increment = 2 x the tip element length (default)'
+            end if
+            if (g%element_length > 0.0_wp) then
+                write (unit, '(a,g0,1x,a)') '    element_length = ', g%element_length, &
+                    model%length_unit
+            else
+                write (unit, '(a)') '    element_length = the tip element length (default)'
+            end if
+            write (unit, '(a,a,a,a,a,i0)') "    tips = '", trim(growth_tips_names(g%tips)), &
+                "', criterion = '", trim(growth_criterion_names(g%criterion)), &
+                "', max_corrections = ", g%max_corrections
+            names = ''
+            do f = 1, size(model%fractures)
+                if (.not. g%fracture_grows(f)) cycle
+                if (len(names) > 0) names = names//', '
+                names = names//model%fractures(f)%name
+            end do
+            write (unit, '(a)') '    fractures that may grow: '//names
+            if (g%override_mu) write (unit, '(a,g0)') '    new contact elements: mu = ', g%new_mu
+            if (g%override_sf) write (unit, '(a,g0,1x,a)') '    new contact elements: sf = ', &
+                g%new_sf, model%stress_unit
+        end associate
+    end subroutine print_growth_options
+
+    !> One line per growth step on standard output, flushed (a long run shows progress).
+    subroutine print_growth_step(step, growing, largest_k_eq, seconds)
+        !> The step, and the number of tips that grew in it
+        integer, intent(in) :: step, growing
+        !> The largest K_eq of the step's tips [stress unit * length unit**0.5]
+        real(wp), intent(in) :: largest_k_eq
+        !> Wall time of the step [s]
+        real(wp), intent(in) :: seconds
+
+        write (output_unit, '(a,i0,a,i0,a,es11.4,a,f8.3,a)') 'growth step ', step, ': ', &
+            growing, ' tip(s) grew, largest K_eq ', largest_k_eq, ', ', seconds, ' s'
+        flush (output_unit)
+    end subroutine print_growth_step
+
+    !> Each tip of a growth run: where it ended, how far it grew and why it stopped.
+    subroutine print_growth_summary(unit, model, results)
+        integer, intent(in) :: unit
+        type(model_type), intent(in) :: model
+        type(model_results), intent(in) :: results
+        type(tip_summary), allocatable :: tips(:)
+        character(len=*), parameter :: ends(0:1) = [character(len=5) :: 'begin', 'end']
+        integer :: i, width
+
+        call summarize_tips(results%growth, tips)
+        write (unit, '(a,i0,a,a)') 'growth: ', results%growth%steps_taken, &
+            ' step(s) with growth; ended: ', trim(growth_end_names(results%growth%end_reason))
+        width = len('fracture')
+        do i = 1, size(tips)
+            width = max(width, len(model%fractures(tips(i)%fracture_id)%name))
+        end do
+        write (unit, '(2x,a,2x,a5,2x,a5,2x,a14,2x,a11,2x,a)') 'fracture'//repeat(' ', &
+            width - len('fracture')), 'tip', 'steps', 'path length', 'K_eq / K_Ic', &
+            'stopped because'
+        do i = 1, size(tips)
+            write (unit, '(2x,a,2x,a5,2x,i5,2x,es14.6,2x,f11.4,2x,a)') &
+                model%fractures(tips(i)%fracture_id)%name//repeat(' ', width - &
+                len(model%fractures(tips(i)%fracture_id)%name)), ends(tips(i)%end), &
+                tips(i)%steps_grown, tips(i)%path_length, &
+                tips(i)%last_k_eq / model%growth%toughness, &
+                stop_text(tips(i)%last_reason)
+        end do
+    end subroutine print_growth_summary
+
+    !> Why a tip stopped, from the reason of its last record.
+    pure function stop_text(reason) result(text)
+        integer, intent(in) :: reason
+        character(len=:), allocatable :: text
+
+        select case (reason)
+        case (growth_subcritical)
+            text = 'arrested: K_eq < toughness'
+        case (growth_intersection)
+            text = 'intersection: next to another element'
+        case (growth_surface)
+            text = 'surface: next to the free surface'
+        case (growth_waiting)
+            text = 'step limit (critical, waiting for a more critical tip)'
+        case default
+            text = 'step limit (grew in the last step: '//trim(growth_reason_names(reason))//')'
+        end select
+    end function stop_text
 
     !> Summary of the results: states, peak DDs, tips with K, timings.
     subroutine print_results_summary(unit, model, results)
@@ -84,6 +189,7 @@ contains
                 ', fields ', s%seconds_fields, ', output ', s%seconds_output, ', total ', &
                 s%seconds_total + s%seconds_output, ''
         end associate
+        if (allocated(results%growth%step)) call print_growth_summary(unit, model, results)
         write (unit, '(a)') 'wrote '//model%output_file
     end subroutine print_results_summary
 

@@ -19,6 +19,7 @@ module ddc_input_namelist
     use ddc_input_namelist_groups, only: namelist_groups, group_record, message_list, add, &
         scan_groups, g_model, g_remote_stress, g_fracture, g_grid, g_line, g_points, g_solver, &
         g_output, g_symmetry, g_pore_fluid, g_load_path
+    use ddc_input_namelist_growth, only: read_growth_group
     use ddc_input_namelist_settings, only: read_model_group, read_remote_stress_group, &
         read_pore_fluid_group, read_solver_group, read_symmetry_group, read_output_group, &
         read_load_path_group
@@ -86,6 +87,7 @@ contains
         call read_load_path_group(unit, text, path, groups(g_load_path), &
                                   any(fractures%valid .and. &
                                       fractures%condition == condition_contact), model, messages)
+        call read_growth_group(unit, text, path, groups, fractures, model, messages)
         close (unit)
 
         call check_names(path, fractures, observations, messages)

@@ -91,7 +91,8 @@ contains
 
         tips%n = count(is_tip)
         allocate (tips%x(tips%n), tips%y(tips%n), tips%fracture_id(tips%n), &
-                  tips%element(tips%n), tips%k1(tips%n), tips%k2(tips%n), tips%graded(tips%n))
+                  tips%element(tips%n), tips%k1(tips%n), tips%k2(tips%n), tips%graded(tips%n), &
+                  tips%side(tips%n))
         k = 0
         do i = 1, elements%n
             do side = 1, 2
@@ -106,6 +107,7 @@ contains
                 end if
                 tips%fracture_id(k) = elements%fracture_id(i)
                 tips%element(k) = i
+                tips%side(k) = side
                 factor = -shear_modulus / (2.0_wp * (1.0_wp - nu) * sqrt(elements%half_length(i)))
                 ! + 0 turns the -0 of an unloaded mode into 0 for printing.
                 tips%k1(k) = factor * dn(i) + 0.0_wp

@@ -15,7 +15,7 @@ module ddc_run_model
     implicit none
     private
 
-    public :: run_model
+    public :: run_model, evaluate_fields
 
 contains
 
@@ -38,7 +38,7 @@ contains
         real(wp), allocatable :: remote_shear(:), remote_normal(:)
         type(element_set) :: loaded
         real(wp) :: g, nu, t_start, t0
-        integer :: n, i
+        integer :: n
 
         t_start = wall_seconds()
         ! The input readers check this too; a sweep may change the remote stress after them.
@@ -84,21 +84,34 @@ contains
             e%us_plus = e%us_minus - e%ds
             e%un_plus = e%un_minus - e%dn
             call find_tips(model%elements, g, nu, e%ds, e%dn, results%tips)
-
-            if (allocated(model%observations)) then
-                allocate (results%fields(size(model%observations)))
-            else
-                allocate (results%fields(0))
-            end if
-            do i = 1, size(results%fields)
-                call evaluate_field(model%elements, g, nu, [model%sxx, model%syy, model%sxy], &
-                                    e%ds, e%dn, model%observations(i)%x, &
-                                    model%observations(i)%y, results%fields(i), &
-                                    model%stress_gradient)
-            end do
+            call evaluate_fields(model, results)
             rec%seconds_fields = wall_seconds() - t0
             rec%seconds_total = wall_seconds() - t_start
         end associate
     end subroutine run_model
+
+    !> The fields at every observation set of the model for the DDs in results (allocates
+    !> results%fields, one per observation set).
+    subroutine evaluate_fields(model, results)
+        !> The solved model
+        type(model_type), intent(in) :: model
+        !> Its element results; the fields are set
+        type(model_results), intent(inout) :: results
+        integer :: i
+
+        if (allocated(results%fields)) deallocate (results%fields)
+        if (allocated(model%observations)) then
+            allocate (results%fields(size(model%observations)))
+        else
+            allocate (results%fields(0))
+        end if
+        do i = 1, size(results%fields)
+            call evaluate_field(model%elements, shear_modulus_of(model), model%poissons_ratio, &
+                                [model%sxx, model%syy, model%sxy], results%elements%ds, &
+                                results%elements%dn, model%observations(i)%x, &
+                                model%observations(i)%y, results%fields(i), &
+                                model%stress_gradient)
+        end do
+    end subroutine evaluate_fields
 
 end module ddc_run_model
