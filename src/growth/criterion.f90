@@ -28,7 +28,8 @@ contains
         opening = max(k1, 0.0_wp)
         denominator = opening + sqrt(opening**2 + 8.0_wp * k2**2)
         if (denominator > 0.0_wp) then
-            mts_angle = -2.0_wp * atan(2.0_wp * k2 / denominator)
+            ! + 0 turns the -0 of K_II = 0 into 0 for printing.
+            mts_angle = -2.0_wp * atan(2.0_wp * k2 / denominator) + 0.0_wp
         else
             ! K_I <= 0 and K_II = 0: no tangential stress singularity, no preferred kink.
             mts_angle = 0.0_wp
