@@ -24,7 +24,8 @@ debian_packages=(gfortran cmake ninja-build libopenblas-dev liblapack-dev libhdf
 python_packages=(numpy h5py matplotlib pytest xlrd openpyxl xlwt)
 python_modules="numpy, h5py, matplotlib, pytest, xlrd, openpyxl, xlwt"
 # Linters run by the tests, as PyPI package:executable in the venv's bin/.
-python_tools=(fortitude-lint:fortitude ruff:ruff)
+# Pinned: their default rule sets change between releases.
+python_tools=(fortitude-lint==0.10.0:fortitude ruff==0.17.6:ruff)
 venv_dir="$repo_root/build/venv"
 
 say() { printf 'setup: %s\n' "$*"; }

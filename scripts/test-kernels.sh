@@ -17,8 +17,10 @@ exe=build/debug/app/ddc2d
 
 cores=("$@")
 ((${#cores[@]} > 0)) || cores=(Nehalem Sandybridge Haswell)
-default_core=$(OPENBLAS_VERBOSE=2 "$exe" --version 2>&1 >/dev/null | sed -n 's/^Core: //p')
-echo "test-kernels: this CPU's own OpenBLAS kernel is ${default_core:-unknown}"
+native_core=$(env -u OPENBLAS_CORETYPE OPENBLAS_VERBOSE=2 "$exe" --version 2>&1 >/dev/null \
+              | sed -n 's/^Core: //p')
+echo "test-kernels: this CPU's own OpenBLAS kernel is ${native_core:-unknown}" \
+     "(OPENBLAS_CORETYPE in the environment: ${OPENBLAS_CORETYPE:-not set})"
 for core in "${cores[@]}"; do
     used=$(OPENBLAS_VERBOSE=2 OPENBLAS_CORETYPE="$core" "$exe" --version 2>&1 >/dev/null \
            | sed -n 's/^Core: //p')
