@@ -8,8 +8,9 @@ tests. It knows
   inverses ``STATE_CODES``, ``CONDITION_CODES``; ``parse_coding`` reads a ``coding``
   attribute);
 * the groups of a result: ``load_result`` reads a whole file, ``read_elements``,
-  ``read_fractures``, ``read_tips``, ``read_fields``, ``read_history``, ``read_solver`` and
-  ``read_sweep`` one group of an open file; ``is_complete`` tells a finished file;
+  ``read_fractures``, ``read_tips``, ``read_fields``, ``read_history``, ``read_growth``,
+  ``read_solver`` and ``read_sweep`` one group of an open file; ``is_complete`` tells a
+  finished file;
 * the tie rule of every default that picks "the largest" or "the first": ``index_of_extreme``
   and ``is_tie`` (values within ``TIE_RTOL`` = 1e-9 relative count as equal, the lowest index
   wins), so that a choice never depends on last-bit rounding (symmetric models, other BLAS
@@ -39,6 +40,9 @@ ELEMENT_DATASETS = ("x_begin", "y_begin", "x_end", "y_end", "ds", "dn")
 TIP_DATASETS = ("x", "y", "fracture_id", "element", "k1", "k2")
 #: Load quantities a /history may hold, in the order ddc2d writes them.
 HISTORY_LOADS = ("sxx", "syy", "sxy", "dsxx_dy", "dsyy_dy", "dsxy_dy", "p0")
+#: /growth datasets (fracture growth, SPEC-GROWTH 3), one value per record (tip and step).
+GROWTH_DATASETS = ("step", "fracture_id", "end", "x", "y", "k1", "k2", "k_eq", "mts_angle",
+                   "angle", "corrections", "k2_after", "length", "reason")
 #: Phases timed in /solver/seconds.
 SOLVER_PHASES = ("assembly", "factorization", "lcp", "fields", "output", "total")
 
@@ -155,8 +159,9 @@ def load_result(path):
     ``fractures`` (list of dicts name / first / last / label, 1-based inclusive element
     range), ``fields`` (dict name -> dict with ``kind``, ``nx``, ``ny`` and the arrays),
     ``tips`` (dict of 1-D arrays x, y, fracture_id, element, k1, k2 and ``k_unit``; empty
-    arrays without /tips), ``remote_stress`` ((sxx, syy, sxy) or None) and ``history``
-    (see read_history; None without /history).
+    arrays without /tips), ``remote_stress`` ((sxx, syy, sxy) or None), ``history``
+    (see read_history; None without /history) and ``growth`` (see read_growth; None
+    without /growth).
     Raises ResultError with a message naming the file and the problem.
     """
     path = Path(path)
@@ -195,6 +200,7 @@ def _read_open_file(path, handle):
         "tips": read_tips(path, handle),
         "remote_stress": read_remote_stress(path, handle),
         "history": read_history(path, handle, count),
+        "growth": read_growth(path, handle),
     }
 
 
@@ -326,6 +332,26 @@ def read_history(path, handle, count):
         raise ResultError(f"'{path}': /history/ds has shape {history['ds'].shape}, "
                           f"expected (steps, {count})")
     return history
+
+
+def read_growth(path, handle):
+    """/growth of a fracture growth run as a dict: every dataset of GROWTH_DATASETS (1-D,
+    one value per record: one record per tip per step), ``attrs`` (strings decoded: toughness,
+    end_reason, ...) and ``reasons`` (code -> name, from the attribute reason_coding); None
+    when the file has no /growth."""
+    if "growth" not in handle:
+        return None
+    group = handle["growth"]
+    growth = {}
+    for key in GROWTH_DATASETS:
+        if key not in group:
+            raise ResultError(f"'{path}' lacks /growth/{key}")
+        growth[key] = np.asarray(group[key][()]).ravel()
+        if growth[key].size != growth["step"].size:
+            raise ResultError(f"'{path}': /growth datasets differ in length")
+    growth["attrs"] = decoded_attrs(group.attrs)
+    growth["reasons"] = parse_coding(group.attrs.get("reason_coding", ""))
+    return growth
 
 
 def read_solver(handle):
