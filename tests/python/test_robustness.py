@@ -31,11 +31,14 @@ CRASH_MARKS = ("Fortran runtime error", "Backtrace", "ERROR STOP", "Segmentation
 
 
 def shrink(text):
-    """Make a model cheap: at most 8 elements per segment, at most 6 x 6 grid points."""
-    text = re.sub(r"(elements\s*=\s*)([0-9, ]+)",
-                  lambda m: m.group(1) + ", ".join(str(min(int(v), 8))
-                                                  for v in m.group(2).split(",") if v.strip())
-                  + " ", text)
+    """Make a model cheap: at most 8 elements per segment, at most 6 x 6 grid points, at
+    most 4 steps per leg of a load path and 4 growth steps (a single digit, so that a
+    mutated digit gives at most 9)."""
+    for name, most in (("elements", 8), ("steps", 4)):
+        text = re.sub(rf"\b({name}\s*=\s*)([0-9, ]+)",
+                      lambda m, most=most: m.group(1) + ", ".join(
+                          str(min(int(v), most)) for v in m.group(2).split(",") if v.strip())
+                      + " ", text)
     text = re.sub(r"\b(nx|ny|points)(\s*=\s*)(\d+)",
                   lambda m: f"{m.group(1)}{m.group(2)}{min(int(m.group(3)), 6)}", text)
     return text
