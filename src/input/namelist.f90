@@ -2,7 +2,7 @@
 !>
 !> The whole file is read first and scanned for its groups (ddc_input_namelist_groups).
 !> Each group is then read the counted number of times with iostat and iomsg by its reader
-!> (ddc_input_namelist_settings, _fracture, _observations): a read failure for a group known
+!> (ddc_input_namelist_settings, _fracture, _observations, _growth): a read failure for a group known
 !> to exist means the group is malformed, and ddc_input_namelist_diagnosis says why. Defaults
 !> are set to an "unset" sentinel before every read, so given entries can be counted; every
 !> value is validated NaN-safely and all violations are reported at once, one per line, each
