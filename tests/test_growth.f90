@@ -497,9 +497,11 @@ contains
         call check(error, segment_distance(-1.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, &
                                            0.0_wp, 1.0_wp), 0.0_wp, 'touching', abs_tol=0.0_wp)
         call check(error, segment_distance(-1.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, -1.0_wp, 0.3_wp, &
-                                           1.0_wp, 0.3_wp), 0.3_wp, 'parallel', rel_tol=1.0e-15_wp)
+                                           1.0_wp, 0.3_wp), 0.3_wp, 'parallel', &
+                   rel_tol=1.0e-15_wp)
         call check(error, segment_distance(0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 4.0_wp, 4.0_wp, &
-                                           5.0_wp, 5.0_wp), 5.0_wp, 'end to end', rel_tol=1.0e-15_wp)
+                                           5.0_wp, 5.0_wp), 5.0_wp, 'end to end', &
+                   rel_tol=1.0e-15_wp)
         call check(error, segment_distance(0.0_wp, 0.0_wp, 2.0_wp, 0.0_wp, 1.0_wp, 0.5_wp, &
                                            3.0_wp, 2.0_wp), 0.5_wp, 'end to interior', &
                    rel_tol=1.0e-15_wp)

@@ -8,14 +8,14 @@
 !> its MTS angle (reason growth_corrector_failed).
 module ddc_growth_corrector
     use ddc_kinds, only: wp
-    use ddc_error, only: error_type, set_internal_error
+    use ddc_error, only: error_type
     use ddc_model_types, only: model_type, growth_options, condition_contact
     use ddc_model_results, only: model_results, state_open, growth_grew, &
         growth_corrector_failed
     use ddc_run_model, only: run_model
-    use ddc_growth_extension, only: tip_path, make_path, extend_model, tip_element
+    use ddc_growth_extension, only: tip_path, make_path, extend_model
     use ddc_growth_clearance, only: check_paths
-    use ddc_growth_tips, only: locate_tip
+    use ddc_growth_tips, only: fracture_tip
     use ddc_text, only: itoa
     implicit none
     private
@@ -211,13 +211,11 @@ contains
         type(error_type), allocatable, intent(out) :: error
         integer :: e, t
 
-        e = tip_element(grown, k%fracture, k%end)
-        t = locate_tip(solved%tips, e, k%end)
-        if (t == 0) then
-            call set_internal_error(error, 'correct_kinks', 'the new tip of fracture '// &
-                                    itoa(k%fracture)//' is not a tip of the grown model')
-            return
-        end if
+        k2 = 0.0_wp
+        closed = .false.
+        call fracture_tip(grown, solved%tips, k%fracture, k%end, t, error)
+        if (allocated(error)) return
+        e = solved%tips%element(t)
         k2 = solved%tips%k2(t)
         if (grown%elements%condition(e) == condition_contact) then
             closed = solved%elements%state(e) /= state_open

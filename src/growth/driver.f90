@@ -27,7 +27,7 @@ module ddc_growth_driver
     use ddc_growth_criterion, only: mts_angle, equivalent_k, kink_slope, most_critical
     use ddc_growth_extension, only: tip_path, make_path, tip_element
     use ddc_growth_clearance, only: check_paths
-    use ddc_growth_tips, only: growing_tip, find_growing_tips, locate_tip
+    use ddc_growth_tips, only: growing_tip, find_growing_tips, fracture_tip
     use ddc_growth_corrector, only: kink, correct_kinks, grow_paths
     use ddc_text, only: itoa
     implicit none
@@ -139,7 +139,7 @@ contains
             type(kink), allocatable :: kinks(:)
             integer, allocatable :: which(:)
             type(model_type) :: grown_model
-            integer :: i, t
+            integer :: i, t, k
 
             which = pack([(i, i = 1, size(tips))], now%reason == growth_grew)
             grown = 0
@@ -190,8 +190,9 @@ contains
             do i = 1, size(which)
                 t = which(i)
                 if (now%length(t) <= 0.0_wp) cycle
-                now%k2_after(t) = new_tip_k2(work, current, tips(t), error)
+                call fracture_tip(work, current%tips, tips(t)%fracture, tips(t)%end, k, error)
                 if (allocated(error)) return
+                now%k2_after(t) = current%tips%k2(k)
             end do
         end subroutine grow_step
 
@@ -236,13 +237,8 @@ contains
         do i = 1, n
             if (tips(i)%stopped) cycle
             now%element(i) = tip_element(work, tips(i)%fracture, tips(i)%end)
-            t = locate_tip(current%tips, now%element(i), tips(i)%end)
-            if (t == 0) then
-                call set_internal_error(error, 'grow_fractures', 'end '//itoa(tips(i)%end)// &
-                                        ' of fracture '//itoa(tips(i)%fracture)// &
-                                        ' is no longer a tip')
-                return
-            end if
+            call fracture_tip(work, current%tips, tips(i)%fracture, tips(i)%end, t, error)
+            if (allocated(error)) return
             now%x(i) = current%tips%x(t)
             now%y(i) = current%tips%y(t)
             now%k1(i) = current%tips%k1(t)
@@ -348,25 +344,6 @@ contains
         k%tolerance = corrector_tolerance * max(now%k_eq(i), toughness)
         call increment_of(work, now%element(i), k%length, k%pieces)
     end function setup_kink
-
-    !> K_II of a grown tip on the grown geometry.
-    function new_tip_k2(work, current, tip, error) result(k2)
-        type(model_type), intent(in) :: work
-        type(model_results), intent(in) :: current
-        type(growing_tip), intent(in) :: tip
-        type(error_type), allocatable, intent(out) :: error
-        real(wp) :: k2
-        integer :: t
-
-        k2 = 0.0_wp
-        t = locate_tip(current%tips, tip_element(work, tip%fracture, tip%end), tip%end)
-        if (t == 0) then
-            call set_internal_error(error, 'grow_fractures', 'the new tip of fracture '// &
-                                    itoa(tip%fracture)//' is not a tip')
-            return
-        end if
-        k2 = current%tips%k2(t)
-    end function new_tip_k2
 
     !> Append the step's records: one per tip that could still grow at the step's start.
     subroutine append_records(record, step, tips, now)

@@ -3,13 +3,15 @@
 !> mouth on the free surface, or an end inside a fracture given as a CSV with gaps does
 !> not grow), and where such a tip is in a tip set.
 module ddc_growth_tips
+    use ddc_error, only: error_type, set_internal_error
+    use ddc_text, only: itoa
     use ddc_model_types, only: model_type
     use ddc_model_results, only: tip_set
     use ddc_growth_extension, only: tip_element, tip_end_begin, tip_end_end
     implicit none
     private
 
-    public :: growing_tip, find_growing_tips, locate_tip
+    public :: growing_tip, find_growing_tips, locate_tip, fracture_tip
 
     !> A fracture end that may grow.
     type :: growing_tip
@@ -61,5 +63,24 @@ contains
             end if
         end do
     end function locate_tip
+
+    !> Index in the tip set of end `end` of a fracture of a solved model, which must be a
+    !> tip (growth never closes one: an internal error otherwise).
+    subroutine fracture_tip(model, tips, fracture, end, index, error)
+        !> The solved model
+        type(model_type), intent(in) :: model
+        !> Its tips
+        type(tip_set), intent(in) :: tips
+        !> Fracture (1-based) and end (tip_end_begin, tip_end_end)
+        integer, intent(in) :: fracture, end
+        !> Index of the tip in tips
+        integer, intent(out) :: index
+        !> Set (internal error) when that end is not a tip
+        type(error_type), allocatable, intent(out) :: error
+
+        index = locate_tip(tips, tip_element(model, fracture, end), end)
+        if (index == 0) call set_internal_error(error, 'fracture growth', 'end '//itoa(end)// &
+                                                ' of fracture '//itoa(fracture)//' is not a tip')
+    end subroutine fracture_tip
 
 end module ddc_growth_tips

@@ -2,11 +2,12 @@
 !>
 !> The whole file is read first and scanned for its groups (ddc_input_namelist_groups).
 !> Each group is then read the counted number of times with iostat and iomsg by its reader
-!> (ddc_input_namelist_settings, _fracture, _observations, _growth): a read failure for a group known
-!> to exist means the group is malformed, and ddc_input_namelist_diagnosis says why. Defaults
-!> are set to an "unset" sentinel before every read, so given entries can be counted; every
-!> value is validated NaN-safely and all violations are reported at once, one per line, each
-!> naming the file, the group (with its ordinal and name when repeatable) and the variable.
+!> (ddc_input_namelist_settings, _fracture, _observations, _growth): a read failure for a
+!> group known to exist means the group is malformed, and ddc_input_namelist_diagnosis says
+!> why. Defaults are set to an "unset" sentinel before every read, so given entries can be
+!> counted; every value is validated NaN-safely and all violations are reported at once, one
+!> per line, each naming the file, the group (with its ordinal and name when repeatable) and
+!> the variable.
 module ddc_input_namelist
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
