@@ -10,7 +10,7 @@ module test_growth
     use ddc_constants, only: pi
     use ddc_testing, only: test_case, new_test, check, error_type
     use ddc_model_types, only: model_type, condition_traction, condition_contact, &
-        domain_half_plane, growth_tips_most_critical
+        domain_half_plane, growth_tips_most_critical, condition_names
     use ddc_model_results, only: model_results, state_open, growth_grew, growth_subcritical, &
         growth_intersection, growth_surface, growth_waiting, growth_arrested, growth_step_limit
     use ddc_mesh_checks, only: check_elements
@@ -48,6 +48,7 @@ contains
                  new_test('stops_at_another_fracture', test_stops_at_fracture), &
                  new_test('stops_at_the_surface', test_stops_at_surface), &
                  new_test('new_elements_continue_the_fracture', test_new_elements), &
+                 new_test('every_condition_grows', test_every_condition), &
                  new_test('tie_rule', test_tie_rule), &
                  new_test('most_critical_symmetric_tie', test_most_critical_tie), &
                  new_test('segment_distance', test_segment_distance), &
@@ -442,6 +443,38 @@ contains
             call check(error, all(e%pressure == 10.0_wp), 'pressure inherited')
         end associate
     end subroutine test_new_elements
+
+    !> A crack of every condition grows (2 steps under sxy, syy) into new elements of its
+    !> condition and given values, and the grown mesh passes the mesh checks.
+    subroutine test_every_condition(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model
+        type(model_results) :: r
+        real(wp), parameter :: bc_s = 0.0_wp, bc_n(6) = [-10.0_wp, 1.0e-3_wp, 0.0_wp, &
+                                                        1.0e-3_wp, 0.0_wp, -1.0e-3_wp]
+        character(len=:), allocatable :: label
+        integer :: condition
+
+        do condition = 1, size(condition_names)
+            model = straight_crack(20, 1.0_wp, 0.0_wp, condition, bc_s, bc_n(condition), &
+                                   e_modulus, nu)
+            model%syy = 5.0_wp
+            model%sxy = 1.0_wp
+            call enable_growth(model, 2, 1.0_wp)
+            call grow_fractures(model, r, error)
+            if (allocated(error)) then
+                error%message = trim(condition_names(condition))//': '//error%message
+                return
+            end if
+            ! The new elements' bc values are copies of the tip elements' (exact).
+            label = trim(condition_names(condition))
+            call check(error, model%elements%n, 28, label//': elements')
+            call check(error, all(model%elements%condition == condition), label//': condition')
+            call check(error, all(model%elements%bc_n == bc_n(condition)), label//': bc_n')
+            call check_elements(model%elements, model%fractures, error)
+            if (allocated(error)) return
+        end do
+    end subroutine test_every_condition
 
     !> The most critical tip: the largest K_eq; ties within 1e-9 relative go to the lowest
     !> index; none when no tip is eligible.

@@ -93,7 +93,8 @@ contains
 
         call system_clock(t_start, rate)
         work = model
-        deallocate (work%observations)
+        ! Trial solves need no fields: they are evaluated once, on the final geometry.
+        if (allocated(work%observations)) deallocate (work%observations)
         allocate (work%observations(0), created(work%elements%n))
         created = 0
         call empty_record(record)
