@@ -16,7 +16,8 @@ module test_growth
     use ddc_mesh_checks, only: check_elements
     use ddc_input_namelist, only: read_namelist_model
     use ddc_growth_criterion, only: mts_angle, equivalent_k, most_critical
-    use ddc_growth_clearance, only: segment_distance
+    use ddc_growth_clearance, only: segment_distance, check_paths
+    use ddc_growth_extension, only: tip_path, make_path, tip_end_end
     use ddc_growth_driver, only: grow_fractures
     use ddc_test_builders, only: straight_crack, polyline_model, join_fractures
     use ddc_text, only: itoa
@@ -52,6 +53,7 @@ contains
                  new_test('tie_rule', test_tie_rule), &
                  new_test('most_critical_symmetric_tie', test_most_critical_tie), &
                  new_test('segment_distance', test_segment_distance), &
+                 new_test('clearance_half_an_element', test_clearance), &
                  new_test('one_and_two_threads_agree', test_threads), &
                  new_test('growth_input_good', test_input_good), &
                  new_test('growth_input_bad', test_input_bad)]
@@ -261,6 +263,12 @@ contains
             call check(error, g%angle(1), g%angle(2), 'equal kinks at both tips', &
                        abs_tol=1.0e-8_wp)
         end associate
+        ! Counter-clockwise from the outward direction: the end tip (outward +x) turns to
+        ! y < 0 under K_II > 0, the begin tip (outward -x) to y > 0.
+        call check(error, model%elements%y_end(model%elements%n) < 0.0_wp, &
+                   'the end tip kinks clockwise (y < 0)')
+        call check(error, model%elements%y_begin(1) > 0.0_wp, &
+                   'the begin tip kinks clockwise from -x (y > 0)')
         call check(error, model%elements%x_begin(1), -model%elements%x_end(model%elements%n), &
                    'point-symmetric wings (x)', abs_tol=1.0e-10_wp)
         call check(error, model%elements%y_begin(1), -model%elements%y_end(model%elements%n), &
@@ -539,6 +547,45 @@ contains
                                            3.0_wp, 2.0_wp), 0.5_wp, 'end to interior', &
                    rel_tol=1.0e-15_wp)
     end subroutine test_segment_distance
+
+    !> The end tip of a crack along x (elements of 0.1) grows straight along +x by two
+    !> elements towards a segment across its path at a distance d beyond the new tip: it
+    !> must keep half an element (0.05) from it; in a half-plane, from the surface too.
+    subroutine test_clearance(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model, other
+        type(tip_path) :: path(1)
+        integer :: problem(1)
+        real(wp), parameter :: gaps(3) = [0.049_wp, 0.051_wp, -0.01_wp]
+        real(wp) :: x_new_tip, d
+        integer :: i
+
+        do i = 1, 3
+            d = gaps(i)
+            model = straight_crack(20, 1.0_wp, 0.0_wp, condition_traction, 0.0_wp, 0.0_wp, &
+                                   e_modulus, nu)
+            x_new_tip = 1.2_wp
+            other = polyline_model([x_new_tip + d, x_new_tip + d], [-0.5_wp, 0.5_wp], [10], &
+                                   condition_traction, 0.0_wp, 0.0_wp, e_modulus, nu)
+            call join_fractures(model, other)
+            path(1) = make_path(model, 1, tip_end_end, 0.0_wp, 0.2_wp, 2)
+            call check_paths(model, path, [.true.], problem)
+            call check(error, problem(1), merge(0, growth_intersection, i == 2), &
+                       'distance '//itoa(nint(1000 * d))//' mm')
+        end do
+        ! A vertical crack growing (two elements of 0.1) up to 0.049 and 0.051 below the
+        ! surface of a half-plane.
+        do i = 1, 2
+            d = gaps(i)
+            model = polyline_model([0.0_wp, 0.0_wp], [-1.2_wp - d, -0.2_wp - d], [10], &
+                                   condition_traction, 0.0_wp, 0.0_wp, e_modulus, nu)
+            model%elements%domain = domain_half_plane
+            path(1) = make_path(model, 1, tip_end_end, 0.0_wp, 0.2_wp, 2)
+            call check_paths(model, path, [.true.], problem)
+            call check(error, problem(1), merge(0, growth_surface, i == 2), &
+                       'below the surface by '//itoa(nint(1000 * d))//' mm')
+        end do
+    end subroutine test_clearance
 
     !> The wings of the sliding flaw (4 steps) with 1 and 2 OpenMP threads agree to 1e-12.
     subroutine test_threads(error)
