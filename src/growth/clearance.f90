@@ -10,7 +10,7 @@ module ddc_growth_clearance
     implicit none
     private
 
-    public :: check_paths, segment_distance, clearance_fraction
+    public :: check_paths, segment_distance
 
     !> New elements keep at least this fraction of their length from every other element
     !> and from the free surface

@@ -20,7 +20,7 @@ module ddc_growth_corrector
     implicit none
     private
 
-    public :: kink, correct_kinks, grow_paths, secant_angle
+    public :: kink, correct_kinks, grow_paths
 
     !> Largest change of the angle in one corrector iteration [rad] (15 degrees), and
     !> largest distance of the corrected angle from the MTS angle [rad] (45 degrees)

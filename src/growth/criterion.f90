@@ -9,7 +9,7 @@ module ddc_growth_criterion
     implicit none
     private
 
-    public :: mts_angle, equivalent_k, kink_slope, most_critical, tie_tolerance
+    public :: mts_angle, equivalent_k, kink_slope, most_critical
 
     !> K_eq within this fraction of the largest count as tied for the most critical tip
     real(wp), parameter :: tie_tolerance = 1.0e-9_wp

@@ -33,7 +33,7 @@ module ddc_growth_driver
     implicit none
     private
 
-    public :: grow_fractures, growth_progress, corrector_tolerance
+    public :: grow_fractures, growth_progress
 
     !> The corrector stops when the new tip's |K_II| <= corrector_tolerance
     !> max(K_eq, toughness)

@@ -9,7 +9,7 @@ module ddc_growth_extension
     implicit none
     private
 
-    public :: tip_path, tip_end_begin, tip_end_end, tip_element, outward_direction
+    public :: tip_path, tip_end_begin, tip_end_end, tip_element
     public :: make_path, extend_model, path_element_length
 
     !> Ends of a fracture (the coding of /growth/end): its begin tip, its end tip
