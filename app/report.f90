@@ -73,9 +73,10 @@ contains
             write (unit, '(a,es12.5,1x,a)') '  peak opening = ', max(0.0_wp, maxval(-e%dn)), &
                 model%length_unit
             do i = 1, results%tips%n
-                write (unit, '(a,i0,a,2(es12.5,1x),a,es12.5,a,es12.5)') '  tip ', i, ' at ', &
-                    results%tips%x(i), results%tips%y(i), ' K_I = ', results%tips%k1(i), &
-                    ', K_II = ', results%tips%k2(i)
+                write (unit, '(a,i0,a,2(es12.5,1x),a,es12.5,a,es12.5,1x,a)') '  tip ', i, &
+                    ' at ', results%tips%x(i), results%tips%y(i), ' K_I = ', &
+                    results%tips%k1(i), ', K_II = ', results%tips%k2(i), &
+                    model%stress_unit//' '//model%length_unit//'^1/2'
                 if (results%tips%graded(i) == 1) write (unit, '(a)') '    (graded mesh at '// &
                     'this tip: the tip element differs from its neighbour, K is less accurate)'
             end do

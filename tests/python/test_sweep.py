@@ -162,9 +162,26 @@ def test_submit_sweep_calls_sbatch(tmp_path):
         capture_output=True, text=True, env=env, timeout=60)
     assert done.returncode == 0, done.stderr
     assert done.stdout.strip() == "4321"
-    assert record.read_text().split() == [
-        "--parsable", "--partition=long", "--time=00:05:00",
-        str(tmp_path / "o" / "sweep_friction_orientation.sbatch")]
+    script = tmp_path / "o" / "sweep_friction_orientation.sbatch"
+    assert record.read_text().split() == ["--parsable", str(script)]
+    # The extra options are in the script itself, which is what sbatch runs.
+    assert "#SBATCH --partition=long\n#SBATCH --time=00:05:00\n" in script.read_text()
+
+
+def test_submit_sweep_dry_run_keeps_sbatch_options(tmp_path):
+    done = subprocess.run(
+        [sys.executable, str(SUBMIT), str(EXAMPLE), "--exe", str(ddc2d_exe()), "--dry-run",
+         "--output-dir", str(tmp_path / "o"), "--time", "00:10:00", "--mem=2G", "-p",
+         "long queue", "--exclusive"], capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    text = Path(done.stdout.strip()).read_text()
+    assert ("#SBATCH --time 00:10:00\n#SBATCH --mem=2G\n#SBATCH -p 'long queue'\n"
+            "#SBATCH --exclusive\n") in text
+    # Every #SBATCH line comes before the first command (sbatch stops reading them there).
+    lines = text.splitlines()
+    first_command = next(i for i, line in enumerate(lines)
+                         if line and not line.startswith("#"))
+    assert all(not line.startswith("#SBATCH") for line in lines[first_command:])
 
 
 def test_submit_sweep_bad_sweep_exits_2(tmp_path):
