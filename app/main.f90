@@ -15,13 +15,13 @@ program ddc2d
     use ddc_output_twodd_tables, only: write_twodd_tables
     use ddc_run_model, only: run_model
     use ddc_history_solve, only: solve_history
-    use ddc_text, only: itoa
     use ddc_input_sweep, only: read_sweep
     use ddc_sweep_tasks, only: sweep_definition, task_label, task_file_name, check_task, &
         apply_task, output_is_complete
     use ddc_app_command_line, only: command_line_options, parse_command_line, usage_text, &
         action_version, action_help, task_number
-    use ddc_app_report, only: print_model_summary, print_results_summary
+    use ddc_app_report, only: print_model_summary, print_results_summary, field_warnings
+    use ddc_text, only: itoa, prefix_lines
     implicit none
 
     interface
@@ -38,6 +38,7 @@ program ddc2d
     type(model_results) :: results
     type(error_type), allocatable :: error
     integer(int64) :: t0, t1, rate
+    character(len=:), allocatable :: warnings
 
     call parse_command_line(options, error)
     if (allocated(error)) then
@@ -72,7 +73,7 @@ program ddc2d
         call check_writable(options%res_file, error)
         call stop_on(error)
     end if
-    call print_model_summary(output_unit, model)
+    call print_model_summary(output_unit, model, units_given=.not. options%twodd)
 
     if (allocated(model%load_path%vertex)) then
         call solve_history(model, results, error)
@@ -90,6 +91,9 @@ program ddc2d
     call system_clock(t1)
     results%solver%seconds_output = real(t1 - t0, wp) / real(rate, wp)
     call print_results_summary(output_unit, model, results)
+    warnings = field_warnings(model, results)
+    if (len(warnings) > 0) write (error_unit, '(a)') prefix_lines(program_name// &
+        ': warning: ', warnings)
     call finish(exit_success)
 
 contains

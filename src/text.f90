@@ -6,7 +6,7 @@ module ddc_text
     implicit none
     private
 
-    public :: newline, max_messages, add_message, messages_error, itoa, rtoa, lower
+    public :: newline, max_messages, add_message, messages_error, itoa, rtoa, short_real, lower
     public :: join_integers, prefix_lines, quoted_list, find_name
 
     !> Separator of the lines of a message
@@ -72,6 +72,48 @@ contains
         write (buffer, '(g0.6)') x
         out = trim(adjustl(buffer))
     end function rtoa
+
+    !> A real as short text for people: integers without a point (-30, 30000), others to 8
+    !> significant digits without trailing zeros, in fixed notation from 1e-4 to 1e9 (0.2,
+    !> 0.0265, 19.62) and in exponent notation beyond (1.5E-05, 1.28E+12).
+    pure function short_real(x) result(out)
+        !> The number
+        real(wp), intent(in) :: x
+        character(len=:), allocatable :: out
+        character(len=40) :: buffer
+        integer :: e, decimals
+
+        if (x == anint(x) .and. abs(x) < 1.0e9_wp) then
+            write (buffer, '(i0)') nint(x, kind=8)
+            out = trim(buffer)
+        else if (abs(x) >= 1.0e-4_wp .and. abs(x) < 1.0e9_wp) then
+            decimals = max(0, 7 - floor(log10(abs(x))))
+            write (buffer, '(f0.'//itoa(decimals)//')') x
+            out = trim_zeros(buffer)
+            ! f0.d writes no zero before the point
+            if (out(1:1) == '.') out = '0'//out
+            if (out(1:2) == '-.') out = '-0'//out(2:)
+        else
+            write (buffer, '(es15.7)') x
+            buffer = adjustl(buffer)
+            e = scan(buffer, 'Ee')
+            out = trim(buffer)
+            if (e > 1) out = trim_zeros(buffer(1:e - 1))//trim(buffer(e:))
+        end if
+    end function short_real
+
+    !> A decimal number without trailing zeros (and without a trailing point).
+    pure function trim_zeros(text) result(out)
+        character(len=*), intent(in) :: text
+        character(len=:), allocatable :: out
+
+        out = trim(adjustl(text))
+        if (index(out, '.') == 0) return
+        do while (out(len(out):len(out)) == '0')
+            out = out(1:len(out) - 1)
+        end do
+        if (out(len(out):len(out)) == '.') out = out(1:len(out) - 1)
+    end function trim_zeros
 
     !> Lower-case copy of s (ASCII).
     pure function lower(s) result(out)

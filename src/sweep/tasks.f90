@@ -21,7 +21,7 @@ module ddc_sweep_tasks
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type
-    use ddc_text, only: itoa, lower
+    use ddc_text, only: itoa, lower, short_real
     use ddc_output_hdf5_read, only: read_int_attribute
     use ddc_model_limits, only: range_problem, quantity_any, quantity_youngs_modulus, &
         quantity_poissons_ratio, quantity_non_negative
@@ -341,42 +341,6 @@ contains
             c = cos(reduced * degree)
         end if
     end function cos_degrees
-
-    !> A real as short text: integers without a point, others to 8 significant digits
-    !> without trailing zeros (0.2, -30, 0.15E-04).
-    pure function short_real(x) result(out)
-        real(wp), intent(in) :: x
-        character(len=:), allocatable :: out
-        character(len=32) :: buffer
-        integer :: e
-
-        if (x == anint(x) .and. abs(x) < 1.0e9_wp) then
-            write (buffer, '(i0)') nint(x, kind=8)
-            out = trim(buffer)
-            return
-        end if
-        write (buffer, '(g0.8)') x
-        buffer = adjustl(buffer)
-        e = scan(buffer, 'Ee')
-        if (e == 0) then
-            out = trim_zeros(buffer)
-        else
-            out = trim_zeros(buffer(1:e - 1))//trim(buffer(e:))
-        end if
-    end function short_real
-
-    !> A decimal number without trailing zeros (and without a trailing point).
-    pure function trim_zeros(text) result(out)
-        character(len=*), intent(in) :: text
-        character(len=:), allocatable :: out
-
-        out = trim(text)
-        if (index(out, '.') == 0) return
-        do while (out(len(out):len(out)) == '0')
-            out = out(1:len(out) - 1)
-        end do
-        if (out(len(out):len(out)) == '.') out = out(1:len(out) - 1)
-    end function trim_zeros
 
     !> Text without blanks.
     pure function squeeze(text) result(out)
