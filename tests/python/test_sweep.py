@@ -240,3 +240,61 @@ def test_collect_sweep_tables_and_plot(tmp_path):
     done = subprocess.run([sys.executable, str(COLLECT), str(tmp_path / "nothing")],
                           capture_output=True, text=True, timeout=60)
     assert done.returncode == 2
+
+
+HALF_PLANE = """&model youngs_modulus = 40000, poissons_ratio = 0.25, domain = 'half_plane' /
+&remote_stress sxx = -2.0, dsxx_dy = 0.065, dsyy_dy = 0.026 /
+&fracture name = 'thrust', x = 0, -5196.152, y = 0, -3000, elements = 20, mu = 0.6,
+          sf = 0.5 /
+"""
+
+
+def test_list_refuses_a_sweep_whose_tasks_cannot_run(tmp_path):
+    # A half-plane needs syy = sxy = 0: remote_angle = 0 keeps it, 30 and 60 do not. --list
+    # (and so submit-sweep) says so before anything is submitted, naming the file, &sweep,
+    # the parameter, its value and the task; --task says the same.
+    sweep = tmp_path / "half.nml"
+    sweep.write_text(HALF_PLANE + "&sweep parameters = 'mu', 'remote_angle',\n"
+                     "       values_1 = 0.6, values_2 = 0, 30, 60 /\n")
+    done = run([sweep, "--list"], tmp_path)
+    assert done.returncode == 2, done.stdout
+    assert done.stdout == ""
+    errors = [line for line in done.stderr.splitlines() if "&sweep" in line]
+    assert len(errors) == 2, done.stderr
+    assert errors[0].startswith(f"ddc2d: error: {sweep}: &sweep (line 5): task 1 (mu = 0.6, "
+                                "remote_angle = 30): remote_angle = 30 gives the remote stress")
+    assert "syy and sxy must be 0" in errors[0]
+    assert errors[1].startswith(f"{sweep}: &sweep (line 5): task 2 (mu = 0.6, remote_angle = 60)")
+    done = run([sweep, "--task", "1"], tmp_path)
+    assert done.returncode == 2
+    assert "&sweep (line 5): task 1 (mu = 0.6, remote_angle = 30): remote_angle = 30" \
+        in done.stderr
+    done = run([sweep, "--task", "0"], tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert [p.name for p in tmp_path.glob("*.h5")] == ["half_task0000.h5"]
+    # submit-sweep stops at the same message, before writing or submitting anything.
+    done = subprocess.run([sys.executable, str(SUBMIT), str(sweep), "--exe", str(ddc2d_exe()),
+                           "--output-dir", str(tmp_path / "o")], capture_output=True,
+                          text=True, timeout=60)
+    assert done.returncode == 2
+    assert "task 1 (mu = 0.6, remote_angle = 30)" in done.stderr
+    assert not list(tmp_path.glob("o/*.sbatch"))
+
+
+def test_sweep_of_a_stress_the_load_path_holds(tmp_path):
+    path_model = SMALL + "&load_path steps = 4, sxy = 40, 60 /\n"
+    # The path gives sxy at its vertices: sweeping sxy would have no effect.
+    sweep = tmp_path / "bad.nml"
+    sweep.write_text(path_model + "&sweep parameters = 'sxy', values_1 = 1, 2 /\n")
+    done = run([sweep, "--list"], tmp_path)
+    assert done.returncode == 2
+    assert ("&sweep (line 5): parameters(1) = 'sxy' sets the remote sxy, which &load_path "
+            "gives at every vertex") in done.stderr
+    # sxx, which the path holds fixed, is swept: every step of the task has the task's sxx.
+    sweep = tmp_path / "good.nml"
+    sweep.write_text(path_model + "&sweep parameters = 'sxx', values_1 = -150, -120 /\n")
+    done = run([sweep, "--task", "1", "-o", "out.h5"], tmp_path)
+    assert done.returncode == 0, done.stderr
+    with h5py.File(tmp_path / "out_task0001.h5", "r") as f:
+        # The swept value itself, copied: exact.
+        assert f.attrs["remote_stress"][0] == -120.0
