@@ -353,7 +353,7 @@ def test_quantity_lists(plot_module, result_file, tmp_path):
         "synthetic_map_grid1_mean.png", "synthetic_map_grid1_sxx.png"]
     assert plot_module.main([str(result_file), "-o", str(tmp_path / "all"),
                              "--quantity", "all", "--format", "svg"]) == 0
-    assert len(list((tmp_path / "all").glob("*_map_*.svg"))) == 7
+    assert len(list((tmp_path / "all").glob("*_map_*.svg"))) == 11
     proc = run_plot(result_file, "-o", tmp_path / "bad", "--quantity", "sxx,tau")
     assert proc.returncode == 2 and "tau" in proc.stderr
 
@@ -366,6 +366,135 @@ def test_default_clim_centres_signed_maps_on_the_remote_value(plot_module, resul
     values = np.ma.masked_array(-112.5 + np.linspace(-3.0, 1.0, 101))
     low, high = plot_module.default_clim(values, "mean", centre=-112.5)
     assert low + high == pytest.approx(-225.0) and high > -112.5
+
+
+# ------------------------------------------------------ background stress varying with depth
+
+GRADIENT = (0.01325, 0.0265, 0.0)  # lithostatic: dsxx_dy, dsyy_dy, dsxy_dy [MPa/m]
+
+
+def write_background_only(path, remote=(0.0, 0.0, 0.0), gradient=GRADIENT,
+                          pore=(0.0, -0.00981)):
+    """The synthetic file with a grid whose total stress is the background alone,
+    remote + gradient * y, as around a fault that does not slip."""
+    write_result(path)
+    with h5py.File(path, "a") as f:
+        f.attrs["remote_stress"] = np.array(remote)
+        f.attrs["remote_stress_gradient"] = np.array(gradient)
+        f.attrs["pore_fluid"] = np.array(pore)
+        grid = f["fields/grid1"]
+        y = grid["y"][...]
+        for key, r, g in zip(("sxx", "syy", "sxy"), remote, gradient):
+            grid[key][...] = r + g * y
+    return path
+
+
+def test_changes_are_taken_from_the_background_with_its_gradient(plot_module, tmp_path):
+    # Without fractures acting, the Coulomb stress change and the induced stresses are
+    # zero everywhere, however the background grows with depth (gravity); only taking the
+    # changes from the uniform remote stress gave lithostatic bands here.
+    result = plot_module.load_result(write_background_only(tmp_path / "litho.h5"))
+    assert result["remote_stress_gradient"] == GRADIENT
+    assert result["pore_fluid"] == (0.0, -0.00981)
+    field = result["fields"]["grid1"]
+    background = plot_module.Background.of_result(result)
+    receiver = plot_module.Receiver(background, 60.0, 0.6, "right")
+    _, y, cfs = plot_module.grid_quantity(field, "coulomb", receiver)
+    scale = np.max(np.abs(np.asarray(GRADIENT)[:, None, None] * y))
+    assert np.ma.count(cfs) == 19
+    assert np.ma.max(np.abs(cfs)) <= 1e-12 * scale
+    for quantity in plot_module.INDUCED:
+        _, _, induced = plot_module.grid_quantity(field, quantity, background=background)
+        assert np.ma.max(np.abs(induced)) <= 1e-12 * scale, quantity
+
+
+def test_induced_stress_is_total_minus_background(plot_module, result_file):
+    result = plot_module.load_result(result_file)
+    with h5py.File(result_file, "a") as f:
+        f.attrs["remote_stress_gradient"] = np.array(GRADIENT)
+    result = plot_module.load_result(result_file)
+    field = result["fields"]["grid1"]
+    x, y, induced = plot_module.grid_quantity(field, "induced_syy",
+                                              background=plot_module.Background.of_result(result))
+    expected = (-5.0 - x * y) - (REMOTE[1] + GRADIENT[1] * y)
+    keep = ~np.ma.getmaskarray(induced)
+    np.testing.assert_allclose(induced[keep], expected[keep], rtol=1e-12, atol=1e-12)
+    _, _, mean = plot_module.grid_quantity(field, "induced_mean",
+                                           background=plot_module.Background.of_result(result))
+    expected = 0.5 * ((-10.0 + x + 2.0 * y) + (-5.0 - x * y)) \
+        - 0.5 * (REMOTE[0] + REMOTE[1] + (GRADIENT[0] + GRADIENT[1]) * y)
+    np.testing.assert_allclose(mean[keep], expected[keep], rtol=1e-12, atol=1e-12)
+
+
+def test_auto_sense_from_the_background_at_the_grid_depth(plot_module):
+    # Gravity alone (no uniform part): on a plane at 60 degrees the background drives
+    # normal, that is left-lateral, slip below the surface; a zero stress at y = 0 would
+    # say 'right'.
+    background = plot_module.Background((0.0, 0.0, 0.0), GRADIENT)
+    assert plot_module.Receiver(background, 60.0, 0.6, "auto", reference_y=-1500.0).sense \
+        == "left"
+    assert plot_module.Receiver(background, 60.0, 0.6, "auto", reference_y=0.0).sense \
+        == "right"  # zero shear at the surface: the tie rule's right-lateral
+    receiver = plot_module.Receiver(background, 60.0, 0.6, "auto", reference_y=-1500.0)
+    assert "(auto: the sense at y = -1500)" in receiver.describe()
+    field = {"y": np.array([[-3000.0, -3000.0], [-10.0, -10.0]])}
+    assert plot_module.grid_reference_y(field) == pytest.approx(-1505.0)
+
+
+def test_total_stress_map_with_a_gradient_has_no_white_centre(plot_module, tmp_path):
+    result = plot_module.load_result(write_background_only(tmp_path / "litho.h5",
+                                                           remote=(-2.0, 0.0, 0.0)))
+    assert plot_module.remote_value(result, "syy") is None
+    assert plot_module.remote_value(result, "mean") is None
+    assert plot_module.remote_value(result, "sxy") == 0.0  # dsxy_dy = 0: uniform
+    assert plot_module.remote_value(result, "induced_syy") == 0.0
+    fig = plot_module.plot_map(result, "grid1", "syy")
+    try:
+        mesh = fig.axes[0].collections[0]
+        assert mesh.get_cmap().name == "viridis"
+        assert "for the change see induced_syy" in fig.axes[0].get_title()
+    finally:
+        plot_module.plt.close(fig)
+    fig = plot_module.plot_map(result, "grid1", "induced_syy")
+    try:
+        assert fig.axes[0].collections[0].get_cmap().name == "RdBu_r"
+        title = fig.axes[0].get_title()
+        assert "change from the remote stress + gradient * y" in title
+        assert "pore pressure given, unchanged: drained" in title
+    finally:
+        plot_module.plt.close(fig)
+
+
+def test_coulomb_map_of_the_issue_model_shows_the_fault(plot_module, tmp_path):
+    # The issue's model through ddc2d and the command line: a half-plane normal fault
+    # under gravity with hydrostatic pore fluid, receivers parallel to it (60 degrees).
+    # Far from the fault the change vanishes (it was -25 .. -45 MPa of lithostatic bands),
+    # beside the slipping fault it is a stress shadow, below its tip a positive lobe.
+    (tmp_path / "normal.nml").write_text("""\
+&model youngs_modulus = 30000, poissons_ratio = 0.25, domain = 'half_plane' /
+&remote_stress dsyy_dy = 0.0265, dsxx_dy = 0.01325 /
+&pore_fluid dp_dy = -0.00981 /
+&fracture name = 'fault', x = 0, -1154.7, y = 0, -2000, elements = 100, mu = 0.6 /
+&grid name = 'section', xmin = -3000, xmax = 2000, nx = 11, ymin = -3000, ymax = -100,
+      ny = 30 /
+""")
+    done = subprocess.run([str(ddc2d_exe()), "normal.nml"], cwd=tmp_path, capture_output=True,
+                          text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert plot_module.main([str(tmp_path / "normal.h5"), "-o", str(tmp_path), "--quantity",
+                             "coulomb", "--receiver", "60"]) == 0
+    result = plot_module.load_result(tmp_path / "normal.h5")
+    field = result["fields"]["section"]
+    receiver = plot_module.Receiver(plot_module.Background.of_result(result), 60.0, 0.6,
+                                    "auto", plot_module.grid_reference_y(field))
+    assert receiver.sense == "left"  # normal slip on a plane dipping 60 degrees to -x
+    x, y, cfs = plot_module.grid_quantity(field, "coulomb", receiver)
+    far = (x == 2000.0) & (y <= -2500.0)  # measured 0.16 .. 0.18 MPa
+    assert np.all(np.abs(cfs[far]) < 0.5), cfs[far]
+    beside = (x == -500.0) & (np.abs(y + 1000.0) < 60.0)  # beside the middle: -1.49
+    assert np.all(cfs[beside] < -0.5), cfs[beside]
+    below = (x == -1500.0) & (y <= -2150.0) & (y >= -2650.0)  # below the tip: 0.98 .. 1.31
+    assert np.all(cfs[below] > 0.5), cfs[below]
 
 
 # ------------------------------------------------------------------ vectors, overview, tips
