@@ -123,8 +123,8 @@ def test_points_on_elements_are_counted_and_a_set_all_on_elements_warned(tmp_pat
             "an element centre (reduced accuracy)") in lines
     assert ("  line across: 5 points, 1 on an element (NaN), 0 within one element length of "
             "an element centre (reduced accuracy)") in lines
-    assert warnings(done) == ["ddc2d: warning: every point of line 'along' lies on an "
-                              "element: all its values are NaN (move it off the fractures)"]
+    assert warnings(done) == [("ddc2d: warning: every point of line 'along' lies on an "
+                               "element: all its values are NaN (move it off the fractures)")]
 
 
 def test_k_has_units(tmp_path):

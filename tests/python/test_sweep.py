@@ -11,7 +11,7 @@ from pathlib import Path
 import h5py
 import numpy as np
 
-from conftest import REPO_ROOT, ddc2d_exe
+from conftest import REPO_ROOT, ddc2d_exe, load_script
 from ddc2d_h5 import STATE_CODES, is_complete
 
 EXAMPLE = REPO_ROOT / "input" / "sweep_friction_orientation.nml"
@@ -207,10 +207,15 @@ def test_collect_sweep_tables_and_plot(tmp_path):
     assert done.returncode == 0, done.stderr
     assert "1 of 4 tasks have no complete output: 2" in done.stderr
     with open(runs / "small_summary.csv") as handle:
-        rows = list(csv.DictReader(handle))
+        header = next(csv.reader(handle))
+    # Units in the header, as in the tips table of ddc2d-plot.
+    assert header == ["task", "mu", "remote_angle [deg]", "peak_slip [m]", "peak_opening [m]",
+                      "stick", "slip", "open", "max_abs_k1 [MPa m^0.5]",
+                      "max_abs_k2 [MPa m^0.5]"]
+    with open(runs / "small_summary.csv") as handle:
+        rows = [{name.split(" [")[0]: value for name, value in row.items()}
+                for row in csv.DictReader(handle)]
     assert [row["task"] for row in rows] == ["0", "1", "3"]
-    assert list(rows[0]) == ["task", "mu", "remote_angle", "peak_slip", "peak_opening",
-                             "stick", "slip", "open", "max_abs_k1", "max_abs_k2"]
     # The summary holds values of the task files themselves (a maximum picks one stored
     # value, |.| and the CSV's repr round trip are exact): equal bit for bit, no tolerance.
     for row, task in zip(rows, (0, 1, 3)):
@@ -227,11 +232,20 @@ def test_collect_sweep_tables_and_plot(tmp_path):
     assert int(rows[2]["stick"]) == 20 and float(rows[2]["peak_slip"]) == 0.0
     with h5py.File(runs / "small_summary.h5", "r") as f:
         assert list(f["task"][()]) == [0, 1, 3]
+        assert f["peak_slip"].attrs["units"] == "m"
+        assert f["remote_angle"].attrs["units"] == "deg"
+        assert "units" not in f["mu"].attrs
         # The same numbers written to both tables: exact.
         np.testing.assert_array_equal(f["peak_slip"][()],
                                       [float(row["peak_slip"]) for row in rows])
     plot = runs / "small_peak_slip_vs_remote_angle.png"
     assert plot.stat().st_size > 5000
+    collect = load_script("collect-sweep")
+    stem, collected, units = collect.collect(runs)
+    figure_path = collect.plot(tmp_path, stem, collected, units, "peak_slip", "remote_angle",
+                               "svg")
+    text = figure_path.read_text()
+    assert "peak_slip [m]" in text and "remote_angle [deg]" in text and "mu = 0.2" in text
 
     done = subprocess.run([sys.executable, str(COLLECT), str(runs), "--plot", "peak_slip",
                            "--against", "sf"], capture_output=True, text=True, timeout=120)
