@@ -21,6 +21,7 @@ program ddc2d
     use ddc_app_command_line, only: command_line_options, parse_command_line, usage_text, &
         action_version, action_help, task_number
     use ddc_app_report, only: print_model_summary, print_results_summary, field_warnings
+    use ddc_app_memory, only: check_model_memory
     use ddc_text, only: itoa, prefix_lines, add_message, messages_error
     implicit none
 
@@ -74,6 +75,8 @@ program ddc2d
         call stop_on(error)
     end if
     call print_model_summary(output_unit, model, units_given=.not. options%twodd)
+    call check_model_memory(output_unit, model, error)
+    call stop_on(error)
 
     if (allocated(model%load_path%vertex)) then
         call solve_history(model, results, error)

@@ -7,7 +7,7 @@ module ddc_text
     private
 
     public :: newline, max_messages, add_message, messages_error, itoa, rtoa, short_real, lower
-    public :: join_integers, prefix_lines, quoted_list, find_name
+    public :: join_integers, prefix_lines, quoted_list, find_name, bytes_text
 
     !> Separator of the lines of a message
     character(len=*), parameter :: newline = achar(10)
@@ -114,6 +114,34 @@ contains
         end do
         if (out(len(out):len(out)) == '.') out = out(1:len(out) - 1)
     end function trim_zeros
+
+    !> A memory size for people, in decimal units to two significant digits: '640 bytes',
+    !> '1.3 TB', '24 GB'.
+    pure function bytes_text(bytes) result(out)
+        !> The size [bytes]
+        real(wp), intent(in) :: bytes
+        character(len=:), allocatable :: out
+        character(len=*), parameter :: units(4) = [character(len=2) :: 'kB', 'MB', 'GB', 'TB']
+        real(wp) :: value
+        integer :: k
+
+        if (.not. bytes >= 1000.0_wp) then
+            out = short_real(anint(max(bytes, 0.0_wp)))//' bytes'
+            return
+        end if
+        value = bytes
+        k = 0
+        do while (value >= 999.5_wp .and. k < size(units))
+            value = value / 1000.0_wp
+            k = k + 1
+        end do
+        if (value < 9.95_wp) then
+            value = anint(value * 10.0_wp) / 10.0_wp
+        else
+            value = anint(value)
+        end if
+        out = short_real(value)//' '//trim(units(k))
+    end function bytes_text
 
     !> Lower-case copy of s (ASCII).
     pure function lower(s) result(out)

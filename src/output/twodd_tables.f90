@@ -123,7 +123,7 @@ contains
     end subroutine write_header
 
     !> Element number, KODE, centre, length, angle [degrees] and the given values.
-    ! allow(C072): iomsg is the caller's buffer for the write statements' iomsg=
+    ! allow(C072, C181): iomsg is the caller's buffer for the writes' iomsg=; stat is returned
     subroutine write_element_data(unit, model, stat, iomsg)
         integer, intent(in) :: unit
         type(model_type), intent(in) :: model
