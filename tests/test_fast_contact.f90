@@ -344,16 +344,8 @@ contains
         type(model_type) :: model
         type(contact_result) :: fast, ref
         real(wp), allocatable :: a(:, :), ss(:), sn(:)
-        integer, allocatable :: rows(:)
-        integer :: n
 
-        model = kinked()
-        n = model%elements%n
-        allocate (a(2 * n, 2 * n), ss(n), sn(n))
-        rows = spread(row_traction, 1, n)
-        call assemble_influence(model%elements, e_modulus / (2.0_wp * (1.0_wp + nu)), nu, &
-            rows, rows, a)
-        call resolve_remote_stress(model%elements, model%sxx, model%syy, model%sxy, ss, sn)
+        call kinked_system(model, a, ss, sn)
         associate (e => model%elements)
             call solve_contact(a, ss, sn, e%mu, e%sf, e%pressure, &
                                solver_options(lcp_method=lcp_lemke), ref, error)
@@ -382,6 +374,25 @@ contains
         type(contact_result) :: fast
         type(error_type), allocatable :: solve_error
         real(wp), allocatable :: a(:, :), ss(:), sn(:)
+
+        call kinked_system(model, a, ss, sn)
+        associate (e => model%elements)
+            call solve_contact(a, ss, sn, e%mu, e%sf, e%pressure, solver_options( &
+                lcp_method=lcp_newton, work_bytes=lemke_bytes(e%n) - 1.0_wp), fast, &
+                solve_error, max_iterations=1)
+        end associate
+        call check(error, allocated(solve_error), 'the fallback must not start')
+        if (allocated(error)) return
+        call check(error, solve_error%code, exit_out_of_memory, 'exit code')
+        call check(error, index(solve_error%message, 'no convergence within 1 iterations') > 0 &
+            .and. index(solve_error%message, 'the fallback to Lemke would need about') > 0, &
+            'message: '//solve_error%message)
+    end subroutine test_fallback_without_memory
+
+    !> The kink, its influence matrix and its resolved remote stress.
+    subroutine kinked_system(model, a, ss, sn)
+        type(model_type), intent(out) :: model
+        real(wp), allocatable, intent(out) :: a(:, :), ss(:), sn(:)
         integer, allocatable :: rows(:)
         integer :: n
 
@@ -392,18 +403,7 @@ contains
         call assemble_influence(model%elements, e_modulus / (2.0_wp * (1.0_wp + nu)), nu, &
             rows, rows, a)
         call resolve_remote_stress(model%elements, model%sxx, model%syy, model%sxy, ss, sn)
-        associate (e => model%elements)
-            call solve_contact(a, ss, sn, e%mu, e%sf, e%pressure, solver_options( &
-                lcp_method=lcp_newton, work_bytes=lemke_bytes(n) - 1.0_wp), fast, solve_error, &
-                max_iterations=1)
-        end associate
-        call check(error, allocated(solve_error), 'the fallback must not start')
-        if (allocated(error)) return
-        call check(error, solve_error%code, exit_out_of_memory, 'exit code')
-        call check(error, index(solve_error%message, 'no convergence within 1 iterations') > 0 &
-            .and. index(solve_error%message, 'the fallback to Lemke would need about') > 0, &
-            'message: '//solve_error%message)
-    end subroutine test_fallback_without_memory
+    end subroutine kinked_system
 
     !> A method other than auto, lemke or newton is bad input.
     subroutine test_bad_method(error)

@@ -732,7 +732,7 @@ def test_figure_names_leave_out_a_name_that_repeats_the_kind(plot_module, tmp_pa
 
 def test_no_opening_panel_without_opening(plot_module, result_file, tmp_path):
     result = plot_module.load_result(result_file)
-    assert plot_module.has_opening(result)  # elements 3 and 6 are open
+    assert plot_module.has_dd(result, "dn")  # elements 3 and 6 are open
     fracture, profile = plot_module.fracture_profiles(result)[0]
     fig = plot_module.plot_profile(result, fracture, profile)
     assert len(fig.axes) == 2
@@ -742,7 +742,7 @@ def test_no_opening_panel_without_opening(plot_module, result_file, tmp_path):
         f["elements/state"][...] = np.where(f["elements/state"][...] == 3, 2,
                                             f["elements/state"][...])
     result = plot_module.load_result(result_file)
-    assert not plot_module.has_opening(result)
+    assert not plot_module.has_dd(result, "dn")
     for fig in (plot_module.plot_profile(result, fracture, profile),
                 plot_module.plot_overview(result)):
         try:
@@ -750,6 +750,24 @@ def test_no_opening_panel_without_opening(plot_module, result_file, tmp_path):
             assert fig.axes[0].get_ylabel().startswith("slip")
         finally:
             plot_module.plt.close(fig)
+
+
+def test_no_slip_panel_for_round_off_slip(plot_module, result_file):
+    # A crack opened symmetrically has slip of round-off size (1e-17 of its opening, of
+    # either sign by CPU): no slip panel, as without opening no opening panel.
+    with h5py.File(result_file, "a") as f:
+        f["elements/ds"][...] = 1e-20 * np.array([1, -3, 2, 0, -1, 4, -2])
+        f["elements/state"][...] = 3
+    result = plot_module.load_result(result_file)
+    assert not plot_module.has_dd(result, "ds") and plot_module.has_dd(result, "dn")
+    fracture, profile = plot_module.fracture_profiles(result)[0]
+    fig = plot_module.plot_profile(result, fracture, profile)
+    try:
+        assert len(fig.axes) == 1
+        assert fig.axes[0].get_ylabel().startswith("opening")
+        assert "no element slips" in fig.texts[0].get_text()
+    finally:
+        plot_module.plt.close(fig)
 
 
 def sense_of(plot_module, begin, end, domain="half_plane"):
