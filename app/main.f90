@@ -17,12 +17,12 @@ program ddc2d
     use ddc_history_solve, only: solve_history
     use ddc_input_sweep, only: read_sweep
     use ddc_sweep_tasks, only: sweep_definition, task_label, task_file_name, check_task, &
-        apply_task, task_problem, output_is_complete
+        apply_task, task_problem, check_tasks, output_is_complete
     use ddc_app_command_line, only: command_line_options, parse_command_line, usage_text, &
         action_version, action_help, task_number
     use ddc_app_report, only: print_model_summary, print_results_summary, field_warnings
     use ddc_app_memory, only: check_model_memory
-    use ddc_text, only: itoa, prefix_lines, add_message, messages_error
+    use ddc_text, only: itoa, prefix_lines
     implicit none
 
     interface
@@ -125,7 +125,10 @@ contains
             return
         end if
         if (options%list) then
-            call check_every_task(model, sweep)
+            ! Every task's model, before anything is submitted; the output folder is made by
+            ! the job (submit-sweep creates its --output-dir) and checked by each task.
+            call check_tasks(model, sweep, error)
+            call stop_on(error)
             write (output_unit, '(a)') 'tasks: '//itoa(sweep%tasks)
             do task = 0, sweep%tasks - 1
                 write (output_unit, '(a)') 'task '//itoa(task)//': '//task_label(sweep, task) &
@@ -148,8 +151,7 @@ contains
         call check_task(sweep, task, error)
         call stop_on(error)
         problem = task_problem(model, sweep, task)
-        if (len(problem) > 0) call set_error(error, exit_bad_input, sweep%where//'task '// &
-            itoa(task)//' ('//task_label(sweep, task)//'): '//problem)
+        if (len(problem) > 0) call set_error(error, exit_bad_input, problem)
         call stop_on(error)
         call apply_task(model, sweep, task)
         write (output_unit, '(a)') 'sweep task '//itoa(task)//' of '//itoa(sweep%tasks)// &
@@ -163,27 +165,6 @@ contains
         if (exists) write (output_unit, '(a)') 'task '//itoa(task)//': output '// &
             model%output_file//' is incomplete or unreadable; running the task again'
     end subroutine prepare_sweep_task
-
-    !> --list validates every task's model before anything is submitted (task_problem; all
-    !> problems at once). The output folder is not checked here: it is made by the job
-    !> (scripts/submit-sweep creates its --output-dir), and each task checks its own file.
-    subroutine check_every_task(model, sweep)
-        type(model_type), intent(in) :: model
-        type(sweep_definition), intent(in) :: sweep
-        type(error_type), allocatable :: error
-        character(len=:), allocatable :: messages, problem
-        integer :: task, nbad
-
-        messages = ''
-        nbad = 0
-        do task = 0, sweep%tasks - 1
-            problem = task_problem(model, sweep, task)
-            if (len(problem) > 0) call add_message(messages, nbad, sweep%where//'task '// &
-                itoa(task)//' ('//task_label(sweep, task)//'): '//problem)
-        end do
-        if (nbad > 0) call messages_error(messages, nbad, 'tasks that cannot run', error)
-        call stop_on(error)
-    end subroutine check_every_task
 
     !> Print the error, if any, and exit with its code.
     subroutine stop_on(error)

@@ -21,7 +21,7 @@ module ddc_sweep_tasks
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type, domain_half_plane
-    use ddc_text, only: itoa, lower, short_real
+    use ddc_text, only: itoa, lower, short_real, add_message, messages_error
     use ddc_output_hdf5_read, only: read_int_attribute
     use ddc_model_limits, only: range_problem, quantity_any, quantity_youngs_modulus, &
         quantity_poissons_ratio, quantity_non_negative
@@ -31,7 +31,7 @@ module ddc_sweep_tasks
     public :: sweep_definition, combine_product, combine_zip, combine_names
     public :: max_parameters, max_tasks, parameter_help
     public :: parse_parameter, check_value, task_values, task_label, task_file_name
-    public :: check_task, apply_task, task_problem, output_is_complete
+    public :: check_task, apply_task, task_problem, check_tasks, output_is_complete
     public :: target_sxx, target_syy, target_sxy, target_s1, target_s3, target_angle
 
     !> How the value lists make tasks
@@ -326,9 +326,31 @@ contains
         end if
     end function task_stress
 
+    !> Refuse a sweep with a task that cannot be solved (task_problem), every such task
+    !> named at once (exit_bad_input); --list calls it before anything is submitted.
+    subroutine check_tasks(model, sweep, error)
+        !> The base model (read and checked)
+        type(model_type), intent(in) :: model
+        !> The sweep (validated against this model)
+        type(sweep_definition), intent(in) :: sweep
+        !> Allocated when a task cannot be solved, one line per task
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: messages, problem
+        integer :: task, nbad
+
+        messages = ''
+        nbad = 0
+        do task = 0, sweep%tasks - 1
+            problem = task_problem(model, sweep, task)
+            if (len(problem) > 0) call add_message(messages, nbad, problem)
+        end do
+        if (nbad > 0) call messages_error(messages, nbad, 'tasks that cannot run', error)
+    end subroutine check_tasks
+
     !> Why task `task` cannot be solved, '' when it can: in a half-plane its remote stress
     !> must keep the surface y = 0 traction-free (syy = sxy = 0), which a swept syy, sxy
-    !> or principal stress breaks. The problem names the parameters and their values.
+    !> or principal stress breaks. The line names the file, &sweep, the task, its
+    !> parameters and values, and the parameters that break the rule.
     function task_problem(model, sweep, task) result(problem)
         !> The base model (read and checked)
         type(model_type), intent(in) :: model
@@ -354,7 +376,8 @@ contains
             if (len(culprits) > 0) culprits = culprits//', '
             culprits = culprits//trim(sweep%names(p))//' = '//short_real(values(p))
         end do
-        problem = culprits//' gives the remote stress sxx = '//short_real(stress(1))// &
+        problem = sweep%where//'task '//itoa(task)//' ('//task_label(sweep, task)//'): '// &
+            culprits//' gives the remote stress sxx = '//short_real(stress(1))// &
             ', syy = '//short_real(stress(2))//', sxy = '//short_real(stress(3))// &
             "; with &model domain = 'half_plane' syy and sxy must be 0 (the surface y = 0 "// &
             'is traction-free): sweep sxx, or the principal stresses only with '// &
