@@ -16,13 +16,15 @@ program ddc2d
     use ddc_run_model, only: run_model
     use ddc_history_solve, only: solve_history
     use ddc_growth_driver, only: grow_fractures
-    use ddc_text, only: itoa
     use ddc_input_sweep, only: read_sweep
     use ddc_sweep_tasks, only: sweep_definition, task_label, task_file_name, check_task, &
-        apply_task, output_is_complete
+        apply_task, task_problem, check_tasks, output_is_complete
     use ddc_app_command_line, only: command_line_options, parse_command_line, usage_text, &
         action_version, action_help, task_number
-    use ddc_app_report, only: print_model_summary, print_results_summary, print_growth_step
+    use ddc_app_report, only: print_model_summary, print_results_summary, print_growth_step, &
+        field_warnings
+    use ddc_app_memory, only: check_model_memory
+    use ddc_text, only: itoa, prefix_lines
     implicit none
 
     interface
@@ -39,6 +41,7 @@ program ddc2d
     type(model_results) :: results
     type(error_type), allocatable :: error
     integer(int64) :: t0, t1, rate
+    character(len=:), allocatable :: warnings
 
     call parse_command_line(options, error)
     if (allocated(error)) then
@@ -73,7 +76,9 @@ program ddc2d
         call check_writable(options%res_file, error)
         call stop_on(error)
     end if
-    call print_model_summary(output_unit, model)
+    call print_model_summary(output_unit, model, units_given=.not. options%twodd)
+    call check_model_memory(output_unit, model, error)
+    call stop_on(error)
 
     if (allocated(model%load_path%vertex)) then
         call solve_history(model, results, error)
@@ -93,6 +98,9 @@ program ddc2d
     call system_clock(t1)
     results%solver%seconds_output = real(t1 - t0, wp) / real(rate, wp)
     call print_results_summary(output_unit, model, results)
+    warnings = field_warnings(model, results)
+    if (len(warnings) > 0) write (error_unit, '(a)') prefix_lines(program_name// &
+        ': warning: ', warnings)
     call finish(exit_success)
 
 contains
@@ -108,6 +116,7 @@ contains
         type(error_type), allocatable :: error
         logical :: found, exists
         integer :: task
+        character(len=:), allocatable :: problem
 
         call read_sweep(options%input_file, model, sweep, found, error)
         call stop_on(error)
@@ -120,6 +129,10 @@ contains
             return
         end if
         if (options%list) then
+            ! Every task's model, before anything is submitted; the output folder is made by
+            ! the job (submit-sweep creates its --output-dir) and checked by each task.
+            call check_tasks(model, sweep, error)
+            call stop_on(error)
             write (output_unit, '(a)') 'tasks: '//itoa(sweep%tasks)
             do task = 0, sweep%tasks - 1
                 write (output_unit, '(a)') 'task '//itoa(task)//': '//task_label(sweep, task) &
@@ -140,6 +153,9 @@ contains
             call stop_on(error)
         end if
         call check_task(sweep, task, error)
+        call stop_on(error)
+        problem = task_problem(model, sweep, task)
+        if (len(problem) > 0) call set_error(error, exit_bad_input, problem)
         call stop_on(error)
         call apply_task(model, sweep, task)
         write (output_unit, '(a)') 'sweep task '//itoa(task)//' of '//itoa(sweep%tasks)// &

@@ -159,9 +159,10 @@ def load_result(path):
     ``fractures`` (list of dicts name / first / last / label, 1-based inclusive element
     range), ``fields`` (dict name -> dict with ``kind``, ``nx``, ``ny`` and the arrays),
     ``tips`` (dict of 1-D arrays x, y, fracture_id, element, k1, k2 and ``k_unit``; empty
-    arrays without /tips), ``remote_stress`` ((sxx, syy, sxy) or None), ``history``
-    (see read_history; None without /history) and ``growth`` (see read_growth; None
-    without /growth).
+    arrays without /tips), ``remote_stress`` ((sxx, syy, sxy) or None),
+    ``remote_stress_gradient`` ((dsxx_dy, dsyy_dy, dsxy_dy)) and ``pore_fluid`` ((p0,
+    dp_dy)), zeros when the file predates them, ``history`` (see read_history; None
+    without /history) and ``growth`` (see read_growth; None without /growth).
     Raises ResultError with a message naming the file and the problem.
     """
     path = Path(path)
@@ -199,6 +200,8 @@ def _read_open_file(path, handle):
         "fields": read_fields(handle),
         "tips": read_tips(path, handle),
         "remote_stress": read_remote_stress(path, handle),
+        "remote_stress_gradient": read_root_reals(path, handle, "remote_stress_gradient", 3),
+        "pore_fluid": read_root_reals(path, handle, "pore_fluid", 2),
         "history": read_history(path, handle, count),
         "growth": read_growth(path, handle),
     }
@@ -312,10 +315,18 @@ def read_remote_stress(path, handle):
     """The root attribute remote_stress as (sxx, syy, sxy), or None when absent."""
     if "remote_stress" not in handle.attrs:
         return None
-    values = np.asarray(handle.attrs["remote_stress"], dtype=float).ravel()
-    if values.size != 3:
-        raise ResultError(f"'{path}': root attribute remote_stress has {values.size} "
-                          "values, expected 3 (sxx, syy, sxy)")
+    return read_root_reals(path, handle, "remote_stress", 3)
+
+
+def read_root_reals(path, handle, name, size):
+    """A root attribute of `size` reals as a tuple; zeros when absent (files written
+    before ddc2d stored it, e.g. remote_stress_gradient and pore_fluid)."""
+    if name not in handle.attrs:
+        return (0.0,) * size
+    values = np.asarray(handle.attrs[name], dtype=float).ravel()
+    if values.size != size:
+        raise ResultError(f"'{path}': root attribute {name} has {values.size} values, "
+                          f"expected {size}")
     return tuple(float(v) for v in values)
 
 

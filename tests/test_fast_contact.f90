@@ -17,6 +17,8 @@ module test_fast_contact
     use ddc_contact_options, only: solver_options, parse_solver_options, option_code, &
         open_cohesion_names, lcp_lemke, lcp_newton
     use ddc_test_builders, only: polyline_model, join_fractures
+    use ddc_contact_memory, only: lemke_bytes
+    use ddc_error, only: exit_out_of_memory
     implicit none
     private
 
@@ -43,6 +45,7 @@ contains
                  new_test('random_kinked_faults', test_random_kinked), &
                  new_test('random_stepping_faults', test_random_stepping), &
                  new_test('fallback_to_lemke', test_fallback), &
+                 new_test('fallback_without_memory', test_fallback_without_memory), &
                  new_test('bad_method', test_bad_method)]
     end subroutine collect_fast_contact
 
@@ -341,16 +344,8 @@ contains
         type(model_type) :: model
         type(contact_result) :: fast, ref
         real(wp), allocatable :: a(:, :), ss(:), sn(:)
-        integer, allocatable :: rows(:)
-        integer :: n
 
-        model = kinked()
-        n = model%elements%n
-        allocate (a(2 * n, 2 * n), ss(n), sn(n))
-        rows = spread(row_traction, 1, n)
-        call assemble_influence(model%elements, e_modulus / (2.0_wp * (1.0_wp + nu)), nu, &
-            rows, rows, a)
-        call resolve_remote_stress(model%elements, model%sxx, model%syy, model%sxy, ss, sn)
+        call kinked_system(model, a, ss, sn)
         associate (e => model%elements)
             call solve_contact(a, ss, sn, e%mu, e%sf, e%pressure, &
                                solver_options(lcp_method=lcp_lemke), ref, error)
@@ -369,6 +364,46 @@ contains
         call check(error, maxval(abs(fast%ds - ref%ds)), 0.0_wp, 'ds as Lemke', &
             abs_tol=0.0_wp)
     end subroutine test_fallback
+
+    !> The same fallback when the memory left cannot hold Lemke's LCP: it does not start,
+    !> the solve stops with exit_out_of_memory saying why Newton failed and what Lemke
+    !> would need.
+    subroutine test_fallback_without_memory(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model
+        type(contact_result) :: fast
+        type(error_type), allocatable :: solve_error
+        real(wp), allocatable :: a(:, :), ss(:), sn(:)
+
+        call kinked_system(model, a, ss, sn)
+        associate (e => model%elements)
+            call solve_contact(a, ss, sn, e%mu, e%sf, e%pressure, solver_options( &
+                lcp_method=lcp_newton, work_bytes=lemke_bytes(e%n) - 1.0_wp), fast, &
+                solve_error, max_iterations=1)
+        end associate
+        call check(error, allocated(solve_error), 'the fallback must not start')
+        if (allocated(error)) return
+        call check(error, solve_error%code, exit_out_of_memory, 'exit code')
+        call check(error, index(solve_error%message, 'no convergence within 1 iterations') > 0 &
+            .and. index(solve_error%message, 'the fallback to Lemke would need about') > 0, &
+            'message: '//solve_error%message)
+    end subroutine test_fallback_without_memory
+
+    !> The kink, its influence matrix and its resolved remote stress.
+    subroutine kinked_system(model, a, ss, sn)
+        type(model_type), intent(out) :: model
+        real(wp), allocatable, intent(out) :: a(:, :), ss(:), sn(:)
+        integer, allocatable :: rows(:)
+        integer :: n
+
+        model = kinked()
+        n = model%elements%n
+        allocate (a(2 * n, 2 * n), ss(n), sn(n))
+        rows = spread(row_traction, 1, n)
+        call assemble_influence(model%elements, e_modulus / (2.0_wp * (1.0_wp + nu)), nu, &
+            rows, rows, a)
+        call resolve_remote_stress(model%elements, model%sxx, model%syy, model%sxy, ss, sn)
+    end subroutine kinked_system
 
     !> A method other than auto, lemke or newton is bad input.
     subroutine test_bad_method(error)

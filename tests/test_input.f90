@@ -63,7 +63,8 @@ contains
             new_test('bad_duplicate_names', test_bad_duplicate_names), &
             new_test('bad_both_geometries', test_bad_both_geometry), &
             new_test('bad_crossing_mesh', test_bad_crossing), &
-            new_test('bad_missing_input_file', test_bad_missing_input) &
+            new_test('bad_missing_input_file', test_bad_missing_input), &
+            new_test('bad_load_path_length', test_bad_load_path_length) &
             ]
     end subroutine collect_input
 
@@ -601,5 +602,14 @@ contains
         call check_bad_input(error, data//'no_such_model.nml', [character(len=40) :: &
                              'file not found'], lines=1)
     end subroutine test_bad_missing_input
+
+    !> One &load_path quantity with the wrong number of values: that message alone (it was
+    !> given, so no 'give the load at each vertex' as well).
+    subroutine test_bad_load_path_length(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call check_bad_input(error, data//'bad_load_path_length.nml', [character(len=40) :: &
+            '&load_path', 'sxy has 2 values', 'one per vertex: 3'], lines=1)
+    end subroutine test_bad_load_path_length
 
 end module test_input

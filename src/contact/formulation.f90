@@ -25,7 +25,10 @@
 !> element has cohesion left (the set of such elements only grows, so this terminates).
 module ddc_contact_formulation
     use ddc_kinds, only: wp
-    use ddc_error, only: error_type, set_error, set_internal_error, exit_bad_input
+    use ddc_error, only: error_type, set_error, set_internal_error, exit_bad_input, &
+        exit_out_of_memory
+    use ddc_text, only: bytes_text
+    use ddc_contact_memory, only: lemke_bytes
     use ddc_contact_options, only: solver_options, lcp_auto, lcp_newton, cohesion_lost
     use ddc_contact_certificate, only: certify_complementarity, default_certificate_tolerance
     use ddc_contact_active_set, only: active_set_result, solve_contact_active_set
@@ -136,6 +139,14 @@ contains
                 end if
             end if
             if (.not. newton) then
+                if (.not. allocated(lcp%m) .and. len(res%fallback) > 0 .and. &
+                    lemke_bytes(n) > options%work_bytes) then
+                    call set_error(error, exit_out_of_memory, 'contact: the Newton method '// &
+                        'failed ('//res%fallback//') and the fallback to Lemke would need '// &
+                        'about '//bytes_text(lemke_bytes(n))//' more memory, but about '// &
+                        bytes_text(options%work_bytes)//' is left here')
+                    return
+                end if
                 if (.not. allocated(lcp%m)) then
                     call build_contact_lcp(a, mu, lcp, res, error)
                     if (allocated(error)) return

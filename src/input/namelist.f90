@@ -94,7 +94,7 @@ contains
         call check_names(path, fractures, observations, messages)
         call check_half_plane(path, model, fractures, observations, messages)
         if (messages%n > 0) then
-            call set_error(error, exit_bad_input, messages%text)
+            call set_error(error, messages%code, messages%text)
             return
         end if
 

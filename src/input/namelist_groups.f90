@@ -8,6 +8,7 @@
 !> table are the ones the messages print and the diagnosis of a bad group checks against;
 !> tests/architecture/check_sources.py holds every reader's namelist statement to them.
 module ddc_input_namelist_groups
+    use ddc_error, only: exit_bad_input
     use ddc_text, only: newline, itoa, lower, find_name, join_integers
     implicit none
     private
@@ -69,6 +70,9 @@ module ddc_input_namelist_groups
         character(len=:), allocatable :: text
         !> Number of lines
         integer :: n = 0
+        !> Exit code of the error they make: exit_bad_input, or exit_out_of_memory when an
+        !> allocation for the input failed
+        integer :: code = exit_bad_input
     end type message_list
 
 contains

@@ -321,6 +321,8 @@ contains
         given = 0
         do q = 1, 7
             stat = count_given(values(:, q), trim(load_path_names(q)), prefix, messages)
+            ! A quantity given with the wrong number of values is given: one message only.
+            if (stat > 0) given = given + 1
             if (stat == 0) then
                 model%load_path%vertex(q, :) = fixed(q)
             else if (stat /= nv .and. nlegs > 0) then
@@ -328,7 +330,6 @@ contains
                          ' values; give one per vertex: '//itoa(nv)//' (one more than steps)')
                 ok = .false.
             else
-                given = given + 1
                 model%load_path%varies(q) = .true.
                 model%load_path%vertex(q, :) = values(1:nv, q)
             end if

@@ -17,6 +17,7 @@ module ddc_linalg_lu
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_solver_failure
     use ddc_text, only: itoa
+    use ddc_allocation, only: allocation_failed, real_bytes
     use ddc_linalg_lapack, only: dgetrf, dgetrs, dgetri, dgecon, dlange
     implicit none
     private
@@ -109,22 +110,34 @@ contains
         real(wp), allocatable, intent(out) :: inverse(:, :)
         !> What the matrix is, for the message
         character(len=*), intent(in) :: subject
-        !> Allocated when the matrix is (numerically) singular
+        !> Allocated when the matrix is (numerically) singular (exit_solver_failure) or the
+        !> inverse does not fit in memory (exit_out_of_memory)
         type(error_type), allocatable, intent(out) :: error
         real(wp), allocatable :: work(:)
         integer, allocatable :: ipiv(:)
-        integer :: m, info, lwork
+        integer :: m, info, lwork, stat
 
         m = size(a, 1)
-        inverse = a
         allocate (ipiv(m))
+        allocate (inverse(m, m), stat=stat)
+        if (stat /= 0) then
+            call allocation_failed(error, 'the inverse of the '//subject, &
+                                   real_bytes * real(m, wp)**2)
+            return
+        end if
+        inverse(:, :) = a
         call lu_factor(inverse, ipiv, subject, error)
         if (allocated(error) .or. m == 0) return
         allocate (work(1))
         call dgetri(m, inverse, m, ipiv, work, -1, info)
         lwork = max(int(work(1)), m)
         deallocate (work)
-        allocate (work(lwork))
+        allocate (work(lwork), stat=stat)
+        if (stat /= 0) then
+            call allocation_failed(error, 'the work space of the inverse of the '//subject, &
+                                   real_bytes * real(lwork, wp))
+            return
+        end if
         ! With nonsingular factors dgetri cannot fail.
         call dgetri(m, inverse, m, ipiv, work, lwork, info)
     end subroutine lu_invert

@@ -9,7 +9,8 @@ module ddc_solve_elastic
     use ddc_influence_assembly, only: assemble_influence, row_traction, row_displacement, &
         row_identity
     use ddc_linalg_lu, only: lu_factor, lu_solve, influence_hint, residual_tol
-    use ddc_text, only: rtoa
+    use ddc_text, only: rtoa, itoa
+    use ddc_allocation, only: allocation_failed, real_bytes
     implicit none
     private
 
@@ -81,7 +82,7 @@ contains
         real(wp), allocatable :: matrix(:, :), factors(:, :), rhs(:, :), given(:)
         integer, allocatable :: shear_row(:), normal_row(:), ipiv(:)
         type(error_type), allocatable :: ill_conditioned
-        integer :: n, i
+        integer :: n, i, stat
         integer(int64) :: t0, t1, t2, rate
 
         n = elements%n
@@ -90,14 +91,22 @@ contains
             return
         end if
         call system_clock(t0, rate)
-        allocate (shear_row(n), normal_row(n), matrix(2 * n, 2 * n), rhs(2 * n, 1), ipiv(2 * n))
+        allocate (shear_row(n), normal_row(n), rhs(2 * n, 1), ipiv(2 * n))
+        allocate (matrix(2 * n, 2 * n), stat=stat)
+        if (stat == 0) allocate (factors(2 * n, 2 * n), stat=stat)
+        if (stat /= 0) then
+            call allocation_failed(error, 'the influence matrix of '//itoa(n)// &
+                                   ' elements and its LU factors', &
+                                   2.0_wp * real_bytes * (2.0_wp * real(n, wp))**2)
+            return
+        end if
         call row_kinds(elements%condition, shear_row, normal_row)
         call assemble_influence(elements, shear_modulus, nu, shear_row, normal_row, matrix)
         rhs(:, 1) = given_values(elements, shear_row, normal_row, remote_shear, remote_normal, &
                                  [(i, i = 1, n)])
         call system_clock(t1)
 
-        factors = matrix
+        factors(:, :) = matrix
         call lu_factor(factors, ipiv, 'influence matrix', error, ill_conditioned=ill_conditioned)
         if (allocated(error)) then
             error%message = error%message//influence_hint
