@@ -94,7 +94,7 @@ def test_growth_figure_draws_the_records(grown, plot_module):
                           capture_output=True, text=True, timeout=120)
     assert proc.returncode == 0, proc.stderr
     assert (folder / "fig" / "wings_growth.png").read_bytes()[:4] == b"\x89PNG"
-    assert (folder / "fig" / "wings_map_map_sxy.png").is_file()
+    assert (folder / "fig" / "wings_map_sxy.png").is_file()
     result = load_result(folder / "wings.h5")
     series = plot_module.growth_series(result)
     assert [tip["label"] for tip in series] == ["crack begin", "crack end"]
