@@ -2,6 +2,8 @@
 !> the block-cyclic matrices (rows x columns, as square as possible, row-major: process
 !> (r, c) of the grid is MPI rank r * columns + c of MPI_COMM_WORLD).
 module ddc_parallel_context
+    use, intrinsic :: ieee_exceptions, only: ieee_get_halting_mode, ieee_set_halting_mode, &
+        ieee_all
     use mpi_f08, only: MPI_Comm, mpi_comm_world, mpi_init, mpi_finalize, mpi_comm_rank, &
         mpi_comm_size
     use ddc_error, only: error_type, set_internal_error
@@ -31,12 +33,17 @@ module ddc_parallel_context
 
 contains
 
-    !> Start MPI.
+    !> Start MPI. Floating-point traps (the debug build's -ffpe-trap) are off while MPI starts:
+    !> the library's own start-up code divides by zero under some launchers (srun --mpi=pmix).
     subroutine start_parallel(context)
         !> This process and the number of processes
         type(parallel_context), intent(out) :: context
+        logical :: halting(size(ieee_all))
 
+        call ieee_get_halting_mode(ieee_all, halting)
+        call ieee_set_halting_mode(ieee_all, .false.)
         call mpi_init()
+        call ieee_set_halting_mode(ieee_all, halting)
         context%comm = mpi_comm_world
         call mpi_comm_rank(context%comm, context%rank)
         call mpi_comm_size(context%comm, context%processes)

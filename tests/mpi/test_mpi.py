@@ -19,6 +19,7 @@ from pathlib import Path
 import h5py
 import numpy as np
 import pytest
+from compare import differences, relative_difference
 
 REPO = Path(__file__).resolve().parents[2]
 DATA = REPO / "tests" / "data"
@@ -39,7 +40,7 @@ def executable(variable):
     if not value:
         raise AssertionError(f"{variable} is not set: run these tests through CTest in the "
                              "mpi preset's build (ctest --preset mpi)")
-    return value
+    return str(Path(value).resolve()) if os.sep in value else value
 
 
 def environment():
@@ -53,12 +54,13 @@ def run_parallel(processes, args, cwd, timeout=TIMEOUT):
     command = [executable("MPIEXEC"), "-q", "--oversubscribe", "-n", str(processes),
                executable("DDC2D_EXE"), *map(str, args)]
     return subprocess.run(command, cwd=cwd, capture_output=True, text=True, timeout=timeout,
-                          env=environment())
+                          env=environment(), check=False)
 
 
 def run_serial(args, cwd):
     return subprocess.run([executable("DDC2D_SERIAL_EXE"), *map(str, args)], cwd=cwd,
-                          capture_output=True, text=True, timeout=TIMEOUT, env=environment())
+                          capture_output=True, text=True, timeout=TIMEOUT, env=environment(),
+                          check=False)
 
 
 @pytest.fixture(scope="module")
@@ -76,35 +78,6 @@ def serial_result(tmp_path_factory):
         return done[model]
 
     return result
-
-
-def relative_difference(reference, other, where):
-    """max |other - reference| / max |reference|; NaN where NaN, integers equal."""
-    a, b = reference[()], other[()]
-    assert a.shape == b.shape, f"{where}: shapes {a.shape} and {b.shape}"
-    if a.dtype.kind != "f":
-        assert np.array_equal(a, b), f"{where}: values differ"
-        return 0.0
-    assert np.array_equal(np.isnan(a), np.isnan(b)), f"{where}: NaN at other places"
-    if a.size == 0 or np.all(np.isnan(a)):
-        return 0.0
-    scale = np.nanmax(np.abs(a))
-    difference = np.nanmax(np.abs(b - a))
-    return difference / scale if scale > 0 else difference
-
-
-def differences(reference, other):
-    """Largest relative difference of every dataset of /elements, /tips and /fields."""
-    found = {}
-    for group in ("elements", "tips", "fields"):
-        if group not in reference:
-            assert group not in other, f"/{group} only in the parallel result"
-            continue
-        reference[group].visititems(lambda name, item: found.update(
-            {f"/{group}/{name}": relative_difference(item, other[group][name],
-                                                     f"/{group}/{name}")})
-            if isinstance(item, h5py.Dataset) else None)
-    return found
 
 
 def check_solver_record(reference, other, processes):
