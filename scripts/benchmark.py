@@ -42,8 +42,10 @@ from pathlib import Path
 
 import h5py
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))  # ddc2d_h5 lives beside this script
+from ddc2d_h5 import SOLVER_PHASES, read_solver
+
 CASES = ("straight", "mixed")
-PHASES = ("assembly", "factorization", "lcp", "fields", "output", "total")
 
 
 def straight_model(n, grid):
@@ -138,29 +140,22 @@ def benchmark_one(exe, lu_exe, n, case, threads, method, grid, workdir):
     h5 = Path(workdir) / f"{case}_{n}.h5"
     nml.write_text(model + solver_group(method) + f"&output file = '{h5.name}' /\n")
     stdout, wall, rss = run_measured([str(exe), str(nml), "-o", str(h5)], env)
-    seconds = {}
     with h5py.File(h5, "r") as f:
-        solver = f["solver"]
-        for phase in PHASES:
-            seconds[phase] = float(solver["seconds"][phase][()])
-        attrs = {k: solver.attrs[k] for k in solver.attrs}
+        solver = read_solver(f)
+    seconds, attrs = solver["seconds"], solver["attrs"]
     # The output phase is timed while the file is written: take it from the summary.
     match = re.search(r"output\s+([0-9.]+)", stdout)
     if match:
         seconds["output"] = float(match.group(1))
         seconds["total"] += seconds["output"]
     lu_seconds, lu_gflops = lu_reference(lu_exe, 2 * n, env)
-
-    def text(value):
-        return value.decode().strip() if isinstance(value, bytes) else str(value)
-
     flops = float(attrs.get("factorization_flops", 0.0))
     fact = seconds["factorization"]
     record = {
         "n": n, "case": case, "threads": threads, "seconds": seconds,
         "lu_reference_seconds": lu_seconds, "peak_rss_mb": rss,
-        "lcp_method": method, "method": text(attrs.get("method", "")),
-        "fallback": text(attrs.get("fallback", "")),
+        "lcp_method": method, "method": attrs.get("method", ""),
+        "fallback": attrs.get("fallback", ""),
         "newton_iterations": int(attrs.get("newton_iterations", 0)),
         "pivots": int(attrs.get("pivots", 0)),
         "states": {s: int(attrs.get(f"elements_{s}", 0)) for s in ("stick", "slip", "open")},
@@ -184,7 +179,8 @@ def print_table(records, out=sys.stdout):
         st = r["states"]
         rows.append((str(r["n"]), r["case"], str(r["threads"]),
                      r["method"] + ("*" if r["fallback"] else ""),
-                     *(f"{s[p]:.3f}" for p in PHASES), f"{r['lu_reference_seconds']:.3f}",
+                     *(f"{s[p]:.3f}" for p in SOLVER_PHASES),
+                     f"{r['lu_reference_seconds']:.3f}",
                      f"{r['total_over_lu']:.2f}", "-" if gf is None else f"{gf:.1f}",
                      f"{r['lu_reference_gflops']:.1f}", f"{r['peak_rss_mb']:.0f}",
                      f"{st['stick']}/{st['slip']}/{st['open']}"))

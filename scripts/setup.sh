@@ -28,7 +28,8 @@ mpi_packages=(openmpi-bin libopenmpi-dev libscalapack-openmpi-dev)
 python_packages=(numpy h5py matplotlib pytest xlrd openpyxl xlwt)
 python_modules="numpy, h5py, matplotlib, pytest, xlrd, openpyxl, xlwt"
 # Linters run by the tests, as PyPI package:executable in the venv's bin/.
-python_tools=(fortitude-lint:fortitude ruff:ruff)
+# Pinned: their default rule sets change between releases.
+python_tools=(fortitude-lint==0.10.0:fortitude ruff==0.17.6:ruff)
 venv_dir="$repo_root/build/venv"
 
 say() { printf 'setup: %s\n' "$*"; }

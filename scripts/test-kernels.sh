@@ -1,12 +1,15 @@
 #!/usr/bin/env bash
 # Run the numerical test suites (CTest labels fortran and python) of the Debug build again
-# with OpenBLAS forced to other kernels, so that no result depends on the CPU:
+# with OpenBLAS on other kernels, so that no result depends on the CPU:
 #
-#   scripts/test-kernels.sh [CORE ...]     (default: Nehalem Sandybridge Haswell)
+#   scripts/test-kernels.sh [CORE ...]     (default: native Nehalem Sandybridge Haswell)
 #
-# Each kernel is checked to be the one in use (OPENBLAS_VERBOSE=2 prints "Core: <name>")
-# before its run. Nehalem (SSE only), Sandybridge (AVX) and Haswell (AVX2) run on any
-# x86-64 machine of the last ten years. Needs a configured and built debug preset
+# `native` is the kernel OpenBLAS picks for this CPU by itself (OPENBLAS_CORETYPE unset);
+# the others are forced with OPENBLAS_CORETYPE. Nehalem (SSE only), Sandybridge (AVX) and
+# Haswell (AVX2) run on any x86-64 machine of the last ten years. Each kernel is checked to
+# be the one in use (OPENBLAS_VERBOSE=2 prints "Core: <name>"); a kernel the suites already
+# ran with (the environment's, used by `ctest --preset debug` in scripts/test.sh, or an
+# earlier one of the list) is not run twice. Needs a configured and built debug preset
 # (scripts/test.sh makes it). Exits non-zero when a kernel cannot be forced or a test fails.
 set -euo pipefail
 
@@ -15,18 +18,41 @@ cd "$repo_root"
 exe=build/debug/app/ddc2d
 [[ -x "$exe" ]] || { echo "test-kernels: no $exe: run scripts/test.sh first" >&2; exit 2; }
 
-cores=("$@")
-((${#cores[@]} > 0)) || cores=(Nehalem Sandybridge Haswell)
-default_core=$(OPENBLAS_VERBOSE=2 "$exe" --version 2>&1 >/dev/null | sed -n 's/^Core: //p')
-echo "test-kernels: this CPU's own OpenBLAS kernel is ${default_core:-unknown}"
-for core in "${cores[@]}"; do
-    used=$(OPENBLAS_VERBOSE=2 OPENBLAS_CORETYPE="$core" "$exe" --version 2>&1 >/dev/null \
-           | sed -n 's/^Core: //p')
-    if [[ "$used" != "$core" ]]; then
-        echo "test-kernels: OPENBLAS_CORETYPE=$core gave kernel '${used:-none}'" >&2
+# The kernel OpenBLAS uses with the given OPENBLAS_CORETYPE ('' for the native one).
+kernel_in_use() {
+    if [[ -n "$1" ]]; then
+        OPENBLAS_VERBOSE=2 OPENBLAS_CORETYPE="$1" "$exe" --version 2>&1 >/dev/null
+    else
+        env -u OPENBLAS_CORETYPE OPENBLAS_VERBOSE=2 "$exe" --version 2>&1 >/dev/null
+    fi | sed -n 's/^Core: //p'
+}
+
+requested=("$@")
+((${#requested[@]} > 0)) || requested=(native Nehalem Sandybridge Haswell)
+done_cores=("$(OPENBLAS_VERBOSE=2 "$exe" --version 2>&1 >/dev/null | sed -n 's/^Core: //p')")
+echo "test-kernels: the main run used kernel ${done_cores[0]:-unknown}" \
+     "(OPENBLAS_CORETYPE in the environment: ${OPENBLAS_CORETYPE:-not set})"
+ran=()
+for core in "${requested[@]}"; do
+    forced="$core"
+    [[ "$core" == native ]] && forced=""
+    used=$(kernel_in_use "$forced")
+    if [[ -n "$forced" && "$used" != "$forced" ]]; then
+        echo "test-kernels: OPENBLAS_CORETYPE=$forced gave kernel '${used:-none}'" >&2
         exit 1
     fi
-    echo "test-kernels: the numerical suites with OpenBLAS kernel $core"
-    OPENBLAS_CORETYPE="$core" ctest --preset debug -L 'fortran|python'
+    if [[ " ${done_cores[*]} " == *" $used "* ]]; then
+        echo "test-kernels: kernel $used ($core) already tested"
+        continue
+    fi
+    echo "test-kernels: the numerical suites with OpenBLAS kernel $used ($core)"
+    if [[ -n "$forced" ]]; then
+        OPENBLAS_CORETYPE="$forced" ctest --preset debug -L 'fortran|python'
+    else
+        env -u OPENBLAS_CORETYPE ctest --preset debug -L 'fortran|python'
+    fi
+    done_cores+=("$used")
+    ran+=("$used")
 done
-echo "test-kernels: every suite passed with kernels ${cores[*]}"
+echo "test-kernels: every suite passed with kernels ${ran[*]} (and ${done_cores[0]} in the" \
+     "main run)"

@@ -14,16 +14,19 @@
 
 Prints every violation and exits 1 when there is one; --graph prints the folder graph.
 """
+import itertools
 import re
 import sys
 from collections import defaultdict
 from pathlib import Path
 
-MODULE = re.compile(r"^\s*module\s+(\w+)\s*$", re.I | re.M)
-USE = re.compile(r"^\s*use\s*(?:,\s*(?:non_)?intrinsic\s*::)?\s*(\w+)", re.I | re.M)
-GROUP = re.compile(r"group_spec\('(\w+)',\s*\.(?:true|false)\.,\s*((?:'[^']*'(?:\s*//\s*&\s*)?\s*)+)\)",
-                   re.I)
-NAMELIST = re.compile(r"^\s*namelist\s*/(\w+)/\s*((?:[^\n]*&\s*\n)*[^\n]*)", re.I | re.M)
+LINES = re.IGNORECASE | re.MULTILINE
+MODULE = re.compile(r"^\s*module\s+(\w+)\s*$", LINES)
+USE = re.compile(r"^\s*use\s*(?:,\s*(?:non_)?intrinsic\s*::)?\s*(\w+)", LINES)
+GROUP = re.compile(
+    r"group_spec\('(\w+)',\s*\.(?:true|false)\.,\s*((?:'[^']*'(?:\s*//\s*&\s*)?\s*)+)\)",
+    re.IGNORECASE)
+NAMELIST = re.compile(r"^\s*namelist\s*/(\w+)/\s*((?:[^\n]*&\s*\n)*[^\n]*)", LINES)
 
 
 def fortran_files(root):
@@ -99,7 +102,7 @@ def check_folders(root, problems):
             edges[(here, there)].add(f"{path.relative_to(root)} uses {used}")
     cycle = find_cycle(graph)
     if cycle:
-        links = [f"{a} -> {b} ({sorted(edges[(a, b)])[0]})" for a, b in zip(cycle, cycle[1:])]
+        links = [f"{a} -> {b} ({min(edges[(a, b)])})" for a, b in itertools.pairwise(cycle)]
         problems.append("folder cycle: " + "; ".join(links))
     return graph
 
@@ -131,7 +134,7 @@ def check_namelists(root, problems):
     return checked
 
 
-USE_ONLY = re.compile(r"^\s*use\b[^\n]*?\bonly\s*:((?:[^\n]*&\s*\n)*[^\n]*)", re.I | re.M)
+USE_ONLY = re.compile(r"^\s*use\b[^\n]*?\bonly\s*:((?:[^\n]*&\s*\n)*[^\n]*)", LINES)
 
 
 def check_imports(root, problems):
@@ -139,12 +142,12 @@ def check_imports(root, problems):
     for path in sorted(fortran_files(root) + sorted((root / "tests").glob("*.f90"))):
         text = strip_comments(path.read_text())
         rest = USE_ONLY.sub("", text)
-        words = set(w.lower() for w in re.findall(r"\b\w+\b", rest))
-        words |= set(k.lower() for k in re.findall(r"[\d.]_(\w+)", rest))  # 1.0_wp
+        words = {w.lower() for w in re.findall(r"\b\w+\b", rest)}
+        words |= {k.lower() for k in re.findall(r"[\d.]_(\w+)", rest)}  # 1.0_wp
         for names in USE_ONLY.findall(text):
             for item in names.replace("&", " ").split(","):
                 local = item.split("=>")[0].strip().lower()
-                if local.startswith("operator(") or local.startswith("assignment("):
+                if local.startswith(("operator(", "assignment(")):
                     continue
                 if local and local not in words:
                     problems.append(f"{path.relative_to(root)}: imports {local} but does not "

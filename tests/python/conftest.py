@@ -2,11 +2,12 @@
 
 The synthetic files follow the HDF5 layout of SPEC.md sections 5 and 6 (as written by
 ddc2d): strings are stored as blank-padded fixed-length bytes, as the Fortran writer does.
+Tests read result files with scripts/ddc2d_h5.py (importable once this file is loaded).
 """
 
 import importlib.machinery
-import os
 import importlib.util
+import os
 import sys
 from pathlib import Path
 
@@ -17,7 +18,9 @@ import pytest
 sys.dont_write_bytecode = True
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
-PLOT_SCRIPT = REPO_ROOT / "scripts" / "ddc2d-plot"
+SCRIPTS = REPO_ROOT / "scripts"
+PLOT_SCRIPT = SCRIPTS / "ddc2d-plot"
+sys.path.insert(0, str(SCRIPTS))  # the tests import ddc2d_h5 as the scripts do
 
 LENGTH_UNIT = "km"
 STRESS_UNIT = "MPa"
@@ -32,7 +35,8 @@ FRACTURE_B = {
     "x": [0.0, 0.3, 0.3, 0.3],
     "y": [1.0, 1.4, 1.9, 2.4],
 }
-# Element states, one of every kind on A; open/slip/stick on B.
+# Element states, one of every kind on A; open/slip/stick on B. Codes as ddc2d writes them
+# (0 free, 1 stick, 2 slip, 3 open; test_ddc2d_h5.py checks them against ddc2d's output).
 STATES = [1, 2, 3, 2, 0, 3, 1]
 DS = [-1.0e-3, -2.5e-3, -3.0e-3, -1.5e-3, 4.0e-4, 0.0, 2.0e-4]
 DN = [0.0, 0.0, -2.0e-3, 0.0, -1.0e-4, -7.0e-4, 0.0]
@@ -70,7 +74,7 @@ def element_arrays():
         "x_mid": 0.5 * (xb + xe), "y_mid": 0.5 * (yb + ye),
         "half_length": 0.5 * np.hypot(xe - xb, ye - yb),
         "fracture_id": np.array(fid, dtype=np.int32),
-        "condition": np.array([5, 5, 5, 5, 1, 5, 5], dtype=np.int32),
+        "condition": np.array([5, 5, 5, 5, 1, 5, 5], dtype=np.int32),  # contact, traction
         "bc_s": np.zeros(n), "bc_n": np.zeros(n),
         "ds": ds, "dn": dn, "opening": -dn,
         "shear_traction": np.linspace(-3.0, 3.0, n),
@@ -178,14 +182,20 @@ def result_file_without_fields(tmp_path):
     return write_result(tmp_path / "nofields.h5", with_fields=False)
 
 
-@pytest.fixture(scope="session")
-def plot_module():
-    """scripts/ddc2d-plot loaded as a module (its name has no .py suffix)."""
-    loader = importlib.machinery.SourceFileLoader("ddc2d_plot", str(PLOT_SCRIPT))
-    spec = importlib.util.spec_from_loader("ddc2d_plot", loader)
+def load_script(name):
+    """scripts/<name> loaded as a module (the scripts' names have no .py suffix)."""
+    module_name = name.replace("-", "_")
+    loader = importlib.machinery.SourceFileLoader(module_name, str(SCRIPTS / name))
+    spec = importlib.util.spec_from_loader(module_name, loader)
     module = importlib.util.module_from_spec(spec)
     loader.exec_module(module)
     return module
+
+
+@pytest.fixture(scope="session")
+def plot_module():
+    """scripts/ddc2d-plot loaded as a module."""
+    return load_script("ddc2d-plot")
 
 
 def ddc2d_exe():

@@ -25,6 +25,7 @@ import numpy as np
 import openpyxl
 import pytest
 import xlwt
+
 from conftest import REPO_ROOT, ddc2d_exe
 
 SCRIPT = REPO_ROOT / "scripts" / "comp2ddm2nml"

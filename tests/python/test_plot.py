@@ -9,8 +9,16 @@ import h5py
 import numpy as np
 import pytest
 
-from conftest import (GRID_NAN_POINT, GRID_NEAR_POINT, LENGTH_UNIT, PLOT_SCRIPT, STRESS_UNIT,
-                      ddc2d_exe, write_result)
+from conftest import (
+    GRID_NAN_POINT,
+    GRID_NEAR_POINT,
+    LENGTH_UNIT,
+    PLOT_SCRIPT,
+    STRESS_UNIT,
+    ddc2d_exe,
+    write_result,
+)
+from ddc2d_h5 import STATE_CODES
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 
@@ -134,13 +142,14 @@ def test_load_result_decodes_fortran_strings(plot_module, result_file):
 
 
 def test_profile_data_equal_hdf5_values(plot_module, result_file):
+    # The profiles are the stored values (negated, which is exact): compared bit for bit.
     with h5py.File(result_file, "r") as f:
         ds = f["elements/ds"][()]
         dn = f["elements/dn"][()]
         state = f["elements/state"][()]
     profiles = plot_module.fracture_profiles(plot_module.load_result(result_file))
     assert len(profiles) == 2
-    (frac_a, prof_a), (frac_b, prof_b) = profiles
+    (_, prof_a), (_, prof_b) = profiles
     np.testing.assert_array_equal(prof_a["slip"], -ds[0:4])
     np.testing.assert_array_equal(prof_a["opening"], -dn[0:4])
     np.testing.assert_array_equal(prof_a["state"], state[0:4])
@@ -158,6 +167,8 @@ def test_profile_figure_shows_the_profile_data(plot_module, result_file):
     fig = plot_module.plot_profile(result, fracture, profile)
     try:
         ax_slip, ax_open = fig.axes[:2]
+        # Lines and markers draw the profile's values themselves, and the element lengths
+        # (0.5) and midpoints are exact in binary: compared bit for bit.
         for ax, key in ((ax_slip, "slip"), (ax_open, "opening")):
             (line,) = [ln for ln in ax.get_lines() if ln.get_gid() == key]
             np.testing.assert_array_equal(line.get_xdata(), profile["distance"])
@@ -236,7 +247,7 @@ def test_default_clim_is_symmetric_for_signed_quantities(plot_module, result_fil
     _, _, sxy = plot_module.grid_quantity(field, "sxy")
     assert sxy.min() < 0.0 < sxy.max()
     low, high = plot_module.default_clim(sxy, "sxy")
-    assert low == -high and high > 0.0
+    assert low == -high and high > 0.0  # centre 0: (0 - top, 0 + top), exact negatives
     _, _, shear = plot_module.grid_quantity(field, "max_shear")
     low, high = plot_module.default_clim(shear, "max_shear")
     assert shear.min() <= low < high <= shear.max()
@@ -269,7 +280,7 @@ def hand_coulomb(sxx, syy, sxy, angle_deg, mu, sense):
 
 def test_coulomb_matches_hand_computation(plot_module, result_file):
     result = plot_module.load_result(result_file)
-    np.testing.assert_array_equal(result["remote_stress"], REMOTE)
+    np.testing.assert_array_equal(result["remote_stress"], REMOTE)  # as written: exact
     field = result["fields"]["grid1"]
     receiver = plot_module.Receiver(result["remote_stress"], 30.0, 0.4, "right")
     x, y, cfs = plot_module.grid_quantity(field, "coulomb", receiver)
@@ -368,6 +379,7 @@ def test_displacement_map_draws_the_displacement_vectors(plot_module, result_fil
         field = result["fields"]["grid1"]
         keep = np.isfinite(field["ux"])  # 5 x 4 grid: every point, step 1, but the NaN
         assert plot_module.quiver_step(5, 4) == 1
+        # The arrows are the stored values themselves: exact.
         np.testing.assert_array_equal(quiver.U, field["ux"][keep])
         np.testing.assert_array_equal(quiver.V, field["uy"][keep])
         np.testing.assert_array_equal(quiver.X, field["x"][keep])
@@ -390,7 +402,7 @@ def test_overview_profile_shows_every_fracture(plot_module, result_file):
                 np.testing.assert_allclose(line.get_xdata(), elements["y_mid"][sl],
                                            rtol=1e-14)
                 data = -elements["ds" if key == "slip" else "dn"][sl]
-                np.testing.assert_array_equal(line.get_ydata(), data)
+                np.testing.assert_array_equal(line.get_ydata(), data)  # stored values
         legend = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
         assert legend == ["fault A", "B", "stick", "slip", "open", "free"]
         assert fig.axes[1].get_xlabel() == f"y of element midpoint [{LENGTH_UNIT}]"
@@ -409,6 +421,7 @@ def test_tips_table_files(result_file, tmp_path):
     assert [r[:3] for r in rows[1:]] == [["1", "fault A", "1"], ["2", "fault A", "4"],
                                         ["3", "B", "5"], ["4", "B", "7"]]
     numbers = np.array([[float(v) for v in r[3:]] for r in rows[1:]])
+    # The CSV writes repr(): the stored numbers come back bit for bit.
     np.testing.assert_array_equal(numbers, [[-1.0, 0.0, 0.0, 1.2], [1.0, 0.0, 0.0, 1.1],
                                             [0.0, 1.0, 0.1, -0.2], [0.3, 2.4, 0.0, 0.3]])
     text = (tmp_path / "synthetic_tips.txt").read_text().splitlines()
@@ -464,6 +477,7 @@ def test_plots_a_model_solved_by_ddc2d(plot_module, tmp_path):
     (fault, fault_profile), (crack, crack_profile) = plot_module.fracture_profiles(result)
     assert (fault["first"], fault["last"], crack["first"], crack["last"]) == (1, 30, 31, 40)
     fig = plot_module.plot_profile(result, crack, crack_profile)
+    # Figures, profiles and the tips CSV (repr) hold the stored values: compared exactly.
     try:
         (line,) = [ln for ln in fig.axes[1].get_lines() if ln.get_gid() == "opening"]
         np.testing.assert_array_equal(line.get_ydata(), -dn[30:40])
@@ -471,7 +485,7 @@ def test_plots_a_model_solved_by_ddc2d(plot_module, tmp_path):
         plot_module.plt.close(fig)
     np.testing.assert_array_equal(fault_profile["slip"], -ds[:30])
     np.testing.assert_array_equal(fault_profile["state"], state[:30])
-    assert np.all(crack_profile["state"] == 3)  # 70 MPa > 50 MPa on the crack: open
+    assert np.all(crack_profile["state"] == STATE_CODES["open"])  # 70 MPa > 50 MPa: open
     with open(tmp_path / "fig" / "solved_tips.csv", newline="") as handle:
         rows = list(csv.reader(handle))[1:]
     assert [r[1] for r in rows] == ["fault", "fault", "crack", "crack"]

@@ -12,6 +12,7 @@ import h5py
 import numpy as np
 
 from conftest import REPO_ROOT, ddc2d_exe
+from ddc2d_h5 import STATE_CODES, is_complete
 
 EXAMPLE = REPO_ROOT / "input" / "sweep_friction_orientation.nml"
 SUBMIT = REPO_ROOT / "scripts" / "submit-sweep"
@@ -56,10 +57,12 @@ def test_task_output_skip_and_redo(tmp_path):
     assert done.returncode == 0, done.stderr
     output = tmp_path / "out_task0002.h5"
     with h5py.File(output, "r") as f:
-        assert f.attrs["complete"] == 1
+        assert is_complete(f.attrs)
         attrs = f["sweep"].attrs
         assert (attrs["task"], attrs["tasks"]) == (2, 4)
         assert attrs["parameters"] == b"mu, remote_angle"
+        # Swept values are the input's decimals, stored and copied to the elements
+        # unchanged (gfortran and Python both round a decimal correctly): exact.
         assert attrs["mu"] == 0.6 and attrs["remote_angle"] == -30.0
         assert np.all(f["elements/mu"][()] == 0.6)
         sxx, syy, sxy = f.attrs["remote_stress"]
@@ -77,7 +80,7 @@ def test_task_output_skip_and_redo(tmp_path):
     assert redo.returncode == 0, redo.stderr
     assert "incomplete or unreadable; running the task again" in redo.stdout
     with h5py.File(output, "r") as f:
-        assert f.attrs["complete"] == 1
+        assert is_complete(f.attrs)
 
 
 def test_task_from_slurm_array_task_id(tmp_path):
@@ -85,7 +88,7 @@ def test_task_from_slurm_array_task_id(tmp_path):
     done = run([sweep, "-o", "out.h5"], tmp_path, env_task="1")
     assert done.returncode == 0, done.stderr
     with h5py.File(tmp_path / "out_task0001.h5", "r") as f:
-        assert f["sweep"].attrs["sf"] == 1.0
+        assert f["sweep"].attrs["sf"] == 1.0  # the input's value, stored: exact
     # --task wins over the variable
     done = run([sweep, "--task", "2", "-o", "out.h5"], tmp_path, env_task="0")
     assert done.returncode == 0, done.stderr
@@ -191,18 +194,23 @@ def test_collect_sweep_tables_and_plot(tmp_path):
     assert [row["task"] for row in rows] == ["0", "1", "3"]
     assert list(rows[0]) == ["task", "mu", "remote_angle", "peak_slip", "peak_opening",
                              "stick", "slip", "open", "max_abs_k1", "max_abs_k2"]
+    # The summary holds values of the task files themselves (a maximum picks one stored
+    # value, |.| and the CSV's repr round trip are exact): equal bit for bit, no tolerance.
     for row, task in zip(rows, (0, 1, 3)):
         with h5py.File(runs / f"small_task{task:04d}.h5", "r") as f:
             assert float(row["peak_slip"]) == np.max(np.abs(f["elements/ds"][()]))
-            assert int(row["slip"]) == np.count_nonzero(f["elements/state"][()] == 2)
-            assert int(row["stick"]) == np.count_nonzero(f["elements/state"][()] == 1)
+            state = f["elements/state"][()]
+            assert int(row["slip"]) == np.count_nonzero(state == STATE_CODES["slip"])
+            assert int(row["stick"]) == np.count_nonzero(state == STATE_CODES["stick"])
             assert float(row["max_abs_k2"]) == np.max(np.abs(f["tips/k2"][()]))
             assert float(row["mu"]) == f["sweep"].attrs["mu"]
     # mu = 0.2 slips at -30 degrees, mu = 0.8 sticks
     assert int(rows[1]["slip"]) == 20 and float(rows[1]["peak_slip"]) > 1e-3
+    # A sticking element's slip is a nonbasic LCP variable (Lemke) or fixed (Newton): zero.
     assert int(rows[2]["stick"]) == 20 and float(rows[2]["peak_slip"]) == 0.0
     with h5py.File(runs / "small_summary.h5", "r") as f:
         assert list(f["task"][()]) == [0, 1, 3]
+        # The same numbers written to both tables: exact.
         np.testing.assert_array_equal(f["peak_slip"][()],
                                       [float(row["peak_slip"]) for row in rows])
     plot = runs / "small_peak_slip_vs_remote_angle.png"

@@ -1,13 +1,11 @@
 """scripts/twodd2nml and scripts/compare-twodd, and the `ddc2d --twodd ... --res` path.
 
 The ddc2d executable comes from the environment variable DDC2D_EXE (set by CTest or by
-hand), else from the first build folder under build/ that holds app/ddc2d.
+hand), else from build/debug (conftest.ddc2d_exe).
 """
 
-import os
 import subprocess
 import sys
-from pathlib import Path
 
 import h5py
 import numpy as np

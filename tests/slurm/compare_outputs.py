@@ -14,6 +14,9 @@ from pathlib import Path
 import h5py
 import numpy as np
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "scripts"))
+from ddc2d_h5 import is_complete
+
 GROUPS = ("elements", "tips", "fractures")
 RTOL = 1e-12
 
@@ -27,7 +30,7 @@ def differences(a_path, b_path):
     found = []
     with h5py.File(a_path, "r") as a, h5py.File(b_path, "r") as b:
         for f, path in ((a, a_path), (b, b_path)):
-            if int(f.attrs.get("complete", 0)) != 1:
+            if not is_complete(f.attrs):
                 found.append(f"{path}: not complete")
         for group in GROUPS:
             names = sorted(a[group])
@@ -46,6 +49,7 @@ def differences(a_path, b_path):
                                      f"{np.nanmax(np.abs(x - y)):.3e} (scale {scale:.3e})")
                 elif not np.array_equal(x, y):
                     found.append(f"/{group}/{name}: values differ")
+        # The swept values are the input's, stored unchanged by both runs: compared exactly.
         sweep_a, sweep_b = dict(a["sweep"].attrs), dict(b["sweep"].attrs)
         if sweep_a.keys() != sweep_b.keys() or any(
                 np.any(sweep_a[key] != sweep_b[key]) for key in sweep_a):

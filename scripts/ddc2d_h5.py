@@ -1,0 +1,347 @@
+"""Read ddc2d result files (HDF5, SPEC sections 5 and 6): the one reader of the scripts.
+
+Used by ``ddc2d-plot``, ``collect-sweep``, ``compare-twodd``, ``benchmark.py`` and the
+tests. It knows
+
+* how strings come back from h5py (blank- or NUL-padded fixed-length bytes: ``decode``);
+* the codings of the integer datasets (``STATE_NAMES``, ``CONDITION_NAMES`` and their
+  inverses ``STATE_CODES``, ``CONDITION_CODES``; ``parse_coding`` reads a ``coding``
+  attribute);
+* the groups of a result: ``load_result`` reads a whole file, ``read_elements``,
+  ``read_fractures``, ``read_tips``, ``read_fields``, ``read_history``, ``read_solver`` and
+  ``read_sweep`` one group of an open file; ``is_complete`` tells a finished file;
+* the tie rule of every default that picks "the largest" or "the first": ``index_of_extreme``
+  and ``is_tie`` (values within ``TIE_RTOL`` = 1e-9 relative count as equal, the lowest index
+  wins), so that a choice never depends on last-bit rounding (symmetric models, other BLAS
+  kernels on other CPUs).
+
+Scripts without a ``.py`` suffix import it from their own folder:
+``sys.path.insert(0, str(Path(__file__).resolve().parent))``.
+"""
+
+import re
+from pathlib import Path
+
+import h5py
+import numpy as np
+
+#: Element states as coded in /elements/state (and /history/state).
+STATE_NAMES = {0: "free", 1: "stick", 2: "slip", 3: "open"}
+STATE_CODES = {name: code for code, name in STATE_NAMES.items()}
+#: Element conditions as coded in /elements/condition (1-4 are TWODD's KODE 1-4).
+CONDITION_NAMES = {1: "traction", 2: "displacement", 3: "mixed_us_sn", 4: "mixed_ss_un",
+                   5: "contact", 6: "prescribed_dd"}
+CONDITION_CODES = {name: code for code, name in CONDITION_NAMES.items()}
+
+#: /elements datasets a result must have (the others are read when present).
+ELEMENT_DATASETS = ("x_begin", "y_begin", "x_end", "y_end", "ds", "dn")
+#: /tips datasets, all present when the group is.
+TIP_DATASETS = ("x", "y", "fracture_id", "element", "k1", "k2")
+#: Load quantities a /history may hold, in the order ddc2d writes them.
+HISTORY_LOADS = ("sxx", "syy", "sxy", "dsxx_dy", "dsyy_dy", "dsxy_dy", "p0")
+#: Phases timed in /solver/seconds.
+SOLVER_PHASES = ("assembly", "factorization", "lcp", "fields", "output", "total")
+
+#: Relative tolerance of the tie rule (index_of_extreme, is_tie).
+TIE_RTOL = 1e-9
+
+
+class ResultError(Exception):
+    """The result file is missing, unreadable or not laid out as a ddc2d result."""
+
+
+# --------------------------------------------------------------------------- ties
+
+
+def index_of_extreme(values, kind="max", rtol=TIE_RTOL):
+    """Index of the largest (kind 'max') or smallest ('min') value, defined under ties.
+
+    Returns the lowest index among the values within ``rtol * |extreme|`` of the extreme
+    (an infinite extreme ties only with itself), so that two values equal but for
+    rounding (the two centre elements of a symmetric fault) always give the same answer.
+    NaN values are ignored. ``values`` is flattened (C order), as ``np.argmax`` does.
+    Raises ValueError when there is no value that is not NaN, or for another kind.
+    """
+    if kind not in ("max", "min"):
+        raise ValueError(f"index_of_extreme: kind must be 'max' or 'min', not {kind!r}")
+    values = np.asarray(values, dtype=float).ravel()
+    present = values[~np.isnan(values)]
+    if present.size == 0:
+        raise ValueError("index_of_extreme: no value that is not NaN")
+    extreme = present.max() if kind == "max" else present.min()
+    if np.isinf(extreme):
+        near = values == extreme
+    else:
+        near = np.abs(values - extreme) <= rtol * abs(extreme)
+    return int(np.flatnonzero(near)[0])
+
+
+def is_tie(a, b, scale=None, rtol=TIE_RTOL):
+    """True when a and b are equal under the tie rule: ``|a - b| <= rtol * scale``, with
+    ``scale`` the larger of |a| and |b| unless given (e.g. the magnitude of the data that
+    a and b are compared within)."""
+    if scale is None:
+        scale = max(abs(a), abs(b))
+    return abs(a - b) <= rtol * scale
+
+
+# --------------------------------------------------------------------------- strings
+
+
+def decode(value):
+    """Return an HDF5 string value (bytes, numpy bytes/str, 0-d or 1-element array) as str.
+
+    Strings written from Fortran come back from h5py as blank- or NUL-padded bytes; an
+    array of several strings comes back joined by blanks.
+    """
+    if isinstance(value, np.ndarray):
+        if value.size != 1:
+            return " ".join(decode(v) for v in value.ravel())
+        value = value.ravel()[0]
+    if isinstance(value, (bytes, np.bytes_)):
+        value = bytes(value).decode("utf-8", errors="replace")
+    return str(value).rstrip("\x00 ").strip()
+
+
+def is_text(value):
+    """True for an attribute value that is a string (or an array of strings)."""
+    return isinstance(value, (bytes, np.bytes_, str)) or (
+        isinstance(value, np.ndarray) and value.dtype.kind in "SUO")
+
+
+def decoded_attrs(attrs):
+    """The attributes of an HDF5 object as a dict, strings decoded, numbers as stored."""
+    return {key: decode(value) if is_text(value) else value for key, value in attrs.items()}
+
+
+def attr_text(attrs, name, default=""):
+    """A string attribute as str, or `default` when absent."""
+    return decode(attrs[name]) if name in attrs else default
+
+
+def attr_int(attrs, name, default):
+    """An integer attribute (scalar or 1-element array) as int, or `default` when absent."""
+    if name not in attrs:
+        return default
+    return int(np.asarray(attrs[name]).ravel()[0])
+
+
+def units_of(dataset):
+    """The `units` attribute of a dataset as str ('' when it has none)."""
+    return attr_text(dataset.attrs, "units")
+
+
+def parse_coding(text):
+    """A `coding` attribute ('0 free (TWODD-style condition), 1 stick, ...') as a dict
+    code -> name (the first word after each code)."""
+    return {int(code): name for code, name in re.findall(r"(\d+) ([A-Za-z_]+)", decode(text))}
+
+
+def is_complete(attrs, when_missing=False):
+    """True when the root attributes mark the file complete (`complete` = 1, written last
+    by ddc2d); `when_missing` is the answer for a file without the attribute."""
+    return attr_int(attrs, "complete", 1 if when_missing else 0) == 1
+
+
+# --------------------------------------------------------------------------- whole file
+
+
+def load_result(path):
+    """Read a ddc2d result file into plain Python / numpy objects.
+
+    Returns a dict with keys ``path``, ``attrs`` (root attributes; strings decoded),
+    ``length_unit``, ``stress_unit``, ``title``, ``complete`` (True unless the root
+    attribute `complete` says otherwise), ``elements`` (dict name -> 1-D array),
+    ``fractures`` (list of dicts name / first / last / label, 1-based inclusive element
+    range), ``fields`` (dict name -> dict with ``kind``, ``nx``, ``ny`` and the arrays),
+    ``tips`` (dict of 1-D arrays x, y, fracture_id, element, k1, k2 and ``k_unit``; empty
+    arrays without /tips), ``remote_stress`` ((sxx, syy, sxy) or None) and ``history``
+    (see read_history; None without /history).
+    Raises ResultError with a message naming the file and the problem.
+    """
+    path = Path(path)
+    if not path.exists():
+        raise ResultError(f"cannot open '{path}': no such file")
+    if path.is_dir():
+        raise ResultError(f"cannot open '{path}': it is a folder, not a result file")
+    try:
+        handle = h5py.File(path, "r")
+    except OSError as exc:
+        raise ResultError(f"cannot read '{path}': not a readable HDF5 file ({exc})") from exc
+    try:
+        with handle:
+            return _read_open_file(path, handle)
+    except ResultError:
+        raise
+    except (OSError, KeyError, ValueError, TypeError, IndexError) as exc:
+        raise ResultError(f"cannot read '{path}': damaged or unexpected content ({exc})") from exc
+
+
+def _read_open_file(path, handle):
+    elements = read_elements(path, handle)
+    count = elements["ds"].size
+    if "state" not in elements:
+        elements["state"] = np.zeros(count, dtype=int)
+    return {
+        "path": path,
+        "attrs": decoded_attrs(handle.attrs),
+        "title": attr_text(handle.attrs, "title"),
+        "length_unit": attr_text(handle.attrs, "length_unit"),
+        "stress_unit": attr_text(handle.attrs, "stress_unit"),
+        "complete": is_complete(handle.attrs, when_missing=True),
+        "elements": elements,
+        "fractures": read_fractures(path, handle, elements),
+        "fields": read_fields(handle),
+        "tips": read_tips(path, handle),
+        "remote_stress": read_remote_stress(path, handle),
+        "history": read_history(path, handle, count),
+    }
+
+
+# --------------------------------------------------------------------------- groups
+
+
+def read_elements(path, handle):
+    """Every dataset of /elements as a 1-D array (dict name -> array); checks that the
+    datasets of ELEMENT_DATASETS are there with one value per element."""
+    if "elements" not in handle or not isinstance(handle["elements"], h5py.Group):
+        raise ResultError(f"'{path}' has no /elements group: not a ddc2d result file")
+    elements = {key: np.asarray(item[()]).ravel() for key, item in handle["elements"].items()
+                if isinstance(item, h5py.Dataset)}
+    for key in ELEMENT_DATASETS:
+        if key not in elements:
+            raise ResultError(f"'{path}' lacks /elements/{key}: not a ddc2d result file")
+    count = elements["ds"].size
+    for key in ELEMENT_DATASETS:
+        if elements[key].size != count:
+            raise ResultError(
+                f"'{path}': /elements/{key} has {elements[key].size} values, "
+                f"/elements/ds has {count}"
+            )
+    return elements
+
+
+def read_fractures(path, handle, elements):
+    """Fractures from /fractures, or (if absent) from runs of equal /elements/fracture_id:
+    a list of dicts ``name``, ``first``, ``last`` (1-based, inclusive) and ``label`` (the
+    name made usable in file names, unique)."""
+    count = elements["ds"].size
+    fractures = []
+    if "fractures" in handle:
+        group = handle["fractures"]
+        first = np.asarray(group["first_element"][()]).ravel().astype(int)
+        last = np.asarray(group["last_element"][()]).ravel().astype(int)
+        if "name" in group:
+            names = [decode(v) for v in np.asarray(group["name"][()]).ravel()]
+        else:
+            names = [""] * first.size
+        if not (first.size == last.size == len(names)):
+            raise ResultError(f"'{path}': /fractures datasets differ in length")
+        for index, (name, lo, hi) in enumerate(zip(names, first, last), start=1):
+            if not 1 <= lo <= hi <= count:
+                raise ResultError(
+                    f"'{path}': fracture {index} has element range {lo}..{hi} "
+                    f"outside 1..{count}"
+                )
+            fractures.append({"name": name, "first": int(lo), "last": int(hi)})
+    elif count > 0:
+        ids = elements.get("fracture_id", np.ones(count, dtype=int))
+        starts = [0] + [i for i in range(1, count) if ids[i] != ids[i - 1]]
+        ends = starts[1:] + [count]
+        for lo, hi in zip(starts, ends):
+            fractures.append({"name": "", "first": lo + 1, "last": hi})
+    used = set()
+    for index, fracture in enumerate(fractures, start=1):
+        label = re.sub(r"[^A-Za-z0-9_.-]+", "_", fracture["name"]).strip("_.") or f"{index}"
+        if label in used:
+            label = f"{label}_{index}"
+        used.add(label)
+        fracture["label"] = label
+    return fractures
+
+
+def read_fields(handle):
+    """Every group of /fields as a dict name -> {kind, nx, ny, and each dataset as an
+    array}; empty without /fields."""
+    fields = {}
+    if "fields" not in handle:
+        return fields
+    for name, group in handle["fields"].items():
+        if not isinstance(group, h5py.Group):
+            continue
+        field = {
+            "kind": attr_text(group.attrs, "kind"),
+            "nx": attr_int(group.attrs, "nx", 0),
+            "ny": attr_int(group.attrs, "ny", 0),
+        }
+        for key, item in group.items():
+            if isinstance(item, h5py.Dataset):
+                field[key] = np.asarray(item[()])
+        fields[name] = field
+    return fields
+
+
+def read_tips(path, handle):
+    """The /tips datasets as 1-D arrays (empty arrays without the group) and ``k_unit``,
+    the unit of K (the `units` of /tips/k1, else built from the root units)."""
+    stress = attr_text(handle.attrs, "stress_unit")
+    length = attr_text(handle.attrs, "length_unit")
+    tips = {key: np.zeros(0) for key in TIP_DATASETS}
+    tips["k_unit"] = f"{stress} {length}^0.5".strip() if stress or length else ""
+    if "tips" not in handle:
+        return tips
+    group = handle["tips"]
+    for key in TIP_DATASETS:
+        if key not in group:
+            raise ResultError(f"'{path}' lacks /tips/{key}")
+        tips[key] = np.asarray(group[key][()]).ravel()
+        if tips[key].size != tips["x"].size:
+            raise ResultError(f"'{path}': /tips datasets differ in length")
+    if "units" in group["k1"].attrs:
+        tips["k_unit"] = units_of(group["k1"])
+    return tips
+
+
+def read_remote_stress(path, handle):
+    """The root attribute remote_stress as (sxx, syy, sxy), or None when absent."""
+    if "remote_stress" not in handle.attrs:
+        return None
+    values = np.asarray(handle.attrs["remote_stress"], dtype=float).ravel()
+    if values.size != 3:
+        raise ResultError(f"'{path}': root attribute remote_stress has {values.size} "
+                          "values, expected 3 (sxx, syy, sxy)")
+    return tuple(float(v) for v in values)
+
+
+def read_history(path, handle, count):
+    """/history as a dict (``loads``: name -> (steps,), ``ds``, ``dn``, ``state``:
+    (steps, elements), ``leg_steps``), or None when the file has no loading history."""
+    if "history" not in handle:
+        return None
+    group = handle["history"]
+    history = {"loads": {k: np.asarray(group[k][()]) for k in HISTORY_LOADS if k in group}}
+    for key in ("ds", "dn", "state", "leg_steps"):
+        history[key] = np.asarray(group[key][()])
+    if history["ds"].ndim != 2 or history["ds"].shape[1] != count:
+        raise ResultError(f"'{path}': /history/ds has shape {history['ds'].shape}, "
+                          f"expected (steps, {count})")
+    return history
+
+
+def read_solver(handle):
+    """/solver: ``attrs`` (strings decoded) and ``seconds`` (phase -> float, every phase of
+    SOLVER_PHASES from /solver/seconds)."""
+    group = handle["solver"]
+    return {"attrs": decoded_attrs(group.attrs),
+            "seconds": {phase: float(group["seconds"][phase][()]) for phase in SOLVER_PHASES}}
+
+
+def read_sweep(handle):
+    """/sweep of a sweep task: ``task``, ``tasks`` and ``parameters`` (dict name -> value,
+    in &sweep order), or None when the file is not a sweep task."""
+    if "sweep" not in handle:
+        return None
+    attrs = handle["sweep"].attrs
+    names = [name.strip() for name in decode(attrs["parameters"]).split(",")]
+    return {"task": int(attrs["task"]), "tasks": int(attrs["tasks"]),
+            "parameters": {name: float(attrs[name]) for name in names}}
