@@ -12,6 +12,7 @@ timeout, so a process that waits forever fails the test instead of hanging it.
   with one message from the root, the documented exit status and no output file.
 """
 
+import json
 import os
 import subprocess
 from pathlib import Path
@@ -40,7 +41,7 @@ def executable(variable):
     if not value:
         raise AssertionError(f"{variable} is not set: run these tests through CTest in the "
                              "mpi preset's build (ctest --preset mpi)")
-    return str(Path(value).resolve()) if os.sep in value else value
+    return os.path.abspath(value) if os.sep in value else value
 
 
 def environment():
@@ -149,3 +150,25 @@ def test_one_process_runs_what_is_not_distributed(tmp_path):
             assert relative_difference(reference["history"][name], one["history"][name],
                                        name) <= RTOL
         assert one["solver"].attrs["processes"] == 1
+
+
+def test_benchmark_records_every_process(tmp_path):
+    # scripts/benchmark.py --mpi 2: per-process peak RSS and the grid in the JSON records.
+    exe = Path(executable("DDC2D_EXE"))
+    out = tmp_path / "bench.json"
+    done = subprocess.run(
+        [executable("DDC2D_PYTHON"), str(REPO / "scripts" / "benchmark.py"), "--exe", str(exe),
+         "--sizes", "12,30", "--case", "mixed", "--json", str(out), "--threads", "1",
+         "--grid", "5", "--mpi", "2", "--block-size", "8", "--mpiexec", executable("MPIEXEC"),
+         "--lu-exe", str(exe.parent.parent / "tests" / "ddc2d_lu_benchmark")],
+        capture_output=True, text=True, timeout=TIMEOUT, env=environment(), check=False)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert "rank RSS MB" in done.stdout
+    records = json.loads(out.read_text())
+    assert [r["n"] for r in records] == [12, 30]
+    for r in records:
+        assert r["processes"] == 2 and r["process_grid"] == [1, 2] and r["block_size"] == 8
+        assert len(r["peak_rss_mb_per_rank"]) == 2
+        assert all(v > 1.0 for v in r["peak_rss_mb_per_rank"])
+        assert r["peak_rss_mb"] == max(r["peak_rss_mb_per_rank"])
+        assert r["method"] == "newton" and sum(r["states"].values()) == r["n"]
