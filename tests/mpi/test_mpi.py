@@ -15,16 +15,14 @@ timeout, so a process that waits forever fails the test instead of hanging it.
 import json
 import os
 import subprocess
-import sys
 from pathlib import Path
 
 import h5py
 import numpy as np
 import pytest
-from compare import differences, relative_difference
+from compare import differences
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "scripts"))  # ddc2d_h5, as the scripts
-from ddc2d_h5 import read_solver
+from ddc2d_h5 import read_solver  # compare puts scripts/ on the path
 
 REPO = Path(__file__).resolve().parents[2]
 DATA = REPO / "tests" / "data"
@@ -108,12 +106,12 @@ def test_same_answer_as_serial(model, processes, serial_result, tmp_path):
     run = run_parallel(processes, [MODELS[model], "-o", out], tmp_path)
     assert run.returncode == 0, run.stdout + run.stderr
     assert sorted(p.name for p in tmp_path.iterdir()) == [out.name]
+    found = differences(serial_result(model), out)
     with h5py.File(serial_result(model)) as reference, h5py.File(out) as other:
-        found = differences(reference, other)
         check_solver_record(reference, other, processes)
     worst = max(found, key=found.get)
     print(f"{model}, {processes} processes: largest relative difference {found[worst]:.2e} "
-          f"({worst}) over {len(found)} datasets")
+          f"({worst}) over {len(found)} arrays")
     assert found[worst] <= RTOL, f"{worst} differs by {found[worst]:.3e} (limit {RTOL})"
 
 
@@ -147,13 +145,10 @@ def test_one_process_runs_what_is_not_distributed(tmp_path):
     assert serial.returncode == 0, serial.stdout + serial.stderr
     run = run_parallel(1, [model, "-o", tmp_path / "one.h5"], tmp_path)
     assert run.returncode == 0, run.stdout + run.stderr
-    with h5py.File(tmp_path / "serial.h5") as reference, h5py.File(tmp_path / "one.h5") as one:
-        found = differences(reference, one)
-        assert max(found.values()) <= RTOL
-        for name in ("ds", "dn", "state"):
-            assert relative_difference(reference["history"][name], one["history"][name],
-                                       name) <= RTOL
-        assert one["solver"].attrs["processes"] == 1
+    found = differences(tmp_path / "serial.h5", tmp_path / "one.h5")
+    assert "/history/ds" in found and max(found.values()) <= RTOL
+    with h5py.File(tmp_path / "one.h5") as one:
+        assert read_solver(one)["attrs"]["processes"] == 1
 
 
 def test_benchmark_records_every_process(tmp_path):
