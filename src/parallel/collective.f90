@@ -14,7 +14,7 @@ module ddc_parallel_collective
     private
 
     public :: agree_on_error, share, sum_on_all, max_on_all, all_true, min_location, split_range
-    public :: gather_on_root, gather_on_all
+    public :: gather_on_root, gather_on_all, offsets
 
     !> Broadcast from the root: scalars, allocatable 1-D arrays (allocated as on the root)
     !> and allocatable text.
@@ -213,17 +213,20 @@ contains
         if (part < mod(n, parts)) last = last + 1
     end subroutine split_range
 
-    !> Counts and displacements of pieces of the given sizes.
-    pure subroutine displacements(counts, displs)
+    !> Displacements (0-based) of consecutive pieces of the given sizes, as MPI's
+    !> v-collectives take them.
+    pure function offsets(counts) result(at)
+        !> Size of each piece
         integer, intent(in) :: counts(:)
-        integer, intent(out) :: displs(:)
+        !> Where each piece starts, 0 for the first
+        integer :: at(size(counts))
         integer :: i
 
-        displs(1) = 0
+        at(1) = 0
         do i = 2, size(counts)
-            displs(i) = displs(i - 1) + counts(i - 1)
+            at(i) = at(i - 1) + counts(i - 1)
         end do
-    end subroutine displacements
+    end function offsets
 
     !> Real pieces gathered on the root, in rank order (collective).
     subroutine gather_reals_on_root(context, piece, whole)
@@ -236,7 +239,7 @@ contains
         integer :: counts(context%processes), displs(context%processes)
 
         call mpi_gather(size(piece), 1, mpi_integer, counts, 1, mpi_integer, root, context%comm)
-        call displacements(counts, displs)
+        displs = offsets(counts)
         if (context%rank == root) then
             allocate (whole(sum(counts)))
         else
@@ -257,7 +260,7 @@ contains
         integer :: counts(context%processes), displs(context%processes)
 
         call mpi_gather(size(piece), 1, mpi_integer, counts, 1, mpi_integer, root, context%comm)
-        call displacements(counts, displs)
+        displs = offsets(counts)
         if (context%rank == root) then
             allocate (whole(sum(counts)))
         else
@@ -278,7 +281,7 @@ contains
         integer :: counts(context%processes), displs(context%processes)
 
         call mpi_allgather(size(piece), 1, mpi_integer, counts, 1, mpi_integer, context%comm)
-        call displacements(counts, displs)
+        displs = offsets(counts)
         call mpi_allgatherv(piece, size(piece), mpi_double_precision, whole, counts, displs, &
                             mpi_double_precision, context%comm)
     end subroutine gather_on_all

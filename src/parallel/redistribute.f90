@@ -9,6 +9,7 @@ module ddc_parallel_redistribute
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
     use ddc_parallel_context, only: parallel_context
+    use ddc_parallel_collective, only: offsets
     use ddc_parallel_matrix, only: distributed_matrix, create_matrix, owner, local_index
     implicit none
     private
@@ -215,17 +216,5 @@ contains
             end do
         end do
     end subroutine move_panel
-
-    !> Displacements (0-based) of consecutive pieces of the given sizes.
-    pure function offsets(counts) result(at)
-        integer, intent(in) :: counts(:)
-        integer :: at(size(counts))
-        integer :: i
-
-        at(1) = 0
-        do i = 2, size(counts)
-            at(i) = at(i - 1) + counts(i - 1)
-        end do
-    end function offsets
 
 end module ddc_parallel_redistribute

@@ -8,7 +8,8 @@
 # with `srun --mpi=pmix` (the Slurm way; the configuration's MpiDefault is none, as on many
 # clusters, so the job asks for PMIx itself) and with Open MPI's mpiexec (which takes the
 # allocation from Slurm's environment). Both results must equal the serial program's
-# (tests/mpi/compare.py: 1e-10 of each dataset's largest magnitude, states equal) and record
+# (tests/mpi/compare.py: 1e-10 of the largest magnitude of each kind of quantity, states
+# equal) and record
 # 2 processes. Every wait has a timeout.
 #
 # Like the sweep test it needs root and a machine without a Slurm of its own; elsewhere it
