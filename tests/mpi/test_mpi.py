@@ -30,6 +30,7 @@ DATA = REPO / "tests" / "data"
 MODELS = {
     "straight": REPO / "input" / "paper_fault_slip.nml",  # N = 500, every element slips
     "kinked": DATA / "mpi" / "kinked_fault.nml",  # stick, slip and open; block size 15
+    "cohesion_lost": DATA / "mpi" / "kinked_cohesion_lost.nml",  # open_cohesion = 'lost'
     "twodd_symmetry": DATA / "mpi" / "twodd_symmetry.nml",  # TWODD conditions, x = 0 plane
     "half_plane": DATA / "mpi" / "half_plane.nml",  # contact and prescribed DDs
 }
@@ -86,7 +87,8 @@ def serial_result(tmp_path_factory):
 
 def check_solver_record(reference, other, processes):
     a, b = read_solver(reference)["attrs"], read_solver(other)["attrs"]
-    for key in ("method", "elements_free", "elements_stick", "elements_slip", "elements_open"):
+    for key in ("method", "lcp_solves", "newton_iterations", "elements_free", "elements_stick",
+                "elements_slip", "elements_open"):
         assert a[key] == b[key], f"/solver {key}: {a[key]} serial, {b[key]} parallel"
     for record in (a, b):
         tolerance = record["certificate_tolerance"]
