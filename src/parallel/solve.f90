@@ -94,7 +94,7 @@ contains
                 if (nc > 0) error%message = error%message//among_free
                 return
             end if
-            residual = free_residual(context, stiffness, [spread(0.0_wp, 1, 2 * nc)], x_free, &
+            residual = free_residual(context, stiffness, spread(0.0_wp, 1, 2 * nc), x_free, &
                                      b_free)
             ! A hole (closed contour) is numerically singular but consistent.
             if (allocated(ill_conditioned) .and. .not. residual <= residual_tol) then
