@@ -220,7 +220,7 @@ contains
 
         call reduced_unknowns(res%open, res%shear_state, s_r_s, s_r_np, mu, sf, system)
         dd = 0.0_wp
-        if (size(system%unknown) == 0) return
+        ! Asked even without unknowns: an operator with unknowns of its own updates them.
         allocate (x(size(system%unknown)))
         call a%solve_reduced(system, x, 'the reduced system of iteration '// &
                              itoa(res%iterations), singular, res%seconds_factorization, &

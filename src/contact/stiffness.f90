@@ -87,7 +87,7 @@ module ddc_contact_stiffness
             implicit none
             !> The matrix (an operator with unknowns of its own keeps their solution)
             class(stiffness_operator), intent(inout) :: this
-            !> The reduced system (at least one unknown)
+            !> The reduced system (possibly without unknowns: every DD fixed at zero)
             type(reduced_system), intent(in) :: system
             !> The solution, shape (m)
             real(wp), intent(out) :: x(:)
@@ -167,6 +167,7 @@ contains
         integer(int64) :: t0, t1, rate
 
         m = size(system%unknown)
+        if (m == 0) return
         n = size(this%a, 1) / 2
         allocate (j(m, m), ipiv(m))
         call form_reduced(this%a, system%unknown, system%partner, system%coef, j)
