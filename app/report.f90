@@ -243,8 +243,15 @@ contains
         integer :: i, state
 
         associate (e => results%elements, s => results%solver)
-            write (unit, '(a,a,a,i0,a,es10.3)') 'solved with ', s%method, ' on ', s%threads, &
-                ' thread(s); equilibrium residual ', s%equilibrium_residual
+            if (s%processes > 0) then
+                write (unit, '(a,a,3(a,i0),a,i0,a,i0,a,es10.3)') 'solved with ', s%method, &
+                    ' on ', s%processes, ' process(es) (grid ', s%process_grid(1), ' x ', &
+                    s%process_grid(2), ', block size ', s%block_size, '), ', s%threads, &
+                    ' thread(s) each; equilibrium residual ', s%equilibrium_residual
+            else
+                write (unit, '(a,a,a,i0,a,es10.3)') 'solved with ', s%method, ' on ', &
+                    s%threads, ' thread(s); equilibrium residual ', s%equilibrium_residual
+            end if
             do state = 0, 3
                 if (count(e%state == state) > 0) write (unit, '(2x,a,a,i0)') &
                     trim(state_names(state)), ' elements: ', count(e%state == state)

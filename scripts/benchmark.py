@@ -4,6 +4,7 @@
     benchmark.py --exe PATH --sizes 250,500,1000 --case straight|mixed --json FILE
                  [--threads T] [--lcp-method auto|lemke|newton] [--grid NX]
                  [--lu-exe PATH] [--workdir DIR]
+                 [--mpi P [--mpiexec PATH] [--block-size NB]]
 
 For every size N it writes a namelist model with N contact elements, runs ``ddc2d`` on it,
 reads the phase times from ``/solver/seconds`` of the HDF5 output (the output phase from
@@ -20,6 +21,15 @@ Cases:
 
 Threads: ``OMP_NUM_THREADS`` and ``OPENBLAS_NUM_THREADS`` are both set to T (default: the
 number of CPUs); ddc2d calls BLAS outside its OpenMP regions only, so the two never nest.
+
+MPI (``--mpi P``, with ``--exe`` the ddc2d of the MPI build): ``mpiexec -n P`` runs the model
+on P processes of T threads each (default T: the CPUs divided by P; ``--oversubscribe`` when
+P T exceeds the CPUs; Open MPI's variables for running as root are set when root). Each
+process is started through this script (``--measure-rank``), which waits for it and records
+its own peak resident memory, so that the JSON record holds the peak RSS of every process
+(``peak_rss_mb_per_rank``; ``peak_rss_mb`` is the largest) besides ``processes``,
+``process_grid`` and ``block_size`` (``--block-size`` sets &solver block_size). The phase
+times are the root's. The reference LU runs on P T threads.
 
 The table printed and the JSON records (a list) hold
 ``{n, case, threads, seconds: {assembly, factorization, lcp, fields, output, total},
@@ -99,8 +109,9 @@ def grid_group(nx):
             f"ymin = -2.0, ymax = 2.0, ny = {nx} /\n")
 
 
-def solver_group(method):
-    return f"&solver lcp_method = '{method}' /\n"
+def solver_group(method, block_size=None):
+    size = "" if block_size is None else f", block_size = {block_size}"
+    return f"&solver lcp_method = '{method}'{size} /\n"
 
 
 def run_measured(command, env):
@@ -131,15 +142,49 @@ def lu_reference(lu_exe, n2, env):
     return float(match.group(1)), float(match.group(2))
 
 
-def benchmark_one(exe, lu_exe, n, case, threads, method, grid, workdir):
-    """Run one model of n elements; return its JSON record."""
+RANK_ENVIRONMENT = ("OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK", "SLURM_PROCID")
+
+
+def measure_rank(argv):
+    """--measure-rank PREFIX -- COMMAND...: run COMMAND (one MPI process), write its peak
+    RSS to PREFIX.<rank> as JSON and exit with its status."""
+    prefix, separator, *command = argv
+    if separator != "--" or not command:
+        raise SystemExit("usage: benchmark.py --measure-rank PREFIX -- COMMAND...")
+    rank = next((os.environ[v] for v in RANK_ENVIRONMENT if v in os.environ), "0")
+    process = subprocess.Popen(command)
+    _, status, usage = os.wait4(process.pid, 0)
+    Path(f"{prefix}.{rank}").write_text(json.dumps({"rank": int(rank),
+                                                    "peak_rss_mb": usage.ru_maxrss / 1024.0}))
+    return os.waitstatus_to_exitcode(status)
+
+
+def mpi_command(mpiexec, processes, threads, prefix):
+    """mpiexec -n P with every process started through --measure-rank."""
+    command = [mpiexec, "-n", str(processes)]
+    if processes * threads > (os.cpu_count() or 1):
+        command.insert(1, "--oversubscribe")
+    return command + [sys.executable, str(Path(__file__).resolve()), "--measure-rank",
+                      str(prefix), "--"]
+
+
+def benchmark_one(exe, lu_exe, n, case, threads, method, grid, workdir, processes=0,
+                  mpiexec="mpiexec", block_size=None):
+    """Run one model of n elements (on `processes` MPI processes when > 0); return its JSON
+    record."""
     env = dict(os.environ, OMP_NUM_THREADS=str(threads),
                OPENBLAS_NUM_THREADS=str(threads))
+    if processes and os.geteuid() == 0:
+        env.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     model = straight_model(n, grid) if case == "straight" else mixed_model(n, grid)
     nml = Path(workdir) / f"{case}_{n}.nml"
     h5 = Path(workdir) / f"{case}_{n}.h5"
-    nml.write_text(model + solver_group(method) + f"&output file = '{h5.name}' /\n")
-    stdout, wall, rss = run_measured([str(exe), str(nml), "-o", str(h5)], env)
+    nml.write_text(model + solver_group(method, block_size) + f"&output file = '{h5.name}' /\n")
+    launcher = []
+    prefix = Path(workdir) / f"{case}_{n}.rss"
+    if processes:
+        launcher = mpi_command(mpiexec, processes, threads, prefix)
+    stdout, wall, rss = run_measured([*launcher, str(exe), str(nml), "-o", str(h5)], env)
     with h5py.File(h5, "r") as f:
         solver = read_solver(f)
     seconds, attrs = solver["seconds"], solver["attrs"]
@@ -148,7 +193,9 @@ def benchmark_one(exe, lu_exe, n, case, threads, method, grid, workdir):
     if match:
         seconds["output"] = float(match.group(1))
         seconds["total"] += seconds["output"]
-    lu_seconds, lu_gflops = lu_reference(lu_exe, 2 * n, env)
+    lu_threads = threads * max(processes, 1)
+    lu_seconds, lu_gflops = lu_reference(lu_exe, 2 * n, dict(
+        env, OMP_NUM_THREADS=str(lu_threads), OPENBLAS_NUM_THREADS=str(lu_threads)))
     flops = float(attrs.get("factorization_flops", 0.0))
     fact = seconds["factorization"]
     record = {
@@ -165,24 +212,41 @@ def benchmark_one(exe, lu_exe, n, case, threads, method, grid, workdir):
         "total_over_lu": seconds["total"] / lu_seconds if lu_seconds > 0 else None,
         "wall_seconds": wall,
     }
+    if processes:
+        ranks = sorted((json.loads(f.read_text()) for f in Path(workdir).glob(f"{prefix.name}.*")),
+                       key=lambda r: r["rank"])
+        if [r["rank"] for r in ranks] != list(range(processes)):
+            raise RuntimeError(f"peak RSS of ranks {[r['rank'] for r in ranks]} recorded, "
+                               f"expected 0 to {processes - 1}")
+        record.update(processes=processes, process_grid=[int(v) for v in attrs["process_grid"]],
+                      block_size=int(attrs["block_size"]),
+                      peak_rss_mb_per_rank=[r["peak_rss_mb"] for r in ranks],
+                      peak_rss_mb=max(r["peak_rss_mb"] for r in ranks))
+        for f in Path(workdir).glob(f"{prefix.name}.*"):
+            f.unlink()
     h5.unlink()
     return record
 
 
 def print_table(records, out=sys.stdout):
-    head = ("n", "case", "thr", "method", "assembly", "factor", "lcp", "fields", "output",
-            "total", "LU ref", "tot/LU", "fact GF/s", "LU GF/s", "RSS MB", "stk/slp/opn")
+    """One row per record; with MPI records the processes and each one's peak RSS."""
+    mpi = any("processes" in r for r in records)
+    head = ("n", "case", *(("P",) if mpi else ()), "thr", "method", "assembly", "factor",
+            "lcp", "fields", "output", "total", "LU ref", "tot/LU", "fact GF/s", "LU GF/s",
+            "RSS MB", *(("rank RSS MB",) if mpi else ()), "stk/slp/opn")
     rows = []
     for r in records:
         s = r["seconds"]
         gf = r["factorization_gflops"]
         st = r["states"]
-        rows.append((str(r["n"]), r["case"], str(r["threads"]),
-                     r["method"] + ("*" if r["fallback"] else ""),
+        ranks = "/".join(f"{v:.0f}" for v in r.get("peak_rss_mb_per_rank", []))
+        rows.append((str(r["n"]), r["case"], *((str(r.get("processes", 1)),) if mpi else ()),
+                     str(r["threads"]), r["method"] + ("*" if r["fallback"] else ""),
                      *(f"{s[p]:.3f}" for p in SOLVER_PHASES),
                      f"{r['lu_reference_seconds']:.3f}",
                      f"{r['total_over_lu']:.2f}", "-" if gf is None else f"{gf:.1f}",
                      f"{r['lu_reference_gflops']:.1f}", f"{r['peak_rss_mb']:.0f}",
+                     *((ranks or "-",) if mpi else ()),
                      f"{st['stick']}/{st['slip']}/{st['open']}"))
     widths = [max(len(h), *(len(row[i]) for row in rows)) for i, h in enumerate(head)]
     print(" ".join(h.rjust(w) for h, w in zip(head, widths)), file=out)
@@ -200,8 +264,9 @@ def main(argv=None):
                         help="comma-separated numbers of contact elements")
     parser.add_argument("--case", required=True, choices=CASES)
     parser.add_argument("--json", required=True, type=Path, help="JSON file to write")
-    parser.add_argument("--threads", type=int, default=os.cpu_count() or 1,
-                        help="OpenMP and OpenBLAS threads (default: all CPUs)")
+    parser.add_argument("--threads", type=int, default=None,
+                        help="OpenMP and OpenBLAS threads of each process (default: all "
+                             "CPUs, divided by P with --mpi)")
     parser.add_argument("--lcp-method", default="auto", choices=("auto", "lemke", "newton"))
     parser.add_argument("--grid", type=int, default=100,
                         help="observation grid of GRID x GRID points (0: none)")
@@ -210,6 +275,11 @@ def main(argv=None):
                              "ddc2d_lu_benchmark beside the executable's app/ folder)")
     parser.add_argument("--workdir", type=Path, default=None,
                         help="folder for the models (default: a temporary folder)")
+    parser.add_argument("--mpi", type=int, default=0, metavar="P",
+                        help="run on P MPI processes (--exe: the MPI build's ddc2d)")
+    parser.add_argument("--mpiexec", default="mpiexec", help="MPI launcher (default mpiexec)")
+    parser.add_argument("--block-size", type=int, default=None,
+                        help="&solver block_size of the distributed matrices (default 64)")
     args = parser.parse_args(argv)
 
     try:
@@ -218,6 +288,10 @@ def main(argv=None):
         parser.error(f"--sizes must be comma-separated integers, not {args.sizes!r}")
     if not sizes or min(sizes) < 6 and args.case == "mixed" or min(sizes) < 1:
         parser.error("--sizes must be positive (at least 6 for the mixed case)")
+    if args.mpi < 0 or args.block_size is not None and args.block_size < 1:
+        parser.error("--mpi and --block-size must be positive")
+    if args.threads is None:
+        args.threads = max(1, (os.cpu_count() or 1) // max(args.mpi, 1))
     if args.threads < 1:
         parser.error("--threads must be at least 1")
     exe = args.exe.resolve()
@@ -234,8 +308,10 @@ def main(argv=None):
         workdir.mkdir(parents=True, exist_ok=True)
         for n in sizes:
             records.append(benchmark_one(exe, lu_exe, n, args.case, args.threads,
-                                         args.lcp_method, args.grid, workdir))
-    print(f"# ddc2d benchmark, case {args.case}, {args.threads} thread(s), "
+                                         args.lcp_method, args.grid, workdir, args.mpi,
+                                         args.mpiexec, args.block_size))
+    processes = f"{args.mpi} MPI processes of " if args.mpi else ""
+    print(f"# ddc2d benchmark, case {args.case}, {processes}{args.threads} thread(s), "
           f"lcp_method = {args.lcp_method}, grid {args.grid} x {args.grid}, "
           f"{time.strftime('%Y-%m-%d')}")
     print_table(records)
@@ -244,4 +320,6 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
+    if sys.argv[1:2] == ["--measure-rank"]:
+        sys.exit(measure_rank(sys.argv[2:]))
     sys.exit(main())

@@ -18,14 +18,14 @@
 !> repeat with period two (a cycle), when the iteration limit is reached or when a reduced
 !> system is numerically singular, and says why; the caller then falls back to Lemke.
 !> One iteration costs one LU of the reduced system (2/3 m^3 flops for m unknowns not fixed
-!> at zero, at most 2N) and one product with A (8 N^2 flops).
+!> at zero, at most 2N) and one product with A (8 N^2 flops). How A is stored, multiplied and
+!> factorized is the business of the stiffness operator (ddc_contact_stiffness): a dense
+!> matrix in memory, or one distributed over MPI processes.
 module ddc_contact_active_set
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
-    use ddc_linalg_lapack, only: dgemv
-    use ddc_linalg_lu, only: lu_factor, lu_solve
+    use ddc_contact_stiffness, only: stiffness_operator, reduced_system
     use ddc_text, only: itoa
-    use, intrinsic :: iso_fortran_env, only: int64
     implicit none
     private
 
@@ -64,8 +64,8 @@ contains
     !> Solve the contact conditions on the stiffness system, t = S_r + A D.
     subroutine solve_contact_active_set(a, s_r_s, s_r_np, mu, sf, sigma0, res, &
                                         max_iterations, start_open, start_shear)
-        !> Influence matrix ordered [s; n], shape (2n, 2n) [stress / length]
-        real(wp), intent(in) :: a(:, :)
+        !> Influence matrix ordered [s; n], 2n x 2n [stress / length]
+        class(stiffness_operator), intent(inout) :: a
         !> Remote shear traction and effective normal traction (s_n + p) on each element,
         !> shape (n) [stress]
         real(wp), intent(in) :: s_r_s(:), s_r_np(:)
@@ -91,10 +91,7 @@ contains
 
         n = size(mu)
         n2 = 2 * n
-        c = 0.0_wp
-        do i = 1, n2
-            c = max(c, abs(a(i, i)))
-        end do
+        c = a%max_diagonal()
         if (.not. c > 0.0_wp) c = 1.0_wp
         tol_s = state_tol * sigma0
         tol_d = state_tol * sigma0 / c
@@ -136,7 +133,7 @@ contains
             res%dn = dd(n + 1:n2)
             t(1:n) = s_r_s
             t(n + 1:n2) = s_r_np
-            call dgemv('N', n2, n2, 1.0_wp, a, n2, dd, 1, 1.0_wp, t, 1)
+            call a%multiply(dd, t)
             res%shear = t(1:n)
             res%normal_effective = t(n + 1:n2)
 
@@ -213,68 +210,62 @@ contains
     !> Solve for the DDs of the current states: dd = [Ds; Dn], zero where fixed.
     !> singular is allocated when the reduced system is (numerically) singular.
     subroutine solve_states(a, s_r_s, s_r_np, mu, sf, res, dd, singular)
-        real(wp), intent(in) :: a(:, :), s_r_s(:), s_r_np(:), mu(:), sf(:)
+        class(stiffness_operator), intent(inout) :: a
+        real(wp), intent(in) :: s_r_s(:), s_r_np(:), mu(:), sf(:)
         type(active_set_result), intent(inout) :: res
         real(wp), intent(out) :: dd(:)
         type(error_type), allocatable, intent(out) :: singular
-        real(wp), allocatable :: j(:, :), x(:, :), coef(:)
-        integer, allocatable :: unknown(:), partner(:), ipiv(:)
-        integer :: n, m, k, l, i
-        integer(int64) :: t0, t1, rate
+        type(reduced_system) :: system
+        real(wp), allocatable :: x(:)
+
+        call reduced_unknowns(res%open, res%shear_state, s_r_s, s_r_np, mu, sf, system)
+        dd = 0.0_wp
+        ! Asked even without unknowns: an operator with unknowns of its own updates them.
+        allocate (x(size(system%unknown)))
+        call a%solve_reduced(system, x, 'the reduced system of iteration '// &
+                             itoa(res%iterations), singular, res%seconds_factorization, &
+                             res%factorization_flops)
+        if (allocated(singular)) return
+        dd(system%unknown) = x
+    end subroutine solve_states
+
+    !> The reduced system of given states: the unknowns not fixed at zero, Ds of slipping
+    !> elements (row: the shear row + coef * the normal row, s_s - sign tau_s = 0) then Dn of
+    !> open elements (row: the normal row, S_n' = 0).
+    pure subroutine reduced_unknowns(open, shear_state, s_r_s, s_r_np, mu, sf, system)
+        logical, intent(in) :: open(:)
+        integer, intent(in) :: shear_state(:)
+        real(wp), intent(in) :: s_r_s(:), s_r_np(:), mu(:), sf(:)
+        type(reduced_system), intent(out) :: system
+        integer :: n, m, i
 
         n = size(mu)
-        ! Active unknowns: Ds of slipping elements (rows: shear row + coef * normal row),
-        ! Dn of open elements (rows: normal row).
-        allocate (unknown(2 * n), partner(2 * n), coef(2 * n), x(2 * n, 1))
+        m = count(shear_state /= shear_stick) + count(open)
+        allocate (system%unknown(m), system%partner(m), system%coef(m), system%rhs(m))
         m = 0
         do i = 1, n
-            if (res%shear_state(i) /= shear_stick) then
+            if (shear_state(i) /= shear_stick) then
                 m = m + 1
-                unknown(m) = i
-                partner(m) = n + i
-                coef(m) = 0.0_wp
+                system%unknown(m) = i
+                system%partner(m) = n + i
+                system%coef(m) = 0.0_wp
                 ! s_s - sign tau_s = 0 with tau_s = Sf - mu S_n' (closed) or Sf (open).
-                x(m, 1) = real(res%shear_state(i), wp) * sf(i) - s_r_s(i)
-                if (.not. res%open(i)) then
-                    coef(m) = real(res%shear_state(i), wp) * mu(i)
-                    x(m, 1) = x(m, 1) - coef(m) * s_r_np(i)
+                system%rhs(m) = real(shear_state(i), wp) * sf(i) - s_r_s(i)
+                if (.not. open(i)) then
+                    system%coef(m) = real(shear_state(i), wp) * mu(i)
+                    system%rhs(m) = system%rhs(m) - system%coef(m) * s_r_np(i)
                 end if
             end if
         end do
         do i = 1, n
-            if (res%open(i)) then
+            if (open(i)) then
                 m = m + 1
-                unknown(m) = n + i
-                partner(m) = n + i
-                coef(m) = 0.0_wp
-                x(m, 1) = -s_r_np(i)
+                system%unknown(m) = n + i
+                system%partner(m) = n + i
+                system%coef(m) = 0.0_wp
+                system%rhs(m) = -s_r_np(i)
             end if
         end do
-        dd = 0.0_wp
-        if (m == 0) return
-
-        allocate (j(m, m), ipiv(m))
-        !$omp parallel do default(none) schedule(static) private(k, l) &
-        !$omp shared(a, j, unknown, partner, coef, m)
-        do l = 1, m
-            do k = 1, m
-                j(k, l) = a(unknown(k), unknown(l)) + coef(k) * a(partner(k), unknown(l))
-            end do
-        end do
-        !$omp end parallel do
-        call system_clock(t0, rate)
-        call lu_factor(j, ipiv, 'the reduced system of iteration '//itoa(res%iterations), &
-                       singular, element=modulo(unknown(1:m) - 1, n) + 1, &
-                       shear=unknown(1:m) <= n)
-        call system_clock(t1)
-        res%seconds_factorization = res%seconds_factorization + &
-            real(t1 - t0, wp) / real(max(rate, 1_int64), wp)
-        res%factorization_flops = res%factorization_flops + 2.0_wp / 3.0_wp * real(m, wp)**3
-        if (allocated(singular)) return
-        call lu_solve(j, ipiv, x(1:m, :))
-        do k = 1, m
-            dd(unknown(k)) = x(k, 1)
-        end do
-    end subroutine solve_states
+    end subroutine reduced_unknowns
 
 end module ddc_contact_active_set

@@ -20,18 +20,24 @@
 !> A failed LAPACK call, an LCP that no method solves, a failed certificate or a large
 !> residual is an error (exit_solver_failure), never a result.
 !>
+!> solve_contact takes the dense influence matrix; solve_contact_with takes any stiffness
+!> operator (ddc_contact_stiffness), e.g. a matrix distributed over MPI processes, and
+!> without the dense matrix (Lemke's tableau needs it) solves by the Newton method alone: a
+!> Newton failure is then an error (exit_solver_failure) that says why.
+!>
 !> open_cohesion: 'kept' (the paper) lets an open element carry shear up to Sf;
 !> 'lost' sets Sf = 0 on every element that opens and solves again until no open
 !> element has cohesion left (the set of such elements only grows, so this terminates).
 module ddc_contact_formulation
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, set_internal_error, exit_bad_input, &
-        exit_out_of_memory
+        exit_out_of_memory, exit_solver_failure
     use ddc_text, only: bytes_text
     use ddc_contact_memory, only: lemke_bytes
     use ddc_contact_options, only: solver_options, lcp_auto, lcp_newton, cohesion_lost
     use ddc_contact_certificate, only: certify_complementarity, default_certificate_tolerance
     use ddc_contact_active_set, only: active_set_result, solve_contact_active_set
+    use ddc_contact_stiffness, only: stiffness_operator, dense_stiffness
     use ddc_contact_result, only: contact_result, contact_stress_scale, problem_scales, &
         block_scales, check_solution, drop_open_cohesion
     use ddc_contact_paper_lcp, only: contact_lcp, build_contact_lcp, solve_paper_lcp
@@ -40,7 +46,7 @@ module ddc_contact_formulation
     implicit none
     private
 
-    public :: solve_contact, auto_newton_min_elements, newton_max_iterations
+    public :: solve_contact, solve_contact_with, auto_newton_min_elements, newton_max_iterations
 
     !> lcp_method = 'auto' uses 'newton' from this many contact elements on, else 'lemke'
     integer, parameter :: auto_newton_min_elements = 300
@@ -54,7 +60,7 @@ contains
                              max_iterations)
         !> Influence matrix ordered [s; n]: traction = s_r + a [Ds; Dn], shape (2n, 2n)
         !> [stress / length]
-        real(wp), intent(in) :: a(:, :)
+        real(wp), intent(in), target, contiguous :: a(:, :)
         !> Remote shear traction resolved on each element (plus any traction from
         !> non-contact elements), shape (n) [stress]
         real(wp), intent(in) :: s_r_s(:)
@@ -78,6 +84,49 @@ contains
         integer, intent(in), optional :: rule
         !> Iteration limit of 'newton' (default newton_max_iterations)
         integer, intent(in), optional :: max_iterations
+        type(dense_stiffness) :: stiffness
+
+        if (size(a, 1) /= 2 * size(mu) .or. size(a, 2) /= 2 * size(mu)) then
+            call set_internal_error(error, 'solve_contact', 'array sizes do not match')
+            return
+        end if
+        stiffness%a => a
+        call solve_contact_with(stiffness, s_r_s, s_r_n, mu, sf, pressure, options, res, error, &
+                                a, rule, max_iterations)
+    end subroutine solve_contact
+
+    !> Solve the frictional contact problem of n elements (SPEC section 4) on any stiffness
+    !> operator; without the dense matrix a, by the Newton method alone.
+    subroutine solve_contact_with(stiffness, s_r_s, s_r_n, mu, sf, pressure, options, res, &
+                                  error, a, rule, max_iterations)
+        !> The influence matrix A ordered [s; n]: traction = s_r + A [Ds; Dn], 2n x 2n
+        !> [stress / length]
+        class(stiffness_operator), intent(inout) :: stiffness
+        !> Remote shear traction resolved on each element (plus any traction from
+        !> non-contact elements), shape (n) [stress]
+        real(wp), intent(in) :: s_r_s(:)
+        !> Remote normal traction resolved on each element, tension positive, shape (n)
+        !> [stress]
+        real(wp), intent(in) :: s_r_n(:)
+        !> Friction coefficient, shape (n) [-]
+        real(wp), intent(in) :: mu(:)
+        !> Frictional strength (cohesion), shape (n) [stress]
+        real(wp), intent(in) :: sf(:)
+        !> Fluid pressure inside the crack, compression positive, shape (n) [stress]
+        real(wp), intent(in) :: pressure(:)
+        !> LCP method and cohesion of open elements (the method is 'newton' without a)
+        type(solver_options), intent(in) :: options
+        !> The solution
+        type(contact_result), intent(out) :: res
+        !> Allocated on failure (exit_solver_failure; exit_bad_input for NaN or Inf data,
+        !> exit_internal_error for inconsistent arguments)
+        type(error_type), allocatable, intent(out) :: error
+        !> The same matrix in memory, shape (2n, 2n): Lemke's method needs it
+        real(wp), intent(in), optional :: a(:, :)
+        !> Tie-breaking rule of Lemke (tests only; default lexicographic)
+        integer, intent(in), optional :: rule
+        !> Iteration limit of 'newton' (default newton_max_iterations)
+        integer, intent(in), optional :: max_iterations
 
         real(wp), allocatable :: sf_eff(:), no_slip(:)
         type(contact_lcp) :: lcp
@@ -90,20 +139,20 @@ contains
         character(len=200) :: line
 
         n = size(mu)
-        if (size(a, 1) /= 2 * n .or. size(a, 2) /= 2 * n .or. size(s_r_s) /= n &
-            .or. size(s_r_n) /= n .or. size(sf) /= n .or. size(pressure) /= n) then
+        if (size(s_r_s) /= n .or. size(s_r_n) /= n .or. size(sf) /= n .or. &
+            size(pressure) /= n) then
             call set_internal_error(error, 'solve_contact', 'array sizes do not match')
             return
         end if
         lost = options%open_cohesion == cohesion_lost
-        if (.not. (all(ieee_is_finite(a)) .and. all(ieee_is_finite(s_r_s)) .and. &
+        if (.not. (stiffness%all_finite() .and. all(ieee_is_finite(s_r_s)) .and. &
             all(ieee_is_finite(s_r_n)) .and. all(ieee_is_finite(mu)) .and. &
             all(ieee_is_finite(sf)) .and. all(ieee_is_finite(pressure)))) then
             call set_error(error, exit_bad_input, 'contact: NaN or Inf in the input arrays')
             return
         end if
         automatic = options%lcp_method == lcp_auto
-        newton = options%lcp_method == lcp_newton .or. &
+        newton = options%lcp_method == lcp_newton .or. .not. present(a) .or. &
             (automatic .and. n >= auto_newton_min_elements)
         limit = newton_max_iterations
         if (present(max_iterations)) limit = max_iterations
@@ -130,9 +179,11 @@ contains
         do
             rounds = rounds + 1
             if (newton) then
-                call solve_once_newton(a, s_r_s, s_r_n, mu, sf_eff, pressure, limit, res, &
-                    states, reason)
-                if (len(reason) > 0) then
+                call solve_once_newton(stiffness, s_r_s, s_r_n, mu, sf_eff, pressure, limit, &
+                    res, states, reason)
+                if (len(reason) > 0 .and. .not. present(a)) then
+                    call set_error(error, exit_solver_failure, 'contact: '//reason)
+                else if (len(reason) > 0) then
                     newton = .false.
                     res%method = 'lemke'
                     res%fallback = reason
@@ -159,8 +210,8 @@ contains
                     ! problem has a solution (seen at acute fault branches). 'auto' then
                     ! asks the Newton method, whose answer is checked the same way, and
                     ! keeps it for the rounds after cohesion is lost.
-                    call solve_once_newton(a, s_r_s, s_r_n, mu, sf_eff, pressure, limit, res, &
-                        states, reason)
+                    call solve_once_newton(stiffness, s_r_s, s_r_n, mu, sf_eff, pressure, &
+                        limit, res, states, reason)
                     if (len(reason) == 0) then
                         newton = .true.
                         res%method = 'newton'
@@ -188,12 +239,13 @@ contains
         call system_clock(t1)
         res%seconds_lcp = real(t1 - t0, wp) / real(max(rate, 1_int64), wp) - &
             res%seconds_factorization
-    end subroutine solve_contact
+    end subroutine solve_contact_with
 
     !> One solve by the active-set Newton method (no inverse of A), certified as the
     !> equivalent LCP. reason is empty on success, else why Lemke must take over.
-    subroutine solve_once_newton(a, s_r_s, s_r_n, mu, sf, p, limit, res, states, reason)
-        real(wp), intent(in) :: a(:, :), s_r_s(:), s_r_n(:), mu(:), sf(:), p(:)
+    subroutine solve_once_newton(stiffness, s_r_s, s_r_n, mu, sf, p, limit, res, states, reason)
+        class(stiffness_operator), intent(inout) :: stiffness
+        real(wp), intent(in) :: s_r_s(:), s_r_n(:), mu(:), sf(:), p(:)
         integer, intent(in) :: limit
         type(contact_result), intent(inout) :: res
         !> States of the previous solve on entry (warm start when allocated); this solve's
@@ -201,20 +253,22 @@ contains
         type(active_set_result), intent(inout) :: states
         character(len=:), allocatable, intent(out) :: reason
         type(active_set_result) :: next
-        real(wp), allocatable :: tau(:), z(:), w(:), zs(:), ws(:), snp(:)
-        real(wp) :: dscale
+        real(wp), allocatable :: tau(:), z(:), w(:), zs(:), ws(:), snp(:), ad(:)
+        real(wp) :: dscale, stiffness_scale
         integer :: n, n2, i
         character(len=:), allocatable :: problem
 
         n = size(mu)
         n2 = 2 * n
-        call problem_scales(a, s_r_s, s_r_n, sf, p, res)
+        stiffness_scale = stiffness%max_diagonal()
+        if (.not. stiffness_scale > 0.0_wp) stiffness_scale = stiffness%max_entry()
+        call problem_scales(stiffness_scale, s_r_s, s_r_n, sf, p, res)
         if (allocated(states%open)) then
-            call solve_contact_active_set(a, s_r_s, s_r_n + p, mu, sf, res%stress_scale, &
-                next, limit, states%open, states%shear_state)
+            call solve_contact_active_set(stiffness, s_r_s, s_r_n + p, mu, sf, &
+                res%stress_scale, next, limit, states%open, states%shear_state)
         else
-            call solve_contact_active_set(a, s_r_s, s_r_n + p, mu, sf, res%stress_scale, &
-                next, limit)
+            call solve_contact_active_set(stiffness, s_r_s, s_r_n + p, mu, sf, &
+                res%stress_scale, next, limit)
         end if
         res%iterations = res%iterations + next%iterations
         res%solves = res%solves + 1
@@ -249,7 +303,9 @@ contains
         res%ds = next%ds
         res%dn = next%dn
         res%sf_effective = sf
-        call check_solution(a, s_r_s, s_r_n, mu, sf, snp, dscale, res, problem)
+        allocate (ad(n2), source=0.0_wp)
+        call stiffness%multiply([res%ds, res%dn], ad)
+        call check_solution(ad, s_r_s, s_r_n, mu, sf, snp, dscale, res, problem)
         reason = ''
         if (len(problem) > 0) reason = 'newton: '//problem
     end subroutine solve_once_newton

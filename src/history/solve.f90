@@ -139,7 +139,7 @@ contains
         call finish_last_step(at_load, results, error)
         if (allocated(error)) return
         results%elements%state = h%state(:, nsteps)
-        call record_contact(sys, res, results%solver)
+        call record_contact(res, sys%flops, results%solver)
         results%solver%seconds_factorization = results%solver%seconds_factorization + &
             built%seconds_factorization
         results%solver%factorization_flops = results%solver%factorization_flops + &

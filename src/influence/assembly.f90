@@ -23,7 +23,7 @@ module ddc_influence_assembly
     implicit none
     private
 
-    public :: assemble_influence, midpoint_response
+    public :: assemble_influence, fill_influence_block, midpoint_response
     public :: row_traction, row_displacement, row_identity
     public :: image_transform, image_transforms, image_of, kernel_with_images
     public :: kernel_function, select_kernel
@@ -202,97 +202,154 @@ contains
         integer, intent(in) :: shear_row(:), normal_row(:)
         !> Influence matrix, shape (2n, 2n)
         real(wp), intent(out) :: matrix(:, :)
+        integer, allocatable :: every(:)
+        integer :: i
+
+        allocate (every(elements%n))
+        do i = 1, elements%n
+            every(i) = i
+        end do
+        call fill_influence_block(elements, shear_modulus, nu, shear_row, normal_row, every, &
+                                  every, elements%n + every, every, every, elements%n + every, &
+                                  matrix)
+    end subroutine assemble_influence
+
+    !> Fill any block of the influence matrix: the rows of some elements against the DDs of
+    !> some elements, each placed where the caller says (a distributed matrix fills its local
+    !> part; assemble_influence the whole matrix in the [s; n] ordering). The entry of the
+    !> shear row of element row_element(k) against Ds of element col_element(l) goes to
+    !> block(row_s(k), col_s(l)); row_n and col_n place the normal rows and the Dn columns. A
+    !> place 0 means that row or column is not in the block; entries nowhere placed are left
+    !> as they are. Each pair of elements is evaluated once, whatever the ordering.
+    subroutine fill_influence_block(elements, shear_modulus, nu, shear_row, normal_row, &
+                                    row_element, row_s, row_n, col_element, col_s, col_n, block)
+        !> Elements with geometry computed
+        type(element_set), intent(in) :: elements
+        !> Shear modulus [stress unit] and Poisson's ratio [-]
+        real(wp), intent(in) :: shear_modulus, nu
+        !> Kind of the shear row and of the normal row of each element, shape (n)
+        integer, intent(in) :: shear_row(:), normal_row(:)
+        !> Elements whose rows are in the block, shape (r)
+        integer, intent(in) :: row_element(:)
+        !> Row of the block for each one's shear row and normal row (0: not in it), shape (r)
+        integer, intent(in) :: row_s(:), row_n(:)
+        !> Elements whose DDs are in the block, shape (c)
+        integer, intent(in) :: col_element(:)
+        !> Column of the block for each one's Ds and Dn (0: not in it; every non-zero
+        !> column appears once), shape (c)
+        integer, intent(in) :: col_s(:), col_n(:)
+        !> The block: rows and columns as placed, shape (at least max(row_s, row_n), at
+        !> least max(col_s, col_n))
+        real(wp), intent(inout) :: block(:, :)
         procedure(kernel_function), pointer :: kernel
 
         call select_kernel(elements, kernel)
-        call assemble_with(kernel, elements, image_transforms(elements%symmetry), shear_modulus, &
-                           nu, shear_row, normal_row, matrix)
-    end subroutine assemble_influence
+        call fill_with(kernel, elements, image_transforms(elements%symmetry), shear_modulus, nu, &
+                       shear_row, normal_row, row_element, row_s, row_n, col_element, col_s, &
+                       col_n, block)
+    end subroutine fill_influence_block
 
-    !> assemble_influence with the kernel and the image transforms given.
-    subroutine assemble_with(kernel, elements, images, shear_modulus, nu, shear_row, &
-                             normal_row, matrix)
+    !> fill_influence_block with the kernel and the image transforms given.
+    subroutine fill_with(kernel, elements, images, shear_modulus, nu, shear_row, normal_row, &
+                         row_element, row_s, row_n, col_element, col_s, col_n, block)
         procedure(kernel_function) :: kernel
         type(element_set), intent(in) :: elements
         type(image_transform), intent(in) :: images(:)
         real(wp), intent(in) :: shear_modulus, nu
         integer, intent(in) :: shear_row(:), normal_row(:)
-        real(wp), intent(out) :: matrix(:, :)
+        integer, intent(in) :: row_element(:), row_s(:), row_n(:)
+        integer, intent(in) :: col_element(:), col_s(:), col_n(:)
+        real(wp), intent(inout) :: block(:, :)
         type(pair_influence) :: p
-        integer :: i, j, n
+        real(wp) :: v(2)
+        integer :: i, j, k, l
 
-        n = elements%n
-        ! Each thread owns whole columns j and n+j: disjoint, contiguous writes.
-        !$omp parallel do default(none) schedule(static) private(i, j, p) &
-        !$omp shared(elements, shear_modulus, nu, shear_row, normal_row, matrix, n, images)
-        do j = 1, n
-            do i = 1, n
+        ! Each thread owns whole columns (those of col_element(l)): disjoint writes.
+        !$omp parallel do default(none) schedule(static) private(i, j, k, l, p, v) &
+        !$omp shared(elements, shear_modulus, nu, shear_row, normal_row, row_element, row_s, &
+        !$omp        row_n, col_element, col_s, col_n, block, images)
+        do l = 1, size(col_element)
+            j = col_element(l)
+            do k = 1, size(row_element)
+                i = row_element(k)
                 p = pair_at_midpoint(kernel, elements, i, j, images, shear_modulus, nu)
-                select case (shear_row(i))
-                case (row_traction)
-                    matrix(i, j) = p%ts(1)
-                    matrix(i, n + j) = p%ts(2)
-                case (row_displacement)
-                    matrix(i, j) = p%us(1)
-                    matrix(i, n + j) = p%us(2)
-                case default
-                    matrix(i, j) = merge(1.0_wp, 0.0_wp, i == j)
-                    matrix(i, n + j) = 0.0_wp
-                end select
-                select case (normal_row(i))
-                case (row_traction)
-                    matrix(n + i, j) = p%tn(1)
-                    matrix(n + i, n + j) = p%tn(2)
-                case (row_displacement)
-                    matrix(n + i, j) = p%un(1)
-                    matrix(n + i, n + j) = p%un(2)
-                case default
-                    matrix(n + i, j) = 0.0_wp
-                    matrix(n + i, n + j) = merge(1.0_wp, 0.0_wp, i == j)
-                end select
+                if (row_s(k) > 0) then
+                    select case (shear_row(i))
+                    case (row_traction)
+                        v = p%ts
+                    case (row_displacement)
+                        v = p%us
+                    case default
+                        v = [merge(1.0_wp, 0.0_wp, i == j), 0.0_wp]
+                    end select
+                    if (col_s(l) > 0) block(row_s(k), col_s(l)) = v(1)
+                    if (col_n(l) > 0) block(row_s(k), col_n(l)) = v(2)
+                end if
+                if (row_n(k) > 0) then
+                    select case (normal_row(i))
+                    case (row_traction)
+                        v = p%tn
+                    case (row_displacement)
+                        v = p%un
+                    case default
+                        v = [0.0_wp, merge(1.0_wp, 0.0_wp, i == j)]
+                    end select
+                    if (col_s(l) > 0) block(row_n(k), col_s(l)) = v(1)
+                    if (col_n(l) > 0) block(row_n(k), col_n(l)) = v(2)
+                end if
             end do
         end do
         !$omp end parallel do
-    end subroutine assemble_with
+    end subroutine fill_with
 
-    !> Induced tractions and negative-face displacements at every element midpoint.
+    !> Induced tractions and negative-face displacements at the element midpoints: at every
+    !> element, or at the elements first, first + 1, ... (one per output value; a
+    !> distributed run splits the elements).
     subroutine midpoint_response(elements, shear_modulus, nu, ds, dn, shear_traction, &
-                                 normal_traction, us_minus, un_minus)
+                                 normal_traction, us_minus, un_minus, first)
         !> Elements with geometry computed
         type(element_set), intent(in) :: elements
         !> Shear modulus [stress unit] and Poisson's ratio [-]
         real(wp), intent(in) :: shear_modulus, nu
-        !> Displacement discontinuities [length unit], shape (n)
+        !> Displacement discontinuities of every element [length unit], shape (n)
         real(wp), intent(in) :: ds(:), dn(:)
-        !> Induced shear and normal traction [stress unit], shape (n)
+        !> Induced shear and normal traction [stress unit], shape (m) (n without first)
         real(wp), intent(out) :: shear_traction(:), normal_traction(:)
-        !> Negative-face displacement along s and n [length unit], shape (n)
+        !> Negative-face displacement along s and n [length unit], shape (m)
         real(wp), intent(out) :: us_minus(:), un_minus(:)
+        !> The element of the first output value (default 1)
+        integer, intent(in), optional :: first
         procedure(kernel_function), pointer :: kernel
+        integer :: offset
 
+        offset = 0
+        if (present(first)) offset = first - 1
         call select_kernel(elements, kernel)
         call response_with(kernel, elements, image_transforms(elements%symmetry), shear_modulus, &
-                           nu, ds, dn, shear_traction, normal_traction, us_minus, un_minus)
+                           nu, ds, dn, offset, shear_traction, normal_traction, us_minus, un_minus)
     end subroutine midpoint_response
 
-    !> midpoint_response with the kernel and the image transforms given.
-    subroutine response_with(kernel, elements, images, shear_modulus, nu, ds, dn, &
+    !> midpoint_response with the kernel, the image transforms and the element before the
+    !> first output value given.
+    subroutine response_with(kernel, elements, images, shear_modulus, nu, ds, dn, offset, &
                              shear_traction, normal_traction, us_minus, un_minus)
         procedure(kernel_function) :: kernel
         type(element_set), intent(in) :: elements
         type(image_transform), intent(in) :: images(:)
         real(wp), intent(in) :: shear_modulus, nu
         real(wp), intent(in) :: ds(:), dn(:)
+        integer, intent(in) :: offset
         real(wp), intent(out) :: shear_traction(:), normal_traction(:)
         real(wp), intent(out) :: us_minus(:), un_minus(:)
         type(pair_influence) :: p
         real(wp) :: ts, tn, us, un
-        integer :: i, j
+        integer :: i, j, k
 
-        !$omp parallel do default(none) schedule(static) private(i, j, p, ts, tn, us, un) &
+        !$omp parallel do default(none) schedule(static) private(i, j, k, p, ts, tn, us, un) &
         !$omp shared(elements, shear_modulus, nu, ds, dn, shear_traction, normal_traction, &
-        !$omp        us_minus, un_minus, images)
-        do i = 1, elements%n
+        !$omp        us_minus, un_minus, images, offset)
+        do k = 1, size(shear_traction)
+            i = offset + k
             ts = 0.0_wp
             tn = 0.0_wp
             us = 0.0_wp
@@ -304,10 +361,10 @@ contains
                 us = us + p%us(1) * ds(j) + p%us(2) * dn(j)
                 un = un + p%un(1) * ds(j) + p%un(2) * dn(j)
             end do
-            shear_traction(i) = ts
-            normal_traction(i) = tn
-            us_minus(i) = us
-            un_minus(i) = un
+            shear_traction(k) = ts
+            normal_traction(k) = tn
+            us_minus(k) = us
+            un_minus(k) = un
         end do
         !$omp end parallel do
     end subroutine response_with

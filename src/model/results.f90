@@ -92,8 +92,11 @@ module ddc_model_results
         integer :: newton_iterations = 0
         !> Nominal flop count of the timed factorizations (2/3 m^3 per LU of size m) [-]
         real(wp) :: factorization_flops = 0.0_wp
-        !> Number of OpenMP threads
+        !> Number of OpenMP threads (of each process)
         integer :: threads = 1
+        !> MPI build: the processes of the run (0 in the serial build), their grid (rows,
+        !> columns) and the block size of the distributed matrices
+        integer :: processes = 0, process_grid(2) = 0, block_size = 0
         !> LCP pivots summed over LCP solves, and the number of LCP solves (more than one
         !> when open_cohesion = 'lost' re-solves); 0 without contact elements
         integer :: pivots = 0, lcp_solves = 0

@@ -18,6 +18,7 @@ module ddc_model_types
     public :: observation_grid, observation_line, observation_points, observation_kind_names
     public :: growth_options, growth_tips_all, growth_tips_most_critical, growth_tips_names
     public :: growth_criterion_mts, growth_criterion_names
+    public :: default_block_size
 
     !> Boundary conditions; 1-4 are the TWODD KODE values.
     integer, parameter :: condition_traction = 1
@@ -36,6 +37,9 @@ module ddc_model_types
     !> Input names of the domains, indexed by domain
     character(len=*), parameter :: domain_names(2) = [character(len=10) :: &
         'full_plane', 'half_plane']
+
+    !> Block size of the distributed matrices of the MPI build (&solver block_size)
+    integer, parameter :: default_block_size = 64
 
     !> Kinds of observation sets
     integer, parameter :: observation_grid = 1
@@ -199,6 +203,9 @@ module ddc_model_types
         type(observation_set), allocatable :: observations(:)
         !> Solver options
         type(solver_options) :: solver
+        !> Rows and columns of the blocks of the block-cyclic distributed matrices (MPI
+        !> build; &solver block_size)
+        integer :: block_size = default_block_size
         !> Output file (after -o and &output are applied)
         character(len=:), allocatable :: output_file
         !> Input file path and its full text, kept for self-description

@@ -366,7 +366,8 @@ contains
         call close_group(fields, error)
     end subroutine write_fields
 
-    !> /solver: method, threads, pivots, residual and state counts as attributes;
+    !> /solver: method, threads, pivots, residual and state counts as attributes (and the
+    !> processes, their grid and the block size in the MPI build);
     !> /solver/seconds/<phase> wall times as scalar datasets (output: the writing of this
     !> file up to the solver record; total includes it).
     subroutine write_solver(root, results, seconds_output, error)
@@ -397,6 +398,11 @@ contains
             call write_attribute(solver, 'elements_stick', count(state == state_stick), error)
             call write_attribute(solver, 'elements_slip', count(state == state_slip), error)
             call write_attribute(solver, 'elements_open', count(state == state_open), error)
+            if (s%processes > 0) then
+                call write_attribute(solver, 'processes', s%processes, error)
+                call write_attribute(solver, 'process_grid', s%process_grid, error)
+                call write_attribute(solver, 'block_size', s%block_size, error)
+            end if
             call create_group(solver, 'seconds', seconds, error)
             if (.not. allocated(error)) then
                 call write_real_dataset(seconds, 'assembly', [s%seconds_assembly], no_dims, &

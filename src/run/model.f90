@@ -1,17 +1,21 @@
-!> Solve one model: influence, solve, then element results, tips and fields.
+!> Solve one model: influence, solve, then element results, tips and fields. The heavy
+!> work goes to an engine (ddc_run_engine): this process alone by default, or the processes
+!> of a distributed run.
 module ddc_run_model
     !$ use omp_lib, only: omp_get_max_threads
     use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type, element_set, condition_contact, domain_half_plane
-    use ddc_model_results, only: model_results, state_free
-    use ddc_influence_assembly, only: midpoint_response
+    use ddc_model_results, only: model_results, solver_record, state_free
     use ddc_model_loads, only: resolve_remote_stress, total_pressure, shear_modulus_of
+    use ddc_contact_options, only: solver_options
+    use ddc_influence_assembly, only: midpoint_response
     use ddc_solve_elastic, only: solve_elastic
     use ddc_solve_frictional, only: solve_frictional
-    use ddc_post_tips, only: find_tips
     use ddc_post_fields, only: evaluate_field
+    use ddc_run_engine, only: model_engine
+    use ddc_post_tips, only: find_tips
     implicit none
     private
 
@@ -28,13 +32,15 @@ contains
     end function wall_seconds
 
     !> Solve a validated model and compute every result the output needs.
-    subroutine run_model(model, results, error)
+    subroutine run_model(model, results, error, engine)
         !> A validated model with element geometry computed
         type(model_type), intent(in) :: model
         !> Element results, tips, fields and the solver record
         type(model_results), intent(out) :: results
         !> Set when the model has no solution or the solver failed
         type(error_type), allocatable, intent(out) :: error
+        !> The engine of a distributed run (default: the work is done in this process)
+        class(model_engine), intent(inout), optional :: engine
         real(wp), allocatable :: remote_shear(:), remote_normal(:)
         type(element_set) :: loaded
         real(wp) :: g, nu, t_start, t0
@@ -60,31 +66,34 @@ contains
         associate (e => results%elements, rec => results%solver)
             allocate (e%ds(n), e%dn(n), e%shear_traction(n), e%normal_traction(n), &
                       e%us_minus(n), e%un_minus(n), e%us_plus(n), e%un_plus(n), e%state(n))
-            if (any(model%elements%condition == condition_contact)) then
-                ! The contact elements see their pressure plus the pore fluid.
-                loaded = model%elements
-                loaded%pressure = total_pressure(model%elements, model%pore_fluid)
-                call solve_frictional(loaded, g, nu, remote_shear, remote_normal, model%solver, &
-                                      e%ds, e%dn, e%state, rec, error)
+            ! The contact elements see their pressure plus the pore fluid.
+            loaded = model%elements
+            loaded%pressure = total_pressure(model%elements, model%pore_fluid)
+            if (present(engine)) then
+                call engine%solve(loaded, g, nu, remote_shear, remote_normal, model%solver, &
+                                  e%ds, e%dn, e%state, rec, error)
             else
-                rec%method = 'lu'
-                call solve_elastic(model%elements, g, nu, remote_shear, remote_normal, e%ds, &
-                                   e%dn, rec%equilibrium_residual, rec%seconds_assembly, &
-                                   rec%seconds_factorization, error)
-                e%state = state_free
+                call solve_here(loaded, g, nu, remote_shear, remote_normal, model%solver, e%ds, &
+                                e%dn, e%state, rec, error)
             end if
             if (allocated(error)) return
 
             t0 = wall_seconds()
-            call midpoint_response(model%elements, g, nu, e%ds, e%dn, e%shear_traction, &
-                                   e%normal_traction, e%us_minus, e%un_minus)
+            if (present(engine)) then
+                call engine%midpoint_response(model%elements, g, nu, e%ds, e%dn, &
+                                              e%shear_traction, e%normal_traction, e%us_minus, &
+                                              e%un_minus)
+            else
+                call midpoint_response(model%elements, g, nu, e%ds, e%dn, e%shear_traction, &
+                                       e%normal_traction, e%us_minus, e%un_minus)
+            end if
             e%shear_traction = e%shear_traction + remote_shear
             e%normal_traction = e%normal_traction + remote_normal
             ! ds = us(-) - us(+), dn = un(-) - un(+)
             e%us_plus = e%us_minus - e%ds
             e%un_plus = e%un_minus - e%dn
             call find_tips(model%elements, g, nu, e%ds, e%dn, results%tips)
-            call evaluate_fields(model, results)
+            call evaluate_fields(model, results, engine)
             rec%seconds_fields = wall_seconds() - t0
             rec%seconds_total = wall_seconds() - t_start
         end associate
@@ -92,11 +101,13 @@ contains
 
     !> The fields at every observation set of the model for the DDs in results (allocates
     !> results%fields, one per observation set).
-    subroutine evaluate_fields(model, results)
+    subroutine evaluate_fields(model, results, engine)
         !> The solved model
         type(model_type), intent(in) :: model
         !> Its element results; the fields are set
         type(model_results), intent(inout) :: results
+        !> The engine of a distributed run (default: the work is done in this process)
+        class(model_engine), intent(inout), optional :: engine
         integer :: i
 
         if (allocated(results%fields)) deallocate (results%fields)
@@ -106,12 +117,44 @@ contains
             allocate (results%fields(0))
         end if
         do i = 1, size(results%fields)
-            call evaluate_field(model%elements, shear_modulus_of(model), model%poissons_ratio, &
-                                [model%sxx, model%syy, model%sxy], results%elements%ds, &
-                                results%elements%dn, model%observations(i)%x, &
-                                model%observations(i)%y, results%fields(i), &
-                                model%stress_gradient)
+            associate (remote => [model%sxx, model%syy, model%sxy], o => model%observations(i), &
+                       e => results%elements)
+                if (present(engine)) then
+                    call engine%evaluate_field(model%elements, shear_modulus_of(model), &
+                                               model%poissons_ratio, remote, e%ds, e%dn, o%x, &
+                                               o%y, results%fields(i), model%stress_gradient)
+                else
+                    call evaluate_field(model%elements, shear_modulus_of(model), &
+                                        model%poissons_ratio, remote, e%ds, e%dn, o%x, o%y, &
+                                        results%fields(i), model%stress_gradient)
+                end if
+            end associate
         end do
     end subroutine evaluate_fields
+
+    !> The solve in this process: contact models by solve_frictional, the others by
+    !> solve_elastic (method 'lu').
+    subroutine solve_here(elements, shear_modulus, nu, remote_shear, remote_normal, options, &
+                          ds, dn, state, record, error)
+        type(element_set), intent(in) :: elements
+        real(wp), intent(in) :: shear_modulus, nu
+        real(wp), intent(in) :: remote_shear(:), remote_normal(:)
+        type(solver_options), intent(in) :: options
+        real(wp), intent(out) :: ds(:), dn(:)
+        integer, intent(out) :: state(:)
+        type(solver_record), intent(inout) :: record
+        type(error_type), allocatable, intent(out) :: error
+
+        if (any(elements%condition == condition_contact)) then
+            call solve_frictional(elements, shear_modulus, nu, remote_shear, remote_normal, &
+                                  options, ds, dn, state, record, error)
+        else
+            record%method = 'lu'
+            call solve_elastic(elements, shear_modulus, nu, remote_shear, remote_normal, ds, dn, &
+                               record%equilibrium_residual, record%seconds_assembly, &
+                               record%seconds_factorization, error)
+            state = state_free
+        end if
+    end subroutine solve_here
 
 end module ddc_run_model

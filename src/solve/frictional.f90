@@ -89,7 +89,7 @@ contains
                 ' (element numbers count the contact elements only)'
             return
         end if
-        call record_contact(sys, res, record)
+        call record_contact(res, sys%flops, record)
         call complete_dds(sys, elements, remote_shear, remote_normal, res, y_load, ds, dn, &
                           state, record%equilibrium_residual)
     end subroutine solve_frictional
@@ -266,12 +266,12 @@ contains
         residual = max(residual, norm2(residual_free) / max(norm2(b_free), tiny(1.0_wp)))
     end subroutine complete_dds
 
-    !> Fill the solver record from a contact solution on a condensed system.
-    subroutine record_contact(sys, res, record)
-        !> The condensed system
-        type(condensed_contact), intent(in) :: sys
+    !> Fill the solver record from a contact solution.
+    subroutine record_contact(res, flops, record)
         !> The contact solution
         type(contact_result), intent(in) :: res
+        !> Nominal flops of the factorizations outside the contact solve (the condensation)
+        real(wp), intent(in) :: flops
         !> Method, pivots, certificate, residual, flops and LCP time are set; the
         !> factorization time is added to
         type(solver_record), intent(inout) :: record
@@ -279,7 +279,7 @@ contains
         record%method = res%method
         record%fallback = res%fallback
         record%newton_iterations = res%iterations
-        record%factorization_flops = res%factorization_flops + sys%flops
+        record%factorization_flops = res%factorization_flops + flops
         record%pivots = res%pivots
         record%lcp_solves = res%solves
         record%certificate_min_z = res%certificate%min_z
