@@ -61,8 +61,11 @@ contains
                '                  OUT.h5 with _task<K> (zero-padded) before .h5; a task'//nl// &
                '                  with a complete output is skipped (exit status 0)'//nl//nl// &
                'Exit status: 0 success; 1 no solution or solver failure; 2 bad input or'//nl// &
-               'usage; 3 I/O failure; 4 internal error (a bug in ddc2d). A failed run'//nl// &
-               'leaves no output file.'
+               'usage; 3 a file could not be read or written (an output path that cannot'//nl// &
+               'be written too: ddc2d creates no folders); 4 internal error (a bug in'//nl// &
+               'ddc2d); 5 the model is too large for the memory here (the machine or its'//nl// &
+               'cgroup, e.g. Slurm --mem): the message gives the estimate, what is'//nl// &
+               'available and how many elements fit. A failed run leaves no output file.'
     end function usage_text
 
     !> The i-th argument as a deferred-length string.

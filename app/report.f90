@@ -1,34 +1,74 @@
-!> What the program tells the user on standard output: the effective model and a summary.
+!> What the program tells the user on standard output: the effective model with notes on
+!> implausible input, and a summary of the results.
 module ddc_app_report
+    use, intrinsic :: iso_fortran_env, only: output_unit
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type, condition_names, observation_kind_names, &
-        symmetry_none, symmetry_names
-    use ddc_model_results, only: model_results, state_names
+        symmetry_none, symmetry_names, domain_names, domain_half_plane, load_path_names, &
+        growth_tips_names, growth_criterion_names
+    use ddc_model_results, only: model_results, state_names, point_near, point_on_element, &
+        growth_reason_names, growth_end_names, growth_subcritical, growth_intersection, &
+        growth_surface, growth_waiting
+    use ddc_model_plausibility, only: plausibility_notes, depth_range
+    use ddc_growth_summary, only: tip_summary, summarize_tips
     use ddc_contact_options, only: lcp_method_names, open_cohesion_names
+    use ddc_text, only: short_real, itoa, prefix_lines, join_integers
     implicit none
     private
 
-    public :: print_model_summary, print_results_summary
+    public :: print_model_summary, print_results_summary, print_growth_step, field_warnings
+    public :: print_progress
 
 contains
 
-    !> Echo the effective model: material, remote stress, fractures, observations, output.
-    subroutine print_model_summary(unit, model)
+    !> Echo the effective model: material, domain, remote stress and its gradients, pore
+    !> fluid, symmetry, fractures, observations, loading history, solver, output; then the
+    !> notes on implausible input (ddc_model_plausibility).
+    subroutine print_model_summary(unit, model, units_given)
         !> Unit to write to
         integer, intent(in) :: unit
         !> The model as read
         type(model_type), intent(in) :: model
+        !> The stress unit was chosen by the user (false for a TWODD deck: no strain note)
+        logical, intent(in) :: units_given
+        character(len=:), allocatable :: stress, gradient, notes
+        real(wp) :: deepest, highest
         integer :: i, first
 
+        stress = ' '//model%stress_unit
+        gradient = ' '//model%stress_unit//'/'//model%length_unit
+        call depth_range(model, deepest, highest)
         write (unit, '(a)') 'ddc2d model: '//model%title
-        write (unit, '(a,g0,1x,a,a,g0)') '  youngs_modulus = ', model%youngs_modulus, &
-            model%stress_unit, ', poissons_ratio = ', model%poissons_ratio
-        if (model%elements%symmetry%kind /= symmetry_none) write (unit, '(a,a,a,g0,a,g0,a)') &
-            '  symmetry ', trim(symmetry_names(model%elements%symmetry%kind)), ' (xsym = ', &
-            model%elements%symmetry%xsym, ', ysym = ', model%elements%symmetry%ysym, &
-            '): image elements implicit'
-        write (unit, '(a,3(g0,1x),a)') '  remote stress sxx, syy, sxy = ', model%sxx, model%syy, &
-            model%sxy, model%stress_unit
+        write (unit, '(a)') '  youngs_modulus = '//short_real(model%youngs_modulus)//stress// &
+            ', poissons_ratio = '//short_real(model%poissons_ratio)
+        if (model%elements%domain == domain_half_plane) then
+            write (unit, '(a)') '  domain: half_plane (free surface y = 0, the body y < 0)'
+        else
+            write (unit, '(a)') '  domain: '//trim(domain_names(model%elements%domain))
+        end if
+        write (unit, '(a)') '  remote stress sxx, syy, sxy = '//triple([model%sxx, model%syy, &
+            model%sxy])//stress//trim(merge(' at y = 0', '         ', &
+            any(model%stress_gradient /= 0.0_wp)))
+        if (any(model%stress_gradient /= 0.0_wp)) then
+            write (unit, '(a)') '  remote stress gradients dsxx_dy, dsyy_dy, dsxy_dy = '// &
+                triple(model%stress_gradient)//gradient
+            write (unit, '(a)') '    at y = '//short_real(deepest)//' '//model%length_unit// &
+                ' (the deepest point of the model): sxx, syy, sxy = '// &
+                triple([model%sxx, model%syy, model%sxy] + model%stress_gradient * deepest)// &
+                stress
+        end if
+        if (any(model%pore_fluid /= 0.0_wp)) then
+            write (unit, '(a)') '  pore fluid p0 = '//short_real(model%pore_fluid(1))// &
+                stress//', dp_dy = '//short_real(model%pore_fluid(2))//gradient// &
+                ', inside every contact element'
+            if (model%pore_fluid(2) /= 0.0_wp) write (unit, '(a)') '    at y = '// &
+                short_real(deepest)//' '//model%length_unit//': p = '// &
+                short_real(model%pore_fluid(1) + model%pore_fluid(2) * deepest)//stress
+        else
+            write (unit, '(a)') '  pore fluid: none'
+        end if
+        write (unit, '(a)') '  symmetry: '//trim(symmetry_names(model%elements%symmetry%kind))// &
+            trim(symmetry_lines())
         do i = 1, size(model%fractures)
             first = model%fractures(i)%first_element
             write (unit, '(a,i0,a,a,a,i0,a,a)') '  fracture ', i, ' ', model%fractures(i)%name, &
@@ -42,14 +82,162 @@ contains
                     size(model%observations(i)%x), ' points'
             end do
         end if
+        if (allocated(model%load_path%vertex)) call print_load_path()
         write (unit, '(a,a,a,a)') '  solver: lcp_method = ', &
             trim(lcp_method_names(model%solver%lcp_method)), ', open_cohesion = ', &
             trim(open_cohesion_names(model%solver%open_cohesion))
-        if (allocated(model%load_path%steps)) write (unit, '(a,i0,a)') &
-            '  loading history: ', 1 + sum(model%load_path%steps), &
-            ' steps, each solved with lcp_method as a one-shot solve'
+        if (model%growth%active) call print_growth_options(unit, model)
         write (unit, '(a)') '  output: '//model%output_file
+        notes = plausibility_notes(model, units_given)
+        if (len(notes) > 0) write (unit, '(a)') prefix_lines('note: ', notes)
+
+    contains
+
+        !> ' (xsym = .., ysym = ..): image elements implicit', or '' without symmetry.
+        function symmetry_lines() result(text)
+            character(len=:), allocatable :: text
+
+            text = ''
+            if (model%elements%symmetry%kind == symmetry_none) return
+            text = ' (xsym = '//short_real(model%elements%symmetry%xsym)//', ysym = '// &
+                short_real(model%elements%symmetry%ysym)//'): image elements implicit'
+        end function symmetry_lines
+
+        !> The path: steps per leg and the vertices of every quantity it varies.
+        subroutine print_load_path()
+            integer :: q, v
+
+            write (unit, '(a)') '  loading history: '//itoa(1 + sum(model%load_path%steps))// &
+                ' steps, legs of '//join_integers(model%load_path%steps)//' increments'
+            do q = 1, size(load_path_names)
+                if (.not. model%load_path%varies(q)) cycle
+                write (unit, '(a)', advance='no') '    '//trim(load_path_names(q))//' at the '// &
+                    'vertices:'
+                do v = 1, size(model%load_path%vertex, 2)
+                    write (unit, '(a)', advance='no') ' '//short_real(model%load_path%vertex(q, v))
+                end do
+                write (unit, '(a)') ''
+            end do
+        end subroutine print_load_path
+
     end subroutine print_model_summary
+
+    !> One line of progress on standard output, flushed at once (the progress handler of
+    !> ddc_progress).
+    subroutine print_progress(line)
+        !> The line
+        character(len=*), intent(in) :: line
+
+        write (output_unit, '(a)') '  '//line
+        flush (output_unit)
+    end subroutine print_progress
+
+    !> Echo the effective &growth options.
+    subroutine print_growth_options(unit, model)
+        integer, intent(in) :: unit
+        type(model_type), intent(in) :: model
+        character(len=:), allocatable :: names
+        integer :: f
+
+        associate (g => model%growth)
+            write (unit, '(a,i0,a,g0,1x,a)') '  growth: at most ', g%steps, &
+                ' steps, toughness = ', g%toughness, model%stress_unit//' '// &
+                model%length_unit//'^0.5'
+            if (g%increment > 0.0_wp) then
+                write (unit, '(a,g0,1x,a)') '    increment = ', g%increment, model%length_unit
+            else
+                write (unit, '(a)') '    increment = 2 x the tip element length (default)'
+            end if
+            if (g%element_length > 0.0_wp) then
+                write (unit, '(a,g0,1x,a)') '    element_length = ', g%element_length, &
+                    model%length_unit
+            else
+                write (unit, '(a)') '    element_length = the tip element length (default)'
+            end if
+            write (unit, '(a,a,a,a,a,i0)') "    tips = '", trim(growth_tips_names(g%tips)), &
+                "', criterion = '", trim(growth_criterion_names(g%criterion)), &
+                "', max_corrections = ", g%max_corrections
+            names = ''
+            do f = 1, size(model%fractures)
+                if (.not. g%fracture_grows(f)) cycle
+                if (len(names) > 0) names = names//', '
+                names = names//model%fractures(f)%name
+            end do
+            write (unit, '(a)') '    fractures that may grow: '//names
+            if (g%override_mu) write (unit, '(a,g0)') '    new contact elements: mu = ', g%new_mu
+            if (g%override_sf) write (unit, '(a,g0,1x,a)') '    new contact elements: sf = ', &
+                g%new_sf, model%stress_unit
+        end associate
+    end subroutine print_growth_options
+
+    !> One line per growth step on standard output, flushed (a long run shows progress).
+    subroutine print_growth_step(step, growing, largest_k_eq, seconds)
+        !> The step, and the number of tips that grew in it
+        integer, intent(in) :: step, growing
+        !> The largest K_eq of the step's tips [stress unit * length unit**0.5]
+        real(wp), intent(in) :: largest_k_eq
+        !> Wall time of the step [s]
+        real(wp), intent(in) :: seconds
+
+        write (output_unit, '(a,i0,a,i0,a,es11.4,a,f8.3,a)') 'growth step ', step, ': ', &
+            growing, ' tip(s) grew, largest K_eq ', largest_k_eq, ', ', seconds, ' s'
+        flush (output_unit)
+    end subroutine print_growth_step
+
+    !> Each tip of a growth run: where it ended, how far it grew and why it stopped.
+    subroutine print_growth_summary(unit, model, results)
+        integer, intent(in) :: unit
+        type(model_type), intent(in) :: model
+        type(model_results), intent(in) :: results
+        type(tip_summary), allocatable :: tips(:)
+        character(len=*), parameter :: ends(0:1) = [character(len=5) :: 'begin', 'end']
+        integer :: i, width
+
+        call summarize_tips(results%growth, tips)
+        write (unit, '(a,i0,a,a)') 'growth: ', results%growth%steps_taken, &
+            ' step(s) with growth; ended: ', trim(growth_end_names(results%growth%end_reason))
+        width = len('fracture')
+        do i = 1, size(tips)
+            width = max(width, len(model%fractures(tips(i)%fracture_id)%name))
+        end do
+        write (unit, '(2x,a,2x,a5,2x,a5,2x,a14,2x,a11,2x,a)') 'fracture'//repeat(' ', &
+            width - len('fracture')), 'tip', 'steps', 'path length', 'K_eq / K_Ic', &
+            'stopped because'
+        do i = 1, size(tips)
+            write (unit, '(2x,a,2x,a5,2x,i5,2x,es14.6,2x,f11.4,2x,a)') &
+                model%fractures(tips(i)%fracture_id)%name//repeat(' ', width - &
+                len(model%fractures(tips(i)%fracture_id)%name)), ends(tips(i)%end), &
+                tips(i)%steps_grown, tips(i)%path_length, &
+                tips(i)%last_k_eq / model%growth%toughness, &
+                stop_text(tips(i)%last_reason)
+        end do
+    end subroutine print_growth_summary
+
+    !> Why a tip stopped, from the reason of its last record.
+    pure function stop_text(reason) result(text)
+        integer, intent(in) :: reason
+        character(len=:), allocatable :: text
+
+        select case (reason)
+        case (growth_subcritical)
+            text = 'arrested: K_eq < toughness'
+        case (growth_intersection)
+            text = 'intersection: next to another element'
+        case (growth_surface)
+            text = 'surface: next to the free surface'
+        case (growth_waiting)
+            text = 'step limit (critical, waiting for a more critical tip)'
+        case default
+            text = 'step limit (grew in the last step: '//trim(growth_reason_names(reason))//')'
+        end select
+    end function stop_text
+    !> "a b c" of three numbers.
+    function triple(values) result(text)
+        real(wp), intent(in) :: values(3)
+        character(len=:), allocatable :: text
+
+        text = short_real(values(1))//' '//short_real(values(2))//' '//short_real(values(3))
+    end function triple
 
     !> Summary of the results: states, peak DDs, tips with K, timings.
     subroutine print_results_summary(unit, model, results)
@@ -62,8 +250,15 @@ contains
         integer :: i, state
 
         associate (e => results%elements, s => results%solver)
-            write (unit, '(a,a,a,i0,a,es10.3)') 'solved with ', s%method, ' on ', s%threads, &
-                ' thread(s); equilibrium residual ', s%equilibrium_residual
+            if (s%processes > 0) then
+                write (unit, '(a,a,3(a,i0),a,i0,a,i0,a,es10.3)') 'solved with ', s%method, &
+                    ' on ', s%processes, ' process(es) (grid ', s%process_grid(1), ' x ', &
+                    s%process_grid(2), ', block size ', s%block_size, '), ', s%threads, &
+                    ' thread(s) each; equilibrium residual ', s%equilibrium_residual
+            else
+                write (unit, '(a,a,a,i0,a,es10.3)') 'solved with ', s%method, ' on ', &
+                    s%threads, ' thread(s); equilibrium residual ', s%equilibrium_residual
+            end if
             do state = 0, 3
                 if (count(e%state == state) > 0) write (unit, '(2x,a,a,i0)') &
                     trim(state_names(state)), ' elements: ', count(e%state == state)
@@ -72,18 +267,55 @@ contains
             write (unit, '(a,es12.5,1x,a)') '  peak opening = ', max(0.0_wp, maxval(-e%dn)), &
                 model%length_unit
             do i = 1, results%tips%n
-                write (unit, '(a,i0,a,2(es12.5,1x),a,es12.5,a,es12.5)') '  tip ', i, ' at ', &
-                    results%tips%x(i), results%tips%y(i), ' K_I = ', results%tips%k1(i), &
-                    ', K_II = ', results%tips%k2(i)
+                write (unit, '(a,i0,a,2(es12.5,1x),a,es12.5,a,es12.5,1x,a)') '  tip ', i, &
+                    ' at ', results%tips%x(i), results%tips%y(i), ' K_I = ', &
+                    results%tips%k1(i), ', K_II = ', results%tips%k2(i), &
+                    model%stress_unit//' '//model%length_unit//'^1/2'
                 if (results%tips%graded(i) == 1) write (unit, '(a)') '    (graded mesh at '// &
                     'this tip: the tip element differs from its neighbour, K is less accurate)'
             end do
+            if (allocated(results%fields)) then
+                do i = 1, size(results%fields)
+                    associate (o => model%observations(i), flag => results%fields(i)%flag)
+                        write (unit, '(a)') '  '//trim(observation_kind_names(o%kind))//' '// &
+                            o%name//': '//itoa(size(flag))//' points, '// &
+                            itoa(count(flag == point_on_element))//' on an element (NaN), '// &
+                            itoa(count(flag == point_near))//' within one element length '// &
+                            'of an element centre (reduced accuracy)'
+                    end associate
+                end do
+            end if
             write (unit, '(a,6(f0.3,a))') '  seconds: assembly ', s%seconds_assembly, &
                 ', factorization ', s%seconds_factorization, ', lcp ', s%seconds_lcp, &
                 ', fields ', s%seconds_fields, ', output ', s%seconds_output, ', total ', &
                 s%seconds_total + s%seconds_output, ''
         end associate
+        if (allocated(results%growth%step)) call print_growth_summary(unit, model, results)
         write (unit, '(a)') 'wrote '//model%output_file
     end subroutine print_results_summary
+
+    !> Warnings on the fields, one per line ('' when there are none): an observation set
+    !> whose every point lies on an element, so that all its values are NaN.
+    function field_warnings(model, results) result(warnings)
+        !> The model solved
+        type(model_type), intent(in) :: model
+        !> Its results
+        type(model_results), intent(in) :: results
+        !> The warnings, newline-separated
+        character(len=:), allocatable :: warnings
+        integer :: i
+
+        warnings = ''
+        if (.not. allocated(results%fields)) return
+        do i = 1, size(results%fields)
+            associate (o => model%observations(i), flag => results%fields(i)%flag)
+                if (size(flag) == 0 .or. .not. all(flag == point_on_element)) cycle
+                if (len(warnings) > 0) warnings = warnings//new_line('a')
+                warnings = warnings//'every point of '//trim(observation_kind_names(o%kind))// &
+                    " '"//o%name//"' lies on an element: all its values are NaN (move it "// &
+                    'off the fractures)'
+            end associate
+        end do
+    end function field_warnings
 
 end module ddc_app_report

@@ -4,6 +4,7 @@
     benchmark.py --exe PATH --sizes 250,500,1000 --case straight|mixed|history|fields
                  --json FILE [--threads T] [--lcp-method auto|lemke|newton] [--grid NX]
                  [--steps K] [--compare-lemke] [--lu-exe PATH] [--workdir DIR]
+                 [--mpi P [--mpiexec PATH] [--block-size NB]]
 
 For every size N it writes a namelist model with N contact elements, runs ``ddc2d`` on it,
 reads the phase times from ``/solver/seconds`` of the HDF5 output (the output phase from
@@ -31,6 +32,15 @@ history).
 
 Threads: ``OMP_NUM_THREADS`` and ``OPENBLAS_NUM_THREADS`` are both set to T (default: the
 number of CPUs); ddc2d calls BLAS outside its OpenMP regions only, so the two never nest.
+
+MPI (``--mpi P``, with ``--exe`` the ddc2d of the MPI build): ``mpiexec -n P`` runs the model
+on P processes of T threads each (default T: the CPUs divided by P; ``--oversubscribe`` when
+P T exceeds the CPUs; Open MPI's variables for running as root are set when root). Each
+process is started through this script (``--measure-rank``), which waits for it and records
+its own peak resident memory, so that the JSON record holds the peak RSS of every process
+(``peak_rss_mb_per_rank``; ``peak_rss_mb`` is the largest) besides ``processes``,
+``process_grid`` and ``block_size`` (``--block-size`` sets &solver block_size). The phase
+times are the root's. The reference LU runs on P T threads.
 
 The table printed and the JSON records (a list) hold
 ``{n, case, threads, seconds: {assembly, factorization, lcp, fields, output, total},
@@ -132,8 +142,9 @@ def grid_group(nx):
             f"ymin = -2.0, ymax = 2.0, ny = {nx} /\n")
 
 
-def solver_group(method):
-    return f"&solver lcp_method = '{method}' /\n"
+def solver_group(method, block_size=None):
+    size = "" if block_size is None else f", block_size = {block_size}"
+    return f"&solver lcp_method = '{method}'{size} /\n"
 
 
 def run_measured(command, env):
@@ -164,13 +175,40 @@ def lu_reference(lu_exe, n2, env):
     return float(match.group(1)), float(match.group(2))
 
 
-def run_model(exe, text, method, name, workdir, env):
-    """Run one model with a method; return (stdout, wall seconds, peak RSS MB, the result
-    file's /solver and /history (None without a path), its element states and DDs)."""
+RANK_ENVIRONMENT = ("OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK", "SLURM_PROCID")
+
+
+def measure_rank(argv):
+    """--measure-rank PREFIX -- COMMAND...: run COMMAND (one MPI process), write its peak
+    RSS to PREFIX.<rank> as JSON and exit with its status."""
+    prefix, separator, *command = argv
+    if separator != "--" or not command:
+        raise SystemExit("usage: benchmark.py --measure-rank PREFIX -- COMMAND...")
+    rank = next((os.environ[v] for v in RANK_ENVIRONMENT if v in os.environ), "0")
+    process = subprocess.Popen(command)
+    _, status, usage = os.wait4(process.pid, 0)
+    Path(f"{prefix}.{rank}").write_text(json.dumps({"rank": int(rank),
+                                                    "peak_rss_mb": usage.ru_maxrss / 1024.0}))
+    return os.waitstatus_to_exitcode(status)
+
+
+def mpi_command(mpiexec, processes, threads, prefix):
+    """mpiexec -n P with every process started through --measure-rank."""
+    command = [mpiexec, "-n", str(processes)]
+    if processes * threads > (os.cpu_count() or 1):
+        command.insert(1, "--oversubscribe")
+    return command + [sys.executable, str(Path(__file__).resolve()), "--measure-rank",
+                      str(prefix), "--"]
+
+
+def run_model(exe, text, method, name, workdir, env, launcher=(), block_size=None):
+    """Run one model with a method (through the MPI launcher when given); return (stdout,
+    wall seconds, peak RSS MB, the result file's /solver and /history (None without a
+    path), its element states and DDs)."""
     nml = Path(workdir) / f"{name}_{method}.nml"
     h5 = Path(workdir) / f"{name}_{method}.h5"
-    nml.write_text(text + solver_group(method) + f"&output file = '{h5.name}' /\n")
-    stdout, wall, rss = run_measured([str(exe), str(nml), "-o", str(h5)], env)
+    nml.write_text(text + solver_group(method, block_size) + f"&output file = '{h5.name}' /\n")
+    stdout, wall, rss = run_measured([*launcher, str(exe), str(nml), "-o", str(h5)], env)
     with h5py.File(h5, "r") as f:
         solver = read_solver(f)
         history = read_history(h5, f, f["elements/ds"].shape[0])
@@ -183,11 +221,12 @@ def run_model(exe, text, method, name, workdir, env):
     return stdout, wall, rss, solver, history, states, dds
 
 
-def compare_with_lemke(exe, text, name, workdir, env, lu_seconds, states, dds):
+def compare_with_lemke(exe, text, name, workdir, env, lu_seconds, states, dds, launcher=(),
+                       block_size=None):
     """Lemke on the same model: its time, memory and ratio to the LU; same states; largest
     DD difference relative to the largest DD."""
-    _, _, rss, solver, _, lemke_states, lemke_dds = run_model(exe, text, "lemke", name,
-                                                              workdir, env)
+    _, _, rss, solver, _, lemke_states, lemke_dds = run_model(
+        exe, text, "lemke", name, workdir, env, launcher, block_size)
     scale = max(float(np.max(np.abs(d))) for d in lemke_dds) or 1.0
     total = solver["seconds"]["total"]
     return {"seconds": total, "peak_rss_mb": rss, "total_over_lu": total / lu_seconds,
@@ -198,21 +237,30 @@ def compare_with_lemke(exe, text, name, workdir, env, lu_seconds, states, dds):
 
 
 def benchmark_one(exe, lu_exe, n, case, threads, method, grid, workdir, steps=100,
-                  compare_lemke=False):
-    """Run one model of n elements; return its JSON record."""
+                  compare_lemke=False, processes=0, mpiexec="mpiexec", block_size=None):
+    """Run one model of n elements (on `processes` MPI processes when > 0); return its JSON
+    record."""
     env = dict(os.environ, OMP_NUM_THREADS=str(threads),
                OPENBLAS_NUM_THREADS=str(threads))
+    if processes and os.geteuid() == 0:
+        env.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     text = CASES[case](n, grid, steps)
     name = f"{case}_{n}"
-    stdout, wall, rss, solver, history, states, dds = run_model(exe, text, method, name,
-                                                                workdir, env)
+    launcher = []
+    prefix = Path(workdir) / f"{name}.rss"
+    if processes:
+        launcher = mpi_command(mpiexec, processes, threads, prefix)
+    stdout, wall, rss, solver, history, states, dds = run_model(
+        exe, text, method, name, workdir, env, launcher, block_size)
     seconds, attrs = solver["seconds"], solver["attrs"]
     # The output phase is timed while the file is written: take it from the summary.
     match = re.search(r"output\s+([0-9.]+)", stdout)
     if match:
         seconds["output"] = float(match.group(1))
         seconds["total"] += seconds["output"]
-    lu_seconds, lu_gflops = lu_reference(lu_exe, 2 * n, env)
+    lu_threads = threads * max(processes, 1)
+    lu_seconds, lu_gflops = lu_reference(lu_exe, 2 * n, dict(
+        env, OMP_NUM_THREADS=str(lu_threads), OPENBLAS_NUM_THREADS=str(lu_threads)))
     flops = float(attrs.get("factorization_flops", 0.0))
     fact = seconds["factorization"]
     final = states[-1] if history is not None else states
@@ -235,30 +283,47 @@ def benchmark_one(exe, lu_exe, n, case, threads, method, grid, workdir, steps=10
         "fields_over_lu": seconds["fields"] / lu_seconds if lu_seconds > 0 else None,
         "wall_seconds": wall,
     }
+    if processes:
+        ranks = sorted((json.loads(f.read_text()) for f in Path(workdir).glob(f"{prefix.name}.*")),
+                       key=lambda r: r["rank"])
+        if [r["rank"] for r in ranks] != list(range(processes)):
+            raise RuntimeError(f"peak RSS of ranks {[r['rank'] for r in ranks]} recorded, "
+                               f"expected 0 to {processes - 1}")
+        record.update(processes=processes, process_grid=[int(v) for v in attrs["process_grid"]],
+                      block_size=int(attrs["block_size"]),
+                      peak_rss_mb_per_rank=[r["peak_rss_mb"] for r in ranks],
+                      peak_rss_mb=max(r["peak_rss_mb"] for r in ranks))
+        for f in Path(workdir).glob(f"{prefix.name}.*"):
+            f.unlink()
     if history is not None:
         record["steps"] = int(history["state"].shape[0])
         record["fallback_steps"] = int(sum(1 for f in history.get("fallback", []) if f))
     if compare_lemke:
         record["lemke"] = compare_with_lemke(exe, text, name, workdir, env, lu_seconds,
-                                             states, dds)
+                                             states, dds, launcher, block_size)
     return record
 
 
 def print_table(records, out=sys.stdout):
-    head = ("n", "case", "thr", "method", "assembly", "factor", "lcp", "fields", "output",
-            "total", "LU ref", "tot/LU", "fld/LU", "fact GF/s", "LU GF/s", "RSS MB",
-            "stk/slp/opn", "fact/upd/reuse")
+    """One row per record; with MPI records the processes and each one's peak RSS."""
+    mpi = any("processes" in r for r in records)
+    head = ("n", "case", *(("P",) if mpi else ()), "thr", "method", "assembly", "factor",
+            "lcp", "fields", "output", "total", "LU ref", "tot/LU", "fld/LU", "fact GF/s",
+            "LU GF/s", "RSS MB", *(("rank RSS MB",) if mpi else ()), "stk/slp/opn",
+            "fact/upd/reuse")
     rows = []
     for r in records:
         s = r["seconds"]
         gf = r["factorization_gflops"]
         st = r["states"]
-        rows.append((str(r["n"]), r["case"], str(r["threads"]),
-                     r["method"] + ("*" if r["fallback"] else ""),
+        ranks = "/".join(f"{v:.0f}" for v in r.get("peak_rss_mb_per_rank", []))
+        rows.append((str(r["n"]), r["case"], *((str(r.get("processes", 1)),) if mpi else ()),
+                     str(r["threads"]), r["method"] + ("*" if r["fallback"] else ""),
                      *(f"{s[p]:.3f}" for p in SOLVER_PHASES),
                      f"{r['lu_reference_seconds']:.3f}", f"{r['total_over_lu']:.2f}",
                      f"{r['fields_over_lu']:.2f}", "-" if gf is None else f"{gf:.1f}",
                      f"{r['lu_reference_gflops']:.1f}", f"{r['peak_rss_mb']:.0f}",
+                     *((ranks or "-",) if mpi else ()),
                      f"{st['stick']}/{st['slip']}/{st['open']}",
                      "/".join(str(r[k]) for k in ("factorizations", "low_rank_updates",
                                                   "factorization_reuses"))))
@@ -288,8 +353,9 @@ def main(argv=None):
                         help="comma-separated numbers of contact elements")
     parser.add_argument("--case", required=True, choices=sorted(CASES))
     parser.add_argument("--json", required=True, type=Path, help="JSON file to write")
-    parser.add_argument("--threads", type=int, default=os.cpu_count() or 1,
-                        help="OpenMP and OpenBLAS threads (default: all CPUs)")
+    parser.add_argument("--threads", type=int, default=None,
+                        help="OpenMP and OpenBLAS threads of each process (default: all "
+                             "CPUs, divided by P with --mpi)")
     parser.add_argument("--lcp-method", default="auto", choices=("auto", "lemke", "newton"))
     parser.add_argument("--grid", type=int, default=None,
                         help="observation grid of GRID x GRID points (0: none; default "
@@ -303,6 +369,11 @@ def main(argv=None):
                              "ddc2d_lu_benchmark beside the executable's app/ folder)")
     parser.add_argument("--workdir", type=Path, default=None,
                         help="folder for the models (default: a temporary folder)")
+    parser.add_argument("--mpi", type=int, default=0, metavar="P",
+                        help="run on P MPI processes (--exe: the MPI build's ddc2d)")
+    parser.add_argument("--mpiexec", default="mpiexec", help="MPI launcher (default mpiexec)")
+    parser.add_argument("--block-size", type=int, default=None,
+                        help="&solver block_size of the distributed matrices (default 64)")
     args = parser.parse_args(argv)
 
     try:
@@ -311,6 +382,10 @@ def main(argv=None):
         parser.error(f"--sizes must be comma-separated integers, not {args.sizes!r}")
     if not sizes or min(sizes) < 6 and args.case == "mixed" or min(sizes) < 1:
         parser.error("--sizes must be positive (at least 6 for the mixed case)")
+    if args.mpi < 0 or args.block_size is not None and args.block_size < 1:
+        parser.error("--mpi and --block-size must be positive")
+    if args.threads is None:
+        args.threads = max(1, (os.cpu_count() or 1) // max(args.mpi, 1))
     if args.threads < 1:
         parser.error("--threads must be at least 1")
     if args.steps < 3:
@@ -332,8 +407,10 @@ def main(argv=None):
         for n in sizes:
             records.append(benchmark_one(exe, lu_exe, n, args.case, args.threads,
                                          args.lcp_method, args.grid, workdir, args.steps,
-                                         args.compare_lemke))
-    print(f"# ddc2d benchmark, case {args.case}, {args.threads} thread(s), "
+                                         args.compare_lemke, args.mpi, args.mpiexec,
+                                         args.block_size))
+    processes = f"{args.mpi} MPI processes of " if args.mpi else ""
+    print(f"# ddc2d benchmark, case {args.case}, {processes}{args.threads} thread(s), "
           f"lcp_method = {args.lcp_method}, grid {args.grid} x {args.grid}, "
           f"{time.strftime('%Y-%m-%d')}")
     print_table(records)
@@ -342,4 +419,6 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
+    if sys.argv[1:2] == ["--measure-rank"]:
+        sys.exit(measure_rank(sys.argv[2:]))
     sys.exit(main())

@@ -8,8 +8,9 @@ tests. It knows
   inverses ``STATE_CODES``, ``CONDITION_CODES``; ``parse_coding`` reads a ``coding``
   attribute);
 * the groups of a result: ``load_result`` reads a whole file, ``read_elements``,
-  ``read_fractures``, ``read_tips``, ``read_fields``, ``read_history``, ``read_solver`` and
-  ``read_sweep`` one group of an open file; ``is_complete`` tells a finished file;
+  ``read_fractures``, ``read_tips``, ``read_fields``, ``read_history``, ``read_growth``,
+  ``read_solver`` and ``read_sweep`` one group of an open file; ``is_complete`` tells a
+  finished file;
 * the tie rule of every default that picks "the largest" or "the first": ``index_of_extreme``
   and ``is_tie`` (values within ``TIE_RTOL`` = 1e-9 relative count as equal, the lowest index
   wins), so that a choice never depends on last-bit rounding (symmetric models, other BLAS
@@ -42,6 +43,9 @@ HISTORY_LOADS = ("sxx", "syy", "sxy", "dsxx_dy", "dsyy_dy", "dsxy_dy", "p0")
 #: Per-step /history datasets beyond the loads, DDs and states (read when present).
 HISTORY_STEP_DATASETS = ("shear_traction", "normal_traction", "k1", "k2", "pivots",
                          "newton_iterations")
+#: /growth datasets (fracture growth, SPEC-GROWTH 3), one value per record (tip and step).
+GROWTH_DATASETS = ("step", "fracture_id", "end", "x", "y", "k1", "k2", "k_eq", "mts_angle",
+                   "angle", "corrections", "k2_after", "length", "reason")
 #: Phases timed in /solver/seconds.
 SOLVER_PHASES = ("assembly", "factorization", "lcp", "fields", "output", "total")
 
@@ -158,8 +162,10 @@ def load_result(path):
     ``fractures`` (list of dicts name / first / last / label, 1-based inclusive element
     range), ``fields`` (dict name -> dict with ``kind``, ``nx``, ``ny`` and the arrays),
     ``tips`` (dict of 1-D arrays x, y, fracture_id, element, k1, k2 and ``k_unit``; empty
-    arrays without /tips), ``remote_stress`` ((sxx, syy, sxy) or None) and ``history``
-    (see read_history; None without /history).
+    arrays without /tips), ``remote_stress`` ((sxx, syy, sxy) or None),
+    ``remote_stress_gradient`` ((dsxx_dy, dsyy_dy, dsxy_dy)) and ``pore_fluid`` ((p0,
+    dp_dy)), zeros when the file predates them, ``history`` (see read_history; None
+    without /history) and ``growth`` (see read_growth; None without /growth).
     Raises ResultError with a message naming the file and the problem.
     """
     path = Path(path)
@@ -197,7 +203,10 @@ def _read_open_file(path, handle):
         "fields": read_fields(handle),
         "tips": read_tips(path, handle),
         "remote_stress": read_remote_stress(path, handle),
+        "remote_stress_gradient": read_root_reals(path, handle, "remote_stress_gradient", 3),
+        "pore_fluid": read_root_reals(path, handle, "pore_fluid", 2),
         "history": read_history(path, handle, count),
+        "growth": read_growth(path, handle),
     }
 
 
@@ -309,10 +318,18 @@ def read_remote_stress(path, handle):
     """The root attribute remote_stress as (sxx, syy, sxy), or None when absent."""
     if "remote_stress" not in handle.attrs:
         return None
-    values = np.asarray(handle.attrs["remote_stress"], dtype=float).ravel()
-    if values.size != 3:
-        raise ResultError(f"'{path}': root attribute remote_stress has {values.size} "
-                          "values, expected 3 (sxx, syy, sxy)")
+    return read_root_reals(path, handle, "remote_stress", 3)
+
+
+def read_root_reals(path, handle, name, size):
+    """A root attribute of `size` reals as a tuple; zeros when absent (files written
+    before ddc2d stored it, e.g. remote_stress_gradient and pore_fluid)."""
+    if name not in handle.attrs:
+        return (0.0,) * size
+    values = np.asarray(handle.attrs[name], dtype=float).ravel()
+    if values.size != size:
+        raise ResultError(f"'{path}': root attribute {name} has {values.size} values, "
+                          f"expected {size}")
     return tuple(float(v) for v in values)
 
 
@@ -338,6 +355,26 @@ def read_history(path, handle, count):
         raise ResultError(f"'{path}': /history/ds has shape {history['ds'].shape}, "
                           f"expected (steps, {count})")
     return history
+
+
+def read_growth(path, handle):
+    """/growth of a fracture growth run as a dict: every dataset of GROWTH_DATASETS (1-D,
+    one value per record: one record per tip per step), ``attrs`` (strings decoded: toughness,
+    end_reason, ...) and ``reasons`` (code -> name, from the attribute reason_coding); None
+    when the file has no /growth."""
+    if "growth" not in handle:
+        return None
+    group = handle["growth"]
+    growth = {}
+    for key in GROWTH_DATASETS:
+        if key not in group:
+            raise ResultError(f"'{path}' lacks /growth/{key}")
+        growth[key] = np.asarray(group[key][()]).ravel()
+        if growth[key].size != growth["step"].size:
+            raise ResultError(f"'{path}': /growth datasets differ in length")
+    growth["attrs"] = decoded_attrs(group.attrs)
+    growth["reasons"] = parse_coding(group.attrs.get("reason_coding", ""))
+    return growth
 
 
 def read_solver(handle):

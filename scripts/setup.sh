@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # Install what ddc2d needs to build, test and plot, and nothing that is already there.
 #
-#   scripts/setup.sh
+#   scripts/setup.sh [--mpi]
 #
 # 1. Debian packages (compiler, CMake, Ninja, OpenBLAS/LAPACK, serial HDF5, h5dump,
 #    python3 + venv, valgrind for the memcheck tests): installed with apt-get only when
-#    one of them is missing.
+#    one of them is missing. With --mpi also Open MPI and ScaLAPACK (openmpi-bin,
+#    libopenmpi-dev, libscalapack-openmpi-dev) for the MPI build (cmake --preset mpi).
 # 2. A Python virtual environment in build/venv with numpy, h5py, matplotlib and pytest
 #    from PyPI, xlrd and openpyxl (scripts/comp2ddm2nml reads .xls / .xlsx workbooks),
 #    xlwt (the tests write .xls workbooks) and the linters fortitude-lint and ruff:
@@ -20,6 +21,9 @@ cd "$repo_root"
 
 debian_packages=(gfortran cmake ninja-build libopenblas-dev liblapack-dev libhdf5-dev
                  hdf5-tools python3 python3-venv valgrind)
+# The MPI build: Open MPI with its Fortran mpi_f08 module, and ScaLAPACK (with BLACS) built
+# for it. Not libhdf5-openmpi-dev: the output stays serial HDF5, written by one process.
+mpi_packages=(openmpi-bin libopenmpi-dev libscalapack-openmpi-dev)
 # PyPI package names; each one's import name is the same.
 python_packages=(numpy h5py matplotlib pytest xlrd openpyxl xlwt)
 python_modules="numpy, h5py, matplotlib, pytest, xlrd, openpyxl, xlwt"
@@ -30,6 +34,14 @@ venv_dir="$repo_root/build/venv"
 
 say() { printf 'setup: %s\n' "$*"; }
 die() { printf 'setup: error: %s\n' "$*" >&2; exit 1; }
+
+tools=(gfortran cmake ninja h5dump python3)
+for argument in "$@"; do
+    case "$argument" in
+        --mpi) debian_packages+=("${mpi_packages[@]}"); tools+=(mpiexec mpif90) ;;
+        *) die "unknown argument '$argument' (usage: scripts/setup.sh [--mpi])" ;;
+    esac
+done
 
 # ---------------------------------------------------------------- Debian packages
 is_installed() {
@@ -69,7 +81,7 @@ else
     say "Debian packages present: ${debian_packages[*]}"
 fi
 
-for tool in gfortran cmake ninja h5dump python3; do
+for tool in "${tools[@]}"; do
     command -v "$tool" > /dev/null 2>&1 || die "'$tool' not found on PATH after installation"
 done
 

@@ -5,7 +5,7 @@ module ddc_error
 
     public :: error_type, set_error, set_internal_error
     public :: exit_success, exit_solver_failure, exit_bad_input, exit_io_failure
-    public :: exit_internal_error
+    public :: exit_internal_error, exit_out_of_memory
 
     !> The run succeeded.
     integer, parameter :: exit_success = 0
@@ -17,11 +17,14 @@ module ddc_error
     integer, parameter :: exit_io_failure = 3
     !> A contract between two parts of ddc2d was broken: a bug, not the user's input
     integer, parameter :: exit_internal_error = 4
+    !> The model is too large for the memory of this machine (or its cgroup): it would run
+    !> with more memory, unchanged
+    integer, parameter :: exit_out_of_memory = 5
 
     !> An error: the exit code it maps to and one sentence for the user.
     type :: error_type
-        !> Exit code (exit_solver_failure, exit_bad_input, exit_io_failure or
-        !> exit_internal_error)
+        !> Exit code (exit_solver_failure, exit_bad_input, exit_io_failure,
+        !> exit_internal_error or exit_out_of_memory)
         integer :: code = exit_bad_input
         !> Message for the user, naming file, group and variable where it applies
         character(len=:), allocatable :: message

@@ -6,8 +6,8 @@ module ddc_text
     implicit none
     private
 
-    public :: newline, max_messages, add_message, messages_error, itoa, rtoa, lower
-    public :: join_integers, prefix_lines, quoted_list, find_name, seconds_text
+    public :: newline, max_messages, add_message, messages_error, itoa, rtoa, short_real, lower
+    public :: join_integers, prefix_lines, quoted_list, find_name, bytes_text, seconds_text
 
     !> Separator of the lines of a message
     character(len=*), parameter :: newline = achar(10)
@@ -84,6 +84,76 @@ contains
         out = trim(buffer)//' s'
         if (out(1:1) == '.') out = '0'//out
     end function seconds_text
+
+    !> A real as short text for people: integers without a point (-30, 30000), others to 8
+    !> significant digits without trailing zeros, in fixed notation from 1e-4 to 1e9 (0.2,
+    !> 0.0265, 19.62) and in exponent notation beyond (1.5E-05, 1.28E+12).
+    pure function short_real(x) result(out)
+        !> The number
+        real(wp), intent(in) :: x
+        character(len=:), allocatable :: out
+        character(len=40) :: buffer
+        integer :: e, decimals
+
+        if (x == anint(x) .and. abs(x) < 1.0e9_wp) then
+            write (buffer, '(i0)') nint(x, kind=8)
+            out = trim(buffer)
+        else if (abs(x) >= 1.0e-4_wp .and. abs(x) < 1.0e9_wp) then
+            decimals = max(0, 7 - floor(log10(abs(x))))
+            write (buffer, '(f0.'//itoa(decimals)//')') x
+            out = trim_zeros(buffer)
+            ! f0.d writes no zero before the point
+            if (out(1:1) == '.') out = '0'//out
+            if (out(1:2) == '-.') out = '-0'//out(2:)
+        else
+            write (buffer, '(es15.7)') x
+            buffer = adjustl(buffer)
+            e = scan(buffer, 'Ee')
+            out = trim(buffer)
+            if (e > 1) out = trim_zeros(buffer(1:e - 1))//trim(buffer(e:))
+        end if
+    end function short_real
+
+    !> A decimal number without trailing zeros (and without a trailing point).
+    pure function trim_zeros(text) result(out)
+        character(len=*), intent(in) :: text
+        character(len=:), allocatable :: out
+
+        out = trim(adjustl(text))
+        if (index(out, '.') == 0) return
+        do while (out(len(out):len(out)) == '0')
+            out = out(1:len(out) - 1)
+        end do
+        if (out(len(out):len(out)) == '.') out = out(1:len(out) - 1)
+    end function trim_zeros
+
+    !> A memory size for people, in decimal units to two significant digits: '640 bytes',
+    !> '1.3 TB', '24 GB'.
+    pure function bytes_text(bytes) result(out)
+        !> The size [bytes]
+        real(wp), intent(in) :: bytes
+        character(len=:), allocatable :: out
+        character(len=*), parameter :: units(4) = [character(len=2) :: 'kB', 'MB', 'GB', 'TB']
+        real(wp) :: value
+        integer :: k
+
+        if (.not. bytes >= 1000.0_wp) then
+            out = short_real(anint(max(bytes, 0.0_wp)))//' bytes'
+            return
+        end if
+        value = bytes
+        k = 0
+        do while (value >= 999.5_wp .and. k < size(units))
+            value = value / 1000.0_wp
+            k = k + 1
+        end do
+        if (value < 9.95_wp) then
+            value = anint(value * 10.0_wp) / 10.0_wp
+        else
+            value = anint(value)
+        end if
+        out = short_real(value)//' '//trim(units(k))
+    end function bytes_text
 
     !> Lower-case copy of s (ASCII).
     pure function lower(s) result(out)

@@ -17,8 +17,10 @@ module test_fast_contact
     use ddc_contact_options, only: solver_options, parse_solver_options, option_code, &
         open_cohesion_names, lcp_lemke, lcp_newton
     use ddc_test_builders, only: polyline_model, join_fractures
-    use ddc_contact_reduced_system, only: reduced_system, set_system, solve_system, &
+    use ddc_contact_reduced_factors, only: reduced_factors, set_system, solve_system, &
         action_factorized, action_updated, action_reused
+    use ddc_contact_memory, only: lemke_bytes
+    use ddc_error, only: exit_out_of_memory
     implicit none
     private
 
@@ -46,6 +48,7 @@ contains
                  new_test('random_stepping_faults', test_random_stepping), &
                  new_test('fallback_to_lemke', test_fallback), &
                  new_test('reduced_system_updates', test_reduced_updates), &
+                 new_test('fallback_without_memory', test_fallback_without_memory), &
                  new_test('bad_method', test_bad_method)]
     end subroutine collect_fast_contact
 
@@ -344,16 +347,8 @@ contains
         type(model_type) :: model
         type(contact_result) :: fast, ref
         real(wp), allocatable :: a(:, :), ss(:), sn(:)
-        integer, allocatable :: rows(:)
-        integer :: n
 
-        model = kinked()
-        n = model%elements%n
-        allocate (a(2 * n, 2 * n), ss(n), sn(n))
-        rows = spread(row_traction, 1, n)
-        call assemble_influence(model%elements, e_modulus / (2.0_wp * (1.0_wp + nu)), nu, &
-            rows, rows, a)
-        call resolve_remote_stress(model%elements, model%sxx, model%syy, model%sxy, ss, sn)
+        call kinked_system(model, a, ss, sn)
         associate (e => model%elements)
             call solve_contact(a, ss, sn, e%mu, e%sf, e%pressure, &
                                solver_options(lcp_method=lcp_lemke), ref, error)
@@ -380,17 +375,13 @@ contains
     subroutine test_reduced_updates(error)
         type(error_type), allocatable, intent(out) :: error
         type(model_type) :: model
-        type(reduced_system) :: kept, fresh
-        real(wp), allocatable :: a(:, :), x(:), y(:), coef(:)
-        integer, allocatable :: rows(:), unknown(:), partner(:)
+        type(reduced_factors) :: kept, fresh
+        real(wp), allocatable :: a(:, :), x(:), y(:), coef(:), ss(:), sn(:)
+        integer, allocatable :: unknown(:), partner(:)
         integer :: n, k, i
 
-        model = kinked()
+        call kinked_system(model, a, ss, sn)
         n = model%elements%n
-        allocate (a(2 * n, 2 * n))
-        rows = spread(row_traction, 1, n)
-        call assemble_influence(model%elements, e_modulus / (2.0_wp * (1.0_wp + nu)), nu, &
-            rows, rows, a)
         ! Base: Ds of elements 1..40 slipping (coefficient mu), Dn of 41..60 open.
         unknown = [(i, i = 1, 40), (n + i, i = 41, 60)]
         partner = [(n + i, i = 1, 40), (n + i, i = 41, 60)]
@@ -423,6 +414,46 @@ contains
         call check(error, kept%factorizations == 1 .and. kept%updates == 1 .and. &
                    kept%reuses == 1, 'counts of factorizations, updates and reuses')
     end subroutine test_reduced_updates
+
+    !> The same fallback when the memory left cannot hold Lemke's LCP: it does not start,
+    !> the solve stops with exit_out_of_memory saying why Newton failed and what Lemke
+    !> would need.
+    subroutine test_fallback_without_memory(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model
+        type(contact_result) :: fast
+        type(error_type), allocatable :: solve_error
+        real(wp), allocatable :: a(:, :), ss(:), sn(:)
+
+        call kinked_system(model, a, ss, sn)
+        associate (e => model%elements)
+            call solve_contact(a, ss, sn, e%mu, e%sf, e%pressure, solver_options( &
+                lcp_method=lcp_newton, work_bytes=lemke_bytes(e%n) - 1.0_wp), fast, &
+                solve_error, max_iterations=1)
+        end associate
+        call check(error, allocated(solve_error), 'the fallback must not start')
+        if (allocated(error)) return
+        call check(error, solve_error%code, exit_out_of_memory, 'exit code')
+        call check(error, index(solve_error%message, 'no convergence within 1 iterations') > 0 &
+            .and. index(solve_error%message, 'the fallback to Lemke would need about') > 0, &
+            'message: '//solve_error%message)
+    end subroutine test_fallback_without_memory
+
+    !> The kink, its influence matrix and its resolved remote stress.
+    subroutine kinked_system(model, a, ss, sn)
+        type(model_type), intent(out) :: model
+        real(wp), allocatable, intent(out) :: a(:, :), ss(:), sn(:)
+        integer, allocatable :: rows(:)
+        integer :: n
+
+        model = kinked()
+        n = model%elements%n
+        allocate (a(2 * n, 2 * n), ss(n), sn(n))
+        rows = spread(row_traction, 1, n)
+        call assemble_influence(model%elements, e_modulus / (2.0_wp * (1.0_wp + nu)), nu, &
+            rows, rows, a)
+        call resolve_remote_stress(model%elements, model%sxx, model%syy, model%sxy, ss, sn)
+    end subroutine kinked_system
 
     !> A method other than auto, lemke or newton is bad input.
     subroutine test_bad_method(error)

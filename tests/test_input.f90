@@ -42,6 +42,7 @@ contains
             new_test('bad_elastic_all_at_once', test_bad_elastic), &
             new_test('bad_mu', test_bad_mu), &
             new_test('bad_sf', test_bad_sf), &
+            new_test('bad_block_size', test_bad_block_size), &
             new_test('bad_nan_and_inf', test_bad_nan), &
             new_test('bad_vertices', test_bad_vertices), &
             new_test('bad_xy_length', test_bad_xy_length), &
@@ -63,7 +64,8 @@ contains
             new_test('bad_duplicate_names', test_bad_duplicate_names), &
             new_test('bad_both_geometries', test_bad_both_geometry), &
             new_test('bad_crossing_mesh', test_bad_crossing), &
-            new_test('bad_missing_input_file', test_bad_missing_input) &
+            new_test('bad_missing_input_file', test_bad_missing_input), &
+            new_test('bad_load_path_length', test_bad_load_path_length) &
             ]
     end subroutine collect_input
 
@@ -373,6 +375,7 @@ contains
         call check(error, model%stress_unit == 'MPa', 'stress unit')
         call check(error, model%solver%lcp_method == lcp_lemke, 'lcp_method')
         call check(error, model%solver%open_cohesion == cohesion_lost, 'open_cohesion')
+        call check(error, model%block_size, 32, 'block_size')
         call check(error, model%output_file == 'good_polyline.h5', &
                    'default output file: '//model%output_file)
         call check(error, model%input_file == data//'good_polyline.nml', 'input file')
@@ -395,6 +398,7 @@ contains
         call check(error, model%stress_unit == 'MPa', 'default stress unit')
         call check(error, model%solver%lcp_method == lcp_auto, 'default lcp_method')
         call check(error, model%solver%open_cohesion == cohesion_kept, 'default open_cohesion')
+        call check(error, model%block_size, 64, 'default block_size')
         call check(error, model%sxx, 0.0_wp, 'default sxx', abs_tol=0.0_wp)
         call check(error, model%elements%n, 1, 'elements')
         call check(error, model%elements%sf(1), 0.0_wp, 'default sf', abs_tol=0.0_wp)
@@ -427,6 +431,14 @@ contains
         call check_bad_input(error, data//'bad_mu.nml', [character(len=40) :: &
                              "&fracture 1 'f' (line 2)", 'mu(2) =', 'must be >= 0'], lines=1)
     end subroutine test_bad_mu
+
+    subroutine test_bad_block_size(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call check_bad_input(error, data//'bad_block_size.nml', [character(len=40) :: &
+                             '&solver (line 3)', 'block_size = 0', 'must be at least 1'], &
+                             lines=1)
+    end subroutine test_bad_block_size
 
     subroutine test_bad_sf(error)
         type(error_type), allocatable, intent(out) :: error
@@ -601,5 +613,14 @@ contains
         call check_bad_input(error, data//'no_such_model.nml', [character(len=40) :: &
                              'file not found'], lines=1)
     end subroutine test_bad_missing_input
+
+    !> One &load_path quantity with the wrong number of values: that message alone (it was
+    !> given, so no 'give the load at each vertex' as well).
+    subroutine test_bad_load_path_length(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call check_bad_input(error, data//'bad_load_path_length.nml', [character(len=40) :: &
+            '&load_path', 'sxy has 2 values', 'one per vertex: 3'], lines=1)
+    end subroutine test_bad_load_path_length
 
 end module test_input

@@ -98,9 +98,11 @@ contains
         call check_writable(path, result_error)
         call check(error, allocated(result_error), 'check_writable fails on a missing folder')
         if (allocated(error)) return
-        call check(error, result_error%code, exit_bad_input, 'exit code')
+        call check(error, result_error%code, exit_io_failure, 'exit code')
         call check(error, index(result_error%message, path) > 0, &
             'message names the path: '//result_error%message)
+        call check(error, index(result_error%message, 'does not exist') > 0, &
+            'message names the missing folder: '//result_error%message)
     end subroutine test_check_writable_missing_folder
 
     subroutine test_check_writable_folder(error)

@@ -277,12 +277,14 @@ contains
         type(sweep_definition) :: sweep
 
         call read_good(error, 'labels', "&sweep parameters = 'mu', 'remote_angle', "// &
-                       "values_1 = 0.2, 1.5e-5, values_2 = -30 /", model, sweep)
+                       "values_1 = 0.2, 1.5e-5, 0.0265, values_2 = -30 /", model, sweep)
         if (allocated(error)) return
         call check(error, task_label(sweep, 0) == 'mu = 0.2, remote_angle = -30', &
                    'label of task 0: '//task_label(sweep, 0))
-        call check(error, task_label(sweep, 1) == 'mu = 0.15E-4, remote_angle = -30', &
+        call check(error, task_label(sweep, 1) == 'mu = 1.5E-05, remote_angle = -30', &
                    'label of task 1: '//task_label(sweep, 1))
+        call check(error, task_label(sweep, 2) == 'mu = 0.0265, remote_angle = -30', &
+                   'label of task 2: '//task_label(sweep, 2))
     end subroutine test_labels
 
     subroutine test_names(error)

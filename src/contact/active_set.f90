@@ -29,19 +29,21 @@
 !> (A times them, kept while they do not change). One-shot solves have ds_previous = 0.
 !>
 !> One iteration costs one product with A (8 N^2 flops) and one solve of the reduced
-!> system (ddc_contact_reduced_system): a new LU (2/3 m^3 flops for m unknowns, at most
-!> 2N) only when the states changed much; unchanged states reuse the factors (two
-!> triangular solves) and a few changes update them (low rank). A solve through an update
-!> is checked: the imposed tractions of the unknowns' rows must hold against A D from the
-!> unfactored A (to update_tol of the stress scale), else the system is factorized anew.
-!> The workspace keeps the factors between iterations and between solves (the steps of a
-!> loading history).
+!> system: with the dense operator a new LU (2/3 m^3 flops for m unknowns, at most 2N)
+!> only when the states changed much; unchanged states reuse the factors (two triangular
+!> solves) and a few changes update them (low rank). A solve through an update is
+!> checked: the imposed tractions of the unknowns' rows must hold against A D from the
+!> unfactored A (to update_tol of the stress scale), else the factors are dropped and the
+!> system is factorized anew.
+!> How A is stored, multiplied and factorized is the business of the stiffness operator
+!> (ddc_contact_stiffness): a dense matrix in memory, whose factors are kept between
+!> iterations and between solves (the steps of a loading history), or one distributed over
+!> MPI processes (one-shot solves only: no slip is held there).
 module ddc_contact_active_set
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
-    use ddc_linalg_lapack, only: dgemv
-    use ddc_contact_reduced_system, only: reduced_system, set_system, solve_system, refactor, &
-        action_updated, action_names
+    use ddc_contact_stiffness, only: stiffness_operator, reduced_system, action_updated, &
+        action_name
     use ddc_text, only: itoa, seconds_text
     use ddc_progress, only: report_progress, reports_phases
     use, intrinsic :: iso_fortran_env, only: int64
@@ -61,12 +63,10 @@ module ddc_contact_active_set
     !> solve through a low-rank update [-]
     real(wp), parameter :: update_tol = 1.0e-11_wp
 
-    !> What the method keeps between iterations and between solves on the same A.
+    !> What the method keeps between solves on the same A (the steps of a loading history):
+    !> the DDs held at non-zero values by the states (the previous slip of sticking
+    !> elements), shape (2n), and A times them, shape (2n) [length], [stress].
     type :: active_set_workspace
-        !> The reduced system and its factors
-        type(reduced_system) :: system
-        !> The DDs held at non-zero values by the states (the previous slip of sticking
-        !> elements), shape (2n), and A times them, shape (2n) [length], [stress]
         real(wp), allocatable :: fixed(:), fixed_traction(:)
     end type active_set_workspace
 
@@ -87,6 +87,9 @@ module ddc_contact_active_set
         !> Final states: open (normal) and shear_stick / shear_slip_plus / shear_slip_minus
         logical, allocatable :: open(:)
         integer, allocatable :: shear_state(:)
+        !> Wall time of the LU factorizations and updates [s] and the nominal flop count of
+        !> the factorizations (2/3 m^3 each)
+        real(wp) :: seconds_factorization = 0.0_wp, factorization_flops = 0.0_wp
     end type active_set_result
 
 contains
@@ -95,8 +98,8 @@ contains
     subroutine solve_contact_active_set(a, s_r_s, s_r_np, mu, sf, sigma0, res, &
                                         max_iterations, work, start_open, start_shear, &
                                         ds_previous)
-        !> Influence matrix ordered [s; n], shape (2n, 2n) [stress / length]
-        real(wp), intent(in) :: a(:, :)
+        !> Influence matrix ordered [s; n], 2n x 2n [stress / length]
+        class(stiffness_operator), intent(inout) :: a
         !> Remote shear traction and effective normal traction (s_n + p) on each element,
         !> shape (n) [stress]
         real(wp), intent(in) :: s_r_s(:), s_r_np(:)
@@ -108,8 +111,7 @@ contains
         type(active_set_result), intent(out) :: res
         !> Iteration limit
         integer, intent(in) :: max_iterations
-        !> Factors and fixed tractions kept from earlier solves on the same A (empty at
-        !> first)
+        !> Fixed tractions kept from earlier solves on the same A (empty at first)
         type(active_set_workspace), intent(inout) :: work
         !> Initial states (default: from the remote stress alone), shape (n)
         logical, intent(in), optional :: start_open(:)
@@ -122,17 +124,14 @@ contains
         logical, allocatable :: open_old(:)
         integer, allocatable :: shear_old(:)
         real(wp) :: c, tol_s, tol_d
-        integer :: n, n2, i
+        integer :: n, n2, i, unknowns
         integer(int64) :: t0, t1, rate
         logical :: changed, cycling
         type(error_type), allocatable :: singular
 
         n = size(mu)
         n2 = 2 * n
-        c = 0.0_wp
-        do i = 1, n2
-            c = max(c, abs(a(i, i)))
-        end do
+        c = a%max_diagonal()
         if (.not. c > 0.0_wp) c = 1.0_wp
         tol_s = state_tol * sigma0
         tol_d = state_tol * sigma0 / c
@@ -169,15 +168,15 @@ contains
             res%iterations = res%iterations + 1
             call system_clock(t0, rate)
             call solve_states(a, s_r_s, s_r_np, mu, sf, held, sigma0, res, work, dd, t, &
-                              singular)
+                              unknowns, singular)
             if (allocated(singular)) then
                 res%reason = singular%message
                 return
             end if
             call system_clock(t1)
             if (reports_phases(n)) call report_progress('newton iteration '// &
-                itoa(res%iterations)//': '//itoa(size(work%system%unknown))//' unknowns, '// &
-                trim(action_names(work%system%action))//', '// &
+                itoa(res%iterations)//': '//itoa(unknowns)//' unknowns, '// &
+                action_name(a%action)//', '// &
                 seconds_text(real(t1 - t0, wp) / real(max(rate, 1_int64), wp)))
             res%ds = dd(1:n)
             res%dn = dd(n + 1:n2)
@@ -250,46 +249,25 @@ contains
     end subroutine update_states
 
     !> Solve for the DDs of the current states: dd = [Ds; Dn] (Ds = held on sticking
-    !> elements, Dn = 0 on closed ones), and t = S + A dd with A dd in res%ad. singular is
-    !> allocated when the reduced system is (numerically) singular.
-    subroutine solve_states(a, s_r_s, s_r_np, mu, sf, held, sigma0, res, work, dd, t, singular)
-        real(wp), intent(in) :: a(:, :), s_r_s(:), s_r_np(:), mu(:), sf(:), held(:), sigma0
+    !> elements, Dn = 0 on closed ones), and t = S + A dd with A dd in res%ad; unknowns is
+    !> the size of the reduced system. singular is allocated when the reduced system is
+    !> (numerically) singular.
+    subroutine solve_states(a, s_r_s, s_r_np, mu, sf, held, sigma0, res, work, dd, t, &
+                            unknowns, singular)
+        class(stiffness_operator), intent(inout) :: a
+        real(wp), intent(in) :: s_r_s(:), s_r_np(:), mu(:), sf(:), held(:), sigma0
         type(active_set_result), intent(inout) :: res
         type(active_set_workspace), intent(inout) :: work
         real(wp), intent(out) :: dd(:), t(:)
+        integer, intent(out) :: unknowns
         type(error_type), allocatable, intent(out) :: singular
-        real(wp), allocatable :: coef(:), target(:), x(:), fixed(:), s(:)
-        integer, allocatable :: unknown(:), partner(:)
-        integer :: n, m, i
+        type(reduced_system) :: system
+        real(wp), allocatable :: x(:), fixed(:), s(:)
+        integer :: n, m
         logical :: known
         character(len=:), allocatable :: subject
 
         n = size(mu)
-        ! Active unknowns: Ds of slipping elements (rows: shear row + coef * normal row,
-        ! s_s - sign tau_s = 0 with tau_s = Sf - mu S_n' (closed) or Sf (open)), Dn of open
-        ! elements (rows: normal row, S_n' = 0).
-        allocate (unknown(2 * n), partner(2 * n), coef(2 * n), target(2 * n))
-        m = 0
-        do i = 1, n
-            if (res%shear_state(i) /= shear_stick) then
-                m = m + 1
-                unknown(m) = i
-                partner(m) = n + i
-                coef(m) = 0.0_wp
-                if (.not. res%open(i)) coef(m) = real(res%shear_state(i), wp) * mu(i)
-                target(m) = real(res%shear_state(i), wp) * sf(i)
-            end if
-        end do
-        do i = 1, n
-            if (res%open(i)) then
-                m = m + 1
-                unknown(m) = n + i
-                partner(m) = n + i
-                coef(m) = 0.0_wp
-                target(m) = 0.0_wp
-            end if
-        end do
-
         ! The DDs the states fix: the held slip of sticking elements; S with A times them.
         allocate (fixed(2 * n), source=0.0_wp)
         where (res%shear_state == shear_stick) fixed(1:n) = held
@@ -302,28 +280,30 @@ contains
             if (.not. known) then
                 work%fixed = fixed
                 if (allocated(work%fixed_traction)) deallocate (work%fixed_traction)
-                allocate (work%fixed_traction(2 * n))
-                call dgemv('N', 2 * n, n, 1.0_wp, a, 2 * n, fixed, 1, 0.0_wp, &
-                           work%fixed_traction, 1)
+                allocate (work%fixed_traction(2 * n), source=0.0_wp)
+                call a%multiply(fixed, work%fixed_traction)
             end if
             s = s + work%fixed_traction
         end if
-        x = target(1:m) - s(unknown(1:m)) - coef(1:m) * s(partner(1:m))
+        call reduced_unknowns(res%open, res%shear_state, s(1:n), s(n + 1:), mu, sf, system)
+        m = size(system%unknown)
+        unknowns = m
+        allocate (x(m))
         subject = 'the reduced system of iteration '//itoa(res%iterations)
-        call set_system(work%system, a, unknown(1:m), partner(1:m), coef(1:m), subject, &
-                        singular)
+        ! Asked even without unknowns: an operator with unknowns of its own updates them.
+        call a%solve_reduced(system, x, subject, singular, res%seconds_factorization, &
+                             res%factorization_flops)
         if (allocated(singular)) return
-        call solve_system(work%system, x)
         call tractions(x)
         ! A solve through a low-rank update must meet the unknowns' equations against the
         ! unfactored A; else factorize anew and solve again.
-        if (work%system%action == action_updated .and. m > 0) then
-            if (.not. maxval(abs(t(unknown(1:m)) + coef(1:m) * t(partner(1:m)) - &
-                                 target(1:m))) <= update_tol * sigma0) then
-                call refactor(work%system, a, subject, singular)
+        if (a%action == action_updated .and. m > 0) then
+            if (.not. maxval(abs(t(system%unknown) + system%coef * t(system%partner) - &
+                                 target())) <= update_tol * sigma0) then
+                call a%discard_factors()
+                call a%solve_reduced(system, x, subject, singular, &
+                                     res%seconds_factorization, res%factorization_flops)
                 if (allocated(singular)) return
-                x = target(1:m) - s(unknown(1:m)) - coef(1:m) * s(partner(1:m))
-                call solve_system(work%system, x)
                 call tractions(x)
             end if
         end if
@@ -335,11 +315,64 @@ contains
             real(wp), intent(in) :: solution(:)
 
             dd = fixed
-            dd(unknown(1:m)) = solution
-            call dgemv('N', 2 * n, 2 * n, 1.0_wp, a, 2 * n, dd, 1, 0.0_wp, res%ad, 1)
+            dd(system%unknown) = solution
+            res%ad = 0.0_wp
+            call a%multiply(dd, res%ad)
             t = [s_r_s, s_r_np] + res%ad
         end subroutine tractions
 
+        !> What each unknown's row imposes: sign Sf on a slip row (the friction part is
+        !> in its coefficient), 0 on an open element's normal row.
+        function target() result(values)
+            real(wp) :: values(m)
+            integer :: k, i
+
+            do k = 1, m
+                i = system%unknown(k)
+                values(k) = 0.0_wp
+                if (i <= n) values(k) = real(res%shear_state(i), wp) * sf(i)
+            end do
+        end function target
+
     end subroutine solve_states
+
+    !> The reduced system of given states: the unknowns not fixed at zero, Ds of slipping
+    !> elements (row: the shear row + coef * the normal row, s_s - sign tau_s = 0) then Dn of
+    !> open elements (row: the normal row, S_n' = 0).
+    pure subroutine reduced_unknowns(open, shear_state, s_r_s, s_r_np, mu, sf, system)
+        logical, intent(in) :: open(:)
+        integer, intent(in) :: shear_state(:)
+        real(wp), intent(in) :: s_r_s(:), s_r_np(:), mu(:), sf(:)
+        type(reduced_system), intent(out) :: system
+        integer :: n, m, i
+
+        n = size(mu)
+        m = count(shear_state /= shear_stick) + count(open)
+        allocate (system%unknown(m), system%partner(m), system%coef(m), system%rhs(m))
+        m = 0
+        do i = 1, n
+            if (shear_state(i) /= shear_stick) then
+                m = m + 1
+                system%unknown(m) = i
+                system%partner(m) = n + i
+                system%coef(m) = 0.0_wp
+                ! s_s - sign tau_s = 0 with tau_s = Sf - mu S_n' (closed) or Sf (open).
+                system%rhs(m) = real(shear_state(i), wp) * sf(i) - s_r_s(i)
+                if (.not. open(i)) then
+                    system%coef(m) = real(shear_state(i), wp) * mu(i)
+                    system%rhs(m) = system%rhs(m) - system%coef(m) * s_r_np(i)
+                end if
+            end if
+        end do
+        do i = 1, n
+            if (open(i)) then
+                m = m + 1
+                system%unknown(m) = n + i
+                system%partner(m) = n + i
+                system%coef(m) = 0.0_wp
+                system%rhs(m) = -s_r_np(i)
+            end if
+        end do
+    end subroutine reduced_unknowns
 
 end module ddc_contact_active_set

@@ -20,23 +20,33 @@
 !> A failed LAPACK call, an LCP that no method solves, a failed certificate or a large
 !> residual is an error (exit_solver_failure), never a result.
 !>
-!> open_cohesion: 'kept' (the paper) lets an open element carry shear up to Sf;
-!> 'lost' sets Sf = 0 on every element that opens and solves again until no open
-!> element has cohesion left (the set of such elements only grows, so this terminates).
+!> solve_contact takes the dense influence matrix; solve_contact_with takes any stiffness
+!> operator (ddc_contact_stiffness), e.g. a matrix distributed over MPI processes, and
+!> without the dense matrix (Lemke's tableau needs it) solves by the Newton method alone: a
+!> Newton failure is then an error (exit_solver_failure) that says why.
 !>
 !> A loading history (SPEC-EARTH section 3) solves one step after the other with the same
 !> methods and fallbacks: each step gives the total slip of the step before
-!> (ds_previous) and a contact_session that keeps what the steps share: the paper's LCP
-!> once Lemke needed it and Lemke's last basis (warm start), the Newton method's states
-!> (warm start) and its factorizations (reused or updated, ddc_contact_reduced_system).
+!> (ds_previous), keeps its dense stiffness operator (whose factors the Newton method
+!> reuses and updates from step to step) and a contact_session with what else the steps
+!> share: the paper's LCP once Lemke needed it and Lemke's last basis (warm start), the
+!> Newton method's states (warm start) and its fixed tractions.
+!>
+!> open_cohesion: 'kept' (the paper) lets an open element carry shear up to Sf;
+!> 'lost' sets Sf = 0 on every element that opens and solves again until no open
+!> element has cohesion left (the set of such elements only grows, so this terminates).
 module ddc_contact_formulation
     use ddc_kinds, only: wp
-    use ddc_error, only: error_type, set_error, set_internal_error, exit_bad_input
+    use ddc_error, only: error_type, set_error, set_internal_error, exit_bad_input, &
+        exit_out_of_memory, exit_solver_failure
+    use ddc_text, only: bytes_text
+    use ddc_contact_memory, only: lemke_bytes
     use ddc_contact_options, only: solver_options, lcp_auto, lcp_newton, cohesion_lost
-    use ddc_contact_states, only: state_stick, state_open
     use ddc_contact_certificate, only: certify_complementarity, default_certificate_tolerance
+    use ddc_contact_states, only: state_stick, state_open
     use ddc_contact_active_set, only: active_set_result, active_set_workspace, &
         solve_contact_active_set
+    use ddc_contact_stiffness, only: stiffness_operator, dense_stiffness
     use ddc_contact_result, only: contact_result, contact_stress_scale, problem_scales, &
         block_scales, check_solution, drop_open_cohesion
     use ddc_contact_paper_lcp, only: contact_lcp, build_contact_lcp, solve_paper_lcp
@@ -45,7 +55,8 @@ module ddc_contact_formulation
     implicit none
     private
 
-    public :: solve_contact, contact_session, auto_newton_min_elements, newton_max_iterations
+    public :: solve_contact, solve_contact_with, contact_session, auto_newton_min_elements
+    public :: newton_max_iterations
 
     !> lcp_method = 'auto' uses 'newton' from this many contact elements on, else 'lemke'
     integer, parameter :: auto_newton_min_elements = 300
@@ -53,14 +64,14 @@ module ddc_contact_formulation
     integer, parameter :: newton_max_iterations = 100
 
     !> What successive solves on the same contact elements (the steps of a loading history)
-    !> keep: the paper's LCP once built and Lemke's last basis, the Newton method's
-    !> factorizations and states.
+    !> keep besides their stiffness operator: the paper's LCP once built and Lemke's last
+    !> basis, the Newton method's states and fixed tractions.
     type :: contact_session
         !> The paper's LCP (built on the first Lemke solve)
         type(contact_lcp) :: lcp
         !> Lemke's last basis, shape (3n); 0 entries: none yet
         integer, allocatable :: basis(:)
-        !> The Newton method's factors and fixed tractions
+        !> The Newton method's fixed tractions
         type(active_set_workspace) :: newton
         !> States of the last solve (warm start of the Newton method), shape (n)
         logical, allocatable :: open(:)
@@ -71,13 +82,12 @@ module ddc_contact_formulation
 
 contains
 
-    !> Solve the frictional contact problem of n elements (SPEC section 4), or one step of
-    !> a loading history (ds_previous, session).
+    !> Solve the frictional contact problem of n elements (SPEC section 4).
     subroutine solve_contact(a, s_r_s, s_r_n, mu, sf, pressure, options, res, error, rule, &
-                             max_iterations, ds_previous, session, stress_scale, max_pivots)
+                             max_iterations)
         !> Influence matrix ordered [s; n]: traction = s_r + a [Ds; Dn], shape (2n, 2n)
         !> [stress / length]
-        real(wp), intent(in) :: a(:, :)
+        real(wp), intent(in), target, contiguous :: a(:, :)
         !> Remote shear traction resolved on each element (plus any traction from
         !> non-contact elements), shape (n) [stress]
         real(wp), intent(in) :: s_r_s(:)
@@ -101,6 +111,51 @@ contains
         integer, intent(in), optional :: rule
         !> Iteration limit of 'newton' (default newton_max_iterations)
         integer, intent(in), optional :: max_iterations
+        type(dense_stiffness) :: stiffness
+
+        if (size(a, 1) /= 2 * size(mu) .or. size(a, 2) /= 2 * size(mu)) then
+            call set_internal_error(error, 'solve_contact', 'array sizes do not match')
+            return
+        end if
+        stiffness%a => a
+        call solve_contact_with(stiffness, s_r_s, s_r_n, mu, sf, pressure, options, res, error, &
+                                a, rule, max_iterations)
+    end subroutine solve_contact
+
+    !> Solve the frictional contact problem of n elements (SPEC section 4) on any stiffness
+    !> operator, or one step of a loading history (ds_previous, session); without the dense
+    !> matrix a, by the Newton method alone.
+    subroutine solve_contact_with(stiffness, s_r_s, s_r_n, mu, sf, pressure, options, res, &
+                                  error, a, rule, max_iterations, ds_previous, session, &
+                                  stress_scale, max_pivots)
+        !> The influence matrix A ordered [s; n]: traction = s_r + A [Ds; Dn], 2n x 2n
+        !> [stress / length]
+        class(stiffness_operator), intent(inout) :: stiffness
+        !> Remote shear traction resolved on each element (plus any traction from
+        !> non-contact elements), shape (n) [stress]
+        real(wp), intent(in) :: s_r_s(:)
+        !> Remote normal traction resolved on each element, tension positive, shape (n)
+        !> [stress]
+        real(wp), intent(in) :: s_r_n(:)
+        !> Friction coefficient, shape (n) [-]
+        real(wp), intent(in) :: mu(:)
+        !> Frictional strength (cohesion), shape (n) [stress]
+        real(wp), intent(in) :: sf(:)
+        !> Fluid pressure inside the crack, compression positive, shape (n) [stress]
+        real(wp), intent(in) :: pressure(:)
+        !> LCP method and cohesion of open elements (the method is 'newton' without a)
+        type(solver_options), intent(in) :: options
+        !> The solution
+        type(contact_result), intent(out) :: res
+        !> Allocated on failure (exit_solver_failure; exit_bad_input for NaN or Inf data,
+        !> exit_internal_error for inconsistent arguments)
+        type(error_type), allocatable, intent(out) :: error
+        !> The same matrix in memory, shape (2n, 2n): Lemke's method needs it
+        real(wp), intent(in), optional :: a(:, :)
+        !> Tie-breaking rule of Lemke (tests only; default lexicographic)
+        integer, intent(in), optional :: rule
+        !> Iteration limit of 'newton' (default newton_max_iterations)
+        integer, intent(in), optional :: max_iterations
         !> Total slip at the end of the previous step of a loading history (default 0),
         !> shape (n) [length]
         real(wp), intent(in), optional :: ds_previous(:)
@@ -119,8 +174,8 @@ contains
         logical :: checked
 
         n = size(mu)
-        if (size(a, 1) /= 2 * n .or. size(a, 2) /= 2 * n .or. size(s_r_s) /= n &
-            .or. size(s_r_n) /= n .or. size(sf) /= n .or. size(pressure) /= n) then
+        if (size(s_r_s) /= n .or. size(s_r_n) /= n .or. size(sf) /= n .or. &
+            size(pressure) /= n) then
             call set_internal_error(error, 'solve_contact', 'array sizes do not match')
             return
         end if
@@ -135,7 +190,7 @@ contains
         ! A is checked once per session (the steps of a history share it).
         checked = .false.
         if (present(session)) checked = session%a_checked
-        if (.not. checked) checked = all(ieee_is_finite(a))
+        if (.not. checked) checked = stiffness%all_finite()
         if (.not. (checked .and. all(ieee_is_finite(s_r_s)) .and. &
             all(ieee_is_finite(s_r_n)) .and. all(ieee_is_finite(mu)) .and. &
             all(ieee_is_finite(sf)) .and. all(ieee_is_finite(pressure)) .and. &
@@ -179,7 +234,7 @@ contains
             character(len=200) :: line
 
             automatic = options%lcp_method == lcp_auto
-            newton = options%lcp_method == lcp_newton .or. &
+            newton = options%lcp_method == lcp_newton .or. .not. present(a) .or. &
                 (automatic .and. n >= auto_newton_min_elements)
             if (newton) then
                 res%method = 'newton'
@@ -193,9 +248,13 @@ contains
             do
                 rounds = rounds + 1
                 if (newton) then
-                    call solve_once_newton(a, s_r_s, s_r_n, mu, sf_eff, pressure, limit, held, &
-                        sigma0, present(stress_scale), res, s, reason)
-                    if (len(reason) > 0) then
+                    call solve_once_newton(stiffness, s_r_s, s_r_n, mu, sf_eff, pressure, &
+                        limit, held, sigma0, present(stress_scale), res, s, reason)
+                    if (len(reason) > 0 .and. .not. present(a)) then
+                        call set_error(error, exit_solver_failure, 'contact: '//reason)
+                    else if (len(reason) > 0) then
+                        ! Lemke's memory, not the Newton factors beside it.
+                        call stiffness%discard_factors()
                         newton = .false.
                         res%method = 'lemke'
                         res%fallback = reason
@@ -208,8 +267,8 @@ contains
                         ! problem has a solution (seen at acute fault branches). 'auto' then
                         ! asks the Newton method, whose answer is checked the same way, and
                         ! keeps it for the rounds after cohesion is lost.
-                        call solve_once_newton(a, s_r_s, s_r_n, mu, sf_eff, pressure, limit, &
-                            held, sigma0, present(stress_scale), res, s, reason)
+                        call solve_once_newton(stiffness, s_r_s, s_r_n, mu, sf_eff, pressure, &
+                            limit, held, sigma0, present(stress_scale), res, s, reason)
                         if (len(reason) == 0) then
                             newton = .true.
                             res%method = 'newton'
@@ -238,18 +297,26 @@ contains
             call system_clock(t1)
             res%seconds_lcp = real(t1 - t0, wp) / real(max(rate, 1_int64), wp) - &
                 res%seconds_factorization
-            res%factorizations = s%newton%system%factorizations
-            res%low_rank_updates = s%newton%system%updates
-            res%factorization_reuses = s%newton%system%reuses
+            res%factorizations = stiffness%factorizations
+            res%low_rank_updates = stiffness%low_rank_updates
+            res%factorization_reuses = stiffness%factorization_reuses
         end subroutine solve_in_session
 
-        !> One Lemke solve of the paper's LCP (built once per session), from the session's
-        !> last basis when warm.
+        !> One Lemke solve of the paper's LCP (built once per session, when memory allows),
+        !> from the session's last basis when warm.
         subroutine solve_once_lemke(s, warm, sf_eff)
             type(contact_session), intent(inout) :: s
             logical, intent(in) :: warm
             real(wp), intent(in) :: sf_eff(:)
 
+            if (.not. allocated(s%lcp%m) .and. len(res%fallback) > 0 .and. &
+                lemke_bytes(n) > options%work_bytes) then
+                call set_error(error, exit_out_of_memory, 'contact: the Newton method '// &
+                    'failed ('//res%fallback//') and the fallback to Lemke would need '// &
+                    'about '//bytes_text(lemke_bytes(n))//' more memory, but about '// &
+                    bytes_text(options%work_bytes)//' is left here')
+                return
+            end if
             if (.not. allocated(s%lcp%m)) then
                 call build_contact_lcp(a, mu, s%lcp, res, error)
                 if (allocated(error)) return
@@ -264,7 +331,7 @@ contains
             end if
         end subroutine solve_once_lemke
 
-    end subroutine solve_contact
+    end subroutine solve_contact_with
 
     !> Newton states from a Lemke solution, for the next solve's warm start: open elements
     !> open; shear stick where the element sticks, else slip towards its shear traction.
@@ -279,9 +346,10 @@ contains
 
     !> One solve by the active-set Newton method (no inverse of A), certified as the
     !> equivalent LCP. reason is empty on success, else why Lemke must take over.
-    subroutine solve_once_newton(a, s_r_s, s_r_n, mu, sf, p, limit, held, sigma0, given, res, &
-                                 s, reason)
-        real(wp), intent(in) :: a(:, :), s_r_s(:), s_r_n(:), mu(:), sf(:), p(:)
+    subroutine solve_once_newton(stiffness, s_r_s, s_r_n, mu, sf, p, limit, held, sigma0, &
+                                 given, res, s, reason)
+        class(stiffness_operator), intent(inout) :: stiffness
+        real(wp), intent(in) :: s_r_s(:), s_r_n(:), mu(:), sf(:), p(:)
         integer, intent(in) :: limit
         !> Total slip of the previous step (0 for a one-shot solve), shape (n)
         real(wp), intent(in) :: held(:)
@@ -289,37 +357,35 @@ contains
         real(wp), intent(in) :: sigma0
         logical, intent(in) :: given
         type(contact_result), intent(inout) :: res
-        !> The session: its states are the warm start and take this solve's; its
-        !> factorizations are reused
+        !> The session: its states are the warm start and take this solve's
         type(contact_session), intent(inout) :: s
         character(len=:), allocatable, intent(out) :: reason
         type(active_set_result) :: next
         real(wp), allocatable :: tau(:), z(:), w(:), zs(:), ws(:), snp(:), slip(:)
-        real(wp) :: dscale, seconds, flops
+        real(wp) :: dscale, stiffness_scale
         integer :: n, i
         character(len=:), allocatable :: problem
 
         n = size(mu)
-        call problem_scales(a, s_r_s, s_r_n, sf, p, res)
+        stiffness_scale = stiffness%max_diagonal()
+        if (.not. stiffness_scale > 0.0_wp) stiffness_scale = stiffness%max_entry()
+        call problem_scales(stiffness_scale, s_r_s, s_r_n, sf, p, res)
         if (given) then
             res%dd_scale = res%dd_scale * sigma0 / res%stress_scale
             res%stress_scale = sigma0
         end if
-        seconds = s%newton%system%seconds_factorization
-        flops = s%newton%system%factorization_flops
         if (allocated(s%open)) then
-            call solve_contact_active_set(a, s_r_s, s_r_n + p, mu, sf, res%stress_scale, &
-                next, limit, s%newton, s%open, s%shear_state, ds_previous=held)
+            call solve_contact_active_set(stiffness, s_r_s, s_r_n + p, mu, sf, &
+                res%stress_scale, next, limit, s%newton, s%open, s%shear_state, &
+                ds_previous=held)
         else
-            call solve_contact_active_set(a, s_r_s, s_r_n + p, mu, sf, res%stress_scale, &
-                next, limit, s%newton, ds_previous=held)
+            call solve_contact_active_set(stiffness, s_r_s, s_r_n + p, mu, sf, &
+                res%stress_scale, next, limit, s%newton, ds_previous=held)
         end if
         res%iterations = res%iterations + next%iterations
         res%solves = res%solves + 1
-        res%seconds_factorization = res%seconds_factorization + &
-            s%newton%system%seconds_factorization - seconds
-        res%factorization_flops = res%factorization_flops + &
-            s%newton%system%factorization_flops - flops
+        res%seconds_factorization = res%seconds_factorization + next%seconds_factorization
+        res%factorization_flops = res%factorization_flops + next%factorization_flops
         if (.not. next%converged) then
             reason = 'newton: '//next%reason
             return
@@ -351,7 +417,8 @@ contains
         res%ds = next%ds
         res%dn = next%dn
         res%sf_effective = sf
-        call check_solution(a, s_r_s, s_r_n, mu, sf, snp, dscale, res, problem, held, next%ad)
+        ! A D of the last iteration (the product the states were updated from).
+        call check_solution(next%ad, s_r_s, s_r_n, mu, sf, snp, dscale, res, problem, held)
         reason = ''
         if (len(problem) > 0) reason = 'newton: '//problem
     end subroutine solve_once_newton

@@ -21,6 +21,8 @@ module ddc_contact_lemke
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use ddc_linalg_lapack, only: dgemv, dger
     use ddc_linalg_lu, only: lu_factor, lu_solve
+    use ddc_allocation, only: allocation_failed, real_bytes
+    use ddc_text, only: itoa
     implicit none
     private
 
@@ -82,7 +84,7 @@ contains
 
         real(wp), allocatable :: binv(:, :), bbar(:), col(:), d(:), x(:)
         integer, allocatable :: rows(:)
-        integer :: n, limit, tie_rule, entering, leaving, r, i, z0
+        integer :: n, limit, tie_rule, entering, leaving, r, i, z0, stat
         real(wp) :: qscale
         logical :: ok
         character(len=200) :: line
@@ -132,7 +134,8 @@ contains
                 ! One of w_i, z_i for every i, in any row order.
                 if (ok) ok = all([(count(modulo(warm_basis - 1, n) + 1 == i) == 1, &
                                    i = 1, n)])
-                if (ok) call basis_values(m, q, warm_basis, x, ok)
+                if (ok) call basis_values(m, q, warm_basis, x, ok, error)
+                if (allocated(error)) return
                 if (ok) ok = minval(x) >= -tie_tol * maxval(abs(q))
                 if (ok) then
                     call current_solution(warm_basis, x, n, z, w)
@@ -144,7 +147,13 @@ contains
 
         ! Variables: 1..n are w_i, n+1..2n are z_i, 2n+1 is the covering variable z0.
         z0 = 2 * n + 1
-        allocate (binv(n, n), bbar(n), col(n), rows(n))
+        allocate (bbar(n), col(n), rows(n))
+        allocate (binv(n, n), stat=stat)
+        if (stat /= 0) then
+            call allocation_failed(error, "the basis inverse of Lemke's method (LCP of "// &
+                                   'size '//itoa(n)//')', real_bytes * real(n, wp)**2)
+            return
+        end if
         binv = 0.0_wp
         do i = 1, n
             binv(i, i) = 1.0_wp
@@ -190,7 +199,7 @@ contains
         end do
 
         call current_solution(rows, bbar, n, z, w)
-        call refine_solution(m, q, rows, n, z, w)
+        call refine_solution(m, q, rows, n, z, w, error)
         if (present(basis)) basis = rows
     end subroutine solve_lcp_lemke
 
@@ -334,14 +343,16 @@ contains
 
     !> Recompute the basic values from the final basis with one LAPACK solve, and keep
     !> them when their complementarity violation (against M z + q) is smaller.
-    subroutine refine_solution(m, q, basis, n, z, w)
+    subroutine refine_solution(m, q, basis, n, z, w, error)
         real(wp), intent(in) :: m(:, :), q(:)
         integer, intent(in) :: basis(:), n
         real(wp), intent(inout) :: z(:), w(:)
+        !> Allocated (exit_out_of_memory) when the basis matrix does not fit in memory
+        type(error_type), allocatable, intent(out) :: error
         real(wp), allocatable :: x(:), z2(:), w2(:)
         logical :: ok
 
-        call basis_values(m, q, basis, x, ok)
+        call basis_values(m, q, basis, x, ok, error)
         if (.not. ok) return
         allocate (z2(n), w2(n))
         call current_solution(basis, x, n, z2, w2)
@@ -353,18 +364,27 @@ contains
 
     !> Basic values x = B^-1 q of a basis (columns e_i for w_i, -M(:, j) for z_j) by one
     !> checked LU solve; ok is false when B is (numerically) singular or x is not finite.
-    subroutine basis_values(m, q, basis, x, ok)
+    subroutine basis_values(m, q, basis, x, ok, error)
         real(wp), intent(in) :: m(:, :), q(:)
         integer, intent(in) :: basis(:)
         real(wp), allocatable, intent(out) :: x(:)
         logical, intent(out) :: ok
+        !> Allocated (exit_out_of_memory) when the basis matrix does not fit in memory
+        type(error_type), allocatable, intent(out) :: error
         real(wp), allocatable :: b(:, :), rhs(:, :)
         integer, allocatable :: ipiv(:)
         type(error_type), allocatable :: singular, ill_conditioned
-        integer :: i, n
+        integer :: i, n, stat
 
         n = size(q)
-        allocate (b(n, n), rhs(n, 1), ipiv(n))
+        ok = .false.
+        allocate (rhs(n, 1), ipiv(n))
+        allocate (b(n, n), stat=stat)
+        if (stat /= 0) then
+            call allocation_failed(error, "the basis matrix of Lemke's method (LCP of "// &
+                                   'size '//itoa(n)//')', real_bytes * real(n, wp)**2)
+            return
+        end if
         b = 0.0_wp
         do i = 1, n
             if (basis(i) <= n) then

@@ -2,6 +2,7 @@
 !> elements do with their cohesion. Their input names are parsed here, once; everything
 !> downstream holds the integer codes.
 module ddc_contact_options
+    use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_text, only: lower, newline
     implicit none
@@ -31,6 +32,10 @@ module ddc_contact_options
         integer :: lcp_method = lcp_auto
         !> cohesion_kept or cohesion_lost
         integer :: open_cohesion = cohesion_kept
+        !> Memory the contact method may use beyond the matrix it is given [bytes]: a
+        !> fallback from Newton to Lemke that needs more stops with exit_out_of_memory
+        !> instead of starting (set from the machine's memory; no limit by default)
+        real(wp) :: work_bytes = huge(1.0_wp)
     end type solver_options
 
 contains

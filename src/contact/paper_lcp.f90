@@ -145,7 +145,7 @@ contains
         integer, intent(inout), optional :: basis(:)
 
         real(wp), allocatable :: q(:), z(:), w(:), zt(:), wt(:), d0(:), srp(:), zs(:), ws(:)
-        real(wp), allocatable :: snp(:)
+        real(wp), allocatable :: snp(:), ad(:)
         real(wp) :: delta0, dscale
         integer, allocatable :: warm(:)
         integer :: n, n2, n3, pivots
@@ -207,7 +207,9 @@ contains
         dscale = max(delta0, maxval(abs(res%ds)), maxval(abs(res%dn)))
         call block_scales(n, sigma0, dscale, zs, ws)
         res%certificate = certify_lcp(lcp%m, q, z, w, z_scale=zs, w_scale=ws)
-        call check_solution(lcp%a, s_r_s, s_r_n, lcp%mu, sf, snp, dscale, res, problem, &
+        allocate (ad(n2))
+        call dgemv('N', n2, n2, 1.0_wp, lcp%a, n2, [res%ds, res%dn], 1, 0.0_wp, ad, 1)
+        call check_solution(ad, s_r_s, s_r_n, lcp%mu, sf, snp, dscale, res, problem, &
                             ds_previous)
         if (len(problem) > 0) call set_error(error, exit_solver_failure, problem)
     end subroutine solve_paper_lcp

@@ -12,7 +12,6 @@ module ddc_contact_result
     use ddc_kinds, only: wp
     use ddc_contact_states, only: state_stick, state_slip, state_open
     use ddc_contact_certificate, only: lcp_certificate
-    use ddc_linalg_lapack, only: dgemv
     use ddc_linalg_lu, only: residual_tol
     implicit none
     private
@@ -82,20 +81,16 @@ contains
     end function contact_stress_scale
 
     !> Stress scale sigma0 (contact_stress_scale) and displacement scale delta0 =
-    !> sigma0 / max_i A_ii of a problem; both stored in res.
-    subroutine problem_scales(a, s_r_s, s_r_n, sf, p, res)
-        real(wp), intent(in) :: a(:, :), s_r_s(:), s_r_n(:), sf(:), p(:)
+    !> sigma0 / stiffness of a problem; both stored in res.
+    subroutine problem_scales(stiffness, s_r_s, s_r_n, sf, p, res)
+        !> Stiffness scale of the influence matrix: max_i |A_ii| (max |A_ij| when the
+        !> diagonal vanishes) [stress / length]
+        real(wp), intent(in) :: stiffness
+        real(wp), intent(in) :: s_r_s(:), s_r_n(:), sf(:), p(:)
         type(contact_result), intent(inout) :: res
-        real(wp) :: amax
-        integer :: i
 
-        amax = 0.0_wp
-        do i = 1, size(a, 1)
-            amax = max(amax, abs(a(i, i)))
-        end do
-        if (.not. amax > 0.0_wp) amax = maxval(abs(a))
         res%stress_scale = contact_stress_scale(s_r_s, s_r_n, sf, p)
-        res%dd_scale = res%stress_scale / amax
+        res%dd_scale = res%stress_scale / stiffness
     end subroutine problem_scales
 
     !> Magnitude of each row of z = [stress; stress; length] and w = [length; length;
@@ -111,19 +106,17 @@ contains
 
     !> Checks common to both methods on a recovered solution (res%ds, dn, tractions):
     !> the certificate passed and the DDs are in equilibrium with the tractions against the
-    !> unfactored A; then the states (slip: a slip increment over ds_previous, when given, or
+    !> unfactored A (ad = A [res%ds; res%dn], computed by the caller from the matrix, dense or
+    !> distributed); then the states (slip: a slip increment over ds_previous, when given, or
     !> on the friction limit). message is empty on success, else says what failed. On
     !> success the result's tractions become S_r + A D of the unfactored A (those the method
     !> imposed or recovered agree with them within the residual).
-    subroutine check_solution(a, s_r_s, s_r_n, mu, sf, snp, dscale, res, message, &
-                              ds_previous, product)
-        real(wp), intent(in) :: a(:, :), s_r_s(:), s_r_n(:), mu(:), sf(:), snp(:), dscale
+    subroutine check_solution(ad, s_r_s, s_r_n, mu, sf, snp, dscale, res, message, ds_previous)
+        real(wp), intent(in) :: ad(:), s_r_s(:), s_r_n(:), mu(:), sf(:), snp(:), dscale
         type(contact_result), intent(inout) :: res
         character(len=:), allocatable, intent(out) :: message
         real(wp), intent(in), optional :: ds_previous(:)
-        !> A [ds; dn] of the unfactored A when the method has it, shape (2n)
-        real(wp), intent(in), optional :: product(:)
-        real(wp), allocatable :: dd(:), ad(:), tau(:), slip(:)
+        real(wp), allocatable :: tau(:), slip(:)
         real(wp) :: tol_d, tol_s, scale
         integer :: n, n2, i
         character(len=300) :: line
@@ -141,13 +134,6 @@ contains
         end if
 
         ! Equilibrium of the recovered DDs against the unfactored A.
-        if (present(product)) then
-            ad = product
-        else
-            dd = [res%ds, res%dn]
-            allocate (ad(n2))
-            call dgemv('N', n2, n2, 1.0_wp, a, n2, dd, 1, 0.0_wp, ad, 1)
-        end if
         ! Both blocks are tractions: one scale for both, so that a block that vanishes (no
         ! resolved shear at all) is not measured against its own round-off.
         scale = max(norm2(ad), norm2([s_r_s, s_r_n]), &

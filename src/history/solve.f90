@@ -3,10 +3,11 @@
 !> The influence matrix is assembled and the TWODD-style elements condensed out once; every
 !> step is then one contact solve (ddc_contact_formulation, with &solver lcp_method and its
 !> fallbacks, as a one-shot solve) for the step's load and the total slip of the step
-!> before, in a contact_session that the steps share: the Newton method starts from the
-!> previous step's states and reuses its factorization (two triangular solves when no
-!> state changes, a low-rank update when a few do); Lemke builds the paper's LCP (one
-!> inverse of A) the first time it is needed and starts from its previous basis. Every
+!> before, with one dense stiffness operator and a contact_session that the steps share:
+!> the Newton method starts from the previous step's states and reuses the operator's
+!> factorization (two triangular solves when no state changes, a low-rank update when a few
+!> do); Lemke builds the paper's LCP (one inverse of A) the first time it is needed and
+!> starts from its previous basis. Every
 !> step is certified and checked for equilibrium; a step that fails is an error naming the
 !> step, and nothing is returned as a result. A step where the first method fails and the
 !> other one solves it is recorded (/history method and fallback).
@@ -22,7 +23,8 @@ module ddc_history_solve
     use ddc_model_results, only: model_results, history_record
     use ddc_model_loads, only: resolve_remote_stress, total_pressure, shear_modulus_of
     use ddc_contact_result, only: contact_result, contact_stress_scale
-    use ddc_contact_formulation, only: solve_contact, contact_session
+    use ddc_contact_formulation, only: solve_contact_with, contact_session
+    use ddc_contact_stiffness, only: dense_stiffness
     use ddc_solve_frictional, only: condensed_contact, condense_contact, contact_load, &
         complete_dds, record_contact, release_matrix
     use ddc_influence_response, only: listed_tractions
@@ -53,8 +55,9 @@ contains
         integer, intent(in), optional :: max_pivots
         !> Iteration limit of each Newton solve (tests; default that of solve_contact)
         integer, intent(in), optional :: max_iterations
-        type(condensed_contact) :: sys
+        type(condensed_contact), target :: sys
         type(contact_session) :: session
+        type(dense_stiffness) :: stiffness
         type(contact_result) :: res
         type(history_record) :: h
         real(wp), allocatable :: loads(:, :), shear(:, :), normal(:, :), shift(:, :)
@@ -106,6 +109,8 @@ contains
         allocate (ts(sys%nf), tn(sys%nf))
         sf_eff = model%elements%sf(sys%contact)
         allocate (ds_previous(nc), source=0.0_wp)
+        ! One operator for every step: the Newton method's factors live in it.
+        stiffness%a => sys%a
         pivots = 0
         solves = 0
         iterations = 0
@@ -115,11 +120,12 @@ contains
         flops = 0.0_wp
         call system_clock(t0, rate)
         do k = 1, nsteps
-            call solve_contact(sys%a, shift(1:nc, k), shift(nc + 1:, k), &
-                               model%elements%mu(sys%contact), sf_eff, pressure(:, k), &
-                               model%solver, res, error, max_iterations=max_iterations, &
-                               ds_previous=ds_previous, session=session, stress_scale=sigma0, &
-                               max_pivots=max_pivots)
+            call solve_contact_with(stiffness, shift(1:nc, k), shift(nc + 1:, k), &
+                                    model%elements%mu(sys%contact), sf_eff, pressure(:, k), &
+                                    model%solver, res, error, a=sys%a, &
+                                    max_iterations=max_iterations, ds_previous=ds_previous, &
+                                    session=session, stress_scale=sigma0, &
+                                    max_pivots=max_pivots)
             if (allocated(error)) then
                 error%message = 'loading history: step '//itoa(k)//' of '//itoa(nsteps)// &
                     ' ('//load_text(loads(:, k), model%load_path%varies)//') failed: '// &
@@ -168,13 +174,14 @@ contains
         seconds_lcp = real(t1 - t0, wp) / real(rate, wp) - seconds_factorization
 
         ! The last step: tractions, face displacements, tips and fields for its DDs.
-        call record_contact(sys, res, results%solver)
+        call record_contact(res, sys%flops, results%solver)
         results%elements%ds = h%ds(:, nsteps)
         results%elements%dn = h%dn(:, nsteps)
         results%elements%state = h%state(:, nsteps)
+        nullify (stiffness%a)
         call release_matrix(sys, matrix)
-        call finish_model(apply_load(model, loads(:, nsteps)), matrix, shear(:, nsteps), &
-                          normal(:, nsteps), results)
+        call finish_model(apply_load(model, loads(:, nsteps)), shear(:, nsteps), &
+                          normal(:, nsteps), results, matrix=matrix)
         results%solver%seconds_factorization = results%solver%seconds_factorization + &
             seconds_factorization - res%seconds_factorization
         results%solver%factorization_flops = results%solver%factorization_flops + flops - &

@@ -32,7 +32,7 @@ module ddc_influence_assembly
     implicit none
     private
 
-    public :: assemble_influence, pair_at_midpoint
+    public :: assemble_influence, fill_influence_block, pair_at_midpoint
     public :: row_traction, row_displacement, row_identity
     public :: image_transform, image_transforms, image_of, kernel_with_images
     public :: kernel_function, select_kernel
@@ -217,7 +217,49 @@ contains
         !> Kind of the shear row and of the normal row of each element, shape (n)
         integer, intent(in) :: shear_row(:), normal_row(:)
         !> Influence matrix, shape (2n, 2n)
-        real(wp), contiguous, intent(out) :: matrix(:, :)
+        real(wp), intent(out) :: matrix(:, :)
+        !> Take the general path even in the full plane (tests; default false)
+        logical, intent(in), optional :: general
+        integer, allocatable :: every(:)
+        integer :: i
+
+        allocate (every(elements%n))
+        do i = 1, elements%n
+            every(i) = i
+        end do
+        call fill_influence_block(elements, shear_modulus, nu, shear_row, normal_row, every, &
+                                  every, elements%n + every, every, every, elements%n + every, &
+                                  matrix, general)
+    end subroutine assemble_influence
+
+    !> Fill any block of the influence matrix: the rows of some elements against the DDs of
+    !> some elements, each placed where the caller says (a distributed matrix fills its local
+    !> part; assemble_influence the whole matrix in the [s; n] ordering). The entry of the
+    !> shear row of element row_element(k) against Ds of element col_element(l) goes to
+    !> block(row_s(k), col_s(l)); row_n and col_n place the normal rows and the Dn columns. A
+    !> place 0 means that row or column is not in the block; entries nowhere placed are left
+    !> as they are. Each pair of elements is evaluated once, whatever the ordering.
+    subroutine fill_influence_block(elements, shear_modulus, nu, shear_row, normal_row, &
+                                    row_element, row_s, row_n, col_element, col_s, col_n, block, &
+                                    general)
+        !> Elements with geometry computed
+        type(element_set), intent(in) :: elements
+        !> Shear modulus [stress unit] and Poisson's ratio [-]
+        real(wp), intent(in) :: shear_modulus, nu
+        !> Kind of the shear row and of the normal row of each element, shape (n)
+        integer, intent(in) :: shear_row(:), normal_row(:)
+        !> Elements whose rows are in the block, shape (r)
+        integer, intent(in) :: row_element(:)
+        !> Row of the block for each one's shear row and normal row (0: not in it), shape (r)
+        integer, intent(in) :: row_s(:), row_n(:)
+        !> Elements whose DDs are in the block, shape (c)
+        integer, intent(in) :: col_element(:)
+        !> Column of the block for each one's Ds and Dn (0: not in it; every non-zero
+        !> column appears once), shape (c)
+        integer, intent(in) :: col_s(:), col_n(:)
+        !> The block: rows and columns as placed, shape (at least max(row_s, row_n), at
+        !> least max(col_s, col_n))
+        real(wp), intent(inout) :: block(:, :)
         !> Take the general path even in the full plane (tests; default false)
         logical, intent(in), optional :: general
         procedure(kernel_function), pointer :: kernel
@@ -227,110 +269,144 @@ contains
         if (present(general)) use_general = use_general .or. general
         if (use_general) then
             call select_kernel(elements, kernel)
-            call assemble_with(kernel, elements, image_transforms(elements%symmetry), &
-                               shear_modulus, nu, shear_row, normal_row, matrix)
+            call fill_with(kernel, elements, image_transforms(elements%symmetry), shear_modulus, &
+                           nu, shear_row, normal_row, row_element, row_s, row_n, col_element, &
+                           col_s, col_n, block)
         else
-            call assemble_full_plane(elements, image_transforms(elements%symmetry), &
-                                     shear_modulus, nu, shear_row, normal_row, matrix)
+            call fill_full_plane(elements, image_transforms(elements%symmetry), shear_modulus, &
+                                 nu, shear_row, normal_row, row_element, row_s, row_n, &
+                                 col_element, col_s, col_n, block)
         end if
-    end subroutine assemble_influence
+    end subroutine fill_influence_block
 
-    !> assemble_influence with the kernel and the image transforms given.
-    subroutine assemble_with(kernel, elements, images, shear_modulus, nu, shear_row, &
-                             normal_row, matrix)
+    !> fill_influence_block with the kernel and the image transforms given.
+    subroutine fill_with(kernel, elements, images, shear_modulus, nu, shear_row, normal_row, &
+                         row_element, row_s, row_n, col_element, col_s, col_n, block)
         procedure(kernel_function) :: kernel
         type(element_set), intent(in) :: elements
         type(image_transform), intent(in) :: images(:)
         real(wp), intent(in) :: shear_modulus, nu
         integer, intent(in) :: shear_row(:), normal_row(:)
-        real(wp), intent(out) :: matrix(:, :)
-        type(pair_influence) :: p
-        integer :: i, j, n
+        integer, intent(in) :: row_element(:), row_s(:), row_n(:)
+        integer, intent(in) :: col_element(:), col_s(:), col_n(:)
+        real(wp), intent(inout) :: block(:, :)
+        integer :: i, j, k, l
 
-        n = elements%n
-        ! Each thread owns whole columns j and n+j: disjoint, contiguous writes.
-        !$omp parallel do default(none) schedule(static) private(i, j, p) &
-        !$omp shared(elements, shear_modulus, nu, shear_row, normal_row, matrix, n, images)
-        do j = 1, n
-            do i = 1, n
-                p = pair_at_midpoint(kernel, elements, i, j, images, shear_modulus, nu)
-                call set_entries(matrix, n, i, j, shear_row(i), normal_row(i), p)
+        ! Each thread owns whole columns (those of col_element(l)): disjoint writes.
+        !$omp parallel do default(none) schedule(static) private(i, j, k, l) &
+        !$omp shared(elements, shear_modulus, nu, shear_row, normal_row, row_element, row_s, &
+        !$omp        row_n, col_element, col_s, col_n, block, images)
+        do l = 1, size(col_element)
+            j = col_element(l)
+            do k = 1, size(row_element)
+                i = row_element(k)
+                call place_pair(pair_at_midpoint(kernel, elements, i, j, images, &
+                                                 shear_modulus, nu), i == j, shear_row(i), &
+                                normal_row(i), row_s(k), row_n(k), col_s(l), col_n(l), block)
             end do
         end do
         !$omp end parallel do
-    end subroutine assemble_with
+    end subroutine fill_with
 
-    !> The entries of rows i and n + i in columns j and n + j for the rows' kinds.
-    pure subroutine set_entries(matrix, n, i, j, shear_row, normal_row, p)
-        real(wp), intent(inout) :: matrix(:, :)
-        integer, intent(in) :: n, i, j, shear_row, normal_row
+    !> The entries of one pair (receiver row k, source column l) for the rows' kinds, where
+    !> the placement says (0: not in the block); self: the receiver is the source.
+    pure subroutine place_pair(p, self, shear_kind, normal_kind, row_s, row_n, col_s, col_n, &
+                               block)
         type(pair_influence), intent(in) :: p
+        logical, intent(in) :: self
+        integer, intent(in) :: shear_kind, normal_kind, row_s, row_n, col_s, col_n
+        real(wp), intent(inout) :: block(:, :)
+        real(wp) :: v(2)
 
-        select case (shear_row)
-        case (row_traction)
-            matrix(i, j) = p%ts(1)
-            matrix(i, n + j) = p%ts(2)
-        case (row_displacement)
-            matrix(i, j) = p%us(1)
-            matrix(i, n + j) = p%us(2)
-        case default
-            matrix(i, j) = merge(1.0_wp, 0.0_wp, i == j)
-            matrix(i, n + j) = 0.0_wp
-        end select
-        select case (normal_row)
-        case (row_traction)
-            matrix(n + i, j) = p%tn(1)
-            matrix(n + i, n + j) = p%tn(2)
-        case (row_displacement)
-            matrix(n + i, j) = p%un(1)
-            matrix(n + i, n + j) = p%un(2)
-        case default
-            matrix(n + i, j) = 0.0_wp
-            matrix(n + i, n + j) = merge(1.0_wp, 0.0_wp, i == j)
-        end select
-    end subroutine set_entries
+        if (row_s > 0) then
+            select case (shear_kind)
+            case (row_traction)
+                v = p%ts
+            case (row_displacement)
+                v = p%us
+            case default
+                v = [merge(1.0_wp, 0.0_wp, self), 0.0_wp]
+            end select
+            if (col_s > 0) block(row_s, col_s) = v(1)
+            if (col_n > 0) block(row_s, col_n) = v(2)
+        end if
+        if (row_n > 0) then
+            select case (normal_kind)
+            case (row_traction)
+                v = p%tn
+            case (row_displacement)
+                v = p%un
+            case default
+                v = [0.0_wp, merge(1.0_wp, 0.0_wp, self)]
+            end select
+            if (col_s > 0) block(row_n, col_s) = v(1)
+            if (col_n > 0) block(row_n, col_n) = v(2)
+        end if
+    end subroutine place_pair
 
-    !> The full-plane path: traction rows from traction_column, one column pair (j, n + j)
-    !> per iteration (each thread owns whole columns), the other rows from the general
-    !> kernel.
-    subroutine assemble_full_plane(elements, images, shear_modulus, nu, shear_row, normal_row, &
-                                   matrix)
+    !> The full-plane path: the traction rows of each source column from traction_column
+    !> (the receivers' geometry gathered once; each thread owns whole columns), the other
+    !> rows from the general kernel.
+    subroutine fill_full_plane(elements, images, shear_modulus, nu, shear_row, normal_row, &
+                               row_element, row_s, row_n, col_element, col_s, col_n, block)
         type(element_set), intent(in) :: elements
         type(image_transform), intent(in) :: images(:)
         real(wp), intent(in) :: shear_modulus, nu
         integer, intent(in) :: shear_row(:), normal_row(:)
-        real(wp), contiguous, intent(out) :: matrix(:, :)
-        integer, allocatable :: other(:)
+        integer, intent(in) :: row_element(:), row_s(:), row_n(:)
+        integer, intent(in) :: col_element(:), col_s(:), col_n(:)
+        real(wp), intent(inout) :: block(:, :)
+        real(wp), allocatable :: xr(:), yr(:), cr(:), sr(:), ts_s(:), tn_s(:), ts_n(:), tn_n(:)
+        integer, allocatable :: traction_s(:), traction_n(:), other(:)
         real(wp) :: xm, ym, cosb, sinb
-        integer :: i, j, k, n, t
+        integer :: i, j, k, l, t, r
 
-        n = elements%n
-        other = pack([(i, i = 1, n)], shear_row /= row_traction .or. normal_row /= row_traction)
-        !$omp parallel do default(none) schedule(static) private(i, j, k, t, xm, ym, cosb, sinb) &
-        !$omp shared(elements, shear_modulus, nu, shear_row, normal_row, matrix, n, images, other)
-        do j = 1, n
-            matrix(:, j) = 0.0_wp
-            matrix(:, n + j) = 0.0_wp
+        r = size(row_element)
+        xr = elements%x_mid(row_element)
+        yr = elements%y_mid(row_element)
+        cr = elements%cos_beta(row_element)
+        sr = elements%sin_beta(row_element)
+        ! Receivers whose shear / normal row is a traction row in the block, and the others.
+        traction_s = pack([(k, k = 1, r)], row_s > 0 .and. shear_row(row_element) == row_traction)
+        traction_n = pack([(k, k = 1, r)], row_n > 0 .and. normal_row(row_element) == &
+                          row_traction)
+        other = pack([(k, k = 1, r)], shear_row(row_element) /= row_traction .or. &
+                     normal_row(row_element) /= row_traction)
+        !$omp parallel default(none) private(i, j, k, l, t, xm, ym, cosb, sinb, ts_s, tn_s, &
+        !$omp     ts_n, tn_n) shared(elements, images, shear_modulus, nu, shear_row, normal_row, &
+        !$omp     row_element, row_s, row_n, col_element, col_s, col_n, block, xr, yr, cr, sr, &
+        !$omp     traction_s, traction_n, other, r)
+        allocate (ts_s(r), tn_s(r), ts_n(r), tn_n(r))
+        !$omp do schedule(static)
+        do l = 1, size(col_element)
+            j = col_element(l)
+            ts_s = 0.0_wp
+            tn_s = 0.0_wp
+            ts_n = 0.0_wp
+            tn_n = 0.0_wp
             call traction_column(elements%x_mid(j), elements%y_mid(j), elements%half_length(j), &
-                elements%cos_beta(j), elements%sin_beta(j), 1.0_wp, elements%x_mid, &
-                elements%y_mid, elements%cos_beta, elements%sin_beta, shear_modulus, nu, &
-                matrix(1:n, j), matrix(n + 1:, j), matrix(1:n, n + j), matrix(n + 1:, n + j))
+                elements%cos_beta(j), elements%sin_beta(j), 1.0_wp, xr, yr, cr, sr, &
+                shear_modulus, nu, ts_s, tn_s, ts_n, tn_n)
             do t = 1, size(images)
                 call image_of(elements, j, images(t), xm, ym, cosb, sinb)
                 call traction_column(xm, ym, elements%half_length(j), cosb, sinb, &
-                    images(t)%sign_s, elements%x_mid, elements%y_mid, elements%cos_beta, &
-                    elements%sin_beta, shear_modulus, nu, matrix(1:n, j), matrix(n + 1:, j), &
-                    matrix(1:n, n + j), matrix(n + 1:, n + j))
+                    images(t)%sign_s, xr, yr, cr, sr, shear_modulus, nu, ts_s, tn_s, ts_n, tn_n)
             end do
+            if (col_s(l) > 0) block(row_s(traction_s), col_s(l)) = ts_s(traction_s)
+            if (col_n(l) > 0) block(row_s(traction_s), col_n(l)) = ts_n(traction_s)
+            if (col_s(l) > 0) block(row_n(traction_n), col_s(l)) = tn_s(traction_n)
+            if (col_n(l) > 0) block(row_n(traction_n), col_n(l)) = tn_n(traction_n)
             do k = 1, size(other)
-                i = other(k)
-                call set_entries(matrix, n, i, j, shear_row(i), normal_row(i), &
-                    pair_at_midpoint(dd_kernel_global, elements, i, j, images, shear_modulus, &
-                                     nu))
+                i = row_element(other(k))
+                call place_pair(pair_at_midpoint(dd_kernel_global, elements, i, j, images, &
+                                                 shear_modulus, nu), i == j, shear_row(i), &
+                                normal_row(i), row_s(other(k)), row_n(other(k)), col_s(l), &
+                                col_n(l), block)
             end do
         end do
-        !$omp end parallel do
-    end subroutine assemble_full_plane
+        !$omp end do
+        !$omp end parallel
+    end subroutine fill_full_plane
 
     !> Add the full-plane tractions that unit Ds (sign_s times it) and unit Dn of one
     !> source element cause at the receivers' midpoints, resolved on each receiver's plane:

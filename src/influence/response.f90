@@ -1,11 +1,14 @@
-!> Induced tractions and negative-face displacements at every element midpoint after a
+!> Induced tractions and negative-face displacements at the element midpoints after a
 !> solve, from the assembled influence matrix where its rows give them: one matrix-vector
 !> product, in which a traction row is the induced traction and a displacement row the
-!> face displacement (an identity row gives neither). What the rows do not give is summed
-!> from the kernel: the face displacements of traction-row elements (most of them) by the
-!> fused full-plane sum (ddc_influence_superposition; the general kernel in the
-!> half-plane), the tractions of displacement and identity rows by the general kernel.
-!> Both equal the sums of the general kernel over every pair within round-off.
+!> face displacement (an identity row gives neither). What the rows do not give (the face
+!> displacements of traction-row elements, most of them, and the tractions of displacement
+!> and identity rows) is summed from the kernel: in the full plane by the fused sum over
+!> every other source (ddc_influence_superposition) plus the element's own part (half its
+!> DD on its negative face, G / (pi (1 - nu) a) times it in traction), in the half-plane
+!> by the general kernel pair by pair. kernel_response sums everything that way, without a
+!> matrix (a distributed run, which keeps no dense matrix). All equal the sums of the
+!> general kernel over every pair within round-off (suite `kernel`).
 module ddc_influence_response
     use ddc_kinds, only: wp
     use ddc_model_types, only: element_set, domain_half_plane
@@ -13,10 +16,11 @@ module ddc_influence_response
     use ddc_influence_assembly, only: image_transform, image_transforms, kernel_function, &
         select_kernel, pair_influence, pair_at_midpoint, row_traction, row_displacement
     use ddc_influence_superposition, only: source_table, build_sources, superpose
+    use ddc_constants, only: pi
     implicit none
     private
 
-    public :: midpoint_response, listed_tractions
+    public :: midpoint_response, kernel_response, listed_tractions
 
 contains
 
@@ -43,37 +47,29 @@ contains
         !> reference of the tests; default false)
         logical, intent(in), optional :: general
         real(wp), allocatable :: dd(:), y(:), ts(:), tn(:), us(:), un(:)
-        integer, allocatable :: no_traction(:), no_displacement(:)
         integer :: n, i
+        logical :: reference
 
         n = elements%n
         if (n == 0) return
         allocate (ts(n), tn(n), us(n), un(n))
-        if (present(general)) then
-            if (general) then
-                call general_sums(elements, shear_modulus, nu, ds, dn, [(i, i = 1, n)], ts, &
-                                  tn, us, un)
-                shear_traction = ts
-                normal_traction = tn
-                us_minus = us
-                un_minus = un
-                return
-            end if
+        reference = .false.
+        if (present(general)) reference = general
+        if (reference) then
+            call kernel_sums(elements, shear_modulus, nu, ds, dn, [(i, i = 1, n)], ts, tn, us, &
+                             un, general=.true.)
+            shear_traction = ts
+            normal_traction = tn
+            us_minus = us
+            un_minus = un
+            return
         end if
         dd = [ds, dn]
         allocate (y(2 * n))
         call dgemv('N', 2 * n, 2 * n, 1.0_wp, matrix, 2 * n, dd, 1, 0.0_wp, y, 1)
-        no_traction = pack([(i, i = 1, n)], shear_row /= row_traction .or. &
-                           normal_row /= row_traction)
-        no_displacement = pack([(i, i = 1, n)], shear_row /= row_displacement .or. &
-                               normal_row /= row_displacement)
-        if (elements%domain == domain_half_plane) then
-            call general_sums(elements, shear_modulus, nu, ds, dn, [(i, i = 1, n)], ts, tn, &
-                              us, un)
-        else
-            call general_sums(elements, shear_modulus, nu, ds, dn, no_traction, ts, tn, us, un)
-            call face_displacements(elements, nu, ds, dn, no_displacement, us, un)
-        end if
+        ! Every element misses something from its rows (the face displacement of a traction
+        ! row, the traction of the others); the kernel sums give both at the price of one.
+        call kernel_sums(elements, shear_modulus, nu, ds, dn, [(i, i = 1, n)], ts, tn, us, un)
         shear_traction = merge(y(1:n), ts, shear_row == row_traction)
         normal_traction = merge(y(n + 1:), tn, normal_row == row_traction)
         us_minus = merge(y(1:n), us, shear_row == row_displacement)
@@ -105,8 +101,8 @@ contains
         n = elements%n
         allocate (ts(n), tn(n), us(n), un(n))
         other = pack(list, shear_row(list) /= row_traction .or. normal_row(list) /= row_traction)
-        if (size(other) > 0) call general_sums(elements, shear_modulus, nu, ds, dn, other, ts, &
-                                               tn, us, un)
+        if (size(other) > 0) call kernel_sums(elements, shear_modulus, nu, ds, dn, other, ts, &
+                                              tn, us, un)
         do k = 1, size(list)
             i = list(k)
             if (shear_row(i) == row_traction) then
@@ -124,22 +120,66 @@ contains
         end do
     end subroutine listed_tractions
 
-    !> Tractions and face displacements at the midpoints of the listed (distinct) elements
-    !> from the general kernel (every pair, images included).
-    subroutine general_sums(elements, shear_modulus, nu, ds, dn, list, ts, tn, us, un)
+    !> Induced tractions and negative-face displacements at the element midpoints from the
+    !> kernel alone, without a matrix: at every element, or at the elements first, first + 1,
+    !> ... (one per output value; a distributed run splits the elements).
+    subroutine kernel_response(elements, shear_modulus, nu, ds, dn, shear_traction, &
+                               normal_traction, us_minus, un_minus, first)
+        !> Elements with geometry computed
+        type(element_set), intent(in) :: elements
+        !> Shear modulus [stress unit] and Poisson's ratio [-]
+        real(wp), intent(in) :: shear_modulus, nu
+        !> Displacement discontinuities of every element [length unit], shape (n)
+        real(wp), intent(in) :: ds(:), dn(:)
+        !> Induced shear and normal traction [stress unit], shape (m) (n without first)
+        real(wp), intent(out) :: shear_traction(:), normal_traction(:)
+        !> Negative-face displacement along s and n [length unit], shape (m)
+        real(wp), intent(out) :: us_minus(:), un_minus(:)
+        !> The element of the first output value (default 1)
+        integer, intent(in), optional :: first
+        real(wp), allocatable :: ts(:), tn(:), us(:), un(:)
+        integer, allocatable :: range(:)
+        integer :: offset, k
+
+        offset = 0
+        if (present(first)) offset = first - 1
+        allocate (range(size(shear_traction)))
+        do k = 1, size(range)
+            range(k) = offset + k
+        end do
+        allocate (ts(elements%n), tn(elements%n), us(elements%n), un(elements%n))
+        call kernel_sums(elements, shear_modulus, nu, ds, dn, range, ts, tn, us, un)
+        shear_traction = ts(range)
+        normal_traction = tn(range)
+        us_minus = us(range)
+        un_minus = un(range)
+    end subroutine kernel_response
+
+    !> Tractions and face displacements at the midpoints of the listed (distinct) elements,
+    !> entries of the element-indexed outputs: the fused full-plane sum, or (half-plane, or
+    !> general) the general kernel pair by pair.
+    subroutine kernel_sums(elements, shear_modulus, nu, ds, dn, list, ts, tn, us, un, general)
         type(element_set), intent(in) :: elements
         real(wp), intent(in) :: shear_modulus, nu, ds(:), dn(:)
         integer, intent(in) :: list(:)
         real(wp), intent(inout) :: ts(:), tn(:), us(:), un(:)
+        logical, intent(in), optional :: general
         procedure(kernel_function), pointer :: kernel
-        type(image_transform), allocatable :: images(:)
+        logical :: use_general
 
-        call select_kernel(elements, kernel)
-        images = image_transforms(elements%symmetry)
-        call sums_with(kernel, elements, images, shear_modulus, nu, ds, dn, list, ts, tn, us, un)
-    end subroutine general_sums
+        use_general = elements%domain == domain_half_plane
+        if (present(general)) use_general = use_general .or. general
+        if (use_general) then
+            call select_kernel(elements, kernel)
+            call sums_with(kernel, elements, image_transforms(elements%symmetry), &
+                           shear_modulus, nu, ds, dn, list, ts, tn, us, un)
+        else
+            call fused_sums(elements, image_transforms(elements%symmetry), shear_modulus, nu, &
+                            ds, dn, list, ts, tn, us, un)
+        end if
+    end subroutine kernel_sums
 
-    !> general_sums with the kernel and the image transforms given.
+    !> The general kernel pair by pair (every pair, images included) at the listed midpoints.
     subroutine sums_with(kernel, elements, images, shear_modulus, nu, ds, dn, list, ts, tn, &
                          us, un)
         procedure(kernel_function) :: kernel
@@ -172,29 +212,36 @@ contains
         !$omp end parallel do
     end subroutine sums_with
 
-    !> Full plane: negative-face displacements at the midpoints of the listed elements by the
-    !> fused sum over every other source, plus the element's own jump: its negative face
-    !> moves by half its DD (C&S: u(-) - u(+) = D).
-    subroutine face_displacements(elements, nu, ds, dn, list, us, un)
+    !> Full plane: the fused sum over every source but the element itself (superpose) at
+    !> each listed midpoint, resolved in the element's frame, plus the element's own part:
+    !> its negative face moves by half its DD (C&S: u(-) - u(+) = D) and its midpoint
+    !> carries the traction G / (pi (1 - nu) a) D of its own DD.
+    subroutine fused_sums(elements, images, shear_modulus, nu, ds, dn, list, ts, tn, us, un)
         type(element_set), intent(in) :: elements
-        real(wp), intent(in) :: nu, ds(:), dn(:)
+        type(image_transform), intent(in) :: images(:)
+        real(wp), intent(in) :: shear_modulus, nu, ds(:), dn(:)
         integer, intent(in) :: list(:)
-        real(wp), intent(inout) :: us(:), un(:)
+        real(wp), intent(inout) :: ts(:), tn(:), us(:), un(:)
         type(source_table) :: src
-        real(wp) :: u(2), unused(3)
+        real(wp) :: u(2), stress(3), c, s, own
         integer :: k, i
 
-        call build_sources(elements, image_transforms(elements%symmetry), ds, dn, src)
-        !$omp parallel do default(none) schedule(static) private(k, i, u, unused) &
-        !$omp shared(elements, src, nu, ds, dn, list, us, un)
+        call build_sources(elements, images, ds, dn, src)
+        !$omp parallel do default(none) schedule(static) private(k, i, u, stress, c, s, own) &
+        !$omp shared(elements, src, shear_modulus, nu, ds, dn, list, ts, tn, us, un)
         do k = 1, size(list)
             i = list(k)
-            ! The shear modulus does not enter the displacement.
-            call superpose(src, 1.0_wp, nu, elements%x_mid(i), elements%y_mid(i), i, u, unused)
-            us(i) = u(1) * elements%cos_beta(i) + u(2) * elements%sin_beta(i) + 0.5_wp * ds(i)
-            un(i) = -u(1) * elements%sin_beta(i) + u(2) * elements%cos_beta(i) + 0.5_wp * dn(i)
+            call superpose(src, shear_modulus, nu, elements%x_mid(i), elements%y_mid(i), i, u, &
+                           stress)
+            c = elements%cos_beta(i)
+            s = elements%sin_beta(i)
+            own = shear_modulus / (pi * (1.0_wp - nu) * elements%half_length(i))
+            ts(i) = -(stress(1) - stress(2)) * s * c + stress(3) * (c**2 - s**2) + own * ds(i)
+            tn(i) = stress(1) * s**2 - 2.0_wp * stress(3) * s * c + stress(2) * c**2 + own * dn(i)
+            us(i) = u(1) * c + u(2) * s + 0.5_wp * ds(i)
+            un(i) = -u(1) * s + u(2) * c + 0.5_wp * dn(i)
         end do
         !$omp end parallel do
-    end subroutine face_displacements
+    end subroutine fused_sums
 
 end module ddc_influence_response

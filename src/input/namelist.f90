@@ -2,11 +2,12 @@
 !>
 !> The whole file is read first and scanned for its groups (ddc_input_namelist_groups).
 !> Each group is then read the counted number of times with iostat and iomsg by its reader
-!> (ddc_input_namelist_settings, _fracture, _observations): a read failure for a group known
-!> to exist means the group is malformed, and ddc_input_namelist_diagnosis says why. Defaults
-!> are set to an "unset" sentinel before every read, so given entries can be counted; every
-!> value is validated NaN-safely and all violations are reported at once, one per line, each
-!> naming the file, the group (with its ordinal and name when repeatable) and the variable.
+!> (ddc_input_namelist_settings, _fracture, _observations, _growth): a read failure for a
+!> group known to exist means the group is malformed, and ddc_input_namelist_diagnosis says
+!> why. Defaults are set to an "unset" sentinel before every read, so given entries can be
+!> counted; every value is validated NaN-safely and all violations are reported at once, one
+!> per line, each naming the file, the group (with its ordinal and name when repeatable) and
+!> the variable.
 module ddc_input_namelist
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
@@ -19,6 +20,7 @@ module ddc_input_namelist
     use ddc_input_namelist_groups, only: namelist_groups, group_record, message_list, add, &
         scan_groups, g_model, g_remote_stress, g_fracture, g_grid, g_line, g_points, g_solver, &
         g_output, g_symmetry, g_pore_fluid, g_load_path
+    use ddc_input_namelist_growth, only: read_growth_group
     use ddc_input_namelist_settings, only: read_model_group, read_remote_stress_group, &
         read_pore_fluid_group, read_solver_group, read_symmetry_group, read_output_group, &
         read_load_path_group
@@ -86,12 +88,13 @@ contains
         call read_load_path_group(unit, text, path, groups(g_load_path), &
                                   any(fractures%valid .and. &
                                       fractures%condition == condition_contact), model, messages)
+        call read_growth_group(unit, text, path, groups, fractures, model, messages)
         close (unit)
 
         call check_names(path, fractures, observations, messages)
         call check_half_plane(path, model, fractures, observations, messages)
         if (messages%n > 0) then
-            call set_error(error, exit_bad_input, messages%text)
+            call set_error(error, messages%code, messages%text)
             return
         end if
 

@@ -8,6 +8,7 @@
 !> table are the ones the messages print and the diagnosis of a bad group checks against;
 !> tests/architecture/check_sources.py holds every reader's namelist statement to them.
 module ddc_input_namelist_groups
+    use ddc_error, only: exit_bad_input
     use ddc_text, only: newline, itoa, lower, find_name, join_integers
     implicit none
     private
@@ -15,7 +16,7 @@ module ddc_input_namelist_groups
     public :: group_spec, namelist_groups, group_record, message_list, add
     public :: scan_groups, group_line, group_label, group_prefix, is_name_character
     public :: g_model, g_remote_stress, g_fracture, g_grid, g_line, g_points, g_solver, &
-        g_output, g_symmetry, g_sweep, g_pore_fluid, g_load_path
+        g_output, g_symmetry, g_sweep, g_pore_fluid, g_load_path, g_growth
 
     !> One namelist group: its name, whether it may appear more than once, and its variables
     !> with their types ("name:c x:r n:i": c text, r real, i integer)
@@ -28,10 +29,10 @@ module ddc_input_namelist_groups
     !> Index of each group in namelist_groups
     integer, parameter :: g_model = 1, g_remote_stress = 2, g_fracture = 3, g_grid = 4, &
                           g_line = 5, g_points = 6, g_solver = 7, g_output = 8, g_symmetry = 9, &
-                          g_sweep = 10, g_pore_fluid = 11, g_load_path = 12
+                          g_sweep = 10, g_pore_fluid = 11, g_load_path = 12, g_growth = 13
 
     !> Every group ddc2d knows (&sweep is read by ddc_input_sweep; the model reader skips it)
-    type(group_spec), parameter :: namelist_groups(12) = [ &
+    type(group_spec), parameter :: namelist_groups(13) = [ &
         group_spec('model', .false., 'title:c youngs_modulus:r poissons_ratio:r '// &
                    'length_unit:c stress_unit:c domain:c'), &
         group_spec('remote_stress', .false., 'sxx:r syy:r sxy:r dsxx_dy:r dsyy_dy:r dsxy_dy:r'), &
@@ -40,14 +41,16 @@ module ddc_input_namelist_groups
         group_spec('grid', .true., 'name:c xmin:r xmax:r nx:i ymin:r ymax:r ny:i'), &
         group_spec('line', .true., 'name:c x_begin:r y_begin:r x_end:r y_end:r points:i'), &
         group_spec('points', .true., 'name:c file:c'), &
-        group_spec('solver', .false., 'lcp_method:c open_cohesion:c'), &
+        group_spec('solver', .false., 'lcp_method:c open_cohesion:c block_size:i'), &
         group_spec('output', .false., 'file:c'), &
         group_spec('symmetry', .false., 'kind:c xsym:r ysym:r'), &
         group_spec('sweep', .false., 'combine:c parameters:c values_1:r values_2:r '// &
                    'values_3:r values_4:r values_5:r values_6:r'), &
         group_spec('pore_fluid', .false., 'p0:r dp_dy:r'), &
         group_spec('load_path', .false., 'sxx:r syy:r sxy:r dsxx_dy:r dsyy_dy:r dsxy_dy:r '// &
-                   'p0:r steps:i')]
+                   'p0:r steps:i'), &
+        group_spec('growth', .false., 'steps:i toughness:r increment:r element_length:r '// &
+                   'tips:c fractures:c criterion:c max_corrections:i new_mu:r new_sf:r')]
 
     !> Where the occurrences of one group are in the file.
     type :: group_record
@@ -67,6 +70,9 @@ module ddc_input_namelist_groups
         character(len=:), allocatable :: text
         !> Number of lines
         integer :: n = 0
+        !> Exit code of the error they make: exit_bad_input, or exit_out_of_memory when an
+        !> allocation for the input failed
+        integer :: code = exit_bad_input
     end type message_list
 
 contains

@@ -2,10 +2,11 @@
 !> lines (&line, both ends counted) and point lists from a CSV (&points), in file order.
 module ddc_input_namelist_observations
     use ddc_kinds, only: wp
-    use ddc_error, only: error_type
+    use ddc_error, only: error_type, exit_out_of_memory
+    use ddc_allocation, only: real_bytes
     use ddc_model_types, only: observation_set, observation_grid, observation_line, &
         observation_points
-    use ddc_text, only: itoa, rtoa, prefix_lines
+    use ddc_text, only: itoa, rtoa, prefix_lines, bytes_text
     use ddc_model_limits, only: within_limits
     use ddc_input_text_file, only: resolve
     use ddc_input_csv, only: read_csv
@@ -84,7 +85,7 @@ contains
             observations(slot)%valid = .true.
             observations(slot)%set%nx = nx
             observations(slot)%set%ny = ny
-            allocate (observations(slot)%set%x(nx * ny), observations(slot)%set%y(nx * ny))
+            if (.not. allocated_points(observations(slot)%set, nx * ny, prefix, messages)) cycle
             do j = 1, ny
                 do i = 1, nx
                     observations(slot)%set%x(i + (j - 1) * nx) = xs(i)
@@ -156,7 +157,7 @@ contains
             if (same) n = 1
             observations(slot)%set%nx = n
             observations(slot)%set%ny = 1
-            allocate (observations(slot)%set%x(n), observations(slot)%set%y(n))
+            if (.not. allocated_points(observations(slot)%set, n, prefix, messages)) cycle
             observations(slot)%set%x(1) = x_begin
             observations(slot)%set%y(1) = y_begin
             do i = 2, n - 1
@@ -222,6 +223,25 @@ contains
             observations(slot)%set%y = rows(2, :)
         end do
     end subroutine read_points_groups
+
+    !> Allocate the coordinates of n points; when they do not fit in memory, say so in the
+    !> messages (with exit_out_of_memory) and return false.
+    function allocated_points(set, n, prefix, messages) result(ok)
+        type(observation_set), intent(inout) :: set
+        integer, intent(in) :: n
+        character(len=*), intent(in) :: prefix
+        type(message_list), intent(inout) :: messages
+        logical :: ok
+        integer :: stat
+
+        allocate (set%x(n), stat=stat)
+        if (stat == 0) allocate (set%y(n), stat=stat)
+        ok = stat == 0
+        if (ok) return
+        call add(messages, prefix//'not enough memory for the coordinates of its '//itoa(n)// &
+                 ' points ('//bytes_text(2.0_wp * real_bytes * real(n, wp))//')')
+        messages%code = exit_out_of_memory
+    end function allocated_points
 
     !> Label, name (or <kind>_<k>), kind and message prefix of the observation set made by
     !> occurrence k of a &grid, &line or &points group.

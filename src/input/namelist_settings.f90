@@ -6,7 +6,7 @@ module ddc_input_namelist_settings
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
     use ddc_model_types, only: model_type, symmetry_none, symmetry_names, domain_names, &
-        domain_half_plane, load_path_names
+        domain_half_plane, load_path_names, default_block_size
     use ddc_model_limits, only: quantity_youngs_modulus, quantity_poissons_ratio
     use ddc_contact_options, only: parse_solver_options
     use ddc_text, only: itoa, lower, find_name, quoted_list, prefix_lines
@@ -158,7 +158,8 @@ contains
         if (check_scalar(dp_dy, 'dp_dy', .false., prefix, messages)) model%pore_fluid(2) = dp_dy
     end subroutine read_pore_fluid_group
 
-    !> &solver lcp_method, open_cohesion /
+    !> &solver lcp_method, open_cohesion, block_size / (block_size: of the distributed
+    !> matrices of the MPI build, at least 1)
     subroutine read_solver_group(unit, text, path, info, model, messages)
         integer, intent(in) :: unit
         character(len=*), intent(in) :: text
@@ -169,12 +170,13 @@ contains
         character(len=text_length) :: lcp_method, open_cohesion
         character(len=512) :: iomsg
         type(error_type), allocatable :: problems
-        integer :: stat
-        namelist /solver/ lcp_method, open_cohesion
+        integer :: stat, block_size
+        namelist /solver/ lcp_method, open_cohesion, block_size
 
         if (info%count == 0) return
         lcp_method = 'auto'
         open_cohesion = 'kept'
+        block_size = default_block_size
         rewind (unit)
         read (unit, nml=solver, iostat=stat, iomsg=iomsg)
         if (stat /= 0) then
@@ -185,6 +187,12 @@ contains
         if (allocated(problems)) then
             call add(messages, prefix_lines(group_prefix(path, g_solver, info, 1), &
                                             problems%message))
+        end if
+        if (block_size < 1) then
+            call add(messages, group_prefix(path, g_solver, info, 1)//'block_size = '// &
+                     itoa(block_size)//' must be at least 1')
+        else
+            model%block_size = block_size
         end if
     end subroutine read_solver_group
 
@@ -321,6 +329,8 @@ contains
         given = 0
         do q = 1, 7
             stat = count_given(values(:, q), trim(load_path_names(q)), prefix, messages)
+            ! A quantity given with the wrong number of values is given: one message only.
+            if (stat > 0) given = given + 1
             if (stat == 0) then
                 model%load_path%vertex(q, :) = fixed(q)
             else if (stat /= nv .and. nlegs > 0) then
@@ -328,7 +338,6 @@ contains
                          ' values; give one per vertex: '//itoa(nv)//' (one more than steps)')
                 ok = .false.
             else
-                given = given + 1
                 model%load_path%varies(q) = .true.
                 model%load_path%vertex(q, :) = values(1:nv, q)
             end if

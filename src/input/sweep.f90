@@ -14,7 +14,7 @@
 module ddc_input_sweep
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
-    use ddc_model_types, only: model_type
+    use ddc_model_types, only: model_type, load_path_names
     use ddc_input_text_file, only: read_text_file
     use ddc_text, only: itoa, rtoa, lower, add_message, messages_error, join_integers
     use ddc_input_namelist_groups, only: group_line
@@ -95,8 +95,38 @@ contains
         nbad = 0
         call build(prefix, combine, parameters, lists, size(model%fractures), definition, &
                    messages, nbad)
+        if (nbad == 0) call check_load_path(prefix, model, definition, messages, nbad)
         if (nbad > 0) call messages_error(messages, nbad, 'problems', error)
+        definition%where = prefix
     end subroutine read_sweep
+
+    !> A remote stress component that a &load_path gives at its vertices cannot be swept:
+    !> the path would override the task's value (sxx, syy, sxy, or all three for the
+    !> principal stresses).
+    subroutine check_load_path(prefix, model, definition, messages, nbad)
+        character(len=*), intent(in) :: prefix
+        type(model_type), intent(in) :: model
+        type(sweep_definition), intent(in) :: definition
+        character(len=:), allocatable, intent(inout) :: messages
+        integer, intent(inout) :: nbad
+        logical :: sets(3)
+        integer :: p, q
+
+        if (.not. allocated(model%load_path%vertex)) return
+        do p = 1, size(definition%targets)
+            sets = [definition%targets(p) == target_sxx, definition%targets(p) == target_syy, &
+                    definition%targets(p) == target_sxy]
+            if (any(definition%targets(p) == [target_s1, target_s3, target_angle])) sets = .true.
+            do q = 1, 3
+                if (.not. (sets(q) .and. model%load_path%varies(q))) cycle
+                call add_message(messages, nbad, prefix//'parameters('//itoa(p)//") = '"// &
+                    trim(definition%names(p))//"' sets the remote "//trim(load_path_names(q))// &
+                    ', which &load_path gives at every vertex: the path would override it '// &
+                    '(sweep a quantity the path holds fixed)')
+                exit
+            end do
+        end do
+    end subroutine check_load_path
 
     !> Validate the group's values and build the sweep from them.
     subroutine build(prefix, combine, parameters, lists, nfractures, definition, messages, &

@@ -1,7 +1,9 @@
 !> Read a whole text file into one string (lines separated by newline characters), and the
 !> paths written inside input files.
 module ddc_input_text_file
+    use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
+    use ddc_allocation, only: allocation_failed
     implicit none
     private
 
@@ -43,7 +45,12 @@ contains
             call set_error(error, exit_bad_input, path//': cannot tell the file size')
             return
         end if
-        allocate (character(len=file_size) :: text)
+        allocate (character(len=file_size) :: text, stat=stat)
+        if (stat /= 0) then
+            close (unit)
+            call allocation_failed(error, 'the text of '//path, real(file_size, wp))
+            return
+        end if
         if (file_size > 0) then
             read (unit, iostat=stat, iomsg=message) text
             if (stat /= 0) then

@@ -21,6 +21,7 @@ module ddc_input_twodd_deck
     use ddc_mesh_geometry, only: allocate_elements, compute_geometry
     use ddc_mesh_checks, only: check_elements
     use ddc_text, only: itoa, rtoa
+    use ddc_allocation, only: allocation_failed, real_bytes
     implicit none
     private
 
@@ -312,7 +313,13 @@ contains
                 o%kind = observation_line
                 o%nx = n
                 o%ny = 1
-                allocate (o%x(n), o%y(n))
+                allocate (o%x(n), stat=stat)
+                if (stat == 0) allocate (o%y(n), stat=stat)
+                if (stat /= 0) then
+                    call allocation_failed(error, deck%path//': observation line '//itoa(k)// &
+                        ' of '//itoa(n)//' points', 2.0_wp * real_bytes * real(n, wp))
+                    return
+                end if
                 o%x(1) = xb
                 o%y(1) = yb
                 do i = 2, n - 1

@@ -17,11 +17,13 @@ module ddc_linalg_lu
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_solver_failure
     use ddc_text, only: itoa
+    use ddc_allocation, only: allocation_failed, real_bytes
     use ddc_linalg_lapack, only: dgetrf, dgetrs, dgetri, dgecon, dlange
     implicit none
     private
 
     public :: lu_factor, lu_solve, lu_invert, rcond_min, residual_tol, influence_hint
+    public :: singular_error, numerically_singular_error
 
     !> Largest reciprocal condition number called numerically singular
     real(wp), parameter :: rcond_min = 1.0e3_wp * epsilon(1.0_wp)
@@ -56,7 +58,6 @@ contains
         integer, allocatable :: iwork(:)
         real(wp) :: anorm, rcond
         integer :: m, info, i, k
-        character(len=12) :: rcond_text
 
         m = size(a, 1)
         if (m == 0) return
@@ -64,8 +65,7 @@ contains
         anorm = dlange('1', m, m, a, m, work)
         call dgetrf(m, m, a, m, ipiv, info)
         if (info > 0) then
-            call set_error(error, exit_solver_failure, subject//' is singular at '// &
-                           unknown_name(info, m, element, shear))
+            call singular_error(error, subject, info, m, element, shear)
             return
         end if
         call dgecon('1', m, a, m, anorm, rcond, work, iwork, info)
@@ -75,10 +75,7 @@ contains
             do i = 2, m
                 if (abs(a(i, i)) < abs(a(k, k))) k = i
             end do
-            write (rcond_text, '(es10.3)') rcond
-            call set_error(numerical, exit_solver_failure, subject//' is numerically '// &
-                           'singular near '//unknown_name(k, m, element, shear)// &
-                           ' (reciprocal condition number '//trim(adjustl(rcond_text))//')')
+            call numerically_singular_error(numerical, subject, k, m, rcond, element, shear)
             if (present(ill_conditioned)) then
                 call move_alloc(numerical, ill_conditioned)
             else
@@ -109,25 +106,77 @@ contains
         real(wp), allocatable, intent(out) :: inverse(:, :)
         !> What the matrix is, for the message
         character(len=*), intent(in) :: subject
-        !> Allocated when the matrix is (numerically) singular
+        !> Allocated when the matrix is (numerically) singular (exit_solver_failure) or the
+        !> inverse does not fit in memory (exit_out_of_memory)
         type(error_type), allocatable, intent(out) :: error
         real(wp), allocatable :: work(:)
         integer, allocatable :: ipiv(:)
-        integer :: m, info, lwork
+        integer :: m, info, lwork, stat
 
         m = size(a, 1)
-        inverse = a
         allocate (ipiv(m))
+        allocate (inverse(m, m), stat=stat)
+        if (stat /= 0) then
+            call allocation_failed(error, 'the inverse of the '//subject, &
+                                   real_bytes * real(m, wp)**2)
+            return
+        end if
+        inverse(:, :) = a
         call lu_factor(inverse, ipiv, subject, error)
         if (allocated(error) .or. m == 0) return
         allocate (work(1))
         call dgetri(m, inverse, m, ipiv, work, -1, info)
         lwork = max(int(work(1)), m)
         deallocate (work)
-        allocate (work(lwork))
+        allocate (work(lwork), stat=stat)
+        if (stat /= 0) then
+            call allocation_failed(error, 'the work space of the inverse of the '//subject, &
+                                   real_bytes * real(lwork, wp))
+            return
+        end if
         ! With nonsingular factors dgetri cannot fail.
         call dgetri(m, inverse, m, ipiv, work, lwork, info)
     end subroutine lu_invert
+
+    !> "<subject> is singular at element 12 (normal unknown)": a zero pivot at unknown k.
+    subroutine singular_error(error, subject, k, m, element, shear)
+        !> The error (exit_solver_failure)
+        type(error_type), allocatable, intent(out) :: error
+        !> What the matrix is
+        character(len=*), intent(in) :: subject
+        !> The unknown of the zero pivot and the number of unknowns
+        integer, intent(in) :: k, m
+        !> Element of each unknown, shape (m) (default: the [s; n] ordering of m/2 elements)
+        integer, intent(in), optional :: element(:)
+        !> Whether each unknown is a shear DD, shape (m) (default: the [s; n] ordering)
+        logical, intent(in), optional :: shear(:)
+
+        call set_error(error, exit_solver_failure, subject//' is singular at '// &
+                       unknown_name(k, m, element, shear))
+    end subroutine singular_error
+
+    !> "<subject> is numerically singular near element 12 (normal unknown) (reciprocal
+    !> condition number 1.0E-17)": the smallest pivot at unknown k.
+    subroutine numerically_singular_error(error, subject, k, m, rcond, element, shear)
+        !> The error (exit_solver_failure)
+        type(error_type), allocatable, intent(out) :: error
+        !> What the matrix is
+        character(len=*), intent(in) :: subject
+        !> The unknown of the smallest pivot and the number of unknowns
+        integer, intent(in) :: k, m
+        !> The reciprocal condition number
+        real(wp), intent(in) :: rcond
+        !> Element of each unknown, shape (m) (default: the [s; n] ordering of m/2 elements)
+        integer, intent(in), optional :: element(:)
+        !> Whether each unknown is a shear DD, shape (m) (default: the [s; n] ordering)
+        logical, intent(in), optional :: shear(:)
+        character(len=12) :: rcond_text
+
+        write (rcond_text, '(es10.3)') rcond
+        call set_error(error, exit_solver_failure, subject//' is numerically singular near '// &
+                       unknown_name(k, m, element, shear)//' (reciprocal condition number '// &
+                       trim(adjustl(rcond_text))//')')
+    end subroutine numerically_singular_error
 
     !> "element 12 (normal unknown)" for unknown k of m.
     function unknown_name(k, m, element, shear) result(name)

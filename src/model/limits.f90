@@ -9,7 +9,7 @@ module ddc_model_limits
 
     public :: max_input_magnitude, within_limits, limits_text, range_problem
     public :: quantity_any, quantity_youngs_modulus, quantity_poissons_ratio
-    public :: quantity_non_negative
+    public :: quantity_non_negative, quantity_positive
 
     !> Largest and smallest accepted magnitude of a non-zero input real. The kernels raise
     !> coordinate differences to the sixth power and the solvers divide by moduli: outside
@@ -21,9 +21,11 @@ module ddc_model_limits
         ' is not a finite number of magnitude 0 or 1e-50 .. 1e50'
 
     !> Quantities with a physical range: any value within the limits; Young's modulus
-    !> (positive); Poisson's ratio (-1, 0.5); friction, cohesion (not negative)
+    !> (positive); Poisson's ratio (-1, 0.5); friction, cohesion (not negative); lengths and
+    !> the fracture toughness (positive)
     integer, parameter :: quantity_any = 0, quantity_youngs_modulus = 1, &
-                          quantity_poissons_ratio = 2, quantity_non_negative = 3
+                          quantity_poissons_ratio = 2, quantity_non_negative = 3, &
+                          quantity_positive = 4
 
 contains
 
@@ -40,8 +42,8 @@ contains
     !> Why a value is not acceptable for its quantity, to follow "name = value "; '' when
     !> it is.
     pure function range_problem(quantity, value) result(problem)
-        !> quantity_any, quantity_youngs_modulus, quantity_poissons_ratio or
-        !> quantity_non_negative
+        !> quantity_any, quantity_youngs_modulus, quantity_poissons_ratio,
+        !> quantity_non_negative or quantity_positive
         integer, intent(in) :: quantity
         !> The value
         real(wp), intent(in) :: value
@@ -53,7 +55,7 @@ contains
             return
         end if
         select case (quantity)
-        case (quantity_youngs_modulus)
+        case (quantity_youngs_modulus, quantity_positive)
             if (.not. value > 0.0_wp) problem = 'must be positive'
         case (quantity_poissons_ratio)
             if (.not. (value > -1.0_wp .and. value < 0.5_wp)) problem = 'must lie in (-1, 0.5)'

@@ -6,7 +6,10 @@ module ddc_model_results
     private
 
     public :: element_results, tip_set, field_result, solver_record, model_results
-    public :: history_record
+    public :: history_record, growth_record
+    public :: growth_grew, growth_subcritical, growth_intersection, growth_surface, &
+        growth_corrector_failed, growth_waiting, growth_reason_names
+    public :: growth_arrested, growth_step_limit, growth_end_names
     public :: state_free, state_stick, state_slip, state_open, state_names
     public :: point_clear, point_near, point_on_element
 
@@ -21,6 +24,23 @@ module ddc_model_results
     !> element centre (TWODD skips these; accuracy reduced); on an element or at its end
     !> (field discontinuous or singular there: values are NaN)
     integer, parameter :: point_clear = 0, point_near = 1, point_on_element = 2
+
+    !> Why a tip did or did not grow in a growth step (SPEC-GROWTH 3): it grew (the
+    !> corrector converged, or is switched off); it is subcritical (K_eq < toughness); it
+    !> stopped for good at another element or at the free surface; it grew at the MTS
+    !> angle because the corrector did not converge or its new tip was closed; it is
+    !> critical but waits (tips = 'most_critical' and another tip is more critical)
+    integer, parameter :: growth_grew = 0, growth_subcritical = 1, growth_intersection = 2, &
+                          growth_surface = 3, growth_corrector_failed = 4, growth_waiting = 5
+    !> Names of the reasons, indexed by reason
+    character(len=*), parameter :: growth_reason_names(0:5) = [character(len=48) :: &
+        'grew', 'subcritical', 'intersection', 'surface', &
+        'corrector failed (grew at mts_angle)', 'waiting (critical, not the most critical)']
+    !> Why a growth run ended: no tip can grow any more, or the step limit was reached
+    integer, parameter :: growth_arrested = 1, growth_step_limit = 2
+    !> Names of the end reasons, indexed by end reason
+    character(len=*), parameter :: growth_end_names(2) = [character(len=10) :: &
+        'arrested', 'step_limit']
 
     !> Per-element results, shape (n) for every array.
     type :: element_results
@@ -48,6 +68,8 @@ module ddc_model_results
         !> 1 when the tip element's length differs from its neighbour's by more than 1 %
         !> (the K formula assumes equal elements: K is less accurate there), else 0
         integer, allocatable :: graded(:)
+        !> The end of its element the tip is: 1 begin, 2 end
+        integer, allocatable :: side(:)
     end type tip_set
 
     !> Displacement and stress at the points of one observation set, shape (npoints).
@@ -73,8 +95,11 @@ module ddc_model_results
         integer :: factorizations = 0, low_rank_updates = 0, factorization_reuses = 0
         !> Nominal flop count of the timed factorizations (2/3 m^3 per LU of size m) [-]
         real(wp) :: factorization_flops = 0.0_wp
-        !> Number of OpenMP threads
+        !> Number of OpenMP threads (of each process)
         integer :: threads = 1
+        !> MPI build: the processes of the run (0 in the serial build), their grid (rows,
+        !> columns) and the block size of the distributed matrices
+        integer :: processes = 0, process_grid(2) = 0, block_size = 0
         !> LCP pivots summed over LCP solves, and the number of LCP solves (more than one
         !> when open_cohesion = 'lost' re-solves); 0 without contact elements
         integer :: pivots = 0, lcp_solves = 0
@@ -119,6 +144,38 @@ module ddc_model_results
         real(wp), allocatable :: certificate_max_complementarity(:), equilibrium_residual(:)
     end type history_record
 
+    !> A fracture growth run (SPEC-GROWTH 3): one record per tip per step, in step order and
+    !> within a step in the order of fractures, begin tip before end tip (k records); not
+    !> allocated when the model does not grow.
+    type :: growth_record
+        !> Growth step, fracture (1-based) and end (0 begin tip, 1 end tip), shape (k)
+        integer, allocatable :: step(:), fracture_id(:), end(:)
+        !> Tip position before growing [length unit], shape (k)
+        real(wp), allocatable :: x(:), y(:)
+        !> K_I, K_II of the tip and K_eq at the MTS angle (K_I taken as max(K_I, 0))
+        !> [stress unit * length unit**0.5], shape (k)
+        real(wp), allocatable :: k1(:), k2(:), k_eq(:)
+        !> MTS angle and applied angle, counter-clockwise from the tip's outward direction
+        !> [degree] (applied: NaN when the tip did not grow), shape (k)
+        real(wp), allocatable :: mts_angle(:), angle(:)
+        !> Solves of the local-symmetry corrector this tip took part in, shape (k)
+        integer, allocatable :: corrections(:)
+        !> K_II of the new tip on the grown geometry (NaN when the tip did not grow)
+        !> [stress unit * length unit**0.5], shape (k)
+        real(wp), allocatable :: k2_after(:)
+        !> Length grown [length unit] (0 when the tip did not grow), shape (k)
+        real(wp), allocatable :: length(:)
+        !> growth_grew ... growth_waiting, shape (k)
+        integer, allocatable :: reason(:)
+        !> Steps in which at least one tip grew
+        integer :: steps_taken = 0
+        !> growth_arrested or growth_step_limit
+        integer :: end_reason = growth_arrested
+        !> Growth step that created each element of the final geometry (0: the input's),
+        !> shape (n)
+        integer, allocatable :: created_step(:)
+    end type growth_record
+
     !> Everything a solve produces.
     type :: model_results
         type(element_results) :: elements
@@ -128,6 +185,8 @@ module ddc_model_results
         type(solver_record) :: solver
         !> Every step of the loading history, when the model has one
         type(history_record) :: history
+        !> Every step of fracture growth, when the model grows
+        type(growth_record) :: growth
     end type model_results
 
 end module ddc_model_results

@@ -16,6 +16,9 @@ module ddc_model_types
     public :: condition_mixed_ss_un, condition_contact, condition_prescribed_dd, condition_names
     public :: domain_full_plane, domain_half_plane, domain_names
     public :: observation_grid, observation_line, observation_points, observation_kind_names
+    public :: growth_options, growth_tips_all, growth_tips_most_critical, growth_tips_names
+    public :: growth_criterion_mts, growth_criterion_names
+    public :: default_block_size
 
     !> Boundary conditions; 1-4 are the TWODD KODE values.
     integer, parameter :: condition_traction = 1
@@ -34,6 +37,9 @@ module ddc_model_types
     !> Input names of the domains, indexed by domain
     character(len=*), parameter :: domain_names(2) = [character(len=10) :: &
         'full_plane', 'half_plane']
+
+    !> Block size of the distributed matrices of the MPI build (&solver block_size)
+    integer, parameter :: default_block_size = 64
 
     !> Kinds of observation sets
     integer, parameter :: observation_grid = 1
@@ -135,6 +141,44 @@ module ddc_model_types
         logical :: varies(7) = .false.
     end type load_path_type
 
+    !> Which critical tips grow in a step (&growth tips): every one, or only the most
+    !> critical
+    integer, parameter :: growth_tips_all = 1, growth_tips_most_critical = 2
+    !> Input names of the tip choices, indexed by choice
+    character(len=*), parameter :: growth_tips_names(2) = [character(len=13) :: &
+        'all', 'most_critical']
+    !> Growth criteria: maximum tangential stress (Erdogan & Sih 1963)
+    integer, parameter :: growth_criterion_mts = 1
+    !> Input names of the criteria, indexed by criterion
+    character(len=*), parameter :: growth_criterion_names(1) = [character(len=3) :: 'mts']
+
+    !> Fracture growth (&growth, SPEC-GROWTH): quasi-static, one increment per step.
+    type :: growth_options
+        !> The model grows its fractures (a &growth group was given)
+        logical :: active = .false.
+        !> Largest number of growth steps
+        integer :: steps = 0
+        !> Fracture toughness K_Ic [stress unit * length unit**0.5]
+        real(wp) :: toughness = 0.0_wp
+        !> Growth length per step [length unit]; 0: twice the tip element's length
+        real(wp) :: increment = 0.0_wp
+        !> Length of new elements [length unit]; 0: the tip element's length
+        real(wp) :: element_length = 0.0_wp
+        !> growth_tips_all or growth_tips_most_critical
+        integer :: tips = growth_tips_all
+        !> growth_criterion_mts
+        integer :: criterion = growth_criterion_mts
+        !> Largest number of solves of the local-symmetry corrector per step (0: no
+        !> corrector, tips grow at the MTS angle)
+        integer :: max_corrections = 8
+        !> Whether the tips of each fracture may grow, shape (fractures)
+        logical, allocatable :: fracture_grows(:)
+        !> New contact elements take new_mu, new_sf instead of the tip element's values
+        logical :: override_mu = .false., override_sf = .false.
+        !> Friction [-] and cohesion [stress unit] of new contact elements, when overridden
+        real(wp) :: new_mu = 0.0_wp, new_sf = 0.0_wp
+    end type growth_options
+
     !> A complete model, independent of the input format it came from.
     type :: model_type
         !> Title of the model
@@ -159,6 +203,9 @@ module ddc_model_types
         type(observation_set), allocatable :: observations(:)
         !> Solver options
         type(solver_options) :: solver
+        !> Rows and columns of the blocks of the block-cyclic distributed matrices (MPI
+        !> build; &solver block_size)
+        integer :: block_size = default_block_size
         !> Output file (after -o and &output are applied)
         character(len=:), allocatable :: output_file
         !> Input file path and its full text, kept for self-description
@@ -167,6 +214,8 @@ module ddc_model_types
         type(sweep_task_record) :: sweep
         !> Loading history; vertex not allocated when the model has none (one state)
         type(load_path_type) :: load_path
+        !> Fracture growth; inactive unless the input has &growth
+        type(growth_options) :: growth
     end type model_type
 
 end module ddc_model_types

@@ -68,11 +68,14 @@ contains
     end subroutine remove_file
 
     !> Prove before any solve that the result file can be written: create and delete its
-    !> temporary file. A path that is an existing folder is refused too.
+    !> temporary file. An empty name or a path that is an existing folder is bad usage
+    !> (exit_bad_input); a path that cannot be written (missing folder, no permission, a
+    !> read-only file system) is an I/O failure (exit_io_failure). Folders are not created.
     subroutine check_writable(path, error)
         !> Path of the final result file
         character(len=*), intent(in) :: path
-        !> Allocated with exit_bad_input when the path is not writable
+        !> Allocated with exit_bad_input for an empty name or a folder, exit_io_failure when
+        !> the path is not writable
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: temporary
         character(len=256) :: message
@@ -91,18 +94,32 @@ contains
         open (newunit=unit, file=temporary, status='replace', action='write', &
             iostat=status, iomsg=message)
         if (status /= 0) then
-            call set_error(error, exit_bad_input, 'output path '//path &
+            call set_error(error, exit_io_failure, 'output path '//path &
                 //' is not writable (could not create '//temporary//': '//trim(message) &
-                //'); does its folder exist?')
+                //'); '//missing_folder_hint(path))
             return
         end if
         close (unit, status='delete', iostat=status, iomsg=message)
         if (status /= 0) then
-            call set_error(error, exit_bad_input, 'output path '//path &
+            call set_error(error, exit_io_failure, 'output path '//path &
                 //' is not usable (could not delete the test file '//temporary//': ' &
                 //trim(message)//')')
         end if
     end subroutine check_writable
+
+    !> Why a path cannot be created: its folder is missing (create it first), or else
+    !> permissions or the file system.
+    function missing_folder_hint(path) result(hint)
+        character(len=*), intent(in) :: path
+        character(len=:), allocatable :: hint
+
+        if (folder_exists(folder_of(path))) then
+            hint = 'check the permissions of its folder '//folder_of(path)
+        else
+            hint = 'its folder '//folder_of(path)//' does not exist (ddc2d does not '// &
+                'create folders: mkdir -p '//folder_of(path)//')'
+        end if
+    end function missing_folder_hint
 
     !> A NUL-terminated copy of a Fortran string for C.
     pure function c_string(text) result(c_text)

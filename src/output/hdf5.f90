@@ -23,16 +23,21 @@
 !>   shaped (k, tips); method, fallback, pivots, newton_iterations, certificate_min_z,
 !>   certificate_min_w, certificate_max_complementarity, equilibrium_residual, shape (k);
 !>   leg_steps (increments per leg); /elements hold the last step.
+!> - /growth (fracture growth only, SPEC-GROWTH 3; k records, one per tip per step):
+!>   {step, fracture_id, end, x, y, k1, k2, k_eq, mts_angle, angle, corrections, k2_after,
+!>   length, reason}, shape (k); attributes toughness, increment, element_length, tips,
+!>   criterion, max_corrections, steps, steps_taken, end_reason, reason_coding; and
+!>   /elements/created_step; /elements, /tips and /fields describe the final geometry.
 module ddc_output_hdf5
     use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_internal_error
     use ddc_version, only: program_name, program_version, git_commit
     use ddc_model_types, only: model_type, observation_grid, observation_kind_names, &
-        symmetry_names, domain_names, load_path_names
+        symmetry_names, domain_names, load_path_names, growth_tips_names, growth_criterion_names
     use ddc_model_loads, only: total_pressure, shear_modulus_of
     use ddc_model_results, only: model_results, state_free, state_stick, state_slip, &
-        state_open
+        state_open, growth_reason_names, growth_end_names
     use ddc_contact_options, only: lcp_method_names, open_cohesion_names
     use ddc_output_atomic, only: partial_name, publish_file, remove_file
     use ddc_output_hdf5_handles, only: h5_object, open_session, close_session, create_file, &
@@ -40,6 +45,7 @@ module ddc_output_hdf5
     use ddc_output_hdf5_write, only: write_real_1d, write_int_1d, write_real_dataset, &
         write_int_dataset, write_string_1d, write_attribute
     use ddc_output_timestamp, only: utc_timestamp
+    use ddc_text, only: itoa
     implicit none
     private
 
@@ -94,6 +100,7 @@ contains
             call write_solver(root, results, real(now - start, wp) / real(rate, wp), error)
             if (model%sweep%tasks > 0) call write_sweep(root, model, error)
             if (allocated(results%history%ds)) call write_history(root, model, results, error)
+            if (allocated(results%growth%step)) call write_growth(root, model, results, error)
             call write_attribute(root, 'complete', 1, error)
             call close_file(root, error)
         end if
@@ -210,6 +217,10 @@ contains
             ! Contact elements: the given pressure plus the pore fluid
             call write_real_1d(group, 'pressure', total_pressure(e, model%pore_fluid), stress, &
                                error)
+            if (allocated(results%growth%created_step)) then
+                call write_int_1d(group, 'created_step', results%growth%created_step, error, &
+                                  '0 the input, k growth step k')
+            end if
         end associate
         call close_group(group, error)
     end subroutine write_elements
@@ -356,7 +367,8 @@ contains
         call close_group(fields, error)
     end subroutine write_fields
 
-    !> /solver: method, threads, pivots, residual and state counts as attributes;
+    !> /solver: method, threads, pivots, residual and state counts as attributes (and the
+    !> processes, their grid and the block size in the MPI build);
     !> /solver/seconds/<phase> wall times as scalar datasets (output: the writing of this
     !> file up to the solver record; total includes it).
     subroutine write_solver(root, results, seconds_output, error)
@@ -390,6 +402,11 @@ contains
             call write_attribute(solver, 'elements_stick', count(state == state_stick), error)
             call write_attribute(solver, 'elements_slip', count(state == state_slip), error)
             call write_attribute(solver, 'elements_open', count(state == state_open), error)
+            if (s%processes > 0) then
+                call write_attribute(solver, 'processes', s%processes, error)
+                call write_attribute(solver, 'process_grid', s%process_grid, error)
+                call write_attribute(solver, 'block_size', s%block_size, error)
+            end if
             call create_group(solver, 'seconds', seconds, error)
             if (.not. allocated(error)) then
                 call write_real_dataset(seconds, 'assembly', [s%seconds_assembly], no_dims, &
@@ -461,6 +478,72 @@ contains
         end associate
         call close_group(group, error)
     end subroutine write_history
+
+    !> /growth: one record per tip per step of a fracture growth run, and its settings.
+    subroutine write_growth(root, model, results, error)
+        type(h5_object), intent(in) :: root
+        type(model_type), intent(in) :: model
+        type(model_results), intent(in) :: results
+        type(error_type), allocatable, intent(inout) :: error
+        type(h5_object) :: group
+        character(len=:), allocatable :: length, k_unit, coding
+        integer :: r
+
+        length = text(model%length_unit)
+        k_unit = text(model%stress_unit)//' '//length//'^0.5'
+        coding = ''
+        do r = lbound(growth_reason_names, 1), ubound(growth_reason_names, 1)
+            if (r > lbound(growth_reason_names, 1)) coding = coding//', '
+            coding = coding//itoa(r)//' '//trim(growth_reason_names(r))
+        end do
+        call create_group(root, 'growth', group, error)
+        if (allocated(error)) return
+        associate (g => results%growth, o => model%growth)
+            call write_int_1d(group, 'step', g%step, error)
+            call write_int_1d(group, 'fracture_id', g%fracture_id, error)
+            call write_int_1d(group, 'end', g%end, error, '0 begin tip, 1 end tip')
+            call write_real_1d(group, 'x', g%x, length, error)
+            call write_real_1d(group, 'y', g%y, length, error)
+            call write_real_1d(group, 'k1', g%k1, k_unit, error)
+            call write_real_1d(group, 'k2', g%k2, k_unit, error)
+            call write_real_1d(group, 'k_eq', g%k_eq, k_unit, error)
+            call write_real_1d(group, 'mts_angle', g%mts_angle, 'degree', error)
+            call write_real_1d(group, 'angle', g%angle, 'degree', error)
+            call write_int_1d(group, 'corrections', g%corrections, error)
+            call write_real_1d(group, 'k2_after', g%k2_after, k_unit, error)
+            call write_real_1d(group, 'length', g%length, length, error)
+            call write_int_1d(group, 'reason', g%reason, error, coding)
+            call write_attribute(group, 'toughness', o%toughness, error)
+            ! 0: the default (per tip: twice / once the tip element's length)
+            call write_attribute(group, 'increment', o%increment, error)
+            call write_attribute(group, 'element_length', o%element_length, error)
+            call write_attribute(group, 'tips', trim(growth_tips_names(o%tips)), error)
+            call write_attribute(group, 'criterion', trim(growth_criterion_names(o%criterion)), &
+                                 error)
+            call write_attribute(group, 'max_corrections', o%max_corrections, error)
+            call write_attribute(group, 'fractures', growing_fractures(model), error)
+            call write_attribute(group, 'steps', o%steps, error)
+            call write_attribute(group, 'steps_taken', g%steps_taken, error)
+            call write_attribute(group, 'end_reason', trim(growth_end_names(g%end_reason)), &
+                                 error)
+            call write_attribute(group, 'reason_coding', coding, error)
+        end associate
+        call close_group(group, error)
+    end subroutine write_growth
+
+    !> Names of the fractures whose tips may grow, comma separated.
+    function growing_fractures(model) result(names)
+        type(model_type), intent(in) :: model
+        character(len=:), allocatable :: names
+        integer :: f
+
+        names = ''
+        do f = 1, size(model%fractures)
+            if (.not. model%growth%fracture_grows(f)) cycle
+            if (len(names) > 0) names = names//', '
+            names = names//text(model%fractures(f)%name)
+        end do
+    end function growing_fractures
 
     !> The value of an optional string, '' when it is not allocated.
     pure function text(value) result(string)

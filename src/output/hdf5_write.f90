@@ -19,7 +19,7 @@ module ddc_output_hdf5_write
     !> Attributes of any object: strings, reals (scalar or 1-D) and integers.
     interface write_attribute
         module procedure write_string_attribute, write_real_attribute, &
-            write_real_array_attribute, write_int_attribute
+            write_real_array_attribute, write_int_attribute, write_int_array_attribute
     end interface write_attribute
 
 contains
@@ -195,15 +195,36 @@ contains
         character(len=*), intent(in) :: name
         integer, intent(in) :: value
         type(error_type), allocatable, intent(inout) :: error
+
+        call put_int_attribute(object, name, [value], [integer ::], error)
+    end subroutine write_int_attribute
+
+    !> A 1-D integer attribute.
+    subroutine write_int_array_attribute(object, name, values, error)
+        type(h5_object), intent(in) :: object
+        character(len=*), intent(in) :: name
+        integer, intent(in) :: values(:)
+        type(error_type), allocatable, intent(inout) :: error
+
+        call put_int_attribute(object, name, values, [size(values)], error)
+    end subroutine write_int_array_attribute
+
+    !> An integer attribute of dims `dims` (scalar when empty).
+    subroutine put_int_attribute(object, name, values, dims, error)
+        type(h5_object), intent(in) :: object
+        character(len=*), intent(in) :: name
+        integer, intent(in) :: values(:)
+        integer, intent(in) :: dims(:)
+        type(error_type), allocatable, intent(inout) :: error
         integer(hid_t) :: attribute
         integer :: status
 
-        call create_attribute(object, name, H5T_NATIVE_INTEGER, [integer ::], attribute, &
-            error)
+        call create_attribute(object, name, H5T_NATIVE_INTEGER, dims, attribute, error)
         if (allocated(error)) return
-        call h5awrite_f(attribute, H5T_NATIVE_INTEGER, [value], [1_hsize_t], status)
+        call h5awrite_f(attribute, H5T_NATIVE_INTEGER, values, int([size(values)], hsize_t), &
+            status)
         if (status /= 0) call fail(error, 'write attribute '//name//' of', object)
         call close_attribute(object, name, attribute, error)
-    end subroutine write_int_attribute
+    end subroutine put_int_attribute
 
 end module ddc_output_hdf5_write

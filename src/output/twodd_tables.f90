@@ -8,12 +8,17 @@
 !> addition: TWODD skips observation points within one element length of an element
 !> centre; ddc2d computes them and appends ` *` to their row (` **` for a point on an
 !> element or at its end, where the values are NaN), with a footnote after the table.
+!> Models with conditions TWODD does not have (namelist input: KODE 5 contact, 6 prescribed
+!> DDs) get a footnote after BOUNDARY ELEMENT DATA saying what those codes are, and with
+!> contact elements a STATE column (free, stick, slip, open) after SIGMA-N; TWODD decks
+!> keep the classic layout.
 !> The file is written under a temporary name and renamed at the end (ddc_output_atomic).
 module ddc_output_twodd_tables
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_io_failure
-    use ddc_model_types, only: model_type, symmetry_x, symmetry_y, symmetry_both
-    use ddc_model_results, only: model_results, point_near, point_on_element
+    use ddc_model_types, only: model_type, symmetry_x, symmetry_y, symmetry_both, &
+        condition_mixed_ss_un, condition_contact, condition_prescribed_dd
+    use ddc_model_results, only: model_results, point_near, point_on_element, state_names
     use ddc_output_atomic, only: partial_name, publish_file, remove_file
     use ddc_constants, only: pi
     implicit none
@@ -118,7 +123,7 @@ contains
     end subroutine write_header
 
     !> Element number, KODE, centre, length, angle [degrees] and the given values.
-    ! allow(C072): iomsg is the caller's buffer for the write statements' iomsg=
+    ! allow(C072, C181): iomsg is the caller's buffer for the writes' iomsg=; stat is returned
     subroutine write_element_data(unit, model, stat, iomsg)
         integer, intent(in) :: unit
         type(model_type), intent(in) :: model
@@ -138,6 +143,15 @@ contains
                     atan2(e%sin_beta(i), e%cos_beta(i)) * 180.0_wp / pi, e%bc_s(i), e%bc_n(i)
                 if (stat /= 0) return
             end do
+            if (any(e%condition > condition_mixed_ss_un)) write (unit, '(a)', iostat=stat, &
+                iomsg=iomsg) ''
+            if (stat == 0 .and. any(e%condition == condition_contact)) write (unit, '(a)', &
+                iostat=stat, iomsg=iomsg) ' KODE 5: FRICTIONAL CONTACT (NOT IN TWODD; MU, '// &
+                'SF AND PRESSURE ARE IN THE HDF5 OUTPUT), ITS STATE IN THE LAST COLUMN OF '// &
+                'THE MIDPOINT TABLE.'
+            if (stat == 0 .and. any(e%condition == condition_prescribed_dd)) write (unit, &
+                '(a)', iostat=stat, iomsg=iomsg) ' KODE 6: PRESCRIBED DS AND DN (NOT IN '// &
+                'TWODD), GIVEN IN THE LAST TWO COLUMNS.'
         end associate
     end subroutine write_element_data
 
@@ -149,23 +163,28 @@ contains
         type(model_results), intent(in) :: results
         integer, intent(out) :: stat
         character(len=*), intent(inout) :: iomsg
+        character(len=:), allocatable :: state_heading
         integer :: i
+        logical :: contact
 
+        contact = any(model%elements%condition == condition_contact)
+        state_heading = trim(merge('     STATE', '          ', contact))
         write (unit, '(a/a//a/)', iostat=stat, iomsg=iomsg) '1', &
             '     DISPLACEMENTS AND STRESSES AT MIDPOINTS OF BO UNDARY ELEMENTS.', &
             '   ELEMENT        DS     US(-)     US(+)         DN     UN(-)     UN(+)     '// &
-            'UX(-)     UY(-)     UX(+)     UY( +)   SIGMA-S   SIGMA-N'
+            'UX(-)     UY(-)     UX(+)     UY( +)   SIGMA-S   SIGMA-N'//state_heading
         if (stat /= 0) return
         associate (e => model%elements, r => results%elements)
             do i = 1, e%n
                 associate (c => e%cos_beta(i), s => e%sin_beta(i))
-                    write (unit, '(i10,12es24.15)', iostat=stat, iomsg=iomsg) i, r%ds(i), &
+                    write (unit, '(i10,12es24.15,a)', iostat=stat, iomsg=iomsg) i, r%ds(i), &
                         r%us_minus(i), r%us_plus(i), r%dn(i), r%un_minus(i), r%un_plus(i), &
                         r%us_minus(i) * c - r%un_minus(i) * s, &
                         r%us_minus(i) * s + r%un_minus(i) * c, &
                         r%us_plus(i) * c - r%un_plus(i) * s, &
                         r%us_plus(i) * s + r%un_plus(i) * c, &
-                        r%shear_traction(i), r%normal_traction(i)
+                        r%shear_traction(i), r%normal_traction(i), &
+                        trim(merge('  '//state_names(r%state(i)), repeat(' ', 7), contact))
                 end associate
                 if (stat /= 0) return
             end do

@@ -129,7 +129,8 @@ contains
 
         tips%n = count(is_tip)
         allocate (tips%x(tips%n), tips%y(tips%n), tips%fracture_id(tips%n), &
-                  tips%element(tips%n), tips%k1(tips%n), tips%k2(tips%n), tips%graded(tips%n))
+                  tips%element(tips%n), tips%k1(tips%n), tips%k2(tips%n), tips%graded(tips%n), &
+                  tips%side(tips%n))
         k = 0
         do i = 1, elements%n
             do side = 1, 2
@@ -144,6 +145,7 @@ contains
                 end if
                 tips%fracture_id(k) = elements%fracture_id(i)
                 tips%element(k) = i
+                tips%side(k) = side
                 ! The neighbour shares the tip element's other end.
                 neighbour = element_at_end(elements, index, i, 3 - side)
                 tips%graded(k) = 0

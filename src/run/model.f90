@@ -1,23 +1,27 @@
-!> Solve one model: influence, solve, then element results, tips and fields.
+!> Solve one model: influence, solve, then element results, tips and fields. The heavy
+!> work goes to an engine (ddc_run_engine): this process alone by default, or the processes
+!> of a distributed run.
 module ddc_run_model
     !$ use omp_lib, only: omp_get_max_threads
     use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type, element_set, condition_contact, domain_half_plane
-    use ddc_model_results, only: model_results, state_free
-    use ddc_influence_response, only: midpoint_response
+    use ddc_model_results, only: model_results, solver_record, state_free
     use ddc_model_loads, only: resolve_remote_stress, total_pressure, shear_modulus_of
+    use ddc_contact_options, only: solver_options
+    use ddc_influence_response, only: midpoint_response
     use ddc_solve_elastic, only: solve_elastic, row_kinds
     use ddc_solve_frictional, only: solve_frictional
-    use ddc_post_tips, only: find_tips
     use ddc_post_fields, only: evaluate_field
+    use ddc_run_engine, only: model_engine
+    use ddc_post_tips, only: find_tips
     use ddc_progress, only: report_progress, reports_phases
     use ddc_text, only: itoa, seconds_text
     implicit none
     private
 
-    public :: run_model, finish_model
+    public :: run_model, finish_model, evaluate_fields
 
     !> A field of at least this many point-element pairs reports its end (progress)
     real(wp), parameter :: field_report_pairs = 1.0e8_wp
@@ -33,13 +37,15 @@ contains
     end function wall_seconds
 
     !> Solve a validated model and compute every result the output needs.
-    subroutine run_model(model, results, error)
+    subroutine run_model(model, results, error, engine)
         !> A validated model with element geometry computed
         type(model_type), intent(in) :: model
         !> Element results, tips, fields and the solver record
         type(model_results), intent(out) :: results
         !> Set when the model has no solution or the solver failed
         type(error_type), allocatable, intent(out) :: error
+        !> The engine of a distributed run (default: the work is done in this process)
+        class(model_engine), intent(inout), optional :: engine
         real(wp), allocatable :: remote_shear(:), remote_normal(:), matrix(:, :)
         type(element_set) :: loaded
         real(wp) :: g, nu, t_start
@@ -62,44 +68,47 @@ contains
                                    remote_shear, remote_normal, model%stress_gradient)
         associate (e => results%elements, rec => results%solver)
             allocate (e%ds(n), e%dn(n), e%state(n))
-            if (any(model%elements%condition == condition_contact)) then
-                ! The contact elements see their pressure plus the pore fluid.
-                loaded = model%elements
-                loaded%pressure = total_pressure(model%elements, model%pore_fluid)
-                call solve_frictional(loaded, g, nu, remote_shear, remote_normal, model%solver, &
-                                      e%ds, e%dn, e%state, rec, matrix, error)
+            ! The contact elements see their pressure plus the pore fluid.
+            loaded = model%elements
+            loaded%pressure = total_pressure(model%elements, model%pore_fluid)
+            if (present(engine)) then
+                call engine%solve(loaded, g, nu, remote_shear, remote_normal, model%solver, &
+                                  e%ds, e%dn, e%state, rec, error)
             else
-                rec%method = 'lu'
-                call solve_elastic(model%elements, g, nu, remote_shear, remote_normal, e%ds, &
-                                   e%dn, rec%equilibrium_residual, rec%seconds_assembly, &
-                                   rec%seconds_factorization, matrix, error)
-                e%state = state_free
+                call solve_here(loaded, g, nu, remote_shear, remote_normal, model%solver, e%ds, &
+                                e%dn, e%state, rec, matrix, error)
             end if
             if (allocated(error)) return
             if (reports_phases(n)) call report_progress('solved ('//rec%method//') in '// &
                 seconds_text(wall_seconds() - t_start))
         end associate
-        call finish_model(model, matrix, remote_shear, remote_normal, results)
+        if (present(engine)) then
+            call finish_model(model, remote_shear, remote_normal, results, engine=engine)
+        else
+            call finish_model(model, remote_shear, remote_normal, results, matrix=matrix)
+        end if
         results%solver%seconds_total = wall_seconds() - t_start
     end subroutine run_model
 
     !> The results that follow from the DDs of a solved model (results%elements%ds, dn):
-    !> tractions and face displacements at the midpoints (ddc_influence_response), tips
-    !> with K and the fields; the time goes to results%solver%seconds_fields, and the
-    !> number of threads is recorded.
-    subroutine finish_model(model, matrix, remote_shear, remote_normal, results)
+    !> tractions and face displacements at the midpoints (from the matrix of the solve,
+    !> ddc_influence_response, or from the engine), tips with K and the fields; the time
+    !> goes to results%solver%seconds_fields, and the number of threads is recorded.
+    subroutine finish_model(model, remote_shear, remote_normal, results, matrix, engine)
         !> The model at the load the DDs were solved for
         type(model_type), intent(in) :: model
-        !> The influence matrix of the solve, rows as row_kinds of the elements' conditions,
-        !> shape (2n, 2n)
-        real(wp), intent(in) :: matrix(:, :)
         !> Remote stress resolved on each element [stress unit], shape (n)
         real(wp), intent(in) :: remote_shear(:), remote_normal(:)
         !> ds and dn set on entry; tractions, face displacements, tips and fields added
         type(model_results), intent(inout) :: results
+        !> The influence matrix of the solve in this process, rows as row_kinds of the
+        !> elements' conditions, shape (2n, 2n) (without an engine)
+        real(wp), intent(in), optional :: matrix(:, :)
+        !> The engine of a distributed run
+        class(model_engine), intent(inout), optional :: engine
         integer, allocatable :: shear_row(:), normal_row(:)
-        real(wp) :: g, nu, t0, pairs
-        integer :: n, i
+        real(wp) :: g, nu, t0
+        integer :: n
 
         t0 = wall_seconds()
         n = model%elements%n
@@ -108,12 +117,18 @@ contains
         results%solver%threads = 1
         !$ results%solver%threads = omp_get_max_threads()
         associate (e => results%elements)
-            allocate (e%shear_traction(n), e%normal_traction(n), e%us_minus(n), e%un_minus(n), &
-                      shear_row(n), normal_row(n))
-            call row_kinds(model%elements%condition, shear_row, normal_row)
-            call midpoint_response(model%elements, g, nu, matrix, shear_row, normal_row, e%ds, &
-                                   e%dn, e%shear_traction, e%normal_traction, e%us_minus, &
-                                   e%un_minus)
+            allocate (e%shear_traction(n), e%normal_traction(n), e%us_minus(n), e%un_minus(n))
+            if (present(engine)) then
+                call engine%midpoint_response(model%elements, g, nu, e%ds, e%dn, &
+                                              e%shear_traction, e%normal_traction, e%us_minus, &
+                                              e%un_minus)
+            else
+                allocate (shear_row(n), normal_row(n))
+                call row_kinds(model%elements%condition, shear_row, normal_row)
+                call midpoint_response(model%elements, g, nu, matrix, shear_row, normal_row, &
+                                       e%ds, e%dn, e%shear_traction, e%normal_traction, &
+                                       e%us_minus, e%un_minus)
+            end if
             e%shear_traction = e%shear_traction + remote_shear
             e%normal_traction = e%normal_traction + remote_normal
             ! ds = us(-) - us(+), dn = un(-) - un(+)
@@ -122,25 +137,74 @@ contains
             call find_tips(model%elements, g, nu, e%ds, e%dn, results%tips)
             if (reports_phases(n)) call report_progress('tractions, face displacements '// &
                 'and tips done in '//seconds_text(wall_seconds() - t0))
-
-            if (allocated(model%observations)) then
-                allocate (results%fields(size(model%observations)))
-            else
-                allocate (results%fields(0))
-            end if
-            do i = 1, size(results%fields)
-                call evaluate_field(model%elements, g, nu, [model%sxx, model%syy, model%sxy], &
-                                    e%ds, e%dn, model%observations(i)%x, &
-                                    model%observations(i)%y, results%fields(i), &
-                                    model%stress_gradient)
-                pairs = real(n, wp) * real(size(model%observations(i)%x), wp)
-                if (reports_phases(n) .or. pairs >= field_report_pairs) call report_progress( &
-                    'field '//model%observations(i)%name//' ('// &
-                    itoa(size(model%observations(i)%x))//' points) done after '// &
-                    seconds_text(wall_seconds() - t0))
-            end do
         end associate
+        call evaluate_fields(model, results, engine)
         results%solver%seconds_fields = wall_seconds() - t0
     end subroutine finish_model
+
+    !> The fields at every observation set of the model for the DDs in results (allocates
+    !> results%fields, one per observation set).
+    subroutine evaluate_fields(model, results, engine)
+        !> The solved model
+        type(model_type), intent(in) :: model
+        !> Its element results; the fields are set
+        type(model_results), intent(inout) :: results
+        !> The engine of a distributed run (default: the work is done in this process)
+        class(model_engine), intent(inout), optional :: engine
+        real(wp) :: t0
+        integer :: i
+
+        t0 = wall_seconds()
+        if (allocated(results%fields)) deallocate (results%fields)
+        if (allocated(model%observations)) then
+            allocate (results%fields(size(model%observations)))
+        else
+            allocate (results%fields(0))
+        end if
+        do i = 1, size(results%fields)
+            associate (remote => [model%sxx, model%syy, model%sxy], o => model%observations(i), &
+                       e => results%elements)
+                if (present(engine)) then
+                    call engine%evaluate_field(model%elements, shear_modulus_of(model), &
+                                               model%poissons_ratio, remote, e%ds, e%dn, o%x, &
+                                               o%y, results%fields(i), model%stress_gradient)
+                else
+                    call evaluate_field(model%elements, shear_modulus_of(model), &
+                                        model%poissons_ratio, remote, e%ds, e%dn, o%x, o%y, &
+                                        results%fields(i), model%stress_gradient)
+                end if
+                if (reports_phases(model%elements%n) .or. real(model%elements%n, wp) * &
+                    real(size(o%x), wp) >= field_report_pairs) call report_progress('field '// &
+                    o%name//' ('//itoa(size(o%x))//' points) done after '// &
+                    seconds_text(wall_seconds() - t0))
+            end associate
+        end do
+    end subroutine evaluate_fields
+
+    !> The solve in this process: contact models by solve_frictional, the others by
+    !> solve_elastic (method 'lu'); the influence matrix of the solve is handed back.
+    subroutine solve_here(elements, shear_modulus, nu, remote_shear, remote_normal, options, &
+                          ds, dn, state, record, matrix, error)
+        type(element_set), intent(in) :: elements
+        real(wp), intent(in) :: shear_modulus, nu
+        real(wp), intent(in) :: remote_shear(:), remote_normal(:)
+        type(solver_options), intent(in) :: options
+        real(wp), intent(out) :: ds(:), dn(:)
+        integer, intent(out) :: state(:)
+        type(solver_record), intent(inout) :: record
+        real(wp), allocatable, intent(out) :: matrix(:, :)
+        type(error_type), allocatable, intent(out) :: error
+
+        if (any(elements%condition == condition_contact)) then
+            call solve_frictional(elements, shear_modulus, nu, remote_shear, remote_normal, &
+                                  options, ds, dn, state, record, matrix, error)
+        else
+            record%method = 'lu'
+            call solve_elastic(elements, shear_modulus, nu, remote_shear, remote_normal, ds, dn, &
+                               record%equilibrium_residual, record%seconds_assembly, &
+                               record%seconds_factorization, matrix, error)
+            state = state_free
+        end if
+    end subroutine solve_here
 
 end module ddc_run_model

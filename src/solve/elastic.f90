@@ -11,6 +11,7 @@ module ddc_solve_elastic
     use ddc_linalg_lu, only: lu_factor, lu_solve, influence_hint, residual_tol
     use ddc_text, only: rtoa, itoa, seconds_text
     use ddc_progress, only: report_progress, reports_phases
+    use ddc_allocation, only: allocation_failed, real_bytes
     implicit none
     private
 
@@ -86,7 +87,7 @@ contains
         real(wp), allocatable :: factors(:, :), rhs(:, :), given(:)
         integer, allocatable :: shear_row(:), normal_row(:), ipiv(:)
         type(error_type), allocatable :: ill_conditioned
-        integer :: n, i
+        integer :: n, i, stat
         integer(int64) :: t0, t1, t2, rate
 
         n = elements%n
@@ -95,7 +96,15 @@ contains
             return
         end if
         call system_clock(t0, rate)
-        allocate (shear_row(n), normal_row(n), matrix(2 * n, 2 * n), rhs(2 * n, 1), ipiv(2 * n))
+        allocate (shear_row(n), normal_row(n), rhs(2 * n, 1), ipiv(2 * n))
+        allocate (matrix(2 * n, 2 * n), stat=stat)
+        if (stat == 0) allocate (factors(2 * n, 2 * n), stat=stat)
+        if (stat /= 0) then
+            call allocation_failed(error, 'the influence matrix of '//itoa(n)// &
+                                   ' elements and its LU factors', &
+                                   2.0_wp * real_bytes * (2.0_wp * real(n, wp))**2)
+            return
+        end if
         call row_kinds(elements%condition, shear_row, normal_row)
         call assemble_influence(elements, shear_modulus, nu, shear_row, normal_row, matrix)
         rhs(:, 1) = given_values(elements, shear_row, normal_row, remote_shear, remote_normal, &
@@ -105,7 +114,7 @@ contains
             seconds_text(real(t1 - t0, wp) / real(rate, wp))//' ('//itoa(2 * n)//' x '// &
             itoa(2 * n)//' influence matrix)')
 
-        factors = matrix
+        factors(:, :) = matrix
         call lu_factor(factors, ipiv, 'influence matrix', error, ill_conditioned=ill_conditioned)
         if (allocated(error)) then
             error%message = error%message//influence_hint

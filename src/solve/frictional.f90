@@ -21,6 +21,7 @@ module ddc_solve_frictional
     use ddc_linalg_lu, only: lu_factor, lu_solve, influence_hint, residual_tol
     use ddc_text, only: rtoa, itoa, seconds_text
     use ddc_progress, only: report_progress, reports_phases
+    use ddc_allocation, only: allocation_failed, real_bytes
     use ddc_contact_result, only: contact_result
     use ddc_contact_formulation, only: solve_contact
     use ddc_contact_options, only: solver_options
@@ -93,7 +94,7 @@ contains
                 ' (element numbers count the contact elements only)'
             return
         end if
-        call record_contact(sys, res, record)
+        call record_contact(res, sys%flops, record)
         call complete_dds(sys, elements, remote_shear, remote_normal, res, y_load, ds, dn, &
                           state, record%equilibrium_residual)
         call release_matrix(sys, matrix)
@@ -125,13 +126,14 @@ contains
         type(condensed_contact), intent(out) :: sys
         !> seconds_assembly and seconds_factorization are set
         type(solver_record), intent(inout) :: record
-        !> Set when K_FF is singular
+        !> Set when K_FF is singular (exit_solver_failure) or the matrices do not fit in
+        !> memory (exit_out_of_memory)
         type(error_type), allocatable, intent(out) :: error
-        real(wp), allocatable :: matrix(:, :)
+        real(wp), allocatable :: matrix(:, :), kcf(:, :)
         integer, allocatable :: cu(:), fu(:)
         type(error_type), allocatable :: ill_conditioned
         real(wp) :: residual
-        integer :: n, nc, nf, i
+        integer :: n, nc, nf, i, stat
         character(len=*), parameter :: among_free = &
             ' (among the elements with TWODD-style conditions)'
         integer(int64) :: t0, t1, t2, rate
@@ -148,7 +150,13 @@ contains
         cu = [sys%contact, n + sys%contact]
         fu = [sys%free, n + sys%free]
 
-        allocate (sys%shear_row(n), sys%normal_row(n), matrix(2 * n, 2 * n))
+        allocate (sys%shear_row(n), sys%normal_row(n))
+        allocate (matrix(2 * n, 2 * n), stat=stat)
+        if (stat /= 0) then
+            call allocation_failed(error, 'the influence matrix of '//itoa(n)//' elements', &
+                                   real_bytes * (2.0_wp * real(n, wp))**2)
+            return
+        end if
         call row_kinds(elements%condition, sys%shear_row, sys%normal_row)
         call assemble_influence(elements, shear_modulus, nu, sys%shear_row, sys%normal_row, &
                                 matrix)
@@ -162,11 +170,22 @@ contains
             ! Every element is a contact element: A is the whole matrix (no copy).
             call move_alloc(matrix, sys%a)
         else
-            sys%a = matrix(cu, cu)
-            ! y = K_FF^-1 K_FC
-            sys%kff = matrix(fu, fu)
-            sys%y = matrix(fu, cu)
+            ! A of the contact elements, K_FF, y = K_FF^-1 K_FC and K_CF, copied out
             allocate (sys%ipiv(2 * nf))
+            allocate (sys%a(2 * nc, 2 * nc), stat=stat)
+            if (stat == 0) allocate (sys%kff(2 * nf, 2 * nf), stat=stat)
+            if (stat == 0) allocate (sys%y(2 * nf, 2 * nc), stat=stat)
+            if (stat == 0) allocate (kcf(2 * nc, 2 * nf), stat=stat)
+            if (stat /= 0) then
+                call allocation_failed(error, 'the condensation of '//itoa(nf)// &
+                    ' elements with TWODD-style conditions out of '//itoa(n), real_bytes * &
+                    4.0_wp * (real(nc, wp) + real(nf, wp))**2)
+                return
+            end if
+            sys%a(:, :) = matrix(cu, cu)
+            sys%kff(:, :) = matrix(fu, fu)
+            sys%y(:, :) = matrix(fu, cu)
+            kcf(:, :) = matrix(cu, fu)
             call lu_factor(sys%kff, sys%ipiv, 'influence matrix', error, &
                            element=[sys%free, sys%free], ill_conditioned=ill_conditioned)
             if (allocated(error)) then
@@ -185,8 +204,9 @@ contains
                     return
                 end if
             end if
-            call dgemm('N', 'N', 2 * nc, 2 * nc, 2 * nf, -1.0_wp, matrix(cu, fu), 2 * nc, &
+            call dgemm('N', 'N', 2 * nc, 2 * nc, 2 * nf, -1.0_wp, kcf, 2 * nc, &
                        sys%y, 2 * nf, 1.0_wp, sys%a, 2 * nc)
+            deallocate (kcf)
             call move_alloc(matrix, sys%matrix)
         end if
         ! LU of K_FF, its solve for 2 nc + 1 right-hand sides and the product.
@@ -272,12 +292,12 @@ contains
         residual = max(residual, norm2(residual_free) / max(norm2(b_free), tiny(1.0_wp)))
     end subroutine complete_dds
 
-    !> Fill the solver record from a contact solution on a condensed system.
-    subroutine record_contact(sys, res, record)
-        !> The condensed system
-        type(condensed_contact), intent(in) :: sys
+    !> Fill the solver record from a contact solution.
+    subroutine record_contact(res, flops, record)
         !> The contact solution
         type(contact_result), intent(in) :: res
+        !> Nominal flops of the factorizations outside the contact solve (the condensation)
+        real(wp), intent(in) :: flops
         !> Method, pivots, certificate, residual, flops and LCP time are set; the
         !> factorization time is added to
         type(solver_record), intent(inout) :: record
@@ -288,7 +308,7 @@ contains
         record%factorizations = res%factorizations
         record%low_rank_updates = res%low_rank_updates
         record%factorization_reuses = res%factorization_reuses
-        record%factorization_flops = res%factorization_flops + sys%flops
+        record%factorization_flops = res%factorization_flops + flops
         record%pivots = res%pivots
         record%lcp_solves = res%solves
         record%certificate_min_z = res%certificate%min_z

@@ -20,8 +20,8 @@
 module ddc_sweep_tasks
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
-    use ddc_model_types, only: model_type
-    use ddc_text, only: itoa, lower
+    use ddc_model_types, only: model_type, domain_half_plane
+    use ddc_text, only: itoa, lower, short_real, add_message, messages_error
     use ddc_output_hdf5_read, only: read_int_attribute
     use ddc_model_limits, only: range_problem, quantity_any, quantity_youngs_modulus, &
         quantity_poissons_ratio, quantity_non_negative
@@ -31,7 +31,7 @@ module ddc_sweep_tasks
     public :: sweep_definition, combine_product, combine_zip, combine_names
     public :: max_parameters, max_tasks, parameter_help
     public :: parse_parameter, check_value, task_values, task_label, task_file_name
-    public :: check_task, apply_task, output_is_complete
+    public :: check_task, apply_task, task_problem, check_tasks, output_is_complete
     public :: target_sxx, target_syy, target_sxy, target_s1, target_s3, target_angle
 
     !> How the value lists make tasks
@@ -74,6 +74,8 @@ module ddc_sweep_tasks
         real(wp), allocatable :: values(:, :)
         !> Number of tasks
         integer :: tasks = 0
+        !> Where the sweep was read, for messages: "file: &sweep (line n): "
+        character(len=:), allocatable :: where
     end type sweep_definition
 
 contains
@@ -231,7 +233,9 @@ contains
     end subroutine check_task
 
     !> Make the base model task `task` of the sweep: substitute its values, record them
-    !> in model%sweep and give the model the task's output file name.
+    !> in model%sweep and give the model the task's output file name. The remote stress
+    !> components a &load_path holds fixed (those it does not give per vertex) take the
+    !> task's values too.
     subroutine apply_task(model, sweep, task)
         !> The base model in, the task's model out
         type(model_type), intent(inout) :: model
@@ -239,11 +243,19 @@ contains
         type(sweep_definition), intent(in) :: sweep
         !> Task number, checked with check_task
         integer, intent(in) :: task
-        real(wp) :: values(size(sweep%names)), s1, s3, angle, c, s
-        integer :: p, first, last
+        real(wp) :: values(size(sweep%names)), stress(3)
+        integer :: p, first, last, q
 
         values = task_values(sweep, task)
-        call principal_stresses(model%sxx, model%syy, model%sxy, s1, s3, angle)
+        stress = task_stress(model, sweep, values)
+        model%sxx = stress(1)
+        model%syy = stress(2)
+        model%sxy = stress(3)
+        if (allocated(model%load_path%vertex)) then
+            do q = 1, 3
+                if (.not. model%load_path%varies(q)) model%load_path%vertex(q, :) = stress(q)
+            end do
+        end if
         do p = 1, size(values)
             first = 1
             last = model%elements%n
@@ -256,18 +268,6 @@ contains
                 model%youngs_modulus = values(p)
             case (target_poisson)
                 model%poissons_ratio = values(p)
-            case (target_sxx)
-                model%sxx = values(p)
-            case (target_syy)
-                model%syy = values(p)
-            case (target_sxy)
-                model%sxy = values(p)
-            case (target_s1)
-                s1 = values(p)
-            case (target_s3)
-                s3 = values(p)
-            case (target_angle)
-                angle = values(p)
             case (target_mu)
                 model%elements%mu(first:last) = values(p)
             case (target_sf)
@@ -275,23 +275,121 @@ contains
             case (target_pressure)
                 model%elements%pressure(first:last) = values(p)
             case default
-                ! parse_parameter makes only the targets above
+                ! the remote stress: task_stress
             end select
         end do
-        if (any(sweep%targets == target_s1 .or. sweep%targets == target_s3 .or. &
-                sweep%targets == target_angle)) then
-            c = cos_degrees(angle)
-            s = cos_degrees(angle - 90.0_wp)
-            model%sxx = s1 * c**2 + s3 * s**2
-            model%syy = s1 * s**2 + s3 * c**2
-            model%sxy = (s1 - s3) * s * c
-        end if
         model%sweep%task = task
         model%sweep%tasks = sweep%tasks
         model%sweep%names = sweep%names
         model%sweep%values = values
         model%output_file = task_file_name(model%output_file, task, sweep%tasks)
     end subroutine apply_task
+
+    !> The remote stress (sxx, syy, sxy) of a task with the given parameter values: the
+    !> base model's, with swept components or principal stresses replaced.
+    pure function task_stress(model, sweep, values) result(stress)
+        !> The base model
+        type(model_type), intent(in) :: model
+        !> The sweep
+        type(sweep_definition), intent(in) :: sweep
+        !> The task's value of each parameter, shape (np)
+        real(wp), intent(in) :: values(:)
+        !> sxx, syy, sxy [stress unit]
+        real(wp) :: stress(3)
+        real(wp) :: s1, s3, angle, c, s
+        integer :: p
+
+        stress = [model%sxx, model%syy, model%sxy]
+        call principal_stresses(model%sxx, model%syy, model%sxy, s1, s3, angle)
+        do p = 1, size(values)
+            select case (sweep%targets(p))
+            case (target_sxx)
+                stress(1) = values(p)
+            case (target_syy)
+                stress(2) = values(p)
+            case (target_sxy)
+                stress(3) = values(p)
+            case (target_s1)
+                s1 = values(p)
+            case (target_s3)
+                s3 = values(p)
+            case (target_angle)
+                angle = values(p)
+            case default
+                ! not a remote stress parameter
+            end select
+        end do
+        if (any(is_principal(sweep%targets))) then
+            c = cos_degrees(angle)
+            s = cos_degrees(angle - 90.0_wp)
+            stress = [s1 * c**2 + s3 * s**2, s1 * s**2 + s3 * c**2, (s1 - s3) * s * c]
+        end if
+    end function task_stress
+
+    !> Refuse a sweep with a task that cannot be solved (task_problem), every such task
+    !> named at once (exit_bad_input); --list calls it before anything is submitted.
+    subroutine check_tasks(model, sweep, error)
+        !> The base model (read and checked)
+        type(model_type), intent(in) :: model
+        !> The sweep (validated against this model)
+        type(sweep_definition), intent(in) :: sweep
+        !> Allocated when a task cannot be solved, one line per task
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: messages, problem
+        integer :: task, nbad
+
+        messages = ''
+        nbad = 0
+        do task = 0, sweep%tasks - 1
+            problem = task_problem(model, sweep, task)
+            if (len(problem) > 0) call add_message(messages, nbad, problem)
+        end do
+        if (nbad > 0) call messages_error(messages, nbad, 'tasks that cannot run', error)
+    end subroutine check_tasks
+
+    !> Why task `task` cannot be solved, '' when it can: in a half-plane its remote stress
+    !> must keep the surface y = 0 traction-free (syy = sxy = 0), which a swept syy, sxy
+    !> or principal stress breaks. The line names the file, &sweep, the task, its
+    !> parameters and values, and the parameters that break the rule.
+    function task_problem(model, sweep, task) result(problem)
+        !> The base model (read and checked)
+        type(model_type), intent(in) :: model
+        !> The sweep (validated against this model)
+        type(sweep_definition), intent(in) :: sweep
+        !> Task number, 0 <= task < sweep%tasks
+        integer, intent(in) :: task
+        !> The problem, '' when there is none
+        character(len=:), allocatable :: problem
+        real(wp) :: values(size(sweep%names)), stress(3)
+        character(len=:), allocatable :: culprits
+        integer :: p
+
+        problem = ''
+        if (model%elements%domain /= domain_half_plane) return
+        values = task_values(sweep, task)
+        stress = task_stress(model, sweep, values)
+        if (stress(2) == 0.0_wp .and. stress(3) == 0.0_wp) return
+        culprits = ''
+        do p = 1, size(values)
+            if (.not. any(sweep%targets(p) == [target_syy, target_sxy, target_s1, target_s3, &
+                                               target_angle])) cycle
+            if (len(culprits) > 0) culprits = culprits//', '
+            culprits = culprits//trim(sweep%names(p))//' = '//short_real(values(p))
+        end do
+        problem = sweep%where//'task '//itoa(task)//' ('//task_label(sweep, task)//'): '// &
+            culprits//' gives the remote stress sxx = '//short_real(stress(1))// &
+            ', syy = '//short_real(stress(2))//', sxy = '//short_real(stress(3))// &
+            "; with &model domain = 'half_plane' syy and sxy must be 0 (the surface y = 0 "// &
+            'is traction-free): sweep sxx, or the principal stresses only with '// &
+            'remote_angle = 0 (s3 = 0) or 90 (s1 = 0)'
+    end function task_problem
+
+    !> True for the targets that describe the remote stress by principal stresses.
+    elemental logical function is_principal(target)
+        integer, intent(in) :: target
+
+        is_principal = target == target_s1 .or. target == target_s3 .or. target == target_angle
+    end function is_principal
 
     !> True when path holds a readable ddc2d result with the root attribute complete = 1.
     function output_is_complete(path) result(complete)
@@ -341,42 +439,6 @@ contains
             c = cos(reduced * degree)
         end if
     end function cos_degrees
-
-    !> A real as short text: integers without a point, others to 8 significant digits
-    !> without trailing zeros (0.2, -30, 0.15E-04).
-    pure function short_real(x) result(out)
-        real(wp), intent(in) :: x
-        character(len=:), allocatable :: out
-        character(len=32) :: buffer
-        integer :: e
-
-        if (x == anint(x) .and. abs(x) < 1.0e9_wp) then
-            write (buffer, '(i0)') nint(x, kind=8)
-            out = trim(buffer)
-            return
-        end if
-        write (buffer, '(g0.8)') x
-        buffer = adjustl(buffer)
-        e = scan(buffer, 'Ee')
-        if (e == 0) then
-            out = trim_zeros(buffer)
-        else
-            out = trim_zeros(buffer(1:e - 1))//trim(buffer(e:))
-        end if
-    end function short_real
-
-    !> A decimal number without trailing zeros (and without a trailing point).
-    pure function trim_zeros(text) result(out)
-        character(len=*), intent(in) :: text
-        character(len=:), allocatable :: out
-
-        out = trim(text)
-        if (index(out, '.') == 0) return
-        do while (out(len(out):len(out)) == '0')
-            out = out(1:len(out) - 1)
-        end do
-        if (out(len(out):len(out)) == '.') out = out(1:len(out) - 1)
-    end function trim_zeros
 
     !> Text without blanks.
     pure function squeeze(text) result(out)

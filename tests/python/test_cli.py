@@ -76,12 +76,26 @@ def test_missing_input_file(tmp_path):
     assert leftovers(tmp_path) == []
 
 
-def test_unwritable_output_path_is_bad_input(tmp_path):
+@pytest.mark.parametrize("option", ["-o", "--res"])
+def test_unwritable_output_path_exits_3(tmp_path, option):
+    # README: 3 = reading or writing a file failed; a missing folder is not created.
     (tmp_path / "crack.nml").write_text(GOOD_MODEL)
-    done = run(["crack.nml", "-o", "no/such/folder/out.h5"], tmp_path)
-    assert done.returncode == 2
+    done = run(["crack.nml", option, "no/such/folder/out.h5"], tmp_path)
+    assert done.returncode == 3, done.stderr
     assert "no/such/folder/out.h5" in done.stderr
+    assert "no/such/folder does not exist" in done.stderr
+    assert [line for line in done.stderr.splitlines() if line.startswith("ddc2d:")] == [
+        line for line in done.stderr.splitlines() if "no/such/folder" in line]
     assert leftovers(tmp_path) == []
+    assert not (tmp_path / "no").exists()
+
+
+def test_output_path_that_is_a_folder_is_bad_usage(tmp_path):
+    (tmp_path / "crack.nml").write_text(GOOD_MODEL)
+    (tmp_path / "out").mkdir()
+    done = run(["crack.nml", "-o", "out"], tmp_path)
+    assert done.returncode == 2, done.stderr
+    assert "out is a folder" in done.stderr
 
 
 @pytest.mark.parametrize("text, words", [
@@ -124,7 +138,7 @@ def test_duplicate_fracture_is_bad_input(tmp_path):
     assert leftovers(tmp_path) == []
 
 
-BAD_FILES = sorted(p for folder in ("input", "half_plane", "history")
+BAD_FILES = sorted(p for folder in ("input", "half_plane", "history", "growth")
                    for p in (REPO_ROOT / "tests" / "data" / folder).glob("bad_*.nml"))
 
 

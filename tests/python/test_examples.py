@@ -148,7 +148,74 @@ def check_all_slip(*names):
     return check
 
 
+def growth_rows(f, fracture, end):
+    """The /growth records of one tip (fracture name, end 0 begin / 1 end), in step order."""
+    names = [decode(n) for n in f["fractures/name"][()]]
+    g = f["growth"]
+    return np.flatnonzero((g["fracture_id"][()] == names.index(fracture) + 1)
+                          & (g["end"][()] == end))
+
+
+def check_smooth_growth(f, fracture, steps):
+    """Both tips of a point-symmetric model grow `steps` times and arrest; after the first
+    kink their angles keep one sign and shrink (no zig-zag); the tips stay point-symmetric."""
+    g = f["growth"]
+    assert decode(g.attrs["end_reason"]) == "arrested"
+    begin, end = growth_rows(f, fracture, 0), growth_rows(f, fracture, 1)
+    assert begin.size == end.size == steps + 1
+    reason = g["reason"][()]
+    assert np.all(reason[end[:-1]] == 0) and reason[end[-1]] == 1  # grew, then subcritical
+    angle = g["angle"][()][end[1:-1]]
+    assert np.all(np.sign(angle) == np.sign(angle[0])) and np.all(np.diff(np.abs(angle)) < 0)
+    assert g["k1"][end[0]] == 0.0  # the closed fault or flaw: the first kink is mode II
+    np.testing.assert_allclose(abs(g["mts_angle"][end[0]]), 70.528779, atol=0.1)
+    for key in ("x", "y"):  # point symmetry, to a tolerance
+        np.testing.assert_allclose(g[key][()][begin], -g[key][()][end], atol=1e-9)
+
+
+def check_wings(f):
+    check_smooth_growth(f, "flaw", 21)
+    created = f["elements/created_step"][()]
+    assert np.all(f["elements/state"][()][created > 0] == STATE_CODES["open"])
+
+
+def check_tail_cracks(f):
+    check_smooth_growth(f, "fault", 11)
+
+
+def check_echelon_linking(f):
+    g = f["growth"]
+    reason = g["reason"][()]
+    for fracture, inner, outer in (("west", 1, 0), ("east", 0, 1)):
+        rows = growth_rows(f, fracture, inner)
+        assert list(reason[rows]) == [0] * 8 + [2]  # grew 8 times, stopped at the other
+        assert np.all(reason[growth_rows(f, fracture, outer)] == 0)
+    assert decode(g.attrs["end_reason"]) == "step_limit"
+
+
+def check_hydraulic_fracture(f):
+    rows = growth_rows(f, "hydrofracture", 1)  # the lower tip
+    assert list(f["growth/reason"][()][rows]) == [0] * 9 + [2]
+    _some(f, "fault", "slip")
+    _all(f, "hydrofracture", "open")
+    # It stopped above the fault, more than half an element (10 m) from it.
+    assert f["growth/y"][rows[-1]] > 5.0
+
+
+def check_joint_to_surface(f):
+    reason = f["growth/reason"][()]
+    assert reason[growth_rows(f, "joint", 1)[-1]] == 3  # the upper tip: at the surface
+    assert reason[growth_rows(f, "joint", 0)[-1]] == 1  # the lower tip: arrested
+    assert decode(f["growth"].attrs["end_reason"]) == "arrested"
+    assert max(f["elements/y_begin"][()].max(), f["elements/y_end"][()].max()) < -2.5
+
+
 EXPECTED = {
+    "wing_cracks_sliding_flaw": check_wings,
+    "fault_tail_cracks": check_tail_cracks,
+    "echelon_cracks_linking": check_echelon_linking,
+    "hydraulic_fracture_toward_fault": check_hydraulic_fracture,
+    "joint_growing_to_surface": check_joint_to_surface,
     "segmented_right_step": check_right_step,
     "segmented_left_step": check_left_step,
     "ramped_fault": check_ramp,

@@ -14,6 +14,7 @@ from conftest import (
     GRID_NEAR_POINT,
     LENGTH_UNIT,
     PLOT_SCRIPT,
+    REPO_ROOT,
     STRESS_UNIT,
     ddc2d_exe,
     write_result,
@@ -40,10 +41,11 @@ def test_writes_profile_per_fracture_and_map_per_grid(result_file, tmp_path):
     out = tmp_path / "figures"  # does not exist yet: the script creates it
     proc = run_plot(result_file, "-o", out)
     assert proc.returncode == 0, proc.stderr
-    figures = ["synthetic_map_grid1_max_shear.png", "synthetic_profile_B.png",
-               "synthetic_profile_fault_A.png", "synthetic_profiles.png"]
+    figures = ["synthetic_line_line1.png", "synthetic_map_grid1_max_shear.png",
+               "synthetic_profile_B.png", "synthetic_profile_fault_A.png",
+               "synthetic_profiles.png"]
     tables = ["synthetic_tips.csv", "synthetic_tips.txt"]
-    assert figure_files(out) == sorted(figures + tables)  # no map for the 'line' field
+    assert figure_files(out) == sorted(figures + tables)  # a line figure, no map, for 'line1'
     for name in figures:
         assert (out / name).read_bytes()[:8] == PNG_MAGIC
         assert (out / name).stat().st_size > 5000
@@ -67,8 +69,9 @@ def test_svg_format(result_file, tmp_path):
     proc = run_plot(result_file, "-o", tmp_path / "svg", "--format", "svg")
     assert proc.returncode == 0, proc.stderr
     names = [n for n in figure_files(tmp_path / "svg") if n.endswith(".svg")]
-    assert names == ["synthetic_map_grid1_max_shear.svg", "synthetic_profile_B.svg",
-                     "synthetic_profile_fault_A.svg", "synthetic_profiles.svg"]
+    assert names == ["synthetic_line_line1.svg", "synthetic_map_grid1_max_shear.svg",
+                     "synthetic_profile_B.svg", "synthetic_profile_fault_A.svg",
+                     "synthetic_profiles.svg"]
     for name in names:
         assert "<svg" in (tmp_path / "svg" / name).read_text()[:2000]
 
@@ -353,7 +356,7 @@ def test_quantity_lists(plot_module, result_file, tmp_path):
         "synthetic_map_grid1_mean.png", "synthetic_map_grid1_sxx.png"]
     assert plot_module.main([str(result_file), "-o", str(tmp_path / "all"),
                              "--quantity", "all", "--format", "svg"]) == 0
-    assert len(list((tmp_path / "all").glob("*_map_*.svg"))) == 7
+    assert len(list((tmp_path / "all").glob("*_map_*.svg"))) == 11
     proc = run_plot(result_file, "-o", tmp_path / "bad", "--quantity", "sxx,tau")
     assert proc.returncode == 2 and "tau" in proc.stderr
 
@@ -366,6 +369,135 @@ def test_default_clim_centres_signed_maps_on_the_remote_value(plot_module, resul
     values = np.ma.masked_array(-112.5 + np.linspace(-3.0, 1.0, 101))
     low, high = plot_module.default_clim(values, "mean", centre=-112.5)
     assert low + high == pytest.approx(-225.0) and high > -112.5
+
+
+# ------------------------------------------------------ background stress varying with depth
+
+GRADIENT = (0.01325, 0.0265, 0.0)  # lithostatic: dsxx_dy, dsyy_dy, dsxy_dy [MPa/m]
+
+
+def write_background_only(path, remote=(0.0, 0.0, 0.0), gradient=GRADIENT,
+                          pore=(0.0, -0.00981)):
+    """The synthetic file with a grid whose total stress is the background alone,
+    remote + gradient * y, as around a fault that does not slip."""
+    write_result(path)
+    with h5py.File(path, "a") as f:
+        f.attrs["remote_stress"] = np.array(remote)
+        f.attrs["remote_stress_gradient"] = np.array(gradient)
+        f.attrs["pore_fluid"] = np.array(pore)
+        grid = f["fields/grid1"]
+        y = grid["y"][...]
+        for key, r, g in zip(("sxx", "syy", "sxy"), remote, gradient):
+            grid[key][...] = r + g * y
+    return path
+
+
+def test_changes_are_taken_from_the_background_with_its_gradient(plot_module, tmp_path):
+    # Without fractures acting, the Coulomb stress change and the induced stresses are
+    # zero everywhere, however the background grows with depth (gravity); only taking the
+    # changes from the uniform remote stress gave lithostatic bands here.
+    result = plot_module.load_result(write_background_only(tmp_path / "litho.h5"))
+    assert result["remote_stress_gradient"] == GRADIENT
+    assert result["pore_fluid"] == (0.0, -0.00981)
+    field = result["fields"]["grid1"]
+    background = plot_module.Background.of_result(result)
+    receiver = plot_module.Receiver(background, 60.0, 0.6, "right")
+    _, y, cfs = plot_module.grid_quantity(field, "coulomb", receiver)
+    scale = np.max(np.abs(np.asarray(GRADIENT)[:, None, None] * y))
+    assert np.ma.count(cfs) == 19
+    assert np.ma.max(np.abs(cfs)) <= 1e-12 * scale
+    for quantity in plot_module.INDUCED:
+        _, _, induced = plot_module.grid_quantity(field, quantity, background=background)
+        assert np.ma.max(np.abs(induced)) <= 1e-12 * scale, quantity
+
+
+def test_induced_stress_is_total_minus_background(plot_module, result_file):
+    result = plot_module.load_result(result_file)
+    with h5py.File(result_file, "a") as f:
+        f.attrs["remote_stress_gradient"] = np.array(GRADIENT)
+    result = plot_module.load_result(result_file)
+    field = result["fields"]["grid1"]
+    x, y, induced = plot_module.grid_quantity(field, "induced_syy",
+                                              background=plot_module.Background.of_result(result))
+    expected = (-5.0 - x * y) - (REMOTE[1] + GRADIENT[1] * y)
+    keep = ~np.ma.getmaskarray(induced)
+    np.testing.assert_allclose(induced[keep], expected[keep], rtol=1e-12, atol=1e-12)
+    _, _, mean = plot_module.grid_quantity(field, "induced_mean",
+                                           background=plot_module.Background.of_result(result))
+    expected = 0.5 * ((-10.0 + x + 2.0 * y) + (-5.0 - x * y)) \
+        - 0.5 * (REMOTE[0] + REMOTE[1] + (GRADIENT[0] + GRADIENT[1]) * y)
+    np.testing.assert_allclose(mean[keep], expected[keep], rtol=1e-12, atol=1e-12)
+
+
+def test_auto_sense_from_the_background_at_the_grid_depth(plot_module):
+    # Gravity alone (no uniform part): on a plane at 60 degrees the background drives
+    # normal, that is left-lateral, slip below the surface; a zero stress at y = 0 would
+    # say 'right'.
+    background = plot_module.Background((0.0, 0.0, 0.0), GRADIENT)
+    assert plot_module.Receiver(background, 60.0, 0.6, "auto", reference_y=-1500.0).sense \
+        == "left"
+    assert plot_module.Receiver(background, 60.0, 0.6, "auto", reference_y=0.0).sense \
+        == "right"  # zero shear at the surface: the tie rule's right-lateral
+    receiver = plot_module.Receiver(background, 60.0, 0.6, "auto", reference_y=-1500.0)
+    assert "(auto: the sense at y = -1500)" in receiver.describe()
+    field = {"y": np.array([[-3000.0, -3000.0], [-10.0, -10.0]])}
+    assert plot_module.grid_reference_y(field) == pytest.approx(-1505.0)
+
+
+def test_total_stress_map_with_a_gradient_has_no_white_centre(plot_module, tmp_path):
+    result = plot_module.load_result(write_background_only(tmp_path / "litho.h5",
+                                                           remote=(-2.0, 0.0, 0.0)))
+    assert plot_module.remote_value(result, "syy") is None
+    assert plot_module.remote_value(result, "mean") is None
+    assert plot_module.remote_value(result, "sxy") == 0.0  # dsxy_dy = 0: uniform
+    assert plot_module.remote_value(result, "induced_syy") == 0.0
+    fig = plot_module.plot_map(result, "grid1", "syy")
+    try:
+        mesh = fig.axes[0].collections[0]
+        assert mesh.get_cmap().name == "viridis"
+        assert "for the change see induced_syy" in fig.axes[0].get_title()
+    finally:
+        plot_module.plt.close(fig)
+    fig = plot_module.plot_map(result, "grid1", "induced_syy")
+    try:
+        assert fig.axes[0].collections[0].get_cmap().name == "RdBu_r"
+        title = fig.axes[0].get_title()
+        assert "change from the remote stress + gradient * y" in title
+        assert "pore pressure given, unchanged: drained" in title
+    finally:
+        plot_module.plt.close(fig)
+
+
+def test_coulomb_map_of_the_issue_model_shows_the_fault(plot_module, tmp_path):
+    # The issue's model through ddc2d and the command line: a half-plane normal fault
+    # under gravity with hydrostatic pore fluid, receivers parallel to it (60 degrees).
+    # Far from the fault the change vanishes (it was -25 .. -45 MPa of lithostatic bands),
+    # beside the slipping fault it is a stress shadow, below its tip a positive lobe.
+    (tmp_path / "normal.nml").write_text("""\
+&model youngs_modulus = 30000, poissons_ratio = 0.25, domain = 'half_plane' /
+&remote_stress dsyy_dy = 0.0265, dsxx_dy = 0.01325 /
+&pore_fluid dp_dy = -0.00981 /
+&fracture name = 'fault', x = 0, -1154.7, y = 0, -2000, elements = 100, mu = 0.6 /
+&grid name = 'section', xmin = -3000, xmax = 2000, nx = 11, ymin = -3000, ymax = -100,
+      ny = 30 /
+""")
+    done = subprocess.run([str(ddc2d_exe()), "normal.nml"], cwd=tmp_path, capture_output=True,
+                          text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert plot_module.main([str(tmp_path / "normal.h5"), "-o", str(tmp_path), "--quantity",
+                             "coulomb", "--receiver", "60"]) == 0
+    result = plot_module.load_result(tmp_path / "normal.h5")
+    field = result["fields"]["section"]
+    receiver = plot_module.Receiver(plot_module.Background.of_result(result), 60.0, 0.6,
+                                    "auto", plot_module.grid_reference_y(field))
+    assert receiver.sense == "left"  # normal slip on a plane dipping 60 degrees to -x
+    x, y, cfs = plot_module.grid_quantity(field, "coulomb", receiver)
+    far = (x == 2000.0) & (y <= -2500.0)  # measured 0.16 .. 0.18 MPa
+    assert np.all(np.abs(cfs[far]) < 0.5), cfs[far]
+    beside = (x == -500.0) & (np.abs(y + 1000.0) < 60.0)  # beside the middle: -1.49
+    assert np.all(cfs[beside] < -0.5), cfs[beside]
+    below = (x == -1500.0) & (y <= -2150.0) & (y >= -2650.0)  # below the tip: 0.98 .. 1.31
+    assert np.all(cfs[below] > 0.5), cfs[below]
 
 
 # ------------------------------------------------------------------ vectors, overview, tips
@@ -391,21 +523,53 @@ def test_displacement_map_draws_the_displacement_vectors(plot_module, result_fil
 def test_overview_profile_shows_every_fracture(plot_module, result_file):
     result = plot_module.load_result(result_file)
     elements = result["elements"]
-    # The elements span 2 in x (A: -1..1) and 2.4 in y (B: 0..2.4): profiles against y.
+    # The elements span 2 in x (A: -1..1) and 2.4 in y (B: 0..2.4): the model's longer
+    # extent is y, but each fracture is drawn along its own: A along x, B along y.
     assert plot_module.overview_axis(elements) == "y"
+    assert plot_module.overview_axis(elements, 1, 4) == "x"
+    assert plot_module.overview_axis(elements, 5, 7) == "y"
     fig = plot_module.plot_overview(result)
     try:
         for row, key in ((0, "slip"), (1, "opening")):
             lines = {ln.get_gid(): ln for ln in fig.axes[row].get_lines() if ln.get_gid()}
-            for label, sl in (("fault_A", slice(0, 4)), ("B", slice(4, 7))):
+            for label, sl, axis in (("fault_A", slice(0, 4), "x"), ("B", slice(4, 7), "y")):
                 line = lines[f"{key}:{label}"]
-                np.testing.assert_allclose(line.get_xdata(), elements["y_mid"][sl],
+                np.testing.assert_allclose(line.get_xdata(), elements[f"{axis}_mid"][sl],
                                            rtol=1e-14)
                 data = -elements["ds" if key == "slip" else "dn"][sl]
                 np.testing.assert_array_equal(line.get_ydata(), data)  # stored values
         legend = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
-        assert legend == ["fault A", "B", "stick", "slip", "open", "free"]
-        assert fig.axes[1].get_xlabel() == f"y of element midpoint [{LENGTH_UNIT}]"
+        assert legend == ["fault A (against x)", "B (against y)", "stick", "slip", "open",
+                          "free"]
+        assert fig.axes[1].get_xlabel() == ("x or y of element midpoint, each fracture along "
+                                            f"its longer extent [{LENGTH_UNIT}]")
+        assert fig.axes[0].get_title(loc="left") == "slip > 0: right-lateral"  # map view
+    finally:
+        plot_module.plt.close(fig)
+
+
+def test_a_vertical_fracture_is_drawn_along_y_in_the_overview(plot_module, tmp_path):
+    # A fault along x and a vertical fracture at x = 0: the fracture no longer collapses
+    # onto x = 0 but runs along its own y.
+    (tmp_path / "t.nml").write_text("""\
+&model youngs_modulus = 50000, poissons_ratio = 0.25 /
+&remote_stress sxx = -10, syy = -20, sxy = 5 /
+&fracture name = 'fault', x = -3, 3, y = -2, -2, elements = 12, mu = 0.6 /
+&fracture name = 'dyke', x = 0, 0, y = -1, 1, elements = 8, condition = 'traction',
+          bc_n = -30 /
+""")
+    done = subprocess.run([str(ddc2d_exe()), "t.nml"], cwd=tmp_path, capture_output=True,
+                          text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    result = plot_module.load_result(tmp_path / "t.h5")
+    fig = plot_module.plot_overview(result)
+    try:
+        lines = {ln.get_gid(): ln for ln in fig.axes[0].get_lines() if ln.get_gid()}
+        np.testing.assert_allclose(lines["slip:dyke"].get_xdata(),
+                                   result["elements"]["y_mid"][12:], rtol=1e-14)
+        assert np.ptp(lines["slip:dyke"].get_xdata()) > 1.5
+        np.testing.assert_allclose(lines["slip:fault"].get_xdata(),
+                                   result["elements"]["x_mid"][:12], rtol=1e-14)
     finally:
         plot_module.plt.close(fig)
 
@@ -490,3 +654,159 @@ def test_plots_a_model_solved_by_ddc2d(plot_module, tmp_path):
         rows = list(csv.reader(handle))[1:]
     assert [r[1] for r in rows] == ["fault", "fault", "crack", "crack"]
     np.testing.assert_array_equal([float(r[6]) for r in rows], k2)
+
+
+# ------------------------------------------------ observation lines and points, file names
+
+LINES_MODEL = """\
+&model youngs_modulus = 50000, poissons_ratio = 0.25 /
+&remote_stress sxx = -10, syy = -20, sxy = 5 /
+&fracture name = 'crack', x = -1, 1, y = 0, 0, elements = 20, condition = 'traction',
+          bc_n = -30 /
+&grid name = 'map', xmin = -2, xmax = 2, nx = 5, ymin = -1, ymax = 1, ny = 4 /
+&line name = 'across', x_begin = 0, y_begin = -1, x_end = 0, y_end = 1, points = 9 /
+&line name = 'along', x_begin = -0.5, y_begin = 0, x_end = 0.5, y_end = 0, points = 3 /
+&points name = 'wells', file = 'wells.csv' /
+"""
+
+
+def test_figures_of_observation_lines_and_points(plot_module, tmp_path):
+    # A full-plane model's &line and &points get figures of ux, uy, sxx, syy, sxy against
+    # the distance along them; a point on the crack is a gap; a line that lies on the crack
+    # (every point NaN) gets a warning instead of an empty figure. The grid named 'map' is
+    # <stem>_map_<quantity>, not <stem>_map_map_<quantity>.
+    (tmp_path / "wells.csv").write_text("x,y\n2,0.5\n2,1.5\n-1,1.5\n")
+    (tmp_path / "lines.nml").write_text(LINES_MODEL)
+    done = subprocess.run([str(ddc2d_exe()), "lines.nml"], cwd=tmp_path, capture_output=True,
+                          text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    proc = run_plot(tmp_path / "lines.h5", "-o", tmp_path / "out")
+    assert proc.returncode == 0, proc.stderr
+    assert figure_files(tmp_path / "out") == [
+        "lines_line_across.png", "lines_map_max_shear.png", "lines_points_wells.png",
+        "lines_profile_crack.png", "lines_tips.csv", "lines_tips.txt"]
+    assert proc.stderr == ("ddc2d-plot: warning: every point of line 'along' lies on an "
+                           "element (NaN): no figure\n")
+    result = plot_module.load_result(tmp_path / "lines.h5")
+    for name, distance in (("across", np.linspace(0.0, 2.0, 9)),
+                           ("wells", np.array([0.0, 1.0, 4.0]))):
+        field = result["fields"][name]
+        fig = plot_module.plot_observation_line(result, name)
+        try:
+            lines = {ln.get_gid(): ln for ax in fig.axes for ln in ax.get_lines()
+                     if ln.get_gid()}
+            assert sorted(lines) == ["sxx", "sxy", "syy", "ux", "uy"]
+            for key, line in lines.items():
+                np.testing.assert_allclose(line.get_xdata(), distance, rtol=1e-14,
+                                           atol=1e-14)
+                # The stored values themselves (NaN where the point is on the crack).
+                np.testing.assert_array_equal(line.get_ydata(), field[key])
+            assert fig.axes[2].get_ylabel() == rf"$\sigma_{{xx}}$ [{'MPa'}]"
+        finally:
+            plot_module.plt.close(fig)
+    # The middle point of 'across' is on the crack: NaN, said in the title.
+    assert np.isnan(result["fields"]["across"]["sxx"][4])
+    fig = plot_module.plot_observation_line(result, "across")
+    try:
+        assert "1 on an element (NaN: gaps)" in fig.texts[0].get_text()
+    finally:
+        plot_module.plt.close(fig)
+
+
+def test_figure_names_leave_out_a_name_that_repeats_the_kind(plot_module, tmp_path):
+    used = set()
+    base = plot_module.figure_base
+    assert base(tmp_path, "m", "map", "map", used, "sxx").name == "m_map_sxx"
+    assert base(tmp_path, "m", "map", "grid 2", used, "sxx").name == "m_map_grid_2_sxx"
+    assert base(tmp_path, "m", "profile", "profile", used).name == "m_profile"
+    assert base(tmp_path, "m", "surface", "surface", used).name == "m_surface"
+    # A grid 'induced' mapped as sxx would take the name of grid 'map' mapped as
+    # induced_sxx: the second one gets a number, nothing is overwritten.
+    assert base(tmp_path, "m", "map", "map", used, "induced_sxx").name == "m_map_induced_sxx"
+    assert base(tmp_path, "m", "map", "induced", used, "sxx").name == "m_map_induced_sxx_2"
+    assert len(used) == 6
+
+
+# ------------------------------------------------------------ opening panel and slip sense
+
+
+def test_no_opening_panel_without_opening(plot_module, result_file, tmp_path):
+    result = plot_module.load_result(result_file)
+    assert plot_module.has_dd(result, "dn")  # elements 3 and 6 are open
+    fracture, profile = plot_module.fracture_profiles(result)[0]
+    fig = plot_module.plot_profile(result, fracture, profile)
+    assert len(fig.axes) == 2
+    plot_module.plt.close(fig)
+    with h5py.File(result_file, "a") as f:
+        f["elements/dn"][...] = 0.0
+        f["elements/state"][...] = np.where(f["elements/state"][...] == 3, 2,
+                                            f["elements/state"][...])
+    result = plot_module.load_result(result_file)
+    assert not plot_module.has_dd(result, "dn")
+    for fig in (plot_module.plot_profile(result, fracture, profile),
+                plot_module.plot_overview(result)):
+        try:
+            assert len(fig.axes) == 1
+            assert fig.axes[0].get_ylabel().startswith("slip")
+        finally:
+            plot_module.plt.close(fig)
+
+
+def test_no_slip_panel_for_round_off_slip(plot_module, result_file):
+    # A crack opened symmetrically has slip of round-off size (1e-17 of its opening, of
+    # either sign by CPU): no slip panel, as without opening no opening panel.
+    with h5py.File(result_file, "a") as f:
+        f["elements/ds"][...] = 1e-20 * np.array([1, -3, 2, 0, -1, 4, -2])
+        f["elements/state"][...] = 3
+    result = plot_module.load_result(result_file)
+    assert not plot_module.has_dd(result, "ds") and plot_module.has_dd(result, "dn")
+    fracture, profile = plot_module.fracture_profiles(result)[0]
+    fig = plot_module.plot_profile(result, fracture, profile)
+    try:
+        assert len(fig.axes) == 1
+        assert fig.axes[0].get_ylabel().startswith("opening")
+        assert "no element slips" in fig.texts[0].get_text()
+    finally:
+        plot_module.plt.close(fig)
+
+
+def sense_of(plot_module, begin, end, domain="half_plane"):
+    result = {"attrs": {"domain": domain}, "remote_stress_gradient": (0.0, 0.0, 0.0),
+              "pore_fluid": (0.0, 0.0),
+              "elements": {"x_begin": np.array([begin[0]]), "y_begin": np.array([begin[1]]),
+                           "x_end": np.array([end[0]]), "y_end": np.array([end[1]])}}
+    return plot_module.slip_sense(result, {"first": 1, "last": 1})
+
+
+def test_what_positive_slip_means(plot_module):
+    reverse = "slip > 0: reverse (hanging wall up), < 0: normal"
+    normal = "slip > 0: normal (hanging wall down), < 0: reverse"
+    # A fault dipping to -x drawn from its outcrop down (the thrust example: Ds < 0 is
+    # reverse), and the same fault drawn upward: the meaning does not depend on it.
+    assert sense_of(plot_module, (0, 0), (-1154.7, -2000)) == reverse
+    assert sense_of(plot_module, (-1154.7, -2000), (0, 0)) == reverse
+    assert sense_of(plot_module, (0, 0), (1154.7, -2000)) == normal
+    assert sense_of(plot_module, (0, -100), (0, -900)) == "slip > 0: the +x side moves down"
+    assert sense_of(plot_module, (0, -900), (0, -100)) == "slip > 0: the +x side moves down"
+    assert sense_of(plot_module, (-5, -9), (5, -9)) == "slip > 0: the upper side moves to +x"
+    assert sense_of(plot_module, (0, 0), (1, 1), domain="full_plane") == \
+        "slip > 0: right-lateral"
+
+
+def test_the_profile_says_what_positive_slip_means(plot_module, tmp_path):
+    # The thrust example's geometry: its profile says reverse, and it slips reverse.
+    (tmp_path / "thrust.nml").write_text((REPO_ROOT / "input" / "thrust_fault_surface.nml")
+                                         .read_text().replace("elements = 240",
+                                                              "elements = 40"))
+    done = subprocess.run([str(ddc2d_exe()), "thrust.nml"], cwd=tmp_path,
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    result = plot_module.load_result(tmp_path / "thrust.h5")
+    fracture, profile = plot_module.fracture_profiles(result)[0]
+    fig = plot_module.plot_profile(result, fracture, profile)
+    try:
+        assert fig.axes[0].get_title(loc="left") == \
+            "slip > 0: reverse (hanging wall up), < 0: normal"
+    finally:
+        plot_module.plt.close(fig)
+    assert np.median(profile["slip"]) > 0.0

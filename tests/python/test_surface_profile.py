@@ -43,8 +43,11 @@ def test_surface_line_of_a_half_plane_is_plotted(plot_module, tmp_path):
     done = subprocess.run([sys.executable, str(PLOT_SCRIPT), str(out), "-o", str(tmp_path)],
                           capture_output=True, text=True, timeout=120)
     assert done.returncode == 0, done.stderr
-    assert (tmp_path / "buried_surface_surface.png").is_file()
-    assert not list(tmp_path.glob("*_surface_borehole*"))
+    # The line named 'surface' gives buried_surface.png (no doubled name); the borehole
+    # is no surface line: it gets the figure of an observation line instead.
+    assert (tmp_path / "buried_surface.png").is_file()
+    assert not list(tmp_path.glob("*_surface_*"))
+    assert (tmp_path / "buried_line_borehole.png").is_file()
 
 
 def test_no_surface_profile_in_a_full_plane(plot_module, tmp_path):

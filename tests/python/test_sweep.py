@@ -11,7 +11,7 @@ from pathlib import Path
 import h5py
 import numpy as np
 
-from conftest import REPO_ROOT, ddc2d_exe
+from conftest import REPO_ROOT, ddc2d_exe, load_script
 from ddc2d_h5 import STATE_CODES, is_complete
 
 EXAMPLE = REPO_ROOT / "input" / "sweep_friction_orientation.nml"
@@ -162,9 +162,26 @@ def test_submit_sweep_calls_sbatch(tmp_path):
         capture_output=True, text=True, env=env, timeout=60)
     assert done.returncode == 0, done.stderr
     assert done.stdout.strip() == "4321"
-    assert record.read_text().split() == [
-        "--parsable", "--partition=long", "--time=00:05:00",
-        str(tmp_path / "o" / "sweep_friction_orientation.sbatch")]
+    script = tmp_path / "o" / "sweep_friction_orientation.sbatch"
+    assert record.read_text().split() == ["--parsable", str(script)]
+    # The extra options are in the script itself, which is what sbatch runs.
+    assert "#SBATCH --partition=long\n#SBATCH --time=00:05:00\n" in script.read_text()
+
+
+def test_submit_sweep_dry_run_keeps_sbatch_options(tmp_path):
+    done = subprocess.run(
+        [sys.executable, str(SUBMIT), str(EXAMPLE), "--exe", str(ddc2d_exe()), "--dry-run",
+         "--output-dir", str(tmp_path / "o"), "--time", "00:10:00", "--mem=2G", "-p",
+         "long queue", "--exclusive"], capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    text = Path(done.stdout.strip()).read_text()
+    assert ("#SBATCH --time 00:10:00\n#SBATCH --mem=2G\n#SBATCH -p 'long queue'\n"
+            "#SBATCH --exclusive\n") in text
+    # Every #SBATCH line comes before the first command (sbatch stops reading them there).
+    lines = text.splitlines()
+    first_command = next(i for i, line in enumerate(lines)
+                         if line and not line.startswith("#"))
+    assert all(not line.startswith("#SBATCH") for line in lines[first_command:])
 
 
 def test_submit_sweep_bad_sweep_exits_2(tmp_path):
@@ -190,10 +207,15 @@ def test_collect_sweep_tables_and_plot(tmp_path):
     assert done.returncode == 0, done.stderr
     assert "1 of 4 tasks have no complete output: 2" in done.stderr
     with open(runs / "small_summary.csv") as handle:
-        rows = list(csv.DictReader(handle))
+        header = next(csv.reader(handle))
+    # Units in the header, as in the tips table of ddc2d-plot.
+    assert header == ["task", "mu", "remote_angle [deg]", "peak_slip [m]", "peak_opening [m]",
+                      "stick", "slip", "open", "max_abs_k1 [MPa m^0.5]",
+                      "max_abs_k2 [MPa m^0.5]"]
+    with open(runs / "small_summary.csv") as handle:
+        rows = [{name.split(" [")[0]: value for name, value in row.items()}
+                for row in csv.DictReader(handle)]
     assert [row["task"] for row in rows] == ["0", "1", "3"]
-    assert list(rows[0]) == ["task", "mu", "remote_angle", "peak_slip", "peak_opening",
-                             "stick", "slip", "open", "max_abs_k1", "max_abs_k2"]
     # The summary holds values of the task files themselves (a maximum picks one stored
     # value, |.| and the CSV's repr round trip are exact): equal bit for bit, no tolerance.
     for row, task in zip(rows, (0, 1, 3)):
@@ -210,11 +232,20 @@ def test_collect_sweep_tables_and_plot(tmp_path):
     assert int(rows[2]["stick"]) == 20 and float(rows[2]["peak_slip"]) == 0.0
     with h5py.File(runs / "small_summary.h5", "r") as f:
         assert list(f["task"][()]) == [0, 1, 3]
+        assert f["peak_slip"].attrs["units"] == "m"
+        assert f["remote_angle"].attrs["units"] == "deg"
+        assert "units" not in f["mu"].attrs
         # The same numbers written to both tables: exact.
         np.testing.assert_array_equal(f["peak_slip"][()],
                                       [float(row["peak_slip"]) for row in rows])
     plot = runs / "small_peak_slip_vs_remote_angle.png"
     assert plot.stat().st_size > 5000
+    collect = load_script("collect-sweep")
+    stem, collected, units = collect.collect(runs)
+    figure_path = collect.plot(tmp_path, stem, collected, units, "peak_slip", "remote_angle",
+                               "svg")
+    text = figure_path.read_text()
+    assert "peak_slip [m]" in text and "remote_angle [deg]" in text and "mu = 0.2" in text
 
     done = subprocess.run([sys.executable, str(COLLECT), str(runs), "--plot", "peak_slip",
                            "--against", "sf"], capture_output=True, text=True, timeout=120)
@@ -223,3 +254,61 @@ def test_collect_sweep_tables_and_plot(tmp_path):
     done = subprocess.run([sys.executable, str(COLLECT), str(tmp_path / "nothing")],
                           capture_output=True, text=True, timeout=60)
     assert done.returncode == 2
+
+
+HALF_PLANE = """&model youngs_modulus = 40000, poissons_ratio = 0.25, domain = 'half_plane' /
+&remote_stress sxx = -2.0, dsxx_dy = 0.065, dsyy_dy = 0.026 /
+&fracture name = 'thrust', x = 0, -5196.152, y = 0, -3000, elements = 20, mu = 0.6,
+          sf = 0.5 /
+"""
+
+
+def test_list_refuses_a_sweep_whose_tasks_cannot_run(tmp_path):
+    # A half-plane needs syy = sxy = 0: remote_angle = 0 keeps it, 30 and 60 do not. --list
+    # (and so submit-sweep) says so before anything is submitted, naming the file, &sweep,
+    # the parameter, its value and the task; --task says the same.
+    sweep = tmp_path / "half.nml"
+    sweep.write_text(HALF_PLANE + "&sweep parameters = 'mu', 'remote_angle',\n"
+                     "       values_1 = 0.6, values_2 = 0, 30, 60 /\n")
+    done = run([sweep, "--list"], tmp_path)
+    assert done.returncode == 2, done.stdout
+    assert done.stdout == ""
+    errors = [line for line in done.stderr.splitlines() if "&sweep" in line]
+    assert len(errors) == 2, done.stderr
+    assert errors[0].startswith(f"ddc2d: error: {sweep}: &sweep (line 5): task 1 (mu = 0.6, "
+                                "remote_angle = 30): remote_angle = 30 gives the remote stress")
+    assert "syy and sxy must be 0" in errors[0]
+    assert errors[1].startswith(f"{sweep}: &sweep (line 5): task 2 (mu = 0.6, remote_angle = 60)")
+    done = run([sweep, "--task", "1"], tmp_path)
+    assert done.returncode == 2
+    assert "&sweep (line 5): task 1 (mu = 0.6, remote_angle = 30): remote_angle = 30" \
+        in done.stderr
+    done = run([sweep, "--task", "0"], tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert [p.name for p in tmp_path.glob("*.h5")] == ["half_task0000.h5"]
+    # submit-sweep stops at the same message, before writing or submitting anything.
+    done = subprocess.run([sys.executable, str(SUBMIT), str(sweep), "--exe", str(ddc2d_exe()),
+                           "--output-dir", str(tmp_path / "o")], capture_output=True,
+                          text=True, timeout=60)
+    assert done.returncode == 2
+    assert "task 1 (mu = 0.6, remote_angle = 30)" in done.stderr
+    assert not list(tmp_path.glob("o/*.sbatch"))
+
+
+def test_sweep_of_a_stress_the_load_path_holds(tmp_path):
+    path_model = SMALL + "&load_path steps = 4, sxy = 40, 60 /\n"
+    # The path gives sxy at its vertices: sweeping sxy would have no effect.
+    sweep = tmp_path / "bad.nml"
+    sweep.write_text(path_model + "&sweep parameters = 'sxy', values_1 = 1, 2 /\n")
+    done = run([sweep, "--list"], tmp_path)
+    assert done.returncode == 2
+    assert ("&sweep (line 5): parameters(1) = 'sxy' sets the remote sxy, which &load_path "
+            "gives at every vertex") in done.stderr
+    # sxx, which the path holds fixed, is swept: every step of the task has the task's sxx.
+    sweep = tmp_path / "good.nml"
+    sweep.write_text(path_model + "&sweep parameters = 'sxx', values_1 = -150, -120 /\n")
+    done = run([sweep, "--task", "1", "-o", "out.h5"], tmp_path)
+    assert done.returncode == 0, done.stderr
+    with h5py.File(tmp_path / "out_task0001.h5", "r") as f:
+        # The swept value itself, copied: exact.
+        assert f.attrs["remote_stress"][0] == -120.0

@@ -5,7 +5,7 @@
 #
 # 1. Installs Debian's slurm-wlm and munge when missing; starts munged, slurmctld and
 #    slurmd on localhost with a configuration written under WORK_DIR (free ports, state
-#    cleared), and stops them by their PIDs on exit, also on failure.
+#    cleared), and stops them by their PIDs on exit, also on failure (local_slurm.sh).
 # 2. Submits input/sweep_friction_orientation.nml (40 tasks) with scripts/submit-sweep,
 #    waits, and checks that every output exists and equals a serial `ddc2d --task K` run.
 # 3. Deletes three outputs, corrupts one, and submits again with a wrapper executable that
@@ -42,108 +42,11 @@ fail() { say "FAIL: $*"; exit 1; }
 [[ -x "$exe" ]] || fail "no executable $exe"
 [[ -x "$python" ]] || fail "no Python at $python (run scripts/setup.sh or set DDC2D_PYTHON)"
 
-((EUID == 0)) || skip "the Slurm test installs slurm-wlm and starts its own daemons as root"
-if pgrep -x slurmctld >/dev/null || pgrep -x slurmd >/dev/null; then
-    skip "a Slurm (slurmctld or slurmd) already runs on this machine; this test starts its own"
-fi
-
-# ------------------------------------------------------------------ packages
-if ! command -v slurmctld >/dev/null || ! command -v slurmd >/dev/null \
-    || ! command -v munged >/dev/null || ! command -v sbatch >/dev/null; then
-    say "installing slurm-wlm and munge"
-    timeout 900 apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive timeout 900 apt-get install -y -qq \
-        -o DPkg::Lock::Timeout=900 slurm-wlm munge >/dev/null
-fi
-
-# ------------------------------------------------------------------ daemons
-rm -rf "$work"
-mkdir -p "$work"/{munge,state,spool,run,log,serial}
-chmod 700 "$work/munge"
-pids=()
-stop_daemons() {
-    local status=$?
-    if [[ -n "${SLURM_CONF:-}" && -f "${SLURM_CONF}" ]]; then
-        timeout 10 scancel --quiet --user="$(id -un)" 2>/dev/null || true
-        timeout 10 scontrol shutdown >/dev/null 2>&1 || true
-    fi
-    local pid
-    for pid in "${pids[@]}"; do
-        kill "$pid" 2>/dev/null || true
-    done
-    for pid in "${pids[@]}"; do
-        for _ in $(seq 50); do
-            kill -0 "$pid" 2>/dev/null || break
-            sleep 0.1
-        done
-        kill -9 "$pid" 2>/dev/null || true
-    done
-    if [[ $status -ne 0 ]]; then
-        say "logs of the daemons (last lines):"
-        tail -n 20 "$work"/log/*.log 2>/dev/null || true
-    fi
-    say "daemons stopped; exit status $status"
-}
-trap stop_daemons EXIT
-
-free_port() {
-    "$python" -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0))
-print(s.getsockname()[1])'
-}
-ctld_port=$(free_port)
-slurmd_port=$(free_port)
-while [[ "$slurmd_port" == "$ctld_port" ]]; do slurmd_port=$(free_port); done
-
-dd if=/dev/urandom of="$work/munge/munge.key" bs=1024 count=1 status=none
-chmod 600 "$work/munge/munge.key"
-munged --foreground --force -S "$work/munge/munge.socket" --key-file="$work/munge/munge.key" \
-    --log-file="$work/log/munged.log" --pid-file="$work/run/munged.pid" \
-    --seed-file="$work/munge/munge.seed" >>"$work/log/munged.log" 2>&1 &
-pids+=($!)
-
-export SLURM_CONF="$work/slurm.conf"
-cat >"$SLURM_CONF" <<EOF
-ClusterName=ddc2dtest
-SlurmctldHost=localhost
-SlurmctldPort=$ctld_port
-SlurmdPort=$slurmd_port
-SlurmUser=root
-SlurmdUser=root
-AuthType=auth/munge
-AuthInfo=socket=$work/munge/munge.socket
-CredType=cred/munge
-StateSaveLocation=$work/state
-SlurmdSpoolDir=$work/spool
-SlurmctldPidFile=$work/run/slurmctld.pid
-SlurmdPidFile=$work/run/slurmd.pid
-SlurmctldLogFile=$work/log/slurmctld.log
-SlurmdLogFile=$work/log/slurmd.log
-ProctrackType=proctrack/linuxproc
-TaskPlugin=task/none
-JobAcctGatherType=jobacct_gather/none
-AccountingStorageType=accounting_storage/none
-SelectType=select/cons_tres
-SelectTypeParameters=CR_Core
-MpiDefault=none
-ReturnToService=2
-# start array tasks as soon as resources are free (the default delays batch jobs by 3 s)
-SchedulerParameters=batch_sched_delay=0,sched_min_interval=0
-NodeName=localhost NodeAddr=127.0.0.1 CPUs=$(nproc) State=UNKNOWN
-PartitionName=debug Nodes=localhost Default=YES MaxTime=INFINITE State=UP
-EOF
-for _ in $(seq 50); do [[ -S "$work/munge/munge.socket" ]] && break; sleep 0.1; done
-[[ -S "$work/munge/munge.socket" ]] || fail "munged did not start"
-slurmctld -D -i -f "$SLURM_CONF" >>"$work/log/slurmctld.stderr" 2>&1 &
-pids+=($!)
-slurmd -D -f "$SLURM_CONF" -N localhost >>"$work/log/slurmd.stderr" 2>&1 &
-pids+=($!)
-
-deadline=$((SECONDS + wait_limit))
-until sinfo -h -N -o '%T' 2>/dev/null | grep -E '^(idle|mixed|allocated)' >/dev/null; do
-    ((SECONDS < deadline)) || fail "the node did not come up within ${wait_limit} s"
-    sleep 0.5
-done
-say "slurmctld and slurmd up on localhost (ports $ctld_port, $slurmd_port)"
+# shellcheck source=local_slurm.sh
+source "$repo/tests/slurm/local_slurm.sh"
+require_local_slurm "the Slurm test"
+start_local_slurm "$work" "$python"
+mkdir -p "$work/serial"
 
 # ------------------------------------------------------------------ helpers
 wait_job() {  # JOB: wait until no task of the job is pending, running or completing

@@ -1,5 +1,6 @@
-!> The linear system of the active-set method for one set of element states
-!> (ddc_contact_active_set), factorized once and then reused while the states change little.
+!> The factors of the reduced systems of the active-set method (ddc_contact_active_set) on a
+!> dense influence matrix (ddc_contact_stiffness' dense_stiffness): one system factorized
+!> and then reused while the element states change little.
 !>
 !> Its unknowns are the DDs not fixed by the states, each named by its index g in the [s; n]
 !> ordering of the influence matrix A (Ds of a slipping element, Dn of an open one); the
@@ -17,8 +18,8 @@
 !> - more than max(16, m / 8) changed plus added unknowns, or a numerically singular
 !>   I + Delta Z or S: a new factorization, which becomes the base.
 !> The caller checks every solution against the unfactored A (ddc_contact_active_set) and
-!> asks for a new factorization (refactor) when an update has lost accuracy.
-module ddc_contact_reduced_system
+!> drops the factors (forget_factors) when an update has lost accuracy.
+module ddc_contact_reduced_factors
     use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
@@ -27,20 +28,17 @@ module ddc_contact_reduced_system
     implicit none
     private
 
-    public :: reduced_system, set_system, solve_system, refactor
-    public :: action_factorized, action_updated, action_reused, action_names
+    public :: reduced_factors, set_system, solve_system, forget_factors
+    public :: action_factorized, action_updated, action_reused
 
     !> What set_system did: a new factorization, a low-rank update of the base, or nothing
     integer, parameter :: action_factorized = 1, action_updated = 2, action_reused = 3
-    !> Their names, for progress lines
-    character(len=*), parameter :: action_names(3) = [character(len=21) :: &
-        'new factorization', 'low-rank update', 'factorization reused']
 
     !> Most changes handled by an update: max(min_update_rank, m / update_fraction)
     integer, parameter :: min_update_rank = 16, update_fraction = 8
 
     !> The reduced system of the current states and the factors it is solved with.
-    type :: reduced_system
+    type :: reduced_factors
         !> The current unknowns ([s; n] indices of A), the partner row of each and its
         !> coefficient, shape (m)
         integer, allocatable :: unknown(:), partner(:)
@@ -72,7 +70,7 @@ module ddc_contact_reduced_system
         !> Wall time of the factorizations and updates [s] and the nominal flops of the
         !> factorizations (2/3 m^3 each) [-]
         real(wp) :: seconds_factorization = 0.0_wp, factorization_flops = 0.0_wp
-    end type reduced_system
+    end type reduced_factors
 
 contains
 
@@ -81,7 +79,7 @@ contains
     !> singular; it names the iteration's subject and the element.
     subroutine set_system(sys, a, unknown, partner, coef, subject, error)
         !> The system and its factors
-        type(reduced_system), intent(inout) :: sys
+        type(reduced_factors), intent(inout) :: sys
         !> Influence matrix ordered [s; n], shape (2n, 2n) [stress / length]
         real(wp), intent(in) :: a(:, :)
         !> Unknowns ([s; n] indices), partner rows and coefficients, shape (m)
@@ -145,10 +143,33 @@ contains
         call refactor(sys, a, subject, error)
     end subroutine set_system
 
+    !> Forget the factors and free their memory: the next set_system factorizes anew.
+    subroutine forget_factors(sys)
+        !> The factors
+        type(reduced_factors), intent(inout) :: sys
+
+        sys%mb = -1
+        call drop_update(sys)
+        if (allocated(sys%factors)) deallocate (sys%factors)
+        if (allocated(sys%ipiv)) deallocate (sys%ipiv)
+    end subroutine forget_factors
+
+    !> Free the arrays of the last low-rank update.
+    subroutine drop_update(sys)
+        type(reduced_factors), intent(inout) :: sys
+
+        if (allocated(sys%changed_rows)) deallocate (sys%changed_rows)
+        if (allocated(sys%w_of)) deallocate (sys%w_of)
+        if (allocated(sys%z)) deallocate (sys%z, sys%delta_t, sys%capacitance, &
+                                          sys%capacitance_ipiv)
+        if (allocated(sys%w)) deallocate (sys%w)
+        if (allocated(sys%c_t)) deallocate (sys%c_t, sys%schur, sys%schur_ipiv)
+    end subroutine drop_update
+
     !> Whether the unknowns and coefficients are those of the current system (exactly:
     !> the same states give the same numbers).
     pure logical function same_system(sys, unknown, coef)
-        type(reduced_system), intent(in) :: sys
+        type(reduced_factors), intent(in) :: sys
         integer, intent(in) :: unknown(:)
         real(wp), intent(in) :: coef(:)
 
@@ -161,7 +182,7 @@ contains
     !> Factorize the current system anew; it becomes the base.
     subroutine refactor(sys, a, subject, error)
         !> The system: the current unknowns are set (set_system)
-        type(reduced_system), intent(inout) :: sys
+        type(reduced_factors), intent(inout) :: sys
         !> Influence matrix ordered [s; n], shape (2n, 2n) [stress / length]
         real(wp), intent(in) :: a(:, :)
         !> What the system is, for the message of a singular factorization
@@ -181,8 +202,7 @@ contains
         sys%position = [(k, k = 1, m)]
         sys%nr = 0
         sys%na = 0
-        if (allocated(sys%changed_rows)) deallocate (sys%changed_rows)
-        if (allocated(sys%w_of)) deallocate (sys%w_of)
+        call drop_update(sys)
         sys%action = action_factorized
         sys%factorizations = sys%factorizations + 1
         if (allocated(sys%factors)) deallocate (sys%factors)
@@ -214,7 +234,7 @@ contains
     !> its Z, Delta and I + Delta Z and the columns of W of the unknowns it added already
     !> serve; only the new unknowns' columns are computed.
     subroutine update_base(sys, a, changed, added, current_at, base_at)
-        type(reduced_system), intent(inout) :: sys
+        type(reduced_factors), intent(inout) :: sys
         real(wp), intent(in) :: a(:, :)
         integer, intent(in) :: changed(:), added(:), current_at(:), base_at(:)
         type(error_type), allocatable :: singular, ill_conditioned
@@ -356,7 +376,7 @@ contains
 
     !> Y = K^-1 Y: the base factors corrected for the changed rows (Woodbury).
     subroutine solve_k(sys, y)
-        type(reduced_system), intent(in) :: sys
+        type(reduced_factors), intent(in) :: sys
         real(wp), intent(inout) :: y(:, :)
         real(wp), allocatable :: t(:, :)
         integer :: k
@@ -375,7 +395,7 @@ contains
     !> Solve the current system: rhs (current order) in, solution out.
     subroutine solve_system(sys, rhs)
         !> The system (set_system done)
-        type(reduced_system), intent(in) :: sys
+        type(reduced_factors), intent(in) :: sys
         !> Right-hand side on entry, solution on exit, shape (m)
         real(wp), intent(inout) :: rhs(:)
         real(wp), allocatable :: x(:), xb(:, :), xa(:, :)
@@ -400,4 +420,4 @@ contains
         rhs = x(sys%position)
     end subroutine solve_system
 
-end module ddc_contact_reduced_system
+end module ddc_contact_reduced_factors

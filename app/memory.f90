@@ -1,0 +1,46 @@
+!> Before the solve: the memory the model needs (ddc_run_memory) against what this
+!> machine or its cgroup offers (ddc_run_available_memory), echoed; a model that cannot fit
+!> is refused with one message (exit_out_of_memory); the contact solver is told what is
+!> left, so that a fallback from Newton to Lemke that cannot fit stops cleanly too.
+module ddc_app_memory
+    use ddc_kinds, only: wp
+    use ddc_error, only: error_type
+    use ddc_text, only: bytes_text
+    use ddc_model_types, only: model_type
+    use ddc_run_memory, only: memory_need, estimate_memory, check_memory
+    use ddc_run_available_memory, only: available_memory, no_limit
+    implicit none
+    private
+
+    public :: check_model_memory
+
+contains
+
+    !> Estimate, echo, compare; set the contact solver's work memory.
+    subroutine check_model_memory(unit, model, error)
+        !> Unit of the echo
+        integer, intent(in) :: unit
+        !> The model; model%solver%work_bytes is set
+        type(model_type), intent(inout) :: model
+        !> Allocated (exit_out_of_memory) when the model does not fit
+        type(error_type), allocatable, intent(out) :: error
+        type(memory_need) :: need
+        real(wp) :: available
+        character(len=:), allocatable :: source, there
+
+        need = estimate_memory(model)
+        call available_memory(available, source)
+        there = 'no limit found'
+        if (available < no_limit) there = bytes_text(available)//' available ('//source//')'
+        write (unit, '(a)') '  memory: about '//bytes_text(need%bytes)//' needed ('// &
+            need%method//'), '//there
+        if (need%fallback_bytes > available .and. need%bytes <= available) write (unit, &
+            '(a)') '    (should the Newton '// &
+            'method fail, the fallback to Lemke would need about '// &
+            bytes_text(need%fallback_bytes)//': it would stop with exit status 5)'
+        call check_memory(model, need, available, source, error)
+        if (allocated(error)) return
+        model%solver%work_bytes = max(available - need%held_bytes, 0.0_wp)
+    end subroutine check_model_memory
+
+end module ddc_app_memory

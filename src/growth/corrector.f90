@@ -1,0 +1,256 @@
+!> The local-symmetry corrector (SPEC-GROWTH 1.4). The MTS angle from the tip element's K
+!> is only the predictor: with constant elements the K_II of a freshly kinked tip element
+!> is inaccurate, and kinking by each step's MTS angle over-corrects the last (wings
+!> zig-zag and never arrest). The applied angle is corrected until the new tip has
+!> |K_II| <= tolerance (principle of local symmetry): secant iterations on K_II(theta), all
+!> growing tips corrected together, one solve of the whole model per iteration. A tip
+!> whose new tip is closed, or that has not converged within the solve budget, grows at
+!> its MTS angle (reason growth_corrector_failed).
+module ddc_growth_corrector
+    use ddc_kinds, only: wp
+    use ddc_error, only: error_type
+    use ddc_model_types, only: model_type, growth_options, condition_contact
+    use ddc_model_results, only: model_results, state_open, growth_grew, &
+        growth_corrector_failed
+    use ddc_run_model, only: run_model
+    use ddc_growth_extension, only: tip_path, make_path, extend_model
+    use ddc_growth_clearance, only: check_paths
+    use ddc_growth_tips, only: fracture_tip
+    use ddc_text, only: itoa
+    implicit none
+    private
+
+    public :: kink, correct_kinks, grow_paths
+
+    !> Largest change of the angle in one corrector iteration [rad] (15 degrees), and
+    !> largest distance of the corrected angle from the MTS angle [rad] (45 degrees)
+    real(wp), parameter :: max_step = 0.2617993877991494_wp, max_deviation = 0.7853981633974483_wp
+
+    !> One growing tip as the corrector sees it.
+    type :: kink
+        !> Fracture (1-based) and end (tip_end_begin, tip_end_end) of the tip
+        integer :: fracture = 0, end = 0
+        !> MTS angle [rad], the slope dK_II/dtheta to start the secant with
+        !> [stress unit * length unit**0.5 / rad] (positive), and the tolerance on the new
+        !> tip's |K_II| [stress unit * length unit**0.5]
+        real(wp) :: theta_mts = 0.0_wp, slope = 1.0_wp, tolerance = 0.0_wp
+        !> Length of the increment [length unit] and its number of elements
+        real(wp) :: length = 0.0_wp
+        integer :: pieces = 1
+        !> The applied angle [rad] (out)
+        real(wp) :: theta = 0.0_wp
+        !> Solves this tip took part in (out)
+        integer :: solves = 0
+        !> growth_grew, growth_corrector_failed, growth_intersection or growth_surface (out)
+        integer :: reason = growth_grew
+    end type kink
+
+contains
+
+    !> Correct the kink angles of the growing tips of `model`; their predictor paths (at
+    !> the MTS angles) must keep clear (check_paths). On return each kink has its applied
+    !> angle and reason (a corrected path that would not keep clear stops the tip). When
+    !> `current` is true, `trial` (with `trial_created`) and `solved` are the model grown
+    !> at the applied angles and its solution; otherwise the grown model is still to be
+    !> built and solved (grow_paths).
+    subroutine correct_kinks(model, created, options, step, kinks, trial, trial_created, &
+                             solved, current, error)
+        !> The model before growing (without observations)
+        type(model_type), intent(in) :: model
+        !> Growth step that created each element of model, shape (n)
+        integer, intent(in) :: created(:)
+        !> Growth options (max_corrections, new_mu, new_sf)
+        type(growth_options), intent(in) :: options
+        !> The growth step
+        integer, intent(in) :: step
+        !> The growing tips
+        type(kink), intent(inout) :: kinks(:)
+        !> The last model solved, and the step that created each of its elements
+        type(model_type), intent(out) :: trial
+        integer, allocatable, intent(out) :: trial_created(:)
+        !> Its solution
+        type(model_results), intent(out) :: solved
+        !> trial and solved are the model grown at the applied angles
+        logical, intent(out) :: current
+        !> Set when a solve fails
+        type(error_type), allocatable, intent(out) :: error
+        type(tip_path) :: paths(size(kinks))
+        real(wp) :: k2(size(kinks)), theta_prev(size(kinks)), k2_prev(size(kinks))
+        logical :: active(size(kinks)), correcting(size(kinks)), have_prev(size(kinks))
+        logical :: changed, closed
+        integer :: i, solves, problem(size(kinks))
+
+        kinks%theta = kinks%theta_mts
+        kinks%reason = growth_grew
+        kinks%solves = 0
+        active = .true.
+        correcting = .true.
+        have_prev = .false.
+        current = .false.
+        if (options%max_corrections == 0) return
+        do i = 1, size(kinks)
+            paths(i) = path_of(kinks(i))
+        end do
+        solves = 0
+        changed = .true.
+        do while (solves < options%max_corrections)
+            call extend_model(model, created, pack_paths(), step, options, trial, trial_created)
+            call run_model(trial, solved, error)
+            solves = solves + 1
+            if (allocated(error)) then
+                error%message = 'growth step '//itoa(step)//', corrector solve '// &
+                                itoa(solves)//': '//error%message
+                return
+            end if
+            changed = .false.
+            do i = 1, size(kinks)
+                if (.not. active(i)) cycle
+                kinks(i)%solves = kinks(i)%solves + 1
+                if (.not. correcting(i)) cycle
+                call new_tip(trial, solved, kinks(i), k2(i), closed, error)
+                if (allocated(error)) return
+                if (closed) then
+                    ! Local symmetry does not apply to a closed tip: grow at the MTS angle.
+                    correcting(i) = .false.
+                    kinks(i)%reason = growth_corrector_failed
+                    changed = changed .or. kinks(i)%theta /= kinks(i)%theta_mts
+                    kinks(i)%theta = kinks(i)%theta_mts
+                else if (abs(k2(i)) > kinks(i)%tolerance) then
+                    changed = .true.
+                    call secant_angle(kinks(i), k2(i), have_prev(i), theta_prev(i), k2_prev(i))
+                end if
+            end do
+            if (.not. changed) exit
+            call update_paths()
+        end do
+        current = .not. changed
+        if (current) return
+        ! Out of solves: the tips not converged grow at their MTS angle.
+        do i = 1, size(kinks)
+            if (active(i) .and. correcting(i) .and. abs(k2(i)) > kinks(i)%tolerance) then
+                kinks(i)%reason = growth_corrector_failed
+                kinks(i)%theta = kinks(i)%theta_mts
+            end if
+        end do
+        call update_paths()
+
+    contains
+
+        !> Paths at the current angles; those that do not keep clear stop their tips.
+        subroutine update_paths()
+            do i = 1, size(kinks)
+                if (active(i)) paths(i) = path_of(kinks(i))
+            end do
+            call check_paths(model, paths, active, problem)
+            do i = 1, size(kinks)
+                if (problem(i) /= 0) then
+                    active(i) = .false.
+                    kinks(i)%reason = problem(i)
+                end if
+            end do
+        end subroutine update_paths
+
+        !> The paths of the tips still growing.
+        function pack_paths() result(packed)
+            type(tip_path), allocatable :: packed(:)
+            integer :: j
+
+            allocate (packed(0))
+            do j = 1, size(kinks)
+                if (active(j)) packed = [packed, paths(j)]
+            end do
+        end function pack_paths
+
+        !> The path of one kink at its current angle.
+        function path_of(k) result(path)
+            type(kink), intent(in) :: k
+            type(tip_path) :: path
+
+            path = make_path(model, k%fracture, k%end, k%theta, k%length, k%pieces)
+        end function path_of
+
+    end subroutine correct_kinks
+
+    !> The model grown at the kinks' applied angles (those that grew or fell back to their
+    !> MTS angle), and the step that created each element.
+    subroutine grow_paths(model, created, options, step, kinks, grown, grown_created)
+        !> The model before growing
+        type(model_type), intent(in) :: model
+        !> Growth step that created each element of model, shape (n)
+        integer, intent(in) :: created(:)
+        !> Growth options (new_mu, new_sf)
+        type(growth_options), intent(in) :: options
+        !> The growth step
+        integer, intent(in) :: step
+        !> The growing tips, with their applied angles and reasons
+        type(kink), intent(in) :: kinks(:)
+        !> The grown model and the step that created each of its elements
+        type(model_type), intent(out) :: grown
+        integer, allocatable, intent(out) :: grown_created(:)
+        type(tip_path), allocatable :: paths(:)
+        integer :: i
+
+        allocate (paths(0))
+        do i = 1, size(kinks)
+            if (kinks(i)%reason /= growth_grew .and. &
+                kinks(i)%reason /= growth_corrector_failed) cycle
+            paths = [paths, make_path(model, kinks(i)%fracture, kinks(i)%end, kinks(i)%theta, &
+                                      kinks(i)%length, kinks(i)%pieces)]
+        end do
+        call extend_model(model, created, paths, step, options, grown, grown_created)
+    end subroutine grow_paths
+
+    !> K_II of a kink's new tip in the grown model, and whether that tip is closed (a
+    !> contact element that is not open, or another condition with K_I <= 0).
+    subroutine new_tip(grown, solved, k, k2, closed, error)
+        type(model_type), intent(in) :: grown
+        type(model_results), intent(in) :: solved
+        type(kink), intent(in) :: k
+        real(wp), intent(out) :: k2
+        logical, intent(out) :: closed
+        type(error_type), allocatable, intent(out) :: error
+        integer :: e, t
+
+        k2 = 0.0_wp
+        closed = .false.
+        call fracture_tip(grown, solved%tips, k%fracture, k%end, t, error)
+        if (allocated(error)) return
+        e = solved%tips%element(t)
+        k2 = solved%tips%k2(t)
+        if (grown%elements%condition(e) == condition_contact) then
+            closed = solved%elements%state(e) /= state_open
+        else
+            closed = solved%tips%k1(t) <= 0.0_wp
+        end if
+    end subroutine new_tip
+
+    !> The next angle of a secant iteration on K_II(theta) = 0 (the first step, and any
+    !> step where the secant slope is not positive, uses the kink's slope): at most
+    !> max_step from the last angle and max_deviation from the MTS angle.
+    pure subroutine secant_angle(k, k2, have_prev, theta_prev, k2_prev)
+        !> The kink; its angle is updated
+        type(kink), intent(inout) :: k
+        !> K_II of the new tip at the kink's current angle [stress unit * length^0.5]
+        real(wp), intent(in) :: k2
+        !> Whether a previous point exists; the previous angle [rad] and K_II (updated)
+        logical, intent(inout) :: have_prev
+        real(wp), intent(inout) :: theta_prev, k2_prev
+        real(wp) :: slope, step
+
+        slope = k%slope
+        if (have_prev) then
+            if (k%theta /= theta_prev) then
+                if ((k2 - k2_prev) / (k%theta - theta_prev) > 0.0_wp) then
+                    slope = (k2 - k2_prev) / (k%theta - theta_prev)
+                end if
+            end if
+        end if
+        have_prev = .true.
+        theta_prev = k%theta
+        k2_prev = k2
+        step = max(-max_step, min(max_step, -k2 / slope))
+        k%theta = max(k%theta_mts - max_deviation, min(k%theta_mts + max_deviation, &
+                                                        k%theta + step))
+    end subroutine secant_angle
+
+end module ddc_growth_corrector

@@ -1,0 +1,387 @@
+!> Fracture growth (SPEC-GROWTH 1): quasi-static, one increment per step, under the model's
+!> fixed loading. The driver owns the element set and asks run_model for solves; each step
+!>
+!> 1. takes K_I, K_II of every tip that may grow from the solve of the current geometry,
+!>    its MTS angle and K_eq (ddc_growth_criterion);
+!> 2. picks the growing tips (every critical tip, or the most critical one, ties to the
+!>    lowest index), stops for good those whose new elements would not keep clear
+!>    (ddc_growth_clearance);
+!> 3. corrects the kink angles (ddc_growth_corrector), adds the new elements
+!>    (ddc_growth_extension), checks the grown mesh (ddc_mesh_checks: never a crossing
+!>    mesh) and solves it (or keeps the corrector's last solve when it is that geometry).
+!>
+!> The run ends when no tip is critical any more (arrested) or after `steps` steps
+!> (step_limit); fields, tips and the summary are those of the final geometry.
+module ddc_growth_driver
+    use, intrinsic :: iso_fortran_env, only: int64
+    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+    use ddc_kinds, only: wp
+    use ddc_constants, only: pi
+    use ddc_error, only: error_type, set_internal_error
+    use ddc_model_types, only: model_type, growth_tips_most_critical
+    use ddc_model_results, only: model_results, growth_record, growth_grew, &
+        growth_subcritical, growth_corrector_failed, growth_waiting, growth_arrested, &
+        growth_step_limit
+    use ddc_mesh_checks, only: check_elements
+    use ddc_run_model, only: run_model, evaluate_fields
+    use ddc_growth_criterion, only: mts_angle, equivalent_k, kink_slope, most_critical
+    use ddc_growth_extension, only: tip_path, make_path, tip_element
+    use ddc_growth_clearance, only: check_paths
+    use ddc_growth_tips, only: growing_tip, find_growing_tips, fracture_tip
+    use ddc_growth_corrector, only: kink, correct_kinks, grow_paths
+    use ddc_text, only: itoa
+    implicit none
+    private
+
+    public :: grow_fractures, growth_progress
+
+    !> The corrector stops when the new tip's |K_II| <= corrector_tolerance
+    !> max(K_eq, toughness)
+    real(wp), parameter :: corrector_tolerance = 1.0e-3_wp
+
+    abstract interface
+        !> Told after every growth step (the program prints a line and flushes it).
+        subroutine growth_progress(step, growing, largest_k_eq, seconds)
+            import :: wp
+            implicit none
+            !> The step, and the number of tips that grew in it
+            integer, intent(in) :: step, growing
+            !> The largest K_eq of the step's tips [stress unit * length unit**0.5]
+            real(wp), intent(in) :: largest_k_eq
+            !> Wall time of the step [s]
+            real(wp), intent(in) :: seconds
+        end subroutine growth_progress
+    end interface
+
+    !> One step's view of the tips that may still grow, shape (tips) for every array.
+    type :: step_tips
+        !> K_I, K_II, K_eq [stress unit * length unit**0.5], MTS angle [rad]
+        real(wp), allocatable :: k1(:), k2(:), k_eq(:), theta(:)
+        !> Tip position [length unit]
+        real(wp), allocatable :: x(:), y(:)
+        !> Element of the tip in the current geometry
+        integer, allocatable :: element(:)
+        !> The reason of the tip's record (growth_grew ... growth_waiting)
+        integer, allocatable :: reason(:)
+        !> Applied angle [rad], solves, length grown, K_II after growing
+        real(wp), allocatable :: angle(:), length(:), k2_after(:)
+        integer, allocatable :: solves(:)
+    end type step_tips
+
+contains
+
+    !> Grow the fractures of a model with &growth. On return the model is the final
+    !> geometry and results hold its solution, tips, fields and the growth record.
+    subroutine grow_fractures(model, results, error, progress)
+        !> A validated model with growth options; the grown model on return
+        type(model_type), intent(inout) :: model
+        !> The final geometry's results and results%growth
+        type(model_results), intent(out) :: results
+        !> Set when a solve fails (naming the step) or a contract is broken
+        type(error_type), allocatable, intent(out) :: error
+        !> Called after every step
+        procedure(growth_progress), optional :: progress
+        type(model_type) :: work, trial
+        type(model_results) :: current, solved
+        type(growing_tip), allocatable :: tips(:)
+        type(step_tips) :: now
+        type(growth_record) :: record
+        integer, allocatable :: created(:), trial_created(:)
+        integer :: step, grown
+        integer(int64) :: t_start, t_step, t_end, rate
+        logical :: trial_current
+
+        call system_clock(t_start, rate)
+        work = model
+        ! Trial solves need no fields: they are evaluated once, on the final geometry.
+        if (allocated(work%observations)) deallocate (work%observations)
+        allocate (work%observations(0), created(work%elements%n))
+        created = 0
+        call empty_record(record)
+        call run_model(work, current, error)
+        if (allocated(error)) then
+            error%message = 'growth: solving the input geometry: '//error%message
+            return
+        end if
+        tips = find_growing_tips(work, current%tips, model%growth%fracture_grows)
+        record%end_reason = growth_step_limit
+        do step = 1, model%growth%steps
+            call system_clock(t_step)
+            call evaluate_tips(work, current, tips, model%growth%toughness, now, error)
+            if (allocated(error)) return
+            if (.not. any(now%reason == growth_grew)) then
+                call append_records(record, step, tips, now)
+                call report(0)
+                record%end_reason = growth_arrested
+                exit
+            end if
+            call choose_growing(work, model%growth%tips, tips, now)
+            call grow_step(trial_current)
+            if (allocated(error)) return
+            call append_records(record, step, tips, now)
+            if (grown > 0) record%steps_taken = record%steps_taken + 1
+            call report(grown)
+        end do
+
+        model%elements = work%elements
+        model%fractures = work%fractures
+        results = current
+        call evaluate_fields(model, results)
+        record%created_step = created
+        results%growth = record
+        call system_clock(t_end)
+        results%solver%seconds_total = real(t_end - t_start, wp) / real(rate, wp)
+
+    contains
+
+        !> Correct, add and solve the step's growing tips (reason growth_grew on entry).
+        subroutine grow_step(trial_current)
+            logical, intent(out) :: trial_current
+            type(kink), allocatable :: kinks(:)
+            integer, allocatable :: which(:)
+            type(model_type) :: grown_model
+            integer :: i, t, k
+
+            which = pack([(i, i = 1, size(tips))], now%reason == growth_grew)
+            grown = 0
+            trial_current = .false.
+            if (size(which) == 0) return
+            allocate (kinks(size(which)))
+            do i = 1, size(which)
+                t = which(i)
+                kinks(i) = setup_kink(work, tips(t), now, t, model%growth%toughness)
+            end do
+            call correct_kinks(work, created, model%growth, step, kinks, trial, &
+                               trial_created, solved, trial_current, error)
+            if (allocated(error)) return
+            do i = 1, size(which)
+                t = which(i)
+                now%reason(t) = kinks(i)%reason
+                now%solves(t) = kinks(i)%solves
+                if (kinks(i)%reason == growth_grew .or. &
+                    kinks(i)%reason == growth_corrector_failed) then
+                    grown = grown + 1
+                    now%angle(t) = kinks(i)%theta
+                    now%length(t) = kinks(i)%length
+                else
+                    tips(t)%stopped = .true.
+                end if
+            end do
+            if (trial_current) then
+                call move_alloc(trial_created, created)
+                work = trial
+                current = solved
+            else
+                call grow_paths(work, created, model%growth, step, kinks, grown_model, &
+                                trial_created)
+                call move_alloc(trial_created, created)
+                work = grown_model
+                call run_model(work, current, error)
+                if (allocated(error)) then
+                    error%message = 'growth step '//itoa(step)//': '//error%message
+                    return
+                end if
+            end if
+            call check_elements(work%elements, work%fractures, error)
+            if (allocated(error)) then
+                call set_internal_error(error, 'grow_fractures', 'growth step '//itoa(step)// &
+                                        ' made a bad mesh: '//error%message)
+                return
+            end if
+            do i = 1, size(which)
+                t = which(i)
+                if (now%length(t) <= 0.0_wp) cycle
+                call fracture_tip(work, current%tips, tips(t)%fracture, tips(t)%end, k, error)
+                if (allocated(error)) return
+                now%k2_after(t) = current%tips%k2(k)
+            end do
+        end subroutine grow_step
+
+        !> Tell the caller how the step went.
+        subroutine report(growing)
+            integer, intent(in) :: growing
+
+            call system_clock(t_end)
+            if (present(progress)) call progress(step, growing, maxval([0.0_wp, now%k_eq]), &
+                                                 real(t_end - t_step, wp) / real(rate, wp))
+        end subroutine report
+
+    end subroutine grow_fractures
+
+    !> K, MTS angle and K_eq of every tip that may still grow; reason growth_subcritical
+    !> (K_eq < toughness) or growth_grew (critical) for those, -1 for stopped tips.
+    subroutine evaluate_tips(work, current, tips, toughness, now, error)
+        type(model_type), intent(in) :: work
+        type(model_results), intent(in) :: current
+        type(growing_tip), intent(in) :: tips(:)
+        real(wp), intent(in) :: toughness
+        type(step_tips), intent(out) :: now
+        type(error_type), allocatable, intent(out) :: error
+        integer :: i, n, t
+
+        n = size(tips)
+        allocate (now%k1(n), now%k2(n), now%k_eq(n), now%theta(n), now%x(n), now%y(n), &
+                  now%element(n), now%reason(n), now%angle(n), now%length(n), &
+                  now%k2_after(n), now%solves(n))
+        now%angle = ieee_value(1.0_wp, ieee_quiet_nan)
+        now%k2_after = now%angle
+        now%k1 = 0.0_wp
+        now%k2 = 0.0_wp
+        now%k_eq = 0.0_wp
+        now%theta = 0.0_wp
+        now%x = 0.0_wp
+        now%y = 0.0_wp
+        now%element = 0
+        now%length = 0.0_wp
+        now%solves = 0
+        now%reason = -1
+        do i = 1, n
+            if (tips(i)%stopped) cycle
+            now%element(i) = tip_element(work, tips(i)%fracture, tips(i)%end)
+            call fracture_tip(work, current%tips, tips(i)%fracture, tips(i)%end, t, error)
+            if (allocated(error)) return
+            now%x(i) = current%tips%x(t)
+            now%y(i) = current%tips%y(t)
+            now%k1(i) = current%tips%k1(t)
+            now%k2(i) = current%tips%k2(t)
+            now%theta(i) = mts_angle(now%k1(i), now%k2(i))
+            now%k_eq(i) = equivalent_k(now%k1(i), now%k2(i), now%theta(i))
+            now%reason(i) = merge(growth_grew, growth_subcritical, now%k_eq(i) >= toughness)
+        end do
+    end subroutine evaluate_tips
+
+    !> The critical tips that grow in this step: all of them, or the most critical one
+    !> (the others wait); a tip whose predictor path (at its MTS angle, the step's length)
+    !> would not keep clear stops for good (and with 'most_critical' the next most critical
+    !> tip is tried). Reasons are updated.
+    subroutine choose_growing(work, choice, tips, now)
+        type(model_type), intent(in) :: work
+        integer, intent(in) :: choice
+        type(growing_tip), intent(inout) :: tips(:)
+        type(step_tips), intent(inout) :: now
+        type(tip_path) :: paths(size(tips))
+        integer :: problem(size(tips)), i, best
+        logical :: untried(size(tips))
+
+        do i = 1, size(tips)
+            if (now%reason(i) /= growth_grew) cycle
+            paths(i) = predictor_path(work, tips(i), now, i)
+        end do
+        if (choice /= growth_tips_most_critical) then
+            call check_paths(work, paths, now%reason == growth_grew, problem)
+            call stop_blocked()
+            return
+        end if
+        untried = now%reason == growth_grew
+        do
+            best = most_critical(now%k_eq, untried)
+            if (best == 0) exit
+            untried(best) = .false.
+            call check_paths(work, paths, [(i == best, i = 1, size(tips))], problem)
+            call stop_blocked()
+            if (problem(best) == 0) exit
+        end do
+        where (untried) now%reason = growth_waiting
+
+    contains
+
+        subroutine stop_blocked()
+            do i = 1, size(tips)
+                if (problem(i) == 0) cycle
+                now%reason(i) = problem(i)
+                tips(i)%stopped = .true.
+            end do
+        end subroutine stop_blocked
+
+    end subroutine choose_growing
+
+    !> Length and number of elements of a tip's increment: `increment` (default twice the
+    !> tip element's length) in n = nint(increment / element_length) >= 1 equal elements
+    !> (element_length default: the tip element's length).
+    subroutine increment_of(work, element, length, pieces)
+        type(model_type), intent(in) :: work
+        integer, intent(in) :: element
+        real(wp), intent(out) :: length
+        integer, intent(out) :: pieces
+        real(wp) :: tip_length, element_length
+
+        tip_length = 2.0_wp * work%elements%half_length(element)
+        length = work%growth%increment
+        if (length <= 0.0_wp) length = 2.0_wp * tip_length
+        element_length = work%growth%element_length
+        if (element_length <= 0.0_wp) element_length = tip_length
+        pieces = max(1, nint(length / element_length))
+    end subroutine increment_of
+
+    !> The path of tip i at its MTS angle.
+    function predictor_path(work, tip, now, i) result(path)
+        type(model_type), intent(in) :: work
+        type(growing_tip), intent(in) :: tip
+        type(step_tips), intent(in) :: now
+        integer, intent(in) :: i
+        type(tip_path) :: path
+        real(wp) :: length
+        integer :: pieces
+
+        call increment_of(work, now%element(i), length, pieces)
+        path = make_path(work, tip%fracture, tip%end, now%theta(i), length, pieces)
+    end function predictor_path
+
+    !> The corrector's view of growing tip i: MTS angle, first slope, tolerance, length.
+    function setup_kink(work, tip, now, i, toughness) result(k)
+        type(model_type), intent(in) :: work
+        type(growing_tip), intent(in) :: tip
+        type(step_tips), intent(in) :: now
+        integer, intent(in) :: i
+        real(wp), intent(in) :: toughness
+        type(kink) :: k
+
+        k%fracture = tip%fracture
+        k%end = tip%end
+        k%theta_mts = now%theta(i)
+        ! The first-order slope dK_II/dtheta; K_eq when that is not clearly positive.
+        k%slope = kink_slope(now%k1(i), now%k2(i), now%theta(i))
+        if (k%slope < 0.1_wp * now%k_eq(i)) k%slope = now%k_eq(i)
+        k%tolerance = corrector_tolerance * max(now%k_eq(i), toughness)
+        call increment_of(work, now%element(i), k%length, k%pieces)
+    end function setup_kink
+
+    !> Append the step's records: one per tip that could still grow at the step's start.
+    subroutine append_records(record, step, tips, now)
+        type(growth_record), intent(inout) :: record
+        integer, intent(in) :: step
+        type(growing_tip), intent(in) :: tips(:)
+        type(step_tips), intent(in) :: now
+        logical :: keep(size(tips))
+        integer :: n
+        real(wp), parameter :: degrees = 180.0_wp / pi
+
+        keep = now%reason >= 0
+        n = count(keep)
+        record%step = [record%step, spread(step, 1, n)]
+        record%fracture_id = [record%fracture_id, pack(tips%fracture, keep)]
+        record%end = [record%end, pack(tips%end, keep)]
+        record%x = [record%x, pack(now%x, keep)]
+        record%y = [record%y, pack(now%y, keep)]
+        record%k1 = [record%k1, pack(now%k1, keep)]
+        record%k2 = [record%k2, pack(now%k2, keep)]
+        record%k_eq = [record%k_eq, pack(now%k_eq, keep)]
+        record%mts_angle = [record%mts_angle, pack(now%theta * degrees, keep)]
+        record%angle = [record%angle, pack(now%angle * degrees, keep)]
+        record%corrections = [record%corrections, pack(now%solves, keep)]
+        record%k2_after = [record%k2_after, pack(now%k2_after, keep)]
+        record%length = [record%length, pack(now%length, keep)]
+        record%reason = [record%reason, pack(now%reason, keep)]
+    end subroutine append_records
+
+    !> Allocate every per-record array with no record.
+    subroutine empty_record(record)
+        type(growth_record), intent(inout) :: record
+
+        allocate (record%step(0), record%fracture_id(0), record%end(0), record%x(0), record%y(0), &
+                  record%k1(0), record%k2(0), record%k_eq(0), record%mts_angle(0), &
+                  record%angle(0), record%corrections(0), record%k2_after(0), &
+                  record%length(0), record%reason(0))
+    end subroutine empty_record
+
+end module ddc_growth_driver

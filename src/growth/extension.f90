@@ -1,0 +1,225 @@
+!> New elements at growing tips (SPEC-GROWTH 1.3, 1.5): the straight path of one increment
+!> at a kink angle, and the model with those paths added so that every fracture stays one
+!> ordered polyline (appended after the last element at an end tip, put before the first
+!> element at a begin tip).
+module ddc_growth_extension
+    use ddc_kinds, only: wp
+    use ddc_model_types, only: model_type, element_set, growth_options, condition_contact
+    use ddc_mesh_geometry, only: allocate_elements, compute_geometry
+    implicit none
+    private
+
+    public :: tip_path, tip_end_begin, tip_end_end, tip_element
+    public :: make_path, extend_model, path_element_length
+
+    !> Ends of a fracture (the coding of /growth/end): its begin tip, its end tip
+    integer, parameter :: tip_end_begin = 0, tip_end_end = 1
+
+    !> The straight path of one tip's increment: n equal elements from the tip.
+    type :: tip_path
+        !> Fracture (1-based) and end (tip_end_begin or tip_end_end) of the tip
+        integer :: fracture = 0, end = tip_end_end
+        !> Number of new elements
+        integer :: n = 0
+        !> Path points from the tip (index 0) to the new tip (index n) [length unit],
+        !> shape (0:n)
+        real(wp), allocatable :: x(:), y(:)
+    end type tip_path
+
+contains
+
+    !> The element at end `end` (tip_end_begin, tip_end_end) of a fracture.
+    pure integer function tip_element(model, fracture, end)
+        !> The model
+        type(model_type), intent(in) :: model
+        !> Fracture (1-based) and its end
+        integer, intent(in) :: fracture, end
+
+        if (end == tip_end_begin) then
+            tip_element = model%fractures(fracture)%first_element
+        else
+            tip_element = model%fractures(fracture)%last_element
+        end if
+    end function tip_element
+
+    !> Unit vector from the tip element's other end towards the tip.
+    pure function outward_direction(elements, element, end) result(direction)
+        !> Elements with geometry computed
+        type(element_set), intent(in) :: elements
+        !> The tip element, and which of its ends is the tip (tip_end_begin, tip_end_end)
+        integer, intent(in) :: element, end
+        !> (cos, sin) of the outward direction
+        real(wp) :: direction(2)
+
+        direction = [elements%cos_beta(element), elements%sin_beta(element)]
+        if (end == tip_end_begin) direction = -direction
+    end function outward_direction
+
+    !> The path of an increment of `length` in n equal elements from a tip, at angle theta
+    !> counter-clockwise from the tip's outward direction.
+    pure function make_path(model, fracture, end, theta, length, n) result(path)
+        !> The model whose fracture grows
+        type(model_type), intent(in) :: model
+        !> Fracture (1-based) and end (tip_end_begin, tip_end_end)
+        integer, intent(in) :: fracture, end
+        !> Kink angle [rad]
+        real(wp), intent(in) :: theta
+        !> Length of the increment [length unit]
+        real(wp), intent(in) :: length
+        !> Number of new elements (>= 1)
+        integer, intent(in) :: n
+        type(tip_path) :: path
+        real(wp) :: outward(2), along(2), x0, y0, t
+        integer :: e, k
+
+        e = tip_element(model, fracture, end)
+        outward = outward_direction(model%elements, e, end)
+        along = [outward(1) * cos(theta) - outward(2) * sin(theta), &
+                 outward(2) * cos(theta) + outward(1) * sin(theta)]
+        if (end == tip_end_begin) then
+            x0 = model%elements%x_begin(e)
+            y0 = model%elements%y_begin(e)
+        else
+            x0 = model%elements%x_end(e)
+            y0 = model%elements%y_end(e)
+        end if
+        path%fracture = fracture
+        path%end = end
+        path%n = n
+        allocate (path%x(0:n), path%y(0:n))
+        ! The first point is the tip itself, bit for bit, so that the new element shares it.
+        path%x(0) = x0
+        path%y(0) = y0
+        do k = 1, n
+            t = length * real(k, wp) / real(n, wp)
+            path%x(k) = x0 + t * along(1)
+            path%y(k) = y0 + t * along(2)
+        end do
+    end function make_path
+
+    !> Length of each element of a path [length unit].
+    pure real(wp) function path_element_length(path)
+        !> The path (n >= 1)
+        type(tip_path), intent(in) :: path
+
+        path_element_length = hypot(path%x(path%n) - path%x(0), path%y(path%n) - path%y(0)) / &
+                              real(path%n, wp)
+    end function path_element_length
+
+    !> The model with the paths' elements added to their fractures, and the step that
+    !> created each element. New elements take the tip element's condition and values;
+    !> new contact elements take new_mu, new_sf when the growth options override them.
+    subroutine extend_model(model, created, paths, step, options, grown, grown_created)
+        !> The model before growing, geometry computed
+        type(model_type), intent(in) :: model
+        !> Growth step that created each element of model, shape (n)
+        integer, intent(in) :: created(:)
+        !> One path per growing tip (at most one per fracture end)
+        type(tip_path), intent(in) :: paths(:)
+        !> The step the new elements belong to
+        integer, intent(in) :: step
+        !> new_mu, new_sf
+        type(growth_options), intent(in) :: options
+        !> The model with the new elements (observations as in model)
+        type(model_type), intent(out) :: grown
+        !> Growth step that created each element of grown, shape (grown n)
+        integer, allocatable, intent(out) :: grown_created(:)
+        type(element_set) :: fresh
+        integer :: added, f, p, pb, pe, k, next, n
+
+        added = 0
+        do p = 1, size(paths)
+            added = added + paths(p)%n
+        end do
+        n = model%elements%n + added
+        fresh%symmetry = model%elements%symmetry
+        fresh%domain = model%elements%domain
+        call allocate_elements(fresh, n)
+        allocate (fresh%x_mid(n), fresh%y_mid(n), fresh%half_length(n), fresh%cos_beta(n), &
+                  fresh%sin_beta(n), grown_created(n))
+        grown = model
+        next = 0
+        do f = 1, size(model%fractures)
+            pb = find_path(paths, f, tip_end_begin)
+            pe = find_path(paths, f, tip_end_end)
+            grown%fractures(f)%first_element = next + 1
+            if (pb > 0) then
+                ! Elements run from the new tip towards the old one, into the fracture.
+                do k = paths(pb)%n, 1, -1
+                    call new_element(paths(pb)%x(k), paths(pb)%y(k), paths(pb)%x(k - 1), &
+                                     paths(pb)%y(k - 1), model%fractures(f)%first_element)
+                end do
+            end if
+            do k = model%fractures(f)%first_element, model%fractures(f)%last_element
+                next = next + 1
+                call copy_element(k, next)
+                grown_created(next) = created(k)
+            end do
+            if (pe > 0) then
+                do k = 1, paths(pe)%n
+                    call new_element(paths(pe)%x(k - 1), paths(pe)%y(k - 1), paths(pe)%x(k), &
+                                     paths(pe)%y(k), model%fractures(f)%last_element)
+                end do
+            end if
+            grown%fractures(f)%last_element = next
+        end do
+        call compute_geometry(fresh)
+        grown%elements = fresh
+
+    contains
+
+        !> Element `from` of model becomes element `to` of grown.
+        subroutine copy_element(from, to)
+            integer, intent(in) :: from, to
+
+            associate (a => fresh, b => model%elements)
+                a%x_begin(to) = b%x_begin(from)
+                a%y_begin(to) = b%y_begin(from)
+                a%x_end(to) = b%x_end(from)
+                a%y_end(to) = b%y_end(from)
+                a%fracture_id(to) = b%fracture_id(from)
+                a%condition(to) = b%condition(from)
+                a%bc_s(to) = b%bc_s(from)
+                a%bc_n(to) = b%bc_n(from)
+                a%mu(to) = b%mu(from)
+                a%sf(to) = b%sf(from)
+                a%pressure(to) = b%pressure(from)
+            end associate
+        end subroutine copy_element
+
+        !> The next element of grown: from (xb, yb) to (xe, ye), with the values of the
+        !> tip element `parent` of model.
+        subroutine new_element(xb, yb, xe, ye, parent)
+            real(wp), intent(in) :: xb, yb, xe, ye
+            integer, intent(in) :: parent
+
+            next = next + 1
+            call copy_element(parent, next)
+            grown_created(next) = step
+            associate (a => fresh)
+                a%x_begin(next) = xb
+                a%y_begin(next) = yb
+                a%x_end(next) = xe
+                a%y_end(next) = ye
+                if (a%condition(next) == condition_contact) then
+                    if (options%override_mu) a%mu(next) = options%new_mu
+                    if (options%override_sf) a%sf(next) = options%new_sf
+                end if
+            end associate
+        end subroutine new_element
+
+    end subroutine extend_model
+
+    !> Index of the path at end `end` of fracture f; 0 when there is none.
+    pure integer function find_path(paths, f, end)
+        type(tip_path), intent(in) :: paths(:)
+        integer, intent(in) :: f, end
+        integer :: p
+
+        find_path = 0
+        do p = 1, size(paths)
+            if (paths(p)%fracture == f .and. paths(p)%end == end) find_path = p
+        end do
+    end function find_path
+
+end module ddc_growth_extension

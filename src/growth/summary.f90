@@ -1,0 +1,59 @@
+!> What became of each tip of a growth run: its path length, the steps it grew in and its
+!> last record (why it stopped), from the growth record.
+module ddc_growth_summary
+    use ddc_kinds, only: wp
+    use ddc_model_results, only: growth_record, growth_grew, growth_corrector_failed
+    implicit none
+    private
+
+    public :: tip_summary, summarize_tips
+
+    !> One tip of a growth run.
+    type :: tip_summary
+        !> Fracture (1-based) and end (0 begin, 1 end)
+        integer :: fracture_id = 0, end = 0
+        !> Length grown over the run [length unit]
+        real(wp) :: path_length = 0.0_wp
+        !> Steps in which it grew
+        integer :: steps_grown = 0
+        !> Reason of its last record (growth_grew ... growth_waiting)
+        integer :: last_reason = 0
+        !> K_eq of its last record [stress unit * length unit**0.5]
+        real(wp) :: last_k_eq = 0.0_wp
+    end type tip_summary
+
+contains
+
+    !> One summary per tip with a record, in the order of their first records (the order
+    !> of fractures, begin before end: every tip has a record in the first step).
+    pure subroutine summarize_tips(record, tips)
+        !> The growth record of a run
+        type(growth_record), intent(in) :: record
+        !> One summary per tip
+        type(tip_summary), allocatable, intent(out) :: tips(:)
+        integer :: r, t, k, key(size(record%step))
+        integer, allocatable :: keys(:)
+
+        key = 2 * record%fracture_id + record%end
+        allocate (keys(0))
+        do r = 1, size(key)
+            if (.not. any(keys == key(r))) keys = [keys, key(r)]
+        end do
+        allocate (tips(size(keys)))
+        do t = 1, size(keys)
+            tips(t)%fracture_id = keys(t) / 2
+            tips(t)%end = mod(keys(t), 2)
+            do r = 1, size(key)
+                if (key(r) /= keys(t)) cycle
+                k = record%reason(r)
+                tips(t)%last_reason = k
+                tips(t)%last_k_eq = record%k_eq(r)
+                if (k == growth_grew .or. k == growth_corrector_failed) then
+                    tips(t)%steps_grown = tips(t)%steps_grown + 1
+                    tips(t)%path_length = tips(t)%path_length + record%length(r)
+                end if
+            end do
+        end do
+    end subroutine summarize_tips
+
+end module ddc_growth_summary

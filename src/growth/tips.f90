@@ -1,0 +1,86 @@
+!> The tips that may grow: the begin and end of every fracture allowed to grow, when the
+!> solved model reports them as crack tips (an end shared with another element, a crack
+!> mouth on the free surface, or an end inside a fracture given as a CSV with gaps does
+!> not grow), and where such a tip is in a tip set.
+module ddc_growth_tips
+    use ddc_error, only: error_type, set_internal_error
+    use ddc_text, only: itoa
+    use ddc_model_types, only: model_type
+    use ddc_model_results, only: tip_set
+    use ddc_growth_extension, only: tip_element, tip_end_begin, tip_end_end
+    implicit none
+    private
+
+    public :: growing_tip, find_growing_tips, fracture_tip
+
+    !> A fracture end that may grow.
+    type :: growing_tip
+        !> Fracture (1-based) and end (tip_end_begin, tip_end_end)
+        integer :: fracture = 0, end = tip_end_end
+        !> Stopped for good (at another element or the free surface)
+        logical :: stopped = .false.
+    end type growing_tip
+
+contains
+
+    !> The fracture ends that may grow, in the order of fractures, begin before end.
+    function find_growing_tips(model, tips, grows) result(found)
+        !> The model, fractures in element order
+        type(model_type), intent(in) :: model
+        !> Its tips (find_tips)
+        type(tip_set), intent(in) :: tips
+        !> Whether each fracture may grow, shape (fractures)
+        logical, intent(in) :: grows(:)
+        type(growing_tip), allocatable :: found(:)
+        integer :: f, end
+
+        allocate (found(0))
+        do f = 1, size(model%fractures)
+            if (.not. grows(f)) cycle
+            do end = tip_end_begin, tip_end_end
+                if (locate_tip(tips, tip_element(model, f, end), end) > 0) then
+                    found = [found, growing_tip(fracture=f, end=end)]
+                end if
+            end do
+        end do
+    end function find_growing_tips
+
+    !> Index in the tip set of end `end` (tip_end_begin, tip_end_end) of an element; 0 when
+    !> that end is not a tip.
+    pure integer function locate_tip(tips, element, end)
+        !> The tips of a solved model
+        type(tip_set), intent(in) :: tips
+        !> The element, and which of its ends
+        integer, intent(in) :: element, end
+        integer :: k
+
+        locate_tip = 0
+        do k = 1, tips%n
+            ! tip_set%side: 1 begin, 2 end
+            if (tips%element(k) == element .and. tips%side(k) == end + 1) then
+                locate_tip = k
+                return
+            end if
+        end do
+    end function locate_tip
+
+    !> Index in the tip set of end `end` of a fracture of a solved model, which must be a
+    !> tip (growth never closes one: an internal error otherwise).
+    subroutine fracture_tip(model, tips, fracture, end, index, error)
+        !> The solved model
+        type(model_type), intent(in) :: model
+        !> Its tips
+        type(tip_set), intent(in) :: tips
+        !> Fracture (1-based) and end (tip_end_begin, tip_end_end)
+        integer, intent(in) :: fracture, end
+        !> Index of the tip in tips
+        integer, intent(out) :: index
+        !> Set (internal error) when that end is not a tip
+        type(error_type), allocatable, intent(out) :: error
+
+        index = locate_tip(tips, tip_element(model, fracture, end), end)
+        if (index == 0) call set_internal_error(error, 'fracture growth', 'end '//itoa(end)// &
+                                                ' of fracture '//itoa(fracture)//' is not a tip')
+    end subroutine fracture_tip
+
+end module ddc_growth_tips

@@ -1,0 +1,199 @@
+!> The &growth group of a namelist input file (SPEC-GROWTH 2): fracture growth under the
+!> model's fixed loading. Sets the defaults, reads the group if present and checks every
+!> value; growth does not combine with &load_path, &sweep or &symmetry.
+module ddc_input_namelist_growth
+    use ddc_kinds, only: wp
+    use ddc_model_types, only: model_type, growth_tips_names, growth_criterion_names, &
+        symmetry_none
+    use ddc_model_limits, only: quantity_positive, quantity_non_negative
+    use ddc_text, only: itoa, lower, find_name, quoted_list
+    use ddc_input_namelist_groups, only: group_record, message_list, add, group_prefix, &
+        g_growth, g_load_path, g_sweep, g_symmetry
+    use ddc_input_namelist_diagnosis, only: report_malformed
+    use ddc_input_namelist_values, only: unset_real, unset_integer, text_length, check_scalar
+    use ddc_input_namelist_fracture, only: fracture_input
+    implicit none
+    private
+
+    public :: read_growth_group
+
+    !> Largest number of growth steps, and of corrector solves per step
+    integer, parameter :: max_growth_steps = 100000, max_corrector_solves = 100
+    !> Largest number of names in `fractures`, and the length of each
+    integer, parameter :: max_listed = 10000, name_length = 256
+
+contains
+
+    !> &growth steps, toughness, increment, element_length, tips, fractures, criterion,
+    !> max_corrections, new_mu, new_sf / (optional). Read after every other group: the
+    !> fracture names and the other groups are checked against it.
+    subroutine read_growth_group(unit, text, path, groups, known, model, messages)
+        !> Unit of the open input file
+        integer, intent(in) :: unit
+        !> Text and path of the input file
+        character(len=*), intent(in) :: text, path
+        !> Where every group occurs (scan_groups), shape (size(namelist_groups))
+        type(group_record), intent(in) :: groups(:)
+        !> The fractures as read, for the names in `fractures`
+        type(fracture_input), intent(in) :: known(:)
+        !> model%growth is set; its symmetry must be read already
+        type(model_type), intent(inout) :: model
+        !> Violations are added here
+        type(message_list), intent(inout) :: messages
+        integer :: steps, max_corrections
+        real(wp) :: toughness, increment, element_length, new_mu, new_sf
+        character(len=text_length) :: tips, criterion
+        character(len=name_length), allocatable :: fractures(:)
+        character(len=512) :: iomsg
+        character(len=:), allocatable :: prefix
+        integer :: stat, k
+        namelist /growth/ steps, toughness, increment, element_length, tips, fractures, &
+            criterion, max_corrections, new_mu, new_sf
+
+        associate (info => groups(g_growth))
+            if (info%count == 0) return
+            allocate (fractures(max_listed))
+            steps = unset_integer
+            toughness = unset_real
+            increment = unset_real
+            element_length = unset_real
+            tips = 'all'
+            fractures = ''
+            criterion = 'mts'
+            max_corrections = 8
+            new_mu = unset_real
+            new_sf = unset_real
+            rewind (unit)
+            read (unit, nml=growth, iostat=stat, iomsg=iomsg)
+            if (stat /= 0) then
+                call report_malformed(text, path, g_growth, info, 1, stat, iomsg, messages)
+                return
+            end if
+            prefix = group_prefix(path, g_growth, info, 1)
+        end associate
+        call check_combinations(prefix, groups, model, messages)
+
+        associate (g => model%growth)
+            g%active = .true.
+            if (steps == unset_integer) then
+                call add(messages, prefix//'steps is required: the largest number of '// &
+                         'growth steps (>= 1)')
+            else if (steps < 1 .or. steps > max_growth_steps) then
+                call add(messages, prefix//'steps = '//itoa(steps)//' must lie in 1 .. '// &
+                         itoa(max_growth_steps))
+            else
+                g%steps = steps
+            end if
+            if (check_scalar(toughness, 'toughness', .true., prefix, messages, &
+                             quantity_positive)) g%toughness = toughness
+            if (check_scalar(increment, 'increment', .false., prefix, messages, &
+                             quantity_positive)) g%increment = increment
+            if (check_scalar(element_length, 'element_length', .false., prefix, messages, &
+                             quantity_positive)) g%element_length = element_length
+            g%override_mu = check_scalar(new_mu, 'new_mu', .false., prefix, messages, &
+                                         quantity_non_negative)
+            if (g%override_mu) g%new_mu = new_mu
+            g%override_sf = check_scalar(new_sf, 'new_sf', .false., prefix, messages, &
+                                         quantity_non_negative)
+            if (g%override_sf) g%new_sf = new_sf
+            k = find_name(lower(trim(adjustl(tips))), growth_tips_names)
+            if (k == 0) then
+                call add(messages, prefix//"tips = '"//trim(adjustl(tips))//"' is not one of "// &
+                         quoted_list(growth_tips_names))
+            else
+                g%tips = k
+            end if
+            k = find_name(lower(trim(adjustl(criterion))), growth_criterion_names)
+            if (k == 0) then
+                call add(messages, prefix//"criterion = '"//trim(adjustl(criterion))// &
+                         "' is not one of "//quoted_list(growth_criterion_names))
+            else
+                g%criterion = k
+            end if
+            if (max_corrections < 0 .or. max_corrections > max_corrector_solves) then
+                call add(messages, prefix//'max_corrections = '//itoa(max_corrections)// &
+                         ' must lie in 0 .. '//itoa(max_corrector_solves)// &
+                         ' (0 switches the local-symmetry corrector off)')
+            else
+                g%max_corrections = max_corrections
+            end if
+        end associate
+        call select_fractures(fractures, known, prefix, model%growth%fracture_grows, messages)
+    end subroutine read_growth_group
+
+    !> Growth under a loading history, in a parameter sweep or with implicit image elements
+    !> is not available.
+    subroutine check_combinations(prefix, groups, model, messages)
+        character(len=*), intent(in) :: prefix
+        type(group_record), intent(in) :: groups(:)
+        type(model_type), intent(in) :: model
+        type(message_list), intent(inout) :: messages
+
+        if (groups(g_load_path)%count > 0) then
+            call add(messages, prefix//'cannot be combined with &load_path (line '// &
+                     itoa(groups(g_load_path)%lines(1))//'): growth runs under a fixed '// &
+                     'load; remove one of the two groups')
+        end if
+        if (groups(g_sweep)%count > 0) then
+            call add(messages, prefix//'cannot be combined with &sweep (line '// &
+                     itoa(groups(g_sweep)%lines(1))//'): run each grown model on its own')
+        end if
+        if (model%elements%symmetry%kind /= symmetry_none) then
+            call add(messages, prefix//'cannot be combined with &symmetry (line '// &
+                     itoa(groups(g_symmetry)%lines(1))//'): model the whole body, without '// &
+                     'implicit image elements')
+        end if
+    end subroutine check_combinations
+
+    !> Which fractures may grow: those named in `fractures` (each a known fracture, named
+    !> once), or every fracture when none is named.
+    subroutine select_fractures(names, known, prefix, grows, messages)
+        !> The names given (blank: not given)
+        character(len=*), intent(in) :: names(:)
+        !> The fractures of the model
+        type(fracture_input), intent(in) :: known(:)
+        !> "file: &growth (line n): "
+        character(len=*), intent(in) :: prefix
+        !> Whether each fracture may grow, shape (size(known))
+        logical, allocatable, intent(out) :: grows(:)
+        !> Violations are added here
+        type(message_list), intent(inout) :: messages
+        integer :: n, i, j, f
+
+        allocate (grows(size(known)))
+        n = 0
+        do while (n < size(names))
+            if (len_trim(names(n + 1)) == 0) exit
+            n = n + 1
+        end do
+        if (n == 0) then
+            grows = .true.
+            return
+        end if
+        grows = .false.
+        do i = n + 2, size(names)
+            if (len_trim(names(i)) > 0) then
+                call add(messages, prefix//'fractures('//itoa(i)//') is given but fractures('// &
+                         itoa(n + 1)//') is not; give the names without gaps')
+                exit
+            end if
+        end do
+        do i = 1, n
+            f = 0
+            do j = 1, size(known)
+                if (.not. allocated(known(j)%name)) cycle
+                if (known(j)%name == trim(adjustl(names(i)))) f = j
+            end do
+            if (f == 0) then
+                call add(messages, prefix//"fractures("//itoa(i)//") = '"// &
+                         trim(adjustl(names(i)))//"' is not the name of a &fracture")
+            else if (grows(f)) then
+                call add(messages, prefix//"fractures("//itoa(i)//") = '"// &
+                         trim(adjustl(names(i)))//"' is named twice")
+            else
+                grows(f) = .true.
+            end if
+        end do
+    end subroutine select_fractures
+
+end module ddc_input_namelist_growth

@@ -1,0 +1,135 @@
+!> Notes (not errors) on input that is valid but implausible, for the model echo:
+!> - in a half-plane, a remote sxx or syy that turns tensile with depth (a gradient of the
+!>   wrong sign: with y negative downward, compression grows with depth for ds_dy > 0);
+!> - a pore pressure p0 + dp_dy y that is negative somewhere in the model (hydrostatic is
+!>   dp_dy < 0);
+!> - stresses whose strain |stress| / E lies outside about strain_min .. strain_max, the
+!>   mark of a stress_unit that differs from the unit of youngs_modulus.
+!> The model's depth range is that of its element ends and observation points.
+module ddc_model_plausibility
+    use ddc_kinds, only: wp
+    use ddc_model_types, only: model_type, domain_half_plane, condition_contact, &
+        condition_traction, condition_mixed_us_sn, condition_mixed_ss_un
+    use ddc_text, only: short_real, newline
+    implicit none
+    private
+
+    public :: plausibility_notes, depth_range, strain_min, strain_max
+
+    !> Strains |stress| / E outside this range get a note [-]
+    real(wp), parameter :: strain_min = 1.0e-6_wp, strain_max = 0.1_wp
+
+contains
+
+    !> Lowest and highest y of the model: element ends and observation points.
+    pure subroutine depth_range(model, deepest, highest)
+        !> The model
+        type(model_type), intent(in) :: model
+        !> Lowest and highest y [length unit]
+        real(wp), intent(out) :: deepest, highest
+        integer :: k
+
+        associate (e => model%elements)
+            deepest = min(minval(e%y_begin), minval(e%y_end))
+            highest = max(maxval(e%y_begin), maxval(e%y_end))
+        end associate
+        if (.not. allocated(model%observations)) return
+        do k = 1, size(model%observations)
+            if (size(model%observations(k)%y) == 0) cycle
+            deepest = min(deepest, minval(model%observations(k)%y))
+            highest = max(highest, maxval(model%observations(k)%y))
+        end do
+    end subroutine depth_range
+
+    !> The notes on a model, one per line ('' when there are none).
+    function plausibility_notes(model, units_given) result(notes)
+        !> The model, with at least one element
+        type(model_type), intent(in) :: model
+        !> The stress unit was chosen by the user (false for a TWODD deck, which has none:
+        !> no strain note then)
+        logical, intent(in) :: units_given
+        !> The notes, newline-separated
+        character(len=:), allocatable :: notes
+        real(wp) :: deepest, highest
+
+        notes = ''
+        call depth_range(model, deepest, highest)
+        if (model%elements%domain == domain_half_plane) then
+            call tensile_with_depth('sxx', model%sxx, model%stress_gradient(1))
+            call tensile_with_depth('syy', model%syy, model%stress_gradient(2))
+        end if
+        if (any(model%elements%condition == condition_contact)) call negative_pore_pressure()
+        if (units_given) call strain_range()
+
+    contains
+
+        subroutine add(note)
+            character(len=*), intent(in) :: note
+
+            if (len(notes) > 0) notes = notes//newline
+            notes = notes//note
+        end subroutine add
+
+        !> value + gradient y > 0 at the deepest point while the gradient is negative.
+        subroutine tensile_with_depth(name, value, gradient)
+            character(len=*), intent(in) :: name
+            real(wp), intent(in) :: value, gradient
+            real(wp) :: deep
+
+            deep = value + gradient * deepest
+            if (.not. (gradient < 0.0_wp .and. deep > 0.0_wp)) return
+            call add('the remote '//name//' = '//short_real(value)//' + '//short_real(gradient) &
+                     //' y turns tensile with depth: '//short_real(deep)//' '// &
+                     model%stress_unit//' at y = '//short_real(deepest)//' '// &
+                     model%length_unit//' (the deepest point of the model); with y negative '// &
+                     'downward, compression that grows with depth needs d'//name//'_dy > 0')
+        end subroutine tensile_with_depth
+
+        !> p0 + dp_dy y < 0 at the top or the bottom of the model.
+        subroutine negative_pore_pressure()
+            real(wp) :: p_deep, p_high, y
+
+            p_deep = model%pore_fluid(1) + model%pore_fluid(2) * deepest
+            p_high = model%pore_fluid(1) + model%pore_fluid(2) * highest
+            if (.not. min(p_deep, p_high) < 0.0_wp) return
+            y = merge(deepest, highest, p_deep < p_high)
+            call add('the pore pressure p0 + dp_dy y = '//short_real(model%pore_fluid(1))// &
+                     ' + '//short_real(model%pore_fluid(2))//' y is negative: '// &
+                     short_real(min(p_deep, p_high))//' '//model%stress_unit//' at y = '// &
+                     short_real(y)//' '//model%length_unit//' (the fluid would pull the '// &
+                     'crack faces together); hydrostatic pressure with y negative downward '// &
+                     'has dp_dy < 0 (-0.0098 MPa/m for water)')
+        end subroutine negative_pore_pressure
+
+        !> The largest stress given (remote stress at the top and bottom of the model,
+        !> pressures, given tractions) against Young's modulus.
+        subroutine strain_range()
+            real(wp) :: stress, strain
+
+            stress = max(maxval(abs([model%sxx, model%syy, model%sxy] + &
+                                    model%stress_gradient * deepest)), &
+                         maxval(abs([model%sxx, model%syy, model%sxy] + &
+                                    model%stress_gradient * highest)))
+            associate (e => model%elements)
+                stress = max(stress, maxval(abs(e%pressure)), &
+                             abs(model%pore_fluid(1) + model%pore_fluid(2) * deepest), &
+                             abs(model%pore_fluid(1) + model%pore_fluid(2) * highest), &
+                             maxval(abs(e%bc_s), mask=e%condition == condition_traction .or. &
+                                    e%condition == condition_mixed_ss_un), &
+                             maxval(abs(e%bc_n), mask=e%condition == condition_traction .or. &
+                                    e%condition == condition_mixed_us_sn))
+            end associate
+            if (.not. stress > 0.0_wp) return
+            strain = stress / model%youngs_modulus
+            if (strain >= strain_min .and. strain <= strain_max) return
+            call add('the largest stress given, '//short_real(stress)//' '// &
+                     model%stress_unit//', is '//short_real(strain)//' times '// &
+                     'youngs_modulus = '//short_real(model%youngs_modulus)//' (a strain '// &
+                     'outside about '//short_real(strain_min)//' .. '//short_real(strain_max)// &
+                     '): check stress_unit; youngs_modulus and every stress are in one unit, '// &
+                     'here '//model%stress_unit)
+        end subroutine strain_range
+
+    end function plausibility_notes
+
+end module ddc_model_plausibility

@@ -1,0 +1,96 @@
+!> The engine of a distributed run (ddc_run_engine): run_model's heavy work spread over the
+!> processes. The solve is ddc_parallel_solve's; the midpoint responses are split by
+!> elements and every process gets them all (O(n)); the fields are split by points and
+!> gathered on the root, which alone writes them.
+module ddc_parallel_run
+    use ddc_kinds, only: wp
+    use ddc_error, only: error_type
+    use ddc_model_types, only: element_set
+    use ddc_model_results, only: solver_record, field_result
+    use ddc_contact_options, only: solver_options
+    use ddc_influence_response, only: kernel_response
+    use ddc_post_fields, only: evaluate_field
+    use ddc_run_engine, only: model_engine
+    use ddc_parallel_context, only: parallel_context
+    use ddc_parallel_collective, only: split_range, gather_on_root, gather_on_all
+    use ddc_parallel_solve, only: solve_distributed
+    implicit none
+    private
+
+    public :: distributed_engine
+
+    !> The processes doing one model's work.
+    type, extends(model_engine) :: distributed_engine
+        !> The processes and their grid (open)
+        type(parallel_context) :: context
+    contains
+        procedure :: solve => distributed_solve_model
+        procedure :: midpoint_response => distributed_response
+        procedure :: evaluate_field => distributed_field
+    end type distributed_engine
+
+contains
+
+    !> solve_distributed on the engine's processes.
+    subroutine distributed_solve_model(this, elements, shear_modulus, nu, remote_shear, &
+                                       remote_normal, options, ds, dn, state, record, error)
+        class(distributed_engine), intent(inout) :: this
+        type(element_set), intent(in) :: elements
+        real(wp), intent(in) :: shear_modulus, nu
+        real(wp), intent(in) :: remote_shear(:), remote_normal(:)
+        type(solver_options), intent(in) :: options
+        real(wp), intent(out) :: ds(:), dn(:)
+        integer, intent(out) :: state(:)
+        type(solver_record), intent(inout) :: record
+        type(error_type), allocatable, intent(out) :: error
+
+        call solve_distributed(this%context, elements, shear_modulus, nu, remote_shear, &
+                               remote_normal, options, ds, dn, state, record, error)
+    end subroutine distributed_solve_model
+
+    !> Each process computes the responses of its share of the elements; all get them all.
+    subroutine distributed_response(this, elements, shear_modulus, nu, ds, dn, &
+                                    shear_traction, normal_traction, us_minus, un_minus)
+        class(distributed_engine), intent(inout) :: this
+        type(element_set), intent(in) :: elements
+        real(wp), intent(in) :: shear_modulus, nu
+        real(wp), intent(in) :: ds(:), dn(:)
+        real(wp), intent(out) :: shear_traction(:), normal_traction(:)
+        real(wp), intent(out) :: us_minus(:), un_minus(:)
+        real(wp), allocatable :: ts(:), tn(:), us(:), un(:)
+        integer :: first, last
+
+        call split_range(elements%n, this%context%processes, this%context%rank, first, last)
+        allocate (ts(first:last), tn(first:last), us(first:last), un(first:last))
+        call kernel_response(elements, shear_modulus, nu, ds, dn, ts, tn, us, un, first)
+        call gather_on_all(this%context, ts, shear_traction)
+        call gather_on_all(this%context, tn, normal_traction)
+        call gather_on_all(this%context, us, us_minus)
+        call gather_on_all(this%context, un, un_minus)
+    end subroutine distributed_response
+
+    !> Each process evaluates its share of the points; the root gets them all.
+    subroutine distributed_field(this, elements, shear_modulus, nu, remote, ds, dn, x, y, &
+                                 field, gradient)
+        class(distributed_engine), intent(inout) :: this
+        type(element_set), intent(in) :: elements
+        real(wp), intent(in) :: shear_modulus, nu, remote(3)
+        real(wp), intent(in) :: ds(:), dn(:)
+        real(wp), intent(in) :: x(:), y(:)
+        type(field_result), intent(out) :: field
+        real(wp), intent(in) :: gradient(3)
+        type(field_result) :: part
+        integer :: first, last
+
+        call split_range(size(x), this%context%processes, this%context%rank, first, last)
+        call evaluate_field(elements, shear_modulus, nu, remote, ds, dn, x(first:last), &
+                            y(first:last), part, gradient)
+        call gather_on_root(this%context, part%ux, field%ux)
+        call gather_on_root(this%context, part%uy, field%uy)
+        call gather_on_root(this%context, part%sxx, field%sxx)
+        call gather_on_root(this%context, part%syy, field%syy)
+        call gather_on_root(this%context, part%sxy, field%sxy)
+        call gather_on_root(this%context, part%flag, field%flag)
+    end subroutine distributed_field
+
+end module ddc_parallel_run

@@ -1,0 +1,178 @@
+!> The memory a model needs, estimated before anything large is allocated, against what
+!> this machine offers (ddc_run_available_memory): a model that cannot fit is refused with
+!> one message (exit_out_of_memory) instead of failing in an allocation.
+!>
+!> The estimate adds (in reals of 8 bytes, N elements, nc of them contact elements, nf the
+!> others):
+!> - the solve, at its peak: TWODD-style elements only, the influence matrix and its LU
+!>   factors, 2 (2N)^2; with contact elements the assembled matrix (2N)^2 is condensed to
+!>   the contact elements' A (2nc)^2 (with nf > 0 the whole matrix, K_FF, K_FF^-1 K_FC and
+!>   a temporary K_CF are kept too), then the contact method works on A
+!>   (ddc_contact_memory: Lemke 45 nc^2, Newton up to 5.5 nc^2); a loading history
+!>   solves each step with the same method (Newton keeps its factors between steps, Lemke
+!>   its LCP) and stores about 12 reals per element and step, held from the start;
+!> - the model and its results, 50 reals per element and 13 per observation point;
+!> - the program itself (libraries, buffers), 20 MB.
+!> Measured (Release, OpenBLAS): the peak resident memory of Lemke runs is within 5 % of the
+!> estimate; Newton runs of an all-slipping fault use less (their reduced system is counted
+!> at its largest).
+module ddc_run_memory
+    use ddc_kinds, only: wp
+    use ddc_error, only: error_type, set_error, exit_out_of_memory
+    use ddc_allocation, only: real_bytes
+    use ddc_text, only: bytes_text, itoa
+    use ddc_model_types, only: model_type, condition_contact
+    use ddc_contact_options, only: lcp_auto, lcp_newton
+    use ddc_contact_formulation, only: auto_newton_min_elements
+    use ddc_contact_memory, only: lemke_bytes, newton_bytes
+    implicit none
+    private
+
+    public :: memory_need, estimate_memory, check_memory, elements_that_fit
+
+    !> The program's own memory: libraries, OpenBLAS and HDF5 buffers [bytes]
+    real(wp), parameter :: program_bytes = 20.0e6_wp
+    !> Reals per element of the model and its results, and per observation point
+    real(wp), parameter :: element_reals = 50.0_wp, point_reals = 13.0_wp
+    !> Reals per element and step that a loading history stores
+    real(wp), parameter :: history_reals = 12.0_wp
+
+    !> What a model needs, and where it was estimated to peak.
+    type :: memory_need
+        !> Estimated peak memory of the run [bytes]
+        real(wp) :: bytes = 0.0_wp
+        !> The method the estimate is for: 'lu', 'newton' or 'lemke', followed by ' (loading
+        !> history)' for a history
+        character(len=:), allocatable :: method
+        !> Peak if the Newton method fails and falls back to Lemke [bytes]; 0 when the run
+        !> cannot fall back
+        real(wp) :: fallback_bytes = 0.0_wp
+        !> Memory held while the contact method works, outside its own work [bytes]
+        real(wp) :: held_bytes = 0.0_wp
+    end type memory_need
+
+contains
+
+    !> The estimated peak memory of solving a model with the method it will use.
+    pure function estimate_memory(model) result(need)
+        !> The model (elements, observation sets, solver options, load path)
+        type(model_type), intent(in) :: model
+        !> The estimate
+        type(memory_need) :: need
+
+        need = need_of(model, model%elements%n, &
+                       count(model%elements%condition == condition_contact))
+    end function estimate_memory
+
+    !> The estimate for n elements, nc of them contact elements, with the model's
+    !> observation sets, solver options and load path.
+    pure function need_of(model, elements, contact) result(need)
+        !> The model (observation sets, solver options, load path)
+        type(model_type), intent(in) :: model
+        !> Number of elements and of contact elements among them
+        integer, intent(in) :: elements, contact
+        !> The estimate
+        type(memory_need) :: need
+        real(wp) :: n, nc, nf, matrix, held, condense, points, fixed
+        character(len=:), allocatable :: history
+        integer :: k
+
+        n = real(elements, wp)
+        nc = real(contact, wp)
+        nf = n - nc
+        points = 0.0_wp
+        if (allocated(model%observations)) then
+            do k = 1, size(model%observations)
+                points = points + real(size(model%observations(k)%x), wp)
+            end do
+        end if
+        fixed = program_bytes + real_bytes * (element_reals * n + point_reals * points)
+        history = ''
+        if (allocated(model%load_path%vertex)) then
+            history = ' (loading history)'
+            fixed = fixed + real_bytes * history_reals * n * &
+                real(1 + sum(model%load_path%steps), wp)
+        end if
+        matrix = real_bytes * 4.0_wp * n**2
+        if (contact == 0) then
+            need%method = 'lu'
+            need%bytes = fixed + 2.0_wp * matrix
+            return
+        end if
+        ! Held while the contact method works: A of the contact elements, and with free
+        ! elements the whole matrix, K_FF and K_FF^-1 K_FC; the condensation's peak adds a
+        ! temporary K_CF.
+        held = real_bytes * 4.0_wp * nc**2
+        condense = matrix
+        if (nf > 0.0_wp) then
+            held = held + matrix + real_bytes * 4.0_wp * (nf**2 + nf * nc)
+            condense = held + real_bytes * 4.0_wp * nf * nc
+        end if
+        need%held_bytes = fixed + held
+        if (model%solver%lcp_method == lcp_newton .or. (model%solver%lcp_method == &
+            lcp_auto .and. contact >= auto_newton_min_elements)) then
+            need%method = 'newton'//history
+            need%bytes = fixed + max(condense, held + newton_bytes(contact))
+            need%fallback_bytes = fixed + max(condense, held + lemke_bytes(contact))
+        else
+            need%method = 'lemke'//history
+            need%bytes = fixed + max(condense, held + lemke_bytes(contact), &
+                                     held + newton_bytes(contact))
+        end if
+    end function need_of
+
+    !> The largest number of elements, the model's share of contact elements, observation
+    !> sets, solver and load path kept, whose estimate fits in `available` bytes (0 when
+    !> not even one element does).
+    pure integer function elements_that_fit(model, available)
+        !> The model
+        type(model_type), intent(in) :: model
+        !> Memory available [bytes]
+        real(wp), intent(in) :: available
+        real(wp) :: share
+        type(memory_need) :: need
+        integer :: low, high, middle
+
+        share = real(count(model%elements%condition == condition_contact), wp) / &
+            real(max(model%elements%n, 1), wp)
+        low = 0
+        high = model%elements%n
+        do while (high - low > 1)
+            middle = low + (high - low) / 2
+            need = need_of(model, middle, nint(share * middle))
+            if (need%bytes <= available) then
+                low = middle
+            else
+                high = middle
+            end if
+        end do
+        elements_that_fit = low
+        need = need_of(model, high, nint(share * high))
+        if (need%bytes <= available) elements_that_fit = high
+    end function elements_that_fit
+
+    !> Refuse a model whose estimate exceeds the memory available (exit_out_of_memory),
+    !> with one message saying how much it needs, how much there is, where that limit comes
+    !> from and how many elements would fit.
+    subroutine check_memory(model, need, available, source, error)
+        !> The model
+        type(model_type), intent(in) :: model
+        !> Its estimate (estimate_memory)
+        type(memory_need), intent(in) :: need
+        !> Memory available here [bytes]
+        real(wp), intent(in) :: available
+        !> Where that limit comes from, e.g. 'MemAvailable in /proc/meminfo'
+        character(len=*), intent(in) :: source
+        !> Allocated (exit_out_of_memory) when the model does not fit
+        type(error_type), allocatable, intent(out) :: error
+
+        if (need%bytes <= available) return
+        call set_error(error, exit_out_of_memory, itoa(model%elements%n)//' elements need '// &
+            'about '//bytes_text(need%bytes)//' of memory with the '//need%method// &
+            ' method, but about '//bytes_text(available)//' is available here ('//source// &
+            '); about '//itoa(elements_that_fit(model, available))//' elements fit. Use a '// &
+            'machine with more memory (on Slurm: sbatch --mem), or fewer elements; see '// &
+            'the size guide in the README')
+    end subroutine check_memory
+
+end module ddc_run_memory

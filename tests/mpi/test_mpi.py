@@ -1,0 +1,176 @@
+"""One model on many processes (SPEC-SCALE section 3): the MPI build against the serial one.
+
+Run by CTest in the `mpi` preset's build (label mpi), which sets DDC2D_EXE (ddc2d built with
+MPI), DDC2D_SERIAL_EXE (the serial program of the same build) and MPIEXEC. Every run has a
+timeout, so a process that waits forever fails the test instead of hanging it.
+
+- P = 1, 2 and 4 processes (grids 1 x 1, 1 x 2, 2 x 2) give the serial answer on the four
+  models of SPEC-SCALE: DDs, tractions, face displacements, tips and fields within 1e-10 of
+  the largest magnitude of their kind of quantity (compare.py), the same element states and
+  point flags, the same method, and a certificate and equilibrium residual that pass the
+  same limits.
+- On 4 processes, bad input, what is not distributed and a solver failure end every process
+  with one message from the root, the documented exit status and no output file.
+"""
+
+import json
+import os
+import subprocess
+from pathlib import Path
+
+import h5py
+import numpy as np
+import pytest
+from compare import differences
+
+from ddc2d_h5 import read_solver  # compare puts scripts/ on the path
+
+REPO = Path(__file__).resolve().parents[2]
+DATA = REPO / "tests" / "data"
+MODELS = {
+    "straight": REPO / "input" / "paper_fault_slip.nml",  # N = 500, every element slips
+    "kinked": DATA / "mpi" / "kinked_fault.nml",  # stick, slip and open; block size 15
+    "cohesion_lost": DATA / "mpi" / "kinked_cohesion_lost.nml",  # open_cohesion = 'lost'
+    "twodd_symmetry": DATA / "mpi" / "twodd_symmetry.nml",  # TWODD conditions, x = 0 plane
+    "half_plane": DATA / "mpi" / "half_plane.nml",  # contact and prescribed DDs
+}
+PROCESSES = (1, 2, 4)
+RTOL = 1e-10  # of the largest magnitude of each kind of quantity (compare.py)
+RESIDUAL_LIMIT = 1e-8  # the equilibrium check of every solution (ddc_linalg_lu residual_tol)
+TIMEOUT = 300
+
+
+def executable(variable):
+    value = os.environ.get(variable)
+    if not value:
+        raise AssertionError(f"{variable} is not set: run these tests through CTest in the "
+                             "mpi preset's build (ctest --preset mpi)")
+    return os.path.abspath(value) if os.sep in value else value
+
+
+def environment():
+    """Open MPI as root, more processes than cores, one thread per process."""
+    return dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+                OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1",
+                OMPI_MCA_mpi_yield_when_idle="1")
+
+
+def run_parallel(processes, args, cwd, timeout=TIMEOUT):
+    command = [executable("MPIEXEC"), "-q", "--oversubscribe", "-n", str(processes),
+               executable("DDC2D_EXE"), *map(str, args)]
+    return subprocess.run(command, cwd=cwd, capture_output=True, text=True, timeout=timeout,
+                          env=environment(), check=False)
+
+
+def run_serial(args, cwd):
+    return subprocess.run([executable("DDC2D_SERIAL_EXE"), *map(str, args)], cwd=cwd,
+                          capture_output=True, text=True, timeout=TIMEOUT, env=environment(),
+                          check=False)
+
+
+@pytest.fixture(scope="module")
+def serial_result(tmp_path_factory):
+    """The serial program's result file of a model (each model solved once)."""
+    folder = tmp_path_factory.mktemp("serial")
+    done = {}
+
+    def result(model):
+        if model not in done:
+            out = folder / f"{model}.h5"
+            run = run_serial([MODELS[model], "-o", out], folder)
+            assert run.returncode == 0, run.stdout + run.stderr
+            done[model] = out
+        return done[model]
+
+    return result
+
+
+def check_solver_record(reference, other, processes):
+    a, b = read_solver(reference)["attrs"], read_solver(other)["attrs"]
+    for key in ("method", "lcp_solves", "newton_iterations", "elements_free", "elements_stick",
+                "elements_slip", "elements_open"):
+        assert a[key] == b[key], f"/solver {key}: {a[key]} serial, {b[key]} parallel"
+    for record in (a, b):
+        tolerance = record["certificate_tolerance"]
+        if record["method"] == "newton":
+            assert record["certificate_min_z"] >= -tolerance
+            assert record["certificate_min_w"] >= -tolerance
+            assert record["certificate_max_complementarity"] <= tolerance
+        assert record["equilibrium_residual"] <= RESIDUAL_LIMIT
+    assert b["processes"] == processes
+    assert int(np.prod(b["process_grid"])) == processes
+    assert "processes" not in a  # the serial program's layout has no process attributes
+
+
+@pytest.mark.parametrize("processes", PROCESSES)
+@pytest.mark.parametrize("model", MODELS)
+def test_same_answer_as_serial(model, processes, serial_result, tmp_path):
+    out = tmp_path / f"{model}_p{processes}.h5"
+    run = run_parallel(processes, [MODELS[model], "-o", out], tmp_path)
+    assert run.returncode == 0, run.stdout + run.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == [out.name]
+    found = differences(serial_result(model), out)
+    with h5py.File(serial_result(model)) as reference, h5py.File(out) as other:
+        check_solver_record(reference, other, processes)
+    worst = max(found, key=found.get)
+    print(f"{model}, {processes} processes: largest relative difference {found[worst]:.2e} "
+          f"({worst}) over {len(found)} arrays")
+    assert found[worst] <= RTOL, f"{worst} differs by {found[worst]:.3e} (limit {RTOL})"
+
+
+ERRORS = {
+    "bad_input": (DATA / "input" / "bad_mu.nml", 2, ["bad_mu.nml", "&fracture 1", "mu(2)"]),
+    "lemke": (DATA / "input" / "good_polyline.nml", 2,
+              ["good_polyline.nml", "with 4 processes", "lcp_method = 'lemke'",
+               "one process"]),
+    "load_path": (DATA / "history" / "good.nml", 2,
+                  ["good.nml", "with 4 processes", "&load_path", "one process"]),
+    "solver_failure": (DATA / "mpi" / "unbalanced_hole.nml", 1,
+                       ["influence matrix is numerically singular", "relative residual"]),
+}
+
+
+@pytest.mark.parametrize("case", ERRORS)
+def test_error_on_four_processes(case, tmp_path):
+    model, status, words = ERRORS[case]
+    run = run_parallel(4, [model, "-o", tmp_path / "out.h5"], tmp_path, timeout=120)
+    assert run.returncode == status, run.stdout + run.stderr
+    assert run.stderr.count("ddc2d: error:") == 1, run.stderr
+    for word in words:
+        assert word in run.stderr
+    assert list(tmp_path.iterdir()) == []  # neither the output nor a .partial file
+
+
+def test_one_process_runs_what_is_not_distributed(tmp_path):
+    # A loading history (Lemke's method) on one process runs as in the serial build.
+    model = DATA / "history" / "good.nml"
+    serial = run_serial([model, "-o", tmp_path / "serial.h5"], tmp_path)
+    assert serial.returncode == 0, serial.stdout + serial.stderr
+    run = run_parallel(1, [model, "-o", tmp_path / "one.h5"], tmp_path)
+    assert run.returncode == 0, run.stdout + run.stderr
+    found = differences(tmp_path / "serial.h5", tmp_path / "one.h5")
+    assert "/history/ds" in found and max(found.values()) <= RTOL
+    with h5py.File(tmp_path / "one.h5") as one:
+        assert read_solver(one)["attrs"]["processes"] == 1
+
+
+def test_benchmark_records_every_process(tmp_path):
+    # scripts/benchmark.py --mpi 2: per-process peak RSS and the grid in the JSON records.
+    exe = Path(executable("DDC2D_EXE"))
+    out = tmp_path / "bench.json"
+    done = subprocess.run(
+        [executable("DDC2D_PYTHON"), str(REPO / "scripts" / "benchmark.py"), "--exe", str(exe),
+         "--sizes", "12,30", "--case", "mixed", "--json", str(out), "--threads", "1",
+         "--grid", "5", "--mpi", "2", "--block-size", "8", "--mpiexec", executable("MPIEXEC"),
+         "--lu-exe", str(exe.parent.parent / "tests" / "ddc2d_lu_benchmark")],
+        capture_output=True, text=True, timeout=TIMEOUT, env=environment(), check=False)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert "rank RSS MB" in done.stdout
+    records = json.loads(out.read_text())
+    assert [r["n"] for r in records] == [12, 30]
+    for r in records:
+        assert r["processes"] == 2 and r["process_grid"] == [1, 2] and r["block_size"] == 8
+        assert len(r["peak_rss_mb_per_rank"]) == 2
+        assert all(v > 1.0 for v in r["peak_rss_mb_per_rank"])
+        assert r["peak_rss_mb"] == max(r["peak_rss_mb_per_rank"])
+        assert r["method"] == "newton" and sum(r["states"].values()) == r["n"]

@@ -1,0 +1,137 @@
+"""Fracture growth end to end (SPEC-GROWTH 3): ddc2d on a &growth model prints a line per
+step and a table per tip, writes /growth and /elements/created_step, and scripts/ddc2d-plot
+draws the grown elements and K_eq / toughness from exactly those values."""
+
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+import pytest
+
+from conftest import PLOT_SCRIPT, ddc2d_exe
+from ddc2d_h5 import GROWTH_DATASETS, load_result
+
+# A crack under remote shear grows wings from both tips (the toughness is below its K_eq
+# all along); a second fracture, a strong fault that sticks and may not grow, is left alone.
+SHEAR_MODEL = """\
+&model title = 'wings', youngs_modulus = 50000, poissons_ratio = 0.25 /
+&remote_stress sxy = 10 /
+&fracture name = 'crack', x = -1, 1, y = 0, 0, elements = 20, condition = 'traction' /
+&fracture name = 'fault', x = -1, 1, y = -3, -3, elements = 10, mu = 0.6, sf = 100 /
+&growth steps = 3, toughness = 10, fractures = 'crack' /
+&grid name = 'map', xmin = -2, xmax = 2, nx = 9, ymin = -2, ymax = 2, ny = 9 /
+"""
+
+
+def solve(tmp_path, text=SHEAR_MODEL):
+    model = tmp_path / "wings.nml"
+    model.write_text(text)
+    return subprocess.run([str(ddc2d_exe()), str(model), "-o", str(tmp_path / "wings.h5")],
+                          capture_output=True, text=True, timeout=300)
+
+
+@pytest.fixture(scope="module")
+def grown(tmp_path_factory):
+    """The shear model solved once: (folder, completed process)."""
+    folder = tmp_path_factory.mktemp("growth")
+    done = solve(folder)
+    assert done.returncode == 0, done.stdout + done.stderr
+    return folder, done
+
+
+def test_growth_layout(grown):
+    folder, _ = grown
+    with h5py.File(folder / "wings.h5", "r") as f:
+        g = f["growth"]
+        # Two tips (the crack's; the fault may not grow), three steps: six records.
+        for key in GROWTH_DATASETS:
+            assert g[key].shape == (6,), key
+        assert list(g["step"][()]) == [1, 1, 2, 2, 3, 3]
+        assert list(g["fracture_id"][()]) == [1] * 6
+        assert list(g["end"][()]) == [0, 1] * 3
+        assert list(g["reason"][()]) == [0] * 6
+        assert g.attrs["end_reason"] == b"step_limit"
+        assert g.attrs["steps_taken"] == 3
+        assert g.attrs["fractures"] == b"crack"
+        assert g.attrs["toughness"] == 10.0
+        assert b"2 intersection" in g.attrs["reason_coding"]
+        assert g["k_eq"].attrs["units"] == b"MPa m^0.5"
+        assert g["angle"].attrs["units"] == b"degree"
+        # Pure mode II at the input's tips: MTS angle -70.53 degrees where K_II > 0.
+        np.testing.assert_allclose(g["mts_angle"][:2], -70.528779, atol=0.1)
+        assert np.all(g["k2"][:2] > 0.0)
+        created = f["elements/created_step"][()]
+        # 20 + 3 steps x 2 tips x 2 elements on the crack, then the fault's 10.
+        assert list(created) == [3, 3, 2, 2, 1, 1] + [0] * 20 + [1, 1, 2, 2, 3, 3] + [0] * 10
+        assert list(f["fractures/first_element"][()]) == [1, 33]
+        assert list(f["fractures/last_element"][()]) == [32, 42]
+        # /tips describe the final geometry: the crack's new tips are the grown ones.
+        x_end = f["elements/x_end"][()]
+        assert f["tips/x"][1] == x_end[31]
+
+
+def test_progress_lines_and_tip_table(grown):
+    _, done = grown
+    lines = done.stdout.splitlines()
+    steps = [line for line in lines if line.startswith("growth step ")]
+    assert [line.split(":")[0] for line in steps] == [f"growth step {k}" for k in (1, 2, 3)]
+    assert all("2 tip(s) grew, largest K_eq" in line for line in steps)
+    assert "growth: 3 step(s) with growth; ended: step_limit" in done.stdout
+    table = lines[lines.index("growth: 3 step(s) with growth; ended: step_limit") + 1:]
+    assert table[0].split()[:3] == ["fracture", "tip", "steps"]
+    for row, end in zip(table[1:3], ("begin", "end")):
+        words = row.split()
+        assert words[:3] == ["crack", end, "3"]
+        assert float(words[3]) == pytest.approx(0.6, rel=1e-12)  # 3 increments of 0.2
+        assert "step limit" in row
+
+
+def test_growth_figure_draws_the_records(grown, plot_module):
+    folder, _ = grown
+    proc = subprocess.run([sys.executable, str(PLOT_SCRIPT), str(folder / "wings.h5"), "-o",
+                           str(folder / "fig"), "--quantity", "sxy"],
+                          capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    assert (folder / "fig" / "wings_growth.png").read_bytes()[:4] == b"\x89PNG"
+    assert (folder / "fig" / "wings_map_sxy.png").is_file()
+    result = load_result(folder / "wings.h5")
+    series = plot_module.growth_series(result)
+    assert [tip["label"] for tip in series] == ["crack begin", "crack end"]
+    with h5py.File(folder / "wings.h5", "r") as f:
+        k_eq = f["growth/k_eq"][()]
+        created = f["elements/created_step"][()]
+    # K_eq / toughness: the stored values divided by the stored toughness (10).
+    np.testing.assert_allclose(series[1]["ratio"], k_eq[1::2] / 10.0, rtol=1e-15)
+    assert list(series[0]["step"]) == [1, 2, 3]
+    fig = plot_module.plot_growth(result)
+    try:
+        geometry, k_axes = fig.axes[:2]
+        grown_elements = [c for c in geometry.collections if c.get_gid() == "grown_elements"]
+        assert len(grown_elements) == 1
+        # One segment per grown element, coloured by its step.
+        np.testing.assert_array_equal(grown_elements[0].get_array(), created[created > 0])
+        lines = {line.get_gid(): line for line in k_axes.get_lines() if line.get_gid()}
+        np.testing.assert_array_equal(lines["k_eq:crack end"].get_ydata(), k_eq[1::2] / 10.0)
+    finally:
+        plot_module.plt.close(fig)
+    fig = plot_module.plot_map(result, "map", "sxy")
+    try:
+        gids = [c.get_gid() for c in fig.axes[0].collections]
+        assert "grown_elements" in gids and "elements" in gids
+    finally:
+        plot_module.plt.close(fig)
+
+
+def test_result_without_growth_has_no_growth_figure(tmp_path, plot_module):
+    done = solve(tmp_path, SHEAR_MODEL.replace("&growth", "! &growth"))
+    assert done.returncode == 0, done.stderr
+    assert "growth step" not in done.stdout
+    with h5py.File(tmp_path / "wings.h5", "r") as f:
+        assert "growth" not in f
+        assert "created_step" not in f["elements"]
+    assert load_result(tmp_path / "wings.h5")["growth"] is None
+    proc = subprocess.run([sys.executable, str(PLOT_SCRIPT), str(tmp_path / "wings.h5"), "-o",
+                           str(tmp_path / "fig")], capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    assert not list((tmp_path / "fig").glob("*_growth.*"))

@@ -1,0 +1,59 @@
+"""A model too large for this machine's memory (issue 17): ddc2d estimates the memory of the
+method it will use before allocating anything large, compares it with what the machine or
+its cgroup offers, and refuses with one message and exit status 5, not a Fortran runtime
+error; a model that fits echoes its estimate."""
+
+import re
+import subprocess
+
+import pytest
+
+from conftest import ddc2d_exe
+
+MODEL = """\
+&model youngs_modulus = 50000, poissons_ratio = 0.25 /
+&remote_stress sxx = -143.75, syy = -81.25, sxy = 54.13 /
+&fracture name = 'fault', x = -1000, 1000, y = 0, 0, elements = {n}, mu = 0.6, sf = 1 /
+{extra}"""
+
+
+def run(tmp_path, n, extra=""):
+    (tmp_path / "big.nml").write_text(MODEL.format(n=n, extra=extra))
+    return subprocess.run([str(ddc2d_exe()), "big.nml"], cwd=tmp_path, capture_output=True,
+                          text=True, timeout=300)
+
+
+@pytest.mark.parametrize("extra, method, need", [
+    ("", "newton", "3 TB"),  # auto: newton from 300 contact elements on
+    ("&solver lcp_method = 'lemke' /\n", "lemke", "16 TB"),
+    ("&load_path steps = 4, sxy = 0, 54.13 /\n", "newton (loading history)", "3 TB"),
+    ("&load_path steps = 4, sxy = 0, 54.13 /\n&solver lcp_method = 'lemke' /\n",
+     "lemke (loading history)", "16 TB"),
+])
+def test_a_model_too_large_is_refused_with_exit_5(tmp_path, extra, method, need):
+    done = run(tmp_path, 200000, extra)
+    assert done.returncode == 5, done.stdout + done.stderr
+    errors = [line for line in done.stderr.splitlines() if line.startswith("ddc2d: error: ")]
+    assert len(errors) == 1, done.stderr
+    assert errors[0].startswith(f"ddc2d: error: 200000 elements need about {need} of memory "
+                                f"with the {method} method, but about ")
+    assert " is available here (" in errors[0] and " elements fit. " in errors[0]
+    assert "Error allocating" not in done.stderr and "Backtrace" not in done.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["big.nml"]  # no output at all
+
+
+def test_a_model_that_fits_echoes_its_estimate(tmp_path):
+    done = run(tmp_path, 40)
+    assert done.returncode == 0, done.stderr
+    memory = [line for line in done.stdout.splitlines() if line.startswith("  memory: ")]
+    assert len(memory) == 1
+    # 20 MB for the program, a little for 40 elements (Lemke below 300 contact elements).
+    assert re.fullmatch(r"  memory: about 2\d MB needed \(lemke\), (.+ available \(.+\)|"
+                        r"no limit found)", memory[0]), memory[0]
+
+
+def test_help_gives_exit_status_5(tmp_path):
+    done = subprocess.run([str(ddc2d_exe()), "--help"], capture_output=True, text=True,
+                          timeout=60)
+    assert done.returncode == 0
+    assert "5 the model is too large for the memory here" in " ".join(done.stdout.split())

@@ -1,0 +1,135 @@
+"""What ddc2d tells the user on the terminal (app/report.f90): the echo of the model with
+its domain, stress gradients, pore fluid, symmetry and loading history, notes on
+implausible input, the points of each observation set that lie on an element, a warning
+when a whole set does, and the units of K."""
+
+import subprocess
+
+import pytest
+
+from conftest import REPO_ROOT, ddc2d_exe
+
+# The issue's model: a half-plane normal fault under gravity with hydrostatic pore fluid.
+GRAVITY = """\
+&model title = 'normal fault', youngs_modulus = 30000, poissons_ratio = 0.25,
+       domain = 'half_plane' /
+&remote_stress dsyy_dy = 0.0265, dsxx_dy = 0.01325 /
+&pore_fluid dp_dy = -0.00981 /
+&fracture name = 'fault', x = 0, -1154.7, y = 0, -2000, elements = 40, mu = 0.6 /
+&grid name = 'section', xmin = -3000, xmax = 2000, nx = 6, ymin = -3000, ymax = -10,
+      ny = 4 /
+"""
+CRACK = """\
+&model youngs_modulus = 50000, poissons_ratio = 0.25 /
+&remote_stress sxx = -10, syy = -20 /
+&fracture name = 'crack', x = -1, 1, y = 0, 0, elements = 10, condition = 'traction',
+          bc_n = -5 /
+"""
+
+
+def run(args, cwd):
+    return subprocess.run([str(ddc2d_exe()), *map(str, args)], cwd=cwd, capture_output=True,
+                          text=True, timeout=120)
+
+
+def solve(tmp_path, text, name="m"):
+    (tmp_path / f"{name}.nml").write_text(text)
+    done = run([f"{name}.nml"], tmp_path)
+    assert done.returncode == 0, done.stderr
+    return done
+
+
+def notes(done):
+    return [line for line in done.stdout.splitlines() if line.startswith("note: ")]
+
+
+def warnings(done):
+    return [line for line in done.stderr.splitlines() if line.startswith("ddc2d: warning: ")]
+
+
+def test_echo_of_a_gravity_model(tmp_path):
+    lines = solve(tmp_path, GRAVITY).stdout.splitlines()
+    assert "  youngs_modulus = 30000 MPa, poissons_ratio = 0.25" in lines
+    assert "  domain: half_plane (free surface y = 0, the body y < 0)" in lines
+    assert "  remote stress sxx, syy, sxy = 0 0 0 MPa at y = 0" in lines
+    assert "  remote stress gradients dsxx_dy, dsyy_dy, dsxy_dy = 0.01325 0.0265 0 MPa/m" \
+        in lines
+    # The gradients as values at a reference depth: the deepest point of the model.
+    assert ("    at y = -3000 m (the deepest point of the model): sxx, syy, sxy = "
+            "-39.75 -79.5 0 MPa") in lines
+    assert "  pore fluid p0 = 0 MPa, dp_dy = -0.00981 MPa/m, inside every contact element" \
+        in lines
+    assert "    at y = -3000 m: p = 29.43 MPa" in lines
+    assert "  symmetry: none" in lines
+    assert not notes(solve(tmp_path, GRAVITY))  # plausible: no notes
+
+
+def test_echo_of_symmetry_and_loading_history(tmp_path):
+    done = run([REPO_ROOT / "tests" / "data" / "history" / "good.nml", "-o", "h.h5"], tmp_path)
+    assert done.returncode == 0, done.stderr
+    lines = done.stdout.splitlines()
+    assert "  loading history: 15 steps, legs of 4, 5, 5 increments" in lines
+    assert "    sxy at the vertices: 0 4 4 4" in lines
+    assert "    p0 at the vertices: 0 0 5 0" in lines
+    done = run(["--twodd", REPO_ROOT / "tests" / "data" / "twodd" / "sym_ksym2.f60.txt", "-o",
+                "s.h5"], tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert "  symmetry: x (xsym = 0, ysym = 0): image elements implicit" \
+        in done.stdout.splitlines()
+
+
+@pytest.mark.parametrize("change, words", [
+    # syy = 0.0265 y would turn tensile with depth with the sign flipped.
+    (("dsyy_dy = 0.0265", "dsyy_dy = -0.0265"),
+     ["the remote syy = 0 + -0.0265 y turns tensile with depth: 79.5 MPa at y = -3000 m",
+      "needs dsyy_dy > 0"]),
+    (("dsxx_dy = 0.01325", "dsxx_dy = -0.01325"),
+     ["the remote sxx = 0 + -0.01325 y turns tensile with depth"]),
+    (("dp_dy = -0.00981", "dp_dy = 0.00981"),
+     ["the pore pressure p0 + dp_dy y = 0 + 0.00981 y is negative: -29.43 MPa at y = -3000 m"]),
+    # E in Pa, stresses in MPa: a strain of about 1e-9.
+    (("youngs_modulus = 30000", "youngs_modulus = 3e10"),
+     ["the largest stress given, 79.5 MPa, is 2.65E-09 times youngs_modulus = 3E+10",
+      "check stress_unit"]),
+    # Stresses in Pa, E in MPa: a strain of about 3000.
+    (("dsyy_dy = 0.0265, dsxx_dy = 0.01325", "dsyy_dy = 26500, dsxx_dy = 13250"),
+     ["the largest stress given, 79500000 MPa, is 2650 times", "check stress_unit"]),
+])
+def test_notes_on_implausible_input(tmp_path, change, words):
+    done = solve(tmp_path, GRAVITY.replace(*change))
+    found = notes(done)
+    assert len(found) == 1, done.stdout
+    for word in words:
+        assert word in found[0]
+
+
+def test_no_strain_note_for_twodd_decks(tmp_path):
+    # TWODD decks carry no units (E = 1 and unit stresses are common): no strain note.
+    done = run(["--twodd", REPO_ROOT / "tests" / "reference" / "twodd" / "inputs" /
+                "A1_press_n20.f60.txt", "-o", "a.h5"], tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert not notes(done)
+
+
+def test_points_on_elements_are_counted_and_a_set_all_on_elements_warned(tmp_path):
+    text = CRACK + (
+        "&line name = 'along', x_begin = -0.5, y_begin = 0, x_end = 0.5, y_end = 0, "
+        "points = 5 /\n"
+        "&line name = 'across', x_begin = 0, y_begin = -1, x_end = 0, y_end = 1, "
+        "points = 5 /\n")
+    done = solve(tmp_path, text)
+    lines = done.stdout.splitlines()
+    assert ("  line along: 5 points, 5 on an element (NaN), 0 within one element length of "
+            "an element centre (reduced accuracy)") in lines
+    assert ("  line across: 5 points, 1 on an element (NaN), 0 within one element length of "
+            "an element centre (reduced accuracy)") in lines
+    assert warnings(done) == [("ddc2d: warning: every point of line 'along' lies on an "
+                               "element: all its values are NaN (move it off the fractures)")]
+
+
+def test_k_has_units(tmp_path):
+    done = solve(tmp_path, CRACK.replace("poissons_ratio = 0.25",
+                                         "poissons_ratio = 0.25, length_unit = 'km'"))
+    tips = [line for line in done.stdout.splitlines() if line.startswith("  tip ")]
+    assert len(tips) == 2
+    assert all(line.endswith(" MPa km^1/2") and "K_I = " in line for line in tips)
