@@ -78,13 +78,20 @@ module ddc_influence_assembly
 
 contains
 
-    !> The kernel of the elements' domain: the only place the choice is made.
-    subroutine select_kernel(elements, kernel)
+    !> Whether the general path (the kernel pair by pair) serves, and its kernel: always in
+    !> the half plane (the fast paths are full-plane only), in the full plane when asked.
+    subroutine select_kernel(elements, general, use_general, kernel)
         !> Elements (their domain is used)
         type(element_set), intent(in) :: elements
+        !> Take the general path even in the full plane (tests; absent: false)
+        logical, intent(in), optional :: general
+        !> Whether the general path serves
+        logical, intent(out) :: use_general
         !> Associated with dd_kernel_half_plane or dd_kernel_global
         procedure(kernel_function), pointer, intent(out) :: kernel
 
+        use_general = elements%domain == domain_half_plane
+        if (present(general)) use_general = use_general .or. general
         if (elements%domain == domain_half_plane) then
             kernel => dd_kernel_half_plane
         else
@@ -265,10 +272,8 @@ contains
         procedure(kernel_function), pointer :: kernel
         logical :: use_general
 
-        use_general = elements%domain == domain_half_plane
-        if (present(general)) use_general = use_general .or. general
+        call select_kernel(elements, general, use_general, kernel)
         if (use_general) then
-            call select_kernel(elements, kernel)
             call fill_with(kernel, elements, image_transforms(elements%symmetry), shear_modulus, &
                            nu, shear_row, normal_row, row_element, row_s, row_n, col_element, &
                            col_s, col_n, block)

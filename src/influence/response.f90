@@ -11,7 +11,7 @@
 !> general kernel over every pair within round-off (suite `kernel`).
 module ddc_influence_response
     use ddc_kinds, only: wp
-    use ddc_model_types, only: element_set, domain_half_plane
+    use ddc_model_types, only: element_set
     use ddc_linalg_lapack, only: dgemv
     use ddc_influence_assembly, only: image_transform, image_transforms, kernel_function, &
         select_kernel, pair_influence, pair_at_midpoint, row_traction, row_displacement
@@ -167,10 +167,8 @@ contains
         procedure(kernel_function), pointer :: kernel
         logical :: use_general
 
-        use_general = elements%domain == domain_half_plane
-        if (present(general)) use_general = use_general .or. general
+        call select_kernel(elements, general, use_general, kernel)
         if (use_general) then
-            call select_kernel(elements, kernel)
             call sums_with(kernel, elements, image_transforms(elements%symmetry), &
                            shear_modulus, nu, ds, dn, list, ts, tn, us, un)
         else

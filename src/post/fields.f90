@@ -8,7 +8,7 @@
 module ddc_post_fields
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use ddc_kinds, only: wp
-    use ddc_model_types, only: element_set, domain_half_plane
+    use ddc_model_types, only: element_set
     use ddc_model_results, only: field_result, point_clear, point_on_element
     use ddc_influence_kernel, only: dd_kernel, face_positive
     use ddc_influence_assembly, only: image_transform, image_transforms, image_of, &
@@ -68,10 +68,8 @@ contains
 
         g = 0.0_wp
         if (present(gradient)) g = gradient
-        use_general = elements%domain == domain_half_plane
-        if (present(general)) use_general = use_general .or. general
+        call select_kernel(elements, general, use_general, kernel)
         if (use_general) then
-            call select_kernel(elements, kernel)
             call field_with(kernel, elements, shear_modulus, nu, remote, g, ds, dn, x, y, field)
         else
             call field_full_plane(elements, shear_modulus, nu, remote, g, ds, dn, x, y, field)
