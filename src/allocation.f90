@@ -1,6 +1,8 @@
 !> The one message of a failed allocation: what could not be allocated and how much memory
-!> it needed, with the exit code exit_out_of_memory. Every allocate whose size depends on
-!> the input passes stat= and turns a failure into this error.
+!> it needed, with the exit code exit_out_of_memory. Every allocate of a matrix, a history
+!> or the input's own data (file text, observation points) passes stat= and turns a failure
+!> into this error; the vectors of one value per element or point are covered by the
+!> memory estimate checked before the solve (ddc_run_memory), which counts them.
 module ddc_allocation
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_out_of_memory

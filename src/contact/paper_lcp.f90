@@ -24,7 +24,8 @@ module ddc_contact_paper_lcp
     use ddc_contact_result, only: contact_result, block_scales, check_solution
     use ddc_linalg_lapack, only: dgemv
     use ddc_linalg_lu, only: lu_invert, influence_hint
-    use ddc_text, only: seconds_text
+    use ddc_text, only: seconds_text, itoa
+    use ddc_allocation, only: allocation_failed, real_bytes
     use ddc_progress, only: report_progress, reports_phases
     use, intrinsic :: iso_fortran_env, only: int64
     implicit none
@@ -65,7 +66,7 @@ contains
         !> Allocated when A is singular (exit_solver_failure) or sizes differ
         type(error_type), allocatable, intent(out) :: error
         real(wp), allocatable :: zs(:), ws(:)
-        integer :: n, n2, n3, i, j
+        integer :: n, n2, n3, i, j, stat
 
         n = size(mu)
         n2 = 2 * n
@@ -76,6 +77,15 @@ contains
         end if
         call invert_influence(a, lcp%c, res, error)
         if (allocated(error)) return
+        allocate (lcp%a(n2, n2), stat=stat)
+        if (stat == 0) allocate (lcp%m(n3, n3), stat=stat)
+        if (stat == 0) allocate (lcp%m_scaled(n3, n3), stat=stat)
+        if (stat /= 0) then
+            call allocation_failed(error, 'the LCP matrices of '//itoa(n)// &
+                                   ' contact elements (Lemke)', &
+                                   real_bytes * 22.0_wp * real(n, wp)**2)
+            return
+        end if
         lcp%a = a
         lcp%mu = mu
         lcp%a_max = 0.0_wp
@@ -88,7 +98,6 @@ contains
         ! M exactly as SPEC section 4 writes it; C blocks are CSS = c(1:n, 1:n),
         ! CSN = c(1:n, n+1:2n), CNS = c(n+1:2n, 1:n), CNN = c(n+1:, n+1:).
         associate (c => lcp%c)
-            allocate (lcp%m(n3, n3))
             lcp%m = 0.0_wp
             do j = 1, n
                 lcp%m(1:n, j) = c(n + 1:n2, n + j) - c(n + 1:n2, j) * mu(j)
@@ -103,7 +112,6 @@ contains
         ! Scaled problem: z = zs * zt, w = ws * wt with z = [stress; stress; length] and
         ! w = [length; length; stress]; with sigma0 = 1 (the ratios do not depend on it).
         call block_scales(n, 1.0_wp, 1.0_wp / lcp%a_max, zs, ws)
-        allocate (lcp%m_scaled(n3, n3))
         do j = 1, n3
             lcp%m_scaled(:, j) = lcp%m(:, j) * (zs(j) / ws)
         end do

@@ -33,6 +33,7 @@ module ddc_history_solve
     use ddc_run_model, only: finish_model
     use ddc_progress, only: report_progress
     use ddc_text, only: itoa, rtoa, seconds_text
+    use ddc_allocation, only: allocation_failed, real_bytes
     implicit none
     private
 
@@ -63,7 +64,7 @@ contains
         real(wp), allocatable :: loads(:, :), shear(:, :), normal(:, :), shift(:, :)
         real(wp), allocatable :: y_load(:, :), pressure(:, :), sf_eff(:), ds_previous(:), v(:)
         real(wp), allocatable :: matrix(:, :), no_dd(:), ts(:), tn(:)
-        integer :: n, nc, k, nsteps, pivots, solves, iterations, fallbacks, first_fallback
+        integer :: n, nc, k, nsteps, pivots, solves, iterations, fallbacks, first_fallback, stat
         real(wp) :: sigma0, g, seconds_lcp, seconds_factorization, flops
         integer(int64) :: t_start, t0, t1, rate
 
@@ -87,8 +88,17 @@ contains
         ! The load of every step on the contact elements, and the history's stress scale.
         loads = path_loads(model%load_path)
         nsteps = size(loads, 2)
-        allocate (shear(n, nsteps), normal(n, nsteps), shift(2 * nc, nsteps), &
-                  y_load(2 * sys%nf, nsteps), pressure(nc, nsteps))
+        allocate (shear(n, nsteps), stat=stat)
+        if (stat == 0) allocate (normal(n, nsteps), stat=stat)
+        if (stat == 0) allocate (shift(2 * nc, nsteps), stat=stat)
+        if (stat == 0) allocate (y_load(2 * sys%nf, nsteps), stat=stat)
+        if (stat == 0) allocate (pressure(nc, nsteps), stat=stat)
+        if (stat /= 0) then
+            call allocation_failed(error, 'the loads of '//itoa(n)//' elements at '// &
+                                   itoa(nsteps)//' steps', real_bytes * 7.0_wp * &
+                                   real(n, wp) * real(nsteps, wp))
+            return
+        end if
         sigma0 = 0.0_wp
         do k = 1, nsteps
             call resolve_remote_stress(model%elements, loads(1, k), loads(2, k), loads(3, k), &
@@ -104,7 +114,8 @@ contains
         ! The tips, found once; their K at every step.
         allocate (no_dd(n), source=0.0_wp)
         call find_tips(model%elements, g, model%poissons_ratio, no_dd, no_dd, results%tips)
-        call allocate_history(h, n, results%tips%n, nsteps)
+        call allocate_history(h, n, results%tips%n, nsteps, error)
+        if (allocated(error)) return
         h%load = loads
         allocate (ts(sys%nf), tn(sys%nf))
         sf_eff = model%elements%sf(sys%contact)
@@ -201,17 +212,25 @@ contains
         results%solver%seconds_total = real(t1 - t_start, wp) / real(rate, wp)
     end subroutine solve_history
 
-    !> The history arrays of n elements, tips tips and k steps.
-    subroutine allocate_history(h, n, tips, k)
+    !> The history arrays of n elements, tips tips and k steps (error: they do not fit).
+    subroutine allocate_history(h, n, tips, k, error)
         type(history_record), intent(out) :: h
         integer, intent(in) :: n, tips, k
+        type(error_type), allocatable, intent(out) :: error
+        integer :: stat
 
-        allocate (h%ds(n, k), h%dn(n, k), h%state(n, k), h%pivots(k), &
-                  h%newton_iterations(k), h%method(k), h%fallback(k), &
+        allocate (h%pivots(k), h%newton_iterations(k), h%method(k), h%fallback(k), &
                   h%certificate_min_z(k), h%certificate_min_w(k), &
                   h%certificate_max_complementarity(k), h%equilibrium_residual(k), &
-                  h%shear_traction(n, k), h%normal_traction(n, k), h%k1(tips, k), &
-                  h%k2(tips, k))
+                  h%k1(tips, k), h%k2(tips, k))
+        allocate (h%ds(n, k), stat=stat)
+        if (stat == 0) allocate (h%dn(n, k), stat=stat)
+        if (stat == 0) allocate (h%state(n, k), stat=stat)
+        if (stat == 0) allocate (h%shear_traction(n, k), stat=stat)
+        if (stat == 0) allocate (h%normal_traction(n, k), stat=stat)
+        if (stat /= 0) call allocation_failed(error, 'the history of '//itoa(n)// &
+                                              ' elements at '//itoa(k)//' steps', &
+                                              real_bytes * 5.0_wp * real(n, wp) * real(k, wp))
     end subroutine allocate_history
 
     !> 'step 12 of 101 (sxy = 10): newton, 1 iteration, 0.53 s' (the time since the start).

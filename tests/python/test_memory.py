@@ -3,7 +3,9 @@ method it will use before allocating anything large, compares it with what the m
 its cgroup offers, and refuses with one message and exit status 5, not a Fortran runtime
 error; a model that fits echoes its estimate."""
 
+import os
 import re
+import resource
 import subprocess
 
 import pytest
@@ -50,6 +52,36 @@ def test_a_model_that_fits_echoes_its_estimate(tmp_path):
     # 20 MB for the program, a little for 40 elements (Lemke below 300 contact elements).
     assert re.fullmatch(r"  memory: about 2\d MB needed \(lemke\), (.+ available \(.+\)|"
                         r"no limit found)", memory[0]), memory[0]
+
+
+ADDRESS_SPACE_LIMIT = 700 * 2**20
+
+
+def limit_address_space():
+    """In the child: at most 700 MB of address space, far less than the machine offers."""
+    resource.setrlimit(resource.RLIMIT_AS, (ADDRESS_SPACE_LIMIT, ADDRESS_SPACE_LIMIT))
+
+
+@pytest.mark.parametrize("n, extra, what", [
+    (20, "&load_path steps = 1000000, sxy = 0, 54.13 /\n",
+     "the loads of 20 elements at 1000001 steps (1.1 GB)"),
+    (2000, "&solver lcp_method = 'lemke' /\n",
+     "the LCP matrices of 2000 contact elements (Lemke) (704 MB)"),
+])
+def test_an_allocation_that_fails_all_the_same_is_a_clean_exit_5(tmp_path, n, extra, what):
+    # The estimate (about 1.9 and 1.6 GB) passes against the machine's memory, but the
+    # process may not have that much: the allocation itself fails, and must say what.
+    (tmp_path / "big.nml").write_text(MODEL.format(n=n, extra=extra))
+    done = subprocess.run([str(ddc2d_exe()), "big.nml"], cwd=tmp_path, capture_output=True,
+                          text=True, timeout=300, preexec_fn=limit_address_space,
+                          env={**os.environ, "OMP_NUM_THREADS": "1",
+                               "OPENBLAS_NUM_THREADS": "1"})
+    assert done.returncode == 5, done.stdout + done.stderr
+    errors = [line for line in done.stderr.splitlines() if line.startswith("ddc2d: error: ")]
+    assert errors == [f"ddc2d: error: not enough memory for {what}; see the size guide in "
+                      "the README"], done.stderr
+    assert "Error allocating" not in done.stderr and "Backtrace" not in done.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["big.nml"]
 
 
 def test_help_gives_exit_status_5(tmp_path):
