@@ -78,8 +78,8 @@ def test_an_allocation_that_fails_all_the_same_is_a_clean_exit_5(tmp_path, n, ex
                                "OPENBLAS_NUM_THREADS": "1"})
     assert done.returncode == 5, done.stdout + done.stderr
     errors = [line for line in done.stderr.splitlines() if line.startswith("ddc2d: error: ")]
-    assert errors == [f"ddc2d: error: not enough memory for {what}; see the size guide in "
-                      "the README"], done.stderr
+    expected = f"ddc2d: error: not enough memory for {what}; see the size guide in the README"
+    assert errors == [expected], done.stderr
     assert "Error allocating" not in done.stderr and "Backtrace" not in done.stderr
     assert sorted(p.name for p in tmp_path.iterdir()) == ["big.nml"]
 
