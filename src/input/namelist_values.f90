@@ -61,18 +61,7 @@ contains
         integer :: n
         integer :: i
 
-        n = 0
-        do while (n < size(values))
-            if (values(n + 1) == unset_real) exit
-            n = n + 1
-        end do
-        do i = n + 2, size(values)
-            if (values(i) /= unset_real) then
-                call add(messages, prefix//name//'('//itoa(i)//') is given but '//name// &
-                         '('//itoa(n + 1)//') is not; give the values without gaps')
-                exit
-            end if
-        end do
+        n = leading_given(values /= unset_real, name, prefix, messages)
         do i = 1, n
             if (.not. within_limits(values(i))) then
                 call add(messages, prefix//name//'('//itoa(i)//') = '//rtoa(values(i))// &
@@ -88,21 +77,32 @@ contains
         character(len=*), intent(in) :: name, prefix
         type(message_list), intent(inout) :: messages
         integer :: n
+
+        n = leading_given(values /= unset_integer, name, prefix, messages)
+    end function count_given_integers
+
+    !> Number of leading given entries of a namelist array (given(i): entry i is set); a
+    !> given entry after an unset one is an error.
+    function leading_given(given, name, prefix, messages) result(n)
+        logical, intent(in) :: given(:)
+        character(len=*), intent(in) :: name, prefix
+        type(message_list), intent(inout) :: messages
+        integer :: n
         integer :: i
 
         n = 0
-        do while (n < size(values))
-            if (values(n + 1) == unset_integer) exit
+        do while (n < size(given))
+            if (.not. given(n + 1)) exit
             n = n + 1
         end do
-        do i = n + 2, size(values)
-            if (values(i) /= unset_integer) then
+        do i = n + 2, size(given)
+            if (given(i)) then
                 call add(messages, prefix//name//'('//itoa(i)//') is given but '//name// &
                          '('//itoa(n + 1)//') is not; give the values without gaps')
                 exit
             end if
         end do
-    end function count_given_integers
+    end function leading_given
 
     !> A per-segment array must have 1 value (for every segment) or one per segment.
     !> Return true when its length fits (an absent array fits: its default applies).
