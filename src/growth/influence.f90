@@ -34,8 +34,8 @@ contains
         integer, intent(in) :: moved_to(:)
         !> Number of elements of the grown model
         integer, intent(in) :: n
-        !> Their indices, shape (n - n_old)
-        integer, allocatable :: fresh(:)
+        !> Their indices
+        integer :: fresh(n - size(moved_to))
         logical :: old(n)
         integer :: i
 
@@ -64,7 +64,8 @@ contains
         real(wp), intent(inout) :: grown(:, :)
         !> Every new entry is finite
         logical, intent(out) :: finite
-        integer, allocatable :: fresh(:), every(:), place(:), shear_row(:), normal_row(:)
+        integer :: fresh(elements%n - size(moved_to)), every(elements%n)
+        integer, allocatable :: place(:), shear_row(:), normal_row(:)
         integer :: n, i, l
 
         n = elements%n

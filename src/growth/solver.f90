@@ -36,7 +36,8 @@ module ddc_growth_solver
     use ddc_contact_formulation, only: solve_contact_with, contact_session, &
         auto_newton_min_elements
     use ddc_contact_stiffness, only: dense_stiffness
-    use ddc_contact_reduced_factors, only: reduced_factors, renumber_factors
+    use ddc_contact_reduced_factors, only: reduced_factors, renumber_factors, set_system, &
+        forget_factors
     use ddc_post_tips, only: find_tips
     use ddc_run_model, only: run_model, finish_model, evaluate_fields
     use ddc_growth_influence, only: grow_influence, unknown_map
@@ -153,8 +154,42 @@ contains
         call move_alloc(solver%matrix, solver%base_matrix)
         call move_alloc(solver%open, solver%base_open)
         call move_alloc(solver%shear, solver%base_shear)
+        call refactor_updated(solver%stiffness%factors, solver%base_matrix, solver%totals)
         solver%base_factors = solver%stiffness%factors
     end subroutine accept_trial
+
+    !> Factorize the last reduced system anew when it was solved through an update: the
+    !> next step's trials then border only their own new unknowns on it. Carrying the
+    !> border on costs more: its columns are solved again whenever the states change.
+    subroutine refactor_updated(factors, a, totals)
+        !> The factors of the accepted solve; refactored, or forgotten when singular
+        type(reduced_factors), intent(inout) :: factors
+        !> The influence matrix of the accepted geometry [s; n]
+        real(wp), intent(in) :: a(:, :)
+        !> The run's totals: the factorization is counted
+        type(solver_record), intent(inout) :: totals
+        type(error_type), allocatable :: singular
+        integer, allocatable :: unknown(:), partner(:)
+        real(wp), allocatable :: coef(:)
+        real(wp) :: seconds, flops
+
+        if (factors%mb < 0 .or. factors%nr + factors%na == 0) return
+        unknown = factors%unknown
+        partner = factors%partner
+        coef = factors%coef
+        seconds = factors%seconds_factorization
+        flops = factors%factorization_flops
+        call forget_factors(factors)
+        call set_system(factors, a, unknown, partner, coef, &
+                        'the reduced system of the accepted geometry', singular)
+        ! A singular system is left to the next solve, which factorizes anew and reports it.
+        if (allocated(singular)) call forget_factors(factors)
+        totals%factorizations = totals%factorizations + 1
+        totals%seconds_factorization = totals%seconds_factorization + &
+            factors%seconds_factorization - seconds
+        totals%factorization_flops = totals%factorization_flops + &
+            factors%factorization_flops - flops
+    end subroutine refactor_updated
 
     !> The results of the final geometry (the last accepted one): tractions, face
     !> displacements and tips from the kept matrix when kept, and the fields; the solver
@@ -258,7 +293,10 @@ contains
             solver%layout = moved_to
             solver%stiffness%factors = solver%base_factors
             call renumber_factors(solver%stiffness%factors, unknown_map(moved_to, n))
-            call inherit_states(solver, model, moved_to)
+            ! A later trial of the step starts from the states of the one before (its new
+            ! elements lie close to these), the first one from the base's.
+            if (.not. (placed .and. allocated(solver%open))) &
+                call inherit_states(solver, model, moved_to)
         else
             allocate (shear_row(n), normal_row(n))
             call row_kinds(model%elements%condition, shear_row, normal_row)
