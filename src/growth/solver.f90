@@ -295,8 +295,9 @@ contains
             call renumber_factors(solver%stiffness%factors, unknown_map(moved_to, n))
             ! A later trial of the step starts from the states of the one before (its new
             ! elements lie close to these), the first one from the base's.
-            if (.not. (placed .and. allocated(solver%open))) &
+            if (.not. (placed .and. allocated(solver%open))) then
                 call inherit_states(solver, model, moved_to)
+            end if
         else
             allocate (shear_row(n), normal_row(n))
             call row_kinds(model%elements%condition, shear_row, normal_row)
