@@ -171,16 +171,19 @@ contains
     end subroutine print_growth_options
 
     !> One line per growth step on standard output, flushed (a long run shows progress).
-    subroutine print_growth_step(step, growing, largest_k_eq, seconds)
+    subroutine print_growth_step(step, growing, largest_k_eq, solves, seconds, elapsed)
         !> The step, and the number of tips that grew in it
         integer, intent(in) :: step, growing
         !> The largest K_eq of the step's tips [stress unit * length unit**0.5]
         real(wp), intent(in) :: largest_k_eq
-        !> Wall time of the step [s]
-        real(wp), intent(in) :: seconds
+        !> Solves of the model in the step
+        integer, intent(in) :: solves
+        !> Wall time of the step, and since the run started [s]
+        real(wp), intent(in) :: seconds, elapsed
 
-        write (output_unit, '(a,i0,a,i0,a,es11.4,a,f8.3,a)') 'growth step ', step, ': ', &
-            growing, ' tip(s) grew, largest K_eq ', largest_k_eq, ', ', seconds, ' s'
+        write (output_unit, '(a,i0,a,i0,a,es11.4,a,i0,a,f8.3,a,f9.3,a)') 'growth step ', &
+            step, ': ', growing, ' tip(s) grew, largest K_eq ', largest_k_eq, ', ', solves, &
+            ' solve(s),', seconds, ' s, ', elapsed, ' s in all'
         flush (output_unit)
     end subroutine print_growth_step
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Benchmark ddc2d (SPEC sections 6 and 8).
 
-    benchmark.py --exe PATH --sizes 250,500,1000 --case straight|mixed|history|fields
+    benchmark.py --exe PATH --sizes 250,500,1000 --case straight|mixed|history|fields|growth
                  --json FILE [--threads T] [--lcp-method auto|lemke|newton] [--grid NX]
                  [--steps K] [--compare-lemke] [--lu-exe PATH] [--workdir DIR]
                  [--mpi P [--mpiexec PATH] [--block-size NB]]
@@ -22,8 +22,15 @@ Cases (CASES: a model builder per case; a new case adds one):
             100): sxy from 0 to 54.13 MPa (it slips), back to 0 (it sticks) and on to
             -54.13 MPa (it slips back), in legs of about K/3 increments;
   fields    the straight case with a GRID x GRID map (--grid, default 500 for this case;
-            0 for history, 100 for the others): the field evaluation, reported as
-            ``fields_over_lu``.
+            0 for history and growth, 100 for the others): the field evaluation, reported
+            as ``fields_over_lu``;
+  growth    wing cracks off a sliding flaw (SPEC-GROWTH 4): a 2 m frictional flaw of N
+            elements at 45 degrees to the compression, each tip growing by 20 of its
+            elements per step for K steps (--steps, default 25; toughness 2 MPa m^1/2, so
+            that it does not arrest before), with the local-symmetry corrector. The
+            reference LU is that of the final geometry, LU(2 N_final); the record adds
+            ``n_final``, ``growth_steps``, ``solves`` (from the progress lines) and
+            ``end_reason``.
 
 --compare-lemke runs every model a second time with lcp_method = 'lemke' and adds to its
 record ``lemke``: Lemke's seconds, peak memory and ratio to the LU, whether the states are
@@ -49,7 +56,8 @@ fallback, Newton iterations, LCP pivots, the Newton method's new factorizations,
 updates and reuses of its factors, element states, the nominal factorization flops and
 rates (``factorization_gflops``, ``lu_reference_gflops``), ``total_over_lu``,
 ``fields_over_lu`` and the wall time of the run; a history adds ``steps`` and
-``fallback_steps``.
+``fallback_steps``, a growth run ``n_final``, ``growth_steps``, ``solves`` and
+``end_reason`` (its ``lu_reference_seconds`` is the LU of 2 N_final).
 """
 
 import argparse
@@ -70,7 +78,11 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))  # ddc2d_h5 lives besid
 from ddc2d_h5 import SOLVER_PHASES, read_history, read_solver
 
 #: Default grid (GRID x GRID points) of each case
-DEFAULT_GRID = {"straight": 100, "mixed": 100, "history": 0, "fields": 500}
+DEFAULT_GRID = {"straight": 100, "mixed": 100, "history": 0, "fields": 500, "growth": 0}
+#: Default --steps of each case that has steps
+DEFAULT_STEPS = {"history": 100, "growth": 25}
+#: New elements per tip and growth step of the growth case
+GROWTH_ELEMENTS = 20
 
 
 def straight_model(n, grid):
@@ -125,12 +137,29 @@ def history_model(n, grid, steps=100):
             f"steps = {legs[0]}, {legs[1]}, {legs[2]} /\n")
 
 
-#: The model of each case: n elements, a grid of nx x nx points (0: none), history steps.
+def growth_model(n, grid, steps=25):
+    """Wing cracks off a sliding flaw (input/wing_cracks_sliding_flaw.nml with n elements):
+    each tip grows by GROWTH_ELEMENTS of the flaw's elements per step, `steps` steps."""
+    c = math.sqrt(0.5)
+    increment = GROWTH_ELEMENTS * 2.0 / n
+    return (
+        "&model title = 'benchmark: wing cracks off a sliding flaw', youngs_modulus = 50000.0,\n"
+        "       poissons_ratio = 0.25, length_unit = 'm', stress_unit = 'MPa' /\n"
+        "&remote_stress sxx = -2.0, syy = -100.0, sxy = 0.0 /\n"
+        f"&fracture name = 'flaw', x = {-c:.17g}, {c:.17g}, y = {-c:.17g}, {c:.17g},\n"
+        f"          elements = {n}, condition = 'contact', mu = 0.6, sf = 1.0 /\n"
+        f"&growth steps = {steps}, toughness = 2.0, new_sf = 0.0,\n"
+        f"        increment = {increment:.17g} /\n"
+        + grid_group(grid))
+
+
+#: The model of each case: n elements, a grid of nx x nx points (0: none), steps.
 CASES = {
     "straight": lambda n, grid, steps: straight_model(n, grid),
     "mixed": lambda n, grid, steps: mixed_model(n, grid),
     "history": history_model,
     "fields": lambda n, grid, steps: straight_model(n, grid),
+    "growth": growth_model,
 }
 
 
@@ -221,6 +250,20 @@ def run_model(exe, text, method, name, workdir, env, launcher=(), block_size=Non
     return stdout, wall, rss, solver, history, states, dds
 
 
+def growth_summary(stdout, label):
+    """Steps and solves of a growth run from its progress lines ('growth step 3: ..., 3
+    solve(s), ...'; one more solve for the input geometry), its end reason from the
+    summary."""
+    solves = [int(v) for v in re.findall(r"^growth step \d+: .*?, (\d+) solve\(s\)", stdout,
+                                          re.MULTILINE)]
+    match = re.search(r"^growth: (\d+) step\(s\) with growth; ended: (\w+)", stdout,
+                      re.MULTILINE)
+    if not solves or not match:
+        raise RuntimeError(f"no growth progress in the output of {label}:\n{stdout}")
+    return {"growth_steps": int(match.group(1)), "end_reason": match.group(2),
+            "solves": 1 + sum(solves)}
+
+
 def compare_with_lemke(exe, text, name, workdir, env, lu_seconds, states, dds, launcher=(),
                        block_size=None):
     """Lemke on the same model: its time, memory and ratio to the LU; same states; largest
@@ -259,7 +302,9 @@ def benchmark_one(exe, lu_exe, n, case, threads, method, grid, workdir, steps=10
         seconds["output"] = float(match.group(1))
         seconds["total"] += seconds["output"]
     lu_threads = threads * max(processes, 1)
-    lu_seconds, lu_gflops = lu_reference(lu_exe, 2 * n, dict(
+    # A growth run is measured against the LU of its final geometry.
+    n_final = len(states[-1]) if history is not None else len(states)
+    lu_seconds, lu_gflops = lu_reference(lu_exe, 2 * n_final, dict(
         env, OMP_NUM_THREADS=str(lu_threads), OPENBLAS_NUM_THREADS=str(lu_threads)))
     flops = float(attrs.get("factorization_flops", 0.0))
     fact = seconds["factorization"]
@@ -295,6 +340,8 @@ def benchmark_one(exe, lu_exe, n, case, threads, method, grid, workdir, steps=10
                       peak_rss_mb=max(r["peak_rss_mb"] for r in ranks))
         for f in Path(workdir).glob(f"{prefix.name}.*"):
             f.unlink()
+    if case == "growth":
+        record.update(growth_summary(stdout, f"{name}_{method}"), n_final=n_final)
     if history is not None:
         record["steps"] = int(history["state"].shape[0])
         record["fallback_steps"] = int(sum(1 for f in history.get("fallback", []) if f))
@@ -332,6 +379,10 @@ def print_table(records, out=sys.stdout):
     for row in rows:
         print(" ".join(c.rjust(w) for c, w in zip(row, widths)), file=out)
     for r in records:
+        if "solves" in r:
+            print(f"  n = {r['n']}: {r['growth_steps']} growth steps ({r['end_reason']}), "
+                  f"{r['solves']} solves, N_final = {r['n_final']}, LU ref of "
+                  f"2 N_final = {2 * r['n_final']}", file=out)
         if "steps" in r:
             print(f"  n = {r['n']}: {r['steps']} steps, {r['newton_iterations']} Newton "
                   f"iterations, {r['pivots']} Lemke pivots, {r['fallback_steps']} steps fell "
@@ -360,8 +411,9 @@ def main(argv=None):
     parser.add_argument("--grid", type=int, default=None,
                         help="observation grid of GRID x GRID points (0: none; default "
                              "500 for the fields case, 0 for history, else 100)")
-    parser.add_argument("--steps", type=int, default=100,
-                        help="increments of the history case (default 100)")
+    parser.add_argument("--steps", type=int, default=None,
+                        help="increments of the history case (default 100), growth steps "
+                             "of the growth case (default 25)")
     parser.add_argument("--compare-lemke", action="store_true",
                         help="also run every model with lcp_method = 'lemke' and compare")
     parser.add_argument("--lu-exe", type=Path, default=None,
@@ -388,8 +440,10 @@ def main(argv=None):
         args.threads = max(1, (os.cpu_count() or 1) // max(args.mpi, 1))
     if args.threads < 1:
         parser.error("--threads must be at least 1")
-    if args.steps < 3:
-        parser.error("--steps must be at least 3")
+    if args.steps is None:
+        args.steps = DEFAULT_STEPS.get(args.case, 100)
+    if args.steps < 3 and args.case == "history" or args.steps < 1:
+        parser.error("--steps must be at least 3 (history) or 1 (growth)")
     if args.grid is None:
         args.grid = DEFAULT_GRID[args.case]
     exe = args.exe.resolve()

@@ -28,6 +28,7 @@ contains
         tests = [new_test('estimate_of_each_method', test_estimates), &
                  new_test('estimate_with_condensation_and_points', test_condensation), &
                  new_test('estimate_of_a_loading_history', test_history), &
+                 new_test('estimate_of_a_growth_run', test_growth), &
                  new_test('elements_that_fit', test_fit), &
                  new_test('refusal_message', test_refusal), &
                  new_test('meminfo_and_cgroup_v1', test_cgroup_v1), &
@@ -138,6 +139,30 @@ contains
                    r * 12.0_wp * 500.0_wp * 100.0_wp, 'newton: 100 steps of 500 elements', &
                    rel_tol=1.0e-9_wp)
     end subroutine test_history
+
+    !> A growth run solved by Newton keeps the base geometry's matrix and factors: 8 N^2
+    !> reals more; with Lemke (solved from scratch every time) nothing more.
+    subroutine test_growth(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model, without
+        type(memory_need) :: need, need_without
+
+        without = counted_model(500, 500)
+        without%solver%lcp_method = lcp_auto
+        model = without
+        model%growth%active = .true.
+        need = estimate_memory(model)
+        need_without = estimate_memory(without)
+        call check(error, need%method == 'newton (growth)', 'method: '//need%method)
+        call check(error, need%bytes - need_without%bytes, r * 8.0_wp * 500.0_wp**2, &
+                   'the base geometry of 500 elements', rel_tol=1.0e-9_wp)
+        model%solver%lcp_method = lcp_lemke
+        without%solver%lcp_method = lcp_lemke
+        need = estimate_memory(model)
+        need_without = estimate_memory(without)
+        call check(error, need%bytes, need_without%bytes, 'lemke: as without growth', &
+                   rel_tol=1.0e-15_wp)
+    end subroutine test_growth
 
     !> The largest number of elements whose estimate fits: it fits, one more does not.
     subroutine test_fit(error)

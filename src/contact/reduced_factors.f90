@@ -28,7 +28,7 @@ module ddc_contact_reduced_factors
     implicit none
     private
 
-    public :: reduced_factors, set_system, solve_system, forget_factors
+    public :: reduced_factors, set_system, solve_system, forget_factors, renumber_factors
     public :: action_factorized, action_updated, action_reused
 
     !> What set_system did: a new factorization, a low-rank update of the base, or nothing
@@ -153,6 +153,23 @@ contains
         if (allocated(sys%factors)) deallocate (sys%factors)
         if (allocated(sys%ipiv)) deallocate (sys%ipiv)
     end subroutine forget_factors
+
+    !> Give the unknowns new numbers when the influence matrix is rebuilt with more
+    !> elements (fracture growth): the [s; n] index of every unknown moves, its row and
+    !> column keep their values, so the factors stay valid; the new elements' unknowns
+    !> then enter as added unknowns (bordering).
+    pure subroutine renumber_factors(sys, new_index)
+        !> The factors
+        type(reduced_factors), intent(inout) :: sys
+        !> The new index of every old [s; n] index, shape (2 n_old)
+        integer, intent(in) :: new_index(:)
+
+        if (allocated(sys%unknown)) sys%unknown = new_index(sys%unknown)
+        if (allocated(sys%partner)) sys%partner = new_index(sys%partner)
+        if (allocated(sys%base_unknown)) sys%base_unknown = new_index(sys%base_unknown)
+        if (allocated(sys%base_partner)) sys%base_partner = new_index(sys%base_partner)
+        if (allocated(sys%w_of)) sys%w_of = new_index(sys%w_of)
+    end subroutine renumber_factors
 
     !> Free the arrays of the last low-rank update.
     subroutine drop_update(sys)

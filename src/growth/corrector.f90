@@ -12,7 +12,7 @@ module ddc_growth_corrector
     use ddc_model_types, only: model_type, growth_options, condition_contact
     use ddc_model_results, only: model_results, state_open, growth_grew, &
         growth_corrector_failed
-    use ddc_run_model, only: run_model
+    use ddc_growth_solver, only: growth_solver, solve_grown
     use ddc_growth_extension, only: tip_path, make_path, extend_model
     use ddc_growth_clearance, only: check_paths
     use ddc_growth_tips, only: fracture_tip
@@ -53,8 +53,10 @@ contains
     !> `current` is true, `trial` (with `trial_created`) and `solved` are the model grown
     !> at the applied angles and its solution; otherwise the grown model is still to be
     !> built and solved (grow_paths).
-    subroutine correct_kinks(model, created, options, step, kinks, trial, trial_created, &
-                             solved, current, error)
+    subroutine correct_kinks(solver, model, created, options, step, kinks, trial, &
+                             trial_created, solved, current, error)
+        !> The solves of the run (the base: model)
+        type(growth_solver), intent(inout) :: solver
         !> The model before growing (without observations)
         type(model_type), intent(in) :: model
         !> Growth step that created each element of model, shape (n)
@@ -79,6 +81,7 @@ contains
         logical :: active(size(kinks)), correcting(size(kinks)), have_prev(size(kinks))
         logical :: changed, closed
         integer :: i, solves, problem(size(kinks))
+        integer, allocatable :: moved_to(:)
 
         kinks%theta = kinks%theta_mts
         kinks%reason = growth_grew
@@ -94,8 +97,9 @@ contains
         solves = 0
         changed = .true.
         do while (solves < options%max_corrections)
-            call extend_model(model, created, pack_paths(), step, options, trial, trial_created)
-            call run_model(trial, solved, error)
+            call extend_model(model, created, pack_paths(), step, options, trial, &
+                              trial_created, moved_to)
+            call solve_grown(solver, trial, moved_to, solved, error)
             solves = solves + 1
             if (allocated(error)) then
                 error%message = 'growth step '//itoa(step)//', corrector solve '// &
@@ -172,8 +176,8 @@ contains
     end subroutine correct_kinks
 
     !> The model grown at the kinks' applied angles (those that grew or fell back to their
-    !> MTS angle), and the step that created each element.
-    subroutine grow_paths(model, created, options, step, kinks, grown, grown_created)
+    !> MTS angle), the step that created each element and where each old element went.
+    subroutine grow_paths(model, created, options, step, kinks, grown, grown_created, moved_to)
         !> The model before growing
         type(model_type), intent(in) :: model
         !> Growth step that created each element of model, shape (n)
@@ -187,6 +191,8 @@ contains
         !> The grown model and the step that created each of its elements
         type(model_type), intent(out) :: grown
         integer, allocatable, intent(out) :: grown_created(:)
+        !> The index in grown of each element of model, shape (model n)
+        integer, allocatable, intent(out) :: moved_to(:)
         type(tip_path), allocatable :: paths(:)
         integer :: i
 
@@ -197,7 +203,7 @@ contains
             paths = [paths, make_path(model, kinks(i)%fracture, kinks(i)%end, kinks(i)%theta, &
                                       kinks(i)%length, kinks(i)%pieces)]
         end do
-        call extend_model(model, created, paths, step, options, grown, grown_created)
+        call extend_model(model, created, paths, step, options, grown, grown_created, moved_to)
     end subroutine grow_paths
 
     !> K_II of a kink's new tip in the grown model, and whether that tip is closed (a

@@ -1,5 +1,5 @@
 !> Fracture growth (SPEC-GROWTH 1): quasi-static, one increment per step, under the model's
-!> fixed loading. The driver owns the element set and asks run_model for solves; each step
+!> fixed loading. The driver owns the element set and asks ddc_growth_solver for solves; each step
 !>
 !> 1. takes K_I, K_II of every tip that may grow from the solve of the current geometry,
 !>    its MTS angle and K_eq (ddc_growth_criterion);
@@ -9,6 +9,9 @@
 !> 3. corrects the kink angles (ddc_growth_corrector), adds the new elements
 !>    (ddc_growth_extension), checks the grown mesh (ddc_mesh_checks: never a crossing
 !>    mesh) and solves it (or keeps the corrector's last solve when it is that geometry).
+!>
+!> Every solve goes through ddc_growth_solver, which grows the influence matrix and the
+!> Newton method's factors from the step before where it can.
 !>
 !> The run ends when no tip is critical any more (arrested) or after `steps` steps
 !> (step_limit); fields, tips and the summary are those of the final geometry.
@@ -23,7 +26,8 @@ module ddc_growth_driver
         growth_subcritical, growth_corrector_failed, growth_waiting, growth_arrested, &
         growth_step_limit
     use ddc_mesh_checks, only: check_elements
-    use ddc_run_model, only: run_model, evaluate_fields
+    use ddc_growth_solver, only: growth_solver, solve_input, solve_grown, accept_trial, &
+        final_results, solves_done
     use ddc_growth_criterion, only: mts_angle, equivalent_k, kink_slope, most_critical
     use ddc_growth_extension, only: tip_path, make_path, tip_element
     use ddc_growth_clearance, only: check_paths
@@ -41,15 +45,17 @@ module ddc_growth_driver
 
     abstract interface
         !> Told after every growth step (the program prints a line and flushes it).
-        subroutine growth_progress(step, growing, largest_k_eq, seconds)
+        subroutine growth_progress(step, growing, largest_k_eq, solves, seconds, elapsed)
             import :: wp
             implicit none
             !> The step, and the number of tips that grew in it
             integer, intent(in) :: step, growing
             !> The largest K_eq of the step's tips [stress unit * length unit**0.5]
             real(wp), intent(in) :: largest_k_eq
-            !> Wall time of the step [s]
-            real(wp), intent(in) :: seconds
+            !> Solves of the model in the step
+            integer, intent(in) :: solves
+            !> Wall time of the step, and since the run started [s]
+            real(wp), intent(in) :: seconds, elapsed
         end subroutine growth_progress
     end interface
 
@@ -83,11 +89,12 @@ contains
         procedure(growth_progress), optional :: progress
         type(model_type) :: work, trial
         type(model_results) :: current, solved
+        type(growth_solver) :: solver
         type(growing_tip), allocatable :: tips(:)
         type(step_tips) :: now
         type(growth_record) :: record
-        integer, allocatable :: created(:), trial_created(:)
-        integer :: step, grown
+        integer, allocatable :: created(:), trial_created(:), moved_to(:)
+        integer :: step, grown, solves_before
         integer(int64) :: t_start, t_step, t_end, rate
         logical :: trial_current
 
@@ -98,7 +105,7 @@ contains
         allocate (work%observations(0), created(work%elements%n))
         created = 0
         call empty_record(record)
-        call run_model(work, current, error)
+        call solve_input(solver, work, current, error)
         if (allocated(error)) then
             error%message = 'growth: solving the input geometry: '//error%message
             return
@@ -107,6 +114,7 @@ contains
         record%end_reason = growth_step_limit
         do step = 1, model%growth%steps
             call system_clock(t_step)
+            solves_before = solves_done(solver)
             call evaluate_tips(work, current, tips, model%growth%toughness, now, error)
             if (allocated(error)) return
             if (.not. any(now%reason == growth_grew)) then
@@ -125,8 +133,7 @@ contains
 
         model%elements = work%elements
         model%fractures = work%fractures
-        results = current
-        call evaluate_fields(model, results)
+        call final_results(solver, model, current, results)
         record%created_step = created
         results%growth = record
         call system_clock(t_end)
@@ -151,7 +158,7 @@ contains
                 t = which(i)
                 kinks(i) = setup_kink(work, tips(t), now, t, model%growth%toughness)
             end do
-            call correct_kinks(work, created, model%growth, step, kinks, trial, &
+            call correct_kinks(solver, work, created, model%growth, step, kinks, trial, &
                                trial_created, solved, trial_current, error)
             if (allocated(error)) return
             do i = 1, size(which)
@@ -173,15 +180,16 @@ contains
                 current = solved
             else
                 call grow_paths(work, created, model%growth, step, kinks, grown_model, &
-                                trial_created)
+                                trial_created, moved_to)
                 call move_alloc(trial_created, created)
                 work = grown_model
-                call run_model(work, current, error)
+                call solve_grown(solver, work, moved_to, current, error)
                 if (allocated(error)) then
                     error%message = 'growth step '//itoa(step)//': '//error%message
                     return
                 end if
             end if
+            call accept_trial(solver)
             call check_elements(work%elements, work%fractures, error)
             if (allocated(error)) then
                 call set_internal_error(error, 'grow_fractures', 'growth step '//itoa(step)// &
@@ -203,7 +211,9 @@ contains
 
             call system_clock(t_end)
             if (present(progress)) call progress(step, growing, maxval([0.0_wp, now%k_eq]), &
-                                                 real(t_end - t_step, wp) / real(rate, wp))
+                                                 solves_done(solver) - solves_before, &
+                                                 real(t_end - t_step, wp) / real(rate, wp), &
+                                                 real(t_end - t_start, wp) / real(rate, wp))
         end subroutine report
 
     end subroutine grow_fractures

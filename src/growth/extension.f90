@@ -109,7 +109,10 @@ contains
     !> The model with the paths' elements added to their fractures, and the step that
     !> created each element. New elements take the tip element's condition and values;
     !> new contact elements take new_mu, new_sf when the growth options override them.
-    subroutine extend_model(model, created, paths, step, options, grown, grown_created)
+    !> Every element of model keeps its geometry and values bit for bit; only its index
+    !> changes (moved_to), so the influences among them do not change.
+    subroutine extend_model(model, created, paths, step, options, grown, grown_created, &
+                            moved_to)
         !> The model before growing, geometry computed
         type(model_type), intent(in) :: model
         !> Growth step that created each element of model, shape (n)
@@ -124,6 +127,8 @@ contains
         type(model_type), intent(out) :: grown
         !> Growth step that created each element of grown, shape (grown n)
         integer, allocatable, intent(out) :: grown_created(:)
+        !> The index in grown of each element of model, shape (model n)
+        integer, allocatable, intent(out), optional :: moved_to(:)
         type(element_set) :: fresh
         integer :: added, f, p, pb, pe, k, next, n
 
@@ -138,6 +143,7 @@ contains
         allocate (fresh%x_mid(n), fresh%y_mid(n), fresh%half_length(n), fresh%cos_beta(n), &
                   fresh%sin_beta(n), grown_created(n))
         grown = model
+        if (present(moved_to)) allocate (moved_to(model%elements%n))
         next = 0
         do f = 1, size(model%fractures)
             pb = find_path(paths, f, tip_end_begin)
@@ -154,6 +160,7 @@ contains
                 next = next + 1
                 call copy_element(k, next)
                 grown_created(next) = created(k)
+                if (present(moved_to)) moved_to(k) = next
             end do
             if (pe > 0) then
                 do k = 1, paths(pe)%n

@@ -10,7 +10,11 @@
 !>   a temporary K_CF are kept too), then the contact method works on A
 !>   (ddc_contact_memory: Lemke 45 nc^2, Newton up to 5.5 nc^2); a loading history
 !>   solves each step with the same method (Newton keeps its factors between steps, Lemke
-!>   its LCP) and stores about 12 reals per element and step, held from the start;
+!>   its LCP) and stores about 12 reals per element and step, held from the start; a
+!>   growth run whose elements are all contact elements solved by Newton keeps the
+!>   influence matrix and the reduced factors of the last accepted geometry beside those of
+!>   the trial (ddc_growth_solver): 8 N^2 more, counted at the input's N (the grown N is
+!>   not known before the run);
 !> - the model and its results, 50 reals per element and 13 per observation point;
 !> - the program itself (libraries, buffers), 20 MB.
 !> Measured (Release, OpenBLAS): the peak resident memory of Lemke runs is within 5 % of the
@@ -36,6 +40,9 @@ module ddc_run_memory
     real(wp), parameter :: element_reals = 50.0_wp, point_reals = 13.0_wp
     !> Reals per element and step that a loading history stores
     real(wp), parameter :: history_reals = 12.0_wp
+    !> Reals per squared element that a growth run keeps for its base geometry (matrix and
+    !> reduced factors)
+    real(wp), parameter :: growth_base_reals = 8.0_wp
 
     !> What a model needs, and where it was estimated to peak.
     type :: memory_need
@@ -111,6 +118,11 @@ contains
         need%held_bytes = fixed + held
         if (model%solver%lcp_method == lcp_newton .or. (model%solver%lcp_method == &
             lcp_auto .and. contact >= auto_newton_min_elements)) then
+            if (model%growth%active .and. nf == 0.0_wp) then
+                held = held + real_bytes * growth_base_reals * n**2
+                need%held_bytes = fixed + held
+                history = ' (growth)'
+            end if
             need%method = 'newton'//history
             need%bytes = fixed + max(condense, held + newton_bytes(contact))
             need%fallback_bytes = fixed + max(condense, held + lemke_bytes(contact))

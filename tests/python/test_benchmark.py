@@ -85,3 +85,20 @@ def test_benchmark_bad_sizes(tmp_path):
     assert done.returncode == 2
     assert "--sizes" in done.stderr
     assert not (tmp_path / "b.json").exists()
+
+
+def test_benchmark_growth(tmp_path):
+    stdout, records = run_benchmark(tmp_path, "--case", "growth", "--steps", "2",
+                                    "--lcp-method", "newton")
+    assert "growth steps" in stdout and "N_final" in stdout
+    for r in records:
+        assert r["case"] == "growth" and r["method"] == "newton"
+        assert r["growth_steps"] == 2 and r["end_reason"] == "step_limit"
+        # Both tips grow by 20 elements per step; each step solves at least once.
+        assert r["n_final"] == r["n"] + 2 * 2 * 20
+        assert r["solves"] >= 1 + r["growth_steps"]
+        assert sum(r["states"].values()) == r["n_final"]
+        assert r["total_over_lu"] == r["seconds"]["total"] / r["lu_reference_seconds"]
+        # Counts over the whole run (at these sizes the new unknowns outnumber what an
+        # update takes: suite growth_solver checks the bordering).
+        assert r["factorizations"] >= 1 and r["newton_iterations"] >= r["solves"]

@@ -1,0 +1,421 @@
+!> The solves of a growth run (SPEC-GROWTH 5): the input geometry, then grown geometries
+!> (trials: the corrector's, and a step's final one). The geometry of a step's last trial
+!> becomes the base of the next step (accept_trial).
+!>
+!> A model whose elements are all contact elements and which the Newton method solves
+!> (lcp_method 'newton', or 'auto' from auto_newton_min_elements on) keeps for its base the
+!> influence matrix, the element states and the factors of the Newton method's last
+!> reduced system. A trial then
+!> - builds its influence matrix from the base's (ddc_growth_influence): only the new
+!>   elements' rows and columns are computed; the base block is moved once per step, and
+!>   the corrector's later trials of the step replace only the new rows and columns;
+!> - starts the Newton method from the base's states (a new element takes the state of the
+!>   element it grows from) and from the base's factors renumbered to the grown model, so
+!>   that the new elements' unknowns enter by bordering (Schur complement,
+!>   ddc_contact_reduced_factors) instead of a new factorization;
+!> - is solved, certified and checked by solve_contact_with exactly as a one-shot solve,
+!>   with the same fallbacks (an update that lost accuracy factorizes anew, a Newton
+!>   failure falls back to Lemke).
+!> Every other model (Lemke, TWODD-style elements, no contact) is solved from scratch by
+!> run_model, as before growth had a solver. Tractions, face displacements and fields are
+!> computed once, for the final geometry (final_results).
+module ddc_growth_solver
+    use, intrinsic :: iso_fortran_env, only: int64
+    use ddc_kinds, only: wp
+    use ddc_error, only: error_type
+    use ddc_allocation, only: allocation_failed, real_bytes
+    use ddc_text, only: itoa
+    use ddc_model_types, only: model_type, condition_contact
+    use ddc_model_results, only: model_results, solver_record
+    use ddc_model_loads, only: resolve_remote_stress, total_pressure, shear_modulus_of
+    use ddc_influence_assembly, only: assemble_influence
+    use ddc_solve_elastic, only: row_kinds
+    use ddc_solve_frictional, only: record_contact
+    use ddc_contact_options, only: lcp_auto, lcp_newton
+    use ddc_contact_result, only: contact_result
+    use ddc_contact_formulation, only: solve_contact_with, contact_session, &
+        auto_newton_min_elements
+    use ddc_contact_stiffness, only: dense_stiffness
+    use ddc_contact_reduced_factors, only: reduced_factors, renumber_factors, set_system, &
+        forget_factors
+    use ddc_post_tips, only: find_tips
+    use ddc_run_model, only: run_model, finish_model, evaluate_fields
+    use ddc_growth_influence, only: grow_influence, unknown_map
+    implicit none
+    private
+
+    public :: growth_solver, solve_input, solve_grown, accept_trial, final_results
+    public :: keeps_solves, solves_done
+
+    !> What the solves of one growth run keep. Arrays of n elements of the base or trial.
+    type :: growth_solver
+        private
+        !> The base (the last accepted geometry) was solved on the kept path
+        logical :: kept = .false.
+        !> The base's influence matrix [s; n], shape (2n, 2n) [stress / length], its states
+        !> (open; shear: stick 0, slip +-1 as the Newton method codes them) and factors
+        real(wp), allocatable :: base_matrix(:, :)
+        logical, allocatable :: base_open(:)
+        integer, allocatable :: base_shear(:)
+        type(reduced_factors) :: base_factors
+        !> A trial was solved since the last accept_trial, and on the kept path
+        logical :: pending = .false., trial_kept = .false.
+        !> The last trial: its matrix, where the base block sits in it (moved_to; not
+        !> allocated when the matrix was assembled whole), its states; its factors live in
+        !> the stiffness operator
+        real(wp), allocatable :: matrix(:, :)
+        integer, allocatable :: layout(:)
+        logical, allocatable :: open(:)
+        integer, allocatable :: shear(:)
+        type(dense_stiffness) :: stiffness
+        !> Sums over every solve of the run: phase times and counts
+        type(solver_record) :: totals
+        !> Solves done
+        integer :: solves = 0
+    end type growth_solver
+
+contains
+
+    !> Whether a model is solved on the kept path: every element a contact element, and the
+    !> Newton method in use.
+    pure logical function keeps_solves(model)
+        !> The model
+        type(model_type), intent(in) :: model
+
+        keeps_solves = all(model%elements%condition == condition_contact) .and. &
+            (model%solver%lcp_method == lcp_newton .or. (model%solver%lcp_method == &
+             lcp_auto .and. model%elements%n >= auto_newton_min_elements))
+    end function keeps_solves
+
+    !> Number of solves done so far.
+    pure integer function solves_done(solver)
+        !> The solver
+        type(growth_solver), intent(in) :: solver
+
+        solves_done = solver%solves
+    end function solves_done
+
+    !> Solve the input geometry; it is the base of the first step.
+    subroutine solve_input(solver, model, results, error)
+        !> The solver (fresh)
+        type(growth_solver), intent(inout), target :: solver
+        !> The input model (without observations)
+        type(model_type), intent(in) :: model
+        !> Its DDs, states, tips and solver record (tractions only when not kept)
+        type(model_results), intent(out) :: results
+        !> Set when the solve fails
+        type(error_type), allocatable, intent(out) :: error
+
+        call solve_grown(solver, model, [integer ::], results, error)
+        if (allocated(error)) return
+        call accept_trial(solver)
+    end subroutine solve_input
+
+    !> Solve a grown model (a trial): from the base when both are on the kept path,
+    !> else from scratch.
+    subroutine solve_grown(solver, model, moved_to, results, error)
+        !> The solver
+        type(growth_solver), intent(inout), target :: solver
+        !> The grown model (without observations)
+        type(model_type), intent(in) :: model
+        !> The index in model of each element of the base, shape (n_base); empty: no base
+        integer, intent(in) :: moved_to(:)
+        !> Its DDs, states, tips and solver record (tractions only when not kept)
+        type(model_results), intent(out) :: results
+        !> Set when the solve fails
+        type(error_type), allocatable, intent(out) :: error
+
+        solver%pending = .true.
+        solver%solves = solver%solves + 1
+        solver%trial_kept = keeps_solves(model)
+        if (solver%trial_kept) then
+            call solve_kept(solver, model, moved_to, results, error)
+        else
+            call run_model(model, results, error)
+        end if
+        if (allocated(error)) return
+        call add_record(solver%totals, results%solver)
+    end subroutine solve_grown
+
+    !> The last trial becomes the base of the next step (nothing happens without a trial).
+    subroutine accept_trial(solver)
+        !> The solver
+        type(growth_solver), intent(inout) :: solver
+
+        if (.not. solver%pending) return
+        solver%pending = .false.
+        solver%kept = solver%trial_kept
+        if (allocated(solver%base_matrix)) deallocate (solver%base_matrix)
+        if (allocated(solver%layout)) deallocate (solver%layout)
+        if (.not. solver%kept) then
+            if (allocated(solver%matrix)) deallocate (solver%matrix)
+            return
+        end if
+        call move_alloc(solver%matrix, solver%base_matrix)
+        call move_alloc(solver%open, solver%base_open)
+        call move_alloc(solver%shear, solver%base_shear)
+        call refactor_updated(solver%stiffness%factors, solver%base_matrix, solver%totals)
+        solver%base_factors = solver%stiffness%factors
+    end subroutine accept_trial
+
+    !> Factorize the last reduced system anew when it was solved through an update: the
+    !> next step's trials then border only their own new unknowns on it. Carrying the
+    !> border on costs more: its columns are solved again whenever the states change.
+    subroutine refactor_updated(factors, a, totals)
+        !> The factors of the accepted solve; refactored, or forgotten when singular
+        type(reduced_factors), intent(inout) :: factors
+        !> The influence matrix of the accepted geometry [s; n]
+        real(wp), intent(in) :: a(:, :)
+        !> The run's totals: the factorization is counted
+        type(solver_record), intent(inout) :: totals
+        type(error_type), allocatable :: singular
+        integer, allocatable :: unknown(:), partner(:)
+        real(wp), allocatable :: coef(:)
+        real(wp) :: seconds, flops
+
+        if (factors%mb < 0 .or. factors%nr + factors%na == 0) return
+        unknown = factors%unknown
+        partner = factors%partner
+        coef = factors%coef
+        seconds = factors%seconds_factorization
+        flops = factors%factorization_flops
+        call forget_factors(factors)
+        call set_system(factors, a, unknown, partner, coef, &
+                        'the reduced system of the accepted geometry', singular)
+        ! A singular system is left to the next solve, which factorizes anew and reports it.
+        if (allocated(singular)) call forget_factors(factors)
+        totals%factorizations = totals%factorizations + 1
+        totals%seconds_factorization = totals%seconds_factorization + &
+            factors%seconds_factorization - seconds
+        totals%factorization_flops = totals%factorization_flops + &
+            factors%factorization_flops - flops
+    end subroutine refactor_updated
+
+    !> The results of the final geometry (the last accepted one): tractions, face
+    !> displacements and tips from the kept matrix when kept, and the fields; the solver
+    !> record's phase times and counts are the sums over every solve of the run.
+    subroutine final_results(solver, model, current, results)
+        !> The solver
+        type(growth_solver), intent(in) :: solver
+        !> The final model, with its observations
+        type(model_type), intent(in) :: model
+        !> The results of its solve
+        type(model_results), intent(in) :: current
+        !> Its complete results
+        type(model_results), intent(out) :: results
+        real(wp), allocatable :: remote_shear(:), remote_normal(:)
+        type(solver_record) :: last
+        integer :: n
+
+        results = current
+        last = results%solver
+        if (solver%kept) then
+            n = model%elements%n
+            allocate (remote_shear(n), remote_normal(n))
+            call resolve_remote_stress(model%elements, model%sxx, model%syy, model%sxy, &
+                                       remote_shear, remote_normal, model%stress_gradient)
+            call finish_model(model, remote_shear, remote_normal, results, &
+                              matrix=solver%base_matrix)
+        else
+            call evaluate_fields(model, results)
+        end if
+        associate (s => results%solver, t => solver%totals)
+            s%seconds_assembly = t%seconds_assembly
+            s%seconds_factorization = t%seconds_factorization
+            s%seconds_lcp = t%seconds_lcp
+            s%seconds_fields = t%seconds_fields - last%seconds_fields + s%seconds_fields
+            s%newton_iterations = t%newton_iterations
+            s%factorizations = t%factorizations
+            s%low_rank_updates = t%low_rank_updates
+            s%factorization_reuses = t%factorization_reuses
+            s%factorization_flops = t%factorization_flops
+            s%pivots = t%pivots
+            s%lcp_solves = t%lcp_solves
+        end associate
+    end subroutine final_results
+
+    !> Add one solve's phase times and counts to the totals.
+    pure subroutine add_record(totals, one)
+        type(solver_record), intent(inout) :: totals
+        type(solver_record), intent(in) :: one
+
+        totals%seconds_assembly = totals%seconds_assembly + one%seconds_assembly
+        totals%seconds_factorization = totals%seconds_factorization + one%seconds_factorization
+        totals%seconds_lcp = totals%seconds_lcp + one%seconds_lcp
+        totals%seconds_fields = totals%seconds_fields + one%seconds_fields
+        totals%newton_iterations = totals%newton_iterations + one%newton_iterations
+        totals%factorizations = totals%factorizations + one%factorizations
+        totals%low_rank_updates = totals%low_rank_updates + one%low_rank_updates
+        totals%factorization_reuses = totals%factorization_reuses + one%factorization_reuses
+        totals%factorization_flops = totals%factorization_flops + one%factorization_flops
+        totals%pivots = totals%pivots + one%pivots
+        totals%lcp_solves = totals%lcp_solves + one%lcp_solves
+    end subroutine add_record
+
+    !> A solve on the kept path: the influence matrix grown from the base's (or assembled
+    !> whole without a kept base), the Newton method started from the base's states and
+    !> factors.
+    subroutine solve_kept(solver, model, moved_to, results, error)
+        type(growth_solver), intent(inout), target :: solver
+        type(model_type), intent(in) :: model
+        integer, intent(in) :: moved_to(:)
+        type(model_results), intent(out) :: results
+        type(error_type), allocatable, intent(out) :: error
+        type(reduced_factors) :: no_factors
+        integer, allocatable :: shear_row(:), normal_row(:)
+        logical :: grow, placed, finite
+        integer :: n, stat, before(3)
+        real(wp) :: g
+        integer(int64) :: t0, t1, rate
+
+        call system_clock(t0, rate)
+        n = model%elements%n
+        g = shear_modulus_of(model)
+        grow = solver%kept .and. size(moved_to) > 0 .and. allocated(solver%base_open)
+        placed = .false.
+        if (grow .and. allocated(solver%layout) .and. allocated(solver%matrix)) then
+            placed = size(solver%matrix, 1) == 2 * n .and. size(solver%layout) == &
+                size(moved_to)
+            if (placed) placed = all(solver%layout == moved_to)
+        end if
+        if (.not. placed) then
+            if (allocated(solver%matrix)) deallocate (solver%matrix)
+            allocate (solver%matrix(2 * n, 2 * n), stat=stat)
+            if (stat /= 0) then
+                call allocation_failed(error, 'the influence matrix of '//itoa(n)// &
+                                       ' elements', real_bytes * (2.0_wp * real(n, wp))**2)
+                return
+            end if
+        end if
+        if (grow) then
+            call grow_influence(solver%base_matrix, moved_to, model%elements, g, &
+                                model%poissons_ratio, placed, solver%matrix, finite)
+            solver%layout = moved_to
+            solver%stiffness%factors = solver%base_factors
+            call renumber_factors(solver%stiffness%factors, unknown_map(moved_to, n))
+            ! A later trial of the step starts from the states of the one before (its new
+            ! elements lie close to these), the first one from the base's.
+            if (.not. (placed .and. allocated(solver%open))) then
+                call inherit_states(solver, model, moved_to)
+            end if
+        else
+            allocate (shear_row(n), normal_row(n))
+            call row_kinds(model%elements%condition, shear_row, normal_row)
+            call assemble_influence(model%elements, g, model%poissons_ratio, shear_row, &
+                                    normal_row, solver%matrix)
+            if (allocated(solver%layout)) deallocate (solver%layout)
+            solver%stiffness%factors = no_factors
+            if (allocated(solver%open)) deallocate (solver%open, solver%shear)
+            ! solve_contact_with checks the whole matrix.
+            finite = .false.
+        end if
+        call system_clock(t1)
+        results%solver%seconds_assembly = real(t1 - t0, wp) / real(rate, wp)
+        before = counts(solver%stiffness%factors)
+        call solve_contact_on(solver, solver%matrix, model, finite, results, error)
+        if (allocated(error)) return
+        ! The counts of this solve (the factors carry those of the base's solves).
+        associate (s => results%solver, now => counts(solver%stiffness%factors))
+            s%factorizations = now(1) - before(1)
+            s%low_rank_updates = now(2) - before(2)
+            s%factorization_reuses = now(3) - before(3)
+        end associate
+    end subroutine solve_kept
+
+    !> New factorizations, low-rank updates and reuses a set of factors has counted.
+    pure function counts(factors) result(c)
+        type(reduced_factors), intent(in) :: factors
+        integer :: c(3)
+
+        c = [factors%factorizations, factors%updates, factors%reuses]
+    end function counts
+
+    !> The Newton method's start for a grown model: the base's states at the old elements'
+    !> new places; a new element takes the state of the element it grows from (the next
+    !> one of its fracture that is older, in index order, else the one before).
+    subroutine inherit_states(solver, model, moved_to)
+        type(growth_solver), intent(inout) :: solver
+        type(model_type), intent(in) :: model
+        integer, intent(in) :: moved_to(:)
+        logical :: known(model%elements%n)
+        integer :: n, i
+
+        n = model%elements%n
+        if (allocated(solver%open)) deallocate (solver%open, solver%shear)
+        allocate (solver%open(n), solver%shear(n))
+        solver%open = .false.
+        solver%shear = 0
+        known = .false.
+        solver%open(moved_to) = solver%base_open
+        solver%shear(moved_to) = solver%base_shear
+        known(moved_to) = .true.
+        ! Elements grown at a begin tip come before their fracture's old ones ...
+        do i = n - 1, 1, -1
+            if (.not. known(i)) call take_from(i, i + 1)
+        end do
+        ! ... and those grown at an end tip after them.
+        do i = 2, n
+            if (.not. known(i)) call take_from(i, i - 1)
+        end do
+
+    contains
+
+        subroutine take_from(to, from)
+            integer, intent(in) :: to, from
+
+            if (.not. known(from)) return
+            if (model%elements%fracture_id(from) /= model%elements%fracture_id(to)) return
+            solver%open(to) = solver%open(from)
+            solver%shear(to) = solver%shear(from)
+            known(to) = .true.
+        end subroutine take_from
+
+    end subroutine inherit_states
+
+    !> The contact solve of a model whose elements are all contact elements on the matrix a
+    !> (solver%matrix), from solver%open, shear (when allocated) and the stiffness operator's
+    !> factors; the states of the solution are kept; DDs, states, tips and the record set.
+    subroutine solve_contact_on(solver, a, model, checked, results, error)
+        type(growth_solver), intent(inout) :: solver
+        real(wp), intent(in), target, contiguous :: a(:, :)
+        type(model_type), intent(in) :: model
+        !> Every entry of a is known to be finite
+        logical, intent(in) :: checked
+        type(model_results), intent(inout) :: results
+        type(error_type), allocatable, intent(out) :: error
+        type(contact_session) :: session
+        type(contact_result) :: res
+        real(wp), allocatable :: remote_shear(:), remote_normal(:), pressure(:)
+        real(wp) :: seconds_assembly
+        integer :: n
+
+        n = model%elements%n
+        allocate (remote_shear(n), remote_normal(n))
+        call resolve_remote_stress(model%elements, model%sxx, model%syy, model%sxy, &
+                                   remote_shear, remote_normal, model%stress_gradient)
+        ! The contact elements see their pressure plus the pore fluid.
+        pressure = total_pressure(model%elements, model%pore_fluid)
+        if (allocated(solver%open)) then
+            call move_alloc(solver%open, session%open)
+            call move_alloc(solver%shear, session%shear_state)
+        end if
+        session%a_checked = checked
+        solver%stiffness%a => a
+        call solve_contact_with(solver%stiffness, remote_shear, remote_normal, &
+                                model%elements%mu, model%elements%sf, pressure, model%solver, &
+                                res, error, a=a, session=session)
+        nullify (solver%stiffness%a)
+        if (allocated(error)) return
+        call move_alloc(session%open, solver%open)
+        call move_alloc(session%shear_state, solver%shear)
+        seconds_assembly = results%solver%seconds_assembly
+        call record_contact(res, 0.0_wp, results%solver)
+        results%solver%seconds_assembly = seconds_assembly
+        results%elements%ds = res%ds
+        results%elements%dn = res%dn
+        results%elements%state = res%state
+        call find_tips(model%elements, shear_modulus_of(model), model%poissons_ratio, res%ds, &
+                       res%dn, results%tips)
+    end subroutine solve_contact_on
+
+end module ddc_growth_solver
