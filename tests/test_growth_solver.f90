@@ -161,8 +161,8 @@ contains
 
     !> Factors of a reduced system of the model before growing (every Ds, and a few Dn with
     !> friction rows) and an update of them, renumbered to the grown model and bordered by
-    !> the new elements' unknowns: the solve agrees with a fresh LU of the grown system (1e-10 relative) and
-    !> was an update, not a new factorization.
+    !> the new elements' unknowns: the solve agrees with a fresh LU of the grown system
+    !> (1e-10 relative) and was an update, not a new factorization.
     subroutine test_bordered_solve(error)
         type(error_type), allocatable, intent(out) :: error
         type(model_type) :: model, grown
