@@ -32,6 +32,7 @@ module ddc_contact_reduced_factors
     private
 
     public :: reduced_factors, set_system, solve_system, forget_factors, renumber_factors
+    public :: update_limit, copy_factors
     public :: action_factorized, action_updated, action_reused
 
     !> What set_system did: a new factorization, a low-rank update of the base, or nothing
@@ -133,7 +134,7 @@ contains
                 sys%reuses = sys%reuses + 1
                 return
             end if
-            if (sys%mb > 0 .and. rank <= max(min_update_rank, m / update_fraction)) then
+            if (sys%mb > 0 .and. rank <= update_limit(sys)) then
                 call update_base(sys, a, changed, added, current_at, base_at)
                 if (sys%action == action_updated) then
                     call system_clock(t1)
@@ -145,6 +146,43 @@ contains
         end if
         call refactor(sys, a, subject, error)
     end subroutine set_system
+
+    !> Most changed plus added unknowns an update of the current system may hold.
+    pure integer function update_limit(sys)
+        !> The system (set_system done)
+        type(reduced_factors), intent(in) :: sys
+
+        update_limit = max(min_update_rank, size(sys%unknown) / update_fraction)
+    end function update_limit
+
+    !> to = from, with to's storage of the LU factors reused when it has their shape: a
+    !> growth run copies its base's factors for every trial, and a fresh matrix of that
+    !> size costs its page faults on top of the copy.
+    subroutine copy_factors(to, from)
+        !> The copy
+        type(reduced_factors), intent(inout) :: to
+        !> The factors copied (left as they were)
+        type(reduced_factors), intent(inout) :: from
+        real(wp), allocatable :: storage(:, :), lu(:, :)
+        integer :: l
+
+        call move_alloc(to%factors, storage)
+        call move_alloc(from%factors, lu)
+        to = from
+        if (allocated(lu)) then
+            if (allocated(storage)) then
+                if (any(shape(storage) /= shape(lu))) deallocate (storage)
+            end if
+            if (.not. allocated(storage)) allocate (storage, mold=lu)
+            !$omp parallel do default(none) schedule(static) private(l) shared(storage, lu)
+            do l = 1, size(lu, 2)
+                storage(:, l) = lu(:, l)
+            end do
+            !$omp end parallel do
+            call move_alloc(storage, to%factors)
+        end if
+        call move_alloc(lu, from%factors)
+    end subroutine copy_factors
 
     !> Forget the factors and free their memory: the next set_system factorizes anew.
     subroutine forget_factors(sys)
