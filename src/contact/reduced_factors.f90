@@ -15,9 +15,10 @@
 !>   formula K^-1 = J^-1 - Z (I + Delta Z)^-1 Delta J^-1 (Z = J^-1 on the changed rows'
 !>   unit vectors, Delta their new rows minus the old); the added unknowns are eliminated
 !>   by the Schur complement S = D - C K^-1 B (bordering), which keeps the scale of A.
-!>   Z and J^-1 B0 (B0: B with the base coefficients) are kept while their rows and
-!>   unknowns stay in the update, so that a change of the changed rows costs
-!>   O(mb (nr + na) nr) for the rows that stayed instead of new solves through J;
+!>   The columns of Z and of J^-1 B0 (B with the base coefficients) are kept for as long
+!>   as their rows and unknowns stay in the update: when the changed rows change between
+!>   Newton iterations, K^-1 B follows from them in O(mb nr na), without solving the
+!>   bordered columns through J again;
 !> - more than max(16, m / 8) changed plus added unknowns, or a numerically singular
 !>   I + Delta Z or S: a new factorization, which becomes the base.
 !> The caller checks every solution against the unfactored A (ddc_contact_active_set) and
@@ -429,6 +430,9 @@ contains
         mb = sys%mb
         nr = sys%nr
         na = size(added)
+        ! W and C^T are formed anew: free them before the new Y0 is.
+        if (allocated(sys%w)) deallocate (sys%w)
+        if (allocated(sys%c_t)) deallocate (sys%c_t, sys%schur, sys%schur_ipiv)
         ga = sys%unknown(added)
         pa = sys%partner(added)
         ca = sys%coef(added)
@@ -470,7 +474,6 @@ contains
             call dgemm('N', 'N', mb, na, nr, 1.0_wp, sys%z, mb, t, nr, 1.0_wp, sys%w, mb)
         end if
         sys%na = na
-        if (allocated(sys%c_t)) deallocate (sys%c_t, sys%schur, sys%schur_ipiv)
         allocate (sys%c_t(mb, na), sys%schur(na, na), sys%schur_ipiv(na))
         do l = 1, mb
             g = sys%base_unknown(l)
