@@ -48,6 +48,7 @@ contains
                  new_test('random_stepping_faults', test_random_stepping), &
                  new_test('fallback_to_lemke', test_fallback), &
                  new_test('reduced_system_updates', test_reduced_updates), &
+                 new_test('reduced_update_sequence', test_reduced_update_sequence), &
                  new_test('fallback_without_memory', test_fallback_without_memory), &
                  new_test('bad_method', test_bad_method)]
     end subroutine collect_fast_contact
@@ -414,6 +415,82 @@ contains
         call check(error, kept%factorizations == 1 .and. kept%updates == 1 .and. &
                    kept%reuses == 1, 'counts of factorizations, updates and reuses')
     end subroutine test_reduced_updates
+
+    !> A sequence of updates of one base, as between Newton iterations: the changed base
+    !> rows change from one system to the next (rows kept, dropped, new, a coefficient
+    !> flipped back) while added unknowns stay, leave and come (their J^-1 B0 and the Z of
+    !> the rows that stay are kept); every solve equals a fresh factorization within 1e-12,
+    !> and the base is factorized once.
+    subroutine test_reduced_update_sequence(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model
+        type(reduced_factors) :: kept, fresh
+        real(wp), allocatable :: a(:, :), x(:), y(:), ss(:), sn(:)
+        ! Per system: Ds of 1..45 in (0: out), its coefficient's sign; Dn of 41..60, 20 in
+        integer, parameter :: systems = 6
+        integer :: shear(45, 0:systems)
+        logical :: dn20(0:systems), dn41(0:systems)
+        integer :: n, i, k
+
+        call kinked_system(model, a, ss, sn)
+        n = model%elements%n
+        shear(:, 0) = [spread(1, 1, 40), spread(0, 1, 5)]
+        shear(:, 1:systems) = spread(shear(:, 0), 2, systems)
+        dn20 = .false.
+        dn41 = .true.
+        ! 1: 3 leaves, 41 and 42 slip; 2: and 7 flips; 3: 3 back, 10 leaves, Dn 20 opens;
+        ! 4: 7 back, 12 flips, 41 sticks; 5: only the added 42 and Dn 20; 6: Dn 41 closes.
+        shear([3, 41, 42], 1) = [0, 1, 1]
+        shear([3, 7, 41, 42], 2) = [0, -1, 1, 1]
+        shear([10, 7, 41, 42], 3) = [0, -1, 1, 1]
+        dn20(3:5) = .true.
+        shear([10, 12, 42], 4) = [0, -1, 1]
+        shear(42, 5) = 1
+        shear(42, 6) = 1
+        dn41(6) = .false.
+        call set_kinked(kept, 0)
+        if (allocated(error)) return
+        do k = 1, systems
+            call set_kinked(kept, k)
+            if (allocated(error)) return
+            call check(error, kept%action, action_updated, 'system '//achar(48 + k)// &
+                       ': an update')
+            call set_kinked(fresh, k)
+            if (allocated(error)) return
+            x = [(cos(real(k * i, wp)), i = 1, size(kept%unknown))]
+            y = x
+            call solve_system(kept, x)
+            call solve_system(fresh, y)
+            call check(error, maxval(abs(x - y)), 0.0_wp, 'system '//achar(48 + k)// &
+                       ': update = fresh factorization', abs_tol=1.0e-12_wp * maxval(abs(y)))
+            call check(error, fresh%action, action_factorized, 'fresh factors')
+            if (allocated(error)) return
+            fresh = reduced_factors()
+        end do
+        call check(error, kept%factorizations == 1 .and. kept%updates == systems, &
+                   'one factorization, then only updates')
+
+    contains
+
+        !> Set system k of the sequence on sys.
+        subroutine set_kinked(sys, k)
+            type(reduced_factors), intent(inout) :: sys
+            integer, intent(in) :: k
+            integer, allocatable :: unknown(:), partner(:), ds(:), dn(:)
+            real(wp), allocatable :: coef(:)
+            integer :: j
+
+            ds = pack([(j, j = 1, 45)], shear(:, k) /= 0)
+            dn = [(j, j = 42, 60)]
+            if (dn41(k)) dn = [41, dn]
+            if (dn20(k)) dn = [dn, 20]
+            unknown = [ds, n + dn]
+            partner = n + [ds, dn]
+            coef = [0.6_wp * real(shear(ds, k), wp), spread(0.0_wp, 1, size(dn))]
+            call set_system(sys, a, unknown, partner, coef, 'sequence', error)
+        end subroutine set_kinked
+
+    end subroutine test_reduced_update_sequence
 
     !> The same fallback when the memory left cannot hold Lemke's LCP: it does not start,
     !> the solve stops with exit_out_of_memory saying why Newton failed and what Lemke

@@ -160,9 +160,9 @@ contains
     ! ---- bordered factors ---------------------------------------------------------------
 
     !> Factors of a reduced system of the model before growing (every Ds, and a few Dn with
-    !> friction rows), renumbered to the grown model and bordered by the new elements'
-    !> unknowns: the solve agrees with a fresh LU of the grown system (1e-10 relative) and
-    !> was an update, not a new factorization.
+    !> friction rows) and an update of them, renumbered to the grown model and bordered by
+    !> the new elements' unknowns: the solve agrees with a fresh LU of the grown system
+    !> (1e-10 relative) and was an update, not a new factorization.
     subroutine test_bordered_solve(error)
         type(error_type), allocatable, intent(out) :: error
         type(model_type) :: model, grown
@@ -183,18 +183,31 @@ contains
         call set_system(factors, old, unknown, partner, coef, 'test', singular)
         call check(error, .not. allocated(singular), 'base factorized')
         if (allocated(error)) return
+        ! An update before growing (Ds of element 2 turns, Dn of element n0 - 5 opens): what
+        ! it keeps for the added Dn (J^-1 B0) has to follow the renumbering.
+        coef(2) = -0.6_wp
+        call set_system(factors, old, [unknown, 2 * n0 - 5], [partner, 2 * n0 - 5], &
+                        [coef, 0.0_wp], 'test', singular)
+        call check(error, factors%action, action_updated, 'an update before growing')
+        if (allocated(error)) return
 
         call grow_both_tips(model, 0.3_wp, -0.5_wp, grown, moved_to)
         n = grown%elements%n
         allocate (a(2 * n, 2 * n))
         call grow_influence(old, moved_to, grown%elements, g_modulus, nu, .false., a, finite)
         call renumber_factors(factors, unknown_map(moved_to, n))
+        call check(error, size(factors%y0_of) == 1, 'J^-1 B0 kept for the added Dn')
+        if (allocated(error)) return
+        call check(error, factors%y0_of(1), n + moved_to(n0 - 5), 'kept J^-1 B0 renumbered')
+        if (allocated(error)) return
         fresh = new_elements(moved_to, n)
         ! The grown system: the old unknowns at their new places, then Ds and Dn of the new
         ! elements (open: no friction).
-        unknown = [moved_to, n + moved_to(n0 - 4:n0), fresh, n + fresh]
-        partner = [n + moved_to, n + moved_to(n0 - 4:n0), n + fresh, n + fresh]
-        coef = [spread(0.6_wp, 1, n0), spread(0.0_wp, 1, 5 + 2 * size(fresh))]
+        unknown = [moved_to, n + moved_to(n0 - 4:n0), n + moved_to(n0 - 5), fresh, n + fresh]
+        partner = [n + moved_to, n + moved_to(n0 - 4:n0), n + moved_to(n0 - 5), n + fresh, &
+                   n + fresh]
+        coef = [spread(0.6_wp, 1, n0), spread(0.0_wp, 1, 6 + 2 * size(fresh))]
+        coef(2) = -0.6_wp
         call set_system(factors, a, unknown, partner, coef, 'test', singular)
         call check(error, .not. allocated(singular), 'bordered')
         call check(error, factors%action, action_updated, 'an update, not a new LU')

@@ -14,7 +14,11 @@
 !>   that its value is 0), solved through the base factors by the Sherman-Morrison-Woodbury
 !>   formula K^-1 = J^-1 - Z (I + Delta Z)^-1 Delta J^-1 (Z = J^-1 on the changed rows'
 !>   unit vectors, Delta their new rows minus the old); the added unknowns are eliminated
-!>   by the Schur complement S = D - C K^-1 B (bordering), which keeps the scale of A;
+!>   by the Schur complement S = D - C K^-1 B (bordering), which keeps the scale of A.
+!>   The columns of Z and of J^-1 B0 (B with the base coefficients) are kept for as long
+!>   as their rows and unknowns stay in the update: when the changed rows change between
+!>   Newton iterations, K^-1 B follows from them in O(mb nr na), without solving the
+!>   bordered columns through J again;
 !> - more than max(16, m / 8) changed plus added unknowns, or a numerically singular
 !>   I + Delta Z or S: a new factorization, which becomes the base.
 !> The caller checks every solution against the unfactored A (ddc_contact_active_set) and
@@ -29,6 +33,7 @@ module ddc_contact_reduced_factors
     private
 
     public :: reduced_factors, set_system, solve_system, forget_factors, renumber_factors
+    public :: update_limit, copy_factors
     public :: action_factorized, action_updated, action_reused
 
     !> What set_system did: a new factorization, a low-rank update of the base, or nothing
@@ -58,11 +63,11 @@ module ddc_contact_reduced_factors
         integer, allocatable :: changed_rows(:)
         real(wp), allocatable :: changed_coef(:), z(:, :), delta_t(:, :), capacitance(:, :)
         integer, allocatable :: capacitance_ipiv(:)
-        !> W = K^-1 B, shape (mb, na), and the unknown of each column, shape (na); C^T,
-        !> shape (mb, na); LU factors and pivots of the Schur complement S = D - C W,
-        !> shape (na, na)
-        real(wp), allocatable :: w(:, :), c_t(:, :), schur(:, :)
-        integer, allocatable :: w_of(:), schur_ipiv(:)
+        !> Y0 = J^-1 B0 and W = K^-1 B, shape (mb, na), and the unknown of each column,
+        !> shape (na) (border); C^T, shape (mb, na); LU factors and pivots of the Schur
+        !> complement S = D - C W, shape (na, na)
+        real(wp), allocatable :: y0(:, :), w(:, :), c_t(:, :), schur(:, :)
+        integer, allocatable :: y0_of(:), schur_ipiv(:)
         !> What the last set_system did (action_*)
         integer :: action = 0
         !> Counts of new factorizations, low-rank updates and reuses of unchanged factors
@@ -130,7 +135,7 @@ contains
                 sys%reuses = sys%reuses + 1
                 return
             end if
-            if (sys%mb > 0 .and. rank <= max(min_update_rank, m / update_fraction)) then
+            if (sys%mb > 0 .and. rank <= update_limit(sys)) then
                 call update_base(sys, a, changed, added, current_at, base_at)
                 if (sys%action == action_updated) then
                     call system_clock(t1)
@@ -142,6 +147,43 @@ contains
         end if
         call refactor(sys, a, subject, error)
     end subroutine set_system
+
+    !> Most changed plus added unknowns an update of the current system may hold.
+    pure integer function update_limit(sys)
+        !> The system (set_system done)
+        type(reduced_factors), intent(in) :: sys
+
+        update_limit = max(min_update_rank, size(sys%unknown) / update_fraction)
+    end function update_limit
+
+    !> to = from, with to's storage of the LU factors reused when it has their shape: a
+    !> growth run copies its base's factors for every trial, and a fresh matrix of that
+    !> size costs its page faults on top of the copy.
+    subroutine copy_factors(to, from)
+        !> The copy
+        type(reduced_factors), intent(inout) :: to
+        !> The factors copied (left as they were)
+        type(reduced_factors), intent(inout) :: from
+        real(wp), allocatable :: storage(:, :), lu(:, :)
+        integer :: l
+
+        call move_alloc(to%factors, storage)
+        call move_alloc(from%factors, lu)
+        to = from
+        if (allocated(lu)) then
+            if (allocated(storage)) then
+                if (any(shape(storage) /= shape(lu))) deallocate (storage)
+            end if
+            if (.not. allocated(storage)) allocate (storage, mold=lu)
+            !$omp parallel do default(none) schedule(static) private(l) shared(storage, lu)
+            do l = 1, size(lu, 2)
+                storage(:, l) = lu(:, l)
+            end do
+            !$omp end parallel do
+            call move_alloc(storage, to%factors)
+        end if
+        call move_alloc(lu, from%factors)
+    end subroutine copy_factors
 
     !> Forget the factors and free their memory: the next set_system factorizes anew.
     subroutine forget_factors(sys)
@@ -168,7 +210,7 @@ contains
         if (allocated(sys%partner)) sys%partner = new_index(sys%partner)
         if (allocated(sys%base_unknown)) sys%base_unknown = new_index(sys%base_unknown)
         if (allocated(sys%base_partner)) sys%base_partner = new_index(sys%base_partner)
-        if (allocated(sys%w_of)) sys%w_of = new_index(sys%w_of)
+        if (allocated(sys%y0_of)) sys%y0_of = new_index(sys%y0_of)
     end subroutine renumber_factors
 
     !> Free the arrays of the last low-rank update.
@@ -176,9 +218,10 @@ contains
         type(reduced_factors), intent(inout) :: sys
 
         if (allocated(sys%changed_rows)) deallocate (sys%changed_rows)
-        if (allocated(sys%w_of)) deallocate (sys%w_of)
-        if (allocated(sys%z)) deallocate (sys%z, sys%delta_t, sys%capacitance, &
-                                          sys%capacitance_ipiv)
+        if (allocated(sys%y0_of)) deallocate (sys%y0_of, sys%y0)
+        if (allocated(sys%z)) deallocate (sys%z)
+        if (allocated(sys%delta_t)) deallocate (sys%delta_t, sys%capacitance, &
+                                                sys%capacitance_ipiv)
         if (allocated(sys%w)) deallocate (sys%w)
         if (allocated(sys%c_t)) deallocate (sys%c_t, sys%schur, sys%schur_ipiv)
     end subroutine drop_update
@@ -246,31 +289,23 @@ contains
 
     !> The low-rank update of the base for the changed base rows and the added unknowns
     !> (positions in the current system); sys%action is action_updated unless I + Delta Z
-    !> or the Schur complement is numerically singular. When the changed rows are those of
-    !> the last update (the usual case between Newton iterations: only unknowns added),
-    !> its Z, Delta and I + Delta Z and the columns of W of the unknowns it added already
-    !> serve; only the new unknowns' columns are computed.
+    !> or the Schur complement is numerically singular. When the changed rows and their
+    !> coefficients are those of the last update (the usual case between Newton iterations:
+    !> only unknowns added), its Z, Delta and I + Delta Z serve as they are.
     subroutine update_base(sys, a, changed, added, current_at, base_at)
         type(reduced_factors), intent(inout) :: sys
         real(wp), intent(in) :: a(:, :)
         integer, intent(in) :: changed(:), added(:), current_at(:), base_at(:)
-        type(error_type), allocatable :: singular, ill_conditioned
-        integer, allocatable :: ga(:), pa(:), fresh(:), column_of(:)
-        real(wp), allocatable :: ca(:), row_coef(:), w(:, :), wf(:, :)
-        real(wp) :: d, scale
-        integer :: mb, nr, na, r, q, g, p, c, l
-        logical :: same_rows
+        real(wp), allocatable :: row_coef(:)
+        integer :: nr, q, c
+        logical :: same_rows, ok
 
         sys%action = 0
-        mb = sys%mb
         nr = size(changed)
-        na = size(added)
         sys%position = base_at(sys%unknown)
-        do q = 1, na
-            sys%position(added(q)) = mb + q
+        do q = 1, size(added)
+            sys%position(added(q)) = sys%mb + q
         end do
-        scale = maxval(abs(sys%base_diag))
-        if (.not. scale > 0.0_wp) scale = 1.0_wp
         ! The new coefficient of each changed base row (huge: its unknown was removed).
         allocate (row_coef(nr))
         do q = 1, nr
@@ -284,94 +319,161 @@ contains
         if (same_rows) same_rows = all(sys%changed_rows == changed) .and. &
             all(sys%changed_coef == row_coef)
         sys%nr = nr
-
         if (.not. same_rows) then
-            ! The changed base rows: Z = J^-1 E_R, Delta^T (new rows - old rows, by
-            ! columns of A), I + Delta Z.
-            sys%changed_rows = changed
-            sys%changed_coef = row_coef
-            if (allocated(sys%z)) deallocate (sys%z, sys%delta_t, sys%capacitance, &
-                                              sys%capacitance_ipiv)
-            allocate (sys%z(mb, nr), sys%delta_t(mb, nr), sys%capacitance(nr, nr), &
-                      sys%capacitance_ipiv(nr))
-            sys%z = 0.0_wp
-            do l = 1, mb
-                g = sys%base_unknown(l)
-                do q = 1, nr
-                    r = changed(q)
-                    p = sys%base_partner(r)
-                    if (row_coef(q) < huge(1.0_wp)) then
-                        sys%delta_t(l, q) = (row_coef(q) - sys%base_coef(r)) * a(p, g)
-                    else
-                        sys%delta_t(l, q) = -(a(sys%base_unknown(r), g) + &
-                                              sys%base_coef(r) * a(p, g))
-                    end if
-                end do
+            call change_rows(sys, a, changed, row_coef, ok)
+            if (.not. ok) return
+        end if
+        call border(sys, a, added, ok)
+        if (.not. ok) return
+        sys%action = action_updated
+        sys%updates = sys%updates + 1
+    end subroutine update_base
+
+    !> The changed base rows: Z = J^-1 E_R (the columns of rows changed in the last update
+    !> kept: Z depends on the rows only), Delta^T (new rows - old rows, by columns of A),
+    !> and the factors of I + Delta Z; ok is false when I + Delta Z is numerically singular.
+    subroutine change_rows(sys, a, changed, row_coef, ok)
+        type(reduced_factors), intent(inout) :: sys
+        real(wp), intent(in) :: a(:, :)
+        integer, intent(in) :: changed(:)
+        real(wp), intent(in) :: row_coef(:)
+        logical, intent(out) :: ok
+        type(error_type), allocatable :: singular, ill_conditioned
+        integer, allocatable :: kept_rows(:), fresh(:)
+        real(wp), allocatable :: z(:, :), zf(:, :)
+        real(wp) :: d, scale
+        integer :: mb, nr, q, r, p, g, l, k
+
+        ok = .true.
+        mb = sys%mb
+        nr = size(changed)
+        scale = maxval(abs(sys%base_diag))
+        if (.not. scale > 0.0_wp) scale = 1.0_wp
+        allocate (z(mb, nr), kept_rows(nr))
+        kept_rows = 0
+        if (allocated(sys%changed_rows)) then
+            do q = 1, nr
+                k = findloc(sys%changed_rows, changed(q), 1)
+                kept_rows(q) = k
+                if (k > 0) z(:, q) = sys%z(:, k)
             end do
+        end if
+        fresh = pack([(q, q = 1, nr)], kept_rows == 0)
+        if (size(fresh) > 0) then
+            allocate (zf(mb, size(fresh)))
+            zf = 0.0_wp
+            do q = 1, size(fresh)
+                zf(changed(fresh(q)), q) = 1.0_wp
+            end do
+            call lu_solve(sys%factors, sys%ipiv, zf)
+            z(:, fresh) = zf
+        end if
+        sys%changed_rows = changed
+        sys%changed_coef = row_coef
+        call move_alloc(z, sys%z)
+        if (allocated(sys%delta_t)) deallocate (sys%delta_t, sys%capacitance, &
+                                                sys%capacitance_ipiv)
+        allocate (sys%delta_t(mb, nr), sys%capacitance(nr, nr), sys%capacitance_ipiv(nr))
+        do l = 1, mb
+            g = sys%base_unknown(l)
             do q = 1, nr
                 r = changed(q)
-                sys%z(r, q) = 1.0_wp
-                if (row_coef(q) == huge(1.0_wp)) then
-                    d = sys%base_diag(r)
-                    if (d == 0.0_wp) d = scale
-                    ! The removed unknown's row becomes d e_r: its value is 0.
-                    sys%delta_t(r, q) = sys%delta_t(r, q) + d
+                p = sys%base_partner(r)
+                if (row_coef(q) < huge(1.0_wp)) then
+                    sys%delta_t(l, q) = (row_coef(q) - sys%base_coef(r)) * a(p, g)
+                else
+                    sys%delta_t(l, q) = -(a(sys%base_unknown(r), g) + &
+                                          sys%base_coef(r) * a(p, g))
                 end if
             end do
-            if (nr > 0) then
-                call lu_solve(sys%factors, sys%ipiv, sys%z)
-                sys%capacitance = 0.0_wp
-                do q = 1, nr
-                    sys%capacitance(q, q) = 1.0_wp
-                end do
-                call dgemm('T', 'N', nr, nr, mb, 1.0_wp, sys%delta_t, mb, sys%z, mb, 1.0_wp, &
-                           sys%capacitance, nr)
-                call lu_factor(sys%capacitance, sys%capacitance_ipiv, 'the update', singular, &
-                               ill_conditioned=ill_conditioned)
-                if (allocated(singular) .or. allocated(ill_conditioned)) then
-                    deallocate (sys%changed_rows)
-                    return
-                end if
+        end do
+        do q = 1, nr
+            r = changed(q)
+            if (row_coef(q) == huge(1.0_wp)) then
+                d = sys%base_diag(r)
+                if (d == 0.0_wp) d = scale
+                ! The removed unknown's row becomes d e_r: its value is 0.
+                sys%delta_t(r, q) = sys%delta_t(r, q) + d
             end if
-            if (allocated(sys%w_of)) deallocate (sys%w_of)
-        end if
+        end do
+        if (nr == 0) return
+        sys%capacitance = 0.0_wp
+        do q = 1, nr
+            sys%capacitance(q, q) = 1.0_wp
+        end do
+        call dgemm('T', 'N', nr, nr, mb, 1.0_wp, sys%delta_t, mb, sys%z, mb, 1.0_wp, &
+                   sys%capacitance, nr)
+        call lu_factor(sys%capacitance, sys%capacitance_ipiv, 'the update', singular, &
+                       ill_conditioned=ill_conditioned)
+        ok = .not. (allocated(singular) .or. allocated(ill_conditioned))
+        if (.not. ok) deallocate (sys%changed_rows)
+    end subroutine change_rows
 
-        ! The added unknowns: W = K^-1 B (B: the current base rows on their columns, 0 in
-        ! removed rows; columns kept from the last update when K is the same), C^T and D
-        ! (their rows, by columns of A), S = D - C W.
+    !> The added unknowns: W = K^-1 B (B their columns on the current base rows, 0 in
+    !> removed rows), C^T and D (their rows, by columns of A) and the factors of the Schur
+    !> complement S = D - C W; ok is false when S is numerically singular.
+    !> W is not solved through K: with Y0 = J^-1 B0 (B0 the columns on the base rows with
+    !> the base coefficients, kept for as long as the unknown stays added) and dB = B - B0
+    !> (non-zero on the changed rows only), W = Y0 + Z (I + Delta Z)^-1 (dB - Delta Y0),
+    !> O(mb nr na) when the changed rows change instead of O(mb^2 na).
+    subroutine border(sys, a, added, ok)
+        type(reduced_factors), intent(inout) :: sys
+        real(wp), intent(in) :: a(:, :)
+        integer, intent(in) :: added(:)
+        logical, intent(out) :: ok
+        type(error_type), allocatable :: singular, ill_conditioned
+        integer, allocatable :: ga(:), pa(:), fresh(:), column_of(:)
+        real(wp), allocatable :: ca(:), y0(:, :), yf(:, :), t(:, :)
+        integer :: mb, nr, na, q, r, p, g, l
+
+        ok = .true.
+        mb = sys%mb
+        nr = sys%nr
+        na = size(added)
+        ! W and C^T are formed anew: free them before the new Y0 is.
+        if (allocated(sys%w)) deallocate (sys%w)
+        if (allocated(sys%c_t)) deallocate (sys%c_t, sys%schur, sys%schur_ipiv)
         ga = sys%unknown(added)
         pa = sys%partner(added)
         ca = sys%coef(added)
-        allocate (w(mb, na), column_of(na))
+        allocate (y0(mb, na), column_of(na))
         column_of = 0
-        if (allocated(sys%w_of)) then
+        if (allocated(sys%y0_of)) then
             do q = 1, na
-                column_of(q) = findloc(sys%w_of, ga(q), 1)
-                if (column_of(q) > 0) w(:, q) = sys%w(:, column_of(q))
+                column_of(q) = findloc(sys%y0_of, ga(q), 1)
+                if (column_of(q) > 0) y0(:, q) = sys%y0(:, column_of(q))
             end do
         end if
         fresh = pack([(q, q = 1, na)], column_of == 0)
         if (size(fresh) > 0) then
-            allocate (wf(mb, size(fresh)))
+            allocate (yf(mb, size(fresh)))
             do q = 1, size(fresh)
                 g = ga(fresh(q))
-                do r = 1, mb
-                    c = current_at(sys%base_unknown(r))
-                    if (c > 0) then
-                        wf(r, q) = a(sys%base_unknown(r), g) + sys%coef(c) * &
-                            a(sys%base_partner(r), g)
-                    else
-                        wf(r, q) = 0.0_wp
-                    end if
-                end do
+                yf(:, q) = a(sys%base_unknown, g) + sys%base_coef * a(sys%base_partner, g)
             end do
-            call solve_k(sys, wf)
-            w(:, fresh) = wf
+            call lu_solve(sys%factors, sys%ipiv, yf)
+            y0(:, fresh) = yf
         end if
-        call move_alloc(w, sys%w)
-        sys%w_of = ga
+        call move_alloc(y0, sys%y0)
+        sys%y0_of = ga
+        sys%w = sys%y0
+        if (nr > 0 .and. na > 0) then
+            allocate (t(nr, na))
+            do q = 1, nr
+                r = sys%changed_rows(q)
+                p = sys%base_partner(r)
+                if (sys%changed_coef(q) < huge(1.0_wp)) then
+                    t(q, :) = (sys%changed_coef(q) - sys%base_coef(r)) * a(p, ga)
+                else
+                    t(q, :) = -(a(sys%base_unknown(r), ga) + sys%base_coef(r) * a(p, ga))
+                end if
+            end do
+            call dgemm('T', 'N', nr, na, mb, -1.0_wp, sys%delta_t, mb, sys%y0, mb, 1.0_wp, &
+                       t, nr)
+            call lu_solve(sys%capacitance, sys%capacitance_ipiv, t)
+            call dgemm('N', 'N', mb, na, nr, 1.0_wp, sys%z, mb, t, nr, 1.0_wp, sys%w, mb)
+        end if
         sys%na = na
-        if (allocated(sys%c_t)) deallocate (sys%c_t, sys%schur, sys%schur_ipiv)
         allocate (sys%c_t(mb, na), sys%schur(na, na), sys%schur_ipiv(na))
         do l = 1, mb
             g = sys%base_unknown(l)
@@ -380,16 +482,13 @@ contains
         do q = 1, na
             sys%schur(:, q) = a(ga, ga(q)) + ca * a(pa, ga(q))
         end do
-        if (na > 0) then
-            call dgemm('T', 'N', na, na, mb, -1.0_wp, sys%c_t, mb, sys%w, mb, 1.0_wp, &
-                       sys%schur, na)
-            call lu_factor(sys%schur, sys%schur_ipiv, 'the update', singular, &
-                           ill_conditioned=ill_conditioned)
-            if (allocated(singular) .or. allocated(ill_conditioned)) return
-        end if
-        sys%action = action_updated
-        sys%updates = sys%updates + 1
-    end subroutine update_base
+        if (na == 0) return
+        call dgemm('T', 'N', na, na, mb, -1.0_wp, sys%c_t, mb, sys%w, mb, 1.0_wp, &
+                   sys%schur, na)
+        call lu_factor(sys%schur, sys%schur_ipiv, 'the update', singular, &
+                       ill_conditioned=ill_conditioned)
+        ok = .not. (allocated(singular) .or. allocated(ill_conditioned))
+    end subroutine border
 
     !> Y = K^-1 Y: the base factors corrected for the changed rows (Woodbury).
     subroutine solve_k(sys, y)

@@ -37,7 +37,7 @@ module ddc_growth_solver
         auto_newton_min_elements
     use ddc_contact_stiffness, only: dense_stiffness
     use ddc_contact_reduced_factors, only: reduced_factors, renumber_factors, set_system, &
-        forget_factors
+        forget_factors, update_limit, copy_factors
     use ddc_post_tips, only: find_tips
     use ddc_run_model, only: run_model, finish_model, evaluate_fields
     use ddc_growth_influence, only: grow_influence, unknown_map
@@ -155,12 +155,13 @@ contains
         call move_alloc(solver%open, solver%base_open)
         call move_alloc(solver%shear, solver%base_shear)
         call refactor_updated(solver%stiffness%factors, solver%base_matrix, solver%totals)
-        solver%base_factors = solver%stiffness%factors
+        call copy_factors(solver%base_factors, solver%stiffness%factors)
     end subroutine accept_trial
 
-    !> Factorize the last reduced system anew when it was solved through an update: the
-    !> next step's trials then border only their own new unknowns on it. Carrying the
-    !> border on costs more: its columns are solved again whenever the states change.
+    !> Factorize the last reduced system anew when it was solved through an update that
+    !> fills more than half of what an update may hold; a smaller update is carried on (its
+    !> kept columns serve the next step's trials), leaving the other half for the new
+    !> unknowns of the next step, so that its trials do not factorize.
     subroutine refactor_updated(factors, a, totals)
         !> The factors of the accepted solve; refactored, or forgotten when singular
         type(reduced_factors), intent(inout) :: factors
@@ -173,7 +174,8 @@ contains
         real(wp), allocatable :: coef(:)
         real(wp) :: seconds, flops
 
-        if (factors%mb < 0 .or. factors%nr + factors%na == 0) return
+        if (factors%mb < 0) return
+        if (2 * (factors%nr + factors%na) <= update_limit(factors)) return
         unknown = factors%unknown
         partner = factors%partner
         coef = factors%coef
@@ -291,7 +293,7 @@ contains
             call grow_influence(solver%base_matrix, moved_to, model%elements, g, &
                                 model%poissons_ratio, placed, solver%matrix, finite)
             solver%layout = moved_to
-            solver%stiffness%factors = solver%base_factors
+            call copy_factors(solver%stiffness%factors, solver%base_factors)
             call renumber_factors(solver%stiffness%factors, unknown_map(moved_to, n))
             ! A later trial of the step starts from the states of the one before (its new
             ! elements lie close to these), the first one from the base's.

@@ -13,7 +13,8 @@
 !>   its LCP) and stores about 12 reals per element and step, held from the start; a
 !>   growth run whose elements are all contact elements solved by Newton keeps the
 !>   influence matrix and the reduced factors of the last accepted geometry beside those of
-!>   the trial (ddc_growth_solver): 8 N^2 more, counted at the input's N (the grown N is
+!>   the trial (ddc_growth_solver), with the arrays of the update it may carry on (at most
+!>   3 m^2 / 16 for m = 2N unknowns): 9 N^2 more, counted at the input's N (the grown N is
 !>   not known before the run);
 !> - the model and its results, 50 reals per element and 13 per observation point;
 !> - the program itself (libraries, buffers), 20 MB.
@@ -40,9 +41,9 @@ module ddc_run_memory
     real(wp), parameter :: element_reals = 50.0_wp, point_reals = 13.0_wp
     !> Reals per element and step that a loading history stores
     real(wp), parameter :: history_reals = 12.0_wp
-    !> Reals per squared element that a growth run keeps for its base geometry (matrix and
-    !> reduced factors)
-    real(wp), parameter :: growth_base_reals = 8.0_wp
+    !> Reals per squared element that a growth run keeps for its base geometry (matrix,
+    !> reduced factors and a carried update)
+    real(wp), parameter :: growth_base_reals = 9.0_wp
 
     !> What a model needs, and where it was estimated to peak.
     type :: memory_need
