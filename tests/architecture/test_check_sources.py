@@ -1,0 +1,152 @@
+"""The architecture checks fail when fed a planted violation (CTest architecture_checks).
+
+Each case copies the sources the checks read (src/, app/, tests/*.f90 and
+docs/ARCHITECTURE.md) to a temporary folder, plants one violation, and expects
+check_sources.py to exit 1 naming it; the copy as it is must pass, so each failure comes
+from the planted line alone.
+"""
+
+import re
+import shutil
+import sys
+from pathlib import Path
+
+import pytest
+
+sys.dont_write_bytecode = True
+HERE = Path(__file__).resolve().parent
+REPO_ROOT = HERE.parents[1]
+sys.path.insert(0, str(HERE))
+
+import check_sources  # noqa: E402  (imported from this folder)
+
+
+@pytest.fixture
+def tree(tmp_path):
+    """A copy of the sources the checks read."""
+    for folder in ("src", "app"):
+        shutil.copytree(REPO_ROOT / folder, tmp_path / folder)
+    (tmp_path / "tests").mkdir()
+    for path in (REPO_ROOT / "tests").glob("*.f90"):
+        shutil.copy(path, tmp_path / "tests")
+    (tmp_path / "docs").mkdir()
+    shutil.copy(REPO_ROOT / "docs/ARCHITECTURE.md", tmp_path / "docs")
+    return tmp_path
+
+
+def run_checks(root, capsys):
+    status = check_sources.main([str(root)])
+    return status, capsys.readouterr().out
+
+
+def edit(path, old, new):
+    """Replace the one occurrence of old in path by new."""
+    text = path.read_text()
+    assert text.count(old) == 1, f"{path}: {old!r} occurs {text.count(old)} times"
+    path.write_text(text.replace(old, new))
+
+
+def table_row(tree, folder):
+    text = (tree / "docs/ARCHITECTURE.md").read_text()
+    return re.search(rf"^\| `{re.escape(folder)}` .*$", text, re.MULTILINE).group(0)
+
+
+def test_the_tree_passes(tree, capsys):
+    status, out = run_checks(tree, capsys)
+    assert status == 0, out
+    assert "every folder edge listed" in out
+
+
+def test_unlisted_folder_edge_fails(tree, capsys):
+    # sweep/ back on the HDF5 reader, the edge this table no longer lists
+    edit(tree / "src/sweep/tasks.f90", "    use ddc_kinds, only: wp\n",
+         "    use ddc_kinds, only: wp\n    use ddc_output_hdf5_read, only: read_int_attribute\n")
+    status, out = run_checks(tree, capsys)
+    assert status == 1
+    assert ("src/sweep/tasks.f90 uses ddc_output_hdf5_read: the folder table of "
+            "docs/ARCHITECTURE.md does not list output (nor output/hdf5_read one by one) "
+            "among the uses of sweep") in out
+
+
+def test_unlisted_module_of_listed_folder_fails(tree, capsys):
+    # model/ lists contact/options and contact/states only, not all of contact/
+    edit(tree / "src/model/results.f90", "    use ddc_kinds, only: wp\n",
+         "    use ddc_kinds, only: wp\n    use ddc_contact_lemke, only: solve_lemke\n")
+    status, out = run_checks(tree, capsys)
+    assert status == 1
+    assert ("src/model/results.f90 uses ddc_contact_lemke: the folder table of "
+            "docs/ARCHITECTURE.md does not list contact (nor contact/lemke one by one) "
+            "among the uses of model") in out
+
+
+def test_listed_use_the_code_lacks_fails(tree, capsys):
+    row = table_row(tree, "linalg/")
+    edit(tree / "docs/ARCHITECTURE.md", row, row.replace("| base |", "| base, mesh |"))
+    status, out = run_checks(tree, capsys)
+    assert status == 1
+    assert "docs/ARCHITECTURE.md: the row of linalg lists mesh, which linalg does not use" in out
+
+
+def test_folder_without_row_fails(tree, capsys):
+    row = table_row(tree, "post/")
+    edit(tree / "docs/ARCHITECTURE.md", row + "\n", "")
+    status, out = run_checks(tree, capsys)
+    assert status == 1
+    assert "docs/ARCHITECTURE.md: no row for post in the folder table" in out
+
+
+def test_per_element_array_missing_from_the_list_fails(tree, capsys):
+    edit(tree / "src/model/types.f90", "        integer :: domain = domain_full_plane\n",
+         "        integer :: domain = domain_full_plane\n"
+         "        real(wp), allocatable :: planted(:)\n")
+    status, out = run_checks(tree, capsys)
+    assert status == 1
+    assert ("src/model/types.f90: the per-element array planted of element_set is missing "
+            "from for_each_element_array") in out
+    edit(tree / "src/model/types.f90", "        call action%on_reals(elements%sin_beta)\n",
+         "        call action%on_reals(elements%sin_beta)\n"
+         "        call action%on_reals(elements%planted)\n")
+    assert run_checks(tree, capsys)[0] == 0
+
+
+def test_routine_around_the_list_fails(tree, capsys):
+    edit(tree / "src/parallel/model.f90",
+         "        call for_each_element_array(elements, broadcast)\n", "")
+    status, out = run_checks(tree, capsys)
+    assert status == 1
+    assert ("src/parallel/model.f90: share_elements does not go through "
+            "for_each_element_array") in out
+
+
+def test_element_scalar_missing_from_the_broadcast_fails(tree, capsys):
+    edit(tree / "src/parallel/model.f90",
+         "        call share(context, elements%symmetry%ysym)\n", "")
+    status, out = run_checks(tree, capsys)
+    assert status == 1
+    assert ("src/parallel/model.f90: share_elements does not broadcast "
+            "elements%symmetry%ysym (a component of element_set)") in out
+
+
+def test_solver_option_missing_from_the_broadcast_fails(tree, capsys):
+    options = tree / "src/contact/options.f90"
+    edit(options, "        integer :: open_cohesion = cohesion_kept\n",
+         "        integer :: open_cohesion = cohesion_kept\n        integer :: planted = 0\n")
+    status, out = run_checks(tree, capsys)
+    assert status == 1
+    assert ("src/parallel/model.f90: share_model does not broadcast model%solver%planted "
+            "(a component of solver_options) nor marks it") in out
+    # marked root only, with a reason, it passes
+    edit(tree / "src/parallel/model.f90", "        ! Root only: model%solver%work_bytes",
+         "        ! Root only: model%solver%planted (planted)\n"
+         "        ! Root only: model%solver%work_bytes")
+    assert run_checks(tree, capsys)[0] == 0
+
+
+def test_stale_root_only_mark_fails(tree, capsys):
+    edit(tree / "src/parallel/model.f90", "        ! Root only: model%solver%work_bytes",
+         "        ! Root only: model%solver%gone (planted)\n"
+         "        ! Root only: model%solver%work_bytes")
+    status, out = run_checks(tree, capsys)
+    assert status == 1
+    assert ("src/parallel/model.f90: share_model marks model%solver%gone root only, which "
+            "is no component of solver_options") in out
