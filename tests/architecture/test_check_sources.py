@@ -150,3 +150,36 @@ def test_stale_root_only_mark_fails(tree, capsys):
     assert status == 1
     assert ("src/parallel/model.f90: share_model marks model%solver%gone root only, which "
             "is no component of solver_options") in out
+
+
+def test_folder_cycle_fails(tree, capsys):
+    # linalg/ -> model/ closes model -> contact -> linalg
+    edit(tree / "src/linalg/lu.f90", "    use ddc_kinds, only: wp\n",
+         "    use ddc_kinds, only: wp\n    use ddc_model_types, only: model_type\n")
+    status, out = run_checks(tree, capsys)
+    assert status == 1
+    assert "folder cycle: " in out
+    assert "linalg -> model (src/linalg/lu.f90 uses ddc_model_types)" in out
+
+
+def test_module_name_off_its_path_fails(tree, capsys):
+    edit(tree / "src/post/tips.f90", "\nmodule ddc_post_tips\n", "\nmodule ddc_post_tip\n")
+    status, out = run_checks(tree, capsys)
+    assert status == 1
+    assert "src/post/tips.f90: holds module ddc_post_tip, expected ddc_post_tips" in out
+
+
+def test_namelist_off_the_group_table_fails(tree, capsys):
+    edit(tree / "src/input/namelist_fracture.f90", "namelist /fracture/ name, x, y,",
+         "namelist /fracture/ name, y, x,")
+    status, out = run_checks(tree, capsys)
+    assert status == 1
+    assert "src/input/namelist_fracture.f90: namelist /fracture/ declares" in out
+
+
+def test_unused_import_fails(tree, capsys):
+    edit(tree / "src/linalg/lu.f90", "    use ddc_kinds, only: wp\n",
+         "    use ddc_kinds, only: wp\n    use ddc_sorting, only: first_at_least\n")
+    status, out = run_checks(tree, capsys)
+    assert status == 1
+    assert "src/linalg/lu.f90: imports first_at_least but does not use it" in out
