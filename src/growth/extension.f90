@@ -140,9 +140,9 @@ contains
             added = added + paths(p)%n
         end do
         n = model%elements%n + added
-        allocate (pick(n), grown_created(n), is_new(n), x_begin(n), y_begin(n), x_end(n), &
-                  y_end(n))
-        is_new = .false.
+        allocate (pick(n), grown_created(n))
+        allocate (is_new(n), source=.false.)
+        allocate (x_begin(n), y_begin(n), x_end(n), y_end(n), source=0.0_wp)
         grown = model
         if (present(moved_to)) allocate (moved_to(model%elements%n))
         next = 0
