@@ -103,12 +103,11 @@ contains
         class(array_numbering), intent(inout) :: action
         real(wp), allocatable, intent(inout) :: values(:)
         integer, allocatable :: expected(:)
+        integer :: length
 
-        if (allocated(values)) then
-            call expected_numbers(action, size(values), expected)
-        else
-            call expected_numbers(action, -1, expected)
-        end if
+        length = -1
+        if (allocated(values)) length = size(values)
+        call expected_numbers(action, length, expected)
         if (.not. allocated(expected)) return
         if (.not. allocated(action%pick)) then
             values = real(expected, wp)
@@ -123,12 +122,11 @@ contains
         class(array_numbering), intent(inout) :: action
         integer, allocatable, intent(inout) :: values(:)
         integer, allocatable :: expected(:)
+        integer :: length
 
-        if (allocated(values)) then
-            call expected_numbers(action, size(values), expected)
-        else
-            call expected_numbers(action, -1, expected)
-        end if
+        length = -1
+        if (allocated(values)) length = size(values)
+        call expected_numbers(action, length, expected)
         if (.not. allocated(expected)) return
         if (.not. allocated(action%pick)) then
             values = expected

@@ -39,6 +39,13 @@ def run_checks(root, capsys):
     return status, capsys.readouterr().out
 
 
+def expect_violation(root, capsys, message):
+    """The checks fail on root and name the violation."""
+    status, out = run_checks(root, capsys)
+    assert status == 1, out
+    assert message in out, out
+
+
 def edit(path, old, new):
     """Replace the one occurrence of old in path by new."""
     text = path.read_text()
@@ -61,48 +68,42 @@ def test_unlisted_folder_edge_fails(tree, capsys):
     # sweep/ back on the HDF5 reader, the edge this table no longer lists
     edit(tree / "src/sweep/tasks.f90", "    use ddc_kinds, only: wp\n",
          "    use ddc_kinds, only: wp\n    use ddc_output_hdf5_read, only: read_int_attribute\n")
-    status, out = run_checks(tree, capsys)
-    assert status == 1
-    assert ("src/sweep/tasks.f90 uses ddc_output_hdf5_read: the folder table of "
-            "docs/ARCHITECTURE.md does not list output (nor output/hdf5_read one by one) "
-            "among the uses of sweep") in out
+    expect_violation(tree, capsys,
+                     "src/sweep/tasks.f90 uses ddc_output_hdf5_read: the folder table of "
+                     "docs/ARCHITECTURE.md does not list output (nor output/hdf5_read one by "
+                     "one) among the uses of sweep")
 
 
 def test_unlisted_module_of_listed_folder_fails(tree, capsys):
     # model/ lists contact/options and contact/states only, not all of contact/
     edit(tree / "src/model/results.f90", "    use ddc_kinds, only: wp\n",
          "    use ddc_kinds, only: wp\n    use ddc_contact_lemke, only: solve_lemke\n")
-    status, out = run_checks(tree, capsys)
-    assert status == 1
-    assert ("src/model/results.f90 uses ddc_contact_lemke: the folder table of "
-            "docs/ARCHITECTURE.md does not list contact (nor contact/lemke one by one) "
-            "among the uses of model") in out
+    expect_violation(tree, capsys,
+                     "src/model/results.f90 uses ddc_contact_lemke: the folder table of "
+                     "docs/ARCHITECTURE.md does not list contact (nor contact/lemke one by "
+                     "one) among the uses of model")
 
 
 def test_listed_use_the_code_lacks_fails(tree, capsys):
     row = table_row(tree, "linalg/")
     edit(tree / "docs/ARCHITECTURE.md", row, row.replace("| base |", "| base, mesh |"))
-    status, out = run_checks(tree, capsys)
-    assert status == 1
-    assert "docs/ARCHITECTURE.md: the row of linalg lists mesh, which linalg does not use" in out
+    expect_violation(tree, capsys, "docs/ARCHITECTURE.md: the row of linalg lists mesh, which "
+                     "linalg does not use")
 
 
 def test_folder_without_row_fails(tree, capsys):
     row = table_row(tree, "post/")
     edit(tree / "docs/ARCHITECTURE.md", row + "\n", "")
-    status, out = run_checks(tree, capsys)
-    assert status == 1
-    assert "docs/ARCHITECTURE.md: no row for post in the folder table" in out
+    expect_violation(tree, capsys, "docs/ARCHITECTURE.md: no row for post in the folder table")
 
 
 def test_per_element_array_missing_from_the_list_fails(tree, capsys):
     edit(tree / "src/model/types.f90", "        integer :: domain = domain_full_plane\n",
          "        integer :: domain = domain_full_plane\n"
          "        real(wp), allocatable :: planted(:)\n")
-    status, out = run_checks(tree, capsys)
-    assert status == 1
-    assert ("src/model/types.f90: the per-element array planted of element_set is missing "
-            "from for_each_element_array") in out
+    expect_violation(tree, capsys, "src/model/types.f90: the per-element array planted of "
+                     "element_set is missing from for_each_element_array")
+    # listed once, it passes
     edit(tree / "src/model/types.f90", "        call action%on_reals(elements%sin_beta)\n",
          "        call action%on_reals(elements%sin_beta)\n"
          "        call action%on_reals(elements%planted)\n")
@@ -112,29 +113,22 @@ def test_per_element_array_missing_from_the_list_fails(tree, capsys):
 def test_routine_around_the_list_fails(tree, capsys):
     edit(tree / "src/parallel/model.f90",
          "        call for_each_element_array(elements, broadcast)\n", "")
-    status, out = run_checks(tree, capsys)
-    assert status == 1
-    assert ("src/parallel/model.f90: share_elements does not go through "
-            "for_each_element_array") in out
+    expect_violation(tree, capsys, "src/parallel/model.f90: share_elements does not go "
+                     "through for_each_element_array")
 
 
 def test_element_scalar_missing_from_the_broadcast_fails(tree, capsys):
     edit(tree / "src/parallel/model.f90",
          "        call share(context, elements%symmetry%ysym)\n", "")
-    status, out = run_checks(tree, capsys)
-    assert status == 1
-    assert ("src/parallel/model.f90: share_elements does not broadcast "
-            "elements%symmetry%ysym (a component of element_set)") in out
+    expect_violation(tree, capsys, "src/parallel/model.f90: share_elements does not broadcast "
+                     "elements%symmetry%ysym (a component of element_set)")
 
 
 def test_solver_option_missing_from_the_broadcast_fails(tree, capsys):
-    options = tree / "src/contact/options.f90"
-    edit(options, "        integer :: open_cohesion = cohesion_kept\n",
+    edit(tree / "src/contact/options.f90", "        integer :: open_cohesion = cohesion_kept\n",
          "        integer :: open_cohesion = cohesion_kept\n        integer :: planted = 0\n")
-    status, out = run_checks(tree, capsys)
-    assert status == 1
-    assert ("src/parallel/model.f90: share_model does not broadcast model%solver%planted "
-            "(a component of solver_options) nor marks it") in out
+    expect_violation(tree, capsys, "src/parallel/model.f90: share_model does not broadcast "
+                     "model%solver%planted (a component of solver_options) nor marks it")
     # marked root only, with a reason, it passes
     edit(tree / "src/parallel/model.f90", "        ! Root only: model%solver%work_bytes",
          "        ! Root only: model%solver%planted (planted)\n"
@@ -146,40 +140,32 @@ def test_stale_root_only_mark_fails(tree, capsys):
     edit(tree / "src/parallel/model.f90", "        ! Root only: model%solver%work_bytes",
          "        ! Root only: model%solver%gone (planted)\n"
          "        ! Root only: model%solver%work_bytes")
-    status, out = run_checks(tree, capsys)
-    assert status == 1
-    assert ("src/parallel/model.f90: share_model marks model%solver%gone root only, which "
-            "is no component of solver_options") in out
+    expect_violation(tree, capsys, "src/parallel/model.f90: share_model marks "
+                     "model%solver%gone root only, which is no component of solver_options")
 
 
 def test_folder_cycle_fails(tree, capsys):
     # linalg/ -> model/ closes model -> contact -> linalg
     edit(tree / "src/linalg/lu.f90", "    use ddc_kinds, only: wp\n",
          "    use ddc_kinds, only: wp\n    use ddc_model_types, only: model_type\n")
-    status, out = run_checks(tree, capsys)
-    assert status == 1
-    assert "folder cycle: " in out
-    assert "linalg -> model (src/linalg/lu.f90 uses ddc_model_types)" in out
+    expect_violation(tree, capsys, "linalg -> model (src/linalg/lu.f90 uses ddc_model_types)")
 
 
 def test_module_name_off_its_path_fails(tree, capsys):
     edit(tree / "src/post/tips.f90", "\nmodule ddc_post_tips\n", "\nmodule ddc_post_tip\n")
-    status, out = run_checks(tree, capsys)
-    assert status == 1
-    assert "src/post/tips.f90: holds module ddc_post_tip, expected ddc_post_tips" in out
+    expect_violation(tree, capsys, "src/post/tips.f90: holds module ddc_post_tip, expected "
+                     "ddc_post_tips")
 
 
 def test_namelist_off_the_group_table_fails(tree, capsys):
     edit(tree / "src/input/namelist_fracture.f90", "namelist /fracture/ name, x, y,",
          "namelist /fracture/ name, y, x,")
-    status, out = run_checks(tree, capsys)
-    assert status == 1
-    assert "src/input/namelist_fracture.f90: namelist /fracture/ declares" in out
+    expect_violation(tree, capsys,
+                     "src/input/namelist_fracture.f90: namelist /fracture/ declares")
 
 
 def test_unused_import_fails(tree, capsys):
     edit(tree / "src/linalg/lu.f90", "    use ddc_kinds, only: wp\n",
          "    use ddc_kinds, only: wp\n    use ddc_sorting, only: first_at_least\n")
-    status, out = run_checks(tree, capsys)
-    assert status == 1
-    assert "src/linalg/lu.f90: imports first_at_least but does not use it" in out
+    expect_violation(tree, capsys,
+                     "src/linalg/lu.f90: imports first_at_least but does not use it")
