@@ -125,6 +125,7 @@ def example(uses):
 
 
 TABLE = Path("docs/ARCHITECTURE.md")
+TABLE_SECTION = "## Folders and what flows between them"
 TABLE_ROW = re.compile(r"^\|\s*`([^`]+)`[^|]*\|[^|]*\|([^|]*)\|\s*$", re.MULTILINE)
 
 
@@ -136,7 +137,9 @@ def read_table(root, problems):
     """{folder: set of uses} from the folder table: a use is a folder ("." for the base)
     or "folder/file" for a single module; remarks in parentheses are not uses."""
     table = {}
-    for cell, uses in TABLE_ROW.findall((root / TABLE).read_text()):
+    text = (root / TABLE).read_text()
+    section = re.search(rf"^{TABLE_SECTION}$(.*?)(?=^## |\Z)", text, re.MULTILINE | re.DOTALL)
+    for cell, uses in TABLE_ROW.findall(section.group(1) if section else ""):
         folder = "." if cell == "src/*.f90" else cell.strip().removesuffix("/")
         items = [item.strip() for item in
                  re.sub(r"\([^)]*\)", "", uses).replace("`", "").split(",")]
@@ -145,7 +148,8 @@ def read_table(root, problems):
             problems.append(f"{TABLE}: two rows for {folder_name(folder)}")
         table[folder] = {"." if item == "base" else item.removesuffix("/") for item in items}
     if not table:
-        problems.append(f"{TABLE}: no folder table (| `folder/` | job | uses |) found")
+        problems.append(f"{TABLE}: no folder table (| `folder/` | job | uses |) under "
+                        f"'{TABLE_SECTION}'")
     return table
 
 
