@@ -287,17 +287,17 @@ contains
         type(model_type), intent(in) :: model
         integer, intent(in) :: moved_to(:)
         logical :: known(model%elements%n)
-        logical, allocatable :: open(:)
-        integer, allocatable :: shear(:)
+        logical, allocatable :: open_state(:)
+        integer, allocatable :: shear_state(:)
         integer :: n, i
 
         n = model%elements%n
-        allocate (open(n), shear(n))
-        open = .false.
-        shear = 0
+        allocate (open_state(n), shear_state(n))
+        open_state = .false.
+        shear_state = 0
         known = .false.
-        open(moved_to) = solver%base_open
-        shear(moved_to) = solver%base_shear
+        open_state(moved_to) = solver%base_open
+        shear_state(moved_to) = solver%base_shear
         known(moved_to) = .true.
         ! Elements grown at a begin tip come before their fracture's old ones ...
         do i = n - 1, 1, -1
@@ -307,8 +307,8 @@ contains
         do i = 2, n
             if (.not. known(i)) call take_from(i, i - 1)
         end do
-        call move_alloc(open, solver%session%open)
-        call move_alloc(shear, solver%session%shear_state)
+        call move_alloc(open_state, solver%session%open)
+        call move_alloc(shear_state, solver%session%shear_state)
 
     contains
 
@@ -317,8 +317,8 @@ contains
 
             if (.not. known(from)) return
             if (model%elements%fracture_id(from) /= model%elements%fracture_id(to)) return
-            open(to) = open(from)
-            shear(to) = shear(from)
+            open_state(to) = open_state(from)
+            shear_state(to) = shear_state(from)
             known(to) = .true.
         end subroutine take_from
 
