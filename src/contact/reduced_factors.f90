@@ -22,7 +22,8 @@
 !> - more than max(16, m / 8) changed plus added unknowns, or a numerically singular
 !>   I + Delta Z or S: a new factorization, which becomes the base.
 !> The caller checks every solution against the unfactored A (ddc_contact_active_set) and
-!> drops the factors (forget_factors) when an update has lost accuracy.
+!> drops the factors (forget_factors) when an update has lost accuracy. A growth run
+!> factorizes an accepted update anew when it is more than half full (refactor_full_update).
 module ddc_contact_reduced_factors
     use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
@@ -158,10 +159,9 @@ contains
         update_limit = max(min_update_rank, size(sys%unknown) / update_fraction)
     end function update_limit
 
-    !> Factorize the current system anew when it was reached by an update more than half
-    !> full (2 (nr + na) > update_limit); a smaller one is carried on (its kept columns serve
-    !> the next systems), leaving half for the unknowns the next systems add (a growth run:
-    !> the accepted geometry's factors). A singular system is left to the next set_system.
+    !> Factorize anew an update more than half full (2 (nr + na) > update_limit); a smaller
+    !> one is carried on, leaving half for the unknowns the next systems add (a growth run:
+    !> the accepted geometry's). A singular system is left to the next set_system.
     subroutine refactor_full_update(sys, a, counts)
         !> The factors (set_system done); refactored, or forgotten when singular
         type(reduced_factors), intent(inout) :: sys

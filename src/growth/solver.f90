@@ -16,6 +16,9 @@
 !> - is solved, certified and checked by solve_contact_with exactly as a one-shot solve,
 !>   with the same fallbacks (an update that lost accuracy factorizes anew, a Newton
 !>   failure falls back to Lemke).
+!> The trials share one contact_session (each on its own matrix: new_matrix), whose states
+!> carry over from one trial to the next; when a step is accepted, an update of its factors
+!> that leaves the next step's trials no room is factorized anew (refactor_full_update).
 !> Every other model (Lemke, TWODD-style elements, no contact) is solved from scratch by
 !> run_model, as before growth had a solver. Tractions, face displacements and fields are
 !> computed once, for the final geometry (final_results).
