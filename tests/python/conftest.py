@@ -41,6 +41,10 @@ STATES = [1, 2, 3, 2, 0, 3, 1]
 DS = [-1.0e-3, -2.5e-3, -3.0e-3, -1.5e-3, 4.0e-4, 0.0, 2.0e-4]
 DN = [0.0, 0.0, -2.0e-3, 0.0, -1.0e-4, -7.0e-4, 0.0]
 
+# The coding ddc2d writes on /fields/<name>/near_element: ddc2d-plot masks the points
+# that it calls 'on' (an element).
+NEAR_ELEMENT_CODING = ("0 clear, 1 within one element length of an element centre (reduced "
+                       "accuracy), 2 on an element or at an element end (value NaN)")
 GRID_NX, GRID_NY = 5, 4
 GRID_NAN_POINT = (1, 2)  # (row j, column i) of the point on an element: NaN, flagged 2
 GRID_NEAR_POINT = (2, 3)  # a point close to an element: finite, flagged 1
@@ -150,6 +154,7 @@ def write_result(path, with_fields=True, with_elements=True):
             grid.attrs["ny"] = np.int32(GRID_NY)
             for key, value in grid_arrays().items():
                 grid.create_dataset(key, data=value)
+            grid["near_element"].attrs["coding"] = _text(NEAR_ELEMENT_CODING)
             line = fields.create_group("line1")
             line.attrs["kind"] = _text("line")
             line.attrs["nx"] = np.int32(6)
