@@ -65,6 +65,18 @@ QUANTITY_LABELS = {
     **{f"induced_{name}": "induced " + label for name, label in STRESS_LABELS.items()},
     "displacement": r"displacement magnitude $\sqrt{u_x^2+u_y^2}$",
 }
+#: The colour-bar labels of the maps: short, to fit beside a map of any aspect (the maps'
+#: titles give the QUANTITY_LABELS).
+COLORBAR_LABELS = {
+    **STRESS_LABELS,
+    "mean": "mean stress",
+    "max_shear": "max. shear stress",
+    "coulomb": "Coulomb stress change",
+    **{f"induced_{name}": "induced " + label for name, label in STRESS_LABELS.items()
+       if name != "mean"},
+    "induced_mean": "induced mean stress",
+    "displacement": "displacement magnitude",
+}
 #: Quantities that change sign (drawn with a diverging colour map centred on the value
 #: without fractures, when there is one).
 SIGNED_QUANTITIES = (*STRESSES, "coulomb", *INDUCED)
@@ -78,6 +90,9 @@ SENSES = {"right": 1, "left": -1}
 QUIVER_MAX_ARROWS = 24
 #: Percentile of |value| used for the default colour limits (tips are singular).
 CLIM_PERCENTILE = 98.0
+#: Longest first line of a heading that joins the model's title and the figure's subject
+#: (characters: a suptitle of 80 fits an 8-inch figure).
+HEADING_WIDTH = 80
 #: (axis index, profile key, axis label) of the two profile panels.
 PROFILE_PANELS = ((0, "slip", "slip $-D_s$"), (1, "opening", "opening $-D_n$"))
 #: (field key, panel label, unit kind) of the observation line figures.
@@ -92,8 +107,14 @@ def unit_label(unit):
 
 
 def heading(result, text):
-    """A figure's heading: the model's title (when it has one), then `text`."""
-    return f"{result['title']}: {text}" if result["title"] else text
+    """A figure's heading: the model's title (when it has one), then `text`; on a line of
+    its own when the two would make a first line longer than HEADING_WIDTH characters."""
+    if not result["title"]:
+        return text
+    joined = f"{result['title']}: {text}"
+    if len(joined.split("\n", 1)[0]) > HEADING_WIDTH:
+        return f"{result['title']}\n{text}"
+    return joined
 
 
 # --------------------------------------------------------------------------- history
@@ -630,6 +651,8 @@ def map_title(result, name, quantity, receiver=None):
     whose sign is its own), what a change is taken from, the receiver of a Coulomb map
     (Receiver.describe), and what the white of a total stress map is."""
     text = f"grid '{name}': {quantity}"
+    if QUANTITY_LABELS[quantity] != COLORBAR_LABELS[quantity]:
+        text += f", {QUANTITY_LABELS[quantity]}"
     centre = remote_value(result, quantity)
     if quantity in BACKGROUND_QUANTITIES:
         text += (" (tension positive)" if quantity in INDUCED else "") + \

@@ -16,8 +16,8 @@ from matplotlib.ticker import MaxNLocator
 
 from ddc2d_h5 import coding_of
 from ddc2d_plot_data import (
+    COLORBAR_LABELS,
     LINE_PANELS,
-    QUANTITY_LABELS,
     SIGNED_QUANTITIES,
     Background,
     as_grid,
@@ -51,6 +51,10 @@ STATE_STYLES = {
 }
 #: Marker of a state the styles do not know.
 OTHER_STATE_STYLE = {"color": "black", "marker": "x"}
+#: Space kept free around the edges of a map figure and between its parts [inch].
+MAP_PAD = 0.1
+#: The overview's legend names the fractures when there are at most this many.
+LEGEND_MAX_FRACTURES = 8
 #: Line styles of the fractures in the all-fractures profile and of the growth tips.
 LINESTYLES = ("-", "--", ":", "-.")
 
@@ -273,7 +277,8 @@ def plot_overview(result):
     the x or y coordinate of its element midpoints (overview_axis of the fracture: its
     longer extent); one line style per fracture, markers by state; the legend gives each
     fracture's coordinate and, in a cross-section, what its positive slip means (in a map
-    view it is right-lateral on every fracture, said once)."""
+    view it is right-lateral on every fracture, said once); of more than
+    LEGEND_MAX_FRACTURES fractures (a TWODD deck's contour) only the states."""
     elements = result["elements"]
     panels = profile_panels(result)
     fig, axes = plt.subplots(len(panels), 1, sharex=True, squeeze=False,
@@ -291,6 +296,8 @@ def plot_overview(result):
         style = LINESTYLES[index % len(LINESTYLES)]
         label = f"{fracture['name'] or fracture['label']} (against {axis}"
         label += f"; {slip_sense(result, fracture)})" if is_cross_section(result) else ")"
+        if len(result["fractures"]) > LEGEND_MAX_FRACTURES:
+            label = "_" + label
         for row, key, _ in panels:
             axes[row].plot(position, profile[key], color="0.25", linewidth=1.0,
                            linestyle=style, label=label, gid=f"{key}:{fracture['label']}")
@@ -303,8 +310,11 @@ def plot_overview(result):
     handles, labels = axes[0].get_legend_handles_labels()
     states = [i for i, label in enumerate(labels) if label in labelled]
     order = [i for i in range(len(labels)) if i not in states] + states
+    title = "fracture (line), element state (marker)"
+    if len(result["fractures"]) > LEGEND_MAX_FRACTURES:
+        title = "element state"
     axes[0].legend([handles[i] for i in order], [labels[i] for i in order], loc="best",
-                   fontsize="small", title="fracture (line), element state (marker)")
+                   fontsize="small", title=title)
     if not is_cross_section(result) and panels[0][1] == "slip":
         axes[0].set_title(slip_sense(result, result["fractures"][0]), fontsize="small",
                           loc="left")
@@ -326,7 +336,10 @@ def plot_map(result, name, quantity, clim=None, receiver=None):
     vmin, vmax = clim if clim is not None else default_clim(values, quantity, centre)
     diverging = quantity in SIGNED_QUANTITIES and centre is not None
     cmap = "RdBu_r" if diverging else "viridis"
-    fig, ax = plt.subplots(figsize=map_figure_size(x, y), constrained_layout=True)
+    # The compressed layout sizes the axes at their fixed aspect before placing the labels
+    # and colour bars (the constrained one cut them off a map taller than wide).
+    fig, ax = plt.subplots(figsize=map_figure_size(x, y), layout="compressed")
+    fig.get_layout_engine().set(w_pad=MAP_PAD, h_pad=MAP_PAD)
     mesh = ax.pcolormesh(x, y, values, shading="nearest", cmap=cmap, vmin=vmin, vmax=vmax)
     xlim, ylim = ax.get_xlim(), ax.get_ylim()  # the grid's extent
     grown = _draw_elements(ax, result["elements"])
@@ -336,7 +349,7 @@ def plot_map(result, name, quantity, clim=None, receiver=None):
     ax.set_ylim(ylim)
     ax.set_aspect("equal")
     unit = result["length_unit"] if quantity == "displacement" else result["stress_unit"]
-    fig.colorbar(mesh, ax=ax, extend="both", label=QUANTITY_LABELS[quantity] + unit_label(unit))
+    fig.colorbar(mesh, ax=ax, extend="both", label=COLORBAR_LABELS[quantity] + unit_label(unit))
     if grown is not None:
         bar = fig.colorbar(grown, ax=ax, location="bottom", shrink=0.6, aspect=40,
                            label="growth step of the grown elements")
