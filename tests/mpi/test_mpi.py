@@ -126,6 +126,8 @@ ERRORS = {
                "one process"]),
     "load_path": (DATA / "history" / "good.nml", 2,
                   ["good.nml", "with 4 processes", "&load_path", "one process"]),
+    "growth": (DATA / "growth" / "good.nml", 2,
+               ["good.nml", "with 4 processes", "&growth", "one process"]),
     "solver_failure": (DATA / "mpi" / "unbalanced_hole.nml", 1,
                        ["influence matrix is numerically singular", "relative residual"]),
 }
