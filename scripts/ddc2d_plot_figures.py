@@ -242,15 +242,20 @@ def _mark_states(ax, position, values, state, names, labelled, markersize=5):
                 **OTHER_STATE_STYLE)
 
 
+def _profile_axes(panels):
+    """A figure with one axes per profile panel, stacked, sharing x: (Figure, axes)."""
+    fig, axes = plt.subplots(len(panels), 1, sharex=True, squeeze=False,
+                             figsize=(8, 3.4 + 2.6 * (len(panels) - 1)),
+                             constrained_layout=True)
+    return fig, axes[:, 0]
+
+
 def plot_profile(result, fracture, profile):
     """Figure with slip (and opening, see profile_panels) along one fracture, saying what
     positive slip means (slip_sense); returns the Figure."""
     length_unit = result["length_unit"]
     panels = profile_panels(result)
-    fig, axes = plt.subplots(len(panels), 1, sharex=True, squeeze=False,
-                             figsize=(8, 3.4 + 2.6 * (len(panels) - 1)),
-                             constrained_layout=True)
-    axes = axes[:, 0]
+    fig, axes = _profile_axes(panels)
     for row, key, label in panels:
         ax = axes[row]
         ax.plot(profile["distance"], profile[key], color="0.3", linewidth=1.0,
@@ -281,10 +286,7 @@ def plot_overview(result):
     LEGEND_MAX_FRACTURES fractures (a TWODD deck's contour) only the states."""
     elements = result["elements"]
     panels = profile_panels(result)
-    fig, axes = plt.subplots(len(panels), 1, sharex=True, squeeze=False,
-                             figsize=(8, 3.4 + 2.6 * (len(panels) - 1)),
-                             constrained_layout=True)
-    axes = axes[:, 0]
+    fig, axes = _profile_axes(panels)
     names = state_names(result)
     labelled = set()
     used_axes = set()

@@ -8,6 +8,7 @@ Tests read result files with scripts/ddc2d_h5.py (importable once this file is l
 import importlib.machinery
 import importlib.util
 import os
+import subprocess
 import sys
 from pathlib import Path
 
@@ -201,6 +202,16 @@ def load_script(name):
 def plot_module():
     """scripts/ddc2d-plot loaded as a module."""
     return load_script("ddc2d-plot")
+
+
+def solve_text(folder, stem, text, timeout=300):
+    """Write `text` to folder/<stem>.nml and solve it with ddc2d_exe() (asserting success);
+    returns the result file folder/<stem>.h5."""
+    (folder / f"{stem}.nml").write_text(text)
+    done = subprocess.run([str(ddc2d_exe()), f"{stem}.nml", "-o", f"{stem}.h5"], cwd=folder,
+                          capture_output=True, text=True, timeout=timeout)
+    assert done.returncode == 0, done.stdout + done.stderr
+    return folder / f"{stem}.h5"
 
 
 def ddc2d_exe():

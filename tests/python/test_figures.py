@@ -4,7 +4,6 @@ step ticks, Coulomb receivers of a cross-section named reverse / normal, titles 
 what the quantity is, and element states read from the file's coding."""
 
 import io
-import subprocess
 
 import h5py
 import numpy as np
@@ -12,7 +11,7 @@ import pytest
 
 import ddc2d_plot_data as plot_data
 import ddc2d_plot_figures as plot_figures
-from conftest import ddc2d_exe, write_result
+from conftest import solve_text, write_result
 from ddc2d_h5 import load_result
 
 
@@ -189,12 +188,8 @@ SYMMETRIC_WINGS = """\
 
 @pytest.fixture(scope="module")
 def symmetric_growth(tmp_path_factory):
-    folder = tmp_path_factory.mktemp("symmetric")
-    (folder / "wings.nml").write_text(SYMMETRIC_WINGS)
-    done = subprocess.run([str(ddc2d_exe()), "wings.nml", "-o", "wings.h5"], cwd=folder,
-                          capture_output=True, text=True, timeout=300)
-    assert done.returncode == 0, done.stdout + done.stderr
-    return load_result(folder / "wings.h5")
+    return load_result(solve_text(tmp_path_factory.mktemp("symmetric"), "wings",
+                                  SYMMETRIC_WINGS))
 
 
 def test_tips_with_equal_curves_are_named_together(symmetric_growth):
