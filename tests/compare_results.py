@@ -16,7 +16,8 @@ scripts/ddc2d_h5.py. They must
   and text equal, NaN at the same places, and reals within R (default 1e-10) of the largest
   magnitude in REFERENCE of that kind of quantity (as scripts/compare-twodd scales):
   element displacements (DDs, face displacements), point displacements, stresses
-  (tractions, field stresses), stress intensity factors; any other array by its own
+  (tractions, field stresses), stress intensity factors (K_I, K_II, K_eq, K_II after a
+  growth step's corrections); any other array by its own
   largest magnitude. An array that is round-off noise by itself (the shear traction on a
   pressurized crack, Ds of a crack under normal load) is thereby measured against its
   quantity, not against its noise.
@@ -43,7 +44,7 @@ KINDS = {
                              "un_plus"),
     "point displacement": ("ux", "uy"),
     "stress": ("shear_traction", "normal_traction", "sxx", "syy", "sxy"),
-    "stress intensity": ("k1", "k2"),
+    "stress intensity": ("k1", "k2", "k_eq", "k2_after"),
 }
 
 
