@@ -6,9 +6,9 @@ timeout, so a process that waits forever fails the test instead of hanging it.
 
 - P = 1, 2 and 4 processes (grids 1 x 1, 1 x 2, 2 x 2) give the serial answer on the four
   models of SPEC-SCALE: DDs, tractions, face displacements, tips and fields within 1e-10 of
-  the largest magnitude of their kind of quantity (tests/compare_results.py), the same
-  element states and point flags, the same method, and a certificate and equilibrium
-  residual that pass the same limits.
+  the largest magnitude of their kind of quantity (compare_results), the same element states and
+  point flags, the same method, and a certificate and equilibrium residual that pass the
+  same limits.
 - On 4 processes, bad input, what is not distributed and a solver failure end every process
   with one message from the root, the documented exit status and no output file.
 """
