@@ -71,11 +71,16 @@ import tempfile
 import time
 from pathlib import Path
 
-import h5py
-import numpy as np
-
 sys.path.insert(0, str(Path(__file__).resolve().parent))  # ddc2d_h5 lives beside this script
-from ddc2d_h5 import SOLVER_PHASES, read_history, read_solver
+try:
+    import h5py
+    import numpy as np
+
+    from ddc2d_h5 import SOLVER_PHASES, read_history, read_solver
+except ImportError as exc:
+    from ddc2d_venv import rerun_in_venv
+
+    rerun_in_venv("benchmark.py", exc, __file__)
 
 #: Default grid (GRID x GRID points) of each case
 DEFAULT_GRID = {"straight": 100, "mixed": 100, "history": 0, "fields": 500, "growth": 0}

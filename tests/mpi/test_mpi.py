@@ -6,7 +6,7 @@ timeout, so a process that waits forever fails the test instead of hanging it.
 
 - P = 1, 2 and 4 processes (grids 1 x 1, 1 x 2, 2 x 2) give the serial answer on the four
   models of SPEC-SCALE: DDs, tractions, face displacements, tips and fields within 1e-10 of
-  the largest magnitude of their kind of quantity (compare.py), the same element states and
+  the largest magnitude of their kind of quantity (compare_results), the same element states and
   point flags, the same method, and a certificate and equilibrium residual that pass the
   same limits; a Newton solve records its factorizations (one per reduced system).
 - On 4 processes, bad input, what is not distributed and a solver failure end every process
@@ -16,14 +16,16 @@ timeout, so a process that waits forever fails the test instead of hanging it.
 import json
 import os
 import subprocess
+import sys
 from pathlib import Path
 
 import h5py
 import numpy as np
 import pytest
-from compare import differences
 
-from ddc2d_h5 import read_solver  # compare puts scripts/ on the path
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # tests/compare_results.py
+from compare_results import RTOL, differences
+from ddc2d_h5 import read_solver  # compare_results puts scripts/ on the path
 
 REPO = Path(__file__).resolve().parents[2]
 DATA = REPO / "tests" / "data"
@@ -35,7 +37,6 @@ MODELS = {
     "half_plane": DATA / "mpi" / "half_plane.nml",  # contact and prescribed DDs
 }
 PROCESSES = (1, 2, 4)
-RTOL = 1e-10  # of the largest magnitude of each kind of quantity (compare.py)
 RESIDUAL_LIMIT = 1e-8  # the equilibrium check of every solution (ddc_linalg_lu residual_tol)
 TIMEOUT = 300
 
@@ -130,6 +131,8 @@ ERRORS = {
                "one process"]),
     "load_path": (DATA / "history" / "good.nml", 2,
                   ["good.nml", "with 4 processes", "&load_path", "one process"]),
+    "growth": (DATA / "growth" / "good.nml", 2,
+               ["good.nml", "with 4 processes", "&growth", "one process"]),
     "solver_failure": (DATA / "mpi" / "unbalanced_hole.nml", 1,
                        ["influence matrix is numerically singular", "relative residual"]),
 }
