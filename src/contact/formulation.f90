@@ -242,7 +242,7 @@ contains
             type(contact_session), intent(inout) :: s
             logical, intent(in) :: warm
             real(wp), allocatable :: sf_eff(:)
-            logical :: newton, automatic
+            logical :: newton, automatic, exceeded
             integer :: rounds
             character(len=:), allocatable :: reason
             character(len=200) :: line
@@ -262,8 +262,11 @@ contains
                 rounds = rounds + 1
                 if (newton) then
                     call solve_once_newton(stiffness, s_r_s, s_r_n, mu, sf_eff, pressure, &
-                        limit, held, sigma0, present(stress_scale), res, s, reason)
-                    if (len(reason) > 0 .and. .not. present(a)) then
+                        limit, held, sigma0, present(stress_scale), options%work_bytes, res, &
+                        s, reason, exceeded)
+                    if (exceeded) then
+                        call set_error(error, exit_out_of_memory, 'contact: '//reason)
+                    else if (len(reason) > 0 .and. .not. present(a)) then
                         call set_error(error, exit_solver_failure, 'contact: '//reason)
                     else if (len(reason) > 0) then
                         ! Lemke's memory, not the Newton factors beside it.
@@ -273,7 +276,7 @@ contains
                         res%fallback = reason
                     end if
                 end if
-                if (.not. newton) then
+                if (.not. newton .and. .not. allocated(error)) then
                     call solve_once_lemke(s, warm, sf_eff)
                     if (allocated(error) .and. automatic .and. len(res%fallback) == 0) then
                         ! M is not copositive-plus: Lemke can end on a ray where the contact
@@ -281,8 +284,14 @@ contains
                         ! asks the Newton method, whose answer is checked the same way, and
                         ! keeps it for the rounds after cohesion is lost.
                         call solve_once_newton(stiffness, s_r_s, s_r_n, mu, sf_eff, pressure, &
-                            limit, held, sigma0, present(stress_scale), res, s, reason)
-                        if (len(reason) == 0) then
+                            limit, held, sigma0, present(stress_scale), options%work_bytes, &
+                            res, s, reason, exceeded)
+                        if (exceeded) then
+                            reason = error%message//' (the Newton method then stopped: '// &
+                                reason//')'
+                            deallocate (error)
+                            call set_error(error, exit_out_of_memory, reason)
+                        else if (len(reason) == 0) then
                             newton = .true.
                             res%method = 'newton'
                             res%fallback = 'lemke failed: '//error%message
@@ -357,7 +366,7 @@ contains
     !> One solve by the active-set Newton method (no inverse of A), certified as the
     !> equivalent LCP. reason is empty on success, else why Lemke must take over.
     subroutine solve_once_newton(stiffness, s_r_s, s_r_n, mu, sf, p, limit, held, sigma0, &
-                                 given, res, s, reason)
+                                 given, work_bytes, res, s, reason, exceeded)
         class(stiffness_operator), intent(inout) :: stiffness
         real(wp), intent(in) :: s_r_s(:), s_r_n(:), mu(:), sf(:), p(:)
         integer, intent(in) :: limit
@@ -366,10 +375,15 @@ contains
         !> Stress scale [stress], used when given (else that of this problem)
         real(wp), intent(in) :: sigma0
         logical, intent(in) :: given
+        !> Memory left for the reduced systems [bytes]
+        real(wp), intent(in) :: work_bytes
         type(contact_result), intent(inout) :: res
         !> The session: its states are the warm start and take this solve's
         type(contact_session), intent(inout) :: s
         character(len=:), allocatable, intent(out) :: reason
+        !> The states asked for a reduced system larger than work_bytes (reason says so):
+        !> no other method can take over (Lemke needs more)
+        logical, intent(out) :: exceeded
         type(active_set_result) :: next
         real(wp), allocatable :: tau(:), z(:), w(:), zs(:), ws(:), snp(:), slip(:)
         real(wp) :: dscale, stiffness_scale
@@ -387,11 +401,13 @@ contains
         if (allocated(s%open)) then
             call solve_contact_active_set(stiffness, s_r_s, s_r_n + p, mu, sf, &
                 res%stress_scale, next, limit, s%newton, s%open, s%shear_state, &
-                ds_previous=held)
+                ds_previous=held, work_bytes=work_bytes)
         else
             call solve_contact_active_set(stiffness, s_r_s, s_r_n + p, mu, sf, &
-                res%stress_scale, next, limit, s%newton, ds_previous=held)
+                res%stress_scale, next, limit, s%newton, ds_previous=held, &
+                work_bytes=work_bytes)
         end if
+        exceeded = next%memory_exceeded
         res%iterations = res%iterations + next%iterations
         res%solves = res%solves + 1
         res%seconds_factorization = res%seconds_factorization + next%seconds_factorization
