@@ -7,6 +7,7 @@
 !> runs with any BLAS; another BLAS is described as family blas_other with empty strings.
 module ddc_linalg_blas_library
     use, intrinsic :: iso_c_binding, only: c_char, c_int, c_null_char
+    use ddc_text, only: from_c_chars
     implicit none
     private
 
@@ -67,8 +68,8 @@ contains
 
         blas%family = int(blas_query(library, text_size, core, text_size, threads))
         blas%threads = int(threads)
-        blas%library = from_c(library)
-        blas%core = from_c(core)
+        blas%library = trim(from_c_chars(library))
+        blas%core = trim(from_c_chars(core))
         if (len(blas%library) == 0) blas%library = 'unknown'
         if (len(blas%core) == 0) blas%core = 'unknown'
         blas%dynamic = blas%family == blas_openblas .and. &
@@ -87,25 +88,5 @@ contains
         status = reexec_with(name//c_null_char, value//c_null_char, marker//c_null_char, &
                              marker_value//c_null_char)
     end subroutine run_again_with
-
-    !> A NUL-terminated C string as Fortran text.
-    pure function from_c(text) result(out)
-        character(kind=c_char), intent(in) :: text(:)
-        character(len=:), allocatable :: out
-        integer :: k, length
-
-        length = size(text)
-        do k = 1, size(text)
-            if (text(k) == c_null_char) then
-                length = k - 1
-                exit
-            end if
-        end do
-        allocate (character(len=length) :: out)
-        do k = 1, length
-            out(k:k) = text(k)
-        end do
-        out = trim(out)
-    end function from_c
 
 end module ddc_linalg_blas_library
