@@ -19,7 +19,8 @@ module ddc_app_driver
     use ddc_text, only: itoa, prefix_lines
     use ddc_input_sweep, only: read_sweep
     use ddc_sweep_tasks, only: sweep_definition, task_label, task_file_name, check_task, &
-        apply_task, task_problem, check_tasks, output_is_complete
+        apply_task, task_problem, check_tasks
+    use ddc_output_hdf5_read, only: output_is_complete
     use ddc_app_command_line, only: command_line_options, parse_command_line, usage_text, &
         action_version, action_help, task_number
     use ddc_app_report, only: print_model_summary, print_results_summary, field_warnings, &

@@ -290,7 +290,7 @@ contains
                 end do
             end if
             write (unit, '(a,6(f0.3,a))') '  seconds: assembly ', s%seconds_assembly, &
-                ', factorization ', s%seconds_factorization, ', lcp ', s%seconds_lcp, &
+                ', factorization ', s%counts%seconds, ', lcp ', s%seconds_lcp, &
                 ', fields ', s%seconds_fields, ', output ', s%seconds_output, ', total ', &
                 s%seconds_total + s%seconds_output, ''
             write (unit, '(a)') '  '//provenance_line(describe_run())

@@ -30,7 +30,9 @@
 !> (ds_previous), keeps its dense stiffness operator (whose factors the Newton method
 !> reuses and updates from step to step) and a contact_session with what else the steps
 !> share: the paper's LCP once Lemke needed it and Lemke's last basis (warm start), the
-!> Newton method's states (warm start) and its fixed tractions.
+!> Newton method's states (warm start) and its fixed tractions. A growth run keeps one
+!> session for its solves: each has a new matrix (new_matrix), so only the states carry
+!> over.
 !>
 !> open_cohesion: 'kept' (the paper) lets an open element carry shear up to Sf;
 !> 'lost' sets Sf = 0 on every element that opens and solves again until no open
@@ -47,6 +49,7 @@ module ddc_contact_formulation
     use ddc_contact_active_set, only: active_set_result, active_set_workspace, &
         solve_contact_active_set
     use ddc_contact_stiffness, only: stiffness_operator, dense_stiffness
+    use ddc_contact_counts, only: factor_counts
     use ddc_contact_result, only: contact_result, contact_stress_scale, problem_scales, &
         block_scales, check_solution, drop_open_cohesion
     use ddc_contact_paper_lcp, only: contact_lcp, build_contact_lcp, solve_paper_lcp
@@ -56,6 +59,7 @@ module ddc_contact_formulation
     private
 
     public :: solve_contact, solve_contact_with, contact_session, auto_newton_min_elements
+    public :: new_matrix
     public :: newton_max_iterations
 
     !> lcp_method = 'auto' uses 'newton' from this many contact elements on, else 'lemke'
@@ -81,6 +85,22 @@ module ddc_contact_formulation
     end type contact_session
 
 contains
+
+    !> The session's next solve is on another matrix (a grown model): forget what depends on
+    !> the matrix (the paper's LCP, Lemke's basis, the Newton method's fixed tractions) and
+    !> keep the states, from which the Newton method starts.
+    subroutine new_matrix(session, checked)
+        !> The session
+        type(contact_session), intent(inout) :: session
+        !> Every entry of the new matrix is known to be finite
+        logical, intent(in) :: checked
+        type(contact_session) :: fresh
+
+        call move_alloc(session%open, fresh%open)
+        call move_alloc(session%shear_state, fresh%shear_state)
+        fresh%a_checked = checked
+        session = fresh
+    end subroutine new_matrix
 
     !> Solve the frictional contact problem of n elements (SPEC section 4).
     subroutine solve_contact(a, s_r_s, s_r_n, mu, sf, pressure, options, res, error, rule, &
@@ -232,7 +252,7 @@ contains
         end if
         call system_clock(t_end)
         res%seconds_lcp = real(t_end - t_start, wp) / real(max(rate, 1_int64), wp) - &
-            res%seconds_factorization
+            res%counts%seconds
 
     contains
 
@@ -246,6 +266,7 @@ contains
             integer :: rounds
             character(len=:), allocatable :: reason
             character(len=200) :: line
+            type(factor_counts) :: this_solve
 
             automatic = options%lcp_method == lcp_auto
             newton = options%lcp_method == lcp_newton .or. .not. present(a) .or. &
@@ -316,9 +337,11 @@ contains
                 if (options%open_cohesion /= cohesion_lost) exit
                 if (.not. drop_open_cohesion(res%state, sf_eff)) exit
             end do
-            res%factorizations = stiffness%factorizations
-            res%low_rank_updates = stiffness%low_rank_updates
-            res%factorization_reuses = stiffness%factorization_reuses
+            ! The operator's counts (of the session), with this solve's time and flops.
+            this_solve = res%counts
+            res%counts = stiffness%counts
+            res%counts%seconds = this_solve%seconds
+            res%counts%flops = this_solve%flops
         end subroutine solve_in_session
 
         !> One Lemke solve of the paper's LCP (built once per session, when memory allows),
@@ -410,8 +433,8 @@ contains
         exceeded = next%memory_exceeded
         res%iterations = res%iterations + next%iterations
         res%solves = res%solves + 1
-        res%seconds_factorization = res%seconds_factorization + next%seconds_factorization
-        res%factorization_flops = res%factorization_flops + next%factorization_flops
+        res%counts%seconds = res%counts%seconds + next%seconds_factorization
+        res%counts%flops = res%counts%flops + next%factorization_flops
         if (.not. next%converged) then
             reason = 'newton: '//next%reason
             return

@@ -402,10 +402,10 @@ contains
             call write_attribute(solver, 'method', text(s%method), error)
             call write_attribute(solver, 'fallback', text(s%fallback), error)
             call write_attribute(solver, 'newton_iterations', s%newton_iterations, error)
-            call write_attribute(solver, 'factorizations', s%factorizations, error)
-            call write_attribute(solver, 'low_rank_updates', s%low_rank_updates, error)
-            call write_attribute(solver, 'factorization_reuses', s%factorization_reuses, error)
-            call write_attribute(solver, 'factorization_flops', s%factorization_flops, error)
+            call write_attribute(solver, 'factorizations', s%counts%factorizations, error)
+            call write_attribute(solver, 'low_rank_updates', s%counts%updates, error)
+            call write_attribute(solver, 'factorization_reuses', s%counts%reuses, error)
+            call write_attribute(solver, 'factorization_flops', s%counts%flops, error)
             call write_attribute(solver, 'threads', s%threads, error)
             call write_attribute(solver, 'blas', provenance%blas, error)
             call write_attribute(solver, 'blas_core', provenance%blas_core, error)
@@ -431,7 +431,7 @@ contains
                 call write_real_dataset(seconds, 'assembly', [s%seconds_assembly], no_dims, &
                     's', error)
                 call write_real_dataset(seconds, 'factorization', &
-                    [s%seconds_factorization], no_dims, 's', error)
+                    [s%counts%seconds], no_dims, 's', error)
                 call write_real_dataset(seconds, 'lcp', [s%seconds_lcp], no_dims, 's', error)
                 call write_real_dataset(seconds, 'fields', [s%seconds_fields], no_dims, 's', &
                     error)

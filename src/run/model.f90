@@ -207,7 +207,7 @@ contains
             record%method = 'lu'
             call solve_elastic(elements, shear_modulus, nu, remote_shear, remote_normal, ds, dn, &
                                record%equilibrium_residual, record%seconds_assembly, &
-                               record%seconds_factorization, matrix, error)
+                               record%counts%seconds, matrix, error)
             state = state_free
         end if
     end subroutine solve_here

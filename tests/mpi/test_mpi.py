@@ -8,7 +8,7 @@ timeout, so a process that waits forever fails the test instead of hanging it.
   models of SPEC-SCALE: DDs, tractions, face displacements, tips and fields within 1e-10 of
   the largest magnitude of their kind of quantity (compare.py), the same element states and
   point flags, the same method, and a certificate and equilibrium residual that pass the
-  same limits.
+  same limits; a Newton solve records its factorizations (one per reduced system).
 - On 4 processes, bad input, what is not distributed and a solver failure end every process
   with one message from the root, the documented exit status and no output file.
 """
@@ -97,6 +97,11 @@ def check_solver_record(reference, other, processes):
             assert record["certificate_min_w"] >= -tolerance
             assert record["certificate_max_complementarity"] <= tolerance
         assert record["equilibrium_residual"] <= RESIDUAL_LIMIT
+    if b["method"] == "newton":
+        # The distributed Newton method factorizes every reduced system anew, and says so.
+        assert b["factorizations"] >= 1, "/solver factorizations = 0 after a Newton solve"
+        assert b["low_rank_updates"] == 0 and b["factorization_reuses"] == 0
+        assert b["factorizations"] <= b["newton_iterations"]
     assert b["processes"] == processes
     assert int(np.prod(b["process_grid"])) == processes
     assert "processes" not in a  # the serial program's layout has no process attributes
