@@ -27,6 +27,7 @@ module ddc_app_driver
         print_progress
     use ddc_progress, only: set_progress_handler
     use ddc_app_memory, only: check_model_memory
+    use ddc_app_blas, only: check_blas_kernel
     implicit none
     private
 
@@ -60,6 +61,7 @@ contains
         !> Number of processes of an MPI run (default 1)
         integer, intent(in), optional :: processes
         type(error_type), allocatable :: error
+        character(len=:), allocatable :: blas_echo
 
         call parse_command_line(options, error)
         if (allocated(error)) then
@@ -83,6 +85,8 @@ contains
         case default
             ! action_run: go on below
         end select
+        ! Before anything is read: the serial program may run itself again here.
+        call check_blas_kernel(.not. present(processes), blas_echo)
 
         if (options%twodd) then
             call read_twodd_deck(options%input_file, model, error)
@@ -105,6 +109,7 @@ contains
             if (status /= go_on) return
         end if
         call print_model_summary(output_unit, model, units_given=.not. options%twodd)
+        write (output_unit, '(a)') blas_echo
         call set_progress_handler(print_progress)
         if (present(processes)) then
             if (processes > 1) then

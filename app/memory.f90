@@ -1,11 +1,13 @@
 !> Before the solve: the memory the model needs (ddc_run_memory) against what this
-!> machine or its cgroup offers (ddc_run_available_memory), echoed; a model that cannot fit
-!> is refused with one message (exit_out_of_memory); the contact solver is told what is
-!> left, so that a fallback from Newton to Lemke that cannot fit stops cleanly too.
+!> machine or its cgroup offers (ddc_run_available_memory), echoed (for the Newton method
+!> from its starting states, and at its largest beside it); a model that cannot fit even
+!> from its starting states is refused with one message (exit_out_of_memory); the contact
+!> solver is told what is left, so that a reduced system that outgrows it, or a fallback
+!> from Newton to Lemke that cannot fit, stops cleanly too.
 module ddc_app_memory
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
-    use ddc_text, only: bytes_text
+    use ddc_text, only: bytes_text, itoa
     use ddc_model_types, only: model_type
     use ddc_run_memory, only: memory_need, estimate_memory, check_memory
     use ddc_run_available_memory, only: available_memory, no_limit
@@ -32,8 +34,16 @@ contains
         call available_memory(available, source)
         there = 'no limit found'
         if (available < no_limit) there = bytes_text(available)//' available ('//source//')'
-        write (unit, '(a)') '  memory: about '//bytes_text(need%bytes)//' needed ('// &
-            need%method//'), '//there
+        if (need%worst_bytes > need%bytes) then
+            ! The Newton method from its starting states, and at its largest beside it.
+            write (unit, '(a)') '  memory: about '//bytes_text(need%bytes)//' needed ('// &
+                need%method//', from the starting states: '//itoa(need%start_unknowns)// &
+                ' unknowns), up to '//bytes_text(need%worst_bytes)//' should every element '// &
+                'slip and open; '//there
+        else
+            write (unit, '(a)') '  memory: about '//bytes_text(need%bytes)//' needed ('// &
+                need%method//'), '//there
+        end if
         if (need%fallback_bytes > available .and. need%bytes <= available) write (unit, &
             '(a)') '    (should the Newton '// &
             'method fail, the fallback to Lemke would need about '// &

@@ -12,7 +12,7 @@ module test_fast_contact
     use ddc_constants, only: pi
     use ddc_influence_assembly, only: assemble_influence, row_traction
     use ddc_model_loads, only: resolve_remote_stress
-    use ddc_contact_result, only: contact_result
+    use ddc_contact_result, only: contact_result, contact_stress_scale
     use ddc_contact_formulation, only: solve_contact
     use ddc_contact_options, only: solver_options, parse_solver_options, option_code, &
         open_cohesion_names, lcp_lemke, lcp_newton
@@ -20,7 +20,8 @@ module test_fast_contact
     use ddc_contact_reduced_factors, only: reduced_factors, set_system, solve_system, &
         last_action, counts_of, action_factorized, action_updated, action_reused
     use ddc_contact_counts, only: factor_counts
-    use ddc_contact_memory, only: lemke_bytes
+    use ddc_contact_memory, only: lemke_bytes, newton_bytes
+    use ddc_contact_active_set, only: starting_unknowns
     use ddc_error, only: exit_out_of_memory
     implicit none
     private
@@ -51,6 +52,7 @@ contains
                  new_test('reduced_system_updates', test_reduced_updates), &
                  new_test('reduced_update_sequence', test_reduced_update_sequence), &
                  new_test('fallback_without_memory', test_fallback_without_memory), &
+                 new_test('reduced_system_outgrows_memory', test_outgrows_memory), &
                  new_test('bad_method', test_bad_method)]
     end subroutine collect_fast_contact
 
@@ -521,6 +523,40 @@ contains
             .and. index(solve_error%message, 'the fallback to Lemke would need about') > 0, &
             'message: '//solve_error%message)
     end subroutine test_fallback_without_memory
+
+    !> Memory for the kink's first reduced system (the states of the remote stress) but not
+    !> for the larger ones its iterations reach: newton stops cleanly (exit_out_of_memory)
+    !> before allocating it, and does not fall back to Lemke (which needs more).
+    subroutine test_outgrows_memory(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model
+        type(contact_result) :: fast
+        type(error_type), allocatable :: solve_error
+        real(wp), allocatable :: a(:, :), ss(:), sn(:)
+        integer :: first
+
+        call kinked_system(model, a, ss, sn)
+        associate (e => model%elements)
+            first = starting_unknowns(ss, sn + e%pressure, e%mu, e%sf, &
+                                      contact_stress_scale(ss, sn, e%sf, e%pressure))
+            call solve_contact(a, ss, sn, e%mu, e%sf, e%pressure, solver_options( &
+                lcp_method=lcp_newton, work_bytes=newton_bytes(e%n, first)), fast, solve_error)
+        end associate
+        call check(error, allocated(solve_error), 'a reduced system larger than the first '// &
+                   'must not be allocated')
+        if (allocated(error)) return
+        call check(error, solve_error%code, exit_out_of_memory, 'exit code')
+        call check(error, index(solve_error%message, 'ask for a reduced system of ') > 0 .and. &
+            index(solve_error%message, ' is left here') > 0, 'message: '//solve_error%message)
+        ! With the memory of the largest system it solves.
+        deallocate (solve_error)
+        associate (e => model%elements)
+            call solve_contact(a, ss, sn, e%mu, e%sf, e%pressure, solver_options( &
+                lcp_method=lcp_newton, work_bytes=newton_bytes(e%n)), fast, solve_error)
+        end associate
+        call check(error, .not. allocated(solve_error) .and. fast%method == 'newton', &
+                   'enough memory: newton solves')
+    end subroutine test_outgrows_memory
 
     !> The kink, its influence matrix and its resolved remote stress.
     subroutine kinked_system(model, a, ss, sn)

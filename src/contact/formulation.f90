@@ -132,6 +132,7 @@ contains
         !> Iteration limit of 'newton' (default newton_max_iterations)
         integer, intent(in), optional :: max_iterations
         type(dense_stiffness) :: stiffness
+        integer(int64) :: t0, t1, rate
 
         if (size(a, 1) /= 2 * size(mu) .or. size(a, 2) /= 2 * size(mu)) then
             call set_internal_error(error, 'solve_contact', 'array sizes do not match')
@@ -140,6 +141,11 @@ contains
         stiffness%a => a
         call solve_contact_with(stiffness, s_r_s, s_r_n, mu, sf, pressure, options, res, error, &
                                 a, rule, max_iterations)
+        ! Freeing the factors (up to (2n)^2 reals) is part of the contact solve's time.
+        call system_clock(t0, rate)
+        call stiffness%discard_factors()
+        call system_clock(t1)
+        res%seconds_lcp = res%seconds_lcp + real(t1 - t0, wp) / real(max(rate, 1_int64), wp)
     end subroutine solve_contact
 
     !> Solve the frictional contact problem of n elements (SPEC section 4) on any stiffness
@@ -187,12 +193,16 @@ contains
         real(wp), intent(in), optional :: stress_scale
         !> Pivot limit of each Lemke solve (tests; default that of solve_lcp_lemke)
         integer, intent(in), optional :: max_pivots
-        type(contact_session) :: fresh
+        type(contact_session), allocatable :: fresh
         real(wp), allocatable :: held(:)
         real(wp) :: sigma0
         integer :: n, limit
         logical :: checked
+        integer(int64) :: t_start, t_end, rate
 
+        ! The lcp phase: everything from here on (the checks of A included, 4 n^2 reads)
+        ! but the factorizations, so that no part of the solve is in no phase.
+        call system_clock(t_start, rate)
         n = size(mu)
         if (size(s_r_s) /= n .or. size(s_r_n) /= n .or. size(sf) /= n .or. &
             size(pressure) /= n) then
@@ -236,8 +246,13 @@ contains
         if (present(session)) then
             call solve_in_session(session, .true.)
         else
+            allocate (fresh)
             call solve_in_session(fresh, .false.)
+            deallocate (fresh)
         end if
+        call system_clock(t_end)
+        res%seconds_lcp = real(t_end - t_start, wp) / real(max(rate, 1_int64), wp) - &
+            res%counts%seconds
 
     contains
 
@@ -247,8 +262,7 @@ contains
             type(contact_session), intent(inout) :: s
             logical, intent(in) :: warm
             real(wp), allocatable :: sf_eff(:)
-            integer(int64) :: t0, t1, rate
-            logical :: newton, automatic
+            logical :: newton, automatic, exceeded
             integer :: rounds
             character(len=:), allocatable :: reason
             character(len=200) :: line
@@ -264,14 +278,16 @@ contains
             end if
             res%fallback = ''
             rounds = 0
-            call system_clock(t0, rate)
             sf_eff = sf
             do
                 rounds = rounds + 1
                 if (newton) then
                     call solve_once_newton(stiffness, s_r_s, s_r_n, mu, sf_eff, pressure, &
-                        limit, held, sigma0, present(stress_scale), res, s, reason)
-                    if (len(reason) > 0 .and. .not. present(a)) then
+                        limit, held, sigma0, present(stress_scale), options%work_bytes, res, &
+                        s, reason, exceeded)
+                    if (exceeded) then
+                        call set_error(error, exit_out_of_memory, 'contact: '//reason)
+                    else if (len(reason) > 0 .and. .not. present(a)) then
                         call set_error(error, exit_solver_failure, 'contact: '//reason)
                     else if (len(reason) > 0) then
                         ! Lemke's memory, not the Newton factors beside it.
@@ -281,7 +297,7 @@ contains
                         res%fallback = reason
                     end if
                 end if
-                if (.not. newton) then
+                if (.not. newton .and. .not. allocated(error)) then
                     call solve_once_lemke(s, warm, sf_eff)
                     if (allocated(error) .and. automatic .and. len(res%fallback) == 0) then
                         ! M is not copositive-plus: Lemke can end on a ray where the contact
@@ -289,8 +305,14 @@ contains
                         ! asks the Newton method, whose answer is checked the same way, and
                         ! keeps it for the rounds after cohesion is lost.
                         call solve_once_newton(stiffness, s_r_s, s_r_n, mu, sf_eff, pressure, &
-                            limit, held, sigma0, present(stress_scale), res, s, reason)
-                        if (len(reason) == 0) then
+                            limit, held, sigma0, present(stress_scale), options%work_bytes, &
+                            res, s, reason, exceeded)
+                        if (exceeded) then
+                            reason = error%message//' (the Newton method then stopped: '// &
+                                reason//')'
+                            deallocate (error)
+                            call set_error(error, exit_out_of_memory, reason)
+                        else if (len(reason) == 0) then
                             newton = .true.
                             res%method = 'newton'
                             res%fallback = 'lemke failed: '//error%message
@@ -315,9 +337,6 @@ contains
                 if (options%open_cohesion /= cohesion_lost) exit
                 if (.not. drop_open_cohesion(res%state, sf_eff)) exit
             end do
-            call system_clock(t1)
-            res%seconds_lcp = real(t1 - t0, wp) / real(max(rate, 1_int64), wp) - &
-                res%counts%seconds
             ! The operator's counts (of the session), with this solve's time and flops.
             this_solve = res%counts
             res%counts = stiffness%counts
@@ -370,7 +389,7 @@ contains
     !> One solve by the active-set Newton method (no inverse of A), certified as the
     !> equivalent LCP. reason is empty on success, else why Lemke must take over.
     subroutine solve_once_newton(stiffness, s_r_s, s_r_n, mu, sf, p, limit, held, sigma0, &
-                                 given, res, s, reason)
+                                 given, work_bytes, res, s, reason, exceeded)
         class(stiffness_operator), intent(inout) :: stiffness
         real(wp), intent(in) :: s_r_s(:), s_r_n(:), mu(:), sf(:), p(:)
         integer, intent(in) :: limit
@@ -379,10 +398,15 @@ contains
         !> Stress scale [stress], used when given (else that of this problem)
         real(wp), intent(in) :: sigma0
         logical, intent(in) :: given
+        !> Memory left for the reduced systems [bytes]
+        real(wp), intent(in) :: work_bytes
         type(contact_result), intent(inout) :: res
         !> The session: its states are the warm start and take this solve's
         type(contact_session), intent(inout) :: s
         character(len=:), allocatable, intent(out) :: reason
+        !> The states asked for a reduced system larger than work_bytes (reason says so):
+        !> no other method can take over (Lemke needs more)
+        logical, intent(out) :: exceeded
         type(active_set_result) :: next
         real(wp), allocatable :: tau(:), z(:), w(:), zs(:), ws(:), snp(:), slip(:)
         real(wp) :: dscale, stiffness_scale
@@ -400,11 +424,13 @@ contains
         if (allocated(s%open)) then
             call solve_contact_active_set(stiffness, s_r_s, s_r_n + p, mu, sf, &
                 res%stress_scale, next, limit, s%newton, s%open, s%shear_state, &
-                ds_previous=held)
+                ds_previous=held, work_bytes=work_bytes)
         else
             call solve_contact_active_set(stiffness, s_r_s, s_r_n + p, mu, sf, &
-                res%stress_scale, next, limit, s%newton, ds_previous=held)
+                res%stress_scale, next, limit, s%newton, ds_previous=held, &
+                work_bytes=work_bytes)
         end if
+        exceeded = next%memory_exceeded
         res%iterations = res%iterations + next%iterations
         res%solves = res%solves + 1
         res%counts%seconds = res%counts%seconds + next%seconds_factorization

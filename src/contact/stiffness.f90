@@ -182,12 +182,20 @@ contains
         value = maxval(abs(this%a))
     end function dense_max_entry
 
-    !> Every entry finite.
+    !> Every entry finite (a pass over 4 n^2 entries: parallel over the columns).
     function dense_all_finite(this) result(value)
         class(dense_stiffness), intent(in) :: this
         logical :: value
+        real(wp), pointer, contiguous :: a(:, :)
+        integer :: j
 
-        value = all(ieee_is_finite(this%a))
+        a => this%a
+        value = .true.
+        !$omp parallel do default(none) shared(a) reduction(.and.:value) schedule(static)
+        do j = 1, size(a, 2)
+            value = value .and. all(ieee_is_finite(a(:, j)))
+        end do
+        !$omp end parallel do
     end function dense_all_finite
 
     !> t = t + A dd (dgemv).

@@ -19,7 +19,7 @@ module ddc_output_hdf5_handles
     public :: h5_object, open_session, close_session, create_file, open_file, close_file
     public :: create_group, close_group, create_dataset, close_dataset
     public :: create_attribute, close_attribute, create_string_type, string_width
-    public :: fail, child_path, c_chars, from_c_chars
+    public :: fail, child_path, c_chars
 
     !> An open HDF5 object (file, group or dataset) with its path, for messages.
     type :: h5_object
@@ -346,24 +346,5 @@ contains
             chars(i) = text(i:i)
         end do
     end function c_chars
-
-    !> A Fortran string from C characters, cut at the first NUL.
-    pure function from_c_chars(chars) result(text)
-        character(kind=c_char), intent(in) :: chars(:)
-        character(len=:), allocatable :: text
-        integer :: i, n
-
-        n = size(chars)
-        do i = 1, size(chars)
-            if (chars(i) == c_null_char) then
-                n = i - 1
-                exit
-            end if
-        end do
-        allocate (character(len=n) :: text)
-        do i = 1, n
-            text(i:i) = chars(i)
-        end do
-    end function from_c_chars
 
 end module ddc_output_hdf5_handles

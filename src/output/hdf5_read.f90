@@ -15,8 +15,8 @@ module ddc_output_hdf5_read
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
     use ddc_output_hdf5_handles, only: h5_object, open_session, close_session, &
-        handle_open_file => open_file, handle_close_file => close_file, string_width, fail, &
-        from_c_chars
+        handle_open_file => open_file, handle_close_file => close_file, string_width, fail
+    use ddc_text, only: from_c_chars
     implicit none
     private
 

@@ -162,6 +162,31 @@ def test_one_process_runs_what_is_not_distributed(tmp_path):
         assert read_solver(one)["attrs"]["processes"] == 1
 
 
+def test_blas_kernel_older_than_the_cpu_warns_without_running_again(tmp_path):
+    # The stand-in for openblas_get_corename (tests/fake_openblas_core.c) reports Prescott:
+    # the MPI program, whose processes mpiexec started, warns once (the root) with the
+    # variable to set and how to pass it, and runs on (OpenBLAS loaded once per process).
+    lib = os.environ.get("DDC2D_FAKE_CORE_LIB")
+    flags = set(next((line for line in Path("/proc/cpuinfo").read_text().splitlines()
+                      if line.startswith("flags")), "").split())
+    if not lib or not {"avx2", "fma"} <= flags:
+        pytest.skip("needs DDC2D_FAKE_CORE_LIB and a CPU with AVX2")
+    env = {k: v for k, v in environment().items() if k != "OPENBLAS_CORETYPE"}
+    env.update(LD_PRELOAD=str(Path(lib).resolve()), OPENBLAS_VERBOSE="2")
+    command = [executable("MPIEXEC"), "-q", "--oversubscribe", "-n", "2", "-x", "LD_PRELOAD",
+               "-x", "OPENBLAS_VERBOSE", executable("DDC2D_EXE"), MODELS["straight"], "-o",
+               str(tmp_path / "out.h5")]
+    run = subprocess.run(command, cwd=tmp_path, capture_output=True, text=True,
+                         timeout=TIMEOUT, env=env, check=False)
+    assert run.returncode == 0, run.stdout + run.stderr
+    warnings = [line for line in run.stderr.splitlines()
+                if line.startswith("ddc2d: warning: OpenBLAS runs its Prescott kernel")]
+    assert len(warnings) == 1, run.stderr
+    assert "mpiexec -x OPENBLAS_CORETYPE=" in warnings[0]
+    assert run.stderr.count("Core: Prescott") == 0  # the real OpenBLAS chose its own
+    assert run.stderr.count("Core: ") == 2, run.stderr  # each process started once
+
+
 def test_benchmark_records_every_process(tmp_path):
     # scripts/benchmark.py --mpi 2: per-process peak RSS and the grid in the JSON records.
     exe = Path(executable("DDC2D_EXE"))
