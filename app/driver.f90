@@ -13,7 +13,8 @@ module ddc_app_driver
     use ddc_model_results, only: model_results
     use ddc_input_namelist, only: read_namelist_model
     use ddc_input_twodd_deck, only: read_twodd_deck
-    use ddc_output_atomic, only: check_writable
+    use ddc_output_atomic, only: check_writable, check_free_space
+    use ddc_output_file_system, only: ignore_file_size_signal
     use ddc_output_hdf5, only: write_results
     use ddc_output_twodd_tables, only: write_twodd_tables
     use ddc_text, only: itoa, prefix_lines
@@ -25,7 +26,7 @@ module ddc_app_driver
     use ddc_app_report, only: print_model_summary, print_results_summary, field_warnings, &
         print_progress
     use ddc_progress, only: set_progress_handler
-    use ddc_app_memory, only: check_model_memory
+    use ddc_app_memory, only: check_model_memory, result_file_bytes
     implicit none
     private
 
@@ -60,6 +61,8 @@ contains
         integer, intent(in), optional :: processes
         type(error_type), allocatable :: error
 
+        ! A write beyond ulimit -f must fail and be reported, not kill us (SIGXFSZ).
+        call ignore_file_size_signal()
         call parse_command_line(options, error)
         if (allocated(error)) then
             write (error_unit, '(a)') program_name//': error: '//error%message
@@ -96,6 +99,9 @@ contains
             if (status /= go_on) return
         end if
         call check_writable(model%output_file, error)
+        status = error_status(error)
+        if (status /= go_on) return
+        call check_free_space(model%output_file, result_file_bytes(model), error)
         status = error_status(error)
         if (status /= go_on) return
         if (allocated(options%res_file)) then

@@ -39,7 +39,8 @@ module ddc_output_hdf5
     use ddc_model_results, only: model_results, state_free, state_stick, state_slip, &
         state_open, growth_reason_names, growth_end_names
     use ddc_contact_options, only: lcp_method_names, open_cohesion_names
-    use ddc_output_atomic, only: partial_name, publish_file, remove_file
+    use ddc_output_atomic, only: partial_name, publish_file, remove_file, resolve_target, &
+        explain_write_failure
     use ddc_output_hdf5_handles, only: h5_object, open_session, close_session, create_file, &
         close_file, create_group, close_group
     use ddc_output_hdf5_write, only: write_real_1d, write_int_1d, write_real_dataset, &
@@ -79,13 +80,15 @@ contains
         !> Allocated with exit_io_failure when the file cannot be written
         type(error_type), allocatable, intent(out) :: error
         type(h5_object) :: root
-        character(len=:), allocatable :: temporary
+        character(len=:), allocatable :: temporary, final_path
         integer(int64) :: start, now, rate
 
         call check_consistency(model, results, error)
         if (allocated(error)) return
         call system_clock(start, rate)
-        temporary = partial_name(path)
+        call resolve_target(path, final_path, error)
+        if (allocated(error)) return
+        temporary = partial_name(final_path)
         call open_session(error)
         if (allocated(error)) return
         call create_file(temporary, root, error)
@@ -106,7 +109,11 @@ contains
         end if
         call close_session()
 
-        if (.not. allocated(error)) call publish_file(temporary, path, error)
+        if (.not. allocated(error)) then
+            call publish_file(temporary, final_path, error)
+        else
+            call explain_write_failure(final_path, temporary, error)
+        end if
         if (allocated(error)) call remove_file(temporary)
     end subroutine write_results
 
