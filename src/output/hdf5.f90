@@ -53,6 +53,8 @@ module ddc_output_hdf5
     public :: write_results
 
     !> Sign and face conventions stored in every file
+    !> Longest input text stored as the root attribute input_text [bytes]
+    integer, parameter :: max_attribute_text = 60000
     character(len=*), parameter :: conventions = 'stress tension positive; Crouch & ' &
         //'Starfield displacement discontinuities: ds = us(-) - us(+), dn = un(-) - un(+), ' &
         //'opening = -dn; positive face on the left of the element direction'
@@ -159,7 +161,15 @@ contains
         call write_attribute(root, 'created', utc_timestamp(), error)
         call write_attribute(root, 'title', text(model%title), error)
         call write_attribute(root, 'input_file', text(model%input_file), error)
-        call write_attribute(root, 'input_text', text(model%input_text), error)
+        ! An attribute holds at most 64 KiB (HDF5's object header); a longer input goes to
+        ! the dataset /input_text, and the attribute says so.
+        if (len(text(model%input_text)) <= max_attribute_text) then
+            call write_attribute(root, 'input_text', text(model%input_text), error)
+        else
+            call write_attribute(root, 'input_text', 'the input ('// &
+                itoa(len(text(model%input_text)))//' bytes) is the dataset /input_text', error)
+            call write_string_1d(root, 'input_text', [text(model%input_text)], error)
+        end if
         call write_attribute(root, 'length_unit', text(model%length_unit), error)
         call write_attribute(root, 'stress_unit', text(model%stress_unit), error)
         call write_attribute(root, 'youngs_modulus', model%youngs_modulus, error)
