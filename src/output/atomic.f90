@@ -153,6 +153,7 @@ contains
 
         size = -1_int64
         inquire (file=temporary_path, size=size, iostat=status)
+        if (status /= 0) size = -1_int64
         call file_size_limit(limit, limited)
         call free_bytes(folder_of(final_path), free, known)
         error%message = 'writing '//final_path//' failed: '//error%message
