@@ -13,7 +13,7 @@ module ddc_app_driver
     use ddc_model_results, only: model_results
     use ddc_input_namelist, only: read_namelist_model
     use ddc_input_twodd_deck, only: read_twodd_deck
-    use ddc_output_atomic, only: check_writable, check_free_space
+    use ddc_output_atomic, only: check_writable, check_free_space, resolve_target
     use ddc_output_file_system, only: ignore_file_size_signal
     use ddc_output_hdf5, only: write_results
     use ddc_output_twodd_tables, only: write_twodd_tables
@@ -134,7 +134,7 @@ contains
         type(error_type), allocatable :: error
         logical :: found, exists
         integer :: task
-        character(len=:), allocatable :: problem
+        character(len=:), allocatable :: problem, final_path
 
         call read_sweep(options%input_file, model, sweep, found, error)
         status = error_status(error)
@@ -184,6 +184,10 @@ contains
         call apply_task(model, sweep, task)
         write (output_unit, '(a)') 'sweep task '//itoa(task)//' of '//itoa(sweep%tasks)// &
             ': '//task_label(sweep, task)
+        ! Before anything opens the task file: a FIFO there would block the completeness check.
+        call resolve_target(model%output_file, final_path, error)
+        status = error_status(error)
+        if (status /= go_on) return
         if (output_is_complete(model%output_file)) then
             write (output_unit, '(a)') 'task '//itoa(task)//': complete output '// &
                 model%output_file//' exists; skipped'
