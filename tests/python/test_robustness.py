@@ -364,6 +364,62 @@ def test_sweep_task_file_targets(tmp_path):
     assert partial_files(tmp_path, tmp_path / "data") == []
 
 
+# ----------------------------------------------- the scripts' own files (issue 27)
+
+@pytest.mark.parametrize("kind", sorted(SPECIAL_WORDS))
+def test_scripts_refuse_targets_that_are_not_regular_files(tmp_path, kind):
+    # scripts/ddc2d_files.py, through which every script writes its files.
+    from ddc2d_files import write_text_atomically
+    target, keep = tmp_path / "target", []
+    make_special(kind, target, keep)
+    (tmp_path / "link").symlink_to("target")
+    try:
+        before = file_type(target)
+        for name in ("target", "link"):
+            with pytest.raises(OSError, match=SPECIAL_WORDS[kind]):
+                write_text_atomically(tmp_path / name, "text\n")
+        assert file_type(target) == before and (tmp_path / "link").is_symlink()
+        assert partial_files(tmp_path) == []
+    finally:
+        for item in keep:
+            item.close() if isinstance(item, socket.socket) else os.close(item)
+
+
+def test_scripts_follow_links_and_clean_up(tmp_path):
+    from ddc2d_files import atomic_path, write_text_atomically
+    (tmp_path / "data").mkdir()
+    (tmp_path / "link.txt").symlink_to("data/real.txt")
+    write_text_atomically(tmp_path / "link.txt", "new\n")
+    assert (tmp_path / "link.txt").is_symlink()
+    assert (tmp_path / "data/real.txt").read_text() == "new\n"
+    with pytest.raises(RuntimeError), atomic_path(tmp_path / "link.txt") as temporary:
+        temporary.write_text("half")
+        raise RuntimeError("a failure half way")
+    assert (tmp_path / "data/real.txt").read_text() == "new\n"
+    assert partial_files(tmp_path, tmp_path / "data") == []
+
+
+def test_twodd2nml_output_to_a_fifo_exits_3(tmp_path):
+    # End to end: a script's -o naming a FIFO (with a reader) is refused, nothing written.
+    keep = []
+    make_special("fifo", tmp_path / "out.nml", keep)
+    try:
+        done = subprocess.run([str(REPO_ROOT / "build/venv/bin/python"),
+                               str(REPO_ROOT / "scripts/twodd2nml"),
+                               str(REPO_ROOT / "tests/reference/twodd/inputs/A1_press_n20.f60.txt"),
+                               "-o", "out.nml"], cwd=tmp_path, capture_output=True, text=True,
+                              timeout=RUN_TIMEOUT)
+        assert done.returncode == 3, done.stderr
+        assert "FIFO" in done.stderr
+        assert file_type(tmp_path / "out.nml") == stat.S_IFIFO
+        try:
+            assert os.read(keep[0], 1) == b""
+        except BlockingIOError:
+            pass
+    finally:
+        os.close(keep[0])
+
+
 # ------------------------------------------------- file-size limits, full disks (issue 27)
 
 def limit_file_size(size):
