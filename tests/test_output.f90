@@ -5,7 +5,7 @@ module test_output
     use ddc_kinds, only: wp
     use ddc_contact_options, only: lcp_lemke, cohesion_kept
     use ddc_testing, only: test_case, new_test, check, error_type
-    use ddc_error, only: exit_bad_input, exit_io_failure
+    use ddc_error, only: exit_io_failure
     use ddc_version, only: program_version, git_commit
     use ddc_model_types, only: model_type, condition_contact, condition_traction, &
         observation_grid, observation_line
