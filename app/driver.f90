@@ -26,7 +26,7 @@ module ddc_app_driver
     use ddc_app_report, only: print_model_summary, print_results_summary, field_warnings, &
         print_progress
     use ddc_progress, only: set_progress_handler
-    use ddc_app_memory, only: check_model_memory, result_file_bytes
+    use ddc_app_memory, only: check_model_memory, result_file_bytes, table_file_bytes
     implicit none
     private
 
@@ -106,6 +106,9 @@ contains
         if (status /= go_on) return
         if (allocated(options%res_file)) then
             call check_writable(options%res_file, error)
+            status = error_status(error)
+            if (status /= go_on) return
+            call check_free_space(options%res_file, table_file_bytes(model), error)
             status = error_status(error)
             if (status /= go_on) return
         end if

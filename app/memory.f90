@@ -12,7 +12,7 @@ module ddc_app_memory
     implicit none
     private
 
-    public :: check_model_memory, result_file_bytes
+    public :: check_model_memory, result_file_bytes, table_file_bytes
 
 contains
 
@@ -61,5 +61,17 @@ contains
                 60.0_wp * real(size(model%observations(i)%x), wp)
         end do
     end function result_file_bytes
+
+    !> The least size of the TWODD tables of --res: one row of 178 bytes or more per field
+    !> point (i9, 7 es24.15, a newline) and per element (i10, 12 es24.15, a newline).
+    pure function table_file_bytes(model) result(bytes)
+        !> The model to be solved
+        type(model_type), intent(in) :: model
+        !> Bytes [bytes]
+        real(wp) :: bytes
+
+        bytes = 178.0_wp * result_file_bytes(model) / 60.0_wp + 299.0_wp * &
+            real(model%elements%n, wp)
+    end function table_file_bytes
 
 end module ddc_app_memory

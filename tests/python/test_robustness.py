@@ -468,13 +468,18 @@ def free_bytes(folder):
     return info.f_bavail * info.f_frsize
 
 
-def test_result_larger_than_free_space_is_refused_before_the_solve(tmp_path,
+@pytest.mark.parametrize("option", ["-o", "--res"])
+def test_result_larger_than_free_space_is_refused_before_the_solve(tmp_path, option,
                                                                     small_file_system):
-    (tmp_path / "m.nml").write_text(grid_model(300))  # 90000 points: at least 5.4 MB
-    done = run_ddc2d(["m.nml", "-o", "small/out.h5"], tmp_path)
+    # 90000 points: at least 5.4 MB of HDF5, 16 MB of tables.
+    (tmp_path / "m.nml").write_text(grid_model(300))
+    args = ["m.nml", "-o", "small/out.h5"] if option == "-o" else \
+        ["m.nml", "-o", "out.h5", "--res", "small/r.txt"]
+    done = run_ddc2d(args, tmp_path)
     assert done.returncode == 3, done.stderr
     [line] = error_lines(done)
-    assert "needs at least 5.4 MB" in line and "has only 1 MB free" in line, line
+    need = "5.4 MB" if option == "-o" else "16 MB"
+    assert f"needs at least {need}" in line and "has only 1 MB free" in line, line
     assert "memory:" not in done.stdout  # refused before the memory check and the solve
     assert list(small_file_system.iterdir()) == []
 
@@ -494,7 +499,10 @@ def test_full_file_system_mid_write_is_exit_3_without_files(tmp_path, small_file
 def test_full_file_system_for_the_tables_is_exit_3_without_files(tmp_path,
                                                                   small_file_system):
     # gfortran does not report a full disk on buffered writes: the tables' size is checked.
-    (tmp_path / "m.nml").write_text(grid_model(100))
+    # A line of points whose rows (178 bytes and more) and element rows just fit the check
+    # before the solve; the header and the element data overflow it.
+    points = (free_bytes(small_file_system) - 10 * 299 - 100) // 178
+    (tmp_path / "m.nml").write_text(grid_model(points, 1))
     done = run_ddc2d(["m.nml", "-o", "out.h5", "--res", "small/r.txt"], tmp_path)
     assert done.returncode == 3, done.stderr
     [line] = error_lines(done)
