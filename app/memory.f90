@@ -14,7 +14,7 @@ module ddc_app_memory
     implicit none
     private
 
-    public :: check_model_memory
+    public :: check_model_memory, result_file_bytes, table_file_bytes
 
 contains
 
@@ -52,5 +52,36 @@ contains
         if (allocated(error)) return
         model%solver%work_bytes = max(available - need%held_bytes, 0.0_wp)
     end subroutine check_model_memory
+
+    !> The least size of the HDF5 result file: the field datasets alone, known before the
+    !> solve (x, y, ux, uy, sxx, syy, sxy as 8-byte reals and near_element as a 4-byte
+    !> integer per point, uncompressed), so that a grid of 10^8 points is refused before
+    !> hours of solving when its 6 GB cannot be written.
+    pure function result_file_bytes(model) result(bytes)
+        !> The model to be solved
+        type(model_type), intent(in) :: model
+        !> Bytes [bytes]
+        real(wp) :: bytes
+        integer :: i
+
+        bytes = 0.0_wp
+        if (.not. allocated(model%observations)) return
+        do i = 1, size(model%observations)
+            if (allocated(model%observations(i)%x)) bytes = bytes + &
+                60.0_wp * real(size(model%observations(i)%x), wp)
+        end do
+    end function result_file_bytes
+
+    !> The least size of the TWODD tables of --res: one row of 178 bytes or more per field
+    !> point (i9, 7 es24.15, a newline) and per element (i10, 12 es24.15, a newline).
+    pure function table_file_bytes(model) result(bytes)
+        !> The model to be solved
+        type(model_type), intent(in) :: model
+        !> Bytes [bytes]
+        real(wp) :: bytes
+
+        bytes = 178.0_wp * result_file_bytes(model) / 60.0_wp + 299.0_wp * &
+            real(model%elements%n, wp)
+    end function table_file_bytes
 
 end module ddc_app_memory

@@ -14,6 +14,7 @@ import numpy as np
 from matplotlib.collections import LineCollection
 from matplotlib.ticker import MaxNLocator
 
+from ddc2d_files import atomic_path
 from ddc2d_h5 import coding_of
 from ddc2d_plot_data import (
     COLORBAR_LABELS,
@@ -378,7 +379,8 @@ def save_figure(fig, base, fmt, dpi):
     """Write `fig` to `base` + '.' + fmt (png, pdf or svg) and close it; returns the path."""
     path = base.with_name(base.name + "." + fmt)
     try:
-        fig.savefig(path, format=fmt, dpi=dpi)
+        with atomic_path(path) as temporary:
+            fig.savefig(temporary, format=fmt, dpi=dpi)
     finally:
         plt.close(fig)
     return path

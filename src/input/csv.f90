@@ -18,7 +18,7 @@ contains
 
     !> Read the CSV file at path whose columns are header; values has shape (ncols, nrows).
     !> A two-column x,y file may omit its header line.
-    subroutine read_csv(path, header, values, error, line_numbers)
+    subroutine read_csv(path, header, values, error, line_numbers, most_rows)
         !> Path of the file
         character(len=*), intent(in) :: path
         !> Expected column names, in order
@@ -29,6 +29,9 @@ contains
         type(error_type), allocatable, intent(out) :: error
         !> Line number in the file of each row, shape (number of rows)
         integer, allocatable, intent(out), optional :: line_numbers(:)
+        !> Most data rows accepted: the reading stops with an error at the row after them,
+        !> so that a huge file costs no more memory than that many rows
+        integer, intent(in), optional :: most_rows
         character(len=:), allocatable :: text, line, expected, messages
         integer, allocatable :: row_line(:)
         integer :: ncols, nrows, max_rows, pos, line_no, nbad, i
@@ -49,6 +52,7 @@ contains
         end if
 
         max_rows = count_pieces(text, newline)
+        if (present(most_rows)) max_rows = min(max_rows, most_rows)
         allocate (values(ncols, max_rows), row_line(max_rows))
         nrows = 0
         nbad = 0
@@ -70,6 +74,11 @@ contains
                         ": the header '"//line//"' is not the expected '"//expected//"'")
                     return
                 end if
+            end if
+            if (nrows == max_rows) then
+                call set_error(error, exit_bad_input, path//' line '//itoa(line_no)// &
+                    ': more than '//itoa(max_rows)//' data rows, the most accepted here')
+                return
             end if
             nrows = nrows + 1
             row_line(nrows) = line_no

@@ -122,7 +122,8 @@ contains
                 end if
                 csv_path = resolve(dir, trim(adjustl(elements_file)))
                 call read_csv(csv_path, [character(len=8) :: 'x_begin', 'y_begin', 'x_end', &
-                              'y_end', 'mu', 'sf', 'pressure'], rows, csv_error, row_lines)
+                              'y_end', 'mu', 'sf', 'pressure'], rows, csv_error, row_lines, &
+                              most_rows=max_elements)
                 if (allocated(csv_error)) then
                     call add(messages, prefix_lines(prefix//'elements_file: ', csv_error%message))
                     deallocate (csv_error)

@@ -41,7 +41,8 @@ module ddc_output_hdf5
     use ddc_model_results, only: model_results, state_free, state_stick, state_slip, &
         state_open, growth_reason_names, growth_end_names
     use ddc_contact_options, only: lcp_method_names, open_cohesion_names
-    use ddc_output_atomic, only: partial_name, publish_file, remove_file
+    use ddc_output_atomic, only: partial_name, publish_file, remove_file, resolve_target, &
+        explain_write_failure
     use ddc_output_hdf5_handles, only: h5_object, open_session, close_session, create_file, &
         close_file, create_group, close_group
     use ddc_output_hdf5_write, only: write_real_1d, write_int_1d, write_real_dataset, &
@@ -55,6 +56,8 @@ module ddc_output_hdf5
     public :: write_results
 
     !> Sign and face conventions stored in every file
+    !> Longest input text stored as the root attribute input_text [bytes]
+    integer, parameter :: max_attribute_text = 60000
     character(len=*), parameter :: conventions = 'stress tension positive; Crouch & ' &
         //'Starfield displacement discontinuities: ds = us(-) - us(+), dn = un(-) - un(+), ' &
         //'opening = -dn; positive face on the left of the element direction'
@@ -83,14 +86,16 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(h5_object) :: root
         type(run_provenance) :: provenance
-        character(len=:), allocatable :: temporary
+        character(len=:), allocatable :: temporary, final_path
         integer(int64) :: start, now, rate
 
         call check_consistency(model, results, error)
         if (allocated(error)) return
         call system_clock(start, rate)
         provenance = describe_run()
-        temporary = partial_name(path)
+        call resolve_target(path, final_path, error)
+        if (allocated(error)) return
+        temporary = partial_name(final_path)
         call open_session(error)
         if (allocated(error)) return
         call create_file(temporary, root, error)
@@ -112,7 +117,11 @@ contains
         end if
         call close_session()
 
-        if (.not. allocated(error)) call publish_file(temporary, path, error)
+        if (.not. allocated(error)) then
+            call publish_file(temporary, final_path, error)
+        else
+            call explain_write_failure(final_path, temporary, error)
+        end if
         if (allocated(error)) call remove_file(temporary)
     end subroutine write_results
 
@@ -168,7 +177,15 @@ contains
         call write_attribute(root, 'blas_threads', provenance%blas_threads, error)
         call write_attribute(root, 'title', text(model%title), error)
         call write_attribute(root, 'input_file', text(model%input_file), error)
-        call write_attribute(root, 'input_text', text(model%input_text), error)
+        ! An attribute holds at most 64 KiB (HDF5's object header); a longer input goes to
+        ! the dataset /input_text, and the attribute says so.
+        if (len(text(model%input_text)) <= max_attribute_text) then
+            call write_attribute(root, 'input_text', text(model%input_text), error)
+        else
+            call write_attribute(root, 'input_text', 'the input ('// &
+                itoa(len(text(model%input_text)))//' bytes) is the dataset /input_text', error)
+            call write_string_1d(root, 'input_text', [text(model%input_text)], error)
+        end if
         call write_attribute(root, 'length_unit', text(model%length_unit), error)
         call write_attribute(root, 'stress_unit', text(model%stress_unit), error)
         call write_attribute(root, 'youngs_modulus', model%youngs_modulus, error)

@@ -141,7 +141,7 @@ ERRORS = {
 @pytest.mark.parametrize("case", ERRORS)
 def test_error_on_four_processes(case, tmp_path):
     model, status, words = ERRORS[case]
-    run = run_parallel(4, [model, "-o", tmp_path / "out.h5"], tmp_path, timeout=120)
+    run = run_parallel(4, [model, "-o", tmp_path / "out.h5"], tmp_path)
     assert run.returncode == status, run.stdout + run.stderr
     assert run.stderr.count("ddc2d: error:") == 1, run.stderr
     for word in words:

@@ -29,7 +29,7 @@ work="$(realpath -m "$4")"
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 python="${DDC2D_PYTHON:-$repo/build/venv/bin/python}"
 model="$repo/tests/data/mpi/kinked_fault.nml"
-wait_limit=120
+wait_limit=600
 start_time=$SECONDS
 
 say() { printf '[slurm mpi test %4ds] %s\n' $((SECONDS - start_time)) "$*"; }

@@ -33,7 +33,7 @@ repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 python="${DDC2D_PYTHON:-$repo/build/venv/bin/python}"
 sweep="$repo/input/sweep_friction_orientation.nml"
 stem=sweep_friction_orientation
-wait_limit=120
+wait_limit=600
 start_time=$SECONDS
 
 say() { printf '[slurm test %4ds] %s\n' $((SECONDS - start_time)) "$*"; }
