@@ -74,6 +74,7 @@ contains
             write (unit, '(a,i0,a,a,a,i0,a,a)') '  fracture ', i, ' ', model%fractures(i)%name, &
                 ': ', model%fractures(i)%last_element - first + 1, ' elements, condition ', &
                 trim(condition_names(model%elements%condition(first)))
+            call print_strength(first, model%fractures(i)%last_element)
         end do
         if (allocated(model%observations)) then
             do i = 1, size(model%observations)
@@ -92,6 +93,23 @@ contains
         if (len(notes) > 0) write (unit, '(a)') prefix_lines('note: ', notes)
 
     contains
+
+        !> The strength beyond Coulomb of elements first:last, when any is not the default.
+        subroutine print_strength(first, last)
+            integer, intent(in) :: first, last
+
+            associate (t => model%elements%tensile_strength(first:last), &
+                       sf => model%elements%sf(first:last), &
+                       sfr => min(model%elements%sf(first:last), &
+                                  model%elements%sf_residual(first:last)))
+                if (any(t > 0.0_wp)) write (unit, '(a)') '    tensile_strength '// &
+                    short_real(minval(t))//' .. '//short_real(maxval(t))//stress// &
+                    ' (capped at sf/mu; lost once the element opens)'
+                if (any(sfr < sf)) write (unit, '(a)') '    sf_residual '// &
+                    short_real(minval(sfr))//' .. '//short_real(maxval(sfr))//stress// &
+                    ' (the cohesion once the element has slipped)'
+            end associate
+        end subroutine print_strength
 
         !> ' (xsym = .., ysym = ..): image elements implicit', or '' without symmetry.
         function symmetry_lines() result(text)

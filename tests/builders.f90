@@ -1,7 +1,8 @@
 !> Models built in code for the physics tests (no input files involved).
 module ddc_test_builders
     use ddc_kinds, only: wp
-    use ddc_model_types, only: model_type, fracture_type, symmetry_options, condition_traction
+    use ddc_model_types, only: model_type, fracture_type, symmetry_options, condition_traction, &
+        no_residual_drop
     use ddc_contact_options, only: solver_options
     use ddc_mesh_geometry, only: allocate_elements, compute_geometry
     use ddc_mesh_polyline, only: polyline_elements
@@ -38,6 +39,8 @@ contains
         model%elements%mu = 0.0_wp
         model%elements%sf = 0.0_wp
         model%elements%pressure = 0.0_wp
+        model%elements%tensile_strength = 0.0_wp
+        model%elements%sf_residual = no_residual_drop
         call compute_geometry(model%elements)
         allocate (model%fractures(1))
         model%fractures(1) = fracture_type(name='fracture_1', first_element=1, &
@@ -89,6 +92,8 @@ contains
             a%mu = [a%mu, b%mu]
             a%sf = [a%sf, b%sf]
             a%pressure = [a%pressure, b%pressure]
+            a%tensile_strength = [a%tensile_strength, b%tensile_strength]
+            a%sf_residual = [a%sf_residual, b%sf_residual]
             a%n = n + b%n
         end associate
         call compute_geometry(model%elements)

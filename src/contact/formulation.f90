@@ -35,6 +35,19 @@
 !> open_cohesion: 'kept' (the paper) lets an open element carry shear up to Sf;
 !> 'lost' sets Sf = 0 on every element that opens and solves again until no open
 !> element has cohesion left (the set of such elements only grows, so this terminates).
+!>
+!> Strength beyond Coulomb (optional tensile and sf_residual): an intact element opens
+!> only when S_n' reaches its tensile strength T. With T in force the contact law is
+!> Coulomb's in the shifted traction S_n'' = S_n' - T: S_n'' <= 0, opening S_n'' = 0, and
+!> tau_s = (Sf - mu T) - mu S_n''. That is the paper's LCP with p - T for p and
+!> Sf - mu T for Sf, so each solve is the same certified LCP (T is capped at the
+!> Coulomb apex Sf/mu, where the shear strength vanishes, so that Sf - mu T >= 0). After
+!> each solve, elements that opened lose T (T = 0) and elements that slipped drop their
+!> cohesion to min(Sf, sf_residual); the problem is solved again until no element
+!> changes. Strengths only decrease and take finitely many values, so this fixed point
+!> is reached in at most 2n + 1 solves; the last solve is certified with the strengths
+!> in force, which are returned (res%sf_effective, res%tensile_effective) so that the
+!> next step of a loading history starts from them.
 module ddc_contact_formulation
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, set_internal_error, exit_bad_input, &
@@ -43,7 +56,7 @@ module ddc_contact_formulation
     use ddc_contact_memory, only: lemke_bytes
     use ddc_contact_options, only: solver_options, lcp_auto, lcp_newton, cohesion_lost
     use ddc_contact_certificate, only: certify_complementarity, default_certificate_tolerance
-    use ddc_contact_states, only: state_stick, state_open
+    use ddc_contact_states, only: state_stick, state_slip, state_open
     use ddc_contact_active_set, only: active_set_result, active_set_workspace, &
         solve_contact_active_set
     use ddc_contact_stiffness, only: stiffness_operator, dense_stiffness
@@ -84,7 +97,7 @@ contains
 
     !> Solve the frictional contact problem of n elements (SPEC section 4).
     subroutine solve_contact(a, s_r_s, s_r_n, mu, sf, pressure, options, res, error, rule, &
-                             max_iterations)
+                             max_iterations, tensile, sf_residual)
         !> Influence matrix ordered [s; n]: traction = s_r + a [Ds; Dn], shape (2n, 2n)
         !> [stress / length]
         real(wp), intent(in), target, contiguous :: a(:, :)
@@ -111,6 +124,9 @@ contains
         integer, intent(in), optional :: rule
         !> Iteration limit of 'newton' (default newton_max_iterations)
         integer, intent(in), optional :: max_iterations
+        !> Tensile strength (default 0) and cohesion after slip (default: no drop), shape
+        !> (n) [stress]; see solve_contact_with
+        real(wp), intent(in), optional :: tensile(:), sf_residual(:)
         type(dense_stiffness) :: stiffness
 
         if (size(a, 1) /= 2 * size(mu) .or. size(a, 2) /= 2 * size(mu)) then
@@ -119,7 +135,7 @@ contains
         end if
         stiffness%a => a
         call solve_contact_with(stiffness, s_r_s, s_r_n, mu, sf, pressure, options, res, error, &
-                                a, rule, max_iterations)
+                                a, rule, max_iterations, tensile=tensile, sf_residual=sf_residual)
     end subroutine solve_contact
 
     !> Solve the frictional contact problem of n elements (SPEC section 4) on any stiffness
@@ -127,7 +143,7 @@ contains
     !> matrix a, by the Newton method alone.
     subroutine solve_contact_with(stiffness, s_r_s, s_r_n, mu, sf, pressure, options, res, &
                                   error, a, rule, max_iterations, ds_previous, session, &
-                                  stress_scale, max_pivots)
+                                  stress_scale, max_pivots, tensile, sf_residual)
         !> The influence matrix A ordered [s; n]: traction = s_r + A [Ds; Dn], 2n x 2n
         !> [stress / length]
         class(stiffness_operator), intent(inout) :: stiffness
@@ -167,7 +183,13 @@ contains
         real(wp), intent(in), optional :: stress_scale
         !> Pivot limit of each Lemke solve (tests; default that of solve_lcp_lemke)
         integer, intent(in), optional :: max_pivots
+        !> Tensile strength in force at the start (default 0: none), shape (n) [stress]
+        real(wp), intent(in), optional :: tensile(:)
+        !> Cohesion after slip: an element that slips keeps min(sf, sf_residual)
+        !> (default: no drop), shape (n) [stress]
+        real(wp), intent(in), optional :: sf_residual(:)
         type(contact_session) :: fresh
+        real(wp), allocatable :: t_start(:), sf_after(:)
         real(wp), allocatable :: held(:)
         real(wp) :: sigma0
         integer :: n, limit
@@ -180,6 +202,22 @@ contains
             return
         end if
         allocate (held(n), source=0.0_wp)
+        allocate (t_start(n), source=0.0_wp)
+        if (present(tensile)) then
+            if (size(tensile) /= n) then
+                call set_internal_error(error, 'solve_contact', 'array sizes do not match')
+                return
+            end if
+            t_start = tensile
+        end if
+        sf_after = sf
+        if (present(sf_residual)) then
+            if (size(sf_residual) /= n) then
+                call set_internal_error(error, 'solve_contact', 'array sizes do not match')
+                return
+            end if
+            sf_after = min(sf, sf_residual)
+        end if
         if (present(ds_previous)) then
             if (size(ds_previous) /= n) then
                 call set_internal_error(error, 'solve_contact', 'array sizes do not match')
@@ -194,20 +232,22 @@ contains
         if (.not. (checked .and. all(ieee_is_finite(s_r_s)) .and. &
             all(ieee_is_finite(s_r_n)) .and. all(ieee_is_finite(mu)) .and. &
             all(ieee_is_finite(sf)) .and. all(ieee_is_finite(pressure)) .and. &
-            all(ieee_is_finite(held)))) then
+            all(ieee_is_finite(held)) .and. all(ieee_is_finite(t_start)))) then
             call set_error(error, exit_bad_input, 'contact: NaN or Inf in the input arrays')
             return
         end if
         if (present(session)) session%a_checked = .true.
         limit = newton_max_iterations
         if (present(max_iterations)) limit = max_iterations
-        if (any(mu < 0.0_wp) .or. any(sf < 0.0_wp)) then
-            call set_internal_error(error, 'solve_contact', 'mu and sf must not be negative')
+        if (any(mu < 0.0_wp) .or. any(sf < 0.0_wp) .or. any(t_start < 0.0_wp) .or. &
+            any(sf_after < 0.0_wp)) then
+            call set_internal_error(error, 'solve_contact', &
+                                    'mu, sf, tensile and sf_residual must not be negative')
             return
         end if
         if (n == 0) then
             allocate (res%ds(0), res%dn(0), res%shear_traction(0), res%normal_traction(0), &
-                res%state(0), res%sf_effective(0))
+                res%state(0), res%sf_effective(0), res%tensile_effective(0))
             res%certificate%passed = .true.
             return
         end if
@@ -226,9 +266,9 @@ contains
         subroutine solve_in_session(s, warm)
             type(contact_session), intent(inout) :: s
             logical, intent(in) :: warm
-            real(wp), allocatable :: sf_eff(:)
+            real(wp), allocatable :: sf_eff(:), t_eff(:), sf_in(:), p_in(:), t_cap(:)
             integer(int64) :: t0, t1, rate
-            logical :: newton, automatic
+            logical :: newton, automatic, changed
             integer :: rounds
             character(len=:), allocatable :: reason
             character(len=200) :: line
@@ -245,10 +285,12 @@ contains
             rounds = 0
             call system_clock(t0, rate)
             sf_eff = sf
+            t_eff = t_start
             do
                 rounds = rounds + 1
+                call shifted_law(mu, sf_eff, pressure, t_eff, sf_in, p_in, t_cap)
                 if (newton) then
-                    call solve_once_newton(stiffness, s_r_s, s_r_n, mu, sf_eff, pressure, &
+                    call solve_once_newton(stiffness, s_r_s, s_r_n, mu, sf_in, p_in, &
                         limit, held, sigma0, present(stress_scale), res, s, reason)
                     if (len(reason) > 0 .and. .not. present(a)) then
                         call set_error(error, exit_solver_failure, 'contact: '//reason)
@@ -261,13 +303,13 @@ contains
                     end if
                 end if
                 if (.not. newton) then
-                    call solve_once_lemke(s, warm, sf_eff)
+                    call solve_once_lemke(s, warm, sf_in, p_in)
                     if (allocated(error) .and. automatic .and. len(res%fallback) == 0) then
                         ! M is not copositive-plus: Lemke can end on a ray where the contact
                         ! problem has a solution (seen at acute fault branches). 'auto' then
                         ! asks the Newton method, whose answer is checked the same way, and
                         ! keeps it for the rounds after cohesion is lost.
-                        call solve_once_newton(stiffness, s_r_s, s_r_n, mu, sf_eff, pressure, &
+                        call solve_once_newton(stiffness, s_r_s, s_r_n, mu, sf_in, p_in, &
                             limit, held, sigma0, present(stress_scale), res, s, reason)
                         if (len(reason) == 0) then
                             newton = .true.
@@ -283,7 +325,7 @@ contains
                 if (allocated(error)) then
                     if (rounds > 1) then
                         write (line, '(a,i0,a)') ' (solve ', rounds, &
-                            ", after cohesion was lost on opening elements)"
+                            ", after strength was lost on elements that opened or slipped)"
                         error%message = error%message//trim(line)
                     end if
                     if (len(res%fallback) > 0) error%message = error%message// &
@@ -291,8 +333,14 @@ contains
                     return
                 end if
                 if (.not. newton) call keep_states(res, s)
-                if (options%open_cohesion /= cohesion_lost) exit
-                if (.not. drop_open_cohesion(res%state, sf_eff)) exit
+                ! The strengths this solve was certified with (T capped at the apex).
+                res%sf_effective = sf_eff
+                res%tensile_effective = t_cap
+                changed = weaken(res%state, sf_after, t_eff, sf_eff)
+                if (options%open_cohesion == cohesion_lost) then
+                    if (drop_open_cohesion(res%state, sf_eff)) changed = .true.
+                end if
+                if (.not. changed) exit
             end do
             call system_clock(t1)
             res%seconds_lcp = real(t1 - t0, wp) / real(max(rate, 1_int64), wp) - &
@@ -304,10 +352,10 @@ contains
 
         !> One Lemke solve of the paper's LCP (built once per session, when memory allows),
         !> from the session's last basis when warm.
-        subroutine solve_once_lemke(s, warm, sf_eff)
+        subroutine solve_once_lemke(s, warm, sf_eff, p)
             type(contact_session), intent(inout) :: s
             logical, intent(in) :: warm
-            real(wp), intent(in) :: sf_eff(:)
+            real(wp), intent(in) :: sf_eff(:), p(:)
 
             if (.not. allocated(s%lcp%m) .and. len(res%fallback) > 0 .and. &
                 lemke_bytes(n) > options%work_bytes) then
@@ -323,15 +371,45 @@ contains
                 allocate (s%basis(3 * n), source=0)
             end if
             if (warm) then
-                call solve_paper_lcp(s%lcp, s_r_s, s_r_n, sf_eff, pressure, held, sigma0, res, &
+                call solve_paper_lcp(s%lcp, s_r_s, s_r_n, sf_eff, p, held, sigma0, res, &
                                      error, rule=rule, basis=s%basis, max_pivots=max_pivots)
             else
-                call solve_paper_lcp(s%lcp, s_r_s, s_r_n, sf_eff, pressure, held, sigma0, res, &
+                call solve_paper_lcp(s%lcp, s_r_s, s_r_n, sf_eff, p, held, sigma0, res, &
                                      error, rule=rule, max_pivots=max_pivots)
             end if
         end subroutine solve_once_lemke
 
     end subroutine solve_contact_with
+
+    !> The shifted Coulomb law of a tensile strength t (module header): sf_in = sf - mu T,
+    !> p_in = p - T with T = t capped at the apex sf/mu. With t = 0 these are sf and p.
+    pure subroutine shifted_law(mu, sf, p, t, sf_in, p_in, cap)
+        real(wp), intent(in) :: mu(:), sf(:), p(:), t(:)
+        real(wp), allocatable, intent(out) :: sf_in(:), p_in(:)
+        !> T in force [stress]
+        real(wp), allocatable, intent(out) :: cap(:)
+
+        cap = t
+        where (mu * t > sf) cap = sf / mu
+        sf_in = max(sf - mu * cap, 0.0_wp)
+        p_in = p - cap
+    end subroutine shifted_law
+
+    !> After a solve: elements that opened lose their tensile strength, elements that
+    !> slipped drop their cohesion to sf_after; true when any strength changed.
+    function weaken(state, sf_after, t, sf) result(changed)
+        integer, intent(in) :: state(:)
+        real(wp), intent(in) :: sf_after(:)
+        real(wp), intent(inout) :: t(:), sf(:)
+        logical :: changed
+        logical :: opened(size(state)), slipped(size(state))
+
+        opened = state == state_open .and. t > 0.0_wp
+        slipped = state == state_slip .and. sf > sf_after
+        changed = any(opened) .or. any(slipped)
+        where (opened) t = 0.0_wp
+        where (slipped) sf = sf_after
+    end function weaken
 
     !> Newton states from a Lemke solution, for the next solve's warm start: open elements
     !> open; shear stick where the element sticks, else slip towards its shear traction.

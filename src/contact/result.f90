@@ -35,6 +35,9 @@ module ddc_contact_result
         integer, allocatable :: state(:)
         !> Frictional strength in force at the end (0 where cohesion was lost) [stress]
         real(wp), allocatable :: sf_effective(:)
+        !> Tensile strength in force at the end (0 where it was lost on opening; capped
+        !> at the Coulomb apex sf_effective/mu) [stress]
+        real(wp), allocatable :: tensile_effective(:)
         !> Method that produced the result: 'lemke' or 'newton'
         character(len=:), allocatable :: method
         !> Why the first method failed and the other one produced the result: Newton falling

@@ -4,7 +4,8 @@
 !> element at a begin tip).
 module ddc_growth_extension
     use ddc_kinds, only: wp
-    use ddc_model_types, only: model_type, element_set, growth_options, condition_contact
+    use ddc_model_types, only: model_type, element_set, growth_options, condition_contact, &
+        no_residual_drop
     use ddc_mesh_geometry, only: allocate_elements, compute_geometry
     implicit none
     private
@@ -191,6 +192,8 @@ contains
                 a%mu(to) = b%mu(from)
                 a%sf(to) = b%sf(from)
                 a%pressure(to) = b%pressure(from)
+                a%tensile_strength(to) = b%tensile_strength(from)
+                a%sf_residual(to) = b%sf_residual(from)
             end associate
         end subroutine copy_element
 
@@ -208,6 +211,9 @@ contains
                 a%y_begin(next) = yb
                 a%x_end(next) = xe
                 a%y_end(next) = ye
+                ! New elements are intact and take the default laws (no T, no drop).
+                a%tensile_strength(next) = 0.0_wp
+                a%sf_residual(next) = no_residual_drop
                 if (a%condition(next) == condition_contact) then
                     if (options%override_mu) a%mu(next) = options%new_mu
                     if (options%override_sf) a%sf(next) = options%new_sf

@@ -63,6 +63,7 @@ contains
         type(history_record) :: h
         real(wp), allocatable :: loads(:, :), shear(:, :), normal(:, :), shift(:, :)
         real(wp), allocatable :: y_load(:, :), pressure(:, :), sf_eff(:), ds_previous(:), v(:)
+        real(wp), allocatable :: t_eff(:)
         real(wp), allocatable :: matrix(:, :), no_dd(:), ts(:), tn(:)
         integer :: n, nc, k, nsteps, pivots, solves, iterations, fallbacks, first_fallback, stat
         real(wp) :: sigma0, g, seconds_lcp, seconds_factorization, flops
@@ -118,7 +119,10 @@ contains
         if (allocated(error)) return
         h%load = loads
         allocate (ts(sys%nf), tn(sys%nf))
+        ! The strengths in force: what an element lost (tensile strength on opening,
+        ! cohesion on slip) stays lost for the rest of the history.
         sf_eff = model%elements%sf(sys%contact)
+        t_eff = model%elements%tensile_strength(sys%contact)
         allocate (ds_previous(nc), source=0.0_wp)
         ! One operator for every step: the Newton method's factors live in it.
         stiffness%a => sys%a
@@ -136,7 +140,8 @@ contains
                                     model%solver, res, error, a=sys%a, &
                                     max_iterations=max_iterations, ds_previous=ds_previous, &
                                     session=session, stress_scale=sigma0, &
-                                    max_pivots=max_pivots)
+                                    max_pivots=max_pivots, tensile=t_eff, &
+                                    sf_residual=model%elements%sf_residual(sys%contact))
             if (allocated(error)) then
                 error%message = 'loading history: step '//itoa(k)//' of '//itoa(nsteps)// &
                     ' ('//load_text(loads(:, k), model%load_path%varies)//') failed: '// &
@@ -144,6 +149,7 @@ contains
                 return
             end if
             sf_eff = res%sf_effective
+            t_eff = res%tensile_effective
             ds_previous = res%ds
             pivots = pivots + res%pivots
             solves = solves + res%solves
@@ -189,6 +195,10 @@ contains
         results%elements%ds = h%ds(:, nsteps)
         results%elements%dn = h%dn(:, nsteps)
         results%elements%state = h%state(:, nsteps)
+        allocate (results%elements%sf_in_force(n), results%elements%tensile_in_force(n), &
+                  source=0.0_wp)
+        results%elements%sf_in_force(sys%contact) = sf_eff
+        results%elements%tensile_in_force(sys%contact) = t_eff
         nullify (stiffness%a)
         call release_matrix(sys, matrix)
         call finish_model(apply_load(model, loads(:, nsteps)), shear(:, nsteps), &

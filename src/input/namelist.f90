@@ -93,6 +93,10 @@ contains
 
         call check_names(path, fractures, observations, messages)
         call check_half_plane(path, model, fractures, observations, messages)
+        if (model%growth%active .and. any(strength_given(fractures))) then
+            call add(messages, path//': &fracture tensile_strength and sf_residual are not '// &
+                     'honoured by fracture growth yet: remove them or the &growth group')
+        end if
         if (messages%n > 0) then
             call set_error(error, messages%code, messages%text)
             return
@@ -104,6 +108,16 @@ contains
             error%message = prefix_lines(path//': ', error%message)
         end if
     end subroutine read_namelist_model
+
+    !> Whether a valid fracture has a strength beyond Coulomb (a tensile strength or a
+    !> cohesion drop after slip), one value per fracture.
+    elemental logical function strength_given(fracture)
+        type(fracture_input), intent(in) :: fracture
+
+        strength_given = fracture%valid
+        if (strength_given) strength_given = any(fracture%tensile_strength > 0.0_wp) .or. &
+            any(fracture%sf_residual < fracture%sf)
+    end function strength_given
 
     !> Half-plane rules (SPEC-EARTH 1): every vertex and field point at y <= 0, no element on
     !> the surface, a remote stress that is traction-free at y = 0, symmetry about x only.
@@ -229,6 +243,8 @@ contains
             model%elements%mu(first:last) = fractures(k)%mu
             model%elements%sf(first:last) = fractures(k)%sf
             model%elements%pressure(first:last) = fractures(k)%pressure
+            model%elements%tensile_strength(first:last) = fractures(k)%tensile_strength
+            model%elements%sf_residual(first:last) = fractures(k)%sf_residual
         end do
         call compute_geometry(model%elements)
 

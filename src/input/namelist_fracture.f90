@@ -4,7 +4,7 @@
 module ddc_input_namelist_fracture
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
-    use ddc_model_types, only: condition_names, condition_contact
+    use ddc_model_types, only: condition_names, condition_contact, no_residual_drop
     use ddc_model_limits, only: range_problem, quantity_non_negative
     use ddc_text, only: itoa, rtoa, lower, find_name, quoted_list, prefix_lines
     use ddc_input_text_file, only: resolve
@@ -39,12 +39,15 @@ module ddc_input_namelist_fracture
         real(wp), allocatable :: x_begin(:), y_begin(:), x_end(:), y_end(:)
         !> Per-element values (SPEC section 6), shape (elements)
         real(wp), allocatable :: mu(:), sf(:), pressure(:), bc_s(:), bc_n(:)
+        !> Tensile strength and residual cohesion (no_residual_drop where not given),
+        !> shape (elements) [stress unit]
+        real(wp), allocatable :: tensile_strength(:), sf_residual(:)
     end type fracture_input
 
 contains
 
     !> &fracture name, x, y, elements, mu, sf, pressure, condition, bc_s, bc_n,
-    !> elements_file / (repeated, one per fracture)
+    !> elements_file, tensile_strength, sf_residual / (repeated, one per fracture)
     subroutine read_fracture_groups(unit, text, path, dir, info, fractures, messages)
         integer, intent(in) :: unit
         character(len=*), intent(in) :: text
@@ -54,6 +57,8 @@ contains
         type(message_list), intent(inout) :: messages
         character(len=text_length) :: name, condition, elements_file
         real(wp), allocatable :: x(:), y(:), mu(:), sf(:), pressure(:), bc_s(:), bc_n(:)
+        real(wp), allocatable :: tensile_strength(:), sf_residual(:), seg_t(:), seg_sfr(:)
+        logical, allocatable :: csv_given(:)
         integer, allocatable :: elements(:)
         character(len=512) :: iomsg
         character(len=:), allocatable :: prefix, csv_path
@@ -62,15 +67,17 @@ contains
         integer, allocatable :: counts(:), row_lines(:)
         type(error_type), allocatable :: csv_error
         integer :: stat, k, i, nx, ny, ne, nmu, nsf, npr, nbs, nbn, nseg, nbefore, cond
+        integer :: nt, nsr
         logical :: from_csv, geometry_ok
         namelist /fracture/ name, x, y, elements, mu, sf, pressure, condition, bc_s, bc_n, &
-            elements_file
+            elements_file, tensile_strength, sf_residual
 
         allocate (fractures(info%count))
         if (info%count == 0) return
         allocate (x(max_vertices), y(max_vertices), mu(max_vertices), sf(max_vertices), &
                   pressure(max_vertices), bc_s(max_vertices), bc_n(max_vertices), &
-                  elements(max_vertices))
+                  elements(max_vertices), tensile_strength(max_vertices), &
+                  sf_residual(max_vertices))
         rewind (unit)
         do k = 1, info%count
             name = ''
@@ -83,6 +90,8 @@ contains
             pressure = unset_real
             bc_s = unset_real
             bc_n = unset_real
+            tensile_strength = unset_real
+            sf_residual = unset_real
             elements = unset_integer
             read (unit, nml=fracture, iostat=stat, iomsg=iomsg)
             if (stat /= 0) then
@@ -102,6 +111,8 @@ contains
             npr = count_given(pressure, 'pressure', prefix, messages)
             nbs = count_given(bc_s, 'bc_s', prefix, messages)
             nbn = count_given(bc_n, 'bc_n', prefix, messages)
+            nt = count_given(tensile_strength, 'tensile_strength', prefix, messages)
+            nsr = count_given(sf_residual, 'sf_residual', prefix, messages)
 
             cond = find_name(lower(trim(adjustl(condition))), condition_names)
             if (cond == 0) then
@@ -116,13 +127,16 @@ contains
                     call add(messages, prefix//'give either x, y and elements or '// &
                              'elements_file, not both')
                 end if
-                if (nmu > 0 .or. nsf > 0 .or. npr > 0) then
-                    call add(messages, prefix//'mu, sf and pressure come from elements_file;'// &
-                             ' do not give them in the group as well')
+                if (nmu > 0 .or. nsf > 0 .or. npr > 0 .or. nt > 0 .or. nsr > 0) then
+                    call add(messages, prefix//'mu, sf, pressure, tensile_strength and '// &
+                             'sf_residual come from elements_file; do not give them in '// &
+                             'the group as well')
                 end if
                 csv_path = resolve(dir, trim(adjustl(elements_file)))
                 call read_csv(csv_path, [character(len=8) :: 'x_begin', 'y_begin', 'x_end', &
-                              'y_end', 'mu', 'sf', 'pressure'], rows, csv_error, row_lines)
+                              'y_end', 'mu', 'sf', 'pressure'], rows, csv_error, row_lines, &
+                              [character(len=16) :: 'tensile_strength', 'sf_residual'], &
+                              csv_given)
                 if (allocated(csv_error)) then
                     call add(messages, prefix_lines(prefix//'elements_file: ', csv_error%message))
                     deallocate (csv_error)
@@ -144,7 +158,11 @@ contains
                                      itoa(row_lines(i))//': sf = '//rtoa(rows(6, i))//' '// &
                                      range_problem(quantity_non_negative, rows(6, i)))
                         end if
+                        if (csv_given(1)) call check_law_row(8, 'tensile_strength')
+                        if (csv_given(2)) call check_law_row(9, 'sf_residual')
                     end do
+                    if (.not. csv_given(1)) rows(8, :) = 0.0_wp
+                    if (.not. csv_given(2)) rows(9, :) = no_residual_drop
                 end if
             else
                 if (nx /= ny) then
@@ -195,14 +213,20 @@ contains
                     end if
                     call check_range(mu(1:nmu), 'mu', quantity_non_negative, prefix, messages)
                     call check_range(sf(1:nsf), 'sf', quantity_non_negative, prefix, messages)
+                    call check_range(tensile_strength(1:nt), 'tensile_strength', &
+                                     quantity_non_negative, prefix, messages)
+                    call check_range(sf_residual(1:nsr), 'sf_residual', quantity_non_negative, &
+                                     prefix, messages)
                 end if
                 if (nbs > 0 .or. nbn > 0) then
                     call add(messages, prefix//'bc_s and bc_n are for the TWODD-style '// &
                              "conditions, not for condition 'contact'")
                 end if
             else if (cond /= 0) then
-                if (.not. from_csv .and. (nmu > 0 .or. nsf > 0 .or. npr > 0)) then
-                    call add(messages, prefix//"mu, sf and pressure are for condition "// &
+                if (.not. from_csv .and. (nmu > 0 .or. nsf > 0 .or. npr > 0 .or. nt > 0 .or. &
+                    nsr > 0)) then
+                    call add(messages, prefix//"mu, sf, pressure, tensile_strength and "// &
+                             "sf_residual are for condition "// &
                              "'contact', not for condition '"//trim(condition_names(cond))//"'")
                 end if
             end if
@@ -217,6 +241,14 @@ contains
                     end if
                     if (check_length(npr, nseg, 'pressure', prefix, messages)) then
                         seg_pressure = broadcast(pressure(1:npr), nseg, 0.0_wp)
+                    end if
+                    if (check_length(nt, nseg, 'tensile_strength', prefix, messages)) then
+                        seg_t = broadcast(tensile_strength(1:nt), nseg, 0.0_wp)
+                    end if
+                    if (check_length(nsr, nseg, 'sf_residual', prefix, messages)) then
+                        seg_sfr = broadcast(sf_residual(1:nsr), nseg, no_residual_drop)
+                        if (allocated(seg_sf)) call check_residual(seg_sf, seg_sfr, &
+                                                                   'segment')
                     end if
                 end if
                 if (check_length(nbs, nseg, 'bc_s', prefix, messages)) then
@@ -239,6 +271,8 @@ contains
                 fractures(k)%mu = rows(5, :)
                 fractures(k)%sf = rows(6, :)
                 fractures(k)%pressure = rows(7, :)
+                fractures(k)%tensile_strength = rows(8, :)
+                fractures(k)%sf_residual = rows(9, :)
                 fractures(k)%bc_s = seg_bc_s
                 fractures(k)%bc_n = seg_bc_n
             else
@@ -248,10 +282,52 @@ contains
                 fractures(k)%mu = expand_per_segment(seg_mu, counts)
                 fractures(k)%sf = expand_per_segment(seg_sf, counts)
                 fractures(k)%pressure = expand_per_segment(seg_pressure, counts)
+                fractures(k)%tensile_strength = expand_per_segment(seg_t, counts)
+                fractures(k)%sf_residual = expand_per_segment(seg_sfr, counts)
                 fractures(k)%bc_s = expand_per_segment(seg_bc_s, counts)
                 fractures(k)%bc_n = expand_per_segment(seg_bc_n, counts)
             end if
         end do
+
+    contains
+
+        !> The law in column c of CSV row i is not negative (and sf_residual <= sf).
+        subroutine check_law_row(c, name)
+            integer, intent(in) :: c
+            character(len=*), intent(in) :: name
+
+            if (len(range_problem(quantity_non_negative, rows(c, i))) > 0) then
+                call add(messages, prefix//'elements_file '//csv_path//' line '// &
+                         itoa(row_lines(i))//': '//name//' = '//rtoa(rows(c, i))//' '// &
+                         range_problem(quantity_non_negative, rows(c, i)))
+            else if (c == 9) then
+                call check_residual(rows(6, i:i), rows(9, i:i), 'elements_file '//csv_path// &
+                                    ' line '//itoa(row_lines(i))//':')
+            end if
+        end subroutine check_law_row
+
+        !> A residual cohesion above the intact one is a mistake, not a strengthening.
+        subroutine check_residual(intact, residual, where)
+            real(wp), intent(in) :: intact(:), residual(:)
+            character(len=*), intent(in) :: where
+            integer :: j
+
+            do j = 1, size(residual)
+                if (residual(j) > intact(j) .and. residual(j) < no_residual_drop) then
+                    if (where == 'segment') then
+                        call add(messages, prefix//'sf_residual = '//rtoa(residual(j))// &
+                                 ' exceeds sf = '//rtoa(intact(j))//' on segment '//itoa(j)// &
+                                 ' (the cohesion after slip must not exceed the intact one)')
+                    else
+                        call add(messages, prefix//where//' sf_residual = '// &
+                                 rtoa(residual(j))//' exceeds sf = '//rtoa(intact(j))// &
+                                 ' (the cohesion after slip must not exceed the intact one)')
+                    end if
+                    return
+                end if
+            end do
+        end subroutine check_residual
+
     end subroutine read_fracture_groups
 
 end module ddc_input_namelist_fracture

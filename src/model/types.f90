@@ -18,7 +18,7 @@ module ddc_model_types
     public :: observation_grid, observation_line, observation_points, observation_kind_names
     public :: growth_options, growth_tips_all, growth_tips_most_critical, growth_tips_names
     public :: growth_criterion_mts, growth_criterion_names
-    public :: default_block_size
+    public :: default_block_size, no_residual_drop
 
     !> Boundary conditions; 1-4 are the TWODD KODE values.
     integer, parameter :: condition_traction = 1
@@ -37,6 +37,10 @@ module ddc_model_types
     !> Input names of the domains, indexed by domain
     character(len=*), parameter :: domain_names(2) = [character(len=10) :: &
         'full_plane', 'half_plane']
+
+    !> elements%sf_residual of an element whose cohesion does not drop after slip (the
+    !> default, sf_residual = sf; a sweep may change sf after the input was read)
+    real(wp), parameter :: no_residual_drop = huge(1.0_wp)
 
     !> Block size of the distributed matrices of the MPI build (&solver block_size)
     integer, parameter :: default_block_size = 64
@@ -80,6 +84,11 @@ module ddc_model_types
         !> Friction coefficient [-], cohesion (frictional strength) [stress unit],
         !> internal fluid pressure [stress unit], for contact elements
         real(wp), allocatable :: mu(:), sf(:), pressure(:)
+        !> Fault strength beyond Coulomb, for contact elements: tensile strength T >= 0
+        !> [stress unit] (lost once the element opens) and the cohesion after the element
+        !> first slipped [stress unit]; the cohesion in force after slip is
+        !> min(sf, sf_residual) (no_residual_drop: no drop)
+        real(wp), allocatable :: tensile_strength(:), sf_residual(:)
         !> Derived geometry: midpoint, half-length [length unit], cos and sin of the
         !> element angle beta (counter-clockwise from +x)
         real(wp), allocatable :: x_mid(:), y_mid(:), half_length(:)

@@ -217,6 +217,14 @@ contains
             ! Contact elements: the given pressure plus the pore fluid
             call write_real_1d(group, 'pressure', total_pressure(e, model%pore_fluid), stress, &
                                error)
+            ! Strength beyond Coulomb as given, and what was left of it at the end.
+            call write_real_1d(group, 'tensile_strength', e%tensile_strength, stress, error)
+            call write_real_1d(group, 'sf_residual', min(e%sf, e%sf_residual), stress, error)
+            if (allocated(r%sf_in_force)) then
+                call write_real_1d(group, 'sf_in_force', r%sf_in_force, stress, error)
+                call write_real_1d(group, 'tensile_strength_in_force', r%tensile_in_force, &
+                                   stress, error)
+            end if
             if (allocated(results%growth%created_step)) then
                 call write_int_1d(group, 'created_step', results%growth%created_step, error, &
                                   '0 the input, k growth step k')

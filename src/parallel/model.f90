@@ -74,6 +74,8 @@ contains
         call share(context, elements%mu)
         call share(context, elements%sf)
         call share(context, elements%pressure)
+        call share(context, elements%tensile_strength)
+        call share(context, elements%sf_residual)
         call share(context, elements%x_mid)
         call share(context, elements%y_mid)
         call share(context, elements%half_length)

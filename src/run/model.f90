@@ -47,6 +47,7 @@ contains
         !> The engine of a distributed run (default: the work is done in this process)
         class(model_engine), intent(inout), optional :: engine
         real(wp), allocatable :: remote_shear(:), remote_normal(:), matrix(:, :)
+        real(wp), allocatable :: strength(:, :)
         type(element_set) :: loaded
         real(wp) :: g, nu, t_start
         integer :: n
@@ -76,9 +77,13 @@ contains
                                   e%ds, e%dn, e%state, rec, error)
             else
                 call solve_here(loaded, g, nu, remote_shear, remote_normal, model%solver, e%ds, &
-                                e%dn, e%state, rec, matrix, error)
+                                e%dn, e%state, rec, matrix, error, strength)
             end if
             if (allocated(error)) return
+            if (allocated(strength)) then
+                e%sf_in_force = strength(1, :)
+                e%tensile_in_force = strength(2, :)
+            end if
             if (reports_phases(n)) call report_progress('solved ('//rec%method//') in '// &
                 seconds_text(wall_seconds() - t_start))
         end associate
@@ -184,7 +189,7 @@ contains
     !> The solve in this process: contact models by solve_frictional, the others by
     !> solve_elastic (method 'lu'); the influence matrix of the solve is handed back.
     subroutine solve_here(elements, shear_modulus, nu, remote_shear, remote_normal, options, &
-                          ds, dn, state, record, matrix, error)
+                          ds, dn, state, record, matrix, error, strength)
         type(element_set), intent(in) :: elements
         real(wp), intent(in) :: shear_modulus, nu
         real(wp), intent(in) :: remote_shear(:), remote_normal(:)
@@ -194,10 +199,12 @@ contains
         type(solver_record), intent(inout) :: record
         real(wp), allocatable, intent(out) :: matrix(:, :)
         type(error_type), allocatable, intent(out) :: error
+        !> Cohesion and tensile strength in force at the end, shape (2, n) (contact models)
+        real(wp), allocatable, intent(out) :: strength(:, :)
 
         if (any(elements%condition == condition_contact)) then
             call solve_frictional(elements, shear_modulus, nu, remote_shear, remote_normal, &
-                                  options, ds, dn, state, record, matrix, error)
+                                  options, ds, dn, state, record, matrix, error, strength)
         else
             record%method = 'lu'
             call solve_elastic(elements, shear_modulus, nu, remote_shear, remote_normal, ds, dn, &

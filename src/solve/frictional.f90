@@ -58,7 +58,7 @@ contains
 
     !> Solve a model with at least one contact element.
     subroutine solve_frictional(elements, shear_modulus, nu, remote_shear, remote_normal, &
-                                options, ds, dn, state, record, matrix, error)
+                                options, ds, dn, state, record, matrix, error, strength)
         !> Elements with geometry computed
         type(element_set), intent(in) :: elements
         !> Shear modulus [stress unit] and Poisson's ratio [-]
@@ -78,6 +78,9 @@ contains
         real(wp), allocatable, intent(out) :: matrix(:, :)
         !> Set when the model has no solution or the solver failed
         type(error_type), allocatable, intent(out) :: error
+        !> Strength in force at the end: cohesion (row 1) and tensile strength (row 2) of
+        !> each element (0 for TWODD-style elements), shape (2, n) [stress unit]
+        real(wp), allocatable, intent(out), optional :: strength(:, :)
         type(condensed_contact) :: sys
         type(contact_result) :: res
         real(wp), allocatable :: shift(:), y_load(:)
@@ -88,7 +91,9 @@ contains
         call contact_load(sys, elements, remote_shear, remote_normal, shift, y_load)
         call solve_contact(sys%a, shift(1:sys%nc), shift(sys%nc + 1:), &
                            elements%mu(sys%contact), elements%sf(sys%contact), &
-                           elements%pressure(sys%contact), options, res, error)
+                           elements%pressure(sys%contact), options, res, error, &
+                           tensile=elements%tensile_strength(sys%contact), &
+                           sf_residual=elements%sf_residual(sys%contact))
         if (allocated(error)) then
             if (sys%nf > 0) error%message = error%message// &
                 ' (element numbers count the contact elements only)'
@@ -98,6 +103,11 @@ contains
         call complete_dds(sys, elements, remote_shear, remote_normal, res, y_load, ds, dn, &
                           state, record%equilibrium_residual)
         call release_matrix(sys, matrix)
+        if (present(strength)) then
+            allocate (strength(2, elements%n), source=0.0_wp)
+            strength(1, sys%contact) = res%sf_effective
+            strength(2, sys%contact) = res%tensile_effective
+        end if
     end subroutine solve_frictional
 
     !> Hand over the influence matrix of every element (no copy): the contact block itself
