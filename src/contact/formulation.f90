@@ -39,8 +39,8 @@
 !> Strength beyond Coulomb (optional tensile and sf_residual): an intact element opens
 !> only when S_n' reaches its tensile strength T. With T in force the contact law is
 !> Coulomb's in the shifted traction S_n'' = S_n' - T: S_n'' <= 0, opening S_n'' = 0, and
-!> tau_s = (Sf - mu T) - mu S_n''. That is the paper's LCP with p - T for p and
-!> Sf - mu T for Sf, so each solve is the same certified LCP (T is capped at the
+!> tau_s = (Sf - mu T) - mu S_n''. That is the paper's LCP with s_n - T for the resolved
+!> normal traction and Sf - mu T for Sf, so each solve is the same certified LCP (T is capped at the
 !> Coulomb apex Sf/mu, where the shear strength vanishes, so that Sf - mu T >= 0). After
 !> each solve, elements that opened lose T (T = 0) and elements that slipped drop their
 !> cohesion to min(Sf, sf_residual); the problem is solved again until no element
@@ -266,7 +266,7 @@ contains
         subroutine solve_in_session(s, warm)
             type(contact_session), intent(inout) :: s
             logical, intent(in) :: warm
-            real(wp), allocatable :: sf_eff(:), t_eff(:), sf_in(:), p_in(:), t_cap(:)
+            real(wp), allocatable :: sf_eff(:), t_eff(:), sf_in(:), srn_in(:), t_cap(:)
             integer(int64) :: t0, t1, rate
             logical :: newton, automatic, changed
             integer :: rounds
@@ -288,9 +288,12 @@ contains
             t_eff = t_start
             do
                 rounds = rounds + 1
-                call shifted_law(mu, sf_eff, pressure, t_eff, sf_in, p_in, t_cap)
+                call shifted_law(mu, sf_eff, s_r_n, t_eff, sf_in, srn_in, t_cap)
+                res%residual_scale_floor = 0.0_wp
+                if (any(t_cap > 0.0_wp)) res%residual_scale_floor = &
+                    max(norm2([s_r_s, s_r_n]), norm2(t_cap))
                 if (newton) then
-                    call solve_once_newton(stiffness, s_r_s, s_r_n, mu, sf_in, p_in, &
+                    call solve_once_newton(stiffness, s_r_s, srn_in, mu, sf_in, pressure, &
                         limit, held, sigma0, present(stress_scale), res, s, reason)
                     if (len(reason) > 0 .and. .not. present(a)) then
                         call set_error(error, exit_solver_failure, 'contact: '//reason)
@@ -303,13 +306,13 @@ contains
                     end if
                 end if
                 if (.not. newton) then
-                    call solve_once_lemke(s, warm, sf_in, p_in)
+                    call solve_once_lemke(s, warm, sf_in, srn_in)
                     if (allocated(error) .and. automatic .and. len(res%fallback) == 0) then
                         ! M is not copositive-plus: Lemke can end on a ray where the contact
                         ! problem has a solution (seen at acute fault branches). 'auto' then
                         ! asks the Newton method, whose answer is checked the same way, and
                         ! keeps it for the rounds after cohesion is lost.
-                        call solve_once_newton(stiffness, s_r_s, s_r_n, mu, sf_in, p_in, &
+                        call solve_once_newton(stiffness, s_r_s, srn_in, mu, sf_in, pressure, &
                             limit, held, sigma0, present(stress_scale), res, s, reason)
                         if (len(reason) == 0) then
                             newton = .true.
@@ -336,6 +339,7 @@ contains
                 ! The strengths this solve was certified with (T capped at the apex).
                 res%sf_effective = sf_eff
                 res%tensile_effective = t_cap
+                res%normal_traction = res%normal_traction + t_cap
                 changed = weaken(res%state, sf_after, t_eff, sf_eff)
                 if (options%open_cohesion == cohesion_lost) then
                     if (drop_open_cohesion(res%state, sf_eff)) changed = .true.
@@ -352,10 +356,11 @@ contains
 
         !> One Lemke solve of the paper's LCP (built once per session, when memory allows),
         !> from the session's last basis when warm.
-        subroutine solve_once_lemke(s, warm, sf_eff, p)
+        subroutine solve_once_lemke(s, warm, sf_eff, srn)
             type(contact_session), intent(inout) :: s
             logical, intent(in) :: warm
-            real(wp), intent(in) :: sf_eff(:), p(:)
+            !> Cohesion and resolved normal traction of the shifted law [stress]
+            real(wp), intent(in) :: sf_eff(:), srn(:)
 
             if (.not. allocated(s%lcp%m) .and. len(res%fallback) > 0 .and. &
                 lemke_bytes(n) > options%work_bytes) then
@@ -371,10 +376,10 @@ contains
                 allocate (s%basis(3 * n), source=0)
             end if
             if (warm) then
-                call solve_paper_lcp(s%lcp, s_r_s, s_r_n, sf_eff, p, held, sigma0, res, &
+                call solve_paper_lcp(s%lcp, s_r_s, srn, sf_eff, pressure, held, sigma0, res, &
                                      error, rule=rule, basis=s%basis, max_pivots=max_pivots)
             else
-                call solve_paper_lcp(s%lcp, s_r_s, s_r_n, sf_eff, p, held, sigma0, res, &
+                call solve_paper_lcp(s%lcp, s_r_s, srn, sf_eff, pressure, held, sigma0, res, &
                                      error, rule=rule, max_pivots=max_pivots)
             end if
         end subroutine solve_once_lemke
@@ -382,17 +387,17 @@ contains
     end subroutine solve_contact_with
 
     !> The shifted Coulomb law of a tensile strength t (module header): sf_in = sf - mu T,
-    !> p_in = p - T with T = t capped at the apex sf/mu. With t = 0 these are sf and p.
-    pure subroutine shifted_law(mu, sf, p, t, sf_in, p_in, cap)
-        real(wp), intent(in) :: mu(:), sf(:), p(:), t(:)
-        real(wp), allocatable, intent(out) :: sf_in(:), p_in(:)
+    !> s_n_in = s_n - T with T = t capped at the apex sf/mu. With t = 0 these are sf and s_n.
+    pure subroutine shifted_law(mu, sf, s_n, t, sf_in, s_n_in, cap)
+        real(wp), intent(in) :: mu(:), sf(:), s_n(:), t(:)
+        real(wp), allocatable, intent(out) :: sf_in(:), s_n_in(:)
         !> T in force [stress]
         real(wp), allocatable, intent(out) :: cap(:)
 
         cap = t
         where (mu * t > sf) cap = sf / mu
         sf_in = max(sf - mu * cap, 0.0_wp)
-        p_in = p - cap
+        s_n_in = s_n - cap
     end subroutine shifted_law
 
     !> After a solve: elements that opened lose their tensile strength, elements that

@@ -57,6 +57,10 @@ module ddc_contact_result
         type(lcp_certificate) :: certificate
         !> Relative equilibrium residual ||A D + S_r - t|| / scale, shear and normal block
         real(wp) :: equilibrium_residual(2) = 0.0_wp
+        !> Least scale of that residual [stress]: a solve of a shifted law (a tensile
+        !> strength) sets that of the unshifted load, whose tractions can vanish when
+        !> shifted; 0 otherwise
+        real(wp) :: residual_scale_floor = 0.0_wp
         !> Stress scale sigma0 [stress] and displacement scale delta0 [length] used
         real(wp) :: stress_scale = 1.0_wp, dd_scale = 1.0_wp
         !> Wall time of the factorizations (the inverse of A for Lemke, the LU of the reduced
@@ -140,7 +144,7 @@ contains
         ! Both blocks are tractions: one scale for both, so that a block that vanishes (no
         ! resolved shear at all) is not measured against its own round-off.
         scale = max(norm2(ad), norm2([s_r_s, s_r_n]), &
-                    norm2([res%shear_traction, res%normal_traction]))
+                    norm2([res%shear_traction, res%normal_traction]), res%residual_scale_floor)
         res%equilibrium_residual(1) = block_residual(ad(1:n), s_r_s, res%shear_traction, scale)
         res%equilibrium_residual(2) = block_residual(ad(n + 1:n2), s_r_n, &
             res%normal_traction, scale)
