@@ -42,6 +42,10 @@ contains
             new_test('bad_elastic_all_at_once', test_bad_elastic), &
             new_test('bad_mu', test_bad_mu), &
             new_test('bad_sf', test_bad_sf), &
+            new_test('namelist_good_strength', test_good_strength), &
+            new_test('bad_strength', test_bad_strength), &
+            new_test('bad_strength_csv', test_bad_strength_csv), &
+            new_test('bad_strength_with_growth', test_bad_strength_growth), &
             new_test('bad_block_size', test_bad_block_size), &
             new_test('bad_nan_and_inf', test_bad_nan), &
             new_test('bad_vertices', test_bad_vertices), &
@@ -446,6 +450,56 @@ contains
         call check_bad_input(error, data//'bad_sf.nml', [character(len=40) :: &
                              '&fracture 1 (line 2)', 'sf(1) =', 'must be >= 0'], lines=1)
     end subroutine test_bad_sf
+
+    !> tensile_strength and sf_residual per segment and from CSV columns, with defaults.
+    subroutine test_good_strength(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model
+
+        call read_good(error, data//'good_strength.nml', model)
+        if (allocated(error)) return
+        associate (e => model%elements)
+            call check(error, e%n, 9, 'number of elements')
+            if (allocated(error)) return
+            call check(error, e%tensile_strength(2), 0.5_wp, 'T segment 1', abs_tol=0.0_wp)
+            call check(error, e%tensile_strength(5), 1.5_wp, 'T segment 2', abs_tol=0.0_wp)
+            call check(error, e%sf_residual(1), 0.25_wp, 'sf_residual broadcast', abs_tol=0.0_wp)
+            call check(error, e%sf_residual(5), 0.25_wp, 'sf_residual broadcast', abs_tol=0.0_wp)
+            call check(error, e%sf_residual(6), 0.5_wp, 'csv sf_residual(1)', abs_tol=0.0_wp)
+            call check(error, e%sf_residual(7), 0.1_wp, 'csv sf_residual(2)', abs_tol=0.0_wp)
+            call check(error, e%tensile_strength(7), 0.0_wp, 'csv T default', abs_tol=0.0_wp)
+            call check(error, e%pressure(7), 2.0_wp, 'csv pressure(2)', abs_tol=0.0_wp)
+            call check(error, e%tensile_strength(9), 0.0_wp, 'T default', abs_tol=0.0_wp)
+            call check(error, min(e%sf(9), e%sf_residual(9)), e%sf(9), &
+                       'sf_residual default: sf', abs_tol=0.0_wp)
+        end associate
+    end subroutine test_good_strength
+
+    subroutine test_bad_strength(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call check_bad_input(error, data//'bad_strength.nml', [character(len=48) :: &
+                             "&fracture 1 'f' (line 2)", 'tensile_strength(1) = ', &
+                             'must be >= 0', 'sf_residual = 3', 'exceeds sf = 1', &
+                             'on segment 2'], lines=2)
+    end subroutine test_bad_strength
+
+    subroutine test_bad_strength_csv(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call check_bad_input(error, data//'bad_strength_csv.nml', [character(len=48) :: &
+                             'bad_strength.csv line 2: tensile_strength = ', 'must be >= 0', &
+                             'bad_strength.csv line 3: sf_residual = 1.5', 'exceeds sf = 1'], &
+                             lines=2)
+    end subroutine test_bad_strength_csv
+
+    subroutine test_bad_strength_growth(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call check_bad_input(error, data//'bad_strength_growth.nml', [character(len=60) :: &
+                             'tensile_strength and sf_residual are not honoured by', &
+                             'fracture growth'], lines=1)
+    end subroutine test_bad_strength_growth
 
     subroutine test_bad_nan(error)
         type(error_type), allocatable, intent(out) :: error
