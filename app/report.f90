@@ -109,6 +109,16 @@ contains
                     short_real(minval(sfr))//' .. '//short_real(maxval(sfr))//stress// &
                     ' (the cohesion once the element has slipped)'
             end associate
+            associate (mu => model%elements%mu(first:last), &
+                       mud => min(model%elements%mu(first:last), &
+                                  model%elements%mu_dynamic(first:last)), &
+                       dc => model%elements%slip_weakening_distance(first:last))
+                if (any(mud < mu)) write (unit, '(a)') '    mu_dynamic '// &
+                    short_real(minval(mud))//' .. '//short_real(maxval(mud))// &
+                    ', slip_weakening_distance '//short_real(minval(dc))//' .. '// &
+                    short_real(maxval(dc))//' '//model%length_unit// &
+                    ' (friction falls from mu to mu_dynamic as the slip grows to it)'
+            end associate
         end subroutine print_strength
 
         !> ' (xsym = .., ysym = ..): image elements implicit', or '' without symmetry.

@@ -41,6 +41,8 @@ contains
         model%elements%pressure = 0.0_wp
         model%elements%tensile_strength = 0.0_wp
         model%elements%sf_residual = no_residual_drop
+        model%elements%mu_dynamic = no_residual_drop
+        model%elements%slip_weakening_distance = 0.0_wp
         call compute_geometry(model%elements)
         allocate (model%fractures(1))
         model%fractures(1) = fracture_type(name='fracture_1', first_element=1, &
@@ -94,6 +96,8 @@ contains
             a%pressure = [a%pressure, b%pressure]
             a%tensile_strength = [a%tensile_strength, b%tensile_strength]
             a%sf_residual = [a%sf_residual, b%sf_residual]
+            a%mu_dynamic = [a%mu_dynamic, b%mu_dynamic]
+            a%slip_weakening_distance = [a%slip_weakening_distance, b%slip_weakening_distance]
             a%n = n + b%n
         end associate
         call compute_geometry(model%elements)

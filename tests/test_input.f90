@@ -459,7 +459,7 @@ contains
         call read_good(error, data//'good_strength.nml', model)
         if (allocated(error)) return
         associate (e => model%elements)
-            call check(error, e%n, 9, 'number of elements')
+            call check(error, e%n, 12, 'number of elements')
             if (allocated(error)) return
             call check(error, e%tensile_strength(2), 0.5_wp, 'T segment 1', abs_tol=0.0_wp)
             call check(error, e%tensile_strength(5), 1.5_wp, 'T segment 2', abs_tol=0.0_wp)
@@ -472,6 +472,14 @@ contains
             call check(error, e%tensile_strength(9), 0.0_wp, 'T default', abs_tol=0.0_wp)
             call check(error, min(e%sf(9), e%sf_residual(9)), e%sf(9), &
                        'sf_residual default: sf', abs_tol=0.0_wp)
+            call check(error, min(e%mu(9), e%mu_dynamic(9)), e%mu(9), &
+                       'mu_dynamic default: mu', abs_tol=0.0_wp)
+            call check(error, e%slip_weakening_distance(9), 0.0_wp, 'd_c default', &
+                       abs_tol=0.0_wp)
+            call check(error, e%mu_dynamic(10), 0.4_wp, 'mu_dynamic segment 1', abs_tol=0.0_wp)
+            call check(error, e%mu_dynamic(12), 0.5_wp, 'mu_dynamic segment 2', abs_tol=0.0_wp)
+            call check(error, e%slip_weakening_distance(11), 0.001_wp, 'd_c broadcast', &
+                       abs_tol=0.0_wp)
         end associate
     end subroutine test_good_strength
 
@@ -481,7 +489,8 @@ contains
         call check_bad_input(error, data//'bad_strength.nml', [character(len=48) :: &
                              "&fracture 1 'f' (line 2)", 'tensile_strength(1) = ', &
                              'must be >= 0', 'sf_residual = 3', 'exceeds sf = 1', &
-                             'on segment 2'], lines=2)
+                             'on segment 2', 'mu_dynamic = 0.7', 'exceeds mu = 0.6', &
+                             'slip_weakening_distance(1) = -0.1'], lines=4)
     end subroutine test_bad_strength
 
     subroutine test_bad_strength_csv(error)
@@ -489,15 +498,16 @@ contains
 
         call check_bad_input(error, data//'bad_strength_csv.nml', [character(len=48) :: &
                              'bad_strength.csv line 2: tensile_strength = ', 'must be >= 0', &
-                             'bad_strength.csv line 3: sf_residual = 1.5', 'exceeds sf = 1'], &
-                             lines=2)
+                             'bad_strength.csv line 3: sf_residual = 1.5', 'exceeds sf = 1', &
+                             'line 2: mu_dynamic = 0.8', 'exceeds mu = 0.6', &
+                             'line 3: slip_weakening_distance = -1'], lines=4)
     end subroutine test_bad_strength_csv
 
     subroutine test_bad_strength_growth(error)
         type(error_type), allocatable, intent(out) :: error
 
         call check_bad_input(error, data//'bad_strength_growth.nml', [character(len=60) :: &
-                             'tensile_strength and sf_residual are not honoured by', &
+                             'sf_residual and mu_dynamic are not honoured by', &
                              'fracture growth'], lines=1)
     end subroutine test_bad_strength_growth
 

@@ -279,6 +279,11 @@ contains
             call check_real_dataset(error, path, '/elements/sf_in_force', r%sf_in_force, [3])
             call check_real_dataset(error, path, '/elements/tensile_strength_in_force', &
                                     r%tensile_in_force, [3])
+            call check_real_dataset(error, path, '/elements/mu_dynamic', &
+                                    [0.4_wp, 0.6_wp, 0.0_wp], [3])
+            call check_real_dataset(error, path, '/elements/slip_weakening_distance', &
+                                    e%slip_weakening_distance, [3])
+            call check_real_dataset(error, path, '/elements/mu_in_force', r%mu_in_force, [3])
         end associate
         call remove_file(path)
     end subroutine test_elements
@@ -296,6 +301,9 @@ contains
         call check_string_attribute(error, path, '/elements/sf', 'units', 'MPa')
         call check_string_attribute(error, path, '/elements/tensile_strength', 'units', 'MPa')
         call check_string_attribute(error, path, '/elements/sf_in_force', 'units', 'MPa')
+        call check_string_attribute(error, path, '/elements/slip_weakening_distance', 'units', &
+                                    'm')
+        call check_string_attribute(error, path, '/elements/mu_in_force', 'units', '1')
         call check_string_attribute(error, path, '/elements/shear_traction', 'units', 'MPa')
         call check_string_attribute(error, path, '/elements/bc_n', 'units', &
             'MPa or m (by condition)')
@@ -541,6 +549,8 @@ contains
         model%elements%pressure = [0.0_wp, 0.3_wp, 0.0_wp]
         model%elements%tensile_strength = [0.5_wp, 0.0_wp, 0.0_wp]
         model%elements%sf_residual = [0.25_wp, no_residual_drop, no_residual_drop]
+        model%elements%mu_dynamic = [0.4_wp, no_residual_drop, no_residual_drop]
+        model%elements%slip_weakening_distance = [1.0e-4_wp, 0.0_wp, 0.0_wp]
         call compute_geometry(model%elements)
 
         allocate (model%fractures(2))
@@ -570,6 +580,7 @@ contains
             r%dn = [0.0_wp, -1.0e-5_wp, 3.0e-6_wp]
             r%sf_in_force = [0.25_wp, 0.1_wp, 0.0_wp]
             r%tensile_in_force = [0.5_wp, 0.0_wp, 0.0_wp]
+            r%mu_in_force = [0.5_wp, 0.6_wp, 0.0_wp]
             r%shear_traction = [10.1_wp, 9.9_wp, 1.0_wp / 7.0_wp]
             r%normal_traction = [-20.0_wp, -0.3_wp, -2.5_wp]
             r%us_minus = [-0.5e-4_wp, -1.0e-4_wp / 3.0_wp, 0.1_wp]

@@ -1,10 +1,15 @@
 !> Fault strength beyond Coulomb (issue 26), end to end through run_model and solve_history:
 !> a tensile strength lost on opening and a cohesion that drops to its residual value after
-!> slip, held to the Coulomb cracks they reduce to, Newton against Lemke, and the loading
-!> history that remembers what was lost.
+!> slip, and slip weakening, held to the Coulomb cracks they reduce to, Newton against
+!> Lemke, and the loading history that remembers what was lost.
 module test_strength
     use ddc_kinds, only: wp
-    use ddc_contact_options, only: lcp_lemke, lcp_newton
+    use ddc_contact_options, only: lcp_lemke, lcp_newton, solver_options
+    use ddc_contact_result, only: contact_result
+    use ddc_contact_formulation, only: solve_contact
+    use ddc_influence_assembly, only: assemble_influence, row_traction
+    use ddc_model_loads, only: resolve_remote_stress
+    use ddc_error, only: exit_solver_failure
     use ddc_testing, only: test_case, new_test, check, error_type
     use ddc_model_types, only: model_type, condition_contact
     use ddc_model_results, only: model_results, state_stick, state_slip, state_open
@@ -36,7 +41,11 @@ contains
                  new_test('strong_patch_fails_progressively', test_progressive), &
                  new_test('kink_newton_equals_lemke', test_kink_methods), &
                  new_test('history_keeps_lost_tensile_strength', test_history_tensile), &
-                 new_test('history_keeps_residual_cohesion', test_history_residual)]
+                 new_test('history_keeps_residual_cohesion', test_history_residual), &
+                 new_test('weakening_dc0_is_coulomb_mu_dynamic', test_weakening_dc0), &
+                 new_test('weakening_fixed_point_newton_lemke', test_weakening_fixed_point), &
+                 new_test('weakening_history_accumulates_slip', test_weakening_history), &
+                 new_test('weakening_not_converged_names_element', test_weakening_limit)]
     end subroutine collect_strength
 
     !> Straight crack of half-length 1, n elements, mu = 0.6, uniform Sf, under syy, sxy.
@@ -319,6 +328,128 @@ contains
         call check(error, maxval(r%elements%sf_in_force), 0.0_wp, 'cohesion dropped', &
                    abs_tol=0.0_wp)
     end subroutine test_history_residual
+
+    !> The paper's test (mu = 0.6, Sf = 1) with mu_dynamic = 0.5 and d_c = 0: every element
+    !> slips and drops to 0.5 at once; the result is the Coulomb crack with mu = 0.5.
+    subroutine test_weakening_dc0(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model
+        type(model_results) :: r, coulomb
+
+        model = paper_fault(1.0_wp)
+        model%elements%mu = 0.5_wp
+        call run_model(model, coulomb, error)
+        if (allocated(error)) return
+        model%elements%mu = 0.6_wp
+        model%elements%mu_dynamic = 0.5_wp
+        call run_model(model, r, error)
+        if (allocated(error)) return
+        call check(error, count(r%elements%state == state_slip), 100, 'slipping elements')
+        call check(error, r%solver%lcp_solves, 2, 'solves (the second at mu_dynamic)')
+        call check(error, dd_difference(r%elements%ds, coulomb%elements%ds), 0.0_wp, &
+                   'ds as the Coulomb crack with mu = 0.5', abs_tol=tight)
+        call check(error, maxval(abs(r%elements%mu_in_force - 0.5_wp)), 0.0_wp, &
+                   'friction in force', abs_tol=0.0_wp)
+    end subroutine test_weakening_dc0
+
+    !> The paper's test with mu_dynamic = 0.5 over d_c = 4e-4 (slip reaches about 9e-4 at
+    !> the centre, less towards the tips): at the fixed point every element's friction is
+    !> the law at its own slip, mu - 0.1 min(|Ds| / d_c, 1), within 1e-9; the slip lies
+    !> between the Coulomb cracks of mu = 0.6 and 0.5; the Newton method agrees.
+    subroutine test_weakening_fixed_point(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model
+        type(model_results) :: r, newton, strong, weak
+        real(wp), parameter :: d_c = 4.0e-4_wp
+        real(wp), allocatable :: law(:)
+
+        model = paper_fault(1.0_wp)
+        call run_model(model, strong, error)
+        if (allocated(error)) return
+        model%elements%mu = 0.5_wp
+        call run_model(model, weak, error)
+        if (allocated(error)) return
+        model%elements%mu = 0.6_wp
+        model%elements%mu_dynamic = 0.5_wp
+        model%elements%slip_weakening_distance = d_c
+        call run_model(model, r, error)
+        if (allocated(error)) return
+        law = 0.6_wp - 0.1_wp * min(abs(r%elements%ds) / d_c, 1.0_wp)
+        call check(error, maxval(abs(r%elements%mu_in_force - law)), 0.0_wp, &
+                   'friction = law at the slip', abs_tol=1.0e-9_wp)
+        call check(error, count(r%elements%mu_in_force < 0.5_wp + 1.0e-12_wp) > 0 .and. &
+                   count(r%elements%mu_in_force > 0.5_wp + 1.0e-3_wp) > 0, &
+                   'fully weakened at the centre, partly towards the tips')
+        call check(error, r%solver%lcp_solves > 2, 'a fixed point over several solves')
+        call check(error, all(abs(r%elements%ds) >= abs(strong%elements%ds) .and. &
+                   abs(r%elements%ds) <= abs(weak%elements%ds)), &
+                   'slip between the Coulomb cracks of mu and mu_dynamic')
+        model%solver%lcp_method = lcp_newton
+        call run_model(model, newton, error)
+        if (allocated(error)) return
+        call check(error, all(newton%elements%state == r%elements%state), 'newton states')
+        call check(error, dd_difference(newton%elements%ds, r%elements%ds), 0.0_wp, &
+                   'newton ds', abs_tol=1.0e-9_wp)
+    end subroutine test_weakening_fixed_point
+
+    !> Shear cycled 0 -> 10 -> -10 -> 10 (s_n = -10, mu = 0.6, mu_dynamic = 0.3, d_c = 0):
+    !> once slipped the fault holds 3 MPa, so at the end (after slipping back and forth)
+    !> it has the DDs of the Coulomb fault with mu = 0.3 cycled the same way, and it has
+    !> not slipped at 5 (below 6) on the first leg.
+    subroutine test_weakening_history(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model, coulomb_model
+        type(model_results) :: r, coulomb
+
+        model = straight_fault(40, 0.0_wp, -10.0_wp, 0.0_wp)
+        model%elements%mu_dynamic = 0.3_wp
+        coulomb_model = straight_fault(40, 0.0_wp, -10.0_wp, 0.0_wp)
+        coulomb_model%elements%mu = 0.3_wp
+        call set_path(model, 3, [0.0_wp, 10.0_wp, -10.0_wp, 10.0_wp], [10, 20, 20])
+        call set_path(coulomb_model, 3, [0.0_wp, 10.0_wp, -10.0_wp, 10.0_wp], [10, 20, 20])
+        call solve_history(model, r, error)
+        if (allocated(error)) return
+        call solve_history(coulomb_model, coulomb, error)
+        if (allocated(error)) return
+        associate (h => r%history, hc => coulomb%history)
+            call check(error, h%load(3, 6), 5.0_wp, 'sxy going up', abs_tol=1.0e-12_wp)
+            call check(error, maxval(abs(h%ds(:, 6))), 0.0_wp, 'no slip at 5 going up', &
+                       abs_tol=0.0_wp)
+            call check(error, dd_difference(h%ds(:, 51), hc%ds(:, 51)), 0.0_wp, &
+                       'ds at the end of the cycle', abs_tol=tight)
+        end associate
+        call check(error, maxval(abs(r%elements%mu_in_force - 0.3_wp)), 0.0_wp, &
+                   'friction dropped', abs_tol=0.0_wp)
+    end subroutine test_weakening_history
+
+    !> A slip-weakening fixed point that needs more solves than allowed is an error
+    !> (exit_solver_failure) naming an element, not a result.
+    subroutine test_weakening_limit(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(error_type), allocatable :: failure
+        type(model_type) :: model
+        type(contact_result) :: res
+        real(wp), allocatable :: a(:, :), ss(:), sn(:), zero(:)
+        integer, allocatable :: rows(:)
+        integer :: n
+
+        model = paper_fault(1.0_wp)
+        n = model%elements%n
+        allocate (a(2 * n, 2 * n), ss(n), sn(n), zero(n))
+        zero = 0.0_wp
+        rows = spread(row_traction, 1, n)
+        call assemble_influence(model%elements, g, nu, rows, rows, a)
+        call resolve_remote_stress(model%elements, model%sxx, model%syy, model%sxy, ss, sn)
+        call solve_contact(a, ss, sn, model%elements%mu, model%elements%sf, zero, &
+                           solver_options(lcp_method=lcp_lemke), res, failure, &
+                           mu_dynamic=spread(0.5_wp, 1, n), &
+                           slip_weakening_distance=spread(4.0e-4_wp, 1, n), max_solves=3)
+        call check(error, allocated(failure), 'an error')
+        if (allocated(error)) return
+        call check(error, failure%code, exit_solver_failure, 'exit code')
+        call check(error, index(failure%message, 'no quasi-static solution') > 0 .and. &
+                   index(failure%message, 'friction of element') > 0, failure%message)
+    end subroutine test_weakening_limit
 
     !> A path of remote stress component q (2 syy, 3 sxy) through the given vertices.
     subroutine set_path(model, q, values, steps)

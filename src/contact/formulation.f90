@@ -48,21 +48,32 @@
 !> is reached in at most 2n + 1 solves; the last solve is certified with the strengths
 !> in force, which are returned (res%sf_effective, res%tensile_effective) so that the
 !> next step of a loading history starts from them.
+!>
+!> Slip weakening (optional mu_dynamic, slip_weakening_distance): each solve holds every
+!> element's friction fixed at mu(s) of its slip path s before the solve; after it the
+!> frictions are updated from the new slip and the problem solved again until they change
+!> by less than weakening_tol (friction only decreases along the iteration: no healing,
+!> so the iteration is monotone). When they
+!> still change after max_weakening_solves solves, the load has no quasi-static solution
+!> this iteration can reach: an error (exit_solver_failure) naming the element whose
+!> friction changed most. ddc_contact_strength has the laws.
 module ddc_contact_formulation
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, set_internal_error, exit_bad_input, &
         exit_out_of_memory, exit_solver_failure
-    use ddc_text, only: bytes_text
+    use ddc_text, only: bytes_text, itoa, rtoa
     use ddc_contact_memory, only: lemke_bytes
     use ddc_contact_options, only: solver_options, lcp_auto, lcp_newton, cohesion_lost
     use ddc_contact_certificate, only: certify_complementarity, default_certificate_tolerance
-    use ddc_contact_states, only: state_stick, state_slip, state_open
+    use ddc_contact_strength, only: shifted_law, weaken, friction_in_force
+    use ddc_contact_states, only: state_stick, state_open
     use ddc_contact_active_set, only: active_set_result, active_set_workspace, &
         solve_contact_active_set
     use ddc_contact_stiffness, only: stiffness_operator, dense_stiffness
     use ddc_contact_result, only: contact_result, contact_stress_scale, problem_scales, &
         block_scales, check_solution, drop_open_cohesion
-    use ddc_contact_paper_lcp, only: contact_lcp, build_contact_lcp, solve_paper_lcp
+    use ddc_contact_paper_lcp, only: contact_lcp, build_contact_lcp, solve_paper_lcp, &
+        set_lcp_friction
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use, intrinsic :: iso_fortran_env, only: int64
     implicit none
@@ -75,6 +86,11 @@ module ddc_contact_formulation
     integer, parameter :: auto_newton_min_elements = 300
     !> Default iteration limit of the 'newton' method
     integer, parameter :: newton_max_iterations = 100
+    !> Slip weakening: largest change of a friction coefficient between the last two solves
+    !> of a converged fixed point [-], and the solves allowed beyond those of the other
+    !> laws (2n + 1)
+    real(wp), parameter :: weakening_tol = 1.0e-12_wp
+    integer, parameter :: max_weakening_solves = 200
 
     !> What successive solves on the same contact elements (the steps of a loading history)
     !> keep besides their stiffness operator: the paper's LCP once built and Lemke's last
@@ -97,7 +113,8 @@ contains
 
     !> Solve the frictional contact problem of n elements (SPEC section 4).
     subroutine solve_contact(a, s_r_s, s_r_n, mu, sf, pressure, options, res, error, rule, &
-                             max_iterations, tensile, sf_residual)
+                             max_iterations, tensile, sf_residual, mu_dynamic, &
+                             slip_weakening_distance, max_solves)
         !> Influence matrix ordered [s; n]: traction = s_r + a [Ds; Dn], shape (2n, 2n)
         !> [stress / length]
         real(wp), intent(in), target, contiguous :: a(:, :)
@@ -127,6 +144,12 @@ contains
         !> Tensile strength (default 0) and cohesion after slip (default: no drop), shape
         !> (n) [stress]; see solve_contact_with
         real(wp), intent(in), optional :: tensile(:), sf_residual(:)
+        !> Dynamic friction [-] and slip-weakening distance [length], shape (n); see
+        !> solve_contact_with
+        real(wp), intent(in), optional :: mu_dynamic(:), slip_weakening_distance(:)
+        !> Largest number of solves of the strength fixed point (tests; default
+        !> 2n + 1 + max_weakening_solves)
+        integer, intent(in), optional :: max_solves
         type(dense_stiffness) :: stiffness
 
         if (size(a, 1) /= 2 * size(mu) .or. size(a, 2) /= 2 * size(mu)) then
@@ -135,7 +158,10 @@ contains
         end if
         stiffness%a => a
         call solve_contact_with(stiffness, s_r_s, s_r_n, mu, sf, pressure, options, res, error, &
-                                a, rule, max_iterations, tensile=tensile, sf_residual=sf_residual)
+                                a, rule, max_iterations, tensile=tensile, sf_residual=sf_residual, &
+                                mu_dynamic=mu_dynamic, &
+                                slip_weakening_distance=slip_weakening_distance, &
+                                max_solves=max_solves)
     end subroutine solve_contact
 
     !> Solve the frictional contact problem of n elements (SPEC section 4) on any stiffness
@@ -143,7 +169,8 @@ contains
     !> matrix a, by the Newton method alone.
     subroutine solve_contact_with(stiffness, s_r_s, s_r_n, mu, sf, pressure, options, res, &
                                   error, a, rule, max_iterations, ds_previous, session, &
-                                  stress_scale, max_pivots, tensile, sf_residual)
+                                  stress_scale, max_pivots, tensile, sf_residual, &
+                                  mu_dynamic, slip_weakening_distance, slip_path, max_solves)
         !> The influence matrix A ordered [s; n]: traction = s_r + A [Ds; Dn], 2n x 2n
         !> [stress / length]
         class(stiffness_operator), intent(inout) :: stiffness
@@ -188,11 +215,20 @@ contains
         !> Cohesion after slip: an element that slips keeps min(sf, sf_residual)
         !> (default: no drop), shape (n) [stress]
         real(wp), intent(in), optional :: sf_residual(:)
+        !> Dynamic friction (min(mu, mu_dynamic); default: no drop) [-], slip-weakening
+        !> distance (default 0) [length] and the slip path before this solve (a loading
+        !> history's accumulated slip; default 0) [length], shape (n)
+        real(wp), intent(in), optional :: mu_dynamic(:), slip_weakening_distance(:), &
+            slip_path(:)
+        !> Largest number of solves of the strength fixed point (tests; default
+        !> 2n + 1 + max_weakening_solves)
+        integer, intent(in), optional :: max_solves
         type(contact_session) :: fresh
-        real(wp), allocatable :: t_start(:), sf_after(:)
+        real(wp), allocatable :: t_start(:), sf_after(:), mu_after(:), d_c(:), s_start(:)
+        logical :: weakening
         real(wp), allocatable :: held(:)
         real(wp) :: sigma0
-        integer :: n, limit
+        integer :: n, limit, solves_limit
         logical :: checked
 
         n = size(mu)
@@ -218,6 +254,18 @@ contains
             end if
             sf_after = min(sf, sf_residual)
         end if
+        mu_after = mu
+        if (present(mu_dynamic)) mu_after = min(mu, mu_dynamic)
+        allocate (d_c(n), s_start(n), source=0.0_wp)
+        if (present(slip_weakening_distance)) d_c = slip_weakening_distance
+        if (present(slip_path)) s_start = slip_path
+        if (size(mu_after) /= n .or. size(d_c) /= n .or. size(s_start) /= n) then
+            call set_internal_error(error, 'solve_contact', 'array sizes do not match')
+            return
+        end if
+        weakening = any(mu_after < mu)
+        solves_limit = 2 * n + 1 + max_weakening_solves
+        if (present(max_solves)) solves_limit = max_solves
         if (present(ds_previous)) then
             if (size(ds_previous) /= n) then
                 call set_internal_error(error, 'solve_contact', 'array sizes do not match')
@@ -240,14 +288,16 @@ contains
         limit = newton_max_iterations
         if (present(max_iterations)) limit = max_iterations
         if (any(mu < 0.0_wp) .or. any(sf < 0.0_wp) .or. any(t_start < 0.0_wp) .or. &
-            any(sf_after < 0.0_wp)) then
+            any(sf_after < 0.0_wp) .or. any(mu_after < 0.0_wp) .or. any(d_c < 0.0_wp) .or. &
+            any(s_start < 0.0_wp)) then
             call set_internal_error(error, 'solve_contact', &
-                                    'mu, sf, tensile and sf_residual must not be negative')
+                                    'the strength laws must not be negative')
             return
         end if
         if (n == 0) then
             allocate (res%ds(0), res%dn(0), res%shear_traction(0), res%normal_traction(0), &
-                res%state(0), res%sf_effective(0), res%tensile_effective(0))
+                res%state(0), res%sf_effective(0), res%tensile_effective(0), &
+                res%mu_effective(0), res%slip_path(0))
             res%certificate%passed = .true.
             return
         end if
@@ -267,6 +317,7 @@ contains
             type(contact_session), intent(inout) :: s
             logical, intent(in) :: warm
             real(wp), allocatable :: sf_eff(:), t_eff(:), sf_in(:), srn_in(:), t_cap(:)
+            real(wp), allocatable :: mu_in(:), mu_next(:), path(:)
             integer(int64) :: t0, t1, rate
             logical :: newton, automatic, changed
             integer :: rounds
@@ -286,14 +337,17 @@ contains
             call system_clock(t0, rate)
             sf_eff = sf
             t_eff = t_start
+            mu_in = friction_in_force(mu, mu_after, d_c, s_start, spread(0, 1, n))
             do
                 rounds = rounds + 1
-                call shifted_law(mu, sf_eff, s_r_n, t_eff, sf_in, srn_in, t_cap)
+                call shifted_law(mu_in, sf_eff, s_r_n, t_eff, sf_in, srn_in, t_cap)
                 res%residual_scale_floor = 0.0_wp
                 if (any(t_cap > 0.0_wp)) res%residual_scale_floor = &
                     max(norm2([s_r_s, s_r_n]), norm2(t_cap))
+                ! The reduced systems hold mu in their slip rows: no factors of another mu.
+                if (weakening) call stiffness%discard_factors()
                 if (newton) then
-                    call solve_once_newton(stiffness, s_r_s, srn_in, mu, sf_in, pressure, &
+                    call solve_once_newton(stiffness, s_r_s, srn_in, mu_in, sf_in, pressure, &
                         limit, held, sigma0, present(stress_scale), res, s, reason)
                     if (len(reason) > 0 .and. .not. present(a)) then
                         call set_error(error, exit_solver_failure, 'contact: '//reason)
@@ -306,13 +360,13 @@ contains
                     end if
                 end if
                 if (.not. newton) then
-                    call solve_once_lemke(s, warm, sf_in, srn_in)
+                    call solve_once_lemke(s, warm, sf_in, srn_in, mu_in)
                     if (allocated(error) .and. automatic .and. len(res%fallback) == 0) then
                         ! M is not copositive-plus: Lemke can end on a ray where the contact
                         ! problem has a solution (seen at acute fault branches). 'auto' then
                         ! asks the Newton method, whose answer is checked the same way, and
                         ! keeps it for the rounds after cohesion is lost.
-                        call solve_once_newton(stiffness, s_r_s, srn_in, mu, sf_in, pressure, &
+                        call solve_once_newton(stiffness, s_r_s, srn_in, mu_in, sf_in, pressure, &
                             limit, held, sigma0, present(stress_scale), res, s, reason)
                         if (len(reason) == 0) then
                             newton = .true.
@@ -340,9 +394,29 @@ contains
                 res%sf_effective = sf_eff
                 res%tensile_effective = t_cap
                 res%normal_traction = res%normal_traction + t_cap
+                res%mu_effective = mu_in
+                path = s_start + abs(res%ds - held)
+                res%slip_path = path
                 changed = weaken(res%state, sf_after, t_eff, sf_eff)
                 if (options%open_cohesion == cohesion_lost) then
                     if (drop_open_cohesion(res%state, sf_eff)) changed = .true.
+                end if
+                if (weakening) then
+                    ! No healing: friction only decreases along the iteration.
+                    mu_next = min(mu_in, friction_in_force(mu, mu_after, d_c, path, &
+                                                           res%state))
+                    if (maxval(abs(mu_next - mu_in)) > weakening_tol) then
+                        if (rounds >= solves_limit) then
+                            call set_error(error, exit_solver_failure, 'contact: slip '// &
+                                'weakening found no quasi-static solution: after '// &
+                                itoa(rounds)//' solves the friction of element '// &
+                                itoa(maxloc(abs(mu_next - mu_in), 1))//' still changes by '// &
+                                rtoa(maxval(abs(mu_next - mu_in)))//' (its slip runs away)')
+                            return
+                        end if
+                        changed = .true.
+                        mu_in = mu_next
+                    end if
                 end if
                 if (.not. changed) exit
             end do
@@ -356,11 +430,13 @@ contains
 
         !> One Lemke solve of the paper's LCP (built once per session, when memory allows),
         !> from the session's last basis when warm.
-        subroutine solve_once_lemke(s, warm, sf_eff, srn)
+        subroutine solve_once_lemke(s, warm, sf_eff, srn, mu_now)
             type(contact_session), intent(inout) :: s
             logical, intent(in) :: warm
             !> Cohesion and resolved normal traction of the shifted law [stress]
             real(wp), intent(in) :: sf_eff(:), srn(:)
+            !> Friction in force [-]
+            real(wp), intent(in) :: mu_now(:)
 
             if (.not. allocated(s%lcp%m) .and. len(res%fallback) > 0 .and. &
                 lemke_bytes(n) > options%work_bytes) then
@@ -371,9 +447,13 @@ contains
                 return
             end if
             if (.not. allocated(s%lcp%m)) then
-                call build_contact_lcp(a, mu, s%lcp, res, error)
+                call build_contact_lcp(a, mu_now, s%lcp, res, error)
                 if (allocated(error)) return
                 allocate (s%basis(3 * n), source=0)
+            else if (any(s%lcp%mu /= mu_now)) then
+                ! Slip weakening changed mu: a new M, and no basis of the old one.
+                call set_lcp_friction(s%lcp, mu_now)
+                s%basis = 0
             end if
             if (warm) then
                 call solve_paper_lcp(s%lcp, s_r_s, srn, sf_eff, pressure, held, sigma0, res, &
@@ -385,36 +465,6 @@ contains
         end subroutine solve_once_lemke
 
     end subroutine solve_contact_with
-
-    !> The shifted Coulomb law of a tensile strength t (module header): sf_in = sf - mu T,
-    !> s_n_in = s_n - T with T = t capped at the apex sf/mu. With t = 0 these are sf and s_n.
-    pure subroutine shifted_law(mu, sf, s_n, t, sf_in, s_n_in, cap)
-        real(wp), intent(in) :: mu(:), sf(:), s_n(:), t(:)
-        real(wp), allocatable, intent(out) :: sf_in(:), s_n_in(:)
-        !> T in force [stress]
-        real(wp), allocatable, intent(out) :: cap(:)
-
-        cap = t
-        where (mu * t > sf) cap = sf / mu
-        sf_in = max(sf - mu * cap, 0.0_wp)
-        s_n_in = s_n - cap
-    end subroutine shifted_law
-
-    !> After a solve: elements that opened lose their tensile strength, elements that
-    !> slipped drop their cohesion to sf_after; true when any strength changed.
-    function weaken(state, sf_after, t, sf) result(changed)
-        integer, intent(in) :: state(:)
-        real(wp), intent(in) :: sf_after(:)
-        real(wp), intent(inout) :: t(:), sf(:)
-        logical :: changed
-        logical :: opened(size(state)), slipped(size(state))
-
-        opened = state == state_open .and. t > 0.0_wp
-        slipped = state == state_slip .and. sf > sf_after
-        changed = any(opened) .or. any(slipped)
-        where (opened) t = 0.0_wp
-        where (slipped) sf = sf_after
-    end function weaken
 
     !> Newton states from a Lemke solution, for the next solve's warm start: open elements
     !> open; shear stick where the element sticks, else slip towards its shear traction.

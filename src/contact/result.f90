@@ -38,6 +38,9 @@ module ddc_contact_result
         !> Tensile strength in force at the end (0 where it was lost on opening; capped
         !> at the Coulomb apex sf_effective/mu) [stress]
         real(wp), allocatable :: tensile_effective(:)
+        !> Friction in force in the last solve (slip weakening) [-] and the slip path at the
+        !> end (the one before the solve plus |Ds - ds_previous|) [length]
+        real(wp), allocatable :: mu_effective(:), slip_path(:)
         !> Method that produced the result: 'lemke' or 'newton'
         character(len=:), allocatable :: method
         !> Why the first method failed and the other one produced the result: Newton falling

@@ -194,6 +194,8 @@ contains
                 a%pressure(to) = b%pressure(from)
                 a%tensile_strength(to) = b%tensile_strength(from)
                 a%sf_residual(to) = b%sf_residual(from)
+                a%mu_dynamic(to) = b%mu_dynamic(from)
+                a%slip_weakening_distance(to) = b%slip_weakening_distance(from)
             end associate
         end subroutine copy_element
 
@@ -211,9 +213,11 @@ contains
                 a%y_begin(next) = yb
                 a%x_end(next) = xe
                 a%y_end(next) = ye
-                ! New elements are intact and take the default laws (no T, no drop).
+                ! New elements are intact and take the default laws (no T, no drops).
                 a%tensile_strength(next) = 0.0_wp
                 a%sf_residual(next) = no_residual_drop
+                a%mu_dynamic(next) = no_residual_drop
+                a%slip_weakening_distance(next) = 0.0_wp
                 if (a%condition(next) == condition_contact) then
                     if (options%override_mu) a%mu(next) = options%new_mu
                     if (options%override_sf) a%sf(next) = options%new_sf

@@ -63,7 +63,7 @@ contains
         type(history_record) :: h
         real(wp), allocatable :: loads(:, :), shear(:, :), normal(:, :), shift(:, :)
         real(wp), allocatable :: y_load(:, :), pressure(:, :), sf_eff(:), ds_previous(:), v(:)
-        real(wp), allocatable :: t_eff(:)
+        real(wp), allocatable :: t_eff(:), mu_eff(:), slip_path(:)
         real(wp), allocatable :: matrix(:, :), no_dd(:), ts(:), tn(:)
         integer :: n, nc, k, nsteps, pivots, solves, iterations, fallbacks, first_fallback, stat
         real(wp) :: sigma0, g, seconds_lcp, seconds_factorization, flops
@@ -123,6 +123,8 @@ contains
         ! cohesion on slip) stays lost for the rest of the history.
         sf_eff = model%elements%sf(sys%contact)
         t_eff = model%elements%tensile_strength(sys%contact)
+        mu_eff = model%elements%mu(sys%contact)
+        allocate (slip_path(nc), source=0.0_wp)
         allocate (ds_previous(nc), source=0.0_wp)
         ! One operator for every step: the Newton method's factors live in it.
         stiffness%a => sys%a
@@ -141,7 +143,11 @@ contains
                                     max_iterations=max_iterations, ds_previous=ds_previous, &
                                     session=session, stress_scale=sigma0, &
                                     max_pivots=max_pivots, tensile=t_eff, &
-                                    sf_residual=model%elements%sf_residual(sys%contact))
+                                    sf_residual=model%elements%sf_residual(sys%contact), &
+                                    mu_dynamic=model%elements%mu_dynamic(sys%contact), &
+                                    slip_weakening_distance= &
+                                    model%elements%slip_weakening_distance(sys%contact), &
+                                    slip_path=slip_path)
             if (allocated(error)) then
                 error%message = 'loading history: step '//itoa(k)//' of '//itoa(nsteps)// &
                     ' ('//load_text(loads(:, k), model%load_path%varies)//') failed: '// &
@@ -150,6 +156,8 @@ contains
             end if
             sf_eff = res%sf_effective
             t_eff = res%tensile_effective
+            mu_eff = res%mu_effective
+            slip_path = res%slip_path
             ds_previous = res%ds
             pivots = pivots + res%pivots
             solves = solves + res%solves
@@ -196,7 +204,8 @@ contains
         results%elements%dn = h%dn(:, nsteps)
         results%elements%state = h%state(:, nsteps)
         allocate (results%elements%sf_in_force(n), results%elements%tensile_in_force(n), &
-                  source=0.0_wp)
+                  results%elements%mu_in_force(n), source=0.0_wp)
+        results%elements%mu_in_force(sys%contact) = mu_eff
         results%elements%sf_in_force(sys%contact) = sf_eff
         results%elements%tensile_in_force(sys%contact) = t_eff
         nullify (stiffness%a)

@@ -94,8 +94,9 @@ contains
         call check_names(path, fractures, observations, messages)
         call check_half_plane(path, model, fractures, observations, messages)
         if (model%growth%active .and. any(strength_given(fractures))) then
-            call add(messages, path//': &fracture tensile_strength and sf_residual are not '// &
-                     'honoured by fracture growth yet: remove them or the &growth group')
+            call add(messages, path//': &fracture tensile_strength, sf_residual and '// &
+                     'mu_dynamic are not honoured by fracture growth yet: remove them or '// &
+                     'the &growth group')
         end if
         if (messages%n > 0) then
             call set_error(error, messages%code, messages%text)
@@ -116,7 +117,7 @@ contains
 
         strength_given = fracture%valid
         if (strength_given) strength_given = any(fracture%tensile_strength > 0.0_wp) .or. &
-            any(fracture%sf_residual < fracture%sf)
+            any(fracture%sf_residual < fracture%sf) .or. any(fracture%mu_dynamic < fracture%mu)
     end function strength_given
 
     !> Half-plane rules (SPEC-EARTH 1): every vertex and field point at y <= 0, no element on
@@ -245,6 +246,9 @@ contains
             model%elements%pressure(first:last) = fractures(k)%pressure
             model%elements%tensile_strength(first:last) = fractures(k)%tensile_strength
             model%elements%sf_residual(first:last) = fractures(k)%sf_residual
+            model%elements%mu_dynamic(first:last) = fractures(k)%mu_dynamic
+            model%elements%slip_weakening_distance(first:last) = &
+                fractures(k)%slip_weakening_distance
         end do
         call compute_geometry(model%elements)
 

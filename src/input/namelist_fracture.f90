@@ -42,12 +42,16 @@ module ddc_input_namelist_fracture
         !> Tensile strength and residual cohesion (no_residual_drop where not given),
         !> shape (elements) [stress unit]
         real(wp), allocatable :: tensile_strength(:), sf_residual(:)
+        !> Dynamic friction (no_residual_drop where not given) [-] and slip-weakening
+        !> distance [length unit], shape (elements)
+        real(wp), allocatable :: mu_dynamic(:), slip_weakening_distance(:)
     end type fracture_input
 
 contains
 
     !> &fracture name, x, y, elements, mu, sf, pressure, condition, bc_s, bc_n,
-    !> elements_file, tensile_strength, sf_residual / (repeated, one per fracture)
+    !> elements_file, tensile_strength, sf_residual, mu_dynamic, slip_weakening_distance /
+    !> (repeated, one per fracture)
     subroutine read_fracture_groups(unit, text, path, dir, info, fractures, messages)
         integer, intent(in) :: unit
         character(len=*), intent(in) :: text
@@ -58,6 +62,7 @@ contains
         character(len=text_length) :: name, condition, elements_file
         real(wp), allocatable :: x(:), y(:), mu(:), sf(:), pressure(:), bc_s(:), bc_n(:)
         real(wp), allocatable :: tensile_strength(:), sf_residual(:), seg_t(:), seg_sfr(:)
+        real(wp), allocatable :: mu_dynamic(:), slip_weakening_distance(:), seg_mud(:), seg_dc(:)
         logical, allocatable :: csv_given(:)
         integer, allocatable :: elements(:)
         character(len=512) :: iomsg
@@ -67,17 +72,18 @@ contains
         integer, allocatable :: counts(:), row_lines(:)
         type(error_type), allocatable :: csv_error
         integer :: stat, k, i, nx, ny, ne, nmu, nsf, npr, nbs, nbn, nseg, nbefore, cond
-        integer :: nt, nsr
+        integer :: nt, nsr, nmd, ndc
         logical :: from_csv, geometry_ok
         namelist /fracture/ name, x, y, elements, mu, sf, pressure, condition, bc_s, bc_n, &
-            elements_file, tensile_strength, sf_residual
+            elements_file, tensile_strength, sf_residual, mu_dynamic, slip_weakening_distance
 
         allocate (fractures(info%count))
         if (info%count == 0) return
         allocate (x(max_vertices), y(max_vertices), mu(max_vertices), sf(max_vertices), &
                   pressure(max_vertices), bc_s(max_vertices), bc_n(max_vertices), &
                   elements(max_vertices), tensile_strength(max_vertices), &
-                  sf_residual(max_vertices))
+                  sf_residual(max_vertices), mu_dynamic(max_vertices), &
+                  slip_weakening_distance(max_vertices))
         rewind (unit)
         do k = 1, info%count
             name = ''
@@ -92,6 +98,8 @@ contains
             bc_n = unset_real
             tensile_strength = unset_real
             sf_residual = unset_real
+            mu_dynamic = unset_real
+            slip_weakening_distance = unset_real
             elements = unset_integer
             read (unit, nml=fracture, iostat=stat, iomsg=iomsg)
             if (stat /= 0) then
@@ -113,6 +121,8 @@ contains
             nbn = count_given(bc_n, 'bc_n', prefix, messages)
             nt = count_given(tensile_strength, 'tensile_strength', prefix, messages)
             nsr = count_given(sf_residual, 'sf_residual', prefix, messages)
+            nmd = count_given(mu_dynamic, 'mu_dynamic', prefix, messages)
+            ndc = count_given(slip_weakening_distance, 'slip_weakening_distance', prefix, messages)
 
             cond = find_name(lower(trim(adjustl(condition))), condition_names)
             if (cond == 0) then
@@ -127,15 +137,16 @@ contains
                     call add(messages, prefix//'give either x, y and elements or '// &
                              'elements_file, not both')
                 end if
-                if (nmu > 0 .or. nsf > 0 .or. npr > 0 .or. nt > 0 .or. nsr > 0) then
-                    call add(messages, prefix//'mu, sf, pressure, tensile_strength and '// &
-                             'sf_residual come from elements_file; do not give them in '// &
-                             'the group as well')
+                if (nmu > 0 .or. nsf > 0 .or. npr > 0 .or. nt > 0 .or. nsr > 0 .or. &
+                    nmd > 0 .or. ndc > 0) then
+                    call add(messages, prefix//'mu, sf, pressure and the strength laws come '// &
+                             'from elements_file; do not give them in the group as well')
                 end if
                 csv_path = resolve(dir, trim(adjustl(elements_file)))
                 call read_csv(csv_path, [character(len=8) :: 'x_begin', 'y_begin', 'x_end', &
                               'y_end', 'mu', 'sf', 'pressure'], rows, csv_error, row_lines, &
-                              [character(len=16) :: 'tensile_strength', 'sf_residual'], &
+                              [character(len=23) :: 'tensile_strength', 'sf_residual', &
+                              'mu_dynamic', 'slip_weakening_distance'], &
                               csv_given)
                 if (allocated(csv_error)) then
                     call add(messages, prefix_lines(prefix//'elements_file: ', csv_error%message))
@@ -160,9 +171,13 @@ contains
                         end if
                         if (csv_given(1)) call check_law_row(8, 'tensile_strength')
                         if (csv_given(2)) call check_law_row(9, 'sf_residual')
+                        if (csv_given(3)) call check_law_row(10, 'mu_dynamic')
+                        if (csv_given(4)) call check_law_row(11, 'slip_weakening_distance')
                     end do
                     if (.not. csv_given(1)) rows(8, :) = 0.0_wp
                     if (.not. csv_given(2)) rows(9, :) = no_residual_drop
+                    if (.not. csv_given(3)) rows(10, :) = no_residual_drop
+                    if (.not. csv_given(4)) rows(11, :) = 0.0_wp
                 end if
             else
                 if (nx /= ny) then
@@ -217,6 +232,10 @@ contains
                                      quantity_non_negative, prefix, messages)
                     call check_range(sf_residual(1:nsr), 'sf_residual', quantity_non_negative, &
                                      prefix, messages)
+                    call check_range(mu_dynamic(1:nmd), 'mu_dynamic', quantity_non_negative, &
+                                     prefix, messages)
+                    call check_range(slip_weakening_distance(1:ndc), 'slip_weakening_distance', &
+                                     quantity_non_negative, prefix, messages)
                 end if
                 if (nbs > 0 .or. nbn > 0) then
                     call add(messages, prefix//'bc_s and bc_n are for the TWODD-style '// &
@@ -224,9 +243,9 @@ contains
                 end if
             else if (cond /= 0) then
                 if (.not. from_csv .and. (nmu > 0 .or. nsf > 0 .or. npr > 0 .or. nt > 0 .or. &
-                    nsr > 0)) then
-                    call add(messages, prefix//"mu, sf, pressure, tensile_strength and "// &
-                             "sf_residual are for condition "// &
+                    nsr > 0 .or. nmd > 0 .or. ndc > 0)) then
+                    call add(messages, prefix//"mu, sf, pressure and the strength laws are "// &
+                             "for condition "// &
                              "'contact', not for condition '"//trim(condition_names(cond))//"'")
                 end if
             end if
@@ -248,7 +267,16 @@ contains
                     if (check_length(nsr, nseg, 'sf_residual', prefix, messages)) then
                         seg_sfr = broadcast(sf_residual(1:nsr), nseg, no_residual_drop)
                         if (allocated(seg_sf)) call check_residual(seg_sf, seg_sfr, &
-                                                                   'segment')
+                                                                   'segment', 'sf')
+                    end if
+                    if (check_length(nmd, nseg, 'mu_dynamic', prefix, messages)) then
+                        seg_mud = broadcast(mu_dynamic(1:nmd), nseg, no_residual_drop)
+                        if (allocated(seg_mu)) call check_residual(seg_mu, seg_mud, &
+                                                                   'segment', 'mu')
+                    end if
+                    if (check_length(ndc, nseg, 'slip_weakening_distance', prefix, &
+                                     messages)) then
+                        seg_dc = broadcast(slip_weakening_distance(1:ndc), nseg, 0.0_wp)
                     end if
                 end if
                 if (check_length(nbs, nseg, 'bc_s', prefix, messages)) then
@@ -273,6 +301,8 @@ contains
                 fractures(k)%pressure = rows(7, :)
                 fractures(k)%tensile_strength = rows(8, :)
                 fractures(k)%sf_residual = rows(9, :)
+                fractures(k)%mu_dynamic = rows(10, :)
+                fractures(k)%slip_weakening_distance = rows(11, :)
                 fractures(k)%bc_s = seg_bc_s
                 fractures(k)%bc_n = seg_bc_n
             else
@@ -284,6 +314,8 @@ contains
                 fractures(k)%pressure = expand_per_segment(seg_pressure, counts)
                 fractures(k)%tensile_strength = expand_per_segment(seg_t, counts)
                 fractures(k)%sf_residual = expand_per_segment(seg_sfr, counts)
+                fractures(k)%mu_dynamic = expand_per_segment(seg_mud, counts)
+                fractures(k)%slip_weakening_distance = expand_per_segment(seg_dc, counts)
                 fractures(k)%bc_s = expand_per_segment(seg_bc_s, counts)
                 fractures(k)%bc_n = expand_per_segment(seg_bc_n, counts)
             end if
@@ -291,7 +323,8 @@ contains
 
     contains
 
-        !> The law in column c of CSV row i is not negative (and sf_residual <= sf).
+        !> The law in column c of CSV row i is not negative (and sf_residual <= sf,
+        !> mu_dynamic <= mu).
         subroutine check_law_row(c, name)
             integer, intent(in) :: c
             character(len=*), intent(in) :: name
@@ -302,26 +335,37 @@ contains
                          range_problem(quantity_non_negative, rows(c, i)))
             else if (c == 9) then
                 call check_residual(rows(6, i:i), rows(9, i:i), 'elements_file '//csv_path// &
-                                    ' line '//itoa(row_lines(i))//':')
+                                    ' line '//itoa(row_lines(i))//':', 'sf')
+            else if (c == 10) then
+                call check_residual(rows(5, i:i), rows(10, i:i), 'elements_file '//csv_path// &
+                                    ' line '//itoa(row_lines(i))//':', 'mu')
             end if
         end subroutine check_law_row
 
-        !> A residual cohesion above the intact one is a mistake, not a strengthening.
-        subroutine check_residual(intact, residual, where)
+        !> A residual cohesion (intact = 'sf') or a dynamic friction (intact = 'mu') above the
+        !> intact one is a mistake, not a strengthening.
+        subroutine check_residual(intact, residual, where, intact_name)
             real(wp), intent(in) :: intact(:), residual(:)
-            character(len=*), intent(in) :: where
+            character(len=*), intent(in) :: where, intact_name
+            character(len=:), allocatable :: name, what
             integer :: j
 
+            name = 'sf_residual'
+            what = ' (the cohesion after slip must not exceed the intact one)'
+            if (intact_name == 'mu') then
+                name = 'mu_dynamic'
+                what = ' (the friction after slip must not exceed the static one)'
+            end if
             do j = 1, size(residual)
                 if (residual(j) > intact(j) .and. residual(j) < no_residual_drop) then
                     if (where == 'segment') then
-                        call add(messages, prefix//'sf_residual = '//rtoa(residual(j))// &
-                                 ' exceeds sf = '//rtoa(intact(j))//' on segment '//itoa(j)// &
-                                 ' (the cohesion after slip must not exceed the intact one)')
+                        call add(messages, prefix//name//' = '//rtoa(residual(j))// &
+                                 ' exceeds '//intact_name//' = '//rtoa(intact(j))// &
+                                 ' on segment '//itoa(j)//what)
                     else
-                        call add(messages, prefix//where//' sf_residual = '// &
-                                 rtoa(residual(j))//' exceeds sf = '//rtoa(intact(j))// &
-                                 ' (the cohesion after slip must not exceed the intact one)')
+                        call add(messages, prefix//where//' '//name//' = '// &
+                                 rtoa(residual(j))//' exceeds '//intact_name//' = '// &
+                                 rtoa(intact(j))//what)
                     end if
                     return
                 end if

@@ -267,6 +267,8 @@ contains
         model%elements%pressure = 0.0_wp
         model%elements%tensile_strength = 0.0_wp
         model%elements%sf_residual = no_residual_drop
+        model%elements%mu_dynamic = no_residual_drop
+        model%elements%slip_weakening_distance = 0.0_wp
         call compute_geometry(model%elements)
     end subroutine build_elements
 

@@ -57,6 +57,8 @@ module ddc_model_results
         !> of slipped and opened elements; 0 for TWODD-style elements) [stress unit];
         !> not allocated when the solve does not report them (the MPI engine)
         real(wp), allocatable :: sf_in_force(:), tensile_in_force(:)
+        !> Friction in force at the end (slip weakening; 0 for TWODD-style elements) [-]
+        real(wp), allocatable :: mu_in_force(:)
     end type element_results
 
     !> Crack tips: element ends shared with no other element.

@@ -89,6 +89,10 @@ module ddc_model_types
         !> first slipped [stress unit]; the cohesion in force after slip is
         !> min(sf, sf_residual) (no_residual_drop: no drop)
         real(wp), allocatable :: tensile_strength(:), sf_residual(:)
+        !> Slip weakening, for contact elements: friction falls linearly from mu to
+        !> min(mu, mu_dynamic) [-] as the slip grows from 0 to slip_weakening_distance d_c
+        !> >= 0 [length unit] (no_residual_drop: no drop; d_c = 0: at once)
+        real(wp), allocatable :: mu_dynamic(:), slip_weakening_distance(:)
         !> Derived geometry: midpoint, half-length [length unit], cos and sin of the
         !> element angle beta (counter-clockwise from +x)
         real(wp), allocatable :: x_mid(:), y_mid(:), half_length(:)

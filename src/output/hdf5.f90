@@ -225,6 +225,11 @@ contains
                 call write_real_1d(group, 'tensile_strength_in_force', r%tensile_in_force, &
                                    stress, error)
             end if
+            call write_real_1d(group, 'mu_dynamic', min(e%mu, e%mu_dynamic), '1', error)
+            call write_real_1d(group, 'slip_weakening_distance', e%slip_weakening_distance, &
+                               length, error)
+            if (allocated(r%mu_in_force)) call write_real_1d(group, 'mu_in_force', &
+                                                             r%mu_in_force, '1', error)
             if (allocated(results%growth%created_step)) then
                 call write_int_1d(group, 'created_step', results%growth%created_step, error, &
                                   '0 the input, k growth step k')

@@ -76,6 +76,8 @@ contains
         call share(context, elements%pressure)
         call share(context, elements%tensile_strength)
         call share(context, elements%sf_residual)
+        call share(context, elements%mu_dynamic)
+        call share(context, elements%slip_weakening_distance)
         call share(context, elements%x_mid)
         call share(context, elements%y_mid)
         call share(context, elements%half_length)

@@ -39,8 +39,9 @@ contains
             'are not distributed)')
         if (model%growth%active) call refuse('&growth (fracture growth is not distributed)')
         if (any(model%elements%tensile_strength > 0.0_wp .or. model%elements%sf_residual < &
-            model%elements%sf)) call refuse('&fracture tensile_strength or sf_residual '// &
-            '(strength beyond Coulomb is not distributed)')
+            model%elements%sf .or. model%elements%mu_dynamic < model%elements%mu)) call &
+            refuse('&fracture tensile_strength, sf_residual or mu_dynamic (strength '// &
+            'beyond Coulomb is not distributed)')
         if (processes > 1) then
             distributed = .true.
             if (len(refused) > 0) call set_error(error, exit_bad_input, model%input_file// &

@@ -83,6 +83,7 @@ contains
             if (allocated(strength)) then
                 e%sf_in_force = strength(1, :)
                 e%tensile_in_force = strength(2, :)
+                e%mu_in_force = strength(3, :)
             end if
             if (reports_phases(n)) call report_progress('solved ('//rec%method//') in '// &
                 seconds_text(wall_seconds() - t_start))
@@ -199,7 +200,8 @@ contains
         type(solver_record), intent(inout) :: record
         real(wp), allocatable, intent(out) :: matrix(:, :)
         type(error_type), allocatable, intent(out) :: error
-        !> Cohesion and tensile strength in force at the end, shape (2, n) (contact models)
+        !> Cohesion, tensile strength and friction in force at the end, shape (3, n)
+        !> (contact models)
         real(wp), allocatable, intent(out) :: strength(:, :)
 
         if (any(elements%condition == condition_contact)) then

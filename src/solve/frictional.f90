@@ -78,8 +78,9 @@ contains
         real(wp), allocatable, intent(out) :: matrix(:, :)
         !> Set when the model has no solution or the solver failed
         type(error_type), allocatable, intent(out) :: error
-        !> Strength in force at the end: cohesion (row 1) and tensile strength (row 2) of
-        !> each element (0 for TWODD-style elements), shape (2, n) [stress unit]
+        !> Strength in force at the end: cohesion (row 1) and tensile strength (row 2)
+        !> [stress unit], friction (row 3) [-] of each element (0 for TWODD-style
+        !> elements), shape (3, n)
         real(wp), allocatable, intent(out), optional :: strength(:, :)
         type(condensed_contact) :: sys
         type(contact_result) :: res
@@ -93,7 +94,9 @@ contains
                            elements%mu(sys%contact), elements%sf(sys%contact), &
                            elements%pressure(sys%contact), options, res, error, &
                            tensile=elements%tensile_strength(sys%contact), &
-                           sf_residual=elements%sf_residual(sys%contact))
+                           sf_residual=elements%sf_residual(sys%contact), &
+                           mu_dynamic=elements%mu_dynamic(sys%contact), &
+                           slip_weakening_distance=elements%slip_weakening_distance(sys%contact))
         if (allocated(error)) then
             if (sys%nf > 0) error%message = error%message// &
                 ' (element numbers count the contact elements only)'
@@ -104,9 +107,10 @@ contains
                           state, record%equilibrium_residual)
         call release_matrix(sys, matrix)
         if (present(strength)) then
-            allocate (strength(2, elements%n), source=0.0_wp)
+            allocate (strength(3, elements%n), source=0.0_wp)
             strength(1, sys%contact) = res%sf_effective
             strength(2, sys%contact) = res%tensile_effective
+            strength(3, sys%contact) = res%mu_effective
         end if
     end subroutine solve_frictional
 

@@ -126,8 +126,8 @@ ERRORS = {
     "load_path": (DATA / "history" / "good.nml", 2,
                   ["good.nml", "with 4 processes", "&load_path", "one process"]),
     "strength": (DATA / "input" / "good_strength.nml", 2,
-                 ["good_strength.nml", "with 4 processes", "tensile_strength or sf_residual",
-                  "one process"]),
+                 ["good_strength.nml", "with 4 processes",
+                  "tensile_strength, sf_residual or mu_dynamic", "one process"]),
     "solver_failure": (DATA / "mpi" / "unbalanced_hole.nml", 1,
                        ["influence matrix is numerically singular", "relative residual"]),
 }
