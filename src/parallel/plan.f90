@@ -3,6 +3,7 @@
 !> than one process (exit_bad_input, naming what to do); with one process such a model runs
 !> as in the serial build.
 module ddc_parallel_plan
+    use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_text, only: itoa, newline
     use ddc_model_types, only: model_type, condition_contact
