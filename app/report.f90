@@ -3,7 +3,7 @@
 module ddc_app_report
     use, intrinsic :: iso_fortran_env, only: output_unit
     use ddc_kinds, only: wp
-    use ddc_model_types, only: model_type, condition_names, observation_kind_names, &
+    use ddc_model_types, only: model_type, rigid_joint, condition_names, observation_kind_names, &
         symmetry_none, symmetry_names, domain_names, domain_half_plane, load_path_names, &
         growth_tips_names, growth_criterion_names
     use ddc_model_results, only: model_results, state_names, point_near, point_on_element, &
@@ -119,7 +119,31 @@ contains
                     short_real(maxval(dc))//' '//model%length_unit// &
                     ' (friction falls from mu to mu_dynamic as the slip grows to it)'
             end associate
+            associate (ks => model%elements%shear_stiffness(first:last), &
+                       kn => model%elements%normal_stiffness(first:last))
+                if (any(ks < rigid_joint) .or. any(kn < rigid_joint)) write (unit, '(a)') &
+                    '    elastic joint: shear_stiffness '//stiffness_range(ks)// &
+                    ', normal_stiffness '//stiffness_range(kn)//stress//'/'// &
+                    model%length_unit
+            end associate
         end subroutine print_strength
+
+        !> 'min .. max' of stiffnesses, 'rigid' for rigid contact.
+        function stiffness_range(k) result(text)
+            real(wp), intent(in) :: k(:)
+            character(len=:), allocatable :: text
+
+            if (all(k >= rigid_joint)) then
+                text = 'rigid'
+            else
+                text = short_real(minval(k))//' .. '
+                if (any(k >= rigid_joint)) then
+                    text = text//'rigid'
+                else
+                    text = text//short_real(maxval(k))
+                end if
+            end if
+        end function stiffness_range
 
         !> ' (xsym = .., ysym = ..): image elements implicit', or '' without symmetry.
         function symmetry_lines() result(text)

@@ -2,7 +2,7 @@
 module ddc_test_builders
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type, fracture_type, symmetry_options, condition_traction, &
-        no_residual_drop
+        no_residual_drop, rigid_joint
     use ddc_contact_options, only: solver_options
     use ddc_mesh_geometry, only: allocate_elements, compute_geometry
     use ddc_mesh_polyline, only: polyline_elements
@@ -43,6 +43,8 @@ contains
         model%elements%sf_residual = no_residual_drop
         model%elements%mu_dynamic = no_residual_drop
         model%elements%slip_weakening_distance = 0.0_wp
+        model%elements%shear_stiffness = rigid_joint
+        model%elements%normal_stiffness = rigid_joint
         call compute_geometry(model%elements)
         allocate (model%fractures(1))
         model%fractures(1) = fracture_type(name='fracture_1', first_element=1, &
@@ -98,6 +100,8 @@ contains
             a%sf_residual = [a%sf_residual, b%sf_residual]
             a%mu_dynamic = [a%mu_dynamic, b%mu_dynamic]
             a%slip_weakening_distance = [a%slip_weakening_distance, b%slip_weakening_distance]
+            a%shear_stiffness = [a%shear_stiffness, b%shear_stiffness]
+            a%normal_stiffness = [a%normal_stiffness, b%normal_stiffness]
             a%n = n + b%n
         end associate
         call compute_geometry(model%elements)

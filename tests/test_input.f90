@@ -6,7 +6,7 @@ module test_input
     use ddc_testing, only: test_case, new_test, check, error_type
     use ddc_error, only: exit_bad_input
     use ddc_model_types, only: model_type, condition_contact, condition_traction, &
-        observation_grid, observation_line, observation_points
+        observation_grid, observation_line, observation_points, rigid_joint
     use ddc_input_text_file, only: read_text_file
     use ddc_input_csv, only: read_csv
     use ddc_input_namelist, only: read_namelist_model
@@ -480,6 +480,11 @@ contains
             call check(error, e%mu_dynamic(12), 0.5_wp, 'mu_dynamic segment 2', abs_tol=0.0_wp)
             call check(error, e%slip_weakening_distance(11), 0.001_wp, 'd_c broadcast', &
                        abs_tol=0.0_wp)
+            call check(error, e%shear_stiffness(12), 1.0e4_wp, 'k_s', abs_tol=0.0_wp)
+            call check(error, e%normal_stiffness(10), 2.0e4_wp, 'k_n segment 1', abs_tol=0.0_wp)
+            call check(error, e%normal_stiffness(11), 3.0e4_wp, 'k_n segment 2', abs_tol=0.0_wp)
+            call check(error, e%shear_stiffness(9) >= rigid_joint .and. &
+                       e%normal_stiffness(9) >= rigid_joint, 'rigid by default')
         end associate
     end subroutine test_good_strength
 
@@ -490,7 +495,8 @@ contains
                              "&fracture 1 'f' (line 2)", 'tensile_strength(1) = ', &
                              'must be >= 0', 'sf_residual = 3', 'exceeds sf = 1', &
                              'on segment 2', 'mu_dynamic = 0.7', 'exceeds mu = 0.6', &
-                             'slip_weakening_distance(1) = -0.1'], lines=4)
+                             'slip_weakening_distance(1) = -0.1', 'shear_stiffness(1) = -5', &
+                             'normal_stiffness(1) = 0', 'must be positive'], lines=6)
     end subroutine test_bad_strength
 
     subroutine test_bad_strength_csv(error)
@@ -507,7 +513,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         call check_bad_input(error, data//'bad_strength_growth.nml', [character(len=60) :: &
-                             'sf_residual and mu_dynamic are not honoured by', &
+                             'the joint stiffnesses are not honoured by', &
                              'fracture growth'], lines=1)
     end subroutine test_bad_strength_growth
 

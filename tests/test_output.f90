@@ -8,7 +8,8 @@ module test_output
     use ddc_error, only: exit_bad_input, exit_io_failure
     use ddc_version, only: program_version, git_commit
     use ddc_model_types, only: model_type, condition_contact, condition_traction, &
-        observation_grid, observation_line, no_residual_drop
+        observation_grid, observation_line, no_residual_drop, &
+        rigid_joint
     use ddc_model_results, only: model_results, state_free, state_stick, state_slip, &
         point_clear, point_near, point_on_element
     use ddc_mesh_geometry, only: allocate_elements, compute_geometry
@@ -284,6 +285,8 @@ contains
             call check_real_dataset(error, path, '/elements/slip_weakening_distance', &
                                     e%slip_weakening_distance, [3])
             call check_real_dataset(error, path, '/elements/mu_in_force', r%mu_in_force, [3])
+            call check_real_dataset(error, path, '/elements/shear_stiffness', &
+                                    e%shear_stiffness, [3])
         end associate
         call remove_file(path)
     end subroutine test_elements
@@ -304,6 +307,7 @@ contains
         call check_string_attribute(error, path, '/elements/slip_weakening_distance', 'units', &
                                     'm')
         call check_string_attribute(error, path, '/elements/mu_in_force', 'units', '1')
+        call check_string_attribute(error, path, '/elements/normal_stiffness', 'units', 'MPa/m')
         call check_string_attribute(error, path, '/elements/shear_traction', 'units', 'MPa')
         call check_string_attribute(error, path, '/elements/bc_n', 'units', &
             'MPa or m (by condition)')
@@ -551,6 +555,8 @@ contains
         model%elements%sf_residual = [0.25_wp, no_residual_drop, no_residual_drop]
         model%elements%mu_dynamic = [0.4_wp, no_residual_drop, no_residual_drop]
         model%elements%slip_weakening_distance = [1.0e-4_wp, 0.0_wp, 0.0_wp]
+        model%elements%shear_stiffness = [1.0e4_wp, 2.0e4_wp, 3.0e4_wp]
+        model%elements%normal_stiffness = rigid_joint
         call compute_geometry(model%elements)
 
         allocate (model%fractures(2))

@@ -1,7 +1,7 @@
 !> Fault strength beyond Coulomb (issue 26), end to end through run_model and solve_history:
 !> a tensile strength lost on opening and a cohesion that drops to its residual value after
-!> slip, and slip weakening, held to the Coulomb cracks they reduce to, Newton against
-!> Lemke, and the loading history that remembers what was lost.
+!> slip, slip weakening and elastic joints, held to the Coulomb cracks and springs they
+!> reduce to, Newton against Lemke, and the loading history that remembers what was lost.
 module test_strength
     use ddc_kinds, only: wp
     use ddc_contact_options, only: lcp_lemke, lcp_newton, solver_options
@@ -10,6 +10,8 @@ module test_strength
     use ddc_influence_assembly, only: assemble_influence, row_traction
     use ddc_model_loads, only: resolve_remote_stress
     use ddc_error, only: exit_solver_failure
+    use ddc_linalg_lu, only: lu_factor, lu_solve
+    use ddc_model_types, only: rigid_joint
     use ddc_testing, only: test_case, new_test, check, error_type
     use ddc_model_types, only: model_type, condition_contact
     use ddc_model_results, only: model_results, state_stick, state_slip, state_open
@@ -45,7 +47,12 @@ contains
                  new_test('weakening_dc0_is_coulomb_mu_dynamic', test_weakening_dc0), &
                  new_test('weakening_fixed_point_newton_lemke', test_weakening_fixed_point), &
                  new_test('weakening_history_accumulates_slip', test_weakening_history), &
-                 new_test('weakening_not_converged_names_element', test_weakening_limit)]
+                 new_test('weakening_not_converged_names_element', test_weakening_limit), &
+                 new_test('joint_slipping_total_dd_is_coulomb', test_joint_slip), &
+                 new_test('joint_sticking_is_spring_crack', test_joint_stick), &
+                 new_test('stiff_joint_recovers_rigid', test_joint_stiff), &
+                 new_test('joint_kink_newton_equals_lemke', test_joint_methods), &
+                 new_test('joint_monotonic_path_equals_one_shot', test_joint_history)]
     end subroutine collect_strength
 
     !> Straight crack of half-length 1, n elements, mu = 0.6, uniform Sf, under syy, sxy.
@@ -450,6 +457,137 @@ contains
         call check(error, index(failure%message, 'no quasi-static solution') > 0 .and. &
                    index(failure%message, 'friction of element') > 0, failure%message)
     end subroutine test_weakening_limit
+
+    !> The paper's test (every element slips) with shear stiffness 1e8 MPa/m (normal
+    !> rigid): the slipping faces carry tau_s whatever their compliance, so the total DDs
+    !> are those of the Coulomb crack (1e-10); the plastic slip is smaller by tau_s / k_s
+    !> (5e-7 m, 0.15 % of the peak slip; a softer joint sticks near the tips).
+    subroutine test_joint_slip(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model
+        type(model_results) :: r, coulomb
+
+        model = paper_fault(1.0_wp)
+        call run_model(model, coulomb, error)
+        if (allocated(error)) return
+        model%elements%shear_stiffness = 1.0e8_wp
+        call run_model(model, r, error)
+        if (allocated(error)) return
+        call check(error, count(r%elements%state == state_slip), 100, 'slipping elements')
+        call check(error, dd_difference(r%elements%ds, coulomb%elements%ds), 0.0_wp, &
+                   'total ds as the Coulomb crack', abs_tol=tight)
+        call check(error, maxval(abs(r%elements%dn)), 0.0_wp, 'rigid normal', abs_tol=0.0_wp)
+    end subroutine test_joint_slip
+
+    !> A sticking joint (mu = 5) of shear stiffness k = 2e5 MPa/m under the paper's loading:
+    !> its faces are springs, s_s = -k Ds, so Ds solves (A_ss + k I) Ds = -s_r (an
+    !> independent LU solve) within 1e-10; with kn = 5e5 MPa/m Dn solves the normal block
+    !> likewise (the straight crack decouples the blocks).
+    subroutine test_joint_stick(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model
+        type(model_results) :: r
+        real(wp), allocatable :: a(:, :), ss(:), sn(:), b(:, :)
+        integer, allocatable :: rows(:), ipiv(:)
+        integer :: n, i
+
+        model = paper_fault(1.0_wp)
+        model%elements%mu = 5.0_wp
+        model%elements%shear_stiffness = 2.0e5_wp
+        model%elements%normal_stiffness = 5.0e5_wp
+        call run_model(model, r, error)
+        if (allocated(error)) return
+        call check(error, count(r%elements%state == state_stick), 100, 'sticking elements')
+        n = model%elements%n
+        allocate (a(2 * n, 2 * n), ss(n), sn(n), ipiv(2 * n))
+        rows = spread(row_traction, 1, n)
+        call assemble_influence(model%elements, g, nu, rows, rows, a)
+        call resolve_remote_stress(model%elements, model%sxx, model%syy, model%sxy, ss, sn)
+        do i = 1, n
+            a(i, i) = a(i, i) + 2.0e5_wp
+            a(n + i, n + i) = a(n + i, n + i) + 5.0e5_wp
+        end do
+        b = reshape(-[ss, sn], [2 * n, 1])
+        call lu_factor(a, ipiv, 'spring crack', error)
+        if (allocated(error)) return
+        call lu_solve(a, ipiv, b)
+        call check(error, dd_difference(r%elements%ds, b(1:n, 1)), 0.0_wp, 'ds', abs_tol=tight)
+        call check(error, dd_difference(r%elements%dn, b(n + 1:, 1)), 0.0_wp, 'dn', &
+                   abs_tol=tight)
+        call check(error, minval(r%elements%dn) > 0.0_wp, 'the compressed joint overlaps')
+    end subroutine test_joint_stick
+
+    !> Stiffness 1e15 MPa/m (A_ii about 1e6 here) recovers the rigid kinked fault: the same
+    !> states and DDs within 1e-8.
+    subroutine test_joint_stiff(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model
+        type(model_results) :: rigid, stiff
+
+        model = kinked_fault()
+        call run_model(model, rigid, error)
+        if (allocated(error)) return
+        model%elements%shear_stiffness = 1.0e15_wp
+        model%elements%normal_stiffness = 1.0e15_wp
+        call run_model(model, stiff, error)
+        if (allocated(error)) return
+        call check(error, all(stiff%elements%state == rigid%elements%state), 'states')
+        call check(error, dd_difference([stiff%elements%ds, stiff%elements%dn], &
+                   [rigid%elements%ds, rigid%elements%dn]), 0.0_wp, 'DDs', abs_tol=1.0e-8_wp)
+    end subroutine test_joint_stiff
+
+    !> The kinked fault with joints of stiffness 2e5 (shear) and 1e6 (normal) MPa/m on the
+    !> flat part (rigid elsewhere): stick, slip and open at once; Newton agrees with Lemke.
+    subroutine test_joint_methods(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model
+        type(model_results) :: lemke, newton
+        real(wp) :: scale
+
+        model = kinked_fault()
+        model%elements%shear_stiffness = merge(2.0e5_wp, rigid_joint, &
+                                               model%elements%y_mid < 1.0e-12_wp)
+        model%elements%normal_stiffness = merge(1.0e6_wp, rigid_joint, &
+                                                model%elements%y_mid < 1.0e-12_wp)
+        call run_model(model, lemke, error)
+        if (allocated(error)) return
+        model%solver%lcp_method = lcp_newton
+        call run_model(model, newton, error)
+        if (allocated(error)) return
+        call check(error, count(lemke%elements%state == state_stick) > 0 .and. &
+                   count(lemke%elements%state == state_slip) > 0 .and. &
+                   count(lemke%elements%state == state_open) > 0, 'stick, slip and open')
+        call check(error, all(newton%elements%state == lemke%elements%state), 'states')
+        scale = maxval(abs([lemke%elements%ds, lemke%elements%dn]))
+        call check(error, maxval(abs(newton%elements%ds - lemke%elements%ds)), 0.0_wp, 'ds', &
+                   abs_tol=1.0e-9_wp * scale)
+        call check(error, maxval(abs(newton%elements%dn - lemke%elements%dn)), 0.0_wp, 'dn', &
+                   abs_tol=1.0e-9_wp * scale)
+    end subroutine test_joint_methods
+
+    !> The paper's fault with joints (k_s = 1e5, k_n = 1e6 MPa/m) loaded along a path of
+    !> sxy 0 -> 54.13 in 10 steps ends where the one-shot solve at 54.13 is (1e-9): the
+    !> history holds the plastic slip, and outputs the total DDs.
+    subroutine test_joint_history(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model, one_shot
+        type(model_results) :: r, direct
+
+        model = paper_fault(1.0_wp)
+        model%elements%shear_stiffness = 1.0e5_wp
+        model%elements%normal_stiffness = 1.0e6_wp
+        one_shot = model
+        call run_model(one_shot, direct, error)
+        if (allocated(error)) return
+        call set_path(model, 3, [0.0_wp, 54.13_wp], [10])
+        call solve_history(model, r, error)
+        if (allocated(error)) return
+        call check(error, all(r%elements%state == direct%elements%state), 'states')
+        call check(error, dd_difference(r%elements%ds, direct%elements%ds), 0.0_wp, 'ds', &
+                   abs_tol=1.0e-9_wp)
+        call check(error, dd_difference(r%elements%dn, direct%elements%dn), 0.0_wp, 'dn', &
+                   abs_tol=1.0e-9_wp)
+    end subroutine test_joint_history
 
     !> A path of remote stress component q (2 syy, 3 sxy) through the given vertices.
     subroutine set_path(model, q, values, steps)

@@ -5,7 +5,7 @@
 module ddc_growth_extension
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type, element_set, growth_options, condition_contact, &
-        no_residual_drop
+        no_residual_drop, rigid_joint
     use ddc_mesh_geometry, only: allocate_elements, compute_geometry
     implicit none
     private
@@ -196,6 +196,8 @@ contains
                 a%sf_residual(to) = b%sf_residual(from)
                 a%mu_dynamic(to) = b%mu_dynamic(from)
                 a%slip_weakening_distance(to) = b%slip_weakening_distance(from)
+                a%shear_stiffness(to) = b%shear_stiffness(from)
+                a%normal_stiffness(to) = b%normal_stiffness(from)
             end associate
         end subroutine copy_element
 
@@ -218,6 +220,8 @@ contains
                 a%sf_residual(next) = no_residual_drop
                 a%mu_dynamic(next) = no_residual_drop
                 a%slip_weakening_distance(next) = 0.0_wp
+                a%shear_stiffness(next) = rigid_joint
+                a%normal_stiffness(next) = rigid_joint
                 if (a%condition(next) == condition_contact) then
                     if (options%override_mu) a%mu(next) = options%new_mu
                     if (options%override_sf) a%sf(next) = options%new_sf

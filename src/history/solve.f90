@@ -25,6 +25,7 @@ module ddc_history_solve
     use ddc_contact_result, only: contact_result, contact_stress_scale
     use ddc_contact_formulation, only: solve_contact_with, contact_session
     use ddc_contact_stiffness, only: dense_stiffness
+    use ddc_solve_joints, only: joint_compliance, joint_system, joint_load, joint_dds
     use ddc_solve_frictional, only: condensed_contact, condense_contact, contact_load, &
         complete_dds, record_contact, release_matrix
     use ddc_influence_response, only: listed_tractions
@@ -63,7 +64,9 @@ contains
         type(history_record) :: h
         real(wp), allocatable :: loads(:, :), shear(:, :), normal(:, :), shift(:, :)
         real(wp), allocatable :: y_load(:, :), pressure(:, :), sf_eff(:), ds_previous(:), v(:)
-        real(wp), allocatable :: t_eff(:), mu_eff(:), slip_path(:)
+        real(wp), allocatable :: t_eff(:), mu_eff(:), slip_path(:), compliance(:), load_map(:, :)
+        real(wp), allocatable, target :: a_joint(:, :)
+        real(wp), pointer, contiguous :: a_solve(:, :)
         real(wp), allocatable :: matrix(:, :), no_dd(:), ts(:), tn(:)
         integer :: n, nc, k, nsteps, pivots, solves, iterations, fallbacks, first_fallback, stat
         real(wp) :: sigma0, g, seconds_lcp, seconds_factorization, flops
@@ -127,7 +130,21 @@ contains
         allocate (slip_path(nc), source=0.0_wp)
         allocate (ds_previous(nc), source=0.0_wp)
         ! One operator for every step: the Newton method's factors live in it.
-        stiffness%a => sys%a
+        ! Elastic joints: the contact problem of the plastic DDs (ddc_solve_joints); the
+        ! slip a step holds is the plastic one.
+        compliance = joint_compliance(model%elements%shear_stiffness(sys%contact), &
+                                      model%elements%normal_stiffness(sys%contact))
+        a_solve => sys%a
+        if (any(compliance > 0.0_wp)) then
+            call joint_system(sys%a, compliance, a_joint, load_map, error)
+            if (allocated(error)) return
+            do k = 1, nsteps
+                call joint_load(load_map, pressure(:, k), shift(1:nc, k), shift(nc + 1:, k))
+            end do
+            deallocate (load_map)
+            a_solve => a_joint
+        end if
+        stiffness%a => a_solve
         pivots = 0
         solves = 0
         iterations = 0
@@ -139,7 +156,7 @@ contains
         do k = 1, nsteps
             call solve_contact_with(stiffness, shift(1:nc, k), shift(nc + 1:, k), &
                                     model%elements%mu(sys%contact), sf_eff, pressure(:, k), &
-                                    model%solver, res, error, a=sys%a, &
+                                    model%solver, res, error, a=a_solve, &
                                     max_iterations=max_iterations, ds_previous=ds_previous, &
                                     session=session, stress_scale=sigma0, &
                                     max_pivots=max_pivots, tensile=t_eff, &
@@ -159,6 +176,8 @@ contains
             mu_eff = res%mu_effective
             slip_path = res%slip_path
             ds_previous = res%ds
+            if (any(compliance > 0.0_wp)) call joint_dds(compliance, pressure(:, k), &
+                res%shear_traction, res%normal_traction, res%ds, res%dn)
             pivots = pivots + res%pivots
             solves = solves + res%solves
             iterations = iterations + res%iterations

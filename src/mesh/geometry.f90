@@ -21,7 +21,8 @@ contains
                   elements%y_end(n), elements%fracture_id(n), elements%condition(n), &
                   elements%bc_s(n), elements%bc_n(n), elements%mu(n), elements%sf(n), &
                   elements%pressure(n), elements%tensile_strength(n), elements%sf_residual(n), &
-                  elements%mu_dynamic(n), elements%slip_weakening_distance(n))
+                  elements%mu_dynamic(n), elements%slip_weakening_distance(n), &
+                  elements%shear_stiffness(n), elements%normal_stiffness(n))
     end subroutine allocate_elements
 
     !> Fill midpoint, half-length and direction cosines from the end points.

@@ -18,7 +18,7 @@ module ddc_model_types
     public :: observation_grid, observation_line, observation_points, observation_kind_names
     public :: growth_options, growth_tips_all, growth_tips_most_critical, growth_tips_names
     public :: growth_criterion_mts, growth_criterion_names
-    public :: default_block_size, no_residual_drop
+    public :: default_block_size, no_residual_drop, rigid_joint
 
     !> Boundary conditions; 1-4 are the TWODD KODE values.
     integer, parameter :: condition_traction = 1
@@ -41,6 +41,8 @@ module ddc_model_types
     !> elements%sf_residual of an element whose cohesion does not drop after slip (the
     !> default, sf_residual = sf; a sweep may change sf after the input was read)
     real(wp), parameter :: no_residual_drop = huge(1.0_wp)
+    !> elements%shear_stiffness, normal_stiffness of rigid contact (the default)
+    real(wp), parameter :: rigid_joint = huge(1.0_wp)
 
     !> Block size of the distributed matrices of the MPI build (&solver block_size)
     integer, parameter :: default_block_size = 64
@@ -93,6 +95,9 @@ module ddc_model_types
         !> min(mu, mu_dynamic) [-] as the slip grows from 0 to slip_weakening_distance d_c
         !> >= 0 [length unit] (no_residual_drop: no drop; d_c = 0: at once)
         real(wp), allocatable :: mu_dynamic(:), slip_weakening_distance(:)
+        !> Elastic joint, for contact elements: shear and normal stiffness [stress unit /
+        !> length unit] of the faces before they slip or open (rigid_joint: rigid contact)
+        real(wp), allocatable :: shear_stiffness(:), normal_stiffness(:)
         !> Derived geometry: midpoint, half-length [length unit], cos and sin of the
         !> element angle beta (counter-clockwise from +x)
         real(wp), allocatable :: x_mid(:), y_mid(:), half_length(:)

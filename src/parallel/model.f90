@@ -78,6 +78,8 @@ contains
         call share(context, elements%sf_residual)
         call share(context, elements%mu_dynamic)
         call share(context, elements%slip_weakening_distance)
+        call share(context, elements%shear_stiffness)
+        call share(context, elements%normal_stiffness)
         call share(context, elements%x_mid)
         call share(context, elements%y_mid)
         call share(context, elements%half_length)

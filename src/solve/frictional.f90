@@ -25,6 +25,7 @@ module ddc_solve_frictional
     use ddc_contact_result, only: contact_result
     use ddc_contact_formulation, only: solve_contact
     use ddc_contact_options, only: solver_options
+    use ddc_solve_joints, only: joint_compliance, joint_system, joint_load, joint_dds
     implicit none
     private
 
@@ -84,24 +85,45 @@ contains
         real(wp), allocatable, intent(out), optional :: strength(:, :)
         type(condensed_contact) :: sys
         type(contact_result) :: res
-        real(wp), allocatable :: shift(:), y_load(:)
+        real(wp), allocatable :: shift(:), y_load(:), compliance(:), a_joint(:, :), &
+            load_map(:, :), ss(:), sn(:)
 
         call condense_contact(elements, shear_modulus, nu, sys, record, error)
         if (allocated(error)) return
         allocate (shift(2 * sys%nc), y_load(2 * sys%nf))
         call contact_load(sys, elements, remote_shear, remote_normal, shift, y_load)
-        call solve_contact(sys%a, shift(1:sys%nc), shift(sys%nc + 1:), &
+        compliance = joint_compliance(elements%shear_stiffness(sys%contact), &
+                                      elements%normal_stiffness(sys%contact))
+        ss = shift(1:sys%nc)
+        sn = shift(sys%nc + 1:)
+        if (any(compliance > 0.0_wp)) then
+            ! Elastic joints: the contact problem of the plastic DDs (ddc_solve_joints).
+            call joint_system(sys%a, compliance, a_joint, load_map, error)
+            if (allocated(error)) return
+            call joint_load(load_map, elements%pressure(sys%contact), ss, sn)
+        else
+            call move_alloc(sys%a, a_joint)
+        end if
+        call solve_contact(a_joint, ss, sn, &
                            elements%mu(sys%contact), elements%sf(sys%contact), &
                            elements%pressure(sys%contact), options, res, error, &
                            tensile=elements%tensile_strength(sys%contact), &
                            sf_residual=elements%sf_residual(sys%contact), &
                            mu_dynamic=elements%mu_dynamic(sys%contact), &
                            slip_weakening_distance=elements%slip_weakening_distance(sys%contact))
+        if (allocated(load_map)) then
+            deallocate (load_map)
+        else
+            call move_alloc(a_joint, sys%a)
+        end if
         if (allocated(error)) then
             if (sys%nf > 0) error%message = error%message// &
                 ' (element numbers count the contact elements only)'
             return
         end if
+        if (any(compliance > 0.0_wp)) call joint_dds(compliance, &
+            elements%pressure(sys%contact), res%shear_traction, res%normal_traction, &
+            res%ds, res%dn)
         call record_contact(res, sys%flops, record)
         call complete_dds(sys, elements, remote_shear, remote_normal, res, y_load, ds, dn, &
                           state, record%equilibrium_residual)

@@ -127,7 +127,8 @@ ERRORS = {
                   ["good.nml", "with 4 processes", "&load_path", "one process"]),
     "strength": (DATA / "input" / "good_strength.nml", 2,
                  ["good_strength.nml", "with 4 processes",
-                  "tensile_strength, sf_residual or mu_dynamic", "one process"]),
+                  "tensile_strength, sf_residual, mu_dynamic or a joint stiffness",
+                  "one process"]),
     "solver_failure": (DATA / "mpi" / "unbalanced_hole.nml", 1,
                        ["influence matrix is numerically singular", "relative residual"]),
 }
