@@ -101,6 +101,7 @@ contains
             call joint_system(sys%a, compliance, a_joint, load_map, error)
             if (allocated(error)) return
             call joint_load(load_map, elements%pressure(sys%contact), ss, sn)
+            deallocate (load_map)
         else
             call move_alloc(sys%a, a_joint)
         end if
@@ -111,11 +112,7 @@ contains
                            sf_residual=elements%sf_residual(sys%contact), &
                            mu_dynamic=elements%mu_dynamic(sys%contact), &
                            slip_weakening_distance=elements%slip_weakening_distance(sys%contact))
-        if (allocated(load_map)) then
-            deallocate (load_map)
-        else
-            call move_alloc(a_joint, sys%a)
-        end if
+        if (.not. allocated(sys%a)) call move_alloc(a_joint, sys%a)
         if (allocated(error)) then
             if (sys%nf > 0) error%message = error%message// &
                 ' (element numbers count the contact elements only)'
