@@ -55,7 +55,7 @@ module ddc_model_results
         integer, allocatable :: state(:)
         !> Strength in force at the end: cohesion and tensile strength (after the drops
         !> of slipped and opened elements; 0 for TWODD-style elements) [stress unit];
-        !> not allocated when the solve does not report them (the MPI engine)
+        !> not allocated for a model without contact elements
         real(wp), allocatable :: sf_in_force(:), tensile_in_force(:)
         !> Friction in force at the end (slip weakening; 0 for TWODD-style elements) [-]
         real(wp), allocatable :: mu_in_force(:)

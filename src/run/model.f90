@@ -74,7 +74,7 @@ contains
             loaded%pressure = total_pressure(model%elements, model%pore_fluid)
             if (present(engine)) then
                 call engine%solve(loaded, g, nu, remote_shear, remote_normal, model%solver, &
-                                  e%ds, e%dn, e%state, rec, error)
+                                  e%ds, e%dn, e%state, rec, error, strength)
             else
                 call solve_here(loaded, g, nu, remote_shear, remote_normal, model%solver, e%ds, &
                                 e%dn, e%state, rec, matrix, error, strength)
