@@ -1,8 +1,7 @@
 !> Models built in code for the physics tests (no input files involved).
 module ddc_test_builders
     use ddc_kinds, only: wp
-    use ddc_model_types, only: model_type, fracture_type, symmetry_options, condition_traction, &
-        no_residual_drop, rigid_joint
+    use ddc_model_types, only: model_type, fracture_type, symmetry_options, condition_traction
     use ddc_contact_options, only: solver_options
     use ddc_mesh_geometry, only: allocate_elements, compute_geometry
     use ddc_mesh_polyline, only: polyline_elements
@@ -39,12 +38,6 @@ contains
         model%elements%mu = 0.0_wp
         model%elements%sf = 0.0_wp
         model%elements%pressure = 0.0_wp
-        model%elements%tensile_strength = 0.0_wp
-        model%elements%sf_residual = no_residual_drop
-        model%elements%mu_dynamic = no_residual_drop
-        model%elements%slip_weakening_distance = 0.0_wp
-        model%elements%shear_stiffness = rigid_joint
-        model%elements%normal_stiffness = rigid_joint
         call compute_geometry(model%elements)
         allocate (model%fractures(1))
         model%fractures(1) = fracture_type(name='fracture_1', first_element=1, &

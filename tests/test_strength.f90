@@ -318,11 +318,7 @@ contains
         model = straight_fault(40, 2.0_wp, -10.0_wp, 0.0_wp)
         model%elements%sf_residual = 0.0_wp
         coulomb_model = straight_fault(40, 0.0_wp, -10.0_wp, 0.0_wp)
-        call set_path(model, 3, [0.0_wp, 10.0_wp, -10.0_wp, 10.0_wp], [10, 20, 20])
-        call set_path(coulomb_model, 3, [0.0_wp, 10.0_wp, -10.0_wp, 10.0_wp], [10, 20, 20])
-        call solve_history(model, r, error)
-        if (allocated(error)) return
-        call solve_history(coulomb_model, coulomb, error)
+        call solve_cycles(model, coulomb_model, r, coulomb, error)
         if (allocated(error)) return
         associate (h => r%history, hc => coulomb%history)
             call check(error, h%load(3, 8), 7.0_wp, 'sxy going up', abs_tol=1.0e-12_wp)
@@ -412,11 +408,7 @@ contains
         model%elements%mu_dynamic = 0.3_wp
         coulomb_model = straight_fault(40, 0.0_wp, -10.0_wp, 0.0_wp)
         coulomb_model%elements%mu = 0.3_wp
-        call set_path(model, 3, [0.0_wp, 10.0_wp, -10.0_wp, 10.0_wp], [10, 20, 20])
-        call set_path(coulomb_model, 3, [0.0_wp, 10.0_wp, -10.0_wp, 10.0_wp], [10, 20, 20])
-        call solve_history(model, r, error)
-        if (allocated(error)) return
-        call solve_history(coulomb_model, coulomb, error)
+        call solve_cycles(model, coulomb_model, r, coulomb, error)
         if (allocated(error)) return
         associate (h => r%history, hc => coulomb%history)
             call check(error, h%load(3, 6), 5.0_wp, 'sxy going up', abs_tol=1.0e-12_wp)
@@ -588,6 +580,19 @@ contains
         call check(error, dd_difference(r%elements%dn, direct%elements%dn), 0.0_wp, 'dn', &
                    abs_tol=1.0e-9_wp)
     end subroutine test_joint_history
+
+    !> Both models along SPEC-EARTH 3's cycle of sxy, 0 -> 10 -> -10 -> 10 (steps of 1).
+    subroutine solve_cycles(model, coulomb_model, r, coulomb, error)
+        type(model_type), intent(inout) :: model, coulomb_model
+        type(model_results), intent(out) :: r, coulomb
+        type(error_type), allocatable, intent(out) :: error
+
+        call set_path(model, 3, [0.0_wp, 10.0_wp, -10.0_wp, 10.0_wp], [10, 20, 20])
+        call set_path(coulomb_model, 3, [0.0_wp, 10.0_wp, -10.0_wp, 10.0_wp], [10, 20, 20])
+        call solve_history(model, r, error)
+        if (allocated(error)) return
+        call solve_history(coulomb_model, coulomb, error)
+    end subroutine solve_cycles
 
     !> A path of remote stress component q (2 syy, 3 sxy) through the given vertices.
     subroutine set_path(model, q, values, steps)

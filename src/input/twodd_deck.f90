@@ -15,8 +15,7 @@ module ddc_input_twodd_deck
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type, observation_line, condition_traction, &
-        condition_mixed_ss_un, no_residual_drop, &
-        rigid_joint
+        condition_mixed_ss_un
     use ddc_input_text_file, only: read_text_file, base_name
     use ddc_mesh_polyline, only: polyline_elements
     use ddc_mesh_geometry, only: allocate_elements, compute_geometry
@@ -266,12 +265,6 @@ contains
         model%elements%mu = 0.0_wp
         model%elements%sf = 0.0_wp
         model%elements%pressure = 0.0_wp
-        model%elements%tensile_strength = 0.0_wp
-        model%elements%sf_residual = no_residual_drop
-        model%elements%mu_dynamic = no_residual_drop
-        model%elements%slip_weakening_distance = 0.0_wp
-        model%elements%shear_stiffness = rigid_joint
-        model%elements%normal_stiffness = rigid_joint
         call compute_geometry(model%elements)
     end subroutine build_elements
 

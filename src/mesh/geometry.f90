@@ -1,7 +1,7 @@
 !> Geometry derived from element end points: midpoint, half-length, orientation.
 module ddc_mesh_geometry
     use ddc_kinds, only: wp
-    use ddc_model_types, only: element_set
+    use ddc_model_types, only: element_set, no_residual_drop, rigid_joint
     implicit none
     private
 
@@ -9,7 +9,9 @@ module ddc_mesh_geometry
 
 contains
 
-    !> Allocate every array of an element set for n elements (values unset).
+    !> Allocate every array of an element set for n elements (values unset, but the
+    !> strength laws beyond Coulomb at their defaults: no tensile strength, no drops, rigid
+    !> contact).
     subroutine allocate_elements(elements, n)
         !> The set to allocate
         type(element_set), intent(inout) :: elements
@@ -23,6 +25,12 @@ contains
                   elements%pressure(n), elements%tensile_strength(n), elements%sf_residual(n), &
                   elements%mu_dynamic(n), elements%slip_weakening_distance(n), &
                   elements%shear_stiffness(n), elements%normal_stiffness(n))
+        elements%tensile_strength = 0.0_wp
+        elements%sf_residual = no_residual_drop
+        elements%mu_dynamic = no_residual_drop
+        elements%slip_weakening_distance = 0.0_wp
+        elements%shear_stiffness = rigid_joint
+        elements%normal_stiffness = rigid_joint
     end subroutine allocate_elements
 
     !> Fill midpoint, half-length and direction cosines from the end points.
