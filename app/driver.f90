@@ -13,19 +13,22 @@ module ddc_app_driver
     use ddc_model_results, only: model_results
     use ddc_input_namelist, only: read_namelist_model
     use ddc_input_twodd_deck, only: read_twodd_deck
-    use ddc_output_atomic, only: check_writable
+    use ddc_output_atomic, only: check_writable, check_free_space, resolve_target
+    use ddc_output_file_system, only: ignore_file_size_signal
     use ddc_output_hdf5, only: write_results
     use ddc_output_twodd_tables, only: write_twodd_tables
     use ddc_text, only: itoa, prefix_lines
     use ddc_input_sweep, only: read_sweep
     use ddc_sweep_tasks, only: sweep_definition, task_label, task_file_name, check_task, &
-        apply_task, task_problem, check_tasks, output_is_complete
+        apply_task, task_problem, check_tasks
+    use ddc_output_hdf5_read, only: output_is_complete
     use ddc_app_command_line, only: command_line_options, parse_command_line, usage_text, &
         action_version, action_help, task_number
     use ddc_app_report, only: print_model_summary, print_results_summary, field_warnings, &
         print_progress
     use ddc_progress, only: set_progress_handler
-    use ddc_app_memory, only: check_model_memory
+    use ddc_app_memory, only: check_model_memory, result_file_bytes, table_file_bytes
+    use ddc_app_blas, only: check_blas_kernel
     implicit none
     private
 
@@ -59,7 +62,10 @@ contains
         !> Number of processes of an MPI run (default 1)
         integer, intent(in), optional :: processes
         type(error_type), allocatable :: error
+        character(len=:), allocatable :: blas_echo
 
+        ! A write beyond ulimit -f must fail and be reported, not kill us (SIGXFSZ).
+        call ignore_file_size_signal()
         call parse_command_line(options, error)
         if (allocated(error)) then
             write (error_unit, '(a)') program_name//': error: '//error%message
@@ -82,6 +88,8 @@ contains
         case default
             ! action_run: go on below
         end select
+        ! Before anything is read: the serial program may run itself again here.
+        call check_blas_kernel(.not. present(processes), blas_echo)
 
         if (options%twodd) then
             call read_twodd_deck(options%input_file, model, error)
@@ -98,12 +106,19 @@ contains
         call check_writable(model%output_file, error)
         status = error_status(error)
         if (status /= go_on) return
+        call check_free_space(model%output_file, result_file_bytes(model), error)
+        status = error_status(error)
+        if (status /= go_on) return
         if (allocated(options%res_file)) then
             call check_writable(options%res_file, error)
             status = error_status(error)
             if (status /= go_on) return
+            call check_free_space(options%res_file, table_file_bytes(model), error)
+            status = error_status(error)
+            if (status /= go_on) return
         end if
         call print_model_summary(output_unit, model, units_given=.not. options%twodd)
+        write (output_unit, '(a)') blas_echo
         call set_progress_handler(print_progress)
         if (present(processes)) then
             if (processes > 1) then
@@ -128,7 +143,7 @@ contains
         type(error_type), allocatable :: error
         logical :: found, exists
         integer :: task
-        character(len=:), allocatable :: problem
+        character(len=:), allocatable :: problem, final_path
 
         call read_sweep(options%input_file, model, sweep, found, error)
         status = error_status(error)
@@ -178,6 +193,10 @@ contains
         call apply_task(model, sweep, task)
         write (output_unit, '(a)') 'sweep task '//itoa(task)//' of '//itoa(sweep%tasks)// &
             ': '//task_label(sweep, task)
+        ! Before anything opens the task file: a FIFO there would block the completeness check.
+        call resolve_target(model%output_file, final_path, error)
+        status = error_status(error)
+        if (status /= go_on) return
         if (output_is_complete(model%output_file)) then
             write (output_unit, '(a)') 'task '//itoa(task)//': complete output '// &
                 model%output_file//' exists; skipped'

@@ -1,18 +1,20 @@
 !> Before the solve: the memory the model needs (ddc_run_memory) against what this
-!> machine or its cgroup offers (ddc_run_available_memory), echoed; a model that cannot fit
-!> is refused with one message (exit_out_of_memory); the contact solver is told what is
-!> left, so that a fallback from Newton to Lemke that cannot fit stops cleanly too.
+!> machine or its cgroup offers (ddc_run_available_memory), echoed (for the Newton method
+!> from its starting states, and at its largest beside it); a model that cannot fit even
+!> from its starting states is refused with one message (exit_out_of_memory); the contact
+!> solver is told what is left, so that a reduced system that outgrows it, or a fallback
+!> from Newton to Lemke that cannot fit, stops cleanly too.
 module ddc_app_memory
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
-    use ddc_text, only: bytes_text
+    use ddc_text, only: bytes_text, itoa
     use ddc_model_types, only: model_type
     use ddc_run_memory, only: memory_need, estimate_memory, check_memory
     use ddc_run_available_memory, only: available_memory, no_limit
     implicit none
     private
 
-    public :: check_model_memory
+    public :: check_model_memory, result_file_bytes, table_file_bytes
 
 contains
 
@@ -32,8 +34,16 @@ contains
         call available_memory(available, source)
         there = 'no limit found'
         if (available < no_limit) there = bytes_text(available)//' available ('//source//')'
-        write (unit, '(a)') '  memory: about '//bytes_text(need%bytes)//' needed ('// &
-            need%method//'), '//there
+        if (need%worst_bytes > need%bytes) then
+            ! The Newton method from its starting states, and at its largest beside it.
+            write (unit, '(a)') '  memory: about '//bytes_text(need%bytes)//' needed ('// &
+                need%method//', from the starting states: '//itoa(need%start_unknowns)// &
+                ' unknowns), up to '//bytes_text(need%worst_bytes)//' should every element '// &
+                'slip and open; '//there
+        else
+            write (unit, '(a)') '  memory: about '//bytes_text(need%bytes)//' needed ('// &
+                need%method//'), '//there
+        end if
         if (need%fallback_bytes > available .and. need%bytes <= available) write (unit, &
             '(a)') '    (should the Newton '// &
             'method fail, the fallback to Lemke would need about '// &
@@ -42,5 +52,36 @@ contains
         if (allocated(error)) return
         model%solver%work_bytes = max(available - need%held_bytes, 0.0_wp)
     end subroutine check_model_memory
+
+    !> The least size of the HDF5 result file: the field datasets alone, known before the
+    !> solve (x, y, ux, uy, sxx, syy, sxy as 8-byte reals and near_element as a 4-byte
+    !> integer per point, uncompressed), so that a grid of 10^8 points is refused before
+    !> hours of solving when its 6 GB cannot be written.
+    pure function result_file_bytes(model) result(bytes)
+        !> The model to be solved
+        type(model_type), intent(in) :: model
+        !> Bytes [bytes]
+        real(wp) :: bytes
+        integer :: i
+
+        bytes = 0.0_wp
+        if (.not. allocated(model%observations)) return
+        do i = 1, size(model%observations)
+            if (allocated(model%observations(i)%x)) bytes = bytes + &
+                60.0_wp * real(size(model%observations(i)%x), wp)
+        end do
+    end function result_file_bytes
+
+    !> The least size of the TWODD tables of --res: one row of 178 bytes or more per field
+    !> point (i9, 7 es24.15, a newline) and per element (i10, 12 es24.15, a newline).
+    pure function table_file_bytes(model) result(bytes)
+        !> The model to be solved
+        type(model_type), intent(in) :: model
+        !> Bytes [bytes]
+        real(wp) :: bytes
+
+        bytes = 178.0_wp * result_file_bytes(model) / 60.0_wp + 299.0_wp * &
+            real(model%elements%n, wp)
+    end function table_file_bytes
 
 end module ddc_app_memory

@@ -13,6 +13,7 @@ module ddc_app_report
     use ddc_growth_summary, only: tip_summary, summarize_tips
     use ddc_contact_options, only: lcp_method_names, open_cohesion_names
     use ddc_text, only: short_real, itoa, prefix_lines, join_integers
+    use ddc_output_provenance, only: describe_run, provenance_line
     implicit none
     private
 
@@ -341,9 +342,10 @@ contains
                 end do
             end if
             write (unit, '(a,6(f0.3,a))') '  seconds: assembly ', s%seconds_assembly, &
-                ', factorization ', s%seconds_factorization, ', lcp ', s%seconds_lcp, &
+                ', factorization ', s%counts%seconds, ', lcp ', s%seconds_lcp, &
                 ', fields ', s%seconds_fields, ', output ', s%seconds_output, ', total ', &
                 s%seconds_total + s%seconds_output, ''
+            write (unit, '(a)') '  '//provenance_line(describe_run())
         end associate
         if (allocated(results%growth%step)) call print_growth_summary(unit, model, results)
         write (unit, '(a)') 'wrote '//model%output_file

@@ -2,7 +2,7 @@
 """Benchmark ddc2d (SPEC sections 6 and 8).
 
     benchmark.py --exe PATH --sizes 250,500,1000 --case straight|mixed|history|fields|growth
-                 --json FILE [--threads T] [--lcp-method auto|lemke|newton] [--grid NX]
+                 --json FILE [--threads T[,T...]] [--lcp-method auto|lemke|newton] [--grid NX]
                  [--steps K] [--compare-lemke] [--lu-exe PATH] [--workdir DIR]
                  [--mpi P [--mpiexec PATH] [--block-size NB]]
 
@@ -39,6 +39,8 @@ history).
 
 Threads: ``OMP_NUM_THREADS`` and ``OPENBLAS_NUM_THREADS`` are both set to T (default: the
 number of CPUs); ddc2d calls BLAS outside its OpenMP regions only, so the two never nest.
+``--threads 1,2,4,8,16`` runs every size at each thread count in turn (each with its own
+reference LU on as many threads): a table of threads against the time of each phase.
 
 MPI (``--mpi P``, with ``--exe`` the ddc2d of the MPI build): ``mpiexec -n P`` runs the model
 on P processes of T threads each (default T: the CPUs divided by P; ``--oversubscribe`` when
@@ -51,7 +53,10 @@ times are the root's. The reference LU runs on P T threads.
 
 The table printed and the JSON records (a list) hold
 ``{n, case, threads, seconds: {assembly, factorization, lcp, fields, output, total},
-lu_reference_seconds, peak_rss_mb}`` and, in addition, the contact method used, any
+lu_reference_seconds, peak_rss_mb}`` and, in addition, the BLAS library and kernel the run
+used (``blas``, ``blas_core`` from /solver), the share of the total in no named phase
+(``untimed_share``), the memory ddc2d echoed before the solve (``estimated_mb``, from the
+Newton method's starting states), the contact method used, any
 fallback, Newton iterations, LCP pivots, the Newton method's new factorizations, low-rank
 updates and reuses of its factors, element states, the nominal factorization flops and
 rates (``factorization_gflops``, ``lu_reference_gflops``), ``total_over_lu``,
@@ -71,11 +76,16 @@ import tempfile
 import time
 from pathlib import Path
 
-import h5py
-import numpy as np
-
 sys.path.insert(0, str(Path(__file__).resolve().parent))  # ddc2d_h5 lives beside this script
-from ddc2d_h5 import SOLVER_PHASES, read_history, read_solver
+try:
+    import h5py
+    import numpy as np
+
+    from ddc2d_h5 import SOLVER_PHASES, read_history, read_solver
+except ImportError as exc:
+    from ddc2d_venv import rerun_in_venv
+
+    rerun_in_venv("benchmark.py", exc, __file__)
 
 #: Default grid (GRID x GRID points) of each case
 DEFAULT_GRID = {"straight": 100, "mixed": 100, "history": 0, "fields": 500, "growth": 0}
@@ -250,6 +260,16 @@ def run_model(exe, text, method, name, workdir, env, launcher=(), block_size=Non
     return stdout, wall, rss, solver, history, states, dds
 
 
+#: Units of the sizes ddc2d prints
+UNITS = {"kB": 1e3, "MB": 1e6, "GB": 1e9, "TB": 1e12}
+
+
+def echoed_need_mb(stdout):
+    """The memory ddc2d echoed as needed before the solve [MB] (None when not echoed)."""
+    match = re.search(r"^  memory: about ([0-9.]+) (kB|MB|GB|TB) needed", stdout, re.MULTILINE)
+    return float(match.group(1)) * UNITS[match.group(2)] / 1e6 if match else None
+
+
 def growth_summary(stdout, label):
     """Steps and solves of a growth run from its progress lines ('growth step 3: ..., 3
     solve(s), ...'; one more solve for the input geometry), its end reason from the
@@ -296,11 +316,12 @@ def benchmark_one(exe, lu_exe, n, case, threads, method, grid, workdir, steps=10
     stdout, wall, rss, solver, history, states, dds = run_model(
         exe, text, method, name, workdir, env, launcher, block_size)
     seconds, attrs = solver["seconds"], solver["attrs"]
-    # The output phase is timed while the file is written: take it from the summary.
+    # The output phase is timed while the file is written: the file holds its part up to
+    # /solver (in its total too); take the whole from the summary.
     match = re.search(r"output\s+([0-9.]+)", stdout)
     if match:
+        seconds["total"] += float(match.group(1)) - seconds["output"]
         seconds["output"] = float(match.group(1))
-        seconds["total"] += seconds["output"]
     lu_threads = threads * max(processes, 1)
     # A growth run is measured against the LU of its final geometry.
     n_final = len(states[-1]) if history is not None else len(states)
@@ -309,9 +330,14 @@ def benchmark_one(exe, lu_exe, n, case, threads, method, grid, workdir, steps=10
     flops = float(attrs.get("factorization_flops", 0.0))
     fact = seconds["factorization"]
     final = states[-1] if history is not None else states
+    named = sum(seconds[p] for p in SOLVER_PHASES if p != "total")
     record = {
         "n": n, "case": case, "threads": threads, "seconds": seconds,
         "lu_reference_seconds": lu_seconds, "peak_rss_mb": rss,
+        "estimated_mb": echoed_need_mb(stdout),
+        "untimed_share": (seconds["total"] - named) / seconds["total"]
+        if seconds["total"] > 0 else 0.0,
+        "blas": attrs.get("blas", "").strip(), "blas_core": attrs.get("blas_core", "").strip(),
         "lcp_method": method, "method": attrs.get("method", ""),
         "fallback": attrs.get("fallback", ""),
         "newton_iterations": int(attrs.get("newton_iterations", 0)),
@@ -355,8 +381,8 @@ def print_table(records, out=sys.stdout):
     """One row per record; with MPI records the processes and each one's peak RSS."""
     mpi = any("processes" in r for r in records)
     head = ("n", "case", *(("P",) if mpi else ()), "thr", "method", "assembly", "factor",
-            "lcp", "fields", "output", "total", "LU ref", "tot/LU", "fld/LU", "fact GF/s",
-            "LU GF/s", "RSS MB", *(("rank RSS MB",) if mpi else ()), "stk/slp/opn",
+            "lcp", "fields", "output", "total", "untimed", "LU ref", "tot/LU", "fld/LU",
+            "fact GF/s", "LU GF/s", "RSS MB", *(("rank RSS MB",) if mpi else ()), "stk/slp/opn",
             "fact/upd/reuse")
     rows = []
     for r in records:
@@ -367,6 +393,7 @@ def print_table(records, out=sys.stdout):
         rows.append((str(r["n"]), r["case"], *((str(r.get("processes", 1)),) if mpi else ()),
                      str(r["threads"]), r["method"] + ("*" if r["fallback"] else ""),
                      *(f"{s[p]:.3f}" for p in SOLVER_PHASES),
+                     f"{100.0 * r['untimed_share']:.1f}%",
                      f"{r['lu_reference_seconds']:.3f}", f"{r['total_over_lu']:.2f}",
                      f"{r['fields_over_lu']:.2f}", "-" if gf is None else f"{gf:.1f}",
                      f"{r['lu_reference_gflops']:.1f}", f"{r['peak_rss_mb']:.0f}",
@@ -404,9 +431,10 @@ def main(argv=None):
                         help="comma-separated numbers of contact elements")
     parser.add_argument("--case", required=True, choices=sorted(CASES))
     parser.add_argument("--json", required=True, type=Path, help="JSON file to write")
-    parser.add_argument("--threads", type=int, default=None,
-                        help="OpenMP and OpenBLAS threads of each process (default: all "
-                             "CPUs, divided by P with --mpi)")
+    parser.add_argument("--threads", default=None,
+                        help="OpenMP and OpenBLAS threads of each process, or a comma-"
+                             "separated list of them run in turn (default: all CPUs, "
+                             "divided by P with --mpi)")
     parser.add_argument("--lcp-method", default="auto", choices=("auto", "lemke", "newton"))
     parser.add_argument("--grid", type=int, default=None,
                         help="observation grid of GRID x GRID points (0: none; default "
@@ -437,8 +465,13 @@ def main(argv=None):
     if args.mpi < 0 or args.block_size is not None and args.block_size < 1:
         parser.error("--mpi and --block-size must be positive")
     if args.threads is None:
-        args.threads = max(1, (os.cpu_count() or 1) // max(args.mpi, 1))
-    if args.threads < 1:
+        thread_counts = [max(1, (os.cpu_count() or 1) // max(args.mpi, 1))]
+    else:
+        try:
+            thread_counts = [int(t) for t in args.threads.split(",") if t.strip()]
+        except ValueError:
+            parser.error(f"--threads must be comma-separated integers, not {args.threads!r}")
+    if not thread_counts or min(thread_counts) < 1:
         parser.error("--threads must be at least 1")
     if args.steps is None:
         args.steps = DEFAULT_STEPS.get(args.case, 100)
@@ -458,15 +491,18 @@ def main(argv=None):
     with tempfile.TemporaryDirectory() as tmp:
         workdir = args.workdir or Path(tmp)
         workdir.mkdir(parents=True, exist_ok=True)
-        for n in sizes:
-            records.append(benchmark_one(exe, lu_exe, n, args.case, args.threads,
-                                         args.lcp_method, args.grid, workdir, args.steps,
-                                         args.compare_lemke, args.mpi, args.mpiexec,
-                                         args.block_size))
+        for threads in thread_counts:
+            for n in sizes:
+                records.append(benchmark_one(exe, lu_exe, n, args.case, threads,
+                                             args.lcp_method, args.grid, workdir, args.steps,
+                                             args.compare_lemke, args.mpi, args.mpiexec,
+                                             args.block_size))
     processes = f"{args.mpi} MPI processes of " if args.mpi else ""
-    print(f"# ddc2d benchmark, case {args.case}, {processes}{args.threads} thread(s), "
+    threads = ",".join(map(str, thread_counts))
+    cores = sorted({r["blas_core"] for r in records})
+    print(f"# ddc2d benchmark, case {args.case}, {processes}{threads} thread(s), "
           f"lcp_method = {args.lcp_method}, grid {args.grid} x {args.grid}, "
-          f"{time.strftime('%Y-%m-%d')}")
+          f"BLAS kernel {', '.join(cores) or 'unknown'}, {time.strftime('%Y-%m-%d')}")
     print_table(records)
     args.json.write_text(json.dumps(records, indent=2) + "\n")
     return 0

@@ -4,9 +4,11 @@ Used by ``ddc2d-plot``, ``collect-sweep``, ``compare-twodd``, ``benchmark.py`` a
 tests. It knows
 
 * how strings come back from h5py (blank- or NUL-padded fixed-length bytes: ``decode``);
-* the codings of the integer datasets (``STATE_NAMES``, ``CONDITION_NAMES`` and their
-  inverses ``STATE_CODES``, ``CONDITION_CODES``; ``parse_coding`` reads a ``coding``
-  attribute);
+* the codings of the integer datasets: ``load_result`` returns those the file carries
+  (``codings``: the ``coding`` attribute of every dataset that has one, read by
+  ``parse_coding``; ``coding_of`` picks one); ``STATE_NAMES``, ``CONDITION_NAMES`` and their
+  inverses ``STATE_CODES``, ``CONDITION_CODES`` are what ddc2d writes, for files without the
+  attribute and for tools that read single datasets;
 * the groups of a result: ``load_result`` reads a whole file, ``read_elements``,
   ``read_fractures``, ``read_tips``, ``read_fields``, ``read_history``, ``read_growth``,
   ``read_solver`` and ``read_sweep`` one group of an open file; ``is_complete`` tells a
@@ -33,6 +35,9 @@ STATE_CODES = {name: code for code, name in STATE_NAMES.items()}
 CONDITION_NAMES = {1: "traction", 2: "displacement", 3: "mixed_us_sn", 4: "mixed_ss_un",
                    5: "contact", 6: "prescribed_dd"}
 CONDITION_CODES = {name: code for code, name in CONDITION_NAMES.items()}
+
+#: Codings assumed for a file whose dataset lacks its `coding` attribute, by dataset path.
+DEFAULT_CODINGS = {"/elements/state": STATE_NAMES, "/elements/condition": CONDITION_NAMES}
 
 #: /elements datasets a result must have (the others are read when present).
 ELEMENT_DATASETS = ("x_begin", "y_begin", "x_end", "y_end", "ds", "dn")
@@ -144,6 +149,38 @@ def parse_coding(text):
     return {int(code): name for code, name in re.findall(r"(\d+) ([A-Za-z_]+)", decode(text))}
 
 
+def read_codings(handle):
+    """The `coding` attribute of every dataset of an open file that has one, parsed
+    (parse_coding), by dataset path ('/elements/state', '/fields/map/near_element', ...);
+    DEFAULT_CODINGS for the datasets that are there without one."""
+    codings = {}
+
+    def visit(name, item):
+        if isinstance(item, h5py.Dataset):
+            if "coding" in item.attrs:
+                codings["/" + name] = parse_coding(item.attrs["coding"])
+            elif "/" + name in DEFAULT_CODINGS:
+                codings["/" + name] = dict(DEFAULT_CODINGS["/" + name])
+
+    handle.visititems(visit)
+    return codings
+
+
+def coding_of(result, path, default=None):
+    """The coding (code -> name) of the dataset `path` of a loaded result: the file's, else
+    DEFAULT_CODINGS's, else `default` (an empty dict when None)."""
+    found = result["codings"].get(path, DEFAULT_CODINGS.get(path, default))
+    return dict(found or {})
+
+
+def code_of(coding, name):
+    """The code of `name` in a coding (code -> name); KeyError naming the codes known."""
+    for code, known in coding.items():
+        if known == name:
+            return code
+    raise KeyError(f"no code for '{name}' in the coding {coding}")
+
+
 def is_complete(attrs, when_missing=False):
     """True when the root attributes mark the file complete (`complete` = 1, written last
     by ddc2d); `when_missing` is the answer for a file without the attribute."""
@@ -164,8 +201,9 @@ def load_result(path):
     ``tips`` (dict of 1-D arrays x, y, fracture_id, element, k1, k2 and ``k_unit``; empty
     arrays without /tips), ``remote_stress`` ((sxx, syy, sxy) or None),
     ``remote_stress_gradient`` ((dsxx_dy, dsyy_dy, dsxy_dy)) and ``pore_fluid`` ((p0,
-    dp_dy)), zeros when the file predates them, ``history`` (see read_history; None
-    without /history) and ``growth`` (see read_growth; None without /growth).
+    dp_dy)), zeros when the file predates them, ``codings`` (read_codings), ``history``
+    (see read_history; None without /history) and ``growth`` (see read_growth; None
+    without /growth).
     Raises ResultError with a message naming the file and the problem.
     """
     path = Path(path)
@@ -205,6 +243,7 @@ def _read_open_file(path, handle):
         "remote_stress": read_remote_stress(path, handle),
         "remote_stress_gradient": read_root_reals(path, handle, "remote_stress_gradient", 3),
         "pore_fluid": read_root_reals(path, handle, "pore_fluid", 2),
+        "codings": read_codings(handle),
         "history": read_history(path, handle, count),
         "growth": read_growth(path, handle),
     }
@@ -273,8 +312,9 @@ def read_fractures(path, handle, elements):
 
 
 def read_fields(handle):
-    """Every group of /fields as a dict name -> {kind, nx, ny, and each dataset as an
-    array}; empty without /fields."""
+    """Every group of /fields as a dict name -> {kind, nx, ny, ``codings`` (dataset name ->
+    its parsed `coding` attribute: near_element) and each dataset as an array}; empty
+    without /fields."""
     fields = {}
     if "fields" not in handle:
         return fields
@@ -285,10 +325,13 @@ def read_fields(handle):
             "kind": attr_text(group.attrs, "kind"),
             "nx": attr_int(group.attrs, "nx", 0),
             "ny": attr_int(group.attrs, "ny", 0),
+            "codings": {},
         }
         for key, item in group.items():
             if isinstance(item, h5py.Dataset):
                 field[key] = np.asarray(item[()])
+                if "coding" in item.attrs:
+                    field["codings"][key] = parse_coding(item.attrs["coding"])
         fields[name] = field
     return fields
 

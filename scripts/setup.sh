@@ -4,7 +4,8 @@
 #   scripts/setup.sh [--mpi]
 #
 # 1. Debian packages (compiler, CMake, Ninja, OpenBLAS/LAPACK, serial HDF5, h5dump,
-#    python3 + venv, valgrind for the memcheck tests): installed with apt-get only when
+#    python3 + venv, valgrind for the memcheck tests, stress-ng for the CPU hog beside the
+#    second run of the process-level tests in scripts/test.sh): installed with apt-get only when
 #    one of them is missing. With --mpi also Open MPI and ScaLAPACK (openmpi-bin,
 #    libopenmpi-dev, libscalapack-openmpi-dev) for the MPI build (cmake --preset mpi).
 # 2. A Python virtual environment in build/venv with numpy, h5py, matplotlib and pytest
@@ -20,7 +21,7 @@ repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$repo_root"
 
 debian_packages=(gfortran cmake ninja-build libopenblas-dev liblapack-dev libhdf5-dev
-                 hdf5-tools python3 python3-venv valgrind)
+                 hdf5-tools python3 python3-venv valgrind stress-ng)
 # The MPI build: Open MPI with its Fortran mpi_f08 module, and ScaLAPACK (with BLACS) built
 # for it. Not libhdf5-openmpi-dev: the output stays serial HDF5, written by one process.
 mpi_packages=(openmpi-bin libopenmpi-dev libscalapack-openmpi-dev)

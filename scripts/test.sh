@@ -9,7 +9,12 @@
 #   3. the MPI build (Debug, -Werror) and its tests through the `mpi` workflow preset
 #      (label mpi: 1, 2 and 4 processes against the serial program, errors on 4 processes,
 #      a 2-task job on the local Slurm);
-#   4. the numerical suites again under other OpenBLAS kernels (scripts/test-kernels.sh).
+#   4. the numerical suites again under other OpenBLAS kernels (scripts/test-kernels.sh);
+#   5. the process-level tests (python_robustness, python_memory, slurm_sweep and the MPI
+#      build's label mpi, slurm_mpi among them) a second time beside a CPU hog
+#      (stress-ng --cpu 4, bounded by --timeout and stopped when they end), so that a test
+#      that races with a process or a file, or assumes an idle machine, fails here. The
+#      fuzz test makes DDC2D_FUZZ_COUNT=400 runs in this pass (2000 in the first).
 # Exits non-zero when any step fails.
 set -euo pipefail
 
@@ -20,3 +25,18 @@ scripts/setup.sh --mpi
 cmake --workflow --preset debug
 cmake --workflow --preset mpi
 scripts/test-kernels.sh
+
+# 5. Under load. The hog stops by itself after hog_limit seconds should this script die.
+hog_limit=1500
+say() { echo "test.sh: $*"; }
+say "process-level tests again beside stress-ng --cpu 4 (at most ${hog_limit} s)"
+stress-ng --cpu 4 --timeout "${hog_limit}s" --quiet &
+hog=$!
+trap 'kill "$hog" 2>/dev/null || true' EXIT
+start=$SECONDS
+DDC2D_FUZZ_COUNT=400 ctest --preset debug \
+    -R '^(python_robustness|python_memory|slurm_sweep)$'
+ctest --preset mpi
+kill "$hog" 2>/dev/null || true
+wait "$hog" 2>/dev/null || true
+say "process-level tests passed under load in $((SECONDS - start)) s"

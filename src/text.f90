@@ -1,6 +1,8 @@
 !> Small text helpers shared by every layer: a capped list of problem lines joined with
-!> newlines, numbers and lists as text, ASCII lower case, lookup of a name in a list.
+!> newlines, numbers and lists as text, ASCII lower case, lookup of a name in a list, C
+!> strings as Fortran text.
 module ddc_text
+    use, intrinsic :: iso_c_binding, only: c_char, c_null_char
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     implicit none
@@ -8,6 +10,7 @@ module ddc_text
 
     public :: newline, max_messages, add_message, messages_error, itoa, rtoa, short_real, lower
     public :: join_integers, prefix_lines, quoted_list, find_name, bytes_text, seconds_text
+    public :: from_c_chars
 
     !> Separator of the lines of a message
     character(len=*), parameter :: newline = achar(10)
@@ -234,5 +237,26 @@ contains
             end if
         end do
     end function find_name
+
+    !> A Fortran string from C characters, cut at the first NUL.
+    pure function from_c_chars(chars) result(text)
+        !> The characters, NUL-terminated or filling the array
+        character(kind=c_char), intent(in) :: chars(:)
+        !> The text before the NUL
+        character(len=:), allocatable :: text
+        integer :: i, n
+
+        n = size(chars)
+        do i = 1, size(chars)
+            if (chars(i) == c_null_char) then
+                n = i - 1
+                exit
+            end if
+        end do
+        allocate (character(len=n) :: text)
+        do i = 1, n
+            text(i:i) = chars(i)
+        end do
+    end function from_c_chars
 
 end module ddc_text

@@ -12,14 +12,16 @@ module test_fast_contact
     use ddc_constants, only: pi
     use ddc_influence_assembly, only: assemble_influence, row_traction
     use ddc_model_loads, only: resolve_remote_stress
-    use ddc_contact_result, only: contact_result
+    use ddc_contact_result, only: contact_result, contact_stress_scale
     use ddc_contact_formulation, only: solve_contact
     use ddc_contact_options, only: solver_options, parse_solver_options, option_code, &
         open_cohesion_names, lcp_lemke, lcp_newton
     use ddc_test_builders, only: polyline_model, join_fractures
     use ddc_contact_reduced_factors, only: reduced_factors, set_system, solve_system, &
-        action_factorized, action_updated, action_reused
-    use ddc_contact_memory, only: lemke_bytes
+        last_action, counts_of, action_factorized, action_updated, action_reused
+    use ddc_contact_counts, only: factor_counts
+    use ddc_contact_memory, only: lemke_bytes, newton_bytes
+    use ddc_contact_active_set, only: starting_unknowns
     use ddc_error, only: exit_out_of_memory
     implicit none
     private
@@ -50,6 +52,7 @@ contains
                  new_test('reduced_system_updates', test_reduced_updates), &
                  new_test('reduced_update_sequence', test_reduced_update_sequence), &
                  new_test('fallback_without_memory', test_fallback_without_memory), &
+                 new_test('reduced_system_outgrows_memory', test_outgrows_memory), &
                  new_test('bad_method', test_bad_method)]
     end subroutine collect_fast_contact
 
@@ -377,6 +380,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(model_type) :: model
         type(reduced_factors) :: kept, fresh
+        type(factor_counts) :: counts
         real(wp), allocatable :: a(:, :), x(:), y(:), coef(:), ss(:), sn(:)
         integer, allocatable :: unknown(:), partner(:)
         integer :: n, k, i
@@ -389,10 +393,10 @@ contains
         coef = [(0.6_wp, i = 1, 40), (0.0_wp, i = 41, 60)]
         call set_system(kept, a, unknown, partner, coef, 'base', error)
         if (allocated(error)) return
-        call check(error, kept%action, action_factorized, 'first: a factorization')
+        call check(error, last_action(kept), action_factorized, 'first: a factorization')
         call set_system(kept, a, unknown, partner, coef, 'same', error)
         if (allocated(error)) return
-        call check(error, kept%action, action_reused, 'unchanged: the factors reused')
+        call check(error, last_action(kept), action_reused, 'unchanged: the factors reused')
         ! Element 3 leaves, element 41 slips too, element 7 slips the other way, Dn of 20
         ! opens: 2 changed base rows, 2 added unknowns.
         unknown = [(i, i = 1, 2), (i, i = 4, 40), 41, (n + i, i = 41, 60), n + 20]
@@ -401,7 +405,7 @@ contains
         coef(6) = -0.6_wp
         call set_system(kept, a, unknown, partner, coef, 'changed', error)
         if (allocated(error)) return
-        call check(error, kept%action, action_updated, 'a few changes: an update')
+        call check(error, last_action(kept), action_updated, 'a few changes: an update')
         call set_system(fresh, a, unknown, partner, coef, 'fresh', error)
         if (allocated(error)) return
         do k = 1, 3
@@ -412,8 +416,9 @@ contains
             call check(error, maxval(abs(x - y)), 0.0_wp, 'update = fresh factorization', &
                        abs_tol=1.0e-12_wp * maxval(abs(y)))
         end do
-        call check(error, kept%factorizations == 1 .and. kept%updates == 1 .and. &
-                   kept%reuses == 1, 'counts of factorizations, updates and reuses')
+        counts = counts_of(kept)
+        call check(error, counts%factorizations == 1 .and. counts%updates == 1 .and. &
+                   counts%reuses == 1, 'counts of factorizations, updates and reuses')
     end subroutine test_reduced_updates
 
     !> A sequence of updates of one base, as between Newton iterations: the changed base
@@ -430,7 +435,8 @@ contains
         integer, parameter :: systems = 6
         integer :: shear(45, 0:systems)
         logical :: dn20(0:systems), dn41(0:systems)
-        integer :: n, i, k
+        type(factor_counts) :: counts
+        integer :: n, i, k, m
 
         call kinked_system(model, a, ss, sn)
         n = model%elements%n
@@ -453,21 +459,22 @@ contains
         do k = 1, systems
             call set_kinked(kept, k)
             if (allocated(error)) return
-            call check(error, kept%action, action_updated, 'system '//achar(48 + k)// &
+            call check(error, last_action(kept), action_updated, 'system '//achar(48 + k)// &
                        ': an update')
             call set_kinked(fresh, k)
             if (allocated(error)) return
-            x = [(cos(real(k * i, wp)), i = 1, size(kept%unknown))]
+            x = [(cos(real(k * i, wp)), i = 1, m)]
             y = x
             call solve_system(kept, x)
             call solve_system(fresh, y)
             call check(error, maxval(abs(x - y)), 0.0_wp, 'system '//achar(48 + k)// &
                        ': update = fresh factorization', abs_tol=1.0e-12_wp * maxval(abs(y)))
-            call check(error, fresh%action, action_factorized, 'fresh factors')
+            call check(error, last_action(fresh), action_factorized, 'fresh factors')
             if (allocated(error)) return
             fresh = reduced_factors()
         end do
-        call check(error, kept%factorizations == 1 .and. kept%updates == systems, &
+        counts = counts_of(kept)
+        call check(error, counts%factorizations == 1 .and. counts%updates == systems, &
                    'one factorization, then only updates')
 
     contains
@@ -485,6 +492,7 @@ contains
             if (dn41(k)) dn = [41, dn]
             if (dn20(k)) dn = [dn, 20]
             unknown = [ds, n + dn]
+            m = size(unknown)
             partner = n + [ds, dn]
             coef = [0.6_wp * real(shear(ds, k), wp), spread(0.0_wp, 1, size(dn))]
             call set_system(sys, a, unknown, partner, coef, 'sequence', error)
@@ -515,6 +523,40 @@ contains
             .and. index(solve_error%message, 'the fallback to Lemke would need about') > 0, &
             'message: '//solve_error%message)
     end subroutine test_fallback_without_memory
+
+    !> Memory for the kink's first reduced system (the states of the remote stress) but not
+    !> for the larger ones its iterations reach: newton stops cleanly (exit_out_of_memory)
+    !> before allocating it, and does not fall back to Lemke (which needs more).
+    subroutine test_outgrows_memory(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model
+        type(contact_result) :: fast
+        type(error_type), allocatable :: solve_error
+        real(wp), allocatable :: a(:, :), ss(:), sn(:)
+        integer :: first
+
+        call kinked_system(model, a, ss, sn)
+        associate (e => model%elements)
+            first = starting_unknowns(ss, sn + e%pressure, e%mu, e%sf, &
+                                      contact_stress_scale(ss, sn, e%sf, e%pressure))
+            call solve_contact(a, ss, sn, e%mu, e%sf, e%pressure, solver_options( &
+                lcp_method=lcp_newton, work_bytes=newton_bytes(e%n, first)), fast, solve_error)
+        end associate
+        call check(error, allocated(solve_error), 'a reduced system larger than the first '// &
+                   'must not be allocated')
+        if (allocated(error)) return
+        call check(error, solve_error%code, exit_out_of_memory, 'exit code')
+        call check(error, index(solve_error%message, 'ask for a reduced system of ') > 0 .and. &
+            index(solve_error%message, ' is left here') > 0, 'message: '//solve_error%message)
+        ! With the memory of the largest system it solves.
+        deallocate (solve_error)
+        associate (e => model%elements)
+            call solve_contact(a, ss, sn, e%mu, e%sf, e%pressure, solver_options( &
+                lcp_method=lcp_newton, work_bytes=newton_bytes(e%n)), fast, solve_error)
+        end associate
+        call check(error, .not. allocated(solve_error) .and. fast%method == 'newton', &
+                   'enough memory: newton solves')
+    end subroutine test_outgrows_memory
 
     !> The kink, its influence matrix and its resolved remote stress.
     subroutine kinked_system(model, a, ss, sn)

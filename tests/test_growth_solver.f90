@@ -15,7 +15,7 @@ module test_growth_solver
     use ddc_influence_assembly, only: assemble_influence, row_traction
     use ddc_linalg_lu, only: lu_factor, lu_solve
     use ddc_contact_reduced_factors, only: reduced_factors, set_system, solve_system, &
-        renumber_factors, action_updated
+        renumber_factors, last_action, border_unknowns, action_updated
     use ddc_growth_extension, only: tip_path, make_path, extend_model, tip_end_begin, &
         tip_end_end
     use ddc_growth_influence, only: grow_influence, unknown_map, new_elements
@@ -169,7 +169,7 @@ contains
         type(reduced_factors) :: factors
         type(error_type), allocatable :: singular
         real(wp), allocatable :: old(:, :), a(:, :), j(:, :), x(:), rhs(:, :), coef(:)
-        integer, allocatable :: moved_to(:), unknown(:), partner(:), fresh(:), ipiv(:)
+        integer, allocatable :: moved_to(:), unknown(:), partner(:), fresh(:), ipiv(:), kept(:)
         integer :: n0, n, k, l
         logical :: finite
 
@@ -188,7 +188,7 @@ contains
         coef(2) = -0.6_wp
         call set_system(factors, old, [unknown, 2 * n0 - 5], [partner, 2 * n0 - 5], &
                         [coef, 0.0_wp], 'test', singular)
-        call check(error, factors%action, action_updated, 'an update before growing')
+        call check(error, last_action(factors), action_updated, 'an update before growing')
         if (allocated(error)) return
 
         call grow_both_tips(model, 0.3_wp, -0.5_wp, grown, moved_to)
@@ -196,9 +196,10 @@ contains
         allocate (a(2 * n, 2 * n))
         call grow_influence(old, moved_to, grown%elements, g_modulus, nu, .false., a, finite)
         call renumber_factors(factors, unknown_map(moved_to, n))
-        call check(error, size(factors%y0_of) == 1, 'J^-1 B0 kept for the added Dn')
+        call check(error, size(border_unknowns(factors)) == 1, 'J^-1 B0 kept for the added Dn')
         if (allocated(error)) return
-        call check(error, factors%y0_of(1), n + moved_to(n0 - 5), 'kept J^-1 B0 renumbered')
+        kept = border_unknowns(factors)
+        call check(error, kept(1), n + moved_to(n0 - 5), 'kept J^-1 B0 renumbered')
         if (allocated(error)) return
         fresh = new_elements(moved_to, n)
         ! The grown system: the old unknowns at their new places, then Ds and Dn of the new
@@ -210,7 +211,7 @@ contains
         coef(2) = -0.6_wp
         call set_system(factors, a, unknown, partner, coef, 'test', singular)
         call check(error, .not. allocated(singular), 'bordered')
-        call check(error, factors%action, action_updated, 'an update, not a new LU')
+        call check(error, last_action(factors), action_updated, 'an update, not a new LU')
         if (allocated(error)) return
         x = [(sin(real(k, wp)), k = 1, size(unknown))]
         rhs = reshape(x, [size(x), 1])
@@ -246,8 +247,8 @@ contains
         call grow_fractures(model, r, error)
         if (allocated(error)) return
         solves = 1 + sum(r%growth%corrections)
-        call check(error, r%solver%low_rank_updates > 0, 'the factors are updated')
-        call check(error, r%solver%factorizations < solves, &
+        call check(error, r%solver%counts%updates > 0, 'the factors are updated')
+        call check(error, r%solver%counts%factorizations < solves, &
                    'fewer factorizations than solves')
         call run_model(model, fresh, error)
         if (allocated(error)) return

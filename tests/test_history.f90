@@ -378,8 +378,8 @@ contains
                    dd_difference(reshape(newton%history%dn, [size(newton%history%dn)]), &
                                  reshape(lemke%history%dn, [size(lemke%history%dn)])))
         write (*, '(a,es10.3,a,4(i0,a))') '    '//label//': Newton against Lemke ', diff, &
-            ' (factorizations ', newton%solver%factorizations, ', low-rank updates ', &
-            newton%solver%low_rank_updates, ', reuses ', newton%solver%factorization_reuses, &
+            ' (factorizations ', newton%solver%counts%factorizations, ', low-rank updates ', &
+            newton%solver%counts%updates, ', reuses ', newton%solver%counts%reuses, &
             ', pivots ', lemke%solver%pivots, ')'
         call check(error, diff, 0.0_wp, label//': DDs of every step', abs_tol=tight)
     end subroutine compare_methods
@@ -396,8 +396,8 @@ contains
         call set_shear_path(model, [0.0_wp, 10.0_wp, -10.0_wp, 10.0_wp], [20, 40, 40])
         call compare_methods(model, 'play operator', lemke, newton, error)
         if (allocated(error)) return
-        call check(error, newton%solver%factorizations <= 4, 'a few factorizations')
-        call check(error, newton%solver%factorization_reuses >= 30, &
+        call check(error, newton%solver%counts%factorizations <= 4, 'a few factorizations')
+        call check(error, newton%solver%counts%reuses >= 30, &
                    'the factors of unchanged states reused')
         call check(error, newton%solver%pivots, 0, 'no Lemke pivot')
     end subroutine test_play_newton
@@ -446,8 +446,8 @@ contains
         call set_shear_path(model, [0.0_wp, 9.0_wp], [30])
         call compare_methods(model, 'graded weak patch', lemke, newton, error)
         if (allocated(error)) return
-        call check(error, newton%solver%low_rank_updates > 5, 'low-rank updates')
-        call check(error, newton%solver%factorizations < newton%solver%low_rank_updates, &
+        call check(error, newton%solver%counts%updates > 5, 'low-rank updates')
+        call check(error, newton%solver%counts%factorizations < newton%solver%counts%updates, &
                    'fewer new factorizations than updates')
     end subroutine test_patch_updates
 

@@ -11,6 +11,7 @@ module test_memory
     use ddc_run_available_memory, only: available_memory, no_limit
     use ddc_text, only: bytes_text
     use ddc_allocation, only: allocation_failed
+    use ddc_test_builders, only: polyline_model
     implicit none
     private
     public :: collect_memory
@@ -27,6 +28,7 @@ contains
 
         tests = [new_test('estimate_of_each_method', test_estimates), &
                  new_test('estimate_with_condensation_and_points', test_condensation), &
+                 new_test('estimate_from_starting_states', test_starting_states), &
                  new_test('estimate_of_a_loading_history', test_history), &
                  new_test('estimate_of_a_growth_run', test_growth), &
                  new_test('estimate_with_elastic_joints', test_joints), &
@@ -112,6 +114,43 @@ contains
         need = estimate_memory(model)
         call check(error, need%method == 'newton', 'lcp_method = newton')
     end subroutine test_estimates
+
+    !> The paper's fault (every element slips from the start: n unknowns) and the same
+    !> fault sticking (mu = 0.8: none): the Newton method from its starting states, 1.375 m^2
+    !> reals for m unknowns, beside the largest (m = 2n: 5.5 n^2).
+    subroutine test_starting_states(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model
+        type(memory_need) :: need
+        real(wp) :: n, fixed, worst
+
+        model = polyline_model([-1.0_wp, 1.0_wp], [0.0_wp, 0.0_wp], [1000], condition_contact, &
+                               0.0_wp, 0.0_wp, 50000.0_wp, 0.25_wp)
+        model%elements%mu = 0.6_wp
+        model%elements%sf = 1.0_wp
+        model%sxx = -143.75_wp
+        model%syy = -81.25_wp
+        model%sxy = 54.13_wp
+        n = 1000.0_wp
+        fixed = program + r * 50.0_wp * n
+        worst = fixed + r * (9.5_wp * n**2 + 60.0_wp * n)
+        need = estimate_memory(model)
+        call check(error, need%start_unknowns, 1000, 'every element slips from the start')
+        call check(error, need%bytes, fixed + r * (4.0_wp * n**2 + 1.375_wp * n**2 + &
+                   60.0_wp * n), 'A and the reduced system of n unknowns', rel_tol=1.0e-14_wp)
+        call check(error, need%worst_bytes, worst, 'at the largest', rel_tol=1.0e-14_wp)
+        model%elements%mu = 0.8_wp
+        need = estimate_memory(model)
+        call check(error, need%start_unknowns, 0, 'every element sticks from the start')
+        call check(error, need%bytes, fixed + r * (4.0_wp * n**2 + 60.0_wp * n), 'A alone', &
+                   rel_tol=1.0e-14_wp)
+        ! Refused only when the smaller need does not fit; what fits scales with it.
+        call check(error, elements_that_fit(model, need%bytes), 1000, 'the start fits')
+        model%load_path%steps = [4]
+        allocate (model%load_path%vertex(7, 2), source=0.0_wp)
+        need = estimate_memory(model)
+        call check(error, need%start_unknowns, -1, 'a loading history: counted at the largest')
+    end subroutine test_starting_states
 
     !> TWODD-style elements beside contact elements: the whole matrix, K_FF, K_FF^-1 K_FC
     !> and A are held while Newton works; observation points count 13 reals each.

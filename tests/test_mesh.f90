@@ -1,9 +1,12 @@
-!> Tests of the mesh layer: polyline subdivision and the geometric checks.
+!> Tests of the mesh layer: allocation and selection of element sets, polyline
+!> subdivision and the geometric checks.
 module test_mesh
     use ddc_kinds, only: wp
     use ddc_testing, only: test_case, new_test, check, error_type
     use ddc_error, only: exit_bad_input
-    use ddc_model_types, only: element_set, fracture_type
+    use ddc_text, only: itoa
+    use ddc_model_types, only: element_set, fracture_type, element_array_action, &
+        for_each_element_array, select_elements, symmetry_x, domain_half_plane
     use ddc_mesh_geometry, only: allocate_elements
     use ddc_mesh_polyline, only: polyline_elements, expand_per_segment
     use ddc_mesh_checks, only: check_elements
@@ -20,6 +23,22 @@ module test_mesh
         type(fracture_type), allocatable :: fractures(:)
     end type mesh_builder
 
+    !> Numbers every per-element array of a set of n elements: element i of the k-th array
+    !> gets 1000 k + i; with pick, checks that it holds 1000 k + pick(i) instead.
+    type, extends(element_array_action) :: array_numbering
+        !> Number of elements
+        integer :: n = 0
+        !> Arrays seen so far
+        integer :: arrays = 0
+        !> Element of the numbered set each element was selected from (checks when given)
+        integer, allocatable :: pick(:)
+        !> What was wrong, empty when nothing
+        character(len=:), allocatable :: problem
+    contains
+        procedure :: on_reals => number_reals
+        procedure :: on_integers => number_integers
+    end type array_numbering
+
 contains
 
     !> Cases of the mesh suite.
@@ -28,6 +47,7 @@ contains
         type(test_case), allocatable, intent(out) :: tests(:)
 
         tests = [ &
+            new_test('allocate_and_select_every_array', test_allocate_and_select), &
             new_test('polyline_subdivision', test_polyline_subdivision), &
             new_test('expand_per_segment', test_expand_per_segment), &
             new_test('zero_length', test_zero_length), &
@@ -43,6 +63,101 @@ contains
             new_test('large_meshes_pass', test_large) &
             ]
     end subroutine collect_mesh
+
+    ! ---- element sets -------------------------------------------------------------------
+
+    !> allocate_elements sizes every array of the one list, select_elements copies every
+    !> value of the picked elements (repeats too) and keeps symmetry and domain.
+    subroutine test_allocate_and_select(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(element_set) :: elements, selected
+        type(array_numbering) :: numbering, checking
+        integer, parameter :: pick(5) = [3, 1, 3, 4, 2]
+
+        call allocate_elements(elements, 4)
+        elements%symmetry%kind = symmetry_x
+        elements%symmetry%xsym = 2.5_wp
+        elements%domain = domain_half_plane
+        numbering%n = 4
+        numbering%problem = ''
+        call for_each_element_array(elements, numbering)
+        call check(error, numbering%problem == '', 'allocate_elements:'//numbering%problem)
+        call check(error, numbering%arrays >= 16, 'the list holds '// &
+                   itoa(numbering%arrays)//' arrays, element_set has at least 16')
+
+        call select_elements(elements, pick, selected)
+        checking%n = size(pick)
+        checking%pick = pick
+        checking%problem = ''
+        call for_each_element_array(selected, checking)
+        call check(error, checking%problem == '', 'select_elements:'//checking%problem)
+        call check(error, checking%arrays, numbering%arrays, 'arrays selected')
+        call check(error, selected%n, size(pick), 'selected n')
+        call check(error, selected%symmetry%kind, symmetry_x, 'selected symmetry')
+        call check(error, selected%symmetry%xsym == 2.5_wp, 'selected xsym copied exactly')
+        call check(error, selected%domain, domain_half_plane, 'selected domain')
+    end subroutine test_allocate_and_select
+
+    !> Number a real array, or check its numbers (array_numbering).
+    subroutine number_reals(action, values)
+        class(array_numbering), intent(inout) :: action
+        real(wp), allocatable, intent(inout) :: values(:)
+        integer, allocatable :: expected(:)
+        integer :: length
+
+        length = -1
+        if (allocated(values)) length = size(values)
+        call expected_numbers(action, length, expected)
+        if (.not. allocated(expected)) return
+        if (.not. allocated(action%pick)) then
+            values = real(expected, wp)
+        else if (any(values /= real(expected, wp))) then
+            action%problem = action%problem//' real array '//itoa(action%arrays)// &
+                             ' holds other values'
+        end if
+    end subroutine number_reals
+
+    !> Number an integer array, or check its numbers (array_numbering).
+    subroutine number_integers(action, values)
+        class(array_numbering), intent(inout) :: action
+        integer, allocatable, intent(inout) :: values(:)
+        integer, allocatable :: expected(:)
+        integer :: length
+
+        length = -1
+        if (allocated(values)) length = size(values)
+        call expected_numbers(action, length, expected)
+        if (.not. allocated(expected)) return
+        if (.not. allocated(action%pick)) then
+            values = expected
+        else if (any(values /= expected)) then
+            action%problem = action%problem//' integer array '//itoa(action%arrays)// &
+                             ' holds other values'
+        end if
+    end subroutine number_integers
+
+    !> The numbers of the next array; unallocated (and a problem noted) when the array is
+    !> not allocated with n elements.
+    subroutine expected_numbers(action, length, expected)
+        type(array_numbering), intent(inout) :: action
+        !> Size of the array, -1 when it is not allocated
+        integer, intent(in) :: length
+        integer, allocatable, intent(out) :: expected(:)
+        integer :: i
+
+        action%arrays = action%arrays + 1
+        if (length < 0) then
+            action%problem = action%problem//' array '//itoa(action%arrays)// &
+                             ' is not allocated'
+        else if (length /= action%n) then
+            action%problem = action%problem//' array '//itoa(action%arrays)//' has '// &
+                             itoa(length)//' elements'
+        else if (allocated(action%pick)) then
+            expected = 1000 * action%arrays + action%pick
+        else
+            expected = 1000 * action%arrays + [(i, i = 1, action%n)]
+        end if
+    end subroutine expected_numbers
 
     ! ---- helpers ------------------------------------------------------------------------
 

@@ -5,7 +5,7 @@ module test_output
     use ddc_kinds, only: wp
     use ddc_contact_options, only: lcp_lemke, cohesion_kept
     use ddc_testing, only: test_case, new_test, check, error_type
-    use ddc_error, only: exit_bad_input, exit_io_failure
+    use ddc_error, only: exit_io_failure
     use ddc_version, only: program_version, git_commit
     use ddc_model_types, only: model_type, condition_contact, condition_traction, &
         observation_grid, observation_line, no_residual_drop, &
@@ -113,7 +113,7 @@ contains
         call check_writable('/tmp', result_error)
         call check(error, allocated(result_error), 'check_writable refuses a folder')
         if (allocated(error)) return
-        call check(error, result_error%code, exit_bad_input, 'exit code')
+        call check(error, result_error%code, exit_io_failure, 'exit code')
     end subroutine test_check_writable_folder
 
     subroutine test_publish_missing_folder(error)
@@ -492,8 +492,8 @@ contains
         call check(error, allocated(write_error), 'write_results fails on a duplicate group')
         if (allocated(error)) return
         call check(error, write_error%code, exit_io_failure, 'exit code')
-        call check(error, write_error%message == 'HDF5 could not create group /fields/map in ' &
-            //partial_name(path), 'message: '//write_error%message)
+        call check(error, write_error%message == 'writing '//path//' failed: HDF5 could not '// &
+            'create group /fields/map in '//partial_name(path), 'message: '//write_error%message)
         call check(error, .not. exists(path), 'no final file')
         call check(error, .not. exists(partial_name(path)), 'partial file removed')
     end subroutine test_failure_midway

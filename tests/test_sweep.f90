@@ -10,7 +10,8 @@ module test_sweep
     use ddc_input_namelist, only: read_namelist_model
     use ddc_input_sweep, only: read_sweep
     use ddc_sweep_tasks, only: sweep_definition, combine_product, combine_zip, task_values, &
-        task_label, task_file_name, check_task, apply_task, output_is_complete
+        task_label, task_file_name, check_task, apply_task
+    use ddc_output_hdf5_read, only: output_is_complete
     use ddc_run_model, only: run_model
     use ddc_output_hdf5, only: write_results
     use ddc_output_atomic, only: remove_file

@@ -44,13 +44,15 @@ module ddc_contact_active_set
     use ddc_error, only: error_type
     use ddc_contact_stiffness, only: stiffness_operator, reduced_system, action_updated, &
         action_name
-    use ddc_text, only: itoa, seconds_text
+    use ddc_text, only: itoa, seconds_text, bytes_text
+    use ddc_contact_memory, only: newton_bytes
     use ddc_progress, only: report_progress, reports_phases
     use, intrinsic :: iso_fortran_env, only: int64
     implicit none
     private
 
     public :: active_set_result, active_set_workspace, solve_contact_active_set
+    public :: starting_unknowns
     public :: shear_stick, shear_slip_plus, shear_slip_minus
 
     !> Shear states: stick (Ds = 0), slip with s_s = +tau_s (Ds <= 0), slip with
@@ -90,6 +92,9 @@ module ddc_contact_active_set
         !> Wall time of the LU factorizations and updates [s] and the nominal flop count of
         !> the factorizations (2/3 m^3 each)
         real(wp) :: seconds_factorization = 0.0_wp, factorization_flops = 0.0_wp
+        !> Stopped because the states asked for a reduced system larger than the memory
+        !> left (reason says how large)
+        logical :: memory_exceeded = .false.
     end type active_set_result
 
 contains
@@ -97,7 +102,7 @@ contains
     !> Solve the contact conditions on the stiffness system, t = S_r + A D.
     subroutine solve_contact_active_set(a, s_r_s, s_r_np, mu, sf, sigma0, res, &
                                         max_iterations, work, start_open, start_shear, &
-                                        ds_previous)
+                                        ds_previous, work_bytes)
         !> Influence matrix ordered [s; n], 2n x 2n [stress / length]
         class(stiffness_operator), intent(inout) :: a
         !> Remote shear traction and effective normal traction (s_n + p) on each element,
@@ -119,11 +124,13 @@ contains
         !> Total slip of the previous step of a loading history (default 0), shape (n)
         !> [length]
         real(wp), intent(in), optional :: ds_previous(:)
+        !> Memory left for the reduced system and its updates (default: no limit) [bytes]
+        real(wp), intent(in), optional :: work_bytes
 
-        real(wp), allocatable :: t(:), dd(:), tau(:), held(:)
+        real(wp), allocatable :: t(:), dd(:), held(:)
         logical, allocatable :: open_old(:)
         integer, allocatable :: shear_old(:)
-        real(wp) :: c, tol_s, tol_d
+        real(wp) :: c, tol_s, tol_d, limit
         integer :: n, n2, i, unknowns
         integer(int64) :: t0, t1, rate
         logical :: changed, cycling
@@ -135,27 +142,16 @@ contains
         if (.not. c > 0.0_wp) c = 1.0_wp
         tol_s = state_tol * sigma0
         tol_d = state_tol * sigma0 / c
-        allocate (res%ds(n), res%dn(n), dd(n2), t(n2), tau(n), res%ad(n2))
+        allocate (res%ds(n), res%dn(n), dd(n2), t(n2), res%ad(n2))
         allocate (held(n), source=0.0_wp)
         if (present(ds_previous)) held = ds_previous
 
         ! Initial states from the remote stress (D = 0), unless given.
-        if (present(start_open)) then
-            res%open = start_open
-        else
-            res%open = s_r_np > tol_s
-        end if
-        if (present(start_shear)) then
-            res%shear_state = start_shear
-        else
-            allocate (res%shear_state(n))
-            tau = merge(sf, sf - mu * min(s_r_np, 0.0_wp), res%open)
-            do i = 1, n
-                res%shear_state(i) = shear_stick
-                if (abs(s_r_s(i)) > tau(i) + tol_s) res%shear_state(i) = &
-                    int(sign(1.0_wp, s_r_s(i)))
-            end do
-        end if
+        call initial_states(s_r_s, s_r_np, mu, sf, tol_s, res%open, res%shear_state)
+        if (present(start_open)) res%open = start_open
+        if (present(start_shear)) res%shear_state = start_shear
+        limit = huge(1.0_wp)
+        if (present(work_bytes)) limit = work_bytes
         allocate (open_old(n), shear_old(n))
         open_old = .not. res%open
         shear_old = shear_stick
@@ -167,8 +163,8 @@ contains
             end if
             res%iterations = res%iterations + 1
             call system_clock(t0, rate)
-            call solve_states(a, s_r_s, s_r_np, mu, sf, held, sigma0, res, work, dd, t, &
-                              unknowns, singular)
+            call solve_states(a, s_r_s, s_r_np, mu, sf, held, sigma0, limit, res, work, dd, &
+                              t, unknowns, singular)
             if (allocated(singular)) then
                 res%reason = singular%message
                 return
@@ -252,10 +248,12 @@ contains
     !> elements, Dn = 0 on closed ones), and t = S + A dd with A dd in res%ad; unknowns is
     !> the size of the reduced system. singular is allocated when the reduced system is
     !> (numerically) singular.
-    subroutine solve_states(a, s_r_s, s_r_np, mu, sf, held, sigma0, res, work, dd, t, &
-                            unknowns, singular)
+    subroutine solve_states(a, s_r_s, s_r_np, mu, sf, held, sigma0, work_bytes, res, work, &
+                            dd, t, unknowns, singular)
         class(stiffness_operator), intent(inout) :: a
         real(wp), intent(in) :: s_r_s(:), s_r_np(:), mu(:), sf(:), held(:), sigma0
+        !> Memory left for the reduced system and its updates [bytes]
+        real(wp), intent(in) :: work_bytes
         type(active_set_result), intent(inout) :: res
         type(active_set_workspace), intent(inout) :: work
         real(wp), intent(out) :: dd(:), t(:)
@@ -288,6 +286,17 @@ contains
         call reduced_unknowns(res%open, res%shear_state, s(1:n), s(n + 1:), mu, sf, system)
         m = size(system%unknown)
         unknowns = m
+        ! Before its factors are allocated: a system the memory cannot hold stops the run
+        ! cleanly (the estimate before the solve counted the starting states).
+        if (newton_bytes(n, m) > work_bytes) then
+            res%memory_exceeded = .true.
+            allocate (singular)
+            singular%message = 'the states of iteration '//itoa(res%iterations)// &
+                ' ask for a reduced system of '//itoa(m)//' unknowns, which needs about '// &
+                bytes_text(newton_bytes(n, m))//' with its updates, but about '// &
+                bytes_text(work_bytes)//' is left here'
+            return
+        end if
         allocate (x(m))
         subject = 'the reduced system of iteration '//itoa(res%iterations)
         ! Asked even without unknowns: an operator with unknowns of its own updates them.
@@ -374,5 +383,45 @@ contains
             end if
         end do
     end subroutine reduced_unknowns
+
+    !> States from the remote stress alone (D = 0): open where the effective normal
+    !> traction is tensile, slipping towards the shear traction where it exceeds tau_s.
+    pure subroutine initial_states(s_r_s, s_r_np, mu, sf, tol_s, open, shear_state)
+        !> Remote shear and effective normal traction, shape (n) [stress]
+        real(wp), intent(in) :: s_r_s(:), s_r_np(:)
+        !> Friction coefficient [-] and frictional strength [stress], shape (n)
+        real(wp), intent(in) :: mu(:), sf(:)
+        !> State tolerance [stress]
+        real(wp), intent(in) :: tol_s
+        !> Normal and shear states, shape (n)
+        logical, allocatable, intent(out) :: open(:)
+        integer, allocatable, intent(out) :: shear_state(:)
+        real(wp), allocatable :: tau(:)
+        integer :: i
+
+        open = s_r_np > tol_s
+        tau = merge(sf, sf - mu * min(s_r_np, 0.0_wp), open)
+        allocate (shear_state(size(mu)))
+        do i = 1, size(mu)
+            shear_state(i) = shear_stick
+            if (abs(s_r_s(i)) > tau(i) + tol_s) shear_state(i) = int(sign(1.0_wp, s_r_s(i)))
+        end do
+    end subroutine initial_states
+
+    !> Unknowns of the first reduced system of a one-shot solve (the states from the remote
+    !> stress), for the memory estimate before the solve.
+    pure integer function starting_unknowns(s_r_s, s_r_np, mu, sf, sigma0)
+        !> Remote shear and effective normal traction, shape (n) [stress]
+        real(wp), intent(in) :: s_r_s(:), s_r_np(:)
+        !> Friction coefficient [-] and frictional strength [stress], shape (n)
+        real(wp), intent(in) :: mu(:), sf(:)
+        !> Stress scale of the problem [stress]
+        real(wp), intent(in) :: sigma0
+        logical, allocatable :: open(:)
+        integer, allocatable :: shear_state(:)
+
+        call initial_states(s_r_s, s_r_np, mu, sf, state_tol * sigma0, open, shear_state)
+        starting_unknowns = count(shear_state /= shear_stick) + count(open)
+    end function starting_unknowns
 
 end module ddc_contact_active_set

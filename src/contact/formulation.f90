@@ -30,7 +30,9 @@
 !> (ds_previous), keeps its dense stiffness operator (whose factors the Newton method
 !> reuses and updates from step to step) and a contact_session with what else the steps
 !> share: the paper's LCP once Lemke needed it and Lemke's last basis (warm start), the
-!> Newton method's states (warm start) and its fixed tractions.
+!> Newton method's states (warm start) and its fixed tractions. A growth run keeps one
+!> session for its solves: each has a new matrix (new_matrix), so only the states carry
+!> over.
 !>
 !> open_cohesion: 'kept' (the paper) lets an open element carry shear up to Sf;
 !> 'lost' sets Sf = 0 on every element that opens and solves again until no open
@@ -70,6 +72,7 @@ module ddc_contact_formulation
     use ddc_contact_active_set, only: active_set_result, active_set_workspace, &
         solve_contact_active_set
     use ddc_contact_stiffness, only: stiffness_operator, dense_stiffness
+    use ddc_contact_counts, only: factor_counts
     use ddc_contact_result, only: contact_result, contact_stress_scale, problem_scales, &
         block_scales, check_solution, drop_open_cohesion
     use ddc_contact_paper_lcp, only: contact_lcp, build_contact_lcp, solve_paper_lcp, &
@@ -80,6 +83,7 @@ module ddc_contact_formulation
     private
 
     public :: solve_contact, solve_contact_with, contact_session, auto_newton_min_elements
+    public :: new_matrix
     public :: newton_max_iterations
 
     !> lcp_method = 'auto' uses 'newton' from this many contact elements on, else 'lemke'
@@ -110,6 +114,22 @@ module ddc_contact_formulation
     end type contact_session
 
 contains
+
+    !> The session's next solve is on another matrix (a grown model): forget what depends on
+    !> the matrix (the paper's LCP, Lemke's basis, the Newton method's fixed tractions) and
+    !> keep the states, from which the Newton method starts.
+    subroutine new_matrix(session, checked)
+        !> The session
+        type(contact_session), intent(inout) :: session
+        !> Every entry of the new matrix is known to be finite
+        logical, intent(in) :: checked
+        type(contact_session) :: fresh
+
+        call move_alloc(session%open, fresh%open)
+        call move_alloc(session%shear_state, fresh%shear_state)
+        fresh%a_checked = checked
+        session = fresh
+    end subroutine new_matrix
 
     !> Solve the frictional contact problem of n elements (SPEC section 4).
     subroutine solve_contact(a, s_r_s, s_r_n, mu, sf, pressure, options, res, error, rule, &
@@ -151,6 +171,7 @@ contains
         !> 2n + 1 + max_weakening_solves)
         integer, intent(in), optional :: max_solves
         type(dense_stiffness) :: stiffness
+        integer(int64) :: t0, t1, rate
 
         if (size(a, 1) /= 2 * size(mu) .or. size(a, 2) /= 2 * size(mu)) then
             call set_internal_error(error, 'solve_contact', 'array sizes do not match')
@@ -162,6 +183,11 @@ contains
                                 mu_dynamic=mu_dynamic, &
                                 slip_weakening_distance=slip_weakening_distance, &
                                 max_solves=max_solves)
+        ! Freeing the factors (up to (2n)^2 reals) is part of the contact solve's time.
+        call system_clock(t0, rate)
+        call stiffness%discard_factors()
+        call system_clock(t1)
+        res%seconds_lcp = res%seconds_lcp + real(t1 - t0, wp) / real(max(rate, 1_int64), wp)
     end subroutine solve_contact
 
     !> Solve the frictional contact problem of n elements (SPEC section 4) on any stiffness
@@ -223,14 +249,18 @@ contains
         !> Largest number of solves of the strength fixed point (tests; default
         !> 2n + 1 + max_weakening_solves)
         integer, intent(in), optional :: max_solves
-        type(contact_session) :: fresh
-        real(wp), allocatable :: t_start(:), sf_after(:), mu_after(:), d_c(:), s_start(:)
+        type(contact_session), allocatable :: fresh
+        real(wp), allocatable :: t_given(:), sf_after(:), mu_after(:), d_c(:), s_start(:)
         logical :: weakening
         real(wp), allocatable :: held(:)
         real(wp) :: sigma0
         integer :: n, limit, solves_limit
         logical :: checked
+        integer(int64) :: t_start, t_end, rate
 
+        ! The lcp phase: everything from here on (the checks of A included, 4 n^2 reads)
+        ! but the factorizations, so that no part of the solve is in no phase.
+        call system_clock(t_start, rate)
         n = size(mu)
         if (size(s_r_s) /= n .or. size(s_r_n) /= n .or. size(sf) /= n .or. &
             size(pressure) /= n) then
@@ -238,31 +268,21 @@ contains
             return
         end if
         allocate (held(n), source=0.0_wp)
-        allocate (t_start(n), source=0.0_wp)
-        if (present(tensile)) then
-            if (size(tensile) /= n) then
-                call set_internal_error(error, 'solve_contact', 'array sizes do not match')
-                return
-            end if
-            t_start = tensile
-        end if
+        allocate (t_given(n), d_c(n), s_start(n), source=0.0_wp)
         sf_after = sf
-        if (present(sf_residual)) then
-            if (size(sf_residual) /= n) then
-                call set_internal_error(error, 'solve_contact', 'array sizes do not match')
-                return
-            end if
-            sf_after = min(sf, sf_residual)
-        end if
         mu_after = mu
-        if (present(mu_dynamic)) mu_after = min(mu, mu_dynamic)
-        allocate (d_c(n), s_start(n), source=0.0_wp)
+        if (present(tensile)) t_given = tensile
+        if (present(sf_residual)) sf_after = sf_residual
+        if (present(mu_dynamic)) mu_after = mu_dynamic
         if (present(slip_weakening_distance)) d_c = slip_weakening_distance
         if (present(slip_path)) s_start = slip_path
-        if (size(mu_after) /= n .or. size(d_c) /= n .or. size(s_start) /= n) then
+        if (any([size(t_given), size(sf_after), size(mu_after), size(d_c), &
+                 size(s_start)] /= n)) then
             call set_internal_error(error, 'solve_contact', 'array sizes do not match')
             return
         end if
+        sf_after = min(sf, sf_after)
+        mu_after = min(mu, mu_after)
         weakening = any(mu_after < mu)
         solves_limit = 2 * n + 1 + max_weakening_solves
         if (present(max_solves)) solves_limit = max_solves
@@ -280,14 +300,14 @@ contains
         if (.not. (checked .and. all(ieee_is_finite(s_r_s)) .and. &
             all(ieee_is_finite(s_r_n)) .and. all(ieee_is_finite(mu)) .and. &
             all(ieee_is_finite(sf)) .and. all(ieee_is_finite(pressure)) .and. &
-            all(ieee_is_finite(held)) .and. all(ieee_is_finite(t_start)))) then
+            all(ieee_is_finite(held)) .and. all(ieee_is_finite(t_given)))) then
             call set_error(error, exit_bad_input, 'contact: NaN or Inf in the input arrays')
             return
         end if
         if (present(session)) session%a_checked = .true.
         limit = newton_max_iterations
         if (present(max_iterations)) limit = max_iterations
-        if (any(mu < 0.0_wp) .or. any(sf < 0.0_wp) .or. any(t_start < 0.0_wp) .or. &
+        if (any(mu < 0.0_wp) .or. any(sf < 0.0_wp) .or. any(t_given < 0.0_wp) .or. &
             any(sf_after < 0.0_wp) .or. any(mu_after < 0.0_wp) .or. any(d_c < 0.0_wp) .or. &
             any(s_start < 0.0_wp)) then
             call set_internal_error(error, 'solve_contact', &
@@ -306,8 +326,13 @@ contains
         if (present(session)) then
             call solve_in_session(session, .true.)
         else
+            allocate (fresh)
             call solve_in_session(fresh, .false.)
+            deallocate (fresh)
         end if
+        call system_clock(t_end)
+        res%seconds_lcp = real(t_end - t_start, wp) / real(max(rate, 1_int64), wp) - &
+            res%counts%seconds
 
     contains
 
@@ -318,11 +343,11 @@ contains
             logical, intent(in) :: warm
             real(wp), allocatable :: sf_eff(:), t_eff(:), sf_in(:), srn_in(:), t_cap(:)
             real(wp), allocatable :: mu_in(:), mu_next(:), path(:)
-            integer(int64) :: t0, t1, rate
-            logical :: newton, automatic, changed
+            logical :: newton, automatic, changed, exceeded
             integer :: rounds
             character(len=:), allocatable :: reason
             character(len=200) :: line
+            type(factor_counts) :: this_solve
 
             automatic = options%lcp_method == lcp_auto
             newton = options%lcp_method == lcp_newton .or. .not. present(a) .or. &
@@ -334,9 +359,8 @@ contains
             end if
             res%fallback = ''
             rounds = 0
-            call system_clock(t0, rate)
             sf_eff = sf
-            t_eff = t_start
+            t_eff = t_given
             mu_in = friction_in_force(mu, mu_after, d_c, s_start, spread(0, 1, n))
             do
                 rounds = rounds + 1
@@ -348,8 +372,11 @@ contains
                 if (weakening) call stiffness%discard_factors()
                 if (newton) then
                     call solve_once_newton(stiffness, s_r_s, srn_in, mu_in, sf_in, pressure, &
-                        limit, held, sigma0, present(stress_scale), res, s, reason)
-                    if (len(reason) > 0 .and. .not. present(a)) then
+                        limit, held, sigma0, present(stress_scale), options%work_bytes, res, &
+                        s, reason, exceeded)
+                    if (exceeded) then
+                        call set_error(error, exit_out_of_memory, 'contact: '//reason)
+                    else if (len(reason) > 0 .and. .not. present(a)) then
                         call set_error(error, exit_solver_failure, 'contact: '//reason)
                     else if (len(reason) > 0) then
                         ! Lemke's memory, not the Newton factors beside it.
@@ -359,16 +386,22 @@ contains
                         res%fallback = reason
                     end if
                 end if
-                if (.not. newton) then
+                if (.not. newton .and. .not. allocated(error)) then
                     call solve_once_lemke(s, warm, sf_in, srn_in, mu_in)
                     if (allocated(error) .and. automatic .and. len(res%fallback) == 0) then
                         ! M is not copositive-plus: Lemke can end on a ray where the contact
                         ! problem has a solution (seen at acute fault branches). 'auto' then
                         ! asks the Newton method, whose answer is checked the same way, and
                         ! keeps it for the rounds after cohesion is lost.
-                        call solve_once_newton(stiffness, s_r_s, srn_in, mu_in, sf_in, pressure, &
-                            limit, held, sigma0, present(stress_scale), res, s, reason)
-                        if (len(reason) == 0) then
+                        call solve_once_newton(stiffness, s_r_s, srn_in, mu_in, sf_in, &
+                            pressure, limit, held, sigma0, present(stress_scale), &
+                            options%work_bytes, res, s, reason, exceeded)
+                        if (exceeded) then
+                            reason = error%message//' (the Newton method then stopped: '// &
+                                reason//')'
+                            deallocate (error)
+                            call set_error(error, exit_out_of_memory, reason)
+                        else if (len(reason) == 0) then
                             newton = .true.
                             res%method = 'newton'
                             res%fallback = 'lemke failed: '//error%message
@@ -420,12 +453,11 @@ contains
                 end if
                 if (.not. changed) exit
             end do
-            call system_clock(t1)
-            res%seconds_lcp = real(t1 - t0, wp) / real(max(rate, 1_int64), wp) - &
-                res%seconds_factorization
-            res%factorizations = stiffness%factorizations
-            res%low_rank_updates = stiffness%low_rank_updates
-            res%factorization_reuses = stiffness%factorization_reuses
+            ! The operator's counts (of the session), with this solve's time and flops.
+            this_solve = res%counts
+            res%counts = stiffness%counts
+            res%counts%seconds = this_solve%seconds
+            res%counts%flops = this_solve%flops
         end subroutine solve_in_session
 
         !> One Lemke solve of the paper's LCP (built once per session, when memory allows),
@@ -480,7 +512,7 @@ contains
     !> One solve by the active-set Newton method (no inverse of A), certified as the
     !> equivalent LCP. reason is empty on success, else why Lemke must take over.
     subroutine solve_once_newton(stiffness, s_r_s, s_r_n, mu, sf, p, limit, held, sigma0, &
-                                 given, res, s, reason)
+                                 given, work_bytes, res, s, reason, exceeded)
         class(stiffness_operator), intent(inout) :: stiffness
         real(wp), intent(in) :: s_r_s(:), s_r_n(:), mu(:), sf(:), p(:)
         integer, intent(in) :: limit
@@ -489,10 +521,15 @@ contains
         !> Stress scale [stress], used when given (else that of this problem)
         real(wp), intent(in) :: sigma0
         logical, intent(in) :: given
+        !> Memory left for the reduced systems [bytes]
+        real(wp), intent(in) :: work_bytes
         type(contact_result), intent(inout) :: res
         !> The session: its states are the warm start and take this solve's
         type(contact_session), intent(inout) :: s
         character(len=:), allocatable, intent(out) :: reason
+        !> The states asked for a reduced system larger than work_bytes (reason says so):
+        !> no other method can take over (Lemke needs more)
+        logical, intent(out) :: exceeded
         type(active_set_result) :: next
         real(wp), allocatable :: tau(:), z(:), w(:), zs(:), ws(:), snp(:), slip(:)
         real(wp) :: dscale, stiffness_scale
@@ -510,15 +547,17 @@ contains
         if (allocated(s%open)) then
             call solve_contact_active_set(stiffness, s_r_s, s_r_n + p, mu, sf, &
                 res%stress_scale, next, limit, s%newton, s%open, s%shear_state, &
-                ds_previous=held)
+                ds_previous=held, work_bytes=work_bytes)
         else
             call solve_contact_active_set(stiffness, s_r_s, s_r_n + p, mu, sf, &
-                res%stress_scale, next, limit, s%newton, ds_previous=held)
+                res%stress_scale, next, limit, s%newton, ds_previous=held, &
+                work_bytes=work_bytes)
         end if
+        exceeded = next%memory_exceeded
         res%iterations = res%iterations + next%iterations
         res%solves = res%solves + 1
-        res%seconds_factorization = res%seconds_factorization + next%seconds_factorization
-        res%factorization_flops = res%factorization_flops + next%factorization_flops
+        res%counts%seconds = res%counts%seconds + next%seconds_factorization
+        res%counts%flops = res%counts%flops + next%factorization_flops
         if (.not. next%converged) then
             reason = 'newton: '//next%reason
             return

@@ -8,7 +8,9 @@
 !> - Newton (active set): the LU factors of the reduced system, m x m with m at most 2n
 !>   (every element slipping and open; an all-slip fault needs n x n), and the arrays of a
 !>   low-rank update of them (ddc_contact_reduced_factors: at most 3 m x m / 8 while one is
-!>   formed), 5.5 n^2 reals.
+!>   formed), 1.375 m^2 reals: 5.5 n^2 at the largest. The method stops with
+!>   exit_out_of_memory when its states ask for a reduced system larger than the memory
+!>   left (ddc_contact_active_set).
 !> Vectors of length n are counted as 60 n reals for either.
 module ddc_contact_memory
     use ddc_kinds, only: wp
@@ -31,13 +33,19 @@ contains
         lemke_bytes = real_size * (45.0_wp * real(n, wp)**2 + vector_reals * real(n, wp))
     end function lemke_bytes
 
-    !> Peak working memory of the active-set Newton method, its reduced system and a
-    !> low-rank update at their largest [bytes].
-    pure real(wp) function newton_bytes(n)
+    !> Peak working memory of the active-set Newton method: its reduced system of m
+    !> unknowns and a low-rank update of it [bytes].
+    pure real(wp) function newton_bytes(n, unknowns)
         !> Number of contact elements
         integer, intent(in) :: n
+        !> Unknowns m of the reduced system (default 2n, the largest: every element slipping
+        !> and open)
+        integer, intent(in), optional :: unknowns
+        real(wp) :: m
 
-        newton_bytes = real_size * (5.5_wp * real(n, wp)**2 + vector_reals * real(n, wp))
+        m = 2.0_wp * real(n, wp)
+        if (present(unknowns)) m = real(unknowns, wp)
+        newton_bytes = real_size * (1.375_wp * m**2 + vector_reals * real(n, wp))
     end function newton_bytes
 
 end module ddc_contact_memory

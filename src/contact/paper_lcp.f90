@@ -148,9 +148,9 @@ contains
             return
         end if
         call system_clock(t1)
-        res%seconds_factorization = res%seconds_factorization + &
+        res%counts%seconds = res%counts%seconds + &
             real(t1 - t0, wp) / real(max(rate, 1_int64), wp)
-        res%factorization_flops = res%factorization_flops + 2.0_wp * real(size(a, 1), wp)**3
+        res%counts%flops = res%counts%flops + 2.0_wp * real(size(a, 1), wp)**3
         if (reports_phases(size(a, 1) / 2)) call report_progress('inverse of A for '// &
             "Lemke's LCP done in "//seconds_text(real(t1 - t0, wp) / real(max(rate, 1_int64), wp)))
     end subroutine invert_influence

@@ -22,18 +22,21 @@
 !> - more than max(16, m / 8) changed plus added unknowns, or a numerically singular
 !>   I + Delta Z or S: a new factorization, which becomes the base.
 !> The caller checks every solution against the unfactored A (ddc_contact_active_set) and
-!> drops the factors (forget_factors) when an update has lost accuracy.
+!> drops the factors (forget_factors) when an update has lost accuracy. A growth run
+!> factorizes an accepted update anew when it is more than half full (refactor_full_update).
 module ddc_contact_reduced_factors
     use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
     use ddc_linalg_lapack, only: dgemm
     use ddc_linalg_lu, only: lu_factor, lu_solve
+    use ddc_contact_counts, only: factor_counts
     implicit none
     private
 
     public :: reduced_factors, set_system, solve_system, forget_factors, renumber_factors
-    public :: update_limit, copy_factors
+    public :: copy_factors, refactor_full_update
+    public :: last_action, counts_of, border_unknowns
     public :: action_factorized, action_updated, action_reused
 
     !> What set_system did: a new factorization, a low-rank update of the base, or nothing
@@ -42,8 +45,10 @@ module ddc_contact_reduced_factors
     !> Most changes handled by an update: max(min_update_rank, m / update_fraction)
     integer, parameter :: min_update_rank = 16, update_fraction = 8
 
-    !> The reduced system of the current states and the factors it is solved with.
+    !> The reduced system of the current states and the factors it is solved with. Its
+    !> components are private: the procedures below keep them consistent.
     type :: reduced_factors
+        private
         !> The current unknowns ([s; n] indices of A), the partner row of each and its
         !> coefficient, shape (m)
         integer, allocatable :: unknown(:), partner(:)
@@ -70,11 +75,9 @@ module ddc_contact_reduced_factors
         integer, allocatable :: y0_of(:), schur_ipiv(:)
         !> What the last set_system did (action_*)
         integer :: action = 0
-        !> Counts of new factorizations, low-rank updates and reuses of unchanged factors
-        integer :: factorizations = 0, updates = 0, reuses = 0
-        !> Wall time of the factorizations and updates [s] and the nominal flops of the
-        !> factorizations (2/3 m^3 each) [-]
-        real(wp) :: seconds_factorization = 0.0_wp, factorization_flops = 0.0_wp
+        !> New factorizations, low-rank updates and reuses of unchanged factors, the wall
+        !> time of the factorizations and updates and the flops of the factorizations
+        type(factor_counts) :: counts
     end type reduced_factors
 
 contains
@@ -103,7 +106,7 @@ contains
         if (sys%mb >= 0 .and. same_system(sys, unknown, coef)) then
             ! The current system again (unchanged states): its factors or update as they are.
             sys%action = action_reused
-            sys%reuses = sys%reuses + 1
+            sys%counts%reuses = sys%counts%reuses + 1
             return
         end if
         sys%unknown = unknown
@@ -132,14 +135,14 @@ contains
                 sys%nr = 0
                 sys%na = 0
                 sys%action = action_reused
-                sys%reuses = sys%reuses + 1
+                sys%counts%reuses = sys%counts%reuses + 1
                 return
             end if
             if (sys%mb > 0 .and. rank <= update_limit(sys)) then
                 call update_base(sys, a, changed, added, current_at, base_at)
                 if (sys%action == action_updated) then
                     call system_clock(t1)
-                    sys%seconds_factorization = sys%seconds_factorization + &
+                    sys%counts%seconds = sys%counts%seconds + &
                         real(t1 - t0, wp) / real(max(rate, 1_int64), wp)
                     return
                 end if
@@ -155,6 +158,63 @@ contains
 
         update_limit = max(min_update_rank, size(sys%unknown) / update_fraction)
     end function update_limit
+
+    !> Factorize anew an update more than half full (2 (nr + na) > update_limit); a smaller
+    !> one is carried on, leaving half for the unknowns the next systems add (a growth run:
+    !> the accepted geometry's). A singular system is left to the next set_system.
+    subroutine refactor_full_update(sys, a, counts)
+        !> The factors (set_system done); refactored, or forgotten when singular
+        type(reduced_factors), intent(inout) :: sys
+        !> Influence matrix of the current system [s; n], shape (2n, 2n) [stress / length]
+        real(wp), intent(in) :: a(:, :)
+        !> The caller's counts: the factorization, its time and flops are added
+        type(factor_counts), intent(inout) :: counts
+        type(error_type), allocatable :: singular
+        integer, allocatable :: unknown(:), partner(:)
+        real(wp), allocatable :: coef(:)
+        real(wp) :: seconds, flops
+
+        if (sys%mb < 0) return
+        if (2 * (sys%nr + sys%na) <= update_limit(sys)) return
+        unknown = sys%unknown
+        partner = sys%partner
+        coef = sys%coef
+        seconds = sys%counts%seconds
+        flops = sys%counts%flops
+        call forget_factors(sys)
+        call set_system(sys, a, unknown, partner, coef, &
+                        'the reduced system of the accepted geometry', singular)
+        if (allocated(singular)) call forget_factors(sys)
+        counts%factorizations = counts%factorizations + 1
+        counts%seconds = counts%seconds + sys%counts%seconds - seconds
+        counts%flops = counts%flops + sys%counts%flops - flops
+    end subroutine refactor_full_update
+
+    !> What the last set_system did: action_factorized, action_updated, action_reused (or 0).
+    pure integer function last_action(sys)
+        !> The factors
+        type(reduced_factors), intent(in) :: sys
+
+        last_action = sys%action
+    end function last_action
+
+    !> Factorizations, updates and reuses so far, their time and flops (a copy carries them).
+    pure type(factor_counts) function counts_of(sys)
+        !> The factors
+        type(reduced_factors), intent(in) :: sys
+
+        counts_of = sys%counts
+    end function counts_of
+
+    !> The unknowns ([s; n] indices) whose columns J^-1 B0 the last update keeps, shape (na).
+    pure function border_unknowns(sys) result(unknown)
+        !> The factors
+        type(reduced_factors), intent(in) :: sys
+        integer, allocatable :: unknown(:)
+
+        unknown = [integer ::]
+        if (allocated(sys%y0_of)) unknown = sys%y0_of
+    end function border_unknowns
 
     !> to = from, with to's storage of the LU factors reused when it has their shape: a
     !> growth run copies its base's factors for every trial, and a fresh matrix of that
@@ -264,7 +324,7 @@ contains
         sys%na = 0
         call drop_update(sys)
         sys%action = action_factorized
-        sys%factorizations = sys%factorizations + 1
+        sys%counts%factorizations = sys%counts%factorizations + 1
         if (allocated(sys%factors)) deallocate (sys%factors)
         allocate (sys%factors(m, m))
         !$omp parallel do default(none) schedule(static) private(k, l) shared(a, sys, m)
@@ -282,9 +342,9 @@ contains
                        element=modulo(sys%unknown - 1, n) + 1, shear=sys%unknown <= n)
         if (allocated(error)) sys%mb = -1
         call system_clock(t1)
-        sys%seconds_factorization = sys%seconds_factorization + &
+        sys%counts%seconds = sys%counts%seconds + &
             real(t1 - t0, wp) / real(max(rate, 1_int64), wp)
-        sys%factorization_flops = sys%factorization_flops + 2.0_wp / 3.0_wp * real(m, wp)**3
+        sys%counts%flops = sys%counts%flops + 2.0_wp / 3.0_wp * real(m, wp)**3
     end subroutine refactor
 
     !> The low-rank update of the base for the changed base rows and the added unknowns
@@ -326,7 +386,7 @@ contains
         call border(sys, a, added, ok)
         if (.not. ok) return
         sys%action = action_updated
-        sys%updates = sys%updates + 1
+        sys%counts%updates = sys%counts%updates + 1
     end subroutine update_base
 
     !> The changed base rows: Z = J^-1 E_R (the columns of rows changed in the last update

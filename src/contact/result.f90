@@ -12,6 +12,7 @@ module ddc_contact_result
     use ddc_kinds, only: wp
     use ddc_contact_states, only: state_stick, state_slip, state_open
     use ddc_contact_certificate, only: lcp_certificate
+    use ddc_contact_counts, only: factor_counts
     use ddc_linalg_lu, only: residual_tol
     implicit none
     private
@@ -54,8 +55,10 @@ module ddc_contact_result
         integer :: solves = 0
         !> Solves of the Newton method's reduced systems so far (of the session, in a
         !> loading history): new factorizations, low-rank updates, reuses of unchanged
-        !> factors
-        integer :: factorizations = 0, low_rank_updates = 0, factorization_reuses = 0
+        !> factors; the wall time of the factorizations of this solve (the inverse of A
+        !> for Lemke, the LU of the reduced systems for newton) [s] and their nominal flops
+        !> (2/3 m^3 per LU of size m; 2 m^3 for the inverse of A) [-]
+        type(factor_counts) :: counts
         !> Certificate of the last LCP solve
         type(lcp_certificate) :: certificate
         !> Relative equilibrium residual ||A D + S_r - t|| / scale, shear and normal block
@@ -66,13 +69,9 @@ module ddc_contact_result
         real(wp) :: residual_scale_floor = 0.0_wp
         !> Stress scale sigma0 [stress] and displacement scale delta0 [length] used
         real(wp) :: stress_scale = 1.0_wp, dd_scale = 1.0_wp
-        !> Wall time of the factorizations (the inverse of A for Lemke, the LU of the reduced
-        !> systems for newton) and of the rest of the contact solves (building M, Lemke or
+        !> Wall time of the contact solves but their factorizations (building M, Lemke or
         !> the active-set iteration, certificate and recovery, summed over solves) [s]
-        real(wp) :: seconds_factorization = 0.0_wp, seconds_lcp = 0.0_wp
-        !> Nominal flop count of those factorizations (2/3 m^3 per LU of size m; 2 m^3 for
-        !> the inverse of A) [-]
-        real(wp) :: factorization_flops = 0.0_wp
+        real(wp) :: seconds_lcp = 0.0_wp
     end type contact_result
 
 contains

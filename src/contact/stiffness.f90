@@ -12,14 +12,16 @@
 !> The dense operator keeps the factors of its reduced systems between solves
 !> (ddc_contact_reduced_factors): a system of the same unknowns and rows reuses them, a few
 !> changes update them, and only many changes factorize anew; every operator records what
-!> its last solve did (action) and counts it.
+!> its last solve did (action) and counts its solves (ddc_contact_counts).
 module ddc_contact_stiffness
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
     use ddc_linalg_lapack, only: dgemv
+    use ddc_contact_counts, only: factor_counts, since
     use ddc_contact_reduced_factors, only: reduced_factors, set_system, solve_system, &
-        forget_factors, action_factorized, action_updated, action_reused
+        forget_factors, last_action, counts_of, action_factorized, action_updated, &
+        action_reused
     implicit none
     private
 
@@ -44,10 +46,11 @@ module ddc_contact_stiffness
     !> The influence matrix of n contact elements, however it is stored. Every procedure is
     !> called by every process of a distributed run with the same arguments.
     type, abstract :: stiffness_operator
-        !> What the last solve_reduced did (action_*), and how often each: new LU
-        !> factorizations, low-rank updates of kept factors, reuses of unchanged factors
+        !> What the last solve_reduced did (action_*)
         integer :: action = action_solved
-        integer :: factorizations = 0, low_rank_updates = 0, factorization_reuses = 0
+        !> What its reduced solves did so far: new LU factorizations, low-rank updates of
+        !> kept factors, reuses of unchanged factors, their time and flops
+        type(factor_counts) :: counts
     contains
         !> Largest |A_ii| [stress / length]
         procedure(real_query), deferred :: max_diagonal
@@ -179,12 +182,20 @@ contains
         value = maxval(abs(this%a))
     end function dense_max_entry
 
-    !> Every entry finite.
+    !> Every entry finite (a pass over 4 n^2 entries: parallel over the columns).
     function dense_all_finite(this) result(value)
         class(dense_stiffness), intent(in) :: this
         logical :: value
+        real(wp), pointer, contiguous :: a(:, :)
+        integer :: j
 
-        value = all(ieee_is_finite(this%a))
+        a => this%a
+        value = .true.
+        !$omp parallel do default(none) shared(a) reduction(.and.:value) schedule(static)
+        do j = 1, size(a, 2)
+            value = value .and. all(ieee_is_finite(a(:, j)))
+        end do
+        !$omp end parallel do
     end function dense_all_finite
 
     !> t = t + A dd (dgemv).
@@ -206,21 +217,20 @@ contains
         character(len=*), intent(in) :: subject
         type(error_type), allocatable, intent(out) :: singular
         real(wp), intent(inout) :: seconds, flops
-        real(wp) :: seconds_before, flops_before
+        type(factor_counts) :: before, now
 
         this%action = action_solved
         if (size(system%unknown) == 0) return
-        seconds_before = this%factors%seconds_factorization
-        flops_before = this%factors%factorization_flops
+        before = counts_of(this%factors)
         call set_system(this%factors, this%a, system%unknown, system%partner, system%coef, &
                         subject, singular)
-        seconds = seconds + this%factors%seconds_factorization - seconds_before
-        flops = flops + this%factors%factorization_flops - flops_before
-        this%factorizations = this%factors%factorizations
-        this%low_rank_updates = this%factors%updates
-        this%factorization_reuses = this%factors%reuses
+        now = counts_of(this%factors)
+        seconds = seconds + now%seconds - before%seconds
+        flops = flops + now%flops - before%flops
+        ! The factors may carry counts of solves before this operator's (a copy).
+        call this%counts%add(since(now, before))
         if (allocated(singular)) return
-        this%action = this%factors%action
+        this%action = last_action(this%factors)
         x = system%rhs
         call solve_system(this%factors, x)
     end subroutine dense_solve_reduced

@@ -10,15 +10,19 @@ module ddc_growth_clearance
     implicit none
     private
 
-    public :: check_paths, segment_distance
+    public :: check_paths, segment_distance, path_clear
 
     !> New elements keep at least this fraction of their length from every other element
     !> and from the free surface
     real(wp), parameter :: clearance_fraction = 0.5_wp
 
+    !> check_paths' code of a path that keeps clear (else a growth reason: growth_intersection
+    !> or growth_surface)
+    integer, parameter :: path_clear = 0
+
 contains
 
-    !> For every active path: 0 when its new elements keep clear of every element of the
+    !> For every active path: path_clear when its new elements keep clear of every element of the
     !> model and of every other active path, growth_intersection when they do not,
     !> growth_surface when (in a half-plane) they keep clear of every element but not of
     !> the surface. The first new element may meet the tip element only at the tip: its
@@ -30,12 +34,13 @@ contains
         type(tip_path), intent(in) :: paths(:)
         !> Which paths are candidates, shape (size(paths))
         logical, intent(in) :: active(:)
-        !> 0, growth_intersection or growth_surface for each path (0 when not active)
+        !> path_clear, growth_intersection or growth_surface for each path (path_clear when
+        !> not active)
         integer, intent(out) :: problem(:)
         real(wp) :: clearance(size(paths))
         integer :: p, q
 
-        problem = 0
+        problem = path_clear
         do p = 1, size(paths)
             if (.not. active(p)) cycle
             clearance(p) = clearance_fraction * path_element_length(paths(p))
@@ -53,7 +58,7 @@ contains
         end do
         if (model%elements%domain /= domain_half_plane) return
         do p = 1, size(paths)
-            if (.not. active(p) .or. problem(p) /= 0) cycle
+            if (.not. active(p) .or. problem(p) /= path_clear) cycle
             if (any(paths(p)%y(1:) > -clearance(p))) problem(p) = growth_surface
         end do
     end subroutine check_paths

@@ -8,13 +8,14 @@
 !> its MTS angle (reason growth_corrector_failed).
 module ddc_growth_corrector
     use ddc_kinds, only: wp
+    use ddc_constants, only: pi
     use ddc_error, only: error_type
     use ddc_model_types, only: model_type, growth_options, condition_contact
     use ddc_model_results, only: model_results, state_open, growth_grew, &
         growth_corrector_failed
     use ddc_growth_solver, only: growth_solver, solve_grown
     use ddc_growth_extension, only: tip_path, make_path, extend_model
-    use ddc_growth_clearance, only: check_paths
+    use ddc_growth_clearance, only: check_paths, path_clear
     use ddc_growth_tips, only: fracture_tip
     use ddc_text, only: itoa
     implicit none
@@ -24,7 +25,7 @@ module ddc_growth_corrector
 
     !> Largest change of the angle in one corrector iteration [rad] (15 degrees), and
     !> largest distance of the corrected angle from the MTS angle [rad] (45 degrees)
-    real(wp), parameter :: max_step = 0.2617993877991494_wp, max_deviation = 0.7853981633974483_wp
+    real(wp), parameter :: max_step = pi / 12.0_wp, max_deviation = pi / 4.0_wp
 
     !> One growing tip as the corrector sees it.
     type :: kink
@@ -43,6 +44,12 @@ module ddc_growth_corrector
         integer :: solves = 0
         !> growth_grew, growth_corrector_failed, growth_intersection or growth_surface (out)
         integer :: reason = growth_grew
+        !> The corrector's iteration: the tip still grows (its path keeps clear), its angle
+        !> is still corrected; K_II of its new tip at the current angle, and the previous
+        !> point of the secant (angle [rad], K_II) once there is one
+        !> [stress unit * length unit**0.5]
+        logical :: active = .true., correcting = .true., have_prev = .false.
+        real(wp) :: k2 = 0.0_wp, theta_prev = 0.0_wp, k2_prev = 0.0_wp
     end type kink
 
 contains
@@ -77,8 +84,6 @@ contains
         !> Set when a solve fails
         type(error_type), allocatable, intent(out) :: error
         type(tip_path) :: paths(size(kinks))
-        real(wp) :: k2(size(kinks)), theta_prev(size(kinks)), k2_prev(size(kinks))
-        logical :: active(size(kinks)), correcting(size(kinks)), have_prev(size(kinks))
         logical :: changed, closed
         integer :: i, solves, problem(size(kinks))
         integer, allocatable :: moved_to(:)
@@ -86,9 +91,9 @@ contains
         kinks%theta = kinks%theta_mts
         kinks%reason = growth_grew
         kinks%solves = 0
-        active = .true.
-        correcting = .true.
-        have_prev = .false.
+        kinks%active = .true.
+        kinks%correcting = .true.
+        kinks%have_prev = .false.
         current = .false.
         if (options%max_corrections == 0) return
         do i = 1, size(kinks)
@@ -108,20 +113,20 @@ contains
             end if
             changed = .false.
             do i = 1, size(kinks)
-                if (.not. active(i)) cycle
+                if (.not. kinks(i)%active) cycle
                 kinks(i)%solves = kinks(i)%solves + 1
-                if (.not. correcting(i)) cycle
-                call new_tip(trial, solved, kinks(i), k2(i), closed, error)
+                if (.not. kinks(i)%correcting) cycle
+                call new_tip(trial, solved, kinks(i), closed, error)
                 if (allocated(error)) return
                 if (closed) then
                     ! Local symmetry does not apply to a closed tip: grow at the MTS angle.
-                    correcting(i) = .false.
+                    kinks(i)%correcting = .false.
                     kinks(i)%reason = growth_corrector_failed
                     changed = changed .or. kinks(i)%theta /= kinks(i)%theta_mts
                     kinks(i)%theta = kinks(i)%theta_mts
-                else if (abs(k2(i)) > kinks(i)%tolerance) then
+                else if (abs(kinks(i)%k2) > kinks(i)%tolerance) then
                     changed = .true.
-                    call secant_angle(kinks(i), k2(i), have_prev(i), theta_prev(i), k2_prev(i))
+                    call secant_angle(kinks(i))
                 end if
             end do
             if (.not. changed) exit
@@ -131,7 +136,8 @@ contains
         if (current) return
         ! Out of solves: the tips not converged grow at their MTS angle.
         do i = 1, size(kinks)
-            if (active(i) .and. correcting(i) .and. abs(k2(i)) > kinks(i)%tolerance) then
+            if (kinks(i)%active .and. kinks(i)%correcting .and. &
+                abs(kinks(i)%k2) > kinks(i)%tolerance) then
                 kinks(i)%reason = growth_corrector_failed
                 kinks(i)%theta = kinks(i)%theta_mts
             end if
@@ -143,12 +149,12 @@ contains
         !> Paths at the current angles; those that do not keep clear stop their tips.
         subroutine update_paths()
             do i = 1, size(kinks)
-                if (active(i)) paths(i) = path_of(kinks(i))
+                if (kinks(i)%active) paths(i) = path_of(kinks(i))
             end do
-            call check_paths(model, paths, active, problem)
+            call check_paths(model, paths, kinks%active, problem)
             do i = 1, size(kinks)
-                if (problem(i) /= 0) then
-                    active(i) = .false.
+                if (problem(i) /= path_clear) then
+                    kinks(i)%active = .false.
                     kinks(i)%reason = problem(i)
                 end if
             end do
@@ -161,7 +167,7 @@ contains
 
             allocate (packed(0))
             do j = 1, size(kinks)
-                if (active(j)) packed = [packed, paths(j)]
+                if (kinks(j)%active) packed = [packed, paths(j)]
             end do
         end function pack_paths
 
@@ -206,23 +212,22 @@ contains
         call extend_model(model, created, paths, step, options, grown, grown_created, moved_to)
     end subroutine grow_paths
 
-    !> K_II of a kink's new tip in the grown model, and whether that tip is closed (a
+    !> K_II of a kink's new tip in the grown model (k%k2), and whether that tip is closed (a
     !> contact element that is not open, or another condition with K_I <= 0).
-    subroutine new_tip(grown, solved, k, k2, closed, error)
+    subroutine new_tip(grown, solved, k, closed, error)
         type(model_type), intent(in) :: grown
         type(model_results), intent(in) :: solved
-        type(kink), intent(in) :: k
-        real(wp), intent(out) :: k2
+        type(kink), intent(inout) :: k
         logical, intent(out) :: closed
         type(error_type), allocatable, intent(out) :: error
         integer :: e, t
 
-        k2 = 0.0_wp
+        k%k2 = 0.0_wp
         closed = .false.
         call fracture_tip(grown, solved%tips, k%fracture, k%end, t, error)
         if (allocated(error)) return
         e = solved%tips%element(t)
-        k2 = solved%tips%k2(t)
+        k%k2 = solved%tips%k2(t)
         if (grown%elements%condition(e) == condition_contact) then
             closed = solved%elements%state(e) /= state_open
         else
@@ -230,31 +235,27 @@ contains
         end if
     end subroutine new_tip
 
-    !> The next angle of a secant iteration on K_II(theta) = 0 (the first step, and any
-    !> step where the secant slope is not positive, uses the kink's slope): at most
-    !> max_step from the last angle and max_deviation from the MTS angle.
-    pure subroutine secant_angle(k, k2, have_prev, theta_prev, k2_prev)
-        !> The kink; its angle is updated
+    !> The next angle of a secant iteration on K_II(theta) = 0 from the kink's K_II at its
+    !> current angle (the first step, and any step where the secant slope is not positive,
+    !> uses the kink's slope): at most max_step from the last angle and max_deviation from
+    !> the MTS angle. The current point becomes the previous one.
+    pure subroutine secant_angle(k)
+        !> The kink; its angle and previous point are updated
         type(kink), intent(inout) :: k
-        !> K_II of the new tip at the kink's current angle [stress unit * length^0.5]
-        real(wp), intent(in) :: k2
-        !> Whether a previous point exists; the previous angle [rad] and K_II (updated)
-        logical, intent(inout) :: have_prev
-        real(wp), intent(inout) :: theta_prev, k2_prev
         real(wp) :: slope, step
 
         slope = k%slope
-        if (have_prev) then
-            if (k%theta /= theta_prev) then
-                if ((k2 - k2_prev) / (k%theta - theta_prev) > 0.0_wp) then
-                    slope = (k2 - k2_prev) / (k%theta - theta_prev)
+        if (k%have_prev) then
+            if (k%theta /= k%theta_prev) then
+                if ((k%k2 - k%k2_prev) / (k%theta - k%theta_prev) > 0.0_wp) then
+                    slope = (k%k2 - k%k2_prev) / (k%theta - k%theta_prev)
                 end if
             end if
         end if
-        have_prev = .true.
-        theta_prev = k%theta
-        k2_prev = k2
-        step = max(-max_step, min(max_step, -k2 / slope))
+        k%have_prev = .true.
+        k%theta_prev = k%theta
+        k%k2_prev = k%k2
+        step = max(-max_step, min(max_step, -k%k2 / slope))
         k%theta = max(k%theta_mts - max_deviation, min(k%theta_mts + max_deviation, &
                                                         k%theta + step))
     end subroutine secant_angle

@@ -11,7 +11,8 @@
 !>    mesh) and solves it (or keeps the corrector's last solve when it is that geometry).
 !>
 !> Every solve goes through ddc_growth_solver, which grows the influence matrix and the
-!> Newton method's factors from the step before where it can.
+!> Newton method's factors from the step before where it can. What a step changes is in
+!> one growth_state (geometry, solution, solver, tips), which grow_step takes and returns.
 !>
 !> The run ends when no tip is critical any more (arrested) or after `steps` steps
 !> (step_limit); fields, tips and the summary are those of the final geometry.
@@ -21,7 +22,7 @@ module ddc_growth_driver
     use ddc_kinds, only: wp
     use ddc_constants, only: pi
     use ddc_error, only: error_type, set_internal_error
-    use ddc_model_types, only: model_type, growth_tips_most_critical
+    use ddc_model_types, only: model_type, growth_options, growth_tips_most_critical
     use ddc_model_results, only: model_results, growth_record, growth_grew, &
         growth_subcritical, growth_corrector_failed, growth_waiting, growth_arrested, &
         growth_step_limit
@@ -30,7 +31,7 @@ module ddc_growth_driver
         final_results, solves_done
     use ddc_growth_criterion, only: mts_angle, equivalent_k, kink_slope, most_critical
     use ddc_growth_extension, only: tip_path, make_path, tip_element
-    use ddc_growth_clearance, only: check_paths
+    use ddc_growth_clearance, only: check_paths, path_clear
     use ddc_growth_tips, only: growing_tip, find_growing_tips, fracture_tip
     use ddc_growth_corrector, only: kink, correct_kinks, grow_paths
     use ddc_text, only: itoa
@@ -42,6 +43,10 @@ module ddc_growth_driver
     !> The corrector stops when the new tip's |K_II| <= corrector_tolerance
     !> max(K_eq, toughness)
     real(wp), parameter :: corrector_tolerance = 1.0e-3_wp
+
+    !> The reason of a tip that stopped for good in an earlier step: it has no record (the
+    !> reasons of ddc_model_results, growth_grew ... growth_waiting, are not negative)
+    integer, parameter :: reason_stopped = -1
 
     abstract interface
         !> Told after every growth step (the program prints a line and flushes it).
@@ -67,12 +72,26 @@ module ddc_growth_driver
         real(wp), allocatable :: x(:), y(:)
         !> Element of the tip in the current geometry
         integer, allocatable :: element(:)
-        !> The reason of the tip's record (growth_grew ... growth_waiting)
+        !> The reason of the tip's record (growth_grew ... growth_waiting), or reason_stopped
         integer, allocatable :: reason(:)
         !> Applied angle [rad], solves, length grown, K_II after growing
         real(wp), allocatable :: angle(:), length(:), k2_after(:)
         integer, allocatable :: solves(:)
     end type step_tips
+
+    !> What a growth run carries from one step to the next.
+    type :: growth_state
+        !> The current geometry (without observations) and its solution
+        type(model_type) :: work
+        type(model_results) :: current
+        !> The solves of the run (the current geometry is its base)
+        type(growth_solver) :: solver
+        !> Growth step that created each element of work (0: the input), shape (n)
+        integer, allocatable :: created(:)
+        !> The fracture ends that may grow, and this step's view of them
+        type(growing_tip), allocatable :: tips(:)
+        type(step_tips) :: now
+    end type growth_state
 
 contains
 
@@ -87,139 +106,147 @@ contains
         type(error_type), allocatable, intent(out) :: error
         !> Called after every step
         procedure(growth_progress), optional :: progress
-        type(model_type) :: work, trial
-        type(model_results) :: current, solved
-        type(growth_solver) :: solver
-        type(growing_tip), allocatable :: tips(:)
-        type(step_tips) :: now
+        type(growth_state) :: run
         type(growth_record) :: record
-        integer, allocatable :: created(:), trial_created(:), moved_to(:)
         integer :: step, grown, solves_before
         integer(int64) :: t_start, t_step, t_end, rate
-        logical :: trial_current
 
         call system_clock(t_start, rate)
-        work = model
+        run%work = model
         ! Trial solves need no fields: they are evaluated once, on the final geometry.
-        if (allocated(work%observations)) deallocate (work%observations)
-        allocate (work%observations(0), created(work%elements%n))
-        created = 0
+        if (allocated(run%work%observations)) deallocate (run%work%observations)
+        allocate (run%work%observations(0), run%created(run%work%elements%n))
+        run%created = 0
         call empty_record(record)
-        call solve_input(solver, work, current, error)
+        call solve_input(run%solver, run%work, run%current, error)
         if (allocated(error)) then
             error%message = 'growth: solving the input geometry: '//error%message
             return
         end if
-        tips = find_growing_tips(work, current%tips, model%growth%fracture_grows)
+        run%tips = find_growing_tips(run%work, run%current%tips, model%growth%fracture_grows)
         record%end_reason = growth_step_limit
         do step = 1, model%growth%steps
             call system_clock(t_step)
-            solves_before = solves_done(solver)
-            call evaluate_tips(work, current, tips, model%growth%toughness, now, error)
+            solves_before = solves_done(run%solver)
+            call evaluate_tips(run%work, run%current, run%tips, model%growth%toughness, &
+                               run%now, error)
             if (allocated(error)) return
-            if (.not. any(now%reason == growth_grew)) then
-                call append_records(record, step, tips, now)
+            if (.not. any(run%now%reason == growth_grew)) then
+                call append_records(record, step, run%tips, run%now)
                 call report(0)
                 record%end_reason = growth_arrested
                 exit
             end if
-            call choose_growing(work, model%growth%tips, tips, now)
-            call grow_step(trial_current)
+            call choose_growing(run%work, model%growth%tips, run%tips, run%now)
+            call grow_step(run, model%growth, step, grown, error)
             if (allocated(error)) return
-            call append_records(record, step, tips, now)
+            call append_records(record, step, run%tips, run%now)
             if (grown > 0) record%steps_taken = record%steps_taken + 1
             call report(grown)
         end do
 
-        model%elements = work%elements
-        model%fractures = work%fractures
-        call final_results(solver, model, current, results)
-        record%created_step = created
+        model%elements = run%work%elements
+        model%fractures = run%work%fractures
+        call final_results(run%solver, model, run%current, results)
+        record%created_step = run%created
         results%growth = record
         call system_clock(t_end)
         results%solver%seconds_total = real(t_end - t_start, wp) / real(rate, wp)
 
     contains
 
-        !> Correct, add and solve the step's growing tips (reason growth_grew on entry).
-        subroutine grow_step(trial_current)
-            logical, intent(out) :: trial_current
-            type(kink), allocatable :: kinks(:)
-            integer, allocatable :: which(:)
-            type(model_type) :: grown_model
-            integer :: i, t, k
-
-            which = pack([(i, i = 1, size(tips))], now%reason == growth_grew)
-            grown = 0
-            trial_current = .false.
-            if (size(which) == 0) return
-            allocate (kinks(size(which)))
-            do i = 1, size(which)
-                t = which(i)
-                kinks(i) = setup_kink(work, tips(t), now, t, model%growth%toughness)
-            end do
-            call correct_kinks(solver, work, created, model%growth, step, kinks, trial, &
-                               trial_created, solved, trial_current, error)
-            if (allocated(error)) return
-            do i = 1, size(which)
-                t = which(i)
-                now%reason(t) = kinks(i)%reason
-                now%solves(t) = kinks(i)%solves
-                if (kinks(i)%reason == growth_grew .or. &
-                    kinks(i)%reason == growth_corrector_failed) then
-                    grown = grown + 1
-                    now%angle(t) = kinks(i)%theta
-                    now%length(t) = kinks(i)%length
-                else
-                    tips(t)%stopped = .true.
-                end if
-            end do
-            if (trial_current) then
-                call move_alloc(trial_created, created)
-                work = trial
-                current = solved
-            else
-                call grow_paths(work, created, model%growth, step, kinks, grown_model, &
-                                trial_created, moved_to)
-                call move_alloc(trial_created, created)
-                work = grown_model
-                call solve_grown(solver, work, moved_to, current, error)
-                if (allocated(error)) then
-                    error%message = 'growth step '//itoa(step)//': '//error%message
-                    return
-                end if
-            end if
-            call accept_trial(solver)
-            call check_elements(work%elements, work%fractures, error)
-            if (allocated(error)) then
-                call set_internal_error(error, 'grow_fractures', 'growth step '//itoa(step)// &
-                                        ' made a bad mesh: '//error%message)
-                return
-            end if
-            do i = 1, size(which)
-                t = which(i)
-                if (now%length(t) <= 0.0_wp) cycle
-                call fracture_tip(work, current%tips, tips(t)%fracture, tips(t)%end, k, error)
-                if (allocated(error)) return
-                now%k2_after(t) = current%tips%k2(k)
-            end do
-        end subroutine grow_step
-
         !> Tell the caller how the step went.
         subroutine report(growing)
             integer, intent(in) :: growing
+            integer(int64) :: t_now
 
-            call system_clock(t_end)
-            if (present(progress)) call progress(step, growing, maxval([0.0_wp, now%k_eq]), &
-                                                 solves_done(solver) - solves_before, &
-                                                 real(t_end - t_step, wp) / real(rate, wp), &
-                                                 real(t_end - t_start, wp) / real(rate, wp))
+            call system_clock(t_now)
+            if (present(progress)) call progress(step, growing, maxval([0.0_wp, run%now%k_eq]), &
+                                                 solves_done(run%solver) - solves_before, &
+                                                 real(t_now - t_step, wp) / real(rate, wp), &
+                                                 real(t_now - t_start, wp) / real(rate, wp))
         end subroutine report
 
     end subroutine grow_fractures
 
+    !> One step's growth of the growing tips (reason growth_grew on entry): correct their
+    !> kink angles, add the new elements and solve the grown model (or keep the corrector's
+    !> last solve when it is that geometry), which becomes the run's current geometry. The
+    !> tips' reasons, applied angles, lengths, solves and K_II after growing are set in
+    !> run%now; tips that cannot grow any more are stopped.
+    subroutine grow_step(run, options, step, grown, error)
+        !> The run: its geometry, solution, solver, tips and their view of this step
+        type(growth_state), intent(inout) :: run
+        !> The model's growth options
+        type(growth_options), intent(in) :: options
+        !> The growth step
+        integer, intent(in) :: step
+        !> Number of tips that grew
+        integer, intent(out) :: grown
+        !> Set when a solve fails (naming the step) or the grown mesh is bad
+        type(error_type), allocatable, intent(out) :: error
+        type(kink), allocatable :: kinks(:)
+        type(model_type) :: trial
+        type(model_results) :: solved
+        integer, allocatable :: which(:), trial_created(:), moved_to(:)
+        integer :: i, t, k
+        logical :: trial_current
+
+        grown = 0
+        which = pack([(i, i = 1, size(run%tips))], run%now%reason == growth_grew)
+        if (size(which) == 0) return
+        allocate (kinks(size(which)))
+        do i = 1, size(which)
+            kinks(i) = setup_kink(run%work, run%tips(which(i)), run%now, which(i), &
+                                  options%toughness)
+        end do
+        call correct_kinks(run%solver, run%work, run%created, options, step, kinks, trial, &
+                           trial_created, solved, trial_current, error)
+        if (allocated(error)) return
+        do i = 1, size(which)
+            t = which(i)
+            run%now%reason(t) = kinks(i)%reason
+            run%now%solves(t) = kinks(i)%solves
+            if (kinks(i)%reason == growth_grew .or. &
+                kinks(i)%reason == growth_corrector_failed) then
+                grown = grown + 1
+                run%now%angle(t) = kinks(i)%theta
+                run%now%length(t) = kinks(i)%length
+            else
+                run%tips(t)%stopped = .true.
+            end if
+        end do
+        if (.not. trial_current) then
+            call grow_paths(run%work, run%created, options, step, kinks, trial, &
+                            trial_created, moved_to)
+            call solve_grown(run%solver, trial, moved_to, solved, error)
+            if (allocated(error)) then
+                error%message = 'growth step '//itoa(step)//': '//error%message
+                return
+            end if
+        end if
+        call move_alloc(trial_created, run%created)
+        run%work = trial
+        run%current = solved
+        call accept_trial(run%solver)
+        call check_elements(run%work%elements, run%work%fractures, error)
+        if (allocated(error)) then
+            call set_internal_error(error, 'grow_fractures', 'growth step '//itoa(step)// &
+                                    ' made a bad mesh: '//error%message)
+            return
+        end if
+        do i = 1, size(which)
+            t = which(i)
+            if (run%now%length(t) <= 0.0_wp) cycle
+            call fracture_tip(run%work, run%current%tips, run%tips(t)%fracture, &
+                              run%tips(t)%end, k, error)
+            if (allocated(error)) return
+            run%now%k2_after(t) = run%current%tips%k2(k)
+        end do
+    end subroutine grow_step
+
     !> K, MTS angle and K_eq of every tip that may still grow; reason growth_subcritical
-    !> (K_eq < toughness) or growth_grew (critical) for those, -1 for stopped tips.
+    !> (K_eq < toughness) or growth_grew (critical) for those, reason_stopped for the others.
     subroutine evaluate_tips(work, current, tips, toughness, now, error)
         type(model_type), intent(in) :: work
         type(model_results), intent(in) :: current
@@ -244,7 +271,7 @@ contains
         now%element = 0
         now%length = 0.0_wp
         now%solves = 0
-        now%reason = -1
+        now%reason = reason_stopped
         do i = 1, n
             if (tips(i)%stopped) cycle
             now%element(i) = tip_element(work, tips(i)%fracture, tips(i)%end)
@@ -289,7 +316,7 @@ contains
             untried(best) = .false.
             call check_paths(work, paths, [(i == best, i = 1, size(tips))], problem)
             call stop_blocked()
-            if (problem(best) == 0) exit
+            if (problem(best) == path_clear) exit
         end do
         where (untried) now%reason = growth_waiting
 
@@ -297,7 +324,7 @@ contains
 
         subroutine stop_blocked()
             do i = 1, size(tips)
-                if (problem(i) == 0) cycle
+                if (problem(i) == path_clear) cycle
                 now%reason(i) = problem(i)
                 tips(i)%stopped = .true.
             end do
@@ -366,7 +393,7 @@ contains
         integer :: n
         real(wp), parameter :: degrees = 180.0_wp / pi
 
-        keep = now%reason >= 0
+        keep = now%reason /= reason_stopped
         n = count(keep)
         record%step = [record%step, spread(step, 1, n)]
         record%fracture_id = [record%fracture_id, pack(tips%fracture, keep)]

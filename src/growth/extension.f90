@@ -5,8 +5,8 @@
 module ddc_growth_extension
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type, element_set, growth_options, condition_contact, &
-        no_residual_drop, rigid_joint
-    use ddc_mesh_geometry, only: allocate_elements, compute_geometry
+        select_elements, no_residual_drop, rigid_joint
+    use ddc_mesh_geometry, only: compute_geometry
     implicit none
     private
 
@@ -130,7 +130,9 @@ contains
         integer, allocatable, intent(out) :: grown_created(:)
         !> The index in grown of each element of model, shape (model n)
         integer, allocatable, intent(out), optional :: moved_to(:)
-        type(element_set) :: fresh
+        real(wp), allocatable :: x_begin(:), y_begin(:), x_end(:), y_end(:)
+        logical, allocatable :: is_new(:)
+        integer, allocatable :: pick(:)
         integer :: added, f, p, pb, pe, k, next, n
 
         added = 0
@@ -138,11 +140,9 @@ contains
             added = added + paths(p)%n
         end do
         n = model%elements%n + added
-        fresh%symmetry = model%elements%symmetry
-        fresh%domain = model%elements%domain
-        call allocate_elements(fresh, n)
-        allocate (fresh%x_mid(n), fresh%y_mid(n), fresh%half_length(n), fresh%cos_beta(n), &
-                  fresh%sin_beta(n), grown_created(n))
+        allocate (pick(n), grown_created(n))
+        allocate (is_new(n), source=.false.)
+        allocate (x_begin(n), y_begin(n), x_end(n), y_end(n), source=0.0_wp)
         grown = model
         if (present(moved_to)) allocate (moved_to(model%elements%n))
         next = 0
@@ -159,7 +159,7 @@ contains
             end if
             do k = model%fractures(f)%first_element, model%fractures(f)%last_element
                 next = next + 1
-                call copy_element(k, next)
+                pick(next) = k
                 grown_created(next) = created(k)
                 if (present(moved_to)) moved_to(k) = next
             end do
@@ -171,35 +171,33 @@ contains
             end if
             grown%fractures(f)%last_element = next
         end do
-        call compute_geometry(fresh)
-        grown%elements = fresh
+        ! Every element takes the values of the one it comes from; new ones then their
+        ! own end points, the default laws (they are intact: no T, no drops, rigid) and
+        ! new_mu, new_sf when overridden.
+        call select_elements(model%elements, pick, grown%elements)
+        associate (a => grown%elements)
+            where (is_new)
+                a%x_begin = x_begin
+                a%y_begin = y_begin
+                a%x_end = x_end
+                a%y_end = y_end
+                a%tensile_strength = 0.0_wp
+                a%sf_residual = no_residual_drop
+                a%mu_dynamic = no_residual_drop
+                a%slip_weakening_distance = 0.0_wp
+                a%shear_stiffness = rigid_joint
+                a%normal_stiffness = rigid_joint
+            end where
+            if (options%override_mu) then
+                where (is_new .and. a%condition == condition_contact) a%mu = options%new_mu
+            end if
+            if (options%override_sf) then
+                where (is_new .and. a%condition == condition_contact) a%sf = options%new_sf
+            end if
+        end associate
+        call compute_geometry(grown%elements)
 
     contains
-
-        !> Element `from` of model becomes element `to` of grown.
-        subroutine copy_element(from, to)
-            integer, intent(in) :: from, to
-
-            associate (a => fresh, b => model%elements)
-                a%x_begin(to) = b%x_begin(from)
-                a%y_begin(to) = b%y_begin(from)
-                a%x_end(to) = b%x_end(from)
-                a%y_end(to) = b%y_end(from)
-                a%fracture_id(to) = b%fracture_id(from)
-                a%condition(to) = b%condition(from)
-                a%bc_s(to) = b%bc_s(from)
-                a%bc_n(to) = b%bc_n(from)
-                a%mu(to) = b%mu(from)
-                a%sf(to) = b%sf(from)
-                a%pressure(to) = b%pressure(from)
-                a%tensile_strength(to) = b%tensile_strength(from)
-                a%sf_residual(to) = b%sf_residual(from)
-                a%mu_dynamic(to) = b%mu_dynamic(from)
-                a%slip_weakening_distance(to) = b%slip_weakening_distance(from)
-                a%shear_stiffness(to) = b%shear_stiffness(from)
-                a%normal_stiffness(to) = b%normal_stiffness(from)
-            end associate
-        end subroutine copy_element
 
         !> The next element of grown: from (xb, yb) to (xe, ye), with the values of the
         !> tip element `parent` of model.
@@ -208,25 +206,13 @@ contains
             integer, intent(in) :: parent
 
             next = next + 1
-            call copy_element(parent, next)
+            pick(next) = parent
             grown_created(next) = step
-            associate (a => fresh)
-                a%x_begin(next) = xb
-                a%y_begin(next) = yb
-                a%x_end(next) = xe
-                a%y_end(next) = ye
-                ! New elements are intact and take the default laws (no T, no drops).
-                a%tensile_strength(next) = 0.0_wp
-                a%sf_residual(next) = no_residual_drop
-                a%mu_dynamic(next) = no_residual_drop
-                a%slip_weakening_distance(next) = 0.0_wp
-                a%shear_stiffness(next) = rigid_joint
-                a%normal_stiffness(next) = rigid_joint
-                if (a%condition(next) == condition_contact) then
-                    if (options%override_mu) a%mu(next) = options%new_mu
-                    if (options%override_sf) a%sf(next) = options%new_sf
-                end if
-            end associate
+            is_new(next) = .true.
+            x_begin(next) = xb
+            y_begin(next) = yb
+            x_end(next) = xe
+            y_end(next) = ye
         end subroutine new_element
 
     end subroutine extend_model

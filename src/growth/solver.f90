@@ -16,6 +16,9 @@
 !> - is solved, certified and checked by solve_contact_with exactly as a one-shot solve,
 !>   with the same fallbacks (an update that lost accuracy factorizes anew, a Newton
 !>   failure falls back to Lemke).
+!> The trials share one contact_session (each on its own matrix: new_matrix), whose states
+!> carry over from one trial to the next; when a step is accepted, an update of its factors
+!> that leaves the next step's trials no room is factorized anew (refactor_full_update).
 !> Every other model (Lemke, TWODD-style elements, no contact) is solved from scratch by
 !> run_model, as before growth had a solver. Tractions, face displacements and fields are
 !> computed once, for the final geometry (final_results).
@@ -33,11 +36,12 @@ module ddc_growth_solver
     use ddc_solve_frictional, only: record_contact
     use ddc_contact_options, only: lcp_auto, lcp_newton
     use ddc_contact_result, only: contact_result
-    use ddc_contact_formulation, only: solve_contact_with, contact_session, &
+    use ddc_contact_formulation, only: solve_contact_with, contact_session, new_matrix, &
         auto_newton_min_elements
+    use ddc_contact_counts, only: factor_counts
     use ddc_contact_stiffness, only: dense_stiffness
-    use ddc_contact_reduced_factors, only: reduced_factors, renumber_factors, set_system, &
-        forget_factors, update_limit, copy_factors
+    use ddc_contact_reduced_factors, only: reduced_factors, renumber_factors, copy_factors, &
+        refactor_full_update
     use ddc_post_tips, only: find_tips
     use ddc_run_model, only: run_model, finish_model, evaluate_fields
     use ddc_growth_influence, only: grow_influence, unknown_map
@@ -61,12 +65,12 @@ module ddc_growth_solver
         !> A trial was solved since the last accept_trial, and on the kept path
         logical :: pending = .false., trial_kept = .false.
         !> The last trial: its matrix, where the base block sits in it (moved_to; not
-        !> allocated when the matrix was assembled whole), its states; its factors live in
-        !> the stiffness operator
+        !> allocated when the matrix was assembled whole), the contact session of its solves
+        !> (its states: the next trial's start) and the stiffness operator, in which its
+        !> factors live
         real(wp), allocatable :: matrix(:, :)
         integer, allocatable :: layout(:)
-        logical, allocatable :: open(:)
-        integer, allocatable :: shear(:)
+        type(contact_session) :: session
         type(dense_stiffness) :: stiffness
         !> Sums over every solve of the run: phase times and counts
         type(solver_record) :: totals
@@ -152,46 +156,13 @@ contains
             return
         end if
         call move_alloc(solver%matrix, solver%base_matrix)
-        call move_alloc(solver%open, solver%base_open)
-        call move_alloc(solver%shear, solver%base_shear)
-        call refactor_updated(solver%stiffness%factors, solver%base_matrix, solver%totals)
+        call move_alloc(solver%session%open, solver%base_open)
+        call move_alloc(solver%session%shear_state, solver%base_shear)
+        ! A full update would leave the next step's trials no room: factorize it anew.
+        call refactor_full_update(solver%stiffness%factors, solver%base_matrix, &
+                                  solver%totals%counts)
         call copy_factors(solver%base_factors, solver%stiffness%factors)
     end subroutine accept_trial
-
-    !> Factorize the last reduced system anew when it was solved through an update that
-    !> fills more than half of what an update may hold; a smaller update is carried on (its
-    !> kept columns serve the next step's trials), leaving the other half for the new
-    !> unknowns of the next step, so that its trials do not factorize.
-    subroutine refactor_updated(factors, a, totals)
-        !> The factors of the accepted solve; refactored, or forgotten when singular
-        type(reduced_factors), intent(inout) :: factors
-        !> The influence matrix of the accepted geometry [s; n]
-        real(wp), intent(in) :: a(:, :)
-        !> The run's totals: the factorization is counted
-        type(solver_record), intent(inout) :: totals
-        type(error_type), allocatable :: singular
-        integer, allocatable :: unknown(:), partner(:)
-        real(wp), allocatable :: coef(:)
-        real(wp) :: seconds, flops
-
-        if (factors%mb < 0) return
-        if (2 * (factors%nr + factors%na) <= update_limit(factors)) return
-        unknown = factors%unknown
-        partner = factors%partner
-        coef = factors%coef
-        seconds = factors%seconds_factorization
-        flops = factors%factorization_flops
-        call forget_factors(factors)
-        call set_system(factors, a, unknown, partner, coef, &
-                        'the reduced system of the accepted geometry', singular)
-        ! A singular system is left to the next solve, which factorizes anew and reports it.
-        if (allocated(singular)) call forget_factors(factors)
-        totals%factorizations = totals%factorizations + 1
-        totals%seconds_factorization = totals%seconds_factorization + &
-            factors%seconds_factorization - seconds
-        totals%factorization_flops = totals%factorization_flops + &
-            factors%factorization_flops - flops
-    end subroutine refactor_updated
 
     !> The results of the final geometry (the last accepted one): tractions, face
     !> displacements and tips from the kept matrix when kept, and the fields; the solver
@@ -223,14 +194,10 @@ contains
         end if
         associate (s => results%solver, t => solver%totals)
             s%seconds_assembly = t%seconds_assembly
-            s%seconds_factorization = t%seconds_factorization
+            s%counts = t%counts
             s%seconds_lcp = t%seconds_lcp
             s%seconds_fields = t%seconds_fields - last%seconds_fields + s%seconds_fields
             s%newton_iterations = t%newton_iterations
-            s%factorizations = t%factorizations
-            s%low_rank_updates = t%low_rank_updates
-            s%factorization_reuses = t%factorization_reuses
-            s%factorization_flops = t%factorization_flops
             s%pivots = t%pivots
             s%lcp_solves = t%lcp_solves
         end associate
@@ -242,14 +209,10 @@ contains
         type(solver_record), intent(in) :: one
 
         totals%seconds_assembly = totals%seconds_assembly + one%seconds_assembly
-        totals%seconds_factorization = totals%seconds_factorization + one%seconds_factorization
+        call totals%counts%add(one%counts)
         totals%seconds_lcp = totals%seconds_lcp + one%seconds_lcp
         totals%seconds_fields = totals%seconds_fields + one%seconds_fields
         totals%newton_iterations = totals%newton_iterations + one%newton_iterations
-        totals%factorizations = totals%factorizations + one%factorizations
-        totals%low_rank_updates = totals%low_rank_updates + one%low_rank_updates
-        totals%factorization_reuses = totals%factorization_reuses + one%factorization_reuses
-        totals%factorization_flops = totals%factorization_flops + one%factorization_flops
         totals%pivots = totals%pivots + one%pivots
         totals%lcp_solves = totals%lcp_solves + one%lcp_solves
     end subroutine add_record
@@ -266,7 +229,7 @@ contains
         type(reduced_factors) :: no_factors
         integer, allocatable :: shear_row(:), normal_row(:)
         logical :: grow, placed, finite
-        integer :: n, stat, before(3)
+        integer :: n, stat
         real(wp) :: g
         integer(int64) :: t0, t1, rate
 
@@ -297,7 +260,7 @@ contains
             call renumber_factors(solver%stiffness%factors, unknown_map(moved_to, n))
             ! A later trial of the step starts from the states of the one before (its new
             ! elements lie close to these), the first one from the base's.
-            if (.not. (placed .and. allocated(solver%open))) then
+            if (.not. (placed .and. allocated(solver%session%open))) then
                 call inherit_states(solver, model, moved_to)
             end if
         else
@@ -307,30 +270,17 @@ contains
                                     normal_row, solver%matrix)
             if (allocated(solver%layout)) deallocate (solver%layout)
             solver%stiffness%factors = no_factors
-            if (allocated(solver%open)) deallocate (solver%open, solver%shear)
+            if (allocated(solver%session%open)) deallocate (solver%session%open, &
+                                                            solver%session%shear_state)
             ! solve_contact_with checks the whole matrix.
             finite = .false.
         end if
         call system_clock(t1)
         results%solver%seconds_assembly = real(t1 - t0, wp) / real(rate, wp)
-        before = counts(solver%stiffness%factors)
+        ! The counts of this solve only (the factors carry those of the base's solves).
+        solver%stiffness%counts = factor_counts()
         call solve_contact_on(solver, solver%matrix, model, finite, results, error)
-        if (allocated(error)) return
-        ! The counts of this solve (the factors carry those of the base's solves).
-        associate (s => results%solver, now => counts(solver%stiffness%factors))
-            s%factorizations = now(1) - before(1)
-            s%low_rank_updates = now(2) - before(2)
-            s%factorization_reuses = now(3) - before(3)
-        end associate
     end subroutine solve_kept
-
-    !> New factorizations, low-rank updates and reuses a set of factors has counted.
-    pure function counts(factors) result(c)
-        type(reduced_factors), intent(in) :: factors
-        integer :: c(3)
-
-        c = [factors%factorizations, factors%updates, factors%reuses]
-    end function counts
 
     !> The Newton method's start for a grown model: the base's states at the old elements'
     !> new places; a new element takes the state of the element it grows from (the next
@@ -340,16 +290,17 @@ contains
         type(model_type), intent(in) :: model
         integer, intent(in) :: moved_to(:)
         logical :: known(model%elements%n)
+        logical, allocatable :: open_state(:)
+        integer, allocatable :: shear_state(:)
         integer :: n, i
 
         n = model%elements%n
-        if (allocated(solver%open)) deallocate (solver%open, solver%shear)
-        allocate (solver%open(n), solver%shear(n))
-        solver%open = .false.
-        solver%shear = 0
+        allocate (open_state(n), shear_state(n))
+        open_state = .false.
+        shear_state = 0
         known = .false.
-        solver%open(moved_to) = solver%base_open
-        solver%shear(moved_to) = solver%base_shear
+        open_state(moved_to) = solver%base_open
+        shear_state(moved_to) = solver%base_shear
         known(moved_to) = .true.
         ! Elements grown at a begin tip come before their fracture's old ones ...
         do i = n - 1, 1, -1
@@ -359,6 +310,8 @@ contains
         do i = 2, n
             if (.not. known(i)) call take_from(i, i - 1)
         end do
+        call move_alloc(open_state, solver%session%open)
+        call move_alloc(shear_state, solver%session%shear_state)
 
     contains
 
@@ -367,16 +320,17 @@ contains
 
             if (.not. known(from)) return
             if (model%elements%fracture_id(from) /= model%elements%fracture_id(to)) return
-            solver%open(to) = solver%open(from)
-            solver%shear(to) = solver%shear(from)
+            open_state(to) = open_state(from)
+            shear_state(to) = shear_state(from)
             known(to) = .true.
         end subroutine take_from
 
     end subroutine inherit_states
 
     !> The contact solve of a model whose elements are all contact elements on the matrix a
-    !> (solver%matrix), from solver%open, shear (when allocated) and the stiffness operator's
-    !> factors; the states of the solution are kept; DDs, states, tips and the record set.
+    !> (solver%matrix), from the session's states (when allocated) and the stiffness
+    !> operator's factors; the session keeps the states of the solution for the next trial;
+    !> DDs, states, tips and the record set.
     subroutine solve_contact_on(solver, a, model, checked, results, error)
         type(growth_solver), intent(inout) :: solver
         real(wp), intent(in), target, contiguous :: a(:, :)
@@ -385,7 +339,6 @@ contains
         logical, intent(in) :: checked
         type(model_results), intent(inout) :: results
         type(error_type), allocatable, intent(out) :: error
-        type(contact_session) :: session
         type(contact_result) :: res
         real(wp), allocatable :: remote_shear(:), remote_normal(:), pressure(:)
         real(wp) :: seconds_assembly
@@ -397,19 +350,13 @@ contains
                                    remote_shear, remote_normal, model%stress_gradient)
         ! The contact elements see their pressure plus the pore fluid.
         pressure = total_pressure(model%elements, model%pore_fluid)
-        if (allocated(solver%open)) then
-            call move_alloc(solver%open, session%open)
-            call move_alloc(solver%shear, session%shear_state)
-        end if
-        session%a_checked = checked
+        call new_matrix(solver%session, checked)
         solver%stiffness%a => a
         call solve_contact_with(solver%stiffness, remote_shear, remote_normal, &
                                 model%elements%mu, model%elements%sf, pressure, model%solver, &
-                                res, error, a=a, session=session)
+                                res, error, a=a, session=solver%session)
         nullify (solver%stiffness%a)
         if (allocated(error)) return
-        call move_alloc(session%open, solver%open)
-        call move_alloc(session%shear_state, solver%shear)
         seconds_assembly = results%solver%seconds_assembly
         call record_contact(res, 0.0_wp, results%solver)
         results%solver%seconds_assembly = seconds_assembly

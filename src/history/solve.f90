@@ -181,8 +181,8 @@ contains
             pivots = pivots + res%pivots
             solves = solves + res%solves
             iterations = iterations + res%iterations
-            seconds_factorization = seconds_factorization + res%seconds_factorization
-            flops = flops + res%factorization_flops
+            seconds_factorization = seconds_factorization + res%counts%seconds
+            flops = flops + res%counts%flops
             h%equilibrium_residual(k) = maxval(res%equilibrium_residual)
             call complete_dds(sys, model%elements, shear(:, k), normal(:, k), res, &
                               y_load(:, k), h%ds(:, k), h%dn(:, k), h%state(:, k), &
@@ -231,10 +231,10 @@ contains
         call release_matrix(sys, matrix)
         call finish_model(apply_load(model, loads(:, nsteps)), shear(:, nsteps), &
                           normal(:, nsteps), results, matrix=matrix)
-        results%solver%seconds_factorization = results%solver%seconds_factorization + &
-            seconds_factorization - res%seconds_factorization
-        results%solver%factorization_flops = results%solver%factorization_flops + flops - &
-            res%factorization_flops
+        results%solver%counts%seconds = results%solver%counts%seconds + &
+            seconds_factorization - res%counts%seconds
+        results%solver%counts%flops = results%solver%counts%flops + flops - &
+            res%counts%flops
         results%solver%pivots = pivots
         results%solver%lcp_solves = solves
         results%solver%newton_iterations = iterations

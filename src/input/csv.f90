@@ -20,7 +20,8 @@ contains
     !> A two-column x,y file may omit its header line. The header may go on with any of
     !> the optional columns, in any order; their values follow those of header in values
     !> (0 where a column is absent, see given).
-    subroutine read_csv(path, header, values, error, line_numbers, optional_header, given)
+    subroutine read_csv(path, header, values, error, line_numbers, optional_header, given, &
+                        most_rows)
         !> Path of the file
         character(len=*), intent(in) :: path
         !> Expected column names, in order
@@ -35,6 +36,9 @@ contains
         character(len=*), intent(in), optional :: optional_header(:)
         !> Which optional columns the file has, shape (size(optional_header))
         logical, allocatable, intent(out), optional :: given(:)
+        !> Most data rows accepted: the reading stops with an error at the row after them,
+        !> so that a huge file costs no more memory than that many rows
+        integer, intent(in), optional :: most_rows
         character(len=:), allocatable :: text, line, expected, messages
         integer, allocatable :: row_line(:), column(:)
         real(wp), allocatable :: row(:)
@@ -61,6 +65,7 @@ contains
         end if
 
         max_rows = count_pieces(text, newline)
+        if (present(most_rows)) max_rows = min(max_rows, most_rows)
         allocate (values(ncols + nopt, max_rows), row_line(max_rows))
         values = 0.0_wp
         nrows = 0
@@ -95,6 +100,11 @@ contains
                         ": the header '"//line//"' is not the expected '"//expected//"'")
                     return
                 end if
+            end if
+            if (nrows == max_rows) then
+                call set_error(error, exit_bad_input, path//' line '//itoa(line_no)// &
+                    ': more than '//itoa(max_rows)//' data rows, the most accepted here')
+                return
             end if
             nrows = nrows + 1
             row_line(nrows) = line_no

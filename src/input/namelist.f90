@@ -224,9 +224,6 @@ contains
             n = n + size(fractures(k)%x_begin)
         end do
         call allocate_elements(model%elements, n)
-        allocate (model%elements%x_mid(n), model%elements%y_mid(n), &
-                  model%elements%half_length(n), model%elements%cos_beta(n), &
-                  model%elements%sin_beta(n))
         allocate (model%fractures(size(fractures)))
         last = 0
         do k = 1, size(fractures)

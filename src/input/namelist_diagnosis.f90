@@ -83,7 +83,11 @@ contains
             return
         end if
         message = prefix//'cannot be read (gfortran: '//trim(iomsg)//'): '
-        if (stat < 0) then
+        if (is_overflow(iomsg)) then
+            ! gfortran takes the values beyond an array's end for variable names.
+            message = message//'more values than an array of this group holds (the limits '// &
+                'are in docs/bad-input.md)'
+        else if (stat < 0) then
             message = message//'a value of the wrong type, or a group not closed by /'
         else
             message = message//'a misspelled variable, a value of the wrong type or a '// &
@@ -91,6 +95,20 @@ contains
         end if
         message = message//'; the variables of this group are: '//spec_names(spec)
     end function malformed_message
+
+    !> True when gfortran met a number where it expected a variable name: values beyond
+    !> the end of an array.
+    pure function is_overflow(iomsg) result(overflow)
+        character(len=*), intent(in) :: iomsg
+        logical :: overflow
+        character(len=*), parameter :: mark = 'Cannot match namelist object name '
+        integer :: at
+
+        overflow = .false.
+        at = index(iomsg, mark)
+        if (at == 0 .or. at + len(mark) > len_trim(iomsg)) return
+        overflow = scan(iomsg(at + len(mark):at + len(mark)), '0123456789+-.') == 1
+    end function is_overflow
 
     !> After a failed read (the file position is then unreliable), diagnose the text of
     !> the remaining occurrences of a repeated group without reading them.

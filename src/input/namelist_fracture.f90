@@ -158,7 +158,7 @@ contains
                               [character(len=23) :: 'tensile_strength', 'sf_residual', &
                               'mu_dynamic', 'slip_weakening_distance', 'shear_stiffness', &
                               'normal_stiffness'], &
-                              csv_given)
+                              csv_given, most_rows=max_elements)
                 if (allocated(csv_error)) then
                     call add(messages, prefix_lines(prefix//'elements_file: ', csv_error%message))
                     deallocate (csv_error)

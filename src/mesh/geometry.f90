@@ -1,30 +1,37 @@
 !> Geometry derived from element end points: midpoint, half-length, orientation.
 module ddc_mesh_geometry
     use ddc_kinds, only: wp
-    use ddc_model_types, only: element_set, no_residual_drop, rigid_joint
+    use ddc_model_types, only: element_set, element_array_action, for_each_element_array, &
+                               no_residual_drop, rigid_joint
     implicit none
     private
 
     public :: compute_geometry, allocate_elements
 
+    !> Allocates every per-element array for n elements (allocate_elements).
+    type, extends(element_array_action) :: element_allocation
+        !> Number of elements
+        integer :: n = 0
+    contains
+        procedure :: on_reals => allocate_reals
+        procedure :: on_integers => allocate_integers
+    end type element_allocation
+
 contains
 
-    !> Allocate every array of an element set for n elements (values unset, but the
-    !> strength laws beyond Coulomb at their defaults: no tensile strength, no drops, rigid
-    !> contact).
+    !> Allocate every per-element array of an element set (those of the geometry too) for
+    !> n elements; values unset, but the strength laws beyond Coulomb at their defaults: no
+    !> tensile strength, no drops, rigid contact.
     subroutine allocate_elements(elements, n)
-        !> The set to allocate
+        !> The set to allocate (its arrays unallocated)
         type(element_set), intent(inout) :: elements
         !> Number of elements
         integer, intent(in) :: n
+        type(element_allocation) :: allocation
 
         elements%n = n
-        allocate (elements%x_begin(n), elements%y_begin(n), elements%x_end(n), &
-                  elements%y_end(n), elements%fracture_id(n), elements%condition(n), &
-                  elements%bc_s(n), elements%bc_n(n), elements%mu(n), elements%sf(n), &
-                  elements%pressure(n), elements%tensile_strength(n), elements%sf_residual(n), &
-                  elements%mu_dynamic(n), elements%slip_weakening_distance(n), &
-                  elements%shear_stiffness(n), elements%normal_stiffness(n))
+        allocation%n = n
+        call for_each_element_array(elements, allocation)
         elements%tensile_strength = 0.0_wp
         elements%sf_residual = no_residual_drop
         elements%mu_dynamic = no_residual_drop
@@ -32,6 +39,26 @@ contains
         elements%shear_stiffness = rigid_joint
         elements%normal_stiffness = rigid_joint
     end subroutine allocate_elements
+
+    !> Allocate one real array for the set's elements.
+    subroutine allocate_reals(action, values)
+        !> The allocation
+        class(element_allocation), intent(inout) :: action
+        !> The array, unallocated on entry
+        real(wp), allocatable, intent(inout) :: values(:)
+
+        allocate (values(action%n))
+    end subroutine allocate_reals
+
+    !> Allocate one integer array for the set's elements.
+    subroutine allocate_integers(action, values)
+        !> The allocation
+        class(element_allocation), intent(inout) :: action
+        !> The array, unallocated on entry
+        integer, allocatable, intent(inout) :: values(:)
+
+        allocate (values(action%n))
+    end subroutine allocate_integers
 
     !> Fill midpoint, half-length and direction cosines from the end points.
     subroutine compute_geometry(elements)

@@ -2,6 +2,7 @@
 module ddc_model_results
     use ddc_kinds, only: wp
     use ddc_contact_states, only: state_stick, state_slip, state_open
+    use ddc_contact_counts, only: factor_counts
     implicit none
     private
 
@@ -97,10 +98,10 @@ module ddc_model_results
         !> Newton (active-set) iterations summed over contact solves
         integer :: newton_iterations = 0
         !> The Newton method's reduced systems: new LU factorizations, low-rank updates of a
-        !> factorization, and solves with unchanged factors (states unchanged)
-        integer :: factorizations = 0, low_rank_updates = 0, factorization_reuses = 0
-        !> Nominal flop count of the timed factorizations (2/3 m^3 per LU of size m) [-]
-        real(wp) :: factorization_flops = 0.0_wp
+        !> factorization, and solves with unchanged factors (states unchanged); the wall time
+        !> of every factorization of the run (the phase 'factorization') [s] and the nominal
+        !> flops of the timed factorizations (2/3 m^3 per LU of size m) [-]
+        type(factor_counts) :: counts
         !> Number of OpenMP threads (of each process)
         integer :: threads = 1
         !> MPI build: the processes of the run (0 in the serial build), their grid (rows,
@@ -115,8 +116,8 @@ module ddc_model_results
         !> min z, min w (>= -tolerance) and max |z_i w_i| (<= tolerance)
         real(wp) :: certificate_min_z = 0.0_wp, certificate_min_w = 0.0_wp
         real(wp) :: certificate_max_complementarity = 0.0_wp, certificate_tolerance = 0.0_wp
-        !> Wall time of each phase [s]
-        real(wp) :: seconds_assembly = 0.0_wp, seconds_factorization = 0.0_wp
+        !> Wall time of each phase but the factorization (counts%seconds) [s]
+        real(wp) :: seconds_assembly = 0.0_wp
         real(wp) :: seconds_lcp = 0.0_wp, seconds_fields = 0.0_wp
         real(wp) :: seconds_output = 0.0_wp, seconds_total = 0.0_wp
     end type solver_record

@@ -2,7 +2,9 @@
 !>
 !> Elements are stored as arrays (structure of arrays), ordered fracture by fracture,
 !> vertex to vertex. Geometry derived from the end points (midpoint, half-length,
-!> orientation) is filled by ddc_mesh_geometry.
+!> orientation) is filled by ddc_mesh_geometry. for_each_element_array is the one list of
+!> the per-element arrays: allocating them (ddc_mesh_geometry), selecting elements
+!> (select_elements, for growth) and broadcasting them (ddc_parallel_model) go through it.
 module ddc_model_types
     use ddc_kinds, only: wp
     use ddc_contact_options, only: solver_options
@@ -19,6 +21,7 @@ module ddc_model_types
     public :: growth_options, growth_tips_all, growth_tips_most_critical, growth_tips_names
     public :: growth_criterion_mts, growth_criterion_names
     public :: default_block_size, no_residual_drop, rigid_joint
+    public :: element_array_action, for_each_element_array, select_elements
 
     !> Boundary conditions; 1-4 are the TWODD KODE values.
     integer, parameter :: condition_traction = 1
@@ -108,6 +111,47 @@ module ddc_model_types
         !> domain_full_plane or domain_half_plane: the kernel of every influence sum
         integer :: domain = domain_full_plane
     end type element_set
+
+    !> What a routine does with every per-element array of an element_set: it extends
+    !> this type with its data and is handed each array by for_each_element_array.
+    type, abstract :: element_array_action
+    contains
+        !> Act on one real per-element array
+        procedure(act_on_reals), deferred :: on_reals
+        !> Act on one integer per-element array
+        procedure(act_on_integers), deferred :: on_integers
+    end type element_array_action
+
+    abstract interface
+        !> Act on one real per-element array, shape (n) or unallocated
+        subroutine act_on_reals(action, values)
+            import :: element_array_action, wp
+            implicit none
+            !> The action and its data
+            class(element_array_action), intent(inout) :: action
+            !> The array
+            real(wp), allocatable, intent(inout) :: values(:)
+        end subroutine act_on_reals
+
+        !> Act on one integer per-element array, shape (n) or unallocated
+        subroutine act_on_integers(action, values)
+            import :: element_array_action
+            implicit none
+            !> The action and its data
+            class(element_array_action), intent(inout) :: action
+            !> The array
+            integer, allocatable, intent(inout) :: values(:)
+        end subroutine act_on_integers
+    end interface
+
+    !> Element j of the selected set is element pick(j) of the source (select_elements).
+    type, extends(element_array_action) :: element_selection
+        !> The source element of each selected element, shape (selected n)
+        integer, allocatable :: pick(:)
+    contains
+        procedure :: on_reals => select_reals
+        procedure :: on_integers => select_integers
+    end type element_selection
 
     !> One fracture: a name and its contiguous range of elements.
     type :: fracture_type
@@ -235,5 +279,78 @@ module ddc_model_types
         !> Fracture growth; inactive unless the input has &growth
         type(growth_options) :: growth
     end type model_type
+
+contains
+
+    !> The one list of the per-element arrays of an element_set: the action gets each
+    !> array once, in this order (the MPI broadcast relies on the order being the same on
+    !> every process). A new per-element array is declared in the type and listed here;
+    !> the CTest architecture fails when an array component is missing.
+    subroutine for_each_element_array(elements, action)
+        !> The set whose arrays the action gets
+        type(element_set), intent(inout) :: elements
+        !> What to do with each array
+        class(element_array_action), intent(inout) :: action
+
+        call action%on_reals(elements%x_begin)
+        call action%on_reals(elements%y_begin)
+        call action%on_reals(elements%x_end)
+        call action%on_reals(elements%y_end)
+        call action%on_integers(elements%fracture_id)
+        call action%on_integers(elements%condition)
+        call action%on_reals(elements%bc_s)
+        call action%on_reals(elements%bc_n)
+        call action%on_reals(elements%mu)
+        call action%on_reals(elements%sf)
+        call action%on_reals(elements%pressure)
+        call action%on_reals(elements%tensile_strength)
+        call action%on_reals(elements%sf_residual)
+        call action%on_reals(elements%mu_dynamic)
+        call action%on_reals(elements%slip_weakening_distance)
+        call action%on_reals(elements%shear_stiffness)
+        call action%on_reals(elements%normal_stiffness)
+        call action%on_reals(elements%x_mid)
+        call action%on_reals(elements%y_mid)
+        call action%on_reals(elements%half_length)
+        call action%on_reals(elements%cos_beta)
+        call action%on_reals(elements%sin_beta)
+    end subroutine for_each_element_array
+
+    !> The set whose element j is element pick(j) of source: every per-element value, and
+    !> the source's symmetry and domain. Values are copied, never recomputed.
+    subroutine select_elements(source, pick, selected)
+        !> The elements to select from
+        type(element_set), intent(in) :: source
+        !> Index in source of each selected element (repeats allowed), shape (selected n)
+        integer, intent(in) :: pick(:)
+        !> The selected elements
+        type(element_set), intent(out) :: selected
+        type(element_selection) :: selection
+
+        selected = source
+        selected%n = size(pick)
+        selection%pick = pick
+        call for_each_element_array(selected, selection)
+    end subroutine select_elements
+
+    !> Replace a real array (when allocated) by its picked elements.
+    subroutine select_reals(action, values)
+        !> The selection
+        class(element_selection), intent(inout) :: action
+        !> The array
+        real(wp), allocatable, intent(inout) :: values(:)
+
+        if (allocated(values)) values = values(action%pick)
+    end subroutine select_reals
+
+    !> Replace an integer array (when allocated) by its picked elements.
+    subroutine select_integers(action, values)
+        !> The selection
+        class(element_selection), intent(inout) :: action
+        !> The array
+        integer, allocatable, intent(inout) :: values(:)
+
+        if (allocated(values)) values = values(action%pick)
+    end subroutine select_integers
 
 end module ddc_model_types

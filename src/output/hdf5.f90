@@ -5,17 +5,19 @@
 !> file is removed. Handles and typed writes are ddc_output_hdf5_handles' and
 !> ddc_output_hdf5_write's; this module holds the layout. As seen from h5py:
 !>
-!> - root attributes: program, version, git_commit, created (UTC), title, input_file,
-!>   input_text, units, elastic constants, remote_stress [sxx, syy, sxy], conventions,
-!>   open_cohesion, lcp_method, domain, remote_stress_gradient, pore_fluid, and last
-!>   complete = 1;
+!> - root attributes: program, version, git_commit, created (UTC), where the result came
+!>   from (blas, blas_core, blas_core_chosen_by, compiler, compiler_options, cpu, threads,
+!>   blas_threads: ddc_output_provenance), title, input_file, input_text, units, elastic
+!>   constants, remote_stress [sxx, syy, sxy], conventions, open_cohesion, lcp_method,
+!>   domain, remote_stress_gradient, pore_fluid, and last complete = 1;
 !> - /elements/<quantity> shape (n), every real dataset with a `units` attribute;
 !> - /fractures/{name, first_element, last_element};
 !> - /tips/{x, y, fracture_id, element, k1, k2, graded} (empty datasets when there are no
 !>   tips);
 !> - /fields/<name>/{x, y, ux, uy, sxx, syy, sxy, near_element}, grids shaped (ny, nx)
 !>   in h5py (Fortran dims (nx, ny)), lines and point lists 1-D;
-!> - /solver attributes and /solver/seconds/<phase> scalar datasets;
+!> - /solver attributes (blas and blas_core among them) and /solver/seconds/<phase> scalar
+!>   datasets;
 !> - /sweep attributes task, tasks, parameters and one per parameter (sweep tasks only);
 !> - /history (loading history only, SPEC-EARTH 3; k steps, the first the starting state):
 !>   {sxx, syy, sxy} and each other quantity the path varies, shape (k); {ds, dn, state,
@@ -40,12 +42,14 @@ module ddc_output_hdf5
     use ddc_model_results, only: model_results, state_free, state_stick, state_slip, &
         state_open, growth_reason_names, growth_end_names
     use ddc_contact_options, only: lcp_method_names, open_cohesion_names
-    use ddc_output_atomic, only: partial_name, publish_file, remove_file
+    use ddc_output_atomic, only: partial_name, publish_file, remove_file, resolve_target, &
+        explain_write_failure
     use ddc_output_hdf5_handles, only: h5_object, open_session, close_session, create_file, &
         close_file, create_group, close_group
     use ddc_output_hdf5_write, only: write_real_1d, write_int_1d, write_real_dataset, &
         write_int_dataset, write_string_1d, write_attribute
     use ddc_output_timestamp, only: utc_timestamp
+    use ddc_output_provenance, only: run_provenance, describe_run
     use ddc_text, only: itoa
     implicit none
     private
@@ -53,6 +57,8 @@ module ddc_output_hdf5
     public :: write_results
 
     !> Sign and face conventions stored in every file
+    !> Longest input text stored as the root attribute input_text [bytes]
+    integer, parameter :: max_attribute_text = 60000
     character(len=*), parameter :: conventions = 'stress tension positive; Crouch & ' &
         //'Starfield displacement discontinuities: ds = us(-) - us(+), dn = un(-) - un(+), ' &
         //'opening = -dn; positive face on the left of the element direction'
@@ -80,25 +86,30 @@ contains
         !> Allocated with exit_io_failure when the file cannot be written
         type(error_type), allocatable, intent(out) :: error
         type(h5_object) :: root
-        character(len=:), allocatable :: temporary
+        type(run_provenance) :: provenance
+        character(len=:), allocatable :: temporary, final_path
         integer(int64) :: start, now, rate
 
         call check_consistency(model, results, error)
         if (allocated(error)) return
         call system_clock(start, rate)
-        temporary = partial_name(path)
+        provenance = describe_run()
+        call resolve_target(path, final_path, error)
+        if (allocated(error)) return
+        temporary = partial_name(final_path)
         call open_session(error)
         if (allocated(error)) return
         call create_file(temporary, root, error)
         if (.not. allocated(error)) then
-            call write_root_attributes(root, model, error)
+            call write_root_attributes(root, model, provenance, error)
             call write_elements(root, model, results, error)
             call write_fractures(root, model, error)
             call write_tips(root, model, results, error)
             call write_fields(root, model, results, error)
             ! The file's own writing time: everything written before the solver record.
             call system_clock(now)
-            call write_solver(root, results, real(now - start, wp) / real(rate, wp), error)
+            call write_solver(root, results, provenance, real(now - start, wp) / &
+                              real(rate, wp), error)
             if (model%sweep%tasks > 0) call write_sweep(root, model, error)
             if (allocated(results%history%ds)) call write_history(root, model, results, error)
             if (allocated(results%growth%step)) call write_growth(root, model, results, error)
@@ -107,7 +118,11 @@ contains
         end if
         call close_session()
 
-        if (.not. allocated(error)) call publish_file(temporary, path, error)
+        if (.not. allocated(error)) then
+            call publish_file(temporary, final_path, error)
+        else
+            call explain_write_failure(final_path, temporary, error)
+        end if
         if (allocated(error)) call remove_file(temporary)
     end subroutine write_results
 
@@ -142,18 +157,36 @@ contains
     end subroutine check_consistency
 
     !> Self-description: program, version, date, input, units, elasticity, conventions.
-    subroutine write_root_attributes(root, model, error)
+    subroutine write_root_attributes(root, model, provenance, error)
         type(h5_object), intent(in) :: root
         type(model_type), intent(in) :: model
+        type(run_provenance), intent(in) :: provenance
         type(error_type), allocatable, intent(inout) :: error
 
         call write_attribute(root, 'program', program_name, error)
         call write_attribute(root, 'version', program_version, error)
         call write_attribute(root, 'git_commit', git_commit, error)
         call write_attribute(root, 'created', utc_timestamp(), error)
+        ! Where the result came from (ddc_output_provenance).
+        call write_attribute(root, 'blas', provenance%blas, error)
+        call write_attribute(root, 'blas_core', provenance%blas_core, error)
+        call write_attribute(root, 'blas_core_chosen_by', provenance%blas_core_chosen_by, error)
+        call write_attribute(root, 'compiler', provenance%compiler, error)
+        call write_attribute(root, 'compiler_options', provenance%options, error)
+        call write_attribute(root, 'cpu', provenance%cpu, error)
+        call write_attribute(root, 'threads', provenance%threads, error)
+        call write_attribute(root, 'blas_threads', provenance%blas_threads, error)
         call write_attribute(root, 'title', text(model%title), error)
         call write_attribute(root, 'input_file', text(model%input_file), error)
-        call write_attribute(root, 'input_text', text(model%input_text), error)
+        ! An attribute holds at most 64 KiB (HDF5's object header); a longer input goes to
+        ! the dataset /input_text, and the attribute says so.
+        if (len(text(model%input_text)) <= max_attribute_text) then
+            call write_attribute(root, 'input_text', text(model%input_text), error)
+        else
+            call write_attribute(root, 'input_text', 'the input ('// &
+                itoa(len(text(model%input_text)))//' bytes) is the dataset /input_text', error)
+            call write_string_1d(root, 'input_text', [text(model%input_text)], error)
+        end if
         call write_attribute(root, 'length_unit', text(model%length_unit), error)
         call write_attribute(root, 'stress_unit', text(model%stress_unit), error)
         call write_attribute(root, 'youngs_modulus', model%youngs_modulus, error)
@@ -399,9 +432,10 @@ contains
     !> processes, their grid and the block size in the MPI build);
     !> /solver/seconds/<phase> wall times as scalar datasets (output: the writing of this
     !> file up to the solver record; total includes it).
-    subroutine write_solver(root, results, seconds_output, error)
+    subroutine write_solver(root, results, provenance, seconds_output, error)
         type(h5_object), intent(in) :: root
         type(model_results), intent(in) :: results
+        type(run_provenance), intent(in) :: provenance
         real(wp), intent(in) :: seconds_output
         type(error_type), allocatable, intent(inout) :: error
         type(h5_object) :: solver, seconds
@@ -413,11 +447,13 @@ contains
             call write_attribute(solver, 'method', text(s%method), error)
             call write_attribute(solver, 'fallback', text(s%fallback), error)
             call write_attribute(solver, 'newton_iterations', s%newton_iterations, error)
-            call write_attribute(solver, 'factorizations', s%factorizations, error)
-            call write_attribute(solver, 'low_rank_updates', s%low_rank_updates, error)
-            call write_attribute(solver, 'factorization_reuses', s%factorization_reuses, error)
-            call write_attribute(solver, 'factorization_flops', s%factorization_flops, error)
+            call write_attribute(solver, 'factorizations', s%counts%factorizations, error)
+            call write_attribute(solver, 'low_rank_updates', s%counts%updates, error)
+            call write_attribute(solver, 'factorization_reuses', s%counts%reuses, error)
+            call write_attribute(solver, 'factorization_flops', s%counts%flops, error)
             call write_attribute(solver, 'threads', s%threads, error)
+            call write_attribute(solver, 'blas', provenance%blas, error)
+            call write_attribute(solver, 'blas_core', provenance%blas_core, error)
             call write_attribute(solver, 'pivots', s%pivots, error)
             call write_attribute(solver, 'lcp_solves', s%lcp_solves, error)
             call write_attribute(solver, 'certificate_min_z', s%certificate_min_z, error)
@@ -440,7 +476,7 @@ contains
                 call write_real_dataset(seconds, 'assembly', [s%seconds_assembly], no_dims, &
                     's', error)
                 call write_real_dataset(seconds, 'factorization', &
-                    [s%seconds_factorization], no_dims, 's', error)
+                    [s%counts%seconds], no_dims, 's', error)
                 call write_real_dataset(seconds, 'lcp', [s%seconds_lcp], no_dims, 's', error)
                 call write_real_dataset(seconds, 'fields', [s%seconds_fields], no_dims, 's', &
                     error)

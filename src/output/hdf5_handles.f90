@@ -7,8 +7,9 @@
 module ddc_output_hdf5_handles
     use, intrinsic :: iso_c_binding, only: c_char, c_null_char
     use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5close_f, h5eset_auto_f, &
-        h5fcreate_f, h5fopen_f, h5fclose_f, H5F_ACC_TRUNC_F, H5F_ACC_RDONLY_F, h5gcreate_f, &
-        h5gclose_f, h5screate_f, h5screate_simple_f, h5sclose_f, H5S_SCALAR_F, h5dcreate_f, &
+        h5dont_atexit_f, h5fcreate_f, h5fopen_f, h5fclose_f, H5F_ACC_TRUNC_F, &
+        H5F_ACC_RDONLY_F, h5gcreate_f, h5gclose_f, h5screate_f, h5screate_simple_f, &
+        h5sclose_f, H5S_SCALAR_F, h5dcreate_f, &
         h5dclose_f, h5acreate_f, h5aclose_f, h5tcopy_f, h5tset_size_f, h5tset_strpad_f, &
         h5tset_cset_f, h5tget_size_f, h5tget_class_f, h5tis_variable_str_f, H5T_FORTRAN_S1, &
         H5T_STR_NULLPAD_F, H5T_CSET_UTF8_F, H5T_STRING_F
@@ -19,7 +20,7 @@ module ddc_output_hdf5_handles
     public :: h5_object, open_session, close_session, create_file, open_file, close_file
     public :: create_group, close_group, create_dataset, close_dataset
     public :: create_attribute, close_attribute, create_string_type, string_width
-    public :: fail, child_path, c_chars, from_c_chars
+    public :: fail, child_path, c_chars
 
     !> An open HDF5 object (file, group or dataset) with its path, for messages.
     type :: h5_object
@@ -44,6 +45,9 @@ contains
         type(error_type), allocatable, intent(inout) :: error
         integer :: status
 
+        ! HDF5 1.10's exit handler crashes on a file whose close failed (a full disk, a
+        ! file-size limit); every file is closed here before the program ends.
+        call h5dont_atexit_f(status)
         call h5open_f(status)
         if (status /= 0) then
             call set_error(error, exit_io_failure, 'HDF5 library could not be initialised')
@@ -346,24 +350,5 @@ contains
             chars(i) = text(i:i)
         end do
     end function c_chars
-
-    !> A Fortran string from C characters, cut at the first NUL.
-    pure function from_c_chars(chars) result(text)
-        character(kind=c_char), intent(in) :: chars(:)
-        character(len=:), allocatable :: text
-        integer :: i, n
-
-        n = size(chars)
-        do i = 1, size(chars)
-            if (chars(i) == c_null_char) then
-                n = i - 1
-                exit
-            end if
-        end do
-        allocate (character(len=n) :: text)
-        do i = 1, n
-            text(i:i) = chars(i)
-        end do
-    end function from_c_chars
 
 end module ddc_output_hdf5_handles

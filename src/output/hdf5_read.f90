@@ -1,9 +1,10 @@
 !> A small reader for ddc2d result files: datasets, their dims and attributes.
 !>
-!> Meant for tests and tools (regression comparisons), not for the solver. Every routine
-!> opens the file read-only, reads one thing and closes every handle on every path.
-!> Each routine calls h5open_f/h5close_f itself: do not call it while another part of
-!> the program holds HDF5 handles open.
+!> Meant for tests and tools (regression comparisons) and for the question whether a
+!> sweep task's result file is complete (output_is_complete: app/ skips such a task), not
+!> for the solver. Every routine opens the file read-only, reads one thing and closes
+!> every handle on every path. Each routine calls h5open_f/h5close_f itself: do not call
+!> it while another part of the program holds HDF5 handles open.
 module ddc_output_hdf5_read
     use, intrinsic :: iso_c_binding, only: c_char, c_loc, c_ptr
     use hdf5, only: hid_t, hsize_t, h5dopen_f, h5dclose_f, h5dread_f, h5dget_space_f, &
@@ -14,13 +15,14 @@ module ddc_output_hdf5_read
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
     use ddc_output_hdf5_handles, only: h5_object, open_session, close_session, &
-        handle_open_file => open_file, handle_close_file => close_file, string_width, fail, &
-        from_c_chars
+        handle_open_file => open_file, handle_close_file => close_file, string_width, fail
+    use ddc_text, only: from_c_chars
     implicit none
     private
 
     public :: read_real_dataset, read_int_dataset, read_string_dataset, read_dataset_dims
     public :: read_string_attribute, read_real_attribute, read_int_attribute
+    public :: output_is_complete
 
 contains
 
@@ -260,6 +262,22 @@ contains
         end if
         call close_attribute(file, attribute, path, error)
     end subroutine read_int_attribute
+
+    !> True when path holds a readable ddc2d result with the root attribute complete = 1.
+    function output_is_complete(path) result(complete)
+        !> Path of the result file
+        character(len=*), intent(in) :: path
+        !> The file exists, is readable HDF5 and is complete
+        logical :: complete
+        type(error_type), allocatable :: error
+        integer :: flag
+
+        inquire (file=path, exist=complete)
+        if (.not. complete) return
+        call read_int_attribute(path, '/', 'complete', flag, error)
+        complete = .not. allocated(error)
+        if (complete) complete = flag == 1
+    end function output_is_complete
 
     ! ------------------------------------------------------ handles, always closed
 

@@ -14,12 +14,14 @@
 !> keep the classic layout.
 !> The file is written under a temporary name and renamed at the end (ddc_output_atomic).
 module ddc_output_twodd_tables
+    use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_io_failure
     use ddc_model_types, only: model_type, symmetry_x, symmetry_y, symmetry_both, &
         condition_mixed_ss_un, condition_contact, condition_prescribed_dd
     use ddc_model_results, only: model_results, point_near, point_on_element, state_names
-    use ddc_output_atomic, only: partial_name, publish_file, remove_file
+    use ddc_output_atomic, only: partial_name, publish_file, remove_file, resolve_target, &
+        explain_write_failure
     use ddc_constants, only: pi
     implicit none
     private
@@ -38,13 +40,18 @@ contains
         type(model_results), intent(in) :: results
         !> Allocated (exit_io_failure) when the file cannot be written
         type(error_type), allocatable, intent(out) :: error
-        character(len=:), allocatable :: temporary
+        character(len=:), allocatable :: temporary, final_path
         character(len=512) :: iomsg
         integer :: unit, stat, close_stat
+        integer(int64) :: written, size
 
-        temporary = partial_name(path)
+        call resolve_target(path, final_path, error)
+        if (allocated(error)) return
+        temporary = partial_name(final_path)
+        ! Stream access: its position counts the bytes written, to be checked against the
+        ! file's size after closing (gfortran does not report a full disk on buffered writes).
         open (newunit=unit, file=temporary, status='replace', action='write', &
-              form='formatted', recl=4096, iostat=stat, iomsg=iomsg)
+              form='formatted', access='stream', iostat=stat, iomsg=iomsg)
         if (stat /= 0) then
             call set_error(error, exit_io_failure, 'cannot create '//temporary//': '// &
                            trim(iomsg))
@@ -55,21 +62,31 @@ contains
         if (stat == 0) call write_midpoints(unit, model, results, stat, iomsg)
         if (stat == 0) call write_points(unit, model, results, stat, iomsg)
         if (stat /= 0) then
+            call set_error(error, exit_io_failure, 'cannot write '//temporary//': '// &
+                           trim(iomsg))
+            call explain_write_failure(final_path, temporary, error)
             ! Best effort: the write's failure is the one reported.
             close (unit, status='delete', iostat=close_stat)
             if (close_stat /= 0) call remove_file(temporary)
-            call set_error(error, exit_io_failure, 'cannot write '//temporary//': '// &
-                           trim(iomsg))
             return
         end if
+        inquire (unit=unit, pos=written)
         close (unit, iostat=stat, iomsg=iomsg)
+        size = -1_int64
+        if (stat == 0) inquire (file=temporary, size=size, iostat=stat, iomsg=iomsg)
+        if (stat == 0 .and. size /= written - 1_int64) then
+            stat = 1
+            write (iomsg, '(a,i0,a,i0,a)') 'only ', size, ' of its ', written - 1_int64, &
+                ' bytes reached the disk'
+        end if
         if (stat /= 0) then
-            call remove_file(temporary)
             call set_error(error, exit_io_failure, 'cannot close '//temporary//': '// &
                            trim(iomsg))
+            call explain_write_failure(final_path, temporary, error)
+            call remove_file(temporary)
             return
         end if
-        call publish_file(temporary, path, error)
+        call publish_file(temporary, final_path, error)
         if (allocated(error)) call remove_file(temporary)
     end subroutine write_twodd_tables
 

@@ -1,13 +1,24 @@
 !> The model on every process of a distributed run: the root read and checked it; the others
 !> get from it what the solve and the post-processing use (collective).
 module ddc_parallel_model
-    use ddc_model_types, only: model_type, element_set
+    use ddc_kinds, only: wp
+    use ddc_model_types, only: model_type, element_set, element_array_action, &
+        for_each_element_array
     use ddc_parallel_context, only: parallel_context, root
     use ddc_parallel_collective, only: share
     implicit none
     private
 
     public :: share_model
+
+    !> Broadcasts every per-element array from the root (share_elements).
+    type, extends(element_array_action) :: element_broadcast
+        !> The processes
+        type(parallel_context) :: context
+    contains
+        procedure :: on_reals => share_element_reals
+        procedure :: on_integers => share_element_integers
+    end type element_broadcast
 
 contains
 
@@ -35,6 +46,8 @@ contains
         end do
         call share(context, model%solver%lcp_method)
         call share(context, model%solver%open_cohesion)
+        ! Root only: model%solver%work_bytes (the root's memory check sets it for the
+        ! fallback from Newton to Lemke, which a distributed solve does not have).
         call share(context, model%block_size)
         call share_elements(context, model%elements)
 
@@ -57,38 +70,42 @@ contains
         end do
     end subroutine share_model
 
-    !> Broadcast the root's elements.
+    !> Broadcast the root's elements: their number, every per-element array, symmetry and
+    !> domain.
     subroutine share_elements(context, elements)
+        !> The processes
         type(parallel_context), intent(in) :: context
+        !> The root's elements on entry; on exit every process has them
         type(element_set), intent(inout) :: elements
+        type(element_broadcast) :: broadcast
 
         call share(context, elements%n)
-        call share(context, elements%x_begin)
-        call share(context, elements%y_begin)
-        call share(context, elements%x_end)
-        call share(context, elements%y_end)
-        call share(context, elements%fracture_id)
-        call share(context, elements%condition)
-        call share(context, elements%bc_s)
-        call share(context, elements%bc_n)
-        call share(context, elements%mu)
-        call share(context, elements%sf)
-        call share(context, elements%pressure)
-        call share(context, elements%tensile_strength)
-        call share(context, elements%sf_residual)
-        call share(context, elements%mu_dynamic)
-        call share(context, elements%slip_weakening_distance)
-        call share(context, elements%shear_stiffness)
-        call share(context, elements%normal_stiffness)
-        call share(context, elements%x_mid)
-        call share(context, elements%y_mid)
-        call share(context, elements%half_length)
-        call share(context, elements%cos_beta)
-        call share(context, elements%sin_beta)
+        broadcast%context = context
+        call for_each_element_array(elements, broadcast)
         call share(context, elements%symmetry%kind)
         call share(context, elements%symmetry%xsym)
         call share(context, elements%symmetry%ysym)
         call share(context, elements%domain)
     end subroutine share_elements
+
+    !> Broadcast one real per-element array from the root.
+    subroutine share_element_reals(action, values)
+        !> The broadcast
+        class(element_broadcast), intent(inout) :: action
+        !> The root's array on exit
+        real(wp), allocatable, intent(inout) :: values(:)
+
+        call share(action%context, values)
+    end subroutine share_element_reals
+
+    !> Broadcast one integer per-element array from the root.
+    subroutine share_element_integers(action, values)
+        !> The broadcast
+        class(element_broadcast), intent(inout) :: action
+        !> The root's array on exit
+        integer, allocatable, intent(inout) :: values(:)
+
+        call share(action%context, values)
+    end subroutine share_element_integers
 
 end module ddc_parallel_model

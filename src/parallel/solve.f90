@@ -79,7 +79,7 @@ contains
         if (allocated(error)) return
         call system_clock(t1)
         record%seconds_assembly = real(t1 - t0, wp) / real(rate, wp)
-        record%seconds_factorization = 0.0_wp
+        record%counts%seconds = 0.0_wp
         nc = size(stiffness%contact_elements)
         nf = size(stiffness%free_elements)
         flops = 0.0_wp
@@ -93,7 +93,7 @@ contains
             b_free(1::2) = given(1:nf)
             b_free(2::2) = given(nf + 1:)
             call stiffness%solve_free(b_free, x_free, 'influence matrix', error, &
-                                      record%seconds_factorization, flops, ill_conditioned)
+                                      record%counts%seconds, flops, ill_conditioned)
             if (allocated(error)) then
                 error%message = error%message//influence_hint
                 if (nc > 0) error%message = error%message//among_free
@@ -113,7 +113,7 @@ contains
         state = state_free
         if (nc == 0) then
             record%method = 'lu'
-            record%factorization_flops = flops
+            record%counts%flops = flops
             record%equilibrium_residual = residual
         else
             ! The contact elements see the free ones at x_F0: shift = S_r,C + K_CF x_F0.

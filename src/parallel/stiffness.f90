@@ -19,6 +19,7 @@ module ddc_parallel_stiffness
     use ddc_error, only: error_type
     use ddc_model_types, only: element_set, condition_contact
     use ddc_contact_stiffness, only: stiffness_operator, reduced_system
+    use ddc_contact_counts, only: factor_counts
     use ddc_parallel_context, only: parallel_context
     use ddc_parallel_collective, only: max_on_all, all_true
     use ddc_parallel_matrix, only: distributed_matrix, owner, local_index, global_rows, &
@@ -159,7 +160,9 @@ contains
     end subroutine distributed_multiply
 
     !> The method's reduced system with the free unknowns carried along (right-hand side 0);
-    !> keeps their solution delta. Elements are named by their number in the model.
+    !> keeps their solution delta. Elements are named by their number in the model. Every
+    !> reduced system is factorized anew (nothing is kept to update): each is counted as a
+    !> factorization.
     subroutine distributed_solve_reduced(this, system, x, subject, singular, seconds, flops)
         class(distributed_stiffness), intent(inout) :: this
         type(reduced_system), intent(in) :: system
@@ -170,6 +173,7 @@ contains
         real(wp), allocatable :: solution(:)
         integer, allocatable :: partner(:)
         integer :: m, nc, nf2, f
+        real(wp) :: seconds_before, flops_before
 
         m = size(system%unknown)
         nc = size(this%contact_elements)
@@ -181,6 +185,8 @@ contains
         end if
         partner = merge(this%contact_unknowns(system%partner), 0, system%coef /= 0.0_wp)
         allocate (solution(m + nf2))
+        seconds_before = seconds
+        flops_before = flops
         call this%solve_gathered([this%contact_unknowns(system%unknown), this%free_unknowns], &
                                  [partner, spread(0, 1, nf2)], &
                                  [system%coef, spread(0.0_wp, 1, nf2)], &
@@ -189,6 +195,8 @@ contains
                                   this%free_elements([((f + 1) / 2, f = 1, nf2)])], &
                                  [system%unknown <= nc, [(mod(f, 2) == 1, f = 1, nf2)]], &
                                  subject, solution, singular, seconds, flops)
+        call this%counts%add(factor_counts(factorizations=1, seconds=seconds - seconds_before, &
+                                           flops=flops - flops_before))
         if (allocated(singular)) return
         x = solution(1:m)
         this%free_dd = solution(m + 1:)

@@ -8,7 +8,8 @@
 !>   factors, 2 (2N)^2; with contact elements the assembled matrix (2N)^2 is condensed to
 !>   the contact elements' A (2nc)^2 (with nf > 0 the whole matrix, K_FF, K_FF^-1 K_FC and
 !>   a temporary K_CF are kept too), then the contact method works on A
-!>   (ddc_contact_memory: Lemke 45 nc^2, Newton up to 5.5 nc^2); a loading history
+!>   (ddc_contact_memory: Lemke 45 nc^2, Newton 1.375 m^2 for a reduced system of m
+!>   unknowns, up to 5.5 nc^2 when every element slips and opens); a loading history
 !>   solves each step with the same method (Newton keeps its factors between steps, Lemke
 !>   its LCP) and stores about 12 reals per element and step, held from the start; a
 !>   growth run whose elements are all contact elements solved by Newton keeps the
@@ -20,9 +21,16 @@
 !>   more such matrices, C + K^-1 and the load map;
 !> - the model and its results, 50 reals per element and 13 per observation point;
 !> - the program itself (libraries, buffers), 20 MB.
-!> Measured (Release, OpenBLAS): the peak resident memory of Lemke runs is within 5 % of the
-!> estimate; Newton runs of an all-slipping fault use less (their reduced system is counted
-!> at its largest).
+!> The Newton method is estimated twice: from the states its solve starts from (those of
+!> the remote stress alone: slip where the shear traction exceeds the strength, open where
+!> the effective normal traction is tensile; a one-shot solve without TWODD-style elements,
+!> otherwise the largest) and at its largest, every element slipping and open. A model is
+!> refused when the first does not fit; should the states later ask for more than is left,
+!> the method stops then with exit_out_of_memory (ddc_contact_active_set).
+!> Measured (Release, OpenBLAS, 2026-11-24): the peak resident memory of Lemke runs is
+!> within 5 % of the estimate; that of the benchmark's straight and mixed faults (Newton,
+!> N = 2000-8000) within 10 % of the estimate from the starting states (README, size
+!> guide).
 module ddc_run_memory
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_out_of_memory
@@ -32,6 +40,9 @@ module ddc_run_memory
     use ddc_contact_options, only: lcp_auto, lcp_newton
     use ddc_contact_formulation, only: auto_newton_min_elements
     use ddc_contact_memory, only: lemke_bytes, newton_bytes
+    use ddc_contact_active_set, only: starting_unknowns
+    use ddc_contact_result, only: contact_stress_scale
+    use ddc_model_loads, only: resolve_remote_stress, total_pressure
     implicit none
     private
 
@@ -49,8 +60,14 @@ module ddc_run_memory
 
     !> What a model needs, and where it was estimated to peak.
     type :: memory_need
-        !> Estimated peak memory of the run [bytes]
+        !> Estimated peak memory of the run [bytes]: the Newton method's from the states its
+        !> solve starts from
         real(wp) :: bytes = 0.0_wp
+        !> The same with the Newton method's reduced system at its largest (every element
+        !> slipping and open) [bytes]; bytes for the other methods
+        real(wp) :: worst_bytes = 0.0_wp
+        !> Unknowns of the Newton method's first reduced system (-1: counted at the largest)
+        integer :: start_unknowns = -1
         !> The method the estimate is for: 'lu', 'newton' or 'lemke', followed by ' (loading
         !> history)' for a history
         character(len=:), allocatable :: method
@@ -71,16 +88,40 @@ contains
         type(memory_need) :: need
 
         need = need_of(model, model%elements%n, &
-                       count(model%elements%condition == condition_contact))
+                       count(model%elements%condition == condition_contact), &
+                       first_unknowns(model))
     end function estimate_memory
+
+    !> The unknowns of the Newton method's first reduced system: states from the remote
+    !> stress on the contact elements (ddc_contact_active_set); -1 when the solve starts
+    !> elsewhere (loading history, growth, TWODD-style elements condensed into the load,
+    !> no geometry).
+    pure integer function first_unknowns(model)
+        !> The model
+        type(model_type), intent(in) :: model
+        real(wp), allocatable :: shear(:), normal(:), pressure(:)
+
+        first_unknowns = -1
+        if (allocated(model%load_path%vertex) .or. model%growth%active) return
+        if (.not. allocated(model%elements%cos_beta) .or. model%elements%n == 0) return
+        if (any(model%elements%condition /= condition_contact)) return
+        allocate (shear(model%elements%n), normal(model%elements%n))
+        call resolve_remote_stress(model%elements, model%sxx, model%syy, model%sxy, shear, &
+                                   normal, model%stress_gradient)
+        pressure = total_pressure(model%elements, model%pore_fluid)
+        first_unknowns = starting_unknowns(shear, normal + pressure, model%elements%mu, &
+            model%elements%sf, contact_stress_scale(shear, normal, model%elements%sf, pressure))
+    end function first_unknowns
 
     !> The estimate for n elements, nc of them contact elements, with the model's
     !> observation sets, solver options and load path.
-    pure function need_of(model, elements, contact) result(need)
+    pure function need_of(model, elements, contact, unknowns) result(need)
         !> The model (observation sets, solver options, load path)
         type(model_type), intent(in) :: model
         !> Number of elements and of contact elements among them
         integer, intent(in) :: elements, contact
+        !> Unknowns of the Newton method's first reduced system (-1: the largest, 2 contact)
+        integer, intent(in) :: unknowns
         !> The estimate
         type(memory_need) :: need
         real(wp) :: n, nc, nf, matrix, held, condense, points, fixed
@@ -107,6 +148,7 @@ contains
         if (contact == 0) then
             need%method = 'lu'
             need%bytes = fixed + 2.0_wp * matrix
+            need%worst_bytes = need%bytes
             return
         end if
         ! Held while the contact method works: A of the contact elements, and with free
@@ -131,12 +173,18 @@ contains
                 history = ' (growth)'
             end if
             need%method = 'newton'//history
-            need%bytes = fixed + max(condense, held + newton_bytes(contact))
+            need%worst_bytes = fixed + max(condense, held + newton_bytes(contact))
+            need%bytes = need%worst_bytes
+            if (unknowns >= 0) then
+                need%start_unknowns = unknowns
+                need%bytes = fixed + max(condense, held + newton_bytes(contact, unknowns))
+            end if
             need%fallback_bytes = fixed + max(condense, held + lemke_bytes(contact))
         else
             need%method = 'lemke'//history
             need%bytes = fixed + max(condense, held + lemke_bytes(contact), &
                                      held + newton_bytes(contact))
+            need%worst_bytes = need%bytes
         end if
     end function need_of
 
@@ -159,17 +207,23 @@ contains
         type(model_type), intent(in) :: model
         !> Memory available [bytes]
         real(wp), intent(in) :: available
-        real(wp) :: share
+        real(wp) :: share, start_share
         type(memory_need) :: need
-        integer :: low, high, middle
+        integer :: low, high, middle, contact
 
-        share = real(count(model%elements%condition == condition_contact), wp) / &
-            real(max(model%elements%n, 1), wp)
+        contact = count(model%elements%condition == condition_contact)
+        share = real(contact, wp) / real(max(model%elements%n, 1), wp)
+        ! The starting unknowns per contact element stay as they are (-1: the largest).
+        start_share = -1.0_wp
+        need = estimate_memory(model)
+        if (need%start_unknowns >= 0) start_share = real(need%start_unknowns, wp) / &
+            real(max(contact, 1), wp)
         low = 0
         high = model%elements%n
         do while (high - low > 1)
             middle = low + (high - low) / 2
-            need = need_of(model, middle, nint(share * middle))
+            need = need_of(model, middle, nint(share * middle), &
+                           scaled_unknowns(nint(share * middle)))
             if (need%bytes <= available) then
                 low = middle
             else
@@ -177,8 +231,18 @@ contains
             end if
         end do
         elements_that_fit = low
-        need = need_of(model, high, nint(share * high))
+        need = need_of(model, high, nint(share * high), scaled_unknowns(nint(share * high)))
         if (need%bytes <= available) elements_that_fit = high
+
+    contains
+
+        pure integer function scaled_unknowns(contact_elements)
+            integer, intent(in) :: contact_elements
+
+            scaled_unknowns = -1
+            if (start_share >= 0.0_wp) scaled_unknowns = nint(start_share * contact_elements)
+        end function scaled_unknowns
+
     end function elements_that_fit
 
     !> Refuse a model whose estimate exceeds the memory available (exit_out_of_memory),

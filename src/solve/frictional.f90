@@ -157,7 +157,7 @@ contains
         real(wp), intent(in) :: shear_modulus, nu
         !> The condensed system
         type(condensed_contact), intent(out) :: sys
-        !> seconds_assembly and seconds_factorization are set
+        !> seconds_assembly and counts%seconds (factorization) are set
         type(solver_record), intent(inout) :: record
         !> Set when K_FF is singular (exit_solver_failure) or the matrices do not fit in
         !> memory (exit_out_of_memory)
@@ -246,9 +246,9 @@ contains
         sys%flops = 2.0_wp / 3.0_wp * real(2 * nf, wp)**3 + 2.0_wp * real(2 * nf, wp)**2 * &
             real(2 * nc + 1, wp) + 2.0_wp * real(2 * nc, wp)**2 * real(2 * nf, wp)
         call system_clock(t2)
-        record%seconds_factorization = real(t2 - t1, wp) / real(rate, wp)
+        record%counts%seconds = real(t2 - t1, wp) / real(rate, wp)
         if (reports_phases(n) .and. nf > 0) call report_progress('condensation of '// &
-            itoa(nf)//' elements done in '//seconds_text(record%seconds_factorization))
+            itoa(nf)//' elements done in '//seconds_text(record%counts%seconds))
     end subroutine condense_contact
 
     !> Remote traction on the contact elements for one load, free elements condensed out:
@@ -331,24 +331,24 @@ contains
         type(contact_result), intent(in) :: res
         !> Nominal flops of the factorizations outside the contact solve (the condensation)
         real(wp), intent(in) :: flops
-        !> Method, pivots, certificate, residual, flops and LCP time are set; the
+        !> Method, pivots, counts, certificate, residual, flops and LCP time are set; the
         !> factorization time is added to
         type(solver_record), intent(inout) :: record
+        real(wp) :: seconds
 
         record%method = res%method
         record%fallback = res%fallback
         record%newton_iterations = res%iterations
-        record%factorizations = res%factorizations
-        record%low_rank_updates = res%low_rank_updates
-        record%factorization_reuses = res%factorization_reuses
-        record%factorization_flops = res%factorization_flops + flops
+        seconds = record%counts%seconds
+        record%counts = res%counts
+        record%counts%flops = res%counts%flops + flops
+        record%counts%seconds = seconds + res%counts%seconds
         record%pivots = res%pivots
         record%lcp_solves = res%solves
         record%certificate_min_z = res%certificate%min_z
         record%certificate_min_w = res%certificate%min_w
         record%certificate_max_complementarity = res%certificate%max_complementarity
         record%certificate_tolerance = res%certificate%tolerance
-        record%seconds_factorization = record%seconds_factorization + res%seconds_factorization
         record%seconds_lcp = res%seconds_lcp
         record%equilibrium_residual = maxval(res%equilibrium_residual)
     end subroutine record_contact

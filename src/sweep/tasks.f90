@@ -22,7 +22,6 @@ module ddc_sweep_tasks
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type, domain_half_plane
     use ddc_text, only: itoa, lower, short_real, add_message, messages_error
-    use ddc_output_hdf5_read, only: read_int_attribute
     use ddc_model_limits, only: range_problem, quantity_any, quantity_youngs_modulus, &
         quantity_poissons_ratio, quantity_non_negative
     implicit none
@@ -31,7 +30,7 @@ module ddc_sweep_tasks
     public :: sweep_definition, combine_product, combine_zip, combine_names
     public :: max_parameters, max_tasks, parameter_help
     public :: parse_parameter, check_value, task_values, task_label, task_file_name
-    public :: check_task, apply_task, task_problem, check_tasks, output_is_complete
+    public :: check_task, apply_task, task_problem, check_tasks
     public :: target_sxx, target_syy, target_sxy, target_s1, target_s3, target_angle
 
     !> How the value lists make tasks
@@ -390,22 +389,6 @@ contains
 
         is_principal = target == target_s1 .or. target == target_s3 .or. target == target_angle
     end function is_principal
-
-    !> True when path holds a readable ddc2d result with the root attribute complete = 1.
-    function output_is_complete(path) result(complete)
-        !> Path of the result file
-        character(len=*), intent(in) :: path
-        !> The file exists, is readable HDF5 and is complete
-        logical :: complete
-        type(error_type), allocatable :: error
-        integer :: flag
-
-        inquire (file=path, exist=complete)
-        if (.not. complete) return
-        call read_int_attribute(path, '/', 'complete', flag, error)
-        complete = .not. allocated(error)
-        if (complete) complete = flag == 1
-    end function output_is_complete
 
     !> Principal stresses of (sxx, syy, sxy): s1 the most compressive (algebraically
     !> least), s3 the other, angle of the s1 axis from +x [degrees] in (-90, 90].

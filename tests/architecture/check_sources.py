@@ -11,6 +11,17 @@
    the table of src/input/namelist_groups.f90, which the error messages print.
 4. Every name imported by `use ..., only:` in src/, app/ and tests/ is used in its file
    (gfortran does not warn about unused imports at module level).
+5. The code map is a contract: the "uses" column of the folder table of
+   docs/ARCHITECTURE.md lists exactly what each folder's code uses, a folder (`model`,
+   `base` for src/*.f90) or a single module of one (`contact/options`); a folder edge
+   the table does not list, a listed use the code does not have and a folder without a
+   row are violations.
+6. Nothing of the model is forgotten on the way to the other processes of the MPI build:
+   every per-element array of `element_set` is in the one list `for_each_element_array`
+   (src/model/types.f90), which allocation, selection and broadcast go through; every
+   other component of `element_set` and every component of `solver_options` is
+   broadcast in src/parallel/model.f90 or marked there in a comment
+   `! Root only: <reference> (why)`.
 
 Prints every violation and exits 1 when there is one; --graph prints the folder graph.
 """
@@ -99,12 +110,77 @@ def check_folders(root, problems):
         graph[here]
         if here != there:
             graph[here].add(there)
-            edges[(here, there)].add(f"{path.relative_to(root)} uses {used}")
+            edges[(here, there)].add((used, str(path.relative_to(root))))
     cycle = find_cycle(graph)
     if cycle:
-        links = [f"{a} -> {b} ({min(edges[(a, b)])})" for a, b in itertools.pairwise(cycle)]
+        links = [f"{a} -> {b} ({example(edges[(a, b)])})" for a, b in itertools.pairwise(cycle)]
         problems.append("folder cycle: " + "; ".join(links))
-    return graph
+    return graph, edges
+
+
+def example(uses):
+    """One `use` line of a folder edge, for messages: "src/a/b.f90 uses ddc_c_d"."""
+    module, path = min(uses, key=lambda use: (use[1], use[0]))
+    return f"{path} uses {module}"
+
+
+TABLE = Path("docs/ARCHITECTURE.md")
+TABLE_SECTION = "## Folders and what flows between them"
+TABLE_ROW = re.compile(r"^\|\s*`([^`]+)`[^|]*\|[^|]*\|([^|]*)\|\s*$", re.MULTILINE)
+
+
+def folder_name(folder):
+    return "base" if folder == "." else folder
+
+
+def read_table(root, problems):
+    """{folder: set of uses} from the folder table: a use is a folder ("." for the base)
+    or "folder/file" for a single module; remarks in parentheses are not uses."""
+    table = {}
+    text = (root / TABLE).read_text()
+    section = re.search(rf"^{TABLE_SECTION}$(.*?)(?=^## |\Z)", text, re.MULTILINE | re.DOTALL)
+    for cell, uses in TABLE_ROW.findall(section.group(1) if section else ""):
+        folder = "." if cell == "src/*.f90" else cell.strip().removesuffix("/")
+        items = [item.strip() for item in
+                 re.sub(r"\([^)]*\)", "", uses).replace("`", "").split(",")]
+        items = [item for item in items if item and item != "nothing"]
+        if folder in table:
+            problems.append(f"{TABLE}: two rows for {folder_name(folder)}")
+        table[folder] = {"." if item == "base" else item.removesuffix("/") for item in items}
+    if not table:
+        problems.append(f"{TABLE}: no folder table (| `folder/` | job | uses |) under "
+                        f"'{TABLE_SECTION}'")
+    return table
+
+
+def check_table(root, graph, edges, problems):
+    """The folder table's "uses" column against the `use` lines of the code."""
+    table = read_table(root, problems)
+    if not table:
+        return
+    for folder in sorted(set(table) - set(graph)):
+        problems.append(f"{TABLE}: a row for {folder_name(folder)}, which holds no source")
+    for folder in sorted(graph):
+        if folder not in table:
+            problems.append(f"{TABLE}: no row for {folder_name(folder)} in the folder table")
+            continue
+        listed = table[folder]
+        used = set()
+        for there in sorted(graph[folder]):
+            single = {module: there + "/" + module.removeprefix(f"ddc_{there}_")
+                      for module, _ in edges[(folder, there)]}
+            used |= {there} | set(single.values())
+            unlisted = {(module, path) for module, path in edges[(folder, there)]
+                        if there not in listed and single[module] not in listed}
+            if unlisted:
+                singles = sorted({single[module] for module, _ in unlisted})
+                what = ("base" if there == "." else
+                        f"{there} (nor {' and '.join(singles)} one by one)")
+                problems.append(f"{example(unlisted)}: the folder table of {TABLE} does not "
+                                f"list {what} among the uses of {folder_name(folder)}")
+        for item in sorted(listed - used):
+            problems.append(f"{TABLE}: the row of {folder_name(folder)} lists {item}, which "
+                            f"{folder_name(folder)} does not use")
 
 
 def check_namelists(root, problems):
@@ -154,6 +230,121 @@ def check_imports(root, problems):
                                     "use it")
 
 
+# The one list of per-element arrays, and the routines that must go through it.
+ELEMENT_LIST = ("src/model/types.f90", "for_each_element_array")
+THROUGH_ELEMENT_LIST = [("src/mesh/geometry.f90", "allocate_elements"),
+                        ("src/model/types.f90", "select_elements"),
+                        ("src/parallel/model.f90", "share_elements")]
+# Types the MPI build broadcasts: (file of the type, type, file of the broadcast, routine,
+# how the routine names a component); per-element arrays go through the list above.
+SHARED = [("src/model/types.f90", "element_set", "src/parallel/model.f90", "share_elements",
+           "elements%"),
+          ("src/contact/options.f90", "solver_options", "src/parallel/model.f90",
+           "share_model", "model%solver%")]
+ROOT_ONLY = re.compile(r"!\s*root only:\s*([\w%]+(?:\s*,\s*[\w%]+)*)", re.IGNORECASE)
+
+
+def split_top_level(text):
+    """Items of a comma-separated list, ignoring commas inside (...) and [...]."""
+    items, depth, start = [], 0, 0
+    for i, char in enumerate(text):
+        depth += char in "([" and 1 or char in ")]" and -1 or 0
+        if char == "," and depth == 0:
+            items.append(text[start:i])
+            start = i + 1
+    return [item.strip() for item in items + [text[start:]] if item.strip()]
+
+
+def type_components(text, name):
+    """[(component, per-element array?, derived type or None)] of `type :: name`; None
+    when the file has no such type."""
+    found = re.search(rf"^\s*type\b[^\n]*::\s*{name}\s*$(.*?)^\s*end\s*type\s+{name}\b",
+                      strip_comments(text), LINES | re.DOTALL)
+    if not found:
+        return None
+    components = []
+    for line in re.sub(r"&\s*\n\s*", " ", found.group(1)).splitlines():
+        if "::" not in line or re.match(r"\s*procedure\b", line, re.IGNORECASE):
+            continue
+        spec, entities = line.split("::", 1)
+        derived = re.match(r"\s*type\s*\(\s*(\w+)\s*\)", spec, re.IGNORECASE)
+        for entity in split_top_level(entities):
+            component = re.match(r"(\w+)\s*(\()?", entity)
+            array = bool(component.group(2)) or "dimension" in spec.lower()
+            components.append((component.group(1).lower(),
+                               array and "allocatable" in spec.lower(),
+                               derived.group(1).lower() if derived else None))
+    return components
+
+
+def leaf_references(text, name, prefix):
+    """References prefix%a (prefix%a%b for a component of a derived type of the same
+    file) of every component of type name that is not a per-element array."""
+    references = []
+    for component, per_element, derived in type_components(text, name):
+        if per_element:
+            continue
+        inner = derived and type_components(text, derived)
+        if inner:
+            references += leaf_references(text, derived, f"{prefix}{component}%")
+        else:
+            references.append(f"{prefix}{component}")
+    return references
+
+
+def routine(root, file, name, problems):
+    """The text of a subroutine (with comments), or None after a problem."""
+    found = re.search(rf"^\s*(?:\w+\s+)*subroutine\s+{name}\b(.*?)^\s*end\s+subroutine\s+"
+                      rf"{name}\b", (root / file).read_text(), LINES | re.DOTALL)
+    if not found:
+        problems.append(f"{file}: no subroutine {name}")
+        return None
+    return found.group(1)
+
+
+def names_in(code, reference):
+    return re.search(rf"(?<![\w%]){re.escape(reference)}(?![\w%])", code, re.IGNORECASE)
+
+
+def check_shared(root, problems):
+    """Every component of the broadcast types reaches the other processes (item 6)."""
+    types = (root / ELEMENT_LIST[0]).read_text()
+    components = type_components(types, "element_set") or []
+    if not components:
+        problems.append(f"{ELEMENT_LIST[0]}: no type element_set")
+    listing = routine(root, *ELEMENT_LIST, problems)
+    if listing is not None:
+        code = strip_comments(listing)
+        for component, per_element, _ in components:
+            if per_element and not names_in(code, f"elements%{component}"):
+                problems.append(f"{ELEMENT_LIST[0]}: the per-element array {component} of "
+                                f"element_set is missing from {ELEMENT_LIST[1]}, so it is "
+                                "not allocated, selected or broadcast")
+    for file, name in THROUGH_ELEMENT_LIST:
+        text = routine(root, file, name, problems)
+        if text is not None and not names_in(strip_comments(text), ELEMENT_LIST[1]):
+            problems.append(f"{file}: {name} does not go through {ELEMENT_LIST[1]}")
+    for type_file, name, file, broadcast, prefix in SHARED:
+        text = routine(root, file, broadcast, problems)
+        if text is None:
+            continue
+        code = strip_comments(text)
+        root_only = {reference.strip().lower() for names in ROOT_ONLY.findall(text)
+                     for reference in names.split(",")}
+        references = leaf_references((root / type_file).read_text(), name, prefix)
+        if not references:
+            problems.append(f"{type_file}: no type {name}")
+        for reference in references:
+            if not names_in(code, reference) and reference not in root_only:
+                problems.append(f"{file}: {broadcast} does not broadcast {reference} "
+                                f"(a component of {name}) nor marks it "
+                                f"'! Root only: {reference} (why)'")
+        for reference in sorted(root_only - set(references)):
+            if reference.startswith(prefix):
+                problems.append(f"{file}: {broadcast} marks {reference} root only, which "
+                                f"is no component of {name}")
+
+
 def main(argv):
     graph_wanted = "--graph" in argv
     args = [a for a in argv if a != "--graph"]
@@ -162,17 +353,21 @@ def main(argv):
         return 2
     root = Path(args[0]).resolve()
     problems = []
-    graph = check_folders(root, problems)
+    graph, edges = check_folders(root, problems)
+    check_table(root, graph, edges, problems)
     namelists = check_namelists(root, problems)
     check_imports(root, problems)
+    check_shared(root, problems)
     if graph_wanted:
         for folder in sorted(graph):
             print(f"{folder}: {', '.join(sorted(graph[folder])) or '-'}")
     for problem in problems:
         print(problem)
     if not problems:
-        print(f"architecture: {len(graph)} folders, no cycle; module names follow their paths; "
-              f"the {namelists} namelist statements match the group table; every import is used")
+        print(f"architecture: {len(graph)} folders, no cycle, every folder edge listed in "
+              f"{TABLE}; module names follow their paths; the {namelists} namelist "
+              "statements match the group table; every import is used; every component of "
+              "element_set and solver_options is broadcast or marked root only")
     return 1 if problems else 0
 
 

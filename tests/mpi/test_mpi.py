@@ -6,9 +6,9 @@ timeout, so a process that waits forever fails the test instead of hanging it.
 
 - P = 1, 2 and 4 processes (grids 1 x 1, 1 x 2, 2 x 2) give the serial answer on the four
   models of SPEC-SCALE: DDs, tractions, face displacements, tips and fields within 1e-10 of
-  the largest magnitude of their kind of quantity (compare.py), the same element states and
+  the largest magnitude of their kind of quantity (compare_results), the same element states and
   point flags, the same method, and a certificate and equilibrium residual that pass the
-  same limits.
+  same limits; a Newton solve records its factorizations (one per reduced system).
 - On 4 processes, bad input, what is not distributed and a solver failure end every process
   with one message from the root, the documented exit status and no output file.
 """
@@ -16,14 +16,16 @@ timeout, so a process that waits forever fails the test instead of hanging it.
 import json
 import os
 import subprocess
+import sys
 from pathlib import Path
 
 import h5py
 import numpy as np
 import pytest
-from compare import differences
 
-from ddc2d_h5 import read_solver  # compare puts scripts/ on the path
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # tests/compare_results.py
+from compare_results import RTOL, differences
+from ddc2d_h5 import read_solver  # compare_results puts scripts/ on the path
 
 REPO = Path(__file__).resolve().parents[2]
 DATA = REPO / "tests" / "data"
@@ -35,7 +37,6 @@ MODELS = {
     "half_plane": DATA / "mpi" / "half_plane.nml",  # contact and prescribed DDs
 }
 PROCESSES = (1, 2, 4)
-RTOL = 1e-10  # of the largest magnitude of each kind of quantity (compare.py)
 RESIDUAL_LIMIT = 1e-8  # the equilibrium check of every solution (ddc_linalg_lu residual_tol)
 TIMEOUT = 300
 
@@ -97,6 +98,11 @@ def check_solver_record(reference, other, processes):
             assert record["certificate_min_w"] >= -tolerance
             assert record["certificate_max_complementarity"] <= tolerance
         assert record["equilibrium_residual"] <= RESIDUAL_LIMIT
+    if b["method"] == "newton":
+        # The distributed Newton method factorizes every reduced system anew, and says so.
+        assert b["factorizations"] >= 1, "/solver factorizations = 0 after a Newton solve"
+        assert b["low_rank_updates"] == 0 and b["factorization_reuses"] == 0
+        assert b["factorizations"] <= b["newton_iterations"]
     assert b["processes"] == processes
     assert int(np.prod(b["process_grid"])) == processes
     assert "processes" not in a  # the serial program's layout has no process attributes
@@ -129,6 +135,8 @@ ERRORS = {
                  ["good_strength.nml", "with 4 processes",
                   "tensile_strength, sf_residual, mu_dynamic or a joint stiffness",
                   "one process"]),
+    "growth": (DATA / "growth" / "good.nml", 2,
+               ["good.nml", "with 4 processes", "&growth", "one process"]),
     "solver_failure": (DATA / "mpi" / "unbalanced_hole.nml", 1,
                        ["influence matrix is numerically singular", "relative residual"]),
 }
@@ -137,7 +145,7 @@ ERRORS = {
 @pytest.mark.parametrize("case", ERRORS)
 def test_error_on_four_processes(case, tmp_path):
     model, status, words = ERRORS[case]
-    run = run_parallel(4, [model, "-o", tmp_path / "out.h5"], tmp_path, timeout=120)
+    run = run_parallel(4, [model, "-o", tmp_path / "out.h5"], tmp_path)
     assert run.returncode == status, run.stdout + run.stderr
     assert run.stderr.count("ddc2d: error:") == 1, run.stderr
     for word in words:
@@ -156,6 +164,31 @@ def test_one_process_runs_what_is_not_distributed(tmp_path):
     assert "/history/ds" in found and max(found.values()) <= RTOL
     with h5py.File(tmp_path / "one.h5") as one:
         assert read_solver(one)["attrs"]["processes"] == 1
+
+
+def test_blas_kernel_older_than_the_cpu_warns_without_running_again(tmp_path):
+    # The stand-in for openblas_get_corename (tests/fake_openblas_core.c) reports Prescott:
+    # the MPI program, whose processes mpiexec started, warns once (the root) with the
+    # variable to set and how to pass it, and runs on (OpenBLAS loaded once per process).
+    lib = os.environ.get("DDC2D_FAKE_CORE_LIB")
+    flags = set(next((line for line in Path("/proc/cpuinfo").read_text().splitlines()
+                      if line.startswith("flags")), "").split())
+    if not lib or not {"avx2", "fma"} <= flags:
+        pytest.skip("needs DDC2D_FAKE_CORE_LIB and a CPU with AVX2")
+    env = {k: v for k, v in environment().items() if k != "OPENBLAS_CORETYPE"}
+    env.update(LD_PRELOAD=str(Path(lib).resolve()), OPENBLAS_VERBOSE="2")
+    command = [executable("MPIEXEC"), "-q", "--oversubscribe", "-n", "2", "-x", "LD_PRELOAD",
+               "-x", "OPENBLAS_VERBOSE", executable("DDC2D_EXE"), MODELS["straight"], "-o",
+               str(tmp_path / "out.h5")]
+    run = subprocess.run(command, cwd=tmp_path, capture_output=True, text=True,
+                         timeout=TIMEOUT, env=env, check=False)
+    assert run.returncode == 0, run.stdout + run.stderr
+    warnings = [line for line in run.stderr.splitlines()
+                if line.startswith("ddc2d: warning: OpenBLAS runs its Prescott kernel")]
+    assert len(warnings) == 1, run.stderr
+    assert "mpiexec -x OPENBLAS_CORETYPE=" in warnings[0]
+    assert run.stderr.count("Core: Prescott") == 0  # the real OpenBLAS chose its own
+    assert run.stderr.count("Core: ") == 2, run.stderr  # each process started once
 
 
 def test_benchmark_records_every_process(tmp_path):

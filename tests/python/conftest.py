@@ -8,6 +8,7 @@ Tests read result files with scripts/ddc2d_h5.py (importable once this file is l
 import importlib.machinery
 import importlib.util
 import os
+import subprocess
 import sys
 from pathlib import Path
 
@@ -41,6 +42,10 @@ STATES = [1, 2, 3, 2, 0, 3, 1]
 DS = [-1.0e-3, -2.5e-3, -3.0e-3, -1.5e-3, 4.0e-4, 0.0, 2.0e-4]
 DN = [0.0, 0.0, -2.0e-3, 0.0, -1.0e-4, -7.0e-4, 0.0]
 
+# The coding ddc2d writes on /fields/<name>/near_element: ddc2d-plot masks the points
+# that it calls 'on' (an element).
+NEAR_ELEMENT_CODING = ("0 clear, 1 within one element length of an element centre (reduced "
+                       "accuracy), 2 on an element or at an element end (value NaN)")
 GRID_NX, GRID_NY = 5, 4
 GRID_NAN_POINT = (1, 2)  # (row j, column i) of the point on an element: NaN, flagged 2
 GRID_NEAR_POINT = (2, 3)  # a point close to an element: finite, flagged 1
@@ -150,6 +155,7 @@ def write_result(path, with_fields=True, with_elements=True):
             grid.attrs["ny"] = np.int32(GRID_NY)
             for key, value in grid_arrays().items():
                 grid.create_dataset(key, data=value)
+            grid["near_element"].attrs["coding"] = _text(NEAR_ELEMENT_CODING)
             line = fields.create_group("line1")
             line.attrs["kind"] = _text("line")
             line.attrs["nx"] = np.int32(6)
@@ -196,6 +202,16 @@ def load_script(name):
 def plot_module():
     """scripts/ddc2d-plot loaded as a module."""
     return load_script("ddc2d-plot")
+
+
+def solve_text(folder, stem, text, timeout=300):
+    """Write `text` to folder/<stem>.nml and solve it with ddc2d_exe() (asserting success);
+    returns the result file folder/<stem>.h5."""
+    (folder / f"{stem}.nml").write_text(text)
+    done = subprocess.run([str(ddc2d_exe()), f"{stem}.nml", "-o", f"{stem}.h5"], cwd=folder,
+                          capture_output=True, text=True, timeout=timeout)
+    assert done.returncode == 0, done.stdout + done.stderr
+    return folder / f"{stem}.h5"
 
 
 def ddc2d_exe():

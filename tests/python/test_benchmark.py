@@ -45,6 +45,15 @@ def test_benchmark_records(tmp_path, case, method):
         assert sum(r["states"].values()) == r["n"]
         if case == "mixed":
             assert all(r["states"][s] > 0 for s in ("stick", "slip", "open")), r["states"]
+        assert r["blas"] and r["blas_core"], "the BLAS and its kernel"
+        assert r["estimated_mb"] > 1.0
+        assert abs(r["untimed_share"]) < 1.0
+
+
+def test_benchmark_thread_list(tmp_path):
+    _, records = run_benchmark(tmp_path, "--case", "straight", "--grid", "0",
+                               "--threads", "1,2")
+    assert [(r["threads"], r["n"]) for r in records] == [(1, 12), (1, 30), (2, 12), (2, 30)]
 
 
 def run_benchmark(tmp_path, *options):

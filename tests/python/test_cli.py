@@ -90,11 +90,12 @@ def test_unwritable_output_path_exits_3(tmp_path, option):
     assert not (tmp_path / "no").exists()
 
 
-def test_output_path_that_is_a_folder_is_bad_usage(tmp_path):
+def test_output_path_that_is_a_folder_exits_3(tmp_path):
+    # Issue 27: a folder as target is refused like every target that is not a regular file.
     (tmp_path / "crack.nml").write_text(GOOD_MODEL)
     (tmp_path / "out").mkdir()
     done = run(["crack.nml", "-o", "out"], tmp_path)
-    assert done.returncode == 2, done.stderr
+    assert done.returncode == 3, done.stderr
     assert "out is a folder" in done.stderr
 
 

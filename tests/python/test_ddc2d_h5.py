@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import ddc2d_h5
-from conftest import ddc2d_exe, load_script, write_result
+from conftest import ddc2d_exe, load_script, solve_text, write_result
 
 # ------------------------------------------------------------------ strings
 
@@ -75,12 +75,7 @@ MIXED_MODEL = """\
 @pytest.fixture(scope="module")
 def solved_file(tmp_path_factory):
     """A small model solved by ddc2d: a contact fault and a traction crack."""
-    folder = tmp_path_factory.mktemp("solved")
-    (folder / "mixed.nml").write_text(MIXED_MODEL)
-    done = subprocess.run([str(ddc2d_exe()), "mixed.nml", "-o", "mixed.h5"], cwd=folder,
-                          capture_output=True, text=True, timeout=120)
-    assert done.returncode == 0, done.stderr
-    return folder / "mixed.h5"
+    return solve_text(tmp_path_factory.mktemp("solved"), "mixed", MIXED_MODEL)
 
 
 def test_codings_match_what_ddc2d_writes(solved_file):

@@ -9,6 +9,8 @@ import h5py
 import numpy as np
 import pytest
 
+import ddc2d_plot_data as plot_data
+import ddc2d_plot_figures as plot_figures
 from conftest import PLOT_SCRIPT, ddc2d_exe
 from ddc2d_h5 import GROWTH_DATASETS, load_result
 
@@ -87,7 +89,7 @@ def test_progress_lines_and_tip_table(grown):
         assert "step limit" in row
 
 
-def test_growth_figure_draws_the_records(grown, plot_module):
+def test_growth_figure_draws_the_records(grown):
     folder, _ = grown
     proc = subprocess.run([sys.executable, str(PLOT_SCRIPT), str(folder / "wings.h5"), "-o",
                            str(folder / "fig"), "--quantity", "sxy"],
@@ -96,7 +98,7 @@ def test_growth_figure_draws_the_records(grown, plot_module):
     assert (folder / "fig" / "wings_growth.png").read_bytes()[:4] == b"\x89PNG"
     assert (folder / "fig" / "wings_map_sxy.png").is_file()
     result = load_result(folder / "wings.h5")
-    series = plot_module.growth_series(result)
+    series = plot_data.growth_series(result)
     assert [tip["label"] for tip in series] == ["crack begin", "crack end"]
     with h5py.File(folder / "wings.h5", "r") as f:
         k_eq = f["growth/k_eq"][()]
@@ -104,7 +106,7 @@ def test_growth_figure_draws_the_records(grown, plot_module):
     # K_eq / toughness: the stored values divided by the stored toughness (10).
     np.testing.assert_allclose(series[1]["ratio"], k_eq[1::2] / 10.0, rtol=1e-15)
     assert list(series[0]["step"]) == [1, 2, 3]
-    fig = plot_module.plot_growth(result)
+    fig = plot_figures.plot_growth(result)
     try:
         geometry, k_axes = fig.axes[:2]
         grown_elements = [c for c in geometry.collections if c.get_gid() == "grown_elements"]
@@ -114,16 +116,16 @@ def test_growth_figure_draws_the_records(grown, plot_module):
         lines = {line.get_gid(): line for line in k_axes.get_lines() if line.get_gid()}
         np.testing.assert_array_equal(lines["k_eq:crack end"].get_ydata(), k_eq[1::2] / 10.0)
     finally:
-        plot_module.plt.close(fig)
-    fig = plot_module.plot_map(result, "map", "sxy")
+        plot_figures.plt.close(fig)
+    fig = plot_figures.plot_map(result, "map", "sxy")
     try:
         gids = [c.get_gid() for c in fig.axes[0].collections]
         assert "grown_elements" in gids and "elements" in gids
     finally:
-        plot_module.plt.close(fig)
+        plot_figures.plt.close(fig)
 
 
-def test_result_without_growth_has_no_growth_figure(tmp_path, plot_module):
+def test_result_without_growth_has_no_growth_figure(tmp_path):
     done = solve(tmp_path, SHEAR_MODEL.replace("&growth", "! &growth"))
     assert done.returncode == 0, done.stderr
     assert "growth step" not in done.stdout

@@ -7,8 +7,10 @@ import sys
 import h5py
 import numpy as np
 
+import ddc2d_plot_data as plot_data
+import ddc2d_plot_figures as plot_figures
 from conftest import PLOT_SCRIPT, ddc2d_exe
-from ddc2d_h5 import STATE_CODES
+from ddc2d_h5 import STATE_CODES, load_result
 
 # The play-operator crack of SPEC-EARTH 3, coarse: slips above 6 MPa, sticks while the
 # shear is unloaded by less than 12 MPa, slips back below -2 MPa.
@@ -74,7 +76,7 @@ def test_path_without_contact_is_bad_input(tmp_path):
     assert not (tmp_path / "path.h5").exists()
 
 
-def test_hysteresis_figure_draws_the_history(plot_module, tmp_path):
+def test_hysteresis_figure_draws_the_history(tmp_path):
     assert solve(tmp_path).returncode == 0
     proc = subprocess.run([sys.executable, str(PLOT_SCRIPT), str(tmp_path / "path.h5"), "-o",
                            str(tmp_path / "fig"), "--history-elements", "10,20",
@@ -82,11 +84,11 @@ def test_hysteresis_figure_draws_the_history(plot_module, tmp_path):
                           capture_output=True, text=True, timeout=120)
     assert proc.returncode == 0, proc.stderr
     assert (tmp_path / "fig" / "path_history.png").read_bytes()[:4] == b"\x89PNG"
-    result = plot_module.load_result(tmp_path / "path.h5")
+    result = load_result(tmp_path / "path.h5")
     with h5py.File(tmp_path / "path.h5", "r") as f:
         ds, sxy = f["history/ds"][()], f["history/sxy"][()]
-    elements, steps = plot_module.history_choices(result["history"], [10, 20], [11, 31])
-    fig = plot_module.plot_history(result, elements, steps)
+    elements, steps = plot_data.history_choices(result["history"], [10, 20], [11, 31])
+    fig = plot_figures.plot_history(result, elements, steps)
     try:  # the figure draws the stored values themselves: exact
         loop, profile = fig.axes
         (line,) = [ln for ln in loop.get_lines() if ln.get_gid() == "element_20"]
@@ -95,13 +97,13 @@ def test_hysteresis_figure_draws_the_history(plot_module, tmp_path):
         (line,) = [ln for ln in profile.get_lines() if ln.get_gid() == "step_31"]
         np.testing.assert_array_equal(line.get_ydata(), -ds[30])
     finally:
-        plot_module.plt.close(fig)
+        plot_figures.plt.close(fig)
     # Defaults: the element of largest slip, the path's vertices. The fault is symmetric:
     # elements 10 and 11 slip equally but for the last bits, which depend on the BLAS
     # kernel (CPU); the tie rule takes the lower, element 10, on every CPU.
     peak = np.max(np.abs(ds), axis=0)
     np.testing.assert_allclose(peak[10], peak[9], rtol=1e-12)  # a tie: what is tested here
-    assert plot_module.history_choices(result["history"]) == ([9], [0, 10, 30])
+    assert plot_data.history_choices(result["history"]) == ([9], [0, 10, 30])
 
 
 def test_history_step_out_of_range_exits_2(tmp_path):

@@ -8,6 +8,7 @@ import re
 import resource
 import subprocess
 
+import benchmark  # scripts/benchmark.py (on the path by conftest): the benchmark's models
 import pytest
 
 from conftest import ddc2d_exe
@@ -26,7 +27,9 @@ def run(tmp_path, n, extra=""):
 
 
 @pytest.mark.parametrize("extra, method, need", [
-    ("", "newton", "3 TB"),  # auto: newton from 300 contact elements on
+    # auto: newton from 300 contact elements on; every element slips from the start:
+    # A (32 N^2 bytes) and a reduced system of N unknowns (11 N^2 bytes).
+    ("", "newton", "1.7 TB"),
     ("&solver lcp_method = 'lemke' /\n", "lemke", "16 TB"),
     ("&load_path steps = 4, sxy = 0, 54.13 /\n", "newton (loading history)", "3 TB"),
     ("&load_path steps = 4, sxy = 0, 54.13 /\n&solver lcp_method = 'lemke' /\n",
@@ -89,3 +92,35 @@ def test_help_gives_exit_status_5(tmp_path):
                           timeout=60)
     assert done.returncode == 0
     assert "5 the model is too large for the memory here" in " ".join(done.stdout.split())
+
+
+UNITS = {"kB": 1e3, "MB": 1e6, "GB": 1e9, "TB": 1e12}
+
+
+@pytest.mark.parametrize("case", ["straight", "mixed"])
+def test_the_echoed_need_is_the_peak_memory_within_25_percent(tmp_path, case):
+    # The benchmark's straight fault (every element slips) and kinked fault network (stick,
+    # slip, open; its reduced system grows over 8 Newton iterations) at N = 2000: the need
+    # echoed for the starting states against the peak resident memory of the run.
+    n = 2000
+    text = benchmark.CASES[case](n, 0, 0) + "&solver lcp_method = 'auto' /\n"
+    (tmp_path / "model.nml").write_text(text)
+    with open(tmp_path / "stderr.txt", "w") as errors:
+        process = subprocess.Popen([str(ddc2d_exe()), "model.nml", "-o", "model.h5"],
+                                   cwd=tmp_path, stdout=subprocess.PIPE, stderr=errors,
+                                   text=True, env={**os.environ, "OMP_NUM_THREADS": "2",
+                                                   "OPENBLAS_NUM_THREADS": "2"})
+        stdout = process.stdout.read()
+        process.stdout.close()
+        # os.wait4: the peak resident memory of this child alone.
+        _, status, usage = os.wait4(process.pid, 0)
+    assert os.waitstatus_to_exitcode(status) == 0, stdout
+    peak = usage.ru_maxrss * 1024.0
+    match = re.search(r"^  memory: about ([0-9.]+) (kB|MB|GB|TB) needed \(newton, from the "
+                      r"starting states: (\d+) unknowns\), up to ([0-9.]+) (kB|MB|GB|TB) should "
+                      r"every element slip and open; ", stdout, re.MULTILINE)
+    assert match, stdout
+    need = float(match.group(1)) * UNITS[match.group(2)]
+    worst = float(match.group(4)) * UNITS[match.group(5)]
+    assert abs(need - peak) <= 0.25 * peak, (need, peak)
+    assert worst > 1.5 * peak  # the old estimate, far off

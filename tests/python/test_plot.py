@@ -9,6 +9,8 @@ import h5py
 import numpy as np
 import pytest
 
+import ddc2d_plot_data as plot_data
+import ddc2d_plot_figures as plot_figures
 from conftest import (
     GRID_NAN_POINT,
     GRID_NEAR_POINT,
@@ -19,7 +21,7 @@ from conftest import (
     ddc2d_exe,
     write_result,
 )
-from ddc2d_h5 import STATE_CODES
+from ddc2d_h5 import STATE_CODES, load_result
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 
@@ -133,24 +135,24 @@ def test_bad_clim_is_a_usage_error(result_file, tmp_path):
 # ------------------------------------------------------------------ data preparation
 
 
-def test_load_result_decodes_fortran_strings(plot_module, result_file):
-    result = plot_module.load_result(result_file)
+def test_load_result_decodes_fortran_strings(result_file):
+    result = load_result(result_file)
     assert result["length_unit"] == LENGTH_UNIT
     assert result["stress_unit"] == STRESS_UNIT
     assert result["title"] == "synthetic test"
     assert [f["name"] for f in result["fractures"]] == ["fault A", "B"]
     assert [(f["first"], f["last"]) for f in result["fractures"]] == [(1, 4), (5, 7)]
     assert result["fields"]["grid1"]["kind"] == "grid"
-    assert plot_module.grid_fields(result) == ["grid1"]
+    assert plot_data.grid_fields(result) == ["grid1"]
 
 
-def test_profile_data_equal_hdf5_values(plot_module, result_file):
+def test_profile_data_equal_hdf5_values(result_file):
     # The profiles are the stored values (negated, which is exact): compared bit for bit.
     with h5py.File(result_file, "r") as f:
         ds = f["elements/ds"][()]
         dn = f["elements/dn"][()]
         state = f["elements/state"][()]
-    profiles = plot_module.fracture_profiles(plot_module.load_result(result_file))
+    profiles = plot_data.fracture_profiles(load_result(result_file))
     assert len(profiles) == 2
     (_, prof_a), (_, prof_b) = profiles
     np.testing.assert_array_equal(prof_a["slip"], -ds[0:4])
@@ -164,10 +166,10 @@ def test_profile_data_equal_hdf5_values(plot_module, result_file):
     np.testing.assert_allclose(prof_b["distance"], [0.25, 0.75, 1.25], rtol=1e-14)
 
 
-def test_profile_figure_shows_the_profile_data(plot_module, result_file):
-    result = plot_module.load_result(result_file)
-    fracture, profile = plot_module.fracture_profiles(result)[0]
-    fig = plot_module.plot_profile(result, fracture, profile)
+def test_profile_figure_shows_the_profile_data(result_file):
+    result = load_result(result_file)
+    fracture, profile = plot_data.fracture_profiles(result)[0]
+    fig = plot_figures.plot_profile(result, fracture, profile)
     try:
         ax_slip, ax_open = fig.axes[:2]
         # Lines and markers draw the profile's values themselves, and the element lengths
@@ -186,20 +188,20 @@ def test_profile_figure_shows_the_profile_data(plot_module, result_file):
         np.testing.assert_array_equal(slip_markers.get_xdata(), [0.75, 1.75])
         np.testing.assert_array_equal(slip_markers.get_ydata(), [0.0, 0.0])
     finally:
-        plot_module.plt.close(fig)
-    fracture, profile = plot_module.fracture_profiles(result)[1]
-    fig = plot_module.plot_profile(result, fracture, profile)
+        plot_figures.plt.close(fig)
+    fracture, profile = plot_data.fracture_profiles(result)[1]
+    fig = plot_figures.plot_profile(result, fracture, profile)
     try:
         legend = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
         assert legend == ["free", "stick", "open"]  # B: free, open, stick elements
     finally:
-        plot_module.plt.close(fig)
+        plot_figures.plt.close(fig)
 
 
-def test_grid_quantity_shape_values_and_mask(plot_module, result_file):
-    result = plot_module.load_result(result_file)
+def test_grid_quantity_shape_values_and_mask(result_file):
+    result = load_result(result_file)
     field = result["fields"]["grid1"]
-    x, y, sxx = plot_module.grid_quantity(field, "sxx")
+    x, y, sxx = plot_data.grid_quantity(field, "sxx")
     assert x.shape == y.shape == sxx.shape == (4, 5)
     np.testing.assert_allclose(x[0], np.linspace(-2.0, 2.0, 5))
     np.testing.assert_allclose(y[:, 0], np.linspace(-1.5, 1.5, 4))
@@ -209,29 +211,29 @@ def test_grid_quantity_shape_values_and_mask(plot_module, result_file):
     assert not np.ma.getmaskarray(sxx)[GRID_NEAR_POINT]  # flag 1 is kept
     np.testing.assert_allclose(sxx.compressed(), (-10.0 + x + 2.0 * y)[~expected_mask])
 
-    _, _, shear = plot_module.grid_quantity(field, "max_shear")
+    _, _, shear = plot_data.grid_quantity(field, "max_shear")
     syy, sxy = -5.0 - x * y, 0.5 * x - y
     expected = np.sqrt((0.5 * ((-10.0 + x + 2.0 * y) - syy)) ** 2 + sxy ** 2)
     np.testing.assert_allclose(shear.compressed(), expected[~expected_mask], rtol=1e-14)
-    _, _, mean = plot_module.grid_quantity(field, "mean")
+    _, _, mean = plot_data.grid_quantity(field, "mean")
     np.testing.assert_allclose(mean.compressed(),
                                (0.5 * (-10.0 + x + 2.0 * y + syy))[~expected_mask])
-    _, _, disp = plot_module.grid_quantity(field, "displacement")
+    _, _, disp = plot_data.grid_quantity(field, "displacement")
     np.testing.assert_allclose(disp.compressed(),
                                np.hypot(1e-3 * x, -2e-3 * y)[~expected_mask])
 
 
-def test_masked_point_flagged_even_if_finite(plot_module, result_file):
-    field = plot_module.load_result(result_file)["fields"]["grid1"]
+def test_masked_point_flagged_even_if_finite(result_file):
+    field = load_result(result_file)["fields"]["grid1"]
     field["sxx"] = np.nan_to_num(field["sxx"], nan=123.0)
-    _, _, sxx = plot_module.grid_quantity(field, "sxx")
+    _, _, sxx = plot_data.grid_quantity(field, "sxx")
     assert np.ma.getmaskarray(sxx)[GRID_NAN_POINT]
     assert sxx.count() == 19
 
 
-def test_map_uses_clim_and_draws_every_element(plot_module, result_file):
-    result = plot_module.load_result(result_file)
-    fig = plot_module.plot_map(result, "grid1", "sxx", clim=(-4.0, 2.0))
+def test_map_uses_clim_and_draws_every_element(result_file):
+    result = load_result(result_file)
+    fig = plot_figures.plot_map(result, "grid1", "sxx", clim=(-4.0, 2.0))
     try:
         ax = fig.axes[0]
         mesh = ax.collections[0]
@@ -242,24 +244,24 @@ def test_map_uses_clim_and_draws_every_element(plot_module, result_file):
         np.testing.assert_allclose(segments[5], [[0.3, 1.4], [0.3, 1.9]])
         assert f"[{STRESS_UNIT}]" in fig.axes[1].get_ylabel()
     finally:
-        plot_module.plt.close(fig)
+        plot_figures.plt.close(fig)
 
 
-def test_default_clim_is_symmetric_for_signed_quantities(plot_module, result_file):
-    field = plot_module.load_result(result_file)["fields"]["grid1"]
-    _, _, sxy = plot_module.grid_quantity(field, "sxy")
+def test_default_clim_is_symmetric_for_signed_quantities(result_file):
+    field = load_result(result_file)["fields"]["grid1"]
+    _, _, sxy = plot_data.grid_quantity(field, "sxy")
     assert sxy.min() < 0.0 < sxy.max()
-    low, high = plot_module.default_clim(sxy, "sxy")
+    low, high = plot_data.default_clim(sxy, "sxy")
     assert low == -high and high > 0.0  # centre 0: (0 - top, 0 + top), exact negatives
-    _, _, shear = plot_module.grid_quantity(field, "max_shear")
-    low, high = plot_module.default_clim(shear, "max_shear")
+    _, _, shear = plot_data.grid_quantity(field, "max_shear")
+    low, high = plot_data.default_clim(shear, "max_shear")
     assert shear.min() <= low < high <= shear.max()
 
 
-def test_default_clim_follows_one_signed_data(plot_module):
+def test_default_clim_follows_one_signed_data():
     # A compressive tectonic sxx never crosses zero: the limits keep to the data.
-    values = plot_module.np.ma.masked_array(-150.0 + plot_module.np.linspace(0.0, 10.0, 101))
-    low, high = plot_module.default_clim(values, "sxx")
+    values = np.ma.masked_array(-150.0 + np.linspace(0.0, 10.0, 101))
+    low, high = plot_data.default_clim(values, "sxx")
     assert -150.0 <= low < high <= -140.0
 
 
@@ -281,12 +283,12 @@ def hand_coulomb(sxx, syy, sxy, angle_deg, mu, sense):
     return out
 
 
-def test_coulomb_matches_hand_computation(plot_module, result_file):
-    result = plot_module.load_result(result_file)
+def test_coulomb_matches_hand_computation(result_file):
+    result = load_result(result_file)
     np.testing.assert_array_equal(result["remote_stress"], REMOTE)  # as written: exact
     field = result["fields"]["grid1"]
-    receiver = plot_module.Receiver(result["remote_stress"], 30.0, 0.4, "right")
-    x, y, cfs = plot_module.grid_quantity(field, "coulomb", receiver)
+    receiver = plot_data.Receiver(result["remote_stress"], 30.0, 0.4, "right")
+    x, y, cfs = plot_data.grid_quantity(field, "coulomb", receiver)
     sxx, syy, sxy = -10.0 + x + 2.0 * y, -5.0 - x * y, 0.5 * x - y
     expected = hand_coulomb(sxx, syy, sxy, 30.0, 0.4, 1.0)
     keep = ~np.ma.getmaskarray(cfs)
@@ -296,24 +298,24 @@ def test_coulomb_matches_hand_computation(plot_module, result_file):
     # d_tau = (73.25 - 128.75) sin30 cos30 - 53.63 cos60 = -50.8472050,
     # d_sigma_n = 128.75 / 4 + 73.25 * 3 / 4 + 2 * 53.63 sin30 cos30 = 133.5699424.
     assert cfs[0, 0] == pytest.approx(-50.8472050 + 0.4 * 133.5699424, abs=1e-6)
-    left = plot_module.Receiver(result["remote_stress"], 30.0, 0.4, "left")
-    _, _, cfs_left = plot_module.grid_quantity(field, "coulomb", left)
+    left = plot_data.Receiver(result["remote_stress"], 30.0, 0.4, "left")
+    _, _, cfs_left = plot_data.grid_quantity(field, "coulomb", left)
     np.testing.assert_allclose(cfs_left[keep], hand_coulomb(sxx, syy, sxy, 30.0, 0.4, -1.0)
                                [keep], rtol=1e-12, atol=1e-12)
 
 
-def test_remote_stress_gives_no_coulomb_change(plot_module):
-    receiver = plot_module.Receiver(REMOTE, 17.0, 0.6, "right")
-    assert plot_module.coulomb_stress_change(*REMOTE, receiver) == pytest.approx(0.0,
+def test_remote_stress_gives_no_coulomb_change():
+    receiver = plot_data.Receiver(REMOTE, 17.0, 0.6, "right")
+    assert plot_data.coulomb_stress_change(*REMOTE, receiver) == pytest.approx(0.0,
                                                                                  abs=1e-12)
 
 
-def test_receiver_auto_sense_follows_the_remote_shear(plot_module):
+def test_receiver_auto_sense_follows_the_remote_shear():
     # On a plane along x the remote shear is sxy = 54.13 > 0: right-lateral. On the
     # conjugate plane at -60 degrees it is -54.13: left-lateral.
-    assert plot_module.Receiver(REMOTE, 0.0).sense == "right"
-    assert plot_module.Receiver(REMOTE, -60.0).sense == "left"
-    tau, sigma_n = plot_module.resolved_traction(*REMOTE, -60.0)
+    assert plot_data.Receiver(REMOTE, 0.0).sense == "right"
+    assert plot_data.Receiver(REMOTE, -60.0).sense == "left"
+    tau, sigma_n = plot_data.resolved_traction(*REMOTE, -60.0)
     assert tau == pytest.approx(-54.13, abs=1e-2)
     assert sigma_n == pytest.approx(-81.25, abs=1e-2)
 
@@ -323,9 +325,9 @@ def test_coulomb_map_from_the_command_line(plot_module, result_file, tmp_path):
             "30", "--friction", "0.4", "--sense", "right", "--clim", "-5", "5"]
     assert plot_module.main(args) == 0
     assert (tmp_path / "synthetic_map_grid1_coulomb.png").is_file()
-    result = plot_module.load_result(result_file)
-    receiver = plot_module.Receiver(result["remote_stress"], 30.0, 0.4, "right")
-    fig = plot_module.plot_map(result, "grid1", "coulomb", (-5.0, 5.0), receiver)
+    result = load_result(result_file)
+    receiver = plot_data.Receiver(result["remote_stress"], 30.0, 0.4, "right")
+    fig = plot_figures.plot_map(result, "grid1", "coulomb", (-5.0, 5.0), receiver)
     try:
         ax = fig.axes[0]
         mesh = ax.collections[0]
@@ -337,7 +339,7 @@ def test_coulomb_map_from_the_command_line(plot_module, result_file, tmp_path):
         np.testing.assert_allclose(plotted[keep], expected[keep], rtol=1e-12, atol=1e-12)
         assert "receiver 30 deg from +x, right-lateral, mu = 0.4" in ax.get_title()
     finally:
-        plot_module.plt.close(fig)
+        plot_figures.plt.close(fig)
 
 
 def test_coulomb_without_remote_stress_exits_2(result_file, tmp_path):
@@ -361,13 +363,13 @@ def test_quantity_lists(plot_module, result_file, tmp_path):
     assert proc.returncode == 2 and "tau" in proc.stderr
 
 
-def test_default_clim_centres_signed_maps_on_the_remote_value(plot_module, result_file):
-    result = plot_module.load_result(result_file)
-    assert plot_module.remote_value(result, "mean") == pytest.approx(-112.5)
-    assert plot_module.remote_value(result, "sxy") == pytest.approx(54.13)
-    assert plot_module.remote_value(result, "coulomb") == 0.0
+def test_default_clim_centres_signed_maps_on_the_remote_value(result_file):
+    result = load_result(result_file)
+    assert plot_data.remote_value(result, "mean") == pytest.approx(-112.5)
+    assert plot_data.remote_value(result, "sxy") == pytest.approx(54.13)
+    assert plot_data.remote_value(result, "coulomb") == 0.0
     values = np.ma.masked_array(-112.5 + np.linspace(-3.0, 1.0, 101))
-    low, high = plot_module.default_clim(values, "mean", centre=-112.5)
+    low, high = plot_data.default_clim(values, "mean", centre=-112.5)
     assert low + high == pytest.approx(-225.0) and high > -112.5
 
 
@@ -392,80 +394,80 @@ def write_background_only(path, remote=(0.0, 0.0, 0.0), gradient=GRADIENT,
     return path
 
 
-def test_changes_are_taken_from_the_background_with_its_gradient(plot_module, tmp_path):
+def test_changes_are_taken_from_the_background_with_its_gradient(tmp_path):
     # Without fractures acting, the Coulomb stress change and the induced stresses are
     # zero everywhere, however the background grows with depth (gravity); only taking the
     # changes from the uniform remote stress gave lithostatic bands here.
-    result = plot_module.load_result(write_background_only(tmp_path / "litho.h5"))
+    result = load_result(write_background_only(tmp_path / "litho.h5"))
     assert result["remote_stress_gradient"] == GRADIENT
     assert result["pore_fluid"] == (0.0, -0.00981)
     field = result["fields"]["grid1"]
-    background = plot_module.Background.of_result(result)
-    receiver = plot_module.Receiver(background, 60.0, 0.6, "right")
-    _, y, cfs = plot_module.grid_quantity(field, "coulomb", receiver)
+    background = plot_data.Background.of_result(result)
+    receiver = plot_data.Receiver(background, 60.0, 0.6, "right")
+    _, y, cfs = plot_data.grid_quantity(field, "coulomb", receiver)
     scale = np.max(np.abs(np.asarray(GRADIENT)[:, None, None] * y))
     assert np.ma.count(cfs) == 19
     assert np.ma.max(np.abs(cfs)) <= 1e-12 * scale
-    for quantity in plot_module.INDUCED:
-        _, _, induced = plot_module.grid_quantity(field, quantity, background=background)
+    for quantity in plot_data.INDUCED:
+        _, _, induced = plot_data.grid_quantity(field, quantity, background=background)
         assert np.ma.max(np.abs(induced)) <= 1e-12 * scale, quantity
 
 
-def test_induced_stress_is_total_minus_background(plot_module, result_file):
-    result = plot_module.load_result(result_file)
+def test_induced_stress_is_total_minus_background(result_file):
+    result = load_result(result_file)
     with h5py.File(result_file, "a") as f:
         f.attrs["remote_stress_gradient"] = np.array(GRADIENT)
-    result = plot_module.load_result(result_file)
+    result = load_result(result_file)
     field = result["fields"]["grid1"]
-    x, y, induced = plot_module.grid_quantity(field, "induced_syy",
-                                              background=plot_module.Background.of_result(result))
+    x, y, induced = plot_data.grid_quantity(field, "induced_syy",
+                                              background=plot_data.Background.of_result(result))
     expected = (-5.0 - x * y) - (REMOTE[1] + GRADIENT[1] * y)
     keep = ~np.ma.getmaskarray(induced)
     np.testing.assert_allclose(induced[keep], expected[keep], rtol=1e-12, atol=1e-12)
-    _, _, mean = plot_module.grid_quantity(field, "induced_mean",
-                                           background=plot_module.Background.of_result(result))
+    _, _, mean = plot_data.grid_quantity(field, "induced_mean",
+                                           background=plot_data.Background.of_result(result))
     expected = 0.5 * ((-10.0 + x + 2.0 * y) + (-5.0 - x * y)) \
         - 0.5 * (REMOTE[0] + REMOTE[1] + (GRADIENT[0] + GRADIENT[1]) * y)
     np.testing.assert_allclose(mean[keep], expected[keep], rtol=1e-12, atol=1e-12)
 
 
-def test_auto_sense_from_the_background_at_the_grid_depth(plot_module):
+def test_auto_sense_from_the_background_at_the_grid_depth():
     # Gravity alone (no uniform part): on a plane at 60 degrees the background drives
     # normal, that is left-lateral, slip below the surface; a zero stress at y = 0 would
     # say 'right'.
-    background = plot_module.Background((0.0, 0.0, 0.0), GRADIENT)
-    assert plot_module.Receiver(background, 60.0, 0.6, "auto", reference_y=-1500.0).sense \
+    background = plot_data.Background((0.0, 0.0, 0.0), GRADIENT)
+    assert plot_data.Receiver(background, 60.0, 0.6, "auto", reference_y=-1500.0).sense \
         == "left"
-    assert plot_module.Receiver(background, 60.0, 0.6, "auto", reference_y=0.0).sense \
+    assert plot_data.Receiver(background, 60.0, 0.6, "auto", reference_y=0.0).sense \
         == "right"  # zero shear at the surface: the tie rule's right-lateral
-    receiver = plot_module.Receiver(background, 60.0, 0.6, "auto", reference_y=-1500.0)
+    receiver = plot_data.Receiver(background, 60.0, 0.6, "auto", reference_y=-1500.0)
     assert "(auto: the sense at y = -1500)" in receiver.describe()
     field = {"y": np.array([[-3000.0, -3000.0], [-10.0, -10.0]])}
-    assert plot_module.grid_reference_y(field) == pytest.approx(-1505.0)
+    assert plot_data.grid_reference_y(field) == pytest.approx(-1505.0)
 
 
-def test_total_stress_map_with_a_gradient_has_no_white_centre(plot_module, tmp_path):
-    result = plot_module.load_result(write_background_only(tmp_path / "litho.h5",
+def test_total_stress_map_with_a_gradient_has_no_white_centre(tmp_path):
+    result = load_result(write_background_only(tmp_path / "litho.h5",
                                                            remote=(-2.0, 0.0, 0.0)))
-    assert plot_module.remote_value(result, "syy") is None
-    assert plot_module.remote_value(result, "mean") is None
-    assert plot_module.remote_value(result, "sxy") == 0.0  # dsxy_dy = 0: uniform
-    assert plot_module.remote_value(result, "induced_syy") == 0.0
-    fig = plot_module.plot_map(result, "grid1", "syy")
+    assert plot_data.remote_value(result, "syy") is None
+    assert plot_data.remote_value(result, "mean") is None
+    assert plot_data.remote_value(result, "sxy") == 0.0  # dsxy_dy = 0: uniform
+    assert plot_data.remote_value(result, "induced_syy") == 0.0
+    fig = plot_figures.plot_map(result, "grid1", "syy")
     try:
         mesh = fig.axes[0].collections[0]
         assert mesh.get_cmap().name == "viridis"
         assert "for the change see induced_syy" in fig.axes[0].get_title()
     finally:
-        plot_module.plt.close(fig)
-    fig = plot_module.plot_map(result, "grid1", "induced_syy")
+        plot_figures.plt.close(fig)
+    fig = plot_figures.plot_map(result, "grid1", "induced_syy")
     try:
         assert fig.axes[0].collections[0].get_cmap().name == "RdBu_r"
         title = fig.axes[0].get_title()
         assert "change from the remote stress + gradient * y" in title
         assert "pore pressure given, unchanged: drained" in title
     finally:
-        plot_module.plt.close(fig)
+        plot_figures.plt.close(fig)
 
 
 def test_coulomb_map_of_the_issue_model_shows_the_fault(plot_module, tmp_path):
@@ -486,12 +488,12 @@ def test_coulomb_map_of_the_issue_model_shows_the_fault(plot_module, tmp_path):
     assert done.returncode == 0, done.stderr
     assert plot_module.main([str(tmp_path / "normal.h5"), "-o", str(tmp_path), "--quantity",
                              "coulomb", "--receiver", "60"]) == 0
-    result = plot_module.load_result(tmp_path / "normal.h5")
+    result = load_result(tmp_path / "normal.h5")
     field = result["fields"]["section"]
-    receiver = plot_module.Receiver(plot_module.Background.of_result(result), 60.0, 0.6,
-                                    "auto", plot_module.grid_reference_y(field))
+    receiver = plot_data.Receiver(plot_data.Background.of_result(result), 60.0, 0.6,
+                                    "auto", plot_data.grid_reference_y(field))
     assert receiver.sense == "left"  # normal slip on a plane dipping 60 degrees to -x
-    x, y, cfs = plot_module.grid_quantity(field, "coulomb", receiver)
+    x, y, cfs = plot_data.grid_quantity(field, "coulomb", receiver)
     far = (x == 2000.0) & (y <= -2500.0)  # measured 0.16 .. 0.18 MPa
     assert np.all(np.abs(cfs[far]) < 0.5), cfs[far]
     beside = (x == -500.0) & (np.abs(y + 1000.0) < 60.0)  # beside the middle: -1.49
@@ -503,32 +505,32 @@ def test_coulomb_map_of_the_issue_model_shows_the_fault(plot_module, tmp_path):
 # ------------------------------------------------------------------ vectors, overview, tips
 
 
-def test_displacement_map_draws_the_displacement_vectors(plot_module, result_file):
-    result = plot_module.load_result(result_file)
-    fig = plot_module.plot_map(result, "grid1", "displacement")
+def test_displacement_map_draws_the_displacement_vectors(result_file):
+    result = load_result(result_file)
+    fig = plot_figures.plot_map(result, "grid1", "displacement")
     try:
         (quiver,) = [c for c in fig.axes[0].collections if c.get_gid() == "vectors"]
         field = result["fields"]["grid1"]
         keep = np.isfinite(field["ux"])  # 5 x 4 grid: every point, step 1, but the NaN
-        assert plot_module.quiver_step(5, 4) == 1
+        assert plot_data.quiver_step(5, 4) == 1
         # The arrows are the stored values themselves: exact.
         np.testing.assert_array_equal(quiver.U, field["ux"][keep])
         np.testing.assert_array_equal(quiver.V, field["uy"][keep])
         np.testing.assert_array_equal(quiver.X, field["x"][keep])
     finally:
-        plot_module.plt.close(fig)
-    assert plot_module.quiver_step(101, 76) == 5  # at most 24 arrows on a side
+        plot_figures.plt.close(fig)
+    assert plot_data.quiver_step(101, 76) == 5  # at most 24 arrows on a side
 
 
-def test_overview_profile_shows_every_fracture(plot_module, result_file):
-    result = plot_module.load_result(result_file)
+def test_overview_profile_shows_every_fracture(result_file):
+    result = load_result(result_file)
     elements = result["elements"]
     # The elements span 2 in x (A: -1..1) and 2.4 in y (B: 0..2.4): the model's longer
     # extent is y, but each fracture is drawn along its own: A along x, B along y.
-    assert plot_module.overview_axis(elements) == "y"
-    assert plot_module.overview_axis(elements, 1, 4) == "x"
-    assert plot_module.overview_axis(elements, 5, 7) == "y"
-    fig = plot_module.plot_overview(result)
+    assert plot_data.overview_axis(elements) == "y"
+    assert plot_data.overview_axis(elements, 1, 4) == "x"
+    assert plot_data.overview_axis(elements, 5, 7) == "y"
+    fig = plot_figures.plot_overview(result)
     try:
         for row, key in ((0, "slip"), (1, "opening")):
             lines = {ln.get_gid(): ln for ln in fig.axes[row].get_lines() if ln.get_gid()}
@@ -545,10 +547,10 @@ def test_overview_profile_shows_every_fracture(plot_module, result_file):
                                             f"its longer extent [{LENGTH_UNIT}]")
         assert fig.axes[0].get_title(loc="left") == "slip > 0: right-lateral"  # map view
     finally:
-        plot_module.plt.close(fig)
+        plot_figures.plt.close(fig)
 
 
-def test_a_vertical_fracture_is_drawn_along_y_in_the_overview(plot_module, tmp_path):
+def test_a_vertical_fracture_is_drawn_along_y_in_the_overview(tmp_path):
     # A fault along x and a vertical fracture at x = 0: the fracture no longer collapses
     # onto x = 0 but runs along its own y.
     (tmp_path / "t.nml").write_text("""\
@@ -561,8 +563,8 @@ def test_a_vertical_fracture_is_drawn_along_y_in_the_overview(plot_module, tmp_p
     done = subprocess.run([str(ddc2d_exe()), "t.nml"], cwd=tmp_path, capture_output=True,
                           text=True, timeout=120)
     assert done.returncode == 0, done.stderr
-    result = plot_module.load_result(tmp_path / "t.h5")
-    fig = plot_module.plot_overview(result)
+    result = load_result(tmp_path / "t.h5")
+    fig = plot_figures.plot_overview(result)
     try:
         lines = {ln.get_gid(): ln for ln in fig.axes[0].get_lines() if ln.get_gid()}
         np.testing.assert_allclose(lines["slip:dyke"].get_xdata(),
@@ -571,7 +573,7 @@ def test_a_vertical_fracture_is_drawn_along_y_in_the_overview(plot_module, tmp_p
         np.testing.assert_allclose(lines["slip:fault"].get_xdata(),
                                    result["elements"]["x_mid"][:12], rtol=1e-14)
     finally:
-        plot_module.plt.close(fig)
+        plot_figures.plt.close(fig)
 
 
 def test_tips_table_files(result_file, tmp_path):
@@ -599,12 +601,12 @@ def test_tips_table_files(result_file, tmp_path):
     assert len(text) == 6
 
 
-def test_tips_table_without_tips(plot_module, result_file, tmp_path):
+def test_tips_table_without_tips(result_file, tmp_path):
     with h5py.File(result_file, "a") as f:
         del f["tips"]
-    result = plot_module.load_result(result_file)
-    assert plot_module.tips_csv(result).splitlines()[1:] == []
-    assert "no crack tips" in plot_module.tips_text(result)
+    result = load_result(result_file)
+    assert plot_data.tips_csv(result).splitlines()[1:] == []
+    assert "no crack tips" in plot_data.tips_text(result)
 
 
 # ------------------------------------------------------------------ a model solved by ddc2d
@@ -621,7 +623,7 @@ SOLVED_MODEL = """\
 """
 
 
-def test_plots_a_model_solved_by_ddc2d(plot_module, tmp_path):
+def test_plots_a_model_solved_by_ddc2d(tmp_path):
     model = tmp_path / "solved.nml"
     model.write_text(SOLVED_MODEL)
     done = subprocess.run([str(ddc2d_exe()), str(model), "-o", str(tmp_path / "solved.h5")],
@@ -634,19 +636,19 @@ def test_plots_a_model_solved_by_ddc2d(plot_module, tmp_path):
         "solved_map_area_coulomb.png", "solved_map_area_displacement.png",
         "solved_profile_crack.png", "solved_profile_fault.png", "solved_profiles.png",
         "solved_tips.csv", "solved_tips.txt"]
-    result = plot_module.load_result(tmp_path / "solved.h5")
+    result = load_result(tmp_path / "solved.h5")
     with h5py.File(tmp_path / "solved.h5", "r") as f:
         ds, dn, state = f["elements/ds"][()], f["elements/dn"][()], f["elements/state"][()]
         k2 = f["tips/k2"][()]
-    (fault, fault_profile), (crack, crack_profile) = plot_module.fracture_profiles(result)
+    (fault, fault_profile), (crack, crack_profile) = plot_data.fracture_profiles(result)
     assert (fault["first"], fault["last"], crack["first"], crack["last"]) == (1, 30, 31, 40)
-    fig = plot_module.plot_profile(result, crack, crack_profile)
+    fig = plot_figures.plot_profile(result, crack, crack_profile)
     # Figures, profiles and the tips CSV (repr) hold the stored values: compared exactly.
     try:
         (line,) = [ln for ln in fig.axes[1].get_lines() if ln.get_gid() == "opening"]
         np.testing.assert_array_equal(line.get_ydata(), -dn[30:40])
     finally:
-        plot_module.plt.close(fig)
+        plot_figures.plt.close(fig)
     np.testing.assert_array_equal(fault_profile["slip"], -ds[:30])
     np.testing.assert_array_equal(fault_profile["state"], state[:30])
     assert np.all(crack_profile["state"] == STATE_CODES["open"])  # 70 MPa > 50 MPa: open
@@ -670,7 +672,7 @@ LINES_MODEL = """\
 """
 
 
-def test_figures_of_observation_lines_and_points(plot_module, tmp_path):
+def test_figures_of_observation_lines_and_points(tmp_path):
     # A full-plane model's &line and &points get figures of ux, uy, sxx, syy, sxy against
     # the distance along them; a point on the crack is a gap; a line that lies on the crack
     # (every point NaN) gets a warning instead of an empty figure. The grid named 'map' is
@@ -687,11 +689,11 @@ def test_figures_of_observation_lines_and_points(plot_module, tmp_path):
         "lines_profile_crack.png", "lines_tips.csv", "lines_tips.txt"]
     assert proc.stderr == ("ddc2d-plot: warning: every point of line 'along' lies on an "
                            "element (NaN): no figure\n")
-    result = plot_module.load_result(tmp_path / "lines.h5")
+    result = load_result(tmp_path / "lines.h5")
     for name, distance in (("across", np.linspace(0.0, 2.0, 9)),
                            ("wells", np.array([0.0, 1.0, 4.0]))):
         field = result["fields"][name]
-        fig = plot_module.plot_observation_line(result, name)
+        fig = plot_figures.plot_observation_line(result, name)
         try:
             lines = {ln.get_gid(): ln for ax in fig.axes for ln in ax.get_lines()
                      if ln.get_gid()}
@@ -703,19 +705,19 @@ def test_figures_of_observation_lines_and_points(plot_module, tmp_path):
                 np.testing.assert_array_equal(line.get_ydata(), field[key])
             assert fig.axes[2].get_ylabel() == rf"$\sigma_{{xx}}$ [{'MPa'}]"
         finally:
-            plot_module.plt.close(fig)
+            plot_figures.plt.close(fig)
     # The middle point of 'across' is on the crack: NaN, said in the title.
     assert np.isnan(result["fields"]["across"]["sxx"][4])
-    fig = plot_module.plot_observation_line(result, "across")
+    fig = plot_figures.plot_observation_line(result, "across")
     try:
         assert "1 on an element (NaN: gaps)" in fig.texts[0].get_text()
     finally:
-        plot_module.plt.close(fig)
+        plot_figures.plt.close(fig)
 
 
-def test_figure_names_leave_out_a_name_that_repeats_the_kind(plot_module, tmp_path):
+def test_figure_names_leave_out_a_name_that_repeats_the_kind(tmp_path):
     used = set()
-    base = plot_module.figure_base
+    base = plot_data.figure_base
     assert base(tmp_path, "m", "map", "map", used, "sxx").name == "m_map_sxx"
     assert base(tmp_path, "m", "map", "grid 2", used, "sxx").name == "m_map_grid_2_sxx"
     assert base(tmp_path, "m", "profile", "profile", used).name == "m_profile"
@@ -730,44 +732,44 @@ def test_figure_names_leave_out_a_name_that_repeats_the_kind(plot_module, tmp_pa
 # ------------------------------------------------------------ opening panel and slip sense
 
 
-def test_no_opening_panel_without_opening(plot_module, result_file, tmp_path):
-    result = plot_module.load_result(result_file)
-    assert plot_module.has_dd(result, "dn")  # elements 3 and 6 are open
-    fracture, profile = plot_module.fracture_profiles(result)[0]
-    fig = plot_module.plot_profile(result, fracture, profile)
+def test_no_opening_panel_without_opening(result_file, tmp_path):
+    result = load_result(result_file)
+    assert plot_data.has_dd(result, "dn")  # elements 3 and 6 are open
+    fracture, profile = plot_data.fracture_profiles(result)[0]
+    fig = plot_figures.plot_profile(result, fracture, profile)
     assert len(fig.axes) == 2
-    plot_module.plt.close(fig)
+    plot_figures.plt.close(fig)
     with h5py.File(result_file, "a") as f:
         f["elements/dn"][...] = 0.0
         f["elements/state"][...] = np.where(f["elements/state"][...] == 3, 2,
                                             f["elements/state"][...])
-    result = plot_module.load_result(result_file)
-    assert not plot_module.has_dd(result, "dn")
-    for fig in (plot_module.plot_profile(result, fracture, profile),
-                plot_module.plot_overview(result)):
+    result = load_result(result_file)
+    assert not plot_data.has_dd(result, "dn")
+    for fig in (plot_figures.plot_profile(result, fracture, profile),
+                plot_figures.plot_overview(result)):
         try:
             assert len(fig.axes) == 1
             assert fig.axes[0].get_ylabel().startswith("slip")
         finally:
-            plot_module.plt.close(fig)
+            plot_figures.plt.close(fig)
 
 
-def test_no_slip_panel_for_round_off_slip(plot_module, result_file):
+def test_no_slip_panel_for_round_off_slip(result_file):
     # A crack opened symmetrically has slip of round-off size (1e-17 of its opening, of
     # either sign by CPU): no slip panel, as without opening no opening panel.
     with h5py.File(result_file, "a") as f:
         f["elements/ds"][...] = 1e-20 * np.array([1, -3, 2, 0, -1, 4, -2])
         f["elements/state"][...] = 3
-    result = plot_module.load_result(result_file)
-    assert not plot_module.has_dd(result, "ds") and plot_module.has_dd(result, "dn")
-    fracture, profile = plot_module.fracture_profiles(result)[0]
-    fig = plot_module.plot_profile(result, fracture, profile)
+    result = load_result(result_file)
+    assert not plot_data.has_dd(result, "ds") and plot_data.has_dd(result, "dn")
+    fracture, profile = plot_data.fracture_profiles(result)[0]
+    fig = plot_figures.plot_profile(result, fracture, profile)
     try:
         assert len(fig.axes) == 1
         assert fig.axes[0].get_ylabel().startswith("opening")
         assert "no element slips" in fig.texts[0].get_text()
     finally:
-        plot_module.plt.close(fig)
+        plot_figures.plt.close(fig)
 
 
 def sense_of(plot_module, begin, end, domain="half_plane"):
@@ -775,7 +777,7 @@ def sense_of(plot_module, begin, end, domain="half_plane"):
               "pore_fluid": (0.0, 0.0),
               "elements": {"x_begin": np.array([begin[0]]), "y_begin": np.array([begin[1]]),
                            "x_end": np.array([end[0]]), "y_end": np.array([end[1]])}}
-    return plot_module.slip_sense(result, {"first": 1, "last": 1})
+    return plot_data.slip_sense(result, {"first": 1, "last": 1})
 
 
 def test_what_positive_slip_means(plot_module):
@@ -793,7 +795,7 @@ def test_what_positive_slip_means(plot_module):
         "slip > 0: right-lateral"
 
 
-def test_the_profile_says_what_positive_slip_means(plot_module, tmp_path):
+def test_the_profile_says_what_positive_slip_means(tmp_path):
     # The thrust example's geometry: its profile says reverse, and it slips reverse.
     (tmp_path / "thrust.nml").write_text((REPO_ROOT / "input" / "thrust_fault_surface.nml")
                                          .read_text().replace("elements = 240",
@@ -801,12 +803,12 @@ def test_the_profile_says_what_positive_slip_means(plot_module, tmp_path):
     done = subprocess.run([str(ddc2d_exe()), "thrust.nml"], cwd=tmp_path,
                           capture_output=True, text=True, timeout=120)
     assert done.returncode == 0, done.stderr
-    result = plot_module.load_result(tmp_path / "thrust.h5")
-    fracture, profile = plot_module.fracture_profiles(result)[0]
-    fig = plot_module.plot_profile(result, fracture, profile)
+    result = load_result(tmp_path / "thrust.h5")
+    fracture, profile = plot_data.fracture_profiles(result)[0]
+    fig = plot_figures.plot_profile(result, fracture, profile)
     try:
         assert fig.axes[0].get_title(loc="left") == \
             "slip > 0: reverse (hanging wall up), < 0: normal"
     finally:
-        plot_module.plt.close(fig)
+        plot_figures.plt.close(fig)
     assert np.median(profile["slip"]) > 0.0

@@ -1,19 +1,30 @@
-"""Robustness of the ddc2d executable (issue 8): fuzzed inputs, a run killed mid-write, and
-memcheck of small models.
+"""Robustness of the ddc2d executable (issues 8 and 27): fuzzed inputs, a run killed
+mid-write, output targets that are not regular files, file-size limits and full file
+systems, huge inputs, and memcheck of small models.
 
 Fuzz: mutated copies of the example namelists (shrunk so that each run takes milliseconds),
 of a namelist with element and point CSVs, and of the TWODD decks: byte flips, truncation,
 huge numbers, NaN, repeated groups, dropped lines. Every run must end by itself with a
 status of 0-3 or 5 (no signal, no Fortran runtime error, no hang) and a failed run must
 leave no output file; a successful one a complete file. DDC2D_FUZZ_COUNT sets the number of runs.
+Huge inputs (issue 27): lines of 10^5 characters, 10^6 values in one array, groups without
+their closing /, CSV files of 10^7 rows, generated in a temporary folder: each a clear
+message or a correct run, within a time and a memory bound.
+
+Every wait here is for a condition with a deadline (no sleep stands in for one), and the
+deadlines assume a loaded machine: scripts/test.sh runs this file again beside a CPU hog.
 """
 
 import os
 import random
 import re
+import resource
 import shutil
 import signal
+import socket
+import stat
 import subprocess
+import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
 
@@ -171,8 +182,10 @@ def test_sigkill_mid_write_leaves_no_final_file(tmp_path):
         deadline = time.monotonic() + 300
         # The writable-path check creates and removes an empty partial file first: wait for
         # the HDF5 file itself (it has a superblock as soon as it exists).
+        # The file may vanish between two looks (it is renamed, or it is that empty test
+        # file): one stat per look, its absence meaning size 0.
         while process.poll() is None and time.monotonic() < deadline:
-            if partial.exists() and partial.stat().st_size > 0:
+            if file_size(partial) > 0:
                 break
             time.sleep(0.002)
         time.sleep(delay)
@@ -187,6 +200,419 @@ def test_sigkill_mid_write_leaves_no_final_file(tmp_path):
             killed_mid_write += 1
     # The kills must have hit the write itself, not only the end of the run.
     assert killed_mid_write >= 3
+
+
+def file_size(path):
+    """Size of the file at path, 0 when there is none (one system call: no check-then-act)."""
+    try:
+        return path.stat().st_size
+    except FileNotFoundError:
+        return 0
+
+
+# ---------------------------------------------------------------- output targets (issue 27)
+
+def grid_model(nx, ny=None):
+    """A pressurised crack of 10 elements with an nx x ny grid (60 bytes a point in HDF5,
+    about 180 in the --res tables)."""
+    return ("&model youngs_modulus = 1.0, poissons_ratio = 0.25 /\n"
+            "&fracture x = -1.0, 1.0, y = 0.0, 0.0, elements = 10, condition = 'traction', "
+            "bc_n = -1.0 /\n"
+            f"&grid xmin = -3, xmax = 3, nx = {nx}, ymin = -3, ymax = 3, ny = {ny or nx} /\n")
+
+
+def run_ddc2d(args, cwd, timeout=RUN_TIMEOUT, **options):
+    return subprocess.run([str(ddc2d_exe()), *map(str, args)], cwd=cwd, capture_output=True,
+                          text=True, timeout=timeout, env={**os.environ, "OMP_NUM_THREADS": "1",
+                                                           "OPENBLAS_NUM_THREADS": "1"},
+                          **options)
+
+
+def error_lines(done):
+    return [line for line in done.stderr.splitlines() if line.startswith("ddc2d: error")]
+
+
+def partial_files(*folders):
+    return [p for folder in folders for p in folder.iterdir() if p.name.endswith(".partial")]
+
+
+def file_type(path):
+    return stat.S_IFMT(os.lstat(path).st_mode)
+
+
+def assert_complete_h5(path):
+    with h5py.File(path, "r") as f:
+        assert is_complete(f.attrs)
+
+
+def make_special(kind, path, keep):
+    """Make a device node, FIFO, socket or folder at path; keep collects what must stay
+    open during the run (the FIFO's reader, the socket)."""
+    if kind == "device":
+        if os.geteuid() != 0:
+            pytest.skip("making a device node (mknod) needs root")
+        # The null device's numbers, in a temporary folder: the real /dev/null is not touched.
+        os.mknod(path, stat.S_IFCHR | 0o666, os.makedev(1, 3))
+    elif kind == "fifo":
+        os.mkfifo(path)
+        # A reader, so that a program writing into the FIFO would not block but be caught.
+        keep.append(os.open(path, os.O_RDONLY | os.O_NONBLOCK))
+    elif kind == "socket":
+        server = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+        server.bind(str(path))
+        keep.append(server)
+    else:
+        path.mkdir()
+
+
+SPECIAL_WORDS = {"device": "character device", "fifo": "FIFO", "socket": "socket",
+                 "folder": "folder"}
+
+
+@pytest.mark.parametrize("via_link", [False, True], ids=["direct", "link"])
+@pytest.mark.parametrize("kind", sorted(SPECIAL_WORDS))
+@pytest.mark.parametrize("option", ["-o", "--res"])
+def test_target_that_is_not_a_regular_file_is_refused(tmp_path, option, kind, via_link):
+    # README (output files): ddc2d replaces only regular files; anything else is exit 3
+    # before the solve, and stays what it was.
+    (tmp_path / "m.nml").write_text(grid_model(5))
+    target = tmp_path / "target"
+    keep = []
+    make_special(kind, target, keep)
+    try:
+        before = file_type(target)
+        name = "target"
+        if via_link:
+            (tmp_path / "link").symlink_to("target")
+            name = "link"
+        args = ["m.nml", "-o", name] if option == "-o" else ["m.nml", "-o", "out.h5",
+                                                             "--res", name]
+        done = run_ddc2d(args, tmp_path)
+        assert done.returncode == 3, done.stderr
+        [line] = error_lines(done)
+        assert name in line and SPECIAL_WORDS[kind] in line, line
+        assert file_type(target) == before
+        if via_link:
+            assert os.readlink(tmp_path / "link") == "target"
+        assert not (tmp_path / "out.h5").exists()
+        assert partial_files(tmp_path) == []
+        if kind == "fifo":  # nothing was written into it
+            try:
+                assert os.read(keep[0], 1) == b""
+            except BlockingIOError:
+                pass
+    finally:
+        for item in keep:
+            item.close() if isinstance(item, socket.socket) else os.close(item)
+
+
+@pytest.mark.parametrize("existing", [True, False], ids=["replaced", "created"])
+@pytest.mark.parametrize("option", ["-o", "--res"])
+def test_link_is_followed_and_stays(tmp_path, option, existing):
+    # A chain of links (relative, then absolute) to a file in another folder: that file is
+    # written (replaced or created), the links stay, the .partial lives beside the file.
+    (tmp_path / "m.nml").write_text(grid_model(5))
+    data, links = tmp_path / "data", tmp_path / "links"
+    data.mkdir()
+    links.mkdir()
+    real = data / "real"
+    if existing:
+        real.write_text("old contents\n")
+    (links / "middle").symlink_to(real)
+    (links / "result").symlink_to("../links/middle")
+    args = ["m.nml", "-o", "links/result"] if option == "-o" else \
+        ["m.nml", "-o", "out.h5", "--res", "links/result"]
+    done = run_ddc2d(args, tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert os.readlink(links / "result") == "../links/middle"
+    assert os.readlink(links / "middle") == str(real)
+    assert file_type(real) == stat.S_IFREG
+    if option == "-o":
+        assert_complete_h5(real)
+    else:
+        assert "DISPLACEMENTS AND STRESSES" in real.read_text()
+    assert partial_files(tmp_path, data, links) == []
+
+
+def test_sweep_task_file_targets(tmp_path):
+    # The task file of a sweep: a FIFO there is refused (it would block the check for a
+    # complete output), a link is followed.
+    text = shrink((REPO_ROOT / "input/sweep_friction_orientation.nml").read_text())
+    (tmp_path / "sweep.nml").write_text(text)
+    listed = run_ddc2d(["sweep.nml", "--list", "-o", "out.h5"], tmp_path)
+    assert listed.returncode == 0, listed.stderr
+    task_file = re.search(r"task 0: .* -> (\S+)", listed.stdout).group(1)
+    keep = []
+    make_special("fifo", tmp_path / task_file, keep)
+    try:
+        done = run_ddc2d(["sweep.nml", "--task", "0", "-o", "out.h5"], tmp_path)
+    finally:
+        os.close(keep[0])
+    assert done.returncode == 3, done.stderr
+    assert "FIFO" in error_lines(done)[0]
+    assert file_type(tmp_path / task_file) == stat.S_IFIFO
+    (tmp_path / task_file).unlink()
+    (tmp_path / "data").mkdir()
+    (tmp_path / task_file).symlink_to("data/task0.h5")
+    done = run_ddc2d(["sweep.nml", "--task", "0", "-o", "out.h5"], tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert (tmp_path / task_file).is_symlink()
+    assert_complete_h5(tmp_path / "data/task0.h5")
+    # Run again: the complete file behind the link is recognised and skipped.
+    again = run_ddc2d(["sweep.nml", "--task", "0", "-o", "out.h5"], tmp_path)
+    assert again.returncode == 0 and "skipped" in again.stdout, again.stdout
+    assert partial_files(tmp_path, tmp_path / "data") == []
+
+
+# ----------------------------------------------- the scripts' own files (issue 27)
+
+@pytest.mark.parametrize("kind", sorted(SPECIAL_WORDS))
+def test_scripts_refuse_targets_that_are_not_regular_files(tmp_path, kind):
+    # scripts/ddc2d_files.py, through which every script writes its files.
+    from ddc2d_files import write_text_atomically
+    target, keep = tmp_path / "target", []
+    make_special(kind, target, keep)
+    (tmp_path / "link").symlink_to("target")
+    try:
+        before = file_type(target)
+        for name in ("target", "link"):
+            with pytest.raises(OSError, match=SPECIAL_WORDS[kind]):
+                write_text_atomically(tmp_path / name, "text\n")
+        assert file_type(target) == before and (tmp_path / "link").is_symlink()
+        assert partial_files(tmp_path) == []
+    finally:
+        for item in keep:
+            item.close() if isinstance(item, socket.socket) else os.close(item)
+
+
+def test_scripts_follow_links_and_clean_up(tmp_path):
+    from ddc2d_files import atomic_path, write_text_atomically
+    (tmp_path / "data").mkdir()
+    (tmp_path / "link.txt").symlink_to("data/real.txt")
+    write_text_atomically(tmp_path / "link.txt", "new\n")
+    assert (tmp_path / "link.txt").is_symlink()
+    assert (tmp_path / "data/real.txt").read_text() == "new\n"
+    with pytest.raises(RuntimeError), atomic_path(tmp_path / "link.txt") as temporary:
+        temporary.write_text("half")
+        raise RuntimeError("a failure half way")
+    assert (tmp_path / "data/real.txt").read_text() == "new\n"
+    assert partial_files(tmp_path, tmp_path / "data") == []
+
+
+def test_twodd2nml_output_to_a_fifo_exits_3(tmp_path):
+    # End to end: a script's -o naming a FIFO (with a reader) is refused, nothing written.
+    keep = []
+    make_special("fifo", tmp_path / "out.nml", keep)
+    try:
+        done = subprocess.run([str(REPO_ROOT / "build/venv/bin/python"),
+                               str(REPO_ROOT / "scripts/twodd2nml"),
+                               str(REPO_ROOT / "tests/reference/twodd/inputs/A1_press_n20.f60.txt"),
+                               "-o", "out.nml"], cwd=tmp_path, capture_output=True, text=True,
+                              timeout=RUN_TIMEOUT)
+        assert done.returncode == 3, done.stderr
+        assert "FIFO" in done.stderr
+        assert file_type(tmp_path / "out.nml") == stat.S_IFIFO
+        try:
+            assert os.read(keep[0], 1) == b""
+        except BlockingIOError:
+            pass
+    finally:
+        os.close(keep[0])
+
+
+# ------------------------------------------------- file-size limits, full disks (issue 27)
+
+def limit_file_size(size):
+    def limit():
+        resource.setrlimit(resource.RLIMIT_FSIZE, (size, resource.getrlimit(
+            resource.RLIMIT_FSIZE)[1]))
+    return limit
+
+
+@pytest.mark.parametrize("option", ["-o", "--res"])
+def test_file_size_limit_is_exit_3_without_files(tmp_path, option):
+    # ulimit -f: the write fails half way (no SIGXFSZ death), one message names the file
+    # and the cause, and neither the file nor its .partial is left.
+    (tmp_path / "m.nml").write_text(grid_model(100))  # 0.6 MB of HDF5, 1.8 MB of tables
+    if option == "-o":
+        args, name, limit = ["m.nml", "-o", "out.h5"], "out.h5", 300_000
+    else:
+        args, name, limit = ["m.nml", "-o", "out.h5", "--res", "r.txt"], "r.txt", 1_000_000
+    done = run_ddc2d(args, tmp_path, preexec_fn=limit_file_size(limit))
+    assert done.returncode == 3, done.stderr
+    [line] = error_lines(done)
+    assert f"writing {name} failed" in line and "ulimit -f" in line, line
+    assert not (tmp_path / name).exists()
+    assert partial_files(tmp_path) == []
+
+
+@pytest.fixture
+def small_file_system(tmp_path):
+    """A 1 MiB tmpfs mounted in tmp_path (root only; skipped with the reason elsewhere)."""
+    if os.geteuid() != 0:
+        pytest.skip("mounting a small tmpfs needs root")
+    folder = tmp_path / "small"
+    folder.mkdir()
+    done = subprocess.run(["mount", "-t", "tmpfs", "-o", "size=1m", "ddc2d-test", str(folder)],
+                          capture_output=True, text=True, timeout=60)
+    if done.returncode != 0:
+        pytest.skip(f"this machine does not allow mounting a tmpfs: {done.stderr.strip()}")
+    try:
+        yield folder
+    finally:
+        subprocess.run(["umount", str(folder)], capture_output=True, timeout=60)
+
+
+def free_bytes(folder):
+    info = os.statvfs(folder)
+    return info.f_bavail * info.f_frsize
+
+
+@pytest.mark.parametrize("option", ["-o", "--res"])
+def test_result_larger_than_free_space_is_refused_before_the_solve(tmp_path, option,
+                                                                    small_file_system):
+    # 90000 points: at least 5.4 MB of HDF5, 16 MB of tables.
+    (tmp_path / "m.nml").write_text(grid_model(300))
+    args = ["m.nml", "-o", "small/out.h5"] if option == "-o" else \
+        ["m.nml", "-o", "out.h5", "--res", "small/r.txt"]
+    done = run_ddc2d(args, tmp_path)
+    assert done.returncode == 3, done.stderr
+    [line] = error_lines(done)
+    need = "5.4 MB" if option == "-o" else "16 MB"
+    assert f"needs at least {need}" in line and "has only 1 MB free" in line, line
+    assert "memory:" not in done.stdout  # refused before the memory check and the solve
+    assert list(small_file_system.iterdir()) == []
+
+
+def test_full_file_system_mid_write_is_exit_3_without_files(tmp_path, small_file_system):
+    # A line of points whose fields alone just fit: the checks before the solve pass, and
+    # the file system fills up during the write.
+    points = (free_bytes(small_file_system) - 2000) // 60
+    (tmp_path / "m.nml").write_text(grid_model(points, 1))
+    done = run_ddc2d(["m.nml", "-o", "small/out.h5"], tmp_path)
+    assert done.returncode == 3, done.stderr
+    [line] = error_lines(done)
+    assert "writing small/out.h5 failed" in line and "file system is full" in line, line
+    assert list(small_file_system.iterdir()) == []
+
+
+def test_full_file_system_for_the_tables_is_exit_3_without_files(tmp_path,
+                                                                  small_file_system):
+    # gfortran does not report a full disk on buffered writes: the tables' size is checked.
+    # A line of points whose rows (178 bytes and more) and element rows just fit the check
+    # before the solve; the header and the element data overflow it.
+    points = (free_bytes(small_file_system) - 10 * 299 - 100) // 178
+    (tmp_path / "m.nml").write_text(grid_model(points, 1))
+    done = run_ddc2d(["m.nml", "-o", "out.h5", "--res", "small/r.txt"], tmp_path)
+    assert done.returncode == 3, done.stderr
+    [line] = error_lines(done)
+    assert "writing small/r.txt failed" in line and "file system is full" in line, line
+    assert list(small_file_system.iterdir()) == []
+
+
+# ------------------------------------------------------------- huge inputs (issue 27)
+
+HUGE_TIMEOUT = 600.0
+BASE_MODEL = ("&model youngs_modulus = 1.0, poissons_ratio = 0.25 /\n"
+              "&fracture x = -1.0, 1.0, y = 0.0, 0.0, elements = 4, condition = 'traction', "
+              "bc_n = -1.0 /\n")
+
+
+def numbers(count, scale=1e-6):
+    return ", ".join(f"{k * scale:.6f}" for k in range(count))
+
+
+def write_rows(path, header, row, count, last):
+    """A CSV of count equal rows, written in blocks: the test's own memory stays small, so
+    that the peak memory measured (which includes the forked test before exec) is ddc2d's."""
+    with open(path, "w") as f:
+        f.write(header)
+        f.writelines(row * min(100_000, count - start) for start in range(0, count, 100_000))
+        f.write(last)
+
+
+def write_huge(case, folder):
+    """Write the input of a case; return the input's name and the size of what it reads."""
+    if case == "long_comment":
+        text = "! " + "c" * 100_000 + "\n" + BASE_MODEL
+    elif case == "long_line":
+        text = BASE_MODEL.replace("bc_n = -1.0", "bc_n = -1.0" + " " * 100_000)
+    elif case == "long_title":
+        text = BASE_MODEL.replace("0.25 /", "0.25, title = '" + "t" * 100_000 + "' /")
+    elif case == "million_values":
+        text = ("&model youngs_modulus = 1.0, poissons_ratio = 0.25 /\n"
+                "&fracture condition = 'traction', bc_n = -1.0, elements = 1, x = "
+                + numbers(1_000_000) + ", y = " + numbers(1_000_000, 0.0) + " /\n")
+    elif case == "no_slash_last":
+        text = BASE_MODEL + "&grid xmin = -1, xmax = 1, nx = 3, ymin = 1, ymax = 2, ny = 3\n"
+    elif case == "no_slash_first":
+        text = BASE_MODEL.replace("0.25 /", "0.25", 1)
+    elif case == "csv_points":
+        write_rows(folder / "rows.csv", "x, y\n", "0.5, 4.0\n", 10_000_000 - 1, "0.5, abc\n")
+        text = BASE_MODEL + "&points file = 'rows.csv' /\n"
+    else:  # csv_elements
+        write_rows(folder / "rows.csv", "x_begin, y_begin, x_end, y_end, mu, sf, pressure\n",
+                   "0,0,1,0,0.6,0,0\n", 10_000_000, "")
+        text = "&model youngs_modulus = 1.0, poissons_ratio = 0.25 /\n" \
+               "&fracture elements_file = 'rows.csv' /\n"
+    (folder / "model.nml").write_text(text)
+    return "model.nml", sum(p.stat().st_size for p in folder.iterdir())
+
+
+# case: (exit status, what the message or the run must show)
+HUGE_CASES = {
+    "long_comment": (0, None),
+    "long_line": (0, None),
+    "long_title": (0, None),
+    "million_values": (2, "more values than an array of this group holds"),
+    "no_slash_last": (2, "a group not closed by /"),
+    "no_slash_first": (2, "namelist not terminated"),
+    "csv_points": (2, "rows.csv line 10000001: field 2 'abc' is not a number"),
+    "csv_elements": (2, "rows.csv line 1000002: more than 1000000 data rows"),
+}
+
+
+def run_measured(args, cwd, timeout):
+    """Run with a deadline; (exit status, stderr, peak resident memory in bytes)."""
+    with open(cwd / "stderr.txt", "wb") as err:
+        process = subprocess.Popen(args, cwd=cwd, stdout=subprocess.DEVNULL, stderr=err,
+                                   env={**os.environ, "OMP_NUM_THREADS": "1",
+                                        "OPENBLAS_NUM_THREADS": "1"})
+        timer = threading.Timer(timeout, process.kill)
+        timer.start()
+        try:
+            _, status, usage = os.wait4(process.pid, 0)
+        finally:
+            timer.cancel()
+    process.returncode = os.waitstatus_to_exitcode(status)
+    return process.returncode, (cwd / "stderr.txt").read_text(errors="replace"), \
+        usage.ru_maxrss * 1024
+
+
+@pytest.mark.parametrize("case", sorted(HUGE_CASES))
+def test_huge_input_is_a_clear_message_or_a_correct_run(tmp_path, case):
+    name, size = write_huge(case, tmp_path)
+    status, expected = HUGE_CASES[case]
+    code, stderr, peak = run_measured([str(ddc2d_exe()), name, "-o", "out.h5"], tmp_path,
+                                      HUGE_TIMEOUT)
+    assert code != -signal.SIGKILL, f"no answer within {HUGE_TIMEOUT} s"
+    assert not any(mark in stderr for mark in CRASH_MARKS), stderr[-2000:]
+    assert code == status, stderr[-2000:]
+    # Memory in proportion to the input: its text, its numbers, and the program itself.
+    assert peak < 4 * size + 300_000_000, f"peak memory {peak} bytes for {size} bytes of input"
+    errors = [line for line in stderr.splitlines() if line.startswith("ddc2d: error")]
+    if status == 0:
+        assert errors == []
+        assert_complete_h5(tmp_path / "out.h5")
+        with h5py.File(tmp_path / "out.h5", "r") as f:
+            stored = f.attrs["input_text"].decode()
+            if "/input_text" in stored:  # a long input: the attribute points to the dataset
+                stored = f["input_text"][0].decode()
+        assert stored.strip() == (tmp_path / name).read_text().strip()
+    else:
+        assert len(errors) == 1 and expected in errors[0], stderr[-2000:]
+        assert not (tmp_path / "out.h5").exists()
+    assert partial_files(tmp_path) == []
 
 
 MEMCHECK_MODELS = {

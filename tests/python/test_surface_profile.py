@@ -7,8 +7,10 @@ import sys
 
 import numpy as np
 
+import ddc2d_plot_data as plot_data
+import ddc2d_plot_figures as plot_figures
 from conftest import PLOT_SCRIPT, REPO_ROOT, ddc2d_exe
-from ddc2d_h5 import index_of_extreme
+from ddc2d_h5 import index_of_extreme, load_result
 
 MODEL = REPO_ROOT / "input" / "buried_dipping_fault_slip.nml"
 
@@ -23,16 +25,16 @@ def solve(tmp_path, text, name):
     return out
 
 
-def test_surface_line_of_a_half_plane_is_plotted(plot_module, tmp_path):
+def test_surface_line_of_a_half_plane_is_plotted(tmp_path):
     text = MODEL.read_text() + ("&line name = 'borehole', x_begin = 500, y_begin = -100, "
                                 "x_end = 500, y_end = -3000, points = 30 /\n")
     out = solve(tmp_path, text, "buried")
-    result = plot_module.load_result(out)
-    assert plot_module.surface_lines(result) == ["surface"]
-    fig = plot_module.plot_surface(result, "surface")
+    result = load_result(out)
+    assert plot_data.surface_lines(result) == ["surface"]
+    fig = plot_figures.plot_surface(result, "surface")
     (uy_line,) = [line for line in fig.axes[0].get_lines() if line.get_gid() == "uy"]
     x, uy = uy_line.get_data()
-    plot_module.plt.close(fig)
+    plot_figures.plt.close(fig)
     field = result["fields"]["surface"]
     # The line runs along +x, so the figure draws the stored values in their order: exact.
     assert np.array_equal(x, field["x"])
@@ -50,7 +52,7 @@ def test_surface_line_of_a_half_plane_is_plotted(plot_module, tmp_path):
     assert (tmp_path / "buried_line_borehole.png").is_file()
 
 
-def test_no_surface_profile_in_a_full_plane(plot_module, tmp_path):
+def test_no_surface_profile_in_a_full_plane(tmp_path):
     text = MODEL.read_text().replace("domain = 'half_plane'", "domain = 'full_plane'")
     out = solve(tmp_path, text, "full")
-    assert plot_module.surface_lines(plot_module.load_result(out)) == []
+    assert plot_data.surface_lines(load_result(out)) == []

@@ -11,6 +11,7 @@ treated as a tie.
 import numpy as np
 import pytest
 
+import ddc2d_plot_data as plot_data
 from conftest import load_script
 
 EXACT, NEAR, BEYOND = 0.0, 1e-10, 1e-8
@@ -36,65 +37,65 @@ def symmetric_history(ahead=EXACT):
 
 
 @pytest.mark.parametrize("ahead, element", [(EXACT, 2), (NEAR, 2), (BEYOND, 3)])
-def test_history_element_of_largest_slip(plot_module, ahead, element):
-    elements, steps = plot_module.history_choices(symmetric_history(ahead))
+def test_history_element_of_largest_slip(ahead, element):
+    elements, steps = plot_data.history_choices(symmetric_history(ahead))
     assert elements == [element]  # 0-based: element 3, or 4 beyond the tolerance
     assert steps == [0, 2, 4]
 
 
 @pytest.mark.parametrize("ahead, name", [(EXACT, "sxx"), (NEAR, "sxx"), (BEYOND, "sxy")])
-def test_history_load_parameter_of_largest_range(plot_module, ahead, name):
+def test_history_load_parameter_of_largest_range(ahead, name):
     # sxx and sxy both range over 10 (in file order, sxx first); sxy ahead by `ahead`.
     history = symmetric_history()
     history["loads"] = {"sxx": np.array([-5.0, 0.0, 5.0, 0.0, -5.0]),
                         "sxy": np.array([0.0, 5.0, 10.0 * (1.0 + ahead), 5.0, 0.0])}
-    assert plot_module.history_parameter(history)[0] == name
+    assert plot_data.history_parameter(history)[0] == name
 
 
 # ------------------------------------------------------------------ ddc2d-plot: overview
 
 
 @pytest.mark.parametrize("ahead, axis", [(EXACT, "x"), (NEAR, "x"), (BEYOND, "y")])
-def test_overview_axis_of_a_fault_at_45_degrees(plot_module, ahead, axis):
+def test_overview_axis_of_a_fault_at_45_degrees(ahead, axis):
     # Two elements from (0, 0) to (1, 1 + ahead): as long in x as in y but for `ahead`.
     top = 1.0 + ahead
     elements = {"x_begin": np.array([0.0, 0.5]), "x_end": np.array([0.5, 1.0]),
                 "y_begin": np.array([0.0, 0.5 * top]), "y_end": np.array([0.5 * top, top])}
-    assert plot_module.overview_axis(elements) == axis
+    assert plot_data.overview_axis(elements) == axis
 
 
 # ------------------------------------------------------------------ ddc2d-plot: receivers
 
 
-def test_receiver_on_a_principal_plane_is_right_lateral(plot_module):
+def test_receiver_on_a_principal_plane_is_right_lateral():
     # Principal stresses along x and y: no shear on the vertical plane, but cos(90 deg)
     # rounds to 6e-17 and the resolved shear to -7.7e-15.
     remote = (-50.0, -175.0, 0.0)
-    tau, _ = plot_module.resolved_traction(*remote, 90.0)
+    tau, _ = plot_data.resolved_traction(*remote, 90.0)
     assert tau < 0.0 and abs(tau) < 1e-13
-    assert plot_module.Receiver(remote, 90.0).sense == "right"
-    assert plot_module.Receiver((-100.0, -100.0, 0.0), 30.0).sense == "right"  # exact zero
+    assert plot_data.Receiver(remote, 90.0).sense == "right"
+    assert plot_data.Receiver((-100.0, -100.0, 0.0), 30.0).sense == "right"  # exact zero
 
 
 @pytest.mark.parametrize("shear, sense", [(-NEAR * 175.0, "right"),
                                           (-BEYOND * 175.0, "left"), (1e-3, "right")])
-def test_receiver_sense_near_zero_shear(plot_module, shear, sense):
+def test_receiver_sense_near_zero_shear(shear, sense):
     # On a plane along x the remote shear is sxy; the largest component is 175.
-    assert plot_module.Receiver((-50.0, -175.0, shear), 0.0).sense == sense
+    assert plot_data.Receiver((-50.0, -175.0, shear), 0.0).sense == sense
 
 
 # ------------------------------------------------------------------ ddc2d-plot: colour limits
 
 
 @pytest.mark.parametrize("below, symmetric", [(EXACT, False), (NEAR, False), (BEYOND, True)])
-def test_colour_limits_when_a_percentile_meets_the_remote_value(plot_module, below,
+def test_colour_limits_when_a_percentile_meets_the_remote_value(below,
                                                                 symmetric):
     # Half of the map sits at the remote value -112.5 (or `below` it, relative), the rest
     # above: only a real excursion below makes the limits symmetric about the remote value.
     centre = -112.5
     values = np.ma.masked_array(np.concatenate([
         np.full(50, centre * (1.0 + below)), centre + np.linspace(0.0, 10.0, 51)]))
-    low, high = plot_module.default_clim(values, "mean", centre=centre)
+    low, high = plot_data.default_clim(values, "mean", centre=centre)
     if symmetric:
         assert low + high == pytest.approx(2.0 * centre) and high > centre + 9.0
     else:
@@ -102,9 +103,9 @@ def test_colour_limits_when_a_percentile_meets_the_remote_value(plot_module, bel
 
 
 @pytest.mark.parametrize("spread, constant", [(EXACT, True), (NEAR, True), (BEYOND, False)])
-def test_colour_limits_of_a_field_constant_but_for_rounding(plot_module, spread, constant):
+def test_colour_limits_of_a_field_constant_but_for_rounding(spread, constant):
     values = np.ma.masked_array(5.0 * (1.0 + spread * np.linspace(0.0, 1.0, 101)))
-    low, high = plot_module.default_clim(values, "max_shear")
+    low, high = plot_data.default_clim(values, "max_shear")
     if constant:
         assert (low, high) == pytest.approx((2.5, 7.5), rel=1e-8)
     else:

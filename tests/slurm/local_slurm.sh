@@ -103,8 +103,12 @@ SchedulerParameters=batch_sched_delay=0,sched_min_interval=0
 NodeName=localhost NodeAddr=127.0.0.1 CPUs=$(nproc) State=UNKNOWN
 PartitionName=debug Nodes=localhost Default=YES MaxTime=INFINITE State=UP
 EOF
-    for _ in $(seq 50); do [[ -S "$work/munge/munge.socket" ]] && break; sleep 0.1; done
-    [[ -S "$work/munge/munge.socket" ]] || fail "munged did not start"
+    # A deadline, not a count of polls: munged starts slowly on a loaded machine.
+    local munge_deadline=$((SECONDS + wait_limit))
+    until [[ -S "$work/munge/munge.socket" ]]; do
+        ((SECONDS < munge_deadline)) || fail "munged did not start within ${wait_limit} s"
+        sleep 0.1
+    done
     slurmctld -D -i -f "$SLURM_CONF" >>"$work/log/slurmctld.stderr" 2>&1 &
     local_slurm_pids+=($!)
     slurmd -D -f "$SLURM_CONF" -N localhost >>"$work/log/slurmd.stderr" 2>&1 &

@@ -8,7 +8,7 @@
 # with `srun --mpi=pmix` (the Slurm way; the configuration's MpiDefault is none, as on many
 # clusters, so the job asks for PMIx itself) and with Open MPI's mpiexec (which takes the
 # allocation from Slurm's environment). Both results must equal the serial program's
-# (tests/mpi/compare.py: 1e-10 of the largest magnitude of each kind of quantity, states
+# (tests/compare_results.py: 1e-10 of the largest magnitude of each kind of quantity, states
 # equal) and record
 # 2 processes. Every wait has a timeout.
 #
@@ -29,7 +29,7 @@ work="$(realpath -m "$4")"
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 python="${DDC2D_PYTHON:-$repo/build/venv/bin/python}"
 model="$repo/tests/data/mpi/kinked_fault.nml"
-wait_limit=120
+wait_limit=600
 start_time=$SECONDS
 
 say() { printf '[slurm mpi test %4ds] %s\n' $((SECONDS - start_time)) "$*"; }
@@ -65,7 +65,7 @@ job=$(timeout "$wait_limit" sbatch --parsable --wait "$work/job.sbatch") \
 $(grep -v 'array temporary\|^At line' "$work/job.out" 2>/dev/null || true)"
 say "job $job (2 tasks) done in $((SECONDS - phase)) s"
 for launcher in srun mpiexec; do
-    "$python" "$repo/tests/mpi/compare.py" "$work/serial.h5" "$work/$launcher.h5" \
+    "$python" "$repo/tests/compare_results.py" "$work/serial.h5" "$work/$launcher.h5" \
         --processes 2 || fail "the $launcher result differs from the serial run"
 done
 say "PASS: srun --mpi=pmix and mpiexec in a 2-task batch job give the serial answer"

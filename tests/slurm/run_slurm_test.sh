@@ -33,7 +33,7 @@ repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 python="${DDC2D_PYTHON:-$repo/build/venv/bin/python}"
 sweep="$repo/input/sweep_friction_orientation.nml"
 stem=sweep_friction_orientation
-wait_limit=120
+wait_limit=600
 start_time=$SECONDS
 
 say() { printf '[slurm test %4ds] %s\n' $((SECONDS - start_time)) "$*"; }
@@ -80,7 +80,8 @@ changed_tasks() {  # BEFORE AFTER (outputs of mtimes): the tasks whose line chan
     { diff <(echo "$1") <(echo "$2") || true; } | sed -n 's/^> \([0-9]*\) .*/\1/p' | tr '\n' ' '
 }
 compare() {  # TASK...: outputs equal the serial runs
-    "$python" "$repo/tests/slurm/compare_outputs.py" "$out_dir" "$work/serial" "$stem" "$@" \
+    "$python" "$repo/tests/compare_results.py" "$work/serial" "$out_dir" --stem "$stem" \
+        --rtol 1e-12 --tasks "$@" \
         || fail "outputs differ from the serial runs"
 }
 

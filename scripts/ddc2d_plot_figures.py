@@ -1,0 +1,386 @@
+"""The figures of ddc2d-plot, drawn with matplotlib from the data of ddc2d_plot_data.
+
+Every ``plot_*`` function returns a matplotlib Figure laid out so that nothing is cut off
+at the canvas's edges whatever the grid's aspect (constrained layout; map sizes from
+ddc2d_plot_data.map_figure_size); ``save_figure`` writes one. Imported by
+``scripts/ddc2d-plot`` and the tests; the figures are described in ddc2d-plot's help.
+"""
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.collections import LineCollection
+from matplotlib.ticker import MaxNLocator
+
+from ddc2d_files import atomic_path
+from ddc2d_h5 import coding_of
+from ddc2d_plot_data import (
+    COLORBAR_LABELS,
+    LINE_PANELS,
+    SIGNED_QUANTITIES,
+    Background,
+    as_grid,
+    default_clim,
+    distance_along,
+    element_segments,
+    fracture_profiles,
+    grid_quantity,
+    growth_curves,
+    growth_series,
+    heading,
+    history_parameter,
+    is_cross_section,
+    map_figure_size,
+    map_title,
+    overview_axis,
+    profile_panels,
+    quiver_step,
+    remote_value,
+    slip_sense,
+    state_names,
+    unit_label,
+)
+
+#: Marker of each element state, by its name in the coding of /elements/state.
+STATE_STYLES = {
+    "free": {"color": "tab:gray", "marker": "s"},
+    "stick": {"color": "tab:blue", "marker": "o"},
+    "slip": {"color": "tab:red", "marker": "^"},
+    "open": {"color": "tab:green", "marker": "D"},
+}
+#: Marker of a state the styles do not know.
+OTHER_STATE_STYLE = {"color": "black", "marker": "x"}
+#: Space kept free around the edges of a map figure and between its parts [inch].
+MAP_PAD = 0.1
+#: The overview's legend names the fractures when there are at most this many.
+LEGEND_MAX_FRACTURES = 8
+#: Line styles of the fractures in the all-fractures profile and of the growth tips.
+LINESTYLES = ("-", "--", ":", "-.")
+
+#: Colour map of the growth steps (new elements, /elements/created_step).
+GROWTH_CMAP = "plasma"
+#: Marker and legend text of each growth reason, by its name in the coding of
+#: /growth/reason (an open marker for 'subcritical'); a reason not here gets a '+'.
+GROWTH_MARKERS = {"grew": ("o", "grew"), "subcritical": ("o", "subcritical"),
+                  "intersection": ("X", "stopped: intersection"),
+                  "surface": ("^", "stopped: surface"),
+                  "corrector": ("s", "grew at the MTS angle"), "waiting": ("D", "waiting")}
+
+
+def plot_history(result, elements, steps):
+    """Hysteresis (slip at elements against the load parameter) and slip profiles at
+    steps of a loading history; elements and steps are 0-based. Returns the Figure."""
+    history = result["history"]
+    name, load = history_parameter(history)
+    unit = result["stress_unit"] + ("/" + result["length_unit"] if name.startswith("d")
+                                    else "")
+    slip = -history["ds"]
+    fig, (ax_loop, ax_profile) = plt.subplots(1, 2, figsize=(11, 4.5),
+                                              constrained_layout=True)
+    labelled = set()
+    for e in elements:
+        ax_loop.plot(load, slip[:, e], color="0.3", linewidth=1.0, gid=f"element_{e + 1}",
+                     label=f"element {e + 1}")
+        _mark_states(ax_loop, load, slip[:, e], history["state"][:, e], state_names(result),
+                     labelled, markersize=4)
+    ax_loop.set_xlabel(f"{name}" + unit_label(unit))
+    ax_loop.set_ylabel("slip $-D_s$" + unit_label(result["length_unit"]))
+    ax_loop.legend(fontsize="small", loc="best")
+    ax_loop.set_title("slip against the load along the path")
+    number = np.arange(1, slip.shape[1] + 1)
+    for k in steps:
+        ax_profile.plot(number, slip[k], linewidth=1.0, gid=f"step_{k + 1}",
+                        label=f"step {k + 1}: {name} = {load[k]:g}")
+    ax_profile.set_xlabel("element")
+    ax_profile.set_ylabel("slip $-D_s$" + unit_label(result["length_unit"]))
+    ax_profile.legend(fontsize="small", loc="best")
+    ax_profile.set_title("slip profiles at chosen steps")
+    for ax in (ax_loop, ax_profile):
+        ax.axhline(0.0, color="0.7", linewidth=0.5)
+        ax.grid(True, linewidth=0.3)
+    fig.suptitle(heading(result, f"loading history ({slip.shape[0]} steps)"))
+    return fig
+
+
+def _draw_elements(ax, elements):
+    """The elements: the input's in black, those created by growth coloured by their step.
+    Returns the collection of the grown elements (for a colour bar), or None."""
+    created = elements.get("created_step")
+    grown = np.zeros(elements["ds"].size, dtype=bool) if created is None else created > 0
+    ax.add_collection(LineCollection(element_segments(elements, ~grown), colors="black",
+                                     linewidths=1.5, label="elements", gid="elements"),
+                      autolim=False)
+    if not np.any(grown):
+        return None
+    steps = created[grown]
+    collection = LineCollection(element_segments(elements, grown), cmap=GROWTH_CMAP,
+                                linewidths=2.0, label="grown elements", gid="grown_elements")
+    collection.set_array(steps.astype(float))
+    collection.set_clim(0.5, steps.max() + 0.5)
+    ax.add_collection(collection, autolim=False)
+    return collection
+
+
+def plot_growth(result):
+    """The grown geometry coloured by step (left) and K_eq / toughness against the step
+    for every tip (right) of a growth run. Returns the Figure."""
+    growth = result["growth"]
+    elements = result["elements"]
+    fig, (ax_map, ax_k) = plt.subplots(1, 2, figsize=(12, 5), constrained_layout=True)
+    grown = _draw_elements(ax_map, elements)
+    points = element_segments(elements).reshape(-1, 2)
+    span = np.ptp(points, axis=0).max() or 1.0
+    ax_map.set_xlim(points[:, 0].min() - 0.05 * span, points[:, 0].max() + 0.05 * span)
+    ax_map.set_ylim(points[:, 1].min() - 0.05 * span, points[:, 1].max() + 0.05 * span)
+    ax_map.set_aspect("equal")
+    if grown is not None:
+        bar = fig.colorbar(grown, ax=ax_map, label="growth step", shrink=0.8)
+        bar.ax.yaxis.set_major_locator(MaxNLocator(integer=True))
+    ax_map.set_xlabel("x" + unit_label(result["length_unit"]))
+    ax_map.set_ylabel("y" + unit_label(result["length_unit"]))
+    ax_map.set_title("input (black) and grown elements (colour: step)", fontsize="medium")
+    reasons = coding_of(result, "/growth/reason")
+    used = set()
+    # Tips with equal curves (the wings of a symmetric model) share one line, whose label
+    # names them all: drawn apart, one would hide the other.
+    for index, curve in enumerate(growth_curves(growth_series(result))):
+        colour = f"C{index % 10}"
+        ax_k.plot(curve["step"], curve["ratio"], color=colour, linewidth=1.2,
+                  linestyle=LINESTYLES[index % len(LINESTYLES)],
+                  label=curve["label"], gid=f"k_eq:{curve['label']}")
+        for code in np.unique(curve["reason"]):
+            name = reasons.get(int(code), str(code))
+            marker = GROWTH_MARKERS.get(name, ("P", name))[0]
+            chosen = curve["reason"] == code
+            used.add(name)
+            ax_k.plot(curve["step"][chosen], curve["ratio"][chosen], linestyle="none",
+                      marker=marker, color=colour, markersize=5,
+                      markerfacecolor="none" if name == "subcritical" else colour,
+                      label="_reason")
+    for name in sorted(used, key=list(reasons.values()).index):  # the markers, in grey
+        marker, text = GROWTH_MARKERS.get(name, ("P", name))
+        ax_k.plot([], [], linestyle="none", marker=marker, color="0.4",
+                  markerfacecolor="none" if name == "subcritical" else "0.4", label=text)
+    ax_k.axhline(1.0, color="0.4", linewidth=0.8, linestyle="--")
+    ax_k.xaxis.set_major_locator(MaxNLocator(integer=True))
+    ax_k.set_xlabel("growth step")
+    ax_k.set_ylabel("$K_{eq}$ / toughness")
+    ax_k.grid(True, linewidth=0.3)
+    ax_k.legend(fontsize="small", loc="best")
+    attrs = growth["attrs"]
+    ax_k.set_title(f"toughness {float(attrs['toughness']):g}; ended: "
+                   f"{attrs.get('end_reason', '?')} after {int(attrs['steps_taken'])} "
+                   "step(s) with growth", fontsize="medium")
+    fig.suptitle(heading(result, "fracture growth"))
+    return fig
+
+
+def plot_surface(result, name):
+    """Figure of the surface displacement profile ux, uy against x; returns the Figure."""
+    field = result["fields"][name]
+    length_unit = result["length_unit"]
+    order = np.argsort(field["x"], kind="stable")
+    fig, axes = plt.subplots(2, 1, sharex=True, figsize=(8, 6), constrained_layout=True)
+    for ax, key, label in zip(axes, ("uy", "ux"), ("uplift uy", "horizontal ux")):
+        ax.plot(field["x"][order], field[key][order], color="C0", linewidth=1.2, gid=key)
+        ax.axhline(0.0, color="0.7", linewidth=0.5)
+        ax.set_ylabel(label + unit_label(length_unit))
+        ax.grid(True, linewidth=0.3)
+    axes[-1].set_xlabel("x along the surface y = 0" + unit_label(length_unit))
+    fig.suptitle(heading(result, f"surface displacement '{name}'"))
+    return fig
+
+
+def plot_observation_line(result, name):
+    """Figure of ux, uy, sxx, syy, sxy against the distance along an observation line or
+    point list (total stress, tension positive; NaN points are gaps)."""
+    field = result["fields"][name]
+    distance = distance_along(field)
+    units = {"length": result["length_unit"], "stress": result["stress_unit"]}
+    marker = "o" if distance.size <= 60 else None
+    fig, axes = plt.subplots(len(LINE_PANELS), 1, sharex=True, figsize=(8, 10),
+                             constrained_layout=True)
+    for ax, (key, label, kind) in zip(axes, LINE_PANELS):
+        ax.plot(distance, np.ravel(field[key]), color="C0", linewidth=1.2, marker=marker,
+                markersize=3, gid=key)
+        ax.axhline(0.0, color="0.7", linewidth=0.5)
+        ax.set_ylabel(label + unit_label(units[kind]))
+        ax.grid(True, linewidth=0.3)
+    x, y = np.ravel(field["x"]), np.ravel(field["y"])
+    start = f"from ({x[0]:g}, {y[0]:g})"
+    if field["kind"] == "points":
+        along = f"distance along the points in file order, {start}"
+    else:
+        along = f"distance along the line {start} to ({x[-1]:g}, {y[-1]:g})"
+    axes[-1].set_xlabel(along + unit_label(result["length_unit"]))
+    nan = int(np.count_nonzero(~np.isfinite(np.ravel(field["sxx"]))))
+    text = f"{field['kind']} '{name}': {distance.size} points, stress tension positive"
+    if nan:
+        text += f"\n{nan} on an element (NaN: gaps)"
+    fig.suptitle(heading(result, text))
+    return fig
+
+
+def _mark_states(ax, position, values, state, names, labelled, markersize=5):
+    """Markers by element state (`names`: code -> name, state_names); a state gets a legend
+    label once (`labelled`: the names labelled so far)."""
+    for code in sorted(names):
+        chosen = state == code
+        if np.any(chosen):
+            name = names[code]
+            label = name if name not in labelled else "_" + name
+            labelled.add(name)
+            ax.plot(position[chosen], values[chosen], linestyle="none",
+                    markersize=markersize, label=label,
+                    **STATE_STYLES.get(name, OTHER_STATE_STYLE))
+    unknown = ~np.isin(state, list(names))
+    if np.any(unknown):
+        label = "other state" if "other state" not in labelled else "_other state"
+        labelled.add("other state")
+        ax.plot(position[unknown], values[unknown], linestyle="none", label=label,
+                **OTHER_STATE_STYLE)
+
+
+def _profile_axes(panels):
+    """A figure with one axes per profile panel, stacked, sharing x: (Figure, axes)."""
+    fig, axes = plt.subplots(len(panels), 1, sharex=True, squeeze=False,
+                             figsize=(8, 3.4 + 2.6 * (len(panels) - 1)),
+                             constrained_layout=True)
+    return fig, axes[:, 0]
+
+
+def plot_profile(result, fracture, profile):
+    """Figure with slip (and opening, see profile_panels) along one fracture, saying what
+    positive slip means (slip_sense); returns the Figure."""
+    length_unit = result["length_unit"]
+    panels = profile_panels(result)
+    fig, axes = _profile_axes(panels)
+    for row, key, label in panels:
+        ax = axes[row]
+        ax.plot(profile["distance"], profile[key], color="0.3", linewidth=1.0,
+                label="_profile", gid=key)
+        _mark_states(ax, profile["distance"], profile[key], profile["state"],
+                     state_names(result), set())
+        ax.axhline(0.0, color="0.7", linewidth=0.5)
+        ax.set_ylabel(label + unit_label(length_unit))
+        ax.grid(True, linewidth=0.3)
+    axes[0].legend(title="element state", loc="best", fontsize="small")
+    if panels[0][1] == "slip":
+        axes[0].set_title(slip_sense(result, fracture), fontsize="small", loc="left")
+    axes[-1].set_xlabel("distance along fracture" + unit_label(length_unit))
+    name = fracture["name"] or fracture["label"]
+    text = f"fracture '{name}' (elements {fracture['first']}-{fracture['last']})"
+    if len(panels) == 1:
+        text += "\nno element " + ("opens" if panels[0][1] == "slip" else "slips")
+    fig.suptitle(heading(result, text))
+    return fig
+
+
+def plot_overview(result):
+    """Slip (and opening, see profile_panels) of every fracture in one figure, each against
+    the x or y coordinate of its element midpoints (overview_axis of the fracture: its
+    longer extent); one line style per fracture, markers by state; the legend gives each
+    fracture's coordinate and, in a cross-section, what its positive slip means (in a map
+    view it is right-lateral on every fracture, said once); of more than
+    LEGEND_MAX_FRACTURES fractures (a TWODD deck's contour) only the states."""
+    elements = result["elements"]
+    panels = profile_panels(result)
+    fig, axes = _profile_axes(panels)
+    names = state_names(result)
+    labelled = set()
+    used_axes = set()
+    for index, (fracture, profile) in enumerate(fracture_profiles(result)):
+        sl = slice(fracture["first"] - 1, fracture["last"])
+        axis = overview_axis(elements, fracture["first"], fracture["last"])
+        used_axes.add(axis)
+        position = 0.5 * (elements[f"{axis}_begin"][sl] + elements[f"{axis}_end"][sl])
+        style = LINESTYLES[index % len(LINESTYLES)]
+        label = f"{fracture['name'] or fracture['label']} (against {axis}"
+        label += f"; {slip_sense(result, fracture)})" if is_cross_section(result) else ")"
+        if len(result["fractures"]) > LEGEND_MAX_FRACTURES:
+            label = "_" + label
+        for row, key, _ in panels:
+            axes[row].plot(position, profile[key], color="0.25", linewidth=1.0,
+                           linestyle=style, label=label, gid=f"{key}:{fracture['label']}")
+            _mark_states(axes[row], position, profile[key], profile["state"], names,
+                         labelled if row == 0 else set(), markersize=3)
+    for row, _, label in panels:
+        axes[row].axhline(0.0, color="0.7", linewidth=0.5)
+        axes[row].set_ylabel(label + unit_label(result["length_unit"]))
+        axes[row].grid(True, linewidth=0.3)
+    handles, labels = axes[0].get_legend_handles_labels()
+    states = [i for i, label in enumerate(labels) if label in labelled]
+    order = [i for i in range(len(labels)) if i not in states] + states
+    title = "fracture (line), element state (marker)"
+    if len(result["fractures"]) > LEGEND_MAX_FRACTURES:
+        title = "element state"
+    axes[0].legend([handles[i] for i in order], [labels[i] for i in order], loc="best",
+                   fontsize="small", title=title)
+    if not is_cross_section(result) and panels[0][1] == "slip":
+        axes[0].set_title(slip_sense(result, result["fractures"][0]), fontsize="small",
+                          loc="left")
+    coordinate = " or ".join(sorted(used_axes))
+    where = ", each fracture along its longer extent" if len(used_axes) > 1 else ""
+    axes[-1].set_xlabel(f"{coordinate} of element midpoint{where}"
+                        + unit_label(result["length_unit"]))
+    fig.suptitle(heading(result, f"all {len(result['fractures'])} fractures"))
+    return fig
+
+
+def plot_map(result, name, quantity, clim=None, receiver=None):
+    """Map of a quantity on grid field `name` with the elements drawn (and displacement
+    vectors for 'displacement'); 'coulomb' needs a Receiver. Returns the Figure."""
+    field = result["fields"][name]
+    background = Background.of_result(result)
+    x, y, values = grid_quantity(field, quantity, receiver, background)
+    centre = remote_value(result, quantity)
+    vmin, vmax = clim if clim is not None else default_clim(values, quantity, centre)
+    diverging = quantity in SIGNED_QUANTITIES and centre is not None
+    cmap = "RdBu_r" if diverging else "viridis"
+    # The compressed layout sizes the axes at their fixed aspect before placing the labels
+    # and colour bars (the constrained one cut them off a map taller than wide).
+    fig, ax = plt.subplots(figsize=map_figure_size(x, y), layout="compressed")
+    fig.get_layout_engine().set(w_pad=MAP_PAD, h_pad=MAP_PAD)
+    mesh = ax.pcolormesh(x, y, values, shading="nearest", cmap=cmap, vmin=vmin, vmax=vmax)
+    xlim, ylim = ax.get_xlim(), ax.get_ylim()  # the grid's extent
+    grown = _draw_elements(ax, result["elements"])
+    if quantity == "displacement":
+        _draw_vectors(ax, field, x, y, values)
+    ax.set_xlim(xlim)  # the view is the grid; elements beyond it are clipped
+    ax.set_ylim(ylim)
+    ax.set_aspect("equal")
+    unit = result["length_unit"] if quantity == "displacement" else result["stress_unit"]
+    fig.colorbar(mesh, ax=ax, extend="both", label=COLORBAR_LABELS[quantity] + unit_label(unit))
+    if grown is not None:
+        bar = fig.colorbar(grown, ax=ax, location="bottom", shrink=0.6, aspect=40,
+                           label="growth step of the grown elements")
+        bar.ax.xaxis.set_major_locator(MaxNLocator(integer=True))
+    ax.set_xlabel("x" + unit_label(result["length_unit"]))
+    ax.set_ylabel("y" + unit_label(result["length_unit"]))
+    ax.set_title(map_title(result, name, quantity, receiver), fontsize="medium")
+    return fig
+
+
+def _draw_vectors(ax, field, x, y, magnitude):
+    """Displacement arrows on every quiver_step-th grid point that is not masked."""
+    step = quiver_step(x.shape[1], x.shape[0])
+    pick = (slice(None, None, step), slice(None, None, step))
+    keep = ~np.ma.getmaskarray(magnitude)[pick]
+    ux = as_grid(field, "ux")[pick][keep]
+    uy = as_grid(field, "uy")[pick][keep]
+    if ux.size:
+        ax.quiver(x[pick][keep], y[pick][keep], ux, uy, color="white", edgecolor="black",
+                  linewidth=0.3, pivot="middle", gid="vectors")
+
+
+def save_figure(fig, base, fmt, dpi):
+    """Write `fig` to `base` + '.' + fmt (png, pdf or svg) and close it; returns the path."""
+    path = base.with_name(base.name + "." + fmt)
+    try:
+        with atomic_path(path) as temporary:
+            fig.savefig(temporary, format=fmt, dpi=dpi)
+    finally:
+        plt.close(fig)
+    return path

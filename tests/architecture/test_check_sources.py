@@ -1,0 +1,171 @@
+"""The architecture checks fail when fed a planted violation (CTest architecture_checks).
+
+Each case copies the sources the checks read (src/, app/, tests/*.f90 and
+docs/ARCHITECTURE.md) to a temporary folder, plants one violation, and expects
+check_sources.py to exit 1 naming it; the copy as it is must pass, so each failure comes
+from the planted line alone.
+"""
+
+import re
+import shutil
+import sys
+from pathlib import Path
+
+import pytest
+
+sys.dont_write_bytecode = True
+HERE = Path(__file__).resolve().parent
+REPO_ROOT = HERE.parents[1]
+sys.path.insert(0, str(HERE))
+
+import check_sources  # noqa: E402  (imported from this folder)
+
+
+@pytest.fixture
+def tree(tmp_path):
+    """A copy of the sources the checks read."""
+    for folder in ("src", "app"):
+        shutil.copytree(REPO_ROOT / folder, tmp_path / folder)
+    (tmp_path / "tests").mkdir()
+    for path in (REPO_ROOT / "tests").glob("*.f90"):
+        shutil.copy(path, tmp_path / "tests")
+    (tmp_path / "docs").mkdir()
+    shutil.copy(REPO_ROOT / "docs/ARCHITECTURE.md", tmp_path / "docs")
+    return tmp_path
+
+
+def run_checks(root, capsys):
+    status = check_sources.main([str(root)])
+    return status, capsys.readouterr().out
+
+
+def expect_violation(root, capsys, message):
+    """The checks fail on root and name the violation."""
+    status, out = run_checks(root, capsys)
+    assert status == 1, out
+    assert message in out, out
+
+
+def edit(path, old, new):
+    """Replace the one occurrence of old in path by new."""
+    text = path.read_text()
+    assert text.count(old) == 1, f"{path}: {old!r} occurs {text.count(old)} times"
+    path.write_text(text.replace(old, new))
+
+
+def table_row(tree, folder):
+    text = (tree / "docs/ARCHITECTURE.md").read_text()
+    return re.search(rf"^\| `{re.escape(folder)}` .*$", text, re.MULTILINE).group(0)
+
+
+def test_the_tree_passes(tree, capsys):
+    status, out = run_checks(tree, capsys)
+    assert status == 0, out
+    assert "every folder edge listed" in out
+
+
+def test_unlisted_folder_edge_fails(tree, capsys):
+    # sweep/ back on the HDF5 reader, the edge this table no longer lists
+    edit(tree / "src/sweep/tasks.f90", "    use ddc_kinds, only: wp\n",
+         "    use ddc_kinds, only: wp\n    use ddc_output_hdf5_read, only: read_int_attribute\n")
+    expect_violation(tree, capsys,
+                     "src/sweep/tasks.f90 uses ddc_output_hdf5_read: the folder table of "
+                     "docs/ARCHITECTURE.md does not list output (nor output/hdf5_read one by "
+                     "one) among the uses of sweep")
+
+
+def test_unlisted_module_of_listed_folder_fails(tree, capsys):
+    # model/ lists contact/options and contact/states only, not all of contact/
+    edit(tree / "src/model/results.f90", "    use ddc_kinds, only: wp\n",
+         "    use ddc_kinds, only: wp\n    use ddc_contact_lemke, only: solve_lemke\n")
+    expect_violation(tree, capsys,
+                     "src/model/results.f90 uses ddc_contact_lemke: the folder table of "
+                     "docs/ARCHITECTURE.md does not list contact (nor contact/lemke one by "
+                     "one) among the uses of model")
+
+
+def test_listed_use_the_code_lacks_fails(tree, capsys):
+    row = table_row(tree, "linalg/")
+    edit(tree / "docs/ARCHITECTURE.md", row, row.replace("| base |", "| base, mesh |"))
+    expect_violation(tree, capsys, "docs/ARCHITECTURE.md: the row of linalg lists mesh, which "
+                     "linalg does not use")
+
+
+def test_folder_without_row_fails(tree, capsys):
+    row = table_row(tree, "post/")
+    edit(tree / "docs/ARCHITECTURE.md", row + "\n", "")
+    expect_violation(tree, capsys, "docs/ARCHITECTURE.md: no row for post in the folder table")
+
+
+def test_per_element_array_missing_from_the_list_fails(tree, capsys):
+    edit(tree / "src/model/types.f90", "        integer :: domain = domain_full_plane\n",
+         "        integer :: domain = domain_full_plane\n"
+         "        real(wp), allocatable :: planted(:)\n")
+    expect_violation(tree, capsys, "src/model/types.f90: the per-element array planted of "
+                     "element_set is missing from for_each_element_array")
+    # listed once, it passes
+    edit(tree / "src/model/types.f90", "        call action%on_reals(elements%sin_beta)\n",
+         "        call action%on_reals(elements%sin_beta)\n"
+         "        call action%on_reals(elements%planted)\n")
+    assert run_checks(tree, capsys)[0] == 0
+
+
+def test_routine_around_the_list_fails(tree, capsys):
+    edit(tree / "src/parallel/model.f90",
+         "        call for_each_element_array(elements, broadcast)\n", "")
+    expect_violation(tree, capsys, "src/parallel/model.f90: share_elements does not go "
+                     "through for_each_element_array")
+
+
+def test_element_scalar_missing_from_the_broadcast_fails(tree, capsys):
+    edit(tree / "src/parallel/model.f90",
+         "        call share(context, elements%symmetry%ysym)\n", "")
+    expect_violation(tree, capsys, "src/parallel/model.f90: share_elements does not broadcast "
+                     "elements%symmetry%ysym (a component of element_set)")
+
+
+def test_solver_option_missing_from_the_broadcast_fails(tree, capsys):
+    edit(tree / "src/contact/options.f90", "        integer :: open_cohesion = cohesion_kept\n",
+         "        integer :: open_cohesion = cohesion_kept\n        integer :: planted = 0\n")
+    expect_violation(tree, capsys, "src/parallel/model.f90: share_model does not broadcast "
+                     "model%solver%planted (a component of solver_options) nor marks it")
+    # marked root only, with a reason, it passes
+    edit(tree / "src/parallel/model.f90", "        ! Root only: model%solver%work_bytes",
+         "        ! Root only: model%solver%planted (planted)\n"
+         "        ! Root only: model%solver%work_bytes")
+    assert run_checks(tree, capsys)[0] == 0
+
+
+def test_stale_root_only_mark_fails(tree, capsys):
+    edit(tree / "src/parallel/model.f90", "        ! Root only: model%solver%work_bytes",
+         "        ! Root only: model%solver%gone (planted)\n"
+         "        ! Root only: model%solver%work_bytes")
+    expect_violation(tree, capsys, "src/parallel/model.f90: share_model marks "
+                     "model%solver%gone root only, which is no component of solver_options")
+
+
+def test_folder_cycle_fails(tree, capsys):
+    # linalg/ -> model/ closes model -> contact -> linalg
+    edit(tree / "src/linalg/lu.f90", "    use ddc_kinds, only: wp\n",
+         "    use ddc_kinds, only: wp\n    use ddc_model_types, only: model_type\n")
+    expect_violation(tree, capsys, "linalg -> model (src/linalg/lu.f90 uses ddc_model_types)")
+
+
+def test_module_name_off_its_path_fails(tree, capsys):
+    edit(tree / "src/post/tips.f90", "\nmodule ddc_post_tips\n", "\nmodule ddc_post_tip\n")
+    expect_violation(tree, capsys, "src/post/tips.f90: holds module ddc_post_tip, expected "
+                     "ddc_post_tips")
+
+
+def test_namelist_off_the_group_table_fails(tree, capsys):
+    edit(tree / "src/input/namelist_fracture.f90", "namelist /fracture/ name, x, y,",
+         "namelist /fracture/ name, y, x,")
+    expect_violation(tree, capsys,
+                     "src/input/namelist_fracture.f90: namelist /fracture/ declares")
+
+
+def test_unused_import_fails(tree, capsys):
+    edit(tree / "src/linalg/lu.f90", "    use ddc_kinds, only: wp\n",
+         "    use ddc_kinds, only: wp\n    use ddc_sorting, only: first_at_least\n")
+    expect_violation(tree, capsys,
+                     "src/linalg/lu.f90: imports first_at_least but does not use it")

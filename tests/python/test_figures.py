@@ -1,0 +1,224 @@
+"""The figures of ddc2d-plot as a reader sees them: nothing cut off at the canvas's edges
+whatever the grid's aspect, growth tips that hide each other named in the legend, integer
+step ticks, Coulomb receivers of a cross-section named reverse / normal, titles that say
+what the quantity is, and element states read from the file's coding."""
+
+import io
+
+import h5py
+import numpy as np
+import pytest
+
+import ddc2d_plot_data as plot_data
+import ddc2d_plot_figures as plot_figures
+from conftest import solve_text, write_result
+from ddc2d_h5 import load_result
+
+
+def with_grid(path, x_range, y_range, shape=(15, 13), half_plane=False, grown=False):
+    """The synthetic result (conftest) with its grid replaced by one over x_range, y_range
+    (shape (ny, nx)); for half_plane the root attribute domain says so (y up, y <= 0);
+    grown: fracture B's elements were created by growth steps 1 to 3 (the maps then have
+    a second colour bar, below the map)."""
+    write_result(path)
+    x, y = np.meshgrid(np.linspace(*x_range, shape[1]), np.linspace(*y_range, shape[0]))
+    with h5py.File(path, "r+") as f:
+        if grown:
+            f["elements"].create_dataset("created_step",
+                                         data=np.array([0, 0, 0, 0, 1, 2, 3], dtype=np.int32))
+        grid = f["fields/grid1"]
+        grid.attrs["nx"], grid.attrs["ny"] = np.int32(shape[1]), np.int32(shape[0])
+        values = {"x": x, "y": y, "ux": 1e-3 * x, "uy": -2e-3 * y, "sxx": -10.0 + 0.1 * x * y,
+                  "syy": -5.0 - 0.2 * y, "sxy": 0.5 * np.sin(x),
+                  "near_element": np.zeros(shape, dtype=np.int32)}
+        for key, value in values.items():
+            coding = grid[key].attrs.get("coding")
+            del grid[key]
+            grid.create_dataset(key, data=value)
+            if coding is not None:
+                grid[key].attrs["coding"] = coding
+        if half_plane:
+            f.attrs["domain"] = np.bytes_(b"half_plane")
+    return path
+
+
+def assert_inside_the_canvas(fig):
+    """Save the figure, then: its tight bounding box (every text and artist drawn) lies
+    within the canvas."""
+    fig.savefig(io.BytesIO(), format="png", dpi=60)
+    box = fig.get_tightbbox(fig.canvas.get_renderer())
+    canvas = fig.bbox_inches
+    assert box.x0 >= canvas.x0 and box.y0 >= canvas.y0, (box, canvas)
+    assert box.x1 <= canvas.x1 and box.y1 <= canvas.y1, (box, canvas)
+
+
+GRIDS = {
+    "tall": {"x_range": (0.0, 6.0), "y_range": (-7.0, 0.0)},  # 6 x 7 m, minus signs on y
+    "wide": {"x_range": (-50.0, 50.0), "y_range": (-2.0, 2.0)},
+    "section": {"x_range": (-150.0, 150.0), "y_range": (-500.0, 0.0), "half_plane": True},
+}
+
+
+@pytest.mark.parametrize("grown", [False, True])
+@pytest.mark.parametrize("grid", sorted(GRIDS))
+@pytest.mark.parametrize("quantity", ["max_shear", "syy", "coulomb", "induced_mean",
+                                      "displacement"])
+def test_maps_fit_the_canvas_whatever_the_aspect(tmp_path, grid, quantity, grown):
+    result = load_result(with_grid(tmp_path / f"{grid}.h5", **GRIDS[grid], grown=grown))
+    receiver = plot_data.Receiver(plot_data.Background.of_result(result), 30.0,
+                                  cross_section=plot_data.is_cross_section(result))
+    fig = plot_figures.plot_map(result, "grid1", quantity, receiver=receiver)
+    try:
+        assert_inside_the_canvas(fig)
+        assert fig.axes[0].get_ylabel() == "y [km]"
+    finally:
+        plot_figures.plt.close(fig)
+
+
+def test_the_other_figures_fit_the_canvas(result_file):
+    result = load_result(result_file)
+    figures = [plot_figures.plot_profile(result, *pair)
+               for pair in plot_data.fracture_profiles(result)]
+    figures += [plot_figures.plot_overview(result),
+                plot_figures.plot_observation_line(result, "line1")]
+    try:
+        for fig in figures:
+            assert_inside_the_canvas(fig)
+    finally:
+        for fig in figures:
+            plot_figures.plt.close(fig)
+
+
+def test_a_long_title_goes_on_a_line_of_its_own():
+    result = {"title": "Surface-breaking thrust fault with friction and pore pressure"}
+    text = "fracture 'thrust' (elements 1-240)"
+    assert plot_data.heading(result, text) == f"{result['title']}\n{text}"
+    assert plot_data.heading({"title": "short"}, text) == f"short: {text}"
+
+
+# ------------------------------------------------------------------ titles
+
+
+def test_max_shear_is_not_titled_tension_positive(result_file):
+    result = load_result(result_file)
+    for quantity, signed in (("max_shear", False), ("sxx", True), ("induced_syy", True),
+                             ("displacement", False)):
+        title = plot_data.map_title(result, "grid1", quantity)
+        assert ("(tension positive)" in title) == signed, title
+    fig = plot_figures.plot_map(result, "grid1", "max_shear")
+    try:
+        assert "tension positive" not in fig.axes[0].get_title()
+        assert fig.axes[1].get_ylabel() == "max. shear stress [MPa]"  # the colour bar
+    finally:
+        plot_figures.plt.close(fig)
+
+
+@pytest.mark.parametrize("angle, sense, words", [
+    (30.0, "right", "reverse"), (30.0, "left", "normal"), (150.0, "right", "normal"),
+    (-30.0, "left", "reverse"), (0.0, "right", "the upper side to +x"),
+    (90.0, "right", "the +x side down"),
+])
+def test_a_coulomb_map_of_a_section_names_reverse_or_normal(tmp_path, angle, sense, words):
+    """In a half-plane (x horizontal, y up) tau > 0 on a plane rising to +x moves its
+    upper side (the hanging wall) up-dip: reverse; the names follow slip_sense's."""
+    result = load_result(with_grid(tmp_path / "section.h5", **GRIDS["section"]))
+    background = plot_data.Background.of_result(result)
+    receiver = plot_data.Receiver(background, angle, 0.6, sense, cross_section=True)
+    fig = plot_figures.plot_map(result, "grid1", "coulomb", receiver=receiver)
+    try:
+        title = fig.axes[0].get_title()
+        assert f"receiver {angle:g} deg from +x, {words}, mu = 0.6" in title
+        assert "lateral" not in title
+    finally:
+        plot_figures.plt.close(fig)
+    # The same sense asked for by its name: --sense reverse / normal.
+    if words in ("reverse", "normal"):
+        named = plot_data.Receiver(background, angle, 0.6, words, cross_section=True)
+        assert named.sense == sense
+    with pytest.raises(ValueError, match="has no sense 'reverse'"):
+        plot_data.Receiver(background, angle, 0.6, "reverse", cross_section=False)
+
+
+def test_a_map_view_receiver_stays_lateral(result_file):
+    result = load_result(result_file)
+    receiver = plot_data.Receiver(plot_data.Background.of_result(result), 30.0, 0.6, "left")
+    assert "left-lateral" in plot_data.map_title(result, "grid1", "coulomb", receiver)
+
+
+# ------------------------------------------------------------------ codings
+
+
+def test_states_are_named_by_the_files_coding(result_file):
+    """A file whose state coding numbers the states otherwise is drawn by its own names:
+    the markers follow the coding, not numbers known to the script."""
+    with h5py.File(result_file, "r+") as f:
+        f["elements/state"].attrs["coding"] = np.bytes_(b"0 open, 1 slip, 2 stick, 3 free")
+    result = load_result(result_file)
+    assert plot_data.state_names(result) == {0: "open", 1: "slip", 2: "stick", 3: "free"}
+    fracture, profile = plot_data.fracture_profiles(result)[0]  # states 1 2 3 2
+    fig = plot_figures.plot_profile(result, fracture, profile)
+    try:
+        markers = {line.get_label(): line.get_xdata().size for line in fig.axes[0].get_lines()
+                   if not line.get_label().startswith("_")}
+        assert markers == {"slip": 1, "stick": 2, "free": 1}
+    finally:
+        plot_figures.plt.close(fig)
+
+
+def test_points_on_an_element_follow_the_near_element_coding(result_file):
+    with h5py.File(result_file, "r+") as f:
+        f["fields/grid1/near_element"].attrs["coding"] = np.bytes_(b"0 clear, 1 on an element")
+    field = load_result(result_file)["fields"]["grid1"]
+    flagged = np.asarray(field["near_element"]) == 1  # the conftest's 'near' point
+    _, _, sxx = plot_data.grid_quantity(field, "sxx")
+    assert np.all(np.ma.getmaskarray(sxx)[flagged])
+
+
+# ------------------------------------------------------------------ growth
+
+# A crack alone under remote shear: its two tips are point-symmetric, so their K_eq curves
+# are the same.
+SYMMETRIC_WINGS = """\
+&model title = 'wings', youngs_modulus = 50000, poissons_ratio = 0.25 /
+&remote_stress sxy = 10 /
+&fracture name = 'crack', x = -1, 1, y = 0, 0, elements = 20, condition = 'traction' /
+&growth steps = 2, toughness = 10 /
+"""
+
+
+@pytest.fixture(scope="module")
+def symmetric_growth(tmp_path_factory):
+    return load_result(solve_text(tmp_path_factory.mktemp("symmetric"), "wings",
+                                  SYMMETRIC_WINGS))
+
+
+def test_tips_with_equal_curves_are_named_together(symmetric_growth):
+    series = plot_data.growth_series(symmetric_growth)
+    assert [tip["label"] for tip in series] == ["crack begin", "crack end"]
+    curves = plot_data.growth_curves(series)
+    assert [curve["label"] for curve in curves] == ["crack begin = end (symmetric)"]
+    fig = plot_figures.plot_growth(symmetric_growth)
+    try:
+        k_axes = fig.axes[1]
+        labels = [text.get_text() for text in k_axes.get_legend().get_texts()]
+        assert labels[0] == "crack begin = end (symmetric)"
+        assert "crack begin" not in labels and "crack end" not in labels
+        # Two steps: the step axis has integer ticks only.
+        ticks = [t for t in k_axes.get_xticks() if k_axes.get_xlim()[0] <= t
+                 <= k_axes.get_xlim()[1]]
+        assert ticks and all(float(t).is_integer() for t in ticks), ticks
+        assert_inside_the_canvas(fig)
+    finally:
+        plot_figures.plt.close(fig)
+
+
+def test_tips_with_different_curves_keep_their_own_lines():
+    steps = np.array([1, 2])
+    series = [{"label": "a begin", "fracture_id": 1, "step": steps,
+               "ratio": np.array([1.2, 1.1]), "reason": np.zeros(2)},
+              {"label": "a end", "fracture_id": 1, "step": steps,
+               "ratio": np.array([1.2, 1.1 * (1 + 1e-6)]), "reason": np.zeros(2)},
+              {"label": "b end", "fracture_id": 2, "step": steps,
+               "ratio": np.array([1.2, 1.1 * (1 + 1e-12)]), "reason": np.zeros(2)}]
+    labels = [curve["label"] for curve in plot_data.growth_curves(series)]
+    assert labels == ["a begin = b end (equal K_eq)", "a end"]

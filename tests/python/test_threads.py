@@ -1,0 +1,79 @@
+"""What README (Threads) says of threads, checked on the executable: results are bit for bit
+the same from run to run with the same OMP_NUM_THREADS and OPENBLAS_NUM_THREADS, and with 1
+and 2 OpenMP threads; 1 and 2 OpenBLAS threads sum the factorizations in other orders, so
+there the results agree to round-off only (within 1e-10 of the largest magnitude of each
+kind of quantity, the rule of tests/compare_results.py). tests/test_threads.f90 checks the
+OpenMP part inside one process."""
+
+import os
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+import pytest
+
+from conftest import REPO_ROOT, ddc2d_exe
+
+sys.path.insert(0, str(REPO_ROOT / "tests"))
+from compare_results import RTOL, differences
+
+#: A growth run with a grid (every OpenMP loop, the growth solver's borders) and a contact
+#: model with stick, slip and open elements.
+MODELS = {"growth": REPO_ROOT / "input" / "echelon_cracks_linking.nml",
+          "contact": REPO_ROOT / "tests" / "data" / "mpi" / "kinked_fault.nml"}
+#: (OpenMP threads, OpenBLAS threads) of the runs.
+SETTINGS = ((1, 1), (2, 1), (2, 2))
+
+
+def result_arrays(path):
+    """Every dataset of the results (not /solver: its times and thread counts differ)."""
+    found = {}
+    with h5py.File(path, "r") as f:
+        def visit(name, item):
+            if isinstance(item, h5py.Dataset) and not name.startswith("solver"):
+                found[name] = item[()]
+        f.visititems(visit)
+    return found
+
+
+def bit_for_bit(a, b):
+    """The datasets of two result files that are not identical, bit for bit."""
+    x, y = result_arrays(a), result_arrays(b)
+    assert x.keys() == y.keys()
+    return [name for name in x
+            if np.asarray(x[name]).tobytes() != np.asarray(y[name]).tobytes()]
+
+
+@pytest.fixture(scope="module", params=sorted(MODELS))
+def runs(request, tmp_path_factory):
+    """The model run twice with each setting: {(omp, blas, run): result file}."""
+    folder = tmp_path_factory.mktemp(request.param)
+    files = {}
+    for omp, blas in SETTINGS:
+        for run in (1, 2):
+            out = folder / f"omp{omp}_blas{blas}_{run}.h5"
+            env = dict(os.environ, OMP_NUM_THREADS=str(omp), OPENBLAS_NUM_THREADS=str(blas))
+            done = subprocess.run([str(ddc2d_exe()), str(MODELS[request.param]), "-o",
+                                   str(out)], cwd=folder, env=env, capture_output=True,
+                                  text=True, timeout=600)
+            assert done.returncode == 0, done.stdout + done.stderr
+            with h5py.File(out, "r") as f:
+                assert int(f["solver"].attrs["threads"]) == omp
+            files[omp, blas, run] = out
+    return files
+
+
+@pytest.mark.parametrize("omp, blas", SETTINGS)
+def test_run_to_run_bit_for_bit(runs, omp, blas):
+    assert bit_for_bit(runs[omp, blas, 1], runs[omp, blas, 2]) == []
+
+
+def test_one_and_two_openmp_threads_bit_for_bit(runs):
+    assert bit_for_bit(runs[1, 1, 1], runs[2, 1, 1]) == []
+
+
+def test_one_and_two_openblas_threads_agree_to_round_off(runs):
+    found = differences(runs[2, 1, 1], runs[2, 2, 1])
+    worst = max(found, key=found.get)
+    assert found[worst] <= RTOL, f"{worst} differs by {found[worst]:.1e}"
