@@ -23,7 +23,7 @@ module ddc_input_namelist_groups
     type :: group_spec
         character(len=13) :: name
         logical :: repeatable
-        character(len=160) :: variables
+        character(len=240) :: variables
     end type group_spec
 
     !> Index of each group in namelist_groups
@@ -37,7 +37,9 @@ module ddc_input_namelist_groups
                    'length_unit:c stress_unit:c domain:c'), &
         group_spec('remote_stress', .false., 'sxx:r syy:r sxy:r dsxx_dy:r dsyy_dy:r dsxy_dy:r'), &
         group_spec('fracture', .true., 'name:c x:r y:r elements:i mu:r sf:r pressure:r '// &
-                   'condition:c bc_s:r bc_n:r elements_file:c'), &
+                   'condition:c bc_s:r bc_n:r elements_file:c tensile_strength:r '// &
+                   'sf_residual:r mu_dynamic:r slip_weakening_distance:r shear_stiffness:r '// &
+                   'normal_stiffness:r'), &
         group_spec('grid', .true., 'name:c xmin:r xmax:r nx:i ymin:r ymax:r ny:i'), &
         group_spec('line', .true., 'name:c x_begin:r y_begin:r x_end:r y_end:r points:i'), &
         group_spec('points', .true., 'name:c file:c'), &
