@@ -5,7 +5,8 @@ module ddc_input_namelist_fracture
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
     use ddc_model_types, only: condition_names, condition_contact, no_residual_drop, rigid_joint
-    use ddc_model_limits, only: range_problem, quantity_non_negative, quantity_positive
+    use ddc_model_limits, only: range_problem, quantity_non_negative, quantity_positive, &
+                                within_limits
     use ddc_text, only: itoa, rtoa, lower, find_name, quoted_list, prefix_lines
     use ddc_input_text_file, only: resolve
     use ddc_input_csv, only: read_csv
@@ -389,6 +390,8 @@ contains
                 what = ' (the friction after slip must not exceed the static one)'
             end if
             do j = 1, size(residual)
+                ! NaN and Inf are reported by count_given; compared here they would trap
+                if (.not. (within_limits(residual(j)) .and. within_limits(intact(j)))) cycle
                 if (residual(j) > intact(j) .and. residual(j) < no_residual_drop) then
                     if (where == 'segment') then
                         call add(messages, prefix//name//' = '//rtoa(residual(j))// &
