@@ -3,7 +3,7 @@
 module ddc_app_report
     use, intrinsic :: iso_fortran_env, only: output_unit
     use ddc_kinds, only: wp
-    use ddc_model_types, only: model_type, condition_names, observation_kind_names, &
+    use ddc_model_types, only: model_type, rigid_joint, condition_names, observation_kind_names, &
         symmetry_none, symmetry_names, domain_names, domain_half_plane, load_path_names, &
         growth_tips_names, growth_criterion_names
     use ddc_model_results, only: model_results, state_names, point_near, point_on_element, &
@@ -75,6 +75,7 @@ contains
             write (unit, '(a,i0,a,a,a,i0,a,a)') '  fracture ', i, ' ', model%fractures(i)%name, &
                 ': ', model%fractures(i)%last_element - first + 1, ' elements, condition ', &
                 trim(condition_names(model%elements%condition(first)))
+            call print_strength(first, model%fractures(i)%last_element)
         end do
         if (allocated(model%observations)) then
             do i = 1, size(model%observations)
@@ -93,6 +94,57 @@ contains
         if (len(notes) > 0) write (unit, '(a)') prefix_lines('note: ', notes)
 
     contains
+
+        !> The strength beyond Coulomb of elements first:last, when any is not the default.
+        subroutine print_strength(first, last)
+            integer, intent(in) :: first, last
+
+            associate (t => model%elements%tensile_strength(first:last), &
+                       sf => model%elements%sf(first:last), &
+                       sfr => min(model%elements%sf(first:last), &
+                                  model%elements%sf_residual(first:last)))
+                if (any(t > 0.0_wp)) write (unit, '(a)') '    tensile_strength '// &
+                    short_real(minval(t))//' .. '//short_real(maxval(t))//stress// &
+                    ' (capped at sf/mu; lost once the element opens)'
+                if (any(sfr < sf)) write (unit, '(a)') '    sf_residual '// &
+                    short_real(minval(sfr))//' .. '//short_real(maxval(sfr))//stress// &
+                    ' (the cohesion once the element has slipped)'
+            end associate
+            associate (mu => model%elements%mu(first:last), &
+                       mud => min(model%elements%mu(first:last), &
+                                  model%elements%mu_dynamic(first:last)), &
+                       dc => model%elements%slip_weakening_distance(first:last))
+                if (any(mud < mu)) write (unit, '(a)') '    mu_dynamic '// &
+                    short_real(minval(mud))//' .. '//short_real(maxval(mud))// &
+                    ', slip_weakening_distance '//short_real(minval(dc))//' .. '// &
+                    short_real(maxval(dc))//' '//model%length_unit// &
+                    ' (friction falls from mu to mu_dynamic as the slip grows to it)'
+            end associate
+            associate (ks => model%elements%shear_stiffness(first:last), &
+                       kn => model%elements%normal_stiffness(first:last))
+                if (any(ks < rigid_joint) .or. any(kn < rigid_joint)) write (unit, '(a)') &
+                    '    elastic joint: shear_stiffness '//stiffness_range(ks)// &
+                    ', normal_stiffness '//stiffness_range(kn)//stress//'/'// &
+                    model%length_unit
+            end associate
+        end subroutine print_strength
+
+        !> 'min .. max' of stiffnesses, 'rigid' for rigid contact.
+        function stiffness_range(k) result(text)
+            real(wp), intent(in) :: k(:)
+            character(len=:), allocatable :: text
+
+            if (all(k >= rigid_joint)) then
+                text = 'rigid'
+            else
+                text = short_real(minval(k))//' .. '
+                if (any(k >= rigid_joint)) then
+                    text = text//'rigid'
+                else
+                    text = text//short_real(maxval(k))
+                end if
+            end if
+        end function stiffness_range
 
         !> ' (xsym = .., ysym = ..): image elements implicit', or '' without symmetry.
         function symmetry_lines() result(text)

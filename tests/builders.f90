@@ -89,6 +89,12 @@ contains
             a%mu = [a%mu, b%mu]
             a%sf = [a%sf, b%sf]
             a%pressure = [a%pressure, b%pressure]
+            a%tensile_strength = [a%tensile_strength, b%tensile_strength]
+            a%sf_residual = [a%sf_residual, b%sf_residual]
+            a%mu_dynamic = [a%mu_dynamic, b%mu_dynamic]
+            a%slip_weakening_distance = [a%slip_weakening_distance, b%slip_weakening_distance]
+            a%shear_stiffness = [a%shear_stiffness, b%shear_stiffness]
+            a%normal_stiffness = [a%normal_stiffness, b%normal_stiffness]
             a%n = n + b%n
         end associate
         call compute_geometry(model%elements)

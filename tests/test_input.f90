@@ -6,7 +6,7 @@ module test_input
     use ddc_testing, only: test_case, new_test, check, error_type
     use ddc_error, only: exit_bad_input
     use ddc_model_types, only: model_type, condition_contact, condition_traction, &
-        observation_grid, observation_line, observation_points
+        observation_grid, observation_line, observation_points, rigid_joint
     use ddc_input_text_file, only: read_text_file
     use ddc_input_csv, only: read_csv
     use ddc_input_namelist, only: read_namelist_model
@@ -42,6 +42,10 @@ contains
             new_test('bad_elastic_all_at_once', test_bad_elastic), &
             new_test('bad_mu', test_bad_mu), &
             new_test('bad_sf', test_bad_sf), &
+            new_test('namelist_good_strength', test_good_strength), &
+            new_test('bad_strength', test_bad_strength), &
+            new_test('bad_strength_csv', test_bad_strength_csv), &
+            new_test('bad_strength_with_growth', test_bad_strength_growth), &
             new_test('bad_block_size', test_bad_block_size), &
             new_test('bad_nan_and_inf', test_bad_nan), &
             new_test('bad_vertices', test_bad_vertices), &
@@ -446,6 +450,72 @@ contains
         call check_bad_input(error, data//'bad_sf.nml', [character(len=40) :: &
                              '&fracture 1 (line 2)', 'sf(1) =', 'must be >= 0'], lines=1)
     end subroutine test_bad_sf
+
+    !> tensile_strength and sf_residual per segment and from CSV columns, with defaults.
+    subroutine test_good_strength(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model
+
+        call read_good(error, data//'good_strength.nml', model)
+        if (allocated(error)) return
+        associate (e => model%elements)
+            call check(error, e%n, 12, 'number of elements')
+            if (allocated(error)) return
+            call check(error, e%tensile_strength(2), 0.5_wp, 'T segment 1', abs_tol=0.0_wp)
+            call check(error, e%tensile_strength(5), 1.5_wp, 'T segment 2', abs_tol=0.0_wp)
+            call check(error, e%sf_residual(1), 0.25_wp, 'sf_residual broadcast', abs_tol=0.0_wp)
+            call check(error, e%sf_residual(5), 0.25_wp, 'sf_residual broadcast', abs_tol=0.0_wp)
+            call check(error, e%sf_residual(6), 0.5_wp, 'csv sf_residual(1)', abs_tol=0.0_wp)
+            call check(error, e%sf_residual(7), 0.1_wp, 'csv sf_residual(2)', abs_tol=0.0_wp)
+            call check(error, e%tensile_strength(7), 0.0_wp, 'csv T default', abs_tol=0.0_wp)
+            call check(error, e%pressure(7), 2.0_wp, 'csv pressure(2)', abs_tol=0.0_wp)
+            call check(error, e%tensile_strength(9), 0.0_wp, 'T default', abs_tol=0.0_wp)
+            call check(error, min(e%sf(9), e%sf_residual(9)), e%sf(9), &
+                       'sf_residual default: sf', abs_tol=0.0_wp)
+            call check(error, min(e%mu(9), e%mu_dynamic(9)), e%mu(9), &
+                       'mu_dynamic default: mu', abs_tol=0.0_wp)
+            call check(error, e%slip_weakening_distance(9), 0.0_wp, 'd_c default', &
+                       abs_tol=0.0_wp)
+            call check(error, e%mu_dynamic(10), 0.4_wp, 'mu_dynamic segment 1', abs_tol=0.0_wp)
+            call check(error, e%mu_dynamic(12), 0.5_wp, 'mu_dynamic segment 2', abs_tol=0.0_wp)
+            call check(error, e%slip_weakening_distance(11), 0.001_wp, 'd_c broadcast', &
+                       abs_tol=0.0_wp)
+            call check(error, e%shear_stiffness(12), 1.0e4_wp, 'k_s', abs_tol=0.0_wp)
+            call check(error, e%normal_stiffness(10), 2.0e4_wp, 'k_n segment 1', abs_tol=0.0_wp)
+            call check(error, e%normal_stiffness(11), 3.0e4_wp, 'k_n segment 2', abs_tol=0.0_wp)
+            call check(error, e%shear_stiffness(9) >= rigid_joint .and. &
+                       e%normal_stiffness(9) >= rigid_joint, 'rigid by default')
+        end associate
+    end subroutine test_good_strength
+
+    subroutine test_bad_strength(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call check_bad_input(error, data//'bad_strength.nml', [character(len=48) :: &
+                             "&fracture 1 'f' (line 2)", 'tensile_strength(1) = ', &
+                             'must be >= 0', 'sf_residual = 3', 'exceeds sf = 1', &
+                             'on segment 2', 'mu_dynamic = 0.7', 'exceeds mu = 0.6', &
+                             'slip_weakening_distance(1) = -0.1', 'shear_stiffness(1) = -5', &
+                             'normal_stiffness(1) = 0', 'must be positive'], lines=6)
+    end subroutine test_bad_strength
+
+    subroutine test_bad_strength_csv(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call check_bad_input(error, data//'bad_strength_csv.nml', [character(len=48) :: &
+                             'bad_strength.csv line 2: tensile_strength = ', 'must be >= 0', &
+                             'bad_strength.csv line 3: sf_residual = 1.5', 'exceeds sf = 1', &
+                             'line 2: mu_dynamic = 0.8', 'exceeds mu = 0.6', &
+                             'line 3: slip_weakening_distance = -1'], lines=4)
+    end subroutine test_bad_strength_csv
+
+    subroutine test_bad_strength_growth(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call check_bad_input(error, data//'bad_strength_growth.nml', [character(len=60) :: &
+                             'the joint stiffnesses are not honoured by', &
+                             'fracture growth'], lines=1)
+    end subroutine test_bad_strength_growth
 
     subroutine test_bad_nan(error)
         type(error_type), allocatable, intent(out) :: error

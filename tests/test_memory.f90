@@ -5,7 +5,7 @@ module test_memory
     use ddc_kinds, only: wp
     use ddc_testing, only: test_case, new_test, check, error_type
     use ddc_error, only: exit_out_of_memory
-    use ddc_model_types, only: model_type, condition_contact, condition_traction
+    use ddc_model_types, only: model_type, condition_contact, condition_traction, rigid_joint
     use ddc_contact_options, only: lcp_auto, lcp_lemke, lcp_newton
     use ddc_run_memory, only: memory_need, estimate_memory, check_memory, elements_that_fit
     use ddc_run_available_memory, only: available_memory, no_limit
@@ -31,6 +31,7 @@ contains
                  new_test('estimate_from_starting_states', test_starting_states), &
                  new_test('estimate_of_a_loading_history', test_history), &
                  new_test('estimate_of_a_growth_run', test_growth), &
+                 new_test('estimate_with_elastic_joints', test_joints), &
                  new_test('elements_that_fit', test_fit), &
                  new_test('refusal_message', test_refusal), &
                  new_test('meminfo_and_cgroup_v1', test_cgroup_v1), &
@@ -51,6 +52,30 @@ contains
         model%elements%condition(:nc) = condition_contact
         allocate (model%observations(0))
     end function counted_model
+
+    !> Elastic joints hold A_j, (2N)^2 reals, beside A while the contact method works, and
+    !> build it with two more.
+    subroutine test_joints(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model
+        type(memory_need) :: rigid, joints
+        real(wp) :: n
+
+        n = 1000.0_wp
+        model = counted_model(1000, 1000)
+        allocate (model%elements%shear_stiffness(1000), model%elements%normal_stiffness(1000))
+        model%elements%shear_stiffness = rigid_joint
+        model%elements%normal_stiffness = rigid_joint
+        rigid = estimate_memory(model)
+        model%elements%normal_stiffness(7) = 1.0e5_wp
+        joints = estimate_memory(model)
+        call check(error, joints%held_bytes - rigid%held_bytes, r * 4.0_wp * n**2, &
+                   'A_j held', rel_tol=1.0e-12_wp)
+        ! The peak: building A_j (three such matrices beside A), or the method beside A_j.
+        call check(error, joints%bytes, max(rigid%held_bytes + r * 12.0_wp * n**2, &
+                   joints%held_bytes + rigid%bytes - rigid%held_bytes), &
+                   'peak with joints', rel_tol=1.0e-12_wp)
+    end subroutine test_joints
 
     !> Every contact method and the elastic solve against the formulas of ddc_run_memory:
     !> (2N)^2 reals per matrix; Lemke 45 N^2 beyond A, Newton 4 N^2; 50 reals per element.

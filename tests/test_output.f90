@@ -8,7 +8,8 @@ module test_output
     use ddc_error, only: exit_io_failure
     use ddc_version, only: program_version, git_commit
     use ddc_model_types, only: model_type, condition_contact, condition_traction, &
-        observation_grid, observation_line
+        observation_grid, observation_line, no_residual_drop, &
+        rigid_joint
     use ddc_model_results, only: model_results, state_free, state_stick, state_slip, &
         point_clear, point_near, point_on_element
     use ddc_mesh_geometry, only: allocate_elements, compute_geometry
@@ -272,6 +273,20 @@ contains
             call check_real_dataset(error, path, '/elements/mu', e%mu, [3])
             call check_real_dataset(error, path, '/elements/sf', e%sf, [3])
             call check_real_dataset(error, path, '/elements/pressure', e%pressure, [3])
+            call check_real_dataset(error, path, '/elements/tensile_strength', &
+                                    e%tensile_strength, [3])
+            call check_real_dataset(error, path, '/elements/sf_residual', &
+                                    [0.25_wp, 0.1_wp, 0.0_wp], [3])
+            call check_real_dataset(error, path, '/elements/sf_in_force', r%sf_in_force, [3])
+            call check_real_dataset(error, path, '/elements/tensile_strength_in_force', &
+                                    r%tensile_in_force, [3])
+            call check_real_dataset(error, path, '/elements/mu_dynamic', &
+                                    [0.4_wp, 0.6_wp, 0.0_wp], [3])
+            call check_real_dataset(error, path, '/elements/slip_weakening_distance', &
+                                    e%slip_weakening_distance, [3])
+            call check_real_dataset(error, path, '/elements/mu_in_force', r%mu_in_force, [3])
+            call check_real_dataset(error, path, '/elements/shear_stiffness', &
+                                    e%shear_stiffness, [3])
         end associate
         call remove_file(path)
     end subroutine test_elements
@@ -287,6 +302,12 @@ contains
         call check_string_attribute(error, path, '/elements/opening', 'units', 'm')
         call check_string_attribute(error, path, '/elements/mu', 'units', '1')
         call check_string_attribute(error, path, '/elements/sf', 'units', 'MPa')
+        call check_string_attribute(error, path, '/elements/tensile_strength', 'units', 'MPa')
+        call check_string_attribute(error, path, '/elements/sf_in_force', 'units', 'MPa')
+        call check_string_attribute(error, path, '/elements/slip_weakening_distance', 'units', &
+                                    'm')
+        call check_string_attribute(error, path, '/elements/mu_in_force', 'units', '1')
+        call check_string_attribute(error, path, '/elements/normal_stiffness', 'units', 'MPa/m')
         call check_string_attribute(error, path, '/elements/shear_traction', 'units', 'MPa')
         call check_string_attribute(error, path, '/elements/bc_n', 'units', &
             'MPa or m (by condition)')
@@ -530,6 +551,12 @@ contains
         model%elements%mu = [0.6_wp, 0.6_wp, 0.0_wp]
         model%elements%sf = [1.0_wp, 0.1_wp, 0.0_wp]
         model%elements%pressure = [0.0_wp, 0.3_wp, 0.0_wp]
+        model%elements%tensile_strength = [0.5_wp, 0.0_wp, 0.0_wp]
+        model%elements%sf_residual = [0.25_wp, no_residual_drop, no_residual_drop]
+        model%elements%mu_dynamic = [0.4_wp, no_residual_drop, no_residual_drop]
+        model%elements%slip_weakening_distance = [1.0e-4_wp, 0.0_wp, 0.0_wp]
+        model%elements%shear_stiffness = [1.0e4_wp, 2.0e4_wp, 3.0e4_wp]
+        model%elements%normal_stiffness = rigid_joint
         call compute_geometry(model%elements)
 
         allocate (model%fractures(2))
@@ -557,6 +584,9 @@ contains
         associate (r => results%elements)
             r%ds = [-1.0e-4_wp, -2.0e-4_wp / 3.0_wp, 0.0_wp]
             r%dn = [0.0_wp, -1.0e-5_wp, 3.0e-6_wp]
+            r%sf_in_force = [0.25_wp, 0.1_wp, 0.0_wp]
+            r%tensile_in_force = [0.5_wp, 0.0_wp, 0.0_wp]
+            r%mu_in_force = [0.5_wp, 0.6_wp, 0.0_wp]
             r%shear_traction = [10.1_wp, 9.9_wp, 1.0_wp / 7.0_wp]
             r%normal_traction = [-20.0_wp, -0.3_wp, -2.5_wp]
             r%us_minus = [-0.5e-4_wp, -1.0e-4_wp / 3.0_wp, 0.1_wp]

@@ -37,14 +37,37 @@
 !> open_cohesion: 'kept' (the paper) lets an open element carry shear up to Sf;
 !> 'lost' sets Sf = 0 on every element that opens and solves again until no open
 !> element has cohesion left (the set of such elements only grows, so this terminates).
+!>
+!> Strength beyond Coulomb (optional tensile and sf_residual): an intact element opens
+!> only when S_n' reaches its tensile strength T. With T in force the contact law is
+!> Coulomb's in the shifted traction S_n'' = S_n' - T: S_n'' <= 0, opening S_n'' = 0, and
+!> tau_s = (Sf - mu T) - mu S_n''. That is the paper's LCP with s_n - T for the resolved
+!> normal traction and Sf - mu T for Sf, so each solve is the same certified LCP (T is capped at the
+!> Coulomb apex Sf/mu, where the shear strength vanishes, so that Sf - mu T >= 0). After
+!> each solve, elements that opened lose T (T = 0) and elements that slipped drop their
+!> cohesion to min(Sf, sf_residual); the problem is solved again until no element
+!> changes. Strengths only decrease and take finitely many values, so this fixed point
+!> is reached in at most 2n + 1 solves; the last solve is certified with the strengths
+!> in force, which are returned (res%sf_effective, res%tensile_effective) so that the
+!> next step of a loading history starts from them.
+!>
+!> Slip weakening (optional mu_dynamic, slip_weakening_distance): each solve holds every
+!> element's friction fixed at mu(s) of its slip path s before the solve; after it the
+!> frictions are updated from the new slip and the problem solved again until they change
+!> by less than weakening_tol (friction only decreases along the iteration: no healing,
+!> so the iteration is monotone). When they
+!> still change after max_weakening_solves solves, the load has no quasi-static solution
+!> this iteration can reach: an error (exit_solver_failure) naming the element whose
+!> friction changed most. ddc_contact_strength has the laws.
 module ddc_contact_formulation
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, set_internal_error, exit_bad_input, &
         exit_out_of_memory, exit_solver_failure
-    use ddc_text, only: bytes_text
+    use ddc_text, only: bytes_text, itoa, rtoa
     use ddc_contact_memory, only: lemke_bytes
     use ddc_contact_options, only: solver_options, lcp_auto, lcp_newton, cohesion_lost
     use ddc_contact_certificate, only: certify_complementarity, default_certificate_tolerance
+    use ddc_contact_strength, only: shifted_law, weaken, friction_in_force
     use ddc_contact_states, only: state_stick, state_open
     use ddc_contact_active_set, only: active_set_result, active_set_workspace, &
         solve_contact_active_set
@@ -52,7 +75,8 @@ module ddc_contact_formulation
     use ddc_contact_counts, only: factor_counts
     use ddc_contact_result, only: contact_result, contact_stress_scale, problem_scales, &
         block_scales, check_solution, drop_open_cohesion
-    use ddc_contact_paper_lcp, only: contact_lcp, build_contact_lcp, solve_paper_lcp
+    use ddc_contact_paper_lcp, only: contact_lcp, build_contact_lcp, solve_paper_lcp, &
+        set_lcp_friction
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use, intrinsic :: iso_fortran_env, only: int64
     implicit none
@@ -66,6 +90,11 @@ module ddc_contact_formulation
     integer, parameter :: auto_newton_min_elements = 300
     !> Default iteration limit of the 'newton' method
     integer, parameter :: newton_max_iterations = 100
+    !> Slip weakening: largest change of a friction coefficient between the last two solves
+    !> of a converged fixed point [-], and the solves allowed beyond those of the other
+    !> laws (2n + 1)
+    real(wp), parameter :: weakening_tol = 1.0e-12_wp
+    integer, parameter :: max_weakening_solves = 200
 
     !> What successive solves on the same contact elements (the steps of a loading history)
     !> keep besides their stiffness operator: the paper's LCP once built and Lemke's last
@@ -104,7 +133,8 @@ contains
 
     !> Solve the frictional contact problem of n elements (SPEC section 4).
     subroutine solve_contact(a, s_r_s, s_r_n, mu, sf, pressure, options, res, error, rule, &
-                             max_iterations)
+                             max_iterations, tensile, sf_residual, mu_dynamic, &
+                             slip_weakening_distance, max_solves)
         !> Influence matrix ordered [s; n]: traction = s_r + a [Ds; Dn], shape (2n, 2n)
         !> [stress / length]
         real(wp), intent(in), target, contiguous :: a(:, :)
@@ -131,6 +161,15 @@ contains
         integer, intent(in), optional :: rule
         !> Iteration limit of 'newton' (default newton_max_iterations)
         integer, intent(in), optional :: max_iterations
+        !> Tensile strength (default 0) and cohesion after slip (default: no drop), shape
+        !> (n) [stress]; see solve_contact_with
+        real(wp), intent(in), optional :: tensile(:), sf_residual(:)
+        !> Dynamic friction [-] and slip-weakening distance [length], shape (n); see
+        !> solve_contact_with
+        real(wp), intent(in), optional :: mu_dynamic(:), slip_weakening_distance(:)
+        !> Largest number of solves of the strength fixed point (tests; default
+        !> 2n + 1 + max_weakening_solves)
+        integer, intent(in), optional :: max_solves
         type(dense_stiffness) :: stiffness
         integer(int64) :: t0, t1, rate
 
@@ -140,7 +179,10 @@ contains
         end if
         stiffness%a => a
         call solve_contact_with(stiffness, s_r_s, s_r_n, mu, sf, pressure, options, res, error, &
-                                a, rule, max_iterations)
+                                a, rule, max_iterations, tensile=tensile, sf_residual=sf_residual, &
+                                mu_dynamic=mu_dynamic, &
+                                slip_weakening_distance=slip_weakening_distance, &
+                                max_solves=max_solves)
         ! Freeing the factors (up to (2n)^2 reals) is part of the contact solve's time.
         call system_clock(t0, rate)
         call stiffness%discard_factors()
@@ -153,7 +195,8 @@ contains
     !> matrix a, by the Newton method alone.
     subroutine solve_contact_with(stiffness, s_r_s, s_r_n, mu, sf, pressure, options, res, &
                                   error, a, rule, max_iterations, ds_previous, session, &
-                                  stress_scale, max_pivots)
+                                  stress_scale, max_pivots, tensile, sf_residual, &
+                                  mu_dynamic, slip_weakening_distance, slip_path, max_solves)
         !> The influence matrix A ordered [s; n]: traction = s_r + A [Ds; Dn], 2n x 2n
         !> [stress / length]
         class(stiffness_operator), intent(inout) :: stiffness
@@ -193,10 +236,25 @@ contains
         real(wp), intent(in), optional :: stress_scale
         !> Pivot limit of each Lemke solve (tests; default that of solve_lcp_lemke)
         integer, intent(in), optional :: max_pivots
+        !> Tensile strength in force at the start (default 0: none), shape (n) [stress]
+        real(wp), intent(in), optional :: tensile(:)
+        !> Cohesion after slip: an element that slips keeps min(sf, sf_residual)
+        !> (default: no drop), shape (n) [stress]
+        real(wp), intent(in), optional :: sf_residual(:)
+        !> Dynamic friction (min(mu, mu_dynamic); default: no drop) [-], slip-weakening
+        !> distance (default 0) [length] and the slip path before this solve (a loading
+        !> history's accumulated slip; default 0) [length], shape (n)
+        real(wp), intent(in), optional :: mu_dynamic(:), slip_weakening_distance(:), &
+            slip_path(:)
+        !> Largest number of solves of the strength fixed point (tests; default
+        !> 2n + 1 + max_weakening_solves)
+        integer, intent(in), optional :: max_solves
         type(contact_session), allocatable :: fresh
+        real(wp), allocatable :: t_given(:), sf_after(:), mu_after(:), d_c(:), s_start(:)
+        logical :: weakening
         real(wp), allocatable :: held(:)
         real(wp) :: sigma0
-        integer :: n, limit
+        integer :: n, limit, solves_limit
         logical :: checked
         integer(int64) :: t_start, t_end, rate
 
@@ -210,6 +268,24 @@ contains
             return
         end if
         allocate (held(n), source=0.0_wp)
+        allocate (t_given(n), d_c(n), s_start(n), source=0.0_wp)
+        sf_after = sf
+        mu_after = mu
+        if (present(tensile)) t_given = tensile
+        if (present(sf_residual)) sf_after = sf_residual
+        if (present(mu_dynamic)) mu_after = mu_dynamic
+        if (present(slip_weakening_distance)) d_c = slip_weakening_distance
+        if (present(slip_path)) s_start = slip_path
+        if (any([size(t_given), size(sf_after), size(mu_after), size(d_c), &
+                 size(s_start)] /= n)) then
+            call set_internal_error(error, 'solve_contact', 'array sizes do not match')
+            return
+        end if
+        sf_after = min(sf, sf_after)
+        mu_after = min(mu, mu_after)
+        weakening = any(mu_after < mu)
+        solves_limit = 2 * n + 1 + max_weakening_solves
+        if (present(max_solves)) solves_limit = max_solves
         if (present(ds_previous)) then
             if (size(ds_previous) /= n) then
                 call set_internal_error(error, 'solve_contact', 'array sizes do not match')
@@ -224,20 +300,24 @@ contains
         if (.not. (checked .and. all(ieee_is_finite(s_r_s)) .and. &
             all(ieee_is_finite(s_r_n)) .and. all(ieee_is_finite(mu)) .and. &
             all(ieee_is_finite(sf)) .and. all(ieee_is_finite(pressure)) .and. &
-            all(ieee_is_finite(held)))) then
+            all(ieee_is_finite(held)) .and. all(ieee_is_finite(t_given)))) then
             call set_error(error, exit_bad_input, 'contact: NaN or Inf in the input arrays')
             return
         end if
         if (present(session)) session%a_checked = .true.
         limit = newton_max_iterations
         if (present(max_iterations)) limit = max_iterations
-        if (any(mu < 0.0_wp) .or. any(sf < 0.0_wp)) then
-            call set_internal_error(error, 'solve_contact', 'mu and sf must not be negative')
+        if (any(mu < 0.0_wp) .or. any(sf < 0.0_wp) .or. any(t_given < 0.0_wp) .or. &
+            any(sf_after < 0.0_wp) .or. any(mu_after < 0.0_wp) .or. any(d_c < 0.0_wp) .or. &
+            any(s_start < 0.0_wp)) then
+            call set_internal_error(error, 'solve_contact', &
+                                    'the strength laws must not be negative')
             return
         end if
         if (n == 0) then
             allocate (res%ds(0), res%dn(0), res%shear_traction(0), res%normal_traction(0), &
-                res%state(0), res%sf_effective(0))
+                res%state(0), res%sf_effective(0), res%tensile_effective(0), &
+                res%mu_effective(0), res%slip_path(0))
             res%certificate%passed = .true.
             return
         end if
@@ -261,8 +341,9 @@ contains
         subroutine solve_in_session(s, warm)
             type(contact_session), intent(inout) :: s
             logical, intent(in) :: warm
-            real(wp), allocatable :: sf_eff(:)
-            logical :: newton, automatic, exceeded
+            real(wp), allocatable :: sf_eff(:), t_eff(:), sf_in(:), srn_in(:), t_cap(:)
+            real(wp), allocatable :: mu_in(:), mu_next(:), path(:)
+            logical :: newton, automatic, changed, exceeded
             integer :: rounds
             character(len=:), allocatable :: reason
             character(len=200) :: line
@@ -279,10 +360,18 @@ contains
             res%fallback = ''
             rounds = 0
             sf_eff = sf
+            t_eff = t_given
+            mu_in = friction_in_force(mu, mu_after, d_c, s_start, spread(0, 1, n))
             do
                 rounds = rounds + 1
+                call shifted_law(mu_in, sf_eff, s_r_n, t_eff, sf_in, srn_in, t_cap)
+                res%residual_scale_floor = 0.0_wp
+                if (any(t_cap > 0.0_wp)) res%residual_scale_floor = &
+                    max(norm2([s_r_s, s_r_n]), norm2(t_cap))
+                ! The reduced systems hold mu in their slip rows: no factors of another mu.
+                if (weakening) call stiffness%discard_factors()
                 if (newton) then
-                    call solve_once_newton(stiffness, s_r_s, s_r_n, mu, sf_eff, pressure, &
+                    call solve_once_newton(stiffness, s_r_s, srn_in, mu_in, sf_in, pressure, &
                         limit, held, sigma0, present(stress_scale), options%work_bytes, res, &
                         s, reason, exceeded)
                     if (exceeded) then
@@ -298,15 +387,15 @@ contains
                     end if
                 end if
                 if (.not. newton .and. .not. allocated(error)) then
-                    call solve_once_lemke(s, warm, sf_eff)
+                    call solve_once_lemke(s, warm, sf_in, srn_in, mu_in)
                     if (allocated(error) .and. automatic .and. len(res%fallback) == 0) then
                         ! M is not copositive-plus: Lemke can end on a ray where the contact
                         ! problem has a solution (seen at acute fault branches). 'auto' then
                         ! asks the Newton method, whose answer is checked the same way, and
                         ! keeps it for the rounds after cohesion is lost.
-                        call solve_once_newton(stiffness, s_r_s, s_r_n, mu, sf_eff, pressure, &
-                            limit, held, sigma0, present(stress_scale), options%work_bytes, &
-                            res, s, reason, exceeded)
+                        call solve_once_newton(stiffness, s_r_s, srn_in, mu_in, sf_in, &
+                            pressure, limit, held, sigma0, present(stress_scale), &
+                            options%work_bytes, res, s, reason, exceeded)
                         if (exceeded) then
                             reason = error%message//' (the Newton method then stopped: '// &
                                 reason//')'
@@ -326,7 +415,7 @@ contains
                 if (allocated(error)) then
                     if (rounds > 1) then
                         write (line, '(a,i0,a)') ' (solve ', rounds, &
-                            ", after cohesion was lost on opening elements)"
+                            ", after strength was lost on elements that opened or slipped)"
                         error%message = error%message//trim(line)
                     end if
                     if (len(res%fallback) > 0) error%message = error%message// &
@@ -334,8 +423,35 @@ contains
                     return
                 end if
                 if (.not. newton) call keep_states(res, s)
-                if (options%open_cohesion /= cohesion_lost) exit
-                if (.not. drop_open_cohesion(res%state, sf_eff)) exit
+                ! The strengths this solve was certified with (T capped at the apex).
+                res%sf_effective = sf_eff
+                res%tensile_effective = t_cap
+                res%normal_traction = res%normal_traction + t_cap
+                res%mu_effective = mu_in
+                path = s_start + abs(res%ds - held)
+                res%slip_path = path
+                changed = weaken(res%state, sf_after, t_eff, sf_eff)
+                if (options%open_cohesion == cohesion_lost) then
+                    if (drop_open_cohesion(res%state, sf_eff)) changed = .true.
+                end if
+                if (weakening) then
+                    ! No healing: friction only decreases along the iteration.
+                    mu_next = min(mu_in, friction_in_force(mu, mu_after, d_c, path, &
+                                                           res%state))
+                    if (maxval(abs(mu_next - mu_in)) > weakening_tol) then
+                        if (rounds >= solves_limit) then
+                            call set_error(error, exit_solver_failure, 'contact: slip '// &
+                                'weakening found no quasi-static solution: after '// &
+                                itoa(rounds)//' solves the friction of element '// &
+                                itoa(maxloc(abs(mu_next - mu_in), 1))//' still changes by '// &
+                                rtoa(maxval(abs(mu_next - mu_in)))//' (its slip runs away)')
+                            return
+                        end if
+                        changed = .true.
+                        mu_in = mu_next
+                    end if
+                end if
+                if (.not. changed) exit
             end do
             ! The operator's counts (of the session), with this solve's time and flops.
             this_solve = res%counts
@@ -346,10 +462,13 @@ contains
 
         !> One Lemke solve of the paper's LCP (built once per session, when memory allows),
         !> from the session's last basis when warm.
-        subroutine solve_once_lemke(s, warm, sf_eff)
+        subroutine solve_once_lemke(s, warm, sf_eff, srn, mu_now)
             type(contact_session), intent(inout) :: s
             logical, intent(in) :: warm
-            real(wp), intent(in) :: sf_eff(:)
+            !> Cohesion and resolved normal traction of the shifted law [stress]
+            real(wp), intent(in) :: sf_eff(:), srn(:)
+            !> Friction in force [-]
+            real(wp), intent(in) :: mu_now(:)
 
             if (.not. allocated(s%lcp%m) .and. len(res%fallback) > 0 .and. &
                 lemke_bytes(n) > options%work_bytes) then
@@ -360,15 +479,19 @@ contains
                 return
             end if
             if (.not. allocated(s%lcp%m)) then
-                call build_contact_lcp(a, mu, s%lcp, res, error)
+                call build_contact_lcp(a, mu_now, s%lcp, res, error)
                 if (allocated(error)) return
                 allocate (s%basis(3 * n), source=0)
+            else if (any(s%lcp%mu /= mu_now)) then
+                ! Slip weakening changed mu: a new M, and no basis of the old one.
+                call set_lcp_friction(s%lcp, mu_now)
+                s%basis = 0
             end if
             if (warm) then
-                call solve_paper_lcp(s%lcp, s_r_s, s_r_n, sf_eff, pressure, held, sigma0, res, &
+                call solve_paper_lcp(s%lcp, s_r_s, srn, sf_eff, pressure, held, sigma0, res, &
                                      error, rule=rule, basis=s%basis, max_pivots=max_pivots)
             else
-                call solve_paper_lcp(s%lcp, s_r_s, s_r_n, sf_eff, pressure, held, sigma0, res, &
+                call solve_paper_lcp(s%lcp, s_r_s, srn, sf_eff, pressure, held, sigma0, res, &
                                      error, rule=rule, max_pivots=max_pivots)
             end if
         end subroutine solve_once_lemke

@@ -31,7 +31,7 @@ module ddc_contact_paper_lcp
     implicit none
     private
 
-    public :: contact_lcp, build_contact_lcp, solve_paper_lcp
+    public :: contact_lcp, build_contact_lcp, solve_paper_lcp, set_lcp_friction
 
     !> The paper's LCP matrix of a set of contact elements, built once for a sequence of
     !> loads (a loading history, SPEC-EARTH section 3): only q changes from step to step.
@@ -65,8 +65,7 @@ contains
         type(contact_result), intent(inout) :: res
         !> Allocated when A is singular (exit_solver_failure) or sizes differ
         type(error_type), allocatable, intent(out) :: error
-        real(wp), allocatable :: zs(:), ws(:)
-        integer :: n, n2, n3, i, j, stat
+        integer :: n, n2, n3, i, stat
 
         n = size(mu)
         n2 = 2 * n
@@ -87,13 +86,29 @@ contains
             return
         end if
         lcp%a = a
-        lcp%mu = mu
         lcp%a_max = 0.0_wp
         do i = 1, n2
             lcp%a_max = max(lcp%a_max, abs(a(i, i)))
         end do
         if (.not. lcp%a_max > 0.0_wp) lcp%a_max = maxval(abs(a))
         if (.not. lcp%a_max > 0.0_wp) lcp%a_max = 1.0_wp
+        call set_lcp_friction(lcp, mu)
+    end subroutine build_contact_lcp
+
+    !> M (and its scaled copy) for the friction coefficients mu, from the inverse C kept in
+    !> lcp (slip weakening changes mu between solves: no new inverse).
+    subroutine set_lcp_friction(lcp, mu)
+        !> The LCP, built by build_contact_lcp
+        type(contact_lcp), intent(inout) :: lcp
+        !> Friction coefficient of each element, shape (n) [-]
+        real(wp), intent(in) :: mu(:)
+        real(wp), allocatable :: zs(:), ws(:)
+        integer :: n, n2, n3, j
+
+        n = size(mu)
+        n2 = 2 * n
+        n3 = 3 * n
+        lcp%mu = mu
 
         ! M exactly as SPEC section 4 writes it; C blocks are CSS = c(1:n, 1:n),
         ! CSN = c(1:n, n+1:2n), CNS = c(n+1:2n, 1:n), CNN = c(n+1:, n+1:).
@@ -115,7 +130,7 @@ contains
         do j = 1, n3
             lcp%m_scaled(:, j) = lcp%m(:, j) * (zs(j) / ws)
         end do
-    end subroutine build_contact_lcp
+    end subroutine set_lcp_friction
 
     !> C = A^-1 by the checked LU (ddc_linalg_lu); singular or numerically singular A is an
     !> error. Its time and nominal flops (2 (2n)^3) are added to res.

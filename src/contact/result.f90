@@ -36,6 +36,12 @@ module ddc_contact_result
         integer, allocatable :: state(:)
         !> Frictional strength in force at the end (0 where cohesion was lost) [stress]
         real(wp), allocatable :: sf_effective(:)
+        !> Tensile strength in force at the end (0 where it was lost on opening; capped
+        !> at the Coulomb apex sf_effective/mu) [stress]
+        real(wp), allocatable :: tensile_effective(:)
+        !> Friction in force in the last solve (slip weakening) [-] and the slip path at the
+        !> end (the one before the solve plus |Ds - ds_previous|) [length]
+        real(wp), allocatable :: mu_effective(:), slip_path(:)
         !> Method that produced the result: 'lemke' or 'newton'
         character(len=:), allocatable :: method
         !> Why the first method failed and the other one produced the result: Newton falling
@@ -57,6 +63,10 @@ module ddc_contact_result
         type(lcp_certificate) :: certificate
         !> Relative equilibrium residual ||A D + S_r - t|| / scale, shear and normal block
         real(wp) :: equilibrium_residual(2) = 0.0_wp
+        !> Least scale of that residual [stress]: a solve of a shifted law (a tensile
+        !> strength) sets that of the unshifted load, whose tractions can vanish when
+        !> shifted; 0 otherwise
+        real(wp) :: residual_scale_floor = 0.0_wp
         !> Stress scale sigma0 [stress] and displacement scale delta0 [length] used
         real(wp) :: stress_scale = 1.0_wp, dd_scale = 1.0_wp
         !> Wall time of the contact solves but their factorizations (building M, Lemke or
@@ -136,7 +146,7 @@ contains
         ! Both blocks are tractions: one scale for both, so that a block that vanishes (no
         ! resolved shear at all) is not measured against its own round-off.
         scale = max(norm2(ad), norm2([s_r_s, s_r_n]), &
-                    norm2([res%shear_traction, res%normal_traction]))
+                    norm2([res%shear_traction, res%normal_traction]), res%residual_scale_floor)
         res%equilibrium_residual(1) = block_residual(ad(1:n), s_r_s, res%shear_traction, scale)
         res%equilibrium_residual(2) = block_residual(ad(n + 1:n2), s_r_n, &
             res%normal_traction, scale)

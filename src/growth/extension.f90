@@ -5,7 +5,7 @@
 module ddc_growth_extension
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type, element_set, growth_options, condition_contact, &
-        select_elements
+        select_elements, no_residual_drop, rigid_joint
     use ddc_mesh_geometry, only: compute_geometry
     implicit none
     private
@@ -172,7 +172,8 @@ contains
             grown%fractures(f)%last_element = next
         end do
         ! Every element takes the values of the one it comes from; new ones then their
-        ! own end points (and new_mu, new_sf when overridden).
+        ! own end points, the default laws (they are intact: no T, no drops, rigid) and
+        ! new_mu, new_sf when overridden.
         call select_elements(model%elements, pick, grown%elements)
         associate (a => grown%elements)
             where (is_new)
@@ -180,6 +181,12 @@ contains
                 a%y_begin = y_begin
                 a%x_end = x_end
                 a%y_end = y_end
+                a%tensile_strength = 0.0_wp
+                a%sf_residual = no_residual_drop
+                a%mu_dynamic = no_residual_drop
+                a%slip_weakening_distance = 0.0_wp
+                a%shear_stiffness = rigid_joint
+                a%normal_stiffness = rigid_joint
             end where
             if (options%override_mu) then
                 where (is_new .and. a%condition == condition_contact) a%mu = options%new_mu

@@ -25,6 +25,7 @@ module ddc_history_solve
     use ddc_contact_result, only: contact_result, contact_stress_scale
     use ddc_contact_formulation, only: solve_contact_with, contact_session
     use ddc_contact_stiffness, only: dense_stiffness
+    use ddc_solve_joints, only: joint_compliance, joint_system, joint_load, joint_dds
     use ddc_solve_frictional, only: condensed_contact, condense_contact, contact_load, &
         complete_dds, record_contact, release_matrix
     use ddc_influence_response, only: listed_tractions
@@ -63,6 +64,9 @@ contains
         type(history_record) :: h
         real(wp), allocatable :: loads(:, :), shear(:, :), normal(:, :), shift(:, :)
         real(wp), allocatable :: y_load(:, :), pressure(:, :), sf_eff(:), ds_previous(:), v(:)
+        real(wp), allocatable :: t_eff(:), mu_eff(:), slip_path(:), compliance(:), load_map(:, :)
+        real(wp), allocatable, target :: a_joint(:, :)
+        real(wp), pointer, contiguous :: a_solve(:, :)
         real(wp), allocatable :: matrix(:, :), no_dd(:), ts(:), tn(:)
         integer :: n, nc, k, nsteps, pivots, solves, iterations, fallbacks, first_fallback, stat
         real(wp) :: sigma0, g, seconds_lcp, seconds_factorization, flops
@@ -118,10 +122,29 @@ contains
         if (allocated(error)) return
         h%load = loads
         allocate (ts(sys%nf), tn(sys%nf))
+        ! The strengths in force: what an element lost (tensile strength on opening,
+        ! cohesion on slip) stays lost for the rest of the history.
         sf_eff = model%elements%sf(sys%contact)
+        t_eff = model%elements%tensile_strength(sys%contact)
+        mu_eff = model%elements%mu(sys%contact)
+        allocate (slip_path(nc), source=0.0_wp)
         allocate (ds_previous(nc), source=0.0_wp)
         ! One operator for every step: the Newton method's factors live in it.
-        stiffness%a => sys%a
+        ! Elastic joints: the contact problem of the plastic DDs (ddc_solve_joints); the
+        ! slip a step holds is the plastic one.
+        compliance = joint_compliance(model%elements%shear_stiffness(sys%contact), &
+                                      model%elements%normal_stiffness(sys%contact))
+        a_solve => sys%a
+        if (any(compliance > 0.0_wp)) then
+            call joint_system(sys%a, compliance, a_joint, load_map, error)
+            if (allocated(error)) return
+            do k = 1, nsteps
+                call joint_load(load_map, pressure(:, k), shift(1:nc, k), shift(nc + 1:, k))
+            end do
+            deallocate (load_map)
+            a_solve => a_joint
+        end if
+        stiffness%a => a_solve
         pivots = 0
         solves = 0
         iterations = 0
@@ -133,10 +156,15 @@ contains
         do k = 1, nsteps
             call solve_contact_with(stiffness, shift(1:nc, k), shift(nc + 1:, k), &
                                     model%elements%mu(sys%contact), sf_eff, pressure(:, k), &
-                                    model%solver, res, error, a=sys%a, &
+                                    model%solver, res, error, a=a_solve, &
                                     max_iterations=max_iterations, ds_previous=ds_previous, &
                                     session=session, stress_scale=sigma0, &
-                                    max_pivots=max_pivots)
+                                    max_pivots=max_pivots, tensile=t_eff, &
+                                    sf_residual=model%elements%sf_residual(sys%contact), &
+                                    mu_dynamic=model%elements%mu_dynamic(sys%contact), &
+                                    slip_weakening_distance= &
+                                    model%elements%slip_weakening_distance(sys%contact), &
+                                    slip_path=slip_path)
             if (allocated(error)) then
                 error%message = 'loading history: step '//itoa(k)//' of '//itoa(nsteps)// &
                     ' ('//load_text(loads(:, k), model%load_path%varies)//') failed: '// &
@@ -144,7 +172,12 @@ contains
                 return
             end if
             sf_eff = res%sf_effective
+            t_eff = res%tensile_effective
+            mu_eff = res%mu_effective
+            slip_path = res%slip_path
             ds_previous = res%ds
+            if (any(compliance > 0.0_wp)) call joint_dds(compliance, pressure(:, k), &
+                res%shear_traction, res%normal_traction, res%ds, res%dn)
             pivots = pivots + res%pivots
             solves = solves + res%solves
             iterations = iterations + res%iterations
@@ -189,6 +222,11 @@ contains
         results%elements%ds = h%ds(:, nsteps)
         results%elements%dn = h%dn(:, nsteps)
         results%elements%state = h%state(:, nsteps)
+        allocate (results%elements%sf_in_force(n), results%elements%tensile_in_force(n), &
+                  results%elements%mu_in_force(n), source=0.0_wp)
+        results%elements%mu_in_force(sys%contact) = mu_eff
+        results%elements%sf_in_force(sys%contact) = sf_eff
+        results%elements%tensile_in_force(sys%contact) = t_eff
         nullify (stiffness%a)
         call release_matrix(sys, matrix)
         call finish_model(apply_load(model, loads(:, nsteps)), shear(:, nsteps), &

@@ -17,34 +17,47 @@ module ddc_input_csv
 contains
 
     !> Read the CSV file at path whose columns are header; values has shape (ncols, nrows).
-    !> A two-column x,y file may omit its header line.
-    subroutine read_csv(path, header, values, error, line_numbers, most_rows)
+    !> A two-column x,y file may omit its header line. The header may go on with any of
+    !> the optional columns, in any order; their values follow those of header in values
+    !> (0 where a column is absent, see given).
+    subroutine read_csv(path, header, values, error, line_numbers, optional_header, given, &
+                        most_rows)
         !> Path of the file
         character(len=*), intent(in) :: path
         !> Expected column names, in order
         character(len=*), intent(in) :: header(:)
-        !> The numbers, shape (size(header), number of rows)
+        !> The numbers, shape (size(header) + size(optional_header), number of rows)
         real(wp), allocatable, intent(out) :: values(:,:)
         !> Allocated when the file is missing or any line is bad
         type(error_type), allocatable, intent(out) :: error
         !> Line number in the file of each row, shape (number of rows)
         integer, allocatable, intent(out), optional :: line_numbers(:)
+        !> Names of columns the file may add after header
+        character(len=*), intent(in), optional :: optional_header(:)
+        !> Which optional columns the file has, shape (size(optional_header))
+        logical, allocatable, intent(out), optional :: given(:)
         !> Most data rows accepted: the reading stops with an error at the row after them,
         !> so that a huge file costs no more memory than that many rows
         integer, intent(in), optional :: most_rows
         character(len=:), allocatable :: text, line, expected, messages
-        integer, allocatable :: row_line(:)
-        integer :: ncols, nrows, max_rows, pos, line_no, nbad, i
-        logical :: header_seen, header_optional
+        integer, allocatable :: row_line(:), column(:)
+        real(wp), allocatable :: row(:)
+        integer :: ncols, nrows, max_rows, pos, line_no, nbad, i, nopt
+        logical :: header_seen, header_optional, extended
 
         call read_text_file(path, text, error)
         if (allocated(error)) return
 
         ncols = size(header)
+        nopt = 0
+        if (present(optional_header)) nopt = size(optional_header)
+        if (present(given)) allocate (given(nopt), source=.false.)
         expected = lower(trim(adjustl(header(1))))
         do i = 2, ncols
             expected = expected//','//lower(trim(adjustl(header(i))))
         end do
+        ! column(k): where field k of a row goes in values
+        column = [(i, i = 1, ncols)]
         header_optional = expected == 'x,y'
         ! Skip a UTF-8 byte order mark (spreadsheet exports).
         if (len(text) >= 3) then
@@ -53,7 +66,8 @@ contains
 
         max_rows = count_pieces(text, newline)
         if (present(most_rows)) max_rows = min(max_rows, most_rows)
-        allocate (values(ncols, max_rows), row_line(max_rows))
+        allocate (values(ncols + nopt, max_rows), row_line(max_rows))
+        values = 0.0_wp
         nrows = 0
         nbad = 0
         messages = ''
@@ -69,6 +83,18 @@ contains
             if (.not. header_seen) then
                 header_seen = .true.
                 if (normalized_header(line) == expected) cycle
+                if (nopt > 0) then
+                    call optional_columns(normalized_header(line), expected, optional_header, &
+                                          column, ok=extended)
+                    if (extended) then
+                        if (present(given)) given = [(any(column == ncols + i), i = 1, nopt)]
+                        cycle
+                    end if
+                    call set_error(error, exit_bad_input, path//' line '//itoa(line_no)// &
+                        ": the header '"//line//"' is not the expected '"//expected// &
+                        "' (optionally followed by any of "//join(optional_header)//")")
+                    return
+                end if
                 if (.not. header_optional) then
                     call set_error(error, exit_bad_input, path//' line '//itoa(line_no)// &
                         ": the header '"//line//"' is not the expected '"//expected//"'")
@@ -82,8 +108,11 @@ contains
             end if
             nrows = nrows + 1
             row_line(nrows) = line_no
-            call parse_row(line, values(:, nrows), path//' line '//itoa(line_no)//': ', &
+            allocate (row(size(column)))
+            call parse_row(line, row, path//' line '//itoa(line_no)//': ', &
                            expected, messages, nbad)
+            values(column, nrows) = row
+            deallocate (row)
         end do
 
         if (nbad > 0) then
@@ -98,6 +127,49 @@ contains
         values = values(:, 1:nrows)
         if (present(line_numbers)) line_numbers = row_line(1:nrows)
     end subroutine read_csv
+
+    !> The columns of a header that is expected followed by optional columns (each once):
+    !> column(k) is the index in values of field k; ok is false for any other header.
+    subroutine optional_columns(header, expected, optional_header, column, ok)
+        character(len=*), intent(in) :: header, expected
+        character(len=*), intent(in) :: optional_header(:)
+        integer, allocatable, intent(inout) :: column(:)
+        logical, intent(out) :: ok
+        character(len=:), allocatable :: rest, name
+        integer :: comma, k, ncols
+
+        ncols = size(column)
+        ok = len(header) > len(expected) + 1
+        if (.not. ok) return
+        ok = header(1:len(expected) + 1) == expected//','
+        if (.not. ok) return
+        rest = header(len(expected) + 2:)//','
+        do while (len(rest) > 0)
+            comma = index(rest, ',')
+            name = rest(1:comma - 1)
+            rest = rest(comma + 1:)
+            k = 0
+            do comma = 1, size(optional_header)
+                if (lower(trim(adjustl(optional_header(comma)))) == name) k = comma
+            end do
+            ok = k > 0
+            if (ok) ok = .not. any(column == ncols + k)
+            if (.not. ok) return
+            column = [column, ncols + k]
+        end do
+    end subroutine optional_columns
+
+    !> 'a, b, c'
+    pure function join(names) result(text)
+        character(len=*), intent(in) :: names(:)
+        character(len=:), allocatable :: text
+        integer :: i
+
+        text = trim(adjustl(names(1)))
+        do i = 2, size(names)
+            text = text//', '//trim(adjustl(names(i)))
+        end do
+    end function join
 
     !> Parse one row into row; append a message for every bad field.
     subroutine parse_row(line, row, prefix, expected, messages, nbad)

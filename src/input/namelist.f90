@@ -12,7 +12,7 @@ module ddc_input_namelist
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type, condition_contact, symmetry_none, symmetry_names, &
-        symmetry_x, domain_half_plane
+        symmetry_x, domain_half_plane, rigid_joint
     use ddc_text, only: itoa, rtoa, prefix_lines
     use ddc_input_text_file, only: read_text_file, folder_of
     use ddc_mesh_geometry, only: allocate_elements, compute_geometry
@@ -93,6 +93,11 @@ contains
 
         call check_names(path, fractures, observations, messages)
         call check_half_plane(path, model, fractures, observations, messages)
+        if (model%growth%active .and. any(strength_given(fractures))) then
+            call add(messages, path//': &fracture tensile_strength, sf_residual, '// &
+                     'mu_dynamic and the joint stiffnesses are not honoured by fracture '// &
+                     'growth yet: remove them or the &growth group')
+        end if
         if (messages%n > 0) then
             call set_error(error, messages%code, messages%text)
             return
@@ -104,6 +109,18 @@ contains
             error%message = prefix_lines(path//': ', error%message)
         end if
     end subroutine read_namelist_model
+
+    !> Whether a valid fracture has a strength beyond Coulomb (a tensile strength or a
+    !> cohesion drop after slip), one value per fracture.
+    elemental logical function strength_given(fracture)
+        type(fracture_input), intent(in) :: fracture
+
+        strength_given = fracture%valid
+        if (strength_given) strength_given = any(fracture%tensile_strength > 0.0_wp) .or. &
+            any(fracture%sf_residual < fracture%sf) .or. any(fracture%mu_dynamic < fracture%mu) &
+            .or. any(fracture%shear_stiffness < rigid_joint) .or. &
+            any(fracture%normal_stiffness < rigid_joint)
+    end function strength_given
 
     !> Half-plane rules (SPEC-EARTH 1): every vertex and field point at y <= 0, no element on
     !> the surface, a remote stress that is traction-free at y = 0, symmetry about x only.
@@ -226,6 +243,13 @@ contains
             model%elements%mu(first:last) = fractures(k)%mu
             model%elements%sf(first:last) = fractures(k)%sf
             model%elements%pressure(first:last) = fractures(k)%pressure
+            model%elements%tensile_strength(first:last) = fractures(k)%tensile_strength
+            model%elements%sf_residual(first:last) = fractures(k)%sf_residual
+            model%elements%mu_dynamic(first:last) = fractures(k)%mu_dynamic
+            model%elements%slip_weakening_distance(first:last) = &
+                fractures(k)%slip_weakening_distance
+            model%elements%shear_stiffness(first:last) = fractures(k)%shear_stiffness
+            model%elements%normal_stiffness(first:last) = fractures(k)%normal_stiffness
         end do
         call compute_geometry(model%elements)
 

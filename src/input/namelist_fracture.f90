@@ -4,8 +4,9 @@
 module ddc_input_namelist_fracture
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
-    use ddc_model_types, only: condition_names, condition_contact
-    use ddc_model_limits, only: range_problem, quantity_non_negative
+    use ddc_model_types, only: condition_names, condition_contact, no_residual_drop, rigid_joint
+    use ddc_model_limits, only: range_problem, quantity_non_negative, quantity_positive, &
+                                within_limits
     use ddc_text, only: itoa, rtoa, lower, find_name, quoted_list, prefix_lines
     use ddc_input_text_file, only: resolve
     use ddc_input_csv, only: read_csv
@@ -39,12 +40,22 @@ module ddc_input_namelist_fracture
         real(wp), allocatable :: x_begin(:), y_begin(:), x_end(:), y_end(:)
         !> Per-element values (SPEC section 6), shape (elements)
         real(wp), allocatable :: mu(:), sf(:), pressure(:), bc_s(:), bc_n(:)
+        !> Tensile strength and residual cohesion (no_residual_drop where not given),
+        !> shape (elements) [stress unit]
+        real(wp), allocatable :: tensile_strength(:), sf_residual(:)
+        !> Dynamic friction (no_residual_drop where not given) [-] and slip-weakening
+        !> distance [length unit], shape (elements)
+        real(wp), allocatable :: mu_dynamic(:), slip_weakening_distance(:)
+        !> Joint stiffnesses (rigid_joint where not given) [stress unit / length unit],
+        !> shape (elements)
+        real(wp), allocatable :: shear_stiffness(:), normal_stiffness(:)
     end type fracture_input
 
 contains
 
     !> &fracture name, x, y, elements, mu, sf, pressure, condition, bc_s, bc_n,
-    !> elements_file / (repeated, one per fracture)
+    !> elements_file, tensile_strength, sf_residual, mu_dynamic, slip_weakening_distance,
+    !> shear_stiffness, normal_stiffness / (repeated, one per fracture)
     subroutine read_fracture_groups(unit, text, path, dir, info, fractures, messages)
         integer, intent(in) :: unit
         character(len=*), intent(in) :: text
@@ -54,6 +65,10 @@ contains
         type(message_list), intent(inout) :: messages
         character(len=text_length) :: name, condition, elements_file
         real(wp), allocatable :: x(:), y(:), mu(:), sf(:), pressure(:), bc_s(:), bc_n(:)
+        real(wp), allocatable :: tensile_strength(:), sf_residual(:), seg_t(:), seg_sfr(:)
+        real(wp), allocatable :: mu_dynamic(:), slip_weakening_distance(:), seg_mud(:), seg_dc(:)
+        real(wp), allocatable :: shear_stiffness(:), normal_stiffness(:), seg_ks(:), seg_kn(:)
+        logical, allocatable :: csv_given(:)
         integer, allocatable :: elements(:)
         character(len=512) :: iomsg
         character(len=:), allocatable :: prefix, csv_path
@@ -62,15 +77,20 @@ contains
         integer, allocatable :: counts(:), row_lines(:)
         type(error_type), allocatable :: csv_error
         integer :: stat, k, i, nx, ny, ne, nmu, nsf, npr, nbs, nbn, nseg, nbefore, cond
+        integer :: nt, nsr, nmd, ndc, nks, nkn
         logical :: from_csv, geometry_ok
         namelist /fracture/ name, x, y, elements, mu, sf, pressure, condition, bc_s, bc_n, &
-            elements_file
+            elements_file, tensile_strength, sf_residual, mu_dynamic, slip_weakening_distance, &
+            shear_stiffness, normal_stiffness
 
         allocate (fractures(info%count))
         if (info%count == 0) return
         allocate (x(max_vertices), y(max_vertices), mu(max_vertices), sf(max_vertices), &
                   pressure(max_vertices), bc_s(max_vertices), bc_n(max_vertices), &
-                  elements(max_vertices))
+                  elements(max_vertices), tensile_strength(max_vertices), &
+                  sf_residual(max_vertices), mu_dynamic(max_vertices), &
+                  slip_weakening_distance(max_vertices), shear_stiffness(max_vertices), &
+                  normal_stiffness(max_vertices))
         rewind (unit)
         do k = 1, info%count
             name = ''
@@ -83,6 +103,12 @@ contains
             pressure = unset_real
             bc_s = unset_real
             bc_n = unset_real
+            tensile_strength = unset_real
+            sf_residual = unset_real
+            mu_dynamic = unset_real
+            slip_weakening_distance = unset_real
+            shear_stiffness = unset_real
+            normal_stiffness = unset_real
             elements = unset_integer
             read (unit, nml=fracture, iostat=stat, iomsg=iomsg)
             if (stat /= 0) then
@@ -102,6 +128,12 @@ contains
             npr = count_given(pressure, 'pressure', prefix, messages)
             nbs = count_given(bc_s, 'bc_s', prefix, messages)
             nbn = count_given(bc_n, 'bc_n', prefix, messages)
+            nt = count_given(tensile_strength, 'tensile_strength', prefix, messages)
+            nsr = count_given(sf_residual, 'sf_residual', prefix, messages)
+            nmd = count_given(mu_dynamic, 'mu_dynamic', prefix, messages)
+            ndc = count_given(slip_weakening_distance, 'slip_weakening_distance', prefix, messages)
+            nks = count_given(shear_stiffness, 'shear_stiffness', prefix, messages)
+            nkn = count_given(normal_stiffness, 'normal_stiffness', prefix, messages)
 
             cond = find_name(lower(trim(adjustl(condition))), condition_names)
             if (cond == 0) then
@@ -116,14 +148,18 @@ contains
                     call add(messages, prefix//'give either x, y and elements or '// &
                              'elements_file, not both')
                 end if
-                if (nmu > 0 .or. nsf > 0 .or. npr > 0) then
-                    call add(messages, prefix//'mu, sf and pressure come from elements_file;'// &
-                             ' do not give them in the group as well')
+                if (nmu > 0 .or. nsf > 0 .or. npr > 0 .or. nt > 0 .or. nsr > 0 .or. &
+                    nmd > 0 .or. ndc > 0 .or. nks > 0 .or. nkn > 0) then
+                    call add(messages, prefix//'mu, sf, pressure and the strength laws come '// &
+                             'from elements_file; do not give them in the group as well')
                 end if
                 csv_path = resolve(dir, trim(adjustl(elements_file)))
                 call read_csv(csv_path, [character(len=8) :: 'x_begin', 'y_begin', 'x_end', &
                               'y_end', 'mu', 'sf', 'pressure'], rows, csv_error, row_lines, &
-                              most_rows=max_elements)
+                              [character(len=23) :: 'tensile_strength', 'sf_residual', &
+                              'mu_dynamic', 'slip_weakening_distance', 'shear_stiffness', &
+                              'normal_stiffness'], &
+                              csv_given, most_rows=max_elements)
                 if (allocated(csv_error)) then
                     call add(messages, prefix_lines(prefix//'elements_file: ', csv_error%message))
                     deallocate (csv_error)
@@ -145,7 +181,19 @@ contains
                                      itoa(row_lines(i))//': sf = '//rtoa(rows(6, i))//' '// &
                                      range_problem(quantity_non_negative, rows(6, i)))
                         end if
+                        if (csv_given(1)) call check_law_row(8, 'tensile_strength')
+                        if (csv_given(2)) call check_law_row(9, 'sf_residual')
+                        if (csv_given(3)) call check_law_row(10, 'mu_dynamic')
+                        if (csv_given(4)) call check_law_row(11, 'slip_weakening_distance')
+                        if (csv_given(5)) call check_law_row(12, 'shear_stiffness')
+                        if (csv_given(6)) call check_law_row(13, 'normal_stiffness')
                     end do
+                    if (.not. csv_given(1)) rows(8, :) = 0.0_wp
+                    if (.not. csv_given(2)) rows(9, :) = no_residual_drop
+                    if (.not. csv_given(3)) rows(10, :) = no_residual_drop
+                    if (.not. csv_given(4)) rows(11, :) = 0.0_wp
+                    if (.not. csv_given(5)) rows(12, :) = rigid_joint
+                    if (.not. csv_given(6)) rows(13, :) = rigid_joint
                 end if
             else
                 if (nx /= ny) then
@@ -196,14 +244,28 @@ contains
                     end if
                     call check_range(mu(1:nmu), 'mu', quantity_non_negative, prefix, messages)
                     call check_range(sf(1:nsf), 'sf', quantity_non_negative, prefix, messages)
+                    call check_range(tensile_strength(1:nt), 'tensile_strength', &
+                                     quantity_non_negative, prefix, messages)
+                    call check_range(sf_residual(1:nsr), 'sf_residual', quantity_non_negative, &
+                                     prefix, messages)
+                    call check_range(mu_dynamic(1:nmd), 'mu_dynamic', quantity_non_negative, &
+                                     prefix, messages)
+                    call check_range(slip_weakening_distance(1:ndc), 'slip_weakening_distance', &
+                                     quantity_non_negative, prefix, messages)
+                    call check_range(shear_stiffness(1:nks), 'shear_stiffness', &
+                                     quantity_positive, prefix, messages)
+                    call check_range(normal_stiffness(1:nkn), 'normal_stiffness', &
+                                     quantity_positive, prefix, messages)
                 end if
                 if (nbs > 0 .or. nbn > 0) then
                     call add(messages, prefix//'bc_s and bc_n are for the TWODD-style '// &
                              "conditions, not for condition 'contact'")
                 end if
             else if (cond /= 0) then
-                if (.not. from_csv .and. (nmu > 0 .or. nsf > 0 .or. npr > 0)) then
-                    call add(messages, prefix//"mu, sf and pressure are for condition "// &
+                if (.not. from_csv .and. (nmu > 0 .or. nsf > 0 .or. npr > 0 .or. nt > 0 .or. &
+                    nsr > 0 .or. nmd > 0 .or. ndc > 0 .or. nks > 0 .or. nkn > 0)) then
+                    call add(messages, prefix//"mu, sf, pressure and the strength laws are "// &
+                             "for condition "// &
                              "'contact', not for condition '"//trim(condition_names(cond))//"'")
                 end if
             end if
@@ -218,6 +280,29 @@ contains
                     end if
                     if (check_length(npr, nseg, 'pressure', prefix, messages)) then
                         seg_pressure = broadcast(pressure(1:npr), nseg, 0.0_wp)
+                    end if
+                    if (check_length(nt, nseg, 'tensile_strength', prefix, messages)) then
+                        seg_t = broadcast(tensile_strength(1:nt), nseg, 0.0_wp)
+                    end if
+                    if (check_length(nsr, nseg, 'sf_residual', prefix, messages)) then
+                        seg_sfr = broadcast(sf_residual(1:nsr), nseg, no_residual_drop)
+                        if (allocated(seg_sf)) call check_residual(seg_sf, seg_sfr, &
+                                                                   'segment', 'sf')
+                    end if
+                    if (check_length(nmd, nseg, 'mu_dynamic', prefix, messages)) then
+                        seg_mud = broadcast(mu_dynamic(1:nmd), nseg, no_residual_drop)
+                        if (allocated(seg_mu)) call check_residual(seg_mu, seg_mud, &
+                                                                   'segment', 'mu')
+                    end if
+                    if (check_length(ndc, nseg, 'slip_weakening_distance', prefix, &
+                                     messages)) then
+                        seg_dc = broadcast(slip_weakening_distance(1:ndc), nseg, 0.0_wp)
+                    end if
+                    if (check_length(nks, nseg, 'shear_stiffness', prefix, messages)) then
+                        seg_ks = broadcast(shear_stiffness(1:nks), nseg, rigid_joint)
+                    end if
+                    if (check_length(nkn, nseg, 'normal_stiffness', prefix, messages)) then
+                        seg_kn = broadcast(normal_stiffness(1:nkn), nseg, rigid_joint)
                     end if
                 end if
                 if (check_length(nbs, nseg, 'bc_s', prefix, messages)) then
@@ -240,6 +325,12 @@ contains
                 fractures(k)%mu = rows(5, :)
                 fractures(k)%sf = rows(6, :)
                 fractures(k)%pressure = rows(7, :)
+                fractures(k)%tensile_strength = rows(8, :)
+                fractures(k)%sf_residual = rows(9, :)
+                fractures(k)%mu_dynamic = rows(10, :)
+                fractures(k)%slip_weakening_distance = rows(11, :)
+                fractures(k)%shear_stiffness = rows(12, :)
+                fractures(k)%normal_stiffness = rows(13, :)
                 fractures(k)%bc_s = seg_bc_s
                 fractures(k)%bc_n = seg_bc_n
             else
@@ -249,10 +340,73 @@ contains
                 fractures(k)%mu = expand_per_segment(seg_mu, counts)
                 fractures(k)%sf = expand_per_segment(seg_sf, counts)
                 fractures(k)%pressure = expand_per_segment(seg_pressure, counts)
+                fractures(k)%tensile_strength = expand_per_segment(seg_t, counts)
+                fractures(k)%sf_residual = expand_per_segment(seg_sfr, counts)
+                fractures(k)%mu_dynamic = expand_per_segment(seg_mud, counts)
+                fractures(k)%slip_weakening_distance = expand_per_segment(seg_dc, counts)
+                fractures(k)%shear_stiffness = expand_per_segment(seg_ks, counts)
+                fractures(k)%normal_stiffness = expand_per_segment(seg_kn, counts)
                 fractures(k)%bc_s = expand_per_segment(seg_bc_s, counts)
                 fractures(k)%bc_n = expand_per_segment(seg_bc_n, counts)
             end if
         end do
+
+    contains
+
+        !> The law in column c of CSV row i is not negative (a stiffness positive; and
+        !> sf_residual <= sf, mu_dynamic <= mu).
+        subroutine check_law_row(c, name)
+            integer, intent(in) :: c
+            character(len=*), intent(in) :: name
+            integer :: quantity
+
+            quantity = quantity_non_negative
+            if (c >= 12) quantity = quantity_positive
+            if (len(range_problem(quantity, rows(c, i))) > 0) then
+                call add(messages, prefix//'elements_file '//csv_path//' line '// &
+                         itoa(row_lines(i))//': '//name//' = '//rtoa(rows(c, i))//' '// &
+                         range_problem(quantity, rows(c, i)))
+            else if (c == 9) then
+                call check_residual(rows(6, i:i), rows(9, i:i), 'elements_file '//csv_path// &
+                                    ' line '//itoa(row_lines(i))//':', 'sf')
+            else if (c == 10) then
+                call check_residual(rows(5, i:i), rows(10, i:i), 'elements_file '//csv_path// &
+                                    ' line '//itoa(row_lines(i))//':', 'mu')
+            end if
+        end subroutine check_law_row
+
+        !> A residual cohesion (intact = 'sf') or a dynamic friction (intact = 'mu') above the
+        !> intact one is a mistake, not a strengthening.
+        subroutine check_residual(intact, residual, where, intact_name)
+            real(wp), intent(in) :: intact(:), residual(:)
+            character(len=*), intent(in) :: where, intact_name
+            character(len=:), allocatable :: name, what
+            integer :: j
+
+            name = 'sf_residual'
+            what = ' (the cohesion after slip must not exceed the intact one)'
+            if (intact_name == 'mu') then
+                name = 'mu_dynamic'
+                what = ' (the friction after slip must not exceed the static one)'
+            end if
+            do j = 1, size(residual)
+                ! NaN and Inf are reported by count_given; compared here they would trap
+                if (.not. (within_limits(residual(j)) .and. within_limits(intact(j)))) cycle
+                if (residual(j) > intact(j) .and. residual(j) < no_residual_drop) then
+                    if (where == 'segment') then
+                        call add(messages, prefix//name//' = '//rtoa(residual(j))// &
+                                 ' exceeds '//intact_name//' = '//rtoa(intact(j))// &
+                                 ' on segment '//itoa(j)//what)
+                    else
+                        call add(messages, prefix//where//' '//name//' = '// &
+                                 rtoa(residual(j))//' exceeds '//intact_name//' = '// &
+                                 rtoa(intact(j))//what)
+                    end if
+                    return
+                end if
+            end do
+        end subroutine check_residual
+
     end subroutine read_fracture_groups
 
 end module ddc_input_namelist_fracture

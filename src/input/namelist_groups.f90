@@ -9,7 +9,7 @@
 !> tests/architecture/check_sources.py holds every reader's namelist statement to them.
 module ddc_input_namelist_groups
     use ddc_error, only: exit_bad_input
-    use ddc_text, only: newline, itoa, lower, find_name, join_integers
+    use ddc_text, only: newline, itoa, lower, join_integers
     implicit none
     private
 
@@ -23,7 +23,7 @@ module ddc_input_namelist_groups
     type :: group_spec
         character(len=13) :: name
         logical :: repeatable
-        character(len=160) :: variables
+        character(len=240) :: variables
     end type group_spec
 
     !> Index of each group in namelist_groups
@@ -37,7 +37,9 @@ module ddc_input_namelist_groups
                    'length_unit:c stress_unit:c domain:c'), &
         group_spec('remote_stress', .false., 'sxx:r syy:r sxy:r dsxx_dy:r dsyy_dy:r dsxy_dy:r'), &
         group_spec('fracture', .true., 'name:c x:r y:r elements:i mu:r sf:r pressure:r '// &
-                   'condition:c bc_s:r bc_n:r elements_file:c'), &
+                   'condition:c bc_s:r bc_n:r elements_file:c tensile_strength:r '// &
+                   'sf_residual:r mu_dynamic:r slip_weakening_distance:r shear_stiffness:r '// &
+                   'normal_stiffness:r'), &
         group_spec('grid', .true., 'name:c xmin:r xmax:r nx:i ymin:r ymax:r ny:i'), &
         group_spec('line', .true., 'name:c x_begin:r y_begin:r x_end:r y_end:r points:i'), &
         group_spec('points', .true., 'name:c file:c'), &
@@ -91,7 +93,7 @@ contains
         integer :: nobs, g
 
         line = 0
-        g = find_name(name, namelist_groups%name)
+        g = group_index(name)
         if (g == 0) return
         call scan_groups(text, '', groups, nobs, ignored)
         if (groups(g)%count > 0) line = groups(g)%lines(1)
@@ -151,7 +153,7 @@ contains
                     if (in_group .and. current > 0) found_end(current) = i - 1
                     in_group = .true.
                     current = 0
-                    g = find_name(name, namelist_groups%name)
+                    g = group_index(name)
                     if (g == 0) then
                         known = '&'//trim(namelist_groups(1)%name)
                         do k = 2, size(namelist_groups)
@@ -263,5 +265,20 @@ contains
         yes = (c >= 'a' .and. c <= 'z') .or. (c >= 'A' .and. c <= 'Z') .or. &
               (c >= '0' .and. c <= '9') .or. c == '_'
     end function is_name_character
+
+    !> Index of the group called name in namelist_groups, 0 when there is none. (A loop,
+    !> not find_name: namelist_groups%name would be copied to a temporary on every call.)
+    pure integer function group_index(name)
+        character(len=*), intent(in) :: name
+        integer :: g
+
+        group_index = 0
+        do g = 1, size(namelist_groups)
+            if (trim(namelist_groups(g)%name) == trim(name)) then
+                group_index = g
+                return
+            end if
+        end do
+    end function group_index
 
 end module ddc_input_namelist_groups

@@ -1,7 +1,8 @@
 !> Geometry derived from element end points: midpoint, half-length, orientation.
 module ddc_mesh_geometry
     use ddc_kinds, only: wp
-    use ddc_model_types, only: element_set, element_array_action, for_each_element_array
+    use ddc_model_types, only: element_set, element_array_action, for_each_element_array, &
+                               no_residual_drop, rigid_joint
     implicit none
     private
 
@@ -19,7 +20,8 @@ module ddc_mesh_geometry
 contains
 
     !> Allocate every per-element array of an element set (those of the geometry too) for
-    !> n elements; values unset.
+    !> n elements; values unset, but the strength laws beyond Coulomb at their defaults: no
+    !> tensile strength, no drops, rigid contact.
     subroutine allocate_elements(elements, n)
         !> The set to allocate (its arrays unallocated)
         type(element_set), intent(inout) :: elements
@@ -30,6 +32,12 @@ contains
         elements%n = n
         allocation%n = n
         call for_each_element_array(elements, allocation)
+        elements%tensile_strength = 0.0_wp
+        elements%sf_residual = no_residual_drop
+        elements%mu_dynamic = no_residual_drop
+        elements%slip_weakening_distance = 0.0_wp
+        elements%shear_stiffness = rigid_joint
+        elements%normal_stiffness = rigid_joint
     end subroutine allocate_elements
 
     !> Allocate one real array for the set's elements.

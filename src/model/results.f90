@@ -59,6 +59,12 @@ module ddc_model_results
         real(wp), allocatable :: us_minus(:), un_minus(:), us_plus(:), un_plus(:)
         !> Element state (state_free ... state_open)
         integer, allocatable :: state(:)
+        !> Strength in force at the end: cohesion and tensile strength (after the drops
+        !> of slipped and opened elements; 0 for TWODD-style elements) [stress unit];
+        !> not allocated for a model without contact elements
+        real(wp), allocatable :: sf_in_force(:), tensile_in_force(:)
+        !> Friction in force at the end (slip weakening; 0 for TWODD-style elements) [-]
+        real(wp), allocatable :: mu_in_force(:)
     end type element_results
 
     !> Crack tips: element ends shared with no other element.

@@ -20,7 +20,7 @@ module ddc_model_types
     public :: observation_grid, observation_line, observation_points, observation_kind_names
     public :: growth_options, growth_tips_all, growth_tips_most_critical, growth_tips_names
     public :: growth_criterion_mts, growth_criterion_names
-    public :: default_block_size
+    public :: default_block_size, no_residual_drop, rigid_joint
     public :: element_array_action, for_each_element_array, select_elements
 
     !> Boundary conditions; 1-4 are the TWODD KODE values.
@@ -40,6 +40,12 @@ module ddc_model_types
     !> Input names of the domains, indexed by domain
     character(len=*), parameter :: domain_names(2) = [character(len=10) :: &
         'full_plane', 'half_plane']
+
+    !> elements%sf_residual of an element whose cohesion does not drop after slip (the
+    !> default, sf_residual = sf; a sweep may change sf after the input was read)
+    real(wp), parameter :: no_residual_drop = huge(1.0_wp)
+    !> elements%shear_stiffness, normal_stiffness of rigid contact (the default)
+    real(wp), parameter :: rigid_joint = huge(1.0_wp)
 
     !> Block size of the distributed matrices of the MPI build (&solver block_size)
     integer, parameter :: default_block_size = 64
@@ -83,6 +89,18 @@ module ddc_model_types
         !> Friction coefficient [-], cohesion (frictional strength) [stress unit],
         !> internal fluid pressure [stress unit], for contact elements
         real(wp), allocatable :: mu(:), sf(:), pressure(:)
+        !> Fault strength beyond Coulomb, for contact elements: tensile strength T >= 0
+        !> [stress unit] (lost once the element opens) and the cohesion after the element
+        !> first slipped [stress unit]; the cohesion in force after slip is
+        !> min(sf, sf_residual) (no_residual_drop: no drop)
+        real(wp), allocatable :: tensile_strength(:), sf_residual(:)
+        !> Slip weakening, for contact elements: friction falls linearly from mu to
+        !> min(mu, mu_dynamic) [-] as the slip grows from 0 to slip_weakening_distance d_c
+        !> >= 0 [length unit] (no_residual_drop: no drop; d_c = 0: at once)
+        real(wp), allocatable :: mu_dynamic(:), slip_weakening_distance(:)
+        !> Elastic joint, for contact elements: shear and normal stiffness [stress unit /
+        !> length unit] of the faces before they slip or open (rigid_joint: rigid contact)
+        real(wp), allocatable :: shear_stiffness(:), normal_stiffness(:)
         !> Derived geometry: midpoint, half-length [length unit], cos and sin of the
         !> element angle beta (counter-clockwise from +x)
         real(wp), allocatable :: x_mid(:), y_mid(:), half_length(:)
@@ -285,6 +303,12 @@ contains
         call action%on_reals(elements%mu)
         call action%on_reals(elements%sf)
         call action%on_reals(elements%pressure)
+        call action%on_reals(elements%tensile_strength)
+        call action%on_reals(elements%sf_residual)
+        call action%on_reals(elements%mu_dynamic)
+        call action%on_reals(elements%slip_weakening_distance)
+        call action%on_reals(elements%shear_stiffness)
+        call action%on_reals(elements%normal_stiffness)
         call action%on_reals(elements%x_mid)
         call action%on_reals(elements%y_mid)
         call action%on_reals(elements%half_length)

@@ -32,10 +32,11 @@
 !>   /elements/created_step; /elements, /tips and /fields describe the final geometry.
 module ddc_output_hdf5
     use, intrinsic :: iso_fortran_env, only: int64
+    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_positive_inf
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_internal_error
     use ddc_version, only: program_name, program_version, git_commit
-    use ddc_model_types, only: model_type, observation_grid, observation_kind_names, &
+    use ddc_model_types, only: model_type, rigid_joint, observation_grid, observation_kind_names, &
         symmetry_names, domain_names, load_path_names, growth_tips_names, growth_criterion_names
     use ddc_model_loads, only: total_pressure, shear_modulus_of
     use ddc_model_results, only: model_results, state_free, state_stick, state_slip, &
@@ -250,6 +251,24 @@ contains
             ! Contact elements: the given pressure plus the pore fluid
             call write_real_1d(group, 'pressure', total_pressure(e, model%pore_fluid), stress, &
                                error)
+            ! Strength beyond Coulomb as given, and what was left of it at the end.
+            call write_real_1d(group, 'tensile_strength', e%tensile_strength, stress, error)
+            call write_real_1d(group, 'sf_residual', min(e%sf, e%sf_residual), stress, error)
+            if (allocated(r%sf_in_force)) then
+                call write_real_1d(group, 'sf_in_force', r%sf_in_force, stress, error)
+                call write_real_1d(group, 'tensile_strength_in_force', r%tensile_in_force, &
+                                   stress, error)
+            end if
+            call write_real_1d(group, 'mu_dynamic', min(e%mu, e%mu_dynamic), '1', error)
+            call write_real_1d(group, 'slip_weakening_distance', e%slip_weakening_distance, &
+                               length, error)
+            if (allocated(r%mu_in_force)) call write_real_1d(group, 'mu_in_force', &
+                                                             r%mu_in_force, '1', error)
+            ! Joint stiffness: +Inf for rigid contact (the default).
+            call write_real_1d(group, 'shear_stiffness', rigid_as_infinity(e%shear_stiffness), &
+                               stress//'/'//length, error)
+            call write_real_1d(group, 'normal_stiffness', &
+                               rigid_as_infinity(e%normal_stiffness), stress//'/'//length, error)
             if (allocated(results%growth%created_step)) then
                 call write_int_1d(group, 'created_step', results%growth%created_step, error, &
                                   '0 the input, k growth step k')
@@ -257,6 +276,15 @@ contains
         end associate
         call close_group(group, error)
     end subroutine write_elements
+
+    !> The stiffnesses with rigid_joint written as +Inf.
+    pure function rigid_as_infinity(k) result(out)
+        real(wp), intent(in) :: k(:)
+        real(wp) :: out(size(k))
+
+        out = k
+        where (k >= rigid_joint) out = ieee_value(1.0_wp, ieee_positive_inf)
+    end function rigid_as_infinity
 
     !> /fractures: name, first_element, last_element (1-based), one entry per fracture.
     subroutine write_fractures(root, model, error)

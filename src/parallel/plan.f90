@@ -3,9 +3,10 @@
 !> than one process (exit_bad_input, naming what to do); with one process such a model runs
 !> as in the serial build.
 module ddc_parallel_plan
+    use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_text, only: itoa, newline
-    use ddc_model_types, only: model_type, condition_contact
+    use ddc_model_types, only: model_type, condition_contact, rigid_joint
     use ddc_contact_options, only: lcp_auto, lcp_lemke
     use ddc_contact_formulation, only: auto_newton_min_elements
     implicit none
@@ -38,6 +39,12 @@ contains
         if (allocated(model%load_path%vertex)) call refuse('&load_path (loading histories '// &
             'are not distributed)')
         if (model%growth%active) call refuse('&growth (fracture growth is not distributed)')
+        if (any(model%elements%tensile_strength > 0.0_wp .or. model%elements%sf_residual < &
+            model%elements%sf .or. model%elements%mu_dynamic < model%elements%mu .or. &
+            model%elements%shear_stiffness < rigid_joint .or. &
+            model%elements%normal_stiffness < rigid_joint)) call refuse('&fracture '// &
+            'tensile_strength, sf_residual, mu_dynamic or a joint stiffness (strength '// &
+            'beyond Coulomb is not distributed)')
         if (processes > 1) then
             distributed = .true.
             if (len(refused) > 0) call set_error(error, exit_bad_input, model%input_file// &

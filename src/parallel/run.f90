@@ -33,7 +33,8 @@ contains
 
     !> solve_distributed on the engine's processes.
     subroutine distributed_solve_model(this, elements, shear_modulus, nu, remote_shear, &
-                                       remote_normal, options, ds, dn, state, record, error)
+                                       remote_normal, options, ds, dn, state, record, error, &
+                                       strength)
         class(distributed_engine), intent(inout) :: this
         type(element_set), intent(in) :: elements
         real(wp), intent(in) :: shear_modulus, nu
@@ -43,9 +44,10 @@ contains
         integer, intent(out) :: state(:)
         type(solver_record), intent(inout) :: record
         type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable, intent(out), optional :: strength(:, :)
 
         call solve_distributed(this%context, elements, shear_modulus, nu, remote_shear, &
-                               remote_normal, options, ds, dn, state, record, error)
+                               remote_normal, options, ds, dn, state, record, error, strength)
     end subroutine distributed_solve_model
 
     !> Each process computes the responses of its share of the elements; all get them all.

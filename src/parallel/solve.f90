@@ -37,7 +37,8 @@ contains
     !> Solve for the DDs of every element on the processes (collective; every process gets
     !> the same DDs, states and record).
     subroutine solve_distributed(context, elements, shear_modulus, nu, remote_shear, &
-                                 remote_normal, options, ds, dn, state, record, error)
+                                 remote_normal, options, ds, dn, state, record, error, &
+                                 strength)
         !> The processes and their grid
         type(parallel_context), intent(in) :: context
         !> Elements with geometry computed; contact elements carry their total pressure
@@ -56,6 +57,10 @@ contains
         type(solver_record), intent(inout) :: record
         !> Set when the model has no solution or the solver failed
         type(error_type), allocatable, intent(out) :: error
+        !> Cohesion, tensile strength and friction in force at the end, shape (3, n)
+        !> (contact models; the strength laws are refused on more than one process, but
+        !> open_cohesion = 'lost' is not)
+        real(wp), allocatable, intent(out), optional :: strength(:, :)
         type(distributed_stiffness) :: stiffness
         type(contact_result) :: res
         type(error_type), allocatable :: ill_conditioned
@@ -125,6 +130,12 @@ contains
                     return
                 end if
                 call record_contact(res, flops, record)
+                if (present(strength)) then
+                    allocate (strength(3, n), source=0.0_wp)
+                    strength(1, contact) = res%sf_effective
+                    strength(2, contact) = res%tensile_effective
+                    strength(3, contact) = res%mu_effective
+                end if
                 ds(contact) = res%ds
                 dn(contact) = res%dn
                 state(contact) = res%state

@@ -29,7 +29,8 @@ module ddc_run_engine
         !> Solve for the DDs of every element (contact elements with the contact solver,
         !> TWODD-style ones by their conditions).
         subroutine solve_interface(this, elements, shear_modulus, nu, remote_shear, &
-                                   remote_normal, options, ds, dn, state, record, error)
+                                   remote_normal, options, ds, dn, state, record, error, &
+                                   strength)
             import :: model_engine, element_set, solver_options, solver_record, error_type, wp
             implicit none
             !> The engine
@@ -50,6 +51,9 @@ module ddc_run_engine
             type(solver_record), intent(inout) :: record
             !> Set when the model has no solution or the solver failed
             type(error_type), allocatable, intent(out) :: error
+            !> Cohesion, tensile strength and friction in force at the end, shape (3, n)
+            !> (contact models; see ddc_solve_frictional)
+            real(wp), allocatable, intent(out), optional :: strength(:, :)
         end subroutine solve_interface
 
         !> Induced tractions and negative-face displacements at every element midpoint.

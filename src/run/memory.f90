@@ -16,7 +16,9 @@
 !>   influence matrix and the reduced factors of the last accepted geometry beside those of
 !>   the trial (ddc_growth_solver), with the arrays of the update it may carry on (at most
 !>   3 m^2 / 16 for m = 2N unknowns): 9 N^2 more, counted at the input's N (the grown N is
-!>   not known before the run);
+!>   not known before the run); elastic joints (a finite shear_stiffness or
+!>   normal_stiffness, ddc_solve_joints) hold A_j (2nc)^2 beside A, and build it with two
+!>   more such matrices, C + K^-1 and the load map;
 !> - the model and its results, 50 reals per element and 13 per observation point;
 !> - the program itself (libraries, buffers), 20 MB.
 !> The Newton method is estimated twice: from the states its solve starts from (those of
@@ -34,7 +36,7 @@ module ddc_run_memory
     use ddc_error, only: error_type, set_error, exit_out_of_memory
     use ddc_allocation, only: real_bytes
     use ddc_text, only: bytes_text, itoa
-    use ddc_model_types, only: model_type, condition_contact
+    use ddc_model_types, only: model_type, condition_contact, rigid_joint
     use ddc_contact_options, only: lcp_auto, lcp_newton
     use ddc_contact_formulation, only: auto_newton_min_elements
     use ddc_contact_memory, only: lemke_bytes, newton_bytes
@@ -158,6 +160,10 @@ contains
             held = held + matrix + real_bytes * 4.0_wp * (nf**2 + nf * nc)
             condense = held + real_bytes * 4.0_wp * nf * nc
         end if
+        if (has_joints(model)) then
+            condense = max(condense, held + real_bytes * 12.0_wp * nc**2)
+            held = held + real_bytes * 4.0_wp * nc**2
+        end if
         need%held_bytes = fixed + held
         if (model%solver%lcp_method == lcp_newton .or. (model%solver%lcp_method == &
             lcp_auto .and. contact >= auto_newton_min_elements)) then
@@ -181,6 +187,17 @@ contains
             need%worst_bytes = need%bytes
         end if
     end function need_of
+
+    !> Whether a contact element has an elastic joint (a finite stiffness).
+    pure logical function has_joints(model)
+        type(model_type), intent(in) :: model
+
+        has_joints = .false.
+        if (allocated(model%elements%shear_stiffness)) has_joints = &
+            any(model%elements%shear_stiffness < rigid_joint)
+        if (allocated(model%elements%normal_stiffness)) has_joints = has_joints .or. &
+            any(model%elements%normal_stiffness < rigid_joint)
+    end function has_joints
 
     !> The largest number of elements, the model's share of contact elements, observation
     !> sets, solver and load path kept, whose estimate fits in `available` bytes (0 when

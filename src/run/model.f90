@@ -47,6 +47,7 @@ contains
         !> The engine of a distributed run (default: the work is done in this process)
         class(model_engine), intent(inout), optional :: engine
         real(wp), allocatable :: remote_shear(:), remote_normal(:), matrix(:, :)
+        real(wp), allocatable :: strength(:, :)
         type(element_set) :: loaded
         real(wp) :: g, nu, t_start, t_free
         integer :: n
@@ -73,12 +74,17 @@ contains
             loaded%pressure = total_pressure(model%elements, model%pore_fluid)
             if (present(engine)) then
                 call engine%solve(loaded, g, nu, remote_shear, remote_normal, model%solver, &
-                                  e%ds, e%dn, e%state, rec, error)
+                                  e%ds, e%dn, e%state, rec, error, strength)
             else
                 call solve_here(loaded, g, nu, remote_shear, remote_normal, model%solver, e%ds, &
-                                e%dn, e%state, rec, matrix, error)
+                                e%dn, e%state, rec, matrix, error, strength)
             end if
             if (allocated(error)) return
+            if (allocated(strength)) then
+                e%sf_in_force = strength(1, :)
+                e%tensile_in_force = strength(2, :)
+                e%mu_in_force = strength(3, :)
+            end if
             if (reports_phases(n)) call report_progress('solved ('//rec%method//') in '// &
                 seconds_text(wall_seconds() - t_start))
         end associate
@@ -189,7 +195,7 @@ contains
     !> The solve in this process: contact models by solve_frictional, the others by
     !> solve_elastic (method 'lu'); the influence matrix of the solve is handed back.
     subroutine solve_here(elements, shear_modulus, nu, remote_shear, remote_normal, options, &
-                          ds, dn, state, record, matrix, error)
+                          ds, dn, state, record, matrix, error, strength)
         type(element_set), intent(in) :: elements
         real(wp), intent(in) :: shear_modulus, nu
         real(wp), intent(in) :: remote_shear(:), remote_normal(:)
@@ -199,10 +205,13 @@ contains
         type(solver_record), intent(inout) :: record
         real(wp), allocatable, intent(out) :: matrix(:, :)
         type(error_type), allocatable, intent(out) :: error
+        !> Cohesion, tensile strength and friction in force at the end, shape (3, n)
+        !> (contact models)
+        real(wp), allocatable, intent(out) :: strength(:, :)
 
         if (any(elements%condition == condition_contact)) then
             call solve_frictional(elements, shear_modulus, nu, remote_shear, remote_normal, &
-                                  options, ds, dn, state, record, matrix, error)
+                                  options, ds, dn, state, record, matrix, error, strength)
         else
             record%method = 'lu'
             call solve_elastic(elements, shear_modulus, nu, remote_shear, remote_normal, ds, dn, &

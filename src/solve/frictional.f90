@@ -25,6 +25,7 @@ module ddc_solve_frictional
     use ddc_contact_result, only: contact_result
     use ddc_contact_formulation, only: solve_contact
     use ddc_contact_options, only: solver_options
+    use ddc_solve_joints, only: joint_compliance, joint_system, joint_load, joint_dds
     implicit none
     private
 
@@ -58,7 +59,7 @@ contains
 
     !> Solve a model with at least one contact element.
     subroutine solve_frictional(elements, shear_modulus, nu, remote_shear, remote_normal, &
-                                options, ds, dn, state, record, matrix, error)
+                                options, ds, dn, state, record, matrix, error, strength)
         !> Elements with geometry computed
         type(element_set), intent(in) :: elements
         !> Shear modulus [stress unit] and Poisson's ratio [-]
@@ -78,26 +79,58 @@ contains
         real(wp), allocatable, intent(out) :: matrix(:, :)
         !> Set when the model has no solution or the solver failed
         type(error_type), allocatable, intent(out) :: error
+        !> Strength in force at the end: cohesion (row 1) and tensile strength (row 2)
+        !> [stress unit], friction (row 3) [-] of each element (0 for TWODD-style
+        !> elements), shape (3, n)
+        real(wp), allocatable, intent(out), optional :: strength(:, :)
         type(condensed_contact) :: sys
         type(contact_result) :: res
-        real(wp), allocatable :: shift(:), y_load(:)
+        real(wp), allocatable :: shift(:), y_load(:), compliance(:), a_joint(:, :), &
+            load_map(:, :), ss(:), sn(:)
 
         call condense_contact(elements, shear_modulus, nu, sys, record, error)
         if (allocated(error)) return
         allocate (shift(2 * sys%nc), y_load(2 * sys%nf))
         call contact_load(sys, elements, remote_shear, remote_normal, shift, y_load)
-        call solve_contact(sys%a, shift(1:sys%nc), shift(sys%nc + 1:), &
+        compliance = joint_compliance(elements%shear_stiffness(sys%contact), &
+                                      elements%normal_stiffness(sys%contact))
+        ss = shift(1:sys%nc)
+        sn = shift(sys%nc + 1:)
+        if (any(compliance > 0.0_wp)) then
+            ! Elastic joints: the contact problem of the plastic DDs (ddc_solve_joints).
+            call joint_system(sys%a, compliance, a_joint, load_map, error)
+            if (allocated(error)) return
+            call joint_load(load_map, elements%pressure(sys%contact), ss, sn)
+            deallocate (load_map)
+        else
+            call move_alloc(sys%a, a_joint)
+        end if
+        call solve_contact(a_joint, ss, sn, &
                            elements%mu(sys%contact), elements%sf(sys%contact), &
-                           elements%pressure(sys%contact), options, res, error)
+                           elements%pressure(sys%contact), options, res, error, &
+                           tensile=elements%tensile_strength(sys%contact), &
+                           sf_residual=elements%sf_residual(sys%contact), &
+                           mu_dynamic=elements%mu_dynamic(sys%contact), &
+                           slip_weakening_distance=elements%slip_weakening_distance(sys%contact))
+        if (.not. allocated(sys%a)) call move_alloc(a_joint, sys%a)
         if (allocated(error)) then
             if (sys%nf > 0) error%message = error%message// &
                 ' (element numbers count the contact elements only)'
             return
         end if
+        if (any(compliance > 0.0_wp)) call joint_dds(compliance, &
+            elements%pressure(sys%contact), res%shear_traction, res%normal_traction, &
+            res%ds, res%dn)
         call record_contact(res, sys%flops, record)
         call complete_dds(sys, elements, remote_shear, remote_normal, res, y_load, ds, dn, &
                           state, record%equilibrium_residual)
         call release_matrix(sys, matrix)
+        if (present(strength)) then
+            allocate (strength(3, elements%n), source=0.0_wp)
+            strength(1, sys%contact) = res%sf_effective
+            strength(2, sys%contact) = res%tensile_effective
+            strength(3, sys%contact) = res%mu_effective
+        end if
     end subroutine solve_frictional
 
     !> Hand over the influence matrix of every element (no copy): the contact block itself

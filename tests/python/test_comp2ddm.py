@@ -440,9 +440,7 @@ def test_runs_itself_with_the_venv_python(tmp_path):
     assert (tmp_path / "R2.nml").is_file()
     (tmp_path / "R2.nml").unlink()
     copy = tmp_path / "clone" / "scripts"
-    copy.mkdir(parents=True)
-    for name in (SCRIPT.name, "ddc2d_venv.py"):
-        shutil.copy(SCRIPT.parent / name, copy / name)
+    shutil.copytree(SCRIPT.parent, copy, ignore=shutil.ignore_patterns("__pycache__"))
     done = run([sys.executable, "-S", copy / SCRIPT.name, workbook.name], tmp_path)
     assert done.returncode == 2
     assert "missing" in done.stderr and len(done.stderr.strip().splitlines()) == 1

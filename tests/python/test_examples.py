@@ -210,7 +210,21 @@ def check_joint_to_surface(f):
     assert max(f["elements/y_begin"][()].max(), f["elements/y_end"][()].max()) < -2.5
 
 
+def check_progressive_failure(f):
+    """The centre slips from 6 MPa, the patches fail over 7.25-7.5 MPa and keep 1 MPa."""
+    h = f["history"]
+    sxy, ds = h["sxy"][()], h["ds"][()]
+    moving = np.abs(ds) > 0
+    full = int(np.argmax(moving.all(axis=1)))
+    partial = moving[full - 1].sum()
+    assert abs(sxy[full] - 7.5) < 1e-9 and 40 < partial < 100, (sxy[full], partial)
+    sf = f["elements/sf_in_force"][()]
+    x = f["elements/x_mid"][()]
+    assert np.all(sf[np.abs(x) > 0.4] == 1.0) and np.all(sf[np.abs(x) < 0.4] == 0.0)
+
+
 EXPECTED = {
+    "strong_patch_progressive_failure": check_progressive_failure,
     "wing_cracks_sliding_flaw": check_wings,
     "fault_tail_cracks": check_tail_cracks,
     "echelon_cracks_linking": check_echelon_linking,
