@@ -66,7 +66,9 @@ GROWTH_CMAP = "plasma"
 GROWTH_MARKERS = {"grew": ("o", "grew"), "subcritical": ("o", "subcritical"),
                   "intersection": ("X", "stopped: intersection"),
                   "surface": ("^", "stopped: surface"),
-                  "corrector": ("s", "grew at the MTS angle"), "waiting": ("D", "waiting")}
+                  "corrector": ("s", "grew at the MTS angle"),
+                  "linked": ("P", "stopped: linked"), "closed": ("v", "closed (K_I = 0)"),
+                  "waiting": ("D", "waiting")}
 
 
 def plot_history(result, elements, steps):

@@ -3,16 +3,20 @@
 !> is inaccurate, and kinking by each step's MTS angle over-corrects the last (wings
 !> zig-zag and never arrest). The applied angle is corrected until the new tip has
 !> |K_II| <= tolerance (principle of local symmetry): secant iterations on K_II(theta), all
-!> growing tips corrected together, one solve of the whole model per iteration. A tip
-!> whose new tip is closed, or that has not converged within the solve budget, grows at
-!> its MTS angle (reason growth_corrector_failed).
+!> growing tips corrected together, one solve of the whole model per iteration.
+!> A tip grows only as an opening-mode crack (SPEC-GROWTH 1.4): when the kink at its MTS
+!> angle is closed (K_I = 0 on the new tip) it does not grow in this step (reason
+!> growth_closed); when a corrected trial closes, the angle goes back halfway to the last
+!> open trial (the secant may overshoot into a closing kink; giving up there would stop
+!> the tip at a corrector artefact). A tip not converged within the solve budget grows at
+!> its MTS angle (reason growth_corrector_failed; that trial was open).
 module ddc_growth_corrector
     use ddc_kinds, only: wp
     use ddc_constants, only: pi
     use ddc_error, only: error_type
     use ddc_model_types, only: model_type, growth_options, condition_contact
     use ddc_model_results, only: model_results, state_open, growth_grew, &
-        growth_corrector_failed
+        growth_corrector_failed, growth_closed
     use ddc_growth_solver, only: growth_solver, solve_grown
     use ddc_growth_extension, only: tip_path, make_path, extend_model
     use ddc_growth_clearance, only: check_paths, path_clear
@@ -42,13 +46,14 @@ module ddc_growth_corrector
         real(wp) :: theta = 0.0_wp
         !> Solves this tip took part in (out)
         integer :: solves = 0
-        !> growth_grew, growth_corrector_failed, growth_intersection or growth_surface (out)
+        !> growth_grew, growth_corrector_failed, growth_intersection, growth_surface or
+        !> growth_closed (out)
         integer :: reason = growth_grew
         !> The corrector's iteration: the tip still grows (its path keeps clear), its angle
         !> is still corrected; K_II of its new tip at the current angle, and the previous
         !> point of the secant (angle [rad], K_II) once there is one
-        !> [stress unit * length unit**0.5]
-        logical :: active = .true., correcting = .true., have_prev = .false.
+        !> [stress unit * length unit**0.5]; whether the last trial's new tip was open
+        logical :: active = .true., correcting = .true., have_prev = .false., open = .true.
         real(wp) :: k2 = 0.0_wp, theta_prev = 0.0_wp, k2_prev = 0.0_wp
     end type kink
 
@@ -94,6 +99,7 @@ contains
         kinks%active = .true.
         kinks%correcting = .true.
         kinks%have_prev = .false.
+        kinks%open = .true.
         current = .false.
         if (options%max_corrections == 0) return
         do i = 1, size(kinks)
@@ -118,26 +124,34 @@ contains
                 if (.not. kinks(i)%correcting) cycle
                 call new_tip(trial, solved, kinks(i), closed, error)
                 if (allocated(error)) return
-                if (closed) then
-                    ! Local symmetry does not apply to a closed tip: grow at the MTS angle.
+                kinks(i)%open = .not. closed
+                if (closed .and. kinks(i)%have_prev) then
+                    ! A corrected trial closed: halve the way back to the last open trial.
+                    kinks(i)%theta = 0.5_wp * (kinks(i)%theta + kinks(i)%theta_prev)
+                    changed = .true.
+                else if (closed) then
+                    ! The kink at its MTS angle is closed: it does not grow (SPEC-GROWTH 1.4).
                     kinks(i)%correcting = .false.
-                    kinks(i)%reason = growth_corrector_failed
-                    changed = changed .or. kinks(i)%theta /= kinks(i)%theta_mts
-                    kinks(i)%theta = kinks(i)%theta_mts
+                    kinks(i)%active = .false.
+                    kinks(i)%reason = growth_closed
+                    changed = .true.
                 else if (abs(kinks(i)%k2) > kinks(i)%tolerance) then
                     changed = .true.
                     call secant_angle(kinks(i))
                 end if
             end do
             if (.not. changed) exit
+            ! Every tip closed or stopped: no trial is left to solve.
+            if (.not. any(kinks%active)) return
             call update_paths()
         end do
         current = .not. changed
         if (current) return
-        ! Out of solves: the tips not converged grow at their MTS angle.
+        ! Out of solves: the tips not converged (or closed at their last trial) grow at their
+        ! MTS angle, whose trial was open.
         do i = 1, size(kinks)
             if (kinks(i)%active .and. kinks(i)%correcting .and. &
-                abs(kinks(i)%k2) > kinks(i)%tolerance) then
+                (.not. kinks(i)%open .or. abs(kinks(i)%k2) > kinks(i)%tolerance)) then
                 kinks(i)%reason = growth_corrector_failed
                 kinks(i)%theta = kinks(i)%theta_mts
             end if

@@ -14,8 +14,13 @@
 !> Newton method's factors from the step before where it can. What a step changes is in
 !> one growth_state (geometry, solution, solver, tips), which grow_step takes and returns.
 !>
-!> The run ends when no tip is critical any more (arrested) or after `steps` steps
-!> (step_limit); fields, tips and the summary are those of the final geometry.
+!> A tip whose kink closes (K_I = 0) does not grow in that step but is tried again in the
+!> next (another tip's growth may open it); with tips = 'most_critical' the next critical
+!> tip is tried instead in the same step.
+!>
+!> The run ends when no tip is critical any more, or none of the critical ones grew in a
+!> step (arrested: the next step would repeat it), or after `steps` steps (step_limit);
+!> fields, tips and the summary are those of the final geometry.
 module ddc_growth_driver
     use, intrinsic :: iso_fortran_env, only: int64
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
@@ -24,8 +29,8 @@ module ddc_growth_driver
     use ddc_error, only: error_type, set_internal_error
     use ddc_model_types, only: model_type, growth_options, growth_tips_most_critical
     use ddc_model_results, only: model_results, growth_record, growth_grew, &
-        growth_subcritical, growth_corrector_failed, growth_waiting, growth_arrested, &
-        growth_step_limit
+        growth_subcritical, growth_corrector_failed, growth_closed, growth_waiting, &
+        growth_arrested, growth_step_limit
     use ddc_mesh_checks, only: check_elements
     use ddc_growth_solver, only: growth_solver, solve_input, solve_grown, accept_trial, &
         final_results, solves_done
@@ -137,12 +142,21 @@ contains
                 record%end_reason = growth_arrested
                 exit
             end if
-            call choose_growing(run%work, model%growth%tips, run%tips, run%now)
-            call grow_step(run, model%growth, step, grown, error)
-            if (allocated(error)) return
+            do
+                call choose_growing(run%work, model%growth%tips, run%tips, run%now)
+                call grow_step(run, model%growth, step, grown, error)
+                if (allocated(error)) return
+                if (grown > 0 .or. .not. any(run%now%reason == growth_waiting)) exit
+                ! The most critical tip closed: the next one waiting tries in this step.
+                where (run%now%reason == growth_waiting) run%now%reason = growth_grew
+            end do
             call append_records(record, step, run%tips, run%now)
-            if (grown > 0) record%steps_taken = record%steps_taken + 1
             call report(grown)
+            if (grown == 0) then
+                record%end_reason = growth_arrested
+                exit
+            end if
+            record%steps_taken = record%steps_taken + 1
         end do
 
         model%elements = run%work%elements
@@ -212,10 +226,12 @@ contains
                 grown = grown + 1
                 run%now%angle(t) = kinks(i)%theta
                 run%now%length(t) = kinks(i)%length
-            else
+            else if (kinks(i)%reason /= growth_closed) then
                 run%tips(t)%stopped = .true.
             end if
         end do
+        ! Nothing grew: the geometry and its solution stay.
+        if (grown == 0) return
         if (.not. trial_current) then
             call grow_paths(run%work, run%created, options, step, kinks, trial, &
                             trial_created, moved_to)

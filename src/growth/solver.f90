@@ -21,7 +21,8 @@
 !> that leaves the next step's trials no room is factorized anew (refactor_full_update).
 !> Every other model (Lemke, TWODD-style elements, no contact) is solved from scratch by
 !> run_model, as before growth had a solver. Tractions, face displacements and fields are
-!> computed once, for the final geometry (final_results).
+!> computed once, for the final geometry (final_results). Every solve's K at tips of unequal
+!> elements is calibrated (ddc_growth_tip_zone, SPEC-GROWTH 1.4b).
 module ddc_growth_solver
     use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
@@ -43,6 +44,7 @@ module ddc_growth_solver
     use ddc_contact_reduced_factors, only: reduced_factors, renumber_factors, copy_factors, &
         refactor_full_update
     use ddc_post_tips, only: find_tips
+    use ddc_growth_tip_zone, only: calibrate_tips
     use ddc_run_model, only: run_model, finish_model, evaluate_fields
     use ddc_growth_influence, only: grow_influence, unknown_map
     implicit none
@@ -138,6 +140,8 @@ contains
             call run_model(model, results, error)
         end if
         if (allocated(error)) return
+        call calibrate_tips(model, results%tips, error)
+        if (allocated(error)) return
         call add_record(solver%totals, results%solver)
     end subroutine solve_grown
 
@@ -192,6 +196,8 @@ contains
         else
             call evaluate_fields(model, results)
         end if
+        ! The tips as the solve calibrated them (ddc_growth_tip_zone).
+        results%tips = current%tips
         associate (s => results%solver, t => solver%totals)
             s%seconds_assembly = t%seconds_assembly
             s%counts = t%counts

@@ -9,7 +9,8 @@ module ddc_model_results
     public :: element_results, tip_set, field_result, solver_record, model_results
     public :: history_record, growth_record
     public :: growth_grew, growth_subcritical, growth_intersection, growth_surface, &
-        growth_corrector_failed, growth_waiting, growth_reason_names
+        growth_corrector_failed, growth_linked, growth_closed, growth_waiting, &
+        growth_reason_names
     public :: growth_arrested, growth_step_limit, growth_end_names
     public :: state_free, state_stick, state_slip, state_open, state_names
     public :: point_clear, point_near, point_on_element
@@ -29,14 +30,18 @@ module ddc_model_results
     !> Why a tip did or did not grow in a growth step (SPEC-GROWTH 3): it grew (the
     !> corrector converged, or is switched off); it is subcritical (K_eq < toughness); it
     !> stopped for good at another element or at the free surface; it grew at the MTS
-    !> angle because the corrector did not converge or its new tip was closed; it is
-    !> critical but waits (tips = 'most_critical' and another tip is more critical)
+    !> angle because the corrector did not converge; it ended on another fracture (linked,
+    !> SPEC-GROWTH 1.6: reserved, not produced yet); its kink closes (K_I = 0 on the new
+    !> tip: it does not grow in this step); it is critical but waits (tips =
+    !> 'most_critical' and another tip is more critical)
     integer, parameter :: growth_grew = 0, growth_subcritical = 1, growth_intersection = 2, &
-                          growth_surface = 3, growth_corrector_failed = 4, growth_waiting = 5
+                          growth_surface = 3, growth_corrector_failed = 4, growth_linked = 5, &
+                          growth_closed = 6, growth_waiting = 7
     !> Names of the reasons, indexed by reason
-    character(len=*), parameter :: growth_reason_names(0:5) = [character(len=48) :: &
+    character(len=*), parameter :: growth_reason_names(0:7) = [character(len=48) :: &
         'grew', 'subcritical', 'intersection', 'surface', &
-        'corrector failed (grew at mts_angle)', 'waiting (critical, not the most critical)']
+        'corrector failed (grew at mts_angle)', 'linked (ends on another fracture)', &
+        'closed (the kink closes, K_I = 0)', 'waiting (critical, not the most critical)']
     !> Why a growth run ended: no tip can grow any more, or the step limit was reached
     integer, parameter :: growth_arrested = 1, growth_step_limit = 2
     !> Names of the end reasons, indexed by end reason

@@ -137,3 +137,39 @@ def test_result_without_growth_has_no_growth_figure(tmp_path):
                            str(tmp_path / "fig")], capture_output=True, text=True, timeout=120)
     assert proc.returncode == 0, proc.stderr
     assert not list((tmp_path / "fig").glob("*_growth.*"))
+
+
+# The wing flaw of SPEC-GROWTH 7 with a low toughness: after 11 steps both kinks at the
+# MTS angle close (K_I = 0 on the new tip), so neither tip grows and the run arrests.
+CLOSED_MODEL = """\
+&model title = 'closed', youngs_modulus = 50000, poissons_ratio = 0.25 /
+&remote_stress sxx = -5, syy = -100 /
+&fracture name = 'flaw', x = -0.70710678, 0.70710678, y = -0.70710678, 0.70710678,
+          elements = 40, condition = 'contact', mu = 0.6, sf = 0 /
+&growth steps = 30, toughness = 0.1, new_sf = 0, increment = 0.1 /
+"""
+
+
+def test_closed_tips_in_table_and_figure(tmp_path):
+    done = solve(tmp_path, CLOSED_MODEL)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert "ended: arrested" in done.stdout
+    rows = [line for line in done.stdout.splitlines() if line.startswith("  flaw ")]
+    assert len(rows) == 2
+    assert all("closed: the kink closes (K_I = 0)" in row for row in rows)
+    with h5py.File(tmp_path / "wings.h5", "r") as f:
+        coding = f["growth"].attrs["reason_coding"].decode()
+        reason = f["growth/reason"][()]
+    assert "5 linked" in coding and "6 closed" in coding and "7 waiting" in coding
+    assert list(reason[-2:]) == [6, 6]
+    result = load_result(tmp_path / "wings.h5")
+    fig = plot_figures.plot_growth(result)
+    try:
+        k_axes = fig.axes[1]
+        legend = [text.get_text() for text in k_axes.get_legend().get_texts()]
+        assert plot_figures.GROWTH_MARKERS["closed"][1] in legend
+        closed = [line for line in k_axes.get_lines()
+                  if line.get_label() == plot_figures.GROWTH_MARKERS["closed"][1]]
+        assert [line.get_marker() for line in closed] == [plot_figures.GROWTH_MARKERS["closed"][0]]
+    finally:
+        plot_figures.plt.close(fig)

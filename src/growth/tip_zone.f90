@@ -1,0 +1,198 @@
+!> K on grown tips (SPEC-GROWTH 1.4b): a calibration of the constant-element estimate of
+!> SPEC 5, K = -G D / (2 (1 - nu) sqrt(h)), for tip zones of unequal elements.
+!>
+!> That estimate is calibrated (its sqrt(2/pi)) for a tip zone of equal elements. Growth
+!> puts elements of another length beside the old tip (an increment of 1/50 of the
+!> element length made K 3.6x too large, new elements twice as long -6 %): the error comes
+!> from the tip zone's element lengths alone, over several lengths of the largest element
+!> there (six missed a change of length 1.2 % low, three increments of two elements of twice
+!> the old length: eight). So K is multiplied by
+!>
+!>     f = K_5(uniform) / K_5(zone),
+!>
+!> the ratio of the same estimate on two straight collinear auxiliary cracks of
+!> half-length A = max(20 max(l), 2 sum(l)) under unit pressure: one whose tips carry the
+!> zone's lengths l_1 (tip), l_2, ... padded to A with elements of about l_last, one with
+!> those padding elements only. Collinear constant elements, midpoint collocation, the
+!> closed-form kernel sigma(x_i) = c0 sum_j D_j (1/(x_i - s1_j) - 1/(x_i - s2_j)) (c0, G and
+!> nu cancel in f). On a straight line the shear kernel equals the normal one, so f serves
+!> K_II too. A zone of equal elements gives f = 1 exactly, without a solve.
+!>
+!> The zone: the tip's fracture elements from the tip inward (while they share vertices),
+!> at most max_zone of them, up to the last element i whose start s_i = l_1 + ... + l_(i-1)
+!> is below zone_reach times the largest length among l_1 ... l_i.
+module ddc_growth_tip_zone
+    use ddc_kinds, only: wp
+    use ddc_error, only: error_type
+    use ddc_model_types, only: model_type
+    use ddc_model_results, only: tip_set
+    use ddc_linalg_lu, only: lu_factor, lu_solve
+    implicit none
+    private
+
+    public :: calibrate_tips, graded_factor, zone_size
+
+    !> Reach of the zone in lengths of its largest element, and its most elements
+    real(wp), parameter :: zone_reach = 8.0_wp
+    integer, parameter :: max_zone = 64
+    !> Relative difference of lengths that counts as equal
+    real(wp), parameter :: equal_tolerance = 1.0e-9_wp
+    !> Relative margin that keeps ties (a zone bound, a padding count at n + 1/2) from
+    !> depending on round-off, so that point-symmetric tips get the same zone and factor
+    real(wp), parameter :: tie_tolerance = 1.0e-6_wp
+    !> A zone whose direction turns more than this [cos] is not straight (10 degrees)
+    real(wp), parameter :: straight_cos = 0.98480775301220806_wp
+
+contains
+
+    !> Multiply K_I, K_II of every tip by its zone's graded_factor, and set `graded` where
+    !> the calibration's assumption fails: a zone of unequal elements that is not straight,
+    !> or that reaches the fracture's other end (or a junction) before its reach; else 0.
+    subroutine calibrate_tips(model, tips, error)
+        !> The solved model
+        type(model_type), intent(in) :: model
+        !> Its tips (find_tips); K and graded updated
+        type(tip_set), intent(inout) :: tips
+        !> Set when an auxiliary solve fails
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: lengths(:)
+        logical, allocatable :: straight(:)
+        real(wp) :: f
+        integer :: k, m
+        logical :: truncated
+
+        do k = 1, tips%n
+            call walk_zone(model, tips%element(k), tips%side(k), lengths, straight)
+            m = zone_size(lengths)
+            truncated = m == size(lengths) .and. size(lengths) < max_zone
+            if (all(abs(lengths(1:m) - lengths(1)) <= equal_tolerance * lengths(1))) cycle
+            f = graded_factor(lengths(1:m), error)
+            if (allocated(error)) return
+            tips%k1(k) = f * tips%k1(k)
+            tips%k2(k) = f * tips%k2(k)
+            tips%graded(k) = merge(1, 0, truncated .or. .not. all(straight(1:m)))
+        end do
+    end subroutine calibrate_tips
+
+    !> The lengths of the elements from a tip inward along its fracture (at most max_zone,
+    !> while consecutive elements share a vertex), and whether each keeps the tip element's
+    !> direction within 10 degrees.
+    pure subroutine walk_zone(model, element, side, lengths, straight)
+        type(model_type), intent(in) :: model
+        !> Tip element and its tip end (tip_set%side: 1 begin, 2 end)
+        integer, intent(in) :: element, side
+        real(wp), allocatable, intent(out) :: lengths(:)
+        logical, allocatable, intent(out) :: straight(:)
+        integer :: i, next, step
+
+        associate (e => model%elements)
+            ! At an end tip the fracture runs on through lower indices, at a begin tip higher.
+            step = merge(-1, 1, side == 2)
+            allocate (lengths(0), straight(0))
+            i = element
+            do
+                lengths = [lengths, 2.0_wp * e%half_length(i)]
+                straight = [straight, e%cos_beta(i) * e%cos_beta(element) + &
+                            e%sin_beta(i) * e%sin_beta(element) >= straight_cos]
+                if (size(lengths) == max_zone) exit
+                next = i + step
+                if (next < 1 .or. next > e%n) exit
+                if (e%fracture_id(next) /= e%fracture_id(i)) exit
+                if (.not. joined(i, next)) exit
+                i = next
+            end do
+        end associate
+
+    contains
+
+        !> Element a's inner end is element b's outer end (the fracture is one polyline).
+        pure logical function joined(a, b)
+            integer, intent(in) :: a, b
+            real(wp) :: tolerance
+
+            associate (e => model%elements)
+                tolerance = 1.0e-8_wp * (e%half_length(a) + e%half_length(b))
+                if (step == -1) then
+                    joined = abs(e%x_begin(a) - e%x_end(b)) <= tolerance .and. &
+                             abs(e%y_begin(a) - e%y_end(b)) <= tolerance
+                else
+                    joined = abs(e%x_end(a) - e%x_begin(b)) <= tolerance .and. &
+                             abs(e%y_end(a) - e%y_begin(b)) <= tolerance
+                end if
+            end associate
+        end function joined
+
+    end subroutine walk_zone
+
+    !> Number of elements of the zone of lengths l_1 (tip), l_2, ...: up to the last i with
+    !> l_1 + ... + l_(i-1) < zone_reach max(l_1 ... l_i) (a start at the bound, as in a zone
+    !> of equal elements, counts as beyond it whatever its round-off).
+    pure integer function zone_size(lengths)
+        real(wp), intent(in) :: lengths(:)
+        real(wp) :: start, largest
+        integer :: i
+
+        zone_size = 1
+        start = 0.0_wp
+        largest = 0.0_wp
+        do i = 1, size(lengths)
+            largest = max(largest, lengths(i))
+            if (start < (1.0_wp - tie_tolerance) * zone_reach * largest) zone_size = i
+            start = start + lengths(i)
+        end do
+    end function zone_size
+
+    !> f = K_5(uniform) / K_5(zone) of the module's header, for the zone's lengths l_1 (tip),
+    !> l_2, ...; 1 for equal lengths.
+    function graded_factor(lengths, error) result(f)
+        real(wp), intent(in) :: lengths(:)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: f, pad, half, k_zone, k_uniform
+
+        f = 1.0_wp
+        if (all(abs(lengths - lengths(1)) <= equal_tolerance * lengths(1))) return
+        pad = lengths(size(lengths))
+        half = max(20.0_wp * maxval(lengths), 2.0_wp * sum(lengths))
+        k_zone = auxiliary_k(lengths, half, pad, error)
+        if (allocated(error)) return
+        k_uniform = auxiliary_k([pad], half, pad, error)
+        if (allocated(error)) return
+        f = k_uniform / k_zone
+    end function graded_factor
+
+    !> The SPEC 5 estimate D / sqrt(h) at the tip of a straight crack of half-length `half`
+    !> under unit pressure (in units of c0 = G / (2 pi (1 - nu))), whose two halves carry
+    !> `zone` from each tip inward, padded with elements of about `pad`.
+    function auxiliary_k(zone, half, pad, error) result(k)
+        real(wp), intent(in) :: zone(:), half, pad
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: k
+        real(wp), allocatable :: side(:), nodes(:), mid(:), a(:, :), b(:, :)
+        integer, allocatable :: ipiv(:)
+        integer :: n_pad, n, i, j
+
+        ! The count rounded on a grid of tie_tolerance first: a tie goes the same way for
+        ! every tip whatever its round-off.
+        n_pad = max(1, nint(anint((half - sum(zone)) / pad / tie_tolerance) * tie_tolerance))
+        side = [zone, spread((half - sum(zone)) / real(n_pad, wp), 1, n_pad)]
+        ! Left tip to right tip: one half, then the other reversed (both tips carry zone).
+        side = [side, side(size(side):1:-1)]
+        n = size(side)
+        allocate (nodes(0:n))
+        nodes(0) = -half
+        do i = 1, n
+            nodes(i) = nodes(i - 1) + side(i)
+        end do
+        mid = 0.5_wp * (nodes(0:n - 1) + nodes(1:n))
+        allocate (a(n, n), b(n, 1), ipiv(n))
+        do j = 1, n
+            a(:, j) = 1.0_wp / (mid - nodes(j - 1)) - 1.0_wp / (mid - nodes(j))
+        end do
+        b = 1.0_wp
+        call lu_factor(a, ipiv, 'the tip-zone calibration', error)
+        if (allocated(error)) return
+        call lu_solve(a, ipiv, b)
+        k = abs(b(n, 1)) / sqrt(0.5_wp * side(n))
+    end function auxiliary_k
+
+end module ddc_growth_tip_zone

@@ -1,0 +1,47 @@
+"""scripts/growth_convergence.py (the README's convergence study, SPEC-GROWTH 7) on a tiny
+study: it runs ddc2d once per element count and increment, writes the table and the
+figure, and its exit status says whether the arrest length and final direction converged."""
+
+import csv
+import subprocess
+import sys
+
+import pytest
+
+from conftest import SCRIPTS, ddc2d_exe, load_script
+
+SCRIPT = SCRIPTS / "growth_convergence.py"
+
+
+def test_tiny_study_writes_table_and_figure(tmp_path):
+    figure = tmp_path / "study.png"
+    done = subprocess.run([sys.executable, str(SCRIPT), "--exe", str(ddc2d_exe()), "--work",
+                           str(tmp_path / "runs"), "--figure", str(figure), "--elements", "20",
+                           "--increments", "0.2,0.1"], capture_output=True, text=True,
+                          timeout=600)
+    # Exit 1 exactly when a run missed SPEC-GROWTH 7 (20 elements with an increment of 0.2
+    # may: the arrest length is resolved to one increment).
+    assert done.returncode == (1 if "not converged" in done.stdout else 0), \
+        done.stdout + done.stderr
+    assert figure.read_bytes()[:4] == b"\x89PNG"
+    with open(tmp_path / "runs" / "growth_convergence.csv") as f:
+        rows = list(csv.DictReader(f))
+    assert [(r["elements"], float(r["increment"])) for r in rows] == [("20", 0.2), ("20", 0.1)]
+    for r in rows:
+        # 20 elements of 0.1: the increments are never shorter than an element.
+        assert float(r["element_length"]) == pytest.approx(0.1)
+        assert r["end_reason"] == "arrested"
+        assert 0.5 < float(r["arrest_length"]) < 2.0
+        assert abs(float(r["final_direction"]) - 90.0) < 10.0
+        # A finite first kink is below the MTS angle (it grows toward it as it shrinks).
+        assert 50.0 < float(r["first_angle"]) < 70.53
+
+
+def test_check_flags_what_spec_growth_7_forbids():
+    module = load_script("growth_convergence.py")
+    row = {"elements": 40, "increment": 0.05, "arrest_length": 1.0, "final_direction": 92.0,
+           "end_reason": "arrested"}
+    assert module.check([row, dict(row, increment=0.1, arrest_length=1.09)]) == []
+    assert len(module.check([row, dict(row, increment=0.1, arrest_length=1.2)])) == 1
+    assert len(module.check([row, dict(row, increment=0.1, final_direction=98.0)])) == 1
+    assert len(module.check([row, dict(row, increment=0.2, end_reason="step_limit")])) == 1
