@@ -223,8 +223,44 @@ def check_progressive_failure(f):
     assert np.all(sf[np.abs(x) > 0.4] == 1.0) and np.all(sf[np.abs(x) < 0.4] == 0.0)
 
 
+def check_joint_set(f):
+    """Sticking joints deform by traction / stiffness; the joints triple the crack's opening."""
+    e = f["elements"]
+    fid, state = e["fracture_id"][()], e["state"][()]
+    joints = (fid > 1) & (state == STATE_CODES["stick"])
+    assert joints.sum() > 400
+    for dd, traction, stiffness in (("ds", "shear_traction", "shear_stiffness"),
+                                    ("dn", "normal_traction", "normal_stiffness")):
+        assert np.allclose(e[dd][joints] * e[stiffness][joints], -e[traction][joints],
+                           rtol=1e-9, atol=1e-8)
+    # Centre opening of the same crack in intact rock: 4 (1 - nu^2) p_net a / E.
+    intact = 4.0 * (1.0 - 0.25 ** 2) * 7.0 * 1.0 / 20000.0
+    opening = -e["dn"][fid == 1]
+    assert 2.5 * intact < opening.max() < 3.5 * intact, (opening.max(), intact)
+    for name in ("joint_2", "joint_3"):
+        _some(f, name, "slip")
+    for name in ("joint_1", "joint_4"):
+        _all(f, name, "stick")
+
+
+def check_slip_weakening_thrust(f):
+    """The weakening segment ruptures whole at the dynamic friction; the strong one stops it."""
+    e = f["elements"]
+    y, state, ds, mu = (e[k][()] for k in ("y_mid", "state", "ds", "mu_in_force"))
+    upper = y > -3000.0
+    assert np.all(state[upper] == STATE_CODES["slip"])
+    assert np.all(np.abs(ds[upper]) > 0.05) and np.allclose(mu[upper], 0.45, rtol=1e-12)
+    assert np.all(ds[state == STATE_CODES["slip"]] < 0)  # reverse
+    lower_slipping = np.count_nonzero(state[~upper] == STATE_CODES["slip"])
+    assert 10 < lower_slipping < 90 and np.allclose(mu[~upper], 0.7, rtol=1e-12), \
+        lower_slipping
+    assert np.nanmax(f["fields/surface/uy"][()]) > 0.5
+
+
 EXPECTED = {
     "strong_patch_progressive_failure": check_progressive_failure,
+    "joint_set_pressurized_crack": check_joint_set,
+    "slip_weakening_thrust": check_slip_weakening_thrust,
     "wing_cracks_sliding_flaw": check_wings,
     "fault_tail_cracks": check_tail_cracks,
     "echelon_cracks_linking": check_echelon_linking,
