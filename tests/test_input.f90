@@ -48,6 +48,7 @@ contains
             new_test('bad_strength_with_growth', test_bad_strength_growth), &
             new_test('bad_block_size', test_bad_block_size), &
             new_test('bad_nan_and_inf', test_bad_nan), &
+            new_test('bad_strength_nan', test_bad_strength_nan), &
             new_test('bad_vertices', test_bad_vertices), &
             new_test('bad_xy_length', test_bad_xy_length), &
             new_test('bad_segment_array', test_bad_segment_array), &
@@ -524,6 +525,16 @@ contains
                              '&remote_stress (line 2): sxx', 'x(2) = NaN', &
                              'not a finite number'], lines=2)
     end subroutine test_bad_nan
+
+    !> NaN or Inf in mu or sf beside a residual strength: one message each, not a trap in the
+    !> comparison of the residual with the intact value (found by the fuzz test).
+    subroutine test_bad_strength_nan(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call check_bad_input(error, data//'bad_strength_nan.nml', [character(len=40) :: &
+                             "&fracture 1 'f' (line 2)", 'mu(1) = NaN', 'sf(2) = Inf', &
+                             'not a finite number'], lines=2)
+    end subroutine test_bad_strength_nan
 
     subroutine test_bad_vertices(error)
         type(error_type), allocatable, intent(out) :: error
