@@ -9,8 +9,11 @@
 # Haswell (AVX2) run on any x86-64 machine of the last ten years. Each kernel is checked to
 # be the one in use (OPENBLAS_VERBOSE=2 prints "Core: <name>"); a kernel the suites already
 # ran with (the environment's, used by `ctest --preset debug` in scripts/test.sh, or an
-# earlier one of the list) is not run twice. Needs a configured and built debug preset
-# (scripts/test.sh makes it). Exits non-zero when a kernel cannot be forced or a test fails.
+# earlier one of the list) is not run twice. The fuzz test of python_robustness makes 200
+# runs under each kernel (DDC2D_FUZZ_COUNT, unless set): its 2000 runs of the main pass
+# check how inputs are read, which no kernel changes. Needs a configured and built debug
+# preset (scripts/test.sh makes it). Exits non-zero when a kernel cannot be forced or a
+# test fails.
 set -euo pipefail
 
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -27,6 +30,7 @@ kernel_in_use() {
     fi | sed -n 's/^Core: //p'
 }
 
+export DDC2D_FUZZ_COUNT="${DDC2D_FUZZ_COUNT:-200}"
 requested=("$@")
 ((${#requested[@]} > 0)) || requested=(native Nehalem Sandybridge Haswell)
 done_cores=("$(OPENBLAS_VERBOSE=2 "$exe" --version 2>&1 >/dev/null | sed -n 's/^Core: //p')")
