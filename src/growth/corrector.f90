@@ -91,6 +91,7 @@ contains
         type(tip_path) :: paths(size(kinks))
         logical :: changed, closed
         integer :: i, solves, problem(size(kinks))
+        logical :: active(size(kinks))
         integer, allocatable :: moved_to(:)
 
         kinks%theta = kinks%theta_mts
@@ -165,7 +166,8 @@ contains
             do i = 1, size(kinks)
                 if (kinks(i)%active) paths(i) = path_of(kinks(i))
             end do
-            call check_paths(model, paths, kinks%active, problem)
+            active = kinks%active  ! a strided component: copied here, not as a temporary
+            call check_paths(model, paths, active, problem)
             do i = 1, size(kinks)
                 if (problem(i) /= path_clear) then
                     kinks(i)%active = .false.

@@ -406,14 +406,17 @@ contains
         type(growing_tip), intent(in) :: tips(:)
         type(step_tips), intent(in) :: now
         logical :: keep(size(tips))
-        integer :: n
+        integer :: n, tip_values(size(tips))
         real(wp), parameter :: degrees = 180.0_wp / pi
 
         keep = now%reason /= reason_stopped
         n = count(keep)
         record%step = [record%step, spread(step, 1, n)]
-        record%fracture_id = [record%fracture_id, pack(tips%fracture, keep)]
-        record%end = [record%end, pack(tips%end, keep)]
+        ! Components of tips are strided: copied here, not as temporaries of pack
+        tip_values = tips%fracture
+        record%fracture_id = [record%fracture_id, pack(tip_values, keep)]
+        tip_values = tips%end
+        record%end = [record%end, pack(tip_values, keep)]
         record%x = [record%x, pack(now%x, keep)]
         record%y = [record%y, pack(now%y, keep)]
         record%k1 = [record%k1, pack(now%k1, keep)]

@@ -498,6 +498,7 @@ contains
         type(error_type), allocatable, intent(inout) :: error
         type(h5_object) :: group
         character(len=:), allocatable :: length, stress, units
+        real(wp), allocatable :: path_values(:)
         integer :: q, dims(2), tip_dims(2)
 
         length = text(model%length_unit)
@@ -510,7 +511,9 @@ contains
                 if (q > 3 .and. .not. model%load_path%varies(q)) cycle
                 units = stress
                 if (q >= 4 .and. q <= 6) units = stress//'/'//length
-                call write_real_1d(group, trim(load_path_names(q)), h%load(q, :), units, error)
+                ! A row of h%load is strided: copied here, not as a hidden temporary
+                path_values = h%load(q, :)
+                call write_real_1d(group, trim(load_path_names(q)), path_values, units, error)
             end do
             call write_real_dataset(group, 'ds', reshape(h%ds, [size(h%ds)]), dims, length, &
                                     error)
