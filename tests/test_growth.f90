@@ -705,8 +705,6 @@ contains
                              'tougness'], 1)
         call check_bad_input(error, data//'bad_with_load_path.nml', [character(len=40) :: &
                              '&growth (line 7)', 'cannot be combined with &load_path'], 1)
-        call check_bad_input(error, data//'bad_with_sweep.nml', [character(len=40) :: &
-                             '&growth (line 7)', 'cannot be combined with &sweep'], 1)
         call check_bad_input(error, data//'bad_with_symmetry.nml', [character(len=40) :: &
                              '&growth (line 7)', 'cannot be combined with &symmetry'], 1)
     end subroutine test_input_bad

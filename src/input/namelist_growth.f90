@@ -1,6 +1,6 @@
 !> The &growth group of a namelist input file (SPEC-GROWTH 2): fracture growth under the
 !> model's fixed loading. Sets the defaults, reads the group if present and checks every
-!> value; growth does not combine with &load_path, &sweep or &symmetry.
+!> value; growth does not combine with &load_path or &symmetry (every task of a &sweep grows).
 module ddc_input_namelist_growth
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type, growth_tips_names, growth_criterion_names, &
@@ -8,7 +8,7 @@ module ddc_input_namelist_growth
     use ddc_model_limits, only: quantity_positive, quantity_non_negative
     use ddc_text, only: itoa, lower, find_name, quoted_list
     use ddc_input_namelist_groups, only: group_record, message_list, add, group_prefix, &
-        g_growth, g_load_path, g_sweep, g_symmetry
+        g_growth, g_load_path, g_symmetry
     use ddc_input_namelist_diagnosis, only: report_malformed
     use ddc_input_namelist_values, only: unset_real, unset_integer, text_length, check_scalar
     use ddc_input_namelist_fracture, only: fracture_input
@@ -121,8 +121,7 @@ contains
         call select_fractures(fractures, known, prefix, model%growth%fracture_grows, messages)
     end subroutine read_growth_group
 
-    !> Growth under a loading history, in a parameter sweep or with implicit image elements
-    !> is not available.
+    !> Growth under a loading history or with implicit image elements is not available.
     subroutine check_combinations(prefix, groups, model, messages)
         character(len=*), intent(in) :: prefix
         type(group_record), intent(in) :: groups(:)
@@ -133,10 +132,6 @@ contains
             call add(messages, prefix//'cannot be combined with &load_path (line '// &
                      itoa(groups(g_load_path)%lines(1))//'): growth runs under a fixed '// &
                      'load; remove one of the two groups')
-        end if
-        if (groups(g_sweep)%count > 0) then
-            call add(messages, prefix//'cannot be combined with &sweep (line '// &
-                     itoa(groups(g_sweep)%lines(1))//'): run each grown model on its own')
         end if
         if (model%elements%symmetry%kind /= symmetry_none) then
             call add(messages, prefix//'cannot be combined with &symmetry (line '// &

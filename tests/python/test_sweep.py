@@ -10,6 +10,7 @@ from pathlib import Path
 
 import h5py
 import numpy as np
+import pytest
 
 from conftest import REPO_ROOT, ddc2d_exe, load_script
 from ddc2d_h5 import STATE_CODES, is_complete
@@ -254,6 +255,58 @@ def test_collect_sweep_tables_and_plot(tmp_path):
     done = subprocess.run([sys.executable, str(COLLECT), str(tmp_path / "nothing")],
                           capture_output=True, text=True, timeout=60)
     assert done.returncode == 2
+
+
+WING_SWEEP = """&model youngs_modulus = 50000.0, poissons_ratio = 0.25 /
+&remote_stress sxx = -5.0, syy = -100.0 /
+&fracture name = 'flaw', x = -0.70710678, 0.70710678, y = -0.70710678, 0.70710678,
+          elements = 20, condition = 'contact', mu = 0.6, sf = 0.0 /
+&growth steps = 3, toughness = 2.0, new_sf = 0.0 /
+&sweep parameters = 'mu', 'remote_angle', values_1 = 0.6, values_2 = 60, 90, 110 /
+"""
+
+
+def test_every_task_of_a_growth_sweep_grows_and_is_collected(tmp_path):
+    # SPEC-GROWTH 2: &growth with &sweep runs each task's growth; collect-sweep adds the
+    # growth columns, each equal to what the task file holds.
+    sweep = tmp_path / "wings.nml"
+    sweep.write_text(WING_SWEEP)
+    runs = tmp_path / "runs"
+    runs.mkdir()
+    for task in range(3):
+        done = run([sweep, "--task", str(task), "-o", runs / "wings.h5"], tmp_path)
+        assert done.returncode == 0, done.stderr
+        assert "growth: " in done.stdout
+    done = subprocess.run([sys.executable, str(COLLECT), str(runs), "--plot",
+                           "grown_length_flaw", "--against", "remote_angle"],
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    with open(runs / "wings_summary.csv") as handle:
+        rows = [{name.split(" [")[0]: value for name, value in row.items()}
+                for row in csv.DictReader(handle)]
+        header = handle.seek(0) or next(csv.reader(handle))
+    assert header[-4:] == ["growth_steps", "end_reason", "k_eq_ratio", "grown_length_flaw [m]"]
+    for row, task in zip(rows, range(3)):
+        with h5py.File(runs / f"wings_task{task:04d}.h5", "r") as f:
+            growth = f["growth"]
+            assert int(row["growth_steps"]) == growth.attrs["steps_taken"]
+            assert row["end_reason"] == growth.attrs["end_reason"].decode()
+            assert float(row["grown_length_flaw"]) == pytest.approx(
+                np.sum(growth["length"][()]), rel=1e-12)
+            last = growth["step"][()] == growth["step"][()].max()
+            assert float(row["k_eq_ratio"]) == pytest.approx(
+                growth["k_eq"][()][last].max() / growth.attrs["toughness"], rel=1e-12)
+    # sigma_1 at 45 degrees to the flaw: both wings grow every step (2 x 3 x 0.2 m: the
+    # default increment is twice the tip element of 0.1 m); at 15
+    # degrees the flaw slips but its kinks close; at 65 degrees it sticks.
+    assert [row["growth_steps"] for row in rows] == ["0", "3", "0"]
+    assert float(rows[1]["grown_length_flaw"]) == pytest.approx(1.2, rel=1e-6)
+    assert float(rows[0]["k_eq_ratio"]) > 1.0 and int(rows[0]["slip"]) == 20
+    assert int(rows[2]["stick"]) == 20 and float(rows[2]["grown_length_flaw"]) == 0.0
+    with h5py.File(runs / "wings_summary.h5", "r") as f:
+        assert [v.decode() for v in f["end_reason"][()]] == [r["end_reason"] for r in rows]
+        assert f["grown_length_flaw"].attrs["units"] == "m"
+    assert (runs / "wings_grown_length_flaw_vs_remote_angle.png").stat().st_size > 5000
 
 
 HALF_PLANE = """&model youngs_modulus = 40000, poissons_ratio = 0.25, domain = 'half_plane' /
