@@ -46,7 +46,6 @@ contains
                  new_test('sheared_crack_corrected_kink', test_sheared_kink), &
                  new_test('corrector_off_grows_at_mts', test_corrector_off), &
                  new_test('wing_cracks_arrest_without_zigzag', test_wings), &
-                 new_test('stops_at_another_fracture', test_stops_at_fracture), &
                  new_test('stops_at_the_surface', test_stops_at_surface), &
                  new_test('new_elements_continue_the_fracture', test_new_elements), &
                  new_test('every_condition_grows', test_every_condition), &
@@ -344,45 +343,6 @@ contains
                        'the wing ends parallel to the most compressive stress')
         end associate
     end subroutine test_wings
-
-    !> A crack growing straight towards a fracture across its path (which may not grow):
-    !> its tip stops (intersection) without crossing, keeps half an element from the other
-    !> fracture, and has no record after that; the other tip grows on; the mesh is valid.
-    subroutine test_stops_at_fracture(error)
-        type(error_type), allocatable, intent(out) :: error
-        type(model_type) :: model, barrier
-        type(model_results) :: r
-        integer, allocatable :: rows(:)
-        integer :: steps
-
-        steps = 5
-        model = straight_crack(40, 1.0_wp, 0.0_wp, condition_traction, 0.0_wp, 0.0_wp, &
-                               e_modulus, nu)
-        barrier = polyline_model([1.25_wp, 1.25_wp], [-0.5_wp, 0.5_wp], [20], &
-                                 condition_traction, 0.0_wp, 0.0_wp, e_modulus, nu)
-        call join_fractures(model, barrier)
-        model%syy = 10.0_wp
-        call enable_growth(model, steps, 5.0_wp)
-        model%growth%fracture_grows(2) = .false.
-        call grow_fractures(model, r, error)
-        if (allocated(error)) return
-        rows = tip_records(r, 1, 1)
-        call check(error, size(rows), 3, 'records of the end tip')
-        if (allocated(error)) return
-        call check(error, r%growth%reason(rows(1)), growth_grew, 'step 1')
-        call check(error, r%growth%reason(rows(2)), growth_grew, 'step 2')
-        call check(error, r%growth%reason(rows(3)), growth_intersection, 'step 3')
-        call check(error, size(tip_records(r, 2, 0)) + size(tip_records(r, 2, 1)), 0, &
-                   'the barrier does not grow')
-        call check(error, size(tip_records(r, 1, 0)), steps, 'the begin tip grows on')
-        associate (e => model%elements, f => model%fractures(1))
-            call check(error, e%x_end(f%last_element), 1.2_wp, 'the stopped tip', &
-                       rel_tol=1.0e-12_wp)
-            call check(error, maxval(e%x_end(f%first_element:f%last_element)) < &
-                       1.25_wp - 0.025_wp, 'half an element from the barrier')
-        end associate
-        call check_elements(model%elements, model%fractures, error)
-    end subroutine test_stops_at_fracture
 
     !> A vertical crack in a half-plane under horizontal tension: its upper tip grows
     !> towards the surface and stops (surface) more than half an element below it.

@@ -371,7 +371,13 @@ contains
                         d = segment_distance(p%x(k - 1), p%y(k - 1), p%x(k), p%y(k), &
                                              e%x_begin(j), e%y_begin(j), e%x_end(j), e%y_end(j))
                     end if
-                    if (d < clearance) return
+                    ! The target's neighbours are a quarter of its length from P at least:
+                    ! the last element may come close to them, not touch them.
+                    if (k == p%n .and. next_to_target(j)) then
+                        if (d <= 0.0_wp) return
+                    else if (d < clearance) then
+                        return
+                    end if
                 end do
             end do
         end associate
@@ -388,6 +394,19 @@ contains
                     e%y_begin(j) == py) .or. (e%x_end(j) == px .and. e%y_end(j) == py)
             end associate
         end function holds_point
+
+        !> Element j shares an end with the target (bit for bit: the same fracture's
+        !> neighbours).
+        pure logical function next_to_target(j)
+            integer, intent(in) :: j
+            integer :: t
+
+            t = link%target
+            associate (e => model%elements)
+                next_to_target = (e%x_begin(j) == e%x_end(t) .and. e%y_begin(j) == e%y_end(t)) &
+                    .or. (e%x_end(j) == e%x_begin(t) .and. e%y_end(j) == e%y_begin(t))
+            end associate
+        end function next_to_target
 
     end function link_clear
 

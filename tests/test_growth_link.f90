@@ -1,0 +1,375 @@
+!> Linking (SPEC-GROWTH 1.6, SPEC-GROWTH 7): a tip whose next increment meets another fracture
+!> ends on it (reason linked), on a vertex of it or on a vertex split into its element, and
+!> is no tip any more; the DDs pass the junction; links that would cross a third element,
+!> meet another tip or close a contour are refused (intersection).
+module test_growth_link
+    use omp_lib, only: omp_set_num_threads, omp_get_max_threads
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
+    use ddc_kinds, only: wp
+    use ddc_testing, only: test_case, new_test, check, error_type
+    use ddc_model_types, only: model_type, condition_traction, condition_contact
+    use ddc_model_results, only: model_results, growth_grew, growth_intersection, &
+        growth_linked
+    use ddc_mesh_checks, only: check_elements
+    use ddc_growth_driver, only: grow_fractures
+    use ddc_test_builders, only: straight_crack, polyline_model, join_fractures
+    use ddc_text, only: itoa
+    implicit none
+    private
+
+    public :: collect_growth_link
+
+    real(wp), parameter :: e_modulus = 50000.0_wp, nu = 0.25_wp
+
+contains
+
+    !> Cases of the suite.
+    subroutine collect_growth_link(tests)
+        type(test_case), allocatable, intent(out) :: tests(:)
+
+        tests = [new_test('links_into_fault_on_a_vertex', test_fault_snap), &
+                 new_test('links_into_fault_splitting_an_element', test_fault_split), &
+                 new_test('echelon_links_into_one_fault', test_echelon), &
+                 new_test('link_refused_at_a_tip', test_refused_at_tip), &
+                 new_test('link_refused_head_on', test_refused_head_on), &
+                 new_test('link_one_and_two_threads_agree', test_threads)]
+    end subroutine collect_growth_link
+
+    ! ---- helpers ------------------------------------------------------------------------
+
+    !> Switch growth on: at most `steps` steps, toughness, every fracture may grow.
+    subroutine enable_growth(model, steps, toughness)
+        type(model_type), intent(inout) :: model
+        integer, intent(in) :: steps
+        real(wp), intent(in) :: toughness
+
+        model%growth%active = .true.
+        model%growth%steps = steps
+        model%growth%toughness = toughness
+        allocate (model%growth%fracture_grows(size(model%fractures)))
+        model%growth%fracture_grows = .true.
+    end subroutine enable_growth
+
+    !> The records of one tip (fracture, end), in step order.
+    function tip_records(r, fracture, end) result(rows)
+        type(model_results), intent(in) :: r
+        integer, intent(in) :: fracture, end
+        integer, allocatable :: rows(:)
+        integer :: i
+
+        rows = pack([(i, i = 1, size(r%growth%step))], &
+                    r%growth%fracture_id == fracture .and. r%growth%end == end)
+    end function tip_records
+
+    !> The issue's echelon step (issue 24): west x -1.9 .. 0.1 at y 0.1, east x -0.1 .. 1.9 at
+    !> y -0.1, 40 contact elements each (mu 0.6, Sf 0), right-lateral shear in a releasing
+    !> step, toughness 0.5.
+    function echelon() result(model)
+        type(model_type) :: model
+        type(model_type) :: east
+
+        model = polyline_model([-1.9_wp, 0.1_wp], [0.1_wp, 0.1_wp], [40], condition_contact, &
+                               0.0_wp, 0.0_wp, e_modulus, nu)
+        east = polyline_model([-0.1_wp, 1.9_wp], [-0.1_wp, -0.1_wp], [40], condition_contact, &
+                              0.0_wp, 0.0_wp, e_modulus, nu)
+        call join_fractures(model, east)
+        model%elements%mu = 0.6_wp
+        model%elements%sf = 0.0_wp
+        model%sxx = -15.5_wp
+        model%syy = -6.5_wp
+        model%sxy = 7.794_wp
+        call enable_growth(model, 20, 0.5_wp)
+    end function echelon
+
+    !> A traction-free crack (x -1 .. 1, 40 elements) under syy = 10 growing straight along x
+    !> towards a fault across its path at x = 1.25 from y = y0 to y0 + 1 (20 elements, may not
+    !> grow), toughness 5.
+    function crack_and_fault(y0) result(model)
+        real(wp), intent(in) :: y0
+        type(model_type) :: model
+        type(model_type) :: fault
+
+        model = straight_crack(40, 1.0_wp, 0.0_wp, condition_traction, 0.0_wp, 0.0_wp, &
+                               e_modulus, nu)
+        fault = polyline_model([1.25_wp, 1.25_wp], [y0, y0 + 1.0_wp], [20], condition_traction, &
+                               0.0_wp, 0.0_wp, e_modulus, nu)
+        call join_fractures(model, fault)
+        model%syy = 10.0_wp
+        call enable_growth(model, 5, 5.0_wp)
+        model%growth%fracture_grows(2) = .false.
+    end function crack_and_fault
+
+    !> The number of elements whose begin or end is (x, y) bit for bit.
+    pure integer function elements_at(model, x, y)
+        type(model_type), intent(in) :: model
+        real(wp), intent(in) :: x, y
+
+        associate (e => model%elements)
+            elements_at = count(e%x_begin == x .and. e%y_begin == y) + &
+                          count(e%x_end == x .and. e%y_end == y)
+        end associate
+    end function elements_at
+
+    !> Whether a fracture is one ordered polyline: each element begins where the one before
+    !> ends, bit for bit.
+    pure logical function ordered(model, f)
+        type(model_type), intent(in) :: model
+        integer, intent(in) :: f
+        integer :: k
+
+        ordered = .true.
+        associate (e => model%elements, r => model%fractures(f))
+            do k = r%first_element + 1, r%last_element
+                ordered = ordered .and. e%x_begin(k) == e%x_end(k - 1) .and. &
+                          e%y_begin(k) == e%y_end(k - 1)
+            end do
+        end associate
+    end function ordered
+
+    !> The DDs pass a junction (x, y) where elements end and begin: with D = ds t + dn n of
+    !> each element (t its direction, n the left normal), the D of the elements that end there
+    !> add up to those of the elements that begin there (the discrete balance of a branch
+    !> point, to 10 % of the largest |D|), and every |D| is not zero.
+    subroutine check_junction(error, model, r, x, y, what)
+        type(error_type), allocatable, intent(inout) :: error
+        type(model_type), intent(in) :: model
+        type(model_results), intent(in) :: r
+        real(wp), intent(in) :: x, y
+        character(len=*), intent(in) :: what
+        real(wp) :: balance(2), d(2), largest, smallest
+        integer :: k
+
+        balance = 0.0_wp
+        largest = 0.0_wp
+        smallest = huge(1.0_wp)
+        associate (e => model%elements)
+            do k = 1, e%n
+                if (.not. ((e%x_end(k) == x .and. e%y_end(k) == y) .or. &
+                           (e%x_begin(k) == x .and. e%y_begin(k) == y))) cycle
+                d = r%elements%ds(k) * [e%cos_beta(k), e%sin_beta(k)] + &
+                    r%elements%dn(k) * [-e%sin_beta(k), e%cos_beta(k)]
+                largest = max(largest, norm2(d))
+                smallest = min(smallest, norm2(d))
+                if (e%x_end(k) == x .and. e%y_end(k) == y) then
+                    balance = balance + d
+                else
+                    balance = balance - d
+                end if
+            end do
+        end associate
+        call check(error, smallest > 1.0e-3_wp * largest .and. largest > 0.0_wp, &
+                   what//': DDs at the junction not zero')
+        call check(error, norm2(balance) <= 0.1_wp * largest, what//': DDs pass the junction')
+    end subroutine check_junction
+
+    ! ---- cases --------------------------------------------------------------------------
+
+    !> The crack's end tip grows 1.0 -> 1.1 -> 1.2 and then would cross the fault at y = 0,
+    !> a vertex of it: it links there (reason linked in step 3, length 0.05, straight on;
+    !> it replaces the first version's test that the tip stops half an element short),
+    !> the fault keeps its 20 elements, its vertex is the crack's last one, the tip has no
+    !> record after linking and is no tip; the DDs pass the junction.
+    subroutine test_fault_snap(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call link_into_fault(error, -0.5_wp, 20)
+    end subroutine test_fault_snap
+
+    !> As test_fault_snap with the fault from y = -0.525: the crossing at y = 0 is the middle
+    !> of an element, which is split there (21 elements).
+    subroutine test_fault_split(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call link_into_fault(error, -0.525_wp, 21)
+    end subroutine test_fault_split
+
+    !> The crack growing into the fault from y0, which has `fault_elements` after linking.
+    subroutine link_into_fault(error, y0, fault_elements)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), intent(in) :: y0
+        integer, intent(in) :: fault_elements
+        type(model_type) :: model
+        type(model_results) :: r
+        integer, allocatable :: rows(:)
+        real(wp) :: px, py
+        integer :: k
+
+        model = crack_and_fault(y0)
+        call grow_fractures(model, r, error)
+        if (allocated(error)) return
+        rows = tip_records(r, 1, 1)
+        call check(error, size(rows), 3, 'records of the end tip')
+        if (allocated(error)) return
+        call check(error, r%growth%reason(rows(1)), growth_grew, 'step 1')
+        call check(error, r%growth%reason(rows(2)), growth_grew, 'step 2')
+        call check(error, r%growth%reason(rows(3)), growth_linked, 'step 3 links')
+        ! Nearly straight on (a fault not symmetric about the crack's line turns it a little).
+        call check(error, r%growth%length(rows(3)), 0.05_wp, 'link length', rel_tol=1.0e-3_wp)
+        call check(error, r%growth%angle(rows(3)), 0.0_wp, 'straight on', abs_tol=1.0_wp)
+        call check(error, size(tip_records(r, 1, 0)), 5, 'the begin tip grows on')
+        associate (e => model%elements, f => model%fractures)
+            k = f(1)%last_element
+            px = e%x_end(k)
+            py = e%y_end(k)
+            call check(error, px, 1.25_wp, 'the link ends on the fault', rel_tol=1.0e-12_wp)
+            call check(error, py, 0.0_wp, 'near y = 0', abs_tol=2.0e-3_wp)
+            call check(error, f(2)%last_element - f(2)%first_element + 1, fault_elements, &
+                       'elements of the fault')
+            call check(error, ordered(model, 2), 'the fault is one ordered polyline')
+            call check(error, elements_at(model, px, py), 3, &
+                           'the link and two fault elements share the vertex')
+        end associate
+        call check(error, .not. any(abs(r%tips%x - px) < 1.0e-9_wp .and. &
+                                    abs(r%tips%y - py) < 1.0e-9_wp), 'no tip at the link')
+        call check_junction(error, model, r, px, py, 'fault')
+        if (allocated(error)) return
+        call check_elements(model%elements, model%fractures, error)
+    end subroutine link_into_fault
+
+    !> The issue's echelon step: both inner tips kink into the step (step 1); in step 2 the
+    !> west one links to the east segment (it comes first; linking the east one too would
+    !> close a contour around the block between them: refused, intersection). The network
+    !> is one fault (west, the link, east beyond the link point); the outer tips arrest;
+    !> the mesh is valid, the link vertex is no tip and the DDs pass the junction.
+    subroutine test_echelon(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model
+        type(model_results) :: r
+        integer, allocatable :: west_end(:), east_begin(:)
+        real(wp) :: px, py
+        integer :: k
+
+        model = echelon()
+        call grow_fractures(model, r, error)
+        if (allocated(error)) return
+        west_end = tip_records(r, 1, 1)
+        east_begin = tip_records(r, 2, 0)
+        call check(error, size(west_end), 2, 'records of the west inner tip')
+        call check(error, size(east_begin), 2, 'records of the east inner tip')
+        if (allocated(error)) return
+        call check(error, r%growth%reason(west_end(1)), growth_grew, 'west kinks')
+        call check(error, r%growth%reason(east_begin(1)), growth_grew, 'east kinks')
+        call check(error, r%growth%angle(west_end(1)), r%growth%angle(east_begin(1)), &
+                   'point-symmetric kinks', abs_tol=1.0e-9_wp)
+        call check(error, r%growth%reason(west_end(2)), growth_linked, 'west links')
+        call check(error, r%growth%reason(east_begin(2)), growth_intersection, &
+                   'east refused: the contour would close')
+        call check(error, r%growth%step(west_end(2)), 2, 'linked in step 2')
+        associate (e => model%elements, f => model%fractures)
+            k = f(1)%last_element
+            px = e%x_end(k)
+            py = e%y_end(k)
+            call check(error, any(e%x_begin(f(2)%first_element:f(2)%last_element) == px .and. &
+                                  e%y_begin(f(2)%first_element:f(2)%last_element) == py), &
+                       'the link ends on a vertex of east')
+            call check(error, py, -0.1_wp, 'on east', abs_tol=1.0e-12_wp)
+            call check(error, ordered(model, 2), 'east is one ordered polyline')
+        end associate
+        call check(error, .not. any(abs(r%tips%x - px) < 1.0e-9_wp .and. &
+                                    abs(r%tips%y - py) < 1.0e-9_wp), 'no tip at the link')
+        call check(error, r%tips%n, 3, 'three tips: the outer ones and the refused one')
+        call check_junction(error, model, r, px, py, 'echelon')
+        if (allocated(error)) return
+        call check_elements(model%elements, model%fractures, error)
+    end subroutine test_echelon
+
+    !> A crack growing straight at the lower end of a fault that begins on its line (x 1.25,
+    !> y 0 .. 1): the tips would meet, not link: the tip stops (intersection).
+    subroutine test_refused_at_tip(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model
+        type(model_results) :: r
+        integer, allocatable :: rows(:)
+
+        model = crack_and_fault(0.0_wp)
+        call grow_fractures(model, r, error)
+        if (allocated(error)) return
+        rows = tip_records(r, 1, 1)
+        call check(error, r%growth%reason(rows(size(rows))), growth_intersection, &
+                   'the tip stops')
+        call check(error, count(r%growth%reason == growth_linked), 0, 'no link')
+        call check(error, model%fractures(2)%last_element - model%fractures(2)%first_element &
+                   + 1, 20, 'the fault keeps its elements')
+    end subroutine test_refused_at_tip
+
+    !> Two collinear cracks growing towards each other (x -1.2 .. -0.2 and 0.2 .. 1.2 under
+    !> syy): in the step where their paths would meet, both stop (intersection), none links.
+    subroutine test_refused_head_on(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model, other
+        type(model_results) :: r
+        integer, allocatable :: rows(:)
+
+        model = polyline_model([-1.2_wp, -0.2_wp], [0.0_wp, 0.0_wp], [20], condition_traction, &
+                               0.0_wp, 0.0_wp, e_modulus, nu)
+        other = polyline_model([0.2_wp, 1.2_wp], [0.0_wp, 0.0_wp], [20], condition_traction, &
+                               0.0_wp, 0.0_wp, e_modulus, nu)
+        call join_fractures(model, other)
+        model%syy = 10.0_wp
+        call enable_growth(model, 4, 3.0_wp)
+        call grow_fractures(model, r, error)
+        if (allocated(error)) return
+        call check(error, count(r%growth%reason == growth_linked), 0, 'no link')
+        rows = tip_records(r, 1, 1)
+        call check(error, r%growth%reason(rows(size(rows))), growth_intersection, &
+                   'west inner tip stops')
+        rows = tip_records(r, 2, 0)
+        call check(error, r%growth%reason(rows(size(rows))), growth_intersection, &
+                   'east inner tip stops')
+    end subroutine test_refused_head_on
+
+    !> The echelon's link with 1 and 2 OpenMP threads: the same records and geometry.
+    subroutine test_threads(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: one_model, two_model
+        type(model_results) :: one, two
+        integer :: saved
+
+        one_model = echelon()
+        one_model%growth%steps = 3
+        two_model = one_model
+        saved = omp_get_max_threads()
+        call omp_set_num_threads(1)
+        call grow_fractures(one_model, one, error)
+        if (allocated(error)) then
+            call omp_set_num_threads(saved)
+            return
+        end if
+        call omp_set_num_threads(2)
+        call grow_fractures(two_model, two, error)
+        call omp_set_num_threads(saved)
+        if (allocated(error)) return
+        call check(error, count(one%growth%reason == growth_linked), 1, 'one link')
+        call check(error, one_model%elements%n, two_model%elements%n, 'elements')
+        call check(error, size(one%growth%step), size(two%growth%step), 'records')
+        if (allocated(error)) return
+        call check(error, all(one%growth%reason == two%growth%reason), 'reasons')
+        call check(error, difference(one_model%elements%x_end, two_model%elements%x_end), &
+                   0.0_wp, 'x_end', abs_tol=1.0e-12_wp)
+        call check(error, difference(one_model%elements%y_end, two_model%elements%y_end), &
+                   0.0_wp, 'y_end', abs_tol=1.0e-12_wp)
+        call check(error, difference(one%elements%ds, two%elements%ds), 0.0_wp, 'ds', &
+                   abs_tol=1.0e-12_wp)
+        call check(error, difference(one%growth%angle, two%growth%angle), 0.0_wp, 'angles', &
+                   abs_tol=1.0e-12_wp)
+        call check(error, difference(one%growth%length, two%growth%length), 0.0_wp, &
+                   'lengths', abs_tol=1.0e-12_wp)
+
+    contains
+
+        !> Largest difference relative to the largest magnitude (NaN entries must be NaN in
+        !> both).
+        real(wp) function difference(a, b)
+            real(wp), intent(in) :: a(:), b(:)
+            logical :: both(size(a))
+
+            both = .not. (ieee_is_nan(a) .or. ieee_is_nan(b))
+            difference = huge(1.0_wp)
+            if (any(ieee_is_nan(a) .neqv. ieee_is_nan(b))) return
+            difference = maxval(abs(a - b), mask=both) / &
+                         max(maxval(abs(a), mask=both), tiny(1.0_wp))
+        end function difference
+
+    end subroutine test_threads
+
+end module test_growth_link
