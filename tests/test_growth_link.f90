@@ -13,7 +13,6 @@ module test_growth_link
     use ddc_mesh_checks, only: check_elements
     use ddc_growth_driver, only: grow_fractures
     use ddc_test_builders, only: straight_crack, polyline_model, join_fractures
-    use ddc_text, only: itoa
     implicit none
     private
 

@@ -165,8 +165,9 @@ contains
                     if (min(hypot(e%x_begin(i) - e%x_begin(j), e%y_begin(i) - e%y_begin(j)), &
                             hypot(e%x_begin(i) - e%x_end(j), e%y_begin(i) - e%y_end(j)), &
                             hypot(e%x_end(i) - e%x_begin(j), e%y_end(i) - e%y_begin(j)), &
-                            hypot(e%x_end(i) - e%x_end(j), e%y_end(i) - e%y_end(j))) <= tol) &
+                            hypot(e%x_end(i) - e%x_end(j), e%y_end(i) - e%y_end(j))) <= tol) then
                         call join(root, e%fracture_id(i), e%fracture_id(j))
+                    end if
                 end do
             end do
         end associate
