@@ -4,7 +4,6 @@
 !> meet another tip or close a contour are refused (intersection).
 module test_growth_link
     use omp_lib, only: omp_set_num_threads, omp_get_max_threads
-    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
     use ddc_kinds, only: wp
     use ddc_testing, only: test_case, new_test, check, error_type
     use ddc_model_types, only: model_type, condition_traction, condition_contact
@@ -13,6 +12,7 @@ module test_growth_link
     use ddc_mesh_checks, only: check_elements
     use ddc_growth_driver, only: grow_fractures
     use ddc_test_builders, only: straight_crack, polyline_model, join_fractures
+    use test_growth, only: enable_growth, tip_records, difference
     implicit none
     private
 
@@ -35,30 +35,6 @@ contains
     end subroutine collect_growth_link
 
     ! ---- helpers ------------------------------------------------------------------------
-
-    !> Switch growth on: at most `steps` steps, toughness, every fracture may grow.
-    subroutine enable_growth(model, steps, toughness)
-        type(model_type), intent(inout) :: model
-        integer, intent(in) :: steps
-        real(wp), intent(in) :: toughness
-
-        model%growth%active = .true.
-        model%growth%steps = steps
-        model%growth%toughness = toughness
-        allocate (model%growth%fracture_grows(size(model%fractures)))
-        model%growth%fracture_grows = .true.
-    end subroutine enable_growth
-
-    !> The records of one tip (fracture, end), in step order.
-    function tip_records(r, fracture, end) result(rows)
-        type(model_results), intent(in) :: r
-        integer, intent(in) :: fracture, end
-        integer, allocatable :: rows(:)
-        integer :: i
-
-        rows = pack([(i, i = 1, size(r%growth%step))], &
-                    r%growth%fracture_id == fracture .and. r%growth%end == end)
-    end function tip_records
 
     !> The issue's echelon step (issue 24): west x -1.9 .. 0.1 at y 0.1, east x -0.1 .. 1.9 at
     !> y -0.1, 40 contact elements each (mu 0.6, Sf 0), right-lateral shear in a releasing
@@ -353,22 +329,6 @@ contains
                    abs_tol=1.0e-12_wp)
         call check(error, difference(one%growth%length, two%growth%length), 0.0_wp, &
                    'lengths', abs_tol=1.0e-12_wp)
-
-    contains
-
-        !> Largest difference relative to the largest magnitude (NaN entries must be NaN in
-        !> both).
-        real(wp) function difference(a, b)
-            real(wp), intent(in) :: a(:), b(:)
-            logical :: both(size(a))
-
-            both = .not. (ieee_is_nan(a) .or. ieee_is_nan(b))
-            difference = huge(1.0_wp)
-            if (any(ieee_is_nan(a) .neqv. ieee_is_nan(b))) return
-            difference = maxval(abs(a - b), mask=both) / &
-                         max(maxval(abs(a), mask=both), tiny(1.0_wp))
-        end function difference
-
     end subroutine test_threads
 
 end module test_growth_link
