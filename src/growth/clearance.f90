@@ -9,13 +9,15 @@
 !> element), else j is split at P. The link path runs straight from the tip to P in
 !> n = max(1, nint(|P - tip| / h)) equal elements (h: the path's element length), its last
 !> point P bit for bit. A link is refused (the tip stops: intersection) when P is within
-!> clearance of the other fracture's end (tips meeting), the link would come within
-!> clearance of any element that does not hold P (a third element), or of another path or
-!> link of the step (head-on), or two links would split the same element, or the two
-!> fractures are connected already (by a shared vertex or an earlier link, of the step's
-!> tips the first in order links): a link would close a contour around a block of rock
-!> whose rigid motion leaves the system singular (with contact elements: the block slides
-!> freely between open and slipping faces) and its DDs undetermined.
+!> clearance of the other fracture's end (tips meeting); when the link would come within
+!> clearance of an element of a third fracture or of its own, touch the other fracture
+!> before P (it may approach it at a shallow angle: a hook), or come within clearance of
+!> another path or link of the step (head-on); when two links would split the same
+!> element; or when the two fractures are connected already (by a shared vertex or an
+!> earlier link; of the step's tips the first in order links): the link would close a
+!> contour around a block of rock whose rigid motion leaves the system singular (with
+!> contact elements the block slides freely between open and slipping faces) and its DDs
+!> undetermined.
 module ddc_growth_clearance
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type, domain_half_plane
@@ -342,7 +344,8 @@ contains
     end subroutine link_point
 
     !> Whether a link keeps clear: every element of the link keeps `clearance` from every
-    !> element of the model, except the last one from those that hold the link point and the
+    !> element of the model, except from the target's fracture (which it must only not touch
+    !> before the link point), the last one from those that hold the link point, and the
     !> first one from the tip element (only its far end must keep clear of it); in a
     !> half-plane, every link point keeps clear of the surface.
     pure logical function link_clear(model, link, clearance)
@@ -372,9 +375,11 @@ contains
                         d = segment_distance(p%x(k - 1), p%y(k - 1), p%x(k), p%y(k), &
                                              e%x_begin(j), e%y_begin(j), e%x_end(j), e%y_end(j))
                     end if
-                    ! The target's neighbours are a quarter of its length from P at least:
-                    ! the last element may come close to them, not touch them.
-                    if (k == p%n .and. next_to_target(j)) then
+                    ! The link may meet its target's fracture at a shallow angle (a hook):
+                    ! there it must not touch it before P, nor the last element the target's
+                    ! neighbours (a quarter of the target's length from P at least).
+                    if (e%fracture_id(j) == e%fracture_id(link%target) .and. &
+                        (k < p%n .or. next_to_target(j))) then
                         if (d <= 0.0_wp) return
                     else if (d < clearance) then
                         return
