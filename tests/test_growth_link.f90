@@ -1,12 +1,14 @@
 !> Linking (SPEC-GROWTH 1.6, SPEC-GROWTH 7): a tip whose next increment meets another fracture
 !> ends on it (reason linked), on a vertex of it or on a vertex split into its element, and
 !> is no tip any more; the DDs pass the junction; links that would cross a third element,
-!> meet another tip or close a contour are refused (intersection).
+!> meet another tip or close a contour are refused (intersection); the kept (Newton) path
+!> links as Lemke does.
 module test_growth_link
     use omp_lib, only: omp_set_num_threads, omp_get_max_threads
     use ddc_kinds, only: wp
     use ddc_testing, only: test_case, new_test, check, error_type
     use ddc_model_types, only: model_type, condition_traction, condition_contact
+    use ddc_contact_options, only: lcp_newton, lcp_lemke
     use ddc_model_results, only: model_results, growth_grew, growth_intersection, &
         growth_linked
     use ddc_mesh_checks, only: check_elements
@@ -31,7 +33,8 @@ contains
                  new_test('echelon_links_into_one_fault', test_echelon), &
                  new_test('link_refused_at_a_tip', test_refused_at_tip), &
                  new_test('link_refused_head_on', test_refused_head_on), &
-                 new_test('link_one_and_two_threads_agree', test_threads)]
+                 new_test('link_one_and_two_threads_agree', test_threads), &
+                 new_test('link_on_the_kept_path', test_kept_path)]
     end subroutine collect_growth_link
 
     ! ---- helpers ------------------------------------------------------------------------
@@ -330,5 +333,38 @@ contains
         call check(error, difference(one%growth%length, two%growth%length), 0.0_wp, &
                    'lengths', abs_tol=1.0e-12_wp)
     end subroutine test_threads
+
+    !> The echelon on the growth solver's kept path (Newton: its linking step assembles and
+    !> factorizes its trials whole, the split moves no base element) and with Lemke from
+    !> scratch: the same records, geometry and DDs.
+    subroutine test_kept_path(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: kept_model, lemke_model
+        type(model_results) :: kept, lemke
+
+        kept_model = echelon()
+        kept_model%growth%steps = 3
+        lemke_model = kept_model
+        kept_model%solver%lcp_method = lcp_newton
+        lemke_model%solver%lcp_method = lcp_lemke
+        call grow_fractures(kept_model, kept, error)
+        if (allocated(error)) return
+        call grow_fractures(lemke_model, lemke, error)
+        if (allocated(error)) return
+        call check(error, kept%solver%method == 'newton', 'the kept path: Newton')
+        call check(error, count(kept%growth%reason == growth_linked), 1, 'one link')
+        call check(error, size(kept%growth%step), size(lemke%growth%step), 'records')
+        call check(error, kept_model%elements%n, lemke_model%elements%n, 'elements')
+        if (allocated(error)) return
+        call check(error, all(kept%growth%reason == lemke%growth%reason), 'reasons')
+        call check(error, difference(kept%growth%angle, lemke%growth%angle), 0.0_wp, &
+                   'angles', abs_tol=1.0e-9_wp)
+        call check(error, difference(kept_model%elements%x_end, lemke_model%elements%x_end), &
+                   0.0_wp, 'x_end', abs_tol=1.0e-12_wp)
+        call check(error, difference(kept%elements%ds, lemke%elements%ds), 0.0_wp, 'ds', &
+                   abs_tol=1.0e-8_wp)
+        call check(error, difference(kept%elements%dn, lemke%elements%dn), 0.0_wp, 'dn', &
+                   abs_tol=1.0e-8_wp)
+    end subroutine test_kept_path
 
 end module test_growth_link
