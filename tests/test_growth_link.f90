@@ -32,6 +32,7 @@ contains
                  new_test('links_into_fault_splitting_an_element', test_fault_split), &
                  new_test('echelon_links_into_one_fault', test_echelon), &
                  new_test('link_refused_at_a_tip', test_refused_at_tip), &
+                 new_test('link_refused_by_a_third_element', test_refused_third), &
                  new_test('link_refused_head_on', test_refused_head_on), &
                  new_test('link_one_and_two_threads_agree', test_threads), &
                  new_test('link_on_the_kept_path', test_kept_path)]
@@ -269,6 +270,45 @@ contains
         call check(error, model%fractures(2)%last_element - model%fractures(2)%first_element &
                    + 1, 20, 'the fault keeps its elements')
     end subroutine test_refused_at_tip
+
+    !> A crack along y = 0.06 growing towards a coarse fault (x 1.25, y -0.4 .. 0.4, two
+    !> elements): it would cross it about 0.08 from its middle vertex, within a quarter
+    !> element, so the link snaps to that vertex and runs down to it. Alone it links; with a
+    !> short third fracture across the link's way (y = 0.035, 0.04 below the path: the path
+    !> keeps clear of it) the link is refused (intersection); the fault keeps two elements.
+    subroutine test_refused_third(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model, fault, third
+        type(model_results) :: r
+        integer, allocatable :: rows(:)
+        integer :: with_third
+
+        do with_third = 0, 1
+            model = polyline_model([-1.0_wp, 1.0_wp], [0.06_wp, 0.06_wp], [40], &
+                                   condition_traction, 0.0_wp, 0.0_wp, e_modulus, nu)
+            fault = polyline_model([1.25_wp, 1.25_wp], [-0.4_wp, 0.4_wp], [2], &
+                                   condition_traction, 0.0_wp, 0.0_wp, e_modulus, nu)
+            call join_fractures(model, fault)
+            if (with_third == 1) then
+                third = polyline_model([1.215_wp, 1.235_wp], [0.035_wp, 0.035_wp], [1], &
+                                       condition_traction, 0.0_wp, 0.0_wp, e_modulus, nu)
+                call join_fractures(model, third)
+            end if
+            model%syy = 10.0_wp
+            call enable_growth(model, 4, 5.0_wp)
+            model%growth%fracture_grows(2:) = .false.
+            call grow_fractures(model, r, error)
+            if (allocated(error)) return
+            rows = tip_records(r, 1, 1)
+            call check(error, size(rows), 3, 'it meets the fault in step 3')
+            if (allocated(error)) return
+            call check(error, r%growth%reason(rows(size(rows))), merge(growth_intersection, &
+                       growth_linked, with_third == 1), 'the end tip''s last record')
+            call check(error, model%fractures(2)%last_element - &
+                       model%fractures(2)%first_element + 1, 2, 'the fault keeps two elements')
+            if (allocated(error)) return
+        end do
+    end subroutine test_refused_third
 
     !> Two collinear cracks growing towards each other (x -1.2 .. -0.2 and 0.2 .. 1.2 under
     !> syy): in the step where their paths would meet, both stop (intersection), none links.
