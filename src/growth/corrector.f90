@@ -175,10 +175,14 @@ contains
         !> Paths at the current angles; those that do not keep clear stop their tips, those
         !> that meet another fracture link.
         subroutine update_paths()
+            logical :: active(size(kinks))
+
             do i = 1, size(kinks)
                 if (kinks(i)%active) paths(i) = path_of(kinks(i))
             end do
-            call check_paths(model, paths, kinks%active, problem, links, step_links())
+            ! A contiguous copy: no array temporary for the strided component.
+            active = kinks%active
+            call check_paths(model, paths, active, problem, links, step_links())
             do i = 1, size(kinks)
                 if (problem(i) /= path_clear) then
                     kinks(i)%active = .false.
