@@ -31,6 +31,7 @@ contains
         tests = [new_test('links_into_fault_on_a_vertex', test_fault_snap), &
                  new_test('links_into_fault_splitting_an_element', test_fault_split), &
                  new_test('echelon_links_into_one_fault', test_echelon), &
+                 new_test('links_in_the_corrector', test_corrector_link), &
                  new_test('link_refused_at_a_tip', test_refused_at_tip), &
                  new_test('link_refused_by_a_third_element', test_refused_third), &
                  new_test('link_refused_head_on', test_refused_head_on), &
@@ -251,6 +252,50 @@ contains
         if (allocated(error)) return
         call check_elements(model%elements, model%fractures, error)
     end subroutine test_echelon
+
+    !> A traction-free crack under sxy kinks from both tips (MTS -70.5 degrees, corrected
+    !> -74.9); below its end tip a strong fault (y = -0.121, x 0.6 .. 1.6, 20 contact
+    !> elements that stick) leaves the predictor's path clear, but the first corrected angle
+    !> takes the path within half an element of it: the tip links in the corrector (after
+    !> one solve), to the fault's vertex below the tip; the begin tip is corrected with the
+    !> link in its trials and grows; the mesh checks pass.
+    subroutine test_corrector_link(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model, fault
+        type(model_results) :: r
+        integer, allocatable :: rows(:)
+        integer :: k
+
+        model = straight_crack(40, 1.0_wp, 0.0_wp, condition_traction, 0.0_wp, 0.0_wp, &
+                               e_modulus, nu)
+        fault = polyline_model([0.6_wp, 1.6_wp], [-0.121_wp, -0.121_wp], [20], &
+                               condition_contact, 0.0_wp, 0.0_wp, e_modulus, nu)
+        call join_fractures(model, fault)
+        model%elements%mu = 0.6_wp
+        model%elements%sf = 100.0_wp
+        model%sxy = 10.0_wp
+        call enable_growth(model, 1, 1.0_wp)
+        model%growth%fracture_grows(2) = .false.
+        call grow_fractures(model, r, error)
+        if (allocated(error)) return
+        rows = tip_records(r, 1, 1)
+        call check(error, size(rows), 1, 'one record of the end tip')
+        if (allocated(error)) return
+        call check(error, r%growth%reason(rows(1)), growth_linked, 'the end tip links')
+        call check(error, r%growth%corrections(rows(1)), 1, 'in the corrector, after one solve')
+        rows = tip_records(r, 1, 0)
+        call check(error, r%growth%reason(rows(1)), growth_grew, 'the begin tip grows')
+        call check(error, r%growth%angle(rows(1)), -74.9_wp, 'corrected', abs_tol=0.5_wp)
+        associate (e => model%elements, f => model%fractures)
+            k = f(1)%last_element
+            call check(error, e%y_end(k), -0.121_wp, 'the link ends on the fault', &
+                       rel_tol=1.0e-12_wp)
+            call check(error, elements_at(model, e%x_end(k), e%y_end(k)), 3, &
+                       'on a vertex of it')
+        end associate
+        if (allocated(error)) return
+        call check_elements(model%elements, model%fractures, error)
+    end subroutine test_corrector_link
 
     !> A crack growing straight at the lower end of a fault that begins on its line (x 1.25,
     !> y 0 .. 1): the tips would meet, not link: the tip stops (intersection).
