@@ -102,6 +102,7 @@ contains
         type(tip_link) :: links(size(kinks))
         logical :: changed, closed
         integer :: i, solves, problem(size(kinks))
+        logical :: active(size(kinks))
         integer, allocatable :: moved_to(:)
 
         kinks%theta = kinks%theta_mts
@@ -175,13 +176,10 @@ contains
         !> Paths at the current angles; those that do not keep clear stop their tips, those
         !> that meet another fracture link.
         subroutine update_paths()
-            logical :: active(size(kinks))
-
             do i = 1, size(kinks)
                 if (kinks(i)%active) paths(i) = path_of(kinks(i))
             end do
-            ! A contiguous copy: no array temporary for the strided component.
-            active = kinks%active
+            active = kinks%active  ! a strided component: copied here, not as a temporary
             call check_paths(model, paths, active, problem, links, step_links())
             do i = 1, size(kinks)
                 if (problem(i) /= path_clear) then
