@@ -10,7 +10,7 @@ module ddc_app_report
         growth_reason_names, growth_end_names, growth_subcritical, growth_intersection, &
         growth_surface, growth_linked, growth_closed, growth_waiting
     use ddc_model_plausibility, only: plausibility_notes, depth_range
-    use ddc_growth_summary, only: tip_summary, summarize_tips
+    use ddc_growth_summary, only: tip_summary, summarize_tips, linked_fracture
     use ddc_contact_options, only: lcp_method_names, open_cohesion_names
     use ddc_text, only: short_real, itoa, prefix_lines, join_integers
     use ddc_output_provenance, only: describe_run, provenance_line
@@ -265,8 +265,23 @@ contains
                 len(model%fractures(tips(i)%fracture_id)%name)), ends(tips(i)%end), &
                 tips(i)%steps_grown, tips(i)%path_length, &
                 tips(i)%last_k_eq / model%growth%toughness, &
-                stop_text(tips(i)%last_reason)
+                stop_text(tips(i)%last_reason)//ends_on(tips(i))
         end do
+
+    contains
+
+        !> ' NAME' of the fracture a linked tip ends on (else nothing).
+        function ends_on(tip) result(text)
+            type(tip_summary), intent(in) :: tip
+            character(len=:), allocatable :: text
+            integer :: f
+
+            text = ''
+            if (tip%last_reason /= growth_linked) return
+            f = linked_fracture(model, tip%fracture_id, tip%end)
+            if (f > 0) text = ' '//model%fractures(f)%name
+        end function ends_on
+
     end subroutine print_growth_summary
 
     !> Why a tip stopped, from the reason of its last record.
@@ -282,7 +297,7 @@ contains
         case (growth_surface)
             text = 'surface: next to the free surface'
         case (growth_linked)
-            text = 'linked: ends on another fracture'
+            text = 'linked: ends on fracture'
         case (growth_closed)
             text = 'closed: the kink closes (K_I = 0)'
         case (growth_waiting)

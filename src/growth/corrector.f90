@@ -9,17 +9,20 @@
 !> growth_closed); when a corrected trial closes, the angle goes back halfway to the last
 !> open trial (the secant may overshoot into a closing kink; giving up there would stop
 !> the tip at a corrector artefact). A tip not converged within the solve budget grows at
-!> its MTS angle (reason growth_corrector_failed; that trial was open).
+!> its MTS angle (reason growth_corrector_failed; that trial was open). A corrected path
+!> that meets another fracture links (ddc_growth_clearance, reason growth_linked); every
+!> later trial of the step holds the step's links, so the other tips are corrected against
+!> the linked network.
 module ddc_growth_corrector
     use ddc_kinds, only: wp
     use ddc_constants, only: pi
     use ddc_error, only: error_type
     use ddc_model_types, only: model_type, growth_options, condition_contact
     use ddc_model_results, only: model_results, state_open, growth_grew, &
-        growth_corrector_failed, growth_closed
+        growth_corrector_failed, growth_closed, growth_linked
     use ddc_growth_solver, only: growth_solver, solve_grown
-    use ddc_growth_extension, only: tip_path, make_path, extend_model
-    use ddc_growth_clearance, only: check_paths, path_clear
+    use ddc_growth_extension, only: tip_path, make_path, extend_model, element_split
+    use ddc_growth_clearance, only: check_paths, path_clear, tip_link, link_parts
     use ddc_growth_tips, only: fracture_tip
     use ddc_text, only: itoa
     implicit none
@@ -46,9 +49,11 @@ module ddc_growth_corrector
         real(wp) :: theta = 0.0_wp
         !> Solves this tip took part in (out)
         integer :: solves = 0
-        !> growth_grew, growth_corrector_failed, growth_intersection, growth_surface or
-        !> growth_closed (out)
+        !> growth_grew, growth_corrector_failed, growth_intersection, growth_surface,
+        !> growth_linked or growth_closed (out)
         integer :: reason = growth_grew
+        !> The link of a tip that linked (out)
+        type(tip_link) :: link
         !> The corrector's iteration: the tip still grows (its path keeps clear), its angle
         !> is still corrected; K_II of its new tip at the current angle, and the previous
         !> point of the secant (angle [rad], K_II) once there is one
@@ -64,8 +69,9 @@ contains
     !> angle and reason (a corrected path that would not keep clear stops the tip). When
     !> `current` is true, `trial` (with `trial_created`) and `solved` are the model grown
     !> at the applied angles and its solution; otherwise the grown model is still to be
-    !> built and solved (grow_paths).
-    subroutine correct_kinks(solver, model, created, options, step, kinks, trial, &
+    !> built and solved (grow_paths). `fixed` are the links of tips that linked before the
+    !> corrector (at their MTS angle): every trial holds them.
+    subroutine correct_kinks(solver, model, created, options, step, kinks, fixed, trial, &
                              trial_created, solved, current, error)
         !> The solves of the run (the base: model)
         type(growth_solver), intent(inout) :: solver
@@ -79,6 +85,8 @@ contains
         integer, intent(in) :: step
         !> The growing tips
         type(kink), intent(inout) :: kinks(:)
+        !> The step's links made before
+        type(tip_link), intent(in) :: fixed(:)
         !> The last model solved, and the step that created each of its elements
         type(model_type), intent(out) :: trial
         integer, allocatable, intent(out) :: trial_created(:)
@@ -89,6 +97,9 @@ contains
         !> Set when a solve fails
         type(error_type), allocatable, intent(out) :: error
         type(tip_path) :: paths(size(kinks))
+        type(tip_path), allocatable :: trial_paths(:)
+        type(element_split), allocatable :: splits(:)
+        type(tip_link) :: links(size(kinks))
         logical :: changed, closed
         integer :: i, solves, problem(size(kinks))
         logical :: active(size(kinks))
@@ -109,8 +120,9 @@ contains
         solves = 0
         changed = .true.
         do while (solves < options%max_corrections)
-            call extend_model(model, created, pack_paths(), step, options, trial, &
-                              trial_created, moved_to)
+            call trial_parts()
+            call extend_model(model, created, trial_paths, step, options, trial, &
+                              trial_created, moved_to, splits)
             call solve_grown(solver, trial, moved_to, solved, error)
             solves = solves + 1
             if (allocated(error)) then
@@ -161,31 +173,49 @@ contains
 
     contains
 
-        !> Paths at the current angles; those that do not keep clear stop their tips.
+        !> Paths at the current angles; those that do not keep clear stop their tips, those
+        !> that meet another fracture link.
         subroutine update_paths()
             do i = 1, size(kinks)
                 if (kinks(i)%active) paths(i) = path_of(kinks(i))
             end do
             active = kinks%active  ! a strided component: copied here, not as a temporary
-            call check_paths(model, paths, active, problem)
+            call check_paths(model, paths, active, problem, links, step_links())
             do i = 1, size(kinks)
                 if (problem(i) /= path_clear) then
                     kinks(i)%active = .false.
                     kinks(i)%reason = problem(i)
                 end if
+                if (problem(i) == growth_linked) kinks(i)%link = links(i)
             end do
         end subroutine update_paths
 
-        !> The paths of the tips still growing.
-        function pack_paths() result(packed)
-            type(tip_path), allocatable :: packed(:)
+        !> The step's links so far: those made before the corrector, then the kinks'.
+        function step_links() result(made)
+            type(tip_link), allocatable :: made(:)
+
             integer :: j
 
-            allocate (packed(0))
+            made = fixed
             do j = 1, size(kinks)
-                if (kinks(j)%active) packed = [packed, paths(j)]
+                if (kinks(j)%reason == growth_linked) made = [made, kinks(j)%link]
             end do
-        end function pack_paths
+        end function step_links
+
+        !> The new elements of the next trial: the paths of the tips still growing, then the
+        !> links' paths, and the links' splits.
+        subroutine trial_parts()
+            type(tip_path), allocatable :: link_paths(:)
+            integer :: j
+
+            call link_parts(step_links(), link_paths, splits)
+            if (allocated(trial_paths)) deallocate (trial_paths)
+            allocate (trial_paths(0))
+            do j = 1, size(kinks)
+                if (kinks(j)%active) trial_paths = [trial_paths, paths(j)]
+            end do
+            trial_paths = [trial_paths, link_paths]
+        end subroutine trial_parts
 
         !> The path of one kink at its current angle.
         function path_of(k) result(path)
@@ -198,8 +228,10 @@ contains
     end subroutine correct_kinks
 
     !> The model grown at the kinks' applied angles (those that grew or fell back to their
-    !> MTS angle), the step that created each element and where each old element went.
-    subroutine grow_paths(model, created, options, step, kinks, grown, grown_created, moved_to)
+    !> MTS angle) and with the step's links (`fixed`, then the kinks'), the step that created
+    !> each element and where each old element went.
+    subroutine grow_paths(model, created, options, step, kinks, fixed, grown, grown_created, &
+                          moved_to)
         !> The model before growing
         type(model_type), intent(in) :: model
         !> Growth step that created each element of model, shape (n)
@@ -210,14 +242,19 @@ contains
         integer, intent(in) :: step
         !> The growing tips, with their applied angles and reasons
         type(kink), intent(in) :: kinks(:)
+        !> The links made before the corrector
+        type(tip_link), intent(in) :: fixed(:)
         !> The grown model and the step that created each of its elements
         type(model_type), intent(out) :: grown
         integer, allocatable, intent(out) :: grown_created(:)
         !> The index in grown of each element of model, shape (model n)
         integer, allocatable, intent(out) :: moved_to(:)
-        type(tip_path), allocatable :: paths(:)
+        type(tip_path), allocatable :: paths(:), link_paths(:)
+        type(element_split), allocatable :: splits(:)
         integer :: i
 
+        call link_parts([fixed, pack(kinks%link, kinks%reason == growth_linked)], link_paths, &
+                        splits)
         allocate (paths(0))
         do i = 1, size(kinks)
             if (kinks(i)%reason /= growth_grew .and. &
@@ -225,7 +262,9 @@ contains
             paths = [paths, make_path(model, kinks(i)%fracture, kinks(i)%end, kinks(i)%theta, &
                                       kinks(i)%length, kinks(i)%pieces)]
         end do
-        call extend_model(model, created, paths, step, options, grown, grown_created, moved_to)
+        paths = [paths, link_paths]
+        call extend_model(model, created, paths, step, options, grown, grown_created, moved_to, &
+                          splits)
     end subroutine grow_paths
 
     !> K_II of a kink's new tip in the grown model (k%k2), and whether that tip is closed (a

@@ -5,7 +5,8 @@
 !>    its MTS angle and K_eq (ddc_growth_criterion);
 !> 2. picks the growing tips (every critical tip, or the most critical one, ties to the
 !>    lowest index), stops for good those whose new elements would not keep clear
-!>    (ddc_growth_clearance);
+!>    (ddc_growth_clearance), or links them to the fracture they meet (SPEC-GROWTH 1.6: a
+!>    linked tip ends on it for good and is no tip any more);
 !> 3. corrects the kink angles (ddc_growth_corrector), adds the new elements
 !>    (ddc_growth_extension), checks the grown mesh (ddc_mesh_checks: never a crossing
 !>    mesh) and solves it (or keeps the corrector's last solve when it is that geometry).
@@ -30,13 +31,13 @@ module ddc_growth_driver
     use ddc_model_types, only: model_type, growth_options, growth_tips_most_critical
     use ddc_model_results, only: model_results, growth_record, growth_grew, &
         growth_subcritical, growth_corrector_failed, growth_closed, growth_waiting, &
-        growth_arrested, growth_step_limit
+        growth_linked, growth_arrested, growth_step_limit
     use ddc_mesh_checks, only: check_elements
     use ddc_growth_solver, only: growth_solver, solve_input, solve_grown, accept_trial, &
         final_results, solves_done
     use ddc_growth_criterion, only: mts_angle, equivalent_k, kink_slope, most_critical
     use ddc_growth_extension, only: tip_path, make_path, tip_element
-    use ddc_growth_clearance, only: check_paths, path_clear
+    use ddc_growth_clearance, only: check_paths, path_clear, tip_link
     use ddc_growth_tips, only: growing_tip, find_growing_tips, fracture_tip
     use ddc_growth_corrector, only: kink, correct_kinks, grow_paths
     use ddc_text, only: itoa
@@ -82,6 +83,8 @@ module ddc_growth_driver
         !> Applied angle [rad], solves, length grown, K_II after growing
         real(wp), allocatable :: angle(:), length(:), k2_after(:)
         integer, allocatable :: solves(:)
+        !> The link of a tip that links in this step (reason growth_linked)
+        type(tip_link), allocatable :: link(:)
     end type step_tips
 
     !> What a growth run carries from one step to the next.
@@ -202,20 +205,28 @@ contains
         type(kink), allocatable :: kinks(:)
         type(model_type) :: trial
         type(model_results) :: solved
-        integer, allocatable :: which(:), trial_created(:), moved_to(:)
+        integer, allocatable :: which(:), linked(:), trial_created(:), moved_to(:)
         integer :: i, t, k
         logical :: trial_current
 
         grown = 0
         which = pack([(i, i = 1, size(run%tips))], run%now%reason == growth_grew)
-        if (size(which) == 0) return
+        linked = pack([(i, i = 1, size(run%tips))], run%now%reason == growth_linked)
+        if (size(which) + size(linked) == 0) return
+        do i = 1, size(linked)
+            t = linked(i)
+            grown = grown + 1
+            run%now%angle(t) = run%now%link(t)%theta
+            run%now%length(t) = run%now%link(t)%length
+        end do
         allocate (kinks(size(which)))
         do i = 1, size(which)
             kinks(i) = setup_kink(run%work, run%tips(which(i)), run%now, which(i), &
                                   options%toughness)
         end do
-        call correct_kinks(run%solver, run%work, run%created, options, step, kinks, trial, &
-                           trial_created, solved, trial_current, error)
+        call correct_kinks(run%solver, run%work, run%created, options, step, kinks, &
+                           run%now%link(linked), trial, trial_created, solved, &
+                           trial_current, error)
         if (allocated(error)) return
         do i = 1, size(which)
             t = which(i)
@@ -226,6 +237,11 @@ contains
                 grown = grown + 1
                 run%now%angle(t) = kinks(i)%theta
                 run%now%length(t) = kinks(i)%length
+            else if (kinks(i)%reason == growth_linked) then
+                grown = grown + 1
+                run%tips(t)%stopped = .true.
+                run%now%angle(t) = kinks(i)%link%theta
+                run%now%length(t) = kinks(i)%link%length
             else if (kinks(i)%reason /= growth_closed) then
                 run%tips(t)%stopped = .true.
             end if
@@ -233,8 +249,8 @@ contains
         ! Nothing grew: the geometry and its solution stay.
         if (grown == 0) return
         if (.not. trial_current) then
-            call grow_paths(run%work, run%created, options, step, kinks, trial, &
-                            trial_created, moved_to)
+            call grow_paths(run%work, run%created, options, step, kinks, &
+                            run%now%link(linked), trial, trial_created, moved_to)
             call solve_grown(run%solver, trial, moved_to, solved, error)
             if (allocated(error)) then
                 error%message = 'growth step '//itoa(step)//': '//error%message
@@ -253,7 +269,8 @@ contains
         end if
         do i = 1, size(which)
             t = which(i)
-            if (run%now%length(t) <= 0.0_wp) cycle
+            ! A linked tip is no tip any more; one that did not grow has no new tip.
+            if (run%now%length(t) <= 0.0_wp .or. run%now%reason(t) == growth_linked) cycle
             call fracture_tip(run%work, run%current%tips, run%tips(t)%fracture, &
                               run%tips(t)%end, k, error)
             if (allocated(error)) return
@@ -275,7 +292,7 @@ contains
         n = size(tips)
         allocate (now%k1(n), now%k2(n), now%k_eq(n), now%theta(n), now%x(n), now%y(n), &
                   now%element(n), now%reason(n), now%angle(n), now%length(n), &
-                  now%k2_after(n), now%solves(n))
+                  now%k2_after(n), now%solves(n), now%link(n))
         now%angle = ieee_value(1.0_wp, ieee_quiet_nan)
         now%k2_after = now%angle
         now%k1 = 0.0_wp
@@ -305,7 +322,8 @@ contains
 
     !> The critical tips that grow in this step: all of them, or the most critical one
     !> (the others wait); a tip whose predictor path (at its MTS angle, the step's length)
-    !> would not keep clear stops for good (and with 'most_critical' the next most critical
+    !> meets another fracture links to it (its link in now%link), one whose path would not
+    !> keep clear otherwise stops for good (and with 'most_critical' the next most critical
     !> tip is tried). Reasons are updated.
     subroutine choose_growing(work, choice, tips, now)
         type(model_type), intent(in) :: work
@@ -321,7 +339,7 @@ contains
             paths(i) = predictor_path(work, tips(i), now, i)
         end do
         if (choice /= growth_tips_most_critical) then
-            call check_paths(work, paths, now%reason == growth_grew, problem)
+            call check_paths(work, paths, now%reason == growth_grew, problem, now%link)
             call stop_blocked()
             return
         end if
@@ -330,9 +348,9 @@ contains
             best = most_critical(now%k_eq, untried)
             if (best == 0) exit
             untried(best) = .false.
-            call check_paths(work, paths, [(i == best, i = 1, size(tips))], problem)
+            call check_paths(work, paths, [(i == best, i = 1, size(tips))], problem, now%link)
             call stop_blocked()
-            if (problem(best) == path_clear) exit
+            if (problem(best) == path_clear .or. problem(best) == growth_linked) exit
         end do
         where (untried) now%reason = growth_waiting
 

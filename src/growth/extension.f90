@@ -10,8 +10,8 @@ module ddc_growth_extension
     implicit none
     private
 
-    public :: tip_path, tip_end_begin, tip_end_end, tip_element
-    public :: make_path, extend_model, path_element_length
+    public :: tip_path, tip_end_begin, tip_end_end, tip_element, element_split
+    public :: make_path, extend_model, path_element_length, outward_direction
 
     !> Ends of a fracture (the coding of /growth/end): its begin tip, its end tip
     integer, parameter :: tip_end_begin = 0, tip_end_end = 1
@@ -26,6 +26,14 @@ module ddc_growth_extension
         !> shape (0:n)
         real(wp), allocatable :: x(:), y(:)
     end type tip_path
+
+    !> An element split in two at a point where a linking tip ends (SPEC-GROWTH 1.6).
+    type :: element_split
+        !> The element (index in the model before growing)
+        integer :: element = 0
+        !> The point, shared bit for bit by both halves and the link [length unit]
+        real(wp) :: x = 0.0_wp, y = 0.0_wp
+    end type element_split
 
 contains
 
@@ -111,9 +119,10 @@ contains
     !> created each element. New elements take the tip element's condition and values;
     !> new contact elements take new_mu, new_sf when the growth options override them.
     !> Every element of model keeps its geometry and values bit for bit; only its index
-    !> changes (moved_to), so the influences among them do not change.
+    !> changes (moved_to), so the influences among them do not change; a split element is
+    !> replaced by its two halves (moved_to 0), which keep its values and created step.
     subroutine extend_model(model, created, paths, step, options, grown, grown_created, &
-                            moved_to)
+                            moved_to, splits)
         !> The model before growing, geometry computed
         type(model_type), intent(in) :: model
         !> Growth step that created each element of model, shape (n)
@@ -130,18 +139,21 @@ contains
         integer, allocatable, intent(out) :: grown_created(:)
         !> The index in grown of each element of model, shape (model n)
         integer, allocatable, intent(out), optional :: moved_to(:)
+        !> Elements of model split in two (each at most once)
+        type(element_split), intent(in), optional :: splits(:)
         real(wp), allocatable :: x_begin(:), y_begin(:), x_end(:), y_end(:)
-        logical, allocatable :: is_new(:)
+        logical, allocatable :: is_new(:), is_half(:)
         integer, allocatable :: pick(:)
-        integer :: added, f, p, pb, pe, k, next, n
+        integer :: added, f, p, pb, pe, k, next, n, s
 
         added = 0
         do p = 1, size(paths)
             added = added + paths(p)%n
         end do
+        if (present(splits)) added = added + size(splits)
         n = model%elements%n + added
         allocate (pick(n), grown_created(n))
-        allocate (is_new(n), source=.false.)
+        allocate (is_new(n), is_half(n), source=.false.)
         allocate (x_begin(n), y_begin(n), x_end(n), y_end(n), source=0.0_wp)
         grown = model
         if (present(moved_to)) allocate (moved_to(model%elements%n))
@@ -158,6 +170,16 @@ contains
                 end do
             end if
             do k = model%fractures(f)%first_element, model%fractures(f)%last_element
+                s = 0
+                if (present(splits)) s = find_split(splits, k)
+                if (s > 0) then
+                    associate (e => model%elements)
+                        call half(e%x_begin(k), e%y_begin(k), splits(s)%x, splits(s)%y, k)
+                        call half(splits(s)%x, splits(s)%y, e%x_end(k), e%y_end(k), k)
+                    end associate
+                    if (present(moved_to)) moved_to(k) = 0
+                    cycle
+                end if
                 next = next + 1
                 pick(next) = k
                 grown_created(next) = created(k)
@@ -176,11 +198,13 @@ contains
         ! new_mu, new_sf when overridden.
         call select_elements(model%elements, pick, grown%elements)
         associate (a => grown%elements)
-            where (is_new)
+            where (is_new .or. is_half)
                 a%x_begin = x_begin
                 a%y_begin = y_begin
                 a%x_end = x_end
                 a%y_end = y_end
+            end where
+            where (is_new)
                 a%tensile_strength = 0.0_wp
                 a%sf_residual = no_residual_drop
                 a%mu_dynamic = no_residual_drop
@@ -215,6 +239,22 @@ contains
             y_end(next) = ye
         end subroutine new_element
 
+        !> The next element of grown: half of the split element k of model, from (xb, yb)
+        !> to (xe, ye), with all its values.
+        subroutine half(xb, yb, xe, ye, k)
+            real(wp), intent(in) :: xb, yb, xe, ye
+            integer, intent(in) :: k
+
+            next = next + 1
+            pick(next) = k
+            grown_created(next) = created(k)
+            is_half(next) = .true.
+            x_begin(next) = xb
+            y_begin(next) = yb
+            x_end(next) = xe
+            y_end(next) = ye
+        end subroutine half
+
     end subroutine extend_model
 
     !> Index of the path at end `end` of fracture f; 0 when there is none.
@@ -228,5 +268,17 @@ contains
             if (paths(p)%fracture == f .and. paths(p)%end == end) find_path = p
         end do
     end function find_path
+
+    !> Index of the split of element k; 0 when it is not split.
+    pure integer function find_split(splits, k)
+        type(element_split), intent(in) :: splits(:)
+        integer, intent(in) :: k
+        integer :: s
+
+        find_split = 0
+        do s = 1, size(splits)
+            if (splits(s)%element == k) find_split = s
+        end do
+    end function find_split
 
 end module ddc_growth_extension

@@ -19,6 +19,8 @@
 !> The trials share one contact_session (each on its own matrix: new_matrix), whose states
 !> carry over from one trial to the next; when a step is accepted, an update of its factors
 !> that leaves the next step's trials no room is factorized anew (refactor_full_update).
+!> A trial that splits base elements (a linking step, SPEC-GROWTH 1.6) is assembled and
+!> factorized whole, from no states.
 !> Every other model (Lemke, TWODD-style elements, no contact) is solved from scratch by
 !> run_model, as before growth had a solver. Tractions, face displacements and fields are
 !> computed once, for the final geometry (final_results). Every solve's K at tips of unequal
@@ -242,7 +244,10 @@ contains
         call system_clock(t0, rate)
         n = model%elements%n
         g = shear_modulus_of(model)
+        ! A linking step splits base elements (moved_to 0): its trials are assembled whole
+        ! and factorized anew.
         grow = solver%kept .and. size(moved_to) > 0 .and. allocated(solver%base_open)
+        if (grow) grow = all(moved_to > 0)
         placed = .false.
         if (grow .and. allocated(solver%layout) .and. allocated(solver%matrix)) then
             placed = size(solver%matrix, 1) == 2 * n .and. size(solver%layout) == &

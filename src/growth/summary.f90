@@ -1,12 +1,16 @@
-!> What became of each tip of a growth run: its path length, the steps it grew in and its
-!> last record (why it stopped), from the growth record.
+!> What became of each tip of a growth run: its path length, the steps it grew in (a link
+!> counts), its last record (why it stopped) from the growth record, and the fracture a
+!> linked tip ends on from the final geometry.
 module ddc_growth_summary
     use ddc_kinds, only: wp
-    use ddc_model_results, only: growth_record, growth_grew, growth_corrector_failed
+    use ddc_model_types, only: model_type
+    use ddc_model_results, only: growth_record, growth_grew, growth_corrector_failed, &
+        growth_linked
+    use ddc_growth_extension, only: tip_element, tip_end_begin
     implicit none
     private
 
-    public :: tip_summary, summarize_tips
+    public :: tip_summary, summarize_tips, linked_fracture
 
     !> One tip of a growth run.
     type :: tip_summary
@@ -48,12 +52,45 @@ contains
                 k = record%reason(r)
                 tips(t)%last_reason = k
                 tips(t)%last_k_eq = record%k_eq(r)
-                if (k == growth_grew .or. k == growth_corrector_failed) then
+                if (k == growth_grew .or. k == growth_corrector_failed .or. &
+                    k == growth_linked) then
                     tips(t)%steps_grown = tips(t)%steps_grown + 1
                     tips(t)%path_length = tips(t)%path_length + record%length(r)
                 end if
             end do
         end do
     end subroutine summarize_tips
+
+    !> The fracture that end `end` (0 begin, 1 end) of a fracture ends on in the final
+    !> geometry: the first other fracture with an element end there (bit for bit, as a link
+    !> makes it); 0 when there is none.
+    pure integer function linked_fracture(model, fracture, end)
+        !> The final geometry
+        type(model_type), intent(in) :: model
+        !> Fracture (1-based) and end
+        integer, intent(in) :: fracture, end
+        real(wp) :: x, y
+        integer :: k
+
+        k = tip_element(model, fracture, end)
+        associate (e => model%elements)
+            if (end == tip_end_begin) then
+                x = e%x_begin(k)
+                y = e%y_begin(k)
+            else
+                x = e%x_end(k)
+                y = e%y_end(k)
+            end if
+            linked_fracture = 0
+            do k = 1, e%n
+                if (e%fracture_id(k) == fracture) cycle
+                if ((e%x_begin(k) == x .and. e%y_begin(k) == y) .or. &
+                    (e%x_end(k) == x .and. e%y_end(k) == y)) then
+                    linked_fracture = e%fracture_id(k)
+                    return
+                end if
+            end do
+        end associate
+    end function linked_fracture
 
 end module ddc_growth_summary

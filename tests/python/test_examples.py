@@ -186,22 +186,32 @@ def check_tail_cracks(f):
 
 
 def check_echelon_linking(f):
+    """Step 2: the west inner tip links to east (5), the east one would close a contour
+    (refused, 2); the outer tips arrest; the link ends on a vertex of east, no tip there."""
     g = f["growth"]
     reason = g["reason"][()]
-    for fracture, inner, outer in (("west", 1, 0), ("east", 0, 1)):
-        rows = growth_rows(f, fracture, inner)
-        assert list(reason[rows]) == [0] * 8 + [2]  # grew 8 times, stopped at the other
-        assert np.all(reason[growth_rows(f, fracture, outer)] == 0)
-    assert decode(g.attrs["end_reason"]) == "step_limit"
+    assert list(reason[growth_rows(f, "west", 1)]) == [0, 5]
+    assert list(reason[growth_rows(f, "east", 0)]) == [0, 2]
+    for fracture, outer in (("west", 0), ("east", 1)):
+        assert reason[growth_rows(f, fracture, outer)][-1] == 1
+    assert decode(g.attrs["end_reason"]) == "arrested"
+    e = f["elements"]
+    fid = e["fracture_id"][()]
+    west = np.flatnonzero(fid == 1)
+    link = (e["x_end"][()][west[-1]], e["y_end"][()][west[-1]])
+    east = np.flatnonzero(fid == 2)
+    assert np.any((e["x_begin"][()][east] == link[0]) & (e["y_begin"][()][east] == link[1]))
+    assert not np.any(np.hypot(f["tips/x"][()] - link[0], f["tips/y"][()] - link[1]) < 1e-9)
 
 
 def check_hydraulic_fracture(f):
     rows = growth_rows(f, "hydrofracture", 1)  # the lower tip
-    assert list(f["growth/reason"][()][rows]) == [0] * 9 + [2]
+    assert list(f["growth/reason"][()][rows]) == [0] * 9 + [5]  # links in step 10
     _some(f, "fault", "slip")
     _all(f, "hydrofracture", "open")
-    # It stopped above the fault, more than half an element (10 m) from it.
-    assert f["growth/y"][rows[-1]] > 5.0
+    # The link splits a fault element: the fault has one element more.
+    fid = f["elements/fracture_id"][()]
+    assert np.count_nonzero(fid == 1) == 101
 
 
 def check_joint_to_surface(f):

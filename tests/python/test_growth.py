@@ -173,3 +173,41 @@ def test_closed_tips_in_table_and_figure(tmp_path):
         assert [line.get_marker() for line in closed] == [plot_figures.GROWTH_MARKERS["closed"][0]]
     finally:
         plot_figures.plt.close(fig)
+
+
+# A crack under syy grows straight towards a fault across its path (which may not grow):
+# in step 3 its end tip would cross the fault at one of its vertices and links there.
+LINK_MODEL = """\
+&model title = 'link', youngs_modulus = 50000, poissons_ratio = 0.25 /
+&remote_stress syy = 10 /
+&fracture name = 'crack', x = -1, 1, y = 0, 0, elements = 40, condition = 'traction' /
+&fracture name = 'fault', x = 1.25, 1.25, y = -0.5, 0.5, elements = 20,
+          condition = 'traction' /
+&growth steps = 4, toughness = 5, fractures = 'crack' /
+"""
+
+
+def test_linked_tip_in_table_and_figure(tmp_path):
+    done = solve(tmp_path, LINK_MODEL)
+    assert done.returncode == 0, done.stdout + done.stderr
+    rows = [line.split() for line in done.stdout.splitlines() if line.startswith("  crack ")]
+    linked = [row for row in rows if row[1] == "end"]
+    assert len(linked) == 1
+    # Two increments of 0.1 and the 0.05 link; the table names the fracture it ends on.
+    assert linked[0][2] == "3" and float(linked[0][3]) == pytest.approx(0.25, rel=1e-9)
+    assert " ".join(linked[0][5:]) == "linked: ends on fracture fault"
+    with h5py.File(tmp_path / "wings.h5", "r") as f:
+        reason = f["growth/reason"][()]
+        end = f["growth/end"][()]
+    assert list(reason[end == 1]) == [0, 0, 5]
+    result = load_result(tmp_path / "wings.h5")
+    fig = plot_figures.plot_growth(result)
+    try:
+        k_axes = fig.axes[1]
+        text = plot_figures.GROWTH_MARKERS["linked"][1]
+        assert text in [t.get_text() for t in k_axes.get_legend().get_texts()]
+        markers = [line.get_marker() for line in k_axes.get_lines()
+                   if line.get_label() == "_reason" and line.get_marker() == "P"]
+        assert plot_figures.GROWTH_MARKERS["linked"][0] == "P" and len(markers) == 1
+    finally:
+        plot_figures.plt.close(fig)

@@ -17,10 +17,11 @@ from conftest import REPO_ROOT, SCRIPTS, write_result
 SYSTEM_PATH = "/usr/bin:/bin"
 #: Every command-line script of scripts/ (Python and shell).
 COMMANDS = ("ddc2d-plot", "collect-sweep", "compare-twodd", "benchmark.py", "comp2ddm2nml",
-            "twodd2nml", "submit-sweep", "make-gallery")
+            "twodd2nml", "submit-sweep", "make-gallery", "growth_convergence.py")
 #: The scripts that need the venv's packages, and one they import.
 NEEDS_VENV = {"ddc2d-plot": "matplotlib", "collect-sweep": "h5py", "compare-twodd": "h5py",
-              "benchmark.py": "h5py", "comp2ddm2nml": "openpyxl"}
+              "benchmark.py": "h5py", "comp2ddm2nml": "openpyxl",
+              "growth_convergence.py": "matplotlib"}
 
 
 def plain_environment():
