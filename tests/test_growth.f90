@@ -25,7 +25,7 @@ module test_growth
     implicit none
     private
 
-    public :: collect_growth, enable_growth, tip_records, difference
+    public :: collect_growth, enable_growth, tip_records, difference, grow_on_one_and_two_threads
 
     real(wp), parameter :: e_modulus = 50000.0_wp, nu = 0.25_wp
     real(wp), parameter :: degrees = 180.0_wp / pi
@@ -553,12 +553,24 @@ contains
     !> The wings of the sliding flaw (4 steps) with 1 and 2 OpenMP threads agree to 1e-12.
     subroutine test_threads(error)
         type(error_type), allocatable, intent(out) :: error
-        type(model_type) :: one_model, two_model
         type(model_results) :: one, two
+
+        call grow_on_one_and_two_threads(sliding_flaw(4), one, two, error)
+        if (allocated(error)) return
+        call check(error, two%solver%threads, 2, 'threads recorded')
+    end subroutine test_threads
+
+    !> Grow copies of model on 1 and on 2 OpenMP threads: the same records, reasons,
+    !> geometry, DDs, angles, K_eq and lengths (1e-12; round-off only between thread counts).
+    subroutine grow_on_one_and_two_threads(model, one, two, error)
+        type(model_type), intent(in) :: model
+        type(model_results), intent(out) :: one, two
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: one_model, two_model
         integer :: saved
 
-        one_model = sliding_flaw(4)
-        two_model = one_model
+        one_model = model
+        two_model = model
         saved = omp_get_max_threads()
         call omp_set_num_threads(1)
         call grow_fractures(one_model, one, error)
@@ -570,22 +582,25 @@ contains
         call grow_fractures(two_model, two, error)
         call omp_set_num_threads(saved)
         if (allocated(error)) return
-        call check(error, two%solver%threads, 2, 'threads recorded')
         call check(error, one_model%elements%n, two_model%elements%n, 'elements')
         call check(error, size(one%growth%step), size(two%growth%step), 'records')
         if (allocated(error)) return
+        call check(error, all(one%growth%reason == two%growth%reason), 'reasons')
         call check(error, difference(one_model%elements%x_end, two_model%elements%x_end), &
                    0.0_wp, 'x_end', abs_tol=1.0e-12_wp)
         call check(error, difference(one_model%elements%y_end, two_model%elements%y_end), &
                    0.0_wp, 'y_end', abs_tol=1.0e-12_wp)
+        call check(error, difference(one%elements%ds, two%elements%ds), 0.0_wp, 'ds', &
+                   abs_tol=1.0e-12_wp)
         call check(error, difference(one%elements%dn, two%elements%dn), 0.0_wp, 'dn', &
                    abs_tol=1.0e-12_wp)
         call check(error, difference(one%growth%angle, two%growth%angle), 0.0_wp, 'angles', &
                    abs_tol=1.0e-12_wp)
         call check(error, difference(one%growth%k_eq, two%growth%k_eq), 0.0_wp, 'K_eq', &
                    abs_tol=1.0e-12_wp)
-        call check(error, all(one%growth%reason == two%growth%reason), 'reasons')
-    end subroutine test_threads
+        call check(error, difference(one%growth%length, two%growth%length), 0.0_wp, &
+                   'lengths', abs_tol=1.0e-12_wp)
+    end subroutine grow_on_one_and_two_threads
 
     !> Largest difference relative to the largest magnitude (NaN entries, the angles of
     !> tips that did not grow, must be NaN in both).

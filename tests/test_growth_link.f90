@@ -4,7 +4,6 @@
 !> meet another tip or close a contour are refused (intersection); the kept (Newton) path
 !> links as Lemke does.
 module test_growth_link
-    use omp_lib, only: omp_set_num_threads, omp_get_max_threads
     use ddc_kinds, only: wp
     use ddc_testing, only: test_case, new_test, check, error_type
     use ddc_model_types, only: model_type, condition_traction, condition_contact
@@ -14,7 +13,7 @@ module test_growth_link
     use ddc_mesh_checks, only: check_elements
     use ddc_growth_driver, only: grow_fractures
     use ddc_test_builders, only: straight_crack, polyline_model, join_fractures
-    use test_growth, only: enable_growth, tip_records, difference
+    use test_growth, only: enable_growth, tip_records, difference, grow_on_one_and_two_threads
     implicit none
     private
 
@@ -384,39 +383,14 @@ contains
     !> The echelon's link with 1 and 2 OpenMP threads: the same records and geometry.
     subroutine test_threads(error)
         type(error_type), allocatable, intent(out) :: error
-        type(model_type) :: one_model, two_model
+        type(model_type) :: model
         type(model_results) :: one, two
-        integer :: saved
 
-        one_model = echelon()
-        one_model%growth%steps = 3
-        two_model = one_model
-        saved = omp_get_max_threads()
-        call omp_set_num_threads(1)
-        call grow_fractures(one_model, one, error)
-        if (allocated(error)) then
-            call omp_set_num_threads(saved)
-            return
-        end if
-        call omp_set_num_threads(2)
-        call grow_fractures(two_model, two, error)
-        call omp_set_num_threads(saved)
+        model = echelon()
+        model%growth%steps = 3
+        call grow_on_one_and_two_threads(model, one, two, error)
         if (allocated(error)) return
         call check(error, count(one%growth%reason == growth_linked), 1, 'one link')
-        call check(error, one_model%elements%n, two_model%elements%n, 'elements')
-        call check(error, size(one%growth%step), size(two%growth%step), 'records')
-        if (allocated(error)) return
-        call check(error, all(one%growth%reason == two%growth%reason), 'reasons')
-        call check(error, difference(one_model%elements%x_end, two_model%elements%x_end), &
-                   0.0_wp, 'x_end', abs_tol=1.0e-12_wp)
-        call check(error, difference(one_model%elements%y_end, two_model%elements%y_end), &
-                   0.0_wp, 'y_end', abs_tol=1.0e-12_wp)
-        call check(error, difference(one%elements%ds, two%elements%ds), 0.0_wp, 'ds', &
-                   abs_tol=1.0e-12_wp)
-        call check(error, difference(one%growth%angle, two%growth%angle), 0.0_wp, 'angles', &
-                   abs_tol=1.0e-12_wp)
-        call check(error, difference(one%growth%length, two%growth%length), 0.0_wp, &
-                   'lengths', abs_tol=1.0e-12_wp)
     end subroutine test_threads
 
     !> The echelon on the growth solver's kept path (Newton: its linking step assembles and

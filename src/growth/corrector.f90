@@ -251,10 +251,14 @@ contains
         integer, allocatable, intent(out) :: moved_to(:)
         type(tip_path), allocatable :: paths(:), link_paths(:)
         type(element_split), allocatable :: splits(:)
+        type(tip_link), allocatable :: made(:)
         integer :: i
 
-        call link_parts([fixed, pack(kinks%link, kinks%reason == growth_linked)], link_paths, &
-                        splits)
+        made = fixed
+        do i = 1, size(kinks)
+            if (kinks(i)%reason == growth_linked) made = [made, kinks(i)%link]
+        end do
+        call link_parts(made, link_paths, splits)
         allocate (paths(0))
         do i = 1, size(kinks)
             if (kinks(i)%reason /= growth_grew .and. &

@@ -203,6 +203,7 @@ contains
         !> Set when a solve fails (naming the step) or the grown mesh is bad
         type(error_type), allocatable, intent(out) :: error
         type(kink), allocatable :: kinks(:)
+        type(tip_link), allocatable :: predictor_links(:)
         type(model_type) :: trial
         type(model_results) :: solved
         integer, allocatable :: which(:), linked(:), trial_created(:), moved_to(:)
@@ -213,6 +214,9 @@ contains
         which = pack([(i, i = 1, size(run%tips))], run%now%reason == growth_grew)
         linked = pack([(i, i = 1, size(run%tips))], run%now%reason == growth_linked)
         if (size(which) + size(linked) == 0) return
+        ! A copy, not run%now%link(linked) as an argument: gfortran's temporary of a vector
+        ! subscript leaks the allocatable components of the links
+        predictor_links = run%now%link(linked)
         do i = 1, size(linked)
             t = linked(i)
             grown = grown + 1
@@ -225,7 +229,7 @@ contains
                                   options%toughness)
         end do
         call correct_kinks(run%solver, run%work, run%created, options, step, kinks, &
-                           run%now%link(linked), trial, trial_created, solved, &
+                           predictor_links, trial, trial_created, solved, &
                            trial_current, error)
         if (allocated(error)) return
         do i = 1, size(which)
@@ -250,7 +254,7 @@ contains
         if (grown == 0) return
         if (.not. trial_current) then
             call grow_paths(run%work, run%created, options, step, kinks, &
-                            run%now%link(linked), trial, trial_created, moved_to)
+                            predictor_links, trial, trial_created, moved_to)
             call solve_grown(run%solver, trial, moved_to, solved, error)
             if (allocated(error)) then
                 error%message = 'growth step '//itoa(step)//': '//error%message
