@@ -209,6 +209,7 @@ contains
         n = size(px) - 1
         call check(error, size(mu), n, 'mu.csv rows')
         call check(error, size(sf), n, 'sf.csv rows')
+        if (allocated(error)) return
         call read_reference(ritz_dir//'reference_elements.csv', n, ref, error)
         if (allocated(error)) return
         ! One element per polyline segment: the element ends are the paper's vertices.

@@ -394,6 +394,7 @@ contains
         call set_system(kept, a, unknown, partner, coef, 'base', error)
         if (allocated(error)) return
         call check(error, last_action(kept), action_factorized, 'first: a factorization')
+        if (allocated(error)) return
         call set_system(kept, a, unknown, partner, coef, 'same', error)
         if (allocated(error)) return
         call check(error, last_action(kept), action_reused, 'unchanged: the factors reused')
@@ -403,9 +404,11 @@ contains
         partner = [(n + i, i = 1, 2), (n + i, i = 4, 40), n + 41, (n + i, i = 41, 60), n + 20]
         coef = [(0.6_wp, i = 1, 2), (0.6_wp, i = 4, 40), 0.6_wp, (0.0_wp, i = 41, 60), 0.0_wp]
         coef(6) = -0.6_wp
+        if (allocated(error)) return
         call set_system(kept, a, unknown, partner, coef, 'changed', error)
         if (allocated(error)) return
         call check(error, last_action(kept), action_updated, 'a few changes: an update')
+        if (allocated(error)) return
         call set_system(fresh, a, unknown, partner, coef, 'fresh', error)
         if (allocated(error)) return
         do k = 1, 3

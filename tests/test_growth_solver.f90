@@ -244,12 +244,14 @@ contains
 
         model = sliding_flaw(40, 5)
         call check(error, keeps_solves(model), 'the Newton method keeps its solves')
+        if (allocated(error)) return
         call grow_fractures(model, r, error)
         if (allocated(error)) return
         solves = 1 + sum(r%growth%corrections)
         call check(error, r%solver%counts%updates > 0, 'the factors are updated')
         call check(error, r%solver%counts%factorizations < solves, &
                    'fewer factorizations than solves')
+        if (allocated(error)) return
         call run_model(model, fresh, error)
         if (allocated(error)) return
         call check(error, all(r%elements%state == fresh%elements%state), 'states')
@@ -276,6 +278,7 @@ contains
         lemke_model = newton_model
         lemke_model%solver%lcp_method = lcp_lemke
         call check(error, .not. keeps_solves(lemke_model), 'Lemke solves from scratch')
+        if (allocated(error)) return
         call grow_fractures(newton_model, newton, error)
         if (allocated(error)) return
         call grow_fractures(lemke_model, lemke, error)

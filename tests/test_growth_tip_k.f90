@@ -130,6 +130,7 @@ contains
         exact = s * sqrt(pi * (1.0_wp + d))
         call check(error, abs(r%tips%k2(2) / exact - 1.0_wp) > 0.05_wp, &
                    'uncalibrated K_II is off')
+        if (allocated(error)) return
         call calibrate_tips(model, r%tips, error)
         if (allocated(error)) return
         call check(error, r%tips%k2(1), exact, 'calibrated K_II (begin)', rel_tol=1.0e-2_wp)
@@ -140,6 +141,7 @@ contains
                                [0.0_wp, 0.0_wp, 0.0_wp, d * sin(pi / 6.0_wp)], [5, 40, 5], &
                                condition_traction, 0.0_wp, 0.0_wp, e_modulus, nu)
         model%sxy = s
+        if (allocated(error)) return
         call run_model(model, r, error)
         if (allocated(error)) return
         call calibrate_tips(model, r%tips, error)

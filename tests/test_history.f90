@@ -290,6 +290,7 @@ contains
         if (allocated(error)) return
         call check(error, pivots > 0, 'cold start pivots')
         q = [-1.2_wp, 2.1_wp, -2.9_wp]
+        if (allocated(error)) return
         call solve_lcp_lemke(m, q, zc, wc, pivots, error)
         if (allocated(error)) return
         call solve_lcp_lemke(m, q, z, w, pivots, error, warm_basis=basis, basis=next)
@@ -299,6 +300,7 @@ contains
                    'warm = cold solution', abs_tol=1.0e-14_wp)
         call check(error, all(next == basis), 'the basis is returned')
         q = [1.0_wp, -2.0_wp, 3.0_wp]
+        if (allocated(error)) return
         call solve_lcp_lemke(m, q, zc, wc, pivots, error)
         if (allocated(error)) return
         call solve_lcp_lemke(m, q, z, w, pivots, error, warm_basis=basis)
@@ -326,6 +328,7 @@ contains
                    .false., .false., .false., .true.]), 'sxy and p0 vary')
         call check(error, maxval(abs(model%load_path%vertex(2, :) + 10.0_wp)), 0.0_wp, &
                    'syy held at its &remote_stress value', abs_tol=0.0_wp)
+        if (allocated(error)) return
         call solve_history(model, r, error)
         if (allocated(error)) return
         call check(error, size(r%history%ds, 2), 15, 'steps')

@@ -162,6 +162,7 @@ contains
                 write (label, '(a,i0,a,i0)') 'n = ', n, ', trial ', trial
                 call brute_force(m, q, zb, nsol)
                 call check(error, nsol, 1, trim(label)//': brute-force solutions')
+                if (allocated(error)) return
                 call solve_lcp_lemke(m, q, z, w, pivots, error)
                 if (allocated(error)) then
                     error%message = trim(label)//': '//error%message

@@ -135,6 +135,7 @@ contains
         call check(error, minval(r%elements%tensile_in_force), 2.0_wp, 'T capped at the apex', &
                    rel_tol=1.0e-14_wp)
         model%syy = 3.0_wp
+        if (allocated(error)) return
         call run_model(model, r, error)
         if (allocated(error)) return
         model%elements%tensile_strength = 0.0_wp
@@ -230,6 +231,7 @@ contains
         call check(error, dd_difference(r%elements%ds, coulomb%elements%ds), 0.0_wp, &
                    'ds as the Coulomb crack with Sf = 0', abs_tol=tight)
         model%solver%lcp_method = lcp_newton
+        if (allocated(error)) return
         call run_model(model, newton, error)
         if (allocated(error)) return
         call check(error, all(newton%elements%state == r%elements%state), 'newton states')
@@ -388,6 +390,7 @@ contains
                    abs(r%elements%ds) <= abs(weak%elements%ds)), &
                    'slip between the Coulomb cracks of mu and mu_dynamic')
         model%solver%lcp_method = lcp_newton
+        if (allocated(error)) return
         call run_model(model, newton, error)
         if (allocated(error)) return
         call check(error, all(newton%elements%state == r%elements%state), 'newton states')
@@ -500,6 +503,7 @@ contains
             a(n + i, n + i) = a(n + i, n + i) + 5.0e5_wp
         end do
         b = reshape(-[ss, sn], [2 * n, 1])
+        if (allocated(error)) return
         call lu_factor(a, ipiv, 'spring crack', error)
         if (allocated(error)) return
         call lu_solve(a, ipiv, b)

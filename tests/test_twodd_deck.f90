@@ -333,6 +333,7 @@ contains
         call read_twodd_deck(data//deck, model, error)
         if (allocated(error)) return
         call check(error, model%elements%symmetry%kind == symmetry_both, 'KSYM = 4')
+        if (allocated(error)) return
         call run_model(model, r, error)
         if (allocated(error)) return
         g = shear_modulus_of(model)
@@ -544,6 +545,7 @@ contains
             call check(error, maxval(abs(ours(k, :) - theirs(k, :))), 0.0_wp, &
                        name//' res midpoint column', abs_tol=1.0e-9_wp * scale)
         end do
+        if (allocated(error)) return
         call read_print_table(path, 'SIGXY', 7, ours, error)
         if (allocated(error)) return
         call read_print_table(wide_dir//name//'.RESf60.txt', 'SIGXY', 7, theirs, error)
@@ -556,6 +558,7 @@ contains
             call check(error, maxval(abs(ours(k, :) - theirs(k, :))), 0.0_wp, &
                        name//' res point column', abs_tol=1.0e-8_wp * scale)
         end do
+        if (allocated(error)) return
         call read_print_table(path, 'UN OR SIGMA_N', 7, ours, error)
         if (allocated(error)) return
         call read_print_table(wide_dir//name//'.RESf60.txt', 'UN OR SIGMA_N', 7, theirs, error)

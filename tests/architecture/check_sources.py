@@ -22,6 +22,10 @@
    other component of `element_set` and every component of `solver_options` is
    broadcast in src/parallel/model.f90 or marked there in a comment
    `! Root only: <reference> (why)`.
+7. No test result is lost: in tests/*.f90 a call that takes `error` first (`check` and
+   the suites' helpers, which add to it) is not followed by a call that takes `error`
+   last (a routine under test, which resets it: intent out) without
+   `if (allocated(error)) return` between them in the same procedure.
 
 Prints every violation and exits 1 when there is one; --graph prints the folder graph.
 """
@@ -345,6 +349,44 @@ def check_shared(root, problems):
                                 f"is no component of {name}")
 
 
+def statements(text):
+    """(line number, statement) of Fortran text, continuation lines joined, comments cut."""
+    joined, start = "", 0
+    for number, line in enumerate(text.splitlines(), start=1):
+        code = re.sub(r"!.*", "", line) if "'" not in line and '"' not in line else line
+        if not joined:
+            start = number
+        joined += " " + code.strip()
+        if joined.rstrip().endswith("&"):
+            joined = joined.rstrip()[:-1]
+            continue
+        yield start, joined.strip()
+        joined = ""
+
+
+def check_results_kept(root, problems):
+    """Check 7: a check's failure is not reset by a later call that takes error intent(out)."""
+    procedure = re.compile(r"^(?:(?:pure|elemental|recursive|impure|integer|real|logical)\s+)*"
+                           r"(?:subroutine|function)\s|^end\s+(?:subroutine|function)\b|"
+                           r"^contains\b", re.IGNORECASE)
+    adds = re.compile(r"^call\s+\w+\s*\(\s*error\b", re.IGNORECASE)
+    resets = re.compile(r"^call\s+\w+\s*\(.*[(,]\s*error\s*\)$", re.IGNORECASE)
+    for path in sorted((root / "tests").glob("*.f90")):
+        pending = None
+        for number, statement in statements(path.read_text()):
+            if procedure.match(statement):
+                pending = None
+            elif adds.match(statement):
+                pending = number
+            elif re.search(r"allocated\s*\(\s*error\s*\)", statement, re.IGNORECASE):
+                pending = None
+            elif pending and resets.match(statement):
+                problems.append(f"{path.relative_to(root)}:{number}: the check of line "
+                                f"{pending} is lost if it failed: this call resets error; "
+                                "put 'if (allocated(error)) return' before it")
+                pending = None
+
+
 def main(argv):
     graph_wanted = "--graph" in argv
     args = [a for a in argv if a != "--graph"]
@@ -358,6 +400,7 @@ def main(argv):
     namelists = check_namelists(root, problems)
     check_imports(root, problems)
     check_shared(root, problems)
+    check_results_kept(root, problems)
     if graph_wanted:
         for folder in sorted(graph):
             print(f"{folder}: {', '.join(sorted(graph[folder])) or '-'}")
@@ -367,7 +410,8 @@ def main(argv):
         print(f"architecture: {len(graph)} folders, no cycle, every folder edge listed in "
               f"{TABLE}; module names follow their paths; the {namelists} namelist "
               "statements match the group table; every import is used; every component of "
-              "element_set and solver_options is broadcast or marked root only")
+              "element_set and solver_options is broadcast or marked root only; no test "
+              "check is reset before it is reported")
     return 1 if problems else 0
 
 

@@ -169,3 +169,14 @@ def test_unused_import_fails(tree, capsys):
          "    use ddc_kinds, only: wp\n    use ddc_sorting, only: first_at_least\n")
     expect_violation(tree, capsys,
                      "src/linalg/lu.f90: imports first_at_least but does not use it")
+
+
+def test_check_reset_before_it_is_reported_fails(tree, capsys):
+    # test_lemke: the pivot count checked, then a solve that resets error
+    text = (tree / "tests/test_lemke.f90").read_text()
+    guard = re.search(r"\n( +)if \(allocated\(error\)\) return\n( +call solve_lcp_lemke)", text)
+    assert guard, "test_lemke.f90 changed: pick another planted line"
+    (tree / "tests/test_lemke.f90").write_text(text[:guard.start()] + "\n" + guard.group(2) +
+                                               text[guard.end():])
+    expect_violation(tree, capsys, "is lost if it failed: this call resets error")
+
