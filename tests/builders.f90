@@ -1,7 +1,8 @@
 !> Models built in code for the physics tests (no input files involved).
 module ddc_test_builders
     use ddc_kinds, only: wp
-    use ddc_model_types, only: model_type, fracture_type, symmetry_options, condition_traction
+    use ddc_model_types, only: model_type, fracture_type, symmetry_options, condition_traction, &
+                               condition_contact
     use ddc_contact_options, only: solver_options
     use ddc_mesh_geometry, only: allocate_elements, compute_geometry
     use ddc_mesh_polyline, only: polyline_elements
@@ -10,6 +11,7 @@ module ddc_test_builders
     private
 
     public :: polyline_model, straight_crack, circular_hole, join_fractures, kinked_network
+    public :: kinked_contact_fault
 
 contains
 
@@ -119,5 +121,23 @@ contains
         model%elements%symmetry = symmetry_options(kind=symmetry_kind, xsym=0.0_wp, &
                                                    ysym=-0.6_wp)
     end function kinked_network
+
+    !> A kinked fault: (-1, 0)-(0, 0) then 35 degrees up, 30 contact elements each, Sf = 0,
+    !> mu = 0.6, fluid pressure 17.5 under sxx = -5, syy = -20, sxy = 0.5, E = 50000,
+    !> nu = 0.25: the flat part is closed and partly sticks, partly slips; the inclined part
+    !> opens.
+    function kinked_contact_fault() result(model)
+        type(model_type) :: model
+        real(wp), parameter :: angle = 35.0_wp * pi / 180.0_wp
+
+        model = polyline_model([-1.0_wp, 0.0_wp, cos(angle)], [0.0_wp, 0.0_wp, sin(angle)], &
+                               [30, 30], condition_contact, 0.0_wp, 0.0_wp, 50000.0_wp, &
+                               0.25_wp)
+        model%elements%mu = 0.6_wp
+        model%elements%pressure = 17.5_wp
+        model%sxx = -5.0_wp
+        model%syy = -20.0_wp
+        model%sxy = 0.5_wp
+    end function kinked_contact_fault
 
 end module ddc_test_builders

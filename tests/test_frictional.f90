@@ -11,7 +11,8 @@ module test_frictional
     use ddc_model_results, only: model_results, state_stick, state_slip, state_open, state_free
     use ddc_run_model, only: run_model
     use ddc_constants, only: pi
-    use ddc_test_builders, only: polyline_model, straight_crack, join_fractures
+    use ddc_test_builders, only: polyline_model, straight_crack, join_fractures, &
+                                 kinked_contact_fault
     implicit none
     private
 
@@ -180,22 +181,14 @@ contains
         call check(error, r%solver%lcp_solves, 2, 'LCP solves (second after cohesion lost)')
     end subroutine test_pressure_lost
 
-    !> A kinked fault: (-1, 0)-(0, 0) then 35 degrees up, 30 elements each, Sf = 0, mu = 0.6,
-    !> fluid pressure 17.5 under sxx = -5, syy = -20, sxy = 0.5: the flat part is closed
-    !> and partly sticks, partly slips; the inclined part opens. Certificate holds.
+    !> The kinked fault of kinked_contact_fault: the flat part is closed and partly sticks,
+    !> partly slips; the inclined part opens. Certificate holds.
     subroutine test_kink(error)
         type(error_type), allocatable, intent(out) :: error
         type(model_type) :: model
         type(model_results) :: r
-        real(wp), parameter :: angle = 35.0_wp * pi / 180.0_wp
 
-        model = polyline_model([-1.0_wp, 0.0_wp, cos(angle)], [0.0_wp, 0.0_wp, sin(angle)], &
-                               [30, 30], condition_contact, 0.0_wp, 0.0_wp, e_modulus, nu)
-        model%elements%mu = 0.6_wp
-        model%elements%pressure = 17.5_wp
-        model%sxx = -5.0_wp
-        model%syy = -20.0_wp
-        model%sxy = 0.5_wp
+        model = kinked_contact_fault()
         call run_model(model, r, error)
         if (allocated(error)) return
         call check(error, count(r%elements%state == state_stick) > 0, 'some elements stick')

@@ -17,8 +17,7 @@ module test_strength
     use ddc_model_results, only: model_results, state_stick, state_slip, state_open
     use ddc_run_model, only: run_model
     use ddc_history_solve, only: solve_history
-    use ddc_constants, only: pi
-    use ddc_test_builders, only: straight_crack, polyline_model
+    use ddc_test_builders, only: straight_crack, kinked_contact_fault
     implicit none
     private
 
@@ -629,15 +628,8 @@ contains
     !> The frictional suite's kinked fault: stick, slip and open at once (Lemke).
     function kinked_fault() result(model)
         type(model_type) :: model
-        real(wp), parameter :: angle = 35.0_wp * pi / 180.0_wp
 
-        model = polyline_model([-1.0_wp, 0.0_wp, cos(angle)], [0.0_wp, 0.0_wp, sin(angle)], &
-                               [30, 30], condition_contact, 0.0_wp, 0.0_wp, e_modulus, nu)
-        model%elements%mu = 0.6_wp
-        model%elements%pressure = 17.5_wp
-        model%sxx = -5.0_wp
-        model%syy = -20.0_wp
-        model%sxy = 0.5_wp
+        model = kinked_contact_fault()
         model%solver%lcp_method = lcp_lemke
     end function kinked_fault
 

@@ -5,8 +5,8 @@
 module ddc_growth_extension
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type, element_set, growth_options, condition_contact, &
-        select_elements, no_residual_drop, rigid_joint
-    use ddc_mesh_geometry, only: compute_geometry
+        select_elements
+    use ddc_mesh_geometry, only: compute_geometry, default_strength_laws
     implicit none
     private
 
@@ -197,20 +197,13 @@ contains
         ! own end points, the default laws (they are intact: no T, no drops, rigid) and
         ! new_mu, new_sf when overridden.
         call select_elements(model%elements, pick, grown%elements)
+        call default_strength_laws(grown%elements, is_new)
         associate (a => grown%elements)
             where (is_new .or. is_half)
                 a%x_begin = x_begin
                 a%y_begin = y_begin
                 a%x_end = x_end
                 a%y_end = y_end
-            end where
-            where (is_new)
-                a%tensile_strength = 0.0_wp
-                a%sf_residual = no_residual_drop
-                a%mu_dynamic = no_residual_drop
-                a%slip_weakening_distance = 0.0_wp
-                a%shear_stiffness = rigid_joint
-                a%normal_stiffness = rigid_joint
             end where
             if (options%override_mu) then
                 where (is_new .and. a%condition == condition_contact) a%mu = options%new_mu
