@@ -20,10 +20,10 @@ program ddc2d
 
     call prepare_run(options, model, status)
     if (status /= go_on) call exit_program(status)
-    if (allocated(model%load_path%vertex)) then
-        call solve_history(model, results, error)
-    else if (model%growth%active) then
+    if (model%growth%active) then
         call grow_fractures(model, results, error, print_growth_step)
+    else if (allocated(model%load_path%vertex)) then
+        call solve_history(model, results, error)
     else
         call run_model(model, results, error)
     end if

@@ -50,10 +50,10 @@ program ddc2d
         engine%context = context
         call run_model(model, results, error, engine)
     else if (context%rank == root) then
-        if (allocated(model%load_path%vertex)) then
-            call solve_history(model, results, error)
-        else if (model%growth%active) then
+        if (model%growth%active) then
             call grow_fractures(model, results, error, print_growth_step)
+        else if (allocated(model%load_path%vertex)) then
+            call solve_history(model, results, error)
         else
             call run_model(model, results, error)
         end if

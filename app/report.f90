@@ -14,6 +14,7 @@ module ddc_app_report
     use ddc_contact_options, only: lcp_method_names, open_cohesion_names
     use ddc_text, only: short_real, itoa, prefix_lines, join_integers
     use ddc_output_provenance, only: describe_run, provenance_line
+    use ddc_history_path, only: load_text
     implicit none
     private
 
@@ -267,8 +268,34 @@ contains
                 tips(i)%last_k_eq / model%growth%toughness, &
                 stop_text(tips(i)%last_reason)//ends_on(tips(i))
         end do
+        if (allocated(results%history%element_count)) call print_load_steps()
 
     contains
+
+        !> Per load step of a loading history: the load and each tip that grew, by how much.
+        subroutine print_load_steps()
+            character(len=:), allocatable :: line
+            real(wp) :: grown, before
+            integer :: k, t
+
+            associate (h => results%history)
+                do k = 1, size(h%element_count)
+                    line = ''
+                    do t = 1, size(h%tip_fracture_id)
+                        before = 0.0_wp
+                        if (k > 1) before = h%grown_length(t, k - 1)
+                        grown = h%grown_length(t, k) - before
+                        if (grown <= 0.0_wp) cycle
+                        if (len(line) > 0) line = line//','
+                        line = line//' '//model%fractures(h%tip_fracture_id(t))%name//' '// &
+                            trim(ends(h%tip_end(t)))//' +'//short_real(grown)
+                    end do
+                    if (len(line) == 0) line = ' nothing grew'
+                    write (unit, '(a)') '  load step '//itoa(k)//' ('// &
+                        load_text(h%load(:, k), model%load_path%varies)//'):'//line
+                end do
+            end associate
+        end subroutine print_load_steps
 
         !> ' NAME' of the fracture a linked tip ends on (else nothing).
         function ends_on(tip) result(text)

@@ -679,7 +679,7 @@ contains
         call check_bad_input(error, data//'bad_misspelled.nml', [character(len=40) :: g, &
                              'tougness'], 1)
         call check_bad_input(error, data//'bad_with_load_path.nml', [character(len=40) :: &
-                             '&growth (line 7)', 'cannot be combined with &load_path'], 1)
+                             '&growth (line 8)', 'cannot be combined with &symmetry'], 1)
         call check_bad_input(error, data//'bad_with_symmetry.nml', [character(len=40) :: &
                              '&growth (line 7)', 'cannot be combined with &symmetry'], 1)
     end subroutine test_input_bad

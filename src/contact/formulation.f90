@@ -134,7 +134,7 @@ contains
     !> Solve the frictional contact problem of n elements (SPEC section 4).
     subroutine solve_contact(a, s_r_s, s_r_n, mu, sf, pressure, options, res, error, rule, &
                              max_iterations, tensile, sf_residual, mu_dynamic, &
-                             slip_weakening_distance, max_solves)
+                             slip_weakening_distance, max_solves, ds_previous)
         !> Influence matrix ordered [s; n]: traction = s_r + a [Ds; Dn], shape (2n, 2n)
         !> [stress / length]
         real(wp), intent(in), target, contiguous :: a(:, :)
@@ -170,6 +170,8 @@ contains
         !> Largest number of solves of the strength fixed point (tests; default
         !> 2n + 1 + max_weakening_solves)
         integer, intent(in), optional :: max_solves
+        !> Total slip before this solve (friction memory; default 0), shape (n) [length]
+        real(wp), intent(in), optional :: ds_previous(:)
         type(dense_stiffness) :: stiffness
         integer(int64) :: t0, t1, rate
 
@@ -182,7 +184,7 @@ contains
                                 a, rule, max_iterations, tensile=tensile, sf_residual=sf_residual, &
                                 mu_dynamic=mu_dynamic, &
                                 slip_weakening_distance=slip_weakening_distance, &
-                                max_solves=max_solves)
+                                max_solves=max_solves, ds_previous=ds_previous)
         ! Freeing the factors (up to (2n)^2 reals) is part of the contact solve's time.
         call system_clock(t0, rate)
         call stiffness%discard_factors()

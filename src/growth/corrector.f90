@@ -33,6 +33,9 @@ module ddc_growth_corrector
     !> Largest change of the angle in one corrector iteration [rad] (15 degrees), and
     !> largest distance of the corrected angle from the MTS angle [rad] (45 degrees)
     real(wp), parameter :: max_step = pi / 12.0_wp, max_deviation = pi / 4.0_wp
+    !> Halvings of the angle towards straight ahead when an open tip's kink at its MTS
+    !> angle closes
+    integer, parameter :: max_halvings = 4
 
     !> One growing tip as the corrector sees it.
     type :: kink
@@ -60,6 +63,10 @@ module ddc_growth_corrector
         !> [stress unit * length unit**0.5]; whether the last trial's new tip was open
         logical :: active = .true., correcting = .true., have_prev = .false., open = .true.
         real(wp) :: k2 = 0.0_wp, theta_prev = 0.0_wp, k2_prev = 0.0_wp
+        !> The tip is open before growing (K_I > 0) (in); its kink closed at the MTS angle,
+        !> and how often the angle was halved since
+        logical :: tip_open = .false., mts_closed = .false.
+        integer :: halvings = 0
     end type kink
 
 contains
@@ -72,7 +79,7 @@ contains
     !> built and solved (grow_paths). `fixed` are the links of tips that linked before the
     !> corrector (at their MTS angle): every trial holds them.
     subroutine correct_kinks(solver, model, created, options, step, kinks, fixed, trial, &
-                             trial_created, solved, current, error)
+                             trial_created, solved, current, error, trial_origin)
         !> The solves of the run (the base: model)
         type(growth_solver), intent(inout) :: solver
         !> The model before growing (without observations)
@@ -96,6 +103,8 @@ contains
         logical, intent(out) :: current
         !> Set when a solve fails
         type(error_type), allocatable, intent(out) :: error
+        !> The element of model each element of trial comes from (0: new), shape (trial n)
+        integer, allocatable, intent(out) :: trial_origin(:)
         type(tip_path) :: paths(size(kinks))
         type(tip_path), allocatable :: trial_paths(:)
         type(element_split), allocatable :: splits(:)
@@ -112,6 +121,8 @@ contains
         kinks%correcting = .true.
         kinks%have_prev = .false.
         kinks%open = .true.
+        kinks%mts_closed = .false.
+        kinks%halvings = 0
         current = .false.
         if (options%max_corrections == 0) return
         do i = 1, size(kinks)
@@ -122,8 +133,8 @@ contains
         do while (solves < options%max_corrections)
             call trial_parts()
             call extend_model(model, created, trial_paths, step, options, trial, &
-                              trial_created, moved_to, splits)
-            call solve_grown(solver, trial, moved_to, solved, error)
+                              trial_created, moved_to, splits, trial_origin)
+            call solve_grown(solver, trial, moved_to, solved, error, trial_origin)
             solves = solves + 1
             if (allocated(error)) then
                 error%message = 'growth step '//itoa(step)//', corrector solve '// &
@@ -141,6 +152,15 @@ contains
                 if (closed .and. kinks(i)%have_prev) then
                     ! A corrected trial closed: halve the way back to the last open trial.
                     kinks(i)%theta = 0.5_wp * (kinks(i)%theta + kinks(i)%theta_prev)
+                    changed = .true.
+                else if (closed .and. kinks(i)%tip_open .and. kinks(i)%halvings < &
+                         max_halvings) then
+                    ! An open tip whose kink closes (the remote compression across a finite
+                    ! kink beats the tip's tension): search the open angles nearer straight
+                    ! ahead for local symmetry.
+                    kinks(i)%mts_closed = .true.
+                    kinks(i)%halvings = kinks(i)%halvings + 1
+                    kinks(i)%theta = 0.5_wp * kinks(i)%theta
                     changed = .true.
                 else if (closed) then
                     ! The kink at its MTS angle is closed: it does not grow (SPEC-GROWTH 1.4).
@@ -161,12 +181,18 @@ contains
         current = .not. changed
         if (current) return
         ! Out of solves: the tips not converged (or closed at their last trial) grow at their
-        ! MTS angle, whose trial was open.
+        ! MTS angle when its trial was open; otherwise local symmetry is not reached with the
+        ! kink open, and the tip does not grow (SPEC-GROWTH 1.4).
         do i = 1, size(kinks)
             if (kinks(i)%active .and. kinks(i)%correcting .and. &
                 (.not. kinks(i)%open .or. abs(kinks(i)%k2) > kinks(i)%tolerance)) then
-                kinks(i)%reason = growth_corrector_failed
-                kinks(i)%theta = kinks(i)%theta_mts
+                if (kinks(i)%mts_closed) then
+                    kinks(i)%active = .false.
+                    kinks(i)%reason = growth_closed
+                else
+                    kinks(i)%reason = growth_corrector_failed
+                    kinks(i)%theta = kinks(i)%theta_mts
+                end if
             end if
         end do
         call update_paths()
@@ -231,7 +257,7 @@ contains
     !> MTS angle) and with the step's links (`fixed`, then the kinks'), the step that created
     !> each element and where each old element went.
     subroutine grow_paths(model, created, options, step, kinks, fixed, grown, grown_created, &
-                          moved_to)
+                          moved_to, grown_origin)
         !> The model before growing
         type(model_type), intent(in) :: model
         !> Growth step that created each element of model, shape (n)
@@ -249,6 +275,8 @@ contains
         integer, allocatable, intent(out) :: grown_created(:)
         !> The index in grown of each element of model, shape (model n)
         integer, allocatable, intent(out) :: moved_to(:)
+        !> The element of model each element of grown comes from (0: new), shape (grown n)
+        integer, allocatable, intent(out) :: grown_origin(:)
         type(tip_path), allocatable :: paths(:), link_paths(:)
         type(element_split), allocatable :: splits(:)
         type(tip_link), allocatable :: made(:)
@@ -268,7 +296,7 @@ contains
         end do
         paths = [paths, link_paths]
         call extend_model(model, created, paths, step, options, grown, grown_created, moved_to, &
-                          splits)
+                          splits, grown_origin)
     end subroutine grow_paths
 
     !> K_II of a kink's new tip in the grown model (k%k2), and whether that tip is closed (a

@@ -22,6 +22,12 @@
 !> The run ends when no tip is critical any more, or none of the critical ones grew in a
 !> step (arrested: the next step would repeat it), or after `steps` steps (step_limit);
 !> fields, tips and the summary are those of the final geometry.
+!>
+!> Under a loading history (SPEC-GROWTH 6) every load step is solved from the friction
+!> memory of the one before (ddc_growth_solver keeps it), its fractures are grown until none
+!> is critical (at most `steps` growth steps, else the run ends with step_limit), and its end
+!> is recorded for /history (ddc_growth_load_steps); growth steps are numbered through the
+!> whole run.
 module ddc_growth_driver
     use, intrinsic :: iso_fortran_env, only: int64
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
@@ -33,14 +39,18 @@ module ddc_growth_driver
         growth_subcritical, growth_corrector_failed, growth_closed, growth_waiting, &
         growth_linked, growth_arrested, growth_step_limit
     use ddc_mesh_checks, only: check_elements
-    use ddc_growth_solver, only: growth_solver, solve_input, solve_grown, accept_trial, &
-        final_results, solves_done
+    use ddc_growth_solver, only: growth_solver, solve_input, solve_grown, solve_loaded, &
+        accept_trial, final_results, solves_done
     use ddc_growth_criterion, only: mts_angle, equivalent_k, kink_slope, most_critical
     use ddc_growth_extension, only: tip_path, make_path, tip_element
     use ddc_growth_clearance, only: check_paths, path_clear, tip_link
     use ddc_growth_tips, only: growing_tip, find_growing_tips, fracture_tip
     use ddc_growth_corrector, only: kink, correct_kinks, grow_paths
-    use ddc_text, only: itoa
+    use ddc_growth_load_steps, only: load_step_history, start_load_steps, follow_growth, &
+        record_load_step, finish_load_steps
+    use ddc_history_path, only: path_loads, apply_load, load_text
+    use ddc_progress, only: report_progress
+    use ddc_text, only: itoa, rtoa, seconds_text
     implicit none
     private
 
@@ -99,61 +109,163 @@ module ddc_growth_driver
         !> The fracture ends that may grow, and this step's view of them
         type(growing_tip), allocatable :: tips(:)
         type(step_tips) :: now
+        !> The loading history's columns (a run under a load path)
+        type(load_step_history) :: history
     end type growth_state
 
 contains
 
-    !> Grow the fractures of a model with &growth. On return the model is the final
-    !> geometry and results hold its solution, tips, fields and the growth record.
+    !> Grow the fractures of a model with &growth (along its load path when it has one). On
+    !> return the model is the final geometry (at the last load) and results hold its
+    !> solution, tips, fields, the growth record and the loading history.
     subroutine grow_fractures(model, results, error, progress)
         !> A validated model with growth options; the grown model on return
         type(model_type), intent(inout) :: model
-        !> The final geometry's results and results%growth
+        !> The final geometry's results, results%growth and results%history
         type(model_results), intent(out) :: results
         !> Set when a solve fails (naming the step) or a contract is broken
         type(error_type), allocatable, intent(out) :: error
-        !> Called after every step
+        !> Called after every growth step
         procedure(growth_progress), optional :: progress
         type(growth_state) :: run
         type(growth_record) :: record
-        integer :: step, grown, solves_before
-        integer(int64) :: t_start, t_step, t_end, rate
+        real(wp), allocatable :: loads(:, :)
+        integer :: step, load_step, steps_before
+        integer(int64) :: t_start, t_end, rate
+        logical :: history
+        character(len=:), allocatable :: where
 
         call system_clock(t_start, rate)
+        history = allocated(model%load_path%vertex)
         run%work = model
+        if (history) then
+            loads = path_loads(model%load_path)
+            run%work = apply_load(model, loads(:, 1))
+        else
+            allocate (loads(7, 1), source=0.0_wp)
+        end if
         ! Trial solves need no fields: they are evaluated once, on the final geometry.
         if (allocated(run%work%observations)) deallocate (run%work%observations)
         allocate (run%work%observations(0), run%created(run%work%elements%n))
         run%created = 0
         call empty_record(record)
-        call solve_input(run%solver, run%work, run%current, error)
+        call solve_input(run%solver, run%work, run%current, error, friction_memory=history)
         if (allocated(error)) then
             error%message = 'growth: solving the input geometry: '//error%message
+            if (history) error%message = 'load step 1: '//error%message
             return
         end if
         run%tips = find_growing_tips(run%work, run%current%tips, model%growth%fracture_grows)
+        if (history) call start_load_steps(run%history, run%work, size(loads, 2))
+        step = 0
+        do load_step = 1, size(loads, 2)
+            if (history) then
+                where = 'load step '//itoa(load_step)//' of '//itoa(size(loads, 2))//' ('// &
+                    load_text(loads(:, load_step), model%load_path%varies)//')'
+                if (load_step > 1) then
+                    run%work = apply_load(run%work, loads(:, load_step))
+                    call solve_loaded(run%solver, run%work, run%current, error)
+                    if (allocated(error)) then
+                        error%message = where//': '//error%message//'; no result is written'
+                        return
+                    end if
+                end if
+                call report_progress(where)
+            end if
+            steps_before = record%steps_taken
+            call grow_to_stability(run, model%growth, load_step, step, record, error, &
+                                   progress, t_start)
+            if (allocated(error)) then
+                if (history) error%message = where//': '//error%message
+                return
+            end if
+            if (history) then
+                call record_load_step(run%history, run%work, run%current, loads(:, load_step))
+                call report_load_step(record%steps_taken - steps_before)
+            end if
+            if (record%end_reason == growth_step_limit) exit
+        end do
+
+        model%elements = run%work%elements
+        model%fractures = run%work%fractures
+        if (history) then
+            model%sxx = run%work%sxx
+            model%syy = run%work%syy
+            model%sxy = run%work%sxy
+            model%stress_gradient = run%work%stress_gradient
+            model%pore_fluid = run%work%pore_fluid
+        end if
+        call final_results(run%solver, model, run%current, results)
+        record%created_step = run%created
+        if (history) call finish_load_steps(run%history, run%work, results%tips, run%tips, &
+                                            record, results%history)
+        results%growth = record
+        call system_clock(t_end)
+        results%solver%seconds_total = real(t_end - t_start, wp) / real(rate, wp)
+
+    contains
+
+        !> 'load step 3 of 20 (syy = -60): 2 growth steps, 1.2 grown, 3.5 s' (time since the start).
+        subroutine report_load_step(steps_grown)
+            integer, intent(in) :: steps_grown
+            integer(int64) :: t_now
+
+            call system_clock(t_now)
+            call report_progress(where//': '//itoa(steps_grown)//' growth step'// &
+                trim(merge('s', ' ', steps_grown /= 1))//', grown length '// &
+                rtoa(sum(record%length, record%load_step == load_step))//' in all, '// &
+                seconds_text(real(t_now - t_start, wp) / real(rate, wp)))
+        end subroutine report_load_step
+
+    end subroutine grow_fractures
+
+    !> Grow the fractures at the current load until no tip is critical (end_reason
+    !> growth_arrested) or for `steps` growth steps (growth_step_limit); `step` counts the
+    !> growth steps of the whole run.
+    subroutine grow_to_stability(run, options, load_step, step, record, error, progress, &
+                                 t_start)
+        !> The run at the load step's start (its geometry solved at the step's load)
+        type(growth_state), intent(inout) :: run
+        !> The model's growth options
+        type(growth_options), intent(in) :: options
+        !> The load step (1 without a load path)
+        integer, intent(in) :: load_step
+        !> The last growth step of the run so far
+        integer, intent(inout) :: step
+        !> The run's growth record: the step's records appended, steps_taken and end_reason
+        type(growth_record), intent(inout) :: record
+        !> Set when a solve fails (naming the step) or a contract is broken
+        type(error_type), allocatable, intent(out) :: error
+        !> Called after every growth step
+        procedure(growth_progress), optional :: progress
+        !> system_clock at the run's start
+        integer(int64), intent(in) :: t_start
+        integer :: s, grown, solves_before
+        integer(int64) :: t_step, rate
+
         record%end_reason = growth_step_limit
-        do step = 1, model%growth%steps
-            call system_clock(t_step)
+        do s = 1, options%steps
+            step = step + 1
+            call system_clock(t_step, rate)
             solves_before = solves_done(run%solver)
-            call evaluate_tips(run%work, run%current, run%tips, model%growth%toughness, &
+            call evaluate_tips(run%work, run%current, run%tips, options%toughness, &
                                run%now, error)
             if (allocated(error)) return
             if (.not. any(run%now%reason == growth_grew)) then
-                call append_records(record, step, run%tips, run%now)
+                call append_records(record, step, load_step, run%tips, run%now)
                 call report(0)
                 record%end_reason = growth_arrested
                 exit
             end if
             do
-                call choose_growing(run%work, model%growth%tips, run%tips, run%now)
-                call grow_step(run, model%growth, step, grown, error)
+                call choose_growing(run%work, options%tips, run%tips, run%now)
+                call grow_step(run, options, step, grown, error)
                 if (allocated(error)) return
                 if (grown > 0 .or. .not. any(run%now%reason == growth_waiting)) exit
                 ! The most critical tip closed: the next one waiting tries in this step.
                 where (run%now%reason == growth_waiting) run%now%reason = growth_grew
             end do
-            call append_records(record, step, run%tips, run%now)
+            call append_records(record, step, load_step, run%tips, run%now)
             call report(grown)
             if (grown == 0) then
                 record%end_reason = growth_arrested
@@ -161,14 +273,6 @@ contains
             end if
             record%steps_taken = record%steps_taken + 1
         end do
-
-        model%elements = run%work%elements
-        model%fractures = run%work%fractures
-        call final_results(run%solver, model, run%current, results)
-        record%created_step = run%created
-        results%growth = record
-        call system_clock(t_end)
-        results%solver%seconds_total = real(t_end - t_start, wp) / real(rate, wp)
 
     contains
 
@@ -184,7 +288,7 @@ contains
                                                  real(t_now - t_start, wp) / real(rate, wp))
         end subroutine report
 
-    end subroutine grow_fractures
+    end subroutine grow_to_stability
 
     !> One step's growth of the growing tips (reason growth_grew on entry): correct their
     !> kink angles, add the new elements and solve the grown model (or keep the corrector's
@@ -206,7 +310,7 @@ contains
         type(tip_link), allocatable :: predictor_links(:)
         type(model_type) :: trial
         type(model_results) :: solved
-        integer, allocatable :: which(:), linked(:), trial_created(:), moved_to(:)
+        integer, allocatable :: which(:), linked(:), trial_created(:), moved_to(:), origin(:)
         integer :: i, t, k
         logical :: trial_current
 
@@ -230,7 +334,7 @@ contains
         end do
         call correct_kinks(run%solver, run%work, run%created, options, step, kinks, &
                            predictor_links, trial, trial_created, solved, &
-                           trial_current, error)
+                           trial_current, error, origin)
         if (allocated(error)) return
         do i = 1, size(which)
             t = which(i)
@@ -254,8 +358,8 @@ contains
         if (grown == 0) return
         if (.not. trial_current) then
             call grow_paths(run%work, run%created, options, step, kinks, &
-                            predictor_links, trial, trial_created, moved_to)
-            call solve_grown(run%solver, trial, moved_to, solved, error)
+                            predictor_links, trial, trial_created, moved_to, origin)
+            call solve_grown(run%solver, trial, moved_to, solved, error, origin)
             if (allocated(error)) then
                 error%message = 'growth step '//itoa(step)//': '//error%message
                 return
@@ -265,6 +369,7 @@ contains
         run%work = trial
         run%current = solved
         call accept_trial(run%solver)
+        call follow_growth(run%history, origin)
         call check_elements(run%work%elements, run%work%fractures, error)
         if (allocated(error)) then
             call set_internal_error(error, 'grow_fractures', 'growth step '//itoa(step)// &
@@ -414,6 +519,7 @@ contains
         k%fracture = tip%fracture
         k%end = tip%end
         k%theta_mts = now%theta(i)
+        k%tip_open = now%k1(i) > 0.0_wp
         ! The first-order slope dK_II/dtheta; K_eq when that is not clearly positive.
         k%slope = kink_slope(now%k1(i), now%k2(i), now%theta(i))
         if (k%slope < 0.1_wp * now%k_eq(i)) k%slope = now%k_eq(i)
@@ -422,9 +528,9 @@ contains
     end function setup_kink
 
     !> Append the step's records: one per tip that could still grow at the step's start.
-    subroutine append_records(record, step, tips, now)
+    subroutine append_records(record, step, load_step, tips, now)
         type(growth_record), intent(inout) :: record
-        integer, intent(in) :: step
+        integer, intent(in) :: step, load_step
         type(growing_tip), intent(in) :: tips(:)
         type(step_tips), intent(in) :: now
         logical :: keep(size(tips))
@@ -434,6 +540,7 @@ contains
         keep = now%reason /= reason_stopped
         n = count(keep)
         record%step = [record%step, spread(step, 1, n)]
+        record%load_step = [record%load_step, spread(load_step, 1, n)]
         ! Components of tips are strided: copied here, not as temporaries of pack
         tip_values = tips%fracture
         record%fracture_id = [record%fracture_id, pack(tip_values, keep)]
@@ -456,7 +563,7 @@ contains
     subroutine empty_record(record)
         type(growth_record), intent(inout) :: record
 
-        allocate (record%step(0), record%fracture_id(0), record%end(0), record%x(0), record%y(0), &
+        allocate (record%step(0), record%load_step(0), record%fracture_id(0), record%end(0), record%x(0), record%y(0), &
                   record%k1(0), record%k2(0), record%k_eq(0), record%mts_angle(0), &
                   record%angle(0), record%corrections(0), record%k2_after(0), &
                   record%length(0), record%reason(0))

@@ -122,7 +122,7 @@ contains
     !> changes (moved_to), so the influences among them do not change; a split element is
     !> replaced by its two halves (moved_to 0), which keep its values and created step.
     subroutine extend_model(model, created, paths, step, options, grown, grown_created, &
-                            moved_to, splits)
+                            moved_to, splits, origin)
         !> The model before growing, geometry computed
         type(model_type), intent(in) :: model
         !> Growth step that created each element of model, shape (n)
@@ -141,6 +141,9 @@ contains
         integer, allocatable, intent(out), optional :: moved_to(:)
         !> Elements of model split in two (each at most once)
         type(element_split), intent(in), optional :: splits(:)
+        !> The element of model each element of grown comes from (moved, or split in two),
+        !> 0 for a new one, shape (grown n)
+        integer, allocatable, intent(out), optional :: origin(:)
         real(wp), allocatable :: x_begin(:), y_begin(:), x_end(:), y_end(:)
         logical, allocatable :: is_new(:), is_half(:)
         integer, allocatable :: pick(:)
@@ -213,6 +216,7 @@ contains
             end if
         end associate
         call compute_geometry(grown%elements)
+        if (present(origin)) origin = merge(0, pick, is_new)
 
     contains
 

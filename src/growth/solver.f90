@@ -22,7 +22,12 @@
 !> A trial that splits base elements (a linking step, SPEC-GROWTH 1.6) is assembled and
 !> factorized whole, from no states.
 !> Every other model (Lemke, TWODD-style elements, no contact) is solved from scratch by
-!> run_model, as before growth had a solver. Tractions, face displacements and fields are
+!> run_model, as before growth had a solver.
+!> Under a loading history (SPEC-GROWTH 6) the solver keeps the friction memory: every solve
+!> starts from the total slip of the base, an element that is there, or was split, keeps its
+!> slip and a new element starts from none (it joins the memory from the step that made it);
+!> a new load step is a solve of the base geometry at the new load (solve_loaded), on the
+!> kept path with the base's matrix and factors. Tractions, face displacements and fields are
 !> computed once, for the final geometry (final_results). Every solve's K at tips of unequal
 !> elements is calibrated (ddc_growth_tip_zone, SPEC-GROWTH 1.4b).
 module ddc_growth_solver
@@ -52,7 +57,7 @@ module ddc_growth_solver
     implicit none
     private
 
-    public :: growth_solver, solve_input, solve_grown, accept_trial, final_results
+    public :: growth_solver, solve_input, solve_grown, solve_loaded, accept_trial, final_results
     public :: keeps_solves, solves_done
 
     !> What the solves of one growth run keep. Arrays of n elements of the base or trial.
@@ -80,6 +85,10 @@ module ddc_growth_solver
         type(solver_record) :: totals
         !> Solves done
         integer :: solves = 0
+        !> The friction memory is kept (a loading history): the total slip of the base and of
+        !> the last trial [length unit], shape (n)
+        logical :: memory = .false.
+        real(wp), allocatable :: base_ds(:), trial_ds(:)
     end type growth_solver
 
 contains
@@ -104,44 +113,79 @@ contains
     end function solves_done
 
     !> Solve the input geometry; it is the base of the first step.
-    subroutine solve_input(solver, model, results, error)
+    subroutine solve_input(solver, model, results, error, friction_memory)
         !> The solver (fresh)
         type(growth_solver), intent(inout), target :: solver
         !> The input model (without observations)
         type(model_type), intent(in) :: model
-        !> Its DDs, states, tips and solver record (tractions only when not kept)
+        !> Its DDs, states, tips, tractions and solver record
         type(model_results), intent(out) :: results
         !> Set when the solve fails
         type(error_type), allocatable, intent(out) :: error
+        !> Keep the friction memory from this solve on (a loading history; default no)
+        logical, intent(in), optional :: friction_memory
 
+        if (present(friction_memory)) solver%memory = friction_memory
         call solve_grown(solver, model, [integer ::], results, error)
         if (allocated(error)) return
         call accept_trial(solver)
     end subroutine solve_input
 
+    !> Solve the base geometry at a new load (model: the base at that load), from the
+    !> friction memory of the base; it stays the base.
+    subroutine solve_loaded(solver, model, results, error)
+        !> The solver
+        type(growth_solver), intent(inout), target :: solver
+        !> The base geometry at the new load (without observations)
+        type(model_type), intent(in) :: model
+        !> Its DDs, states, tips, tractions and solver record
+        type(model_results), intent(out) :: results
+        !> Set when the solve fails
+        type(error_type), allocatable, intent(out) :: error
+        integer :: i
+
+        call solve_grown(solver, model, [(i, i = 1, model%elements%n)], results, error)
+        if (allocated(error)) return
+        call accept_trial(solver)
+    end subroutine solve_loaded
+
     !> Solve a grown model (a trial): from the base when both are on the kept path,
     !> else from scratch.
-    subroutine solve_grown(solver, model, moved_to, results, error)
+    subroutine solve_grown(solver, model, moved_to, results, error, origin)
         !> The solver
         type(growth_solver), intent(inout), target :: solver
         !> The grown model (without observations)
         type(model_type), intent(in) :: model
         !> The index in model of each element of the base, shape (n_base); empty: no base
         integer, intent(in) :: moved_to(:)
-        !> Its DDs, states, tips and solver record (tractions only when not kept)
+        !> Its DDs, states, tips, tractions and solver record
         type(model_results), intent(out) :: results
         !> Set when the solve fails
         type(error_type), allocatable, intent(out) :: error
+        !> The element of the base each element of model comes from (moved, or split in
+        !> two), 0 for a new one, shape (n) (default: from moved_to); the friction memory
+        !> follows it
+        integer, intent(in), optional :: origin(:)
+        real(wp), allocatable :: held(:)
 
         solver%pending = .true.
         solver%solves = solver%solves + 1
         solver%trial_kept = keeps_solves(model)
+        allocate (held(model%elements%n), source=0.0_wp)
+        if (solver%memory .and. allocated(solver%base_ds)) then
+            if (present(origin)) then
+                where (origin > 0) held = solver%base_ds(max(origin, 1))
+            else if (size(moved_to) > 0) then
+                held(moved_to) = solver%base_ds
+            end if
+        end if
         if (solver%trial_kept) then
-            call solve_kept(solver, model, moved_to, results, error)
+            call solve_kept(solver, model, moved_to, held, results, error)
         else
-            call run_model(model, results, error)
+            call run_model(model, results, error, ds_previous=held)
         end if
         if (allocated(error)) return
+        if (solver%memory) solver%trial_ds = results%elements%ds
         call calibrate_tips(model, results%tips, error)
         if (allocated(error)) return
         call add_record(solver%totals, results%solver)
@@ -155,6 +199,7 @@ contains
         if (.not. solver%pending) return
         solver%pending = .false.
         solver%kept = solver%trial_kept
+        if (solver%memory) call move_alloc(solver%trial_ds, solver%base_ds)
         if (allocated(solver%base_matrix)) deallocate (solver%base_matrix)
         if (allocated(solver%layout)) deallocate (solver%layout)
         if (.not. solver%kept) then
@@ -193,6 +238,8 @@ contains
             allocate (remote_shear(n), remote_normal(n))
             call resolve_remote_stress(model%elements, model%sxx, model%syy, model%sxy, &
                                        remote_shear, remote_normal, model%stress_gradient)
+            ! finish_model computes the tractions anew, with the face displacements.
+            deallocate (results%elements%shear_traction, results%elements%normal_traction)
             call finish_model(model, remote_shear, remote_normal, results, &
                               matrix=solver%base_matrix)
         else
@@ -228,10 +275,11 @@ contains
     !> A solve on the kept path: the influence matrix grown from the base's (or assembled
     !> whole without a kept base), the Newton method started from the base's states and
     !> factors.
-    subroutine solve_kept(solver, model, moved_to, results, error)
+    subroutine solve_kept(solver, model, moved_to, held, results, error)
         type(growth_solver), intent(inout), target :: solver
         type(model_type), intent(in) :: model
         integer, intent(in) :: moved_to(:)
+        real(wp), intent(in) :: held(:)
         type(model_results), intent(out) :: results
         type(error_type), allocatable, intent(out) :: error
         type(reduced_factors) :: no_factors
@@ -290,7 +338,7 @@ contains
         results%solver%seconds_assembly = real(t1 - t0, wp) / real(rate, wp)
         ! The counts of this solve only (the factors carry those of the base's solves).
         solver%stiffness%counts = factor_counts()
-        call solve_contact_on(solver, solver%matrix, model, finite, results, error)
+        call solve_contact_on(solver, solver%matrix, model, finite, held, results, error)
     end subroutine solve_kept
 
     !> The Newton method's start for a grown model: the base's states at the old elements'
@@ -341,13 +389,15 @@ contains
     !> The contact solve of a model whose elements are all contact elements on the matrix a
     !> (solver%matrix), from the session's states (when allocated) and the stiffness
     !> operator's factors; the session keeps the states of the solution for the next trial;
-    !> DDs, states, tips and the record set.
-    subroutine solve_contact_on(solver, a, model, checked, results, error)
+    !> DDs, states, tractions, tips and the record set.
+    subroutine solve_contact_on(solver, a, model, checked, held, results, error)
         type(growth_solver), intent(inout) :: solver
         real(wp), intent(in), target, contiguous :: a(:, :)
         type(model_type), intent(in) :: model
         !> Every entry of a is known to be finite
         logical, intent(in) :: checked
+        !> Total slip before this solve (friction memory), shape (n) [length]
+        real(wp), intent(in) :: held(:)
         type(model_results), intent(inout) :: results
         type(error_type), allocatable, intent(out) :: error
         type(contact_result) :: res
@@ -365,7 +415,7 @@ contains
         solver%stiffness%a => a
         call solve_contact_with(solver%stiffness, remote_shear, remote_normal, &
                                 model%elements%mu, model%elements%sf, pressure, model%solver, &
-                                res, error, a=a, session=solver%session)
+                                res, error, a=a, session=solver%session, ds_previous=held)
         nullify (solver%stiffness%a)
         if (allocated(error)) return
         seconds_assembly = results%solver%seconds_assembly
@@ -374,6 +424,8 @@ contains
         results%elements%ds = res%ds
         results%elements%dn = res%dn
         results%elements%state = res%state
+        results%elements%shear_traction = res%shear_traction
+        results%elements%normal_traction = res%normal_traction
         call find_tips(model%elements, shear_modulus_of(model), model%poissons_ratio, res%ds, &
                        res%dn, results%tips)
     end subroutine solve_contact_on

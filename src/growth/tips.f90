@@ -11,7 +11,7 @@ module ddc_growth_tips
     implicit none
     private
 
-    public :: growing_tip, find_growing_tips, fracture_tip
+    public :: growing_tip, find_growing_tips, fracture_tip, locate_tip
 
     !> A fracture end that may grow.
     type :: growing_tip

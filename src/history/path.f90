@@ -4,11 +4,12 @@
 !> adds steps(l) equal increments, the last of which lands on vertex l + 1 exactly.
 module ddc_history_path
     use ddc_kinds, only: wp
-    use ddc_model_types, only: model_type, load_path_type
+    use ddc_model_types, only: model_type, load_path_type, load_path_names
+    use ddc_text, only: rtoa
     implicit none
     private
 
-    public :: path_step_count, path_loads, load_at, apply_load
+    public :: path_step_count, path_loads, load_at, apply_load, load_text
 
 contains
 
@@ -73,5 +74,20 @@ contains
         loaded%stress_gradient = load(4:6)
         loaded%pore_fluid(1) = load(7)
     end function apply_load
+
+    !> 'sxy = 10, p0 = 3' for the quantities a path varies (all seven when none is marked).
+    function load_text(load, varies) result(text)
+        real(wp), intent(in) :: load(:)
+        logical, intent(in) :: varies(:)
+        character(len=:), allocatable :: text
+        integer :: i
+
+        text = ''
+        do i = 1, size(load)
+            if (.not. varies(i) .and. any(varies)) cycle
+            if (len(text) > 0) text = text//', '
+            text = text//trim(load_path_names(i))//' = '//rtoa(load(i))
+        end do
+    end function load_text
 
 end module ddc_history_path

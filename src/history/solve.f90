@@ -19,7 +19,7 @@ module ddc_history_solve
     use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
-    use ddc_model_types, only: model_type, condition_contact, load_path_names
+    use ddc_model_types, only: model_type, condition_contact
     use ddc_model_results, only: model_results, history_record
     use ddc_model_loads, only: resolve_remote_stress, total_pressure, shear_modulus_of
     use ddc_contact_result, only: contact_result, contact_stress_scale
@@ -30,10 +30,10 @@ module ddc_history_solve
         complete_dds, record_contact, release_matrix
     use ddc_influence_response, only: listed_tractions
     use ddc_post_tips, only: find_tips, stress_intensity
-    use ddc_history_path, only: path_loads, apply_load
+    use ddc_history_path, only: path_loads, apply_load, load_text
     use ddc_run_model, only: finish_model
     use ddc_progress, only: report_progress
-    use ddc_text, only: itoa, rtoa, seconds_text
+    use ddc_text, only: itoa, seconds_text
     use ddc_allocation, only: allocation_failed, real_bytes
     implicit none
     private
@@ -291,20 +291,5 @@ contains
         if (len(res%fallback) > 0) line = line//' (fell back: '//res%fallback//')'
         line = line//', '//seconds_text(seconds)
     end function step_line
-
-    !> 'sxy = 10, p0 = 3' for the quantities a path varies (all seven when none is marked).
-    function load_text(load, varies) result(text)
-        real(wp), intent(in) :: load(:)
-        logical, intent(in) :: varies(:)
-        character(len=:), allocatable :: text
-        integer :: i
-
-        text = ''
-        do i = 1, size(load)
-            if (.not. varies(i) .and. any(varies)) cycle
-            if (len(text) > 0) text = text//', '
-            text = text//trim(load_path_names(i))//' = '//rtoa(load(i))
-        end do
-    end function load_text
 
 end module ddc_history_solve

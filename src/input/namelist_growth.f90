@@ -1,6 +1,7 @@
 !> The &growth group of a namelist input file (SPEC-GROWTH 2): fracture growth under the
-!> model's fixed loading. Sets the defaults, reads the group if present and checks every
-!> value; growth does not combine with &load_path or &symmetry (every task of a &sweep grows).
+!> model's loading (fixed, or along its &load_path: SPEC-GROWTH 6). Sets the defaults, reads
+!> the group if present and checks every value; growth does not combine with &symmetry
+!> (every task of a &sweep grows).
 module ddc_input_namelist_growth
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type, growth_tips_names, growth_criterion_names, &
@@ -8,7 +9,7 @@ module ddc_input_namelist_growth
     use ddc_model_limits, only: quantity_positive, quantity_non_negative
     use ddc_text, only: itoa, lower, find_name, quoted_list
     use ddc_input_namelist_groups, only: group_record, message_list, add, group_prefix, &
-        g_growth, g_load_path, g_symmetry
+        g_growth, g_symmetry
     use ddc_input_namelist_diagnosis, only: report_malformed
     use ddc_input_namelist_values, only: unset_real, unset_integer, text_length, check_scalar
     use ddc_input_namelist_fracture, only: fracture_input
@@ -121,18 +122,13 @@ contains
         call select_fractures(fractures, known, prefix, model%growth%fracture_grows, messages)
     end subroutine read_growth_group
 
-    !> Growth under a loading history or with implicit image elements is not available.
+    !> Growth with implicit image elements is not available.
     subroutine check_combinations(prefix, groups, model, messages)
         character(len=*), intent(in) :: prefix
         type(group_record), intent(in) :: groups(:)
         type(model_type), intent(in) :: model
         type(message_list), intent(inout) :: messages
 
-        if (groups(g_load_path)%count > 0) then
-            call add(messages, prefix//'cannot be combined with &load_path (line '// &
-                     itoa(groups(g_load_path)%lines(1))//'): growth runs under a fixed '// &
-                     'load; remove one of the two groups')
-        end if
         if (model%elements%symmetry%kind /= symmetry_none) then
             call add(messages, prefix//'cannot be combined with &symmetry (line '// &
                      itoa(groups(g_symmetry)%lines(1))//'): model the whole body, without '// &

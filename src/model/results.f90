@@ -12,12 +12,14 @@ module ddc_model_results
         growth_corrector_failed, growth_linked, growth_closed, growth_waiting, &
         growth_reason_names
     public :: growth_arrested, growth_step_limit, growth_end_names
-    public :: state_free, state_stick, state_slip, state_open, state_names
+    public :: state_free, state_stick, state_slip, state_open, state_names, state_not_grown
     public :: point_clear, point_near, point_on_element
 
     !> Element states; free = a TWODD-style condition, not a contact element
     !> (stick, slip and open are the contact solvers' codes, ddc_contact_states)
     integer, parameter :: state_free = 0
+    !> The state a growth run's history records for an element before it was made
+    integer, parameter :: state_not_grown = -1
     !> Names of the states, indexed by state + 1
     character(len=*), parameter :: state_names(0:3) = [character(len=5) :: &
         'free', 'stick', 'slip', 'open']
@@ -154,6 +156,13 @@ module ddc_model_results
         !> equilibrium residual, shape (k) [-]
         real(wp), allocatable :: certificate_min_z(:), certificate_min_w(:)
         real(wp), allocatable :: certificate_max_complementarity(:), equilibrium_residual(:)
+        !> With fracture growth (SPEC-GROWTH 6; not allocated otherwise): the rows of the
+        !> element arrays are the final geometry's elements (NaN, state_not_grown before an
+        !> element was made); the number of elements at the end of each step, shape (k);
+        !> the fracture and end (0 begin, 1 end) of every tip that may grow, shape (tips);
+        !> the length each has grown by the end of each step [length unit], shape (tips, k)
+        integer, allocatable :: element_count(:), tip_fracture_id(:), tip_end(:)
+        real(wp), allocatable :: grown_length(:, :)
     end type history_record
 
     !> A fracture growth run (SPEC-GROWTH 3): one record per tip per step, in step order and
@@ -162,6 +171,8 @@ module ddc_model_results
     type :: growth_record
         !> Growth step, fracture (1-based) and end (0 begin tip, 1 end tip), shape (k)
         integer, allocatable :: step(:), fracture_id(:), end(:)
+        !> Load step of a loading history (1 without one), shape (k)
+        integer, allocatable :: load_step(:)
         !> Tip position before growing [length unit], shape (k)
         real(wp), allocatable :: x(:), y(:)
         !> K_I, K_II of the tip and K_eq at the MTS angle (K_I taken as max(K_I, 0))

@@ -24,10 +24,13 @@
 !>   shear_traction, normal_traction} shaped (k, n) in h5py (Fortran dims (n, k)); {k1, k2}
 !>   shaped (k, tips); method, fallback, pivots, newton_iterations, certificate_min_z,
 !>   certificate_min_w, certificate_max_complementarity, equilibrium_residual, shape (k);
-!>   leg_steps (increments per leg); /elements hold the last step.
+!>   leg_steps (increments per leg); /elements hold the last step. With fracture growth
+!>   (SPEC-GROWTH 6) the rows are the final geometry's elements (NaN and state -1 before an
+!>   element was made), {k1, k2} those of its tips, and element_count (k), tip_fracture_id,
+!>   tip_end (tips that may grow) and grown_length (k, tips) are added.
 !> - /growth (fracture growth only, SPEC-GROWTH 3; k records, one per tip per step):
 !>   {step, fracture_id, end, x, y, k1, k2, k_eq, mts_angle, angle, corrections, k2_after,
-!>   length, reason}, shape (k); attributes toughness, increment, element_length, tips,
+!>   length, reason} and, along a load path, load_step, shape (k); attributes toughness, increment, element_length, tips,
 !>   criterion, max_corrections, steps, steps_taken, end_reason, reason_coding; and
 !>   /elements/created_step; /elements, /tips and /fields describe the final geometry.
 module ddc_output_hdf5
@@ -519,8 +522,13 @@ contains
                                     error)
             call write_real_dataset(group, 'dn', reshape(h%dn, [size(h%dn)]), dims, length, &
                                     error)
-            call write_int_dataset(group, 'state', reshape(h%state, [size(h%state)]), dims, &
-                                   error, state_coding)
+            if (allocated(h%element_count)) then
+                call write_int_dataset(group, 'state', reshape(h%state, [size(h%state)]), &
+                                       dims, error, state_coding//', -1 not made yet')
+            else
+                call write_int_dataset(group, 'state', reshape(h%state, [size(h%state)]), &
+                                       dims, error, state_coding)
+            end if
             call write_real_dataset(group, 'shear_traction', reshape(h%shear_traction, &
                                     [size(h%shear_traction)]), dims, stress, error)
             call write_real_dataset(group, 'normal_traction', reshape(h%normal_traction, &
@@ -542,6 +550,14 @@ contains
             call write_real_1d(group, 'equilibrium_residual', h%equilibrium_residual, '1', &
                                error)
             call write_int_1d(group, 'leg_steps', model%load_path%steps, error)
+            if (allocated(h%element_count)) then
+                call write_int_1d(group, 'element_count', h%element_count, error)
+                call write_int_1d(group, 'tip_fracture_id', h%tip_fracture_id, error)
+                call write_int_1d(group, 'tip_end', h%tip_end, error, '0 begin tip, 1 end tip')
+                call write_real_dataset(group, 'grown_length', reshape(h%grown_length, &
+                                        [size(h%grown_length)]), shape(h%grown_length), &
+                                        length, error)
+            end if
         end associate
         call close_group(group, error)
     end subroutine write_history
@@ -567,6 +583,8 @@ contains
         if (allocated(error)) return
         associate (g => results%growth, o => model%growth)
             call write_int_1d(group, 'step', g%step, error)
+            if (allocated(model%load_path%vertex)) call write_int_1d(group, 'load_step', &
+                                                                     g%load_step, error)
             call write_int_1d(group, 'fracture_id', g%fracture_id, error)
             call write_int_1d(group, 'end', g%end, error, '0 begin tip, 1 end tip')
             call write_real_1d(group, 'x', g%x, length, error)

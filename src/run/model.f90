@@ -37,7 +37,7 @@ contains
     end function wall_seconds
 
     !> Solve a validated model and compute every result the output needs.
-    subroutine run_model(model, results, error, engine)
+    subroutine run_model(model, results, error, engine, ds_previous)
         !> A validated model with element geometry computed
         type(model_type), intent(in) :: model
         !> Element results, tips, fields and the solver record
@@ -46,6 +46,9 @@ contains
         type(error_type), allocatable, intent(out) :: error
         !> The engine of a distributed run (default: the work is done in this process)
         class(model_engine), intent(inout), optional :: engine
+        !> Total slip of every element before this solve (friction memory of a growth run
+        !> under a loading history; default 0; not with an engine), shape (n) [length]
+        real(wp), intent(in), optional :: ds_previous(:)
         real(wp), allocatable :: remote_shear(:), remote_normal(:), matrix(:, :)
         real(wp), allocatable :: strength(:, :)
         type(element_set) :: loaded
@@ -77,7 +80,7 @@ contains
                                   e%ds, e%dn, e%state, rec, error, strength)
             else
                 call solve_here(loaded, g, nu, remote_shear, remote_normal, model%solver, e%ds, &
-                                e%dn, e%state, rec, matrix, error, strength)
+                                e%dn, e%state, rec, matrix, error, strength, ds_previous)
             end if
             if (allocated(error)) return
             if (allocated(strength)) then
@@ -195,7 +198,7 @@ contains
     !> The solve in this process: contact models by solve_frictional, the others by
     !> solve_elastic (method 'lu'); the influence matrix of the solve is handed back.
     subroutine solve_here(elements, shear_modulus, nu, remote_shear, remote_normal, options, &
-                          ds, dn, state, record, matrix, error, strength)
+                          ds, dn, state, record, matrix, error, strength, ds_previous)
         type(element_set), intent(in) :: elements
         real(wp), intent(in) :: shear_modulus, nu
         real(wp), intent(in) :: remote_shear(:), remote_normal(:)
@@ -208,10 +211,13 @@ contains
         !> Cohesion, tensile strength and friction in force at the end, shape (3, n)
         !> (contact models)
         real(wp), allocatable, intent(out) :: strength(:, :)
+        !> Total slip before this solve (default 0), shape (n) [length]
+        real(wp), intent(in), optional :: ds_previous(:)
 
         if (any(elements%condition == condition_contact)) then
             call solve_frictional(elements, shear_modulus, nu, remote_shear, remote_normal, &
-                                  options, ds, dn, state, record, matrix, error, strength)
+                                  options, ds, dn, state, record, matrix, error, strength, &
+                                  ds_previous)
         else
             record%method = 'lu'
             call solve_elastic(elements, shear_modulus, nu, remote_shear, remote_normal, ds, dn, &

@@ -59,7 +59,8 @@ contains
 
     !> Solve a model with at least one contact element.
     subroutine solve_frictional(elements, shear_modulus, nu, remote_shear, remote_normal, &
-                                options, ds, dn, state, record, matrix, error, strength)
+                                options, ds, dn, state, record, matrix, error, strength, &
+                                ds_previous)
         !> Elements with geometry computed
         type(element_set), intent(in) :: elements
         !> Shear modulus [stress unit] and Poisson's ratio [-]
@@ -83,10 +84,13 @@ contains
         !> [stress unit], friction (row 3) [-] of each element (0 for TWODD-style
         !> elements), shape (3, n)
         real(wp), allocatable, intent(out), optional :: strength(:, :)
+        !> Total slip of every element before this solve (friction memory of a growth run
+        !> under a loading history; default 0), shape (n) [length]
+        real(wp), intent(in), optional :: ds_previous(:)
         type(condensed_contact) :: sys
         type(contact_result) :: res
         real(wp), allocatable :: shift(:), y_load(:), compliance(:), a_joint(:, :), &
-            load_map(:, :), ss(:), sn(:)
+            load_map(:, :), ss(:), sn(:), held(:)
 
         call condense_contact(elements, shear_modulus, nu, sys, record, error)
         if (allocated(error)) return
@@ -105,13 +109,16 @@ contains
         else
             call move_alloc(sys%a, a_joint)
         end if
+        allocate (held(sys%nc), source=0.0_wp)
+        if (present(ds_previous)) held = ds_previous(sys%contact)
         call solve_contact(a_joint, ss, sn, &
                            elements%mu(sys%contact), elements%sf(sys%contact), &
                            elements%pressure(sys%contact), options, res, error, &
                            tensile=elements%tensile_strength(sys%contact), &
                            sf_residual=elements%sf_residual(sys%contact), &
                            mu_dynamic=elements%mu_dynamic(sys%contact), &
-                           slip_weakening_distance=elements%slip_weakening_distance(sys%contact))
+                           slip_weakening_distance=elements%slip_weakening_distance(sys%contact), &
+                           ds_previous=held)
         if (.not. allocated(sys%a)) call move_alloc(a_joint, sys%a)
         if (allocated(error)) then
             if (sys%nf > 0) error%message = error%message// &
