@@ -48,6 +48,8 @@ HISTORY_LOADS = ("sxx", "syy", "sxy", "dsxx_dy", "dsyy_dy", "dsxy_dy", "p0")
 #: Per-step /history datasets beyond the loads, DDs and states (read when present).
 HISTORY_STEP_DATASETS = ("shear_traction", "normal_traction", "k1", "k2", "pivots",
                          "newton_iterations")
+#: /history datasets of fracture growth along a load path (SPEC-GROWTH 6), read when present.
+HISTORY_GROWTH_DATASETS = ("element_count", "grown_length", "tip_fracture_id", "tip_end")
 #: /growth datasets (fracture growth, SPEC-GROWTH 3), one value per record (tip and step).
 GROWTH_DATASETS = ("step", "fracture_id", "end", "x", "y", "k1", "k2", "k_eq", "mts_angle",
                    "angle", "corrections", "k2_after", "length", "reason")
@@ -380,15 +382,17 @@ def read_history(path, handle, count):
     """/history as a dict (``loads``: name -> (steps,), ``ds``, ``dn``, ``state``:
     (steps, elements), ``leg_steps``; when the file has them, ``shear_traction``,
     ``normal_traction`` (steps, elements), ``k1``, ``k2`` (steps, tips), ``pivots``,
-    ``newton_iterations`` (steps,) and ``method``, ``fallback``: one str per step), or None
-    when the file has no loading history."""
+    ``newton_iterations`` (steps,) and ``method``, ``fallback``: one str per step; with
+    fracture growth ``element_count`` (steps,), ``grown_length`` (steps, tips),
+    ``tip_fracture_id``, ``tip_end`` (tips,), and element rows NaN (state -1) before an
+    element was made), or None when the file has no loading history."""
     if "history" not in handle:
         return None
     group = handle["history"]
     history = {"loads": {k: np.asarray(group[k][()]) for k in HISTORY_LOADS if k in group}}
     for key in ("ds", "dn", "state", "leg_steps"):
         history[key] = np.asarray(group[key][()])
-    for key in HISTORY_STEP_DATASETS:
+    for key in HISTORY_STEP_DATASETS + HISTORY_GROWTH_DATASETS:
         if key in group:
             history[key] = np.asarray(group[key][()])
     for key in ("method", "fallback"):

@@ -135,7 +135,8 @@ def history_choices(history, elements=None, steps=None):
     symmetric fault), the lowest numbered (ddc2d_h5.index_of_extreme)."""
     nsteps, count = history["ds"].shape
     if elements is None:
-        elements = [index_of_extreme(np.max(np.abs(history["ds"]), axis=0)) + 1]
+        # nanmax: with growth an element has no slip (NaN) before it was made
+        elements = [index_of_extreme(np.nanmax(np.abs(history["ds"]), axis=0)) + 1]
     if steps is None:
         steps = list(np.cumsum(np.concatenate([[1], history["leg_steps"]])))
     for k, limit, what in [(k, count, "element") for k in elements] + \

@@ -106,6 +106,30 @@ def plot_history(result, elements, steps):
     return fig
 
 
+def plot_growth_history(result):
+    """The length each tip has grown against the load parameter of a loading history
+    (growth along a load path, SPEC-GROWTH 6). Returns the Figure."""
+    history = result["history"]
+    name, load = history_parameter(history)
+    unit = result["stress_unit"] + ("/" + result["length_unit"] if name.startswith("d")
+                                    else "")
+    fig, ax = plt.subplots(figsize=(6.5, 4.5), constrained_layout=True)
+    ends = ("begin", "end")
+    for t, (fid, end) in enumerate(zip(history["tip_fracture_id"], history["tip_end"])):
+        label = f"{result['fractures'][fid - 1]['name']} {ends[end]}"
+        # Equal curves (the wings of a symmetric model) stay visible: one style per tip.
+        ax.plot(load, history["grown_length"][:, t], marker="o", markersize=3,
+                linewidth=1.2, linestyle=LINESTYLES[t % len(LINESTYLES)], color=f"C{t % 10}",
+                label=label, gid=f"grown_length:{label}")
+    ax.set_xlabel(f"{name}" + unit_label(unit))
+    ax.set_ylabel("grown length" + unit_label(result["length_unit"]))
+    ax.legend(fontsize="small", loc="best")
+    ax.grid(True, linewidth=0.3)
+    ax.set_title("growth along the load path (a point per load step)", fontsize="medium")
+    fig.suptitle(heading(result, f"growth under a loading history ({load.size} steps)"))
+    return fig
+
+
 def _draw_elements(ax, elements):
     """The elements: the input's in black, those created by growth coloured by their step.
     Returns the collection of the grown elements (for a colour bar), or None."""

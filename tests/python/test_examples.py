@@ -185,6 +185,22 @@ def check_tail_cracks(f):
     check_smooth_growth(f, "fault", 11)
 
 
+def check_growth_along_path(f, first_load_step, length):
+    """Growth along a load path: nothing grows before `first_load_step` (1-based; the tips
+    may be critical, but their kinks are closed), both tips end `length` long (to 1e-9,
+    point-symmetric) and arrested, the grown elements are open, and the grown length never
+    falls from one load step to the next."""
+    g, h = f["growth"], f["history"]
+    grew = g["load_step"][()][g["reason"][()] == 0]
+    assert grew.min() == first_load_step
+    assert decode(g.attrs["end_reason"]) == "arrested"
+    grown = h["grown_length"][()]
+    np.testing.assert_allclose(grown[-1], [length, length], atol=1e-9)
+    assert np.all(grown[:first_load_step - 1] == 0.0) and np.all(np.diff(grown, axis=0) >= 0)
+    created = f["elements/created_step"][()]
+    assert np.all(f["elements/state"][()][created > 0] == STATE_CODES["open"])
+
+
 def check_echelon_linking(f):
     """Step 2: the west inner tip links to east (5), the east one would close a contour
     (refused, 2); the outer tips arrest; the link ends on a vertex of east, no tip there."""
@@ -275,6 +291,8 @@ EXPECTED = {
     "slip_weakening_thrust": check_slip_weakening_thrust,
     "wing_cracks_sliding_flaw": check_wings,
     "fault_tail_cracks": check_tail_cracks,
+    "wings_rising_axial_load": lambda f: check_growth_along_path(f, 8, 1.1),
+    "tail_cracks_rising_pore_pressure": lambda f: check_growth_along_path(f, 7, 0.96),
     "echelon_cracks_linking": check_echelon_linking,
     "hydraulic_fracture_toward_fault": check_hydraulic_fracture,
     "joint_growing_to_surface": check_joint_to_surface,
