@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Benchmark ddc2d (SPEC sections 6 and 8).
 
-    benchmark.py --exe PATH --sizes 250,500,1000 --case straight|mixed|history|fields|growth
+    benchmark.py --exe PATH --sizes 250,500,1000
+                 --case straight|mixed|history|fields|growth|growth-history
                  --json FILE [--threads T[,T...]] [--lcp-method auto|lemke|newton] [--grid NX]
                  [--steps K] [--compare-lemke] [--lu-exe PATH] [--workdir DIR]
                  [--mpi P [--mpiexec PATH] [--block-size NB]]
@@ -31,6 +32,12 @@ Cases (CASES: a model builder per case; a new case adds one):
             reference LU is that of the final geometry, LU(2 N_final); the record adds
             ``n_final``, ``growth_steps``, ``solves`` (from the progress lines) and
             ``end_reason``.
+  growth-history  the growth case's flaw along a loading history (SPEC-GROWTH 6): syy rises
+            from -2 to -100 MPa in K load steps (--steps, default 20) at sxx = -2 MPa, and
+            at each load step the wings grow (20 of the flaw's elements per growth step)
+            until no tip is critical. One set of kept factors serves every load step (a new
+            load changes the right-hand side, not the matrix). Measured against LU(2
+            N_final) like the growth case; the record adds ``steps`` (load steps) too.
 
 --compare-lemke runs every model a second time with lcp_method = 'lemke' and adds to its
 record ``lemke``: Lemke's seconds, peak memory and ratio to the LU, whether the states are
@@ -88,9 +95,10 @@ except ImportError as exc:
     rerun_in_venv("benchmark.py", exc, __file__)
 
 #: Default grid (GRID x GRID points) of each case
-DEFAULT_GRID = {"straight": 100, "mixed": 100, "history": 0, "fields": 500, "growth": 0}
+DEFAULT_GRID = {"straight": 100, "mixed": 100, "history": 0, "fields": 500, "growth": 0,
+                "growth-history": 0}
 #: Default --steps of each case that has steps
-DEFAULT_STEPS = {"history": 100, "growth": 25}
+DEFAULT_STEPS = {"history": 100, "growth": 25, "growth-history": 20}
 #: New elements per tip and growth step of the growth case
 GROWTH_ELEMENTS = 20
 
@@ -163,6 +171,13 @@ def growth_model(n, grid, steps=25):
         + grid_group(grid))
 
 
+def growth_history_model(n, grid, steps=20):
+    """The growth case's flaw with syy rising from -2 to -100 MPa in `steps` load steps;
+    the wings grow to arrest at each (at most 100 growth steps per load step)."""
+    return (growth_model(n, grid, 100).replace("syy = -100.0", "syy = -2.0")
+            + f"&load_path syy = -2.0, -100.0, steps = {steps} /\n")
+
+
 #: The model of each case: n elements, a grid of nx x nx points (0: none), steps.
 CASES = {
     "straight": lambda n, grid, steps: straight_model(n, grid),
@@ -170,6 +185,7 @@ CASES = {
     "history": history_model,
     "fields": lambda n, grid, steps: straight_model(n, grid),
     "growth": growth_model,
+    "growth-history": growth_history_model,
 }
 
 
@@ -366,7 +382,7 @@ def benchmark_one(exe, lu_exe, n, case, threads, method, grid, workdir, steps=10
                       peak_rss_mb=max(r["peak_rss_mb"] for r in ranks))
         for f in Path(workdir).glob(f"{prefix.name}.*"):
             f.unlink()
-    if case == "growth":
+    if case in ("growth", "growth-history"):
         record.update(growth_summary(stdout, f"{name}_{method}"), n_final=n_final)
     if history is not None:
         record["steps"] = int(history["state"].shape[0])
@@ -441,7 +457,8 @@ def main(argv=None):
                              "500 for the fields case, 0 for history, else 100)")
     parser.add_argument("--steps", type=int, default=None,
                         help="increments of the history case (default 100), growth steps "
-                             "of the growth case (default 25)")
+                             "of the growth case (default 25), load steps of the "
+                             "growth-history case (default 20)")
     parser.add_argument("--compare-lemke", action="store_true",
                         help="also run every model with lcp_method = 'lemke' and compare")
     parser.add_argument("--lu-exe", type=Path, default=None,

@@ -96,6 +96,22 @@ def test_benchmark_bad_sizes(tmp_path):
     assert not (tmp_path / "b.json").exists()
 
 
+def test_benchmark_growth_history(tmp_path):
+    # The growth case's flaw along 3 load steps (syy from -2 to -100): the wings grow at
+    # some of them; the record has the load steps and the growth steps.
+    stdout, records = run_benchmark(tmp_path, "--case", "growth-history", "--steps", "3",
+                                    "--lcp-method", "newton", sizes="100")
+    assert "growth steps" in stdout and "N_final" in stdout and "4 steps" in stdout
+    (r,) = records
+    assert r["case"] == "growth-history" and r["method"] == "newton"
+    assert r["steps"] == 4 and r["end_reason"] == "arrested"
+    assert r["growth_steps"] >= 1 and r["n_final"] > r["n"]
+    # Every new element is one of the 20 per tip and growth step that grew.
+    assert (r["n_final"] - r["n"]) % 20 == 0
+    assert sum(r["states"].values()) == r["n_final"]
+    assert r["total_over_lu"] == r["seconds"]["total"] / r["lu_reference_seconds"]
+
+
 def test_benchmark_growth(tmp_path):
     # 80 and 100 elements: on fewer, the increment of 20 elements (over 1 m) makes the
     # first kink a closed one, which does not grow (SPEC-GROWTH 1.4).
