@@ -563,7 +563,8 @@ contains
     subroutine empty_record(record)
         type(growth_record), intent(inout) :: record
 
-        allocate (record%step(0), record%load_step(0), record%fracture_id(0), record%end(0), record%x(0), record%y(0), &
+        allocate (record%step(0), record%load_step(0), record%fracture_id(0), record%end(0), &
+                  record%x(0), record%y(0), &
                   record%k1(0), record%k2(0), record%k_eq(0), record%mts_angle(0), &
                   record%angle(0), record%corrections(0), record%k2_after(0), &
                   record%length(0), record%reason(0))

@@ -30,8 +30,9 @@
 !>   tip_end (tips that may grow) and grown_length (k, tips) are added.
 !> - /growth (fracture growth only, SPEC-GROWTH 3; k records, one per tip per step):
 !>   {step, fracture_id, end, x, y, k1, k2, k_eq, mts_angle, angle, corrections, k2_after,
-!>   length, reason} and, along a load path, load_step, shape (k); attributes toughness, increment, element_length, tips,
-!>   criterion, max_corrections, steps, steps_taken, end_reason, reason_coding; and
+!>   length, reason} and, along a load path, load_step, shape (k); attributes toughness,
+!>   increment, element_length, tips, criterion, max_corrections, steps, steps_taken,
+!>   end_reason, reason_coding; and
 !>   /elements/created_step; /elements, /tips and /fields describe the final geometry.
 module ddc_output_hdf5
     use, intrinsic :: iso_fortran_env, only: int64
