@@ -278,6 +278,9 @@ module ddc_model_types
         type(load_path_type) :: load_path
         !> Fracture growth; inactive unless the input has &growth
         type(growth_options) :: growth
+        !> Fingerprint of the model as read (ddc_model_fingerprint), recorded by app before
+        !> a run changes the model (growth adds elements); unallocated until then
+        character(len=:), allocatable :: fingerprint
     end type model_type
 
 contains
