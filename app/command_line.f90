@@ -138,8 +138,10 @@ contains
                 options%task = task_number(arg, '--task '//arg, error)
                 if (allocated(error)) return
             case ('--resume')
-                if (i == n) then
-                    call set_error(error, exit_bad_input, 'option '//arg//' needs the result '// &
+                ! An option after --resume means its file was forgotten: not a file '-o'.
+                if (i < n) arg = argument(i + 1)
+                if (i == n .or. arg(1:min(1, len(arg))) == '-') then
+                    call set_error(error, exit_bad_input, 'option --resume needs the result '// &
                                    'file of the run to continue')
                     return
                 end if

@@ -57,21 +57,21 @@ contains
             call refuse('is a '//description//', not a result file')
             return
         else if (kind == kind_missing) then
-            call refuse('no such file')
+            call refuse('does not exist')
             return
         end if
         if (.not. is_hdf5_file(path)) then
-            call refuse('not an HDF5 file (or not readable)')
+            call refuse('is not an HDF5 file (or not readable)')
             return
         end if
         if (.not. output_is_complete(path)) then
-            call refuse('incomplete: the run that wrote it did not finish (no complete = 1)')
+            call refuse('is incomplete: the run that wrote it did not finish (no complete = 1)')
             return
         end if
         call read_string_attribute(path, '/', 'version', value, read_error)
         if (allocated(read_error)) value = 'an unknown version'
         if (value /= program_version) then
-            call refuse('written by '//program_name//' '//value//', this is '// &
+            call refuse('was written by '//program_name//' '//value//', this is '// &
                         program_version//': resume with the version that wrote it')
             return
         end if
