@@ -43,39 +43,37 @@ contains
 
     subroutine test_read_twice(error)
         type(error_type), allocatable, intent(out) :: error
-        character(len=fingerprint_length) :: first, second
 
-        first = fingerprint_of('growth.nml', error)
-        if (allocated(error)) return
-        second = fingerprint_of('growth.nml', error)
-        if (allocated(error)) return
-        call check(error, first == second, 'same input, same fingerprint')
-        if (allocated(error)) return
-        call check(error, verify(first, '0123456789ABCDEF') == 0, 'sixteen hex digits: '//first)
+        call check_same('growth.nml', 'growth.nml', 'same input, same fingerprint', error)
     end subroutine test_read_twice
 
     subroutine test_growth_steps(error)
         type(error_type), allocatable, intent(out) :: error
-        character(len=fingerprint_length) :: four, nine
 
-        four = fingerprint_of('growth.nml', error)
-        if (allocated(error)) return
-        nine = fingerprint_of('growth_steps.nml', error)
-        if (allocated(error)) return
-        call check(error, four == nine, '4 or 9 growth steps, same fingerprint')
+        call check_same('growth.nml', 'growth_steps.nml', '4 or 9 growth steps', error)
     end subroutine test_growth_steps
 
     !> A path and its longer continuation (which also varies p0 from its fixed value on).
     subroutine test_path_length(error)
         type(error_type), allocatable, intent(out) :: error
-        character(len=fingerprint_length) :: short, long
 
-        short = fingerprint_of('history.nml', error)
-        if (allocated(error)) return
-        long = fingerprint_of('history_longer.nml', error)
-        if (allocated(error)) return
-        call check(error, short == long, 'a longer path, same fingerprint')
+        call check_same('history.nml', 'history_longer.nml', 'a longer path', error)
     end subroutine test_path_length
+
+    !> Two input files of data_dir have the same fingerprint, of sixteen hex digits.
+    subroutine check_same(first_file, second_file, label, error)
+        character(len=*), intent(in) :: first_file, second_file, label
+        type(error_type), allocatable, intent(out) :: error
+        character(len=fingerprint_length) :: first, second
+
+        first = fingerprint_of(first_file, error)
+        if (allocated(error)) return
+        second = fingerprint_of(second_file, error)
+        if (allocated(error)) return
+        call check(error, first == second, label//': same fingerprint')
+        if (allocated(error)) return
+        call check(error, verify(first, '0123456789ABCDEF') == 0, 'sixteen hex digits: '//first)
+    end subroutine check_same
 
     !> mu of one element, one grid point, the LCP method, the toughness, whether there is a
     !> load path: each changes the fingerprint.

@@ -18,7 +18,8 @@
    row are violations.
 6. Nothing of the model is forgotten on the way to the other processes of the MPI build:
    every per-element array of `element_set` is in the one list `for_each_element_array`
-   (src/model/types.f90), which allocation, selection and broadcast go through; every
+   (src/model/types.f90), which allocation, selection, broadcast and the fingerprint go
+   through; every
    other component of `element_set` and every component of `solver_options` is
    broadcast in src/parallel/model.f90 or marked there in a comment
    `! Root only: <reference> (why)`.
@@ -245,7 +246,8 @@ def check_imports(root, problems):
 ELEMENT_LIST = ("src/model/types.f90", "for_each_element_array")
 THROUGH_ELEMENT_LIST = [("src/mesh/geometry.f90", "allocate_elements"),
                         ("src/model/types.f90", "select_elements"),
-                        ("src/parallel/model.f90", "share_elements")]
+                        ("src/parallel/model.f90", "share_elements"),
+                        ("src/model/fingerprint.f90", "hash_model")]
 # Types the MPI build broadcasts: (file of the type, type, file of the broadcast, routine,
 # how the routine names a component); per-element arrays go through the list above.
 SHARED = [("src/model/types.f90", "element_set", "src/parallel/model.f90", "share_elements",
@@ -313,6 +315,12 @@ def routine(root, file, name, problems):
     return found.group(1)
 
 
+def marks(pattern, text):
+    """The references named by the comments of a pattern (Root only:, Not hashed:)."""
+    return {reference.strip().lower() for names in pattern.findall(text)
+            for reference in names.split(",")}
+
+
 def names_in(code, reference):
     return re.search(rf"(?<![\w%]){re.escape(reference)}(?![\w%])", code, re.IGNORECASE)
 
@@ -340,8 +348,7 @@ def check_shared(root, problems):
         if text is None:
             continue
         code = strip_comments(text)
-        root_only = {reference.strip().lower() for names in ROOT_ONLY.findall(text)
-                     for reference in names.split(",")}
+        root_only = marks(ROOT_ONLY, text)
         references = leaf_references((root / type_file).read_text(), name, prefix)
         if not references:
             problems.append(f"{type_file}: no type {name}")
@@ -401,13 +408,10 @@ def check_fingerprint(root, problems):
     if text is None:
         return
     code = strip_comments(text)
-    marked = {reference.strip().lower() for names in NOT_HASHED.findall(text)
-              for reference in names.split(",")}
+    marked = marks(NOT_HASHED, text)
     references = hashed_references(root, "model_type", "model%")
     if not references:
         problems.append(f"{HASHED_TYPE_FILES[0]}: no type model_type")
-    if not names_in(code, ELEMENT_LIST[1]):
-        problems.append(f"{file}: {name} does not go through {ELEMENT_LIST[1]}")
     for reference in references:
         if not hashes(code, reference) and not any(covers(m, reference) for m in marked):
             problems.append(f"{file}: {name} does not hash {reference} nor marks it "

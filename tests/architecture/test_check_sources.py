@@ -197,8 +197,8 @@ def test_model_component_missing_from_the_fingerprint_fails(tree, capsys):
 
 
 def test_fingerprint_around_the_element_list_fails(tree, capsys):
-    edit(tree / "src/model/fingerprint.f90", "        call for_each_element_array(elements, hash)\n",
-         "")
+    edit(tree / "src/model/fingerprint.f90",
+         "        call for_each_element_array(elements, hash)\n", "")
     expect_violation(tree, capsys, "src/model/fingerprint.f90: hash_model does not go through "
                      "for_each_element_array")
 

@@ -100,11 +100,11 @@ def test_incomplete_or_foreign_files_are_refused(tmp_path, change, words):
 @pytest.mark.parametrize("new, words", [
     (history(extra="&solver lcp_method = 'lemke' /\n"), "is the result of another model"),
     (history().replace("mu = 0.6", "mu = 0.5"), "is the result of another model"),
-    (PLAIN.format(mu=0.6), "--resume continues a growth run or a loading history, and new.nml "
-     "has neither &growth nor &load_path"),
+    (PLAIN.format(mu=0.6), ("--resume continues a growth run or a loading history, and new.nml "
+                            "has neither &growth nor &load_path")),
     (GROWTH.format(steps=3), "is not a growth run (no /growth), and new.nml has &growth"),
-    (history(steps="2, 2"), "the &load_path of new.nml has 5 steps, fewer than the 6 of the "
-     "earlier run"),
+    (history(steps="2, 2"), ("the &load_path of new.nml has 5 steps, fewer than the 6 of the "
+                             "earlier run")),
     (history(sxy="0, 3, 4"), "step 2 of the &load_path of new.nml has sxy = 1.5"),
     # p0 held at its &pore_fluid value by the earlier path, varied by the new one
     (history(p0="p0 = 1, 1, 2, "), "step 4 of the &load_path of new.nml has p0 = 1.33"),
