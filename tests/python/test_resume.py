@@ -29,6 +29,14 @@ GROWTH = """\
 &fracture name = 'crack', x = -1, 1, y = 0, 0, elements = 8, condition = 'traction' /
 &growth steps = {steps}, toughness = 15.5, increment = 0.2 /
 """
+# A sliding flaw whose wings grow as the axial load rises
+GROWTH_PATH = """\
+&model youngs_modulus = 50000, poissons_ratio = 0.25 /
+&remote_stress syy = -10 /
+&fracture name = 'flaw', x = -0.5, 0.5, y = -0.3, 0.3, elements = 6, mu = 0.3 /
+&growth steps = 3, toughness = 5, increment = 0.1 /
+"""
+PATH = "&load_path sxx = -1, -1, syy = -1, -30, steps = 3 /\n"
 PLAIN = MODEL + "&fracture x = -1, 1, y = 0, 0, elements = 6, mu = {mu} /\n"
 
 
@@ -124,15 +132,16 @@ def test_a_result_that_is_not_a_growth_run_or_history_is_refused(tmp_path):
 
 
 def test_growth_and_history_must_match(tmp_path):
-    growth = earlier_run(tmp_path, GROWTH.format(steps=3), "growth")
+    earlier_run(tmp_path, GROWTH.format(steps=3), "growth")
     assert_refused(resume(tmp_path, history(), "growth.h5"), tmp_path,
                    "--resume growth.h5: is a growth run, and new.nml has no &growth")
-    # A growth run with a loading history (as growth under &load_path writes it) resumed
-    # by growth at a fixed load.
-    with h5py.File(growth, "r+") as f:
-        f.create_dataset("history/sxx", data=np.zeros(3))
-    assert_refused(resume(tmp_path, GROWTH.format(steps=3), "growth.h5"), tmp_path,
-                   "--resume growth.h5: holds a loading history, and new.nml has no &load_path")
+    earlier_run(tmp_path, GROWTH_PATH + PATH, "both")
+    assert_refused(resume(tmp_path, GROWTH_PATH, "both.h5"), tmp_path,
+                   "--resume both.h5: holds a loading history, and new.nml has no &load_path")
+    earlier_run(tmp_path, GROWTH_PATH, "fixed")
+    assert_refused(resume(tmp_path, GROWTH_PATH + PATH, "fixed.h5"), tmp_path,
+                   "--resume fixed.h5: holds no loading history (/history), and new.nml has "
+                   "a &load_path")
 
 
 @pytest.mark.parametrize("args, words", [
@@ -162,6 +171,8 @@ def test_resume_of_a_sweep_is_refused(tmp_path):
     (history(), history(sxy="0, 4, 4, 2", steps="2, 3, 2")),
     (history(), history(sxy="0, 4, 4, 4", steps="2, 3, 1").replace("p0 = 1", "p0 = 1.0")),
     (GROWTH.format(steps=2), GROWTH.format(steps=5)),
+    (GROWTH_PATH + PATH, GROWTH_PATH.replace("steps = 3", "steps = 5")
+     + "&load_path sxx = -1, -1, -1, syy = -1, -30, -40, steps = 3, 1 /\n"),
 ])
 def test_a_result_of_the_same_model_passes(tmp_path, old_text, new_text):
     old = earlier_run(tmp_path, old_text)
