@@ -28,6 +28,8 @@ module ddc_app_command_line
         integer :: task = -1
         !> Value of SLURM_ARRAY_TASK_ID when --task is absent and the variable is set
         character(len=:), allocatable :: environment_task
+        !> Result file of an earlier run to continue (--resume FILE); unallocated when absent
+        character(len=:), allocatable :: resume_file
     end type command_line_options
 
 contains
@@ -37,7 +39,7 @@ contains
         character(len=:), allocatable :: text
         character(len=*), parameter :: nl = new_line('a')
 
-        text = 'usage: ddc2d INPUT.nml [-o OUT.h5] [--res RES.txt]'//nl// &
+        text = 'usage: ddc2d INPUT.nml [-o OUT.h5] [--res RES.txt] [--resume OLD.h5]'//nl// &
                '       ddc2d SWEEP.nml --list | --task K [-o OUT.h5]'//nl// &
                '       ddc2d --twodd DECK [-o OUT.h5] [--res RES.txt]'//nl// &
                '       ddc2d --version | --help'//nl//nl// &
@@ -59,7 +61,13 @@ contains
                '  --task K        run task K (0 to N-1) of the &sweep group (without'//nl// &
                '                  --task: $SLURM_ARRAY_TASK_ID when set); the output is'//nl// &
                '                  OUT.h5 with _task<K> (zero-padded) before .h5; a task'//nl// &
-               '                  with a complete output is skipped (exit status 0)'//nl//nl// &
+               '                  with a complete output is skipped (exit status 0)'//nl// &
+               '  --resume OLD.h5 continue the growth run or loading history of OLD.h5, the'// &
+               nl// &
+               '                  complete result of an earlier run of the same input by'//nl// &
+               '                  the same ddc2d version (only &growth steps may differ, and'// &
+               nl// &
+               '                  the load path may be longer); OUT.h5 may be OLD.h5'//nl//nl// &
                'Exit status: 0 success; 1 no solution or solver failure; 2 bad input or'//nl// &
                'usage; 3 a file could not be read or written (an output path that cannot'//nl// &
                'be written too: ddc2d creates no folders); 4 internal error (a bug in'//nl// &
@@ -129,6 +137,20 @@ contains
                 arg = argument(i)
                 options%task = task_number(arg, '--task '//arg, error)
                 if (allocated(error)) return
+            case ('--resume')
+                ! An option after --resume means its file was forgotten: not a file '-o'.
+                if (i < n) arg = argument(i + 1)
+                if (i == n .or. arg(1:min(1, len(arg))) == '-') then
+                    call set_error(error, exit_bad_input, 'option --resume needs the result '// &
+                                   'file of the run to continue')
+                    return
+                end if
+                i = i + 1
+                options%resume_file = argument(i)
+                if (len(options%resume_file) == 0) then
+                    call set_error(error, exit_bad_input, 'the --resume file name is empty')
+                    return
+                end if
             case ('--twodd')
                 if (i == n) then
                     call set_error(error, exit_bad_input, 'option '//arg//' needs a deck file')
@@ -157,6 +179,13 @@ contains
         if (options%twodd .and. (options%list .or. options%task >= 0)) then
             call set_error(error, exit_bad_input, '--list and --task need a namelist file '// &
                            'with a &sweep group, not a TWODD deck')
+            return
+        end if
+        if (allocated(options%resume_file) .and. (options%twodd .or. options%list .or. &
+                                                  options%task >= 0)) then
+            call set_error(error, exit_bad_input, '--resume continues a growth run or a '// &
+                           'loading history of a namelist model, not a TWODD deck (--twodd) '// &
+                           'or a sweep (--list, --task)')
             return
         end if
         if (options%list .and. options%task >= 0) then

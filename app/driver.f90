@@ -29,6 +29,8 @@ module ddc_app_driver
     use ddc_progress, only: set_progress_handler
     use ddc_app_memory, only: check_model_memory, result_file_bytes, table_file_bytes
     use ddc_app_blas, only: check_blas_kernel
+    use ddc_app_resume_check, only: check_resume_file
+    use ddc_model_fingerprint, only: model_fingerprint
     implicit none
     private
 
@@ -69,7 +71,8 @@ contains
         call parse_command_line(options, error)
         if (allocated(error)) then
             write (error_unit, '(a)') program_name//': error: '//error%message
-            write (error_unit, '(a)') 'usage: ddc2d INPUT.nml [-o OUT.h5] [--res RES.txt] | '// &
+            write (error_unit, '(a)') 'usage: ddc2d INPUT.nml [-o OUT.h5] [--res RES.txt] '// &
+                '[--resume OLD.h5] | '// &
                 'ddc2d SWEEP.nml --list | --task K [-o OUT.h5] | '// &
                 'ddc2d --twodd DECK [-o OUT.h5] [--res RES.txt]   (ddc2d --help for more)'
             status = error%code
@@ -88,6 +91,14 @@ contains
         case default
             ! action_run: go on below
         end select
+        if (allocated(options%resume_file) .and. present(processes)) then
+            if (processes > 1) then
+                call set_error(error, exit_bad_input, '--resume runs on one process '// &
+                    '(mpiexec -n 1): growth and loading histories are not distributed')
+                status = error_status(error)
+                return
+            end if
+        end if
         ! Before anything is read: the serial program may run itself again here.
         call check_blas_kernel(.not. present(processes), blas_echo)
 
@@ -101,6 +112,13 @@ contains
         if (allocated(options%output_file)) model%output_file = options%output_file
         if (.not. options%twodd) then
             call prepare_sweep_task(options, model, status)
+            if (status /= go_on) return
+        end if
+        ! The model as read: a growth run changes it, its result records this.
+        model%fingerprint = model_fingerprint(model)
+        if (allocated(options%resume_file)) then
+            call check_resume_file(options%resume_file, model, error)
+            status = error_status(error)
             if (status /= go_on) return
         end if
         call check_writable(model%output_file, error)
@@ -148,6 +166,13 @@ contains
         call read_sweep(options%input_file, model, sweep, found, error)
         status = error_status(error)
         if (status /= go_on) return
+        if (found .and. allocated(options%resume_file)) then
+            call set_error(error, exit_bad_input, options%input_file//' is a sweep (&sweep): '// &
+                           '--resume continues one growth run or loading history, not a '// &
+                           'sweep task')
+            status = error_status(error)
+            return
+        end if
         if (.not. found) then
             if (options%list .or. options%task >= 0) then
                 call set_error(error, exit_bad_input, options%input_file//' has no &sweep '// &

@@ -4,7 +4,8 @@
 !> vertex to vertex. Geometry derived from the end points (midpoint, half-length,
 !> orientation) is filled by ddc_mesh_geometry. for_each_element_array is the one list of
 !> the per-element arrays: allocating them (ddc_mesh_geometry), selecting elements
-!> (select_elements, for growth) and broadcasting them (ddc_parallel_model) go through it.
+!> (select_elements, for growth), broadcasting them (ddc_parallel_model) and hashing them
+!> (ddc_model_fingerprint) go through it.
 module ddc_model_types
     use ddc_kinds, only: wp
     use ddc_contact_options, only: solver_options
@@ -278,6 +279,9 @@ module ddc_model_types
         type(load_path_type) :: load_path
         !> Fracture growth; inactive unless the input has &growth
         type(growth_options) :: growth
+        !> Fingerprint of the model as read (ddc_model_fingerprint), recorded by app before
+        !> a run changes the model (growth adds elements); unallocated until then
+        character(len=:), allocatable :: fingerprint
     end type model_type
 
 contains

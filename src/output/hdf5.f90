@@ -9,7 +9,8 @@
 !>   from (blas, blas_core, blas_core_chosen_by, compiler, compiler_options, cpu, threads,
 !>   blas_threads: ddc_output_provenance), title, input_file, input_text, units, elastic
 !>   constants, remote_stress [sxx, syy, sxy], conventions, open_cohesion, lcp_method,
-!>   domain, remote_stress_gradient, pore_fluid, and last complete = 1;
+!>   domain, remote_stress_gradient, pore_fluid, model_fingerprint (ddc_model_fingerprint:
+!>   what --resume compares), and last complete = 1;
 !> - /elements/<quantity> shape (n), every real dataset with a `units` attribute;
 !> - /fractures/{name, first_element, last_element};
 !> - /tips/{x, y, fracture_id, element, k1, k2, graded} (empty datasets when there are no
@@ -43,6 +44,7 @@ module ddc_output_hdf5
     use ddc_model_types, only: model_type, rigid_joint, observation_grid, observation_kind_names, &
         symmetry_names, domain_names, load_path_names, growth_tips_names, growth_criterion_names
     use ddc_model_loads, only: total_pressure, shear_modulus_of
+    use ddc_model_fingerprint, only: recorded_fingerprint
     use ddc_model_results, only: model_results, state_free, state_stick, state_slip, &
         state_open, growth_reason_names, growth_end_names
     use ddc_contact_options, only: lcp_method_names, open_cohesion_names
@@ -212,6 +214,7 @@ contains
         call write_attribute(root, 'domain', trim(domain_names(model%elements%domain)), error)
         call write_attribute(root, 'remote_stress_gradient', model%stress_gradient, error)
         call write_attribute(root, 'pore_fluid', model%pore_fluid, error)
+        call write_attribute(root, 'model_fingerprint', recorded_fingerprint(model), error)
     end subroutine write_root_attributes
 
     !> /elements: geometry, conditions, results and contact properties, shape (n).

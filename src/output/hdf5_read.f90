@@ -10,8 +10,8 @@ module ddc_output_hdf5_read
     use hdf5, only: hid_t, hsize_t, h5dopen_f, h5dclose_f, h5dread_f, h5dget_space_f, &
         h5dget_type_f, h5aopen_by_name_f, h5aclose_f, h5aread_f, h5aget_space_f, &
         h5aget_type_f, h5sget_simple_extent_ndims_f, h5sget_simple_extent_dims_f, &
-        h5sget_simple_extent_npoints_f, h5sclose_f, h5tclose_f, H5T_NATIVE_DOUBLE, &
-        H5T_NATIVE_INTEGER
+        h5sget_simple_extent_npoints_f, h5sclose_f, h5tclose_f, h5fis_hdf5_f, &
+        H5T_NATIVE_DOUBLE, H5T_NATIVE_INTEGER
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
     use ddc_output_hdf5_handles, only: h5_object, open_session, close_session, &
@@ -22,7 +22,7 @@ module ddc_output_hdf5_read
 
     public :: read_real_dataset, read_int_dataset, read_string_dataset, read_dataset_dims
     public :: read_string_attribute, read_real_attribute, read_int_attribute
-    public :: output_is_complete
+    public :: output_is_complete, is_hdf5_file
 
 contains
 
@@ -278,6 +278,23 @@ contains
         complete = .not. allocated(error)
         if (complete) complete = flag == 1
     end function output_is_complete
+
+    !> True when path is a readable HDF5 file (its signature; nothing else is read).
+    function is_hdf5_file(path) result(hdf5_file)
+        !> Path of the file
+        character(len=*), intent(in) :: path
+        !> The file carries the HDF5 signature
+        logical :: hdf5_file
+        type(error_type), allocatable :: error
+        integer :: status
+
+        hdf5_file = .false.
+        call open_session(error)
+        if (allocated(error)) return
+        call h5fis_hdf5_f(path, hdf5_file, status)
+        if (status /= 0) hdf5_file = .false.
+        call close_session()
+    end function is_hdf5_file
 
     ! ------------------------------------------------------ handles, always closed
 

@@ -18,7 +18,8 @@
    row are violations.
 6. Nothing of the model is forgotten on the way to the other processes of the MPI build:
    every per-element array of `element_set` is in the one list `for_each_element_array`
-   (src/model/types.f90), which allocation, selection and broadcast go through; every
+   (src/model/types.f90), which allocation, selection, broadcast and the fingerprint go
+   through; every
    other component of `element_set` and every component of `solver_options` is
    broadcast in src/parallel/model.f90 or marked there in a comment
    `! Root only: <reference> (why)`.
@@ -26,6 +27,13 @@
    the suites' helpers, which add to it) is not followed by a call that takes `error`
    last (a routine under test, which resets it: intent out) without
    `if (allocated(error)) return` between them in the same procedure.
+
+8. Nothing that determines a result escapes the model fingerprint that --resume compares:
+   every component of `model_type` (into its derived types), of `growth_options` and of
+   `solver_options` is hashed in `hash_model` (src/model/fingerprint.f90) or marked there
+   in a comment `! Not hashed: <reference> (why)` (a derived component's mark covers its
+   components); the per-element arrays go through
+   `for_each_element_array`, which `hash_model` calls.
 
 Prints every violation and exits 1 when there is one; --graph prints the folder graph.
 """
@@ -238,7 +246,8 @@ def check_imports(root, problems):
 ELEMENT_LIST = ("src/model/types.f90", "for_each_element_array")
 THROUGH_ELEMENT_LIST = [("src/mesh/geometry.f90", "allocate_elements"),
                         ("src/model/types.f90", "select_elements"),
-                        ("src/parallel/model.f90", "share_elements")]
+                        ("src/parallel/model.f90", "share_elements"),
+                        ("src/model/fingerprint.f90", "hash_model")]
 # Types the MPI build broadcasts: (file of the type, type, file of the broadcast, routine,
 # how the routine names a component); per-element arrays go through the list above.
 SHARED = [("src/model/types.f90", "element_set", "src/parallel/model.f90", "share_elements",
@@ -306,6 +315,12 @@ def routine(root, file, name, problems):
     return found.group(1)
 
 
+def marks(pattern, text):
+    """The references named by the comments of a pattern (Root only:, Not hashed:)."""
+    return {reference.strip().lower() for names in pattern.findall(text)
+            for reference in names.split(",")}
+
+
 def names_in(code, reference):
     return re.search(rf"(?<![\w%]){re.escape(reference)}(?![\w%])", code, re.IGNORECASE)
 
@@ -333,8 +348,7 @@ def check_shared(root, problems):
         if text is None:
             continue
         code = strip_comments(text)
-        root_only = {reference.strip().lower() for names in ROOT_ONLY.findall(text)
-                     for reference in names.split(",")}
+        root_only = marks(ROOT_ONLY, text)
         references = leaf_references((root / type_file).read_text(), name, prefix)
         if not references:
             problems.append(f"{type_file}: no type {name}")
@@ -347,6 +361,64 @@ def check_shared(root, problems):
             if reference.startswith(prefix):
                 problems.append(f"{file}: {broadcast} marks {reference} root only, which "
                                 f"is no component of {name}")
+
+
+# The fingerprint (check 8): the routine that hashes, the files of the types it covers.
+FINGERPRINT = ("src/model/fingerprint.f90", "hash_model")
+HASHED_TYPE_FILES = ("src/model/types.f90", "src/contact/options.f90")
+NOT_HASHED = re.compile(r"!\s*not hashed:\s*([\w%]+(?:\s*,\s*[\w%]+)*)", re.IGNORECASE)
+
+
+def hashed_references(root, name, prefix):
+    """References prefix%a%b of every leaf component of type name, through the derived
+    types of HASHED_TYPE_FILES; element_set's per-element arrays are left out."""
+    components = None
+    for file in HASHED_TYPE_FILES:
+        components = type_components((root / file).read_text(), name)
+        if components is not None:
+            break
+    references = []
+    for component, per_element, derived in components or []:
+        if name == "element_set" and per_element:
+            continue
+        if derived and any(type_components((root / f).read_text(), derived) is not None
+                           for f in HASHED_TYPE_FILES):
+            references += hashed_references(root, derived, f"{prefix}{component}%")
+        else:
+            references.append(f"{prefix}{component}")
+    return references
+
+
+def hashes(code, reference):
+    """Whether code names reference, an array's subscripts allowed: model%a(i)%b."""
+    parts = [re.escape(part) for part in reference.split("%")]
+    pattern = r"(?<![\w%])" + r"(?:\s*\([^()]*\))?\s*%\s*".join(parts) + r"(?!\w)"
+    return re.search(pattern, code, re.IGNORECASE)
+
+
+def covers(mark, reference):
+    """A mark names the reference or a derived component that holds it."""
+    return reference == mark or reference.startswith(mark + "%")
+
+
+def check_fingerprint(root, problems):
+    """Every component of the model is hashed or marked not hashed (item 8)."""
+    file, name = FINGERPRINT
+    text = routine(root, file, name, problems)
+    if text is None:
+        return
+    code = strip_comments(text)
+    marked = marks(NOT_HASHED, text)
+    references = hashed_references(root, "model_type", "model%")
+    if not references:
+        problems.append(f"{HASHED_TYPE_FILES[0]}: no type model_type")
+    for reference in references:
+        if not hashes(code, reference) and not any(covers(m, reference) for m in marked):
+            problems.append(f"{file}: {name} does not hash {reference} nor marks it "
+                            f"'! Not hashed: {reference} (why)'")
+    for reference in sorted(m for m in marked if not any(covers(m, r) for r in references)):
+        problems.append(f"{file}: {name} marks {reference} not hashed, which is no "
+                        "component of the model")
 
 
 def statements(text):
@@ -401,6 +473,7 @@ def main(argv):
     check_imports(root, problems)
     check_shared(root, problems)
     check_results_kept(root, problems)
+    check_fingerprint(root, problems)
     if graph_wanted:
         for folder in sorted(graph):
             print(f"{folder}: {', '.join(sorted(graph[folder])) or '-'}")
@@ -411,7 +484,8 @@ def main(argv):
               f"{TABLE}; module names follow their paths; the {namelists} namelist "
               "statements match the group table; every import is used; every component of "
               "element_set and solver_options is broadcast or marked root only; no test "
-              "check is reset before it is reported")
+              "check is reset before it is reported; every component of the model is hashed in its "
+              "fingerprint or marked not hashed")
     return 1 if problems else 0
 
 

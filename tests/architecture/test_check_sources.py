@@ -129,10 +129,12 @@ def test_solver_option_missing_from_the_broadcast_fails(tree, capsys):
          "        integer :: open_cohesion = cohesion_kept\n        integer :: planted = 0\n")
     expect_violation(tree, capsys, "src/parallel/model.f90: share_model does not broadcast "
                      "model%solver%planted (a component of solver_options) nor marks it")
-    # marked root only, with a reason, it passes
+    # marked root only, with a reason, and hashed in the fingerprint, it passes
     edit(tree / "src/parallel/model.f90", "        ! Root only: model%solver%work_bytes",
          "        ! Root only: model%solver%planted (planted)\n"
          "        ! Root only: model%solver%work_bytes")
+    edit(tree / "src/model/fingerprint.f90", "model%solver%open_cohesion, &",
+         "model%solver%open_cohesion, model%solver%planted, &")
     assert run_checks(tree, capsys)[0] == 0
 
 
@@ -180,3 +182,30 @@ def test_check_reset_before_it_is_reported_fails(tree, capsys):
                                                text[guard.end():])
     expect_violation(tree, capsys, "is lost if it failed: this call resets error")
 
+
+
+def test_model_component_missing_from_the_fingerprint_fails(tree, capsys):
+    edit(tree / "src/model/types.f90", "        real(wp) :: new_mu = 0.0_wp, new_sf = 0.0_wp\n",
+         "        real(wp) :: new_mu = 0.0_wp, new_sf = 0.0_wp\n        integer :: planted = 0\n")
+    expect_violation(tree, capsys, "src/model/fingerprint.f90: hash_model does not hash "
+                     "model%growth%planted nor marks it '! Not hashed: model%growth%planted")
+    # marked not hashed, with a reason, it passes
+    edit(tree / "src/model/fingerprint.f90", "        ! Not hashed: model%fingerprint (this hash)",
+         "        ! Not hashed: model%fingerprint (this hash)\n"
+         "        ! Not hashed: model%growth%planted (planted)")
+    assert run_checks(tree, capsys)[0] == 0
+
+
+def test_fingerprint_around_the_element_list_fails(tree, capsys):
+    edit(tree / "src/model/fingerprint.f90",
+         "        call for_each_element_array(elements, hash)\n", "")
+    expect_violation(tree, capsys, "src/model/fingerprint.f90: hash_model does not go through "
+                     "for_each_element_array")
+
+
+def test_stale_not_hashed_mark_fails(tree, capsys):
+    edit(tree / "src/model/fingerprint.f90", "        ! Not hashed: model%fingerprint (this hash)",
+         "        ! Not hashed: model%fingerprint (this hash)\n"
+         "        ! Not hashed: model%gone (planted)")
+    expect_violation(tree, capsys, "src/model/fingerprint.f90: hash_model marks model%gone not "
+                     "hashed, which is no component of the model")

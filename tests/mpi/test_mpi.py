@@ -153,6 +153,16 @@ def test_error_on_four_processes(case, tmp_path):
     assert list(tmp_path.iterdir()) == []  # neither the output nor a .partial file
 
 
+def test_resume_on_four_processes_is_refused(tmp_path):
+    # Refused before anything is read: the resume file need not exist.
+    run = run_parallel(4, [DATA / "growth" / "good.nml", "--resume", "absent.h5", "-o",
+                           tmp_path / "out.h5"], tmp_path)
+    assert run.returncode == 2, run.stdout + run.stderr
+    assert run.stderr.count("ddc2d: error:") == 1, run.stderr
+    assert "--resume runs on one process (mpiexec -n 1)" in run.stderr
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_one_process_runs_what_is_not_distributed(tmp_path):
     # A loading history (Lemke's method) on one process runs as in the serial build.
     model = DATA / "history" / "good.nml"

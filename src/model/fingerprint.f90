@@ -1,0 +1,209 @@
+!> The fingerprint of a model: a 64-bit FNV-1a hash (Fowler, Noll, Vo) of everything in the
+!> validated model that determines the result, written as 16 hex digits. Two inputs with
+!> the same fingerprint solve the same problem; a run resumed from an earlier result file
+!> (--resume) must have the fingerprint that file records.
+!>
+!>     h_0 = 14695981039346656037,   h_k = (h_{k-1} xor byte_k) * (2**40 + 435)  mod 2**64
+!>
+!> over the bytes of each value (reals and integers as stored), each array preceded by its
+!> size and each text by its length. Not hashed, so that a resumed run may go further: the
+!> growth steps, the load path (its steps and vertices; whether there is one is hashed), and
+!> what does not change the solution (title, file names, input text, the sweep record, the
+!> memory limit of this machine). The per-element arrays go through for_each_element_array,
+!> so a new one is hashed without a change here; the CTest architecture fails when another
+!> component is neither hashed in hash_model nor marked there as not hashed.
+module ddc_model_fingerprint
+    use, intrinsic :: iso_fortran_env, only: int8, int64
+    use ddc_kinds, only: wp
+    use ddc_model_types, only: model_type, element_set, element_array_action, &
+        for_each_element_array
+    implicit none
+    private
+
+    public :: model_fingerprint, recorded_fingerprint, fingerprint_length
+
+    !> Length of a fingerprint's text (hex digits)
+    integer, parameter :: fingerprint_length = 16
+
+    !> The hash state: the low and high 32 bits of h, each in [0, 2**32), so that every
+    !> product fits an int64 (no signed overflow).
+    type, extends(element_array_action) :: fnv_hash
+        integer(int64) :: low = int(z'84222325', int64), high = int(z'CBF29CE4', int64)
+    contains
+        procedure :: on_reals => hash_element_reals
+        procedure :: on_integers => hash_element_integers
+    end type fnv_hash
+
+    integer(int64), parameter :: mask32 = int(z'FFFFFFFF', int64)
+
+contains
+
+    !> The fingerprint of a model, 16 hex digits (upper case).
+    function model_fingerprint(model) result(text)
+        !> A validated model, before any run changed it
+        type(model_type), intent(in) :: model
+        !> The hash as text
+        character(len=fingerprint_length) :: text
+        type(fnv_hash) :: hash
+
+        call hash_model(model, hash)
+        write (text, '(z8.8, z8.8)') hash%high, hash%low
+    end function model_fingerprint
+
+    !> The fingerprint app recorded in the model before the run (model%fingerprint), or the
+    !> model's own when none was recorded (a model that no run has changed).
+    function recorded_fingerprint(model) result(text)
+        !> The model
+        type(model_type), intent(in) :: model
+        !> The fingerprint, 16 hex digits
+        character(len=fingerprint_length) :: text
+
+        if (allocated(model%fingerprint)) then
+            text = model%fingerprint
+        else
+            text = model_fingerprint(model)
+        end if
+    end function recorded_fingerprint
+
+    !> Every component of the model that determines the result, in a fixed order.
+    subroutine hash_model(model, hash)
+        type(model_type), intent(in) :: model
+        type(fnv_hash), intent(inout) :: hash
+        type(element_set) :: elements
+        integer :: i
+
+        ! Not hashed: model%title, model%output_file, model%input_file (names only)
+        ! Not hashed: model%input_text (holds steps and the path; its parsed values count)
+        ! Not hashed: model%sweep (a record; --resume is refused for sweep tasks)
+        ! Not hashed: model%fingerprint (this hash)
+        ! Not hashed: model%growth%steps, model%load_path%steps, model%load_path%vertex
+        ! Not hashed: model%load_path%varies (a resumed run may go further)
+        ! Not hashed: model%solver%work_bytes (this machine's memory, not the model)
+        call add_reals(hash, [model%youngs_modulus, model%poissons_ratio])
+        call add_text(hash, model%length_unit)
+        call add_text(hash, model%stress_unit)
+        call add_reals(hash, [model%sxx, model%syy, model%sxy])
+        call add_reals(hash, model%stress_gradient)
+        call add_reals(hash, model%pore_fluid)
+        call add_integers(hash, [model%elements%n, model%elements%domain, &
+                                 model%elements%symmetry%kind])
+        call add_reals(hash, [model%elements%symmetry%xsym, model%elements%symmetry%ysym])
+        elements = model%elements
+        call for_each_element_array(elements, hash)
+        call add_integers(hash, [size(model%fractures)])
+        do i = 1, size(model%fractures)
+            call add_text(hash, model%fractures(i)%name)
+            call add_integers(hash, [model%fractures(i)%first_element, &
+                                     model%fractures(i)%last_element])
+        end do
+        call add_integers(hash, [size(model%observations)])
+        do i = 1, size(model%observations)
+            call add_text(hash, model%observations(i)%name)
+            call add_integers(hash, [model%observations(i)%kind, model%observations(i)%nx, &
+                                     model%observations(i)%ny])
+            call add_allocated_reals(hash, model%observations(i)%x)
+            call add_allocated_reals(hash, model%observations(i)%y)
+        end do
+        call add_integers(hash, [model%solver%lcp_method, model%solver%open_cohesion, &
+                                 model%block_size])
+        call add_integers(hash, merge(1, 0, [allocated(model%load_path%vertex), &
+                                             model%growth%active]))
+        call add_reals(hash, [model%growth%toughness, model%growth%increment, &
+                              model%growth%element_length, model%growth%new_mu, &
+                              model%growth%new_sf])
+        call add_integers(hash, [model%growth%tips, model%growth%criterion, &
+                                 model%growth%max_corrections])
+        call add_integers(hash, merge(1, 0, [model%growth%override_mu, &
+                                             model%growth%override_sf]))
+        if (allocated(model%growth%fracture_grows)) then
+            call add_integers(hash, merge(1, 0, model%growth%fracture_grows))
+        else
+            call add_integers(hash, [-1])
+        end if
+    end subroutine hash_model
+
+    !> Hash one real per-element array.
+    subroutine hash_element_reals(action, values)
+        class(fnv_hash), intent(inout) :: action
+        real(wp), allocatable, intent(inout) :: values(:)
+
+        call add_allocated_reals(action, values)
+    end subroutine hash_element_reals
+
+    !> Hash a real array (its size first; -1 when unallocated).
+    subroutine add_allocated_reals(hash, values)
+        class(fnv_hash), intent(inout) :: hash
+        real(wp), allocatable, intent(in) :: values(:)
+
+        if (allocated(values)) then
+            call add_reals(hash, values)
+        else
+            call add_integers(hash, [-1])
+        end if
+    end subroutine add_allocated_reals
+
+    !> Hash one integer per-element array (its size first; -1 when unallocated).
+    subroutine hash_element_integers(action, values)
+        class(fnv_hash), intent(inout) :: action
+        integer, allocatable, intent(inout) :: values(:)
+
+        if (allocated(values)) then
+            call add_integers(action, values)
+        else
+            call add_integers(action, [-1])
+        end if
+    end subroutine hash_element_integers
+
+    !> Hash reals: their number, then their bytes.
+    subroutine add_reals(hash, values)
+        class(fnv_hash), intent(inout) :: hash
+        real(wp), intent(in) :: values(:)
+
+        call add_bytes(hash, transfer(size(values), [0_int8]))
+        if (size(values) > 0) call add_bytes(hash, transfer(values, [0_int8]))
+    end subroutine add_reals
+
+    !> Hash integers: their number, then their bytes.
+    subroutine add_integers(hash, values)
+        class(fnv_hash), intent(inout) :: hash
+        integer, intent(in) :: values(:)
+
+        call add_bytes(hash, transfer(size(values), [0_int8]))
+        if (size(values) > 0) call add_bytes(hash, transfer(values, [0_int8]))
+    end subroutine add_integers
+
+    !> Hash a text: its length (-1 when unallocated), then its characters.
+    subroutine add_text(hash, text)
+        class(fnv_hash), intent(inout) :: hash
+        character(len=:), allocatable, intent(in) :: text
+
+        if (.not. allocated(text)) then
+            call add_integers(hash, [-1])
+            return
+        end if
+        call add_integers(hash, [len(text)])
+        if (len(text) > 0) call add_bytes(hash, transfer(text, [0_int8], len(text)))
+    end subroutine add_text
+
+    !> FNV-1a over bytes: h = (h xor byte) * (2**40 + 435) mod 2**64, on 32-bit halves.
+    subroutine add_bytes(hash, bytes)
+        class(fnv_hash), intent(inout) :: hash
+        integer(int8), intent(in) :: bytes(:)
+        integer(int64) :: low, high, product
+        integer :: i
+
+        low = hash%low
+        high = hash%high
+        do i = 1, size(bytes)
+            low = ieor(low, iand(int(bytes(i), int64), 255_int64))
+            ! h * 435 on both halves, plus h * 2**40: the low 24 bits of low moved up 8.
+            product = low * 435_int64
+            high = iand(high * 435_int64 + shiftr(product, 32) + &
+                        shiftl(iand(low, int(z'FFFFFF', int64)), 8), mask32)
+            low = iand(product, mask32)
+        end do
+        hash%low = low
+        hash%high = high
+    end subroutine add_bytes
+
+end module ddc_model_fingerprint

@@ -1,0 +1,205 @@
+"""--resume OLD.h5 (issue 25 item 3, SPEC-GROWTH 8): the result files a run refuses to
+continue, and those it accepts.
+
+Every refusal exits 2 with one message naming the resume file, writes no output (nor a
+.partial file) and leaves the resume file as it was. The continuation itself is not tested
+here: a file that passes the check runs the model as usual for now.
+"""
+
+import subprocess
+
+import h5py
+import numpy as np
+import pytest
+
+from conftest import ddc2d_exe
+
+MODEL = """\
+&model youngs_modulus = 50000, poissons_ratio = 0.25 /
+&remote_stress syy = -10, sxy = 4 /
+&pore_fluid p0 = 1 /
+"""
+HISTORY = MODEL + """\
+&fracture x = -1, 1, y = 0, 0, elements = 6, mu = 0.6 /
+&load_path sxy = {sxy}, {p0}steps = {steps} /
+"""
+GROWTH = """\
+&model youngs_modulus = 50000, poissons_ratio = 0.25 /
+&remote_stress syy = 10 /
+&fracture name = 'crack', x = -1, 1, y = 0, 0, elements = 8, condition = 'traction' /
+&growth steps = {steps}, toughness = 15.5, increment = 0.2 /
+"""
+# A sliding flaw whose wings grow as the axial load rises
+GROWTH_PATH = """\
+&model youngs_modulus = 50000, poissons_ratio = 0.25 /
+&remote_stress syy = -10 /
+&fracture name = 'flaw', x = -0.5, 0.5, y = -0.3, 0.3, elements = 6, mu = 0.3 /
+&growth steps = 3, toughness = 5, increment = 0.1 /
+"""
+PATH = "&load_path sxx = -1, -1, syy = -1, -30, steps = 3 /\n"
+PLAIN = MODEL + "&fracture x = -1, 1, y = 0, 0, elements = 6, mu = {mu} /\n"
+
+
+def history(sxy="0, 4, 4", steps="2, 3", p0="", extra=""):
+    return HISTORY.format(sxy=sxy, steps=steps, p0=p0) + extra
+
+
+def run(args, cwd):
+    return subprocess.run([str(ddc2d_exe()), *map(str, args)], cwd=cwd, capture_output=True,
+                          text=True, timeout=120)
+
+
+def earlier_run(folder, text, name="old"):
+    """Run a model; its complete result folder/name.h5."""
+    (folder / f"{name}.nml").write_text(text)
+    done = run([f"{name}.nml", "-o", f"{name}.h5"], folder)
+    assert done.returncode == 0, done.stderr
+    return folder / f"{name}.h5"
+
+
+def resume(folder, text, old):
+    (folder / "new.nml").write_text(text)
+    return run(["new.nml", "--resume", old, "-o", "new.h5"], folder)
+
+
+def assert_refused(done, folder, words, old=None, before=None):
+    assert done.returncode == 2, done.stdout + done.stderr
+    errors = [line for line in done.stderr.splitlines() if "error:" in line]
+    assert len(errors) == 1, done.stderr
+    assert words in errors[0], errors[0]
+    assert not (folder / "new.h5").exists()
+    assert not list(folder.glob("*.partial"))
+    if old is not None:
+        assert old.read_bytes() == before
+
+
+def set_attribute(path, name, value):
+    with h5py.File(path, "r+") as f:
+        f.attrs[name] = value
+
+
+@pytest.mark.parametrize("case, words", [
+    ("missing", "--resume absent.h5: does not exist"),
+    ("folder", "--resume folder.h5: is a folder, not a result file"),
+    ("text", "--resume text.h5: is not an HDF5 file"),
+])
+def test_what_is_not_a_result_file_is_refused(tmp_path, case, words):
+    if case == "folder":
+        (tmp_path / "folder.h5").mkdir()
+    if case == "text":
+        (tmp_path / "text.h5").write_text("not a result\n")
+    old = {"missing": "absent.h5", "folder": "folder.h5", "text": "text.h5"}[case]
+    assert_refused(resume(tmp_path, history(), old), tmp_path, words)
+
+
+@pytest.mark.parametrize("change, words", [
+    (("complete", np.int32(0)), "is incomplete: the run that wrote it did not finish"),
+    (("version", np.bytes_("0.0.1")), "was written by ddc2d 0.0.1, this is"),
+    (("model_fingerprint", np.bytes_("0123456789ABCDEF")), "is the result of another model"),
+])
+def test_incomplete_or_foreign_files_are_refused(tmp_path, change, words):
+    old = earlier_run(tmp_path, history())
+    set_attribute(old, *change)
+    before = old.read_bytes()
+    assert_refused(resume(tmp_path, history(), "old.h5"), tmp_path, "--resume old.h5: " + words,
+                   old, before)
+
+
+@pytest.mark.parametrize("new, words", [
+    (history(extra="&solver lcp_method = 'lemke' /\n"), "is the result of another model"),
+    (history().replace("mu = 0.6", "mu = 0.5"), "is the result of another model"),
+    (PLAIN.format(mu=0.6), ("--resume continues a growth run or a loading history, and new.nml "
+                            "has neither &growth nor &load_path")),
+    (GROWTH.format(steps=3), "is not a growth run (no /growth), and new.nml has &growth"),
+    (history(steps="2, 2"), ("the &load_path of new.nml has 5 steps, fewer than the 6 of the "
+                             "earlier run")),
+    (history(sxy="0, 3, 4"), "step 2 of the &load_path of new.nml has sxy = 1.5"),
+    # p0 held at its &pore_fluid value by the earlier path, varied by the new one
+    (history(p0="p0 = 1, 1, 2, "), "step 4 of the &load_path of new.nml has p0 = 1.33"),
+])
+def test_another_model_or_path_is_refused(tmp_path, new, words):
+    old = earlier_run(tmp_path, history())
+    before = old.read_bytes()
+    assert_refused(resume(tmp_path, new, "old.h5"), tmp_path, words, old, before)
+
+
+def test_a_result_that_is_not_a_growth_run_or_history_is_refused(tmp_path):
+    old = earlier_run(tmp_path, PLAIN.format(mu=0.6))
+    before = old.read_bytes()
+    assert_refused(resume(tmp_path, GROWTH.format(steps=3), "old.h5"), tmp_path,
+                   "holds neither a growth run (/growth) nor a loading history (/history)",
+                   old, before)
+
+
+def test_growth_and_history_must_match(tmp_path):
+    earlier_run(tmp_path, GROWTH.format(steps=3), "growth")
+    assert_refused(resume(tmp_path, history(), "growth.h5"), tmp_path,
+                   "--resume growth.h5: is a growth run, and new.nml has no &growth")
+    earlier_run(tmp_path, GROWTH_PATH + PATH, "both")
+    assert_refused(resume(tmp_path, GROWTH_PATH, "both.h5"), tmp_path,
+                   "--resume both.h5: holds a loading history, and new.nml has no &load_path")
+    earlier_run(tmp_path, GROWTH_PATH, "fixed")
+    assert_refused(resume(tmp_path, GROWTH_PATH + PATH, "fixed.h5"), tmp_path,
+                   "--resume fixed.h5: holds no loading history (/history), and new.nml has "
+                   "a &load_path")
+
+
+@pytest.mark.parametrize("args, words", [
+    (["new.nml", "--resume"], "option --resume needs the result file"),
+    (["new.nml", "--resume", "-o", "x.h5"], "option --resume needs the result file"),
+    (["new.nml", "--resume", ""], "the --resume file name is empty"),
+    (["--twodd", "deck.txt", "--resume", "old.h5"], "not a TWODD deck (--twodd) or a sweep"),
+    (["new.nml", "--list", "--resume", "old.h5"], "not a TWODD deck (--twodd) or a sweep"),
+    (["new.nml", "--resume", "old.h5", "--task", "0"], "not a TWODD deck (--twodd) or a sweep"),
+])
+def test_resume_usage_errors(tmp_path, args, words):
+    (tmp_path / "new.nml").write_text(history())
+    assert_refused(run(args, tmp_path), tmp_path, words)
+
+
+def test_resume_of_a_sweep_is_refused(tmp_path):
+    old = earlier_run(tmp_path, history())
+    (tmp_path / "new.nml").write_text(history(extra="&sweep parameters = 'mu', "
+                                              "values_1 = 0.5, 0.6 /\n"))
+    done = run(["new.nml", "--resume", "old.h5", "-o", "new.h5"], tmp_path)
+    assert_refused(done, tmp_path, "new.nml is a sweep (&sweep): --resume continues one", old,
+                   old.read_bytes())
+
+
+@pytest.mark.parametrize("old_text, new_text", [
+    (history(), history()),
+    (history(), history(sxy="0, 4, 4, 2", steps="2, 3, 2")),
+    (history(), history(sxy="0, 4, 4, 4", steps="2, 3, 1").replace("p0 = 1", "p0 = 1.0")),
+    (GROWTH.format(steps=2), GROWTH.format(steps=5)),
+    (GROWTH_PATH + PATH, GROWTH_PATH.replace("steps = 3", "steps = 5")
+     + "&load_path sxx = -1, -1, -1, syy = -1, -30, -40, steps = 3, 1 /\n"),
+])
+def test_a_result_of_the_same_model_passes(tmp_path, old_text, new_text):
+    old = earlier_run(tmp_path, old_text)
+    done = resume(tmp_path, new_text, "old.h5")
+    assert done.returncode == 0, done.stderr
+    with h5py.File(old) as a, h5py.File(tmp_path / "new.h5") as b:
+        assert a.attrs["model_fingerprint"] == b.attrs["model_fingerprint"]
+
+
+def test_the_output_may_be_the_resume_file(tmp_path):
+    old = earlier_run(tmp_path, GROWTH.format(steps=2))
+    (tmp_path / "new.nml").write_text(GROWTH.format(steps=4))
+    done = run(["new.nml", "--resume", "old.h5", "-o", "old.h5"], tmp_path)
+    assert done.returncode == 0, done.stderr
+    with h5py.File(old) as f:
+        assert f.attrs["complete"] == 1
+        assert b"steps = 4" in f.attrs["input_text"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["new.nml", "old.h5", "old.nml"]
+
+
+def test_every_result_records_its_fingerprint(tmp_path):
+    plain = earlier_run(tmp_path, PLAIN.format(mu=0.6), "a")
+    again = earlier_run(tmp_path, "! the same model\n" + PLAIN.format(mu=0.6), "b")
+    other = earlier_run(tmp_path, PLAIN.format(mu=0.5), "c")
+    prints = []
+    for path in (plain, again, other):
+        with h5py.File(path) as f:
+            prints.append(f.attrs["model_fingerprint"].decode().strip())
+    assert all(len(p) == 16 and int(p, 16) >= 0 for p in prints)
+    assert prints[0] == prints[1] != prints[2]
