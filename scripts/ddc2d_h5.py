@@ -413,8 +413,10 @@ def read_growth(path, handle):
         return None
     group = handle["growth"]
     growth = {}
-    for key in GROWTH_DATASETS:
+    for key in GROWTH_DATASETS + ("load_step",):
         if key not in group:
+            if key == "load_step":  # along a load path only
+                continue
             raise ResultError(f"'{path}' lacks /growth/{key}")
         growth[key] = np.asarray(group[key][()]).ravel()
         if growth[key].size != growth["step"].size:

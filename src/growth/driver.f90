@@ -33,21 +33,23 @@ module ddc_growth_driver
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use ddc_kinds, only: wp
     use ddc_constants, only: pi
-    use ddc_error, only: error_type, set_internal_error
+    use ddc_error, only: error_type, set_internal_error, set_error, exit_bad_input
     use ddc_model_types, only: model_type, growth_options, growth_tips_most_critical
     use ddc_model_results, only: model_results, growth_record, growth_grew, &
         growth_subcritical, growth_corrector_failed, growth_closed, growth_waiting, &
-        growth_linked, growth_arrested, growth_step_limit
+        growth_linked, growth_arrested, growth_step_limit, growth_end_names
+    use ddc_model_restart, only: restart_state
+    use ddc_growth_restart, only: resumed_geometry, resumed_tips
     use ddc_mesh_checks, only: check_elements
     use ddc_growth_solver, only: growth_solver, solve_input, solve_grown, solve_loaded, &
-        accept_trial, final_results, solves_done
+        accept_trial, final_results, solves_done, restore_memory
     use ddc_growth_criterion, only: mts_angle, equivalent_k, kink_slope, most_critical
     use ddc_growth_extension, only: tip_path, make_path, tip_element
     use ddc_growth_clearance, only: check_paths, path_clear, tip_link
     use ddc_growth_tips, only: growing_tip, find_growing_tips, fracture_tip
     use ddc_growth_corrector, only: kink, correct_kinks, grow_paths
     use ddc_growth_load_steps, only: load_step_history, start_load_steps, follow_growth, &
-        record_load_step, finish_load_steps
+        record_load_step, finish_load_steps, resume_load_steps
     use ddc_history_path, only: path_loads, apply_load, load_text
     use ddc_progress, only: report_progress
     use ddc_text, only: itoa, rtoa, seconds_text
@@ -118,7 +120,7 @@ contains
     !> Grow the fractures of a model with &growth (along its load path when it has one). On
     !> return the model is the final geometry (at the last load) and results hold its
     !> solution, tips, fields, the growth record and the loading history.
-    subroutine grow_fractures(model, results, error, progress)
+    subroutine grow_fractures(model, results, error, progress, restart)
         !> A validated model with growth options; the grown model on return
         type(model_type), intent(inout) :: model
         !> The final geometry's results, results%growth and results%history
@@ -127,42 +129,40 @@ contains
         type(error_type), allocatable, intent(out) :: error
         !> Called after every growth step
         procedure(growth_progress), optional :: progress
+        !> The end of an earlier run of the model to go on from (--resume)
+        type(restart_state), intent(in), optional :: restart
         type(growth_state) :: run
         type(growth_record) :: record
         real(wp), allocatable :: loads(:, :)
-        integer :: step, load_step, steps_before
+        integer :: step, load_step, steps_before, start, first
         integer(int64) :: t_start, t_end, rate
-        logical :: history
+        logical :: history, solved
         character(len=:), allocatable :: where
 
         call system_clock(t_start, rate)
         history = allocated(model%load_path%vertex)
-        run%work = model
         if (history) then
             loads = path_loads(model%load_path)
-            run%work = apply_load(model, loads(:, 1))
         else
             allocate (loads(7, 1), source=0.0_wp)
         end if
-        ! Trial solves need no fields: they are evaluated once, on the final geometry.
-        if (allocated(run%work%observations)) deallocate (run%work%observations)
-        allocate (run%work%observations(0), run%created(run%work%elements%n))
-        run%created = 0
-        call empty_record(record)
-        call solve_input(run%solver, run%work, run%current, error, friction_memory=history)
-        if (allocated(error)) then
-            error%message = 'growth: solving the input geometry: '//error%message
-            if (history) error%message = 'load step 1: '//error%message
-            return
+        if (present(restart)) then
+            call resume_run(model, restart, loads, run, record, step, start, first, error)
+        else
+            call start_run(model, loads, run, record, error)
+            step = 0
+            start = 1
+            first = 0
         end if
-        run%tips = find_growing_tips(run%work, run%current%tips, model%growth%fracture_grows)
-        if (history) call start_load_steps(run%history, run%work, size(loads, 2))
-        step = 0
-        do load_step = 1, size(loads, 2)
+        if (allocated(error)) return
+        ! The current solution is that of the first load step's load (not so when a resumed
+        ! run goes on with the next load step).
+        solved = first > 0 .or. start == 1
+        do load_step = start, size(loads, 2)
             if (history) then
                 where = 'load step '//itoa(load_step)//' of '//itoa(size(loads, 2))//' ('// &
                     load_text(loads(:, load_step), model%load_path%varies)//')'
-                if (load_step > 1) then
+                if (.not. solved) then
                     run%work = apply_load(run%work, loads(:, load_step))
                     call solve_loaded(run%solver, run%work, run%current, error)
                     if (allocated(error)) then
@@ -172,9 +172,11 @@ contains
                 end if
                 call report_progress(where)
             end if
+            solved = .false.
             steps_before = record%steps_taken
-            call grow_to_stability(run, model%growth, load_step, step, record, error, &
+            call grow_to_stability(run, model%growth, load_step, step, first, record, error, &
                                    progress, t_start)
+            first = 0
             if (allocated(error)) then
                 if (history) error%message = where//': '//error%message
                 return
@@ -219,11 +221,95 @@ contains
 
     end subroutine grow_fractures
 
+    !> The start of a run: the input geometry at the first load, solved.
+    subroutine start_run(model, loads, run, record, error)
+        type(model_type), intent(in) :: model
+        real(wp), intent(in) :: loads(:, :)
+        type(growth_state), intent(out) :: run
+        type(growth_record), intent(out) :: record
+        type(error_type), allocatable, intent(out) :: error
+        logical :: history
+
+        history = allocated(model%load_path%vertex)
+        run%work = model
+        if (history) run%work = apply_load(model, loads(:, 1))
+        ! Trial solves need no fields: they are evaluated once, on the final geometry.
+        if (allocated(run%work%observations)) deallocate (run%work%observations)
+        allocate (run%work%observations(0), run%created(run%work%elements%n))
+        run%created = 0
+        call empty_record(record)
+        call solve_input(run%solver, run%work, run%current, error, friction_memory=history)
+        if (allocated(error)) then
+            error%message = 'growth: solving the input geometry: '//error%message
+            if (history) error%message = 'load step 1: '//error%message
+            return
+        end if
+        run%tips = find_growing_tips(run%work, run%current%tips, model%growth%fracture_grows)
+        if (history) call start_load_steps(run%history, run%work, size(loads, 2))
+    end subroutine start_run
+
+    !> A run resumed from the end of an earlier one (SPEC-GROWTH 8): its final geometry,
+    !> solution, records, tips, history and friction memory. It goes on in the load step
+    !> where the earlier run reached the step limit (start, after `first` growth steps of it),
+    !> or with the load step after the one where it arrested (first = 0). Error (exit 2)
+    !> when nothing is left to do.
+    subroutine resume_run(model, restart, loads, run, record, step, start, first, error)
+        type(model_type), intent(in) :: model
+        type(restart_state), intent(in) :: restart
+        real(wp), intent(in) :: loads(:, :)
+        type(growth_state), intent(out) :: run
+        type(growth_record), intent(out) :: record
+        integer, intent(out) :: step, start, first
+        type(error_type), allocatable, intent(out) :: error
+        integer :: done
+        logical :: history
+
+        history = allocated(model%load_path%vertex)
+        call resumed_geometry(model, restart, run%work, run%created, error)
+        if (allocated(error)) return
+        deallocate (run%work%observations)
+        allocate (run%work%observations(0))
+        run%current%elements = restart%results%elements
+        run%current%tips = restart%results%tips
+        run%tips = resumed_tips(restart)
+        record = restart%results%growth
+        step = maxval(record%step)
+        done = 1
+        if (history) done = size(restart%results%history%pivots)
+        start = done
+        first = 0
+        if (record%end_reason == growth_step_limit) then
+            ! Growth steps (evaluations) of the last load step so far
+            first = step - minval(record%step, record%load_step == done) + 1
+            if (first >= model%growth%steps) call nothing_left('raise &growth steps')
+        else
+            start = done + 1
+            if (start > size(loads, 2)) call nothing_left('extend &load_path')
+        end if
+        if (allocated(error)) return
+        if (.not. history) return
+        run%work = apply_load(run%work, loads(:, done))
+        call restore_memory(run%solver, restart%results%elements%ds)
+        call resume_load_steps(run%history, run%work, restart, loads, size(loads, 2), &
+                               start - 1)
+
+    contains
+
+        subroutine nothing_left(what)
+            character(len=*), intent(in) :: what
+
+            call set_error(error, exit_bad_input, '--resume: the earlier run ended ('// &
+                           trim(growth_end_names(record%end_reason))//') where this model '// &
+                           'ends too: nothing is left to do; '//what//' to go on')
+        end subroutine nothing_left
+
+    end subroutine resume_run
+
     !> Grow the fractures at the current load until no tip is critical (end_reason
-    !> growth_arrested) or for `steps` growth steps (growth_step_limit); `step` counts the
-    !> growth steps of the whole run.
-    subroutine grow_to_stability(run, options, load_step, step, record, error, progress, &
-                                 t_start)
+    !> growth_arrested) or for `steps` growth steps (growth_step_limit), after `first` growth
+    !> steps of this load step done before; `step` counts the growth steps of the whole run.
+    subroutine grow_to_stability(run, options, load_step, step, first, record, error, &
+                                 progress, t_start)
         !> The run at the load step's start (its geometry solved at the step's load)
         type(growth_state), intent(inout) :: run
         !> The model's growth options
@@ -232,6 +318,8 @@ contains
         integer, intent(in) :: load_step
         !> The last growth step of the run so far
         integer, intent(inout) :: step
+        !> Growth steps of this load step done before (a resumed run)
+        integer, intent(in) :: first
         !> The run's growth record: the step's records appended, steps_taken and end_reason
         type(growth_record), intent(inout) :: record
         !> Set when a solve fails (naming the step) or a contract is broken
@@ -244,7 +332,7 @@ contains
         integer(int64) :: t_step, rate
 
         record%end_reason = growth_step_limit
-        do s = 1, options%steps
+        do s = first + 1, options%steps
             step = step + 1
             call system_clock(t_step, rate)
             solves_before = solves_done(run%solver)

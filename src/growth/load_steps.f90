@@ -16,12 +16,13 @@ module ddc_growth_load_steps
     use ddc_model_results, only: model_results, history_record, growth_record, tip_set, &
         state_not_grown
     use ddc_growth_extension, only: tip_element, tip_end_begin, tip_end_end
+    use ddc_model_restart, only: restart_state
     use ddc_growth_tips, only: growing_tip, locate_tip
     implicit none
     private
 
     public :: load_step_history, start_load_steps, follow_growth, record_load_step, &
-        finish_load_steps
+        finish_load_steps, resume_load_steps
 
     !> The columns recorded so far and how the current geometry's elements relate to them.
     type :: load_step_history
@@ -59,6 +60,57 @@ contains
             allocate (h%state(n, steps), source=state_not_grown)
         end associate
     end subroutine start_load_steps
+
+    !> Room for `steps` load steps and the first `done` columns of an earlier run that ended
+    !> with the geometry `work` (--resume).
+    subroutine resume_load_steps(history, work, state, loads, steps, done)
+        !> The history (fresh)
+        type(load_step_history), intent(out) :: history
+        !> The earlier run's final geometry
+        type(model_type), intent(in) :: work
+        !> The earlier run's end (its /history, K of its final tips)
+        type(restart_state), intent(in) :: state
+        !> The load at every step of the path, shape (7, steps)
+        real(wp), intent(in) :: loads(:, :)
+        !> Load steps of the path
+        integer, intent(in) :: steps
+        !> Columns of the earlier run kept (the others are recorded again)
+        integer, intent(in) :: done
+        integer :: f, end, i, t
+
+        call start_load_steps(history, work, steps)
+        associate (h => history%h, old => state%results%history)
+            history%k = done
+            h%load(:, 1:done) = loads(:, 1:done)
+            h%ds(:, 1:done) = old%ds(:, 1:done)
+            h%dn(:, 1:done) = old%dn(:, 1:done)
+            h%state(:, 1:done) = old%state(:, 1:done)
+            h%shear_traction(:, 1:done) = old%shear_traction(:, 1:done)
+            h%normal_traction(:, 1:done) = old%normal_traction(:, 1:done)
+            h%element_count(1:done) = old%element_count(1:done)
+            h%pivots(1:done) = old%pivots(1:done)
+            h%newton_iterations(1:done) = old%newton_iterations(1:done)
+            h%method(1:done) = old%method(1:done)
+            h%fallback(1:done) = old%fallback(1:done)
+            h%certificate_min_z(1:done) = old%certificate_min_z(1:done)
+            h%certificate_min_w(1:done) = old%certificate_min_w(1:done)
+            h%certificate_max_complementarity(1:done) = &
+                old%certificate_max_complementarity(1:done)
+            h%equilibrium_residual(1:done) = old%equilibrium_residual(1:done)
+            ! K rows of the fracture ends; the file holds those of its final tips.
+            h%k1(:, 1:done) = ieee_value(1.0_wp, ieee_quiet_nan)
+            h%k2(:, 1:done) = h%k1(:, 1:done)
+            do f = 1, size(work%fractures)
+                do end = tip_end_begin, tip_end_end
+                    t = locate_tip(state%results%tips, tip_element(work, f, end), end)
+                    if (t == 0) cycle
+                    i = 2 * (f - 1) + end - tip_end_begin + 1
+                    h%k1(i, 1:done) = old%k1(t, 1:done)
+                    h%k2(i, 1:done) = old%k2(t, 1:done)
+                end do
+            end do
+        end associate
+    end subroutine resume_load_steps
 
     !> A growth step was accepted: origin is the element of the geometry before it that each
     !> element of the grown one comes from (0: new).

@@ -58,6 +58,7 @@ module ddc_growth_solver
     private
 
     public :: growth_solver, solve_input, solve_grown, solve_loaded, accept_trial, final_results
+    public :: restore_memory
     public :: keeps_solves, solves_done
 
     !> What the solves of one growth run keep. Arrays of n elements of the base or trial.
@@ -130,6 +131,18 @@ contains
         if (allocated(error)) return
         call accept_trial(solver)
     end subroutine solve_input
+
+    !> A fresh solver for a resumed run (--resume): no kept base (the first solve assembles
+    !> and factorizes whole), the friction memory of the earlier run's final geometry.
+    pure subroutine restore_memory(solver, ds)
+        !> The solver (fresh)
+        type(growth_solver), intent(inout) :: solver
+        !> Total slip of every element of the base [length unit], shape (n)
+        real(wp), intent(in) :: ds(:)
+
+        solver%memory = .true.
+        solver%base_ds = ds
+    end subroutine restore_memory
 
     !> Solve the base geometry at a new load (model: the base at that load), from the
     !> friction memory of the base; it stays the base.

@@ -21,6 +21,7 @@ module ddc_history_solve
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type, condition_contact
     use ddc_model_results, only: model_results, history_record
+    use ddc_model_restart, only: restart_state
     use ddc_model_loads, only: resolve_remote_stress, total_pressure, shear_modulus_of
     use ddc_contact_result, only: contact_result, contact_stress_scale
     use ddc_contact_formulation, only: solve_contact_with, contact_session
@@ -45,7 +46,7 @@ contains
     !> Solve a model along its load path; results hold the last step and the history.
     !> On success the model's remote stress, gradients and pore pressure p0 are those of
     !> the last step (the state /elements and the fields describe).
-    subroutine solve_history(model, results, error, max_pivots, max_iterations)
+    subroutine solve_history(model, results, error, max_pivots, max_iterations, restart)
         !> A validated model with a load path and at least one contact element
         type(model_type), intent(inout) :: model
         !> The last step's element results, tips and fields, and every step's history
@@ -57,6 +58,10 @@ contains
         integer, intent(in), optional :: max_pivots
         !> Iteration limit of each Newton solve (tests; default that of solve_contact)
         integer, intent(in), optional :: max_iterations
+        !> The end of an earlier run of the model along the first steps of its path to go on
+        !> from (--resume, SPEC-GROWTH 8): its steps are kept, the next ones start from its
+        !> friction memory and the strengths in force at its end
+        type(restart_state), intent(in), optional :: restart
         type(condensed_contact), target :: sys
         type(contact_session) :: session
         type(dense_stiffness) :: stiffness
@@ -69,6 +74,7 @@ contains
         real(wp), pointer, contiguous :: a_solve(:, :)
         real(wp), allocatable :: matrix(:, :), no_dd(:), ts(:), tn(:)
         integer :: n, nc, k, nsteps, pivots, solves, iterations, fallbacks, first_fallback, stat
+        integer :: done
         real(wp) :: sigma0, g, seconds_lcp, seconds_factorization, flops
         integer(int64) :: t_start, t0, t1, rate
 
@@ -144,6 +150,11 @@ contains
             deallocate (load_map)
             a_solve => a_joint
         end if
+        done = 0
+        if (present(restart)) then
+            call resume_steps(error)
+            if (allocated(error)) return
+        end if
         stiffness%a => a_solve
         pivots = 0
         solves = 0
@@ -153,7 +164,7 @@ contains
         seconds_factorization = 0.0_wp
         flops = 0.0_wp
         call system_clock(t0, rate)
-        do k = 1, nsteps
+        do k = done + 1, nsteps
             call solve_contact_with(stiffness, shift(1:nc, k), shift(nc + 1:, k), &
                                     model%elements%mu(sys%contact), sf_eff, pressure(:, k), &
                                     model%solver, res, error, a=a_solve, &
@@ -248,6 +259,61 @@ contains
         model = apply_load(model, loads(:, nsteps))
         call system_clock(t1)
         results%solver%seconds_total = real(t1 - t_start, wp) / real(rate, wp)
+
+    contains
+
+        !> The first `done` steps from the earlier run, and its memory at their end: the slip
+        !> of the contact elements, the strengths in force and the slip path (the sum of the
+        !> slip increments, as the steps added it up).
+        subroutine resume_steps(error)
+            type(error_type), allocatable, intent(out) :: error
+            integer :: j
+
+            associate (old => restart%results%history, e => restart%results%elements)
+                done = size(old%pivots)
+                if (done >= nsteps) then
+                    call set_error(error, exit_bad_input, '--resume: the earlier run ended '// &
+                        'at the end of this load path: nothing is left to do; extend '// &
+                        '&load_path to go on')
+                    return
+                end if
+                if (any(compliance > 0.0_wp)) then
+                    ! The memory of elastic joints is their plastic slip, which the file does
+                    ! not hold.
+                    call set_error(error, exit_bad_input, '--resume: a loading history of '// &
+                        'elastic joints (shear_stiffness, normal_stiffness) cannot be resumed')
+                    return
+                end if
+                h%ds(:, 1:done) = old%ds
+                h%dn(:, 1:done) = old%dn
+                h%state(:, 1:done) = old%state
+                h%shear_traction(:, 1:done) = old%shear_traction
+                h%normal_traction(:, 1:done) = old%normal_traction
+                h%k1(:, 1:done) = old%k1
+                h%k2(:, 1:done) = old%k2
+                h%pivots(1:done) = old%pivots
+                h%newton_iterations(1:done) = old%newton_iterations
+                h%method(1:done) = old%method
+                h%fallback(1:done) = old%fallback
+                h%certificate_min_z(1:done) = old%certificate_min_z
+                h%certificate_min_w(1:done) = old%certificate_min_w
+                h%certificate_max_complementarity(1:done) = old%certificate_max_complementarity
+                h%equilibrium_residual(1:done) = old%equilibrium_residual
+                ds_previous = e%ds(sys%contact)
+                sf_eff = e%sf_in_force(sys%contact)
+                t_eff = e%tensile_in_force(sys%contact)
+                mu_eff = e%mu_in_force(sys%contact)
+                do j = 1, done
+                    if (j == 1) then
+                        slip_path = abs(old%ds(sys%contact, 1))
+                    else
+                        slip_path = slip_path + abs(old%ds(sys%contact, j) - &
+                                                    old%ds(sys%contact, j - 1))
+                    end if
+                end do
+            end associate
+        end subroutine resume_steps
+
     end subroutine solve_history
 
     !> The history arrays of n elements, tips tips and k steps (error: they do not fit).

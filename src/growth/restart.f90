@@ -1,0 +1,133 @@
+!> A growth run resumed from the end of an earlier one (--resume, SPEC-GROWTH 8): the
+!> geometry it ended with, rebuilt from the input model as growth builds it, and the tips
+!> that may still grow.
+!>
+!> The file holds the final end points, fractures and created steps, not every element
+!> value as given. So each element of the final geometry takes the values of the input
+!> element it comes from, as ddc_growth_extension gave them: an input element (created
+!> step 0) its own (a split one: both halves, found as the consecutive elements that span
+!> it), a grown element those of its fracture's input tip element at that end, with the
+!> default strength laws and new_mu, new_sf; then its end points from the file (bit for
+!> bit) and the geometry computed.
+module ddc_growth_restart
+    use ddc_kinds, only: wp
+    use ddc_error, only: error_type, set_error, exit_bad_input
+    use ddc_model_types, only: model_type, condition_contact, select_elements
+    use ddc_model_results, only: growth_intersection, growth_surface, growth_linked
+    use ddc_model_restart, only: restart_state
+    use ddc_mesh_geometry, only: compute_geometry, default_strength_laws
+    use ddc_growth_tips, only: growing_tip
+    implicit none
+    private
+
+    public :: resumed_geometry, resumed_tips
+
+contains
+
+    !> The final geometry of the earlier run (observations as in model) and the growth
+    !> step that created each of its elements.
+    subroutine resumed_geometry(model, state, work, created, error)
+        !> The input model (validated)
+        type(model_type), intent(in) :: model
+        !> The earlier run's end
+        type(restart_state), intent(in) :: state
+        !> Its final geometry
+        type(model_type), intent(out) :: work
+        !> Growth step that created each element, shape (n)
+        integer, allocatable, intent(out) :: created(:)
+        !> Set (exit_bad_input) when the file's geometry does not follow from the model
+        type(error_type), allocatable, intent(out) :: error
+        integer, allocatable :: pick(:)
+        integer :: f, i, j, n
+
+        n = size(state%x_begin)
+        created = state%results%growth%created_step
+        if (size(state%first_element) /= size(model%fractures) .or. size(created) /= n) then
+            call mismatch('its fractures or elements do not match the model')
+            return
+        end if
+        allocate (pick(n), source=0)
+        do f = 1, size(model%fractures)
+            associate (input => model%fractures(f), e => model%elements)
+                j = input%first_element
+                do i = state%first_element(f), state%last_element(f)
+                    if (created(i) > 0) then
+                        ! Grown before the input's elements: at the begin tip.
+                        pick(i) = merge(input%first_element, input%last_element, &
+                                        j == input%first_element)
+                        cycle
+                    end if
+                    if (j > input%last_element) exit
+                    pick(i) = j
+                    ! The element (or a split one's second half) ends where input j ends.
+                    if (state%x_end(i) == e%x_end(j) .and. state%y_end(i) == e%y_end(j)) &
+                        j = j + 1
+                end do
+                if (j /= input%last_element + 1) then
+                    call mismatch('fracture '//input%name//' does not hold the model''s '// &
+                                  'elements')
+                    return
+                end if
+            end associate
+        end do
+        if (any(pick == 0)) then
+            call mismatch('an element comes from no element of the model')
+            return
+        end if
+        work = model
+        call select_elements(model%elements, pick, work%elements)
+        call default_strength_laws(work%elements, created > 0)
+        associate (a => work%elements)
+            if (model%growth%override_mu) then
+                where (created > 0 .and. a%condition == condition_contact) a%mu = &
+                    model%growth%new_mu
+            end if
+            if (model%growth%override_sf) then
+                where (created > 0 .and. a%condition == condition_contact) a%sf = &
+                    model%growth%new_sf
+            end if
+            a%x_begin = state%x_begin
+            a%y_begin = state%y_begin
+            a%x_end = state%x_end
+            a%y_end = state%y_end
+            a%fracture_id = state%fracture_id
+        end associate
+        work%fractures%first_element = state%first_element
+        work%fractures%last_element = state%last_element
+        call compute_geometry(work%elements)
+
+    contains
+
+        subroutine mismatch(why)
+            character(len=*), intent(in) :: why
+
+            call set_error(error, exit_bad_input, '--resume: the earlier result does not '// &
+                           'follow from the model: '//why)
+        end subroutine mismatch
+
+    end subroutine resumed_geometry
+
+    !> The fracture ends that may grow, as the earlier run found them (those of its first
+    !> step's records), each stopped for good when its last record says so.
+    function resumed_tips(state) result(tips)
+        !> The earlier run's end
+        type(restart_state), intent(in) :: state
+        type(growing_tip), allocatable :: tips(:)
+        integer :: i, k, last
+
+        associate (g => state%results%growth)
+            allocate (tips(0))
+            do k = 1, size(g%step)
+                if (g%step(k) /= g%step(1)) exit
+                tips = [tips, growing_tip(fracture=g%fracture_id(k), end=g%end(k))]
+            end do
+            do i = 1, size(tips)
+                last = findloc(g%fracture_id == tips(i)%fracture .and. g%end == tips(i)%end, &
+                               .true., 1, back=.true.)
+                tips(i)%stopped = any(g%reason(last) == [growth_intersection, &
+                                                         growth_surface, growth_linked])
+            end do
+        end associate
+    end function resumed_tips
+
+end module ddc_growth_restart
