@@ -28,28 +28,31 @@
 !> is critical (at most `steps` growth steps, else the run ends with step_limit), and its end
 !> is recorded for /history (ddc_growth_load_steps); growth steps are numbered through the
 !> whole run.
+!>
+!> A resumed run (--resume) starts from the end of an earlier one (ddc_growth_run_state)
+!> and goes on where it stopped: in the load step it reached the step limit in, or with the
+!> next load step.
 module ddc_growth_driver
     use, intrinsic :: iso_fortran_env, only: int64
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use ddc_kinds, only: wp
     use ddc_constants, only: pi
-    use ddc_error, only: error_type, set_internal_error, set_error, exit_bad_input
+    use ddc_error, only: error_type, set_internal_error
     use ddc_model_types, only: model_type, growth_options, growth_tips_most_critical
-    use ddc_model_results, only: model_results, growth_record, growth_grew, &
-        growth_subcritical, growth_corrector_failed, growth_closed, growth_waiting, &
-        growth_linked, growth_arrested, growth_step_limit, growth_end_names
+    use ddc_model_results, only: model_results, growth_record, growth_grew, growth_subcritical, &
+        growth_corrector_failed, growth_closed, growth_waiting, growth_linked, growth_arrested, &
+        growth_step_limit
     use ddc_model_restart, only: restart_state
-    use ddc_growth_restart, only: resumed_geometry, resumed_tips
+    use ddc_growth_run_state, only: reason_stopped, step_tips, growth_state, start_run, resume_run
     use ddc_mesh_checks, only: check_elements
-    use ddc_growth_solver, only: growth_solver, solve_input, solve_grown, solve_loaded, &
-        accept_trial, final_results, solves_done, restore_memory
+    use ddc_growth_solver, only: solve_grown, solve_loaded, accept_trial, final_results, &
+        solves_done
     use ddc_growth_criterion, only: mts_angle, equivalent_k, kink_slope, most_critical
     use ddc_growth_extension, only: tip_path, make_path, tip_element
     use ddc_growth_clearance, only: check_paths, path_clear, tip_link
-    use ddc_growth_tips, only: growing_tip, find_growing_tips, fracture_tip
+    use ddc_growth_tips, only: growing_tip, fracture_tip
     use ddc_growth_corrector, only: kink, correct_kinks, grow_paths
-    use ddc_growth_load_steps, only: load_step_history, start_load_steps, follow_growth, &
-        record_load_step, finish_load_steps, resume_load_steps
+    use ddc_growth_load_steps, only: follow_growth, record_load_step, finish_load_steps
     use ddc_history_path, only: path_loads, apply_load, load_text
     use ddc_progress, only: report_progress
     use ddc_text, only: itoa, rtoa, seconds_text
@@ -61,10 +64,6 @@ module ddc_growth_driver
     !> The corrector stops when the new tip's |K_II| <= corrector_tolerance
     !> max(K_eq, toughness)
     real(wp), parameter :: corrector_tolerance = 1.0e-3_wp
-
-    !> The reason of a tip that stopped for good in an earlier step: it has no record (the
-    !> reasons of ddc_model_results, growth_grew ... growth_waiting, are not negative)
-    integer, parameter :: reason_stopped = -1
 
     abstract interface
         !> Told after every growth step (the program prints a line and flushes it).
@@ -81,39 +80,6 @@ module ddc_growth_driver
             real(wp), intent(in) :: seconds, elapsed
         end subroutine growth_progress
     end interface
-
-    !> One step's view of the tips that may still grow, shape (tips) for every array.
-    type :: step_tips
-        !> K_I, K_II, K_eq [stress unit * length unit**0.5], MTS angle [rad]
-        real(wp), allocatable :: k1(:), k2(:), k_eq(:), theta(:)
-        !> Tip position [length unit]
-        real(wp), allocatable :: x(:), y(:)
-        !> Element of the tip in the current geometry
-        integer, allocatable :: element(:)
-        !> The reason of the tip's record (growth_grew ... growth_waiting), or reason_stopped
-        integer, allocatable :: reason(:)
-        !> Applied angle [rad], solves, length grown, K_II after growing
-        real(wp), allocatable :: angle(:), length(:), k2_after(:)
-        integer, allocatable :: solves(:)
-        !> The link of a tip that links in this step (reason growth_linked)
-        type(tip_link), allocatable :: link(:)
-    end type step_tips
-
-    !> What a growth run carries from one step to the next.
-    type :: growth_state
-        !> The current geometry (without observations) and its solution
-        type(model_type) :: work
-        type(model_results) :: current
-        !> The solves of the run (the current geometry is its base)
-        type(growth_solver) :: solver
-        !> Growth step that created each element of work (0: the input), shape (n)
-        integer, allocatable :: created(:)
-        !> The fracture ends that may grow, and this step's view of them
-        type(growing_tip), allocatable :: tips(:)
-        type(step_tips) :: now
-        !> The loading history's columns (a run under a load path)
-        type(load_step_history) :: history
-    end type growth_state
 
 contains
 
@@ -220,90 +186,6 @@ contains
         end subroutine report_load_step
 
     end subroutine grow_fractures
-
-    !> The start of a run: the input geometry at the first load, solved.
-    subroutine start_run(model, loads, run, record, error)
-        type(model_type), intent(in) :: model
-        real(wp), intent(in) :: loads(:, :)
-        type(growth_state), intent(out) :: run
-        type(growth_record), intent(out) :: record
-        type(error_type), allocatable, intent(out) :: error
-        logical :: history
-
-        history = allocated(model%load_path%vertex)
-        run%work = model
-        if (history) run%work = apply_load(model, loads(:, 1))
-        ! Trial solves need no fields: they are evaluated once, on the final geometry.
-        if (allocated(run%work%observations)) deallocate (run%work%observations)
-        allocate (run%work%observations(0), run%created(run%work%elements%n))
-        run%created = 0
-        call empty_record(record)
-        call solve_input(run%solver, run%work, run%current, error, friction_memory=history)
-        if (allocated(error)) then
-            error%message = 'growth: solving the input geometry: '//error%message
-            if (history) error%message = 'load step 1: '//error%message
-            return
-        end if
-        run%tips = find_growing_tips(run%work, run%current%tips, model%growth%fracture_grows)
-        if (history) call start_load_steps(run%history, run%work, size(loads, 2))
-    end subroutine start_run
-
-    !> A run resumed from the end of an earlier one (SPEC-GROWTH 8): its final geometry,
-    !> solution, records, tips, history and friction memory. It goes on in the load step
-    !> where the earlier run reached the step limit (start, after `first` growth steps of it),
-    !> or with the load step after the one where it arrested (first = 0). Error (exit 2)
-    !> when nothing is left to do.
-    subroutine resume_run(model, restart, loads, run, record, step, start, first, error)
-        type(model_type), intent(in) :: model
-        type(restart_state), intent(in) :: restart
-        real(wp), intent(in) :: loads(:, :)
-        type(growth_state), intent(out) :: run
-        type(growth_record), intent(out) :: record
-        integer, intent(out) :: step, start, first
-        type(error_type), allocatable, intent(out) :: error
-        integer :: done
-        logical :: history
-
-        history = allocated(model%load_path%vertex)
-        call resumed_geometry(model, restart, run%work, run%created, error)
-        if (allocated(error)) return
-        deallocate (run%work%observations)
-        allocate (run%work%observations(0))
-        run%current%elements = restart%results%elements
-        run%current%tips = restart%results%tips
-        run%tips = resumed_tips(restart)
-        record = restart%results%growth
-        step = maxval(record%step)
-        done = 1
-        if (history) done = size(restart%results%history%pivots)
-        start = done
-        first = 0
-        if (record%end_reason == growth_step_limit) then
-            ! Growth steps (evaluations) of the last load step so far
-            first = step - minval(record%step, record%load_step == done) + 1
-            if (first >= model%growth%steps) call nothing_left('raise &growth steps')
-        else
-            start = done + 1
-            if (start > size(loads, 2)) call nothing_left('extend &load_path')
-        end if
-        if (allocated(error)) return
-        if (.not. history) return
-        run%work = apply_load(run%work, loads(:, done))
-        call restore_memory(run%solver, restart%results%elements%ds)
-        call resume_load_steps(run%history, run%work, restart, loads, size(loads, 2), &
-                               start - 1)
-
-    contains
-
-        subroutine nothing_left(what)
-            character(len=*), intent(in) :: what
-
-            call set_error(error, exit_bad_input, '--resume: the earlier run ended ('// &
-                           trim(growth_end_names(record%end_reason))//') where this model '// &
-                           'ends too: nothing is left to do; '//what//' to go on')
-        end subroutine nothing_left
-
-    end subroutine resume_run
 
     !> Grow the fractures at the current load until no tip is critical (end_reason
     !> growth_arrested) or for `steps` growth steps (growth_step_limit), after `first` growth
@@ -646,16 +528,5 @@ contains
         record%length = [record%length, pack(now%length, keep)]
         record%reason = [record%reason, pack(now%reason, keep)]
     end subroutine append_records
-
-    !> Allocate every per-record array with no record.
-    subroutine empty_record(record)
-        type(growth_record), intent(inout) :: record
-
-        allocate (record%step(0), record%load_step(0), record%fracture_id(0), record%end(0), &
-                  record%x(0), record%y(0), &
-                  record%k1(0), record%k2(0), record%k_eq(0), record%mts_angle(0), &
-                  record%angle(0), record%corrections(0), record%k2_after(0), &
-                  record%length(0), record%reason(0))
-    end subroutine empty_record
 
 end module ddc_growth_driver

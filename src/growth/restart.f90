@@ -10,7 +10,6 @@
 !> default strength laws and new_mu, new_sf; then its end points from the file (bit for
 !> bit) and the geometry computed.
 module ddc_growth_restart
-    use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type, condition_contact, select_elements
     use ddc_model_results, only: growth_intersection, growth_surface, growth_linked
@@ -60,8 +59,9 @@ contains
                     if (j > input%last_element) exit
                     pick(i) = j
                     ! The element (or a split one's second half) ends where input j ends.
-                    if (state%x_end(i) == e%x_end(j) .and. state%y_end(i) == e%y_end(j)) &
+                    if (state%x_end(i) == e%x_end(j) .and. state%y_end(i) == e%y_end(j)) then
                         j = j + 1
+                    end if
                 end do
                 if (j /= input%last_element + 1) then
                     call mismatch('fracture '//input%name//' does not hold the model''s '// &

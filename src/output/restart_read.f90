@@ -182,6 +182,7 @@ contains
             if (allocated(error)) call reading_failed(dataset)
         end subroutine integers
 
+        ! allow(C072): the history's strings have the lengths of history_record
         subroutine strings(dataset, values)
             character(len=*), intent(in) :: dataset
             character(len=*), allocatable, intent(inout) :: values(:)

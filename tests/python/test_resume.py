@@ -1,18 +1,26 @@
 """--resume OLD.h5 (issue 25 item 3, SPEC-GROWTH 8): the result files a run refuses to
-continue, and those it accepts.
+continue, those it accepts, and the continuation.
 
 Every refusal exits 2 with one message naming the resume file, writes no output (nor a
-.partial file) and leaves the resume file as it was. The continuation itself is not tested
-here: a file that passes the check runs the model as usual for now.
+.partial file) and leaves the resume file as it was. A resumed run equals the uninterrupted
+one to 1e-12 (tests/compare_results.py: every array of /elements, /tips, /fields, /history
+and /growth): growth along a load path resumed after a shorter path (the earlier run
+arrested) and after a step limit inside a load step, on the Lemke and on the kept Newton
+path; growth at a fixed load after a step limit; a loading history with residual cohesion
+and slip weakening (its memory: slip, strengths in force and slip path).
 """
 
 import subprocess
+import sys
 
 import h5py
 import numpy as np
 import pytest
 
-from conftest import ddc2d_exe
+from conftest import REPO_ROOT, ddc2d_exe
+
+sys.path.insert(0, str(REPO_ROOT / "tests"))
+import compare_results
 
 MODEL = """\
 &model youngs_modulus = 50000, poissons_ratio = 0.25 /
@@ -167,7 +175,6 @@ def test_resume_of_a_sweep_is_refused(tmp_path):
 
 
 @pytest.mark.parametrize("old_text, new_text", [
-    (history(), history()),
     (history(), history(sxy="0, 4, 4, 2", steps="2, 3, 2")),
     (history(), history(sxy="0, 4, 4, 4", steps="2, 3, 1").replace("p0 = 1", "p0 = 1.0")),
     (GROWTH.format(steps=2), GROWTH.format(steps=5)),
@@ -203,3 +210,70 @@ def test_every_result_records_its_fingerprint(tmp_path):
             prints.append(f.attrs["model_fingerprint"].decode().strip())
     assert all(len(p) == 16 and int(p, 16) >= 0 for p in prints)
     assert prints[0] == prints[1] != prints[2]
+
+
+def test_elastic_joints_history_is_refused(tmp_path):
+    joints = ", shear_stiffness = 1000, normal_stiffness = 1000 /"
+    old = earlier_run(tmp_path, history().replace("mu = 0.6 /", "mu = 0.6" + joints))
+    new = history(sxy="0, 4, 4, 2", steps="2, 3, 2").replace("mu = 0.6 /", "mu = 0.6" + joints)
+    assert_refused(resume(tmp_path, new, "old.h5"), tmp_path,
+                   "elastic joints (shear_stiffness, normal_stiffness) cannot be resumed", old,
+                   old.read_bytes())
+
+
+# The wings of SPEC-GROWTH 7's flaw (20 elements) as syy rises from -5 to -100 MPa.
+WINGS = """&model youngs_modulus = 50000.0, poissons_ratio = 0.25 /
+&remote_stress sxx = -5.0, syy = -5.0 /
+&fracture name = 'flaw', x = -0.70710678, 0.70710678, y = -0.70710678, 0.70710678,
+          elements = 20, mu = 0.6, sf = 0.0 /
+&growth steps = {steps}, toughness = 2.0, increment = 0.2 /
+{solver}"""
+WINGS_PATH = "&load_path syy = -5, -52.5, -100, steps = 5, 5 /\n"
+WINGS_HALF = "&load_path syy = -5, -52.5, steps = 5 /\n"
+WEAKENING = (PLAIN.format(mu="0.6, sf = 1, sf_residual = 0.2, mu_dynamic = 0.45, "
+                          "slip_weakening_distance = 1e-5")
+             + "&load_path sxy = {path} /\n")
+
+
+@pytest.mark.parametrize("old_text, new_text", [
+    # along a load path: the earlier run arrested at the end of a shorter path
+    (WINGS.format(steps=40, solver="") + WINGS_HALF,
+     WINGS.format(steps=40, solver="") + WINGS_PATH),
+    # stopped by the step limit inside a load step
+    (WINGS.format(steps=2, solver="") + WINGS_PATH, WINGS.format(steps=40, solver="") + WINGS_PATH),
+    # the kept (Newton) path: the resumed run's first solve starts cold
+    (WINGS.format(steps=2, solver="&solver lcp_method = 'newton' /") + WINGS_PATH,
+     WINGS.format(steps=40, solver="&solver lcp_method = 'newton' /") + WINGS_PATH),
+    # at a fixed load, after a step limit
+    (WINGS.format(steps=2, solver="").replace("syy = -5.0", "syy = -100.0"),
+     WINGS.format(steps=40, solver="").replace("syy = -5.0", "syy = -100.0")),
+    # a loading history whose elements lose cohesion and weaken as they slip
+    (WEAKENING.format(path="0, 6, steps = 4"), WEAKENING.format(path="0, 6, -6, steps = 4, 10")),
+])
+def test_a_resumed_run_equals_the_uninterrupted_one(tmp_path, old_text, new_text):
+    earlier_run(tmp_path, old_text)
+    whole = earlier_run(tmp_path, new_text, "whole")
+    done = resume(tmp_path, new_text, "old.h5")
+    assert done.returncode == 0, done.stderr
+    problems, report = compare_results.compare(whole, tmp_path / "new.h5", rtol=1e-12)
+    assert not problems, problems
+    assert "largest relative difference" in report
+    with h5py.File(tmp_path / "old.h5") as old, h5py.File(tmp_path / "new.h5") as new:
+        # The earlier run did less: the resumed one went on.
+        if "growth" in new:
+            assert new["growth/step"].size > old["growth/step"].size
+        else:
+            assert new["history/pivots"].size > old["history/pivots"].size
+
+
+def test_nothing_left_to_do_is_refused(tmp_path):
+    old = earlier_run(tmp_path, history())
+    assert_refused(resume(tmp_path, history(), "old.h5"), tmp_path,
+                   "nothing is left to do; extend &load_path", old, old.read_bytes())
+    fixed = WINGS.format(steps=40, solver="").replace("syy = -5.0", "syy = -100.0")
+    old = earlier_run(tmp_path, fixed)
+    with h5py.File(old) as f:
+        assert f["growth"].attrs["end_reason"] == b"arrested"
+    assert_refused(resume(tmp_path, fixed.replace("steps = 40", "steps = 50"), "old.h5"),
+                   tmp_path,
+                   "ended (arrested) where this model ends too", old, old.read_bytes())
