@@ -119,10 +119,17 @@ contains
         if (record%end_reason == growth_step_limit) then
             ! Growth steps (evaluations) of the last load step so far
             first = step - minval(record%step, record%load_step == done) + 1
-            if (first >= model%growth%steps) call nothing_left('raise &growth steps')
+            if (first >= model%growth%steps) call nothing_left('raise &growth steps to go on')
         else
             start = done + 1
-            if (start > size(loads, 2)) call nothing_left('extend &load_path')
+            if (start > size(loads, 2)) then
+                if (history) then
+                    call nothing_left('extend &load_path to go on')
+                else
+                    ! At a fixed load no tip grows again: there is no way on.
+                    call nothing_left('no tip can grow at this load; change the model')
+                end if
+            end if
         end if
         if (allocated(error)) return
         if (.not. history) return
@@ -138,7 +145,7 @@ contains
 
             call set_error(error, exit_bad_input, '--resume: the earlier run ended ('// &
                            trim(growth_end_names(record%end_reason))//') where this model '// &
-                           'ends too: nothing is left to do; '//what//' to go on')
+                           'ends too: nothing is left to do ('//what//')')
         end subroutine nothing_left
 
     end subroutine resume_run
