@@ -114,7 +114,6 @@ contains
 
         !> The loading history's columns (the loads follow from the model's path).
         subroutine read_history()
-            real(wp), allocatable :: flat(:)
             integer, allocatable :: flat_state(:)
             integer :: k, tips
 
@@ -124,20 +123,14 @@ contains
                 k = size(h%pivots)
                 n = size(state%x_begin)
                 tips = state%results%tips%n
-                call reals('/history/ds', flat)
-                if (allocated(flat)) h%ds = reshape(flat, [n, k])
-                call reals('/history/dn', flat)
-                if (allocated(flat)) h%dn = reshape(flat, [n, k])
-                call reals('/history/shear_traction', flat)
-                if (allocated(flat)) h%shear_traction = reshape(flat, [n, k])
-                call reals('/history/normal_traction', flat)
-                if (allocated(flat)) h%normal_traction = reshape(flat, [n, k])
+                call columns('/history/ds', n, k, h%ds)
+                call columns('/history/dn', n, k, h%dn)
+                call columns('/history/shear_traction', n, k, h%shear_traction)
+                call columns('/history/normal_traction', n, k, h%normal_traction)
+                call columns('/history/k1', tips, k, h%k1)
+                call columns('/history/k2', tips, k, h%k2)
                 call integers('/history/state', flat_state)
                 if (allocated(flat_state)) h%state = reshape(flat_state, [n, k])
-                call reals('/history/k1', flat)
-                if (allocated(flat)) h%k1 = reshape(flat, [tips, k])
-                call reals('/history/k2', flat)
-                if (allocated(flat)) h%k2 = reshape(flat, [tips, k])
                 call integers('/history/newton_iterations', h%newton_iterations)
                 call strings('/history/method', h%method)
                 call strings('/history/fallback', h%fallback)
@@ -150,6 +143,17 @@ contains
                     '/history/element_count', h%element_count)
             end associate
         end subroutine read_history
+
+        !> A real dataset of the history shaped (rows, steps) in Fortran.
+        subroutine columns(dataset, rows, steps, values)
+            character(len=*), intent(in) :: dataset
+            integer, intent(in) :: rows, steps
+            real(wp), allocatable, intent(out) :: values(:, :)
+            real(wp), allocatable :: flat(:)
+
+            call reals(dataset, flat)
+            if (allocated(flat)) values = reshape(flat, [rows, steps])
+        end subroutine columns
 
         !> Whether the file has a dataset.
         logical function present_in(dataset)
