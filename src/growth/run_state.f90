@@ -109,6 +109,7 @@ contains
         allocate (run%work%observations(0))
         run%current%elements = restart%results%elements
         run%current%tips = restart%results%tips
+        run%current%solver = restart%results%solver
         run%tips = resumed_tips(restart)
         record = restart%results%growth
         step = maxval(record%step)
@@ -134,6 +135,9 @@ contains
         if (allocated(error)) return
         if (.not. history) return
         run%work = apply_load(run%work, loads(:, done))
+        ! The last column's solve is that of the current solution.
+        run%current%solver%pivots = restart%results%history%pivots(done)
+        run%current%solver%newton_iterations = restart%results%history%newton_iterations(done)
         call restore_memory(run%solver, restart%results%elements%ds)
         call resume_load_steps(run%history, run%work, restart, loads, size(loads, 2), &
                                start - 1)

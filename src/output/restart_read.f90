@@ -9,7 +9,7 @@ module ddc_output_restart_read
     use ddc_model_results, only: growth_end_names
     use ddc_model_restart, only: restart_state
     use ddc_output_hdf5_read, only: read_real_dataset, read_int_dataset, read_string_dataset, &
-        read_string_attribute, read_int_attribute, read_dataset_dims
+        read_string_attribute, read_int_attribute, read_real_attribute, read_dataset_dims
     implicit none
     private
 
@@ -71,11 +71,48 @@ contains
                                   t%y(i) == state%y_end(e))
             end do
         end associate
+        call read_last_solve()
         if (present_in('/growth/step')) call read_growth()
         if (allocated(error)) return
         if (present_in('/history/pivots')) call read_history()
 
     contains
+
+        !> How the last solve went (/solver: method, fallback, certificate, residual): the
+        !> record of the final solution, should the resumed run not solve again.
+        subroutine read_last_solve()
+            associate (r => state%results%solver)
+                if (allocated(error)) return
+                call read_string_attribute(path, '/solver', 'method', r%method, error)
+                if (.not. allocated(error)) call read_string_attribute(path, '/solver', &
+                    'fallback', r%fallback, error)
+                if (allocated(error)) then
+                    call reading_failed('/solver attributes')
+                    return
+                end if
+                call real_attribute('certificate_min_z', r%certificate_min_z)
+                call real_attribute('certificate_min_w', r%certificate_min_w)
+                call real_attribute('certificate_max_complementarity', &
+                                    r%certificate_max_complementarity)
+                call real_attribute('certificate_tolerance', r%certificate_tolerance)
+                call real_attribute('equilibrium_residual', r%equilibrium_residual)
+            end associate
+        end subroutine read_last_solve
+
+        !> A real attribute of /solver.
+        subroutine real_attribute(name, target_value)
+            character(len=*), intent(in) :: name
+            real(wp), intent(inout) :: target_value
+            real(wp), allocatable :: value(:)
+
+            if (allocated(error)) return
+            call read_real_attribute(path, '/solver', name, value, error)
+            if (allocated(error)) then
+                call reading_failed('/solver attribute '//name)
+            else
+                target_value = value(1)
+            end if
+        end subroutine real_attribute
 
         !> The growth record.
         subroutine read_growth()

@@ -266,6 +266,26 @@ def test_a_resumed_run_equals_the_uninterrupted_one(tmp_path, old_text, new_text
             assert new["history/pivots"].size > old["history/pivots"].size
 
 
+def test_a_run_that_arrests_at_once_when_resumed(tmp_path):
+    """The earlier run's step limit was its last growing step: the resumed run arrests in its
+    first step without solving, and its result (the final solve's record included) is the
+    uninterrupted run's."""
+    fixed = WINGS.format(steps=40, solver="").replace("syy = -5.0", "syy = -100.0")
+    whole = earlier_run(tmp_path, fixed, "whole")
+    with h5py.File(whole) as f:
+        taken = int(f["growth"].attrs["steps_taken"])
+        method = f["solver"].attrs["method"]
+    earlier_run(tmp_path, fixed.replace("steps = 40", f"steps = {taken}"))
+    done = resume(tmp_path, fixed, "old.h5")
+    assert done.returncode == 0, done.stderr
+    assert f"growth step {taken + 1}: 0 tip(s) grew" in done.stdout
+    problems, _ = compare_results.compare(whole, tmp_path / "new.h5", rtol=1e-12)
+    assert not problems, problems
+    with h5py.File(tmp_path / "new.h5") as f:
+        assert f["growth"].attrs["end_reason"] == b"arrested"
+        assert f["solver"].attrs["method"] == method
+
+
 def test_nothing_left_to_do_is_refused(tmp_path):
     old = earlier_run(tmp_path, history())
     assert_refused(resume(tmp_path, history(), "old.h5"), tmp_path,
