@@ -18,7 +18,7 @@ module ddc_app_resume_check
     use ddc_output_atomic, only: resolve_target
     use ddc_output_file_system, only: path_kind, kind_missing
     use ddc_output_hdf5_read, only: is_hdf5_file, output_is_complete, read_string_attribute, &
-        read_real_dataset, read_dataset_dims
+        read_real_dataset, has_dataset
     use ddc_text, only: itoa, rtoa
     implicit none
     private
@@ -164,15 +164,5 @@ contains
             end do
         end do
     end subroutine check_path_prefix
-
-    !> Whether the file holds the dataset.
-    logical function has_dataset(path, dataset)
-        character(len=*), intent(in) :: path, dataset
-        type(error_type), allocatable :: error
-        integer, allocatable :: dims(:)
-
-        call read_dataset_dims(path, dataset, dims, error)
-        has_dataset = .not. allocated(error)
-    end function has_dataset
 
 end module ddc_app_resume_check

@@ -14,7 +14,7 @@ module ddc_growth_load_steps
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type
     use ddc_model_results, only: model_results, history_record, growth_record, tip_set, &
-        state_not_grown
+        state_not_grown, copy_steps
     use ddc_growth_extension, only: tip_element, tip_end_begin, tip_end_end
     use ddc_model_restart, only: restart_state
     use ddc_growth_tips, only: growing_tip, locate_tip
@@ -82,21 +82,8 @@ contains
         associate (h => history%h, old => state%results%history)
             history%k = done
             h%load(:, 1:done) = loads(:, 1:done)
-            h%ds(:, 1:done) = old%ds(:, 1:done)
-            h%dn(:, 1:done) = old%dn(:, 1:done)
-            h%state(:, 1:done) = old%state(:, 1:done)
-            h%shear_traction(:, 1:done) = old%shear_traction(:, 1:done)
-            h%normal_traction(:, 1:done) = old%normal_traction(:, 1:done)
+            call copy_steps(old, h, done)
             h%element_count(1:done) = old%element_count(1:done)
-            h%pivots(1:done) = old%pivots(1:done)
-            h%newton_iterations(1:done) = old%newton_iterations(1:done)
-            h%method(1:done) = old%method(1:done)
-            h%fallback(1:done) = old%fallback(1:done)
-            h%certificate_min_z(1:done) = old%certificate_min_z(1:done)
-            h%certificate_min_w(1:done) = old%certificate_min_w(1:done)
-            h%certificate_max_complementarity(1:done) = &
-                old%certificate_max_complementarity(1:done)
-            h%equilibrium_residual(1:done) = old%equilibrium_residual(1:done)
             ! K rows of the fracture ends; the file holds those of its final tips.
             h%k1(:, 1:done) = ieee_value(1.0_wp, ieee_quiet_nan)
             h%k2(:, 1:done) = h%k1(:, 1:done)

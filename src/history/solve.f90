@@ -20,7 +20,7 @@ module ddc_history_solve
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type, condition_contact
-    use ddc_model_results, only: model_results, history_record
+    use ddc_model_results, only: model_results, history_record, copy_steps
     use ddc_model_restart, only: restart_state
     use ddc_model_loads, only: resolve_remote_stress, total_pressure, shear_modulus_of
     use ddc_contact_result, only: contact_result, contact_stress_scale
@@ -284,21 +284,9 @@ contains
                         'elastic joints (shear_stiffness, normal_stiffness) cannot be resumed')
                     return
                 end if
-                h%ds(:, 1:done) = old%ds
-                h%dn(:, 1:done) = old%dn
-                h%state(:, 1:done) = old%state
-                h%shear_traction(:, 1:done) = old%shear_traction
-                h%normal_traction(:, 1:done) = old%normal_traction
+                call copy_steps(old, h, done)
                 h%k1(:, 1:done) = old%k1
                 h%k2(:, 1:done) = old%k2
-                h%pivots(1:done) = old%pivots
-                h%newton_iterations(1:done) = old%newton_iterations
-                h%method(1:done) = old%method
-                h%fallback(1:done) = old%fallback
-                h%certificate_min_z(1:done) = old%certificate_min_z
-                h%certificate_min_w(1:done) = old%certificate_min_w
-                h%certificate_max_complementarity(1:done) = old%certificate_max_complementarity
-                h%equilibrium_residual(1:done) = old%equilibrium_residual
                 ds_previous = e%ds(sys%contact)
                 sf_eff = e%sf_in_force(sys%contact)
                 t_eff = e%tensile_in_force(sys%contact)

@@ -22,7 +22,7 @@ module ddc_output_hdf5_read
 
     public :: read_real_dataset, read_int_dataset, read_string_dataset, read_dataset_dims
     public :: read_string_attribute, read_real_attribute, read_int_attribute
-    public :: output_is_complete, is_hdf5_file
+    public :: output_is_complete, is_hdf5_file, has_dataset
 
 contains
 
@@ -278,6 +278,21 @@ contains
         complete = .not. allocated(error)
         if (complete) complete = flag == 1
     end function output_is_complete
+
+    !> Whether a result file holds a dataset (false too when it cannot be read).
+    function has_dataset(path, dataset) result(found)
+        !> Path of the file
+        character(len=*), intent(in) :: path
+        !> Path of the dataset inside the file
+        character(len=*), intent(in) :: dataset
+        !> The dataset is there
+        logical :: found
+        type(error_type), allocatable :: error
+        integer, allocatable :: dims(:)
+
+        call read_dataset_dims(path, dataset, dims, error)
+        found = .not. allocated(error)
+    end function has_dataset
 
     !> True when path is a readable HDF5 file (its signature; nothing else is read).
     function is_hdf5_file(path) result(hdf5_file)

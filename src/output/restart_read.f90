@@ -9,7 +9,7 @@ module ddc_output_restart_read
     use ddc_model_results, only: growth_end_names
     use ddc_model_restart, only: restart_state
     use ddc_output_hdf5_read, only: read_real_dataset, read_int_dataset, read_string_dataset, &
-        read_string_attribute, read_int_attribute, read_real_attribute, read_dataset_dims
+        read_string_attribute, read_int_attribute, read_real_attribute, has_dataset
     implicit none
     private
 
@@ -25,7 +25,6 @@ contains
         type(restart_state), intent(out) :: state
         !> Set (exit_io_failure, naming the file) when a dataset cannot be read
         type(error_type), allocatable, intent(out) :: error
-        integer, allocatable :: dims(:)
         character(len=:), allocatable :: end_name
         integer :: n, i, e
 
@@ -46,11 +45,11 @@ contains
             call reals('/elements/un_minus', r%un_minus)
             call reals('/elements/us_plus', r%us_plus)
             call reals('/elements/un_plus', r%un_plus)
-            if (present_in('/elements/sf_in_force')) then
+            if (has_dataset(path, '/elements/sf_in_force')) then
                 call reals('/elements/sf_in_force', r%sf_in_force)
                 call reals('/elements/tensile_strength_in_force', r%tensile_in_force)
             end if
-            if (present_in('/elements/mu_in_force')) call reals('/elements/mu_in_force', &
+            if (has_dataset(path, '/elements/mu_in_force')) call reals('/elements/mu_in_force', &
                                                                 r%mu_in_force)
         end associate
         associate (t => state%results%tips)
@@ -72,9 +71,9 @@ contains
             end do
         end associate
         call read_last_solve()
-        if (present_in('/growth/step')) call read_growth()
+        if (has_dataset(path, '/growth/step')) call read_growth()
         if (allocated(error)) return
-        if (present_in('/history/pivots')) call read_history()
+        if (has_dataset(path, '/history/pivots')) call read_history()
 
     contains
 
@@ -118,7 +117,7 @@ contains
         subroutine read_growth()
             associate (g => state%results%growth)
                 call integers('/growth/step', g%step)
-                if (present_in('/growth/load_step')) then
+                if (has_dataset(path, '/growth/load_step')) then
                     call integers('/growth/load_step', g%load_step)
                 else if (allocated(g%step)) then
                     allocate (g%load_step(size(g%step)), source=1)
@@ -176,7 +175,7 @@ contains
                 call reals('/history/certificate_max_complementarity', &
                            h%certificate_max_complementarity)
                 call reals('/history/equilibrium_residual', h%equilibrium_residual)
-                if (present_in('/history/element_count')) call integers( &
+                if (has_dataset(path, '/history/element_count')) call integers( &
                     '/history/element_count', h%element_count)
             end associate
         end subroutine read_history
@@ -191,17 +190,6 @@ contains
             call reals(dataset, flat)
             if (allocated(flat)) values = reshape(flat, [rows, steps])
         end subroutine columns
-
-        !> Whether the file has a dataset.
-        logical function present_in(dataset)
-            character(len=*), intent(in) :: dataset
-            type(error_type), allocatable :: missing
-
-            present_in = .false.
-            if (allocated(error)) return
-            call read_dataset_dims(path, dataset, dims, missing)
-            present_in = .not. allocated(missing)
-        end function present_in
 
         subroutine reals(dataset, values)
             character(len=*), intent(in) :: dataset
