@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Install what ddc2d needs to build, test and plot, and nothing that is already there.
 #
-#   scripts/setup.sh [--mpi]
+#   scripts/setup.sh [--mpi] [--tests]
 #
 # 1. Debian packages (compiler, CMake, Ninja, OpenBLAS/LAPACK, serial HDF5, h5dump,
 #    python3 + venv, valgrind for the memcheck tests, stress-ng for the CPU hog beside the
@@ -12,6 +12,10 @@
 #    from PyPI, xlrd and openpyxl (scripts/comp2ddm2nml reads .xls / .xlsx workbooks),
 #    xlwt (the tests write .xls workbooks) and the linters fortitude-lint and ruff:
 #    created/installed only when missing or broken.
+# 3. With --tests, pFUnit 4.14 for the Fortran test suites (scripts/setup-pfunit.sh): an
+#    installed one that CMake finds (PFUNIT_DIR, CMAKE_PREFIX_PATH), else the one built
+#    earlier into build/pfunit, else built there once from $PFUNIT_SOURCE (a tarball or
+#    folder) or a clone of its public repository; with MPI when the MPI packages are there.
 #
 # Idempotent: a second run only checks and takes a few seconds. Works from any folder.
 # Needs root (or sudo) only when Debian packages are missing.
@@ -37,10 +41,13 @@ say() { printf 'setup: %s\n' "$*"; }
 die() { printf 'setup: error: %s\n' "$*" >&2; exit 1; }
 
 tools=(gfortran cmake ninja h5dump python3)
+with_tests=0
 for argument in "$@"; do
     case "$argument" in
         --mpi) debian_packages+=("${mpi_packages[@]}"); tools+=(mpiexec mpif90) ;;
-        *) die "unknown argument '$argument' (usage: scripts/setup.sh [--mpi])" ;;
+        # pFUnit's build runs m4 and git (for a clone when no source is given).
+        --tests) with_tests=1; debian_packages+=(m4 git); tools+=(m4 git) ;;
+        *) die "unknown argument '$argument' (usage: scripts/setup.sh [--mpi] [--tests])" ;;
     esac
 done
 
@@ -122,4 +129,9 @@ else
     "$venv_python" -m pip install --quiet "${missing_python[@]}"
     venv_complete || die "the venv still cannot import $python_modules"
     say "Python venv ready: $venv_dir"
+fi
+
+# ---------------------------------------------------------------- pFUnit
+if ((with_tests)); then
+    "$repo_root/scripts/setup-pfunit.sh"
 fi

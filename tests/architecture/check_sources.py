@@ -9,7 +9,8 @@
    holds ddc_app_b), so a reader finds a module from its name.
 3. Every namelist statement of src/input/ declares exactly the variables of its group in
    the table of src/input/namelist_groups.f90, which the error messages print.
-4. Every name imported by `use ..., only:` in src/, app/ and tests/ is used in its file
+4. Every name imported by `use ..., only:` in src/, app/ and tests/ (the Fortran suites'
+   .pf files too) is used in its file
    (gfortran does not warn about unused imports at module level).
 5. The code map is a contract: the "uses" column of the folder table of
    docs/ARCHITECTURE.md lists exactly what each folder's code uses, a folder (`model`,
@@ -23,10 +24,11 @@
    other component of `element_set` and every component of `solver_options` is
    broadcast in src/parallel/model.f90 or marked there in a comment
    `! Root only: <reference> (why)`.
-7. No test result is lost: in tests/*.f90 a call that takes `error` first (`check` and
-   the suites' helpers, which add to it) is not followed by a call that takes `error`
-   last (a routine under test, which resets it: intent out) without
-   `if (allocated(error)) return` between them in the same procedure.
+7. No error of a routine under test goes unseen: in the Fortran suites (tests/fortran/, .pf
+   and .f90), a statement that passes `error` to a routine (which sets it, intent out) is
+   followed, before the next such statement and before its procedure ends, by one that
+   reads `allocated(error)` (an assertion or a branch), unless the procedure hands `error`
+   on to its caller as an argument of its own.
 
 8. Nothing that determines a result escapes the model fingerprint that --resume compares:
    every component of `model_type` (into its derived types), of `growth_options` and of
@@ -54,6 +56,11 @@ NAMELIST = re.compile(r"^\s*namelist\s*/(\w+)/\s*((?:[^\n]*&\s*\n)*[^\n]*)", LIN
 
 def fortran_files(root):
     return sorted(p for folder in ("src", "app") for p in (root / folder).rglob("*.f90"))
+
+
+def test_sources(root):
+    """The Fortran sources of tests/: the pFUnit suites (.pf) and plain Fortran."""
+    return sorted(p for pattern in ("*.f90", "*.pf") for p in (root / "tests").rglob(pattern))
 
 
 def folder_of(path, root):
@@ -227,7 +234,7 @@ USE_ONLY = re.compile(r"^\s*use\b[^\n]*?\bonly\s*:((?:[^\n]*&\s*\n)*[^\n]*)", LI
 
 def check_imports(root, problems):
     """Names imported with `use ..., only:` that the file never mentions again."""
-    for path in sorted(fortran_files(root) + sorted((root / "tests").glob("*.f90"))):
+    for path in fortran_files(root) + test_sources(root):
         text = strip_comments(path.read_text())
         rest = USE_ONLY.sub("", text)
         words = {w.lower() for w in re.findall(r"\b\w+\b", rest)}
@@ -436,27 +443,38 @@ def statements(text):
         joined = ""
 
 
-def check_results_kept(root, problems):
-    """Check 7: a check's failure is not reset by a later call that takes error intent(out)."""
-    procedure = re.compile(r"^(?:(?:pure|elemental|recursive|impure|integer|real|logical)\s+)*"
-                           r"(?:subroutine|function)\s|^end\s+(?:subroutine|function)\b|"
-                           r"^contains\b", re.IGNORECASE)
-    adds = re.compile(r"^call\s+\w+\s*\(\s*error\b", re.IGNORECASE)
-    resets = re.compile(r"^call\s+\w+\s*\(.*[(,]\s*error\s*\)$", re.IGNORECASE)
-    for path in sorted((root / "tests").glob("*.f90")):
-        pending = None
+def check_errors_seen(root, problems):
+    """Check 7: an error returned by a routine under test is read before it can be lost."""
+    begins = re.compile(r"^(?:(?:pure|elemental|recursive|impure|integer|real(?:\(\w+\))?|"
+                        r"logical)\s+)*(?:subroutine|function)\s+\w+\s*(\([^)]*\))?",
+                        re.IGNORECASE)
+    ends = re.compile(r"^end\s+(?:subroutine|function)\b", re.IGNORECASE)
+    passes = re.compile(r"[(,]\s*error\s*[,)]", re.IGNORECASE)
+    reads = re.compile(r"(?:allocated|message_of)\s*\(\s*error\s*\)", re.IGNORECASE)
+    for path in test_sources(root):
+        pending, handed_on = None, False
+        where = path.relative_to(root)
         for number, statement in statements(path.read_text()):
-            if procedure.match(statement):
+            start = begins.match(statement)
+            if start and not ends.match(statement):
                 pending = None
-            elif adds.match(statement):
+                handed_on = bool(start.group(1) and passes.search(start.group(1)))
+                continue
+            if ends.match(statement):
+                if pending and not handed_on:
+                    problems.append(f"{where}:{pending}: the error this call returns is never "
+                                    "read: assert on allocated(error) after it")
+                pending = None
+                continue
+            read = reads.search(statement)
+            if read:
+                pending = None
+            if passes.search(reads.sub("", statement)) and not statement.lower().startswith(
+                    ("type(", "class(")):
+                if pending and not handed_on:
+                    problems.append(f"{where}:{pending}: the error this call returns is lost: "
+                                    f"line {number} passes error again before it is read")
                 pending = number
-            elif re.search(r"allocated\s*\(\s*error\s*\)", statement, re.IGNORECASE):
-                pending = None
-            elif pending and resets.match(statement):
-                problems.append(f"{path.relative_to(root)}:{number}: the check of line "
-                                f"{pending} is lost if it failed: this call resets error; "
-                                "put 'if (allocated(error)) return' before it")
-                pending = None
 
 
 def main(argv):
@@ -472,7 +490,7 @@ def main(argv):
     namelists = check_namelists(root, problems)
     check_imports(root, problems)
     check_shared(root, problems)
-    check_results_kept(root, problems)
+    check_errors_seen(root, problems)
     check_fingerprint(root, problems)
     if graph_wanted:
         for folder in sorted(graph):
@@ -483,8 +501,8 @@ def main(argv):
         print(f"architecture: {len(graph)} folders, no cycle, every folder edge listed in "
               f"{TABLE}; module names follow their paths; the {namelists} namelist "
               "statements match the group table; every import is used; every component of "
-              "element_set and solver_options is broadcast or marked root only; no test "
-              "check is reset before it is reported; every component of the model is hashed in its "
+              "element_set and solver_options is broadcast or marked root only; every "
+              "error a test gets is read; every component of the model is hashed in its "
               "fingerprint or marked not hashed")
     return 1 if problems else 0
 

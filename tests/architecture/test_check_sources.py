@@ -1,6 +1,6 @@
 """The architecture checks fail when fed a planted violation (CTest architecture_checks).
 
-Each case copies the sources the checks read (src/, app/, tests/*.f90 and
+Each case copies the sources the checks read (src/, app/, tests/fortran/ and
 docs/ARCHITECTURE.md) to a temporary folder, plants one violation, and expects
 check_sources.py to exit 1 naming it; the copy as it is must pass, so each failure comes
 from the planted line alone.
@@ -26,9 +26,7 @@ def tree(tmp_path):
     """A copy of the sources the checks read."""
     for folder in ("src", "app"):
         shutil.copytree(REPO_ROOT / folder, tmp_path / folder)
-    (tmp_path / "tests").mkdir()
-    for path in (REPO_ROOT / "tests").glob("*.f90"):
-        shutil.copy(path, tmp_path / "tests")
+    shutil.copytree(REPO_ROOT / "tests/fortran", tmp_path / "tests/fortran")
     (tmp_path / "docs").mkdir()
     shutil.copy(REPO_ROOT / "docs/ARCHITECTURE.md", tmp_path / "docs")
     return tmp_path
@@ -173,15 +171,16 @@ def test_unused_import_fails(tree, capsys):
                      "src/linalg/lu.f90: imports first_at_least but does not use it")
 
 
-def test_check_reset_before_it_is_reported_fails(tree, capsys):
-    # test_lemke: the pivot count checked, then a solve that resets error
-    text = (tree / "tests/test_lemke.f90").read_text()
-    guard = re.search(r"\n( +)if \(allocated\(error\)\) return\n( +call solve_lcp_lemke)", text)
-    assert guard, "test_lemke.f90 changed: pick another planted line"
-    (tree / "tests/test_lemke.f90").write_text(text[:guard.start()] + "\n" + guard.group(2) +
-                                               text[guard.end():])
-    expect_violation(tree, capsys, "is lost if it failed: this call resets error")
-
+def test_error_of_a_routine_under_test_not_read_fails(tree, capsys):
+    # test_lemke: a solve whose error is asserted on; without the assertion, the next solve
+    # would overwrite it unseen
+    path = tree / "tests/fortran/test_lemke.pf"
+    text = path.read_text()
+    seen = re.search(r"\n( +call solve_lcp_lemke\([^\n]*error[^\n]*)\n +@assertFalse\(allocated"
+                     r"\(error\), message_of\(error\)\)\n", text)
+    assert seen, "test_lemke.pf changed: pick another planted line"
+    path.write_text(text[:seen.start()] + "\n" + seen.group(1) + "\n" + text[seen.end():])
+    expect_violation(tree, capsys, "the error this call returns is")
 
 
 def test_model_component_missing_from_the_fingerprint_fails(tree, capsys):
