@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Set everything up and run the whole test suite:
-#   1. scripts/setup.sh --mpi (Debian packages, with Open MPI and ScaLAPACK, and the Python
-#      venv, only what is missing);
+#   1. scripts/setup.sh --mpi --tests (Debian packages, with Open MPI and ScaLAPACK, the
+#      Python venv and pFUnit, only what is missing: pFUnit is built once into build/pfunit,
+#      from $PFUNIT_SOURCE when set, unless CMake finds an installed one);
 #   2. the Debug build (-fcheck=all, -ffpe-trap=invalid,zero, -Werror) and every CTest test
-#      through the `debug` workflow preset (configure, build, test): the Fortran suites, the
+#      through the `debug` workflow preset (configure, build, test): the pFUnit suites, the
 #      pytest files, the lint, valgrind memcheck and the sweep on a local Slurm
 #      (labels fortran, python, lint, memcheck, slurm);
 #   3. the MPI build (Debug, -Werror) and its tests through the `mpi` workflow preset
@@ -21,7 +22,7 @@ set -euo pipefail
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$repo_root"
 
-scripts/setup.sh --mpi
+scripts/setup.sh --mpi --tests
 cmake --workflow --preset debug
 cmake --workflow --preset mpi
 scripts/test-kernels.sh

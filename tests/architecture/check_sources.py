@@ -25,10 +25,11 @@
    broadcast in src/parallel/model.f90 or marked there in a comment
    `! Root only: <reference> (why)`.
 7. No error of a routine under test goes unseen: in the Fortran suites (tests/fortran/, .pf
-   and .f90), a statement that passes `error` to a routine (which sets it, intent out) is
-   followed, before the next such statement and before its procedure ends, by one that
-   reads `allocated(error)` (an assertion or a branch), unless the procedure hands `error`
-   on to its caller as an argument of its own.
+   and .f90), a statement that passes `error` as the last argument of a routine (the
+   project's convention for an error a routine returns, intent out) is followed, before the
+   next such statement and before its procedure ends, by one that reads `allocated(error)`
+   (an assertion or a branch), unless the procedure hands `error` on to its caller as an
+   argument of its own.
 
 8. Nothing that determines a result escapes the model fingerprint that --resume compares:
    every component of `model_type` (into its derived types), of `growth_options` and of
@@ -449,7 +450,7 @@ def check_errors_seen(root, problems):
                         r"logical)\s+)*(?:subroutine|function)\s+\w+\s*(\([^)]*\))?",
                         re.IGNORECASE)
     ends = re.compile(r"^end\s+(?:subroutine|function)\b", re.IGNORECASE)
-    passes = re.compile(r"[(,]\s*error\s*[,)]", re.IGNORECASE)
+    passes = re.compile(r"[(,]\s*error\s*\)", re.IGNORECASE)  # last argument: intent(out)
     reads = re.compile(r"(?:allocated|message_of)\s*\(\s*error\s*\)", re.IGNORECASE)
     for path in test_sources(root):
         pending, handed_on = None, False

@@ -225,7 +225,7 @@ def check_reference(result):
     np.testing.assert_allclose(ours["y_end"], ref["yend"], rtol=0, atol=1e-14)
     peak = max(np.abs(ref["Ds"]).max(), np.abs(ref["Dn"]).max())
     # Columns Ds, Dn, Ss, Sn are ddc2d's ds, dn, shear_traction, normal_traction (the
-    # paper's code uses the same conventions: tests/test_contact.f90, ritz2012_reference).
+    # paper's code uses the same conventions: tests/fortran/test_contact.pf, ritz2012_reference).
     for key, theirs in (("ds", "Ds"), ("dn", "Dn")):
         difference = np.abs(ours[key] - ref[theirs]).max()
         assert difference <= 1e-7 * peak, f"{key}: {difference / peak:.3e} of the peak DD"
