@@ -10,7 +10,8 @@
 #    libopenmpi-dev, libscalapack-openmpi-dev) for the MPI build (cmake --preset mpi).
 # 2. A Python virtual environment in build/venv with numpy, h5py, matplotlib and pytest
 #    from PyPI, xlrd and openpyxl (scripts/comp2ddm2nml reads .xls / .xlsx workbooks),
-#    xlwt (the tests write .xls workbooks) and the linters fortitude-lint and ruff:
+#    xlwt (the tests write .xls workbooks), FORD (the API pages, scripts/build-api-docs.sh)
+#    and the linters fortitude-lint and ruff:
 #    created/installed only when missing or broken.
 # 3. With --tests, pFUnit 4.14 for the Fortran test suites (scripts/setup-pfunit.sh): an
 #    installed one that CMake finds (PFUNIT_DIR, CMAKE_PREFIX_PATH), else the one built
@@ -30,8 +31,8 @@ debian_packages=(gfortran cmake ninja-build libopenblas-dev liblapack-dev libhdf
 # for it. Not libhdf5-openmpi-dev: the output stays serial HDF5, written by one process.
 mpi_packages=(openmpi-bin libopenmpi-dev libscalapack-openmpi-dev)
 # PyPI package names; each one's import name is the same.
-python_packages=(numpy h5py matplotlib pytest xlrd openpyxl xlwt)
-python_modules="numpy, h5py, matplotlib, pytest, xlrd, openpyxl, xlwt"
+python_packages=(numpy h5py matplotlib pytest xlrd openpyxl xlwt ford)
+python_modules="numpy, h5py, matplotlib, pytest, xlrd, openpyxl, xlwt, ford"
 # Linters run by the tests, as PyPI package:executable in the venv's bin/.
 # Pinned: their default rule sets change between releases.
 python_tools=(fortitude-lint==0.10.0:fortitude ruff==0.17.6:ruff)

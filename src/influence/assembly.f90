@@ -37,8 +37,8 @@ module ddc_influence_assembly
     public :: image_transform, image_transforms, image_of, kernel_with_images
     public :: kernel_function, select_kernel
 
-    !> Interface of a kernel: dd_kernel_global or dd_kernel_half_plane.
     abstract interface
+        !> Interface of a kernel: dd_kernel_global or dd_kernel_half_plane.
         pure function kernel_function(x, y, xm, ym, a, cosb, sinb, shear_modulus, nu, face) &
             result(k)
             import :: wp, dd_kernel

@@ -9,6 +9,7 @@ module ddc_linalg_lapack
     public :: dgetrf, dgetrs, dgetri, dgecon, dlange, dgemv, dger, dgemm
 
     interface
+        !> LU factorization with partial pivoting of a general m x n matrix (LAPACK)
         subroutine dgetrf(m, n, a, lda, ipiv, info)
             import :: wp
             implicit none
@@ -16,6 +17,7 @@ module ddc_linalg_lapack
             real(wp), intent(inout) :: a(lda, *)
             integer, intent(out) :: ipiv(*), info
         end subroutine dgetrf
+        !> Solve A X = B or A^T X = B with the LU factors of dgetrf (LAPACK)
         subroutine dgetrs(trans, n, nrhs, a, lda, ipiv, b, ldb, info)
             import :: wp
             implicit none
@@ -26,6 +28,7 @@ module ddc_linalg_lapack
             real(wp), intent(inout) :: b(ldb, *)
             integer, intent(out) :: info
         end subroutine dgetrs
+        !> Inverse of a matrix from its LU factors (LAPACK)
         subroutine dgetri(n, a, lda, ipiv, work, lwork, info)
             import :: wp
             implicit none
@@ -35,6 +38,7 @@ module ddc_linalg_lapack
             real(wp), intent(inout) :: work(*)
             integer, intent(out) :: info
         end subroutine dgetri
+        !> Reciprocal condition number of a matrix from its LU factors (LAPACK)
         subroutine dgecon(norm, n, a, lda, anorm, rcond, work, iwork, info)
             import :: wp
             implicit none
@@ -46,6 +50,7 @@ module ddc_linalg_lapack
             integer, intent(inout) :: iwork(*)
             integer, intent(out) :: info
         end subroutine dgecon
+        !> One, infinity, Frobenius or max-abs norm of a general matrix (LAPACK)
         function dlange(norm, m, n, a, lda, work) result(val)
             import :: wp
             implicit none
@@ -55,6 +60,7 @@ module ddc_linalg_lapack
             real(wp), intent(inout) :: work(*)
             real(wp) :: val
         end function dlange
+        !> y = alpha op(A) x + beta y (BLAS level 2)
         subroutine dgemv(trans, m, n, alpha, a, lda, x, incx, beta, y, incy)
             import :: wp
             implicit none
@@ -63,6 +69,7 @@ module ddc_linalg_lapack
             real(wp), intent(in) :: alpha, beta, a(lda, *), x(*)
             real(wp), intent(inout) :: y(*)
         end subroutine dgemv
+        !> Rank-one update A = A + alpha x y^T (BLAS level 2)
         subroutine dger(m, n, alpha, x, incx, y, incy, a, lda)
             import :: wp
             implicit none
@@ -70,6 +77,7 @@ module ddc_linalg_lapack
             real(wp), intent(in) :: alpha, x(*), y(*)
             real(wp), intent(inout) :: a(lda, *)
         end subroutine dger
+        !> C = alpha op(A) op(B) + beta C (BLAS level 3)
         subroutine dgemm(transa, transb, m, n, k, alpha, a, lda, b, ldb, beta, c, ldc)
             import :: wp
             implicit none
