@@ -5,14 +5,15 @@
 #      from $PFUNIT_SOURCE when set, unless CMake finds an installed one);
 #   2. the Debug build (-fcheck=all, -ffpe-trap=invalid,zero, -Werror) and every CTest test
 #      through the `debug` workflow preset (configure, build, test): the pFUnit suites, the
-#      pytest files, the lint, valgrind memcheck and the sweep on a local Slurm
-#      (labels fortran, python, lint, memcheck, slurm);
+#      pytest files, the lint, valgrind memcheck (labels fortran, python, lint, memcheck);
+#      then the `slurm` test preset: the sweep on a local Slurm (label slurm, which the
+#      `debug` test preset leaves out: it starts daemons as root);
 #   3. the MPI build (Debug, -Werror) and its tests through the `mpi` workflow preset
-#      (label mpi: 1, 2 and 4 processes against the serial program, errors on 4 processes,
-#      a 2-task job on the local Slurm);
+#      (label mpi: 1, 2 and 4 processes against the serial program, errors on 4 processes),
+#      then the `mpi-slurm` test preset (a 2-task job on the local Slurm);
 #   4. the numerical suites again under other OpenBLAS kernels (scripts/test-kernels.sh);
-#   5. the process-level tests (python_robustness, python_memory, slurm_sweep and the MPI
-#      build's label mpi, slurm_mpi among them) a second time beside a CPU hog
+#   5. the process-level tests (python_robustness, python_memory, the Slurm tests and the
+#      MPI build's label mpi) a second time beside a CPU hog
 #      (stress-ng --cpu 4, bounded by --timeout and stopped when they end), so that a test
 #      that races with a process or a file, or assumes an idle machine, fails here. The
 #      fuzz test makes DDC2D_FUZZ_COUNT=400 runs in this pass (2000 in the first).
@@ -24,7 +25,9 @@ cd "$repo_root"
 
 scripts/setup.sh --mpi --tests
 cmake --workflow --preset debug
+ctest --preset slurm
 cmake --workflow --preset mpi
+ctest --preset mpi-slurm
 scripts/test-kernels.sh
 
 # 5. Under load. The hog stops by itself after hog_limit seconds should this script die.
@@ -35,9 +38,10 @@ stress-ng --cpu 4 --timeout "${hog_limit}s" --quiet &
 hog=$!
 trap 'kill "$hog" 2>/dev/null || true' EXIT
 start=$SECONDS
-DDC2D_FUZZ_COUNT=400 ctest --preset debug \
-    -R '^(python_robustness|python_memory|slurm_sweep)$'
+DDC2D_FUZZ_COUNT=400 ctest --preset debug -R '^(python_robustness|python_memory)$'
+ctest --preset slurm
 ctest --preset mpi
+ctest --preset mpi-slurm
 kill "$hog" 2>/dev/null || true
 wait "$hog" 2>/dev/null || true
 say "process-level tests passed under load in $((SECONDS - start)) s"
