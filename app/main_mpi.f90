@@ -8,11 +8,9 @@ program ddc2d
     use ddc_model_types, only: model_type
     use ddc_model_results, only: model_results
     use ddc_run_model, only: run_model
-    use ddc_history_solve, only: solve_history
-    use ddc_growth_driver, only: grow_fractures
-    use ddc_app_report, only: print_growth_step
     use ddc_app_command_line, only: command_line_options
     use ddc_app_driver, only: go_on, prepare_run, error_status, publish_results, exit_program
+    use ddc_app_solve, only: solve_on_one_process
     use ddc_parallel_context, only: parallel_context, root, start_parallel, open_grid, &
         stop_parallel
     use ddc_parallel_collective, only: agree_on_error, share
@@ -50,13 +48,7 @@ program ddc2d
         engine%context = context
         call run_model(model, results, error, engine)
     else if (context%rank == root) then
-        if (model%growth%active) then
-            call grow_fractures(model, results, error, print_growth_step)
-        else if (allocated(model%load_path%vertex)) then
-            call solve_history(model, results, error)
-        else
-            call run_model(model, results, error)
-        end if
+        call solve_on_one_process(options, model, results, error)
     end if
     call stop_on(error)
     if (context%rank == root) then

@@ -163,6 +163,35 @@ def test_resume_on_four_processes_is_refused(tmp_path):
     assert list(tmp_path.iterdir()) == []
 
 
+def test_resume_continues_the_run_on_a_single_process(tmp_path):
+    # A growth run of 2 steps continued to 4 by --resume: the MPI program on one process
+    # continues it as the serial program does (it does not start again from the beginning).
+    growth = ("&model youngs_modulus = 50000, poissons_ratio = 0.25 /\n"
+              "&remote_stress syy = 10 /\n"
+              "&fracture name = 'crack', x = -1, 1, y = 0, 0, elements = 8, "
+              "condition = 'traction' /\n"
+              "&growth steps = {steps}, toughness = 15.5, increment = 0.2 /\n")
+    (tmp_path / "old.nml").write_text(growth.format(steps=2))
+    (tmp_path / "new.nml").write_text(growth.format(steps=4))
+    old = run_serial([tmp_path / "old.nml", "-o", tmp_path / "old.h5"], tmp_path)
+    assert old.returncode == 0, old.stdout + old.stderr
+    # A resumed run takes the earlier records over as they are, a fresh one computes them:
+    # mark the first record, so that only a resumed run can carry the mark.
+    with h5py.File(tmp_path / "old.h5", "r+") as before:
+        mark = 1.5 * before["growth/k_eq"][0]
+        before["growth/k_eq"][0] = mark
+    resumed = [tmp_path / "new.nml", "--resume", tmp_path / "old.h5"]
+    serial = run_serial(resumed + ["-o", tmp_path / "serial.h5"], tmp_path)
+    assert serial.returncode == 0, serial.stdout + serial.stderr
+    run = run_parallel(1, resumed + ["-o", tmp_path / "single.h5"], tmp_path)
+    assert run.returncode == 0, run.stdout + run.stderr
+    found = differences(tmp_path / "serial.h5", tmp_path / "single.h5")
+    assert "/growth/k1" in found and max(found.values()) <= RTOL
+    with h5py.File(tmp_path / "old.h5") as before, h5py.File(tmp_path / "single.h5") as after:
+        assert after["growth/step"].shape[0] > before["growth/step"].shape[0]
+        assert after["growth/k_eq"][0] == mark, "the run started again instead of resuming"
+
+
 def test_one_process_runs_what_is_not_distributed(tmp_path):
     # A loading history (Lemke's method) on one process runs as in the serial build.
     model = DATA / "history" / "good.nml"

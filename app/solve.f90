@@ -1,0 +1,53 @@
+!> The solve of the serial program, and of the MPI program when its first process solves
+!> alone (a model that needs what is not distributed, or one process): a resumed run
+!> (--resume), fracture growth, a loading history or one solve.
+module ddc_app_solve
+    use ddc_error, only: error_type
+    use ddc_model_types, only: model_type
+    use ddc_model_results, only: model_results
+    use ddc_model_restart, only: restart_state
+    use ddc_run_model, only: run_model
+    use ddc_history_solve, only: solve_history
+    use ddc_growth_driver, only: grow_fractures
+    use ddc_output_restart_read, only: read_restart
+    use ddc_app_command_line, only: command_line_options
+    use ddc_app_report, only: print_growth_step
+    implicit none
+    private
+
+    public :: solve_on_one_process
+
+contains
+
+    !> Solve the model on this process: continued from --resume's file when given, else by
+    !> growing its fractures, along its loading history or in one solve.
+    subroutine solve_on_one_process(options, model, results, error)
+        !> The command line (its resume file)
+        type(command_line_options), intent(in) :: options
+        !> The model; growth adds its new elements
+        type(model_type), intent(inout) :: model
+        !> The results
+        type(model_results), intent(out) :: results
+        !> Allocated when the solve fails
+        type(error_type), allocatable, intent(out) :: error
+        type(restart_state) :: restart
+
+        if (allocated(options%resume_file)) then
+            ! The file was checked in prepare_run: complete, this version, this model.
+            call read_restart(options%resume_file, restart, error)
+            if (allocated(error)) return
+            if (model%growth%active) then
+                call grow_fractures(model, results, error, print_growth_step, restart)
+            else
+                call solve_history(model, results, error, restart=restart)
+            end if
+        else if (model%growth%active) then
+            call grow_fractures(model, results, error, print_growth_step)
+        else if (allocated(model%load_path%vertex)) then
+            call solve_history(model, results, error)
+        else
+            call run_model(model, results, error)
+        end if
+    end subroutine solve_on_one_process
+
+end module ddc_app_solve
