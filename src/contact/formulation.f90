@@ -38,7 +38,11 @@
 !> 'lost' sets Sf = 0 on every element that opens and solves again until no open
 !> element has cohesion left (the set of such elements only grows, so this terminates).
 !>
-!> Strength beyond Coulomb (optional tensile and sf_residual): an intact element opens
+!> The fault law (ddc_contact_fault_law: given values, values in force and the rules) goes
+!> in and comes out with the values in force at the end, so that the next step of a
+!> loading history starts from them; the LCP solvers get plain arrays from it.
+!>
+!> Strength beyond Coulomb (tensile strength and sf_residual): an intact element opens
 !> only when S_n' reaches its tensile strength T. With T in force the contact law is
 !> Coulomb's in the shifted traction S_n'' = S_n' - T: S_n'' <= 0, opening S_n'' = 0, and
 !> tau_s = (Sf - mu T) - mu S_n''. That is the paper's LCP with s_n - T for the resolved
@@ -48,17 +52,16 @@
 !> cohesion to min(Sf, sf_residual); the problem is solved again until no element
 !> changes. Strengths only decrease and take finitely many values, so this fixed point
 !> is reached in at most 2n + 1 solves; the last solve is certified with the strengths
-!> in force, which are returned (res%sf_effective, res%tensile_effective) so that the
-!> next step of a loading history starts from them.
+!> in force, which the law keeps.
 !>
-!> Slip weakening (optional mu_dynamic, slip_weakening_distance): each solve holds every
+!> Slip weakening (mu_dynamic, slip_weakening_distance): each solve holds every
 !> element's friction fixed at mu(s) of its slip path s before the solve; after it the
 !> frictions are updated from the new slip and the problem solved again until they change
 !> by less than weakening_tol (friction only decreases along the iteration: no healing,
 !> so the iteration is monotone). When they
 !> still change after max_weakening_solves solves, the load has no quasi-static solution
 !> this iteration can reach: an error (exit_solver_failure) naming the element whose
-!> friction changed most. ddc_contact_strength has the laws.
+!> friction changed most.
 module ddc_contact_formulation
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, set_internal_error, exit_bad_input, &
@@ -67,14 +70,14 @@ module ddc_contact_formulation
     use ddc_contact_memory, only: lemke_bytes
     use ddc_contact_options, only: solver_options, lcp_auto, lcp_newton, cohesion_lost
     use ddc_contact_certificate, only: certify_complementarity, default_certificate_tolerance
-    use ddc_contact_strength, only: shifted_law, weaken, friction_in_force
+    use ddc_contact_fault_law, only: fault_law
     use ddc_contact_states, only: state_stick, state_open
     use ddc_contact_active_set, only: active_set_result, active_set_workspace, &
         solve_contact_active_set
     use ddc_contact_stiffness, only: stiffness_operator, dense_stiffness
     use ddc_contact_counts, only: factor_counts
     use ddc_contact_result, only: contact_result, contact_stress_scale, problem_scales, &
-        block_scales, check_solution, drop_open_cohesion
+        block_scales, check_solution
     use ddc_contact_paper_lcp, only: contact_lcp, build_contact_lcp, solve_paper_lcp, &
         set_lcp_friction
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -132,9 +135,8 @@ contains
     end subroutine new_matrix
 
     !> Solve the frictional contact problem of n elements (SPEC section 4).
-    subroutine solve_contact(a, s_r_s, s_r_n, mu, sf, pressure, options, res, error, rule, &
-                             max_iterations, tensile, sf_residual, mu_dynamic, &
-                             slip_weakening_distance, max_solves, ds_previous)
+    subroutine solve_contact(a, s_r_s, s_r_n, law, pressure, options, res, error, rule, &
+                             max_iterations, max_solves, ds_previous)
         !> Influence matrix ordered [s; n]: traction = s_r + a [Ds; Dn], shape (2n, 2n)
         !> [stress / length]
         real(wp), intent(in), target, contiguous :: a(:, :)
@@ -144,10 +146,9 @@ contains
         !> Remote normal traction resolved on each element, tension positive, shape (n)
         !> [stress]
         real(wp), intent(in) :: s_r_n(:)
-        !> Friction coefficient, shape (n) [-]
-        real(wp), intent(in) :: mu(:)
-        !> Frictional strength (cohesion), shape (n) [stress]
-        real(wp), intent(in) :: sf(:)
+        !> The fault law of the n elements: the values in force at the start, those at the
+        !> end on return (see solve_contact_with)
+        type(fault_law), intent(inout) :: law
         !> Fluid pressure inside the crack, compression positive, shape (n) [stress]
         real(wp), intent(in) :: pressure(:)
         !> LCP method and cohesion of open elements
@@ -161,12 +162,6 @@ contains
         integer, intent(in), optional :: rule
         !> Iteration limit of 'newton' (default newton_max_iterations)
         integer, intent(in), optional :: max_iterations
-        !> Tensile strength (default 0) and cohesion after slip (default: no drop), shape
-        !> (n) [stress]; see solve_contact_with
-        real(wp), intent(in), optional :: tensile(:), sf_residual(:)
-        !> Dynamic friction [-] and slip-weakening distance [length], shape (n); see
-        !> solve_contact_with
-        real(wp), intent(in), optional :: mu_dynamic(:), slip_weakening_distance(:)
         !> Largest number of solves of the strength fixed point (tests; default
         !> 2n + 1 + max_weakening_solves)
         integer, intent(in), optional :: max_solves
@@ -175,16 +170,14 @@ contains
         type(dense_stiffness) :: stiffness
         integer(int64) :: t0, t1, rate
 
-        if (size(a, 1) /= 2 * size(mu) .or. size(a, 2) /= 2 * size(mu)) then
+        if (size(a, 1) /= 2 * size(s_r_s) .or. size(a, 2) /= 2 * size(s_r_s)) then
             call set_internal_error(error, 'solve_contact', 'array sizes do not match')
             return
         end if
         stiffness%a => a
-        call solve_contact_with(stiffness, s_r_s, s_r_n, mu, sf, pressure, options, res, error, &
-                                a, rule, max_iterations, tensile=tensile, sf_residual=sf_residual, &
-                                mu_dynamic=mu_dynamic, &
-                                slip_weakening_distance=slip_weakening_distance, &
-                                max_solves=max_solves, ds_previous=ds_previous)
+        call solve_contact_with(stiffness, s_r_s, s_r_n, law, pressure, options, res, error, &
+                                a, rule, max_iterations, max_solves=max_solves, &
+                                ds_previous=ds_previous)
         ! Freeing the factors (up to (2n)^2 reals) is part of the contact solve's time.
         call system_clock(t0, rate)
         call stiffness%discard_factors()
@@ -195,10 +188,9 @@ contains
     !> Solve the frictional contact problem of n elements (SPEC section 4) on any stiffness
     !> operator, or one step of a loading history (ds_previous, session); without the dense
     !> matrix a, by the Newton method alone.
-    subroutine solve_contact_with(stiffness, s_r_s, s_r_n, mu, sf, pressure, options, res, &
+    subroutine solve_contact_with(stiffness, s_r_s, s_r_n, law, pressure, options, res, &
                                   error, a, rule, max_iterations, ds_previous, session, &
-                                  stress_scale, max_pivots, tensile, sf_residual, &
-                                  mu_dynamic, slip_weakening_distance, slip_path, max_solves)
+                                  stress_scale, max_pivots, max_solves)
         !> The influence matrix A ordered [s; n]: traction = s_r + A [Ds; Dn], 2n x 2n
         !> [stress / length]
         class(stiffness_operator), intent(inout) :: stiffness
@@ -208,10 +200,11 @@ contains
         !> Remote normal traction resolved on each element, tension positive, shape (n)
         !> [stress]
         real(wp), intent(in) :: s_r_n(:)
-        !> Friction coefficient, shape (n) [-]
-        real(wp), intent(in) :: mu(:)
-        !> Frictional strength (cohesion), shape (n) [stress]
-        real(wp), intent(in) :: sf(:)
+        !> The fault law of the n elements: its given values, and the values in force at
+        !> the start (cohesion and tensile strength; the slip path, from which the friction
+        !> in force follows); on return those at the end, with which the last solve was
+        !> certified (undefined after an error)
+        type(fault_law), intent(inout) :: law
         !> Fluid pressure inside the crack, compression positive, shape (n) [stress]
         real(wp), intent(in) :: pressure(:)
         !> LCP method and cohesion of open elements (the method is 'newton' without a)
@@ -238,21 +231,10 @@ contains
         real(wp), intent(in), optional :: stress_scale
         !> Pivot limit of each Lemke solve (tests; default that of solve_lcp_lemke)
         integer, intent(in), optional :: max_pivots
-        !> Tensile strength in force at the start (default 0: none), shape (n) [stress]
-        real(wp), intent(in), optional :: tensile(:)
-        !> Cohesion after slip: an element that slips keeps min(sf, sf_residual)
-        !> (default: no drop), shape (n) [stress]
-        real(wp), intent(in), optional :: sf_residual(:)
-        !> Dynamic friction (min(mu, mu_dynamic); default: no drop) [-], slip-weakening
-        !> distance (default 0) [length] and the slip path before this solve (a loading
-        !> history's accumulated slip; default 0) [length], shape (n)
-        real(wp), intent(in), optional :: mu_dynamic(:), slip_weakening_distance(:), &
-            slip_path(:)
         !> Largest number of solves of the strength fixed point (tests; default
         !> 2n + 1 + max_weakening_solves)
         integer, intent(in), optional :: max_solves
         type(contact_session), allocatable :: fresh
-        real(wp), allocatable :: t_given(:), sf_after(:), mu_after(:), d_c(:), s_start(:)
         logical :: weakening
         real(wp), allocatable :: held(:)
         real(wp) :: sigma0
@@ -263,29 +245,13 @@ contains
         ! The lcp phase: everything from here on (the checks of A included, 4 n^2 reads)
         ! but the factorizations, so that no part of the solve is in no phase.
         call system_clock(t_start, rate)
-        n = size(mu)
-        if (size(s_r_s) /= n .or. size(s_r_n) /= n .or. size(sf) /= n .or. &
-            size(pressure) /= n) then
+        n = size(s_r_s)
+        if (size(s_r_n) /= n .or. size(pressure) /= n .or. .not. law%sizes_match(n)) then
             call set_internal_error(error, 'solve_contact', 'array sizes do not match')
             return
         end if
         allocate (held(n), source=0.0_wp)
-        allocate (t_given(n), d_c(n), s_start(n), source=0.0_wp)
-        sf_after = sf
-        mu_after = mu
-        if (present(tensile)) t_given = tensile
-        if (present(sf_residual)) sf_after = sf_residual
-        if (present(mu_dynamic)) mu_after = mu_dynamic
-        if (present(slip_weakening_distance)) d_c = slip_weakening_distance
-        if (present(slip_path)) s_start = slip_path
-        if (any([size(t_given), size(sf_after), size(mu_after), size(d_c), &
-                 size(s_start)] /= n)) then
-            call set_internal_error(error, 'solve_contact', 'array sizes do not match')
-            return
-        end if
-        sf_after = min(sf, sf_after)
-        mu_after = min(mu, mu_after)
-        weakening = any(mu_after < mu)
+        weakening = law%weakens()
         solves_limit = 2 * n + 1 + max_weakening_solves
         if (present(max_solves)) solves_limit = max_solves
         if (present(ds_previous)) then
@@ -300,30 +266,26 @@ contains
         if (present(session)) checked = session%a_checked
         if (.not. checked) checked = stiffness%all_finite()
         if (.not. (checked .and. all(ieee_is_finite(s_r_s)) .and. &
-            all(ieee_is_finite(s_r_n)) .and. all(ieee_is_finite(mu)) .and. &
-            all(ieee_is_finite(sf)) .and. all(ieee_is_finite(pressure)) .and. &
-            all(ieee_is_finite(held)) .and. all(ieee_is_finite(t_given)))) then
+            all(ieee_is_finite(s_r_n)) .and. law%all_finite() .and. &
+            all(ieee_is_finite(pressure)) .and. all(ieee_is_finite(held)))) then
             call set_error(error, exit_bad_input, 'contact: NaN or Inf in the input arrays')
             return
         end if
         if (present(session)) session%a_checked = .true.
         limit = newton_max_iterations
         if (present(max_iterations)) limit = max_iterations
-        if (any(mu < 0.0_wp) .or. any(sf < 0.0_wp) .or. any(t_given < 0.0_wp) .or. &
-            any(sf_after < 0.0_wp) .or. any(mu_after < 0.0_wp) .or. any(d_c < 0.0_wp) .or. &
-            any(s_start < 0.0_wp)) then
+        if (law%any_negative()) then
             call set_internal_error(error, 'solve_contact', &
                                     'the strength laws must not be negative')
             return
         end if
         if (n == 0) then
             allocate (res%ds(0), res%dn(0), res%shear_traction(0), res%normal_traction(0), &
-                res%state(0), res%sf_effective(0), res%tensile_effective(0), &
-                res%mu_effective(0), res%slip_path(0))
+                res%state(0))
             res%certificate%passed = .true.
             return
         end if
-        sigma0 = contact_stress_scale(s_r_s, s_r_n, sf, pressure)
+        sigma0 = contact_stress_scale(s_r_s, s_r_n, law%sf_in_force, pressure)
         if (present(stress_scale)) sigma0 = stress_scale
         if (present(session)) then
             call solve_in_session(session, .true.)
@@ -343,8 +305,7 @@ contains
         subroutine solve_in_session(s, warm)
             type(contact_session), intent(inout) :: s
             logical, intent(in) :: warm
-            real(wp), allocatable :: sf_eff(:), t_eff(:), sf_in(:), srn_in(:), t_cap(:)
-            real(wp), allocatable :: mu_in(:), mu_next(:), path(:)
+            real(wp), allocatable :: sf_in(:), srn_in(:), t_cap(:), mu_next(:), path(:)
             logical :: newton, automatic, changed, exceeded
             integer :: rounds
             character(len=:), allocatable :: reason
@@ -361,21 +322,19 @@ contains
             end if
             res%fallback = ''
             rounds = 0
-            sf_eff = sf
-            t_eff = t_given
-            mu_in = friction_in_force(mu, mu_after, d_c, s_start, spread(0, 1, n))
+            law%mu_in_force = law%friction(law%slip_path, spread(0, 1, n))
             do
                 rounds = rounds + 1
-                call shifted_law(mu_in, sf_eff, s_r_n, t_eff, sf_in, srn_in, t_cap)
+                call law%shifted(s_r_n, sf_in, srn_in, t_cap)
                 res%residual_scale_floor = 0.0_wp
                 if (any(t_cap > 0.0_wp)) res%residual_scale_floor = &
                     max(norm2([s_r_s, s_r_n]), norm2(t_cap))
                 ! The reduced systems hold mu in their slip rows: no factors of another mu.
                 if (weakening) call stiffness%discard_factors()
                 if (newton) then
-                    call solve_once_newton(stiffness, s_r_s, srn_in, mu_in, sf_in, pressure, &
-                        limit, held, sigma0, present(stress_scale), options%work_bytes, res, &
-                        s, reason, exceeded)
+                    call solve_once_newton(stiffness, s_r_s, srn_in, law%mu_in_force, sf_in, &
+                        pressure, limit, held, sigma0, present(stress_scale), &
+                        options%work_bytes, res, s, reason, exceeded)
                     if (exceeded) then
                         call set_error(error, exit_out_of_memory, 'contact: '//reason)
                     else if (len(reason) > 0 .and. .not. present(a)) then
@@ -389,14 +348,14 @@ contains
                     end if
                 end if
                 if (.not. newton .and. .not. allocated(error)) then
-                    call solve_once_lemke(s, warm, sf_in, srn_in, mu_in)
+                    call solve_once_lemke(s, warm, sf_in, srn_in, law%mu_in_force)
                     if (allocated(error) .and. automatic .and. len(res%fallback) == 0) then
                         ! M is not copositive-plus: Lemke can end on a ray where the contact
                         ! problem has a solution (seen at acute fault branches). 'auto' then
                         ! asks the Newton method, whose answer is checked the same way, and
                         ! keeps it for the rounds after cohesion is lost.
-                        call solve_once_newton(stiffness, s_r_s, srn_in, mu_in, sf_in, &
-                            pressure, limit, held, sigma0, present(stress_scale), &
+                        call solve_once_newton(stiffness, s_r_s, srn_in, law%mu_in_force, &
+                            sf_in, pressure, limit, held, sigma0, present(stress_scale), &
                             options%work_bytes, res, s, reason, exceeded)
                         if (exceeded) then
                             reason = error%message//' (the Newton method then stopped: '// &
@@ -425,36 +384,37 @@ contains
                     return
                 end if
                 if (.not. newton) call keep_states(res, s)
-                ! The strengths this solve was certified with (T capped at the apex).
-                res%sf_effective = sf_eff
-                res%tensile_effective = t_cap
                 res%normal_traction = res%normal_traction + t_cap
-                res%mu_effective = mu_in
-                path = s_start + abs(res%ds - held)
-                res%slip_path = path
-                changed = weaken(res%state, sf_after, t_eff, sf_eff)
+                path = law%slip_path + abs(res%ds - held)
+                changed = law%weaken(res%state)
                 if (options%open_cohesion == cohesion_lost) then
-                    if (drop_open_cohesion(res%state, sf_eff)) changed = .true.
+                    if (law%lose_open_cohesion(res%state)) changed = .true.
                 end if
                 if (weakening) then
                     ! No healing: friction only decreases along the iteration.
-                    mu_next = min(mu_in, friction_in_force(mu, mu_after, d_c, path, &
-                                                           res%state))
-                    if (maxval(abs(mu_next - mu_in)) > weakening_tol) then
-                        if (rounds >= solves_limit) then
-                            call set_error(error, exit_solver_failure, 'contact: slip '// &
-                                'weakening found no quasi-static solution: after '// &
-                                itoa(rounds)//' solves the friction of element '// &
-                                itoa(maxloc(abs(mu_next - mu_in), 1))//' still changes by '// &
-                                rtoa(maxval(abs(mu_next - mu_in)))//' (its slip runs away)')
-                            return
+                    associate (mu_in => law%mu_in_force)
+                        mu_next = min(mu_in, law%friction(path, res%state))
+                        if (maxval(abs(mu_next - mu_in)) > weakening_tol) then
+                            if (rounds >= solves_limit) then
+                                call set_error(error, exit_solver_failure, 'contact: slip '// &
+                                    'weakening found no quasi-static solution: after '// &
+                                    itoa(rounds)//' solves the friction of element '// &
+                                    itoa(maxloc(abs(mu_next - mu_in), 1))//' still changes '// &
+                                    'by '//rtoa(maxval(abs(mu_next - mu_in)))// &
+                                    ' (its slip runs away)')
+                                return
+                            end if
+                            changed = .true.
+                            mu_in = mu_next
                         end if
-                        changed = .true.
-                        mu_in = mu_next
-                    end if
+                    end associate
                 end if
                 if (.not. changed) exit
             end do
+            ! The last solve changed no strength in force: it was certified with them (T
+            ! capped at the apex), and its slip path is the memory.
+            law%tensile_in_force = t_cap
+            law%slip_path = path
             ! The operator's counts (of the session), with this solve's time and flops.
             this_solve = res%counts
             res%counts = stiffness%counts
@@ -590,7 +550,6 @@ contains
         res%normal_traction = snp - p
         res%ds = next%ds
         res%dn = next%dn
-        res%sf_effective = sf
         ! A D of the last iteration (the product the states were updated from).
         call check_solution(next%ad, s_r_s, s_r_n, mu, sf, snp, dscale, res, problem, held)
         reason = ''

@@ -223,7 +223,6 @@ contains
         snp = -z(1:n)
         res%shear_traction = -z(n + 1:n2) - lcp%mu * snp + sf
         res%normal_traction = snp - p
-        res%sf_effective = sf
 
         ! Certificate against the unfactored M, with the block magnitudes: sigma0 for
         ! stresses and the larger of delta0 and the largest DD for displacements.

@@ -19,7 +19,6 @@ module ddc_contact_result
 
     public :: contact_result, state_dd_tol, state_stress_tol, residual_tol
     public :: contact_stress_scale, problem_scales, block_scales, check_solution
-    public :: drop_open_cohesion
 
     !> Relative tolerance on DDs for the state rule (times dd_scale) [-]
     real(wp), parameter :: state_dd_tol = 1.0e-9_wp
@@ -34,14 +33,6 @@ module ddc_contact_result
         real(wp), allocatable :: shear_traction(:), normal_traction(:)
         !> state_stick, state_slip or state_open
         integer, allocatable :: state(:)
-        !> Frictional strength in force at the end (0 where cohesion was lost) [stress]
-        real(wp), allocatable :: sf_effective(:)
-        !> Tensile strength in force at the end (0 where it was lost on opening; capped
-        !> at the Coulomb apex sf_effective/mu) [stress]
-        real(wp), allocatable :: tensile_effective(:)
-        !> Friction in force in the last solve (slip weakening) [-] and the slip path at the
-        !> end (the one before the solve plus |Ds - ds_previous|) [length]
-        real(wp), allocatable :: mu_effective(:), slip_path(:)
         !> Method that produced the result: 'lemke' or 'newton'
         character(len=:), allocatable :: method
         !> Why the first method failed and the other one produced the result: Newton falling
@@ -191,17 +182,5 @@ contains
             r = 0.0_wp
         end if
     end function block_residual
-
-    !> Zero the cohesion of every open element that still has some; true when any did.
-    function drop_open_cohesion(state, sf_eff) result(changed)
-        integer, intent(in) :: state(:)
-        real(wp), intent(inout) :: sf_eff(:)
-        logical :: changed
-        logical :: lose(size(state))
-
-        lose = state == state_open .and. sf_eff > 0.0_wp
-        changed = any(lose)
-        where (lose) sf_eff = 0.0_wp
-    end function drop_open_cohesion
 
 end module ddc_contact_result

@@ -41,12 +41,13 @@ module ddc_growth_solver
     use ddc_model_loads, only: resolve_remote_stress, total_pressure, shear_modulus_of
     use ddc_influence_assembly, only: assemble_influence
     use ddc_solve_elastic, only: row_kinds
-    use ddc_solve_frictional, only: record_contact
+    use ddc_solve_frictional, only: record_contact, fault_law_of
     use ddc_contact_options, only: lcp_auto, lcp_newton
     use ddc_contact_result, only: contact_result
     use ddc_contact_formulation, only: solve_contact_with, contact_session, new_matrix, &
         auto_newton_min_elements
     use ddc_contact_counts, only: factor_counts
+    use ddc_contact_fault_law, only: fault_law
     use ddc_contact_stiffness, only: dense_stiffness
     use ddc_contact_reduced_factors, only: reduced_factors, renumber_factors, copy_factors, &
         refactor_full_update
@@ -414,6 +415,7 @@ contains
         type(model_results), intent(inout) :: results
         type(error_type), allocatable, intent(out) :: error
         type(contact_result) :: res
+        type(fault_law) :: law
         real(wp), allocatable :: remote_shear(:), remote_normal(:), pressure(:)
         real(wp) :: seconds_assembly
         integer :: n
@@ -426,9 +428,10 @@ contains
         pressure = total_pressure(model%elements, model%pore_fluid)
         call new_matrix(solver%session, checked)
         solver%stiffness%a => a
-        call solve_contact_with(solver%stiffness, remote_shear, remote_normal, &
-                                model%elements%mu, model%elements%sf, pressure, model%solver, &
-                                res, error, a=a, session=solver%session, ds_previous=held)
+        law = fault_law_of(model%elements)
+        call solve_contact_with(solver%stiffness, remote_shear, remote_normal, law, pressure, &
+                                model%solver, res, error, a=a, session=solver%session, &
+                                ds_previous=held)
         nullify (solver%stiffness%a)
         if (allocated(error)) return
         seconds_assembly = results%solver%seconds_assembly

@@ -25,10 +25,11 @@ module ddc_history_solve
     use ddc_model_loads, only: resolve_remote_stress, total_pressure, shear_modulus_of
     use ddc_contact_result, only: contact_result, contact_stress_scale
     use ddc_contact_formulation, only: solve_contact_with, contact_session
+    use ddc_contact_fault_law, only: fault_law
     use ddc_contact_stiffness, only: dense_stiffness
-    use ddc_solve_joints, only: joint_compliance, joint_system, joint_load, joint_dds
+    use ddc_solve_joints, only: joint_system, joint_load, joint_dds
     use ddc_solve_frictional, only: condensed_contact, condense_contact, contact_load, &
-        complete_dds, record_contact, release_matrix
+        complete_dds, record_contact, release_matrix, fault_law_of
     use ddc_influence_response, only: listed_tractions
     use ddc_post_tips, only: find_tips, stress_intensity
     use ddc_history_path, only: path_loads, apply_load, load_text
@@ -67,9 +68,10 @@ contains
         type(dense_stiffness) :: stiffness
         type(contact_result) :: res
         type(history_record) :: h
+        type(fault_law) :: law
         real(wp), allocatable :: loads(:, :), shear(:, :), normal(:, :), shift(:, :)
-        real(wp), allocatable :: y_load(:, :), pressure(:, :), sf_eff(:), ds_previous(:), v(:)
-        real(wp), allocatable :: t_eff(:), mu_eff(:), slip_path(:), compliance(:), load_map(:, :)
+        real(wp), allocatable :: y_load(:, :), pressure(:, :), ds_previous(:), v(:)
+        real(wp), allocatable :: compliance(:), load_map(:, :)
         real(wp), allocatable, target :: a_joint(:, :)
         real(wp), pointer, contiguous :: a_solve(:, :)
         real(wp), allocatable :: matrix(:, :), no_dd(:), ts(:), tn(:)
@@ -128,18 +130,14 @@ contains
         if (allocated(error)) return
         h%load = loads
         allocate (ts(sys%nf), tn(sys%nf))
-        ! The strengths in force: what an element lost (tensile strength on opening,
-        ! cohesion on slip) stays lost for the rest of the history.
-        sf_eff = model%elements%sf(sys%contact)
-        t_eff = model%elements%tensile_strength(sys%contact)
-        mu_eff = model%elements%mu(sys%contact)
-        allocate (slip_path(nc), source=0.0_wp)
+        ! The fault law and its values in force: what an element lost (tensile strength on
+        ! opening, cohesion on slip) stays lost for the rest of the history.
+        law = fault_law_of(model%elements, sys%contact)
         allocate (ds_previous(nc), source=0.0_wp)
         ! One operator for every step: the Newton method's factors live in it.
         ! Elastic joints: the contact problem of the plastic DDs (ddc_solve_joints); the
         ! slip a step holds is the plastic one.
-        compliance = joint_compliance(model%elements%shear_stiffness(sys%contact), &
-                                      model%elements%normal_stiffness(sys%contact))
+        compliance = law%joint_compliance()
         a_solve => sys%a
         if (any(compliance > 0.0_wp)) then
             call joint_system(sys%a, compliance, a_joint, load_map, error)
@@ -165,27 +163,17 @@ contains
         flops = 0.0_wp
         call system_clock(t0, rate)
         do k = done + 1, nsteps
-            call solve_contact_with(stiffness, shift(1:nc, k), shift(nc + 1:, k), &
-                                    model%elements%mu(sys%contact), sf_eff, pressure(:, k), &
-                                    model%solver, res, error, a=a_solve, &
+            call solve_contact_with(stiffness, shift(1:nc, k), shift(nc + 1:, k), law, &
+                                    pressure(:, k), model%solver, res, error, a=a_solve, &
                                     max_iterations=max_iterations, ds_previous=ds_previous, &
                                     session=session, stress_scale=sigma0, &
-                                    max_pivots=max_pivots, tensile=t_eff, &
-                                    sf_residual=model%elements%sf_residual(sys%contact), &
-                                    mu_dynamic=model%elements%mu_dynamic(sys%contact), &
-                                    slip_weakening_distance= &
-                                    model%elements%slip_weakening_distance(sys%contact), &
-                                    slip_path=slip_path)
+                                    max_pivots=max_pivots)
             if (allocated(error)) then
                 error%message = 'loading history: step '//itoa(k)//' of '//itoa(nsteps)// &
                     ' ('//load_text(loads(:, k), model%load_path%varies)//') failed: '// &
                     error%message//'; no result is written'
                 return
             end if
-            sf_eff = res%sf_effective
-            t_eff = res%tensile_effective
-            mu_eff = res%mu_effective
-            slip_path = res%slip_path
             ds_previous = res%ds
             if (any(compliance > 0.0_wp)) call joint_dds(compliance, pressure(:, k), &
                 res%shear_traction, res%normal_traction, res%ds, res%dn)
@@ -235,9 +223,9 @@ contains
         results%elements%state = h%state(:, nsteps)
         allocate (results%elements%sf_in_force(n), results%elements%tensile_in_force(n), &
                   results%elements%mu_in_force(n), source=0.0_wp)
-        results%elements%mu_in_force(sys%contact) = mu_eff
-        results%elements%sf_in_force(sys%contact) = sf_eff
-        results%elements%tensile_in_force(sys%contact) = t_eff
+        results%elements%mu_in_force(sys%contact) = law%mu_in_force
+        results%elements%sf_in_force(sys%contact) = law%sf_in_force
+        results%elements%tensile_in_force(sys%contact) = law%tensile_in_force
         nullify (stiffness%a)
         call release_matrix(sys, matrix)
         call finish_model(apply_load(model, loads(:, nsteps)), shear(:, nsteps), &
@@ -288,15 +276,15 @@ contains
                 h%k1(:, 1:done) = old%k1
                 h%k2(:, 1:done) = old%k2
                 ds_previous = e%ds(sys%contact)
-                sf_eff = e%sf_in_force(sys%contact)
-                t_eff = e%tensile_in_force(sys%contact)
-                mu_eff = e%mu_in_force(sys%contact)
+                law%sf_in_force = e%sf_in_force(sys%contact)
+                law%tensile_in_force = e%tensile_in_force(sys%contact)
+                law%mu_in_force = e%mu_in_force(sys%contact)
                 do j = 1, done
                     if (j == 1) then
-                        slip_path = abs(old%ds(sys%contact, 1))
+                        law%slip_path = abs(old%ds(sys%contact, 1))
                     else
-                        slip_path = slip_path + abs(old%ds(sys%contact, j) - &
-                                                    old%ds(sys%contact, j - 1))
+                        law%slip_path = law%slip_path + abs(old%ds(sys%contact, j) - &
+                                                            old%ds(sys%contact, j - 1))
                     end if
                 end do
             end associate

@@ -12,7 +12,8 @@ module ddc_input_namelist
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type, condition_contact, symmetry_none, symmetry_names, &
-        symmetry_x, domain_half_plane, rigid_joint
+        symmetry_x, domain_half_plane
+    use ddc_contact_fault_law, only: fault_law, new_fault_law
     use ddc_text, only: itoa, rtoa, prefix_lines
     use ddc_input_text_file, only: read_text_file, folder_of
     use ddc_mesh_geometry, only: allocate_elements, compute_geometry
@@ -110,16 +111,20 @@ contains
         end if
     end subroutine read_namelist_model
 
-    !> Whether a valid fracture has a strength beyond Coulomb (a tensile strength or a
-    !> cohesion drop after slip), one value per fracture.
+    !> Whether a valid fracture has a strength beyond Coulomb (the fault law's
+    !> beyond_coulomb), one value per fracture.
     elemental logical function strength_given(fracture)
         type(fracture_input), intent(in) :: fracture
+        type(fault_law) :: law
 
         strength_given = fracture%valid
-        if (strength_given) strength_given = any(fracture%tensile_strength > 0.0_wp) .or. &
-            any(fracture%sf_residual < fracture%sf) .or. any(fracture%mu_dynamic < fracture%mu) &
-            .or. any(fracture%shear_stiffness < rigid_joint) .or. &
-            any(fracture%normal_stiffness < rigid_joint)
+        if (.not. strength_given) return
+        law = new_fault_law(fracture%mu, fracture%sf, &
+            tensile_strength=fracture%tensile_strength, sf_residual=fracture%sf_residual, &
+            mu_dynamic=fracture%mu_dynamic, &
+            slip_weakening_distance=fracture%slip_weakening_distance, &
+            shear_stiffness=fracture%shear_stiffness, normal_stiffness=fracture%normal_stiffness)
+        strength_given = law%beyond_coulomb()
     end function strength_given
 
     !> Half-plane rules (SPEC-EARTH 1): every vertex and field point at y <= 0, no element on

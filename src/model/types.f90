@@ -9,6 +9,8 @@
 module ddc_model_types
     use ddc_kinds, only: wp
     use ddc_contact_options, only: solver_options
+    ! The defaults of the fault law, for the per-element arrays that hold its given values.
+    use ddc_contact_fault_law, only: no_residual_drop, rigid_joint
     implicit none
     private
 
@@ -41,12 +43,6 @@ module ddc_model_types
     !> Input names of the domains, indexed by domain
     character(len=*), parameter :: domain_names(2) = [character(len=10) :: &
         'full_plane', 'half_plane']
-
-    !> elements%sf_residual of an element whose cohesion does not drop after slip (the
-    !> default, sf_residual = sf; a sweep may change sf after the input was read)
-    real(wp), parameter :: no_residual_drop = huge(1.0_wp)
-    !> elements%shear_stiffness, normal_stiffness of rigid contact (the default)
-    real(wp), parameter :: rigid_joint = huge(1.0_wp)
 
     !> Block size of the distributed matrices of the MPI build (&solver block_size)
     integer, parameter :: default_block_size = 64

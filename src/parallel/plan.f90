@@ -3,12 +3,13 @@
 !> than one process (exit_bad_input, naming what to do); with one process such a model runs
 !> as in the serial build.
 module ddc_parallel_plan
-    use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_text, only: itoa, newline
-    use ddc_model_types, only: model_type, condition_contact, rigid_joint
+    use ddc_model_types, only: model_type, condition_contact
     use ddc_contact_options, only: lcp_auto, lcp_lemke
     use ddc_contact_formulation, only: auto_newton_min_elements
+    use ddc_contact_fault_law, only: fault_law
+    use ddc_solve_frictional, only: fault_law_of
     implicit none
     private
 
@@ -30,6 +31,7 @@ contains
         !> processes > 1: one line per feature
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: refused
+        type(fault_law) :: law
         character(len=*), parameter :: one = ': run it on one process (mpiexec -n 1) or '// &
             'with the serial build'
 
@@ -39,10 +41,8 @@ contains
         if (allocated(model%load_path%vertex)) call refuse('&load_path (loading histories '// &
             'are not distributed)')
         if (model%growth%active) call refuse('&growth (fracture growth is not distributed)')
-        if (any(model%elements%tensile_strength > 0.0_wp .or. model%elements%sf_residual < &
-            model%elements%sf .or. model%elements%mu_dynamic < model%elements%mu .or. &
-            model%elements%shear_stiffness < rigid_joint .or. &
-            model%elements%normal_stiffness < rigid_joint)) call refuse('&fracture '// &
+        law = fault_law_of(model%elements)
+        if (law%beyond_coulomb()) call refuse('&fracture '// &
             'tensile_strength, sf_residual, mu_dynamic or a joint stiffness (strength '// &
             'beyond Coulomb is not distributed)')
         if (processes > 1) then

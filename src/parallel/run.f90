@@ -8,6 +8,7 @@ module ddc_parallel_run
     use ddc_model_types, only: element_set
     use ddc_model_results, only: solver_record, field_result
     use ddc_contact_options, only: solver_options
+    use ddc_contact_fault_law, only: fault_law
     use ddc_influence_response, only: kernel_response
     use ddc_post_fields, only: evaluate_field
     use ddc_run_engine, only: model_engine
@@ -34,7 +35,7 @@ contains
     !> solve_distributed on the engine's processes.
     subroutine distributed_solve_model(this, elements, shear_modulus, nu, remote_shear, &
                                        remote_normal, options, ds, dn, state, record, error, &
-                                       strength)
+                                       law)
         class(distributed_engine), intent(inout) :: this
         type(element_set), intent(in) :: elements
         real(wp), intent(in) :: shear_modulus, nu
@@ -44,10 +45,10 @@ contains
         integer, intent(out) :: state(:)
         type(solver_record), intent(inout) :: record
         type(error_type), allocatable, intent(out) :: error
-        real(wp), allocatable, intent(out), optional :: strength(:, :)
+        type(fault_law), intent(out), optional :: law
 
         call solve_distributed(this%context, elements, shear_modulus, nu, remote_shear, &
-                               remote_normal, options, ds, dn, state, record, error, strength)
+                               remote_normal, options, ds, dn, state, record, error, law)
     end subroutine distributed_solve_model
 
     !> Each process computes the responses of its share of the elements; all get them all.

@@ -13,9 +13,10 @@ module ddc_parallel_solve
     use ddc_contact_options, only: solver_options
     use ddc_contact_result, only: contact_result
     use ddc_contact_formulation, only: solve_contact_with
+    use ddc_contact_fault_law, only: fault_law
     use ddc_linalg_lu, only: influence_hint, residual_tol
     use ddc_solve_elastic, only: row_kinds, given_values
-    use ddc_solve_frictional, only: record_contact
+    use ddc_solve_frictional, only: record_contact, fault_law_of
     use ddc_parallel_context, only: parallel_context
     use ddc_parallel_matrix, only: multiply_whole
     use ddc_parallel_stiffness, only: distributed_stiffness, assemble_stiffness
@@ -38,7 +39,7 @@ contains
     !> the same DDs, states and record).
     subroutine solve_distributed(context, elements, shear_modulus, nu, remote_shear, &
                                  remote_normal, options, ds, dn, state, record, error, &
-                                 strength)
+                                 law)
         !> The processes and their grid
         type(parallel_context), intent(in) :: context
         !> Elements with geometry computed; contact elements carry their total pressure
@@ -57,12 +58,13 @@ contains
         type(solver_record), intent(inout) :: record
         !> Set when the model has no solution or the solver failed
         type(error_type), allocatable, intent(out) :: error
-        !> Cohesion, tensile strength and friction in force at the end, shape (3, n)
-        !> (contact models; the strength laws are refused on more than one process, but
+        !> The fault law of every element with the values in force at the end (contact
+        !> models; the strength laws are refused on more than one process, but
         !> open_cohesion = 'lost' is not)
-        real(wp), allocatable, intent(out), optional :: strength(:, :)
+        type(fault_law), intent(out), optional :: law
         type(distributed_stiffness) :: stiffness
         type(contact_result) :: res
+        type(fault_law) :: contact_law
         type(error_type), allocatable :: ill_conditioned
         integer, allocatable :: shear_row(:), normal_row(:)
         real(wp), allocatable :: given(:), b_free(:), x_free(:), shift(:)
@@ -122,19 +124,17 @@ contains
                 stiffness%free_dd = x_free
                 call stiffness%multiply(spread(0.0_wp, 1, 2 * nc), shift)
                 stiffness%free_dd = 0.0_wp
-                call solve_contact_with(stiffness, shift(1:nc), shift(nc + 1:), &
-                                        elements%mu(contact), elements%sf(contact), &
+                contact_law = fault_law_of(elements, contact)
+                call solve_contact_with(stiffness, shift(1:nc), shift(nc + 1:), contact_law, &
                                         elements%pressure(contact), options, res, error)
                 if (allocated(error)) then
                     error%message = error%message//no_lemke_hint
                     return
                 end if
                 call record_contact(res, flops, record)
-                if (present(strength)) then
-                    allocate (strength(3, n), source=0.0_wp)
-                    strength(1, contact) = res%sf_effective
-                    strength(2, contact) = res%tensile_effective
-                    strength(3, contact) = res%mu_effective
+                if (present(law)) then
+                    law = fault_law_of(elements)
+                    call law%place_in_force(contact_law, contact)
                 end if
                 ds(contact) = res%ds
                 dn(contact) = res%dn

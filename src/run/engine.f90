@@ -8,6 +8,7 @@ module ddc_run_engine
     use ddc_model_types, only: element_set
     use ddc_model_results, only: solver_record, field_result
     use ddc_contact_options, only: solver_options
+    use ddc_contact_fault_law, only: fault_law
     implicit none
     private
 
@@ -30,8 +31,9 @@ module ddc_run_engine
         !> TWODD-style ones by their conditions).
         subroutine solve_interface(this, elements, shear_modulus, nu, remote_shear, &
                                    remote_normal, options, ds, dn, state, record, error, &
-                                   strength)
-            import :: model_engine, element_set, solver_options, solver_record, error_type, wp
+                                   law)
+            import :: model_engine, element_set, solver_options, solver_record, error_type, &
+                fault_law, wp
             implicit none
             !> The engine
             class(model_engine), intent(inout) :: this
@@ -51,9 +53,9 @@ module ddc_run_engine
             type(solver_record), intent(inout) :: record
             !> Set when the model has no solution or the solver failed
             type(error_type), allocatable, intent(out) :: error
-            !> Cohesion, tensile strength and friction in force at the end, shape (3, n)
-            !> (contact models; see ddc_solve_frictional)
-            real(wp), allocatable, intent(out), optional :: strength(:, :)
+            !> The fault law of every element with the values in force at the end (contact
+            !> models; see ddc_solve_frictional)
+            type(fault_law), intent(out), optional :: law
         end subroutine solve_interface
 
         !> Induced tractions and negative-face displacements at every element midpoint.

@@ -10,6 +10,7 @@ module ddc_run_model
     use ddc_model_results, only: model_results, solver_record, state_free
     use ddc_model_loads, only: resolve_remote_stress, total_pressure, shear_modulus_of
     use ddc_contact_options, only: solver_options
+    use ddc_contact_fault_law, only: fault_law
     use ddc_influence_response, only: midpoint_response
     use ddc_solve_elastic, only: solve_elastic, row_kinds
     use ddc_solve_frictional, only: solve_frictional
@@ -50,7 +51,7 @@ contains
         !> under a loading history; default 0; not with an engine), shape (n) [length]
         real(wp), intent(in), optional :: ds_previous(:)
         real(wp), allocatable :: remote_shear(:), remote_normal(:), matrix(:, :)
-        real(wp), allocatable :: strength(:, :)
+        type(fault_law) :: law
         type(element_set) :: loaded
         real(wp) :: g, nu, t_start, t_free
         integer :: n
@@ -77,16 +78,16 @@ contains
             loaded%pressure = total_pressure(model%elements, model%pore_fluid)
             if (present(engine)) then
                 call engine%solve(loaded, g, nu, remote_shear, remote_normal, model%solver, &
-                                  e%ds, e%dn, e%state, rec, error, strength)
+                                  e%ds, e%dn, e%state, rec, error, law)
             else
                 call solve_here(loaded, g, nu, remote_shear, remote_normal, model%solver, e%ds, &
-                                e%dn, e%state, rec, matrix, error, strength, ds_previous)
+                                e%dn, e%state, rec, matrix, error, law, ds_previous)
             end if
             if (allocated(error)) return
-            if (allocated(strength)) then
-                e%sf_in_force = strength(1, :)
-                e%tensile_in_force = strength(2, :)
-                e%mu_in_force = strength(3, :)
+            if (allocated(law%sf_in_force)) then
+                e%sf_in_force = law%sf_in_force
+                e%tensile_in_force = law%tensile_in_force
+                e%mu_in_force = law%mu_in_force
             end if
             if (reports_phases(n)) call report_progress('solved ('//rec%method//') in '// &
                 seconds_text(wall_seconds() - t_start))
@@ -198,7 +199,7 @@ contains
     !> The solve in this process: contact models by solve_frictional, the others by
     !> solve_elastic (method 'lu'); the influence matrix of the solve is handed back.
     subroutine solve_here(elements, shear_modulus, nu, remote_shear, remote_normal, options, &
-                          ds, dn, state, record, matrix, error, strength, ds_previous)
+                          ds, dn, state, record, matrix, error, law, ds_previous)
         type(element_set), intent(in) :: elements
         real(wp), intent(in) :: shear_modulus, nu
         real(wp), intent(in) :: remote_shear(:), remote_normal(:)
@@ -208,15 +209,15 @@ contains
         type(solver_record), intent(inout) :: record
         real(wp), allocatable, intent(out) :: matrix(:, :)
         type(error_type), allocatable, intent(out) :: error
-        !> Cohesion, tensile strength and friction in force at the end, shape (3, n)
-        !> (contact models)
-        real(wp), allocatable, intent(out) :: strength(:, :)
+        !> The fault law of every element with the values in force at the end (contact
+        !> models; not allocated otherwise)
+        type(fault_law), intent(out) :: law
         !> Total slip before this solve (default 0), shape (n) [length]
         real(wp), intent(in), optional :: ds_previous(:)
 
         if (any(elements%condition == condition_contact)) then
             call solve_frictional(elements, shear_modulus, nu, remote_shear, remote_normal, &
-                                  options, ds, dn, state, record, matrix, error, strength, &
+                                  options, ds, dn, state, record, matrix, error, law, &
                                   ds_previous)
         else
             record%method = 'lu'

@@ -9,6 +9,10 @@
 !> The condensation depends on the geometry only (condense_contact, once); the remote
 !> traction on the contact elements and the free DDs depend on the load (contact_load and
 !> complete_dds, once per load): a loading history condenses once.
+!>
+!> The fault law of the contact elements (fault_law_of) is read from the model's
+!> per-element arrays here, for every solve of the solve layer (this one, a loading
+!> history, growth and the MPI build).
 module ddc_solve_frictional
     use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
@@ -25,13 +29,14 @@ module ddc_solve_frictional
     use ddc_contact_result, only: contact_result
     use ddc_contact_formulation, only: solve_contact
     use ddc_contact_options, only: solver_options
-    use ddc_solve_joints, only: joint_compliance, joint_system, joint_load, joint_dds
+    use ddc_contact_fault_law, only: fault_law, new_fault_law
+    use ddc_solve_joints, only: joint_system, joint_load, joint_dds
     implicit none
     private
 
     public :: solve_frictional
     public :: condensed_contact, condense_contact, contact_load, complete_dds, record_contact
-    public :: release_matrix
+    public :: release_matrix, fault_law_of
 
     !> The contact elements' view of a model with TWODD-style elements condensed out.
     type :: condensed_contact
@@ -59,7 +64,7 @@ contains
 
     !> Solve a model with at least one contact element.
     subroutine solve_frictional(elements, shear_modulus, nu, remote_shear, remote_normal, &
-                                options, ds, dn, state, record, matrix, error, strength, &
+                                options, ds, dn, state, record, matrix, error, law, &
                                 ds_previous)
         !> Elements with geometry computed
         type(element_set), intent(in) :: elements
@@ -80,15 +85,15 @@ contains
         real(wp), allocatable, intent(out) :: matrix(:, :)
         !> Set when the model has no solution or the solver failed
         type(error_type), allocatable, intent(out) :: error
-        !> Strength in force at the end: cohesion (row 1) and tensile strength (row 2)
-        !> [stress unit], friction (row 3) [-] of each element (0 for TWODD-style
-        !> elements), shape (3, n)
-        real(wp), allocatable, intent(out), optional :: strength(:, :)
+        !> The fault law of every element with the values in force at the end (0 for
+        !> TWODD-style elements)
+        type(fault_law), intent(out), optional :: law
         !> Total slip of every element before this solve (friction memory of a growth run
         !> under a loading history; default 0), shape (n) [length]
         real(wp), intent(in), optional :: ds_previous(:)
         type(condensed_contact) :: sys
         type(contact_result) :: res
+        type(fault_law) :: contact_law
         real(wp), allocatable :: shift(:), y_load(:), compliance(:), a_joint(:, :), &
             load_map(:, :), ss(:), sn(:), held(:)
 
@@ -96,8 +101,8 @@ contains
         if (allocated(error)) return
         allocate (shift(2 * sys%nc), y_load(2 * sys%nf))
         call contact_load(sys, elements, remote_shear, remote_normal, shift, y_load)
-        compliance = joint_compliance(elements%shear_stiffness(sys%contact), &
-                                      elements%normal_stiffness(sys%contact))
+        contact_law = fault_law_of(elements, sys%contact)
+        compliance = contact_law%joint_compliance()
         ss = shift(1:sys%nc)
         sn = shift(sys%nc + 1:)
         if (any(compliance > 0.0_wp)) then
@@ -111,14 +116,8 @@ contains
         end if
         allocate (held(sys%nc), source=0.0_wp)
         if (present(ds_previous)) held = ds_previous(sys%contact)
-        call solve_contact(a_joint, ss, sn, &
-                           elements%mu(sys%contact), elements%sf(sys%contact), &
-                           elements%pressure(sys%contact), options, res, error, &
-                           tensile=elements%tensile_strength(sys%contact), &
-                           sf_residual=elements%sf_residual(sys%contact), &
-                           mu_dynamic=elements%mu_dynamic(sys%contact), &
-                           slip_weakening_distance=elements%slip_weakening_distance(sys%contact), &
-                           ds_previous=held)
+        call solve_contact(a_joint, ss, sn, contact_law, elements%pressure(sys%contact), &
+                           options, res, error, ds_previous=held)
         if (.not. allocated(sys%a)) call move_alloc(a_joint, sys%a)
         if (allocated(error)) then
             if (sys%nf > 0) error%message = error%message// &
@@ -132,13 +131,36 @@ contains
         call complete_dds(sys, elements, remote_shear, remote_normal, res, y_load, ds, dn, &
                           state, record%equilibrium_residual)
         call release_matrix(sys, matrix)
-        if (present(strength)) then
-            allocate (strength(3, elements%n), source=0.0_wp)
-            strength(1, sys%contact) = res%sf_effective
-            strength(2, sys%contact) = res%tensile_effective
-            strength(3, sys%contact) = res%mu_effective
+        if (present(law)) then
+            law = fault_law_of(elements)
+            call law%place_in_force(contact_law, sys%contact)
         end if
     end subroutine solve_frictional
+
+    !> The fault law of the elements `subset` (default: every element), from the model's
+    !> per-element arrays.
+    pure function fault_law_of(elements, subset) result(law)
+        !> The model's elements
+        type(element_set), intent(in) :: elements
+        !> Indices of the elements, shape (m)
+        integer, intent(in), optional :: subset(:)
+        type(fault_law) :: law
+        integer, allocatable :: pick(:)
+        integer :: i
+
+        if (present(subset)) then
+            pick = subset
+        else
+            pick = [(i, i = 1, elements%n)]
+        end if
+        associate (e => elements)
+            law = new_fault_law(e%mu(pick), e%sf(pick), &
+                tensile_strength=e%tensile_strength(pick), sf_residual=e%sf_residual(pick), &
+                mu_dynamic=e%mu_dynamic(pick), &
+                slip_weakening_distance=e%slip_weakening_distance(pick), &
+                shear_stiffness=e%shear_stiffness(pick), normal_stiffness=e%normal_stiffness(pick))
+        end associate
+    end function fault_law_of
 
     !> Hand over the influence matrix of every element (no copy): the contact block itself
     !> when every element is a contact element, else the whole system.

@@ -10,33 +10,18 @@
 !> the stick and closed block of the paper's LCP) and the resolved load
 !> S_r,j' = A_j C S_r' = T S_r': both methods (Lemke, Newton) solve it as they are, and
 !> D = D_p - K^-1 t' afterwards. It costs two inverses of a 2n x 2n matrix, once per
-!> model (and loading history), and a second copy of the matrix.
+!> model (and loading history), and a second copy of the matrix. The compliance comes
+!> from the fault law (ddc_contact_fault_law's joint_compliance).
 module ddc_solve_joints
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
     use ddc_linalg_lu, only: lu_invert
-    use ddc_model_types, only: rigid_joint
     implicit none
     private
 
-    public :: joint_compliance, joint_system, joint_load, joint_dds
+    public :: joint_system, joint_load, joint_dds
 
 contains
-
-    !> [1/k_s; 1/k_n] of elements of stiffness k_s, k_n (0 for rigid_joint), shape (2n)
-    !> [length / stress].
-    pure function joint_compliance(k_s, k_n) result(compliance)
-        !> Shear and normal stiffness, shape (n) [stress / length]
-        real(wp), intent(in) :: k_s(:), k_n(:)
-        real(wp), allocatable :: compliance(:)
-
-        compliance = [k_s, k_n]
-        where (compliance >= rigid_joint)
-            compliance = 0.0_wp
-        elsewhere
-            compliance = 1.0_wp / compliance
-        end where
-    end function joint_compliance
 
     !> The influence matrix A_j of the plastic DDs and the load map T = A_j A^-1.
     subroutine joint_system(a, compliance, a_joint, load_map, error)

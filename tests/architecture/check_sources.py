@@ -37,6 +37,10 @@
    in a comment `! Not hashed: <reference> (why)` (a derived component's mark covers its
    components); the per-element arrays go through
    `for_each_element_array`, which `hash_model` calls.
+9. The LCP solvers know nothing of faults: src/contact/lemke.f90, active_set.f90 and
+   paper_lcp.f90 take plain arrays, and no chain of `use` lines leads from them to the
+   fault law (ddc_contact_fault_law), which only the contact formulation and the solve
+   layer use.
 
 Prints every violation and exits 1 when there is one; --graph prints the folder graph.
 """
@@ -429,6 +433,50 @@ def check_fingerprint(root, problems):
                         "component of the model")
 
 
+# The LCP solvers (check 9) and the module they must not reach.
+LCP_SOLVERS = ("src/contact/lemke.f90", "src/contact/active_set.f90",
+               "src/contact/paper_lcp.f90")
+FAULT_LAW = "ddc_contact_fault_law"
+
+
+def module_uses(root):
+    """{module: set of the modules its file uses} of src/ and app/."""
+    uses = {}
+    for path in fortran_files(root):
+        text = strip_comments(path.read_text())
+        for name in MODULE.findall(text):
+            uses[name.lower()] = {used.lower() for used in USE.findall(text)}
+    return uses
+
+
+def use_chain(uses, start, goal):
+    """The shortest chain of modules from start to goal along `use` lines, or None."""
+    chains = {start: [start]}
+    queue = [start]
+    for module in queue:
+        if module == goal:
+            return chains[module]
+        for used in sorted(uses.get(module, ())):
+            if used not in chains:
+                chains[used] = chains[module] + [used]
+                queue.append(used)
+    return None
+
+
+def check_lcp_solvers(root, problems):
+    """Check 9: no LCP solver reaches the fault law, directly or through other modules."""
+    uses = module_uses(root)
+    for file in LCP_SOLVERS:
+        module = expected_module(root / file, root)
+        if module not in uses:
+            problems.append(f"{file}: no module {module} (an LCP solver of check 9)")
+            continue
+        chain = use_chain(uses, module, FAULT_LAW)
+        if chain:
+            problems.append(f"{file}: the LCP solver {module} reaches the fault law "
+                            f"({' -> '.join(chain)}); the solvers take plain arrays")
+
+
 def statements(text):
     """(line number, statement) of Fortran text, continuation lines joined, comments cut."""
     joined, start = "", 0
@@ -493,6 +541,7 @@ def main(argv):
     check_shared(root, problems)
     check_errors_seen(root, problems)
     check_fingerprint(root, problems)
+    check_lcp_solvers(root, problems)
     if graph_wanted:
         for folder in sorted(graph):
             print(f"{folder}: {', '.join(sorted(graph[folder])) or '-'}")
@@ -504,7 +553,7 @@ def main(argv):
               "statements match the group table; every import is used; every component of "
               "element_set and solver_options is broadcast or marked root only; every "
               "error a test gets is read; every component of the model is hashed in its "
-              "fingerprint or marked not hashed")
+              "fingerprint or marked not hashed; no LCP solver reaches the fault law")
     return 1 if problems else 0
 
 

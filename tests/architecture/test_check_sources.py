@@ -208,3 +208,17 @@ def test_stale_not_hashed_mark_fails(tree, capsys):
          "        ! Not hashed: model%gone (planted)")
     expect_violation(tree, capsys, "src/model/fingerprint.f90: hash_model marks model%gone not "
                      "hashed, which is no component of the model")
+
+
+@pytest.mark.parametrize("planted_in, message", [
+    ("src/contact/lemke.f90",
+     ("src/contact/lemke.f90: the LCP solver ddc_contact_lemke reaches the fault law "
+      "(ddc_contact_lemke -> ddc_contact_fault_law)")),
+    # the stiffness operator, which the active-set method uses
+    ("src/contact/stiffness.f90",
+     ("src/contact/active_set.f90: the LCP solver ddc_contact_active_set reaches the fault "
+      "law (ddc_contact_active_set -> ddc_contact_stiffness -> ddc_contact_fault_law)"))])
+def test_lcp_solver_reaching_the_fault_law_fails(tree, capsys, planted_in, message):
+    edit(tree / planted_in, "    use ddc_kinds, only: wp\n",
+         "    use ddc_kinds, only: wp\n    use ddc_contact_fault_law, only: fault_law\n")
+    expect_violation(tree, capsys, message)

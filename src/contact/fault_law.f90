@@ -1,0 +1,304 @@
+!> The fault law of contact elements (issue 26): Coulomb friction and cohesion, and the
+!> strength beyond Coulomb, element by element, as the given values and the values in
+!> force, with the laws' rules. ddc_contact_formulation iterates the rules to a fixed point;
+!> the LCP solvers (Lemke, the active-set method) see plain arrays and know nothing of it.
+!>
+!> - Tensile strength T: an intact element opens only when S_n' reaches T; Coulomb's law
+!>   in the shifted traction S_n'' = S_n' - T is the paper's LCP with s_n - T for the
+!>   resolved normal traction and Sf - mu T for Sf (shifted). T is capped at the apex
+!>   Sf/mu of the Coulomb envelope, where the shear strength vanishes.
+!> - Residual cohesion: an element that slipped keeps min(Sf, sf_residual) (weaken); with
+!>   open_cohesion = 'lost' an element that opens keeps none (lose_open_cohesion).
+!> - Slip weakening: mu(s) = mu - (mu - mu_d) min(s / d_c, 1) for the slip s (the slip
+!>   path, accumulated over the steps of a loading history) and mu_d = min(mu, mu_dynamic);
+!>   with d_c = 0, mu_d once the element has slipped at all (friction).
+!> - Elastic joint: the faces deform before they slip or open, with a shear and a normal
+!>   stiffness (rigid_joint: rigid contact); ddc_solve_joints solves it with the compliance
+!>   (joint_compliance).
+!>
+!> A new law: its given values (and values in force) here, with new_fault_law's default
+!> that leaves Coulomb's law as it is, its rule as a procedure of fault_law, its part of
+!> beyond_coulomb, and the per-element array of the model that ddc_solve_frictional's
+!> fault_law_of reads (docs/ARCHITECTURE.md, "A new strength law").
+module ddc_contact_fault_law
+    use ddc_kinds, only: wp
+    use ddc_contact_states, only: state_slip, state_open
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+    implicit none
+    private
+
+    public :: fault_law, new_fault_law, no_residual_drop, rigid_joint
+
+    !> sf_residual and mu_dynamic of an element whose cohesion and friction do not drop
+    !> after slip (the default: a sweep may change sf or mu after the input was read)
+    real(wp), parameter :: no_residual_drop = huge(1.0_wp)
+    !> shear_stiffness and normal_stiffness of rigid contact (the default)
+    real(wp), parameter :: rigid_joint = huge(1.0_wp)
+
+    !> The fault law of n contact elements; every array has shape (n).
+    type :: fault_law
+        !> Given: friction coefficient [-] and cohesion (frictional strength) [stress]
+        real(wp), allocatable :: mu(:), sf(:)
+        !> Given: tensile strength T >= 0 [stress] (lost once the element opens) and the
+        !> cohesion after the element first slipped [stress] (no_residual_drop: no drop)
+        real(wp), allocatable :: tensile_strength(:), sf_residual(:)
+        !> Given: dynamic friction [-] (no_residual_drop: no drop) and slip-weakening
+        !> distance d_c >= 0 [length]
+        real(wp), allocatable :: mu_dynamic(:), slip_weakening_distance(:)
+        !> Given: shear and normal stiffness of an elastic joint [stress / length]
+        !> (rigid_joint: rigid contact)
+        real(wp), allocatable :: shear_stiffness(:), normal_stiffness(:)
+        !> In force: cohesion [stress] (0 where it was lost), tensile strength [stress] (0
+        !> where it was lost on opening; after a solve capped at the Coulomb apex
+        !> sf_in_force/mu), friction [-] (of the last solve) and the slip path [length] (the
+        !> sum of the slip increments so far: the friction memory)
+        real(wp), allocatable :: sf_in_force(:), tensile_in_force(:), mu_in_force(:)
+        real(wp), allocatable :: slip_path(:)
+    contains
+        procedure :: sizes_match
+        procedure :: all_finite
+        procedure :: any_negative
+        procedure :: beyond_coulomb
+        procedure :: has_joints
+        procedure :: joint_compliance
+        procedure :: weakens
+        procedure :: friction
+        procedure :: shifted
+        procedure :: weaken
+        procedure :: lose_open_cohesion
+        procedure :: place_in_force
+    end type fault_law
+
+contains
+
+    !> The fault law of n elements from its given values: a value not given leaves
+    !> Coulomb's law as it is (no tensile strength, no drop of cohesion or friction, rigid
+    !> contact); the values in force are the given ones and the slip path is 0.
+    pure function new_fault_law(mu, sf, tensile_strength, sf_residual, mu_dynamic, &
+                                slip_weakening_distance, shear_stiffness, normal_stiffness) &
+        result(law)
+        !> Friction coefficient [-] and cohesion [stress], shape (n)
+        real(wp), intent(in) :: mu(:), sf(:)
+        !> Tensile strength (default 0) and cohesion after slip (default no_residual_drop)
+        !> [stress], shape (n)
+        real(wp), intent(in), optional :: tensile_strength(:), sf_residual(:)
+        !> Dynamic friction (default no_residual_drop) [-] and slip-weakening distance
+        !> (default 0) [length], shape (n)
+        real(wp), intent(in), optional :: mu_dynamic(:), slip_weakening_distance(:)
+        !> Shear and normal joint stiffness (default rigid_joint) [stress / length], shape (n)
+        real(wp), intent(in), optional :: shear_stiffness(:), normal_stiffness(:)
+        type(fault_law) :: law
+
+        allocate (law%mu, source=mu)
+        allocate (law%sf, source=sf)
+        allocate (law%tensile_strength, source=given_or(tensile_strength, 0.0_wp))
+        allocate (law%sf_residual, source=given_or(sf_residual, no_residual_drop))
+        allocate (law%mu_dynamic, source=given_or(mu_dynamic, no_residual_drop))
+        allocate (law%slip_weakening_distance, source=given_or(slip_weakening_distance, &
+                                                               0.0_wp))
+        allocate (law%shear_stiffness, source=given_or(shear_stiffness, rigid_joint))
+        allocate (law%normal_stiffness, source=given_or(normal_stiffness, rigid_joint))
+        allocate (law%sf_in_force, source=sf)
+        allocate (law%tensile_in_force, source=law%tensile_strength)
+        allocate (law%mu_in_force, source=mu)
+        allocate (law%slip_path(size(mu)), source=0.0_wp)
+
+    contains
+
+        !> The given values, else the default on each of the n elements.
+        pure function given_or(values, default) result(out)
+            real(wp), intent(in), optional :: values(:)
+            real(wp), intent(in) :: default
+            real(wp), allocatable :: out(:)
+
+            if (present(values)) then
+                out = values
+            else
+                allocate (out(size(mu)), source=default)
+            end if
+        end function given_or
+
+    end function new_fault_law
+
+    !> Whether every value is there for n elements.
+    pure logical function sizes_match(law, n)
+        !> The law
+        class(fault_law), intent(in) :: law
+        !> Number of elements
+        integer, intent(in) :: n
+
+        sizes_match = allocated(law%mu) .and. allocated(law%sf) .and. &
+            allocated(law%tensile_strength) .and. allocated(law%sf_residual) .and. &
+            allocated(law%mu_dynamic) .and. allocated(law%slip_weakening_distance) .and. &
+            allocated(law%shear_stiffness) .and. allocated(law%normal_stiffness) .and. &
+            allocated(law%sf_in_force) .and. allocated(law%tensile_in_force) .and. &
+            allocated(law%mu_in_force) .and. allocated(law%slip_path)
+        if (sizes_match) sizes_match = all([size(law%mu), size(law%sf), &
+            size(law%tensile_strength), size(law%sf_residual), size(law%mu_dynamic), &
+            size(law%slip_weakening_distance), size(law%shear_stiffness), &
+            size(law%normal_stiffness), size(law%sf_in_force), size(law%tensile_in_force), &
+            size(law%mu_in_force), size(law%slip_path)] == n)
+    end function sizes_match
+
+    !> Whether the friction and the cohesion and tensile strength in force are finite.
+    pure logical function all_finite(law)
+        !> The law
+        class(fault_law), intent(in) :: law
+
+        all_finite = all(ieee_is_finite(law%mu)) .and. all(ieee_is_finite(law%sf_in_force)) &
+            .and. all(ieee_is_finite(law%tensile_in_force))
+    end function all_finite
+
+    !> Whether a value the contact solve reads is negative (none may be).
+    pure logical function any_negative(law)
+        !> The law
+        class(fault_law), intent(in) :: law
+
+        any_negative = any(law%mu < 0.0_wp) .or. any(law%sf_in_force < 0.0_wp) .or. &
+            any(law%tensile_in_force < 0.0_wp) .or. any(law%sf_residual < 0.0_wp) .or. &
+            any(law%mu_dynamic < 0.0_wp) .or. any(law%slip_weakening_distance < 0.0_wp) .or. &
+            any(law%slip_path < 0.0_wp)
+    end function any_negative
+
+    !> Whether any element's law goes beyond Coulomb's: a tensile strength, a drop of
+    !> cohesion or friction after slip, or an elastic joint.
+    pure logical function beyond_coulomb(law)
+        !> The law
+        class(fault_law), intent(in) :: law
+
+        beyond_coulomb = any(law%tensile_strength > 0.0_wp) .or. &
+            any(law%sf_residual < law%sf) .or. law%weakens() .or. law%has_joints()
+    end function beyond_coulomb
+
+    !> Whether any element has an elastic joint (a finite stiffness).
+    pure logical function has_joints(law)
+        !> The law
+        class(fault_law), intent(in) :: law
+
+        has_joints = any(law%shear_stiffness < rigid_joint) .or. &
+            any(law%normal_stiffness < rigid_joint)
+    end function has_joints
+
+    !> [1/k_s; 1/k_n] of the joints (0 for rigid_joint), shape (2n) [length / stress].
+    pure function joint_compliance(law) result(compliance)
+        !> The law
+        class(fault_law), intent(in) :: law
+        real(wp), allocatable :: compliance(:)
+
+        compliance = [law%shear_stiffness, law%normal_stiffness]
+        where (compliance >= rigid_joint)
+            compliance = 0.0_wp
+        elsewhere
+            compliance = 1.0_wp / compliance
+        end where
+    end function joint_compliance
+
+    !> Whether the friction of any element drops with slip (slip weakening).
+    pure logical function weakens(law)
+        !> The law
+        class(fault_law), intent(in) :: law
+
+        weakens = any(law%mu_dynamic < law%mu)
+    end function weakens
+
+    !> Friction after a slip path s: mu - (mu - mu_d) min(s / d_c, 1) with mu_d =
+    !> min(mu, mu_dynamic); with d_c = 0, mu_d where the element has slipped (s > 0 or
+    !> state slip); shape (n) [-].
+    pure function friction(law, s, state) result(mu_f)
+        !> The law
+        class(fault_law), intent(in) :: law
+        !> Slip path of each element [length], shape (n)
+        real(wp), intent(in) :: s(:)
+        !> States of the last solve (ddc_contact_states), shape (n)
+        integer, intent(in) :: state(:)
+        real(wp) :: mu_f(size(s))
+        real(wp) :: ratio(size(s)), mu_d(size(s))
+
+        mu_d = min(law%mu, law%mu_dynamic)
+        ratio = 0.0_wp
+        where (law%slip_weakening_distance > 0.0_wp)
+            ratio = min(s / law%slip_weakening_distance, 1.0_wp)
+        elsewhere (s > 0.0_wp .or. state == state_slip)
+            ratio = 1.0_wp
+        end where
+        mu_f = law%mu - (law%mu - mu_d) * ratio
+        where (.not. mu_d < law%mu) mu_f = law%mu
+    end function friction
+
+    !> The shifted Coulomb law of the values in force: sf_in = sf - mu T, s_n_in = s_n - T
+    !> with T the tensile strength capped at the apex sf/mu. With T = 0 these are sf and
+    !> s_n, bit for bit.
+    pure subroutine shifted(law, s_n, sf_in, s_n_in, cap)
+        !> The law (friction, cohesion and tensile strength in force)
+        class(fault_law), intent(in) :: law
+        !> Resolved normal traction [stress], shape (n)
+        real(wp), intent(in) :: s_n(:)
+        !> Cohesion and resolved normal traction of the shifted law [stress], shape (n)
+        real(wp), allocatable, intent(out) :: sf_in(:), s_n_in(:)
+        !> T in force [stress], shape (n)
+        real(wp), allocatable, intent(out) :: cap(:)
+
+        associate (mu => law%mu_in_force, sf => law%sf_in_force)
+            cap = law%tensile_in_force
+            where (mu * law%tensile_in_force > sf) cap = sf / mu
+            sf_in = max(sf - mu * cap, 0.0_wp)
+            s_n_in = s_n - cap
+        end associate
+    end subroutine shifted
+
+    !> After a solve: elements that opened lose their tensile strength, elements that
+    !> slipped drop their cohesion to min(sf_in_force, sf_residual); true when any strength
+    !> in force changed.
+    function weaken(law, state) result(changed)
+        !> The law; its tensile strength and cohesion in force change
+        class(fault_law), intent(inout) :: law
+        !> States of the solve (ddc_contact_states), shape (n)
+        integer, intent(in) :: state(:)
+        logical :: changed
+        logical :: opened(size(state)), slipped(size(state))
+        real(wp) :: sf_after(size(state))
+
+        sf_after = min(law%sf_in_force, law%sf_residual)
+        opened = state == state_open .and. law%tensile_in_force > 0.0_wp
+        slipped = state == state_slip .and. law%sf_in_force > sf_after
+        changed = any(opened) .or. any(slipped)
+        where (opened) law%tensile_in_force = 0.0_wp
+        where (slipped) law%sf_in_force = sf_after
+    end function weaken
+
+    !> open_cohesion = 'lost': zero the cohesion in force of every open element that still
+    !> has some; true when any did.
+    function lose_open_cohesion(law, state) result(changed)
+        !> The law; its cohesion in force changes
+        class(fault_law), intent(inout) :: law
+        !> States of the solve (ddc_contact_states), shape (n)
+        integer, intent(in) :: state(:)
+        logical :: changed
+        logical :: lose(size(state))
+
+        lose = state == state_open .and. law%sf_in_force > 0.0_wp
+        changed = any(lose)
+        where (lose) law%sf_in_force = 0.0_wp
+    end function lose_open_cohesion
+
+    !> The values in force of the elements `subset` from the law of those elements (part),
+    !> 0 on the others (elements without contact).
+    pure subroutine place_in_force(law, part, subset)
+        !> The law of every element; its values in force are set
+        class(fault_law), intent(inout) :: law
+        !> The law of the elements `subset`, shape (m)
+        type(fault_law), intent(in) :: part
+        !> Indices of those elements in law, shape (m)
+        integer, intent(in) :: subset(:)
+
+        law%sf_in_force = 0.0_wp
+        law%tensile_in_force = 0.0_wp
+        law%mu_in_force = 0.0_wp
+        law%slip_path = 0.0_wp
+        law%sf_in_force(subset) = part%sf_in_force
+        law%tensile_in_force(subset) = part%tensile_in_force
+        law%mu_in_force(subset) = part%mu_in_force
+        law%slip_path(subset) = part%slip_path
+    end subroutine place_in_force
+
+end module ddc_contact_fault_law
