@@ -260,9 +260,8 @@ contains
     !> One step's growth of the growing tips (reason growth_grew on entry): turn their
     !> kinks as the criterion does, add the new elements and solve the grown model (or keep
     !> the criterion's last solve when it is that geometry), which becomes the run's current
-    !> geometry. The
-    !> tips' reasons, applied angles, lengths, solves and K_II after growing are set in
-    !> run%now; tips that cannot grow any more are stopped.
+    !> geometry. The tips' reasons, applied angles, lengths, solves and K_II after growing
+    !> are set in run%now; tips that cannot grow any more are stopped.
     subroutine grow_step(run, options, step, grown, error)
         !> The run: its geometry, solution, solver, tips and their view of this step
         type(growth_state), intent(inout) :: run
@@ -300,22 +299,21 @@ contains
         if (allocated(error)) return
         do i = 1, size(which)
             t = which(i)
-            associate (k => kinks%tip(i))
-                run%now%reason(t) = k%reason
-                run%now%solves(t) = k%solves
-                if (k%reason == growth_grew .or. k%reason == growth_corrector_failed) then
-                    grown = grown + 1
-                    run%now%angle(t) = k%theta
-                    run%now%length(t) = k%length
-                else if (k%reason == growth_linked) then
-                    grown = grown + 1
-                    run%tips(t)%stopped = .true.
-                    run%now%angle(t) = k%link%theta
-                    run%now%length(t) = k%link%length
-                else if (k%reason /= growth_closed) then
-                    run%tips(t)%stopped = .true.
-                end if
-            end associate
+            run%now%reason(t) = kinks%tip(i)%reason
+            run%now%solves(t) = kinks%tip(i)%solves
+            if (kinks%tip(i)%reason == growth_grew .or. &
+                kinks%tip(i)%reason == growth_corrector_failed) then
+                grown = grown + 1
+                run%now%angle(t) = kinks%tip(i)%theta
+                run%now%length(t) = kinks%tip(i)%length
+            else if (kinks%tip(i)%reason == growth_linked) then
+                grown = grown + 1
+                run%tips(t)%stopped = .true.
+                run%now%angle(t) = kinks%tip(i)%link%theta
+                run%now%length(t) = kinks%tip(i)%link%length
+            else if (kinks%tip(i)%reason /= growth_closed) then
+                run%tips(t)%stopped = .true.
+            end if
         end do
         ! Nothing grew: the geometry and its solution stay.
         if (grown == 0) return
