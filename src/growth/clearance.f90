@@ -24,10 +24,12 @@ module ddc_growth_clearance
     use ddc_model_results, only: growth_intersection, growth_surface, growth_linked
     use ddc_growth_extension, only: tip_path, tip_element, path_element_length, &
         element_split, outward_direction
+    use ddc_mesh_segments, only: segment_distance, point_segment_distance, crossing_fraction, &
+        far_apart
     implicit none
     private
 
-    public :: check_paths, segment_distance, path_clear, tip_link, link_parts
+    public :: check_paths, path_clear, tip_link, link_parts
 
     !> A tip's link to another fracture (SPEC-GROWTH 1.6).
     type :: tip_link
@@ -434,18 +436,6 @@ contains
         end do
     end subroutine link_parts
 
-    !> Where segment a-b crosses the line through c-d, as a fraction of a-b (segments known
-    !> to cross or touch; 0 when they are parallel).
-    pure real(wp) function crossing_fraction(ax, ay, bx, by, cx, cy, dx, dy)
-        real(wp), intent(in) :: ax, ay, bx, by, cx, cy, dx, dy
-        real(wp) :: denominator
-
-        denominator = cross(bx - ax, by - ay, dx - cx, dy - cy)
-        crossing_fraction = 0.0_wp
-        if (denominator /= 0.0_wp) crossing_fraction = max(0.0_wp, min(1.0_wp, &
-            cross(cx - ax, cy - ay, dx - cx, dy - cy) / denominator))
-    end function crossing_fraction
-
     !> Smallest distance between the new elements of two paths.
     pure real(wp) function path_distance(a, b)
         type(tip_path), intent(in) :: a, b
@@ -459,55 +449,5 @@ contains
             end do
         end do
     end function path_distance
-
-    !> True when the bounding boxes of two segments are more than `gap` apart.
-    pure logical function far_apart(ax, ay, bx, by, cx, cy, dx, dy, gap)
-        real(wp), intent(in) :: ax, ay, bx, by, cx, cy, dx, dy, gap
-
-        far_apart = min(cx, dx) > max(ax, bx) + gap .or. max(cx, dx) < min(ax, bx) - gap .or. &
-                    min(cy, dy) > max(ay, by) + gap .or. max(cy, dy) < min(ay, by) - gap
-    end function far_apart
-
-    !> Smallest distance between the segments a-b and c-d [length unit]; 0 when they cross
-    !> or touch.
-    pure real(wp) function segment_distance(ax, ay, bx, by, cx, cy, dx, dy)
-        !> End points of the two segments [length unit]
-        real(wp), intent(in) :: ax, ay, bx, by, cx, cy, dx, dy
-        real(wp) :: o1, o2, o3, o4
-
-        o1 = cross(bx - ax, by - ay, cx - ax, cy - ay)
-        o2 = cross(bx - ax, by - ay, dx - ax, dy - ay)
-        o3 = cross(dx - cx, dy - cy, ax - cx, ay - cy)
-        o4 = cross(dx - cx, dy - cy, bx - cx, by - cy)
-        if (((o1 > 0.0_wp .and. o2 < 0.0_wp) .or. (o1 < 0.0_wp .and. o2 > 0.0_wp)) .and. &
-            ((o3 > 0.0_wp .and. o4 < 0.0_wp) .or. (o3 < 0.0_wp .and. o4 > 0.0_wp))) then
-            segment_distance = 0.0_wp
-            return
-        end if
-        ! Not crossing: the closest pair involves an end point of one of them.
-        segment_distance = min(point_segment_distance(ax, ay, cx, cy, dx, dy), &
-                               point_segment_distance(bx, by, cx, cy, dx, dy), &
-                               point_segment_distance(cx, cy, ax, ay, bx, by), &
-                               point_segment_distance(dx, dy, ax, ay, bx, by))
-    end function segment_distance
-
-    !> Distance from the point (px, py) to the segment a-b.
-    pure real(wp) function point_segment_distance(px, py, ax, ay, bx, by)
-        real(wp), intent(in) :: px, py, ax, ay, bx, by
-        real(wp) :: t, length2
-
-        length2 = (bx - ax)**2 + (by - ay)**2
-        t = 0.0_wp
-        if (length2 > 0.0_wp) t = max(0.0_wp, min(1.0_wp, ((px - ax) * (bx - ax) + &
-                                                           (py - ay) * (by - ay)) / length2))
-        point_segment_distance = hypot(px - (ax + t * (bx - ax)), py - (ay + t * (by - ay)))
-    end function point_segment_distance
-
-    !> z component of the cross product of (ux, uy) and (vx, vy).
-    pure real(wp) function cross(ux, uy, vx, vy)
-        real(wp), intent(in) :: ux, uy, vx, vy
-
-        cross = ux * vy - uy * vx
-    end function cross
 
 end module ddc_growth_clearance

@@ -1,69 +1,90 @@
-!> The maximum tangential stress criterion (Erdogan & Sih 1963; SPEC-GROWTH 1) and the
-!> choice of the most critical tip.
+!> The growth criterion of a model (&growth criterion, SPEC-GROWTH 1): the one place that
+!> reads growth_options%criterion. Each procedure dispatches on it:
 !>
-!> Angles are measured counter-clockwise from the tip's outward direction, K in the tip's
-!> own frame (SPEC 5: K_II > 0 for a crack along +x under sxy > 0 at either tip). K_I is
-!> taken as max(K_I, 0): a closed tip has no opening mode.
+!> - assess_tip: what a tip's K say, its kink angle (the predictor, which the clearance
+!>   checks and links see) and K_eq (which the toughness and the choice of tips see);
+!> - kink_angles: the angles the step's growing tips take, with the solves that needs.
+!>
+!> growth_criterion_mts: the maximum tangential stress (ddc_growth_mts), corrected for
+!> local symmetry (ddc_growth_corrector). A criterion the growth code does not know is an
+!> internal error (the input reader accepts only the names of growth_criterion_names).
+!> Beside them the choice of the most critical tip by K_eq.
 module ddc_growth_criterion
     use ddc_kinds, only: wp
+    use ddc_error, only: error_type, set_internal_error
+    use ddc_text, only: itoa
+    use ddc_model_types, only: model_type, growth_options, growth_criterion_mts
+    use ddc_growth_solver, only: growth_solver
+    use ddc_growth_kinks, only: step_kinks
+    use ddc_growth_mts, only: mts_angle, equivalent_k
+    use ddc_growth_corrector, only: correct_kinks
     implicit none
     private
 
-    public :: mts_angle, equivalent_k, kink_slope, most_critical
+    public :: assess_tip, kink_angles, most_critical
 
     !> K_eq within this fraction of the largest count as tied for the most critical tip
     real(wp), parameter :: tie_tolerance = 1.0e-9_wp
 
 contains
 
-    !> The kink angle of the maximum tangential stress [rad], in (-pi/2, pi/2):
-    !> 2 atan((K_I - sqrt(K_I^2 + 8 K_II^2)) / (4 K_II)), 0 when K_II = 0, written as
-    !> -2 atan(2 K_II / (K_I + sqrt(K_I^2 + 8 K_II^2))) (the same value without the
-    !> cancellation when K_II is small). Pure mode II: -70.53 degrees where K_II > 0.
-    elemental real(wp) function mts_angle(k1, k2)
-        !> Stress intensity factors [stress unit * length unit**0.5]
+    !> The kink angle and K_eq of a tip with K_I, K_II under the model's criterion.
+    subroutine assess_tip(options, k1, k2, theta, k_eq, error)
+        !> The growth options (criterion)
+        type(growth_options), intent(in) :: options
+        !> Stress intensity factors of the tip [stress unit * length unit**0.5]
         real(wp), intent(in) :: k1, k2
-        real(wp) :: opening, denominator
+        !> Kink angle, counter-clockwise from the tip's outward direction [rad]
+        real(wp), intent(out) :: theta
+        !> Equivalent mode-I factor [stress unit * length unit**0.5]
+        real(wp), intent(out) :: k_eq
+        !> Set (internal error) for a criterion this code does not know
+        type(error_type), allocatable, intent(out) :: error
 
-        opening = max(k1, 0.0_wp)
-        denominator = opening + sqrt(opening**2 + 8.0_wp * k2**2)
-        if (denominator > 0.0_wp) then
-            ! + 0 turns the -0 of K_II = 0 into 0 for printing.
-            mts_angle = -2.0_wp * atan(2.0_wp * k2 / denominator) + 0.0_wp
-        else
-            ! K_I <= 0 and K_II = 0: no tangential stress singularity, no preferred kink.
-            mts_angle = 0.0_wp
-        end if
-    end function mts_angle
+        theta = 0.0_wp
+        k_eq = 0.0_wp
+        select case (options%criterion)
+        case (growth_criterion_mts)
+            theta = mts_angle(k1, k2)
+            k_eq = equivalent_k(k1, k2, theta)
+        case default
+            call unknown_criterion('assess_tip', options%criterion, error)
+        end select
+    end subroutine assess_tip
 
-    !> The equivalent mode-I factor (the tangential stress factor at angle theta):
-    !> cos(theta/2) (K_I cos^2(theta/2) - 1.5 K_II sin(theta)) [stress unit * length^0.5].
-    elemental real(wp) function equivalent_k(k1, k2, theta)
-        !> Stress intensity factors [stress unit * length unit**0.5]
-        real(wp), intent(in) :: k1, k2
-        !> Kink angle [rad]
-        real(wp), intent(in) :: theta
+    !> The applied kink angles of the step's growing tips under the model's criterion; their
+    !> reasons, solves and links, and the last trial solved (ddc_growth_kinks).
+    subroutine kink_angles(solver, model, created, options, kinks, error)
+        !> The solves of the run (the base: model)
+        type(growth_solver), intent(inout) :: solver
+        !> The model before growing (without observations)
+        type(model_type), intent(in) :: model
+        !> Growth step that created each element of model, shape (n)
+        integer, intent(in) :: created(:)
+        !> The growth options (criterion, and what it reads)
+        type(growth_options), intent(in) :: options
+        !> The step's kinks (each at its predictor angle on entry)
+        type(step_kinks), intent(inout) :: kinks
+        !> Set when a solve fails, or (internal error) for an unknown criterion
+        type(error_type), allocatable, intent(out) :: error
 
-        equivalent_k = cos(0.5_wp * theta) * (max(k1, 0.0_wp) * cos(0.5_wp * theta)**2 - &
-                                               1.5_wp * k2 * sin(theta))
-    end function equivalent_k
+        select case (options%criterion)
+        case (growth_criterion_mts)
+            call correct_kinks(solver, model, created, options, kinks, error)
+        case default
+            call unknown_criterion('kink_angles', options%criterion, error)
+        end select
+    end subroutine kink_angles
 
-    !> d K_II / d theta of an infinitesimal kink at angle theta (first-order kink theory,
-    !> Cotterell & Rice 1980: K_II of the kink is the shear stress factor k_rtheta, whose
-    !> derivative is k_thetatheta - k_rr / 2 by equilibrium) [stress unit * length^0.5 / rad].
-    !> The corrector's first slope; pure mode II gives K_eq, pure mode I K_I / 2.
-    elemental real(wp) function kink_slope(k1, k2, theta)
-        !> Stress intensity factors [stress unit * length unit**0.5]
-        real(wp), intent(in) :: k1, k2
-        !> Kink angle [rad]
-        real(wp), intent(in) :: theta
-        real(wp) :: opening, k_rr
+    !> The error of a criterion code that `where` has no case for.
+    subroutine unknown_criterion(where, criterion, error)
+        character(len=*), intent(in) :: where
+        integer, intent(in) :: criterion
+        type(error_type), allocatable, intent(out) :: error
 
-        opening = max(k1, 0.0_wp)
-        k_rr = 0.25_wp * (opening * (5.0_wp * cos(0.5_wp * theta) - cos(1.5_wp * theta)) + &
-                          k2 * (-5.0_wp * sin(0.5_wp * theta) + 3.0_wp * sin(1.5_wp * theta)))
-        kink_slope = equivalent_k(k1, k2, theta) - 0.5_wp * k_rr
-    end function kink_slope
+        call set_internal_error(error, where, 'growth criterion '//itoa(criterion)// &
+                                ' has no case')
+    end subroutine unknown_criterion
 
     !> The most critical of the eligible tips: the largest K_eq; among K_eq within
     !> tie_tolerance (relative) of the largest, the lowest index. 0 when none is eligible.

@@ -2,14 +2,16 @@
 !> fixed loading. The driver owns the element set and asks ddc_growth_solver for solves; each step
 !>
 !> 1. takes K_I, K_II of every tip that may grow from the solve of the current geometry,
-!>    its MTS angle and K_eq (ddc_growth_criterion);
+!>    its kink angle and K_eq under the model's criterion (ddc_growth_criterion: the MTS
+!>    angle);
 !> 2. picks the growing tips (every critical tip, or the most critical one, ties to the
 !>    lowest index), stops for good those whose new elements would not keep clear
 !>    (ddc_growth_clearance), or links them to the fracture they meet (SPEC-GROWTH 1.6: a
 !>    linked tip ends on it for good and is no tip any more);
-!> 3. corrects the kink angles (ddc_growth_corrector), adds the new elements
-!>    (ddc_growth_extension), checks the grown mesh (ddc_mesh_checks: never a crossing
-!>    mesh) and solves it (or keeps the corrector's last solve when it is that geometry).
+!> 3. turns the kinks as the criterion does (ddc_growth_criterion: the local-symmetry
+!>    corrector), adds the new elements (ddc_growth_kinks, ddc_growth_extension), checks
+!>    the grown mesh (ddc_mesh_checks: never a crossing mesh) and solves it (or keeps the
+!>    criterion's last solve when it is that geometry).
 !>
 !> Every solve goes through ddc_growth_solver, which grows the influence matrix and the
 !> Newton method's factors from the step before where it can. What a step changes is in
@@ -47,11 +49,11 @@ module ddc_growth_driver
     use ddc_mesh_checks, only: check_elements
     use ddc_growth_solver, only: solve_grown, solve_loaded, accept_trial, final_results, &
         solves_done
-    use ddc_growth_criterion, only: mts_angle, equivalent_k, kink_slope, most_critical
+    use ddc_growth_criterion, only: assess_tip, kink_angles, most_critical
+    use ddc_growth_kinks, only: kink, step_kinks, grow_paths
     use ddc_growth_extension, only: tip_path, make_path, tip_element
-    use ddc_growth_clearance, only: check_paths, path_clear, tip_link
+    use ddc_growth_clearance, only: check_paths, path_clear
     use ddc_growth_tips, only: growing_tip, fracture_tip
-    use ddc_growth_corrector, only: kink, correct_kinks, grow_paths
     use ddc_growth_load_steps, only: follow_growth, record_load_step, finish_load_steps
     use ddc_history_path, only: path_loads, apply_load, load_text
     use ddc_progress, only: report_progress
@@ -60,10 +62,6 @@ module ddc_growth_driver
     private
 
     public :: grow_fractures, growth_progress
-
-    !> The corrector stops when the new tip's |K_II| <= corrector_tolerance
-    !> max(K_eq, toughness)
-    real(wp), parameter :: corrector_tolerance = 1.0e-3_wp
 
     abstract interface
         !> Told after every growth step (the program prints a line and flushes it).
@@ -218,8 +216,7 @@ contains
             step = step + 1
             call system_clock(t_step, rate)
             solves_before = solves_done(run%solver)
-            call evaluate_tips(run%work, run%current, run%tips, options%toughness, &
-                               run%now, error)
+            call evaluate_tips(run%work, run%current, run%tips, options, run%now, error)
             if (allocated(error)) return
             if (.not. any(run%now%reason == growth_grew)) then
                 call append_records(record, step, load_step, run%tips, run%now)
@@ -228,7 +225,7 @@ contains
                 exit
             end if
             do
-                call choose_growing(run%work, options%tips, run%tips, run%now)
+                call choose_growing(run%work, options, run%tips, run%now)
                 call grow_step(run, options, step, grown, error)
                 if (allocated(error)) return
                 if (grown > 0 .or. .not. any(run%now%reason == growth_waiting)) exit
@@ -260,11 +257,11 @@ contains
 
     end subroutine grow_to_stability
 
-    !> One step's growth of the growing tips (reason growth_grew on entry): correct their
-    !> kink angles, add the new elements and solve the grown model (or keep the corrector's
-    !> last solve when it is that geometry), which becomes the run's current geometry. The
-    !> tips' reasons, applied angles, lengths, solves and K_II after growing are set in
-    !> run%now; tips that cannot grow any more are stopped.
+    !> One step's growth of the growing tips (reason growth_grew on entry): turn their
+    !> kinks as the criterion does, add the new elements and solve the grown model (or keep
+    !> the criterion's last solve when it is that geometry), which becomes the run's current
+    !> geometry. The tips' reasons, applied angles, lengths, solves and K_II after growing
+    !> are set in run%now; tips that cannot grow any more are stopped.
     subroutine grow_step(run, options, step, grown, error)
         !> The run: its geometry, solution, solver, tips and their view of this step
         type(growth_state), intent(inout) :: run
@@ -276,70 +273,64 @@ contains
         integer, intent(out) :: grown
         !> Set when a solve fails (naming the step) or the grown mesh is bad
         type(error_type), allocatable, intent(out) :: error
-        type(kink), allocatable :: kinks(:)
-        type(tip_link), allocatable :: predictor_links(:)
-        type(model_type) :: trial
-        type(model_results) :: solved
-        integer, allocatable :: which(:), linked(:), trial_created(:), moved_to(:), origin(:)
+        type(step_kinks) :: kinks
+        integer, allocatable :: which(:), linked(:)
         integer :: i, t, k
-        logical :: trial_current
 
         grown = 0
         which = pack([(i, i = 1, size(run%tips))], run%now%reason == growth_grew)
         linked = pack([(i, i = 1, size(run%tips))], run%now%reason == growth_linked)
         if (size(which) + size(linked) == 0) return
+        kinks%step = step
         ! A copy, not run%now%link(linked) as an argument: gfortran's temporary of a vector
         ! subscript leaks the allocatable components of the links
-        predictor_links = run%now%link(linked)
+        kinks%fixed = run%now%link(linked)
         do i = 1, size(linked)
             t = linked(i)
             grown = grown + 1
             run%now%angle(t) = run%now%link(t)%theta
             run%now%length(t) = run%now%link(t)%length
         end do
-        allocate (kinks(size(which)))
+        allocate (kinks%tip(size(which)))
         do i = 1, size(which)
-            kinks(i) = setup_kink(run%work, run%tips(which(i)), run%now, which(i), &
-                                  options%toughness)
+            kinks%tip(i) = tip_kink(run%work, options, run%tips(which(i)), run%now, which(i))
         end do
-        call correct_kinks(run%solver, run%work, run%created, options, step, kinks, &
-                           predictor_links, trial, trial_created, solved, &
-                           trial_current, error, origin)
+        call kink_angles(run%solver, run%work, run%created, options, kinks, error)
         if (allocated(error)) return
         do i = 1, size(which)
             t = which(i)
-            run%now%reason(t) = kinks(i)%reason
-            run%now%solves(t) = kinks(i)%solves
-            if (kinks(i)%reason == growth_grew .or. &
-                kinks(i)%reason == growth_corrector_failed) then
+            run%now%reason(t) = kinks%tip(i)%reason
+            run%now%solves(t) = kinks%tip(i)%solves
+            if (kinks%tip(i)%reason == growth_grew .or. &
+                kinks%tip(i)%reason == growth_corrector_failed) then
                 grown = grown + 1
-                run%now%angle(t) = kinks(i)%theta
-                run%now%length(t) = kinks(i)%length
-            else if (kinks(i)%reason == growth_linked) then
+                run%now%angle(t) = kinks%tip(i)%theta
+                run%now%length(t) = kinks%tip(i)%length
+            else if (kinks%tip(i)%reason == growth_linked) then
                 grown = grown + 1
                 run%tips(t)%stopped = .true.
-                run%now%angle(t) = kinks(i)%link%theta
-                run%now%length(t) = kinks(i)%link%length
-            else if (kinks(i)%reason /= growth_closed) then
+                run%now%angle(t) = kinks%tip(i)%link%theta
+                run%now%length(t) = kinks%tip(i)%link%length
+            else if (kinks%tip(i)%reason /= growth_closed) then
                 run%tips(t)%stopped = .true.
             end if
         end do
         ! Nothing grew: the geometry and its solution stay.
         if (grown == 0) return
-        if (.not. trial_current) then
-            call grow_paths(run%work, run%created, options, step, kinks, &
-                            predictor_links, trial, trial_created, moved_to, origin)
-            call solve_grown(run%solver, trial, moved_to, solved, error, origin)
+        if (.not. kinks%current) then
+            call grow_paths(run%work, run%created, options, kinks)
+            call solve_grown(run%solver, kinks%trial, kinks%moved_to, kinks%solved, error, &
+                             kinks%origin)
             if (allocated(error)) then
                 error%message = 'growth step '//itoa(step)//': '//error%message
                 return
             end if
         end if
-        call move_alloc(trial_created, run%created)
-        run%work = trial
-        run%current = solved
+        call move_alloc(kinks%trial_created, run%created)
+        run%work = kinks%trial
+        run%current = kinks%solved
         call accept_trial(run%solver)
-        call follow_growth(run%history, origin)
+        call follow_growth(run%history, kinks%origin)
         call check_elements(run%work%elements, run%work%fractures, error)
         if (allocated(error)) then
             call set_internal_error(error, 'grow_fractures', 'growth step '//itoa(step)// &
@@ -357,13 +348,14 @@ contains
         end do
     end subroutine grow_step
 
-    !> K, MTS angle and K_eq of every tip that may still grow; reason growth_subcritical
-    !> (K_eq < toughness) or growth_grew (critical) for those, reason_stopped for the others.
-    subroutine evaluate_tips(work, current, tips, toughness, now, error)
+    !> K, kink angle and K_eq (the criterion's) of every tip that may still grow; reason
+    !> growth_subcritical (K_eq < toughness) or growth_grew (critical) for those,
+    !> reason_stopped for the others.
+    subroutine evaluate_tips(work, current, tips, options, now, error)
         type(model_type), intent(in) :: work
         type(model_results), intent(in) :: current
         type(growing_tip), intent(in) :: tips(:)
-        real(wp), intent(in) :: toughness
+        type(growth_options), intent(in) :: options
         type(step_tips), intent(out) :: now
         type(error_type), allocatable, intent(out) :: error
         integer :: i, n, t
@@ -393,20 +385,21 @@ contains
             now%y(i) = current%tips%y(t)
             now%k1(i) = current%tips%k1(t)
             now%k2(i) = current%tips%k2(t)
-            now%theta(i) = mts_angle(now%k1(i), now%k2(i))
-            now%k_eq(i) = equivalent_k(now%k1(i), now%k2(i), now%theta(i))
-            now%reason(i) = merge(growth_grew, growth_subcritical, now%k_eq(i) >= toughness)
+            call assess_tip(options, now%k1(i), now%k2(i), now%theta(i), now%k_eq(i), error)
+            if (allocated(error)) return
+            now%reason(i) = merge(growth_grew, growth_subcritical, &
+                                  now%k_eq(i) >= options%toughness)
         end do
     end subroutine evaluate_tips
 
     !> The critical tips that grow in this step: all of them, or the most critical one
-    !> (the others wait); a tip whose predictor path (at its MTS angle, the step's length)
+    !> (the others wait); a tip whose predictor path (at its kink angle, the step's length)
     !> meets another fracture links to it (its link in now%link), one whose path would not
     !> keep clear otherwise stops for good (and with 'most_critical' the next most critical
     !> tip is tried). Reasons are updated.
-    subroutine choose_growing(work, choice, tips, now)
+    subroutine choose_growing(work, options, tips, now)
         type(model_type), intent(in) :: work
-        integer, intent(in) :: choice
+        type(growth_options), intent(in) :: options
         type(growing_tip), intent(inout) :: tips(:)
         type(step_tips), intent(inout) :: now
         type(tip_path) :: paths(size(tips))
@@ -415,9 +408,9 @@ contains
 
         do i = 1, size(tips)
             if (now%reason(i) /= growth_grew) cycle
-            paths(i) = predictor_path(work, tips(i), now, i)
+            paths(i) = predictor_path(work, options, tips(i), now, i)
         end do
-        if (choice /= growth_tips_most_critical) then
+        if (options%tips /= growth_tips_most_critical) then
             call check_paths(work, paths, now%reason == growth_grew, problem, now%link)
             call stop_blocked()
             return
@@ -448,24 +441,29 @@ contains
     !> Length and number of elements of a tip's increment: `increment` (default twice the
     !> tip element's length) in n = nint(increment / element_length) >= 1 equal elements
     !> (element_length default: the tip element's length).
-    subroutine increment_of(work, element, length, pieces)
-        type(model_type), intent(in) :: work
-        integer, intent(in) :: element
+    pure subroutine increment_of(options, half_length, length, pieces)
+        !> The growth options (increment, element_length)
+        type(growth_options), intent(in) :: options
+        !> Half the tip element's length [length unit]
+        real(wp), intent(in) :: half_length
+        !> Length of the increment [length unit]
         real(wp), intent(out) :: length
+        !> Number of its elements
         integer, intent(out) :: pieces
         real(wp) :: tip_length, element_length
 
-        tip_length = 2.0_wp * work%elements%half_length(element)
-        length = work%growth%increment
+        tip_length = 2.0_wp * half_length
+        length = options%increment
         if (length <= 0.0_wp) length = 2.0_wp * tip_length
-        element_length = work%growth%element_length
+        element_length = options%element_length
         if (element_length <= 0.0_wp) element_length = tip_length
         pieces = max(1, nint(length / element_length))
     end subroutine increment_of
 
-    !> The path of tip i at its MTS angle.
-    function predictor_path(work, tip, now, i) result(path)
+    !> The path of tip i at its kink angle.
+    function predictor_path(work, options, tip, now, i) result(path)
         type(model_type), intent(in) :: work
+        type(growth_options), intent(in) :: options
         type(growing_tip), intent(in) :: tip
         type(step_tips), intent(in) :: now
         integer, intent(in) :: i
@@ -473,29 +471,29 @@ contains
         real(wp) :: length
         integer :: pieces
 
-        call increment_of(work, now%element(i), length, pieces)
+        call increment_of(options, work%elements%half_length(now%element(i)), length, pieces)
         path = make_path(work, tip%fracture, tip%end, now%theta(i), length, pieces)
     end function predictor_path
 
-    !> The corrector's view of growing tip i: MTS angle, first slope, tolerance, length.
-    function setup_kink(work, tip, now, i, toughness) result(k)
+    !> Growing tip i as the criterion turns it: its K, K_eq, kink angle (the predictor) and
+    !> increment.
+    function tip_kink(work, options, tip, now, i) result(k)
         type(model_type), intent(in) :: work
+        type(growth_options), intent(in) :: options
         type(growing_tip), intent(in) :: tip
         type(step_tips), intent(in) :: now
         integer, intent(in) :: i
-        real(wp), intent(in) :: toughness
         type(kink) :: k
 
         k%fracture = tip%fracture
         k%end = tip%end
-        k%theta_mts = now%theta(i)
-        k%tip_open = now%k1(i) > 0.0_wp
-        ! The first-order slope dK_II/dtheta; K_eq when that is not clearly positive.
-        k%slope = kink_slope(now%k1(i), now%k2(i), now%theta(i))
-        if (k%slope < 0.1_wp * now%k_eq(i)) k%slope = now%k_eq(i)
-        k%tolerance = corrector_tolerance * max(now%k_eq(i), toughness)
-        call increment_of(work, now%element(i), k%length, k%pieces)
-    end function setup_kink
+        k%k1 = now%k1(i)
+        k%k2 = now%k2(i)
+        k%k_eq = now%k_eq(i)
+        k%theta_predictor = now%theta(i)
+        call increment_of(options, work%elements%half_length(now%element(i)), k%length, &
+                          k%pieces)
+    end function tip_kink
 
     !> Append the step's records: one per tip that could still grow at the step's start.
     subroutine append_records(record, step, load_step, tips, now)

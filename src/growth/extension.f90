@@ -11,7 +11,7 @@ module ddc_growth_extension
     private
 
     public :: tip_path, tip_end_begin, tip_end_end, tip_element, element_split
-    public :: make_path, extend_model, path_element_length, outward_direction
+    public :: make_path, extend_model, path_element_length, outward_direction, inherit_values
 
     !> Ends of a fracture (the coding of /growth/end): its begin tip, its end tip
     integer, parameter :: tip_end_begin = 0, tip_end_end = 1
@@ -196,11 +196,7 @@ contains
             end if
             grown%fractures(f)%last_element = next
         end do
-        ! Every element takes the values of the one it comes from; new ones then their
-        ! own end points, the default laws (they are intact: no T, no drops, rigid) and
-        ! new_mu, new_sf when overridden.
-        call select_elements(model%elements, pick, grown%elements)
-        call default_strength_laws(grown%elements, is_new)
+        call inherit_values(model%elements, pick, is_new, options, grown%elements)
         associate (a => grown%elements)
             where (is_new .or. is_half)
                 a%x_begin = x_begin
@@ -208,12 +204,6 @@ contains
                 a%x_end = x_end
                 a%y_end = y_end
             end where
-            if (options%override_mu) then
-                where (is_new .and. a%condition == condition_contact) a%mu = options%new_mu
-            end if
-            if (options%override_sf) then
-                where (is_new .and. a%condition == condition_contact) a%sf = options%new_sf
-            end if
         end associate
         call compute_geometry(grown%elements)
         if (present(origin)) origin = merge(0, pick, is_new)
@@ -253,6 +243,33 @@ contains
         end subroutine half
 
     end subroutine extend_model
+
+    !> The values of the elements of a grown geometry (SPEC-GROWTH 1.5), the one rule for
+    !> growth and for a resumed run: each takes those of the element it comes from; a new
+    !> one (grown at a tip) then the default strength laws (it is intact: no T, no drops,
+    !> rigid) and, a new contact element, new_mu and new_sf where the growth options
+    !> override them. End points and geometry are the caller's to set.
+    subroutine inherit_values(elements, pick, is_new, options, grown)
+        !> The elements the grown ones come from
+        type(element_set), intent(in) :: elements
+        !> The element of `elements` each grown element comes from, shape (grown n)
+        integer, intent(in) :: pick(:)
+        !> Whether each grown element is new, shape (grown n)
+        logical, intent(in) :: is_new(:)
+        !> The growth options (override_mu, new_mu, override_sf, new_sf)
+        type(growth_options), intent(in) :: options
+        !> The grown elements
+        type(element_set), intent(out) :: grown
+
+        call select_elements(elements, pick, grown)
+        call default_strength_laws(grown, is_new)
+        if (options%override_mu) then
+            where (is_new .and. grown%condition == condition_contact) grown%mu = options%new_mu
+        end if
+        if (options%override_sf) then
+            where (is_new .and. grown%condition == condition_contact) grown%sf = options%new_sf
+        end if
+    end subroutine inherit_values
 
     !> Index of the path at end `end` of fracture f; 0 when there is none.
     pure integer function find_path(paths, f, end)

@@ -6,15 +6,16 @@
 !> value as given. So each element of the final geometry takes the values of the input
 !> element it comes from, as ddc_growth_extension gave them: an input element (created
 !> step 0) its own (a split one: both halves, found as the consecutive elements that span
-!> it), a grown element those of its fracture's input tip element at that end, with the
-!> default strength laws and new_mu, new_sf; then its end points from the file (bit for
-!> bit) and the geometry computed.
+!> it), a grown element those of its fracture's input tip element at that end, with what
+!> a new element takes (inherit_values); then its end points from the file (bit for bit)
+!> and the geometry computed.
 module ddc_growth_restart
     use ddc_error, only: error_type, set_error, exit_bad_input
-    use ddc_model_types, only: model_type, condition_contact, select_elements
+    use ddc_model_types, only: model_type
     use ddc_model_results, only: growth_intersection, growth_surface, growth_linked
     use ddc_model_restart, only: restart_state
-    use ddc_mesh_geometry, only: compute_geometry, default_strength_laws
+    use ddc_mesh_geometry, only: compute_geometry
+    use ddc_growth_extension, only: inherit_values
     use ddc_growth_tips, only: growing_tip
     implicit none
     private
@@ -75,17 +76,8 @@ contains
             return
         end if
         work = model
-        call select_elements(model%elements, pick, work%elements)
-        call default_strength_laws(work%elements, created > 0)
+        call inherit_values(model%elements, pick, created > 0, model%growth, work%elements)
         associate (a => work%elements)
-            if (model%growth%override_mu) then
-                where (created > 0 .and. a%condition == condition_contact) a%mu = &
-                    model%growth%new_mu
-            end if
-            if (model%growth%override_sf) then
-                where (created > 0 .and. a%condition == condition_contact) a%sf = &
-                    model%growth%new_sf
-            end if
             a%x_begin = state%x_begin
             a%y_begin = state%y_begin
             a%x_end = state%x_end

@@ -26,7 +26,8 @@ module ddc_growth_run_state
 
     !> One step's view of the tips that may still grow, shape (tips) for every array.
     type :: step_tips
-        !> K_I, K_II, K_eq [stress unit * length unit**0.5], MTS angle [rad]
+        !> K_I, K_II, K_eq [stress unit * length unit**0.5], the criterion's kink angle (MTS)
+        !> [rad]
         real(wp), allocatable :: k1(:), k2(:), k_eq(:), theta(:)
         !> Tip position [length unit]
         real(wp), allocatable :: x(:), y(:)

@@ -11,6 +11,8 @@ module ddc_mesh_checks
     use ddc_model_types, only: element_set, fracture_type, symmetry_x, symmetry_y, symmetry_both
     use ddc_text, only: add_message, messages_error, itoa, rtoa
     use ddc_sorting, only: sorted_order
+    use ddc_mesh_segments, only: classify_pair, pair_ok, pair_duplicate, pair_overlap, &
+        pair_cross, pair_t_first_end, pair_t_second_end
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     implicit none
     private
@@ -19,9 +21,6 @@ module ddc_mesh_checks
 
     !> Relative tolerance on element lengths
     real(wp), parameter :: relative_tolerance = 1.0e-10_wp
-
-    integer, parameter :: pair_ok = 0, pair_duplicate = 1, pair_overlap = 2, &
-                          pair_cross = 3, pair_t_first_end = 4, pair_t_second_end = 5
 
 contains
 
@@ -196,77 +195,5 @@ contains
         end function describe
 
     end subroutine check_elements
-
-    !> Classify two segments P = p0-p1 and Q = q0-q1 (both of non-zero length).
-    pure function classify_pair(p0x, p0y, p1x, p1y, q0x, q0y, q1x, q1y, tol) result(kind)
-        real(wp), intent(in) :: p0x, p0y, p1x, p1y, q0x, q0y, q1x, q1y
-        !> Distance below which points coincide [length unit]
-        real(wp), intent(in) :: tol
-        integer :: kind
-        real(wp) :: dx, dy, ex, ey, lp, lq, dq0, dq1, dp0, dp1, denominator, t, u
-        real(wp) :: ux, uy, tp(2), tq(2), overlap
-        logical :: s00, s01, s10, s11, shared, p_end, q_end
-
-        kind = pair_ok
-        s00 = hypot(p0x - q0x, p0y - q0y) <= tol
-        s01 = hypot(p0x - q1x, p0y - q1y) <= tol
-        s10 = hypot(p1x - q0x, p1y - q0y) <= tol
-        s11 = hypot(p1x - q1x, p1y - q1y) <= tol
-        if ((s00 .and. s11) .or. (s01 .and. s10)) then
-            kind = pair_duplicate
-            return
-        end if
-        shared = s00 .or. s01 .or. s10 .or. s11
-
-        dx = p1x - p0x
-        dy = p1y - p0y
-        ex = q1x - q0x
-        ey = q1y - q0y
-        lp = hypot(dx, dy)
-        lq = hypot(ex, ey)
-        ! Signed distances of each segment's ends from the other segment's line.
-        dq0 = (dx * (q0y - p0y) - dy * (q0x - p0x)) / lp
-        dq1 = (dx * (q1y - p0y) - dy * (q1x - p0x)) / lp
-        dp0 = (ex * (p0y - q0y) - ey * (p0x - q0x)) / lq
-        dp1 = (ex * (p1y - q0y) - ey * (p1x - q0x)) / lq
-
-        if ((abs(dq0) <= tol .and. abs(dq1) <= tol) .or. &
-            (abs(dp0) <= tol .and. abs(dp1) <= tol)) then
-            ! Collinear: measure the common stretch along the longer element.
-            if (lp >= lq) then
-                ux = dx / lp
-                uy = dy / lp
-            else
-                ux = ex / lq
-                uy = ey / lq
-            end if
-            tp = [0.0_wp, (p1x - p0x) * ux + (p1y - p0y) * uy]
-            tq = [(q0x - p0x) * ux + (q0y - p0y) * uy, (q1x - p0x) * ux + (q1y - p0y) * uy]
-            overlap = min(maxval(tp), maxval(tq)) - max(minval(tp), minval(tq))
-            if (overlap > tol) kind = pair_overlap
-            return
-        end if
-
-        ! Not collinear: each segment must reach the other's line for any contact.
-        if ((dq0 > tol .and. dq1 > tol) .or. (dq0 < -tol .and. dq1 < -tol)) return
-        if ((dp0 > tol .and. dp1 > tol) .or. (dp0 < -tol .and. dp1 < -tol)) return
-        ! Two straight elements meet at most once: at a shared vertex that is allowed.
-        if (shared) return
-        denominator = dx * ey - dy * ex
-        if (denominator == 0.0_wp) return
-        ! Intersection of the lines, as distances along P and along Q.
-        t = ((q0x - p0x) * ey - (q0y - p0y) * ex) / denominator * lp
-        u = ((q0x - p0x) * dy - (q0y - p0y) * dx) / denominator * lq
-        if (t < -tol .or. t > lp + tol .or. u < -tol .or. u > lq + tol) return
-        p_end = t <= tol .or. t >= lp - tol
-        q_end = u <= tol .or. u >= lq - tol
-        if (p_end) then
-            kind = pair_t_first_end
-        else if (q_end) then
-            kind = pair_t_second_end
-        else
-            kind = pair_cross
-        end if
-    end function classify_pair
 
 end module ddc_mesh_checks

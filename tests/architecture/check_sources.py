@@ -41,6 +41,11 @@
    paper_lcp.f90 take plain arrays, and no chain of `use` lines leads from them to the
    fault law (ddc_contact_fault_law), which only the contact formulation and the solve
    layer use.
+10. A growth criterion plugs in at one place: every criterion code of src/model/types.f90
+    (`growth_criterion_<name>`) has a case in every `select case` on the criterion of
+    src/growth/criterion.f90, each with a `case default` (an unknown code is an internal
+    error, not silently one of the others), and no other file of src/growth/ reads
+    `%criterion`.
 
 Prints every violation and exits 1 when there is one; --graph prints the folder graph.
 """
@@ -526,6 +531,47 @@ def check_errors_seen(root, problems):
                 pending = number
 
 
+# The growth criterion (check 10): where its codes are, and the one module that dispatches.
+CRITERIA = "src/model/types.f90"
+DISPATCH = "src/growth/criterion.f90"
+SELECT_CRITERION = re.compile(r"select\s+case\s*\(\s*[\w%]*%criterion\s*\)(.*?)end\s+select",
+                              re.IGNORECASE | re.DOTALL)
+
+
+def check_criteria(root, problems):
+    """Every growth criterion has a case in each dispatch, the only reader (item 9)."""
+    codes = set()
+    for names in re.findall(r"^\s*integer\s*,\s*parameter\s*::([^\n]*)",
+                            strip_comments((root / CRITERIA).read_text()), LINES):
+        codes |= {code.lower() for code in re.findall(r"\b(growth_criterion_\w+)\s*=", names)}
+    if not codes:
+        problems.append(f"{CRITERIA}: no growth criterion (growth_criterion_<name>)")
+    dispatch = strip_comments((root / DISPATCH).read_text())
+    dispatches = 0
+    for name, body in re.findall(r"^\s*(?:\w+\s+)*subroutine\s+(\w+)\b(.*?)^\s*end\s+"
+                                 r"subroutine\s+\1\b", dispatch, LINES | re.DOTALL):
+        for block in SELECT_CRITERION.findall(body):
+            dispatches += 1
+            cases = {case.lower() for listed in re.findall(r"\bcase\s*\(([^)]*)\)", block,
+                                                           re.IGNORECASE)
+                     for case in re.findall(r"\w+", listed)}
+            for code in sorted(codes - cases):
+                problems.append(f"{DISPATCH}: {name} has no case for {code}")
+            if not re.search(r"\bcase\s+default\b", block, re.IGNORECASE):
+                problems.append(f"{DISPATCH}: {name} dispatches on the criterion without a "
+                                "case default (an unknown criterion must be an internal "
+                                "error)")
+    if not dispatches:
+        problems.append(f"{DISPATCH}: no select case on the growth criterion")
+    for path in sorted((root / "src/growth").glob("*.f90")):
+        where = path.relative_to(root)
+        if str(where) != DISPATCH and re.search(r"%\s*criterion\b",
+                                                strip_comments(path.read_text()),
+                                                re.IGNORECASE):
+            problems.append(f"{where}: reads the growth criterion (%criterion) outside "
+                            f"{DISPATCH}, the one place that dispatches on it")
+
+
 def main(argv):
     graph_wanted = "--graph" in argv
     args = [a for a in argv if a != "--graph"]
@@ -542,6 +588,7 @@ def main(argv):
     check_errors_seen(root, problems)
     check_fingerprint(root, problems)
     check_lcp_solvers(root, problems)
+    check_criteria(root, problems)
     if graph_wanted:
         for folder in sorted(graph):
             print(f"{folder}: {', '.join(sorted(graph[folder])) or '-'}")
@@ -553,7 +600,9 @@ def main(argv):
               "statements match the group table; every import is used; every component of "
               "element_set and solver_options is broadcast or marked root only; every "
               "error a test gets is read; every component of the model is hashed in its "
-              "fingerprint or marked not hashed; no LCP solver reaches the fault law")
+              "fingerprint or marked not hashed; no LCP solver reaches the fault law; "
+              "every growth criterion has its case in each dispatch, the only reader of "
+              "the criterion")
     return 1 if problems else 0
 
 

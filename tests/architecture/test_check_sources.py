@@ -222,3 +222,35 @@ def test_lcp_solver_reaching_the_fault_law_fails(tree, capsys, planted_in, messa
     edit(tree / planted_in, "    use ddc_kinds, only: wp\n",
          "    use ddc_kinds, only: wp\n    use ddc_contact_fault_law, only: fault_law\n")
     expect_violation(tree, capsys, message)
+
+
+def test_growth_criterion_without_its_case_fails(tree, capsys):
+    edit(tree / "src/model/types.f90", "    integer, parameter :: growth_criterion_mts = 1\n",
+         "    integer, parameter :: growth_criterion_mts = 1, growth_criterion_planted = 2\n")
+    expect_violation(tree, capsys, "src/growth/criterion.f90: assess_tip has no case for "
+                     "growth_criterion_planted")
+    expect_violation(tree, capsys, "src/growth/criterion.f90: kink_angles has no case for "
+                     "growth_criterion_planted")
+    # with its case in both dispatches, it passes
+    path = tree / "src/growth/criterion.f90"
+    text = path.read_text()
+    assert text.count("        case (growth_criterion_mts)\n") == 2
+    path.write_text(text.replace("        case (growth_criterion_mts)\n",
+                                 "        case (growth_criterion_mts, growth_criterion_planted)\n"))
+    assert run_checks(tree, capsys)[0] == 0
+
+
+def test_growth_criterion_dispatch_without_default_fails(tree, capsys):
+    edit(tree / "src/growth/criterion.f90",
+         "        case default\n            call unknown_criterion('assess_tip', "
+         "options%criterion, error)\n", "")
+    expect_violation(tree, capsys, "src/growth/criterion.f90: assess_tip dispatches on the "
+                     "criterion without a case default")
+
+
+def test_growth_criterion_read_outside_the_dispatch_fails(tree, capsys):
+    edit(tree / "src/growth/driver.f90", "        now%reason = reason_stopped\n",
+         "        now%reason = reason_stopped\n"
+         "        if (options%criterion /= growth_criterion_mts) return\n")
+    expect_violation(tree, capsys, "src/growth/driver.f90: reads the growth criterion "
+                     "(%criterion) outside src/growth/criterion.f90")
