@@ -539,7 +539,7 @@ SELECT_CRITERION = re.compile(r"select\s+case\s*\(\s*[\w%]*%criterion\s*\)(.*?)e
 
 
 def check_criteria(root, problems):
-    """Every growth criterion has a case in each dispatch, the only reader (item 9)."""
+    """Every growth criterion has a case in each dispatch, the only reader (check 10)."""
     codes = set()
     for names in re.findall(r"^\s*integer\s*,\s*parameter\s*::([^\n]*)",
                             strip_comments((root / CRITERIA).read_text()), LINES):
