@@ -371,10 +371,12 @@ contains
         !> Its values
         real(wp), allocatable, intent(inout) :: values(:)
         real(wp), allocatable :: laid(:)
+        integer :: stat
 
         if (.not. lays_out(action, column, allocated(values))) return
-        allocate (laid(action%steps), stat=action%stat)
-        if (action%stat /= 0) return
+        allocate (laid(action%steps), stat=stat)
+        action%stat = stat
+        if (stat /= 0) return
         laid = ieee_value(1.0_wp, ieee_quiet_nan)
         if (allocated(values)) laid(1:action%kept) = values(1:action%kept)
         call move_alloc(laid, values)
@@ -389,10 +391,12 @@ contains
         !> Its values
         integer, allocatable, intent(inout) :: values(:)
         integer, allocatable :: laid(:)
+        integer :: stat
 
         if (.not. lays_out(action, column, allocated(values))) return
-        allocate (laid(action%steps), source=0, stat=action%stat)
-        if (action%stat /= 0) return
+        allocate (laid(action%steps), source=0, stat=stat)
+        action%stat = stat
+        if (stat /= 0) return
         if (allocated(values)) laid(1:action%kept) = values(1:action%kept)
         call move_alloc(laid, values)
     end subroutine lay_out_integers
@@ -407,11 +411,12 @@ contains
         real(wp), allocatable, intent(inout) :: values(:, :)
         real(wp), allocatable :: laid(:, :)
         integer, allocatable :: origin(:), made(:)
-        integer :: i
+        integer :: i, stat
 
         if (.not. lays_out(action, column, allocated(values))) return
-        allocate (laid(table_rows(action, column), action%steps), stat=action%stat)
-        if (action%stat /= 0) return
+        allocate (laid(table_rows(action, column), action%steps), stat=stat)
+        action%stat = stat
+        if (stat /= 0) return
         laid = ieee_value(1.0_wp, ieee_quiet_nan)
         if (allocated(values) .and. action%kept > 0) then
             origin = origin_of(action, column, size(laid, 1))
@@ -431,14 +436,15 @@ contains
         integer, allocatable, intent(inout) :: values(:, :)
         integer, allocatable :: laid(:, :)
         integer, allocatable :: origin(:), made(:)
-        integer :: i, none
+        integer :: i, none, stat
 
         if (.not. lays_out(action, column, allocated(values))) return
         none = 0
         ! An element row before its element was made (growth)
         if (column%kind == column_element_steps) none = state_not_grown
-        allocate (laid(table_rows(action, column), action%steps), source=none, stat=action%stat)
-        if (action%stat /= 0) return
+        allocate (laid(table_rows(action, column), action%steps), source=none, stat=stat)
+        action%stat = stat
+        if (stat /= 0) return
         if (allocated(values) .and. action%kept > 0) then
             origin = origin_of(action, column, size(laid, 1))
             made = pack([(i, i = 1, size(origin))], origin > 0)
@@ -457,10 +463,12 @@ contains
         !> Its values
         character(len=*), allocatable, intent(inout) :: values(:)
         character(len=len(values)), allocatable :: laid(:)
+        integer :: stat
 
         if (.not. lays_out(action, column, allocated(values))) return
-        allocate (laid(action%steps), stat=action%stat)
-        if (action%stat /= 0) return
+        allocate (laid(action%steps), stat=stat)
+        action%stat = stat
+        if (stat /= 0) return
         laid = ''
         if (allocated(values)) laid(1:action%kept) = values(1:action%kept)
         call move_alloc(laid, values)
