@@ -43,16 +43,25 @@ DEFAULT_CODINGS = {"/elements/state": STATE_NAMES, "/elements/condition": CONDIT
 ELEMENT_DATASETS = ("x_begin", "y_begin", "x_end", "y_end", "ds", "dn")
 #: /tips datasets, all present when the group is.
 TIP_DATASETS = ("x", "y", "fracture_id", "element", "k1", "k2")
+# The /history and /growth datasets are the columns of ddc2d's record lists
+# (src/model/records.f90); the CTest architecture fails when these lists disagree with them.
 #: Load quantities a /history may hold, in the order ddc2d writes them.
 HISTORY_LOADS = ("sxx", "syy", "sxy", "dsxx_dy", "dsyy_dy", "dsxy_dy", "p0")
+#: /history datasets of every loading history: DDs and states (steps, elements), leg_steps.
+HISTORY_DATASETS = ("ds", "dn", "state", "leg_steps")
 #: Per-step /history datasets beyond the loads, DDs and states (read when present).
 HISTORY_STEP_DATASETS = ("shear_traction", "normal_traction", "k1", "k2", "pivots",
-                         "newton_iterations")
+                         "newton_iterations", "certificate_min_z", "certificate_min_w",
+                         "certificate_max_complementarity", "equilibrium_residual")
+#: Per-step /history strings (read when present, decoded).
+HISTORY_STRING_DATASETS = ("method", "fallback")
 #: /history datasets of fracture growth along a load path (SPEC-GROWTH 6), read when present.
 HISTORY_GROWTH_DATASETS = ("element_count", "grown_length", "tip_fracture_id", "tip_end")
 #: /growth datasets (fracture growth, SPEC-GROWTH 3), one value per record (tip and step).
 GROWTH_DATASETS = ("step", "fracture_id", "end", "x", "y", "k1", "k2", "k_eq", "mts_angle",
                    "angle", "corrections", "k2_after", "length", "reason")
+#: /growth datasets of fracture growth along a load path only, one value per record.
+GROWTH_PATH_DATASETS = ("load_step",)
 #: Phases timed in /solver/seconds.
 SOLVER_PHASES = ("assembly", "factorization", "lcp", "fields", "output", "total")
 
@@ -382,7 +391,9 @@ def read_history(path, handle, count):
     """/history as a dict (``loads``: name -> (steps,), ``ds``, ``dn``, ``state``:
     (steps, elements), ``leg_steps``; when the file has them, ``shear_traction``,
     ``normal_traction`` (steps, elements), ``k1``, ``k2`` (steps, tips), ``pivots``,
-    ``newton_iterations`` (steps,) and ``method``, ``fallback``: one str per step; with
+    ``newton_iterations``, ``certificate_min_z``, ``certificate_min_w``,
+    ``certificate_max_complementarity``, ``equilibrium_residual`` (steps,) and ``method``,
+    ``fallback``: one str per step; with
     fracture growth ``element_count`` (steps,), ``grown_length`` (steps, tips),
     ``tip_fracture_id``, ``tip_end`` (tips,), and element rows NaN (state -1) before an
     element was made), or None when the file has no loading history."""
@@ -390,12 +401,12 @@ def read_history(path, handle, count):
         return None
     group = handle["history"]
     history = {"loads": {k: np.asarray(group[k][()]) for k in HISTORY_LOADS if k in group}}
-    for key in ("ds", "dn", "state", "leg_steps"):
+    for key in HISTORY_DATASETS:
         history[key] = np.asarray(group[key][()])
     for key in HISTORY_STEP_DATASETS + HISTORY_GROWTH_DATASETS:
         if key in group:
             history[key] = np.asarray(group[key][()])
-    for key in ("method", "fallback"):
+    for key in HISTORY_STRING_DATASETS:
         if key in group:
             history[key] = [decode(v) for v in group[key][()]]
     if history["ds"].ndim != 2 or history["ds"].shape[1] != count:
@@ -413,9 +424,9 @@ def read_growth(path, handle):
         return None
     group = handle["growth"]
     growth = {}
-    for key in GROWTH_DATASETS + ("load_step",):
+    for key in GROWTH_DATASETS + GROWTH_PATH_DATASETS:
         if key not in group:
-            if key == "load_step":  # along a load path only
+            if key in GROWTH_PATH_DATASETS:
                 continue
             raise ResultError(f"'{path}' lacks /growth/{key}")
         growth[key] = np.asarray(group[key][()]).ravel()

@@ -10,7 +10,7 @@ module ddc_text
 
     public :: newline, max_messages, add_message, messages_error, itoa, rtoa, short_real, lower
     public :: join_integers, prefix_lines, quoted_list, find_name, bytes_text, seconds_text
-    public :: from_c_chars
+    public :: from_c_chars, allocated_text
 
     !> Separator of the lines of a message
     character(len=*), parameter :: newline = achar(10)
@@ -237,6 +237,20 @@ contains
             end if
         end do
     end function find_name
+
+    !> The value of an optional string, '' when it is not allocated.
+    pure function allocated_text(value) result(string)
+        !> The string
+        character(len=:), allocatable, intent(in) :: value
+        !> Its value or ''
+        character(len=:), allocatable :: string
+
+        if (allocated(value)) then
+            string = value
+        else
+            string = ''
+        end if
+    end function allocated_text
 
     !> A Fortran string from C characters, cut at the first NUL.
     pure function from_c_chars(chars) result(text)

@@ -146,7 +146,9 @@ contains
                 return
             end if
             if (history) then
-                call record_load_step(run%history, run%work, run%current, loads(:, load_step))
+                call record_load_step(run%history, run%work, run%current, loads(:, load_step), &
+                                      error)
+                if (allocated(error)) return
                 call report_load_step(record%steps_taken - steps_before)
             end if
             if (record%end_reason == growth_step_limit) exit
@@ -164,7 +166,8 @@ contains
         call final_results(run%solver, model, run%current, results)
         record%created_step = run%created
         if (history) call finish_load_steps(run%history, run%work, results%tips, run%tips, &
-                                            record, results%history)
+                                            record, results%history, error)
+        if (allocated(error)) return
         results%growth = record
         call system_clock(t_end)
         results%solver%seconds_total = real(t_end - t_start, wp) / real(rate, wp)

@@ -13,8 +13,11 @@ module ddc_growth_load_steps
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type
-    use ddc_model_results, only: model_results, history_record, growth_record, tip_set, &
-        state_not_grown, copy_steps
+    use ddc_error, only: error_type
+    use ddc_allocation, only: allocation_failed, real_bytes
+    use ddc_text, only: itoa
+    use ddc_model_results, only: model_results, history_record, growth_record, tip_set
+    use ddc_model_records, only: lay_out_history
     use ddc_growth_extension, only: tip_element, tip_end_begin, tip_end_end
     use ddc_model_restart, only: restart_state
     use ddc_growth_tips, only: growing_tip, locate_tip
@@ -38,32 +41,24 @@ module ddc_growth_load_steps
 contains
 
     !> Room for the columns of `steps` load steps of the input geometry `work`.
-    subroutine start_load_steps(history, work, steps)
+    subroutine start_load_steps(history, work, steps, error)
         !> The history (fresh)
         type(load_step_history), intent(out) :: history
         !> The input geometry
         type(model_type), intent(in) :: work
         !> Load steps of the path
         integer, intent(in) :: steps
-        integer :: n, ends, i
+        !> Set when the history does not fit in memory
+        type(error_type), allocatable, intent(out) :: error
+        integer :: i
 
-        n = work%elements%n
-        ends = 2 * size(work%fractures)
-        history%lineage = [(i, i = 1, n)]
-        associate (h => history%h)
-            allocate (h%load(7, steps), h%pivots(steps), h%newton_iterations(steps), &
-                      h%method(steps), h%fallback(steps), h%certificate_min_z(steps), &
-                      h%certificate_min_w(steps), h%certificate_max_complementarity(steps), &
-                      h%equilibrium_residual(steps), h%element_count(steps))
-            allocate (h%ds(n, steps), h%dn(n, steps), h%shear_traction(n, steps), &
-                      h%normal_traction(n, steps), h%k1(ends, steps), h%k2(ends, steps))
-            allocate (h%state(n, steps), source=state_not_grown)
-        end associate
+        history%lineage = [(i, i = 1, work%elements%n)]
+        call lay_out(history%h, work%elements%n, 2 * size(work%fractures), steps, 0, error)
     end subroutine start_load_steps
 
     !> Room for `steps` load steps and the first `done` columns of an earlier run that ended
     !> with the geometry `work` (--resume).
-    subroutine resume_load_steps(history, work, state, loads, steps, done)
+    subroutine resume_load_steps(history, work, state, loads, steps, done, error)
         !> The history (fresh)
         type(load_step_history), intent(out) :: history
         !> The earlier run's final geometry
@@ -76,27 +71,40 @@ contains
         integer, intent(in) :: steps
         !> Columns of the earlier run kept (the others are recorded again)
         integer, intent(in) :: done
-        integer :: f, end, i, t
+        !> Set when the history does not fit in memory
+        type(error_type), allocatable, intent(out) :: error
+        integer :: i
 
-        call start_load_steps(history, work, steps)
-        associate (h => history%h, old => state%results%history)
-            history%k = done
-            h%load(:, 1:done) = loads(:, 1:done)
-            call copy_steps(old, h, done)
-            h%element_count(1:done) = old%element_count(1:done)
+        history%lineage = [(i, i = 1, work%elements%n)]
+        history%k = done
+        associate (h => history%h)
+            h = state%results%history
             ! K rows of the fracture ends; the file holds those of its final tips.
-            h%k1(:, 1:done) = ieee_value(1.0_wp, ieee_quiet_nan)
-            h%k2(:, 1:done) = h%k1(:, 1:done)
+            h%k1 = end_rows(state%results%history%k1)
+            h%k2 = end_rows(state%results%history%k2)
+            call lay_out(h, work%elements%n, 2 * size(work%fractures), steps, done, error)
+            if (allocated(error)) return
+            h%load(:, 1:done) = loads(:, 1:done)
+        end associate
+
+    contains
+
+        !> K of the fracture ends from K of the earlier run's final tips (NaN: no tip).
+        function end_rows(k_tips) result(k_ends)
+            real(wp), intent(in) :: k_tips(:, :)
+            real(wp) :: k_ends(2 * size(work%fractures), size(k_tips, 2))
+            integer :: f, end, t
+
+            k_ends = ieee_value(1.0_wp, ieee_quiet_nan)
             do f = 1, size(work%fractures)
                 do end = tip_end_begin, tip_end_end
                     t = locate_tip(state%results%tips, tip_element(work, f, end), end)
                     if (t == 0) cycle
-                    i = 2 * (f - 1) + end - tip_end_begin + 1
-                    h%k1(i, 1:done) = old%k1(t, 1:done)
-                    h%k2(i, 1:done) = old%k2(t, 1:done)
+                    k_ends(2 * (f - 1) + end - tip_end_begin + 1, :) = k_tips(t, :)
                 end do
             end do
-        end associate
+        end function end_rows
+
     end subroutine resume_load_steps
 
     !> A growth step was accepted: origin is the element of the geometry before it that each
@@ -116,7 +124,7 @@ contains
 
     !> The column of the load step that just ended: the current geometry `work` at `load`,
     !> solved in `current`.
-    subroutine record_load_step(history, work, current, load)
+    subroutine record_load_step(history, work, current, load, error)
         !> The history
         type(load_step_history), intent(inout) :: history
         !> The current geometry and its solution at the step's load
@@ -124,9 +132,12 @@ contains
         type(model_results), intent(in) :: current
         !> The load, rows as load_path_names, shape (7)
         real(wp), intent(in) :: load(:)
+        !> Set when the history does not fit in memory
+        type(error_type), allocatable, intent(out) :: error
         integer :: k, f, end, i, t
 
-        call follow_rows(history)
+        call follow_rows(history, error)
+        if (allocated(error)) return
         history%k = history%k + 1
         k = history%k
         associate (h => history%h, e => current%elements, s => current%solver)
@@ -163,7 +174,7 @@ contains
     !> The history of the run: its columns, rows of the final geometry `work` (the geometry
     !> of the last column), K rows of its tips, and the grown length of every tip that may
     !> grow at the end of each load step.
-    subroutine finish_load_steps(history, work, tips, growing, growth, h)
+    subroutine finish_load_steps(history, work, tips, growing, growth, h, error)
         !> The history
         type(load_step_history), intent(inout) :: history
         !> The final geometry and its tips
@@ -175,28 +186,20 @@ contains
         type(growth_record), intent(in) :: growth
         !> The history as /history writes it
         type(history_record), intent(out) :: h
+        !> Set when the history does not fit in memory
+        type(error_type), allocatable, intent(out) :: error
         integer :: k, f, end, t, i, j
 
         k = history%k
+        h = history%h
+        call lay_out(h, size(h%ds, 1), size(h%k1, 1), k, k, error)
+        if (allocated(error)) return
+        ! K rows of the final tips instead of the fracture ends
+        deallocate (h%k1, h%k2)
+        allocate (h%k1(tips%n, k), h%k2(tips%n, k))
+        h%k1 = ieee_value(1.0_wp, ieee_quiet_nan)
+        h%k2 = h%k1
         associate (c => history%h)
-            h%load = c%load(:, 1:k)
-            h%ds = c%ds(:, 1:k)
-            h%dn = c%dn(:, 1:k)
-            h%state = c%state(:, 1:k)
-            h%shear_traction = c%shear_traction(:, 1:k)
-            h%normal_traction = c%normal_traction(:, 1:k)
-            h%element_count = c%element_count(1:k)
-            h%pivots = c%pivots(1:k)
-            h%newton_iterations = c%newton_iterations(1:k)
-            h%method = c%method(1:k)
-            h%fallback = c%fallback(1:k)
-            h%certificate_min_z = c%certificate_min_z(1:k)
-            h%certificate_min_w = c%certificate_min_w(1:k)
-            h%certificate_max_complementarity = c%certificate_max_complementarity(1:k)
-            h%equilibrium_residual = c%equilibrium_residual(1:k)
-            allocate (h%k1(tips%n, k), h%k2(tips%n, k))
-            h%k1 = ieee_value(1.0_wp, ieee_quiet_nan)
-            h%k2 = h%k1
             do f = 1, size(work%fractures)
                 do end = tip_end_begin, tip_end_end
                     t = locate_tip(tips, tip_element(work, f, end), end)
@@ -221,47 +224,39 @@ contains
     end subroutine finish_load_steps
 
     !> Move the rows of the columns so far to the elements of the current geometry.
-    subroutine follow_rows(history)
+    subroutine follow_rows(history, error)
         type(load_step_history), intent(inout) :: history
+        type(error_type), allocatable, intent(out) :: error
         integer :: i
 
         associate (h => history%h, lineage => history%lineage)
             if (size(lineage) == size(h%ds, 1)) then
                 if (all(lineage == [(i, i = 1, size(lineage))])) return
             end if
-            call follow_real(h%ds)
-            call follow_real(h%dn)
-            call follow_real(h%shear_traction)
-            call follow_real(h%normal_traction)
-            call follow_state(h%state)
+            call lay_out(h, size(lineage), size(h%k1, 1), size(h%ds, 2), history%k, error, &
+                         lineage)
             lineage = [(i, i = 1, size(lineage))]
         end associate
-
-    contains
-
-        subroutine follow_real(a)
-            real(wp), allocatable, intent(inout) :: a(:, :)
-            real(wp), allocatable :: moved(:, :)
-
-            allocate (moved(size(history%lineage), size(a, 2)))
-            moved = ieee_value(1.0_wp, ieee_quiet_nan)
-            do i = 1, size(history%lineage)
-                if (history%lineage(i) > 0) moved(i, :) = a(history%lineage(i), :)
-            end do
-            call move_alloc(moved, a)
-        end subroutine follow_real
-
-        subroutine follow_state(a)
-            integer, allocatable, intent(inout) :: a(:, :)
-            integer, allocatable :: moved(:, :)
-
-            allocate (moved(size(history%lineage), size(a, 2)), source=state_not_grown)
-            do i = 1, size(history%lineage)
-                if (history%lineage(i) > 0) moved(i, :) = a(history%lineage(i), :)
-            end do
-            call move_alloc(moved, a)
-        end subroutine follow_state
-
     end subroutine follow_rows
+
+    !> Lay the columns out anew (ddc_model_records' lay_out_history, with the columns of
+    !> growth along a load path); error: they do not fit.
+    subroutine lay_out(h, rows, ends, steps, kept, error, origin)
+        !> The columns
+        type(history_record), intent(inout) :: h
+        !> Element rows, fracture ends, steps, steps kept
+        integer, intent(in) :: rows, ends, steps, kept
+        !> Set when they do not fit in memory
+        type(error_type), allocatable, intent(inout) :: error
+        !> The row each element row takes (0: none; default its own), shape (rows)
+        integer, intent(in), optional :: origin(:)
+        integer :: stat
+
+        call lay_out_history(h, rows, ends, steps, kept, stat, origin, growth=.true.)
+        if (stat /= 0) call allocation_failed(error, 'the history of '//itoa(rows)// &
+                                              ' elements at '//itoa(steps)//' load steps', &
+                                              real_bytes * 5.0_wp * real(rows, wp) * &
+                                              real(steps, wp))
+    end subroutine lay_out
 
 end module ddc_growth_load_steps

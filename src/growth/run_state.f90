@@ -8,6 +8,7 @@ module ddc_growth_run_state
     use ddc_model_types, only: model_type
     use ddc_model_results, only: model_results, growth_record, growth_step_limit, &
         growth_end_names
+    use ddc_model_records, only: empty_growth_record
     use ddc_model_restart, only: restart_state
     use ddc_history_path, only: apply_load
     use ddc_growth_solver, only: growth_solver, solve_input, restore_memory
@@ -18,7 +19,7 @@ module ddc_growth_run_state
     implicit none
     private
 
-    public :: reason_stopped, step_tips, growth_state, start_run, resume_run, empty_record
+    public :: reason_stopped, step_tips, growth_state, start_run, resume_run
 
     !> The reason of a tip that stopped for good in an earlier step: it has no record (the
     !> reasons of ddc_model_results, growth_grew ... growth_waiting, are not negative)
@@ -76,7 +77,7 @@ contains
         if (allocated(run%work%observations)) deallocate (run%work%observations)
         allocate (run%work%observations(0), run%created(run%work%elements%n))
         run%created = 0
-        call empty_record(record)
+        call empty_growth_record(record)
         call solve_input(run%solver, run%work, run%current, error, friction_memory=history)
         if (allocated(error)) then
             error%message = 'growth: solving the input geometry: '//error%message
@@ -84,7 +85,7 @@ contains
             return
         end if
         run%tips = find_growing_tips(run%work, run%current%tips, model%growth%fracture_grows)
-        if (history) call start_load_steps(run%history, run%work, size(loads, 2))
+        if (history) call start_load_steps(run%history, run%work, size(loads, 2), error)
     end subroutine start_run
 
     !> A run resumed from the end of an earlier one (SPEC-GROWTH 8): its final geometry,
@@ -141,7 +142,7 @@ contains
         run%current%solver%newton_iterations = restart%results%history%newton_iterations(done)
         call restore_memory(run%solver, restart%results%elements%ds)
         call resume_load_steps(run%history, run%work, restart, loads, size(loads, 2), &
-                               start - 1)
+                               start - 1, error)
 
     contains
 
@@ -154,16 +155,5 @@ contains
         end subroutine nothing_left
 
     end subroutine resume_run
-
-    !> Allocate every per-record array with no record.
-    subroutine empty_record(record)
-        type(growth_record), intent(inout) :: record
-
-        allocate (record%step(0), record%load_step(0), record%fracture_id(0), record%end(0), &
-                  record%x(0), record%y(0), &
-                  record%k1(0), record%k2(0), record%k_eq(0), record%mts_angle(0), &
-                  record%angle(0), record%corrections(0), record%k2_after(0), &
-                  record%length(0), record%reason(0))
-    end subroutine empty_record
 
 end module ddc_growth_run_state

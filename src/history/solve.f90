@@ -20,7 +20,8 @@ module ddc_history_solve
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type, condition_contact
-    use ddc_model_results, only: model_results, history_record, copy_steps
+    use ddc_model_results, only: model_results, history_record
+    use ddc_model_records, only: lay_out_history
     use ddc_model_restart, only: restart_state
     use ddc_model_loads, only: resolve_remote_stress, total_pressure, shear_modulus_of
     use ddc_contact_result, only: contact_result, contact_stress_scale
@@ -126,9 +127,6 @@ contains
         ! The tips, found once; their K at every step.
         allocate (no_dd(n), source=0.0_wp)
         call find_tips(model%elements, g, model%poissons_ratio, no_dd, no_dd, results%tips)
-        call allocate_history(h, n, results%tips%n, nsteps, error)
-        if (allocated(error)) return
-        h%load = loads
         allocate (ts(sys%nf), tn(sys%nf))
         ! The fault law and its values in force: what an element lost (tensile strength on
         ! opening, cohesion on slip) stays lost for the rest of the history.
@@ -153,6 +151,9 @@ contains
             call resume_steps(error)
             if (allocated(error)) return
         end if
+        call allocate_history(h, n, results%tips%n, nsteps, done, error)
+        if (allocated(error)) return
+        h%load = loads
         stiffness%a => a_solve
         pivots = 0
         solves = 0
@@ -272,9 +273,7 @@ contains
                         'elastic joints (shear_stiffness, normal_stiffness) cannot be resumed')
                     return
                 end if
-                call copy_steps(old, h, done)
-                h%k1(:, 1:done) = old%k1
-                h%k2(:, 1:done) = old%k2
+                h = old
                 ds_previous = e%ds(sys%contact)
                 law%sf_in_force = e%sf_in_force(sys%contact)
                 law%tensile_in_force = e%tensile_in_force(sys%contact)
@@ -292,22 +291,15 @@ contains
 
     end subroutine solve_history
 
-    !> The history arrays of n elements, tips tips and k steps (error: they do not fit).
-    subroutine allocate_history(h, n, tips, k, error)
-        type(history_record), intent(out) :: h
-        integer, intent(in) :: n, tips, k
+    !> Room for every step of a history of n elements and tips tips, the first `kept` steps
+    !> of h kept (a resumed run's); error: it does not fit.
+    subroutine allocate_history(h, n, tips, k, kept, error)
+        type(history_record), intent(inout) :: h
+        integer, intent(in) :: n, tips, k, kept
         type(error_type), allocatable, intent(out) :: error
         integer :: stat
 
-        allocate (h%pivots(k), h%newton_iterations(k), h%method(k), h%fallback(k), &
-                  h%certificate_min_z(k), h%certificate_min_w(k), &
-                  h%certificate_max_complementarity(k), h%equilibrium_residual(k), &
-                  h%k1(tips, k), h%k2(tips, k))
-        allocate (h%ds(n, k), stat=stat)
-        if (stat == 0) allocate (h%dn(n, k), stat=stat)
-        if (stat == 0) allocate (h%state(n, k), stat=stat)
-        if (stat == 0) allocate (h%shear_traction(n, k), stat=stat)
-        if (stat == 0) allocate (h%normal_traction(n, k), stat=stat)
+        call lay_out_history(h, n, tips, k, kept, stat)
         if (stat /= 0) call allocation_failed(error, 'the history of '//itoa(n)// &
                                               ' elements at '//itoa(k)//' steps', &
                                               real_bytes * 5.0_wp * real(n, wp) * real(k, wp))

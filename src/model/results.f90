@@ -7,7 +7,7 @@ module ddc_model_results
     private
 
     public :: element_results, tip_set, field_result, solver_record, model_results
-    public :: history_record, growth_record, copy_steps
+    public :: history_record, growth_record
     public :: growth_grew, growth_subcritical, growth_intersection, growth_surface, &
         growth_corrector_failed, growth_linked, growth_closed, growth_waiting, &
         growth_reason_names
@@ -130,7 +130,8 @@ module ddc_model_results
     end type solver_record
 
     !> Every step of a loading history (SPEC-EARTH section 3); k steps (the starting state
-    !> is step 1), n elements. Not allocated when the model has no load path.
+    !> is step 1), n elements. Not allocated when the model has no load path. Its columns are
+    !> listed in ddc_model_records' for_each_history_column.
     type :: history_record
         !> The load of each step, rows as ddc_model_types' load_path_names (remote stress,
         !> its gradients d/dy, pore pressure p0), shape (7, k)
@@ -167,7 +168,8 @@ module ddc_model_results
 
     !> A fracture growth run (SPEC-GROWTH 3): one record per tip per step, in step order and
     !> within a step in the order of fractures, begin tip before end tip (k records); not
-    !> allocated when the model does not grow.
+    !> allocated when the model does not grow. Its columns are listed in ddc_model_records'
+    !> for_each_growth_column.
     type :: growth_record
         !> Growth step, fracture (1-based) and end (0 begin tip, 1 end tip), shape (k)
         integer, allocatable :: step(:), fracture_id(:), end(:)
@@ -211,34 +213,5 @@ module ddc_model_results
         !> Every step of fracture growth, when the model grows
         type(growth_record) :: growth
     end type model_results
-
-contains
-
-    !> The first `steps` steps of a history into another of the same elements: the element
-    !> columns (DDs, states, tractions) and how each step was solved (a resumed run keeps an
-    !> earlier run's steps); loads, K and the growth columns are the caller's.
-    pure subroutine copy_steps(from, to, steps)
-        !> The history the steps come from
-        type(history_record), intent(in) :: from
-        !> The history they go to, allocated for at least `steps` steps
-        type(history_record), intent(inout) :: to
-        !> Steps to copy
-        integer, intent(in) :: steps
-
-        to%ds(:, 1:steps) = from%ds(:, 1:steps)
-        to%dn(:, 1:steps) = from%dn(:, 1:steps)
-        to%state(:, 1:steps) = from%state(:, 1:steps)
-        to%shear_traction(:, 1:steps) = from%shear_traction(:, 1:steps)
-        to%normal_traction(:, 1:steps) = from%normal_traction(:, 1:steps)
-        to%pivots(1:steps) = from%pivots(1:steps)
-        to%newton_iterations(1:steps) = from%newton_iterations(1:steps)
-        to%method(1:steps) = from%method(1:steps)
-        to%fallback(1:steps) = from%fallback(1:steps)
-        to%certificate_min_z(1:steps) = from%certificate_min_z(1:steps)
-        to%certificate_min_w(1:steps) = from%certificate_min_w(1:steps)
-        to%certificate_max_complementarity(1:steps) = &
-            from%certificate_max_complementarity(1:steps)
-        to%equilibrium_residual(1:steps) = from%equilibrium_residual(1:steps)
-    end subroutine copy_steps
 
 end module ddc_model_results

@@ -20,21 +20,15 @@
 !> - /solver attributes (blas and blas_core among them) and /solver/seconds/<phase> scalar
 !>   datasets;
 !> - /sweep attributes task, tasks, parameters and one per parameter (sweep tasks only);
-!> - /history (loading history only, SPEC-EARTH 3; k steps, the first the starting state):
-!>   {sxx, syy, sxy} and each other quantity the path varies, shape (k); {ds, dn, state,
-!>   shear_traction, normal_traction} shaped (k, n) in h5py (Fortran dims (n, k)); {k1, k2}
-!>   shaped (k, tips); method, fallback, pivots, newton_iterations, certificate_min_z,
-!>   certificate_min_w, certificate_max_complementarity, equilibrium_residual, shape (k);
-!>   leg_steps (increments per leg); /elements hold the last step. With fracture growth
-!>   (SPEC-GROWTH 6) the rows are the final geometry's elements (NaN and state -1 before an
-!>   element was made), {k1, k2} those of its tips, and element_count (k), tip_fracture_id,
-!>   tip_end (tips that may grow) and grown_length (k, tips) are added.
-!> - /growth (fracture growth only, SPEC-GROWTH 3; k records, one per tip per step):
-!>   {step, fracture_id, end, x, y, k1, k2, k_eq, mts_angle, angle, corrections, k2_after,
-!>   length, reason} and, along a load path, load_step, shape (k); attributes toughness,
-!>   increment, element_length, tips, criterion, max_corrections, steps, steps_taken,
-!>   end_reason, reason_coding; and
-!>   /elements/created_step; /elements, /tips and /fields describe the final geometry.
+!> - /history (loading history only, SPEC-EARTH 3; k steps, the first the starting state)
+!>   and /growth (fracture growth only, SPEC-GROWTH 3; k records, one per tip per step):
+!>   one dataset per column of the record (ddc_model_records' lists, written by
+!>   ddc_output_hdf5_records), a column of rows and steps shaped (k, rows) in h5py (Fortran
+!>   dims (rows, k)); /history/leg_steps (increments per leg) and the load quantities the
+!>   path varies (the remote stress always); /growth attributes toughness, increment,
+!>   element_length, tips, criterion, max_corrections, fractures, steps, steps_taken,
+!>   end_reason, reason_coding; /elements/created_step. /elements hold the last step of a
+!>   history; /elements, /tips and /fields describe the final geometry of a growth run.
 module ddc_output_hdf5
     use, intrinsic :: iso_fortran_env, only: int64
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_positive_inf
@@ -42,21 +36,23 @@ module ddc_output_hdf5
     use ddc_error, only: error_type, set_internal_error
     use ddc_version, only: program_name, program_version, git_commit
     use ddc_model_types, only: model_type, rigid_joint, observation_grid, observation_kind_names, &
-        symmetry_names, domain_names, load_path_names, growth_tips_names, growth_criterion_names
+        symmetry_names, domain_names
     use ddc_model_loads, only: total_pressure, shear_modulus_of
     use ddc_model_fingerprint, only: recorded_fingerprint
     use ddc_model_results, only: model_results, state_free, state_stick, state_slip, &
-        state_open, growth_reason_names, growth_end_names
+        state_open
+    use ddc_model_records, only: state_coding
     use ddc_contact_options, only: lcp_method_names, open_cohesion_names
     use ddc_output_atomic, only: partial_name, publish_file, remove_file, resolve_target, &
         explain_write_failure
     use ddc_output_hdf5_handles, only: h5_object, open_session, close_session, create_file, &
         close_file, create_group, close_group
+    use ddc_output_hdf5_records, only: write_history, write_growth, write_growth_elements
     use ddc_output_hdf5_write, only: write_real_1d, write_int_1d, write_real_dataset, &
         write_int_dataset, write_string_1d, write_attribute
     use ddc_output_timestamp, only: utc_timestamp
     use ddc_output_provenance, only: run_provenance, describe_run
-    use ddc_text, only: itoa
+    use ddc_text, only: itoa, allocated_text
     implicit none
     private
 
@@ -71,8 +67,6 @@ module ddc_output_hdf5
     !> Codings stored as attributes of the integer datasets
     character(len=*), parameter :: condition_coding = '1 traction, 2 displacement, ' &
         //'3 mixed_us_sn, 4 mixed_ss_un, 5 contact, 6 prescribed_dd'
-    character(len=*), parameter :: state_coding = '0 free (TWODD-style condition), ' &
-        //'1 stick, 2 slip, 3 open'
     character(len=*), parameter :: graded_coding = '0 tip element as long as its ' &
         //'neighbour, 1 graded mesh at the tip (K less accurate)'
     character(len=*), parameter :: near_coding = '0 clear, 1 within one element length ' &
@@ -117,8 +111,10 @@ contains
             call write_solver(root, results, provenance, real(now - start, wp) / &
                               real(rate, wp), error)
             if (model%sweep%tasks > 0) call write_sweep(root, model, error)
-            if (allocated(results%history%ds)) call write_history(root, model, results, error)
-            if (allocated(results%growth%step)) call write_growth(root, model, results, error)
+            if (allocated(results%history%ds)) call write_history(root, model, &
+                                                                  results%history, error)
+            if (allocated(results%growth%step)) call write_growth(root, model, results%growth, &
+                                                                  error)
             call write_attribute(root, 'complete', 1, error)
             call close_file(root, error)
         end if
@@ -182,19 +178,20 @@ contains
         call write_attribute(root, 'cpu', provenance%cpu, error)
         call write_attribute(root, 'threads', provenance%threads, error)
         call write_attribute(root, 'blas_threads', provenance%blas_threads, error)
-        call write_attribute(root, 'title', text(model%title), error)
-        call write_attribute(root, 'input_file', text(model%input_file), error)
+        call write_attribute(root, 'title', allocated_text(model%title), error)
+        call write_attribute(root, 'input_file', allocated_text(model%input_file), error)
         ! An attribute holds at most 64 KiB (HDF5's object header); a longer input goes to
         ! the dataset /input_text, and the attribute says so.
-        if (len(text(model%input_text)) <= max_attribute_text) then
-            call write_attribute(root, 'input_text', text(model%input_text), error)
+        if (len(allocated_text(model%input_text)) <= max_attribute_text) then
+            call write_attribute(root, 'input_text', allocated_text(model%input_text), error)
         else
             call write_attribute(root, 'input_text', 'the input ('// &
-                itoa(len(text(model%input_text)))//' bytes) is the dataset /input_text', error)
-            call write_string_1d(root, 'input_text', [text(model%input_text)], error)
+                itoa(len(allocated_text(model%input_text)))//' bytes) is the dataset '// &
+                '/input_text', error)
+            call write_string_1d(root, 'input_text', [allocated_text(model%input_text)], error)
         end if
-        call write_attribute(root, 'length_unit', text(model%length_unit), error)
-        call write_attribute(root, 'stress_unit', text(model%stress_unit), error)
+        call write_attribute(root, 'length_unit', allocated_text(model%length_unit), error)
+        call write_attribute(root, 'stress_unit', allocated_text(model%stress_unit), error)
         call write_attribute(root, 'youngs_modulus', model%youngs_modulus, error)
         call write_attribute(root, 'poissons_ratio', model%poissons_ratio, error)
         call write_attribute(root, 'shear_modulus', shear_modulus_of(model), error)
@@ -226,8 +223,8 @@ contains
         type(h5_object) :: group
         character(len=:), allocatable :: length, stress, given
 
-        length = text(model%length_unit)
-        stress = text(model%stress_unit)
+        length = allocated_text(model%length_unit)
+        stress = allocated_text(model%stress_unit)
         given = stress//' or '//length//' (by condition)'
         call create_group(root, 'elements', group, error)
         if (allocated(error)) return
@@ -276,10 +273,7 @@ contains
                                stress//'/'//length, error)
             call write_real_1d(group, 'normal_stiffness', &
                                rigid_as_infinity(e%normal_stiffness), stress//'/'//length, error)
-            if (allocated(results%growth%created_step)) then
-                call write_int_1d(group, 'created_step', results%growth%created_step, error, &
-                                  '0 the input, k growth step k')
-            end if
+            call write_growth_elements(group, model, results%growth, error)
         end associate
         call close_group(group, error)
     end subroutine write_elements
@@ -305,7 +299,7 @@ contains
         if (allocated(model%fractures)) n = size(model%fractures)
         width = 1
         do i = 1, n
-            width = max(width, len(text(model%fractures(i)%name)))
+            width = max(width, len(allocated_text(model%fractures(i)%name)))
         end do
         call create_group(root, 'fractures', group, error)
         if (allocated(error)) return
@@ -314,7 +308,7 @@ contains
             integer :: first(n), last(n)
 
             do i = 1, n
-                names(i) = text(model%fractures(i)%name)
+                names(i) = allocated_text(model%fractures(i)%name)
                 first(i) = model%fractures(i)%first_element
                 last(i) = model%fractures(i)%last_element
             end do
@@ -362,8 +356,8 @@ contains
         real(wp), allocatable :: none_real(:)
         integer, allocatable :: none_int(:)
 
-        length = text(model%length_unit)
-        k_unit = text(model%stress_unit)//' '//length//'^0.5'
+        length = allocated_text(model%length_unit)
+        k_unit = allocated_text(model%stress_unit)//' '//length//'^0.5'
         call create_group(root, 'tips', group, error)
         if (allocated(error)) return
         associate (t => results%tips)
@@ -400,8 +394,8 @@ contains
         integer, allocatable :: dims(:)
         integer :: i
 
-        length = text(model%length_unit)
-        stress = text(model%stress_unit)
+        length = allocated_text(model%length_unit)
+        stress = allocated_text(model%stress_unit)
         call create_group(root, 'fields', fields, error)
         if (allocated(error)) return
         if (allocated(model%observations)) then
@@ -412,7 +406,7 @@ contains
                     else
                         dims = [size(o%x)]
                     end if
-                    call create_group(fields, text(o%name), set, error)
+                    call create_group(fields, allocated_text(o%name), set, error)
                     if (allocated(error)) exit
                     call write_attribute(set, 'kind', trim(observation_kind_names(o%kind)), &
                         error)
@@ -451,8 +445,8 @@ contains
         call create_group(root, 'solver', solver, error)
         if (allocated(error)) return
         associate (s => results%solver, state => results%elements%state)
-            call write_attribute(solver, 'method', text(s%method), error)
-            call write_attribute(solver, 'fallback', text(s%fallback), error)
+            call write_attribute(solver, 'method', allocated_text(s%method), error)
+            call write_attribute(solver, 'fallback', allocated_text(s%fallback), error)
             call write_attribute(solver, 'newton_iterations', s%newton_iterations, error)
             call write_attribute(solver, 'factorizations', s%counts%factorizations, error)
             call write_attribute(solver, 'low_rank_updates', s%counts%updates, error)
@@ -496,154 +490,5 @@ contains
         end associate
         call close_group(solver, error)
     end subroutine write_solver
-
-    !> /history: the load, DDs, states and certificate of every step of a loading history.
-    subroutine write_history(root, model, results, error)
-        type(h5_object), intent(in) :: root
-        type(model_type), intent(in) :: model
-        type(model_results), intent(in) :: results
-        type(error_type), allocatable, intent(inout) :: error
-        type(h5_object) :: group
-        character(len=:), allocatable :: length, stress, units
-        real(wp), allocatable :: path_values(:)
-        integer :: q, dims(2), tip_dims(2)
-
-        length = text(model%length_unit)
-        stress = text(model%stress_unit)
-        call create_group(root, 'history', group, error)
-        if (allocated(error)) return
-        associate (h => results%history)
-            dims = shape(h%ds)
-            do q = 1, size(load_path_names)
-                if (q > 3 .and. .not. model%load_path%varies(q)) cycle
-                units = stress
-                if (q >= 4 .and. q <= 6) units = stress//'/'//length
-                ! A row of h%load is strided: copied here, not as a hidden temporary
-                path_values = h%load(q, :)
-                call write_real_1d(group, trim(load_path_names(q)), path_values, units, error)
-            end do
-            call write_real_dataset(group, 'ds', reshape(h%ds, [size(h%ds)]), dims, length, &
-                                    error)
-            call write_real_dataset(group, 'dn', reshape(h%dn, [size(h%dn)]), dims, length, &
-                                    error)
-            if (allocated(h%element_count)) then
-                call write_int_dataset(group, 'state', reshape(h%state, [size(h%state)]), &
-                                       dims, error, state_coding//', -1 not made yet')
-            else
-                call write_int_dataset(group, 'state', reshape(h%state, [size(h%state)]), &
-                                       dims, error, state_coding)
-            end if
-            call write_real_dataset(group, 'shear_traction', reshape(h%shear_traction, &
-                                    [size(h%shear_traction)]), dims, stress, error)
-            call write_real_dataset(group, 'normal_traction', reshape(h%normal_traction, &
-                                    [size(h%normal_traction)]), dims, stress, error)
-            tip_dims = shape(h%k1)
-            units = stress//' '//length//'^0.5'
-            call write_real_dataset(group, 'k1', reshape(h%k1, [size(h%k1)]), tip_dims, units, &
-                                    error)
-            call write_real_dataset(group, 'k2', reshape(h%k2, [size(h%k2)]), tip_dims, units, &
-                                    error)
-            call write_string_1d(group, 'method', h%method, error)
-            call write_string_1d(group, 'fallback', h%fallback, error)
-            call write_int_1d(group, 'pivots', h%pivots, error)
-            call write_int_1d(group, 'newton_iterations', h%newton_iterations, error)
-            call write_real_1d(group, 'certificate_min_z', h%certificate_min_z, '1', error)
-            call write_real_1d(group, 'certificate_min_w', h%certificate_min_w, '1', error)
-            call write_real_1d(group, 'certificate_max_complementarity', &
-                               h%certificate_max_complementarity, '1', error)
-            call write_real_1d(group, 'equilibrium_residual', h%equilibrium_residual, '1', &
-                               error)
-            call write_int_1d(group, 'leg_steps', model%load_path%steps, error)
-            if (allocated(h%element_count)) then
-                call write_int_1d(group, 'element_count', h%element_count, error)
-                call write_int_1d(group, 'tip_fracture_id', h%tip_fracture_id, error)
-                call write_int_1d(group, 'tip_end', h%tip_end, error, '0 begin tip, 1 end tip')
-                call write_real_dataset(group, 'grown_length', reshape(h%grown_length, &
-                                        [size(h%grown_length)]), shape(h%grown_length), &
-                                        length, error)
-            end if
-        end associate
-        call close_group(group, error)
-    end subroutine write_history
-
-    !> /growth: one record per tip per step of a fracture growth run, and its settings.
-    subroutine write_growth(root, model, results, error)
-        type(h5_object), intent(in) :: root
-        type(model_type), intent(in) :: model
-        type(model_results), intent(in) :: results
-        type(error_type), allocatable, intent(inout) :: error
-        type(h5_object) :: group
-        character(len=:), allocatable :: length, k_unit, coding
-        integer :: r
-
-        length = text(model%length_unit)
-        k_unit = text(model%stress_unit)//' '//length//'^0.5'
-        coding = ''
-        do r = lbound(growth_reason_names, 1), ubound(growth_reason_names, 1)
-            if (r > lbound(growth_reason_names, 1)) coding = coding//', '
-            coding = coding//itoa(r)//' '//trim(growth_reason_names(r))
-        end do
-        call create_group(root, 'growth', group, error)
-        if (allocated(error)) return
-        associate (g => results%growth, o => model%growth)
-            call write_int_1d(group, 'step', g%step, error)
-            if (allocated(model%load_path%vertex)) call write_int_1d(group, 'load_step', &
-                                                                     g%load_step, error)
-            call write_int_1d(group, 'fracture_id', g%fracture_id, error)
-            call write_int_1d(group, 'end', g%end, error, '0 begin tip, 1 end tip')
-            call write_real_1d(group, 'x', g%x, length, error)
-            call write_real_1d(group, 'y', g%y, length, error)
-            call write_real_1d(group, 'k1', g%k1, k_unit, error)
-            call write_real_1d(group, 'k2', g%k2, k_unit, error)
-            call write_real_1d(group, 'k_eq', g%k_eq, k_unit, error)
-            call write_real_1d(group, 'mts_angle', g%mts_angle, 'degree', error)
-            call write_real_1d(group, 'angle', g%angle, 'degree', error)
-            call write_int_1d(group, 'corrections', g%corrections, error)
-            call write_real_1d(group, 'k2_after', g%k2_after, k_unit, error)
-            call write_real_1d(group, 'length', g%length, length, error)
-            call write_int_1d(group, 'reason', g%reason, error, coding)
-            call write_attribute(group, 'toughness', o%toughness, error)
-            ! 0: the default (per tip: twice / once the tip element's length)
-            call write_attribute(group, 'increment', o%increment, error)
-            call write_attribute(group, 'element_length', o%element_length, error)
-            call write_attribute(group, 'tips', trim(growth_tips_names(o%tips)), error)
-            call write_attribute(group, 'criterion', trim(growth_criterion_names(o%criterion)), &
-                                 error)
-            call write_attribute(group, 'max_corrections', o%max_corrections, error)
-            call write_attribute(group, 'fractures', growing_fractures(model), error)
-            call write_attribute(group, 'steps', o%steps, error)
-            call write_attribute(group, 'steps_taken', g%steps_taken, error)
-            call write_attribute(group, 'end_reason', trim(growth_end_names(g%end_reason)), &
-                                 error)
-            call write_attribute(group, 'reason_coding', coding, error)
-        end associate
-        call close_group(group, error)
-    end subroutine write_growth
-
-    !> Names of the fractures whose tips may grow, comma separated.
-    function growing_fractures(model) result(names)
-        type(model_type), intent(in) :: model
-        character(len=:), allocatable :: names
-        integer :: f
-
-        names = ''
-        do f = 1, size(model%fractures)
-            if (.not. model%growth%fracture_grows(f)) cycle
-            if (len(names) > 0) names = names//', '
-            names = names//text(model%fractures(f)%name)
-        end do
-    end function growing_fractures
-
-    !> The value of an optional string, '' when it is not allocated.
-    pure function text(value) result(string)
-        character(len=:), allocatable, intent(in) :: value
-        character(len=:), allocatable :: string
-
-        if (allocated(value)) then
-            string = value
-        else
-            string = ''
-        end if
-    end function text
 
 end module ddc_output_hdf5

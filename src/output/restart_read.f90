@@ -1,19 +1,39 @@
 !> Read the end of an earlier run from its complete result file (--resume, SPEC-GROWTH 8):
 !> the final geometry's end points and fracture ranges, its element results and tips, the
-!> growth record and the loading history, bit for bit as written (ddc_output_hdf5). The
-!> file was checked before (app/resume_check: complete, same version and model), so a
-!> dataset that is missing here is an error of the file.
+!> growth record and the loading history (every column of their lists, ddc_model_records, that
+!> a resumed run goes on from), bit for bit as written (ddc_output_hdf5). The file was
+!> checked before (app/resume_check: complete, same version and model), so a dataset that is
+!> missing here is an error of the file.
 module ddc_output_restart_read
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_io_failure
-    use ddc_model_results, only: growth_end_names
+    use ddc_model_results, only: growth_record, solver_record, growth_end_names
     use ddc_model_restart, only: restart_state
+    use ddc_model_records, only: record_column, record_column_action, &
+        for_each_history_column, for_each_growth_column, column_loads, column_growth_steps, &
+        column_growing_tips, column_growing_tip_steps, column_records, column_path_records, &
+        column_elements
     use ddc_output_hdf5_read, only: read_real_dataset, read_int_dataset, read_string_dataset, &
-        read_string_attribute, read_int_attribute, read_real_attribute, has_dataset
+        read_dataset_dims, read_string_attribute, read_int_attribute, read_real_attribute, &
+        has_dataset
     implicit none
     private
 
     public :: read_restart
+
+    !> Reads datasets of one result file; after a failure, nothing more.
+    type, extends(record_column_action) :: restart_reader
+        !> The result file
+        character(len=:), allocatable :: path
+        !> Set (exit_io_failure, naming the file and dataset) when a dataset cannot be read
+        type(error_type), allocatable :: error
+    contains
+        procedure :: on_reals => read_real_column
+        procedure :: on_integers => read_integer_column
+        procedure :: on_real_table => read_real_table
+        procedure :: on_integer_table => read_integer_table
+        procedure :: on_strings => read_string_column
+    end type restart_reader
 
 contains
 
@@ -25,42 +45,59 @@ contains
         type(restart_state), intent(out) :: state
         !> Set (exit_io_failure, naming the file) when a dataset cannot be read
         type(error_type), allocatable, intent(out) :: error
-        character(len=:), allocatable :: end_name
-        integer :: n, i, e
+        type(restart_reader) :: reader
 
-        call reals('/elements/x_begin', state%x_begin)
-        call reals('/elements/y_begin', state%y_begin)
-        call reals('/elements/x_end', state%x_end)
-        call reals('/elements/y_end', state%y_end)
-        call integers('/elements/fracture_id', state%fracture_id)
-        call integers('/fractures/first_element', state%first_element)
-        call integers('/fractures/last_element', state%last_element)
-        associate (r => state%results%elements)
-            call reals('/elements/ds', r%ds)
-            call reals('/elements/dn', r%dn)
-            call integers('/elements/state', r%state)
-            call reals('/elements/shear_traction', r%shear_traction)
-            call reals('/elements/normal_traction', r%normal_traction)
-            call reals('/elements/us_minus', r%us_minus)
-            call reals('/elements/un_minus', r%un_minus)
-            call reals('/elements/us_plus', r%us_plus)
-            call reals('/elements/un_plus', r%un_plus)
+        reader%path = path
+        call read_final_geometry(reader, state)
+        call read_last_solve(reader, state%results%solver)
+        if (has_dataset(path, '/growth/step')) call read_growth(reader, state%results%growth)
+        if (has_dataset(path, '/history/pivots')) call for_each_history_column( &
+            state%results%history, reader)
+        call move_alloc(reader%error, error)
+    end subroutine read_restart
+
+    !> The final geometry's end points and fracture ranges, its element results and tips.
+    subroutine read_final_geometry(reader, state)
+        !> The reader
+        type(restart_reader), intent(inout) :: reader
+        !> The restart state
+        type(restart_state), intent(inout) :: state
+        integer :: i, e
+
+        call read_reals(reader, '/elements/x_begin', state%x_begin)
+        call read_reals(reader, '/elements/y_begin', state%y_begin)
+        call read_reals(reader, '/elements/x_end', state%x_end)
+        call read_reals(reader, '/elements/y_end', state%y_end)
+        call read_integers(reader, '/elements/fracture_id', state%fracture_id)
+        call read_integers(reader, '/fractures/first_element', state%first_element)
+        call read_integers(reader, '/fractures/last_element', state%last_element)
+        associate (r => state%results%elements, path => reader%path)
+            call read_reals(reader, '/elements/ds', r%ds)
+            call read_reals(reader, '/elements/dn', r%dn)
+            call read_integers(reader, '/elements/state', r%state)
+            call read_reals(reader, '/elements/shear_traction', r%shear_traction)
+            call read_reals(reader, '/elements/normal_traction', r%normal_traction)
+            call read_reals(reader, '/elements/us_minus', r%us_minus)
+            call read_reals(reader, '/elements/un_minus', r%un_minus)
+            call read_reals(reader, '/elements/us_plus', r%us_plus)
+            call read_reals(reader, '/elements/un_plus', r%un_plus)
             if (has_dataset(path, '/elements/sf_in_force')) then
-                call reals('/elements/sf_in_force', r%sf_in_force)
-                call reals('/elements/tensile_strength_in_force', r%tensile_in_force)
+                call read_reals(reader, '/elements/sf_in_force', r%sf_in_force)
+                call read_reals(reader, '/elements/tensile_strength_in_force', &
+                                r%tensile_in_force)
             end if
-            if (has_dataset(path, '/elements/mu_in_force')) call reals('/elements/mu_in_force', &
-                                                                r%mu_in_force)
+            if (has_dataset(path, '/elements/mu_in_force')) call read_reals(reader, &
+                '/elements/mu_in_force', r%mu_in_force)
         end associate
         associate (t => state%results%tips)
-            call reals('/tips/x', t%x)
-            call reals('/tips/y', t%y)
-            call integers('/tips/fracture_id', t%fracture_id)
-            call integers('/tips/element', t%element)
-            call reals('/tips/k1', t%k1)
-            call reals('/tips/k2', t%k2)
-            call integers('/tips/graded', t%graded)
-            if (allocated(error)) return
+            call read_reals(reader, '/tips/x', t%x)
+            call read_reals(reader, '/tips/y', t%y)
+            call read_integers(reader, '/tips/fracture_id', t%fracture_id)
+            call read_integers(reader, '/tips/element', t%element)
+            call read_reals(reader, '/tips/k1', t%k1)
+            call read_reals(reader, '/tips/k2', t%k2)
+            call read_integers(reader, '/tips/graded', t%graded)
+            if (allocated(reader%error)) return
             ! tip_set%side: 2 at the element's end point, 1 at its begin
             t%n = size(t%x)
             allocate (t%side(t%n))
@@ -70,33 +107,32 @@ contains
                                   t%y(i) == state%y_end(e))
             end do
         end associate
-        call read_last_solve()
-        if (has_dataset(path, '/growth/step')) call read_growth()
-        if (allocated(error)) return
-        if (has_dataset(path, '/history/pivots')) call read_history()
+    end subroutine read_final_geometry
+
+    !> How the last solve went (/solver: method, fallback, certificate, residual): the record
+    !> of the final solution, should the resumed run not solve again.
+    subroutine read_last_solve(reader, solver)
+        !> The reader
+        type(restart_reader), intent(inout) :: reader
+        !> The solver record
+        type(solver_record), intent(inout) :: solver
+
+        if (allocated(reader%error)) return
+        call read_string_attribute(reader%path, '/solver', 'method', solver%method, reader%error)
+        if (.not. allocated(reader%error)) call read_string_attribute(reader%path, '/solver', &
+            'fallback', solver%fallback, reader%error)
+        if (allocated(reader%error)) then
+            call reading_failed(reader, '/solver attributes')
+            return
+        end if
+        call real_attribute('certificate_min_z', solver%certificate_min_z)
+        call real_attribute('certificate_min_w', solver%certificate_min_w)
+        call real_attribute('certificate_max_complementarity', &
+                            solver%certificate_max_complementarity)
+        call real_attribute('certificate_tolerance', solver%certificate_tolerance)
+        call real_attribute('equilibrium_residual', solver%equilibrium_residual)
 
     contains
-
-        !> How the last solve went (/solver: method, fallback, certificate, residual): the
-        !> record of the final solution, should the resumed run not solve again.
-        subroutine read_last_solve()
-            associate (r => state%results%solver)
-                if (allocated(error)) return
-                call read_string_attribute(path, '/solver', 'method', r%method, error)
-                if (.not. allocated(error)) call read_string_attribute(path, '/solver', &
-                    'fallback', r%fallback, error)
-                if (allocated(error)) then
-                    call reading_failed('/solver attributes')
-                    return
-                end if
-                call real_attribute('certificate_min_z', r%certificate_min_z)
-                call real_attribute('certificate_min_w', r%certificate_min_w)
-                call real_attribute('certificate_max_complementarity', &
-                                    r%certificate_max_complementarity)
-                call real_attribute('certificate_tolerance', r%certificate_tolerance)
-                call real_attribute('equilibrium_residual', r%equilibrium_residual)
-            end associate
-        end subroutine read_last_solve
 
         !> A real attribute of /solver.
         subroutine real_attribute(name, target_value)
@@ -104,131 +140,216 @@ contains
             real(wp), intent(inout) :: target_value
             real(wp), allocatable :: value(:)
 
-            if (allocated(error)) return
-            call read_real_attribute(path, '/solver', name, value, error)
-            if (allocated(error)) then
-                call reading_failed('/solver attribute '//name)
+            if (allocated(reader%error)) return
+            call read_real_attribute(reader%path, '/solver', name, value, reader%error)
+            if (allocated(reader%error)) then
+                call reading_failed(reader, '/solver attribute '//name)
             else
                 target_value = value(1)
             end if
         end subroutine real_attribute
 
-        !> The growth record.
-        subroutine read_growth()
-            associate (g => state%results%growth)
-                call integers('/growth/step', g%step)
-                if (has_dataset(path, '/growth/load_step')) then
-                    call integers('/growth/load_step', g%load_step)
-                else if (allocated(g%step)) then
-                    allocate (g%load_step(size(g%step)), source=1)
-                end if
-                call integers('/growth/fracture_id', g%fracture_id)
-                call integers('/growth/end', g%end)
-                call reals('/growth/x', g%x)
-                call reals('/growth/y', g%y)
-                call reals('/growth/k1', g%k1)
-                call reals('/growth/k2', g%k2)
-                call reals('/growth/k_eq', g%k_eq)
-                call reals('/growth/mts_angle', g%mts_angle)
-                call reals('/growth/angle', g%angle)
-                call integers('/growth/corrections', g%corrections)
-                call reals('/growth/k2_after', g%k2_after)
-                call reals('/growth/length', g%length)
-                call integers('/growth/reason', g%reason)
-                call integers('/elements/created_step', g%created_step)
-                if (allocated(error)) return
-                call read_int_attribute(path, '/growth', 'steps_taken', g%steps_taken, error)
-                if (allocated(error)) return
-                call read_string_attribute(path, '/growth', 'end_reason', end_name, error)
-                if (allocated(error)) return
-                g%end_reason = findloc([(trim(growth_end_names(i)) == trim(end_name), &
-                                         i = 1, size(growth_end_names))], .true., 1)
-                if (g%end_reason == 0) call set_error(error, exit_io_failure, path// &
-                    ': /growth end_reason '''//end_name//''' is not known')
-            end associate
-        end subroutine read_growth
+    end subroutine read_last_solve
 
-        !> The loading history's columns (the loads follow from the model's path).
-        subroutine read_history()
-            integer, allocatable :: flat_state(:)
-            integer :: k, tips
+    !> The growth record: its columns, steps_taken and end_reason.
+    subroutine read_growth(reader, record)
+        !> The reader
+        type(restart_reader), intent(inout) :: reader
+        !> The growth record
+        type(growth_record), intent(inout) :: record
+        character(len=:), allocatable :: end_name
+        integer :: i
 
-            associate (h => state%results%history)
-                call integers('/history/pivots', h%pivots)
-                if (allocated(error)) return
-                k = size(h%pivots)
-                n = size(state%x_begin)
-                tips = state%results%tips%n
-                call columns('/history/ds', n, k, h%ds)
-                call columns('/history/dn', n, k, h%dn)
-                call columns('/history/shear_traction', n, k, h%shear_traction)
-                call columns('/history/normal_traction', n, k, h%normal_traction)
-                call columns('/history/k1', tips, k, h%k1)
-                call columns('/history/k2', tips, k, h%k2)
-                call integers('/history/state', flat_state)
-                if (allocated(flat_state)) h%state = reshape(flat_state, [n, k])
-                call integers('/history/newton_iterations', h%newton_iterations)
-                call strings('/history/method', h%method)
-                call strings('/history/fallback', h%fallback)
-                call reals('/history/certificate_min_z', h%certificate_min_z)
-                call reals('/history/certificate_min_w', h%certificate_min_w)
-                call reals('/history/certificate_max_complementarity', &
-                           h%certificate_max_complementarity)
-                call reals('/history/equilibrium_residual', h%equilibrium_residual)
-                if (has_dataset(path, '/history/element_count')) call integers( &
-                    '/history/element_count', h%element_count)
-            end associate
-        end subroutine read_history
+        call for_each_growth_column(record, reader)
+        if (allocated(reader%error)) return
+        ! Without a load path the file has no load_step: every record is of load step 1.
+        if (.not. allocated(record%load_step)) allocate (record%load_step(size(record%step)), &
+                                                         source=1)
+        call read_int_attribute(reader%path, '/growth', 'steps_taken', record%steps_taken, &
+                                reader%error)
+        if (allocated(reader%error)) return
+        call read_string_attribute(reader%path, '/growth', 'end_reason', end_name, reader%error)
+        if (allocated(reader%error)) return
+        record%end_reason = findloc([(trim(growth_end_names(i)) == trim(end_name), &
+                                      i = 1, size(growth_end_names))], .true., 1)
+        if (record%end_reason == 0) call set_error(reader%error, exit_io_failure, &
+            reader%path//': /growth end_reason '''//end_name//''' is not known')
+    end subroutine read_growth
 
-        !> A real dataset of the history shaped (rows, steps) in Fortran.
-        subroutine columns(dataset, rows, steps, values)
-            character(len=*), intent(in) :: dataset
-            integer, intent(in) :: rows, steps
-            real(wp), allocatable, intent(out) :: values(:, :)
-            real(wp), allocatable :: flat(:)
+    !> Whether the reader reads a column: every column a resumed run goes on from (the loads
+    !> follow from the model's path, the tips that may grow and their grown length from the
+    !> growth record), those of growth along a load path when the file has them.
+    logical function reads(reader, column)
+        !> The reader
+        type(restart_reader), intent(in) :: reader
+        !> The column
+        type(record_column), intent(in) :: column
 
-            call reals(dataset, flat)
-            if (allocated(flat)) values = reshape(flat, [rows, steps])
-        end subroutine columns
+        reads = .false.
+        if (allocated(reader%error)) return
+        select case (column%kind)
+        case (column_loads, column_growing_tips, column_growing_tip_steps)
+            reads = .false.
+        case (column_growth_steps, column_path_records)
+            reads = has_dataset(reader%path, dataset_of(column))
+        case default
+            reads = .true.
+        end select
+    end function reads
 
-        subroutine reals(dataset, values)
-            character(len=*), intent(in) :: dataset
-            real(wp), allocatable, intent(inout) :: values(:)
+    !> The path of a column's dataset in the file.
+    pure function dataset_of(column) result(dataset)
+        !> The column
+        type(record_column), intent(in) :: column
+        character(len=:), allocatable :: dataset
 
-            if (allocated(error)) return
-            if (allocated(values)) deallocate (values)
-            call read_real_dataset(path, dataset, values, error)
-            if (allocated(error)) call reading_failed(dataset)
-        end subroutine reals
+        select case (column%kind)
+        case (column_elements)
+            dataset = '/elements/'//column%name
+        case (column_records, column_path_records)
+            dataset = '/growth/'//column%name
+        case default
+            dataset = '/history/'//column%name
+        end select
+    end function dataset_of
 
-        subroutine integers(dataset, values)
-            character(len=*), intent(in) :: dataset
-            integer, allocatable, intent(inout) :: values(:)
+    !> A real column of one value per step or record.
+    subroutine read_real_column(action, column, values)
+        !> The reader
+        class(restart_reader), intent(inout) :: action
+        !> The column
+        type(record_column), intent(in) :: column
+        !> Its values
+        real(wp), allocatable, intent(inout) :: values(:)
 
-            if (allocated(error)) return
-            if (allocated(values)) deallocate (values)
-            call read_int_dataset(path, dataset, values, error)
-            if (allocated(error)) call reading_failed(dataset)
-        end subroutine integers
+        if (reads(action, column)) call read_reals(action, dataset_of(column), values)
+    end subroutine read_real_column
 
-        ! allow(C072): the history's strings have the lengths of history_record
-        subroutine strings(dataset, values)
-            character(len=*), intent(in) :: dataset
-            character(len=*), allocatable, intent(inout) :: values(:)
+    !> An integer column of one value per step or record.
+    subroutine read_integer_column(action, column, values)
+        !> The reader
+        class(restart_reader), intent(inout) :: action
+        !> The column
+        type(record_column), intent(in) :: column
+        !> Its values
+        integer, allocatable, intent(inout) :: values(:)
 
-            if (allocated(error)) return
-            if (allocated(values)) deallocate (values)
-            call read_string_dataset(path, dataset, values, error)
-            if (allocated(error)) call reading_failed(dataset)
-        end subroutine strings
+        if (reads(action, column)) call read_integers(action, dataset_of(column), values)
+    end subroutine read_integer_column
 
-        subroutine reading_failed(dataset)
-            character(len=*), intent(in) :: dataset
+    !> A real column of rows and steps, shaped as the file's dataset.
+    subroutine read_real_table(action, column, values)
+        !> The reader
+        class(restart_reader), intent(inout) :: action
+        !> The column
+        type(record_column), intent(in) :: column
+        !> Its values
+        real(wp), allocatable, intent(inout) :: values(:, :)
+        real(wp), allocatable :: flat(:)
+        integer :: dims(2)
 
-            error%code = exit_io_failure
-            error%message = '--resume '//path//': reading '//dataset//': '//error%message
-        end subroutine reading_failed
+        if (.not. reads(action, column)) return
+        call read_reals(action, dataset_of(column), flat)
+        call read_table_dims(action, dataset_of(column), dims)
+        if (.not. allocated(action%error)) values = reshape(flat, dims)
+    end subroutine read_real_table
 
-    end subroutine read_restart
+    !> An integer column of rows and steps, shaped as the file's dataset.
+    subroutine read_integer_table(action, column, values)
+        !> The reader
+        class(restart_reader), intent(inout) :: action
+        !> The column
+        type(record_column), intent(in) :: column
+        !> Its values
+        integer, allocatable, intent(inout) :: values(:, :)
+        integer, allocatable :: flat(:)
+        integer :: dims(2)
+
+        if (.not. reads(action, column)) return
+        call read_integers(action, dataset_of(column), flat)
+        call read_table_dims(action, dataset_of(column), dims)
+        if (.not. allocated(action%error)) values = reshape(flat, dims)
+    end subroutine read_integer_table
+
+    !> A string column of one value per step.
+    ! allow(C072): the strings have the lengths of history_record
+    subroutine read_string_column(action, column, values)
+        !> The reader
+        class(restart_reader), intent(inout) :: action
+        !> The column
+        type(record_column), intent(in) :: column
+        !> Its values
+        character(len=*), allocatable, intent(inout) :: values(:)
+
+        if (.not. reads(action, column)) return
+        if (allocated(values)) deallocate (values)
+        call read_string_dataset(action%path, dataset_of(column), values, action%error)
+        if (allocated(action%error)) call reading_failed(action, dataset_of(column))
+    end subroutine read_string_column
+
+    !> The values of a real dataset.
+    subroutine read_reals(reader, dataset, values)
+        !> The reader
+        type(restart_reader), intent(inout) :: reader
+        !> Path of the dataset in the file
+        character(len=*), intent(in) :: dataset
+        !> Its values, shape (size of the dataset)
+        real(wp), allocatable, intent(inout) :: values(:)
+
+        if (allocated(reader%error)) return
+        if (allocated(values)) deallocate (values)
+        call read_real_dataset(reader%path, dataset, values, reader%error)
+        if (allocated(reader%error)) call reading_failed(reader, dataset)
+    end subroutine read_reals
+
+    !> The values of an integer dataset.
+    subroutine read_integers(reader, dataset, values)
+        !> The reader
+        type(restart_reader), intent(inout) :: reader
+        !> Path of the dataset in the file
+        character(len=*), intent(in) :: dataset
+        !> Its values, shape (size of the dataset)
+        integer, allocatable, intent(inout) :: values(:)
+
+        if (allocated(reader%error)) return
+        if (allocated(values)) deallocate (values)
+        call read_int_dataset(reader%path, dataset, values, reader%error)
+        if (allocated(reader%error)) call reading_failed(reader, dataset)
+    end subroutine read_integers
+
+    !> The dims of a dataset of rows and steps (Fortran order); an error for another rank.
+    subroutine read_table_dims(reader, dataset, dims)
+        !> The reader
+        type(restart_reader), intent(inout) :: reader
+        !> Path of the dataset in the file
+        character(len=*), intent(in) :: dataset
+        !> Rows and steps
+        integer, intent(out) :: dims(2)
+        integer, allocatable :: extent(:)
+
+        dims = 0
+        if (allocated(reader%error)) return
+        call read_dataset_dims(reader%path, dataset, extent, reader%error)
+        if (.not. allocated(reader%error)) then
+            if (size(extent) /= 2) then
+                call set_error(reader%error, exit_io_failure, 'it is not a table (rows, steps)')
+            else
+                dims = extent
+            end if
+        end if
+        if (allocated(reader%error)) call reading_failed(reader, dataset)
+    end subroutine read_table_dims
+
+    !> The reader's error names the file and the dataset.
+    subroutine reading_failed(reader, dataset)
+        !> The reader, its error set
+        type(restart_reader), intent(inout) :: reader
+        !> Path of the dataset in the file
+        character(len=*), intent(in) :: dataset
+
+        reader%error%code = exit_io_failure
+        reader%error%message = '--resume '//reader%path//': reading '//dataset//': '// &
+            reader%error%message
+    end subroutine reading_failed
 
 end module ddc_output_restart_read

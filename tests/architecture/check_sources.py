@@ -46,9 +46,16 @@
     src/growth/criterion.f90, each with a `case default` (an unknown code is an internal
     error, not silently one of the others), and no other file of src/growth/ reads
     `%criterion`.
+11. No column of a run's records is forgotten on its way to the file and back: every array
+    component of `history_record` and `growth_record` (src/model/results.f90) is in its one
+    list, `for_each_history_column` or `for_each_growth_column` (src/model/records.f90),
+    under its own name; the routines that handle every column (the layout of a record, the
+    HDF5 writer, the restart reader) go through the list; and the dataset lists of
+    scripts/ddc2d_h5.py name exactly the datasets the lists give /history and /growth.
 
 Prints every violation and exits 1 when there is one; --graph prints the folder graph.
 """
+import ast
 import itertools
 import re
 import sys
@@ -482,6 +489,147 @@ def check_lcp_solvers(root, problems):
                             f"({' -> '.join(chain)}); the solvers take plain arrays")
 
 
+# The records' columns (check 11): (type, its list, how the list names a component).
+RECORD_TYPES = "src/model/results.f90"
+RECORD_LISTS = "src/model/records.f90"
+RECORDS = [("history_record", "for_each_history_column", "history%"),
+           ("growth_record", "for_each_growth_column", "record%")]
+# The routines that handle every column of a record, and the list each goes through.
+THROUGH_RECORD_LISTS = [("src/model/records.f90", "lay_out_history", "for_each_history_column"),
+                        ("src/model/records.f90", "empty_growth_record",
+                         "for_each_growth_column"),
+                        ("src/output/hdf5_records.f90", "write_history",
+                         "for_each_history_column"),
+                        ("src/output/hdf5_records.f90", "write_growth", "for_each_growth_column"),
+                        ("src/output/hdf5_records.f90", "write_growth_elements",
+                         "for_each_growth_column"),
+                        ("src/output/restart_read.f90", "read_restart",
+                         "for_each_history_column"),
+                        ("src/output/restart_read.f90", "read_growth", "for_each_growth_column")]
+# A list line: call action%on_<shape>(column('<name>', <kind>, ...), <record>%<component>)
+LIST_ENTRY = re.compile(r"call\s+action\s*%\s*on_(\w+)\s*\(\s*column\s*\(\s*'(\w+)'\s*,"
+                        r"\s*(\w+).*,\s*(\w+)\s*%\s*(\w+)\s*\)$", re.IGNORECASE)
+# The Python reader, and which of its lists holds which columns: (constant, record, kinds or
+# shape); the rest of a record's columns (and the datasets write_history writes beside them)
+# are in the lists of REST.
+PYTHON_READER = "scripts/ddc2d_h5.py"
+PYTHON_LISTS = [("HISTORY_GROWTH_DATASETS", "for_each_history_column",
+                 {"column_growth_steps", "column_growing_tips", "column_growing_tip_steps"}),
+                ("HISTORY_STRING_DATASETS", "for_each_history_column", {"strings"}),
+                ("GROWTH_PATH_DATASETS", "for_each_growth_column", {"column_path_records"}),
+                ("GROWTH_DATASETS", "for_each_growth_column", {"column_records"})]
+REST = ("HISTORY_DATASETS", "HISTORY_STEP_DATASETS")
+# Columns that are not datasets of their group: the load (one dataset per quantity, the
+# Python list HISTORY_LOADS against load_path_names) and /elements/created_step (read_elements
+# reads every dataset of /elements).
+NOT_LISTED_KINDS = {"column_loads", "column_elements"}
+
+
+def list_entries(root, name, problems):
+    """[(shape, column name, kind, record, component)] of a record's list."""
+    text = routine(root, RECORD_LISTS, name, problems)
+    if text is None:
+        return []
+    entries = []
+    for _, statement in statements(text):
+        found = LIST_ENTRY.match(statement)
+        if found:
+            entries.append(found.groups())
+        elif re.match(r"call\s+action\s*%", statement, re.IGNORECASE):
+            problems.append(f"{RECORD_LISTS}: {name} has an entry not of the form "
+                            "call action%on_<shape>(column('<name>', <kind>, ...), "
+                            f"<record>%<component>): {statement}")
+    return entries
+
+
+def check_record_lists(root, problems):
+    """Every column of the records is in its list under its own name (check 11)."""
+    types = (root / RECORD_TYPES).read_text()
+    entries = {}
+    for record, name, prefix in RECORDS:
+        components = type_components(types, record)
+        if components is None:
+            problems.append(f"{RECORD_TYPES}: no type {record}")
+            continue
+        entries[name] = list_entries(root, name, problems)
+        listed = {}
+        for _, column, _, holder, component in entries[name]:
+            if f"{holder}%".lower() != prefix:
+                problems.append(f"{RECORD_LISTS}: {name} lists {holder}%{component}, which is "
+                                f"not a column of its {record} ({prefix}...)")
+                continue
+            listed[component.lower()] = column
+            if column.lower() != component.lower():
+                problems.append(f"{RECORD_LISTS}: {name} names the column {prefix}{component} "
+                                f"'{column}' (a column is named after its component)")
+        for component, array, _ in components:
+            if array and component not in listed:
+                problems.append(f"{RECORD_TYPES}: the column {component} of {record} is "
+                                f"missing from {name}, so it is not laid out, written or read")
+    for file, name, visitor in THROUGH_RECORD_LISTS:
+        text = routine(root, file, name, problems)
+        if text is not None and not names_in(strip_comments(text), visitor):
+            problems.append(f"{file}: {name} does not go through {visitor}")
+    check_python_lists(root, entries, problems)
+
+
+def python_lists(root, problems):
+    """{constant: tuple of strings} of the module-level tuples of the Python reader."""
+    lists = {}
+    try:
+        tree = ast.parse((root / PYTHON_READER).read_text())
+    except (OSError, SyntaxError) as failure:
+        problems.append(f"{PYTHON_READER}: cannot be read ({failure})")
+        return lists
+    for node in tree.body:
+        if isinstance(node, ast.Assign) and isinstance(node.value, ast.Tuple):
+            for target in node.targets:
+                if isinstance(target, ast.Name):
+                    lists[target.id] = tuple(ast.literal_eval(node.value))
+    return lists
+
+
+def check_python_lists(root, entries, problems):
+    """The dataset lists of the Python reader name the datasets of the record lists."""
+    lists = python_lists(root, problems)
+    wanted = [constant for constant, _, _ in PYTHON_LISTS] + list(REST) + ["HISTORY_LOADS"]
+    for constant in wanted:
+        if constant not in lists:
+            problems.append(f"{PYTHON_READER}: no list {constant}")
+    if any(constant not in lists for constant in wanted):
+        return
+    rest = set()
+    for constant, name, kinds in PYTHON_LISTS:
+        expected = {column for shape, column, kind, _, _ in entries.get(name, [])
+                    if kind.lower() in kinds or shape.lower() in kinds}
+        compare_names(f"{PYTHON_READER}: {constant}", lists[constant], expected,
+                      f"the columns of {name} it holds", problems)
+    for shape, column, kind, _, _ in entries.get("for_each_history_column", []):
+        if kind.lower() not in NOT_LISTED_KINDS and not any(
+                column in lists[constant] for constant, name, _ in PYTHON_LISTS
+                if name == "for_each_history_column"):
+            rest.add(column)
+    writer = routine(root, "src/output/hdf5_records.f90", "write_history", problems) or ""
+    rest |= set(re.findall(r"call\s+write_\w+\s*\(\s*writer%group\s*,\s*'(\w+)'",
+                           strip_comments(writer)))
+    compare_names(f"{PYTHON_READER}: {' + '.join(REST)}",
+                  sum((lists[constant] for constant in REST), ()), rest,
+                  "the other datasets of /history", problems)
+    names = re.search(r"load_path_names\(\d+\)\s*=\s*\[[^:\]]*::((?:[^\]])*)\]",
+                      (root / "src/model/types.f90").read_text())
+    loads = tuple(re.findall(r"'(\w+)'", names.group(1))) if names else ()
+    if lists["HISTORY_LOADS"] != loads:
+        problems.append(f"{PYTHON_READER}: HISTORY_LOADS {list(lists['HISTORY_LOADS'])} is not "
+                        f"load_path_names {list(loads)} (src/model/types.f90)")
+
+
+def compare_names(what, names, expected, meaning, problems):
+    for name in sorted(set(expected) - set(names)):
+        problems.append(f"{what} lacks '{name}', one of {meaning}")
+    for name in sorted(set(names) - set(expected)):
+        problems.append(f"{what} names '{name}', which is not one of {meaning}")
+
+
 def statements(text):
     """(line number, statement) of Fortran text, continuation lines joined, comments cut."""
     joined, start = "", 0
@@ -589,6 +737,7 @@ def main(argv):
     check_fingerprint(root, problems)
     check_lcp_solvers(root, problems)
     check_criteria(root, problems)
+    check_record_lists(root, problems)
     if graph_wanted:
         for folder in sorted(graph):
             print(f"{folder}: {', '.join(sorted(graph[folder])) or '-'}")
@@ -602,7 +751,8 @@ def main(argv):
               "error a test gets is read; every component of the model is hashed in its "
               "fingerprint or marked not hashed; no LCP solver reaches the fault law; "
               "every growth criterion has its case in each dispatch, the only reader of "
-              "the criterion")
+              "the criterion; every column of the history and growth records is in its "
+              "list, and the Python reader knows its dataset")
     return 1 if problems else 0
 
 

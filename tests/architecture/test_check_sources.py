@@ -1,8 +1,8 @@
 """The architecture checks fail when fed a planted violation (CTest architecture_checks).
 
-Each case copies the sources the checks read (src/, app/, tests/fortran/ and
-docs/ARCHITECTURE.md) to a temporary folder, plants one violation, and expects
-check_sources.py to exit 1 naming it; the copy as it is must pass, so each failure comes
+Each case copies the sources the checks read (src/, app/, tests/fortran/,
+docs/ARCHITECTURE.md and scripts/ddc2d_h5.py) to a temporary folder, plants one violation,
+and expects check_sources.py to exit 1 naming it; the copy as it is must pass, so each failure comes
 from the planted line alone.
 """
 
@@ -29,6 +29,8 @@ def tree(tmp_path):
     shutil.copytree(REPO_ROOT / "tests/fortran", tmp_path / "tests/fortran")
     (tmp_path / "docs").mkdir()
     shutil.copy(REPO_ROOT / "docs/ARCHITECTURE.md", tmp_path / "docs")
+    (tmp_path / "scripts").mkdir()
+    shutil.copy(REPO_ROOT / "scripts/ddc2d_h5.py", tmp_path / "scripts")
     return tmp_path
 
 
@@ -254,3 +256,61 @@ def test_growth_criterion_read_outside_the_dispatch_fails(tree, capsys):
          "        if (options%criterion /= growth_criterion_mts) return\n")
     expect_violation(tree, capsys, "src/growth/driver.f90: reads the growth criterion "
                      "(%criterion) outside src/growth/criterion.f90")
+
+
+def test_history_column_missing_from_its_list_fails(tree, capsys):
+    edit(tree / "src/model/results.f90", "        real(wp), allocatable :: grown_length(:, :)\n",
+         "        real(wp), allocatable :: grown_length(:, :)\n"
+         "        real(wp), allocatable :: planted(:)\n")
+    expect_violation(tree, capsys, "src/model/results.f90: the column planted of "
+                     "history_record is missing from for_each_history_column")
+    # listed, the Python reader does not know its dataset yet
+    edit(tree / "src/model/records.f90",
+         "                             history%equilibrium_residual)\n",
+         "                             history%equilibrium_residual)\n"
+         "        call action%on_reals(column('planted', column_steps, units_one), "
+         "history%planted)\n")
+    expect_violation(tree, capsys, "scripts/ddc2d_h5.py: HISTORY_DATASETS + "
+                     "HISTORY_STEP_DATASETS lacks 'planted', one of the other datasets of "
+                     "/history")
+    # read by the Python reader too, it passes
+    edit(tree / "scripts/ddc2d_h5.py", '"equilibrium_residual")',
+         '"equilibrium_residual", "planted")')
+    assert run_checks(tree, capsys)[0] == 0
+
+
+def test_growth_column_missing_from_its_list_fails(tree, capsys):
+    edit(tree / "src/model/results.f90", "        integer, allocatable :: reason(:)\n",
+         "        integer, allocatable :: reason(:)\n        integer, allocatable :: planted(:)\n")
+    expect_violation(tree, capsys, "src/model/results.f90: the column planted of "
+                     "growth_record is missing from for_each_growth_column")
+
+
+def test_column_under_another_name_fails(tree, capsys):
+    edit(tree / "src/model/records.f90", "column('k_eq', column_records, units_k), record%k_eq",
+         "column('k_eqq', column_records, units_k), record%k_eq")
+    expect_violation(tree, capsys, "src/model/records.f90: for_each_growth_column names the "
+                     "column record%k_eq 'k_eqq'")
+
+
+def test_routine_around_a_record_list_fails(tree, capsys):
+    edit(tree / "src/output/hdf5_records.f90",
+         "        call for_each_growth_column(columns, writer)\n"
+         "        associate (group => writer%group", "        associate (group => writer%group")
+    expect_violation(tree, capsys, "src/output/hdf5_records.f90: write_growth does not go "
+                     "through for_each_growth_column")
+
+
+def test_python_dataset_lists_off_the_record_lists_fail(tree, capsys):
+    edit(tree / "scripts/ddc2d_h5.py", '"tip_fracture_id", "tip_end")', '"tip_fracture_id")')
+    edit(tree / "scripts/ddc2d_h5.py", '"corrections", "k2_after", "length", "reason")',
+         '"corrections", "k2_after", "length", "reason", "planted")')
+    expect_violation(tree, capsys, "scripts/ddc2d_h5.py: HISTORY_GROWTH_DATASETS lacks "
+                     "'tip_end', one of the columns of for_each_history_column it holds")
+    expect_violation(tree, capsys, "scripts/ddc2d_h5.py: GROWTH_DATASETS names 'planted', "
+                     "which is not one of the columns of for_each_growth_column it holds")
+
+
+def test_python_loads_off_load_path_names_fail(tree, capsys):
+    edit(tree / "scripts/ddc2d_h5.py", '"dsxy_dy", "p0")', '"p0", "dsxy_dy")')
+    expect_violation(tree, capsys, "scripts/ddc2d_h5.py: HISTORY_LOADS ")
