@@ -1,10 +1,10 @@
-!> At start-up: is the BLAS kernel the best the BLAS has for this CPU (issue 28)? The
-!> advice is ddc_linalg_blas_kernel's; here it is carried out. The serial program runs
-!> itself again, once, with OPENBLAS_CORETYPE set (before anything is printed or read; the
-!> new process is told so by DDC2D_OPENBLAS_CHOSE and does not run itself again); the MPI
-!> program, whose processes the launcher started, warns with the variable to set. A kernel
-!> the user chose is respected (a note in the echo), a run that cannot be fixed warns on
-!> standard error.
+!> At start-up: is the BLAS kernel the best the BLAS has for this CPU
+!> (docs/performance.md#the-blas-kernel)? The advice is ddc_linalg_blas_kernel's; here it is
+!> carried out. The serial program runs itself again, once, with OPENBLAS_CORETYPE set (before
+!> anything is printed or read; the new process is told so by DDC2D_OPENBLAS_CHOSE and does not
+!> run itself again); the MPI program, whose processes the launcher started, warns with the
+!> variable to set. A kernel the user chose is respected (a note in the echo), a run that cannot
+!> be fixed warns on standard error.
 module ddc_app_blas
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
     use ddc_version, only: program_name

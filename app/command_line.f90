@@ -1,4 +1,4 @@
-!> Command-line parsing of the ddc2d executable (SPEC section 6).
+!> Command-line parsing of the ddc2d executable (docs/getting-started.md#the-command-line).
 module ddc_app_command_line
     use ddc_error, only: error_type, set_error, exit_bad_input
     implicit none

@@ -149,10 +149,10 @@ contains
         status = error_status(error)
     end subroutine prepare_run
 
-    !> Sweeps (SPEC section 6): --list prints the tasks (exit 0); otherwise the task from
-    !> --task or SLURM_ARRAY_TASK_ID replaces the base model, or is skipped (exit 0) when
-    !> its complete output exists. A file without &sweep runs as it is, unless --list or
-    !> --task asked for a sweep.
+    !> Sweeps (docs/sweeps-and-slurm.md): --list prints the tasks (exit 0); otherwise the task
+    !> from --task or SLURM_ARRAY_TASK_ID replaces the base model, or is skipped (exit 0) when
+    !> its complete output exists. A file without &sweep runs as it is, unless --list or --task
+    !> asked for a sweep.
     subroutine prepare_sweep_task(options, model, status)
         type(command_line_options), intent(in) :: options
         type(model_type), intent(inout) :: model

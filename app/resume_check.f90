@@ -1,8 +1,8 @@
-!> Whether a result file can be continued by a model (--resume OLD.h5, SPEC-GROWTH 8): it is
-!> a complete ddc2d result of this program version, of a model with the same fingerprint
-!> (ddc_model_fingerprint: the same input apart from &growth steps and the load path), and
-!> a growth run and/or loading history as the model is; a loading history's steps are the
-!> first steps of the model's path:
+!> Whether a result file can be continued by a model (--resume OLD.h5;
+!> docs/theory/earth.md#what-a-step-hands-on): it is a complete ddc2d result of this program
+!> version, of a model with the same fingerprint (ddc_model_fingerprint: the same input apart
+!> from &growth steps and the load path), and a growth run and/or loading history as the model
+!> is; a loading history's steps are the first steps of the model's path:
 !>
 !>     |load_new(q, j) - load_old(q, j)| <= 1e-12 * max_j(|load_old(q, j)|, |load_new(q, j)|)
 !>

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Benchmark ddc2d (SPEC sections 6 and 8).
+"""Benchmark ddc2d (docs/performance.md#the-benchmark).
 
     benchmark.py --exe PATH --sizes 250,500,1000
                  --case straight|mixed|history|fields|growth|growth-history
@@ -25,19 +25,20 @@ Cases (CASES: a model builder per case; a new case adds one):
   fields    the straight case with a GRID x GRID map (--grid, default 500 for this case;
             0 for history and growth, 100 for the others): the field evaluation, reported
             as ``fields_over_lu``;
-  growth    wing cracks off a sliding flaw (SPEC-GROWTH 4): a 2 m frictional flaw of N
-            elements at 45 degrees to the compression, each tip growing by 20 of its
-            elements per step for K steps (--steps, default 25; toughness 2 MPa m^1/2, so
-            that it does not arrest before), with the local-symmetry corrector. The
-            reference LU is that of the final geometry, LU(2 N_final); the record adds
+  growth    wing cracks off a sliding flaw (docs/theory/growth.md#checks-against-closed-forms):
+            a 2 m frictional flaw of N elements at 45 degrees to the compression, each tip
+            growing by 20 of its elements per step for K steps (--steps, default 25; toughness
+            2 MPa m^1/2, so that it does not arrest before), with the local-symmetry corrector.
+            The reference LU is that of the final geometry, LU(2 N_final); the record adds
             ``n_final``, ``growth_steps``, ``solves`` (from the progress lines) and
             ``end_reason``.
-  growth-history  the growth case's flaw along a loading history (SPEC-GROWTH 6): syy rises
-            from -2 to -100 MPa in K load steps (--steps, default 20) at sxx = -2 MPa, and
-            at each load step the wings grow (20 of the flaw's elements per growth step)
-            until no tip is critical. One set of kept factors serves every load step (a new
-            load changes the right-hand side, not the matrix). Measured against LU(2
-            N_final) like the growth case; the record adds ``steps`` (load steps) too.
+  growth-history  the growth case's flaw along a loading history
+            (docs/theory/growth.md#growth-along-a-loading-history): syy rises from -2 to
+            -100 MPa in K load steps (--steps, default 20) at sxx = -2 MPa, and at each load
+            step the wings grow (20 of the flaw's elements per growth step) until no tip is
+            critical. One set of kept factors serves every load step (a new load changes the
+            right-hand side, not the matrix). Measured against LU(2 N_final) like the growth
+            case; the record adds ``steps`` (load steps) too.
 
 --compare-lemke runs every model a second time with lcp_method = 'lemke' and adds to its
 record ``lemke``: Lemke's seconds, peak memory and ratio to the LU, whether the states are
@@ -104,7 +105,7 @@ GROWTH_ELEMENTS = 20
 
 
 def straight_model(n, grid):
-    """The paper's fault with n elements (SPEC section 7)."""
+    """The paper's fault with n elements (docs/theory/contact.md#checks-against-closed-forms)."""
     return (
         "&model title = 'benchmark: straight fault', youngs_modulus = 50000.0,\n"
         "       poissons_ratio = 0.25, length_unit = 'm', stress_unit = 'MPa' /\n"

@@ -1,4 +1,5 @@
-"""Write files the way ddc2d writes its results (issue 27), for every file the scripts write.
+"""Write files the way ddc2d writes its results
+(docs/output-reference.md#how-the-file-is-written), for every file the scripts write.
 
 Only regular files are ever replaced. The target is the path with its symbolic links
 followed (the link stays, the file it points to is written); a folder, device, FIFO or

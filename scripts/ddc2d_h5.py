@@ -1,4 +1,4 @@
-"""Read ddc2d result files (HDF5, SPEC sections 5 and 6): the one reader of the scripts.
+"""Read ddc2d result files (HDF5, docs/output-reference.md): the one reader of the scripts.
 
 Used by ``ddc2d-plot``, ``collect-sweep``, ``compare-twodd``, ``benchmark.py`` and the
 tests. It knows
@@ -55,9 +55,11 @@ HISTORY_STEP_DATASETS = ("shear_traction", "normal_traction", "k1", "k2", "pivot
                          "certificate_max_complementarity", "equilibrium_residual")
 #: Per-step /history strings (read when present, decoded).
 HISTORY_STRING_DATASETS = ("method", "fallback")
-#: /history datasets of fracture growth along a load path (SPEC-GROWTH 6), read when present.
+#: /history datasets of fracture growth along a load path, read when present
+#: (docs/fracture-growth.md#output).
 HISTORY_GROWTH_DATASETS = ("element_count", "grown_length", "tip_fracture_id", "tip_end")
-#: /growth datasets (fracture growth, SPEC-GROWTH 3), one value per record (tip and step).
+#: /growth datasets (fracture growth; docs/fracture-growth.md#output), one value per record
+#: (tip and step).
 GROWTH_DATASETS = ("step", "fracture_id", "end", "x", "y", "k1", "k2", "k_eq", "mts_angle",
                    "angle", "corrections", "k2_after", "length", "reason")
 #: /growth datasets of fracture growth along a load path only, one value per record.

@@ -108,7 +108,8 @@ def plot_history(result, elements, steps):
 
 def plot_growth_history(result):
     """The length each tip has grown against the load parameter of a loading history
-    (growth along a load path, SPEC-GROWTH 6). Returns the Figure."""
+    (growth along a load path: docs/theory/growth.md#growth-along-a-loading-history). Returns
+    the Figure."""
     history = result["history"]
     name, load = history_parameter(history)
     unit = result["stress_unit"] + ("/" + result["length_unit"] if name.startswith("d")

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Convergence study of fracture growth (SPEC-GROWTH 7): the wings of a sliding flaw against
-the increment and the element length.
+"""Convergence study of fracture growth (docs/theory/growth.md#convergence-with-the-increment):
+the wings of a sliding flaw against the increment and the element length.
 
     growth_convergence.py [--exe DDC2D] [--work DIR] [--figure PNG] [--csv CSV]
                           [--elements N[,N...]] [--increments D[,D...]] [--quick]
@@ -20,9 +20,8 @@ angle 70.53 and the infinitesimal-kink local-symmetry angle of pure mode II, 77.
 the wing paths. --quick: N = 40 only.
 
 Exit status: 0 when, for every N, every run arrested and its arrest length is within 10 %
-and its final direction within 5 degrees of the finest increment's (SPEC-GROWTH 7); 1
-otherwise (the table and the figure are written all the same); 2 bad arguments or a run
-that failed.
+and its final direction within 5 degrees of the finest increment's; 1 otherwise (the table
+and the figure are written all the same); 2 bad arguments or a run that failed.
 """
 
 import argparse
@@ -48,7 +47,8 @@ except ImportError as exc:
     rerun_in_venv(PROGRAM, exc, __file__)
 
 REPO_ROOT = Path(__file__).resolve().parent.parent
-#: The wing flaw of SPEC-GROWTH 7 ({n}, {increment}, {element_length}, {file} filled in).
+#: The wing flaw of docs/theory/growth.md#convergence-with-the-increment
+#: ({n}, {increment}, {element_length}, {file} filled in).
 MODEL = """\
 &model title = 'wing n={n} d={increment}', youngs_modulus = 50000, poissons_ratio = 0.25 /
 &remote_stress sxx = -5, syy = -100 /
@@ -61,7 +61,8 @@ MODEL = """\
 #: symmetry of an infinitesimal kink (Amestoy & Leblond 1992)
 MTS_ANGLE = 70.53
 PLS_ANGLE = 77.3
-#: SPEC-GROWTH 7: arrest length within 10 %, final direction within 5 degrees
+#: Arrest length within 10 %, final direction within 5 degrees
+#: (docs/theory/growth.md#convergence-with-the-increment)
 LENGTH_TOLERANCE = 0.10
 DIRECTION_TOLERANCE = 5.0
 
@@ -106,7 +107,7 @@ def run_case(exe, work, n, increment):
 
 
 def check(rows):
-    """Messages for every run that misses SPEC-GROWTH 7 against its N's finest increment."""
+    """Messages for every run that misses the targets against its N's finest increment."""
     problems = []
     for n in sorted({r["elements"] for r in rows}):
         runs = sorted((r for r in rows if r["elements"] == n), key=lambda r: r["increment"])
@@ -159,7 +160,7 @@ def plot(rows, figure):
             ax.set_xlabel("increment [m]")
     ax_path.set_xlabel("x [m]")
     ax_path.set_aspect("equal")
-    fig.suptitle("wings of a sliding flaw (SPEC-GROWTH 7): convergence with the increment")
+    fig.suptitle("wings of a sliding flaw: convergence with the increment")
     figure.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(figure, dpi=110)
     plt.close(fig)

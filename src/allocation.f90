@@ -28,7 +28,7 @@ contains
         real(wp), intent(in) :: bytes
 
         call set_error(error, exit_out_of_memory, 'not enough memory for '//what//' ('// &
-                       bytes_text(bytes)//'); see the size guide in the README')
+                       bytes_text(bytes)//'); see the size guide in docs/performance.md#size-guide')
     end subroutine allocation_failed
 
 end module ddc_allocation

@@ -1,4 +1,5 @@
-!> Error type that travels up to the program, and the exit codes of SPEC section 6.
+!> Error type that travels up to the program, and the exit codes
+!> (docs/troubleshooting.md#exit-status).
 module ddc_error
     implicit none
     private

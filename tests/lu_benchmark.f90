@@ -1,7 +1,7 @@
-!> `ddc2d_lu_benchmark N [REPEATS]`: the reference LU of SPEC section 8. Times one LAPACK
-!> DGETRF (partial pivoting, with row interchanges) of an N x N uniform random matrix,
-!> linked to the same LAPACK as ddc2d, and prints `seconds <s> gflops <rate>` (the fastest
-!> of REPEATS runs, default 1). scripts/benchmark.py calls it with N = 2 x elements. A
+!> `ddc2d_lu_benchmark N [REPEATS]`: the reference LU of docs/performance.md#the-benchmark.
+!> Times one LAPACK DGETRF (partial pivoting, with row interchanges) of an N x N uniform random
+!> matrix, linked to the same LAPACK as ddc2d, and prints `seconds <s> gflops <rate>` (the
+!> fastest of REPEATS runs, default 1). scripts/benchmark.py calls it with N = 2 x elements. A
 !> copy of the matrix is kept only for repeats (one N = 32000 matrix is 8 GB).
 program ddc2d_lu_benchmark
     use, intrinsic :: iso_fortran_env, only: int64

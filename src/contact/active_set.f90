@@ -22,8 +22,8 @@
 !> repeat with period two (a cycle), when the iteration limit is reached or when a reduced
 !> system is numerically singular, and says why; the caller then falls back to Lemke.
 !>
-!> Loading history (SPEC-EARTH section 3): given the total slip ds_previous of the step
-!> before, a sticking element keeps it (stick = no slip increment: Ds = ds_previous), the
+!> Loading history (docs/theory/earth.md#loading-histories): given the total slip ds_previous of the
+!> step before, a sticking element keeps it (stick = no slip increment: Ds = ds_previous), the
 !> slip increment Ds - ds_previous opposes the shear traction and Signorini acts on the
 !> total Dn; the unknowns stay the total DDs, the fixed slips enter the right-hand side
 !> (A times them, kept while they do not change). One-shot solves have ds_previous = 0.

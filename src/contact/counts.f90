@@ -1,7 +1,7 @@
-!> What the factorizations of a solve cost (SPEC section 4): the counts of the Newton
-!> method's reduced systems (new LU factorizations, low-rank updates of kept factors,
-!> reuses of unchanged factors), the wall time of the factorizations and updates and their
-!> nominal flops (2/3 m^3 per LU of size m; 2 m^3 for the inverse of A of Lemke's method).
+!> What the factorizations of a solve cost (docs/theory/contact.md#the-newton-active-set-method):
+!> the counts of the Newton method's reduced systems (new LU factorizations, low-rank updates of
+!> kept factors, reuses of unchanged factors), the wall time of the factorizations and updates and
+!> their nominal flops (2/3 m^3 per LU of size m; 2 m^3 for the inverse of A of Lemke's method).
 !> One type, held by the factors (ddc_contact_reduced_factors), the stiffness operator, the
 !> contact result and the solver record (ddc_model_results), so that a new counter is
 !> added here only: every copy assigns the whole type, every sum calls add and every

@@ -1,5 +1,5 @@
-!> The fault law of contact elements (issue 26): Coulomb friction and cohesion, and the
-!> strength beyond Coulomb, element by element, as the given values and the values in
+!> The fault law of contact elements (docs/theory/strength.md): Coulomb friction and cohesion, and
+!> the strength beyond Coulomb, element by element, as the given values and the values in
 !> force, with the laws' rules. ddc_contact_formulation iterates the rules to a fixed point;
 !> the LCP solvers (Lemke, the active-set method) see plain arrays and know nothing of it.
 !>

@@ -1,4 +1,4 @@
-!> Frictional contact on displacement discontinuity elements (SPEC section 4): the methods
+!> Frictional contact on displacement discontinuity elements (docs/theory/contact.md): the methods
 !> and how they back each other up.
 !>
 !> Methods (options%lcp_method of solve_contact, &solver lcp_method):
@@ -25,8 +25,8 @@
 !> without the dense matrix (Lemke's tableau needs it) solves by the Newton method alone: a
 !> Newton failure is then an error (exit_solver_failure) that says why.
 !>
-!> A loading history (SPEC-EARTH section 3) solves one step after the other with the same
-!> methods and fallbacks: each step gives the total slip of the step before
+!> A loading history (docs/theory/earth.md#loading-histories) solves one step after the other with
+!> the same methods and fallbacks: each step gives the total slip of the step before
 !> (ds_previous), keeps its dense stiffness operator (whose factors the Newton method
 !> reuses and updates from step to step) and a contact_session with what else the steps
 !> share: the paper's LCP once Lemke needed it and Lemke's last basis (warm start), the
@@ -134,7 +134,8 @@ contains
         session = fresh
     end subroutine new_matrix
 
-    !> Solve the frictional contact problem of n elements (SPEC section 4).
+    !> Solve the frictional contact problem of n elements
+    !> (docs/theory/contact.md#the-contact-law-of-one-element).
     subroutine solve_contact(a, s_r_s, s_r_n, law, pressure, options, res, error, rule, &
                              max_iterations, max_solves, ds_previous)
         !> Influence matrix ordered [s; n]: traction = s_r + a [Ds; Dn], shape (2n, 2n)
@@ -185,9 +186,10 @@ contains
         res%seconds_lcp = res%seconds_lcp + real(t1 - t0, wp) / real(max(rate, 1_int64), wp)
     end subroutine solve_contact
 
-    !> Solve the frictional contact problem of n elements (SPEC section 4) on any stiffness
-    !> operator, or one step of a loading history (ds_previous, session); without the dense
-    !> matrix a, by the Newton method alone.
+    !> Solve the frictional contact problem of n elements
+    !> (docs/theory/contact.md#the-contact-law-of-one-element) on any stiffness operator, or one
+    !> step of a loading history (ds_previous, session); without the dense matrix a, by the Newton
+    !> method alone.
     subroutine solve_contact_with(stiffness, s_r_s, s_r_n, law, pressure, options, res, &
                                   error, a, rule, max_iterations, ds_previous, session, &
                                   stress_scale, max_pivots, max_solves)

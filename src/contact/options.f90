@@ -1,6 +1,6 @@
-!> Options of the contact solver (&solver, SPEC section 4): the LCP method and what open
-!> elements do with their cohesion. Their input names are parsed here, once; everything
-!> downstream holds the integer codes.
+!> Options of the contact solver (&solver; docs/theory/contact.md#choosing-the-method): the LCP
+!> method and what open elements do with their cohesion. Their input names are parsed here, once;
+!> everything downstream holds the integer codes.
 module ddc_contact_options
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input

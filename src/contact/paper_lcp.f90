@@ -1,7 +1,7 @@
-!> The paper's LCP (Ritz, Mutlu & Pollard 2012; SPEC section 4) of a set of contact
-!> elements: with A the 2N x 2N influence matrix ordered [s; n] (traction t = S_r + A D),
-!> C = A^-1 from the checked LU, D0 = C S_r' (normal rows shifted by the fluid pressure p)
-!> and dMU = diag(mu),
+!> The paper's LCP (Ritz, Mutlu & Pollard 2012;
+!> docs/theory/contact.md#the-linear-complementarity-problem) of a set of contact elements: with A
+!> the 2N x 2N influence matrix ordered [s; n] (traction t = S_r + A D), C = A^-1 from the checked
+!> LU, D0 = C S_r' (normal rows shifted by the fluid pressure p) and dMU = diag(mu),
 !>
 !>     z = [ -S_n' ; S_R ; D_L ]      w = [ -Dn ; D_R ; S_L ]      Ds = D_L - D_R
 !>     M = [ CNN - CNS dMU , CNS , 0 ;  CSN - CSS dMU , CSS , I ;  2 dMU , -I , 0 ]
@@ -12,9 +12,9 @@
 !> delta0 = sigma0 / max_i A_ii, so that every entry is O(1). The solution is certified
 !> (ddc_contact_certificate) against the unfactored M and checked (ddc_contact_result).
 !>
-!> Loading history (SPEC-EARTH section 3; build_contact_lcp once, then solve_paper_lcp
-!> per step with the previous total slip and basis): the same M, q with the previous total
-!> slip, Ds = Ds_previous + dD_L - dD_R, warm-started from the previous basis. DDs that are
+!> Loading history (docs/theory/earth.md#loading-histories; build_contact_lcp once, then
+!> solve_paper_lcp per step with the previous total slip and basis): the same M, q with the previous
+!> total slip, Ds = Ds_previous + dD_L - dD_R, warm-started from the previous basis. DDs that are
 !> exactly zero in the LCP (its nonbasic variables) are exactly zero here.
 module ddc_contact_paper_lcp
     use ddc_kinds, only: wp
@@ -34,7 +34,8 @@ module ddc_contact_paper_lcp
     public :: contact_lcp, build_contact_lcp, solve_paper_lcp, set_lcp_friction
 
     !> The paper's LCP matrix of a set of contact elements, built once for a sequence of
-    !> loads (a loading history, SPEC-EARTH section 3): only q changes from step to step.
+    !> loads (a loading history, docs/theory/earth.md#loading-histories): only q changes from step
+    !> to step.
     type :: contact_lcp
         !> Influence matrix ordered [s; n], shape (2n, 2n) [stress / length]
         real(wp), allocatable :: a(:, :)
@@ -51,9 +52,9 @@ module ddc_contact_paper_lcp
 
 contains
 
-    !> Build the LCP matrix M of n contact elements once (SPEC section 4): C = A^-1 by
-    !> LAPACK, M from C and mu, and M scaled for Lemke. The time and flops of the inverse
-    !> are added to res.
+    !> Build the LCP matrix M of n contact elements once
+    !> (docs/theory/contact.md#the-linear-complementarity-problem): C = A^-1 by LAPACK, M from C and
+    !> mu, and M scaled for Lemke. The time and flops of the inverse are added to res.
     subroutine build_contact_lcp(a, mu, lcp, res, error)
         !> Influence matrix ordered [s; n], shape (2n, 2n) [stress / length]
         real(wp), intent(in) :: a(:, :)
@@ -110,8 +111,8 @@ contains
         n3 = 3 * n
         lcp%mu = mu
 
-        ! M exactly as SPEC section 4 writes it; C blocks are CSS = c(1:n, 1:n),
-        ! CSN = c(1:n, n+1:2n), CNS = c(n+1:2n, 1:n), CNN = c(n+1:, n+1:).
+        ! M exactly as docs/theory/contact.md#the-linear-complementarity-problem writes it; C blocks
+        ! are CSS = c(1:n, 1:n), CSN = c(1:n, n+1:2n), CNS = c(n+1:2n, 1:n), CNN = c(n+1:, n+1:).
         associate (c => lcp%c)
             lcp%m = 0.0_wp
             do j = 1, n
@@ -156,8 +157,8 @@ contains
     end subroutine invert_influence
 
     !> One LCP solve with frictional strength sf on a built LCP: q for the load (and the
-    !> previous total slip ds_previous, SPEC-EARTH section 3; zero for a one-shot solve),
-    !> scale, solve, certify, recover total DDs.
+    !> previous total slip ds_previous, docs/theory/earth.md#loading-histories; zero for a one-shot
+    !> solve), scale, solve, certify, recover total DDs.
     subroutine solve_paper_lcp(lcp, s_r_s, s_r_n, sf, p, ds_previous, sigma0, res, error, rule, &
                           basis, max_pivots)
         type(contact_lcp), intent(in) :: lcp
@@ -189,7 +190,8 @@ contains
         allocate (d0(n2))
         call dgemv('N', n2, n2, 1.0_wp, lcp%c, n2, srp, 1, 0.0_wp, d0, 1)
 
-        ! q as SPEC section 4 writes it, with the previous slip (SPEC-EARTH section 3).
+        ! q as docs/theory/contact.md#the-linear-complementarity-problem writes it, with the
+        ! previous slip (docs/theory/earth.md#loading-histories).
         allocate (q(n3))
         q(1:n) = d0(n + 1:n2) - matmul(lcp%c(n + 1:n2, 1:n), sf)
         q(n + 1:n2) = d0(1:n) - matmul(lcp%c(1:n, 1:n), sf) + ds_previous

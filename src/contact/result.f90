@@ -1,6 +1,6 @@
-!> The solution of a contact problem (SPEC section 4), whichever method produced it, and the
-!> checks every solution passes before it is a result: the LCP certificate has passed, the
-!> recovered DDs are in equilibrium with the tractions against the unfactored influence
+!> The solution of a contact problem (docs/theory/contact.md#the-certificate), whichever method
+!> produced it, and the checks every solution passes before it is a result: the LCP certificate has
+!> passed, the recovered DDs are in equilibrium with the tractions against the unfactored influence
 !> matrix (relative residual per block at most residual_tol), and each element gets its
 !> state.
 !>

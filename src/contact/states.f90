@@ -1,4 +1,5 @@
-!> States of a contact element (SPEC section 4): the codes every solver and output share.
+!> States of a contact element (docs/theory/contact.md#the-contact-law-of-one-element): the codes
+!> every solver and output share.
 module ddc_contact_states
     implicit none
     private

@@ -1,6 +1,6 @@
-!> Where growth must stop or link (SPEC-GROWTH 1.6): new elements that would cross or touch
-!> another element or come closer than half an element length to one, and in a half-plane
-!> new elements that would come that close to the free surface y = 0 (or reach it).
+!> Where growth must stop or link (docs/theory/growth.md#linking-and-stops): new elements that would
+!> cross or touch another element or come closer than half an element length to one, and in a
+!> half-plane new elements that would come that close to the free surface y = 0 (or reach it).
 !> Nothing is ever meshed across another fracture.
 !>
 !> Linking: a path that meets an element j of another fracture ends on it instead. The link
@@ -31,7 +31,7 @@ module ddc_growth_clearance
 
     public :: check_paths, path_clear, tip_link, link_parts
 
-    !> A tip's link to another fracture (SPEC-GROWTH 1.6).
+    !> A tip's link to another fracture (docs/theory/growth.md#linking-and-stops).
     type :: tip_link
         !> The link path from the tip to the link point (its last point)
         type(tip_path) :: path

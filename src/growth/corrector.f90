@@ -1,11 +1,11 @@
-!> The local-symmetry corrector (SPEC-GROWTH 1.4). The MTS angle from the tip element's K
-!> is only the predictor: with constant elements the K_II of a freshly kinked tip element
-!> is inaccurate, and kinking by each step's MTS angle over-corrects the last (wings
-!> zig-zag and never arrest). The applied angle is corrected until the new tip has
+!> The local-symmetry corrector (docs/theory/growth.md#the-local-symmetry-corrector). The MTS angle
+!> from the tip element's K is only the predictor: with constant elements the K_II of a freshly
+!> kinked tip element is inaccurate, and kinking by each step's MTS angle over-corrects the last
+!> (wings zig-zag and never arrest). The applied angle is corrected until the new tip has
 !> |K_II| <= tolerance (principle of local symmetry): secant iterations on K_II(theta), all
 !> growing tips corrected together, one solve of the whole model per iteration.
-!> A tip grows only as an opening-mode crack (SPEC-GROWTH 1.4): when the kink at its MTS
-!> angle is closed (K_I = 0 on the new tip) it does not grow in this step (reason
+!> A tip grows only as an opening-mode crack (docs/theory/growth.md#closed-kinks): when the kink at
+!> its MTS angle is closed (K_I = 0 on the new tip) it does not grow in this step (reason
 !> growth_closed); when a corrected trial closes, the angle goes back halfway to the last
 !> open trial (the secant may overshoot into a closing kink; giving up there would stop
 !> the tip at a corrector artefact). A tip not converged within the solve budget grows at
@@ -210,7 +210,8 @@ contains
                     k%theta = 0.5_wp * k%theta
                     changed = .true.
                 else if (closed) then
-                    ! The kink at its MTS angle is closed: it does not grow (SPEC-GROWTH 1.4).
+                    ! The kink at its MTS angle is closed: it does not grow
+                    ! (docs/theory/growth.md#closed-kinks).
                     s%correcting = .false.
                     s%active = .false.
                     k%reason = growth_closed
@@ -225,7 +226,7 @@ contains
 
     !> Out of solves: the tips not converged (or closed at their last trial) grow at their
     !> MTS angle when its trial was open; otherwise local symmetry is not reached with the
-    !> kink open, and the tip does not grow (SPEC-GROWTH 1.4).
+    !> kink open, and the tip does not grow (docs/theory/growth.md#closed-kinks).
     pure subroutine give_up(tips, iteration)
         !> The growing tips
         type(kink), intent(inout) :: tips(:)

@@ -1,4 +1,5 @@
-!> The growth criterion of a model (&growth criterion, SPEC-GROWTH 1): the one place that
+!> The growth criterion of a model (&growth criterion;
+!> docs/theory/growth.md#the-maximum-tangential-stress-criterion): the one place that
 !> reads growth_options%criterion. Each procedure dispatches on it:
 !>
 !> - assess_tip: what a tip's K say, its kink angle (the predictor, which the clearance

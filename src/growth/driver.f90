@@ -1,13 +1,14 @@
-!> Fracture growth (SPEC-GROWTH 1): quasi-static, one increment per step, under the model's
-!> fixed loading. The driver owns the element set and asks ddc_growth_solver for solves; each step
+!> Fracture growth (docs/theory/growth.md#the-growth-step): quasi-static, one increment per
+!> step, under the model's fixed loading. The driver owns the element set and asks
+!> ddc_growth_solver for solves; each step
 !>
 !> 1. takes K_I, K_II of every tip that may grow from the solve of the current geometry,
 !>    its kink angle and K_eq under the model's criterion (ddc_growth_criterion: the MTS
 !>    angle);
 !> 2. picks the growing tips (every critical tip, or the most critical one, ties to the
 !>    lowest index), stops for good those whose new elements would not keep clear
-!>    (ddc_growth_clearance), or links them to the fracture they meet (SPEC-GROWTH 1.6: a
-!>    linked tip ends on it for good and is no tip any more);
+!>    (ddc_growth_clearance), or links them to the fracture they meet (a linked tip ends on it
+!>    for good and is no tip any more: docs/theory/growth.md#linking-and-stops);
 !> 3. turns the kinks as the criterion does (ddc_growth_criterion: the local-symmetry
 !>    corrector), adds the new elements (ddc_growth_kinks, ddc_growth_extension), checks
 !>    the grown mesh (ddc_mesh_checks: never a crossing mesh) and solves it (or keeps the
@@ -25,11 +26,11 @@
 !> step (arrested: the next step would repeat it), or after `steps` steps (step_limit);
 !> fields, tips and the summary are those of the final geometry.
 !>
-!> Under a loading history (SPEC-GROWTH 6) every load step is solved from the friction
-!> memory of the one before (ddc_growth_solver keeps it), its fractures are grown until none
-!> is critical (at most `steps` growth steps, else the run ends with step_limit), and its end
-!> is recorded for /history (ddc_growth_load_steps); growth steps are numbered through the
-!> whole run.
+!> Under a loading history (docs/theory/growth.md#growth-along-a-loading-history) every load step is
+!> solved from the friction memory of the one before (ddc_growth_solver keeps it), its fractures are
+!> grown until none is critical (at most `steps` growth steps, else the run ends with step_limit),
+!> and its end is recorded for /history (ddc_growth_load_steps); growth steps are numbered through
+!> the whole run.
 !>
 !> A resumed run (--resume) starts from the end of an earlier one (ddc_growth_run_state)
 !> and goes on where it stopped: in the load step it reached the step limit in, or with the

@@ -1,5 +1,5 @@
-!> New elements at growing tips (SPEC-GROWTH 1.3, 1.5): the straight path of one increment
-!> at a kink angle, and the model with those paths added so that every fracture stays one
+!> New elements at growing tips (docs/theory/growth.md#new-elements): the straight path of one
+!> increment at a kink angle, and the model with those paths added so that every fracture stays one
 !> ordered polyline (appended after the last element at an end tip, put before the first
 !> element at a begin tip).
 module ddc_growth_extension
@@ -27,7 +27,8 @@ module ddc_growth_extension
         real(wp), allocatable :: x(:), y(:)
     end type tip_path
 
-    !> An element split in two at a point where a linking tip ends (SPEC-GROWTH 1.6).
+    !> An element split in two at a point where a linking tip ends
+    !> (docs/theory/growth.md#linking-and-stops).
     type :: element_split
         !> The element (index in the model before growing)
         integer :: element = 0
@@ -244,8 +245,8 @@ contains
 
     end subroutine extend_model
 
-    !> The values of the elements of a grown geometry (SPEC-GROWTH 1.5), the one rule for
-    !> growth and for a resumed run: each takes those of the element it comes from; a new
+    !> The values of the elements of a grown geometry (docs/theory/growth.md#new-elements), the one
+    !> rule for growth and for a resumed run: each takes those of the element it comes from; a new
     !> one (grown at a tip) then the default strength laws (it is intact: no T, no drops,
     !> rigid) and, a new contact element, new_mu and new_sf where the growth options
     !> override them. End points and geometry are the caller's to set.

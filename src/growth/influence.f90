@@ -1,8 +1,8 @@
-!> The influence matrix of a grown model from that of the model before growing (SPEC-GROWTH
-!> 5). Growth only adds elements: ddc_growth_extension keeps every old element bit for bit
-!> and only moves it to a new index, so the influences among the old elements do not change.
-!> Their block moves to the new places and only the rows and columns of the new elements are
-!> computed: 4 n_new n kernel entries instead of 4 n^2.
+!> The influence matrix of a grown model from that of the model before growing
+!> (docs/theory/growth.md#solving-a-grown-model-cheaply). Growth only adds elements:
+!> ddc_growth_extension keeps every old element bit for bit and only moves it to a new index, so the
+!> influences among the old elements do not change. Their block moves to the new places and only the
+!> rows and columns of the new elements are computed: 4 n_new n kernel entries instead of 4 n^2.
 module ddc_growth_influence
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use ddc_kinds, only: wp

@@ -1,5 +1,5 @@
-!> The kinks of one growth step (SPEC-GROWTH 1.3-1.6): each growing tip as the growth
-!> criterion turns it (ddc_growth_criterion: its K, predictor angle and increment in; its
+!> The kinks of one growth step (docs/theory/growth.md#the-growth-step): each growing tip as the
+!> growth criterion turns it (ddc_growth_criterion: its K, predictor angle and increment in; its
 !> applied angle, reason, solves and link out), the step's links, the last trial geometry
 !> solved, and the model grown at the applied angles.
 module ddc_growth_kinks

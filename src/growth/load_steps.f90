@@ -1,5 +1,5 @@
-!> The loading history of a growth run (SPEC-GROWTH 6): what /history records at the end of
-!> every load step while the fractures grow between them.
+!> The loading history of a growth run (docs/theory/growth.md#growth-along-a-loading-history): what
+!> /history records at the end of every load step while the fractures grow between them.
 !>
 !> Each load step adds a column: the load, the DDs, states and tractions of every element,
 !> K at every fracture end that is a tip, the number of elements and the solve's record.

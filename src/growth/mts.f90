@@ -1,10 +1,12 @@
-!> The maximum tangential stress criterion (Erdogan & Sih 1963; SPEC-GROWTH 1): the kink
-!> angle and K_eq of a tip from its K, and the first slope of the local-symmetry corrector
+!> The maximum tangential stress criterion (Erdogan & Sih 1963;
+!> docs/theory/growth.md#the-maximum-tangential-stress-criterion): the kink angle and K_eq of a
+!> tip from its K, and the first slope of the local-symmetry corrector
 !> (ddc_growth_corrector), which turns the MTS kinks.
 !>
 !> Angles are measured counter-clockwise from the tip's outward direction, K in the tip's
-!> own frame (SPEC 5: K_II > 0 for a crack along +x under sxy > 0 at either tip). K_I is
-!> taken as max(K_I, 0): a closed tip has no opening mode.
+!> own frame (K_II > 0 for a crack along +x under sxy > 0 at either tip:
+!> docs/theory/tips.md#k-from-the-tip-element). K_I is taken as max(K_I, 0): a closed tip has
+!> no opening mode.
 module ddc_growth_mts
     use ddc_kinds, only: wp
     implicit none

@@ -1,6 +1,6 @@
-!> A growth run resumed from the end of an earlier one (--resume, SPEC-GROWTH 8): the
-!> geometry it ended with, rebuilt from the input model as growth builds it, and the tips
-!> that may still grow.
+!> A growth run resumed from the end of an earlier one (--resume;
+!> docs/theory/earth.md#what-a-step-hands-on): the geometry it ended with, rebuilt from the input
+!> model as growth builds it, and the tips that may still grow.
 !>
 !> The file holds the final end points, fractures and created steps, not every element
 !> value as given. So each element of the final geometry takes the values of the input

@@ -1,7 +1,7 @@
 !> What a growth run carries from one step to the next (ddc_growth_driver's state), and how a
 !> run starts: from the input model solved at the first load, or from the end of an earlier
-!> run (--resume, SPEC-GROWTH 8: its geometry, solution, records, tips, loading history and
-!> friction memory).
+!> run (--resume, docs/theory/earth.md#what-a-step-hands-on: its geometry, solution, records, tips,
+!> loading history and friction memory).
 module ddc_growth_run_state
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
@@ -88,9 +88,9 @@ contains
         if (history) call start_load_steps(run%history, run%work, size(loads, 2), error)
     end subroutine start_run
 
-    !> A run resumed from the end of an earlier one (SPEC-GROWTH 8): its final geometry,
-    !> solution, records, tips, history and friction memory. It goes on in the load step
-    !> where the earlier run reached the step limit (start, after `first` growth steps of it),
+    !> A run resumed from the end of an earlier one (docs/theory/earth.md#what-a-step-hands-on): its
+    !> final geometry, solution, records, tips, history and friction memory. It goes on in the load
+    !> step where the earlier run reached the step limit (start, after `first` growth steps of it),
     !> or with the load step after the one where it arrested (first = 0). Error (exit 2)
     !> when nothing is left to do.
     subroutine resume_run(model, restart, loads, run, record, step, start, first, error)

@@ -1,6 +1,6 @@
-!> The solves of a growth run (SPEC-GROWTH 5): the input geometry, then grown geometries
-!> (trials: the corrector's, and a step's final one). The geometry of a step's last trial
-!> becomes the base of the next step (accept_trial).
+!> The solves of a growth run (docs/theory/growth.md#solving-a-grown-model-cheaply): the input
+!> geometry, then grown geometries (trials: the corrector's, and a step's final one). The geometry
+!> of a step's last trial becomes the base of the next step (accept_trial).
 !>
 !> A model whose elements are all contact elements and which the Newton method solves
 !> (lcp_method 'newton', or 'auto' from auto_newton_min_elements on) keeps for its base the
@@ -19,17 +19,18 @@
 !> The trials share one contact_session (each on its own matrix: new_matrix), whose states
 !> carry over from one trial to the next; when a step is accepted, an update of its factors
 !> that leaves the next step's trials no room is factorized anew (refactor_full_update).
-!> A trial that splits base elements (a linking step, SPEC-GROWTH 1.6) is assembled and
-!> factorized whole, from no states.
+!> A trial that splits base elements (a linking step, docs/theory/growth.md#linking-and-stops) is
+!> assembled and factorized whole, from no states.
 !> Every other model (Lemke, TWODD-style elements, no contact) is solved from scratch by
 !> run_model, as before growth had a solver.
-!> Under a loading history (SPEC-GROWTH 6) the solver keeps the friction memory: every solve
-!> starts from the total slip of the base, an element that is there, or was split, keeps its
-!> slip and a new element starts from none (it joins the memory from the step that made it);
-!> a new load step is a solve of the base geometry at the new load (solve_loaded), on the
-!> kept path with the base's matrix and factors. Tractions, face displacements and fields are
-!> computed once, for the final geometry (final_results). Every solve's K at tips of unequal
-!> elements is calibrated (ddc_growth_tip_zone, SPEC-GROWTH 1.4b).
+!> Under a loading history (docs/theory/growth.md#growth-along-a-loading-history) the solver keeps
+!> the friction memory: every solve starts from the total slip of the base, an element that is
+!> there, or was split, keeps its slip and a new element starts from none (it joins the memory from
+!> the step that made it); a new load step is a solve of the base geometry at the new load
+!> (solve_loaded), on the kept path with the base's matrix and factors. Tractions, face
+!> displacements and fields are computed once, for the final geometry (final_results). Every solve's
+!> K at tips of unequal elements is calibrated (ddc_growth_tip_zone,
+!> docs/theory/tips.md#tips-of-grown-fractures).
 module ddc_growth_solver
     use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp

@@ -1,5 +1,6 @@
-!> K on grown tips (SPEC-GROWTH 1.4b): a calibration of the constant-element estimate of
-!> SPEC 5, K = -G D / (2 (1 - nu) sqrt(h)), for tip zones of unequal elements.
+!> K on grown tips (docs/theory/tips.md#tips-of-grown-fractures): a calibration of the
+!> constant-element estimate K = -G D / (2 (1 - nu) sqrt(h))
+!> (docs/theory/tips.md#k-from-the-tip-element) for tip zones of unequal elements.
 !>
 !> That estimate is calibrated (its sqrt(2/pi)) for a tip zone of equal elements. Growth
 !> puts elements of another length beside the old tip (an increment of 1/50 of the
@@ -160,9 +161,10 @@ contains
         f = k_uniform / k_zone
     end function graded_factor
 
-    !> The SPEC 5 estimate D / sqrt(h) at the tip of a straight crack of half-length `half`
-    !> under unit pressure (in units of c0 = G / (2 pi (1 - nu))), whose two halves carry
-    !> `zone` from each tip inward, padded with elements of about `pad`.
+    !> The estimate D / sqrt(h) (docs/theory/tips.md#k-from-the-tip-element) at the tip of a
+    !> straight crack of half-length `half` under unit pressure (in units of
+    !> c0 = G / (2 pi (1 - nu))), whose two halves carry `zone` from each tip inward, padded with
+    !> elements of about `pad`.
     function auxiliary_k(zone, half, pad, error) result(k)
         real(wp), intent(in) :: zone(:), half, pad
         type(error_type), allocatable, intent(out) :: error

@@ -1,4 +1,5 @@
-!> A loading history's steps (SPEC-EARTH section 3): the load at every step of a path.
+!> A loading history's steps (docs/theory/earth.md#loading-histories): the load at every step of a
+!> path.
 !>
 !> Step 1 is the path's first vertex (the starting state); leg l from vertex l to l + 1
 !> adds steps(l) equal increments, the last of which lands on vertex l + 1 exactly.

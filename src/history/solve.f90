@@ -1,4 +1,4 @@
-!> Incremental quasi-static loading along a load path (SPEC-EARTH section 3).
+!> Incremental quasi-static loading along a load path (docs/theory/earth.md#loading-histories).
 !>
 !> The influence matrix is assembled and the TWODD-style elements condensed out once; every
 !> step is then one contact solve (ddc_contact_formulation, with &solver lcp_method and its
@@ -61,8 +61,8 @@ contains
         !> Iteration limit of each Newton solve (tests; default that of solve_contact)
         integer, intent(in), optional :: max_iterations
         !> The end of an earlier run of the model along the first steps of its path to go on
-        !> from (--resume, SPEC-GROWTH 8): its steps are kept, the next ones start from its
-        !> friction memory and the strengths in force at its end
+        !> from (--resume; docs/theory/earth.md#what-a-step-hands-on): its steps are kept, the next
+        !> ones start from its friction memory and the strengths in force at its end
         type(restart_state), intent(in), optional :: restart
         type(condensed_contact), target :: sys
         type(contact_session) :: session

@@ -5,8 +5,9 @@
 !> (displacement of the negative face of element i in its s, n frame) or an identity row
 !> (the DD of element i itself: prescribed DDs).
 !>
-!> The kernel (full plane or half-plane, SPEC-EARTH 1) is chosen once per model by
-!> select_kernel and passed down as a procedure argument: the loops hold no branch on it.
+!> The kernel (full plane or half-plane, docs/theory/kernels.md#the-half-plane-kernel) is chosen
+!> once per model by select_kernel and passed down as a procedure argument: the loops hold no
+!> branch on it.
 !>
 !> Two paths fill the matrix. The general one evaluates the whole kernel (displacement and
 !> stress, any domain) at every pair. The full-plane path fills the traction rows, by far

@@ -2,7 +2,8 @@
 !>
 !> Displacement and stress at a point due to unit Ds and unit Dn on one straight element,
 !> in the element's local frame (s along the element, n = s rotated +90 degrees, origin at
-!> the midpoint). Crouch & Starfield (1983) eqs. 5.2.x with F2..F7 as in SPEC section 2.
+!> the midpoint). Crouch & Starfield (1983) eqs. 5.2.x with F2..F7 as in
+!> docs/theory/kernels.md#the-kernel-of-one-element.
 !> Pure: no input, output or solver knowledge.
 module ddc_influence_kernel
     use ddc_kinds, only: wp
@@ -26,8 +27,9 @@ module ddc_influence_kernel
 
 contains
 
-    !> The functions F2..F7 of SPEC section 2 at local point (x, y) of an element of
-    !> half-length a. On the element (y = 0, |x| < a) F3 takes the value of the given face.
+    !> The functions F2..F7 (docs/theory/kernels.md#the-kernel-of-one-element) at local point (x, y)
+    !> of an element of half-length a. On the element (y = 0, |x| < a) F3 takes the value of the
+    !> given face.
     pure subroutine kernel_functions(x, y, a, nu, face, f)
         !> Local coordinates of the point [length unit]
         real(wp), intent(in) :: x, y

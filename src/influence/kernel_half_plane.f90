@@ -1,4 +1,5 @@
-!> Crouch & Starfield half-plane kernel (free surface y = 0, body y < 0), SPEC-EARTH 1.
+!> Crouch & Starfield half-plane kernel (free surface y = 0, body y < 0;
+!> docs/theory/kernels.md#the-half-plane-kernel).
 !>
 !> The field of a constant-DD element in the half-plane is the full-plane field of the
 !> element (ddc_influence_kernel) plus supplementary terms built from the functions F2..F9

@@ -1,4 +1,4 @@
-!> Read a ddc2d model from a namelist input file (SPEC section 6).
+!> Read a ddc2d model from a namelist input file (docs/input-reference.md).
 !>
 !> The whole file is read first and scanned for its groups (ddc_input_namelist_groups).
 !> Each group is then read the counted number of times with iostat and iomsg by its reader
@@ -127,8 +127,9 @@ contains
         strength_given = law%beyond_coulomb()
     end function strength_given
 
-    !> Half-plane rules (SPEC-EARTH 1): every vertex and field point at y <= 0, no element on
-    !> the surface, a remote stress that is traction-free at y = 0, symmetry about x only.
+    !> Half-plane rules (docs/theory/earth.md#a-free-surface): every vertex and field point at
+    !> y <= 0, no element on the surface, a remote stress that is traction-free at y = 0, symmetry
+    !> about x only.
     subroutine check_half_plane(path, model, fractures, observations, messages)
         character(len=*), intent(in) :: path
         type(model_type), intent(in) :: model

@@ -86,7 +86,7 @@ contains
         if (is_overflow(iomsg)) then
             ! gfortran takes the values beyond an array's end for variable names.
             message = message//'more values than an array of this group holds (the limits '// &
-                'are in docs/bad-input.md)'
+                'are in docs/input-reference.md#size-limits)'
         else if (stat < 0) then
             message = message//'a value of the wrong type, or a group not closed by /'
         else

@@ -1,6 +1,6 @@
-!> The &fracture groups of a namelist input file (SPEC section 6): one per fracture, given as
-!> a polyline (x, y, elements per segment, per-segment values) or as a CSV of elements
-!> (elements_file); validated and expanded to elements.
+!> The &fracture groups of a namelist input file (docs/input-reference.md#fracture): one per
+!> fracture, given as a polyline (x, y, elements per segment, per-segment values) or as a CSV of
+!> elements (elements_file); validated and expanded to elements.
 module ddc_input_namelist_fracture
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
@@ -38,7 +38,7 @@ module ddc_input_namelist_fracture
         integer :: condition = condition_contact
         !> Element end points [length unit], shape (elements)
         real(wp), allocatable :: x_begin(:), y_begin(:), x_end(:), y_end(:)
-        !> Per-element values (SPEC section 6), shape (elements)
+        !> Per-element values (docs/input-reference.md#fracture), shape (elements)
         real(wp), allocatable :: mu(:), sf(:), pressure(:), bc_s(:), bc_n(:)
         !> Tensile strength and residual cohesion (no_residual_drop where not given),
         !> shape (elements) [stress unit]

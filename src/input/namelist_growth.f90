@@ -1,7 +1,8 @@
-!> The &growth group of a namelist input file (SPEC-GROWTH 2): fracture growth under the
-!> model's loading (fixed, or along its &load_path: SPEC-GROWTH 6). Sets the defaults, reads
-!> the group if present and checks every value; growth does not combine with &symmetry
-!> (every task of a &sweep grows).
+!> The &growth group of a namelist input file (docs/fracture-growth.md#the-input): fracture growth
+!> under the model's loading (fixed, or along its &load_path:
+!> docs/theory/growth.md#growth-along-a-loading-history). Sets the defaults, reads the group if
+!> present and checks every value; growth does not combine with &symmetry (every task of a &sweep
+!> grows).
 module ddc_input_namelist_growth
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type, growth_tips_names, growth_criterion_names, &

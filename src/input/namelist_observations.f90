@@ -1,4 +1,4 @@
-!> The observation groups of a namelist input file (SPEC section 6): regular grids (&grid),
+!> The observation groups of a namelist input file (docs/input-reference.md): regular grids (&grid),
 !> lines (&line, both ends counted) and point lists from a CSV (&points), in file order.
 module ddc_input_namelist_observations
     use ddc_kinds, only: wp

@@ -1,5 +1,5 @@
 !> The groups of a namelist input file that describe the whole model rather than one of
-!> its parts (SPEC section 6, SPEC-EARTH): &model, &remote_stress, &pore_fluid, &solver,
+!> its parts (docs/input-reference.md): &model, &remote_stress, &pore_fluid, &solver,
 !> &symmetry, &output and &load_path. Each sets its defaults, then reads its group if
 !> present and checks every value.
 module ddc_input_namelist_settings
@@ -265,10 +265,11 @@ contains
         if (len_trim(file) > 0) model%output_file = resolve(dir, trim(adjustl(file)))
     end subroutine read_output_group
 
-    !> &load_path sxx, syy, sxy, dsxx_dy, dsyy_dy, dsxy_dy, p0, steps / (SPEC-EARTH 3;
-    !> optional): the load at the path's vertices (the first is the starting state), each
-    !> quantity either absent (held at its &remote_stress or &pore_fluid value) or given at
-    !> every vertex, and steps(l) increments on leg l. Needs contact elements.
+    !> &load_path sxx, syy, sxy, dsxx_dy, dsyy_dy, dsxy_dy, p0, steps /
+    !> (docs/loading-histories.md#the-input; optional): the load at the path's vertices (the first
+    !> is the starting state), each quantity either absent (held at its &remote_stress or
+    !> &pore_fluid value) or given at every vertex, and steps(l) increments on leg l. Needs contact
+    !> elements.
     subroutine read_load_path_group(unit, text, path, info, has_contact, model, messages)
         integer, intent(in) :: unit
         character(len=*), intent(in) :: text

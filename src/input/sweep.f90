@@ -1,4 +1,4 @@
-!> Read the &sweep group of a namelist input file (SPEC section 6): the parameters to vary
+!> Read the &sweep group of a namelist input file (docs/sweeps-and-slurm.md): the parameters to vary
 !> on top of the base model written in the same file, and their value lists.
 !>
 !>     &sweep combine = 'product',

@@ -1,4 +1,5 @@
-!> Reader of classic TWODD decks (Crouch & Starfield 1983, ch. 5; SPEC section 7).
+!> Reader of classic TWODD decks (Crouch & Starfield 1983, ch. 5;
+!> docs/compatibility.md#twodd-decks).
 !>
 !> A deck is list-directed, one record after the other: a title line; `NUMBS, NUMOS, KSYM`;
 !> `PR, E, XSYM, YSYM`; `PXX, PYY, PXY`; NUMBS segment records `NUM, XBEG, YBEG, XEND,

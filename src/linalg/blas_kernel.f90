@@ -1,8 +1,8 @@
 !> Does the BLAS kernel fit the CPU? OpenBLAS picks its kernel from the CPU's model number
 !> and falls back to an old one for a model it does not know: Debian 12's OpenBLAS runs
 !> "Prescott" (SSE3) on recent Xeons with AVX-512, and LU(16000) takes 24.9 s there against
-!> 4.13 s with OPENBLAS_CORETYPE=SkylakeX (issue 28). The instruction set the CPU offers
-!> comes from the flags of /proc/cpuinfo, that of a kernel from its name:
+!> 4.13 s with OPENBLAS_CORETYPE=SkylakeX (docs/performance.md#the-blas-kernel). The instruction set
+!> the CPU offers comes from the flags of /proc/cpuinfo, that of a kernel from its name:
 !>
 !>   level 0 SSE:     Katmai ... Prescott, Core2, Penryn, Dunnington, Nehalem, Atom, Athlon,
 !>                    Opteron, Barcelona, Nano, Bobcat

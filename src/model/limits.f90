@@ -1,6 +1,7 @@
 !> The values ddc2d accepts: the magnitude of every input real, and the physical range of
-!> the quantities that have one (SPEC section 9). The namelist reader, the TWODD deck reader
-!> and the parameter sweep all check their values here, so they accept the same values.
+!> the quantities that have one (docs/troubleshooting.md#bad-input-what-the-user-sees). The namelist
+!> reader, the TWODD deck reader and the parameter sweep all check their values here, so they accept
+!> the same values.
 module ddc_model_limits
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use ddc_kinds, only: wp

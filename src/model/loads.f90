@@ -1,5 +1,6 @@
 !> The loads of a model: elastic constants, the remote stress resolved on elements and the
-!> fluid pressure inside them (SPEC section 2, SPEC-EARTH 2). Used by the solvers, the post
+!> fluid pressure inside them (docs/theory/kernels.md#remote-stress-on-an-element,
+!> docs/theory/earth.md#pore-fluid-and-effective-stress). Used by the solvers, the post
 !> processing and the output alike.
 module ddc_model_loads
     use ddc_kinds, only: wp
@@ -19,9 +20,10 @@ contains
         shear_modulus_of = model%youngs_modulus / (2.0_wp * (1.0_wp + model%poissons_ratio))
     end function shear_modulus_of
 
-    !> Remote stress resolved on every element (SPEC section 2), tension positive; with a
+    !> Remote stress resolved on every element
+    !> (docs/theory/kernels.md#remote-stress-on-an-element), tension positive; with a
     !> gradient, the stress at each midpoint (exact element average of a linear field,
-    !> SPEC-EARTH 2).
+    !> docs/theory/earth.md#stress-that-varies-with-depth).
     pure subroutine resolve_remote_stress(elements, sxx, syy, sxy, shear, normal, gradient)
         !> Elements with geometry computed
         type(element_set), intent(in) :: elements
@@ -44,7 +46,8 @@ contains
     end subroutine resolve_remote_stress
 
     !> Fluid pressure inside every contact element: its own pressure plus the pore fluid
-    !> p0 + dp_dy * y at its midpoint (SPEC-EARTH 2); other elements keep their value.
+    !> p0 + dp_dy * y at its midpoint (docs/theory/earth.md#pore-fluid-and-effective-stress); other
+    !> elements keep their value.
     pure function total_pressure(elements, pore_fluid) result(pressure)
         !> Elements with geometry computed
         type(element_set), intent(in) :: elements

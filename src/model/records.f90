@@ -165,10 +165,10 @@ module ddc_model_records
 
 contains
 
-    !> The one list of the columns of a history_record (SPEC-EARTH 3; SPEC-GROWTH 6): the
-    !> action gets each column once, in the order of the file's datasets. A new column is
-    !> declared in the type and listed here; the CTest architecture fails when a component
-    !> is missing.
+    !> The one list of the columns of a history_record (docs/loading-histories.md#output,
+    !> docs/fracture-growth.md#output): the action gets each column once, in the order of the
+    !> file's datasets. A new column is declared in the type and listed here; the CTest
+    !> architecture fails when a component is missing.
     subroutine for_each_history_column(history, action)
         !> The history whose columns the action gets
         type(history_record), intent(inout) :: history
@@ -209,9 +209,9 @@ contains
                                          units_length), history%grown_length)
     end subroutine for_each_history_column
 
-    !> The one list of the columns of a growth_record (SPEC-GROWTH 3): the action gets each
-    !> column once, in the order of the file's datasets. A new column is declared in the type
-    !> and listed here; the CTest architecture fails when a component is missing.
+    !> The one list of the columns of a growth_record (docs/fracture-growth.md#output): the action
+    !> gets each column once, in the order of the file's datasets. A new column is declared in the
+    !> type and listed here; the CTest architecture fails when a component is missing.
     subroutine for_each_growth_column(record, action)
         !> The record whose columns the action gets
         type(growth_record), intent(inout) :: record

@@ -1,6 +1,6 @@
-!> What a resumed run (--resume, SPEC-GROWTH 8) takes from the complete result file of an
-!> earlier run of the same model: the geometry it ended with, that geometry's results
-!> (DDs, states, tractions, face displacements, tips), its growth record and loading
+!> What a resumed run (--resume; docs/theory/earth.md#what-a-step-hands-on) takes from the complete
+!> result file of an earlier run of the same model: the geometry it ended with, that geometry's
+!> results (DDs, states, tractions, face displacements, tips), its growth record and loading
 !> history, as the file holds them (ddc_output_restart_read reads it; ddc_growth_driver
 !> and ddc_history_solve go on from it).
 module ddc_model_restart

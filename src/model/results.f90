@@ -29,12 +29,12 @@ module ddc_model_results
     !> (field discontinuous or singular there: values are NaN)
     integer, parameter :: point_clear = 0, point_near = 1, point_on_element = 2
 
-    !> Why a tip did or did not grow in a growth step (SPEC-GROWTH 3): it grew (the
-    !> corrector converged, or is switched off); it is subcritical (K_eq < toughness); it
-    !> stopped for good at another element or at the free surface; it grew at the MTS
-    !> angle because the corrector did not converge; it ended on another fracture (linked,
-    !> SPEC-GROWTH 1.6: reserved, not produced yet); its kink closes (K_I = 0 on the new
-    !> tip: it does not grow in this step); it is critical but waits (tips =
+    !> Why a tip did or did not grow in a growth step
+    !> (docs/theory/growth.md#why-a-tip-does-not-grow): it grew (the corrector converged, or is
+    !> switched off); it is subcritical (K_eq < toughness); it stopped for good at another element
+    !> or at the free surface; it grew at the MTS angle because the corrector did not converge; it
+    !> ended on another fracture (linked: docs/theory/growth.md#linking-and-stops); its kink closes
+    !> (K_I = 0 on the new tip: it does not grow in this step); it is critical but waits (tips =
     !> 'most_critical' and another tip is more critical)
     integer, parameter :: growth_grew = 0, growth_subcritical = 1, growth_intersection = 2, &
                           growth_surface = 3, growth_corrector_failed = 4, growth_linked = 5, &
@@ -129,8 +129,8 @@ module ddc_model_results
         real(wp) :: seconds_output = 0.0_wp, seconds_total = 0.0_wp
     end type solver_record
 
-    !> Every step of a loading history (SPEC-EARTH section 3); k steps (the starting state
-    !> is step 1), n elements. Not allocated when the model has no load path. Its columns are
+    !> Every step of a loading history (docs/loading-histories.md#output); k steps (the starting
+    !> state is step 1), n elements. Not allocated when the model has no load path. Its columns are
     !> listed in ddc_model_records' for_each_history_column.
     type :: history_record
         !> The load of each step, rows as ddc_model_types' load_path_names (remote stress,
@@ -157,17 +157,18 @@ module ddc_model_results
         !> equilibrium residual, shape (k) [-]
         real(wp), allocatable :: certificate_min_z(:), certificate_min_w(:)
         real(wp), allocatable :: certificate_max_complementarity(:), equilibrium_residual(:)
-        !> With fracture growth (SPEC-GROWTH 6; not allocated otherwise): the rows of the
-        !> element arrays are the final geometry's elements (NaN, state_not_grown before an
-        !> element was made); the number of elements at the end of each step, shape (k);
-        !> the fracture and end (0 begin, 1 end) of every tip that may grow, shape (tips);
-        !> the length each has grown by the end of each step [length unit], shape (tips, k)
+        !> With fracture growth (docs/theory/growth.md#growth-along-a-loading-history; not
+        !> allocated otherwise): the rows of the element arrays are the final geometry's
+        !> elements (NaN, state_not_grown before an element was made); the number of elements at
+        !> the end of each step, shape (k); the fracture and end (0 begin, 1 end) of every tip
+        !> that may grow, shape (tips); the length each has grown by the end of each step
+        !> [length unit], shape (tips, k)
         integer, allocatable :: element_count(:), tip_fracture_id(:), tip_end(:)
         real(wp), allocatable :: grown_length(:, :)
     end type history_record
 
-    !> A fracture growth run (SPEC-GROWTH 3): one record per tip per step, in step order and
-    !> within a step in the order of fractures, begin tip before end tip (k records); not
+    !> A fracture growth run (docs/fracture-growth.md#output): one record per tip per step, in step
+    !> order and within a step in the order of fractures, begin tip before end tip (k records); not
     !> allocated when the model does not grow. Its columns are listed in ddc_model_records'
     !> for_each_growth_column.
     type :: growth_record

@@ -32,7 +32,7 @@ module ddc_model_types
     integer, parameter :: condition_mixed_us_sn = 3
     integer, parameter :: condition_mixed_ss_un = 4
     integer, parameter :: condition_contact = 5
-    !> Kinematic DDs: bc_s, bc_n are Ds, Dn themselves (SPEC-EARTH 1)
+    !> Kinematic DDs: bc_s, bc_n are Ds, Dn themselves (docs/theory/kernels.md#element-conditions)
     integer, parameter :: condition_prescribed_dd = 6
     !> Input names of the conditions, indexed by condition code
     character(len=*), parameter :: condition_names(6) = [character(len=13) :: &
@@ -170,7 +170,7 @@ module ddc_model_types
         real(wp), allocatable :: x(:), y(:)
     end type observation_set
 
-    !> The task of a parameter sweep a model is (SPEC section 6), stored in its output.
+    !> The task of a parameter sweep a model is (docs/sweeps-and-slurm.md), stored in its output.
     type :: sweep_task_record
         !> Task number, 0-based; -1 when the model is not a sweep task
         integer :: task = -1
@@ -182,13 +182,13 @@ module ddc_model_types
         real(wp), allocatable :: values(:)
     end type sweep_task_record
 
-    !> Names of the quantities a loading history varies (SPEC-EARTH section 3), in the
-    !> order of load_path_type%vertex: remote stress, its gradients d/dy, pore pressure p0
+    !> Names of the quantities a loading history varies (docs/theory/earth.md#loading-histories), in
+    !> the order of load_path_type%vertex: remote stress, its gradients d/dy, pore pressure p0
     character(len=*), parameter :: load_path_names(7) = [character(len=7) :: &
         'sxx', 'syy', 'sxy', 'dsxx_dy', 'dsyy_dy', 'dsxy_dy', 'p0']
 
-    !> A loading history (&load_path, SPEC-EARTH section 3): the load at the path's
-    !> vertices (the first is the starting state) and the increments on each leg.
+    !> A loading history (&load_path; docs/theory/earth.md#loading-histories): the load at the
+    !> path's vertices (the first is the starting state) and the increments on each leg.
     type :: load_path_type
         !> The load at each vertex, rows in the order of load_path_names (quantities not
         !> given in &load_path hold the model's fixed value), shape (7, vertices)
@@ -211,7 +211,8 @@ module ddc_model_types
     !> Input names of the criteria, indexed by criterion
     character(len=*), parameter :: growth_criterion_names(1) = [character(len=3) :: 'mts']
 
-    !> Fracture growth (&growth, SPEC-GROWTH): quasi-static, one increment per step.
+    !> Fracture growth (&growth; docs/theory/growth.md#the-growth-step): quasi-static, one increment
+    !> per step.
     type :: growth_options
         !> The model grows its fractures (a &growth group was given)
         logical :: active = .false.

@@ -1,5 +1,6 @@
-!> Atomic publication of result files (SPEC section 6): write under a temporary name,
-!> rename to the final name at the end, remove the temporary file on failure.
+!> Atomic publication of result files (docs/output-reference.md#how-the-file-is-written): write
+!> under a temporary name, rename to the final name at the end, remove the temporary file on
+!> failure.
 !>
 !> Knows nothing of HDF5 or physics. Only regular files are ever replaced: the final target
 !> is the path with its symbolic links followed (the link stays, the file it points to is

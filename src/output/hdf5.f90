@@ -1,4 +1,4 @@
-!> The HDF5 result file of SPEC sections 5 and 6, written atomically.
+!> The HDF5 result file (docs/output-reference.md), written atomically.
 !>
 !> The file is written under partial_name(path) and renamed to path only when every group,
 !> dataset and attribute has been written and the file closed; on any failure the partial
@@ -20,10 +20,10 @@
 !> - /solver attributes (blas and blas_core among them) and /solver/seconds/<phase> scalar
 !>   datasets;
 !> - /sweep attributes task, tasks, parameters and one per parameter (sweep tasks only);
-!> - /history (loading history only, SPEC-EARTH 3; k steps, the first the starting state)
-!>   and /growth (fracture growth only, SPEC-GROWTH 3; k records, one per tip per step):
-!>   one dataset per column of the record (ddc_model_records' lists, written by
-!>   ddc_output_hdf5_records), a column of rows and steps shaped (k, rows) in h5py (Fortran
+!> - /history (loading history only, docs/loading-histories.md#output; k steps, the first the
+!>   starting state) and /growth (fracture growth only, docs/fracture-growth.md#output; k records,
+!>   one per tip per step): one dataset per column of the record (ddc_model_records' lists, written
+!>   by ddc_output_hdf5_records), a column of rows and steps shaped (k, rows) in h5py (Fortran
 !>   dims (rows, k)); /history/leg_steps (increments per leg) and the load quantities the
 !>   path varies (the remote stress always); /growth attributes toughness, increment,
 !>   element_length, tips, criterion, max_corrections, fractures, steps, steps_taken,
@@ -206,8 +206,8 @@ contains
                              trim(symmetry_names(model%elements%symmetry%kind)), error)
         call write_attribute(root, 'symmetry_lines', [model%elements%symmetry%xsym, &
                                                       model%elements%symmetry%ysym], error)
-        ! SPEC-EARTH: 'full_plane' or 'half_plane' (free surface y = 0), d(sxx, syy, sxy)/dy
-        ! and the pore fluid (p0, dp_dy)
+        ! 'full_plane' or 'half_plane' (free surface y = 0), d(sxx, syy, sxy)/dy and the pore
+        ! fluid (p0, dp_dy): docs/output-reference.md#layout
         call write_attribute(root, 'domain', trim(domain_names(model%elements%domain)), error)
         call write_attribute(root, 'remote_stress_gradient', model%stress_gradient, error)
         call write_attribute(root, 'pore_fluid', model%pore_fluid, error)

@@ -1,4 +1,4 @@
-!> How a result was computed, so that a figure can be traced to it (issue 29): the BLAS
+!> How a result was computed, so that a figure can be traced to it: the BLAS
 !> library and its kernel (and who chose it), the compiler and its options, the CPU model and
 !> the thread counts. Written as root attributes of the result file (blas, blas_core,
 !> blas_core_chosen_by, compiler, compiler_options, cpu, threads, blas_threads), the BLAS

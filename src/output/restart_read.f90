@@ -1,9 +1,9 @@
-!> Read the end of an earlier run from its complete result file (--resume, SPEC-GROWTH 8):
-!> the final geometry's end points and fracture ranges, its element results and tips, the
-!> growth record and the loading history (every column of their lists, ddc_model_records, that
-!> a resumed run goes on from), bit for bit as written (ddc_output_hdf5). The file was
-!> checked before (app/resume_check: complete, same version and model), so a dataset that is
-!> missing here is an error of the file.
+!> Read the end of an earlier run from its complete result file (--resume;
+!> docs/theory/earth.md#what-a-step-hands-on): the final geometry's end points and fracture ranges,
+!> its element results and tips, the growth record and the loading history (every column of their
+!> lists, ddc_model_records, that a resumed run goes on from), bit for bit as written
+!> (ddc_output_hdf5). The file was checked before (app/resume_check: complete, same version and
+!> model), so a dataset that is missing here is an error of the file.
 module ddc_output_restart_read
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_io_failure

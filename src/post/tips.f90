@@ -1,4 +1,4 @@
-!> Crack tips and their stress intensity factors (SPEC section 5).
+!> Crack tips and their stress intensity factors (docs/theory/tips.md#k-from-the-tip-element).
 module ddc_post_tips
     use ddc_kinds, only: wp
     use ddc_model_types, only: element_set, symmetry_x, symmetry_y, symmetry_both, &
@@ -41,7 +41,8 @@ contains
 
     !> True when end `side` (1 begin, 2 end) of element i coincides with an end of another
     !> element, lies on a symmetry line (where it meets its own image) or, in a half-plane,
-    !> on the free surface y = 0 (a crack mouth, SPEC-EARTH 1).
+    !> on the free surface y = 0 (a crack mouth:
+    !> docs/theory/tips.md#what-counts-as-a-tip).
     pure logical function end_is_shared(elements, index, i, side)
         type(element_set), intent(in) :: elements
         type(end_index), intent(in) :: index

@@ -29,8 +29,8 @@
 !> the method stops then with exit_out_of_memory (ddc_contact_active_set).
 !> Measured (Release, OpenBLAS, 2026-11-24): the peak resident memory of Lemke runs is
 !> within 5 % of the estimate; that of the benchmark's straight and mixed faults (Newton,
-!> N = 2000-8000) within 10 % of the estimate from the starting states (README, size
-!> guide).
+!> N = 2000-8000) within 10 % of the estimate from the starting states
+!> (docs/performance.md#size-guide).
 module ddc_run_memory
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_out_of_memory
@@ -266,7 +266,7 @@ contains
             ' method, but about '//bytes_text(available)//' is available here ('//source// &
             '); about '//itoa(elements_that_fit(model, available))//' elements fit. Use a '// &
             'machine with more memory (on Slurm: sbatch --mem), or fewer elements; see '// &
-            'the size guide in the README')
+            'the size guide in docs/performance.md#size-guide')
     end subroutine check_memory
 
 end module ddc_run_memory

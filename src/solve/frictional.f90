@@ -1,5 +1,6 @@
 !> Models with contact elements: TWODD-style elements are eliminated (static condensation)
-!> so that the LCP covers the contact elements only (SPEC section 4).
+!> so that the LCP covers the contact elements only
+!> (docs/theory/contact.md#models-that-mix-contact-and-other-conditions).
 !>
 !> With the system K x = b split into free unknowns F (elements with TWODD conditions, rows
 !> as their conditions say) and contact unknowns C (traction rows t_C = S_r,C + K_CC x_C +
@@ -72,7 +73,7 @@ contains
         real(wp), intent(in) :: shear_modulus, nu
         !> Remote stress resolved on each element [stress unit], shape (n)
         real(wp), intent(in) :: remote_shear(:), remote_normal(:)
-        !> LCP method and cohesion of open elements (SPEC section 4)
+        !> LCP method and cohesion of open elements (docs/theory/contact.md#choosing-the-method)
         type(solver_options), intent(in) :: options
         !> Displacement discontinuities [length unit], shape (n)
         real(wp), intent(out) :: ds(:), dn(:)

@@ -1,4 +1,4 @@
-!> Parameter sweeps (SPEC section 6): the tasks of a sweep, their parameter values, their
+!> Parameter sweeps (docs/sweeps-and-slurm.md): the tasks of a sweep, their parameter values, their
 !> output file names, and the substitution of a task's values into the base model.
 !>
 !> A sweep drives the solver from outside: each task is the base model with a few values

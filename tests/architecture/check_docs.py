@@ -11,6 +11,12 @@
    lower case, punctuation dropped, spaces as hyphens). Web addresses are not followed.
 3. Every module of src/ and app/, and every public procedure and generic interface of
    one, has a `!>` summary line right above it (FORD's API pages show it).
+4. Every page of docs/ that src/, app/, tests/ (not tests/reference/), scripts/ or input/
+   names (`docs/theory/growth.md`, `docs/theory/growth.md#closed-kinks`, in a comment, a
+   message or a test) exists, and so does the heading after `#` (the anchors of check 2).
+
+The checker and its test (tests/architecture/) name what they look for and plant
+violations: checks 1 and 4 skip them.
 
 Prints every violation and exits 1 when there is one.
 """
@@ -23,32 +29,43 @@ CITING_FOLDERS = ("src", "app", "tests", "scripts", "input", "docs")
 CITING_SUFFIXES = {".f90", ".F90", ".pf", ".c", ".py", ".sh", ".nml", ".md", ".txt", ".cmake",
                    ".toml", ".json", ".in", ""}
 SKIPPED = ("tests/reference/", "tests/data/twodd/")
+#: Check 4 reads the code, tests, scripts and example inputs.
+NAMING_FOLDERS = ("src", "app", "tests", "scripts", "input")
+#: The checker and its test name the patterns (and plant violations) on purpose.
+SELF = ("tests/architecture/check_docs.py", "tests/architecture/test_check_docs.py")
 DESIGN_NOTE = re.compile(r"\bSPEC(?:-[A-Z]+)?\b(?=[\s,.;:)]|$)")
 ISSUE = re.compile(r"\bissues?\s+#?\d+", re.IGNORECASE)
+DOC_PAGE = re.compile(r"(?<![\w./-])docs/[\w./-]*?\.md(?:#[\w-]+)?")
 LINK = re.compile(r"!?\[(?:[^\]\\]|\\.)*\]\(\s*<?([^)\s>]+)>?(?:\s+\"[^\"]*\")?\s*\)")
 FENCE = re.compile(r"^\s*(```|~~~)")
 
 
-def repository_texts(root):
-    for folder in CITING_FOLDERS:
+def repository_texts(root, folders=CITING_FOLDERS, top_level=True):
+    """The text files of the folders (less SKIPPED and SELF), then those at the top level."""
+    for folder in folders:
         for path in sorted((root / folder).rglob("*")):
             relative = path.relative_to(root).as_posix()
             if path.is_file() and path.suffix in CITING_SUFFIXES and \
-                    not relative.startswith(SKIPPED) and "__pycache__" not in relative:
+                    not relative.startswith(SKIPPED) and relative not in SELF and \
+                    "__pycache__" not in relative:
                 yield path
     for name in ("README.md", "CMakeLists.txt", "CHANGELOG.md"):
-        if (root / name).is_file():
+        if top_level and (root / name).is_file():
             yield root / name
+
+
+def text_lines(path):
+    """(line number, line) of a text file; none for a file that is not UTF-8."""
+    try:
+        return list(enumerate(path.read_text().splitlines(), start=1))
+    except UnicodeDecodeError:
+        return []
 
 
 def check_citations(root, problems):
     """Check 1: no design note and no issue of the tracker is cited."""
     for path in repository_texts(root):
-        try:
-            lines = path.read_text().splitlines()
-        except UnicodeDecodeError:
-            continue
-        for number, line in enumerate(lines, start=1):
+        for number, line in text_lines(path):
             for pattern, what in ((DESIGN_NOTE, "a design note outside the repository"),
                                   (ISSUE, "an issue of the tracker")):
                 found = pattern.search(line)
@@ -109,6 +126,24 @@ def check_links(root, problems):
                                     f"{linked.relative_to(root)}")
 
 
+def check_named_pages(root, problems):
+    """Check 4: the pages of docs/ that code, tests, scripts and inputs name exist."""
+    headings = {}
+    for path in repository_texts(root, NAMING_FOLDERS, top_level=False):
+        for number, line in text_lines(path):
+            for found in DOC_PAGE.finditer(line):
+                page, _, heading = found.group(0).partition("#")
+                target = root / page
+                where = f"{path.relative_to(root)}:{number}: names {found.group(0)}"
+                if not target.is_file():
+                    problems.append(f"{where}: no such file")
+                    continue
+                if target not in headings:
+                    headings[target] = anchors_of(target)
+                if heading and heading not in headings[target]:
+                    problems.append(f"{where}: no such heading in {page}")
+
+
 PUBLIC = re.compile(r"^\s*public\s*::((?:[^\n]*&\s*\n)*[^\n]*)", re.IGNORECASE | re.MULTILINE)
 DEFINES = re.compile(r"^\s*(?:(?:pure|elemental|recursive|impure|module|integer|logical|"
                      r"real\(\w+\)|character\([^)]*\)|type\(\w+\))\s+)*"
@@ -148,11 +183,13 @@ def main(argv):
     check_citations(root, problems)
     check_links(root, problems)
     check_summaries(root, problems)
+    check_named_pages(root, problems)
     for problem in problems:
         print(problem)
     if not problems:
         print("docs: no design note or issue cited; every relative link of README.md and "
-              "docs/ resolves; every module and public procedure has a summary")
+              "docs/ resolves; every module and public procedure has a summary; every page "
+              "of docs/ that the code, tests, scripts and inputs name exists")
     return 1 if problems else 0
 
 

@@ -74,6 +74,17 @@ def test_public_procedure_without_summary_fails(tree, capsys):
     expect_violation(tree, capsys, "src/text.f90:")
 
 
+def test_named_page_without_heading_fails(tree, capsys):
+    append(tree / "src/contact/lemke.f90", "! Lemke (docs/theory/contact.md#no-such).\n")
+    expect_violation(tree, capsys, "names docs/theory/contact.md#no-such: no such heading in "
+                     "docs/theory/contact.md")
+
+
+def test_named_missing_page_fails(tree, capsys):
+    append(tree / "input/paper_fault_history.nml", "! See docs/no-such-page.md.\n")
+    expect_violation(tree, capsys, "names docs/no-such-page.md: no such file")
+
+
 def test_web_addresses_and_code_are_not_links(tree, capsys):
     append(tree / "docs/plotting.md", "\nSee [pFUnit](https://github.com/x/y#z) and "
            "`[a](missing.md)`.\n\n```\n[b](also-missing.md)\n```\n")

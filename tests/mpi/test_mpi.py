@@ -1,14 +1,14 @@
-"""One model on many processes (SPEC-SCALE section 3): the MPI build against the serial one.
+"""One model on many processes (docs/mpi.md): the MPI build against the serial one.
 
 Run by CTest in the `mpi` preset's build (label mpi), which sets DDC2D_EXE (ddc2d built with
 MPI), DDC2D_SERIAL_EXE (the serial program of the same build) and MPIEXEC. Every run has a
 timeout, so a process that waits forever fails the test instead of hanging it.
 
-- P = 1, 2 and 4 processes (grids 1 x 1, 1 x 2, 2 x 2) give the serial answer on the four
-  models of SPEC-SCALE: DDs, tractions, face displacements, tips and fields within 1e-10 of
-  the largest magnitude of their kind of quantity (compare_results), the same element states and
-  point flags, the same method, and a certificate and equilibrium residual that pass the
-  same limits; a Newton solve records its factorizations (one per reduced system).
+- P = 1, 2 and 4 processes (grids 1 x 1, 1 x 2, 2 x 2) give the serial answer on the four models
+  of docs/mpi.md#how-it-is-tested: DDs, tractions, face displacements, tips and fields within
+  1e-10 of the largest magnitude of their kind of quantity (compare_results), the same element
+  states and point flags, the same method, and a certificate and equilibrium residual that pass
+  the same limits; a Newton solve records its factorizations (one per reduced system).
 - On 4 processes, bad input, what is not distributed and a solver failure end every process
   with one message from the root, the documented exit status and no output file.
 """

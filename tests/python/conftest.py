@@ -1,6 +1,6 @@
 """Shared fixtures: the plot script as a module, and small synthetic ddc2d result files.
 
-The synthetic files follow the HDF5 layout of SPEC.md sections 5 and 6 (as written by
+The synthetic files follow the HDF5 layout of docs/output-reference.md#layout (as written by
 ddc2d): strings are stored as blank-padded fixed-length bytes, as the Fortran writer does.
 Tests read result files with scripts/ddc2d_h5.py (importable once this file is loaded).
 """

@@ -1,5 +1,5 @@
 """scripts/benchmark.py on tiny sizes: it runs, prints a table and writes the JSON records
-of SPEC section 6."""
+of docs/performance.md#the-benchmark."""
 
 import json
 import subprocess
@@ -113,8 +113,8 @@ def test_benchmark_growth_history(tmp_path):
 
 
 def test_benchmark_growth(tmp_path):
-    # 80 and 100 elements: on fewer, the increment of 20 elements (over 1 m) makes the
-    # first kink a closed one, which does not grow (SPEC-GROWTH 1.4).
+    # 80 and 100 elements: on fewer, the increment of 20 elements (over 1 m) makes the first
+    # kink a closed one, which does not grow (docs/theory/growth.md#closed-kinks).
     stdout, records = run_benchmark(tmp_path, "--case", "growth", "--steps", "2",
                                     "--lcp-method", "newton", sizes="80,100")
     assert "growth steps" in stdout and "N_final" in stdout

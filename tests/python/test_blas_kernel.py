@@ -1,9 +1,8 @@
-"""Where a result came from (issues 28 and 29): the BLAS, its kernel and who chose it, the
-compiler and its options, the CPU and the thread counts, in the result file's root
+"""Where a result came from (docs/output-reference.md): the BLAS, its kernel and who chose it,
+the compiler and its options, the CPU and the thread counts, in the result file's root
 attributes (the BLAS pair in /solver too), the echo and one line of the summary; and the
-start-up check of the kernel: a kernel the user chose is respected, one OpenBLAS chose
-below the CPU's instruction set makes the serial program run itself again once with
-OPENBLAS_CORETYPE set.
+start-up check of the kernel: a kernel the user chose is respected, one OpenBLAS chose below the
+CPU's instruction set makes the serial program run itself again once with OPENBLAS_CORETYPE set.
 
 The second part preloads a stand-in for openblas_get_corename (tests/fake_openblas_core.c,
 $DDC2D_FAKE_CORE_LIB) that reports "Prescott" unless OPENBLAS_CORETYPE is set, on a CPU

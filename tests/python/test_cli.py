@@ -1,4 +1,5 @@
-"""The ddc2d command line (SPEC section 6): usage, exit codes, output files, bad input.
+"""The ddc2d command line (docs/getting-started.md#the-command-line): usage, exit codes, output
+files, bad input.
 
 Every failing run must exit with its documented status, print one message naming what was
 wrong, and leave neither the output file nor a .partial file behind.
@@ -78,7 +79,8 @@ def test_missing_input_file(tmp_path):
 
 @pytest.mark.parametrize("option", ["-o", "--res"])
 def test_unwritable_output_path_exits_3(tmp_path, option):
-    # README: 3 = reading or writing a file failed; a missing folder is not created.
+    # docs/troubleshooting.md#exit-status: 3 = reading or writing a file failed; a missing
+    # folder is not created.
     (tmp_path / "crack.nml").write_text(GOOD_MODEL)
     done = run(["crack.nml", option, "no/such/folder/out.h5"], tmp_path)
     assert done.returncode == 3, done.stderr
@@ -91,7 +93,7 @@ def test_unwritable_output_path_exits_3(tmp_path, option):
 
 
 def test_output_path_that_is_a_folder_exits_3(tmp_path):
-    # Issue 27: a folder as target is refused like every target that is not a regular file.
+    # A folder as target is refused like every target that is not a regular file.
     (tmp_path / "crack.nml").write_text(GOOD_MODEL)
     (tmp_path / "out").mkdir()
     done = run(["crack.nml", "-o", "out"], tmp_path)

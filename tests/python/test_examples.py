@@ -6,7 +6,7 @@ on 2 cores (about 15 s for the set), so no reduced copy is needed. Parameter swe
 without a &model group (e.g. classic TWODD decks) are not run here.
 
 Besides the exit status, each gallery model is checked for what its comment block says
-it shows (states, which tips slip more), so that a figure in the README gallery cannot
+it shows (states, which tips slip more), so that a figure in the gallery (docs/gallery.md) cannot
 silently turn into something else.
 """
 

@@ -1,6 +1,6 @@
-"""Fracture growth end to end (SPEC-GROWTH 3): ddc2d on a &growth model prints a line per
-step and a table per tip, writes /growth and /elements/created_step, and scripts/ddc2d-plot
-draws the grown elements and K_eq / toughness from exactly those values."""
+"""Fracture growth end to end (docs/fracture-growth.md#output): ddc2d on a &growth model prints
+a line per step and a table per tip, writes /growth and /elements/created_step, and
+scripts/ddc2d-plot draws the grown elements and K_eq / toughness from exactly those values."""
 
 import subprocess
 import sys
@@ -139,8 +139,9 @@ def test_result_without_growth_has_no_growth_figure(tmp_path):
     assert not list((tmp_path / "fig").glob("*_growth.*"))
 
 
-# The wing flaw of SPEC-GROWTH 7 with a low toughness: after 11 steps both kinks at the
-# MTS angle close (K_I = 0 on the new tip), so neither tip grows and the run arrests.
+# The wing flaw of docs/theory/growth.md#convergence-with-the-increment with a low toughness: after
+# 11 steps both kinks at the MTS angle close (K_I = 0 on the new tip), so neither tip grows and the
+# run arrests.
 CLOSED_MODEL = """\
 &model title = 'closed', youngs_modulus = 50000, poissons_ratio = 0.25 /
 &remote_stress sxx = -5, syy = -100 /

@@ -1,6 +1,7 @@
-"""scripts/growth_convergence.py (the README's convergence study, SPEC-GROWTH 7) on a tiny
-study: it runs ddc2d once per element count and increment, writes the table and the
-figure, and its exit status says whether the arrest length and final direction converged."""
+"""scripts/growth_convergence.py (the convergence study of
+docs/theory/growth.md#convergence-with-the-increment) on a tiny study: it runs ddc2d once per
+element count and increment, writes the table and the figure, and its exit status says whether
+the arrest length and final direction converged."""
 
 import csv
 import subprocess
@@ -19,7 +20,8 @@ def test_tiny_study_writes_table_and_figure(tmp_path):
                            str(tmp_path / "runs"), "--figure", str(figure), "--elements", "20",
                            "--increments", "0.2,0.1"], capture_output=True, text=True,
                           timeout=600)
-    # Exit 1 exactly when a run missed SPEC-GROWTH 7 (20 elements with an increment of 0.2
+    # Exit 1 exactly when a run missed the targets of
+    # docs/theory/growth.md#convergence-with-the-increment (20 elements with an increment of 0.2
     # may: the arrest length is resolved to one increment).
     assert done.returncode == (1 if "not converged" in done.stdout else 0), \
         done.stdout + done.stderr

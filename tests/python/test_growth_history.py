@@ -1,6 +1,7 @@
-"""Fracture growth along a loading history (SPEC-GROWTH 6, issue 25): wings off a closed
-sliding flaw (SPEC-GROWTH 7's flaw: 2 m at 45 degrees, mu 0.6, toughness 2) under an axial
-load syy rising from -5 to -100 MPa at sxx = -5 MPa.
+"""Fracture growth along a loading history
+(docs/theory/growth.md#growth-along-a-loading-history): wings off a closed sliding flaw (the
+flaw of docs/theory/growth.md#convergence-with-the-increment: 2 m at 45 degrees, mu 0.6,
+toughness 2) under an axial load syy rising from -5 to -100 MPa at sxx = -5 MPa.
 
 - The wings do not depend on how finely the same path is divided: 5 and 20 load steps end
   with the same wing length within 10 %.

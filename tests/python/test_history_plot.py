@@ -12,8 +12,8 @@ import ddc2d_plot_figures as plot_figures
 from conftest import PLOT_SCRIPT, ddc2d_exe
 from ddc2d_h5 import STATE_CODES, load_result
 
-# The play-operator crack of SPEC-EARTH 3, coarse: slips above 6 MPa, sticks while the
-# shear is unloaded by less than 12 MPa, slips back below -2 MPa.
+# The play-operator crack of docs/theory/earth.md#checks-against-closed-forms, coarse: slips
+# above 6 MPa, sticks while the shear is unloaded by less than 12 MPa, slips back below -2 MPa.
 PATH_MODEL = """\
 &model title = 'play', youngs_modulus = 50000, poissons_ratio = 0.25 /
 &remote_stress syy = -10 /

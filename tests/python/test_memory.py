@@ -1,7 +1,7 @@
-"""A model too large for this machine's memory (issue 17): ddc2d estimates the memory of the
-method it will use before allocating anything large, compares it with what the machine or
-its cgroup offers, and refuses with one message and exit status 5, not a Fortran runtime
-error; a model that fits echoes its estimate."""
+"""A model too large for this machine's memory (docs/performance.md#the-memory-check): ddc2d
+estimates the memory of the method it will use before allocating anything large, compares it
+with what the machine or its cgroup offers, and refuses with one message and exit status 5, not
+a Fortran runtime error; a model that fits echoes its estimate."""
 
 import os
 import re
@@ -81,7 +81,8 @@ def test_an_allocation_that_fails_all_the_same_is_a_clean_exit_5(tmp_path, n, ex
                                "OPENBLAS_NUM_THREADS": "1"})
     assert done.returncode == 5, done.stdout + done.stderr
     errors = [line for line in done.stderr.splitlines() if line.startswith("ddc2d: error: ")]
-    expected = f"ddc2d: error: not enough memory for {what}; see the size guide in the README"
+    expected = (f"ddc2d: error: not enough memory for {what}; "
+                "see the size guide in docs/performance.md#size-guide")
     assert errors == [expected], done.stderr
     assert "Error allocating" not in done.stderr and "Backtrace" not in done.stderr
     assert sorted(p.name for p in tmp_path.iterdir()) == ["big.nml"]

@@ -470,8 +470,8 @@ def test_total_stress_map_with_a_gradient_has_no_white_centre(tmp_path):
         plot_figures.plt.close(fig)
 
 
-def test_coulomb_map_of_the_issue_model_shows_the_fault(plot_module, tmp_path):
-    # The issue's model through ddc2d and the command line: a half-plane normal fault
+def test_coulomb_map_of_a_normal_fault_under_gravity_shows_the_fault(plot_module, tmp_path):
+    # A model through ddc2d and the command line: a half-plane normal fault
     # under gravity with hydrostatic pore fluid, receivers parallel to it (60 degrees).
     # Far from the fault the change vanishes (it was -25 .. -45 MPa of lithostatic bands),
     # beside the slipping fault it is a stress shadow, below its tip a positive lobe.

@@ -9,7 +9,7 @@ import pytest
 
 from conftest import REPO_ROOT, ddc2d_exe
 
-# The issue's model: a half-plane normal fault under gravity with hydrostatic pore fluid.
+# A half-plane normal fault under gravity with hydrostatic pore fluid.
 GRAVITY = """\
 &model title = 'normal fault', youngs_modulus = 30000, poissons_ratio = 0.25,
        domain = 'half_plane' /

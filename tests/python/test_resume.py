@@ -1,5 +1,5 @@
-"""--resume OLD.h5 (issue 25 item 3, SPEC-GROWTH 8): the result files a run refuses to
-continue, those it accepts, and the continuation.
+"""--resume OLD.h5 (docs/theory/earth.md#what-a-step-hands-on): the result files a run refuses
+to continue, those it accepts, and the continuation.
 
 Every refusal exits 2 with one message naming the resume file, writes no output (nor a
 .partial file) and leaves the resume file as it was. A resumed run equals the uninterrupted
@@ -221,7 +221,8 @@ def test_elastic_joints_history_is_refused(tmp_path):
                    old.read_bytes())
 
 
-# The wings of SPEC-GROWTH 7's flaw (20 elements) as syy rises from -5 to -100 MPa.
+# The wings of the flaw of docs/theory/growth.md#convergence-with-the-increment (20 elements) as syy
+# rises from -5 to -100 MPa.
 WINGS = """&model youngs_modulus = 50000.0, poissons_ratio = 0.25 /
 &remote_stress sxx = -5.0, syy = -5.0 /
 &fracture name = 'flaw', x = -0.70710678, 0.70710678, y = -0.70710678, 0.70710678,

@@ -1,4 +1,4 @@
-"""Robustness of the ddc2d executable (issues 8 and 27): fuzzed inputs, a run killed
+"""Robustness of the ddc2d executable (docs/troubleshooting.md): fuzzed inputs, a run killed
 mid-write, output targets that are not regular files, file-size limits and full file
 systems, huge inputs, and memcheck of small models.
 
@@ -7,7 +7,7 @@ of a namelist with element and point CSVs, and of the TWODD decks: byte flips, t
 huge numbers, NaN, repeated groups, dropped lines. Every run must end by itself with a
 status of 0-3 or 5 (no signal, no Fortran runtime error, no hang) and a failed run must
 leave no output file; a successful one a complete file. DDC2D_FUZZ_COUNT sets the number of runs.
-Huge inputs (issue 27): lines of 10^5 characters, 10^6 values in one array, groups without
+Huge inputs: lines of 10^5 characters, 10^6 values in one array, groups without
 their closing /, CSV files of 10^7 rows, generated in a temporary folder: each a clear
 message or a correct run, within a time and a memory bound.
 
@@ -72,7 +72,7 @@ def seeds():
 
 
 def mutate(text, rng):
-    """One random mutation of the kinds the issue lists."""
+    """One random mutation: seven kinds."""
     kind = rng.randrange(7)
     if kind == 0 and text:  # byte flips
         data = bytearray(text.encode())
@@ -210,7 +210,7 @@ def file_size(path):
         return 0
 
 
-# ---------------------------------------------------------------- output targets (issue 27)
+# ---------------------------------------------------------------- output targets
 
 def grid_model(nx, ny=None):
     """A pressurised crack of 10 elements with an nx x ny grid (60 bytes a point in HDF5,
@@ -273,8 +273,8 @@ SPECIAL_WORDS = {"device": "character device", "fifo": "FIFO", "socket": "socket
 @pytest.mark.parametrize("kind", sorted(SPECIAL_WORDS))
 @pytest.mark.parametrize("option", ["-o", "--res"])
 def test_target_that_is_not_a_regular_file_is_refused(tmp_path, option, kind, via_link):
-    # README (output files): ddc2d replaces only regular files; anything else is exit 3
-    # before the solve, and stays what it was.
+    # docs/output-reference.md#how-the-file-is-written: ddc2d replaces only regular files;
+    # anything else is exit 3 before the solve, and stays what it was.
     (tmp_path / "m.nml").write_text(grid_model(5))
     target = tmp_path / "target"
     keep = []
@@ -364,7 +364,7 @@ def test_sweep_task_file_targets(tmp_path):
     assert partial_files(tmp_path, tmp_path / "data") == []
 
 
-# ----------------------------------------------- the scripts' own files (issue 27)
+# ----------------------------------------------- the scripts' own files
 
 @pytest.mark.parametrize("kind", sorted(SPECIAL_WORDS))
 def test_scripts_refuse_targets_that_are_not_regular_files(tmp_path, kind):
@@ -420,7 +420,7 @@ def test_twodd2nml_output_to_a_fifo_exits_3(tmp_path):
         os.close(keep[0])
 
 
-# ------------------------------------------------- file-size limits, full disks (issue 27)
+# ------------------------------------------------- file-size limits, full disks
 
 def limit_file_size(size):
     def limit():
@@ -510,7 +510,7 @@ def test_full_file_system_for_the_tables_is_exit_3_without_files(tmp_path,
     assert list(small_file_system.iterdir()) == []
 
 
-# ------------------------------------------------------------- huge inputs (issue 27)
+# ------------------------------------------------------------- huge inputs
 
 HUGE_TIMEOUT = 600.0
 BASE_MODEL = ("&model youngs_modulus = 1.0, poissons_ratio = 0.25 /\n"

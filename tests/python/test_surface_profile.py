@@ -1,6 +1,6 @@
-"""The surface displacement profile of ddc2d-plot (SPEC-EARTH 1): a &line on y = 0 of a
-half-plane model is drawn as ux, uy against x; lines elsewhere, and full-plane models,
-are not."""
+"""The surface displacement profile of ddc2d-plot (docs/theory/earth.md#a-free-surface): a &line
+on y = 0 of a half-plane model is drawn as ux, uy against x; lines elsewhere, and full-plane
+models, are not."""
 
 import subprocess
 import sys

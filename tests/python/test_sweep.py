@@ -267,8 +267,8 @@ WING_SWEEP = """&model youngs_modulus = 50000.0, poissons_ratio = 0.25 /
 
 
 def test_every_task_of_a_growth_sweep_grows_and_is_collected(tmp_path):
-    # SPEC-GROWTH 2: &growth with &sweep runs each task's growth; collect-sweep adds the
-    # growth columns, each equal to what the task file holds.
+    # &growth with &sweep runs each task's growth (docs/sweeps-and-slurm.md#collecting-the-results);
+    # collect-sweep adds the growth columns, each equal to what the task file holds.
     sweep = tmp_path / "wings.nml"
     sweep.write_text(WING_SWEEP)
     runs = tmp_path / "runs"

@@ -1,9 +1,9 @@
-"""What README (Threads) says of threads, checked on the executable: results are bit for bit
-the same from run to run with the same OMP_NUM_THREADS and OPENBLAS_NUM_THREADS, and with 1
-and 2 OpenMP threads; 1 and 2 OpenBLAS threads sum the factorizations in other orders, so
-there the results agree to round-off only (within 1e-10 of the largest magnitude of each
-kind of quantity, the rule of tests/compare_results.py). tests/fortran/test_threads.pf checks the
-OpenMP part inside one process."""
+"""What docs/performance.md#threads says of threads, checked on the executable: results are bit
+for bit the same from run to run with the same OMP_NUM_THREADS and OPENBLAS_NUM_THREADS, and
+with 1 and 2 OpenMP threads; 1 and 2 OpenBLAS threads sum the factorizations in other orders, so
+there the results agree to round-off only (within 1e-10 of the largest magnitude of each kind of
+quantity, the rule of tests/compare_results.py). tests/fortran/test_threads.pf checks the OpenMP
+part inside one process."""
 
 import os
 import subprocess

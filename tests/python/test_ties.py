@@ -1,6 +1,6 @@
-"""The tie rule at every place a script picks "the largest", "the first" or a side (issue
-13): values within a relative 1e-9 count as equal and the lowest index wins
-(ddc2d_h5.index_of_extreme), so that no choice depends on last-bit rounding.
+"""The tie rule at every place a script picks "the largest", "the first" or a side: values
+within a relative 1e-9 count as equal and the lowest index wins (ddc2d_h5.index_of_extreme), so
+that no choice depends on last-bit rounding.
 
 Each place is tested with an exact tie (symmetric data, equal in binary), with a near tie
 (the later value ahead by a relative 1e-10, which must still give the lowest index) and

@@ -212,12 +212,12 @@ def mirrored_deck(deck, path):
 
 
 def test_double_precision_tolerance_of_an_ill_conditioned_symmetric_deck(tmp_path):
-    # README (TWODD compatibility): the quarter hole with KODE 3 elements has a numerically
-    # singular matrix (a closed contour); two double-precision solves (images implicit,
-    # KSYM 4; all four quadrants explicit) agree only to rounding amplified by it. Measured
-    # over four OpenBLAS kernels: points 6e-13 .. 2.3e-11 of the scale of their kind,
-    # element tractions 1.8e-9 .. 3.2e-8 of theirs (the 1e-12 that holds for the
-    # well-conditioned reference decks A1 and B1 does not hold here).
+    # docs/compatibility.md: the quarter hole with KODE 3 elements has a numerically singular
+    # matrix (a closed contour); two double-precision solves (images implicit, KSYM 4; all four
+    # quadrants explicit) agree only to rounding amplified by it. Measured over four OpenBLAS
+    # kernels: points 6e-13 .. 2.3e-11 of the scale of their kind, element tractions 1.8e-9 ..
+    # 3.2e-8 of theirs (the 1e-12 that holds for the well-conditioned reference decks A1 and B1
+    # does not hold here).
     deck = DATA / "hole_quarter_kode3.f60.txt"
     implicit = run_deck(deck, tmp_path, "implicit")
     explicit = run_deck(mirrored_deck(deck, tmp_path / "full.f60.txt"), tmp_path, "explicit")

@@ -1,8 +1,8 @@
-"""Every script of scripts/ runs as the README writes it, from a plain shell: with only the
-system's python3 on PATH (no venv activated, none of numpy, h5py, matplotlib, xlrd,
-openpyxl), a script that needs them runs itself again with build/venv's Python
-(scripts/ddc2d_venv.py), so that `scripts/ddc2d-plot RESULT.h5 -o DIR` works as written;
-without a venv it says in one line what is missing."""
+"""Every script of scripts/ runs as docs/plotting.md#how-the-scripts-run writes it, from a plain
+shell: with only the system's python3 on PATH (no venv activated, none of numpy, h5py,
+matplotlib, xlrd, openpyxl), a script that needs them runs itself again with build/venv's Python
+(scripts/ddc2d_venv.py), so that `scripts/ddc2d-plot RESULT.h5 -o DIR` works as written; without
+a venv it says in one line what is missing."""
 
 import os
 import shutil
@@ -70,7 +70,7 @@ def test_the_system_python_lacks_what_the_scripts_need():
 
 
 def test_plot_from_a_plain_shell_as_the_readme_writes_it(tmp_path):
-    """scripts/ddc2d-plot RESULT.h5 -o DIR (README, Plotting), started by the system's
+    """scripts/ddc2d-plot RESULT.h5 -o DIR (docs/plotting.md), started by the system's
     python3 through the script's #! line."""
     system_python()
     result = write_result(tmp_path / "small.h5")

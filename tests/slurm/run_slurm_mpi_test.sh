@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# One model on two processes through Slurm (SPEC-SCALE section 3), on a single-node Slurm
+# One model on two processes through Slurm (docs/mpi.md#submit), on a single-node Slurm
 # started as for the sweep test (local_slurm.sh):
 #
 #   run_slurm_mpi_test.sh DDC2D_EXE DDC2D_SERIAL_EXE MPIEXEC WORK_DIR
