@@ -52,6 +52,10 @@
     under its own name; the routines that handle every column (the layout of a record, the
     HDF5 writer, the restart reader) go through the list; and the dataset lists of
     scripts/ddc2d_h5.py name exactly the datasets the lists give /history and /growth.
+12. The recipes of docs/ARCHITECTURE.md name what exists: every file of src/, app/,
+    tests/ or scripts/ they name is there, and every procedure, type or list they name
+    beside a file (`` `name` (`src/x/y.f90`) `` or `` `src/x/y.f90` (`name` ``) is a word
+    of that file.
 
 Prints every violation and exits 1 when there is one; --graph prints the folder graph.
 """
@@ -720,6 +724,27 @@ def check_criteria(root, problems):
                             f"{DISPATCH}, the one place that dispatches on it")
 
 
+# A file of the repository named in the recipes, and a name written beside it.
+RECIPE_PATH = r"(?:src|app|tests|scripts)/[\w./-]+\.(?:f90|pf|py|c|sh)"
+NAME_THEN_PATH = re.compile(r"`(\w+)`\s*\(\s*`(" + RECIPE_PATH + r")`")
+PATH_THEN_NAME = re.compile(r"`(" + RECIPE_PATH + r")`\s*\(\s*`(\w+)`")
+
+
+def check_recipes(root, problems):
+    """Check 12: the recipes name files that exist and names those files hold."""
+    text = (root / TABLE).read_text()
+    recipes = text[text.find("## Recipes"):]
+    for path in sorted(set(re.findall(r"`(" + RECIPE_PATH + r")`", recipes))):
+        if not (root / path).is_file():
+            problems.append(f"{TABLE}: a recipe names {path}, which does not exist")
+    pairs = [(n, p) for n, p in NAME_THEN_PATH.findall(recipes)]
+    pairs += [(n, p) for p, n in PATH_THEN_NAME.findall(recipes)]
+    for name, path in sorted(set(pairs)):
+        if (root / path).is_file() and not re.search(
+                rf"\b{name}\b", (root / path).read_text(), re.IGNORECASE):
+            problems.append(f"{TABLE}: a recipe names {name} in {path}, which has no {name}")
+
+
 def main(argv):
     graph_wanted = "--graph" in argv
     args = [a for a in argv if a != "--graph"]
@@ -738,6 +763,7 @@ def main(argv):
     check_lcp_solvers(root, problems)
     check_criteria(root, problems)
     check_record_lists(root, problems)
+    check_recipes(root, problems)
     if graph_wanted:
         for folder in sorted(graph):
             print(f"{folder}: {', '.join(sorted(graph[folder])) or '-'}")
@@ -752,7 +778,7 @@ def main(argv):
               "fingerprint or marked not hashed; no LCP solver reaches the fault law; "
               "every growth criterion has its case in each dispatch, the only reader of "
               "the criterion; every column of the history and growth records is in its "
-              "list, and the Python reader knows its dataset")
+              "list, and the Python reader knows its dataset; the recipes name what exists")
     return 1 if problems else 0
 
 

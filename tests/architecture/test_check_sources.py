@@ -1,9 +1,9 @@
 """The architecture checks fail when fed a planted violation (CTest architecture_checks).
 
-Each case copies the sources the checks read (src/, app/, tests/fortran/,
-docs/ARCHITECTURE.md and scripts/ddc2d_h5.py) to a temporary folder, plants one violation,
-and expects check_sources.py to exit 1 naming it; the copy as it is must pass, so each failure comes
-from the planted line alone.
+Each case copies the sources the checks read (src/, app/, tests/fortran/, tests/mpi/,
+tests/python/, scripts/ and docs/ARCHITECTURE.md) to a temporary folder, plants one
+violation, and expects check_sources.py to exit 1 naming it; the copy as it is must pass, so
+each failure comes from the planted line alone.
 """
 
 import re
@@ -29,8 +29,9 @@ def tree(tmp_path):
     shutil.copytree(REPO_ROOT / "tests/fortran", tmp_path / "tests/fortran")
     (tmp_path / "docs").mkdir()
     shutil.copy(REPO_ROOT / "docs/ARCHITECTURE.md", tmp_path / "docs")
-    (tmp_path / "scripts").mkdir()
-    shutil.copy(REPO_ROOT / "scripts/ddc2d_h5.py", tmp_path / "scripts")
+    for folder in ("tests/mpi", "tests/python", "scripts"):  # named by the recipes
+        shutil.copytree(REPO_ROOT / folder, tmp_path / folder,
+                        ignore=shutil.ignore_patterns("__pycache__"))
     return tmp_path
 
 
@@ -314,3 +315,18 @@ def test_python_dataset_lists_off_the_record_lists_fail(tree, capsys):
 def test_python_loads_off_load_path_names_fail(tree, capsys):
     edit(tree / "scripts/ddc2d_h5.py", '"dsxy_dy", "p0")', '"p0", "dsxy_dy")')
     expect_violation(tree, capsys, "scripts/ddc2d_h5.py: HISTORY_LOADS ")
+
+
+def test_recipe_naming_a_missing_file_fails(tree, capsys):
+    edit(tree / "docs/ARCHITECTURE.md", "`src/contact/formulation.f90`: call it from",
+         "`src/contact/formulations.f90`: call it from")
+    expect_violation(tree, capsys, "docs/ARCHITECTURE.md: a recipe names "
+                     "src/contact/formulations.f90, which does not exist")
+
+
+def test_recipe_naming_a_missing_procedure_fails(tree, capsys):
+    for path in (tree / "src/mesh/geometry.f90", tree / "src/growth/extension.f90"):
+        path.write_text(path.read_text().replace("default_strength_laws", "default_laws"))
+    expect_violation(tree, capsys, "docs/ARCHITECTURE.md: a recipe names "
+                     "default_strength_laws in src/mesh/geometry.f90, which has no "
+                     "default_strength_laws")
