@@ -9,9 +9,9 @@
 # Haswell (AVX2) run on any x86-64 machine of the last ten years. Each kernel is checked to
 # be the one in use (OPENBLAS_VERBOSE=2 prints "Core: <name>"); a kernel the suites already
 # ran with (the environment's, used by `ctest --preset debug` in scripts/test.sh, or an
-# earlier one of the list) is not run twice. The fuzz test of python_robustness makes 20
-# runs under each kernel (DDC2D_FUZZ_COUNT, unless set): its 2000 runs of the main pass
-# check how inputs are read, which no kernel changes. Left out (they run in the main pass):
+# earlier one of the list) is not run twice. Left out (they run in the main pass and, the
+# process-level ones, again under load): python_robustness (fuzzed inputs, signals, file
+# types, file-size and disk limits: how the program treats files and processes),
 # python_comp2ddm (workbooks to namelists; the paper's model it solves is solved under every
 # kernel by the contact suite and python_examples), python_venv (the scripts from a plain
 # shell) and python_figures (where a figure's parts lie on its canvas): nothing they check
@@ -34,8 +34,7 @@ kernel_in_use() {
     fi | sed -n 's/^Core: //p'
 }
 
-export DDC2D_FUZZ_COUNT="${DDC2D_FUZZ_COUNT:-20}"
-left_out='^(python_comp2ddm|python_venv|python_figures)$'
+left_out='^(python_robustness|python_comp2ddm|python_venv|python_figures)$'
 requested=("$@")
 ((${#requested[@]} > 0)) || requested=(native Nehalem Sandybridge Haswell)
 done_cores=("$(OPENBLAS_VERBOSE=2 "$exe" --version 2>&1 >/dev/null | sed -n 's/^Core: //p')")
