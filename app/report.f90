@@ -10,6 +10,7 @@ module ddc_app_report
         growth_reason_names, growth_end_names, growth_subcritical, growth_intersection, &
         growth_surface, growth_linked, growth_closed, growth_waiting
     use ddc_model_plausibility, only: plausibility_notes, depth_range
+    use ddc_contact_fault_law, only: tensile_cap
     use ddc_growth_summary, only: tip_summary, summarize_tips, linked_fracture
     use ddc_contact_options, only: lcp_method_names, open_cohesion_names
     use ddc_text, only: short_real, itoa, prefix_lines, join_integers
@@ -101,12 +102,13 @@ contains
             integer, intent(in) :: first, last
 
             associate (t => model%elements%tensile_strength(first:last), &
+                       t_in => tensile_cap(model%elements%tensile_strength(first:last), &
+                                           model%elements%sf(first:last), &
+                                           model%elements%mu(first:last)), &
                        sf => model%elements%sf(first:last), &
                        sfr => min(model%elements%sf(first:last), &
                                   model%elements%sf_residual(first:last)))
-                if (any(t > 0.0_wp)) write (unit, '(a)') '    tensile_strength '// &
-                    short_real(minval(t))//' .. '//short_real(maxval(t))//stress// &
-                    ' (capped at sf/mu; lost once the element opens)'
+                if (any(t > 0.0_wp)) call print_tensile_strength(t, t_in)
                 if (any(sfr < sf)) write (unit, '(a)') '    sf_residual '// &
                     short_real(minval(sfr))//' .. '//short_real(maxval(sfr))//stress// &
                     ' (the cohesion once the element has slipped)'
@@ -129,6 +131,23 @@ contains
                     model%length_unit
             end associate
         end subroutine print_strength
+
+        !> The tensile strength in force, and the given one where the cap at the Coulomb apex
+        !> sf/mu lowers it (the plausibility notes say on which elements).
+        subroutine print_tensile_strength(given, in_force)
+            real(wp), intent(in) :: given(:), in_force(:)
+            character(len=:), allocatable :: line
+
+            line = '    tensile_strength '//short_real(minval(in_force))//' .. '// &
+                short_real(maxval(in_force))//stress
+            if (any(in_force < given)) then
+                line = line//' in force (given '//short_real(minval(given))//' .. '// &
+                    short_real(maxval(given))//stress//', capped at sf/mu;'
+            else
+                line = line//' (capped at sf/mu;'
+            end if
+            write (unit, '(a)') line//' lost once the element opens)'
+        end subroutine print_tensile_strength
 
         !> 'min .. max' of stiffnesses, 'rigid' for rigid contact.
         function stiffness_range(k) result(text)

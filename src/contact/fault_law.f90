@@ -27,7 +27,7 @@ module ddc_contact_fault_law
     implicit none
     private
 
-    public :: fault_law, new_fault_law, no_residual_drop, rigid_joint
+    public :: fault_law, new_fault_law, no_residual_drop, rigid_joint, tensile_cap
 
     !> sf_residual and mu_dynamic of an element whose cohesion and friction do not drop
     !> after slip (the default: a sweep may change sf or mu after the input was read)
@@ -239,12 +239,25 @@ contains
         real(wp), allocatable, intent(out) :: cap(:)
 
         associate (mu => law%mu_in_force, sf => law%sf_in_force)
-            cap = law%tensile_in_force
-            where (mu * law%tensile_in_force > sf) cap = sf / mu
+            cap = tensile_cap(law%tensile_in_force, sf, mu)
             sf_in = max(sf - mu * cap, 0.0_wp)
             s_n_in = s_n - cap
         end associate
     end subroutine shifted
+
+    !> The tensile strength T capped at the Coulomb apex sf/mu, where the shear strength
+    !> sf - mu T of the shifted law would turn negative; T where it is below the apex.
+    elemental function tensile_cap(tensile_strength, sf, mu) result(cap)
+        !> Tensile strength T >= 0, cohesion sf >= 0 [stress]
+        real(wp), intent(in) :: tensile_strength, sf
+        !> Friction coefficient [-]
+        real(wp), intent(in) :: mu
+        !> min(T, sf/mu) [stress]
+        real(wp) :: cap
+
+        cap = tensile_strength
+        if (mu * tensile_strength > sf) cap = sf / mu
+    end function tensile_cap
 
     !> After a solve: elements that opened lose their tensile strength, elements that
     !> slipped drop their cohesion to min(sf_in_force, sf_residual); true when any strength

@@ -3,6 +3,8 @@
 !>   wrong sign: with y negative downward, compression grows with depth for ds_dy > 0);
 !> - a pore pressure p0 + dp_dy y that is negative somewhere in the model (hydrostatic is
 !>   dp_dy < 0);
+!> - a tensile strength above the Coulomb apex sf/mu, which the law caps there (with the
+!>   default sf = 0 a fracture then has no tensile strength at all);
 !> - stresses whose strain |stress| / E lies outside about strain_min .. strain_max, the
 !>   mark of a stress_unit that differs from the unit of youngs_modulus.
 !> The model's depth range is that of its element ends and observation points.
@@ -10,7 +12,8 @@ module ddc_model_plausibility
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type, domain_half_plane, condition_contact, &
         condition_traction, condition_mixed_us_sn, condition_mixed_ss_un
-    use ddc_text, only: short_real, newline
+    use ddc_contact_fault_law, only: tensile_cap
+    use ddc_text, only: short_real, newline, itoa
     implicit none
     private
 
@@ -51,6 +54,7 @@ contains
         !> The notes, newline-separated
         character(len=:), allocatable :: notes
         real(wp) :: deepest, highest
+        integer :: k
 
         notes = ''
         call depth_range(model, deepest, highest)
@@ -59,6 +63,9 @@ contains
             call tensile_with_depth('syy', model%syy, model%stress_gradient(2))
         end if
         if (any(model%elements%condition == condition_contact)) call negative_pore_pressure()
+        do k = 1, size(model%fractures)
+            call capped_tensile_strength(k)
+        end do
         if (units_given) call strain_range()
 
     contains
@@ -100,6 +107,31 @@ contains
                      'crack faces together); hydrostatic pressure with y negative downward '// &
                      'has dp_dy < 0 (-0.0098 MPa/m for water)')
         end subroutine negative_pore_pressure
+
+        !> Fracture k's tensile strength where the cap at the apex sf/mu lowers it.
+        subroutine capped_tensile_strength(k)
+            integer, intent(in) :: k
+            integer :: capped
+
+            associate (first => model%fractures(k)%first_element, &
+                       last => model%fractures(k)%last_element)
+                associate (t => model%elements%tensile_strength(first:last), &
+                           t_in => tensile_cap(model%elements%tensile_strength(first:last), &
+                                               model%elements%sf(first:last), &
+                                               model%elements%mu(first:last)))
+                    capped = count(t_in < t)
+                    if (capped == 0) return
+                    call add('fracture '//itoa(k)//' '//model%fractures(k)%name// &
+                             ': tensile_strength '//short_real(maxval(t, mask=t_in < t))// &
+                             ' '//model%stress_unit//' is above the Coulomb apex sf/mu on '// &
+                             itoa(capped)//' of '//itoa(size(t))//' elements and is capped '// &
+                             'there to '//short_real(minval(t_in, mask=t_in < t))//' .. '// &
+                             short_real(maxval(t_in, mask=t_in < t))//' '// &
+                             model%stress_unit//' (where the shear strength sf - mu T '// &
+                             'vanishes); a tensile strength T needs sf >= mu T')
+                end associate
+            end associate
+        end subroutine capped_tensile_strength
 
         !> The largest stress given (remote stress at the top and bottom of the model,
         !> pressures, given tractions) against Young's modulus.

@@ -20,7 +20,7 @@
 module ddc_sweep_tasks
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
-    use ddc_model_types, only: model_type, domain_half_plane
+    use ddc_model_types, only: model_type, domain_half_plane, no_residual_drop
     use ddc_text, only: itoa, lower, short_real, add_message, messages_error
     use ddc_model_limits, only: range_problem, quantity_any, quantity_youngs_modulus, &
         quantity_poissons_ratio, quantity_non_negative
@@ -256,12 +256,7 @@ contains
             end do
         end if
         do p = 1, size(values)
-            first = 1
-            last = model%elements%n
-            if (sweep%fractures(p) > 0) then
-                first = model%fractures(sweep%fractures(p))%first_element
-                last = model%fractures(sweep%fractures(p))%last_element
-            end if
+            call element_range(model, sweep, p, first, last)
             select case (sweep%targets(p))
             case (target_youngs)
                 model%youngs_modulus = values(p)
@@ -283,6 +278,25 @@ contains
         model%sweep%values = values
         model%output_file = task_file_name(model%output_file, task, sweep%tasks)
     end subroutine apply_task
+
+    !> The elements parameter p of the sweep sets: those of its fracture, or all.
+    pure subroutine element_range(model, sweep, p, first, last)
+        !> The base model
+        type(model_type), intent(in) :: model
+        !> The sweep
+        type(sweep_definition), intent(in) :: sweep
+        !> The parameter, 1 <= p <= np
+        integer, intent(in) :: p
+        !> First and last element it sets
+        integer, intent(out) :: first, last
+
+        first = 1
+        last = model%elements%n
+        if (sweep%fractures(p) > 0) then
+            first = model%fractures(sweep%fractures(p))%first_element
+            last = model%fractures(sweep%fractures(p))%last_element
+        end if
+    end subroutine element_range
 
     !> The remote stress (sxx, syy, sxy) of a task with the given parameter values: the
     !> base model's, with swept components or principal stresses replaced.
@@ -346,10 +360,10 @@ contains
         if (nbad > 0) call messages_error(messages, nbad, 'tasks that cannot run', error)
     end subroutine check_tasks
 
-    !> Why task `task` cannot be solved, '' when it can: in a half-plane its remote stress
-    !> must keep the surface y = 0 traction-free (syy = sxy = 0), which a swept syy, sxy
-    !> or principal stress breaks. The line names the file, &sweep, the task, its
-    !> parameters and values, and the parameters that break the rule.
+    !> Why task `task` cannot be solved, '' when it can: its remote stress breaks the
+    !> half-plane rule (half_plane_problem), or its friction or cohesion falls below what
+    !> the base model gives after slip (weakening_problem). The line names the file,
+    !> &sweep, the task, its parameters and values, and what breaks the rule.
     function task_problem(model, sweep, task) result(problem)
         !> The base model (read and checked)
         type(model_type), intent(in) :: model
@@ -359,13 +373,33 @@ contains
         integer, intent(in) :: task
         !> The problem, '' when there is none
         character(len=:), allocatable :: problem
-        real(wp) :: values(size(sweep%names)), stress(3)
+        real(wp) :: values(size(sweep%names))
+
+        values = task_values(sweep, task)
+        problem = half_plane_problem(model, sweep, values)
+        if (len(problem) == 0) problem = weakening_problem(model, sweep, values)
+        if (len(problem) > 0) problem = sweep%where//'task '//itoa(task)//' ('// &
+            task_label(sweep, task)//'): '//problem
+    end function task_problem
+
+    !> In a half-plane the remote stress must keep the surface y = 0 traction-free
+    !> (syy = sxy = 0), which a swept syy, sxy or principal stress breaks: the swept values
+    !> that break it and the stress they give, '' when the rule holds.
+    function half_plane_problem(model, sweep, values) result(problem)
+        !> The base model (read and checked)
+        type(model_type), intent(in) :: model
+        !> The sweep (validated against this model)
+        type(sweep_definition), intent(in) :: sweep
+        !> The task's value of each parameter, shape (np)
+        real(wp), intent(in) :: values(:)
+        !> The problem, '' when there is none
+        character(len=:), allocatable :: problem
+        real(wp) :: stress(3)
         character(len=:), allocatable :: culprits
         integer :: p
 
         problem = ''
         if (model%elements%domain /= domain_half_plane) return
-        values = task_values(sweep, task)
         stress = task_stress(model, sweep, values)
         if (stress(2) == 0.0_wp .and. stress(3) == 0.0_wp) return
         culprits = ''
@@ -375,13 +409,77 @@ contains
             if (len(culprits) > 0) culprits = culprits//', '
             culprits = culprits//trim(sweep%names(p))//' = '//short_real(values(p))
         end do
-        problem = sweep%where//'task '//itoa(task)//' ('//task_label(sweep, task)//'): '// &
-            culprits//' gives the remote stress sxx = '//short_real(stress(1))// &
+        problem = culprits//' gives the remote stress sxx = '//short_real(stress(1))// &
             ', syy = '//short_real(stress(2))//', sxy = '//short_real(stress(3))// &
             "; with &model domain = 'half_plane' syy and sxy must be 0 (the surface y = 0 "// &
             'is traction-free): sweep sxx, or the principal stresses only with '// &
             'remote_angle = 0 (s3 = 0) or 90 (s1 = 0)'
-    end function task_problem
+    end function half_plane_problem
+
+    !> A swept mu below the mu_dynamic, or a swept sf below the sf_residual, that the base
+    !> model gives an element: one model with these values is refused (the friction or
+    !> cohesion after slip above the intact one is a mistake), so a sweep must not lower
+    !> the residual to the swept value, or turn the weakening off, without a word. The
+    !> first such element's fracture and values, '' when there is none.
+    function weakening_problem(model, sweep, values) result(problem)
+        !> The base model (read and checked)
+        type(model_type), intent(in) :: model
+        !> The sweep (validated against this model)
+        type(sweep_definition), intent(in) :: sweep
+        !> The task's value of each parameter, shape (np)
+        real(wp), intent(in) :: values(:)
+        !> The problem, '' when there is none
+        character(len=:), allocatable :: problem
+        real(wp), allocatable :: mu(:), sf(:)
+        ! The parameter that set each element's mu and sf (0: the base model's value)
+        integer, allocatable :: mu_from(:), sf_from(:)
+        integer :: p, first, last
+
+        mu = model%elements%mu
+        sf = model%elements%sf
+        allocate (mu_from(size(mu)), sf_from(size(sf)), source=0)
+        do p = 1, size(values)
+            call element_range(model, sweep, p, first, last)
+            select case (sweep%targets(p))
+            case (target_mu)
+                mu(first:last) = values(p)
+                mu_from(first:last) = p
+            case (target_sf)
+                sf(first:last) = values(p)
+                sf_from(first:last) = p
+            case default
+                ! not a strength parameter
+            end select
+        end do
+        problem = above_intact(model%elements%mu_dynamic, mu, mu_from, 'mu_dynamic', &
+                               'the friction after slip must not exceed the static one')
+        if (len(problem) == 0) problem = above_intact(model%elements%sf_residual, sf, &
+            sf_from, 'sf_residual', 'the cohesion after slip must not exceed the intact one')
+
+    contains
+
+        !> The first swept element whose given residual (below no_residual_drop, the mark
+        !> of none) exceeds its swept intact value.
+        function above_intact(residual, intact, from, name, why) result(problem)
+            real(wp), intent(in) :: residual(:), intact(:)
+            integer, intent(in) :: from(:)
+            character(len=*), intent(in) :: name, why
+            character(len=:), allocatable :: problem
+            integer :: j, k
+
+            problem = ''
+            j = findloc(from > 0 .and. residual < no_residual_drop .and. residual > intact, &
+                        .true., 1)
+            if (j == 0) return
+            k = model%elements%fracture_id(j)
+            problem = trim(sweep%names(from(j)))//' = '//short_real(values(from(j)))// &
+                ' is below '//name//' = '//short_real(residual(j))//' of fracture '// &
+                itoa(k)//' '//model%fractures(k)%name//' ('//why//'; one model with '// &
+                'these values is refused too): sweep values of at least '// &
+                short_real(residual(j))//', or lower '//name
+        end function above_intact
+
+    end function weakening_problem
 
     !> True for the targets that describe the remote stress by principal stresses.
     elemental logical function is_principal(target)

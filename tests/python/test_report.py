@@ -103,6 +103,38 @@ def test_notes_on_implausible_input(tmp_path, change, words):
         assert word in found[0]
 
 
+TENSILE = """\
+&model youngs_modulus = 30000, poissons_ratio = 0.25 /
+&remote_stress sxx = 1, syy = -10 /
+&fracture name = 'joint', x = -1, 0, 1, y = 0, 0, 0, elements = 5, 5, mu = 0.5,
+          sf = 0.5, 3, tensile_strength = 2 /
+&fracture name = 'strong', x = -1, 1, y = 2, 2, elements = 10, mu = 0.5, sf = 3,
+          tensile_strength = 2 /
+"""
+
+
+def test_a_capped_tensile_strength_is_echoed_in_force_with_a_note(tmp_path):
+    # T is capped at the Coulomb apex sf/mu: 0.5/0.5 = 1 on the first segment of 'joint',
+    # 6 on its second (and on 'strong', where T = 2 holds as given).
+    done = solve(tmp_path, TENSILE)
+    lines = done.stdout.splitlines()
+    joint = lines.index("  fracture 1 joint: 10 elements, condition contact")
+    assert lines[joint + 1] == ("    tensile_strength 1 .. 2 MPa in force (given 2 .. 2 MPa, "
+                                "capped at sf/mu; lost once the element opens)")
+    strong = lines.index("  fracture 2 strong: 10 elements, condition contact")
+    assert lines[strong + 1] == ("    tensile_strength 2 .. 2 MPa (capped at sf/mu; lost once "
+                                 "the element opens)")
+    assert notes(done) == [
+        "note: fracture 1 joint: tensile_strength 2 MPa is above the Coulomb apex sf/mu on 5 "
+        "of 10 elements and is capped there to 1 .. 1 MPa (where the shear strength "
+        "sf - mu T vanishes); a tensile strength T needs sf >= mu T"]
+    # With the default sf = 0 the cap takes the whole tensile strength.
+    done = solve(tmp_path, TENSILE.replace("sf = 0.5, 3,", ""))
+    lines = done.stdout.splitlines()
+    assert lines[joint + 1].startswith("    tensile_strength 0 .. 0 MPa in force (given 2 .. 2")
+    assert "on 10 of 10 elements and is capped there to 0 .. 0 MPa" in notes(done)[0]
+
+
 def test_no_strain_note_for_twodd_decks(tmp_path):
     # TWODD decks carry no units (E = 1 and unit stresses are common): no strain note.
     done = run(["--twodd", REPO_ROOT / "tests" / "reference" / "twodd" / "inputs" /

@@ -365,3 +365,59 @@ def test_sweep_of_a_stress_the_load_path_holds(tmp_path):
     with h5py.File(tmp_path / "out_task0001.h5", "r") as f:
         # The swept value itself, copied: exact.
         assert f.attrs["remote_stress"][0] == -120.0
+
+
+WEAKENING = """&model youngs_modulus = 50000.0, poissons_ratio = 0.25 /
+&remote_stress sxx = -143.75, syy = -81.25, sxy = 54.13 /
+&fracture name = 'weak', x = -1.0, 1.0, y = 0.0, 0.0, elements = 10, mu = 0.6, sf = 1.0,
+          sf_residual = 0.4, mu_dynamic = 0.4, slip_weakening_distance = 1e-4 /
+&fracture name = 'plain', x = -1.0, 1.0, y = 2.0, 2.0, elements = 10, mu = 0.6, sf = 1.0 /
+"""
+
+
+@pytest.mark.parametrize("swept, low, residual", [("sf", "0.2", "sf_residual = 0.4"),
+                                                   ("mu", "0.3", "mu_dynamic = 0.4")])
+def test_sweep_below_the_residual_strength_is_refused(tmp_path, swept, low, residual):
+    # One model with sf below sf_residual (or mu below mu_dynamic) is refused; a sweep to
+    # such a value must not lower the residual to it (or turn weakening off) without a word.
+    sweep = tmp_path / "weak.nml"
+    sweep.write_text(WEAKENING + f"&sweep parameters = '{swept}', values_1 = 0.8, {low} /\n")
+    expected = (f"{sweep}: &sweep (line 6): task 1 ({swept} = {low}): {swept} = {low} is "
+                f"below {residual} of fracture 1 weak")
+    done = run([sweep, "--list"], tmp_path)
+    assert done.returncode == 2, done.stdout
+    assert done.stdout == ""
+    errors = [line for line in done.stderr.splitlines() if "&sweep" in line]
+    assert errors == [line for line in done.stderr.splitlines() if line.strip()]
+    assert len(errors) == 1 and errors[0].startswith("ddc2d: error: " + expected), done.stderr
+    done = run([sweep, "--task", "1", "-o", "out.h5"], tmp_path)
+    assert done.returncode == 2
+    assert done.stderr.startswith("ddc2d: error: " + expected), done.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["weak.nml"], "nothing written"
+    # The task above the residual runs, with the residual as given.
+    done = run([sweep, "--task", "0", "-o", "out.h5"], tmp_path)
+    assert done.returncode == 0, done.stderr
+    with h5py.File(tmp_path / "out_task0000.h5", "r") as f:
+        elements = f["elements"]
+        weak = elements["fracture_id"][()] == 1
+        assert np.all(elements["sf_residual"][()][weak] == 0.4)
+        assert np.all(elements["mu_dynamic"][()][weak] == 0.4)
+
+
+def test_sweep_refusal_follows_the_value_in_force(tmp_path):
+    # 'mu' sets every fracture to 0.3, then fracture(1)%mu sets the weakening fracture back
+    # to 0.6, above its mu_dynamic: the plain fracture has no mu_dynamic, so every task runs.
+    sweep = tmp_path / "order.nml"
+    sweep.write_text(WEAKENING + "&sweep parameters = 'mu', 'fracture(1)%mu', combine = 'zip',"
+                     " values_1 = 0.3, 0.35, values_2 = 0.6, 0.5 /\n")
+    done = run([sweep, "--list"], tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.splitlines()[0] == "tasks: 2"
+    # The other order leaves 0.3 on the weakening fracture: refused, naming 'mu'.
+    sweep.write_text(WEAKENING + "&sweep parameters = 'fracture(1)%mu', 'mu', combine = 'zip',"
+                     " values_1 = 0.6, 0.5, values_2 = 0.3, 0.45 /\n")
+    done = run([sweep, "--list"], tmp_path)
+    assert done.returncode == 2
+    assert ("task 0 (fracture(1)%mu = 0.6, mu = 0.3): mu = 0.3 is below mu_dynamic = 0.4 of "
+            "fracture 1 weak") in done.stderr
+    assert "task 1 " not in done.stderr
