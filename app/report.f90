@@ -3,14 +3,14 @@
 module ddc_app_report
     use, intrinsic :: iso_fortran_env, only: output_unit
     use ddc_kinds, only: wp
-    use ddc_model_types, only: model_type, rigid_joint, condition_names, observation_kind_names, &
-        symmetry_none, symmetry_names, domain_names, domain_half_plane, load_path_names, &
+    use ddc_model_types, only: model_type, rigid_joint, tensile_cap, condition_names, &
+        observation_kind_names, symmetry_none, symmetry_names, domain_names, &
+        domain_half_plane, load_path_names, &
         growth_tips_names, growth_criterion_names
     use ddc_model_results, only: model_results, state_names, point_near, point_on_element, &
         growth_reason_names, growth_end_names, growth_subcritical, growth_intersection, &
         growth_surface, growth_linked, growth_closed, growth_waiting
     use ddc_model_plausibility, only: plausibility_notes, depth_range
-    use ddc_contact_fault_law, only: tensile_cap
     use ddc_growth_summary, only: tip_summary, summarize_tips, linked_fracture
     use ddc_contact_options, only: lcp_method_names, open_cohesion_names
     use ddc_text, only: short_real, itoa, prefix_lines, join_integers

@@ -10,9 +10,8 @@
 !> The model's depth range is that of its element ends and observation points.
 module ddc_model_plausibility
     use ddc_kinds, only: wp
-    use ddc_model_types, only: model_type, domain_half_plane, condition_contact, &
+    use ddc_model_types, only: model_type, domain_half_plane, condition_contact, tensile_cap, &
         condition_traction, condition_mixed_us_sn, condition_mixed_ss_un
-    use ddc_contact_fault_law, only: tensile_cap
     use ddc_text, only: short_real, newline, itoa
     implicit none
     private

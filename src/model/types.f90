@@ -9,8 +9,9 @@
 module ddc_model_types
     use ddc_kinds, only: wp
     use ddc_contact_options, only: solver_options
-    ! The defaults of the fault law, for the per-element arrays that hold its given values.
-    use ddc_contact_fault_law, only: no_residual_drop, rigid_joint
+    ! The defaults of the fault law, for the per-element arrays that hold its given values,
+    ! and its cap on the tensile strength, for what the echo reports in force.
+    use ddc_contact_fault_law, only: no_residual_drop, rigid_joint, tensile_cap
     implicit none
     private
 
@@ -23,7 +24,7 @@ module ddc_model_types
     public :: observation_grid, observation_line, observation_points, observation_kind_names
     public :: growth_options, growth_tips_all, growth_tips_most_critical, growth_tips_names
     public :: growth_criterion_mts, growth_criterion_names
-    public :: default_block_size, no_residual_drop, rigid_joint
+    public :: default_block_size, no_residual_drop, rigid_joint, tensile_cap
     public :: element_array_action, for_each_element_array, select_elements
 
     !> Boundary conditions; 1-4 are the TWODD KODE values.
