@@ -19,7 +19,7 @@ module ddc_app_resume_check
     use ddc_output_file_system, only: path_kind, kind_missing
     use ddc_output_hdf5_read, only: is_hdf5_file, output_is_complete, read_string_attribute, &
         read_real_dataset, has_dataset
-    use ddc_text, only: itoa, rtoa
+    use ddc_text, only: itoa, rtoa, counted
     implicit none
     private
 
@@ -147,8 +147,9 @@ contains
             end if
             if (size(old) /= steps) then
                 call set_error(error, exit_bad_input, prefix//'its loading history has '// &
-                               itoa(size(old))//' values of '//trim(load_path_names(q))// &
-                               ', not one per step ('//itoa(steps)//')')
+                               counted(size(old), 'value', 'values')//' of '// &
+                               trim(load_path_names(q))//', not one per step ('// &
+                               itoa(steps)//')')
                 return
             end if
             scale = max(maxval(abs(old(1:steps))), maxval(abs(loads(q, 1:steps))))

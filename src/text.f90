@@ -10,7 +10,7 @@ module ddc_text
 
     public :: newline, max_messages, add_message, messages_error, itoa, rtoa, short_real, lower
     public :: join_integers, prefix_lines, quoted_list, find_name, bytes_text, seconds_text
-    public :: from_c_chars, allocated_text
+    public :: from_c_chars, allocated_text, counted
 
     !> Separator of the lines of a message
     character(len=*), parameter :: newline = achar(10)
@@ -64,6 +64,22 @@ contains
         write (buffer, '(i0)') i
         out = trim(buffer)
     end function itoa
+
+    !> "1 value", "3 values": a count with its noun in the number it needs.
+    pure function counted(n, singular, plural) result(out)
+        !> The count
+        integer, intent(in) :: n
+        !> The noun for one, and for any other count
+        character(len=*), intent(in) :: singular, plural
+        !> The count and the noun
+        character(len=:), allocatable :: out
+
+        if (n == 1) then
+            out = itoa(n)//' '//singular
+        else
+            out = itoa(n)//' '//plural
+        end if
+    end function counted
 
     !> Real as short text (NaN and Inf spelled out).
     pure function rtoa(x) result(out)

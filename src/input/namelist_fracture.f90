@@ -7,7 +7,7 @@ module ddc_input_namelist_fracture
     use ddc_model_types, only: condition_names, condition_contact, no_residual_drop, rigid_joint
     use ddc_model_limits, only: range_problem, quantity_non_negative, quantity_positive, &
                                 within_limits
-    use ddc_text, only: itoa, rtoa, lower, find_name, quoted_list, prefix_lines
+    use ddc_text, only: itoa, rtoa, lower, find_name, quoted_list, prefix_lines, counted
     use ddc_input_text_file, only: resolve
     use ddc_input_csv, only: read_csv
     use ddc_mesh_polyline, only: polyline_elements, expand_per_segment
@@ -197,11 +197,12 @@ contains
                 end if
             else
                 if (nx /= ny) then
-                    call add(messages, prefix//'x has '//itoa(nx)//' values but y has '// &
-                             itoa(ny)//'; give one x and one y per vertex')
+                    call add(messages, prefix//'x has '//counted(nx, 'value', 'values')// &
+                             ' but y has '//itoa(ny)//'; give one x and one y per vertex')
                 else if (nx < 2) then
-                    call add(messages, prefix//'x and y give '//itoa(nx)//' vertices; a '// &
-                             'fracture needs at least 2 (or an elements_file)')
+                    call add(messages, prefix//'x and y give '// &
+                             counted(nx, 'vertex', 'vertices')//'; a fracture needs at '// &
+                             'least 2 (or an elements_file)')
                 else
                     nseg = nx - 1
                     geometry_ok = .true.

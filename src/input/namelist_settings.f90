@@ -9,7 +9,7 @@ module ddc_input_namelist_settings
         domain_half_plane, load_path_names, default_block_size
     use ddc_model_limits, only: quantity_youngs_modulus, quantity_poissons_ratio
     use ddc_contact_options, only: parse_solver_options
-    use ddc_text, only: itoa, lower, find_name, quoted_list, prefix_lines
+    use ddc_text, only: itoa, lower, find_name, quoted_list, prefix_lines, counted
     use ddc_input_text_file, only: base_name, resolve
     use ddc_input_namelist_groups, only: group_record, message_list, add, group_prefix, &
         g_model, g_remote_stress, g_pore_fluid, g_solver, g_symmetry, g_output, g_load_path
@@ -335,8 +335,9 @@ contains
             if (stat == 0) then
                 model%load_path%vertex(q, :) = fixed(q)
             else if (stat /= nv .and. nlegs > 0) then
-                call add(messages, prefix//trim(load_path_names(q))//' has '//itoa(stat)// &
-                         ' values; give one per vertex: '//itoa(nv)//' (one more than steps)')
+                call add(messages, prefix//trim(load_path_names(q))//' has '// &
+                         counted(stat, 'value', 'values')//'; give one per vertex: '// &
+                         itoa(nv)//' (one more than steps)')
                 ok = .false.
             else
                 model%load_path%varies(q) = .true.

@@ -4,7 +4,7 @@
 !> the per-segment arrays broadcast to every segment.
 module ddc_input_namelist_values
     use ddc_kinds, only: wp
-    use ddc_text, only: itoa, rtoa
+    use ddc_text, only: itoa, rtoa, counted
     use ddc_model_limits, only: within_limits, limits_text, range_problem, quantity_any
     use ddc_input_namelist_groups, only: message_list, add
     implicit none
@@ -114,8 +114,8 @@ contains
 
         ok = n == 0 .or. n == 1 .or. n == nseg
         if (.not. ok) then
-            call add(messages, prefix//name//' has '//itoa(n)//' values; give 1 (for every '// &
-                     'segment) or '//itoa(nseg)//' (one per segment)')
+            call add(messages, prefix//name//' has '//counted(n, 'value', 'values')// &
+                     '; give 1 (for every segment) or '//itoa(nseg)//' (one per segment)')
         end if
     end function check_length
 
