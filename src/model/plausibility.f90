@@ -5,6 +5,11 @@
 !>   dp_dy < 0);
 !> - a tensile strength above the Coulomb apex sf/mu, which the law caps there (with the
 !>   default sf = 0 a fracture then has no tensile strength at all);
+!> - a slip_weakening_distance on elements whose friction does not drop (mu_dynamic not
+!>   below mu): it does nothing there;
+!> - a fluid pressure that makes the effective normal stress tensile beyond the tensile
+!>   strength on every contact element of a model without a loading history: all of them
+!>   open;
 !> - stresses whose strain |stress| / E lies outside about strain_min .. strain_max, the
 !>   mark of a stress_unit that differs from the unit of youngs_modulus.
 !> The model's depth range is that of its element ends and observation points.
@@ -12,6 +17,7 @@ module ddc_model_plausibility
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type, domain_half_plane, condition_contact, tensile_cap, &
         condition_traction, condition_mixed_us_sn, condition_mixed_ss_un
+    use ddc_model_loads, only: resolve_remote_stress, total_pressure
     use ddc_text, only: short_real, newline, itoa
     implicit none
     private
@@ -61,9 +67,13 @@ contains
             call tensile_with_depth('sxx', model%sxx, model%stress_gradient(1))
             call tensile_with_depth('syy', model%syy, model%stress_gradient(2))
         end if
-        if (any(model%elements%condition == condition_contact)) call negative_pore_pressure()
+        if (any(model%elements%condition == condition_contact)) then
+            call negative_pore_pressure()
+            if (.not. allocated(model%load_path%vertex)) call tension_on_every_contact()
+        end if
         do k = 1, size(model%fractures)
             call capped_tensile_strength(k)
+            call idle_weakening_distance(k)
         end do
         if (units_given) call strain_range()
 
@@ -131,6 +141,50 @@ contains
                 end associate
             end associate
         end subroutine capped_tensile_strength
+
+        !> Fracture k's slip_weakening_distance where mu_dynamic is not below mu.
+        subroutine idle_weakening_distance(k)
+            integer, intent(in) :: k
+            integer :: idle
+
+            associate (first => model%fractures(k)%first_element, &
+                       last => model%fractures(k)%last_element)
+                associate (dc => model%elements%slip_weakening_distance(first:last), &
+                           mu => model%elements%mu(first:last), &
+                           mud => model%elements%mu_dynamic(first:last))
+                    idle = count(dc > 0.0_wp .and. .not. mud < mu)
+                    if (idle == 0) return
+                    call add('fracture '//itoa(k)//' '//model%fractures(k)%name// &
+                             ': slip_weakening_distance is given, but mu_dynamic is not '// &
+                             'below mu on '//itoa(idle)//' of '//itoa(size(dc))// &
+                             ' elements: their friction does not weaken (give mu_dynamic < mu)')
+                end associate
+            end associate
+        end subroutine idle_weakening_distance
+
+        !> The fluid pressure turns the effective normal traction (remote normal traction
+        !> plus fluid pressure) above the tensile strength in force on every contact
+        !> element. Remote tension alone (a crack pulled open) is a model of its own.
+        subroutine tension_on_every_contact()
+            real(wp), allocatable :: shear(:), normal(:), effective(:), strength(:)
+            logical, allocatable :: contact(:)
+
+            associate (e => model%elements)
+                allocate (shear(e%n), normal(e%n))
+                call resolve_remote_stress(e, model%sxx, model%syy, model%sxy, shear, normal, &
+                                           model%stress_gradient)
+                effective = normal + total_pressure(e, model%pore_fluid)
+                strength = tensile_cap(e%tensile_strength, e%sf, e%mu)
+                contact = e%condition == condition_contact
+                if (all(normal > strength .or. .not. contact)) return
+                if (.not. all(effective > strength .or. .not. contact)) return
+                call add('the fluid pressure makes the effective normal stress tensile on '// &
+                         'every contact element ('//short_real(minval(effective, contact))// &
+                         ' .. '//short_real(maxval(effective, contact))//' '// &
+                         model%stress_unit//', remote normal stress plus fluid pressure, '// &
+                         'above the tensile strength): every one opens whole')
+            end associate
+        end subroutine tension_on_every_contact
 
         !> The largest stress given (remote stress at the top and bottom of the model,
         !> pressures, given tractions) against Young's modulus.

@@ -78,8 +78,12 @@ def test_echo_of_symmetry_and_loading_history(tmp_path):
         in done.stdout.splitlines()
 
 
+FLUID_NOTE = "note: the fluid pressure makes the effective normal stress tensile"
+
+
 @pytest.mark.parametrize("change, words", [
-    # syy = 0.0265 y would turn tensile with depth with the sign flipped.
+    # syy = 0.0265 y would turn tensile with depth with the sign flipped (and with the
+    # hydrostatic pore pressure the whole fault is then in effective tension: a second note).
     (("dsyy_dy = 0.0265", "dsyy_dy = -0.0265"),
      ["the remote syy = 0 + -0.0265 y turns tensile with depth: 79.5 MPa at y = -3000 m",
       "needs dsyy_dy > 0"]),
@@ -98,7 +102,10 @@ def test_echo_of_symmetry_and_loading_history(tmp_path):
 def test_notes_on_implausible_input(tmp_path, change, words):
     done = solve(tmp_path, GRAVITY.replace(*change))
     found = notes(done)
-    assert len(found) == 1, done.stdout
+    if change[1] == "dsyy_dy = -0.0265":
+        assert len(found) == 2 and found[1].startswith(FLUID_NOTE), done.stdout
+    else:
+        assert len(found) == 1, done.stdout
     for word in words:
         assert word in found[0]
 
@@ -125,14 +132,42 @@ def test_a_capped_tensile_strength_is_echoed_in_force_with_a_note(tmp_path):
     assert lines[strong + 1] == ("    tensile_strength 2 .. 2 MPa (capped at sf/mu; lost once "
                                  "the element opens)")
     assert notes(done) == [
-        "note: fracture 1 joint: tensile_strength 2 MPa is above the Coulomb apex sf/mu on 5 "
-        "of 10 elements and is capped there to 1 .. 1 MPa (where the shear strength "
-        "sf - mu T vanishes); a tensile strength T needs sf >= mu T"]
+        ("note: fracture 1 joint: tensile_strength 2 MPa is above the Coulomb apex sf/mu on 5 "
+         "of 10 elements and is capped there to 1 .. 1 MPa (where the shear strength "
+         "sf - mu T vanishes); a tensile strength T needs sf >= mu T")]
     # With the default sf = 0 the cap takes the whole tensile strength.
     done = solve(tmp_path, TENSILE.replace("sf = 0.5, 3,", ""))
     lines = done.stdout.splitlines()
     assert lines[joint + 1].startswith("    tensile_strength 0 .. 0 MPa in force (given 2 .. 2")
     assert "on 10 of 10 elements and is capped there to 0 .. 0 MPa" in notes(done)[0]
+
+
+def test_note_on_a_weakening_distance_without_a_friction_drop(tmp_path):
+    text = CRACK.replace("condition = 'traction',\n          bc_n = -5",
+                         "mu = 0.6, slip_weakening_distance = 1e-3")
+    found = notes(solve(tmp_path, text))
+    assert found == [("note: fracture 1 crack: slip_weakening_distance is given, but "
+                      "mu_dynamic is not below mu on 10 of 10 elements: their friction does "
+                      "not weaken (give mu_dynamic < mu)")]
+    assert not notes(solve(tmp_path, text.replace("mu = 0.6,", "mu = 0.6, mu_dynamic = 0.4,")))
+
+
+@pytest.mark.parametrize("p0, tensile", [(25, True), (15, False)])
+def test_note_when_the_fluid_makes_every_contact_tensile(tmp_path, p0, tensile):
+    # The fault across syy = -20 (its normal stress) with p0 = 25: effective +5 on every
+    # element, all open; with p0 = 15 it stays compressive. Remote tension alone (a crack
+    # pulled open) gets no note: it is a model of its own.
+    text = CRACK.replace("condition = 'traction',\n          bc_n = -5", "mu = 0.6") + \
+        f"&pore_fluid p0 = {p0} /\n"
+    found = notes(solve(tmp_path, text))
+    if tensile:
+        assert found == [FLUID_NOTE + (" on every contact element (5 .. 5 MPa, remote normal "
+                                       "stress plus fluid pressure, above the tensile "
+                                       "strength): every one opens whole")]
+    else:
+        assert found == []
+    pulled = CRACK.replace("condition = 'traction',\n          bc_n = -5", "mu = 0.6")
+    assert not notes(solve(tmp_path, pulled.replace("syy = -20", "syy = 20")))
 
 
 def test_no_strain_note_for_twodd_decks(tmp_path):
