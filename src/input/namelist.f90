@@ -86,8 +86,9 @@ contains
         call read_output_group(unit, text, path, dir, groups(g_output), model, messages)
         call read_symmetry_group(unit, text, path, groups(g_symmetry), model, messages)
         call read_pore_fluid_group(unit, text, path, groups(g_pore_fluid), model, messages)
+        ! A fracture that could not be read may be a contact one: its own message is enough.
         call read_load_path_group(unit, text, path, groups(g_load_path), &
-                                  any(fractures%valid .and. &
+                                  any(.not. fractures%valid .or. &
                                       fractures%condition == condition_contact), model, messages)
         call read_growth_group(unit, text, path, groups, fractures, model, messages)
         close (unit)

@@ -61,7 +61,8 @@ contains
     end subroutine report_malformed
 
     !> Message for a group that exists but could not be read: our own diagnosis of the
-    !> group text (unknown variable, value of the wrong type) plus gfortran's iomsg.
+    !> group text (unknown variable, value of the wrong type), with gfortran's iomsg unless
+    !> the diagnosis is an unknown variable.
     function malformed_message(prefix, stat, iomsg, spec, group_text) result(message)
         !> "file: &group k (line n): "
         character(len=*), intent(in) :: prefix
@@ -75,11 +76,12 @@ contains
         character(len=:), allocatable :: message, problem
 
         problem = diagnose_group(group_text, spec)
-        if (len(problem) > 0) then
+        if (index(problem, 'unknown variable') == 1) then
+            ! gfortran names the object it was reading before the unknown name: not said.
+            message = prefix//problem//'; the variables of this group are: '//spec_names(spec)
+            return
+        else if (len(problem) > 0) then
             message = prefix//problem//' (gfortran: '//trim(iomsg)//')'
-            if (index(problem, 'unknown variable') == 1) then
-                message = message//'; the variables of this group are: '//spec_names(spec)
-            end if
             return
         end if
         message = prefix//'cannot be read (gfortran: '//trim(iomsg)//'): '
