@@ -1,10 +1,12 @@
-# Spack package of ddc2d (docs/install.md#spack). Copy this folder into a Spack repository
-# of your own (`spack repo create`, then packages/ddc2d/) and `spack install ddc2d`; the
+# Spack package of ddc2d (docs/install.md#spack). Copy this folder into the packages/
+# folder of a Spack repository of your own (`spack repo create`) and build it; the
 # variants map to the options of CMakeLists.txt (tests/install/test_install.py checks that
 # the names agree).
-# Spack's package language comes from its star import: ruff cannot see its names.
+# Written for Spack 1.x (build systems in the builtin repository). Spack's package
+# language comes from its star import: ruff cannot see its names.
 # ruff: noqa: F403, F405
 from spack.package import *
+from spack_repo.builtin.build_systems.cmake import CMakePackage, generator
 
 
 class Ddc2d(CMakePackage):
