@@ -8,7 +8,8 @@ prefix, then what a user does with it.
 - examples/library/ built against the prefix with find_package(ddc2d), and the same source
   linked with `gfortran $(pkg-config --cflags --libs ddc2d)`: both print K_I of a crack
   built in code, checked here against the closed form;
-- the Lmod module file loaded with Debian's Lmod;
+- the Lmod module file loaded with Debian's Lmod, and both it and the pkg-config file in a
+  copy of the installed tree;
 - the Spack package's variants and CMake options against the options of CMakeLists.txt.
 
 Run by the CTest `install` with DDC2D_BUILD_DIR (the build to install), DDC2D_CMAKE,
@@ -128,16 +129,34 @@ def test_example_with_pkg_config(prefix, tmp_path):
                                err_msg="K_I of the pkg-config build against p sqrt(pi a)")
 
 
-def test_lmod_module_file(prefix):
+def module_environment(prefix):
+    """PATH's first entry's ddc2d, DDC2D_ROOT, CMAKE_PREFIX_PATH and PKG_CONFIG_PATH after
+    `module load ddc2d` from the prefix's module folder, with Debian's Lmod."""
     assert LMOD_INIT.is_file(), f"no {LMOD_INIT}: install Lmod (scripts/setup.sh --tests)"
     script = (f"source {LMOD_INIT} && module use {prefix}/share/modulefiles && "
               "module load ddc2d && command -v ddc2d && echo \"$DDC2D_ROOT\" && "
               "echo \"$CMAKE_PREFIX_PATH\" && echo \"$PKG_CONFIG_PATH\"")
-    lines = run(["bash", "-c", script]).stdout.splitlines()
-    assert lines[0] == f"{prefix}/bin/ddc2d"
-    assert lines[1] == str(prefix)
-    assert lines[2].split(":")[0] == str(prefix)
-    assert lines[3].split(":")[0] == f"{prefix}/lib/pkgconfig"
+    return run(["bash", "-c", script]).stdout.splitlines()
+
+
+def test_lmod_module_file(prefix):
+    ddc2d, root, cmake_path, pkg_config_path = module_environment(prefix)
+    assert ddc2d == f"{prefix}/bin/ddc2d"
+    assert root == str(prefix)
+    assert cmake_path.split(":")[0] == str(prefix)
+    assert pkg_config_path.split(":")[0] == f"{prefix}/lib/pkgconfig"
+
+
+def test_moved_prefix(prefix, tmp_path):
+    """The installed tree copied elsewhere: the module file and the pkg-config file point
+    into the copy."""
+    moved = tmp_path / "moved"
+    shutil.copytree(prefix, moved, symlinks=True)
+    ddc2d, root, _, _ = module_environment(moved)
+    assert (ddc2d, root) == (f"{moved}/bin/ddc2d", str(moved))
+    environment = dict(os.environ, PKG_CONFIG_PATH=str(moved / "lib" / "pkgconfig"))
+    modules = run(["pkg-config", "--variable=moduledir", "ddc2d"], env=environment).stdout
+    assert Path(modules.strip()).resolve() == module_folder(moved).resolve()
 
 
 def cmake_options(path):

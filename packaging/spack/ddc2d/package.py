@@ -28,8 +28,8 @@ class Ddc2d(CMakePackage):
     depends_on("c", type="build")
     depends_on("blas")
     depends_on("lapack")
-    depends_on("hdf5+fortran~mpi", when="~mpi")
-    depends_on("hdf5+fortran", when="+mpi")
+    # Serial HDF5 in the MPI build too: one process writes the result file.
+    depends_on("hdf5+fortran~mpi")
     depends_on("mpi", when="+mpi")
     depends_on("scalapack", when="+mpi")
 
