@@ -46,8 +46,9 @@ with_tests=0
 for argument in "$@"; do
     case "$argument" in
         --mpi) debian_packages+=("${mpi_packages[@]}"); tools+=(mpiexec mpif90) ;;
-        # pFUnit's build runs m4 and git (for a clone when no source is given).
-        --tests) with_tests=1; debian_packages+=(m4 git); tools+=(m4 git) ;;
+        # pFUnit's build runs m4 and git (for a clone when no source is given); the install
+        # test loads the installed module file with Lmod.
+        --tests) with_tests=1; debian_packages+=(m4 git lmod); tools+=(m4 git) ;;
         *) die "unknown argument '$argument' (usage: scripts/setup.sh [--mpi] [--tests])" ;;
     esac
 done
