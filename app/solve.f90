@@ -6,9 +6,7 @@ module ddc_app_solve
     use ddc_model_types, only: model_type
     use ddc_model_results, only: model_results
     use ddc_model_restart, only: restart_state
-    use ddc_run_model, only: run_model
-    use ddc_history_solve, only: solve_history
-    use ddc_growth_driver, only: grow_fractures
+    use ddc_api_solve, only: solve_model
     use ddc_output_restart_read, only: read_restart
     use ddc_app_command_line, only: command_line_options
     use ddc_app_report, only: print_growth_step
@@ -36,17 +34,9 @@ contains
             ! The file was checked in prepare_run: complete, this version, this model.
             call read_restart(options%resume_file, restart, error)
             if (allocated(error)) return
-            if (model%growth%active) then
-                call grow_fractures(model, results, error, print_growth_step, restart)
-            else
-                call solve_history(model, results, error, restart=restart)
-            end if
-        else if (model%growth%active) then
-            call grow_fractures(model, results, error, print_growth_step)
-        else if (allocated(model%load_path%vertex)) then
-            call solve_history(model, results, error)
+            call solve_model(model, results, error, print_growth_step, restart)
         else
-            call run_model(model, results, error)
+            call solve_model(model, results, error, print_growth_step)
         end if
     end subroutine solve_on_one_process
 

@@ -30,9 +30,7 @@ module ddc_api_library
     use ddc_input_namelist, only: read_namelist_model
     use ddc_input_sweep, only: read_sweep
     use ddc_sweep_tasks, only: sweep_definition
-    use ddc_run_model, only: run_model
-    use ddc_history_solve, only: solve_history
-    use ddc_growth_driver, only: grow_fractures
+    use ddc_api_solve, only: solve_model
     use ddc_output_hdf5, only: write_results
     implicit none
     private
@@ -269,13 +267,7 @@ contains
             if (allocated(error)) return
         end if
         result%model%fingerprint = model_fingerprint(result%model)
-        if (result%model%growth%active) then
-            call grow_fractures(result%model, result%results, error)
-        else if (allocated(result%model%load_path%vertex)) then
-            call solve_history(result%model, result%results, error)
-        else
-            call run_model(result%model, result%results, error)
-        end if
+        call solve_model(result%model, result%results, error)
     end subroutine solve
 
     !> Number of elements of the solved geometry.

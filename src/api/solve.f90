@@ -1,0 +1,42 @@
+!> The solve of a model as the program does it, for the program and the library alike:
+!> fracture growth, a loading history or one solve, continued from an earlier run's end
+!> when a restart state is given (--resume).
+module ddc_api_solve
+    use ddc_error, only: error_type
+    use ddc_model_types, only: model_type
+    use ddc_model_results, only: model_results
+    use ddc_model_restart, only: restart_state
+    use ddc_run_model, only: run_model
+    use ddc_history_solve, only: solve_history
+    use ddc_growth_driver, only: grow_fractures, growth_progress
+    implicit none
+    private
+
+    public :: solve_model
+
+contains
+
+    !> Grow the model's fractures (&growth), follow its loading history (&load_path), or
+    !> solve it once.
+    subroutine solve_model(model, results, error, progress, restart)
+        !> A validated model; growth adds its new elements
+        type(model_type), intent(inout) :: model
+        !> The results
+        type(model_results), intent(out) :: results
+        !> Allocated when the solve fails
+        type(error_type), allocatable, intent(out) :: error
+        !> Called after every growth step
+        procedure(growth_progress), optional :: progress
+        !> The end of an earlier run of a growth model or a loading history to go on from
+        type(restart_state), intent(in), optional :: restart
+
+        if (model%growth%active) then
+            call grow_fractures(model, results, error, progress, restart)
+        else if (allocated(model%load_path%vertex)) then
+            call solve_history(model, results, error, restart=restart)
+        else
+            call run_model(model, results, error)
+        end if
+    end subroutine solve_model
+
+end module ddc_api_solve
