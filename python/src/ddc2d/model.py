@@ -38,7 +38,7 @@ def namelist_value(value):
     if isinstance(value, float):
         if not math.isfinite(value):
             raise ValueError(f"{value} cannot be written: ddc2d takes finite numbers only")
-        return repr(value)
+        return repr(float(value))  # float(): numpy scalars print as np.float64(...)
     if hasattr(value, "tolist"):  # a numpy array or scalar
         return namelist_value(value.tolist())
     if isinstance(value, (list, tuple)):
