@@ -56,8 +56,8 @@ def test_pip_install_into_an_empty_venv(tmp_path):
     done = run([python, "-m", "pip", "install", "--quiet", copy_package(tmp_path / "python")],
                tmp_path)
     assert done.returncode == 0, done.stdout + done.stderr
-    done = run([python, "-c", "import ddc2d, xarray; print(ddc2d.__file__); "
-                "print(ddc2d.__version__)"], tmp_path)
+    show = "import ddc2d, xarray; print(ddc2d.__file__); print(ddc2d.__version__)"
+    done = run([python, "-c", show], tmp_path)
     assert done.returncode == 0, done.stderr
     where, version = done.stdout.split()
     assert Path(where).is_relative_to(tmp_path / "venv") and version == "0.1.0"
@@ -70,8 +70,8 @@ def test_pip_install_into_an_empty_venv(tmp_path):
     done = run([tmp_path / "venv" / "bin" / "comp2ddm2nml", "book.xlsx"], tmp_path)
     assert done.returncode == 2
     assert done.stderr.strip().splitlines() == [
-        "comp2ddm2nml: error: the Python package openpyxl is missing: install it (pip install "
-        "'ddc2d[workbooks]'; in the repository: scripts/setup.sh)"]
+        ("comp2ddm2nml: error: the Python package openpyxl is missing: install it (pip "
+         "install 'ddc2d[workbooks]'; in the repository: scripts/setup.sh)")]
 
 
 def test_setup_installs_the_package_of_its_working_tree(tmp_path):
