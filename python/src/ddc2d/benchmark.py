@@ -1,4 +1,5 @@
-"""Benchmark ddc2d (docs/performance.md#the-benchmark).
+"""Benchmark ddc2d (docs/performance.md#the-benchmark): the command ddc2d-benchmark, in the
+repository also scripts/benchmark.py.
 
     benchmark.py --exe PATH --sizes 250,500,1000
                  --case straight|mixed|history|fields|growth|growth-history

@@ -1,5 +1,8 @@
 """Convergence study of fracture growth (docs/theory/growth.md#convergence-with-the-increment):
-the wings of a sliding flaw against the increment and the element length.
+the wings of a sliding flaw against the increment and the element length. The command
+ddc2d-growth-convergence, in the repository also scripts/growth_convergence.py; run from a
+working tree (an editable install), its default paths are in that tree, else in the
+current folder.
 
     growth_convergence.py [--exe DDC2D] [--work DIR] [--figure PNG] [--csv CSV]
                           [--elements N[,N...]] [--increments D[,D...]] [--quick]
