@@ -4,8 +4,8 @@
     check_docs.py SOURCE_ROOT
 
 1. The repository explains itself: no source, test, script, Python module, example input,
-   README or page of docs/ cites a design note outside it ("SPEC section 7", "SPEC-GROWTH 1.4") or an
-   issue of the tracker ("issue 26"); they cite the pages of docs/ instead.
+   README or page of docs/ cites a design note outside it ("SPEC section 7", "SPEC-GROWTH
+   1.4") or an issue of the tracker ("issue 26"); they cite the pages of docs/ instead.
 2. Every relative link and image of README.md and docs/ resolves: the file exists and, for
    a link to a heading (`page.md#heading`, `#heading`), the heading does (GitHub's anchors:
    lower case, punctuation dropped, spaces as hyphens). Web addresses are not followed.
