@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Lint the Python of scripts/ and tests/ with ruff (rules in ruff.toml):
+# Lint the Python of python/, scripts/, tests/ and docs/examples/ with ruff (rules in ruff.toml):
 #
 #   scripts/lint-python.sh [more ruff check options, e.g. --fix or --statistics]
 #

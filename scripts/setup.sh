@@ -8,11 +8,13 @@
 #    second run of the process-level tests in scripts/test.sh): installed with apt-get only when
 #    one of them is missing. With --mpi also Open MPI and ScaLAPACK (openmpi-bin,
 #    libopenmpi-dev, libscalapack-openmpi-dev) for the MPI build (cmake --preset mpi).
-# 2. A Python virtual environment in build/venv with numpy, h5py, matplotlib and pytest
-#    from PyPI, xlrd and openpyxl (scripts/comp2ddm2nml reads .xls / .xlsx workbooks),
-#    xlwt (the tests write .xls workbooks), FORD (the API pages, scripts/build-api-docs.sh)
-#    and the linters fortitude-lint and ruff:
-#    created/installed only when missing or broken.
+# 2. A Python virtual environment in build/venv with the ddc2d Python package of this
+#    working tree (python/, docs/python.md) installed editable with its extra 'test': numpy,
+#    h5py, matplotlib, xarray, xlrd and openpyxl (comp2ddm2nml reads .xls / .xlsx
+#    workbooks), pytest and xlwt (the tests write .xls workbooks), all from PyPI; FORD
+#    (the API pages, scripts/build-api-docs.sh) and the linters fortitude-lint and ruff:
+#    created/installed only when missing or broken (a ddc2d package that is not this
+#    working tree's is installed over).
 # 3. With --tests, pFUnit 4.14 for the Fortran test suites (scripts/setup-pfunit.sh): an
 #    installed one that CMake finds (PFUNIT_DIR, CMAKE_PREFIX_PATH), else the one built
 #    earlier into build/pfunit, else built there once from $PFUNIT_SOURCE (a tarball or
@@ -30,9 +32,12 @@ debian_packages=(gfortran cmake ninja-build libopenblas-dev liblapack-dev libhdf
 # The MPI build: Open MPI with its Fortran mpi_f08 module, and ScaLAPACK (with BLACS) built
 # for it. Not libhdf5-openmpi-dev: the output stays serial HDF5, written by one process.
 mpi_packages=(openmpi-bin libopenmpi-dev libscalapack-openmpi-dev)
-# PyPI package names; each one's import name is the same.
-python_packages=(numpy h5py matplotlib pytest xlrd openpyxl xlwt ford)
-python_modules="numpy, h5py, matplotlib, pytest, xlrd, openpyxl, xlwt, ford"
+# The ddc2d package (editable) with the extra that the tests need, and PyPI packages beyond
+# it; each one's import name is the same.
+package_spec="$repo_root/python[test]"
+python_packages=(ford)
+package_modules="ddc2d, numpy, h5py, matplotlib, xarray, pytest, xlrd, openpyxl, xlwt"
+python_modules="$package_modules, ford"
 # Linters run by the tests, as PyPI package:executable in the venv's bin/.
 # Pinned: their default rule sets change between releases.
 python_tools=(fortitude-lint==0.10.0:fortitude ruff==0.17.6:ruff)
@@ -107,9 +112,15 @@ missing_tools() {
         [[ -x "$venv_dir/bin/${tool#*:}" ]] || printf '%s\n' "${tool%%:*}"
     done
 }
+package_from_tree() {
+    # `import ddc2d` finds this working tree's python/src/ddc2d (an editable install).
+    "$venv_python" -c 'import pathlib, sys, ddc2d
+sys.exit(pathlib.Path(ddc2d.__file__).resolve().parent != pathlib.Path(sys.argv[1]))' \
+        "$repo_root/python/src/ddc2d" > /dev/null 2>&1
+}
 venv_complete() {
     venv_works && "$venv_python" -c "import $python_modules" > /dev/null 2>&1 \
-        && [[ -z "$(missing_tools)" ]]
+        && package_from_tree && [[ -z "$(missing_tools)" ]]
 }
 
 if venv_complete; then
@@ -122,13 +133,21 @@ else
         python3 -m venv --clear "$venv_dir" \
             || die "'python3 -m venv' failed (on Debian, is python3-venv installed?)"
     fi
+    if ! package_from_tree || ! "$venv_python" -c "import $package_modules" > /dev/null 2>&1
+    then
+        say "installing the ddc2d package of $repo_root/python (editable) with its" \
+            "dependencies from PyPI"
+        "$venv_python" -m pip install --quiet --editable "$package_spec"
+    fi
     missing_python=()
     for package in "${python_packages[@]}"; do
         "$venv_python" -c "import $package" > /dev/null 2>&1 || missing_python+=("$package")
     done
     mapfile -t -O "${#missing_python[@]}" missing_python < <(missing_tools)
-    say "installing into the venv from PyPI: ${missing_python[*]}"
-    "$venv_python" -m pip install --quiet "${missing_python[@]}"
+    if ((${#missing_python[@]} > 0)); then
+        say "installing into the venv from PyPI: ${missing_python[*]}"
+        "$venv_python" -m pip install --quiet "${missing_python[@]}"
+    fi
     venv_complete || die "the venv still cannot import $python_modules"
     say "Python venv ready: $venv_dir"
 fi

@@ -6,7 +6,7 @@
 
 The second form compares the task outputs <STEM>_task<K>.h5 of two runs of a parameter
 sweep (the Slurm array against serial runs), task by task. Both files are read with
-scripts/ddc2d_h5.py. They must
+ddc2d.reader (python/src/ddc2d/reader.py). They must
 
 * both be complete (root attribute complete = 1);
 * hold the same arrays of /elements, /tips, /fields, /history and /growth, of equal shapes
@@ -35,8 +35,7 @@ from pathlib import Path
 import h5py
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "scripts"))  # ddc2d_h5
-from ddc2d_h5 import load_result, read_solver, read_sweep
+from ddc2d.reader import load_result, read_solver, read_sweep
 
 #: Default tolerance, relative to the largest magnitude of a kind of quantity.
 RTOL = 1e-10
@@ -91,7 +90,7 @@ def relative_difference(a, b, where, scale):
 
 
 def arrays(result):
-    """The result arrays of a loaded file (ddc2d_h5.load_result) by path: /elements, /tips,
+    """The result arrays of a loaded file (reader.load_result) by path: /elements, /tips,
     /fields, /history and /growth (their datasets, not their attributes)."""
     found = {f"/elements/{key}": value for key, value in result["elements"].items()}
     found.update({f"/tips/{key}": value for key, value in result["tips"].items()
@@ -130,7 +129,7 @@ def differences(reference_path, other_path):
 
 
 def sweep_of(path):
-    """The /sweep of a task output (ddc2d_h5.read_sweep), None when it has none."""
+    """The /sweep of a task output (reader.read_sweep), None when it has none."""
     with h5py.File(path, "r") as f:
         return read_sweep(f)
 

@@ -3,16 +3,16 @@
 
     check_docs.py SOURCE_ROOT
 
-1. The repository explains itself: no source, test, script, example input, README or page
-   of docs/ cites a design note outside it ("SPEC section 7", "SPEC-GROWTH 1.4") or an
-   issue of the tracker ("issue 26"); they cite the pages of docs/ instead.
+1. The repository explains itself: no source, test, script, Python module, example input,
+   README or page of docs/ cites a design note outside it ("SPEC section 7", "SPEC-GROWTH
+   1.4") or an issue of the tracker ("issue 26"); they cite the pages of docs/ instead.
 2. Every relative link and image of README.md and docs/ resolves: the file exists and, for
    a link to a heading (`page.md#heading`, `#heading`), the heading does (GitHub's anchors:
    lower case, punctuation dropped, spaces as hyphens). Web addresses are not followed.
 3. Every module of src/ and app/, and every public procedure and generic interface of
    one, has a `!>` summary line right above it (FORD's API pages show it).
-4. Every page of docs/ that src/, app/, tests/ (not tests/reference/), scripts/ or input/
-   names (`docs/theory/growth.md`, `docs/theory/growth.md#closed-kinks`, in a comment, a
+4. Every page of docs/ that src/, app/, tests/ (not tests/reference/), scripts/, python/ or
+   input/ names (`docs/theory/growth.md`, `docs/theory/growth.md#closed-kinks`, in a comment, a
    message or a test) exists, and so does the heading after `#` (the anchors of check 2).
 
 The checker and its test (tests/architecture/) name what they look for and plant
@@ -25,12 +25,12 @@ import sys
 from pathlib import Path
 
 #: Where the repository's own text lives (tests/reference/ holds TWODD's prints: not ours).
-CITING_FOLDERS = ("src", "app", "tests", "scripts", "input", "docs")
+CITING_FOLDERS = ("src", "app", "tests", "scripts", "python", "input", "docs")
 CITING_SUFFIXES = {".f90", ".F90", ".pf", ".c", ".py", ".sh", ".nml", ".md", ".txt", ".cmake",
                    ".toml", ".json", ".in", ""}
 SKIPPED = ("tests/reference/", "tests/data/twodd/")
 #: Check 4 reads the code, tests, scripts and example inputs.
-NAMING_FOLDERS = ("src", "app", "tests", "scripts", "input")
+NAMING_FOLDERS = ("src", "app", "tests", "scripts", "python", "input")
 #: The checker and its test name the patterns (and plant violations) on purpose.
 SELF = ("tests/architecture/check_docs.py", "tests/architecture/test_check_docs.py")
 DESIGN_NOTE = re.compile(r"\bSPEC(?:-[A-Z]+)?\b(?=[\s,.;:)]|$)")

@@ -51,7 +51,7 @@
     list, `for_each_history_column` or `for_each_growth_column` (src/model/records.f90),
     under its own name; the routines that handle every column (the layout of a record, the
     HDF5 writer, the restart reader) go through the list; and the dataset lists of
-    scripts/ddc2d_h5.py name exactly the datasets the lists give /history and /growth.
+    python/src/ddc2d/reader.py name exactly the datasets the lists give /history and /growth.
 12. The recipes of docs/ARCHITECTURE.md name what exists: every file of src/, app/,
     tests/ or scripts/ they name is there, and every procedure, type or list they name
     beside a file (`` `name` (`src/x/y.f90`) `` or `` `src/x/y.f90` (`name` ``) is a word
@@ -516,7 +516,7 @@ LIST_ENTRY = re.compile(r"call\s+action\s*%\s*on_(\w+)\s*\(\s*column\s*\(\s*'(\w
 # The Python reader, and which of its lists holds which columns: (constant, record, kinds or
 # shape); the rest of a record's columns (and the datasets write_history writes beside them)
 # are in the lists of REST.
-PYTHON_READER = "scripts/ddc2d_h5.py"
+PYTHON_READER = "python/src/ddc2d/reader.py"
 PYTHON_LISTS = [("HISTORY_GROWTH_DATASETS", "for_each_history_column",
                  {"column_growth_steps", "column_growing_tips", "column_growing_tip_steps"}),
                 ("HISTORY_STRING_DATASETS", "for_each_history_column", {"strings"}),

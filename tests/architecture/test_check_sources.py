@@ -29,7 +29,8 @@ def tree(tmp_path):
     shutil.copytree(REPO_ROOT / "tests/fortran", tmp_path / "tests/fortran")
     (tmp_path / "docs").mkdir()
     shutil.copy(REPO_ROOT / "docs/ARCHITECTURE.md", tmp_path / "docs")
-    for folder in ("tests/mpi", "tests/python", "scripts"):  # named by the recipes
+    # named by the recipes; python/ holds the reader of result files (check 11)
+    for folder in ("tests/mpi", "tests/python", "scripts", "python"):
         shutil.copytree(REPO_ROOT / folder, tmp_path / folder,
                         ignore=shutil.ignore_patterns("__pycache__"))
     return tmp_path
@@ -271,11 +272,11 @@ def test_history_column_missing_from_its_list_fails(tree, capsys):
          "                             history%equilibrium_residual)\n"
          "        call action%on_reals(column('planted', column_steps, units_one), "
          "history%planted)\n")
-    expect_violation(tree, capsys, "scripts/ddc2d_h5.py: HISTORY_DATASETS + "
+    expect_violation(tree, capsys, "python/src/ddc2d/reader.py: HISTORY_DATASETS + "
                      "HISTORY_STEP_DATASETS lacks 'planted', one of the other datasets of "
                      "/history")
     # read by the Python reader too, it passes
-    edit(tree / "scripts/ddc2d_h5.py", '"equilibrium_residual")',
+    edit(tree / "python/src/ddc2d/reader.py", '"equilibrium_residual")',
          '"equilibrium_residual", "planted")')
     assert run_checks(tree, capsys)[0] == 0
 
@@ -303,18 +304,18 @@ def test_routine_around_a_record_list_fails(tree, capsys):
 
 
 def test_python_dataset_lists_off_the_record_lists_fail(tree, capsys):
-    edit(tree / "scripts/ddc2d_h5.py", '"tip_fracture_id", "tip_end")', '"tip_fracture_id")')
-    edit(tree / "scripts/ddc2d_h5.py", '"corrections", "k2_after", "length", "reason")',
+    edit(tree / "python/src/ddc2d/reader.py", '"tip_fracture_id", "tip_end")', '"tip_fracture_id")')
+    edit(tree / "python/src/ddc2d/reader.py", '"corrections", "k2_after", "length", "reason")',
          '"corrections", "k2_after", "length", "reason", "planted")')
-    expect_violation(tree, capsys, "scripts/ddc2d_h5.py: HISTORY_GROWTH_DATASETS lacks "
+    expect_violation(tree, capsys, "python/src/ddc2d/reader.py: HISTORY_GROWTH_DATASETS lacks "
                      "'tip_end', one of the columns of for_each_history_column it holds")
-    expect_violation(tree, capsys, "scripts/ddc2d_h5.py: GROWTH_DATASETS names 'planted', "
+    expect_violation(tree, capsys, "python/src/ddc2d/reader.py: GROWTH_DATASETS names 'planted', "
                      "which is not one of the columns of for_each_growth_column it holds")
 
 
 def test_python_loads_off_load_path_names_fail(tree, capsys):
-    edit(tree / "scripts/ddc2d_h5.py", '"dsxy_dy", "p0")', '"p0", "dsxy_dy")')
-    expect_violation(tree, capsys, "scripts/ddc2d_h5.py: HISTORY_LOADS ")
+    edit(tree / "python/src/ddc2d/reader.py", '"dsxy_dy", "p0")', '"p0", "dsxy_dy")')
+    expect_violation(tree, capsys, "python/src/ddc2d/reader.py: HISTORY_LOADS ")
 
 
 def test_recipe_naming_a_missing_file_fails(tree, capsys):

@@ -25,7 +25,7 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # tests/compare_results.py
 from compare_results import RTOL, differences
-from ddc2d_h5 import read_solver  # compare_results puts scripts/ on the path
+from ddc2d.reader import read_solver
 
 REPO = Path(__file__).resolve().parents[2]
 DATA = REPO / "tests" / "data"

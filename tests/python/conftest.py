@@ -1,27 +1,30 @@
-"""Shared fixtures: the plot script as a module, and small synthetic ddc2d result files.
+"""Shared fixtures: the command line of ddc2d-plot as a module, and small synthetic ddc2d
+result files.
 
 The synthetic files follow the HDF5 layout of docs/output-reference.md#layout (as written by
 ddc2d): strings are stored as blank-padded fixed-length bytes, as the Fortran writer does.
-Tests read result files with scripts/ddc2d_h5.py (importable once this file is loaded).
+Tests read result files with ddc2d.reader, the reader of the ddc2d package (installed
+editable into build/venv by scripts/setup.sh).
 """
 
-import importlib.machinery
-import importlib.util
 import os
 import subprocess
 import sys
 from pathlib import Path
 
 import h5py
+import matplotlib
 import numpy as np
 import pytest
 
+import ddc2d.plot.cli
+
 sys.dont_write_bytecode = True
+matplotlib.use("Agg")  # the figures are drawn into files only, as ddc2d-plot does
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
 SCRIPTS = REPO_ROOT / "scripts"
 PLOT_SCRIPT = SCRIPTS / "ddc2d-plot"
-sys.path.insert(0, str(SCRIPTS))  # the tests import ddc2d_h5 as the scripts do
 
 LENGTH_UNIT = "km"
 STRESS_UNIT = "MPa"
@@ -188,20 +191,10 @@ def result_file_without_fields(tmp_path):
     return write_result(tmp_path / "nofields.h5", with_fields=False)
 
 
-def load_script(name):
-    """scripts/<name> loaded as a module (the scripts' names have no .py suffix)."""
-    module_name = name.replace("-", "_")
-    loader = importlib.machinery.SourceFileLoader(module_name, str(SCRIPTS / name))
-    spec = importlib.util.spec_from_loader(module_name, loader)
-    module = importlib.util.module_from_spec(spec)
-    loader.exec_module(module)
-    return module
-
-
 @pytest.fixture(scope="session")
 def plot_module():
-    """scripts/ddc2d-plot loaded as a module."""
-    return load_script("ddc2d-plot")
+    """The command line of ddc2d-plot (ddc2d.plot.cli)."""
+    return ddc2d.plot.cli
 
 
 def solve_text(folder, stem, text, timeout=300):

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from conftest import REPO_ROOT, ddc2d_exe
-from ddc2d_h5 import is_complete
+from ddc2d.reader import is_complete
 
 GOOD_MODEL = """\
 &model youngs_modulus = 1.0, poissons_ratio = 0.25 /

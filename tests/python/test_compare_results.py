@@ -3,16 +3,13 @@ use: one tolerance rule (relative to the largest magnitude of a kind of quantity
 integers and NaN places exact, completeness, fractures and sweeps checked."""
 
 import shutil
-import sys
 
 import h5py
 import numpy as np
 import pytest
 
-from conftest import REPO_ROOT, write_result
-
-sys.path.insert(0, str(REPO_ROOT / "tests"))
 import compare_results
+from conftest import write_result
 
 
 @pytest.fixture

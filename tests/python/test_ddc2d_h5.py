@@ -1,5 +1,5 @@
-"""scripts/ddc2d_h5.py, the reader every script and test shares: strings, codings, the
-groups of a result file, and what is not a ddc2d result."""
+"""ddc2d.reader (python/src/ddc2d/reader.py), the reader every tool and test shares: strings,
+codings, the groups of a result file, and what is not a ddc2d result."""
 
 import subprocess
 
@@ -7,8 +7,8 @@ import h5py
 import numpy as np
 import pytest
 
-import ddc2d_h5
-from conftest import ddc2d_exe, load_script, solve_text, write_result
+from conftest import ddc2d_exe, solve_text, write_result
+from ddc2d import reader, twodd2nml
 
 # ------------------------------------------------------------------ strings
 
@@ -18,11 +18,11 @@ from conftest import ddc2d_exe, load_script, solve_text, write_result
     np.array([b"slip  "]), np.array(["slip"], dtype=object),
 ])
 def test_decode_strips_fortran_padding(value):
-    assert ddc2d_h5.decode(value) == "slip"
+    assert reader.decode(value) == "slip"
 
 
 def test_decode_joins_several_strings():
-    assert ddc2d_h5.decode(np.array([b"a  ", b"bc "], dtype="S3")) == "a bc"
+    assert reader.decode(np.array([b"a  ", b"bc "], dtype="S3")) == "a bc"
 
 
 def test_strings_read_back_from_hdf5_as_ddc2d_writes_them(tmp_path):
@@ -31,35 +31,35 @@ def test_strings_read_back_from_hdf5_as_ddc2d_writes_them(tmp_path):
         f.attrs["count"] = np.int32(3)
         f.create_dataset("names", data=np.array([b"fault A ", b"B       "], dtype="S8"))
     with h5py.File(tmp_path / "s.h5", "r") as f:
-        assert ddc2d_h5.attr_text(f.attrs, "title") == "two words"
-        assert ddc2d_h5.attr_text(f.attrs, "absent", "none") == "none"
-        assert ddc2d_h5.attr_int(f.attrs, "count", 0) == 3
-        assert ddc2d_h5.attr_int(f.attrs, "absent", -1) == -1
-        assert ddc2d_h5.decoded_attrs(f.attrs) == {"title": "two words", "count": 3}
-        assert [ddc2d_h5.decode(v) for v in f["names"][()]] == ["fault A", "B"]
+        assert reader.attr_text(f.attrs, "title") == "two words"
+        assert reader.attr_text(f.attrs, "absent", "none") == "none"
+        assert reader.attr_int(f.attrs, "count", 0) == 3
+        assert reader.attr_int(f.attrs, "absent", -1) == -1
+        assert reader.decoded_attrs(f.attrs) == {"title": "two words", "count": 3}
+        assert [reader.decode(v) for v in f["names"][()]] == ["fault A", "B"]
 
 
 # ------------------------------------------------------------------ codings
 
 
 def test_codings_are_inverse_pairs():
-    assert ddc2d_h5.STATE_NAMES == {0: "free", 1: "stick", 2: "slip", 3: "open"}
-    assert ddc2d_h5.CONDITION_NAMES == {1: "traction", 2: "displacement", 3: "mixed_us_sn",
+    assert reader.STATE_NAMES == {0: "free", 1: "stick", 2: "slip", 3: "open"}
+    assert reader.CONDITION_NAMES == {1: "traction", 2: "displacement", 3: "mixed_us_sn",
                                         4: "mixed_ss_un", 5: "contact", 6: "prescribed_dd"}
-    for names, codes in ((ddc2d_h5.STATE_NAMES, ddc2d_h5.STATE_CODES),
-                         (ddc2d_h5.CONDITION_NAMES, ddc2d_h5.CONDITION_CODES)):
+    for names, codes in ((reader.STATE_NAMES, reader.STATE_CODES),
+                         (reader.CONDITION_NAMES, reader.CONDITION_CODES)):
         assert {code: name for name, code in codes.items()} == names
 
 
 def test_twodd2nml_kode_is_the_condition_code():
     # twodd2nml keeps its own table (it runs without numpy and h5py): the same names.
-    kodes = load_script("twodd2nml").CONDITIONS
-    assert kodes == {code: ddc2d_h5.CONDITION_NAMES[code] for code in (1, 2, 3, 4)}
+    kodes = twodd2nml.CONDITIONS
+    assert kodes == {code: reader.CONDITION_NAMES[code] for code in (1, 2, 3, 4)}
 
 
 def test_parse_coding_takes_the_first_word_after_each_code():
     text = b"0 free (TWODD-style condition), 1 stick, 2 slip, 3 open"
-    assert ddc2d_h5.parse_coding(text) == ddc2d_h5.STATE_NAMES
+    assert reader.parse_coding(text) == reader.STATE_NAMES
 
 
 MIXED_MODEL = """\
@@ -82,18 +82,18 @@ def test_codings_match_what_ddc2d_writes(solved_file):
     with h5py.File(solved_file, "r") as f:
         state = f["elements/state"]
         condition = f["elements/condition"]
-        assert ddc2d_h5.parse_coding(state.attrs["coding"]) == ddc2d_h5.STATE_NAMES
-        assert ddc2d_h5.parse_coding(condition.attrs["coding"]) == ddc2d_h5.CONDITION_NAMES
-        codes = ddc2d_h5.CONDITION_CODES
+        assert reader.parse_coding(state.attrs["coding"]) == reader.STATE_NAMES
+        assert reader.parse_coding(condition.attrs["coding"]) == reader.CONDITION_NAMES
+        codes = reader.CONDITION_CODES
         assert list(condition[()]) == [codes["contact"]] * 6 + [codes["traction"]] * 4
-        assert list(state[6:]) == [ddc2d_h5.STATE_CODES["free"]] * 4
+        assert list(state[6:]) == [reader.STATE_CODES["free"]] * 4
 
 
 # ------------------------------------------------------------------ reading a result
 
 
 def test_load_result_of_a_solved_model(solved_file):
-    result = ddc2d_h5.load_result(solved_file)
+    result = reader.load_result(solved_file)
     assert result["complete"] is True
     assert (result["length_unit"], result["stress_unit"]) == ("m", "MPa")
     assert [(f["name"], f["first"], f["last"]) for f in result["fractures"]] == [
@@ -105,11 +105,11 @@ def test_load_result_of_a_solved_model(solved_file):
     assert result["tips"]["x"].size == 4
     assert result["history"] is None
     with h5py.File(solved_file, "r") as f:
-        assert ddc2d_h5.units_of(f["elements/ds"]) == "m"
-        assert ddc2d_h5.is_complete(f.attrs)
-        assert ddc2d_h5.read_sweep(f) is None
-        solver = ddc2d_h5.read_solver(f)
-        assert set(solver["seconds"]) == set(ddc2d_h5.SOLVER_PHASES)
+        assert reader.units_of(f["elements/ds"]) == "m"
+        assert reader.is_complete(f.attrs)
+        assert reader.read_sweep(f) is None
+        solver = reader.read_solver(f)
+        assert set(solver["seconds"]) == set(reader.SOLVER_PHASES)
         assert solver["attrs"]["method"] == "lemke"
 
 
@@ -122,47 +122,47 @@ def test_sweep_task_group(tmp_path):
     assert done.returncode == 0, done.stderr
     with h5py.File(tmp_path / "s_task0003.h5", "r") as f:
         # The swept values are the input's decimals, stored unchanged: exact.
-        assert ddc2d_h5.read_sweep(f) == {"task": 3, "tasks": 4,
+        assert reader.read_sweep(f) == {"task": 3, "tasks": 4,
                                           "parameters": {"mu": 0.6, "sxy": 50.0}}
 
 
 def test_is_complete_reads_the_flag_written_last(tmp_path):
     path = write_result(tmp_path / "r.h5")
     with h5py.File(path, "a") as f:
-        assert ddc2d_h5.is_complete(f.attrs)
+        assert reader.is_complete(f.attrs)
         f.attrs["complete"] = np.int32(0)
-        assert not ddc2d_h5.is_complete(f.attrs)
+        assert not reader.is_complete(f.attrs)
         del f.attrs["complete"]
-        assert not ddc2d_h5.is_complete(f.attrs)
-        assert ddc2d_h5.is_complete(f.attrs, when_missing=True)
-    assert ddc2d_h5.load_result(path)["complete"] is True  # plots files without the flag
+        assert not reader.is_complete(f.attrs)
+        assert reader.is_complete(f.attrs, when_missing=True)
+    assert reader.load_result(path)["complete"] is True  # plots files without the flag
 
 
 # ------------------------------------------------------------------ what is not a result
 
 
 def test_missing_file_and_folder(tmp_path):
-    with pytest.raises(ddc2d_h5.ResultError, match="no such file"):
-        ddc2d_h5.load_result(tmp_path / "absent.h5")
-    with pytest.raises(ddc2d_h5.ResultError, match="it is a folder"):
-        ddc2d_h5.load_result(tmp_path)
+    with pytest.raises(reader.ResultError, match="no such file"):
+        reader.load_result(tmp_path / "absent.h5")
+    with pytest.raises(reader.ResultError, match="it is a folder"):
+        reader.load_result(tmp_path)
 
 
 def test_text_file_is_not_hdf5(tmp_path):
     (tmp_path / "notes.h5").write_text("not an HDF5 file\n")
-    with pytest.raises(ddc2d_h5.ResultError, match="not a readable HDF5 file"):
-        ddc2d_h5.load_result(tmp_path / "notes.h5")
+    with pytest.raises(reader.ResultError, match="not a readable HDF5 file"):
+        reader.load_result(tmp_path / "notes.h5")
 
 
 def test_hdf5_file_of_another_program_is_refused(tmp_path):
     with h5py.File(tmp_path / "other.h5", "w") as f:
         f.create_dataset("data", data=np.arange(3.0))
-    with pytest.raises(ddc2d_h5.ResultError, match="has no /elements group: not a ddc2d"):
-        ddc2d_h5.load_result(tmp_path / "other.h5")
+    with pytest.raises(reader.ResultError, match="has no /elements group: not a ddc2d"):
+        reader.load_result(tmp_path / "other.h5")
     with h5py.File(tmp_path / "other.h5", "a") as f:
         f.create_group("elements").create_dataset("ds", data=np.zeros(2))
-    with pytest.raises(ddc2d_h5.ResultError, match="lacks /elements/x_begin"):
-        ddc2d_h5.load_result(tmp_path / "other.h5")
+    with pytest.raises(reader.ResultError, match="lacks /elements/x_begin"):
+        reader.load_result(tmp_path / "other.h5")
 
 
 def test_elements_of_different_lengths_are_refused(tmp_path):
@@ -170,8 +170,8 @@ def test_elements_of_different_lengths_are_refused(tmp_path):
     with h5py.File(path, "a") as f:
         del f["elements/dn"]
         f["elements"].create_dataset("dn", data=np.zeros(3))
-    with pytest.raises(ddc2d_h5.ResultError, match="/elements/dn has 3 values"):
-        ddc2d_h5.load_result(path)
+    with pytest.raises(reader.ResultError, match="/elements/dn has 3 values"):
+        reader.load_result(path)
 
 
 # ------------------------------------------------------------------ the tie rule
@@ -185,7 +185,7 @@ def test_elements_of_different_lengths_are_refused(tmp_path):
     ("max", [0.0, 0.0], 0),
 ])
 def test_exact_ties_give_the_lowest_index(kind, values, expected):
-    assert ddc2d_h5.index_of_extreme(values, kind) == expected
+    assert reader.index_of_extreme(values, kind) == expected
 
 
 @pytest.mark.parametrize("kind, sign", [("max", 1.0), ("min", -1.0)])
@@ -193,43 +193,43 @@ def test_near_ties_within_1e_9_give_the_lowest_index(kind, sign):
     # The later value is the extreme by a relative 1e-10 (or 5e-10): still a tie.
     for relative in (1e-10, 5e-10):
         values = sign * np.array([1.0, 3.0, 3.0 * (1.0 + relative), 1.0])
-        assert ddc2d_h5.index_of_extreme(values, kind) == 1, relative
+        assert reader.index_of_extreme(values, kind) == 1, relative
     # Beyond the tolerance (a relative 2e-9) the later value is the extreme.
     values = sign * np.array([1.0, 3.0, 3.0 * (1.0 + 2e-9), 1.0])
-    assert ddc2d_h5.index_of_extreme(values, kind) == 2
+    assert reader.index_of_extreme(values, kind) == 2
 
 
 def test_rtol_is_a_parameter():
     values = [1.0, 1.0 + 1e-6]
-    assert ddc2d_h5.index_of_extreme(values) == 1
-    assert ddc2d_h5.index_of_extreme(values, rtol=1e-5) == 0
-    assert ddc2d_h5.index_of_extreme(values, rtol=0.0) == 1
-    assert ddc2d_h5.index_of_extreme([2.0, 2.0], rtol=0.0) == 0
+    assert reader.index_of_extreme(values) == 1
+    assert reader.index_of_extreme(values, rtol=1e-5) == 0
+    assert reader.index_of_extreme(values, rtol=0.0) == 1
+    assert reader.index_of_extreme([2.0, 2.0], rtol=0.0) == 0
 
 
 def test_nan_is_ignored_and_infinity_ties_only_with_itself():
-    assert ddc2d_h5.index_of_extreme([np.nan, 2.0, 2.0]) == 1
-    assert ddc2d_h5.index_of_extreme([np.nan, 2.0, np.nan, 1.0], "min") == 3
-    assert ddc2d_h5.index_of_extreme([1e300, np.inf, np.inf]) == 1
-    assert ddc2d_h5.index_of_extreme([-np.inf, -1e300], "min") == 0
+    assert reader.index_of_extreme([np.nan, 2.0, 2.0]) == 1
+    assert reader.index_of_extreme([np.nan, 2.0, np.nan, 1.0], "min") == 3
+    assert reader.index_of_extreme([1e300, np.inf, np.inf]) == 1
+    assert reader.index_of_extreme([-np.inf, -1e300], "min") == 0
     with pytest.raises(ValueError, match="no value that is not NaN"):
-        ddc2d_h5.index_of_extreme([np.nan, np.nan])
+        reader.index_of_extreme([np.nan, np.nan])
     with pytest.raises(ValueError, match="no value that is not NaN"):
-        ddc2d_h5.index_of_extreme([])
+        reader.index_of_extreme([])
     with pytest.raises(ValueError, match="kind"):
-        ddc2d_h5.index_of_extreme([1.0], "largest")
+        reader.index_of_extreme([1.0], "largest")
 
 
 def test_two_dimensional_values_give_the_flat_index():
     grid = np.array([[1.0, 4.0], [4.0, 1.0]])
-    assert ddc2d_h5.index_of_extreme(grid) == 1
-    assert np.unravel_index(ddc2d_h5.index_of_extreme(grid, "min"), grid.shape) == (0, 0)
+    assert reader.index_of_extreme(grid) == 1
+    assert np.unravel_index(reader.index_of_extreme(grid, "min"), grid.shape) == (0, 0)
 
 
 def test_is_tie():
-    assert ddc2d_h5.is_tie(3.0, 3.0)
-    assert ddc2d_h5.is_tie(3.0, 3.0 * (1.0 + 1e-10))
-    assert not ddc2d_h5.is_tie(3.0, 3.0 * (1.0 + 2e-9))
-    assert ddc2d_h5.is_tie(0.0, 0.0) and not ddc2d_h5.is_tie(0.0, 1e-300)
-    assert ddc2d_h5.is_tie(1e-12, 0.0, scale=100.0)  # zero relative to the data's scale
-    assert not ddc2d_h5.is_tie(1e-6, 0.0, scale=100.0)
+    assert reader.is_tie(3.0, 3.0)
+    assert reader.is_tie(3.0, 3.0 * (1.0 + 1e-10))
+    assert not reader.is_tie(3.0, 3.0 * (1.0 + 2e-9))
+    assert reader.is_tie(0.0, 0.0) and not reader.is_tie(0.0, 1e-300)
+    assert reader.is_tie(1e-12, 0.0, scale=100.0)  # zero relative to the data's scale
+    assert not reader.is_tie(1e-6, 0.0, scale=100.0)

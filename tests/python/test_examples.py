@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 
 from conftest import REPO_ROOT, ddc2d_exe
-from ddc2d_h5 import STATE_CODES, attr_text, decode, index_of_extreme, is_complete
+from ddc2d.reader import STATE_CODES, attr_text, decode, index_of_extreme, is_complete
 
 INPUT = REPO_ROOT / "input"
 EXAMPLES = sorted(p for p in INPUT.glob("*.nml")

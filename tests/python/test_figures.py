@@ -9,10 +9,10 @@ import h5py
 import numpy as np
 import pytest
 
-import ddc2d_plot_data as plot_data
-import ddc2d_plot_figures as plot_figures
 from conftest import solve_text, write_result
-from ddc2d_h5 import load_result
+from ddc2d.plot import data as plot_data
+from ddc2d.plot import figures as plot_figures
+from ddc2d.reader import load_result
 
 
 def with_grid(path, x_range, y_range, shape=(15, 13), half_plane=False, grown=False):

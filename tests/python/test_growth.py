@@ -9,10 +9,10 @@ import h5py
 import numpy as np
 import pytest
 
-import ddc2d_plot_data as plot_data
-import ddc2d_plot_figures as plot_figures
 from conftest import PLOT_SCRIPT, ddc2d_exe
-from ddc2d_h5 import GROWTH_DATASETS, load_result
+from ddc2d.plot import data as plot_data
+from ddc2d.plot import figures as plot_figures
+from ddc2d.reader import GROWTH_DATASETS, load_result
 
 # A crack under remote shear grows wings from both tips (the toughness is below its K_eq
 # all along); a second fracture, a strong fault that sticks and may not grow, is left alone.

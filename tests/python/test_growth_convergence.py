@@ -1,4 +1,4 @@
-"""scripts/growth_convergence.py (the convergence study of
+"""ddc2d-growth-convergence, run as scripts/growth_convergence.py (the convergence study of
 docs/theory/growth.md#convergence-with-the-increment) on a tiny study: it runs ddc2d once per
 element count and increment, writes the table and the figure, and its exit status says whether
 the arrest length and final direction converged."""
@@ -9,7 +9,8 @@ import sys
 
 import pytest
 
-from conftest import SCRIPTS, ddc2d_exe, load_script
+from conftest import SCRIPTS, ddc2d_exe
+from ddc2d import growth_convergence
 
 SCRIPT = SCRIPTS / "growth_convergence.py"
 
@@ -40,7 +41,7 @@ def test_tiny_study_writes_table_and_figure(tmp_path):
 
 
 def test_check_flags_what_spec_growth_7_forbids():
-    module = load_script("growth_convergence.py")
+    module = growth_convergence
     row = {"elements": 40, "increment": 0.05, "arrest_length": 1.0, "final_direction": 92.0,
            "end_reason": "arrested"}
     assert module.check([row, dict(row, increment=0.1, arrest_length=1.09)]) == []

@@ -7,10 +7,10 @@ import sys
 import h5py
 import numpy as np
 
-import ddc2d_plot_data as plot_data
-import ddc2d_plot_figures as plot_figures
 from conftest import PLOT_SCRIPT, ddc2d_exe
-from ddc2d_h5 import STATE_CODES, load_result
+from ddc2d.plot import data as plot_data
+from ddc2d.plot import figures as plot_figures
+from ddc2d.reader import STATE_CODES, load_result
 
 # The play-operator crack of docs/theory/earth.md#checks-against-closed-forms, coarse: slips
 # above 6 MPa, sticks while the shear is unloaded by less than 12 MPa, slips back below -2 MPa.

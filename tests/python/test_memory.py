@@ -8,10 +8,10 @@ import re
 import resource
 import subprocess
 
-import benchmark  # scripts/benchmark.py (on the path by conftest): the benchmark's models
 import pytest
 
 from conftest import ddc2d_exe
+from ddc2d import benchmark  # ddc2d-benchmark: the benchmark's models
 
 MODEL = """\
 &model youngs_modulus = 50000, poissons_ratio = 0.25 /

@@ -9,8 +9,6 @@ import h5py
 import numpy as np
 import pytest
 
-import ddc2d_plot_data as plot_data
-import ddc2d_plot_figures as plot_figures
 from conftest import (
     GRID_NAN_POINT,
     GRID_NEAR_POINT,
@@ -21,7 +19,9 @@ from conftest import (
     ddc2d_exe,
     write_result,
 )
-from ddc2d_h5 import STATE_CODES, load_result
+from ddc2d.plot import data as plot_data
+from ddc2d.plot import figures as plot_figures
+from ddc2d.reader import STATE_CODES, load_result
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 

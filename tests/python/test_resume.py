@@ -11,16 +11,13 @@ and slip weakening (its memory: slip, strengths in force and slip path).
 """
 
 import subprocess
-import sys
 
 import h5py
 import numpy as np
 import pytest
 
-from conftest import REPO_ROOT, ddc2d_exe
-
-sys.path.insert(0, str(REPO_ROOT / "tests"))
 import compare_results
+from conftest import ddc2d_exe
 
 MODEL = """\
 &model youngs_modulus = 50000, poissons_ratio = 0.25 /

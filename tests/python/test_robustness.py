@@ -32,7 +32,7 @@ import h5py
 import pytest
 
 from conftest import REPO_ROOT, ddc2d_exe
-from ddc2d_h5 import is_complete
+from ddc2d.reader import is_complete
 
 FUZZ_COUNT = int(os.environ.get("DDC2D_FUZZ_COUNT", "2000"))
 GOOD_POLYLINE = REPO_ROOT / "tests/data/input/good_polyline.nml"
@@ -368,8 +368,8 @@ def test_sweep_task_file_targets(tmp_path):
 
 @pytest.mark.parametrize("kind", sorted(SPECIAL_WORDS))
 def test_scripts_refuse_targets_that_are_not_regular_files(tmp_path, kind):
-    # scripts/ddc2d_files.py, through which every script writes its files.
-    from ddc2d_files import write_text_atomically
+    # ddc2d.files, through which every tool writes its files.
+    from ddc2d.files import write_text_atomically
     target, keep = tmp_path / "target", []
     make_special(kind, target, keep)
     (tmp_path / "link").symlink_to("target")
@@ -386,7 +386,7 @@ def test_scripts_refuse_targets_that_are_not_regular_files(tmp_path, kind):
 
 
 def test_scripts_follow_links_and_clean_up(tmp_path):
-    from ddc2d_files import atomic_path, write_text_atomically
+    from ddc2d.files import atomic_path, write_text_atomically
     (tmp_path / "data").mkdir()
     (tmp_path / "link.txt").symlink_to("data/real.txt")
     write_text_atomically(tmp_path / "link.txt", "new\n")

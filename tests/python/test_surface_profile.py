@@ -7,10 +7,10 @@ import sys
 
 import numpy as np
 
-import ddc2d_plot_data as plot_data
-import ddc2d_plot_figures as plot_figures
 from conftest import PLOT_SCRIPT, REPO_ROOT, ddc2d_exe
-from ddc2d_h5 import index_of_extreme, load_result
+from ddc2d.plot import data as plot_data
+from ddc2d.plot import figures as plot_figures
+from ddc2d.reader import index_of_extreme, load_result
 
 MODEL = REPO_ROOT / "input" / "buried_dipping_fault_slip.nml"
 

@@ -12,8 +12,9 @@ import h5py
 import numpy as np
 import pytest
 
-from conftest import REPO_ROOT, ddc2d_exe, load_script
-from ddc2d_h5 import STATE_CODES, is_complete
+from conftest import REPO_ROOT, ddc2d_exe
+from ddc2d import collect_sweep
+from ddc2d.reader import STATE_CODES, is_complete
 
 EXAMPLE = REPO_ROOT / "input" / "sweep_friction_orientation.nml"
 SUBMIT = REPO_ROOT / "scripts" / "submit-sweep"
@@ -241,7 +242,7 @@ def test_collect_sweep_tables_and_plot(tmp_path):
                                       [float(row["peak_slip"]) for row in rows])
     plot = runs / "small_peak_slip_vs_remote_angle.png"
     assert plot.stat().st_size > 5000
-    collect = load_script("collect-sweep")
+    collect = collect_sweep
     stem, collected, units = collect.collect(runs)
     figure_path = collect.plot(tmp_path, stem, collected, units, "peak_slip", "remote_angle",
                                "svg")

@@ -7,16 +7,13 @@ part inside one process."""
 
 import os
 import subprocess
-import sys
 
 import h5py
 import numpy as np
 import pytest
 
-from conftest import REPO_ROOT, ddc2d_exe
-
-sys.path.insert(0, str(REPO_ROOT / "tests"))
 from compare_results import RTOL, differences
+from conftest import REPO_ROOT, ddc2d_exe
 
 #: A growth run with a grid (every OpenMP loop, the growth solver's borders) and a contact
 #: model with stick, slip and open elements.

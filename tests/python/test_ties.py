@@ -1,5 +1,5 @@
 """The tie rule at every place a script picks "the largest", "the first" or a side: values
-within a relative 1e-9 count as equal and the lowest index wins (ddc2d_h5.index_of_extreme), so
+within a relative 1e-9 count as equal and the lowest index wins (reader.index_of_extreme), so
 that no choice depends on last-bit rounding.
 
 Each place is tested with an exact tie (symmetric data, equal in binary), with a near tie
@@ -11,16 +11,16 @@ treated as a tie.
 import numpy as np
 import pytest
 
-import ddc2d_plot_data as plot_data
-from conftest import load_script
+from ddc2d import compare_twodd
+from ddc2d.plot import data as plot_data
 
 EXACT, NEAR, BEYOND = 0.0, 1e-10, 1e-8
 
 
 @pytest.fixture(scope="module")
 def compare_module():
-    """scripts/compare-twodd loaded as a module."""
-    return load_script("compare-twodd")
+    """compare-twodd as a module."""
+    return compare_twodd
 
 
 # ------------------------------------------------------------------ ddc2d-plot: history

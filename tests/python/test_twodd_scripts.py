@@ -11,8 +11,8 @@ import h5py
 import numpy as np
 import pytest
 
-import ddc2d_h5
 from conftest import REPO_ROOT, ddc2d_exe
+from ddc2d import reader
 
 SCRIPTS = REPO_ROOT / "scripts"
 REFERENCE = REPO_ROOT / "tests" / "reference" / "twodd"
@@ -176,7 +176,7 @@ def test_cli_res_of_namelist_model_with_contact(tmp_path):
     assert lines[heading].split()[-1] == "STATE"
     rows = [line.split() for line in lines[heading + 1:] if line.strip()][:12]
     with h5py.File(tmp_path / "m.h5") as f:
-        states = [ddc2d_h5.STATE_NAMES[int(k)] for k in f["elements/state"][...]]
+        states = [reader.STATE_NAMES[int(k)] for k in f["elements/state"][...]]
     assert [row[-1] for row in rows] == states
     assert states[:7] == ["slip"] * 7 and states[7:] == ["free"] * 5
     done = script("compare-twodd", tmp_path / "m.h5", tmp_path / "m.res.txt", "--rtol",

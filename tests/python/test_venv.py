@@ -1,8 +1,9 @@
 """Every script of scripts/ runs as docs/plotting.md#how-the-scripts-run writes it, from a plain
-shell: with only the system's python3 on PATH (no venv activated, none of numpy, h5py,
-matplotlib, xlrd, openpyxl), a script that needs them runs itself again with build/venv's Python
-(scripts/ddc2d_venv.py), so that `scripts/ddc2d-plot RESULT.h5 -o DIR` works as written; without
-a venv it says in one line what is missing."""
+shell: with only the system's python3 on PATH (no venv activated, no ddc2d package nor numpy,
+h5py, matplotlib, xlrd, openpyxl), a Python script, a thin command over the ddc2d package,
+runs itself again with build/venv's Python (scripts/ddc2d_venv.py), so that
+`scripts/ddc2d-plot RESULT.h5 -o DIR` works as written; without a venv it says in one line
+what is missing."""
 
 import os
 import shutil
@@ -18,10 +19,8 @@ SYSTEM_PATH = "/usr/bin:/bin"
 #: Every command-line script of scripts/ (Python and shell).
 COMMANDS = ("ddc2d-plot", "collect-sweep", "compare-twodd", "benchmark.py", "comp2ddm2nml",
             "twodd2nml", "submit-sweep", "make-gallery", "growth_convergence.py")
-#: The scripts that need the venv's packages, and one they import.
-NEEDS_VENV = {"ddc2d-plot": "matplotlib", "collect-sweep": "h5py", "compare-twodd": "h5py",
-              "benchmark.py": "h5py", "comp2ddm2nml": "openpyxl",
-              "growth_convergence.py": "matplotlib"}
+#: The Python scripts: each runs a module of the ddc2d package (python/, in build/venv).
+NEEDS_VENV = {name: "ddc2d" for name in COMMANDS if name != "make-gallery"}
 
 
 def plain_environment():
@@ -63,10 +62,10 @@ def test_help_runs_from_a_plain_shell(name, tmp_path):
 
 def test_the_system_python_lacks_what_the_scripts_need():
     """Otherwise the tests above would not show the rerun (they pass all the same)."""
-    done = subprocess.run([system_python(), "-c", "import numpy"], env=plain_environment(),
+    done = subprocess.run([system_python(), "-c", "import ddc2d"], env=plain_environment(),
                           capture_output=True, text=True, timeout=60, check=False)
     if done.returncode == 0:
-        pytest.skip("the system python3 has numpy: nothing to rerun")
+        pytest.skip("the system python3 has the ddc2d package: nothing to rerun")
 
 
 def test_plot_from_a_plain_shell_as_the_readme_writes_it(tmp_path):
@@ -96,4 +95,5 @@ def test_without_a_venv_one_line_says_what_is_missing(name, tmp_path):
     lines = done.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith(f"{name}: error: the Python package ")
     assert "missing" in lines[0] and "scripts/setup.sh" in lines[0]
+    assert f"package {NEEDS_VENV[name]} is missing" in lines[0]
     assert REPO_ROOT.as_posix() not in lines[0]  # the copy's own (absent) venv is named

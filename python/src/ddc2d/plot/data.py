@@ -1,13 +1,13 @@
 """What ddc2d-plot draws, without drawing it: the data of every figure of a ddc2d result.
 
-Imported by ``scripts/ddc2d-plot`` (the command line), ``scripts/ddc2d_plot_figures.py``
-(the figures) and the tests; needs numpy and ``ddc2d_h5`` (the one reader of result
-files), never matplotlib. Element states, near_element flags and growth codes are taken
-from the `coding` attributes the file carries (``ddc2d_h5.coding_of``), not from numbers
+Used by ddc2d-plot (ddc2d.plot.cli, the command line), ddc2d.plot.figures (the figures)
+and the tests; needs numpy and ddc2d.reader (the one reader of result files), never
+matplotlib. Element states, near_element flags and growth codes are taken
+from the `coding` attributes the file carries (``reader.coding_of``), not from numbers
 written here.
 
 Defaults that pick "the largest" or "the first" follow one tie rule: values within a
-relative 1e-9 count as equal, and the lowest index wins (ddc2d_h5.index_of_extreme), so
+relative 1e-9 count as equal, and the lowest index wins (reader.index_of_extreme), so
 that the choice does not depend on last-bit rounding (symmetric models, other CPUs).
 
 The background stress is the stress without the fractures: the remote stress plus its
@@ -37,7 +37,7 @@ import re
 
 import numpy as np
 
-from ddc2d_h5 import (
+from ..reader import (
     STATE_NAMES,
     TIE_RTOL,
     ResultError,
@@ -122,7 +122,7 @@ def heading(result, text):
 
 def history_parameter(history):
     """(name, values) of the load quantity with the largest range along the path; of
-    ranges equal within the tie rule (ddc2d_h5.index_of_extreme), the first in file order."""
+    ranges equal within the tie rule (reader.index_of_extreme), the first in file order."""
     names = list(history["loads"])
     name = names[index_of_extreme([np.ptp(history["loads"][k]) for k in names])]
     return name, history["loads"][name]
@@ -132,7 +132,7 @@ def history_choices(history, elements=None, steps=None):
     """0-based element and step indices to plot: the given 1-based ones (checked), or the
     element of largest |slip| over the path and the steps at the path's vertices. Of
     elements whose largest |slip| is equal within the tie rule (the two centre elements of a
-    symmetric fault), the lowest numbered (ddc2d_h5.index_of_extreme)."""
+    symmetric fault), the lowest numbered (reader.index_of_extreme)."""
     nsteps, count = history["ds"].shape
     if elements is None:
         # nanmax: with growth an element has no slip (NaN) before it was made
@@ -616,7 +616,7 @@ def default_clim(values, quantity, centre=0.0):
     gets limits symmetric about it, so that the centre of the diverging colour map means
     'as without the fractures'; otherwise (or with centre None: a background that varies)
     the limits follow the data, to keep the contrast.
-    Values equal within the tie rule (ddc2d_h5.is_tie) count as equal: a percentile at the
+    Values equal within the tie rule (reader.is_tie) count as equal: a percentile at the
     centre but for rounding (relative to the largest of |low|, |high|, |centre|) does not
     straddle it, and data constant but for rounding get the limits of a constant.
     """

@@ -1,22 +1,21 @@
-"""The figures of ddc2d-plot, drawn with matplotlib from the data of ddc2d_plot_data.
+"""The figures of ddc2d-plot, drawn with matplotlib from the data of ddc2d.plot.data.
 
 Every ``plot_*`` function returns a matplotlib Figure laid out so that nothing is cut off
 at the canvas's edges whatever the grid's aspect (constrained layout; map sizes from
-ddc2d_plot_data.map_figure_size); ``save_figure`` writes one. Imported by
-``scripts/ddc2d-plot`` and the tests; the figures are described in ddc2d-plot's help.
+ddc2d.plot.data.map_figure_size); ``save_figure`` writes one. Used by ddc2d-plot
+(ddc2d.plot.cli), which describes the figures in its help, and by the user's own code
+(through ddc2d.plot). The backend is matplotlib's choice (inline in Jupyter); ddc2d-plot
+picks Agg.
 """
 
-import matplotlib
-
-matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.collections import LineCollection
 from matplotlib.ticker import MaxNLocator
 
-from ddc2d_files import atomic_path
-from ddc2d_h5 import coding_of
-from ddc2d_plot_data import (
+from ..files import atomic_path
+from ..reader import coding_of
+from .data import (
     COLORBAR_LABELS,
     LINE_PANELS,
     SIGNED_QUANTITIES,

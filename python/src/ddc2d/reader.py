@@ -1,7 +1,7 @@
-"""Read ddc2d result files (HDF5, docs/output-reference.md): the one reader of the scripts.
+"""Read ddc2d result files (HDF5, docs/output-reference.md): the one reader of the package.
 
-Used by ``ddc2d-plot``, ``collect-sweep``, ``compare-twodd``, ``benchmark.py`` and the
-tests. It knows
+Used by ddc2d.open_result, ``ddc2d-plot``, ``collect-sweep``, ``compare-twodd``,
+``ddc2d-benchmark`` and the tests. It knows
 
 * how strings come back from h5py (blank- or NUL-padded fixed-length bytes: ``decode``);
 * the codings of the integer datasets: ``load_result`` returns those the file carries
@@ -17,9 +17,6 @@ tests. It knows
   and ``is_tie`` (values within ``TIE_RTOL`` = 1e-9 relative count as equal, the lowest index
   wins), so that a choice never depends on last-bit rounding (symmetric models, other BLAS
   kernels on other CPUs).
-
-Scripts without a ``.py`` suffix import it from their own folder:
-``sys.path.insert(0, str(Path(__file__).resolve().parent))``.
 """
 
 import re

@@ -1,0 +1,527 @@
+"""Benchmark ddc2d (docs/performance.md#the-benchmark): the command ddc2d-benchmark, in the
+repository also scripts/benchmark.py.
+
+    benchmark.py --exe PATH --sizes 250,500,1000
+                 --case straight|mixed|history|fields|growth|growth-history
+                 --json FILE [--threads T[,T...]] [--lcp-method auto|lemke|newton] [--grid NX]
+                 [--steps K] [--compare-lemke] [--lu-exe PATH] [--workdir DIR]
+                 [--mpi P [--mpiexec PATH] [--block-size NB]]
+
+For every size N it writes a namelist model with N contact elements, runs ``ddc2d`` on it,
+reads the phase times from ``/solver/seconds`` of the HDF5 output (the output phase from
+the run summary, as the file is written during that phase), measures the peak resident
+memory of the run (``os.wait4``), and times one LAPACK LU (DGETRF) of a 2N x 2N random
+matrix with ``ddc2d_lu_benchmark`` (tests/lu_benchmark.f90, linked to the same LAPACK as
+ddc2d; by default next to the executable's build: ``<build>/tests/ddc2d_lu_benchmark``).
+
+Cases (CASES: a model builder per case; a new case adds one):
+  straight  the paper's fault: (-1, 0)-(1, 0), mu = 0.6, Sf = 1, principal stresses -175 and
+            -50 MPa at 30 degrees (every element slips);
+  mixed     a kinked fault network (two faults, each with a flat, a 35-degree and a flat
+            segment) under fluid pressure on part of it: elements stick, slip and open;
+  history   the paper's fault along a loading history of K increments (--steps, default
+            100): sxy from 0 to 54.13 MPa (it slips), back to 0 (it sticks) and on to
+            -54.13 MPa (it slips back), in legs of about K/3 increments;
+  fields    the straight case with a GRID x GRID map (--grid, default 500 for this case;
+            0 for history and growth, 100 for the others): the field evaluation, reported
+            as ``fields_over_lu``;
+  growth    wing cracks off a sliding flaw (docs/theory/growth.md#checks-against-closed-forms):
+            a 2 m frictional flaw of N elements at 45 degrees to the compression, each tip
+            growing by 20 of its elements per step for K steps (--steps, default 25; toughness
+            2 MPa m^1/2, so that it does not arrest before), with the local-symmetry corrector.
+            The reference LU is that of the final geometry, LU(2 N_final); the record adds
+            ``n_final``, ``growth_steps``, ``solves`` (from the progress lines) and
+            ``end_reason``.
+  growth-history  the growth case's flaw along a loading history
+            (docs/theory/growth.md#growth-along-a-loading-history): syy rises from -2 to
+            -100 MPa in K load steps (--steps, default 20) at sxx = -2 MPa, and at each load
+            step the wings grow (20 of the flaw's elements per growth step) until no tip is
+            critical. One set of kept factors serves every load step (a new load changes the
+            right-hand side, not the matrix). Measured against LU(2 N_final) like the growth
+            case; the record adds ``steps`` (load steps) too.
+
+--compare-lemke runs every model a second time with lcp_method = 'lemke' and adds to its
+record ``lemke``: Lemke's seconds, peak memory and ratio to the LU, whether the states are
+the same, and the largest DD difference relative to the largest DD (of every step for a
+history).
+
+Threads: ``OMP_NUM_THREADS`` and ``OPENBLAS_NUM_THREADS`` are both set to T (default: the
+number of CPUs); ddc2d calls BLAS outside its OpenMP regions only, so the two never nest.
+``--threads 1,2,4,8,16`` runs every size at each thread count in turn (each with its own
+reference LU on as many threads): a table of threads against the time of each phase.
+
+MPI (``--mpi P``, with ``--exe`` the ddc2d of the MPI build): ``mpiexec -n P`` runs the model
+on P processes of T threads each (default T: the CPUs divided by P; ``--oversubscribe`` when
+P T exceeds the CPUs; Open MPI's variables for running as root are set when root). Each
+process is started through this script (``--measure-rank``), which waits for it and records
+its own peak resident memory, so that the JSON record holds the peak RSS of every process
+(``peak_rss_mb_per_rank``; ``peak_rss_mb`` is the largest) besides ``processes``,
+``process_grid`` and ``block_size`` (``--block-size`` sets &solver block_size). The phase
+times are the root's. The reference LU runs on P T threads.
+
+The table printed and the JSON records (a list) hold
+``{n, case, threads, seconds: {assembly, factorization, lcp, fields, output, total},
+lu_reference_seconds, peak_rss_mb}`` and, in addition, the BLAS library and kernel the run
+used (``blas``, ``blas_core`` from /solver), the share of the total in no named phase
+(``untimed_share``), the memory ddc2d echoed before the solve (``estimated_mb``, from the
+Newton method's starting states), the contact method used, any
+fallback, Newton iterations, LCP pivots, the Newton method's new factorizations, low-rank
+updates and reuses of its factors, element states, the nominal factorization flops and
+rates (``factorization_gflops``, ``lu_reference_gflops``), ``total_over_lu``,
+``fields_over_lu`` and the wall time of the run; a history adds ``steps`` and
+``fallback_steps``, a growth run ``n_final``, ``growth_steps``, ``solves`` and
+``end_reason`` (its ``lu_reference_seconds`` is the LU of 2 N_final).
+"""
+
+import argparse
+import json
+import math
+import os
+import re
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import h5py
+import numpy as np
+
+from .reader import SOLVER_PHASES, read_history, read_solver
+
+#: Default grid (GRID x GRID points) of each case
+DEFAULT_GRID = {"straight": 100, "mixed": 100, "history": 0, "fields": 500, "growth": 0,
+                "growth-history": 0}
+#: Default --steps of each case that has steps
+DEFAULT_STEPS = {"history": 100, "growth": 25, "growth-history": 20}
+#: New elements per tip and growth step of the growth case
+GROWTH_ELEMENTS = 20
+
+
+def straight_model(n, grid):
+    """The paper's fault with n elements (docs/theory/contact.md#checks-against-closed-forms)."""
+    return (
+        "&model title = 'benchmark: straight fault', youngs_modulus = 50000.0,\n"
+        "       poissons_ratio = 0.25, length_unit = 'm', stress_unit = 'MPa' /\n"
+        "&remote_stress sxx = -143.75, syy = -81.25, sxy = 54.13 /\n"
+        f"&fracture name = 'fault', x = -1.0, 1.0, y = 0.0, 0.0, elements = {n},\n"
+        "          condition = 'contact', mu = 0.6, sf = 1.0 /\n" + grid_group(grid))
+
+
+def split(n, parts):
+    """n elements over `parts` segments, as equal as possible (sum is n)."""
+    base = [n // parts] * parts
+    for k in range(n - sum(base)):
+        base[k] += 1
+    return base
+
+
+def mixed_model(n, grid):
+    """A kinked fault network: two faults of three segments each (flat, 35 degrees up,
+    flat), fluid pressure above the normal compression on the inclined segments, under
+    sxx = -5, syy = -20, sxy = 0.5 (the contact suite's kink, doubled and extended)."""
+    b = math.radians(35.0)
+    counts = split(n, 6)
+    faults = []
+    for k, (x0, y0) in enumerate(((-1.0, 0.0), (-0.6, -0.9))):
+        xs = [x0, x0 + 1.0, x0 + 1.0 + math.cos(b), x0 + 2.0 + math.cos(b)]
+        ys = [y0, y0, y0 + math.sin(b), y0 + math.sin(b)]
+        c = counts[3 * k:3 * k + 3]
+        faults.append(
+            f"&fracture name = 'fault_{k + 1}',\n"
+            f"          x = {', '.join(f'{v:.12g}' for v in xs)},\n"
+            f"          y = {', '.join(f'{v:.12g}' for v in ys)},\n"
+            f"          elements = {c[0]}, {c[1]}, {c[2]}, condition = 'contact',\n"
+            "          mu = 0.6, 0.6, 0.6, sf = 0.0, 0.0, 0.5,\n"
+            "          pressure = 12.0, 17.5, 5.0 /\n")
+    return (
+        "&model title = 'benchmark: kinked fault network', youngs_modulus = 50000.0,\n"
+        "       poissons_ratio = 0.25, length_unit = 'm', stress_unit = 'MPa' /\n"
+        "&remote_stress sxx = -5.0, syy = -20.0, sxy = 0.5 /\n" + "".join(faults)
+        + grid_group(grid))
+
+
+def history_model(n, grid, steps=100):
+    """The paper's fault loaded by sxy to 54.13 MPa, unloaded to 0 and loaded the other way
+    to -54.13 MPa, in `steps` increments."""
+    legs = split(steps, 3)
+    return (straight_model(n, grid).replace("sxy = 54.13", "sxy = 0.0")
+            + "&load_path sxy = 0.0, 54.13, 0.0, -54.13, "
+            f"steps = {legs[0]}, {legs[1]}, {legs[2]} /\n")
+
+
+def growth_model(n, grid, steps=25):
+    """Wing cracks off a sliding flaw (input/wing_cracks_sliding_flaw.nml with n elements):
+    each tip grows by GROWTH_ELEMENTS of the flaw's elements per step, `steps` steps."""
+    c = math.sqrt(0.5)
+    increment = GROWTH_ELEMENTS * 2.0 / n
+    return (
+        "&model title = 'benchmark: wing cracks off a sliding flaw', youngs_modulus = 50000.0,\n"
+        "       poissons_ratio = 0.25, length_unit = 'm', stress_unit = 'MPa' /\n"
+        "&remote_stress sxx = -2.0, syy = -100.0, sxy = 0.0 /\n"
+        f"&fracture name = 'flaw', x = {-c:.17g}, {c:.17g}, y = {-c:.17g}, {c:.17g},\n"
+        f"          elements = {n}, condition = 'contact', mu = 0.6, sf = 1.0 /\n"
+        f"&growth steps = {steps}, toughness = 2.0, new_sf = 0.0,\n"
+        f"        increment = {increment:.17g} /\n"
+        + grid_group(grid))
+
+
+def growth_history_model(n, grid, steps=20):
+    """The growth case's flaw with syy rising from -2 to -100 MPa in `steps` load steps;
+    the wings grow to arrest at each (at most 100 growth steps per load step)."""
+    return (growth_model(n, grid, 100).replace("syy = -100.0", "syy = -2.0")
+            + f"&load_path syy = -2.0, -100.0, steps = {steps} /\n")
+
+
+#: The model of each case: n elements, a grid of nx x nx points (0: none), steps.
+CASES = {
+    "straight": lambda n, grid, steps: straight_model(n, grid),
+    "mixed": lambda n, grid, steps: mixed_model(n, grid),
+    "history": history_model,
+    "fields": lambda n, grid, steps: straight_model(n, grid),
+    "growth": growth_model,
+    "growth-history": growth_history_model,
+}
+
+
+def grid_group(nx):
+    """A nx x nx grid around the faults (none when nx is 0)."""
+    if nx <= 0:
+        return ""
+    return (f"&grid name = 'map', xmin = -2.5, xmax = 2.5, nx = {nx}, "
+            f"ymin = -2.0, ymax = 2.0, ny = {nx} /\n")
+
+
+def solver_group(method, block_size=None):
+    size = "" if block_size is None else f", block_size = {block_size}"
+    return f"&solver lcp_method = '{method}'{size} /\n"
+
+
+def run_measured(command, env):
+    """Run a command; return (stdout, wall seconds, peak RSS in MB of that process)."""
+    start = time.perf_counter()
+    process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                               env=env, text=True)
+    stdout = process.stdout.read()
+    stderr = process.stderr.read()
+    process.stdout.close()
+    process.stderr.close()
+    # os.wait4 reports the resource usage of this child alone.
+    _, status, usage = os.wait4(process.pid, 0)
+    process.returncode = os.waitstatus_to_exitcode(status)
+    wall = time.perf_counter() - start
+    if process.returncode != 0:
+        raise RuntimeError(f"{' '.join(map(str, command))} failed with exit status "
+                           f"{process.returncode}:\n{stdout}\n{stderr}")
+    return stdout, wall, usage.ru_maxrss / 1024.0
+
+
+def lu_reference(lu_exe, n2, env):
+    """Seconds and GFLOP/s of one DGETRF of an n2 x n2 random matrix."""
+    out, _, _ = run_measured([str(lu_exe), str(n2)], env)
+    match = re.search(r"seconds\s+(\S+)\s+gflops\s+(\S+)", out)
+    if not match:
+        raise RuntimeError(f"unexpected output of {lu_exe}: {out!r}")
+    return float(match.group(1)), float(match.group(2))
+
+
+RANK_ENVIRONMENT = ("OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK", "SLURM_PROCID")
+
+
+def measure_rank(argv):
+    """--measure-rank PREFIX -- COMMAND...: run COMMAND (one MPI process), write its peak
+    RSS to PREFIX.<rank> as JSON and exit with its status."""
+    prefix, separator, *command = argv
+    if separator != "--" or not command:
+        raise SystemExit("usage: benchmark.py --measure-rank PREFIX -- COMMAND...")
+    rank = next((os.environ[v] for v in RANK_ENVIRONMENT if v in os.environ), "0")
+    process = subprocess.Popen(command)
+    _, status, usage = os.wait4(process.pid, 0)
+    Path(f"{prefix}.{rank}").write_text(json.dumps({"rank": int(rank),
+                                                    "peak_rss_mb": usage.ru_maxrss / 1024.0}))
+    return os.waitstatus_to_exitcode(status)
+
+
+def mpi_command(mpiexec, processes, threads, prefix):
+    """mpiexec -n P with every process started through --measure-rank."""
+    command = [mpiexec, "-n", str(processes)]
+    if processes * threads > (os.cpu_count() or 1):
+        command.insert(1, "--oversubscribe")
+    return command + [sys.executable, "-m", "ddc2d.benchmark", "--measure-rank", str(prefix),
+                      "--"]
+
+
+def run_model(exe, text, method, name, workdir, env, launcher=(), block_size=None):
+    """Run one model with a method (through the MPI launcher when given); return (stdout,
+    wall seconds, peak RSS MB, the result file's /solver and /history (None without a
+    path), its element states and DDs)."""
+    nml = Path(workdir) / f"{name}_{method}.nml"
+    h5 = Path(workdir) / f"{name}_{method}.h5"
+    nml.write_text(text + solver_group(method, block_size) + f"&output file = '{h5.name}' /\n")
+    stdout, wall, rss = run_measured([*launcher, str(exe), str(nml), "-o", str(h5)], env)
+    with h5py.File(h5, "r") as f:
+        solver = read_solver(f)
+        history = read_history(h5, f, f["elements/ds"].shape[0])
+        states = f["elements/state"][()]
+        dds = [f["elements/ds"][()], f["elements/dn"][()]]
+    h5.unlink()
+    if history is not None:
+        states = history["state"]
+        dds = [history["ds"], history["dn"]]
+    return stdout, wall, rss, solver, history, states, dds
+
+
+#: Units of the sizes ddc2d prints
+UNITS = {"kB": 1e3, "MB": 1e6, "GB": 1e9, "TB": 1e12}
+
+
+def echoed_need_mb(stdout):
+    """The memory ddc2d echoed as needed before the solve [MB] (None when not echoed)."""
+    match = re.search(r"^  memory: about ([0-9.]+) (kB|MB|GB|TB) needed", stdout, re.MULTILINE)
+    return float(match.group(1)) * UNITS[match.group(2)] / 1e6 if match else None
+
+
+def growth_summary(stdout, label):
+    """Steps and solves of a growth run from its progress lines ('growth step 3: ..., 3
+    solve(s), ...'; one more solve for the input geometry), its end reason from the
+    summary."""
+    solves = [int(v) for v in re.findall(r"^growth step \d+: .*?, (\d+) solve\(s\)", stdout,
+                                          re.MULTILINE)]
+    match = re.search(r"^growth: (\d+) step\(s\) with growth; ended: (\w+)", stdout,
+                      re.MULTILINE)
+    if not solves or not match:
+        raise RuntimeError(f"no growth progress in the output of {label}:\n{stdout}")
+    return {"growth_steps": int(match.group(1)), "end_reason": match.group(2),
+            "solves": 1 + sum(solves)}
+
+
+def compare_with_lemke(exe, text, name, workdir, env, lu_seconds, states, dds, launcher=(),
+                       block_size=None):
+    """Lemke on the same model: its time, memory and ratio to the LU; same states; largest
+    DD difference relative to the largest DD."""
+    _, _, rss, solver, _, lemke_states, lemke_dds = run_model(
+        exe, text, "lemke", name, workdir, env, launcher, block_size)
+    scale = max(float(np.max(np.abs(d))) for d in lemke_dds) or 1.0
+    total = solver["seconds"]["total"]
+    return {"seconds": total, "peak_rss_mb": rss, "total_over_lu": total / lu_seconds,
+            "pivots": int(solver["attrs"].get("pivots", 0)),
+            "same_states": bool(np.array_equal(states, lemke_states)),
+            "max_dd_difference": max(float(np.max(np.abs(a - b)))
+                                     for a, b in zip(dds, lemke_dds)) / scale}
+
+
+def benchmark_one(exe, lu_exe, n, case, threads, method, grid, workdir, steps=100,
+                  compare_lemke=False, processes=0, mpiexec="mpiexec", block_size=None):
+    """Run one model of n elements (on `processes` MPI processes when > 0); return its JSON
+    record."""
+    env = dict(os.environ, OMP_NUM_THREADS=str(threads),
+               OPENBLAS_NUM_THREADS=str(threads))
+    if processes and os.geteuid() == 0:
+        env.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    text = CASES[case](n, grid, steps)
+    name = f"{case}_{n}"
+    launcher = []
+    prefix = Path(workdir) / f"{name}.rss"
+    if processes:
+        launcher = mpi_command(mpiexec, processes, threads, prefix)
+    stdout, wall, rss, solver, history, states, dds = run_model(
+        exe, text, method, name, workdir, env, launcher, block_size)
+    seconds, attrs = solver["seconds"], solver["attrs"]
+    # The output phase is timed while the file is written: the file holds its part up to
+    # /solver (in its total too); take the whole from the summary.
+    match = re.search(r"output\s+([0-9.]+)", stdout)
+    if match:
+        seconds["total"] += float(match.group(1)) - seconds["output"]
+        seconds["output"] = float(match.group(1))
+    lu_threads = threads * max(processes, 1)
+    # A growth run is measured against the LU of its final geometry.
+    n_final = len(states[-1]) if history is not None else len(states)
+    lu_seconds, lu_gflops = lu_reference(lu_exe, 2 * n_final, dict(
+        env, OMP_NUM_THREADS=str(lu_threads), OPENBLAS_NUM_THREADS=str(lu_threads)))
+    flops = float(attrs.get("factorization_flops", 0.0))
+    fact = seconds["factorization"]
+    final = states[-1] if history is not None else states
+    named = sum(seconds[p] for p in SOLVER_PHASES if p != "total")
+    record = {
+        "n": n, "case": case, "threads": threads, "seconds": seconds,
+        "lu_reference_seconds": lu_seconds, "peak_rss_mb": rss,
+        "estimated_mb": echoed_need_mb(stdout),
+        "untimed_share": (seconds["total"] - named) / seconds["total"]
+        if seconds["total"] > 0 else 0.0,
+        "blas": attrs.get("blas", "").strip(), "blas_core": attrs.get("blas_core", "").strip(),
+        "lcp_method": method, "method": attrs.get("method", ""),
+        "fallback": attrs.get("fallback", ""),
+        "newton_iterations": int(attrs.get("newton_iterations", 0)),
+        "pivots": int(attrs.get("pivots", 0)),
+        "factorizations": int(attrs.get("factorizations", 0)),
+        "low_rank_updates": int(attrs.get("low_rank_updates", 0)),
+        "factorization_reuses": int(attrs.get("factorization_reuses", 0)),
+        "states": {s: int(np.sum(final == code)) for s, code in (("stick", 1), ("slip", 2),
+                                                                 ("open", 3))},
+        "factorization_flops": flops,
+        "factorization_gflops": flops / fact * 1e-9 if fact > 0 else None,
+        "lu_reference_gflops": lu_gflops,
+        "total_over_lu": seconds["total"] / lu_seconds if lu_seconds > 0 else None,
+        "fields_over_lu": seconds["fields"] / lu_seconds if lu_seconds > 0 else None,
+        "wall_seconds": wall,
+    }
+    if processes:
+        ranks = sorted((json.loads(f.read_text()) for f in Path(workdir).glob(f"{prefix.name}.*")),
+                       key=lambda r: r["rank"])
+        if [r["rank"] for r in ranks] != list(range(processes)):
+            raise RuntimeError(f"peak RSS of ranks {[r['rank'] for r in ranks]} recorded, "
+                               f"expected 0 to {processes - 1}")
+        record.update(processes=processes, process_grid=[int(v) for v in attrs["process_grid"]],
+                      block_size=int(attrs["block_size"]),
+                      peak_rss_mb_per_rank=[r["peak_rss_mb"] for r in ranks],
+                      peak_rss_mb=max(r["peak_rss_mb"] for r in ranks))
+        for f in Path(workdir).glob(f"{prefix.name}.*"):
+            f.unlink()
+    if case in ("growth", "growth-history"):
+        record.update(growth_summary(stdout, f"{name}_{method}"), n_final=n_final)
+    if history is not None:
+        record["steps"] = int(history["state"].shape[0])
+        record["fallback_steps"] = int(sum(1 for f in history.get("fallback", []) if f))
+    if compare_lemke:
+        record["lemke"] = compare_with_lemke(exe, text, name, workdir, env, lu_seconds,
+                                             states, dds, launcher, block_size)
+    return record
+
+
+def print_table(records, out=sys.stdout):
+    """One row per record; with MPI records the processes and each one's peak RSS."""
+    mpi = any("processes" in r for r in records)
+    head = ("n", "case", *(("P",) if mpi else ()), "thr", "method", "assembly", "factor",
+            "lcp", "fields", "output", "total", "untimed", "LU ref", "tot/LU", "fld/LU",
+            "fact GF/s", "LU GF/s", "RSS MB", *(("rank RSS MB",) if mpi else ()), "stk/slp/opn",
+            "fact/upd/reuse")
+    rows = []
+    for r in records:
+        s = r["seconds"]
+        gf = r["factorization_gflops"]
+        st = r["states"]
+        ranks = "/".join(f"{v:.0f}" for v in r.get("peak_rss_mb_per_rank", []))
+        rows.append((str(r["n"]), r["case"], *((str(r.get("processes", 1)),) if mpi else ()),
+                     str(r["threads"]), r["method"] + ("*" if r["fallback"] else ""),
+                     *(f"{s[p]:.3f}" for p in SOLVER_PHASES),
+                     f"{100.0 * r['untimed_share']:.1f}%",
+                     f"{r['lu_reference_seconds']:.3f}", f"{r['total_over_lu']:.2f}",
+                     f"{r['fields_over_lu']:.2f}", "-" if gf is None else f"{gf:.1f}",
+                     f"{r['lu_reference_gflops']:.1f}", f"{r['peak_rss_mb']:.0f}",
+                     *((ranks or "-",) if mpi else ()),
+                     f"{st['stick']}/{st['slip']}/{st['open']}",
+                     "/".join(str(r[k]) for k in ("factorizations", "low_rank_updates",
+                                                  "factorization_reuses"))))
+    widths = [max(len(h), *(len(row[i]) for row in rows)) for i, h in enumerate(head)]
+    print(" ".join(h.rjust(w) for h, w in zip(head, widths)), file=out)
+    for row in rows:
+        print(" ".join(c.rjust(w) for c, w in zip(row, widths)), file=out)
+    for r in records:
+        if "solves" in r:
+            print(f"  n = {r['n']}: {r['growth_steps']} growth steps ({r['end_reason']}), "
+                  f"{r['solves']} solves, N_final = {r['n_final']}, LU ref of "
+                  f"2 N_final = {2 * r['n_final']}", file=out)
+        if "steps" in r:
+            print(f"  n = {r['n']}: {r['steps']} steps, {r['newton_iterations']} Newton "
+                  f"iterations, {r['pivots']} Lemke pivots, {r['fallback_steps']} steps fell "
+                  "back", file=out)
+        if r["fallback"]:
+            print(f"* n = {r['n']}: {r['fallback']}", file=out)
+        if "lemke" in r:
+            lk = r["lemke"]
+            print(f"  n = {r['n']}: lemke {lk['seconds']:.3f} s ({lk['total_over_lu']:.2f} x "
+                  f"LU, {lk['peak_rss_mb']:.0f} MB, {lk['pivots']} pivots); same states: "
+                  f"{lk['same_states']}, largest DD difference {lk['max_dd_difference']:.1e}",
+                  file=out)
+
+
+def main(argv=None):
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv[:1] == ["--measure-rank"]:  # one process of an --mpi run (mpi_command)
+        return measure_rank(argv[1:])
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--exe", required=True, type=Path, help="the ddc2d executable")
+    parser.add_argument("--sizes", required=True,
+                        help="comma-separated numbers of contact elements")
+    parser.add_argument("--case", required=True, choices=sorted(CASES))
+    parser.add_argument("--json", required=True, type=Path, help="JSON file to write")
+    parser.add_argument("--threads", default=None,
+                        help="OpenMP and OpenBLAS threads of each process, or a comma-"
+                             "separated list of them run in turn (default: all CPUs, "
+                             "divided by P with --mpi)")
+    parser.add_argument("--lcp-method", default="auto", choices=("auto", "lemke", "newton"))
+    parser.add_argument("--grid", type=int, default=None,
+                        help="observation grid of GRID x GRID points (0: none; default "
+                             "500 for the fields case, 0 for history, else 100)")
+    parser.add_argument("--steps", type=int, default=None,
+                        help="increments of the history case (default 100), growth steps "
+                             "of the growth case (default 25), load steps of the "
+                             "growth-history case (default 20)")
+    parser.add_argument("--compare-lemke", action="store_true",
+                        help="also run every model with lcp_method = 'lemke' and compare")
+    parser.add_argument("--lu-exe", type=Path, default=None,
+                        help="reference LU program (default: <build>/tests/"
+                             "ddc2d_lu_benchmark beside the executable's app/ folder)")
+    parser.add_argument("--workdir", type=Path, default=None,
+                        help="folder for the models (default: a temporary folder)")
+    parser.add_argument("--mpi", type=int, default=0, metavar="P",
+                        help="run on P MPI processes (--exe: the MPI build's ddc2d)")
+    parser.add_argument("--mpiexec", default="mpiexec", help="MPI launcher (default mpiexec)")
+    parser.add_argument("--block-size", type=int, default=None,
+                        help="&solver block_size of the distributed matrices (default 64)")
+    args = parser.parse_args(argv)
+
+    try:
+        sizes = [int(s) for s in args.sizes.split(",") if s.strip()]
+    except ValueError:
+        parser.error(f"--sizes must be comma-separated integers, not {args.sizes!r}")
+    if not sizes or min(sizes) < 6 and args.case == "mixed" or min(sizes) < 1:
+        parser.error("--sizes must be positive (at least 6 for the mixed case)")
+    if args.mpi < 0 or args.block_size is not None and args.block_size < 1:
+        parser.error("--mpi and --block-size must be positive")
+    if args.threads is None:
+        thread_counts = [max(1, (os.cpu_count() or 1) // max(args.mpi, 1))]
+    else:
+        try:
+            thread_counts = [int(t) for t in args.threads.split(",") if t.strip()]
+        except ValueError:
+            parser.error(f"--threads must be comma-separated integers, not {args.threads!r}")
+    if not thread_counts or min(thread_counts) < 1:
+        parser.error("--threads must be at least 1")
+    if args.steps is None:
+        args.steps = DEFAULT_STEPS.get(args.case, 100)
+    if args.steps < 3 and args.case == "history" or args.steps < 1:
+        parser.error("--steps must be at least 3 (history) or 1 (growth)")
+    if args.grid is None:
+        args.grid = DEFAULT_GRID[args.case]
+    exe = args.exe.resolve()
+    if not exe.is_file():
+        parser.error(f"--exe {exe} does not exist")
+    lu_exe = args.lu_exe or exe.parent.parent / "tests" / "ddc2d_lu_benchmark"
+    if not Path(lu_exe).is_file():
+        parser.error(f"reference LU program {lu_exe} not found (build the tests, or give "
+                     "--lu-exe)")
+
+    records = []
+    with tempfile.TemporaryDirectory() as tmp:
+        workdir = args.workdir or Path(tmp)
+        workdir.mkdir(parents=True, exist_ok=True)
+        for threads in thread_counts:
+            for n in sizes:
+                records.append(benchmark_one(exe, lu_exe, n, args.case, threads,
+                                             args.lcp_method, args.grid, workdir, args.steps,
+                                             args.compare_lemke, args.mpi, args.mpiexec,
+                                             args.block_size))
+    processes = f"{args.mpi} MPI processes of " if args.mpi else ""
+    threads = ",".join(map(str, thread_counts))
+    cores = sorted({r["blas_core"] for r in records})
+    print(f"# ddc2d benchmark, case {args.case}, {processes}{threads} thread(s), "
+          f"lcp_method = {args.lcp_method}, grid {args.grid} x {args.grid}, "
+          f"BLAS kernel {', '.join(cores) or 'unknown'}, {time.strftime('%Y-%m-%d')}")
+    print_table(records)
+    args.json.write_text(json.dumps(records, indent=2) + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,104 @@
+"""The ddc2d Python package installed as users and developers install it (docs/python.md):
+
+* ``pip install ./python`` into an empty virtual environment pulls numpy, h5py, matplotlib
+  and xarray from PyPI, and every console entry point runs there;
+* scripts/setup.sh installs the package of its own working tree editable into build/venv,
+  and its completeness check counts it: a venv made before, with every other package,
+  gets it on the next run, and the run after that finds it ready.
+
+Both install from a copy of python/ in a temporary folder (pip writes build files beside
+the sources). They need PyPI or pip's cache; CTest label install.
+"""
+
+import os
+import shutil
+import subprocess
+import sys
+import sysconfig
+from pathlib import Path
+
+REPO_ROOT = Path(__file__).resolve().parents[2]
+#: The console entry points of python/pyproject.toml.
+ENTRY_POINTS = ("ddc2d-plot", "collect-sweep", "submit-sweep", "twodd2nml", "comp2ddm2nml",
+                "compare-twodd", "ddc2d-benchmark", "ddc2d-growth-convergence")
+#: pip's network waits are its own; the whole install takes a minute or two.
+TIMEOUT = 1200
+
+
+def clean_environment():
+    """This environment without an active venv or Python path: nothing of build/venv leaks
+    into the new venv."""
+    return {key: value for key, value in os.environ.items()
+            if key not in ("VIRTUAL_ENV", "PYTHONPATH", "PYTHONHOME")}
+
+
+def run(args, cwd):
+    return subprocess.run([str(a) for a in args], cwd=cwd, env=clean_environment(),
+                          capture_output=True, text=True, timeout=TIMEOUT)
+
+
+def copy_package(destination):
+    """python/ without what an earlier install left in it."""
+    shutil.copytree(REPO_ROOT / "python", destination,
+                    ignore=shutil.ignore_patterns("*.egg-info", "build", "__pycache__"))
+    return destination
+
+
+def make_venv(path, cwd):
+    done = run([sys.executable, "-m", "venv", path], cwd)
+    assert done.returncode == 0, done.stderr
+    return path / "bin" / "python"
+
+
+def test_pip_install_into_an_empty_venv(tmp_path):
+    python = make_venv(tmp_path / "venv", tmp_path)
+    assert run([python, "-c", "import numpy"], tmp_path).returncode != 0  # empty indeed
+    done = run([python, "-m", "pip", "install", "--quiet", copy_package(tmp_path / "python")],
+               tmp_path)
+    assert done.returncode == 0, done.stdout + done.stderr
+    show = "import ddc2d, xarray; print(ddc2d.__file__); print(ddc2d.__version__)"
+    done = run([python, "-c", show], tmp_path)
+    assert done.returncode == 0, done.stderr
+    where, version = done.stdout.split()
+    assert Path(where).is_relative_to(tmp_path / "venv") and version == "0.1.0"
+    for name in ENTRY_POINTS:
+        done = run([tmp_path / "venv" / "bin" / name, "--help"], tmp_path)
+        assert done.returncode == 0, f"{name}: {done.stderr}"
+        assert done.stdout.startswith("usage: "), f"{name}: {done.stdout}"
+    # Without the extra 'workbooks', comp2ddm2nml says in one line what to install.
+    (tmp_path / "book.xlsx").write_bytes(b"")
+    done = run([tmp_path / "venv" / "bin" / "comp2ddm2nml", "book.xlsx"], tmp_path)
+    assert done.returncode == 2
+    assert done.stderr.strip().splitlines() == [
+        ("comp2ddm2nml: error: the Python package openpyxl is missing: install it (pip "
+         "install 'ddc2d[workbooks]'; in the repository: scripts/setup.sh)")]
+
+
+def test_setup_installs_the_package_of_its_working_tree(tmp_path):
+    """A working tree whose build/venv has every package (through a path file to this
+    tree's build/venv) and the linters but not its own ddc2d package."""
+    clone = tmp_path / "clone"
+    (clone / "scripts").mkdir(parents=True)
+    shutil.copy(REPO_ROOT / "scripts" / "setup.sh", clone / "scripts")
+    copy_package(clone / "python")
+    venv = clone / "build" / "venv"
+    python = make_venv(venv, tmp_path)
+    ours = sysconfig.get_path("purelib")  # build/venv's site-packages: this test runs there
+    purelib = run([python, "-c", "import sysconfig; print(sysconfig.get_path('purelib'))"],
+                  tmp_path).stdout.strip()
+    # A plain path line: build/venv's own path files (its editable ddc2d) are not read.
+    (Path(purelib) / "project_packages.pth").write_text(ours + "\n")
+    for tool in ("ruff", "fortitude"):
+        (venv / "bin" / tool).symlink_to(Path(sys.prefix) / "bin" / tool)
+    before = run([python, "-c", "import ddc2d"], tmp_path)
+    assert before.returncode != 0, "the clone's venv already imports a ddc2d package"
+
+    first = run(["bash", clone / "scripts" / "setup.sh"], tmp_path)
+    assert first.returncode == 0, first.stdout + first.stderr
+    assert f"installing the ddc2d package of {clone}/python (editable)" in first.stdout
+    done = run([python, "-c", "import ddc2d; print(ddc2d.__file__)"], tmp_path)
+    assert Path(done.stdout.strip()) == clone / "python" / "src" / "ddc2d" / "__init__.py"
+
+    second = run(["bash", clone / "scripts" / "setup.sh"], tmp_path)
+    assert second.returncode == 0, second.stdout + second.stderr
+    assert "Python venv ready" in second.stdout and "installing" not in second.stdout
