@@ -7,7 +7,8 @@
 !> (ddc_output_hdf5_records) and the restart reader (ddc_output_restart_read) go through
 !> them. A new column is declared in its type (ddc_model_results), listed here, and given
 !> its values where the run computes them; the CTest architecture fails when a column is
-!> missing from its list, and when scripts/ddc2d_h5.py does not know its dataset.
+!> missing from its list, and when the Python reader (python/src/ddc2d/reader.py) does not
+!> know its dataset.
 module ddc_model_records
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use ddc_kinds, only: wp
