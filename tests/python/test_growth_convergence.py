@@ -9,7 +9,7 @@ import sys
 
 import pytest
 
-from conftest import SCRIPTS, ddc2d_exe
+from conftest import REPO_ROOT, SCRIPTS, ddc2d_exe
 from ddc2d import growth_convergence
 
 SCRIPT = SCRIPTS / "growth_convergence.py"
@@ -40,7 +40,21 @@ def test_tiny_study_writes_table_and_figure(tmp_path):
         assert 50.0 < float(r["first_angle"]) < 70.53
 
 
-def test_check_flags_what_spec_growth_7_forbids():
+def test_default_output_is_results_in_the_current_folder(tmp_path):
+    # Not the gallery's tracked figure: results/ in the folder it runs in.
+    gallery = REPO_ROOT / "docs" / "gallery" / "growth_convergence.png"
+    before = gallery.read_bytes()
+    done = subprocess.run([sys.executable, str(SCRIPT), "--exe", str(ddc2d_exe()), "--elements",
+                           "20", "--increments", "0.2"], cwd=tmp_path, capture_output=True,
+                          text=True, timeout=600)
+    assert done.returncode in (0, 1), done.stdout + done.stderr
+    results = tmp_path / "results"
+    assert (results / "growth_convergence.png").read_bytes()[:4] == b"\x89PNG"
+    assert (results / "growth-convergence" / "growth_convergence.csv").is_file()
+    assert gallery.read_bytes() == before
+
+
+def test_check_flags_what_the_targets_forbid():
     module = growth_convergence
     row = {"elements": 40, "increment": 0.05, "arrest_length": 1.0, "final_direction": 92.0,
            "end_reason": "arrested"}

@@ -1,8 +1,7 @@
 """Convergence study of fracture growth (docs/theory/growth.md#convergence-with-the-increment):
 the wings of a sliding flaw against the increment and the element length. The command
-ddc2d-growth-convergence, in the repository also scripts/growth_convergence.py; run from a
-working tree (an editable install), its default paths are in that tree, else in the
-current folder.
+ddc2d-growth-convergence, in the repository also scripts/growth_convergence.py; it writes
+into results/ in the current folder unless told otherwise.
 
     growth_convergence.py [--exe DDC2D] [--work DIR] [--figure PNG] [--csv CSV]
                           [--elements N[,N...]] [--increments D[,D...]] [--quick]
@@ -11,15 +10,16 @@ The model: a 2 m flaw at 45 degrees to sigma_1 (sxx = -5, syy = -100), frictiona
 (mu 0.6, sf 0), N elements, &growth toughness 2, new_sf 0, at most 80 steps. For every N
 (default 40, 80) and increment (default 0.2, 0.1, 0.05, 0.025) one run with
 element_length = min(2/N, increment) (new elements never longer than the flaw's), in
-DIR (default build/growth-convergence), one thread. From each result: the arrest length of
+DIR (default results/growth-convergence), one thread; the program is --exe, else the
+one ddc2d.run finds (ddc2d.paths.find_executable). From each result: the arrest length of
 a wing (sum of its increments), its final direction (last element, degrees from +x;
 sigma_1 is at 90), the first applied kink angle, the end reason and the steps.
 
 Writes the table (CSV, default DIR/growth_convergence.csv) and the figure (default
-docs/gallery/growth_convergence.png): arrest length, final direction and first kink
-angle against the increment (one line per element count; the first angle with the MTS
-angle 70.53 and the infinitesimal-kink local-symmetry angle of pure mode II, 77.3), and
-the wing paths. --quick: N = 40 only.
+results/growth_convergence.png; the gallery's is docs/gallery/growth_convergence.png):
+arrest length, final direction and first kink angle against the increment (one line per
+element count; the first angle with the MTS angle 70.53 and the infinitesimal-kink
+local-symmetry angle of pure mode II, 77.3), and the wing paths. --quick: N = 40 only.
 
 Exit status: 0 when, for every N, every run arrested and its arrest length is within 10 %
 and its final direction within 5 degrees of the finest increment's; 1 otherwise (the table
@@ -39,7 +39,7 @@ import numpy as np
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
-from .paths import tree_or_cwd
+from .paths import find_executable
 from .reader import load_result
 
 #: The wing flaw of docs/theory/growth.md#convergence-with-the-increment
@@ -162,23 +162,24 @@ def plot(rows, figure):
 
 
 def main(argv=None):
-    # Defaults inside the working tree when the package runs from one (paths.tree_or_cwd).
-    root = tree_or_cwd()
+    # Results go to results/ in the current folder, never over the tracked gallery figure
+    # (regenerate that with --figure docs/gallery/growth_convergence.png).
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--exe", type=Path, default=root / "build/release/app/ddc2d")
-    parser.add_argument("--work", type=Path, default=root / "build/growth-convergence")
-    parser.add_argument("--figure", type=Path,
-                        default=root / "docs/gallery/growth_convergence.png")
+    parser.add_argument("--exe", type=Path, default=None)
+    parser.add_argument("--work", type=Path, default=Path("results/growth-convergence"))
+    parser.add_argument("--figure", type=Path, default=Path("results/growth_convergence.png"))
     parser.add_argument("--csv", type=Path, default=None)
     parser.add_argument("--elements", type=lambda t: parse_list(t, int), default=[40, 80])
     parser.add_argument("--increments", type=lambda t: parse_list(t, float),
                         default=[0.2, 0.1, 0.05, 0.025])
     parser.add_argument("--quick", action="store_true", help="40 elements only")
     args = parser.parse_args(argv)
-    if not args.exe.is_file():
-        parser.error(f"no executable {args.exe} (build it, or give --exe)")
+    args.exe = find_executable(args.exe)
+    if args.exe is None or not args.exe.is_file():
+        parser.error(f"no executable {args.exe or 'found'} (build it, or give --exe)")
     elements = [40] if args.quick else args.elements
     args.work.mkdir(parents=True, exist_ok=True)
+    args.figure.parent.mkdir(parents=True, exist_ok=True)
     rows = []
     try:
         for n in elements:

@@ -26,11 +26,6 @@ def source_tree():
     return None
 
 
-def tree_or_cwd():
-    """The working tree, else the current folder (the base of the tools' defaults)."""
-    return source_tree() or Path.cwd()
-
-
 def built_executable():
     """A ddc2d built in the working tree (release, then debug preset), or None."""
     root = source_tree()
