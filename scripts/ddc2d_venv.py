@@ -1,13 +1,14 @@
 """Run a script of scripts/ with the project's venv when this Python lacks its packages.
 
-scripts/setup.sh installs numpy, h5py, matplotlib, xlrd and openpyxl into build/venv, not
-into the system Python, so that ``scripts/ddc2d-plot RESULT.h5`` started by the
-``#!/usr/bin/env python3`` of a plain shell would not find them. Every script that needs
-them imports them in a ``try`` and, on ImportError, calls ``rerun_in_venv``:
+scripts/setup.sh installs the ddc2d Python package (python/) with numpy, h5py, matplotlib
+and xarray into build/venv, not into the system Python, so that ``scripts/ddc2d-plot
+RESULT.h5`` started by the ``#!/usr/bin/env python3`` of a plain shell would not find them.
+Every script of scripts/ is a shim that imports its command from the package in a ``try``
+and, on ImportError, calls ``rerun_in_venv`` (the script's own folder, where this module
+lives, is on sys.path for a script run directly):
 
-    sys.path.insert(0, str(Path(__file__).resolve().parent))  # ddc2d_venv lives here
     try:
-        import numpy as np
+        from ddc2d.plot.cli import main
     except ImportError as exc:
         from ddc2d_venv import rerun_in_venv
         rerun_in_venv(PROGRAM, exc, __file__)

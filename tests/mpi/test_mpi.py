@@ -16,15 +16,13 @@ timeout, so a process that waits forever fails the test instead of hanging it.
 import json
 import os
 import subprocess
-import sys
 from pathlib import Path
 
 import h5py
 import numpy as np
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # tests/compare_results.py
-from compare_results import RTOL, differences
+from compare_results import RTOL, differences  # tests/ is on pytest's pythonpath (pytest.ini)
 from ddc2d.reader import read_solver
 
 REPO = Path(__file__).resolve().parents[2]
