@@ -398,7 +398,7 @@ def slip_sense(result, fracture):
     e = result["elements"]
     sl = slice(fracture["first"] - 1, fracture["last"])
     created = e.get("created_step")
-    given = np.ones(e["ds"][sl].size, dtype=bool) if created is None else created[sl] == 0
+    given = np.ones(e["x_begin"][sl].size, dtype=bool) if created is None else created[sl] == 0
     each = [direction_sense(sx, sy) for sx, sy in zip(e["x_end"][sl] - e["x_begin"][sl],
                                                       e["y_end"][sl] - e["y_begin"][sl])]
     senses = set(each)
