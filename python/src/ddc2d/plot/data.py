@@ -34,6 +34,7 @@ Skempton's B as --friction.
 """
 
 import re
+from itertools import pairwise
 
 import numpy as np
 
@@ -139,7 +140,7 @@ def leg_arrows(history):
     """(from, to) row pairs of one arrow per leg of a loading history, at the leg's middle
     row, pointing the way the path runs (its sense on an unloading branch)."""
     vertices = np.cumsum(np.concatenate([[0], history["leg_steps"]])).astype(int)
-    return [((a + b) // 2, (a + b) // 2 + 1) for a, b in zip(vertices[:-1], vertices[1:])
+    return [((a + b) // 2, (a + b) // 2 + 1) for a, b in pairwise(vertices)
             if b > a]
 
 
