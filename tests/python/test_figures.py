@@ -9,7 +9,7 @@ import h5py
 import numpy as np
 import pytest
 
-from conftest import solve_text, write_result
+from conftest import NEAR_ELEMENT_CODING, solve_text, write_result
 from ddc2d.plot import data as plot_data
 from ddc2d.plot import figures as plot_figures
 from ddc2d.reader import load_result
@@ -214,11 +214,152 @@ def test_tips_with_equal_curves_are_named_together(symmetric_growth):
 
 def test_tips_with_different_curves_keep_their_own_lines():
     steps = np.array([1, 2])
-    series = [{"label": "a begin", "fracture_id": 1, "step": steps,
+    series = [{"label": "a begin", "fracture_id": 1, "step": steps, "position": steps,
                "ratio": np.array([1.2, 1.1]), "reason": np.zeros(2)},
-              {"label": "a end", "fracture_id": 1, "step": steps,
+              {"label": "a end", "fracture_id": 1, "step": steps, "position": steps,
                "ratio": np.array([1.2, 1.1 * (1 + 1e-6)]), "reason": np.zeros(2)},
-              {"label": "b end", "fracture_id": 2, "step": steps,
-               "ratio": np.array([1.2, 1.1 * (1 + 1e-12)]), "reason": np.zeros(2)}]
+              {"label": "b end", "fracture_id": 2, "step": steps, "position": steps,
+               "ratio": np.array([1.2, 1.1 * (1 + 1e-12)]), "reason": np.zeros(2)},
+              # equal K_eq, but this tip linked where 'a begin' grew: a curve of its own
+              {"label": "b begin", "fracture_id": 2, "step": steps, "position": steps,
+               "ratio": np.array([1.2, 1.1]), "reason": np.array([0, 5])}]
     labels = [curve["label"] for curve in plot_data.growth_curves(series)]
-    assert labels == ["a begin = b end (equal K_eq)", "a end"]
+    assert labels == ["a begin = b end (equal K_eq)", "a end", "b begin"]
+
+
+# The reasons as ddc2d codes them, with a code this version of the plots does not know:
+# the figure names it from the coding all the same.
+REASON_CODING = ("0 grew, 1 subcritical, 2 intersection, 3 surface, 4 corrector failed (grew "
+                 "at mts_angle), 5 linked (ends on another fracture), 6 closed (the kink "
+                 "closes, K_I = 0), 7 waiting (critical, not the most critical), 8 enclosing "
+                 "(a second link would enclose a block)")
+
+
+def with_growth(path, half_plane=False, load_path=False):
+    """The synthetic result (conftest, fracture A from (-1, 0) to (1, 0), B from (0, 1) to
+    (0.3, 2.4)) as a growth run of two steps: both tips of A grow in step 1 with equal K_eq;
+    in step 2, still equal, A's begin stops at an intersection, its end links (A ends at
+    (1, 0)); B's begin stops in step 2 by reason 8. load_path: the steps were taken at load
+    steps 2 and 4 of a path of syy -10, -20, -30, -40 (one leg)."""
+    write_result(path)
+    with h5py.File(path, "r+") as f:
+        f["elements"].create_dataset("created_step",
+                                     data=np.array([0, 0, 0, 0, 1, 2, 2], dtype=np.int32))
+        records = {"step": [1, 1, 1, 2, 2, 2], "fracture_id": [1, 1, 2, 1, 1, 2],
+                   "end": [0, 1, 0, 0, 1, 0], "k_eq": [3.0, 3.0, 2.5, 2.0, 2.0, 1.5],
+                   "reason": [0, 0, 0, 2, 5, 8]}
+        growth = f.create_group("growth")
+        for key in ("x", "y", "k1", "k2", "mts_angle", "angle", "k2_after", "length"):
+            growth.create_dataset(key, data=np.zeros(6))
+        growth.create_dataset("corrections", data=np.zeros(6, dtype=np.int32))
+        for key, value in records.items():
+            growth.create_dataset(key, data=np.array(value, dtype=float if key == "k_eq"
+                                                     else np.int32))
+        growth["reason"].attrs["coding"] = np.bytes_(REASON_CODING.encode())
+        growth["end"].attrs["coding"] = np.bytes_(b"0 begin, 1 end")
+        for key, value in {"toughness": 1.0, "steps_taken": np.int32(2),
+                           "end_reason": np.bytes_(b"arrested"),
+                           "reason_coding": np.bytes_(REASON_CODING.encode())}.items():
+            growth.attrs[key] = value
+        if load_path:
+            growth.create_dataset("load_step", data=np.array([2, 2, 2, 4, 4, 4],
+                                                             dtype=np.int32))
+            history = f.create_group("history")
+            history.create_dataset("syy", data=np.array([-10.0, -20.0, -30.0, -40.0]))
+            for key in ("ds", "dn"):
+                history.create_dataset(key, data=np.zeros((4, 7)))
+            history.create_dataset("state", data=np.ones((4, 7), dtype=np.int32))
+            history.create_dataset("leg_steps", data=np.array([3], dtype=np.int32))
+        if half_plane:
+            f.attrs["domain"] = np.bytes_(b"half_plane")
+    return path
+
+
+def lines_by_gid(ax):
+    return {line.get_gid(): line for line in ax.get_lines() if line.get_gid()}
+
+
+def test_which_tip_linked_and_which_stopped_is_drawn(tmp_path):
+    result = load_result(with_growth(tmp_path / "grown.h5"))
+    fig = plot_figures.plot_growth(result)
+    try:
+        ax_map, ax_k = fig.axes[0], fig.axes[1]
+        # A's tips: equal K_eq, but one linked and one stopped: a curve each.
+        curves = [gid for gid in lines_by_gid(ax_k) if gid.startswith("k_eq:")]
+        assert curves == ["k_eq:fault A begin", "k_eq:fault A end", "k_eq:B begin"]
+        ends = {text.get_gid(): text.get_text() for text in ax_k.texts}
+        assert ends == {"end_reason:fault A begin": "fault A begin: intersection",
+                        "end_reason:fault A end": "fault A end: linked",
+                        "end_reason:B begin": "B begin: enclosing"}
+        # The two texts at one curve end are stacked, not drawn over each other.
+        offsets = sorted(text.xyann[1] for text in ax_k.texts if "fault A" in text.get_gid())
+        assert offsets[1] - offsets[0] == plot_figures.END_TEXT_STEP
+        # Reason 8, unknown to the marker table, is in the legend by its coding's name.
+        legend = [text.get_text() for text in ax_k.get_legend().get_texts()]
+        assert "enclosing" in legend and "stopped: linked" in legend
+        # The link point: the end of fracture A, (1, 0).
+        link = lines_by_gid(ax_map)["link_points"]
+        np.testing.assert_array_equal(np.column_stack([link.get_xdata(), link.get_ydata()]),
+                                      [[1.0, 0.0]])
+        assert "surface" not in lines_by_gid(ax_map)  # a full plane has none
+        assert ax_k.get_xlabel() == "growth step"
+    finally:
+        plot_figures.plt.close(fig)
+
+
+def test_the_half_plane_growth_panel_draws_the_surface(tmp_path):
+    result = load_result(with_growth(tmp_path / "section.h5", half_plane=True))
+    fig = plot_figures.plot_growth(result)
+    try:
+        ax_map = fig.axes[0]
+        surface = lines_by_gid(ax_map)["surface"]
+        np.testing.assert_array_equal(surface.get_ydata(), [0.0, 0.0])
+        low, high = ax_map.get_ylim()
+        assert low < 0.0 < high  # in view, though every element lies above it here
+    finally:
+        plot_figures.plt.close(fig)
+
+
+def test_growth_along_a_load_path_is_drawn_against_the_load(tmp_path):
+    result = load_result(with_growth(tmp_path / "path.h5", load_path=True))
+    fig = plot_figures.plot_growth(result)
+    try:
+        ax_k = fig.axes[1]
+        assert ax_k.get_xlabel() == "syy [MPa] at the load step"
+        line = lines_by_gid(ax_k)["k_eq:fault A begin"]
+        # growth steps 1 and 2 at load steps 2 and 4: syy -20 and -40, the values stored
+        np.testing.assert_array_equal(line.get_xdata(), [-20.0, -40.0])
+        np.testing.assert_array_equal(line.get_ydata(), [3.0, 2.0])
+    finally:
+        plot_figures.plt.close(fig)
+
+
+def test_map_points_near_a_grown_element_are_veiled(tmp_path):
+    path = with_grid(tmp_path / "near.h5", (-1.0, 1.0), (0.0, 3.0), shape=(7, 5), grown=True)
+    with h5py.File(path, "r+") as f:  # grid x -1, -0.5, .., 1; y 0, 0.5, .., 3
+        near = np.ones((7, 5), dtype=np.int32)  # every point flagged near
+        near[0, 0] = 0
+        del f["fields/grid1/near_element"]
+        f["fields/grid1"].create_dataset("near_element", data=near)
+        f["fields/grid1/near_element"].attrs["coding"] = np.bytes_(
+            NEAR_ELEMENT_CODING.encode())
+    result = load_result(path)
+    # Grown: B's elements, centres (0.15, 1.2), (0.3, 1.65), (0.3, 2.15), each 0.5 long.
+    centres = np.array([[0.15, 1.2], [0.3, 1.65], [0.3, 2.15]])
+    field = result["fields"]["grid1"]
+    x, y = plot_data.as_grid(field, "x"), plot_data.as_grid(field, "y")
+    within = np.min(np.hypot(x[..., None] - centres[:, 0], y[..., None] - centres[:, 1]),
+                    axis=-1) <= 0.5
+    expected = within & (near == 1)
+    assert 0 < np.count_nonzero(expected) < near.size  # some points, not all
+    np.testing.assert_array_equal(plot_data.near_grown(field, result["elements"]), expected)
+    fig = plot_figures.plot_map(result, "grid1", "max_shear")
+    try:
+        (veil,) = [c for c in fig.axes[0].collections if c.get_gid() == "near_grown"]
+        np.testing.assert_array_equal(~np.ma.getmaskarray(veil.get_array()).ravel(),
+                                      expected.ravel())
+    finally:
+        plot_figures.plt.close(fig)
+    # Without grown elements nothing is veiled: the maps of other models are unchanged.
+    result["elements"].pop("created_step")
+    assert not np.any(plot_data.near_grown(field, result["elements"]))

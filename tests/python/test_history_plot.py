@@ -96,6 +96,17 @@ def test_hysteresis_figure_draws_the_history(tmp_path):
         np.testing.assert_array_equal(line.get_ydata(), -ds[:, 19])
         (line,) = [ln for ln in profile.get_lines() if ln.get_gid() == "step_31"]
         np.testing.assert_array_equal(line.get_ydata(), -ds[30])
+        # Against the distance along the fault (20 elements of 0.1 over 2 m), not the
+        # element number: midpoints 0.05 .. 1.95, to rounding of the summed lengths.
+        np.testing.assert_allclose(line.get_xdata(), np.arange(0.05, 2.0, 0.1), rtol=0,
+                                   atol=1e-12)
+        assert profile.get_xlabel() == "distance along the fracture [m]"
+        # One arrow per leg at its middle (rows 6 -> 7 and 21 -> 22), pointing the way the
+        # load runs: up the first leg, down the unloading one.
+        arrows = [a for a in loop.texts if a.get_gid() == "direction"]
+        assert [(a.xyann[0], a.xy[0]) for a in arrows[2:]] == [(sxy[5], sxy[6]),
+                                                               (sxy[20], sxy[21])]
+        assert sxy[6] > sxy[5] and sxy[21] < sxy[20]
     finally:
         plot_figures.plt.close(fig)
     # Defaults: the element of largest slip, the path's vertices. The fault is symmetric:
@@ -113,3 +124,34 @@ def test_history_step_out_of_range_exits_2(tmp_path):
                           capture_output=True, text=True, timeout=120)
     assert proc.returncode == 2
     assert "step 32 is not in 1..31" in proc.stderr
+
+
+def test_equal_history_profiles_say_so(tmp_path):
+    # The fault sticks from step 12 on: its slip profile at step 15 is that of step 11, bit
+    # for bit, and would hide under it.
+    assert solve(tmp_path).returncode == 0
+    result = load_result(tmp_path / "path.h5")
+    elements, steps = plot_data.history_choices(result["history"], [10], [11, 15, 31])
+    assert plot_data.same_profiles(-result["history"]["ds"][steps]) == [None, 0, None]
+    fig = plot_figures.plot_history(result, elements, steps)
+    try:
+        profile = fig.axes[1]
+        labels = [text.get_text() for text in profile.get_legend().get_texts()]
+        assert labels[1].endswith("(same as step 11)") and "same" not in labels[0] + labels[2]
+        lines = {ln.get_gid(): ln for ln in profile.get_lines()}
+        # drawn apart: each its own line style and marker
+        assert lines["step_11"].get_linestyle() != lines["step_15"].get_linestyle()
+        assert lines["step_11"].get_marker() != lines["step_15"].get_marker()
+    finally:
+        plot_figures.plt.close(fig)
+
+
+def test_profiles_of_several_fractures_run_along_each(result_file):
+    # The synthetic model: fracture A of four 0.5 elements, B of three; a NaN between them
+    # keeps one line from joining them.
+    result = load_result(result_file)
+    values = np.arange(7.0)
+    distance, joined = plot_data.along_fractures(result, values)
+    np.testing.assert_allclose(distance, [0.25, 0.75, 1.25, 1.75, np.nan, 0.25, 0.75, 1.25],
+                               rtol=1e-12)
+    np.testing.assert_array_equal(joined, [0, 1, 2, 3, np.nan, 4, 5, 6])

@@ -795,6 +795,36 @@ def test_what_positive_slip_means(plot_module):
         "slip > 0: right-lateral"
 
 
+def polyline_sense(points, created=None, domain="half_plane"):
+    """slip_sense of one fracture on the polyline `points` (an element per segment),
+    created_step `created` per element when given."""
+    x, y = np.array(points, dtype=float).T
+    elements = {"x_begin": x[:-1], "y_begin": y[:-1], "x_end": x[1:], "y_end": y[1:]}
+    if created is not None:
+        elements["created_step"] = np.array(created)
+    result = {"attrs": {"domain": domain}, "remote_stress_gradient": (0.0, 0.0, 0.0),
+              "pore_fluid": (0.0, 0.0), "elements": elements}
+    return plot_data.slip_sense(result, {"first": 1, "last": x.size - 1})
+
+
+def test_positive_slip_is_named_only_where_it_holds():
+    reverse = "slip > 0: reverse (hanging wall up), < 0: normal"
+    # A kinked fault whose segments all dip to +x rising: reverse on each, said as before.
+    assert polyline_sense([(0, -10), (5, -5), (6, 0)]) == reverse
+    # A fault dipping to +x (reverse), grown at both ends into segments that dip the other
+    # way (normal) and a vertical one: the sense is said for the input's elements only.
+    assert polyline_sense([(-1, -9), (0, -10), (5, -5), (5, -4)], created=[1, 0, 2]) == \
+        reverse + " (the input fracture; the grown elements vary)"
+    # A curved input fault that changes its dip: no sense for the whole fracture.
+    varies = ("slip > 0: the positive face moves along the element direction (the sense "
+              "varies)")
+    assert polyline_sense([(-1, -9), (0, -10), (5, -5)]) == varies
+    assert polyline_sense([(-1, -9), (0, -10), (5, -5)], created=[0, 0]) == varies
+    # In a map view right-lateral holds on every element, curved or not.
+    assert polyline_sense([(-1, -9), (0, -10), (5, -5)], domain="full_plane") == \
+        "slip > 0: right-lateral"
+
+
 def test_the_profile_says_what_positive_slip_means(tmp_path):
     # The thrust example's geometry: its profile says reverse, and it slips reverse.
     (tmp_path / "thrust.nml").write_text((REPO_ROOT / "input" / "thrust_fault_surface.nml")

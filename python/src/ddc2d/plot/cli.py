@@ -39,15 +39,17 @@ The name part of a file is left out when it repeats the kind (a grid named 'map'
   docs/plotting.md#loading-histories): the hysteresis, slip (-Ds) at chosen elements
   (1-based; default: the element of largest slip over the path) against the load parameter
   (the path quantity with the largest range), steps joined in path order and marked by
-  state; and the slip profiles (against the element number) at chosen steps (1-based;
-  default: the path's vertices);
+  state, an arrow per leg showing the way the path runs; and the slip profiles (against
+  the distance along each fracture; a profile equal to an earlier one says so) at chosen
+  steps (1-based; default: the path's vertices);
 * ``<stem>_growth.<fmt>`` for a fracture growth run (/growth; docs/plotting.md#growth): the grown
   geometry, the input's elements in black and every new element coloured by the step that
-  created it (/elements/created_step), and K_eq / toughness against the step for every tip
-  (one line per tip, markers by what the tip did in that step; growth goes on while a
-  tip's ratio is at least 1; tips with equal curves, as the wings of a symmetric model,
-  share a line labelled 'begin = end (symmetric)'). The maps draw the grown elements in
-  the same colours.
+  created it (/elements/created_step), link points and a half-plane's surface, and K_eq /
+  toughness against the step (along a load path: against the load) for every tip (one line
+  per tip, markers by what the tip did in that step, its last reason at the line's end;
+  growth goes on while a tip's ratio is at least 1; tips with equal curves and reasons, as
+  the wings of a symmetric model, share a line labelled 'begin = end (symmetric)'). The
+  maps draw the grown elements in the same colours and veil the points near them.
 * ``<stem>_growth_history.<fmt>`` for growth along a load path (/history/grown_length;
   docs/plotting.md#growth): the length each tip has grown against the load parameter, a point
   per load step.

@@ -34,6 +34,7 @@ Skempton's B as --friction.
 """
 
 import re
+from itertools import pairwise
 
 import numpy as np
 
@@ -128,6 +129,52 @@ def history_parameter(history):
     return name, history["loads"][name]
 
 
+def history_unit(result, name):
+    """The unit of history load quantity `name`: the stress unit, per length unit for a
+    gradient (a name starting with 'd')."""
+    return result["stress_unit"] + ("/" + result["length_unit"] if name.startswith("d")
+                                    else "")
+
+
+def leg_arrows(history):
+    """(from, to) row pairs of one arrow per leg of a loading history, at the leg's middle
+    row, pointing the way the path runs (its sense on an unloading branch)."""
+    vertices = np.cumsum(np.concatenate([[0], history["leg_steps"]])).astype(int)
+    return [((a + b) // 2, (a + b) // 2 + 1) for a, b in pairwise(vertices)
+            if b > a]
+
+
+def same_profiles(profiles):
+    """For each row of `profiles` (one profile per row), the index of the first earlier row
+    equal to it under the tie rule (relative to the largest |value| of all), else None: a
+    profile drawn on top of an equal one hides it."""
+    profiles = np.asarray(profiles, dtype=float)
+    finite = np.abs(profiles[np.isfinite(profiles)])
+    scale = float(finite.max()) if finite.size else 0.0
+    same = []
+    for k, row in enumerate(profiles):
+        same.append(next((j for j in range(k) if np.array_equal(
+            np.isnan(profiles[j]), np.isnan(row)) and np.all(
+            np.abs(np.nan_to_num(profiles[j] - row)) <= TIE_RTOL * scale)), None))
+    return same
+
+
+def along_fractures(result, values):
+    """(distance, values) of per-element `values` against the distance along each
+    fracture (fracture_profile's, from its begin point), fracture after fracture with a NaN
+    between them so that one line does not join them."""
+    distance, joined = [], []
+    for fracture in result["fractures"]:
+        sl = slice(fracture["first"] - 1, fracture["last"])
+        if distance:
+            distance.append([np.nan])
+            joined.append([np.nan])
+        distance.append(fracture_profile(result["elements"], fracture["first"],
+                                         fracture["last"])["distance"])
+        joined.append(np.asarray(values, dtype=float)[sl])
+    return np.concatenate(distance), np.concatenate(joined)
+
+
 def history_choices(history, elements=None, steps=None):
     """0-based element and step indices to plot: the given 1-based ones (checked), or the
     element of largest |slip| over the path and the steps at the path's vertices. Of
@@ -151,12 +198,25 @@ def state_names(result):
     return coding_of(result, "/elements/state", STATE_NAMES)
 
 
+def growth_abscissa(result):
+    """(axis label, value per /growth record) of the K_eq panel: the load quantity of the
+    path (history_parameter) at each record's load step for growth along a load path (a
+    load step without growth then takes no room), else the growth step."""
+    growth = result["growth"]
+    if "load_step" not in growth or result.get("history") is None:
+        return "growth step", np.asarray(growth["step"])
+    name, load = history_parameter(result["history"])
+    label = f"{name}" + unit_label(history_unit(result, name)) + " at the load step"
+    return label, np.asarray(load)[np.asarray(growth["load_step"]) - 1]
+
+
 def growth_series(result):
     """One dict per tip of a growth run, in record order: ``label`` ('<fracture> begin'
     or '... end', the end's name from the coding of /growth/end), ``fracture_id``, ``end``
-    and, per record of the tip, ``step``, ``ratio`` (K_eq / toughness) and ``reason`` (the
-    codes of /growth/reason)."""
+    and, per record of the tip, ``step``, ``position`` (its abscissa, growth_abscissa),
+    ``ratio`` (K_eq / toughness) and ``reason`` (the codes of /growth/reason)."""
     growth = result["growth"]
+    position = growth_abscissa(result)[1]
     ends = coding_of(result, "/growth/end")
     toughness = float(growth["attrs"]["toughness"])
     names = {index: f["name"] or f["label"]
@@ -168,31 +228,35 @@ def growth_series(result):
         series.append({
             "label": f"{names.get(fracture_id, fracture_id)} {ends.get(end, end)}",
             "fracture_id": fracture_id, "end": end,
-            "step": growth["step"][rows], "ratio": growth["k_eq"][rows] / toughness,
+            "step": growth["step"][rows], "position": position[rows],
+            "ratio": growth["k_eq"][rows] / toughness,
             "reason": growth["reason"][rows]})
     return series
 
 
 def growth_curves(series):
-    """The tips of growth_series grouped by equal K_eq curves (same steps, ratios equal
-    under the tie rule relative to the largest ratio of the run: the wings of a symmetric
-    model), so that a tip hidden under another is named: one dict per group, in the order
-    of its first tip, with ``label`` ('wing begin = end (symmetric)' for the two ends of
-    one fracture, 'a end = b begin (equal K_eq)' across fractures, else the tip's label),
-    ``tips`` (the members' series) and the first member's ``step``, ``ratio``, ``reason``."""
+    """The tips of growth_series grouped by equal K_eq curves (same steps and reasons,
+    ratios equal under the tie rule relative to the largest ratio of the run: the wings of
+    a symmetric model), so that a tip hidden under another is named; tips whose reasons
+    differ (one linked, the other stopped) keep their own curves: one dict per group, in
+    the order of its first tip, with ``label`` ('wing begin = end (symmetric)' for the two
+    ends of one fracture, 'a end = b begin (equal K_eq)' across fractures, else the tip's
+    label), ``tips`` (the members' series) and the first member's ``step``, ``position``,
+    ``ratio``, ``reason``."""
     scale = max((float(np.max(np.abs(tip["ratio"]))) for tip in series if tip["ratio"].size),
                 default=0.0)
     groups = []
     for tip in series:
         for group in groups:
             first = group["tips"][0]
-            if np.array_equal(first["step"], tip["step"]) and all(
+            if np.array_equal(first["step"], tip["step"]) and np.array_equal(
+                    first["reason"], tip["reason"]) and all(
                     is_tie(a, b, scale) for a, b in zip(first["ratio"], tip["ratio"])):
                 group["tips"].append(tip)
                 break
         else:
-            groups.append({"tips": [tip], "step": tip["step"], "ratio": tip["ratio"],
-                           "reason": tip["reason"]})
+            groups.append({"tips": [tip], **{key: tip[key] for key in
+                                             ("step", "position", "ratio", "reason")}})
     for group in groups:
         tips = group["tips"]
         if len(tips) == 1:
@@ -204,6 +268,26 @@ def growth_curves(series):
         else:
             group["label"] = " = ".join(tip["label"] for tip in tips) + " (equal K_eq)"
     return groups
+
+
+def link_points(result):
+    """(n, 2) array of the points where growing tips linked (the coding of /growth/reason
+    names it 'linked'; its record is the tip's last): the end of the tip's fracture at
+    that end after the link, the point on the other fracture (docs/fracture-growth.md)."""
+    growth = result["growth"]
+    reasons = coding_of(result, "/growth/reason")
+    linked = growth["reason"] == code_of(reasons, "linked") if "linked" in \
+        reasons.values() else np.zeros(growth["reason"].size, dtype=bool)
+    e = result["elements"]
+    points = []
+    for fracture_id, end in zip(growth["fracture_id"][linked], growth["end"][linked]):
+        fracture = result["fractures"][int(fracture_id) - 1]
+        if int(end) == 0:
+            k, which = fracture["first"] - 1, "begin"
+        else:
+            k, which = fracture["last"] - 1, "end"
+        points.append((float(e[f"x_{which}"][k]), float(e[f"y_{which}"][k])))
+    return np.array(points, dtype=float).reshape(-1, 2)
 
 
 def element_segments(elements, mask=None):
@@ -286,19 +370,9 @@ def is_cross_section(result):
             or any(result["remote_stress_gradient"]) or result["pore_fluid"][1] != 0.0)
 
 
-def slip_sense(result, fracture):
-    """What positive slip (-Ds > 0: the positive face moves along the element direction
-    s) means on a fracture, from its end-to-end direction. Map view: right-lateral,
-    whichever way the fracture is drawn. Cross-section (is_cross_section): for a dipping
-    fracture reverse (hanging wall up) when s_x s_y > 0, else normal; for a vertical one
-    the +x side moving down; for a horizontal one the upper side moving to +x (both
-    within the tie rule of the direction's length). Independent of the drawing
-    direction: reversing it changes neither Ds nor s_x s_y."""
-    if not is_cross_section(result):
-        return "slip > 0: right-lateral"
-    e = result["elements"]
-    sx = float(e["x_end"][fracture["last"] - 1] - e["x_begin"][fracture["first"] - 1])
-    sy = float(e["y_end"][fracture["last"] - 1] - e["y_begin"][fracture["first"] - 1])
+def direction_sense(sx, sy):
+    """What positive slip means in a cross-section on an element or fracture of direction
+    (sx, sy) (slip_sense)."""
     length = float(np.hypot(sx, sy))
     if is_tie(sx, 0.0, scale=length):
         return "slip > 0: the +x side moves down"
@@ -307,6 +381,37 @@ def slip_sense(result, fracture):
     if sx * sy > 0.0:
         return "slip > 0: reverse (hanging wall up), < 0: normal"
     return "slip > 0: normal (hanging wall down), < 0: reverse"
+
+
+def slip_sense(result, fracture):
+    """What positive slip (-Ds > 0: the positive face moves along the element direction
+    s) means on a fracture. Map view: right-lateral, whichever way the fracture is drawn
+    (on every element of a curved one too). Cross-section (is_cross_section): for a
+    dipping fracture reverse (hanging wall up) when s_x s_y > 0, else normal; for a
+    vertical one the +x side moving down; for a horizontal one the upper side moving to +x
+    (both within the tie rule of the direction's length): direction_sense of the
+    end-to-end direction, said only where it holds on every element. Where it does not (a
+    grown or curved fracture), the sense of the input's elements when it holds on them,
+    said to be theirs, else that the sense varies. Independent of the drawing direction:
+    reversing it changes neither Ds nor s_x s_y."""
+    if not is_cross_section(result):
+        return "slip > 0: right-lateral"
+    e = result["elements"]
+    sl = slice(fracture["first"] - 1, fracture["last"])
+    created = e.get("created_step")
+    given = np.ones(e["x_begin"][sl].size, dtype=bool) if created is None else created[sl] == 0
+    each = [direction_sense(sx, sy) for sx, sy in zip(e["x_end"][sl] - e["x_begin"][sl],
+                                                      e["y_end"][sl] - e["y_begin"][sl])]
+    senses = set(each)
+    given_senses = {sense for sense, mine in zip(each, given) if mine}
+    sx = float(e["x_end"][fracture["last"] - 1] - e["x_begin"][fracture["first"] - 1])
+    sy = float(e["y_end"][fracture["last"] - 1] - e["y_begin"][fracture["first"] - 1])
+    whole = direction_sense(sx, sy)
+    if senses == {whole}:
+        return whole
+    if len(given_senses) == 1 and not np.all(given):
+        return f"{given_senses.pop()} (the input fracture; the grown elements vary)"
+    return "slip > 0: the positive face moves along the element direction (the sense varies)"
 
 
 def tip_rows(result):
@@ -557,6 +662,28 @@ def on_element_code(field):
     when the file has no coding for it: then only their NaN values mark them)."""
     coding = field.get("codings", {}).get("near_element", {})
     return code_of(coding, "on") if "on" in coding.values() else None
+
+
+def near_grown(field, elements):
+    """Boolean grid (ny, nx) of the points of grid `field` flagged near an element (the
+    near_element coding's 'within') that lie within one element length of the centre of an
+    element made by growth (/elements/created_step > 0): their accuracy is reduced like
+    that of the points near the input's elements, but the grid was not laid out around the
+    grown crack, so the map marks them."""
+    shape = as_grid(field, "x").shape
+    coding = field.get("codings", {}).get("near_element", {})
+    created = elements.get("created_step")
+    if "within" not in coding.values() or created is None or not np.any(created > 0) \
+            or "near_element" not in field:
+        return np.zeros(shape, dtype=bool)
+    near = np.asarray(field["near_element"]).reshape(shape) == code_of(coding, "within")
+    grown = created > 0
+    mid_x = 0.5 * (elements["x_begin"] + elements["x_end"])[grown]
+    mid_y = 0.5 * (elements["y_begin"] + elements["y_end"])[grown]
+    length = element_lengths(elements)[grown]
+    x, y = as_grid(field, "x")[..., None], as_grid(field, "y")[..., None]
+    close = np.any(np.hypot(x - mid_x, y - mid_y) <= length, axis=-1)
+    return near & close
 
 
 def grid_quantity(field, quantity, receiver=None, background=None):

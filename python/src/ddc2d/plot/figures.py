@@ -20,23 +20,30 @@ from .data import (
     LINE_PANELS,
     SIGNED_QUANTITIES,
     Background,
+    along_fractures,
     as_grid,
     default_clim,
     distance_along,
     element_segments,
     fracture_profiles,
     grid_quantity,
+    growth_abscissa,
     growth_curves,
     growth_series,
     heading,
     history_parameter,
+    history_unit,
     is_cross_section,
+    leg_arrows,
+    link_points,
     map_figure_size,
     map_title,
+    near_grown,
     overview_axis,
     profile_panels,
     quiver_step,
     remote_value,
+    same_profiles,
     slip_sense,
     state_names,
     unit_label,
@@ -55,19 +62,29 @@ OTHER_STATE_STYLE = {"color": "black", "marker": "x"}
 MAP_PAD = 0.1
 #: The overview's legend names the fractures when there are at most this many.
 LEGEND_MAX_FRACTURES = 8
+#: Opacity of the white veil over map points near a grown element (near_grown).
+NEAR_GROWN_ALPHA = 0.5
 #: Line styles of the fractures in the all-fractures profile and of the growth tips.
 LINESTYLES = ("-", "--", ":", "-.")
 
 #: Colour map of the growth steps (new elements, /elements/created_step).
 GROWTH_CMAP = "plasma"
 #: Marker and legend text of each growth reason, by its name in the coding of
-#: /growth/reason (an open marker for 'subcritical'); a reason not here gets a '+'.
+#: /growth/reason (an open marker for 'subcritical'); a reason not here gets
+#: OTHER_REASON_MARKER and its name from the coding.
 GROWTH_MARKERS = {"grew": ("o", "grew"), "subcritical": ("o", "subcritical"),
                   "intersection": ("X", "stopped: intersection"),
                   "surface": ("^", "stopped: surface"),
                   "corrector": ("s", "grew at the MTS angle"),
                   "linked": ("P", "stopped: linked"), "closed": ("v", "closed (K_I = 0)"),
                   "waiting": ("D", "waiting")}
+OTHER_REASON_MARKER = "*"
+#: Vertical distance between the end-reason texts of curves ending at one place [points],
+#: and how near (a fraction of the data's span on each axis) such ends count as one place.
+END_TEXT_STEP = 9
+END_NEAR = 0.03
+#: Markers of the history profiles, one per chosen step (equal profiles stay visible).
+PROFILE_MARKERS = ("o", "s", "^", "v", "D", "x")
 
 
 def plot_history(result, elements, steps):
@@ -75,8 +92,7 @@ def plot_history(result, elements, steps):
     steps of a loading history; elements and steps are 0-based. Returns the Figure."""
     history = result["history"]
     name, load = history_parameter(history)
-    unit = result["stress_unit"] + ("/" + result["length_unit"] if name.startswith("d")
-                                    else "")
+    unit = history_unit(result, name)
     slip = -history["ds"]
     fig, (ax_loop, ax_profile) = plt.subplots(1, 2, figsize=(11, 4.5),
                                               constrained_layout=True)
@@ -86,15 +102,27 @@ def plot_history(result, elements, steps):
                      label=f"element {e + 1}")
         _mark_states(ax_loop, load, slip[:, e], history["state"][:, e], state_names(result),
                      labelled, markersize=4)
+        for start, stop in leg_arrows(history):  # the sense of each leg, unloading too
+            ax_loop.annotate("", xy=(load[stop], slip[stop, e]),
+                             xytext=(load[start], slip[start, e]),
+                             arrowprops={"arrowstyle": "-|>", "color": "0.3",
+                                         "mutation_scale": 14}).set_gid("direction")
     ax_loop.set_xlabel(f"{name}" + unit_label(unit))
     ax_loop.set_ylabel("slip $-D_s$" + unit_label(result["length_unit"]))
     ax_loop.legend(fontsize="small", loc="best")
     ax_loop.set_title("slip against the load along the path")
-    number = np.arange(1, slip.shape[1] + 1)
-    for k in steps:
-        ax_profile.plot(number, slip[k], linewidth=1.0, gid=f"step_{k + 1}",
-                        label=f"step {k + 1}: {name} = {load[k]:g}")
-    ax_profile.set_xlabel("element")
+    same = same_profiles(slip[steps])
+    for index, k in enumerate(steps):
+        distance, values = along_fractures(result, slip[k])
+        label = f"step {k + 1}: {name} = {load[k]:g}"
+        if same[index] is not None:
+            label += f" (same as step {steps[same[index]] + 1})"
+        ax_profile.plot(distance, values, linewidth=1.0, gid=f"step_{k + 1}", label=label,
+                        linestyle=LINESTYLES[index % len(LINESTYLES)], markersize=3,
+                        marker=PROFILE_MARKERS[index % len(PROFILE_MARKERS)])
+    several = ", each from its begin point" if len(result["fractures"]) > 1 else ""
+    ax_profile.set_xlabel(f"distance along the fracture{several}"
+                          + unit_label(result["length_unit"]))
     ax_profile.set_ylabel("slip $-D_s$" + unit_label(result["length_unit"]))
     ax_profile.legend(fontsize="small", loc="best")
     ax_profile.set_title("slip profiles at chosen steps")
@@ -111,8 +139,7 @@ def plot_growth_history(result):
     the Figure."""
     history = result["history"]
     name, load = history_parameter(history)
-    unit = result["stress_unit"] + ("/" + result["length_unit"] if name.startswith("d")
-                                    else "")
+    unit = history_unit(result, name)
     fig, ax = plt.subplots(figsize=(6.5, 4.5), constrained_layout=True)
     ends = ("begin", "end")
     for t, (fid, end) in enumerate(zip(history["tip_fracture_id"], history["tip_end"])):
@@ -150,16 +177,31 @@ def _draw_elements(ax, elements):
 
 
 def plot_growth(result):
-    """The grown geometry coloured by step (left) and K_eq / toughness against the step
-    for every tip (right) of a growth run. Returns the Figure."""
+    """The grown geometry coloured by step, with the points where tips linked and the
+    surface y = 0 of a half-plane (left), and K_eq / toughness of every tip (right) against
+    the growth step, or against the load along a load path (growth_abscissa), each curve
+    ending with its tip's last reason. Returns the Figure."""
     growth = result["growth"]
     elements = result["elements"]
     fig, (ax_map, ax_k) = plt.subplots(1, 2, figsize=(12, 5), constrained_layout=True)
     grown = _draw_elements(ax_map, elements)
+    links = link_points(result)
+    if links.size:
+        ax_map.plot(links[:, 0], links[:, 1], linestyle="none", marker="o", markersize=8,
+                    markerfacecolor="none", markeredgecolor="tab:red", markeredgewidth=1.5,
+                    label="linked here", gid="link_points")
     points = element_segments(elements).reshape(-1, 2)
+    half_plane = result["attrs"].get("domain") == "half_plane"
+    if half_plane:  # the surface belongs in the view
+        points = np.vstack([points, [[points[0, 0], 0.0]]])
     span = np.ptp(points, axis=0).max() or 1.0
     ax_map.set_xlim(points[:, 0].min() - 0.05 * span, points[:, 0].max() + 0.05 * span)
     ax_map.set_ylim(points[:, 1].min() - 0.05 * span, points[:, 1].max() + 0.05 * span)
+    if half_plane:
+        ax_map.axhline(0.0, color="saddlebrown", linewidth=1.2, label="surface y = 0",
+                       gid="surface")
+    if links.size or half_plane:
+        ax_map.legend(fontsize="small", loc="best")
     ax_map.set_aspect("equal")
     if grown is not None:
         bar = fig.colorbar(grown, ax=ax_map, label="growth step", shrink=0.8)
@@ -169,29 +211,35 @@ def plot_growth(result):
     ax_map.set_title("input (black) and grown elements (colour: step)", fontsize="medium")
     reasons = coding_of(result, "/growth/reason")
     used = set()
+    ends = []
     # Tips with equal curves (the wings of a symmetric model) share one line, whose label
     # names them all: drawn apart, one would hide the other.
     for index, curve in enumerate(growth_curves(growth_series(result))):
         colour = f"C{index % 10}"
-        ax_k.plot(curve["step"], curve["ratio"], color=colour, linewidth=1.2,
+        ax_k.plot(curve["position"], curve["ratio"], color=colour, linewidth=1.2,
                   linestyle=LINESTYLES[index % len(LINESTYLES)],
                   label=curve["label"], gid=f"k_eq:{curve['label']}")
         for code in np.unique(curve["reason"]):
             name = reasons.get(int(code), str(code))
-            marker = GROWTH_MARKERS.get(name, ("P", name))[0]
             chosen = curve["reason"] == code
             used.add(name)
-            ax_k.plot(curve["step"][chosen], curve["ratio"][chosen], linestyle="none",
-                      marker=marker, color=colour, markersize=5,
+            ax_k.plot(curve["position"][chosen], curve["ratio"][chosen], linestyle="none",
+                      marker=_reason_style(name)[0], color=colour, markersize=5,
                       markerfacecolor="none" if name == "subcritical" else colour,
                       label="_reason")
-    for name in sorted(used, key=list(reasons.values()).index):  # the markers, in grey
-        marker, text = GROWTH_MARKERS.get(name, ("P", name))
+        if curve["reason"].size:
+            ends.append((curve, colour))
+    _mark_end_reasons(ax_k, ends, reasons)
+    for name in sorted(used, key=lambda n: list(reasons.values()).index(n)
+                       if n in reasons.values() else len(reasons)):  # the markers, in grey
+        marker, text = _reason_style(name)
         ax_k.plot([], [], linestyle="none", marker=marker, color="0.4",
                   markerfacecolor="none" if name == "subcritical" else "0.4", label=text)
     ax_k.axhline(1.0, color="0.4", linewidth=0.8, linestyle="--")
-    ax_k.xaxis.set_major_locator(MaxNLocator(integer=True))
-    ax_k.set_xlabel("growth step")
+    axis_label, _ = growth_abscissa(result)
+    if axis_label == "growth step":
+        ax_k.xaxis.set_major_locator(MaxNLocator(integer=True))
+    ax_k.set_xlabel(axis_label)
     ax_k.set_ylabel("$K_{eq}$ / toughness")
     ax_k.grid(True, linewidth=0.3)
     ax_k.legend(fontsize="small", loc="best")
@@ -201,6 +249,32 @@ def plot_growth(result):
                    "step(s) with growth", fontsize="medium")
     fig.suptitle(heading(result, "fracture growth"))
     return fig
+
+
+def _mark_end_reasons(ax, ends, reasons):
+    """Write at the end of each K_eq curve (`ends`: (curve, colour) pairs) its tips' last
+    reason (named by the coding `reasons`), so that merged-looking curves tell which tip
+    linked and which stopped; texts of curves ending within END_NEAR of the data's span of
+    one another are stacked."""
+    if not ends:
+        return
+    points = np.array([(c["position"][-1], c["ratio"][-1]) for c, _ in ends], dtype=float)
+    every = np.concatenate([np.column_stack([c["position"], c["ratio"]]) for c, _ in ends])
+    span = np.ptp(every, axis=0)
+    span[span == 0.0] = 1.0
+    for k, (curve, colour) in enumerate(ends):
+        near = np.all(np.abs(points[:k] - points[k]) <= END_NEAR * span, axis=1)
+        last = int(curve["reason"][-1])
+        ax.annotate(f"{curve['label']}: {reasons.get(last, str(last))}", points[k],
+                    color=colour, fontsize="x-small", textcoords="offset points",
+                    xytext=(4, 4 + END_TEXT_STEP * int(np.count_nonzero(near))),
+                    gid=f"end_reason:{curve['label']}")
+
+
+def _reason_style(name):
+    """(marker, legend text) of a growth reason by its name (GROWTH_MARKERS; a reason
+    they do not know, as a newer file's, gets OTHER_REASON_MARKER and its name)."""
+    return GROWTH_MARKERS.get(name, (OTHER_REASON_MARKER, name))
 
 
 def plot_surface(result, name):
@@ -371,6 +445,11 @@ def plot_map(result, name, quantity, clim=None, receiver=None):
     fig.get_layout_engine().set(w_pad=MAP_PAD, h_pad=MAP_PAD)
     mesh = ax.pcolormesh(x, y, values, shading="nearest", cmap=cmap, vmin=vmin, vmax=vmax)
     xlim, ylim = ax.get_xlim(), ax.get_ylim()  # the grid's extent
+    near = near_grown(field, result["elements"])
+    if np.any(near):  # veiled in white: reduced accuracy
+        ax.pcolormesh(x, y, np.ma.masked_array(np.zeros(near.shape), mask=~near),
+                      shading="nearest", cmap="Greys", vmin=0.0, vmax=1.0,
+                      alpha=NEAR_GROWN_ALPHA, gid="near_grown")
     grown = _draw_elements(ax, result["elements"])
     if quantity == "displacement":
         _draw_vectors(ax, field, x, y, values)
