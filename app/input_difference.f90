@@ -65,7 +65,7 @@ contains
     function value_difference(a, b, label) result(text)
         type(group_text), intent(in) :: a, b
         character(len=*), intent(in) :: label
-        character(len=:), allocatable :: text, before, now
+        character(len=:), allocatable :: text, before
         integer :: i
 
         text = ''
@@ -146,7 +146,8 @@ contains
     function parse_groups(text) result(groups)
         character(len=*), intent(in) :: text
         type(group_text), allocatable :: groups(:)
-        character(len=:), allocatable :: flat
+        character(len=:), allocatable :: flat, name
+        type(assignment), allocatable :: values(:)
         integer :: i, n, start
 
         flat = without_comments(text)
@@ -161,7 +162,9 @@ contains
                     if (verify(flat(i:i), name_characters) /= 0) exit
                     i = i + 1
                 end do
-                groups = [groups, group_text(lower(flat(start:i - 1)), assignments(flat, i))]
+                name = lower(flat(start:i - 1))
+                call read_assignments(flat, i, values)
+                groups = [groups, group_text(name, values)]
             else
                 i = i + 1
             end if
@@ -170,14 +173,17 @@ contains
 
     !> The assignments of a group body from flat(i:) to its closing '/' (outside quotes);
     !> i is left after it.
-    function assignments(flat, i) result(values)
+    subroutine read_assignments(flat, i, values)
         character(len=*), intent(in) :: flat
         integer, intent(inout) :: i
-        type(assignment), allocatable :: values(:)
+        type(assignment), allocatable, intent(out) :: values(:)
+        ! A structure constructor of a function result here is an internal error of gfortran 12
+        type(assignment) :: item
+        type(assignment), allocatable :: list(:)
         character(len=1) :: quote
         integer :: equals, name_end, name_start
 
-        allocate (values(0))
+        allocate (list(0))
         quote = ' '
         do while (i <= len(flat))
             if (quote /= ' ') then
@@ -200,19 +206,22 @@ contains
                     if (verify(flat(name_start - 1:name_start - 1), name_characters) /= 0) exit
                     name_start = name_start - 1
                 end do
-                if (size(values) > 0) values(size(values))%value = &
-                    cleaned(values(size(values))%value(:max(0, len(values(size(values))%value) &
+                if (size(list) > 0) list(size(list))%value = &
+                    cleaned(list(size(list))%value(:max(0, len(list(size(list))%value) &
                     - (equals - name_start))))
-                values = [values, assignment(lower(trim(flat(name_start:equals - 1))), '')]
+                item%name = lower(trim(flat(name_start:equals - 1)))
+                item%value = ''
+                list = [list, item]
                 i = i + 1
                 cycle
             end if
-            if (size(values) > 0) values(size(values))%value = values(size(values))%value// &
+            if (size(list) > 0) list(size(list))%value = list(size(list))%value// &
                 flat(i:i)
             i = i + 1
         end do
-        if (size(values) > 0) values(size(values))%value = cleaned(values(size(values))%value)
-    end function assignments
+        if (size(list) > 0) list(size(list))%value = cleaned(list(size(list))%value)
+        call move_alloc(list, values)
+    end subroutine read_assignments
 
     !> A value without surrounding blanks and separating commas, inner blanks collapsed.
     pure function cleaned(value) result(text)
