@@ -46,8 +46,9 @@ contains
         do i = 1, size(new)
             k = matching_group(old, new, i)
             if (k == 0) then
-                if (new(i)%name /= 'load_path') text = group_label(new, i)//': not in the '// &
-                    'earlier input'
+                if (new(i)%name /= 'load_path') then
+                    text = group_label(new, i)//': not in the earlier input'
+                end if
             else
                 text = value_difference(old(k), new(i), group_label(new, i))
             end if
@@ -137,8 +138,9 @@ contains
         integer :: j
 
         label = '&'//groups(i)%name
-        if (count([(groups(j)%name == groups(i)%name, j = 1, size(groups))]) > 1) &
+        if (count([(groups(j)%name == groups(i)%name, j = 1, size(groups))]) > 1) then
             label = label//' '//itoa(count([(groups(j)%name == groups(i)%name, j = 1, i)]))
+        end if
     end function group_label
 
     !> The groups of a namelist text: comments dropped, each `&name ... /` split into its

@@ -193,9 +193,10 @@ contains
             end do
             ! Said here, before a user relies on --resume to go on with the path
             if (.not. model%growth%active .and. (any(model%elements%shear_stiffness < &
-                rigid_joint) .or. any(model%elements%normal_stiffness < rigid_joint))) &
+                rigid_joint) .or. any(model%elements%normal_stiffness < rigid_joint))) then
                 write (unit, '(a)') '    --resume cannot continue this history: its elastic '// &
-                'joints'' memory is their plastic slip, which the result file does not hold'
+                    'joints'' memory is their plastic slip, which the result file does not hold'
+            end if
         end subroutine print_load_path
 
     end subroutine print_model_summary

@@ -5,6 +5,7 @@ Every failing run must exit with its documented status, print one message naming
 wrong, and leave neither the output file nor a .partial file behind.
 """
 
+import itertools
 import subprocess
 
 import h5py
@@ -207,7 +208,7 @@ def test_growth_steps_hold_the_solver_lines(tmp_path):
     steps = [i for i, line in enumerate(lines) if line.startswith("growth step ")]
     assert len(steps) == 3
     assert any("newton iteration" in line for line in lines[:steps[0]])
-    for before, after in zip(steps, steps[1:]):
+    for before, after in itertools.pairwise(steps):
         seconds = float(lines[after].split("solve(s),")[1].split()[0])
         newton = [line for line in lines[before + 1:after] if "newton iteration" in line]
         # Without the hold 12 or more such lines came between two of these steps.
