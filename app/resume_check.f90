@@ -7,7 +7,9 @@
 !>     |load_new(q, j) - load_old(q, j)| <= 1e-12 * max_j(|load_old(q, j)|, |load_new(q, j)|)
 !>
 !> for every quantity q of load_path_names and every step j of the earlier run. Every
-!> refusal is exit_bad_input with one message naming the file; nothing is written.
+!> refusal is exit_bad_input with one message naming the file; nothing is written. Another
+!> model is named by the first group and variable written differently in the two inputs
+!> (ddc_app_input_difference), the fingerprints where the texts read alike.
 module ddc_app_resume_check
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
