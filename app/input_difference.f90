@@ -3,7 +3,8 @@
 !>
 !> The texts are compared as written (comments dropped, blanks collapsed, names in lower
 !> case), the k-th group of a name with the k-th of that name in the other text; the
-!> variables a resumed run may change (&growth steps, all of &load_path) are left out. A
+!> variables a resumed run may change (&growth steps, all of &load_path), the title and the
+!> names of files (whose contents the fingerprint holds, not their names) are left out. A
 !> value written differently but equal (0.5 and 5e-1) counts as a difference here; the
 !> fingerprint decides whether the models differ, this only says where to look.
 module ddc_app_input_difference
@@ -38,27 +39,29 @@ contains
         !> The difference, one line
         character(len=:), allocatable :: text
         type(group_text), allocatable :: old(:), new(:)
+        type(group_text) :: none
         integer :: i, k, j
 
         old = parse_groups(old_text)
         new = parse_groups(new_text)
+        allocate (none%values(0))
         text = ''
+        ! A group only one input has is compared with an empty one.
         do i = 1, size(new)
             k = matching_group(old, new, i)
             if (k == 0) then
-                if (new(i)%name /= 'load_path') then
-                    text = group_label(new, i)//': not in the earlier input'
-                end if
+                none%name = new(i)%name
+                text = value_difference(none, new(i), group_label(new, i))
             else
                 text = value_difference(old(k), new(i), group_label(new, i))
             end if
             if (len(text) > 0) return
         end do
         do j = 1, size(old)
-            if (matching_group(new, old, j) == 0 .and. old(j)%name /= 'load_path') then
-                text = group_label(old, j)//': in the earlier input, not in this one'
-                return
-            end if
+            if (matching_group(new, old, j) > 0) cycle
+            none%name = old(j)%name
+            text = value_difference(old(j), none, group_label(old, j))
+            if (len(text) > 0) return
         end do
     end function input_difference
 
@@ -70,9 +73,9 @@ contains
         integer :: i
 
         text = ''
-        if (b%name == 'load_path') return
+        if (a%name == 'load_path') return
         do i = 1, size(b%values)
-            if (b%name == 'growth' .and. b%values(i)%name == 'steps') cycle
+            if (.not. compared(b%name, b%values(i)%name)) cycle
             before = value_of(a, b%values(i)%name)
             if (before /= b%values(i)%value) then
                 text = label//' '//b%values(i)%name//': '//shown(before)//' before, '// &
@@ -81,7 +84,7 @@ contains
             end if
         end do
         do i = 1, size(a%values)
-            if (a%name == 'growth' .and. a%values(i)%name == 'steps') cycle
+            if (.not. compared(a%name, a%values(i)%name)) cycle
             if (len(value_of(b, a%values(i)%name)) == 0) then
                 text = label//' '//a%values(i)%name//': '//a%values(i)%value// &
                     ' before, not given now'
@@ -89,6 +92,20 @@ contains
             end if
         end do
     end function value_difference
+
+    !> Whether a variable's value counts: not &growth steps (a resumed run may raise it), nor
+    !> the title and file names (their contents count in the fingerprint, not their names).
+    pure logical function compared(group, name)
+        character(len=*), intent(in) :: group, name
+
+        select case (group//' '//name)
+        case ('growth steps', 'model title', 'output file', 'fracture elements_file', &
+              'points file')
+            compared = .false.
+        case default
+            compared = .true.
+        end select
+    end function compared
 
     !> 'not given' for an empty value, else the value.
     pure function shown(value) result(text)

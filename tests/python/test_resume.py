@@ -112,9 +112,12 @@ def test_incomplete_or_foreign_files_are_refused(tmp_path, change, words):
 
 @pytest.mark.parametrize("new, words", [
     (history(extra="&solver lcp_method = 'lemke' /\n"),
-     "is the result of another model: &solver: not in the earlier input"),
+     "is the result of another model: &solver lcp_method: not given before, 'lemke' now"),
     (history().replace("mu = 0.6", "mu = 0.5"),
      "is the result of another model: &fracture mu: 0.6 before, 0.5 now (only &growth steps"),
+    # the title does not count: the changed value is named
+    (history().replace("&model ", "&model title = 'other', ").replace("mu = 0.6", "mu = 0.5"),
+     "is the result of another model: &fracture mu: 0.6 before, 0.5 now"),
     (history().replace("syy = -10", "syy = -10, sxx = -2"),
      "is the result of another model: &remote_stress sxx: not given before, -2 now"),
     (PLAIN.format(mu=0.6), ("--resume continues a growth run or a loading history, and new.nml "
