@@ -17,6 +17,7 @@ import numpy as np
 import pytest
 
 import compare_results
+import ddc2d
 from conftest import ddc2d_exe
 
 MODEL = """\
@@ -275,6 +276,8 @@ def test_a_resumed_run_equals_the_uninterrupted_one(tmp_path, old_text, new_text
         assert new.attrs["resumed_from"] == b"old.h5"
         assert new.attrs["resumed_from_created"] == old.attrs["created"]
         assert "resumed_from" not in uninterrupted.attrs
+    # The Python reader shows it with the rest of the provenance.
+    assert ddc2d.open_result(tmp_path / "new.h5").provenance["resumed_from"] == "old.h5"
         # The earlier run did less: the resumed one went on.
         if "growth" in new:
             assert new["growth/step"].size > old["growth/step"].size
