@@ -2,7 +2,8 @@
 to continue, those it accepts, and the continuation.
 
 Every refusal exits 2 with one message naming the resume file, writes no output (nor a
-.partial file) and leaves the resume file as it was. A resumed run equals the uninterrupted
+.partial file) and leaves the resume file as it was; another model is named by the group and
+variable that changed. A resumed result records the file it continued (resumed_from). A resumed run equals the uninterrupted
 one to 1e-12 (tests/compare_results.py: every array of /elements, /tips, /fields, /history
 and /growth): growth along a load path resumed after a shorter path (the earlier run
 arrested) and after a step limit inside a load step, on the Lemke and on the kept Newton
@@ -276,13 +277,13 @@ def test_a_resumed_run_equals_the_uninterrupted_one(tmp_path, old_text, new_text
         assert new.attrs["resumed_from"] == b"old.h5"
         assert new.attrs["resumed_from_created"] == old.attrs["created"]
         assert "resumed_from" not in uninterrupted.attrs
-    # The Python reader shows it with the rest of the provenance.
-    assert ddc2d.open_result(tmp_path / "new.h5").provenance["resumed_from"] == "old.h5"
         # The earlier run did less: the resumed one went on.
         if "growth" in new:
             assert new["growth/step"].size > old["growth/step"].size
         else:
             assert new["history/pivots"].size > old["history/pivots"].size
+    # The Python reader shows it with the rest of the provenance.
+    assert ddc2d.open_result(tmp_path / "new.h5").provenance["resumed_from"] == "old.h5"
 
 
 def test_a_run_that_arrests_at_once_when_resumed(tmp_path):
