@@ -30,7 +30,9 @@
 !> solved from the friction memory of the one before (ddc_growth_solver keeps it), its fractures are
 !> grown until none is critical (at most `steps` growth steps, else the run ends with step_limit),
 !> and its end is recorded for /history (ddc_growth_load_steps); growth steps are numbered through
-!> the whole run.
+!> the whole run, and only a step in which a tip grew is one (the check that ends a load step
+!> prints no line and takes no number). Within a growth step the solver's progress lines are
+!> held (ddc_progress): its corrector solves are many and quick.
 !>
 !> A resumed run (--resume) starts from the end of an earlier one (ddc_growth_run_state)
 !> and goes on where it stopped: in the load step it reached the step limit in, or with the
