@@ -21,7 +21,7 @@ module ddc_app_driver
     use ddc_input_sweep, only: read_sweep
     use ddc_sweep_tasks, only: sweep_definition, task_label, task_file_name, check_task, &
         apply_task, task_problem, check_tasks
-    use ddc_output_hdf5_read, only: output_is_complete
+    use ddc_output_hdf5_read, only: output_is_complete, read_string_attribute
     use ddc_app_command_line, only: command_line_options, parse_command_line, usage_text, &
         action_version, action_help, task_number
     use ddc_app_report, only: print_model_summary, print_results_summary, field_warnings, &
@@ -120,6 +120,7 @@ contains
             call check_resume_file(options%resume_file, model, error)
             status = error_status(error)
             if (status /= go_on) return
+            call record_resume(options%resume_file, model)
         end if
         call check_writable(model%output_file, error)
         status = error_status(error)
@@ -232,6 +233,22 @@ contains
         if (exists) write (output_unit, '(a)') 'task '//itoa(task)//': output '// &
             model%output_file//' is incomplete or unreadable; running the task again'
     end subroutine prepare_sweep_task
+
+    !> Record in the model the file a resumed run continues and when it was written (its root
+    !> attribute created), for the result's root attributes.
+    subroutine record_resume(path, model)
+        !> The earlier run's result file (--resume), checked
+        character(len=*), intent(in) :: path
+        !> The model
+        type(model_type), intent(inout) :: model
+        type(error_type), allocatable :: read_error
+        character(len=:), allocatable :: created
+
+        call read_string_attribute(path, '/', 'created', created, read_error)
+        if (allocated(read_error)) created = 'unknown'
+        model%resumed_from = path
+        model%resumed_from_created = created
+    end subroutine record_resume
 
     !> Print the error, if any: its exit code, else go_on.
     function error_status(error) result(status)

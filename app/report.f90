@@ -191,6 +191,12 @@ contains
                 end do
                 write (unit, '(a)') ''
             end do
+            ! Said here, before a user relies on --resume to go on with the path
+            if (.not. model%growth%active .and. (any(model%elements%shear_stiffness < &
+                rigid_joint) .or. any(model%elements%normal_stiffness < rigid_joint))) then
+                write (unit, '(a)') '    --resume cannot continue this history: its elastic '// &
+                    'joints'' memory is their plastic slip, which the result file does not hold'
+            end if
         end subroutine print_load_path
 
     end subroutine print_model_summary

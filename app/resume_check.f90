@@ -7,7 +7,9 @@
 !>     |load_new(q, j) - load_old(q, j)| <= 1e-12 * max_j(|load_old(q, j)|, |load_new(q, j)|)
 !>
 !> for every quantity q of load_path_names and every step j of the earlier run. Every
-!> refusal is exit_bad_input with one message naming the file; nothing is written.
+!> refusal is exit_bad_input with one message naming the file; nothing is written. Another
+!> model is named by the first group and variable written differently in the two inputs
+!> (ddc_app_input_difference), the fingerprints where the texts read alike.
 module ddc_app_resume_check
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
@@ -20,6 +22,7 @@ module ddc_app_resume_check
     use ddc_output_hdf5_read, only: is_hdf5_file, output_is_complete, read_string_attribute, &
         read_real_dataset, has_dataset
     use ddc_text, only: itoa, rtoa, counted
+    use ddc_app_input_difference, only: input_difference
     implicit none
     private
 
@@ -39,7 +42,7 @@ contains
         !> Allocated with exit_bad_input and one message naming path when it does not fit
         type(error_type), allocatable, intent(out) :: error
         type(error_type), allocatable :: read_error
-        character(len=:), allocatable :: prefix, final_path, description, value, input
+        character(len=:), allocatable :: prefix, final_path, description, value, input, change
         logical :: growth_run, history_run
         integer :: kind
 
@@ -93,9 +96,15 @@ contains
         call read_string_attribute(path, '/', 'model_fingerprint', value, read_error)
         if (allocated(read_error)) value = 'none'
         if (value /= recorded_fingerprint(model)) then
-            call refuse('is the result of another model: its fingerprint is '//value// &
-                        ', that of '//input//' is '//recorded_fingerprint(model)// &
-                        ' (only &growth steps and the length of &load_path may change)')
+            change = changed_input(path, model)
+            if (len(change) > 0) then
+                call refuse('is the result of another model: '//change//' (only &growth '// &
+                            'steps and the length of &load_path may change)')
+            else
+                call refuse('is the result of another model: its fingerprint is '//value// &
+                            ', that of '//input//' is '//recorded_fingerprint(model)// &
+                            ' (only &growth steps and the length of &load_path may change)')
+            end if
             return
         end if
         if (history_run) call check_path_prefix(path, model, prefix, input, error)
@@ -108,6 +117,23 @@ contains
             call set_error(error, exit_bad_input, prefix//message)
         end subroutine refuse
     end subroutine check_resume_file
+
+    !> Which group and variable of the input differ from the earlier run's (its root
+    !> attribute input_text; ddc_app_input_difference), '' when that cannot be said.
+    function changed_input(path, model) result(change)
+        character(len=*), intent(in) :: path
+        type(model_type), intent(in) :: model
+        character(len=:), allocatable :: change, old_text
+        type(error_type), allocatable :: read_error
+
+        change = ''
+        if (.not. allocated(model%input_text)) return
+        call read_string_attribute(path, '/', 'input_text', old_text, read_error)
+        if (allocated(read_error)) return
+        ! A long input is the dataset /input_text, and the attribute only says so.
+        if (index(old_text, 'the input (') == 1) return
+        change = input_difference(old_text, model%input_text)
+    end function changed_input
 
     !> The earlier run's loads are the first steps of the model's path.
     subroutine check_path_prefix(path, model, prefix, input, error)

@@ -30,7 +30,9 @@
 !> solved from the friction memory of the one before (ddc_growth_solver keeps it), its fractures are
 !> grown until none is critical (at most `steps` growth steps, else the run ends with step_limit),
 !> and its end is recorded for /history (ddc_growth_load_steps); growth steps are numbered through
-!> the whole run.
+!> the whole run, and only a step in which a tip grew is one (the check that ends a load step
+!> prints no line and takes no number). Within a growth step the solver's progress lines are
+!> held (ddc_progress): its corrector solves are many and quick.
 !>
 !> A resumed run (--resume) starts from the end of an earlier one (ddc_growth_run_state)
 !> and goes on where it stopped: in the load step it reached the step limit in, or with the
@@ -57,12 +59,15 @@ module ddc_growth_driver
     use ddc_growth_tips, only: growing_tip, fracture_tip
     use ddc_growth_load_steps, only: follow_growth, record_load_step, finish_load_steps
     use ddc_history_path, only: path_loads, apply_load, load_text
-    use ddc_progress, only: report_progress
+    use ddc_progress, only: report_progress, hold_progress, release_progress
     use ddc_text, only: itoa, rtoa, seconds_text
     implicit none
     private
 
     public :: grow_fractures, growth_progress
+
+    !> The solver's progress lines within a growth step are shown once it has run this long [s]
+    real(wp), parameter :: progress_hold_seconds = 5.0_wp
 
     abstract interface
         !> Told after every growth step (the program prints a line and flushes it).
@@ -139,8 +144,8 @@ contains
             end if
             solved = .false.
             steps_before = record%steps_taken
-            call grow_to_stability(run, model%growth, load_step, step, first, record, error, &
-                                   progress, t_start)
+            call grow_to_stability(run, model%growth, load_step, history, step, first, &
+                                   record, error, progress, t_start)
             first = 0
             if (allocated(error)) then
                 if (history) error%message = where//': '//error%message
@@ -192,14 +197,16 @@ contains
     !> Grow the fractures at the current load until no tip is critical (end_reason
     !> growth_arrested) or for `steps` growth steps (growth_step_limit), after `first` growth
     !> steps of this load step done before; `step` counts the growth steps of the whole run.
-    subroutine grow_to_stability(run, options, load_step, step, first, record, error, &
-                                 progress, t_start)
+    subroutine grow_to_stability(run, options, load_step, along_path, step, first, record, &
+                                 error, progress, t_start)
         !> The run at the load step's start (its geometry solved at the step's load)
         type(growth_state), intent(inout) :: run
         !> The model's growth options
         type(growth_options), intent(in) :: options
         !> The load step (1 without a load path)
         integer, intent(in) :: load_step
+        !> Growth along a load path (a check without growth is not reported)
+        logical, intent(in) :: along_path
         !> The last growth step of the run so far
         integer, intent(inout) :: step
         !> Growth steps of this load step done before (a resumed run)
@@ -212,38 +219,45 @@ contains
         procedure(growth_progress), optional :: progress
         !> system_clock at the run's start
         integer(int64), intent(in) :: t_start
-        integer :: s, grown, solves_before
+        integer :: s, grown, solves_before, next
         integer(int64) :: t_step, rate
 
         record%end_reason = growth_step_limit
         do s = first + 1, options%steps
-            step = step + 1
+            ! A step number is used up only when a tip grows; the records of a check in which
+            ! none grew carry the number the next growth step will have.
+            next = step + 1
             call system_clock(t_step, rate)
             solves_before = solves_done(run%solver)
+            call hold_progress(progress_hold_seconds)
             call evaluate_tips(run%work, run%current, run%tips, options, run%now, error)
-            if (allocated(error)) return
-            if (.not. any(run%now%reason == growth_grew)) then
-                call append_records(record, step, load_step, run%tips, run%now)
-                call report(0)
-                record%end_reason = growth_arrested
-                exit
+            if (allocated(error)) exit
+            grown = 0
+            if (any(run%now%reason == growth_grew)) then
+                do
+                    call choose_growing(run%work, options, run%tips, run%now)
+                    call grow_step(run, options, next, grown, error)
+                    if (allocated(error)) exit
+                    if (grown > 0 .or. .not. any(run%now%reason == growth_waiting)) exit
+                    ! The most critical tip closed: the next one waiting tries in this step.
+                    where (run%now%reason == growth_waiting) run%now%reason = growth_grew
+                end do
+                if (allocated(error)) exit
             end if
-            do
-                call choose_growing(run%work, options, run%tips, run%now)
-                call grow_step(run, options, step, grown, error)
-                if (allocated(error)) return
-                if (grown > 0 .or. .not. any(run%now%reason == growth_waiting)) exit
-                ! The most critical tip closed: the next one waiting tries in this step.
-                where (run%now%reason == growth_waiting) run%now%reason = growth_grew
-            end do
-            call append_records(record, step, load_step, run%tips, run%now)
-            call report(grown)
+            call release_progress()
+            call append_records(record, next, load_step, run%tips, run%now)
             if (grown == 0) then
+                ! Along a load path the load step's end line tells it; without one the check
+                ! that ends the run is shown.
+                if (.not. along_path) call report(0)
                 record%end_reason = growth_arrested
                 exit
             end if
+            step = next
+            call report(grown)
             record%steps_taken = record%steps_taken + 1
         end do
+        call release_progress()
 
     contains
 
@@ -253,7 +267,7 @@ contains
             integer(int64) :: t_now
 
             call system_clock(t_now)
-            if (present(progress)) call progress(step, growing, maxval([0.0_wp, run%now%k_eq]), &
+            if (present(progress)) call progress(next, growing, maxval([0.0_wp, run%now%k_eq]), &
                                                  solves_done(run%solver) - solves_before, &
                                                  real(t_now - t_step, wp) / real(rate, wp), &
                                                  real(t_now - t_start, wp) / real(rate, wp))

@@ -100,7 +100,7 @@ contains
     end subroutine resumed_geometry
 
     !> The fracture ends that may grow, as the earlier run found them (those of its first
-    !> step's records), each stopped for good when its last record says so.
+    !> check's records), each stopped for good when its last record says so.
     function resumed_tips(state) result(tips)
         !> The earlier run's end
         type(restart_state), intent(in) :: state
@@ -109,8 +109,11 @@ contains
 
         associate (g => state%results%growth)
             allocate (tips(0))
+            ! The first check's records: one per tip (the checks of load steps in which
+            ! nothing grew share the step number of the next growth step).
             do k = 1, size(g%step)
                 if (g%step(k) /= g%step(1)) exit
+                if (any(tips%fracture == g%fracture_id(k) .and. tips%end == g%end(k))) exit
                 tips = [tips, growing_tip(fracture=g%fracture_id(k), end=g%end(k))]
             end do
             do i = 1, size(tips)

@@ -114,7 +114,8 @@ contains
         run%current%solver = restart%results%solver
         run%tips = resumed_tips(restart)
         record = restart%results%growth
-        step = maxval(record%step)
+        ! Growth steps are numbered by the steps in which a tip grew
+        step = record%steps_taken
         done = 1
         if (history) done = size(restart%results%history%pivots)
         start = done

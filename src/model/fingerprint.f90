@@ -76,6 +76,7 @@ contains
         ! Not hashed: model%input_text (holds steps and the path; its parsed values count)
         ! Not hashed: model%sweep (a record; --resume is refused for sweep tasks)
         ! Not hashed: model%fingerprint (this hash)
+        ! Not hashed: model%resumed_from, model%resumed_from_created (a record of the run)
         ! Not hashed: model%growth%steps, model%load_path%steps, model%load_path%vertex
         ! Not hashed: model%load_path%varies (a resumed run may go further)
         ! Not hashed: model%solver%work_bytes (this machine's memory, not the model)

@@ -280,6 +280,9 @@ module ddc_model_types
         !> Fingerprint of the model as read (ddc_model_fingerprint), recorded by app before
         !> a run changes the model (growth adds elements); unallocated until then
         character(len=:), allocatable :: fingerprint
+        !> The result file a resumed run (--resume) continues, and when that file was
+        !> written; unallocated for a run that continues none
+        character(len=:), allocatable :: resumed_from, resumed_from_created
     end type model_type
 
 contains

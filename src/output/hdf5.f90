@@ -10,7 +10,8 @@
 !>   blas_threads: ddc_output_provenance), title, input_file, input_text, units, elastic
 !>   constants, remote_stress [sxx, syy, sxy], conventions, open_cohesion, lcp_method,
 !>   domain, remote_stress_gradient, pore_fluid, model_fingerprint (ddc_model_fingerprint:
-!>   what --resume compares), and last complete = 1;
+!>   what --resume compares), resumed_from and resumed_from_created (a resumed run only: the
+!>   file it continued and that file's created), and last complete = 1;
 !> - /elements/<quantity> shape (n), every real dataset with a `units` attribute;
 !> - /fractures/{name, first_element, last_element};
 !> - /tips/{x, y, fracture_id, element, k1, k2, graded} (empty datasets when there are no
@@ -212,6 +213,12 @@ contains
         call write_attribute(root, 'remote_stress_gradient', model%stress_gradient, error)
         call write_attribute(root, 'pore_fluid', model%pore_fluid, error)
         call write_attribute(root, 'model_fingerprint', recorded_fingerprint(model), error)
+        ! A resumed run: the file it continued (as given to --resume) and when that was written
+        if (allocated(model%resumed_from)) then
+            call write_attribute(root, 'resumed_from', model%resumed_from, error)
+            call write_attribute(root, 'resumed_from_created', &
+                                 allocated_text(model%resumed_from_created), error)
+        end if
     end subroutine write_root_attributes
 
     !> /elements: geometry, conditions, results and contact properties, shape (n).

@@ -5,6 +5,7 @@ Every failing run must exit with its documented status, print one message naming
 wrong, and leave neither the output file nor a .partial file behind.
 """
 
+import itertools
 import subprocess
 
 import h5py
@@ -183,3 +184,32 @@ def test_solver_failure_exits_1_and_auto_records_its_fallback(tmp_path):
         assert b"Lemke ended on a ray" in f["solver"].attrs["fallback"]
         assert f["solver"].attrs["certificate_max_complementarity"] <= \
             f["solver"].attrs["certificate_tolerance"]
+
+
+# A sliding flaw of 1000 elements (the size at which the solvers report their phases) whose
+# wings grow three steps, each with a few quick corrector solves.
+LARGE_GROWTH = """\
+&model youngs_modulus = 50000.0, poissons_ratio = 0.25 /
+&remote_stress sxx = -5.0, syy = -60.0 /
+&fracture name = 'flaw', x = -0.70710678, 0.70710678, y = -0.70710678, 0.70710678,
+          elements = 1000, mu = 0.6, sf = 0.0 /
+&growth steps = 3, toughness = 2.0, increment = 0.01 /
+"""
+
+
+def test_growth_steps_hold_the_solver_lines(tmp_path):
+    """Within a growth step the Newton iterations of its corrector solves are shown only once
+    the step has run 5 s (docs/fracture-growth.md#while-it-runs): a quicker step prints its
+    own line only; the solve of the input geometry before the first step prints its own."""
+    (tmp_path / "large.nml").write_text(LARGE_GROWTH)
+    done = run(["large.nml"], tmp_path)
+    assert done.returncode == 0, done.stderr
+    lines = done.stdout.splitlines()
+    steps = [i for i, line in enumerate(lines) if line.startswith("growth step ")]
+    assert len(steps) == 3
+    assert any("newton iteration" in line for line in lines[:steps[0]])
+    for before, after in itertools.pairwise(steps):
+        seconds = float(lines[after].split("solve(s),")[1].split()[0])
+        newton = [line for line in lines[before + 1:after] if "newton iteration" in line]
+        # Without the hold 12 or more such lines came between two of these steps.
+        assert seconds >= 5.0 or not newton, lines[before:after + 1]

@@ -85,8 +85,16 @@ def test_history_follows_the_growing_geometry(rising_runs):
         load_step = g["load_step"][()]
         step = g["step"][()]
         assert np.all(np.diff(load_step) >= 0) and np.all(np.diff(step) >= 0)
+        # Growth steps are counted where a tip grew: 1 .. steps_taken, each with growth and new
+        # elements; the check that ends a load step uses up no number (its records carry the
+        # next one), the last that of the arrest.
+        taken = int(g.attrs["steps_taken"])
+        grew = g["length"][()] > 0
+        assert sorted(set(step[grew])) == list(range(1, taken + 1))
+        assert sorted(set(created[created > 0])) == list(range(1, taken + 1))
+        assert step.max() == taken + 1 and np.all(~grew[step == taken + 1])
         # An element made in growth step s has no value before the load step of s.
-        made_in = {s: ls for s, ls in zip(step, load_step)}
+        made_in = {s: ls for s, ls, g_ in zip(step, load_step, grew) if g_}
         for e in np.flatnonzero(created > 0):
             first = made_in[created[e]] - 1
             assert np.all(np.isnan(h["ds"][:first, e])), e
@@ -103,6 +111,12 @@ def test_history_follows_the_growing_geometry(rising_runs):
         np.testing.assert_allclose(h["k1"][-1, :], f["tips/k1"][()], rtol=1e-9)
     assert "load step 21 of 21 (syy = -100" in stdout
     assert "  load step 8 (syy = -38.25" in stdout
+    # A line per growth step in which a tip grew, none for a load step without growth
+    assert "0 tip(s) grew" not in stdout
+    lines = [line for line in stdout.splitlines() if line.startswith("growth step ")]
+    assert [int(line.split()[2].rstrip(":")) for line in lines] == list(range(1, taken + 1))
+    first = [line for line in stdout.splitlines() if "load step 1 of 21 (" in line]
+    assert len(first) == 2 and ": 0 growth steps, grown length 0" in first[1], first
 
 
 def test_growth_starts_where_a_fixed_load_run_grows(rising_runs, tmp_path):

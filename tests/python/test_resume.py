@@ -2,7 +2,8 @@
 to continue, those it accepts, and the continuation.
 
 Every refusal exits 2 with one message naming the resume file, writes no output (nor a
-.partial file) and leaves the resume file as it was. A resumed run equals the uninterrupted
+.partial file) and leaves the resume file as it was; another model is named by the group and
+variable that changed. A resumed result records the file it continued (resumed_from). A resumed run equals the uninterrupted
 one to 1e-12 (tests/compare_results.py: every array of /elements, /tips, /fields, /history
 and /growth): growth along a load path resumed after a shorter path (the earlier run
 arrested) and after a step limit inside a load step, on the Lemke and on the kept Newton
@@ -17,6 +18,7 @@ import numpy as np
 import pytest
 
 import compare_results
+import ddc2d
 from conftest import ddc2d_exe
 
 MODEL = """\
@@ -111,8 +113,15 @@ def test_incomplete_or_foreign_files_are_refused(tmp_path, change, words):
 
 
 @pytest.mark.parametrize("new, words", [
-    (history(extra="&solver lcp_method = 'lemke' /\n"), "is the result of another model"),
-    (history().replace("mu = 0.6", "mu = 0.5"), "is the result of another model"),
+    (history(extra="&solver lcp_method = 'lemke' /\n"),
+     "is the result of another model: &solver lcp_method: not given before, 'lemke' now"),
+    (history().replace("mu = 0.6", "mu = 0.5"),
+     "is the result of another model: &fracture mu: 0.6 before, 0.5 now (only &growth steps"),
+    # the title does not count: the changed value is named
+    (history().replace("&model ", "&model title = 'other', ").replace("mu = 0.6", "mu = 0.5"),
+     "is the result of another model: &fracture mu: 0.6 before, 0.5 now"),
+    (history().replace("syy = -10", "syy = -10, sxx = -2"),
+     "is the result of another model: &remote_stress sxx: not given before, -2 now"),
     (PLAIN.format(mu=0.6), ("--resume continues a growth run or a loading history, and new.nml "
                             "has neither &growth nor &load_path")),
     (GROWTH.format(steps=3), "is not a growth run (no /growth), and new.nml has &growth"),
@@ -210,8 +219,14 @@ def test_every_result_records_its_fingerprint(tmp_path):
 
 
 def test_elastic_joints_history_is_refused(tmp_path):
+    """Refused, and the run that wrote the file said so in its echo."""
     joints = ", shear_stiffness = 1000, normal_stiffness = 1000 /"
-    old = earlier_run(tmp_path, history().replace("mu = 0.6 /", "mu = 0.6" + joints))
+    (tmp_path / "old.nml").write_text(history().replace("mu = 0.6 /", "mu = 0.6" + joints))
+    done = run(["old.nml", "-o", "old.h5"], tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert ("--resume cannot continue this history: its elastic joints' memory is their "
+            "plastic slip") in done.stdout
+    old = tmp_path / "old.h5"
     new = history(sxy="0, 4, 4, 2", steps="2, 3, 2").replace("mu = 0.6 /", "mu = 0.6" + joints)
     assert_refused(resume(tmp_path, new, "old.h5"), tmp_path,
                    "elastic joints (shear_stiffness, normal_stiffness) cannot be resumed", old,
@@ -256,12 +271,19 @@ def test_a_resumed_run_equals_the_uninterrupted_one(tmp_path, old_text, new_text
     problems, report = compare_results.compare(whole, tmp_path / "new.h5", rtol=1e-12)
     assert not problems, problems
     assert "largest relative difference" in report
-    with h5py.File(tmp_path / "old.h5") as old, h5py.File(tmp_path / "new.h5") as new:
+    with h5py.File(tmp_path / "old.h5") as old, h5py.File(tmp_path / "new.h5") as new, \
+            h5py.File(whole) as uninterrupted:
+        # The resumed result names the file it continued and when that was written.
+        assert new.attrs["resumed_from"] == b"old.h5"
+        assert new.attrs["resumed_from_created"] == old.attrs["created"]
+        assert "resumed_from" not in uninterrupted.attrs
         # The earlier run did less: the resumed one went on.
         if "growth" in new:
             assert new["growth/step"].size > old["growth/step"].size
         else:
             assert new["history/pivots"].size > old["history/pivots"].size
+    # The Python reader shows it with the rest of the provenance.
+    assert ddc2d.open_result(tmp_path / "new.h5").provenance["resumed_from"] == "old.h5"
 
 
 def test_a_run_that_arrests_at_once_when_resumed(tmp_path):
