@@ -30,7 +30,7 @@ module ddc_history_solve
     use ddc_contact_stiffness, only: dense_stiffness
     use ddc_solve_joints, only: joint_system, joint_load, joint_dds
     use ddc_solve_frictional, only: condensed_contact, condense_contact, contact_load, &
-        complete_dds, record_contact, release_matrix, fault_law_of
+        complete_dds, record_contact, release_matrix, fault_law_of, strengths_change
     use ddc_influence_response, only: listed_tractions
     use ddc_post_tips, only: find_tips, stress_intensity
     use ddc_history_path, only: path_loads, apply_load, load_text
@@ -151,7 +151,8 @@ contains
             call resume_steps(error)
             if (allocated(error)) return
         end if
-        call allocate_history(h, n, results%tips%n, nsteps, done, error)
+        call allocate_history(h, n, results%tips%n, nsteps, done, &
+                              strengths_change(model%elements, model%solver), error)
         if (allocated(error)) return
         h%load = loads
         stiffness%a => a_solve
@@ -198,6 +199,7 @@ contains
             h%certificate_min_z(k) = res%certificate%min_z
             h%certificate_min_w(k) = res%certificate%min_w
             h%certificate_max_complementarity(k) = res%certificate%max_complementarity
+            if (allocated(h%mu_in_force)) call record_strengths(h, k, law, sys%contact)
             ! Tractions S_r + A D: the contact solution's, the free elements' from their rows.
             h%shear_traction(sys%contact, k) = res%shear_traction
             h%normal_traction(sys%contact, k) = res%normal_traction
@@ -292,18 +294,39 @@ contains
     end subroutine solve_history
 
     !> Room for every step of a history of n elements and tips tips, the first `kept` steps
-    !> of h kept (a resumed run's); error: it does not fit.
-    subroutine allocate_history(h, n, tips, k, kept, error)
+    !> of h kept (a resumed run's), with the strengths in force when asked for; error: it
+    !> does not fit.
+    subroutine allocate_history(h, n, tips, k, kept, strengths, error)
         type(history_record), intent(inout) :: h
         integer, intent(in) :: n, tips, k, kept
+        logical, intent(in) :: strengths
         type(error_type), allocatable, intent(out) :: error
         integer :: stat
 
-        call lay_out_history(h, n, tips, k, kept, stat)
+        call lay_out_history(h, n, tips, k, kept, stat, strengths=strengths)
         if (stat /= 0) call allocation_failed(error, 'the history of '//itoa(n)// &
                                               ' elements at '//itoa(k)//' steps', &
-                                              real_bytes * 5.0_wp * real(n, wp) * real(k, wp))
+                                              real_bytes * merge(8.0_wp, 5.0_wp, strengths) &
+                                              * real(n, wp) * real(k, wp))
     end subroutine allocate_history
+
+    !> Step k's strengths in force: the law's, as the step's solve leaves them, on the
+    !> contact elements, 0 on the others.
+    pure subroutine record_strengths(h, k, law, contact)
+        type(history_record), intent(inout) :: h
+        integer, intent(in) :: k
+        !> The law of the contact elements
+        type(fault_law), intent(in) :: law
+        !> Indices of the contact elements, shape (nc)
+        integer, intent(in) :: contact(:)
+
+        h%mu_in_force(:, k) = 0.0_wp
+        h%sf_in_force(:, k) = 0.0_wp
+        h%tensile_strength_in_force(:, k) = 0.0_wp
+        h%mu_in_force(contact, k) = law%mu_in_force
+        h%sf_in_force(contact, k) = law%sf_in_force
+        h%tensile_strength_in_force(contact, k) = law%tensile_in_force
+    end subroutine record_strengths
 
     !> 'step 12 of 101 (sxy = 10): newton, 1 iteration, 0.53 s' (the time since the start).
     function step_line(k, nsteps, load, varies, res, seconds) result(line)
