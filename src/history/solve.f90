@@ -28,7 +28,7 @@ module ddc_history_solve
     use ddc_contact_formulation, only: solve_contact_with, contact_session
     use ddc_contact_fault_law, only: fault_law
     use ddc_contact_stiffness, only: dense_stiffness
-    use ddc_solve_joints, only: joint_system, joint_load, joint_dds
+    use ddc_solve_joints, only: joint_system, joint_load, joint_dds, elastic_dds
     use ddc_solve_frictional, only: condensed_contact, condense_contact, contact_load, &
         complete_dds, record_contact, release_matrix, fault_law_of, strengths_change
     use ddc_influence_response, only: listed_tractions
@@ -233,6 +233,7 @@ contains
         call release_matrix(sys, matrix)
         call finish_model(apply_load(model, loads(:, nsteps)), shear(:, nsteps), &
                           normal(:, nsteps), results, matrix=matrix)
+        if (any(compliance > 0.0_wp)) call record_elastic_dds(pressure(:, nsteps))
         results%solver%counts%seconds = results%solver%counts%seconds + &
             seconds_factorization - res%counts%seconds
         results%solver%counts%flops = results%solver%counts%flops + flops - &
@@ -252,6 +253,21 @@ contains
         results%solver%seconds_total = real(t1 - t_start, wp) / real(rate, wp)
 
     contains
+
+        !> The elastic DDs of the joints at the last step (0 on the other elements).
+        subroutine record_elastic_dds(p)
+            !> Fluid pressure on the contact elements, shape (nc) [stress]
+            real(wp), intent(in) :: p(:)
+            real(wp) :: ds_e(nc), dn_e(nc)
+
+            associate (e => results%elements)
+                call elastic_dds(compliance, p, e%shear_traction(sys%contact), &
+                                 e%normal_traction(sys%contact), ds_e, dn_e)
+                allocate (e%ds_elastic(n), e%dn_elastic(n), source=0.0_wp)
+                e%ds_elastic(sys%contact) = ds_e
+                e%dn_elastic(sys%contact) = dn_e
+            end associate
+        end subroutine record_elastic_dds
 
         !> The first `done` steps from the earlier run, and its memory at their end: the slip
         !> of the contact elements, the strengths in force and the slip path (the sum of the
@@ -328,7 +344,9 @@ contains
         h%tensile_strength_in_force(contact, k) = law%tensile_in_force
     end subroutine record_strengths
 
-    !> 'step 12 of 101 (sxy = 10): newton, 1 iteration, 0.53 s' (the time since the start).
+    !> 'step 12 of 101 (sxy = 10): newton, 1 iteration, 0.53 s' (the time since the start);
+    !> 'newton, 9 iterations in 3 solves' where the strength fixed point (slip weakening,
+    !> strength loss) solved more than once.
     function step_line(k, nsteps, load, varies, res, seconds) result(line)
         integer, intent(in) :: k, nsteps
         real(wp), intent(in) :: load(:), seconds
@@ -345,6 +363,7 @@ contains
             line = line//', '//itoa(res%pivots)//' pivot'
             if (res%pivots /= 1) line = line//'s'
         end if
+        if (res%solves > 1) line = line//' in '//itoa(res%solves)//' solves'
         if (len(res%fallback) > 0) line = line//' (fell back: '//res%fallback//')'
         line = line//', '//seconds_text(seconds)
     end function step_line

@@ -67,6 +67,10 @@ module ddc_model_results
         real(wp), allocatable :: sf_in_force(:), tensile_in_force(:)
         !> Friction in force at the end (slip weakening; 0 for TWODD-style elements) [-]
         real(wp), allocatable :: mu_in_force(:)
+        !> Elastic part of the DDs of elastic joints, -traction / stiffness (0 for rigid
+        !> contact and TWODD-style elements; the plastic part is ds - ds_elastic) [length
+        !> unit]; not allocated for a model without joints
+        real(wp), allocatable :: ds_elastic(:), dn_elastic(:)
     end type element_results
 
     !> Crack tips: element ends shared with no other element.
