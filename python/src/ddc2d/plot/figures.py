@@ -31,6 +31,7 @@ from .data import (
     heading,
     history_parameter,
     is_cross_section,
+    joint_parts,
     map_figure_size,
     map_title,
     overview_axis,
@@ -39,6 +40,7 @@ from .data import (
     remote_value,
     slip_sense,
     state_names,
+    strength_panels,
     unit_label,
 )
 
@@ -282,7 +284,9 @@ def plot_profile(result, fracture, profile):
     positive slip means (slip_sense); returns the Figure."""
     length_unit = result["length_unit"]
     panels = profile_panels(result)
-    fig, axes = _profile_axes(panels)
+    strengths = strength_panels(result, fracture)
+    joints = joint_parts(result, fracture, [key for _, key, _ in panels])
+    fig, axes = _profile_axes((*panels, *strengths, *((joints,) if joints else ())))
     for row, key, label in panels:
         ax = axes[row]
         ax.plot(profile["distance"], profile[key], color="0.3", linewidth=1.0,
@@ -293,6 +297,7 @@ def plot_profile(result, fracture, profile):
         ax.set_ylabel(label + unit_label(length_unit))
         ax.grid(True, linewidth=0.3)
     axes[0].legend(title="element state", loc="best", fontsize="small")
+    _draw_strengths(axes[len(panels):], profile["distance"], strengths, joints, result)
     if panels[0][1] == "slip":
         axes[0].set_title(slip_sense(result, fracture), fontsize="small", loc="left")
     axes[-1].set_xlabel("distance along fracture" + unit_label(length_unit))
@@ -302,6 +307,29 @@ def plot_profile(result, fracture, profile):
         text += "\nno element " + ("opens" if panels[0][1] == "slip" else "slips")
     fig.suptitle(heading(result, text))
     return fig
+
+
+def _draw_strengths(axes, distance, strengths, joints, result):
+    """The panels below a profile's DDs: each strength panel (strength_panels: a line in
+    force and a dashed one as given per strength), then the elastic and plastic parts of a
+    joint's DDs (joint_parts); one legend each."""
+    for ax, (key, label, unit, lines) in zip(axes, strengths):
+        for i, (text, in_force, given) in enumerate(lines):
+            ax.plot(distance, in_force, color=f"C{i}", linewidth=1.2, marker=".",
+                    label=f"{text} in force", gid=f"{key}:{text} in force")
+            ax.plot(distance, given, color=f"C{i}", linewidth=0.8, linestyle="--",
+                    label=f"{text} as given", gid=f"{key}:{text} as given")
+        ax.set_ylabel(label + (unit_label(result[f"{unit}_unit"]) if unit else ""))
+    if joints:
+        ax = axes[len(strengths)]
+        for i, (text, values) in enumerate(joints):
+            ax.plot(distance, values, color=f"C{i}", linewidth=1.0,
+                    linestyle=LINESTYLES[i % len(LINESTYLES)], label=text, gid=f"joint:{text}")
+        ax.axhline(0.0, color="0.7", linewidth=0.5)
+        ax.set_ylabel("joint DDs" + unit_label(result["length_unit"]))
+    for ax in axes:
+        ax.legend(loc="best", fontsize="small")
+        ax.grid(True, linewidth=0.3)
 
 
 def plot_overview(result):
