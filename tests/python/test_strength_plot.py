@@ -44,9 +44,20 @@ TENSILE = """\
 """
 
 
-def lines_by_gid(fig):
-    return {line.get_gid(): line for ax in fig.axes for line in ax.get_lines()
-            if line.get_gid()}
+def drawn_profile(path):
+    """The result at `path`, its first fracture's profile data and the profile figure's
+    lines by gid, and the figure's number of panels (the figure is closed)."""
+    result = load_result(path)
+    fracture = result["fractures"][0]
+    profile = plot_data.fracture_profile(result["elements"], fracture["first"],
+                                         fracture["last"])
+    fig = plot_figures.plot_profile(result, fracture, profile)
+    try:
+        lines = {line.get_gid(): line for ax in fig.axes for line in ax.get_lines()
+                 if line.get_gid()}
+        return result, profile, lines, len(fig.axes)
+    finally:
+        plot_figures.plt.close(fig)
 
 
 def test_history_holds_the_friction_of_the_slip_weakening_law(tmp_path):
@@ -91,42 +102,27 @@ def test_progress_line_counts_the_weakening_solves(tmp_path):
 
 
 def test_profile_draws_the_friction_in_force(tmp_path):
-    result = load_result(solve_text(tmp_path, "weakening", WEAKENING))
-    fracture = result["fractures"][0]
-    profile = plot_data.fracture_profile(result["elements"], fracture["first"],
-                                         fracture["last"])
-    panels = plot_data.strength_panels(result, fracture)
-    assert [key for key, *_ in panels] == ["friction"]
-    fig = plot_figures.plot_profile(result, fracture, profile)
-    try:
-        lines = lines_by_gid(fig)
-        assert len(fig.axes) == 2  # slip, friction (nothing opens)
-        np.testing.assert_array_equal(lines["friction:$\\mu$ in force"].get_ydata(),
-                                      result["elements"]["mu_in_force"])
-        np.testing.assert_array_equal(lines["friction:$\\mu$ as given"].get_ydata(),
-                                      np.full(20, 0.6))
-        np.testing.assert_array_equal(lines["friction:$\\mu$ in force"].get_xdata(),
-                                      profile["distance"])
-    finally:
-        plot_figures.plt.close(fig)
+    result, profile, lines, panels = drawn_profile(solve_text(tmp_path, "weakening",
+                                                              WEAKENING))
+    assert [key for key, *_ in plot_data.strength_panels(result, result["fractures"][0])] \
+        == ["friction"]
+    assert panels == 2  # slip, friction (nothing opens)
+    np.testing.assert_array_equal(lines["friction:$\\mu$ in force"].get_ydata(),
+                                  result["elements"]["mu_in_force"])
+    np.testing.assert_array_equal(lines["friction:$\\mu$ as given"].get_ydata(),
+                                  np.full(20, 0.6))
+    np.testing.assert_array_equal(lines["friction:$\\mu$ in force"].get_xdata(),
+                                  profile["distance"])
 
 
 def test_profile_draws_cohesion_and_tensile_strength(tmp_path):
-    result = load_result(solve_text(tmp_path, "tensile", TENSILE))
-    fracture = result["fractures"][0]
-    profile = plot_data.fracture_profile(result["elements"], fracture["first"],
-                                         fracture["last"])
-    fig = plot_figures.plot_profile(result, fracture, profile)
-    try:
-        lines = lines_by_gid(fig)
-        t = lines["strength:tensile strength $T$ in force"].get_ydata()
-        np.testing.assert_array_equal(t, result["elements"]["tensile_strength_in_force"])
-        assert np.all(t[result["elements"]["state"] == 3] == 0.0) and np.any(t == 0.0)
-        np.testing.assert_array_equal(lines["strength:cohesion $S_f$ in force"].get_ydata(),
-                                      result["elements"]["sf_in_force"])
-        assert "friction:$\\mu$ in force" not in lines  # no slip weakening: no panel
-    finally:
-        plot_figures.plt.close(fig)
+    result, _, lines, _ = drawn_profile(solve_text(tmp_path, "tensile", TENSILE))
+    t = lines["strength:tensile strength $T$ in force"].get_ydata()
+    np.testing.assert_array_equal(t, result["elements"]["tensile_strength_in_force"])
+    assert np.all(t[result["elements"]["state"] == 3] == 0.0) and np.any(t == 0.0)
+    np.testing.assert_array_equal(lines["strength:cohesion $S_f$ in force"].get_ydata(),
+                                  result["elements"]["sf_in_force"])
+    assert "friction:$\\mu$ in force" not in lines  # no slip weakening: no panel
 
 
 def test_joint_elastic_dds_and_their_panel(tmp_path):
@@ -138,20 +134,13 @@ def test_joint_elastic_dds_and_their_panel(tmp_path):
     np.testing.assert_allclose(e["ds_elastic"], -e["shear_traction"] / KS, rtol=1e-12,
                                atol=0.0)
     assert np.all(e["dn_elastic"] == 0.0)
-    result = load_result(path)
-    fracture = result["fractures"][0]
-    profile = plot_data.fracture_profile(result["elements"], fracture["first"],
-                                         fracture["last"])
-    fig = plot_figures.plot_profile(result, fracture, profile)
-    try:
-        lines = lines_by_gid(fig)
-        np.testing.assert_array_equal(lines["joint:elastic slip"].get_ydata(),
-                                      -e["ds_elastic"])
-        np.testing.assert_array_equal(lines["joint:plastic slip"].get_ydata(),
-                                      -e["ds"] + e["ds_elastic"])
-    finally:
-        plot_figures.plt.close(fig)
+    _, _, lines, _ = drawn_profile(path)
+    np.testing.assert_array_equal(lines["joint:elastic slip"].get_ydata(), -e["ds_elastic"])
+    np.testing.assert_array_equal(lines["joint:plastic slip"].get_ydata(),
+                                  -e["ds"] + e["ds_elastic"])
     # A fracture without joints has no such datasets and no such panel.
     rigid = solve_text(tmp_path, "rigid", JOINT.replace(f"shear_stiffness = {KS:g}", ""))
     with h5py.File(rigid, "r") as f:
         assert "ds_elastic" not in f["elements"]
+    _, _, lines, panels = drawn_profile(rigid)
+    assert panels == 1 and not any(gid.startswith("joint:") for gid in lines)
