@@ -47,10 +47,10 @@ HISTORY_LOADS = ("sxx", "syy", "sxy", "dsxx_dy", "dsyy_dy", "dsxy_dy", "p0")
 #: /history datasets of every loading history: DDs and states (steps, elements), leg_steps.
 HISTORY_DATASETS = ("ds", "dn", "state", "leg_steps")
 #: Per-step /history datasets beyond the loads, DDs and states (read when present).
-HISTORY_STEP_DATASETS = ("shear_traction", "normal_traction", "k1", "k2", "pivots",
+HISTORY_STEP_DATASETS = ("shear_traction", "normal_traction", "mu_in_force", "sf_in_force",
+                         "tensile_strength_in_force", "k1", "k2", "pivots",
                          "newton_iterations", "certificate_min_z", "certificate_min_w",
-                         "certificate_max_complementarity", "equilibrium_residual",
-                         "mu_in_force", "sf_in_force", "tensile_strength_in_force")
+                         "certificate_max_complementarity", "equilibrium_residual")
 #: Per-step /history strings (read when present, decoded).
 HISTORY_STRING_DATASETS = ("method", "fallback")
 #: /history datasets of fracture growth along a load path, read when present
