@@ -144,3 +144,16 @@ def test_joint_elastic_dds_and_their_panel(tmp_path):
         assert "ds_elastic" not in f["elements"]
     _, _, lines, panels = drawn_profile(rigid)
     assert panels == 1 and not any(gid.startswith("joint:") for gid in lines)
+
+
+def test_strength_panels_leave_out_what_a_fracture_lacks():
+    # Residual cohesion alone: the cohesion is drawn, the tensile strength (0 throughout,
+    # given and in force) is not, nor the friction (no slip weakening).
+    ones = np.ones(3)
+    elements = {"mu": 0.6 * ones, "mu_dynamic": 0.6 * ones, "mu_in_force": 0.6 * ones,
+                "sf": 6.0 * ones, "sf_residual": ones, "sf_in_force": np.array([1.0, 6.0, 6.0]),
+                "tensile_strength": 0.0 * ones, "tensile_strength_in_force": 0.0 * ones}
+    panels = plot_data.strength_panels({"elements": elements}, {"first": 1, "last": 3})
+    assert [(key, [text for text, *_ in lines]) for key, _, _, lines in panels] == \
+        [("strength", ["cohesion $S_f$"])]
+    np.testing.assert_array_equal(panels[0][3][0][1], [1.0, 6.0, 6.0])

@@ -715,8 +715,9 @@ def strength_panels(result, fracture):
     fracture's elements (STRENGTH_PANELS). Friction when it weakens with slip (mu_dynamic
     below mu on some element: weakened and intact slipping elements then differ);
     cohesion and tensile strength when it has a tensile strength or a residual cohesion
-    below sf. None (an empty tuple) for Coulomb's law, elastic joints alone, or a file
-    without the strengths in force."""
+    below sf; a strength 0 throughout (as given and in force) has no line. None (an empty
+    tuple) for Coulomb's law, elastic joints alone, or a file without the strengths in
+    force."""
     elements = result["elements"]
     needed = ("mu_in_force", "sf_in_force", "tensile_strength_in_force", "mu", "sf",
               "tensile_strength", "mu_dynamic", "sf_residual")
@@ -729,9 +730,14 @@ def strength_panels(result, fracture):
     shown = {"friction": bool(np.any(values("mu_dynamic") < values("mu"))),
              "strength": bool(np.any(values("tensile_strength") > 0.0)
                               or np.any(values("sf_residual") < values("sf")))}
-    return tuple((key, label, unit, tuple((text, values(force), values(given))
-                                          for force, given, text in lines))
-                 for key, label, unit, lines in STRENGTH_PANELS if shown[key])
+    panels = []
+    for key, label, unit, lines in STRENGTH_PANELS:
+        # A strength that is 0 throughout, given and in force, is left out.
+        drawn = tuple((text, values(force), values(given)) for force, given, text in lines
+                      if np.any(values(force) != 0.0) or np.any(values(given) != 0.0))
+        if shown[key] and drawn:
+            panels.append((key, label, unit, drawn))
+    return tuple(panels)
 
 
 def joint_parts(result, fracture, keys):
