@@ -5,11 +5,12 @@ values (docs/theory/strength.md)."""
 
 import re
 import subprocess
+import sys
 
 import h5py
 import numpy as np
 
-from conftest import ddc2d_exe, solve_text
+from conftest import PLOT_SCRIPT, ddc2d_exe, solve_text
 from ddc2d.plot import data as plot_data
 from ddc2d.plot import figures as plot_figures
 from ddc2d.reader import load_result
@@ -157,3 +158,29 @@ def test_strength_panels_leave_out_what_a_fracture_lacks():
     assert [(key, [text for text, *_ in lines]) for key, _, _, lines in panels] == \
         [("strength", ["cohesion $S_f$"])]
     np.testing.assert_array_equal(panels[0][3][0][1], [1.0, 6.0, 6.0])
+
+
+def test_history_strengths_figure(tmp_path):
+    path = solve_text(tmp_path, "weakening", WEAKENING)
+    done = subprocess.run([sys.executable, str(PLOT_SCRIPT), str(path), "-o",
+                           str(tmp_path / "fig"), "--history-elements", "10"],
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert (tmp_path / "fig" / "weakening_history_strengths.png").read_bytes()[:4] == b"\x89PNG"
+    coulomb = solve_text(tmp_path, "coulomb", COULOMB)
+    done = subprocess.run([sys.executable, str(PLOT_SCRIPT), str(coulomb), "-o",
+                           str(tmp_path / "fig")], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert not (tmp_path / "fig" / "coulomb_history_strengths.png").exists()
+    result = load_result(path)
+    fig = plot_figures.plot_history_strengths(result, [9])
+    try:  # the stored values themselves: exact
+        lines = {line.get_gid(): line for ax in fig.axes for line in ax.get_lines()}
+        with h5py.File(path, "r") as f:
+            for key in ("mu_in_force", "sf_in_force", "tensile_strength_in_force"):
+                np.testing.assert_array_equal(lines[f"{key}:element_10"].get_ydata(),
+                                              f["history"][key][:, 9])
+                np.testing.assert_array_equal(lines[f"{key}:element_10"].get_xdata(),
+                                              f["history/sxy"][()])
+    finally:
+        plot_figures.plt.close(fig)

@@ -107,6 +107,36 @@ def plot_history(result, elements, steps):
     return fig
 
 
+def plot_history_strengths(result, elements):
+    """The strengths in force at elements (0-based) against the load parameter of a loading
+    history that records them (/history mu_in_force, sf_in_force,
+    tensile_strength_in_force): the friction, and the cohesion and tensile strength.
+    Returns the Figure."""
+    history = result["history"]
+    name, load = history_parameter(history)
+    unit = result["stress_unit"] + ("/" + result["length_unit"] if name.startswith("d")
+                                    else "")
+    fig, (ax_mu, ax_strength) = plt.subplots(1, 2, figsize=(11, 4.5),
+                                             constrained_layout=True)
+    for i, e in enumerate(elements):
+        colour = f"C{i % 10}"
+        ax_mu.plot(load, history["mu_in_force"][:, e], color=colour, marker=".",
+                   label=f"element {e + 1}", gid=f"mu_in_force:element_{e + 1}")
+        ax_strength.plot(load, history["sf_in_force"][:, e], color=colour, marker=".",
+                         label=f"cohesion, element {e + 1}", gid=f"sf_in_force:element_{e + 1}")
+        ax_strength.plot(load, history["tensile_strength_in_force"][:, e], color=colour,
+                         linestyle="--", label=f"tensile strength, element {e + 1}",
+                         gid=f"tensile_strength_in_force:element_{e + 1}")
+    ax_mu.set_ylabel("friction in force")
+    ax_strength.set_ylabel("strength in force" + unit_label(result["stress_unit"]))
+    for ax in (ax_mu, ax_strength):
+        ax.set_xlabel(f"{name}" + unit_label(unit))
+        ax.legend(fontsize="small", loc="best")
+        ax.grid(True, linewidth=0.3)
+    fig.suptitle(heading(result, f"strengths in force along the path ({load.size} steps)"))
+    return fig
+
+
 def plot_growth_history(result):
     """The length each tip has grown against the load parameter of a loading history
     (growth along a load path: docs/theory/growth.md#growth-along-a-loading-history). Returns
