@@ -28,9 +28,9 @@ module ddc_history_solve
     use ddc_contact_formulation, only: solve_contact_with, contact_session
     use ddc_contact_fault_law, only: fault_law
     use ddc_contact_stiffness, only: dense_stiffness
-    use ddc_solve_joints, only: joint_system, joint_load, joint_dds
+    use ddc_solve_joints, only: joint_system, joint_load, joint_dds, elastic_dds
     use ddc_solve_frictional, only: condensed_contact, condense_contact, contact_load, &
-        complete_dds, record_contact, release_matrix, fault_law_of
+        complete_dds, record_contact, release_matrix, fault_law_of, strengths_change
     use ddc_influence_response, only: listed_tractions
     use ddc_post_tips, only: find_tips, stress_intensity
     use ddc_history_path, only: path_loads, apply_load, load_text
@@ -151,7 +151,8 @@ contains
             call resume_steps(error)
             if (allocated(error)) return
         end if
-        call allocate_history(h, n, results%tips%n, nsteps, done, error)
+        call allocate_history(h, n, results%tips%n, nsteps, done, &
+                              strengths_change(model%elements, model%solver), error)
         if (allocated(error)) return
         h%load = loads
         stiffness%a => a_solve
@@ -198,6 +199,7 @@ contains
             h%certificate_min_z(k) = res%certificate%min_z
             h%certificate_min_w(k) = res%certificate%min_w
             h%certificate_max_complementarity(k) = res%certificate%max_complementarity
+            if (allocated(h%mu_in_force)) call record_strengths(h, k, law, sys%contact)
             ! Tractions S_r + A D: the contact solution's, the free elements' from their rows.
             h%shear_traction(sys%contact, k) = res%shear_traction
             h%normal_traction(sys%contact, k) = res%normal_traction
@@ -231,6 +233,7 @@ contains
         call release_matrix(sys, matrix)
         call finish_model(apply_load(model, loads(:, nsteps)), shear(:, nsteps), &
                           normal(:, nsteps), results, matrix=matrix)
+        if (any(compliance > 0.0_wp)) call record_elastic_dds(pressure(:, nsteps))
         results%solver%counts%seconds = results%solver%counts%seconds + &
             seconds_factorization - res%counts%seconds
         results%solver%counts%flops = results%solver%counts%flops + flops - &
@@ -250,6 +253,21 @@ contains
         results%solver%seconds_total = real(t1 - t_start, wp) / real(rate, wp)
 
     contains
+
+        !> The elastic DDs of the joints at the last step (0 on the other elements).
+        subroutine record_elastic_dds(p)
+            !> Fluid pressure on the contact elements, shape (nc) [stress]
+            real(wp), intent(in) :: p(:)
+            real(wp) :: ds_e(nc), dn_e(nc)
+
+            associate (e => results%elements)
+                call elastic_dds(compliance, p, e%shear_traction(sys%contact), &
+                                 e%normal_traction(sys%contact), ds_e, dn_e)
+                allocate (e%ds_elastic(n), e%dn_elastic(n), source=0.0_wp)
+                e%ds_elastic(sys%contact) = ds_e
+                e%dn_elastic(sys%contact) = dn_e
+            end associate
+        end subroutine record_elastic_dds
 
         !> The first `done` steps from the earlier run, and its memory at their end: the slip
         !> of the contact elements, the strengths in force and the slip path (the sum of the
@@ -292,20 +310,43 @@ contains
     end subroutine solve_history
 
     !> Room for every step of a history of n elements and tips tips, the first `kept` steps
-    !> of h kept (a resumed run's); error: it does not fit.
-    subroutine allocate_history(h, n, tips, k, kept, error)
+    !> of h kept (a resumed run's), with the strengths in force when asked for; error: it
+    !> does not fit.
+    subroutine allocate_history(h, n, tips, k, kept, strengths, error)
         type(history_record), intent(inout) :: h
         integer, intent(in) :: n, tips, k, kept
+        logical, intent(in) :: strengths
         type(error_type), allocatable, intent(out) :: error
         integer :: stat
 
-        call lay_out_history(h, n, tips, k, kept, stat)
+        call lay_out_history(h, n, tips, k, kept, stat, strengths=strengths)
         if (stat /= 0) call allocation_failed(error, 'the history of '//itoa(n)// &
                                               ' elements at '//itoa(k)//' steps', &
-                                              real_bytes * 5.0_wp * real(n, wp) * real(k, wp))
+                                              real_bytes * merge(8.0_wp, 5.0_wp, strengths) &
+                                              * real(n, wp) * real(k, wp))
     end subroutine allocate_history
 
-    !> 'step 12 of 101 (sxy = 10): newton, 1 iteration, 0.53 s' (the time since the start).
+    !> Step k's strengths in force: the law's, as the step's solve leaves them, on the
+    !> contact elements, 0 on the others.
+    pure subroutine record_strengths(h, k, law, contact)
+        type(history_record), intent(inout) :: h
+        integer, intent(in) :: k
+        !> The law of the contact elements
+        type(fault_law), intent(in) :: law
+        !> Indices of the contact elements, shape (nc)
+        integer, intent(in) :: contact(:)
+
+        h%mu_in_force(:, k) = 0.0_wp
+        h%sf_in_force(:, k) = 0.0_wp
+        h%tensile_strength_in_force(:, k) = 0.0_wp
+        h%mu_in_force(contact, k) = law%mu_in_force
+        h%sf_in_force(contact, k) = law%sf_in_force
+        h%tensile_strength_in_force(contact, k) = law%tensile_in_force
+    end subroutine record_strengths
+
+    !> 'step 12 of 101 (sxy = 10): newton, 1 iteration, 0.53 s' (the time since the start);
+    !> 'newton, 9 iterations in 3 solves' where the strength fixed point (slip weakening,
+    !> strength loss) solved more than once.
     function step_line(k, nsteps, load, varies, res, seconds) result(line)
         integer, intent(in) :: k, nsteps
         real(wp), intent(in) :: load(:), seconds
@@ -322,6 +363,7 @@ contains
             line = line//', '//itoa(res%pivots)//' pivot'
             if (res%pivots /= 1) line = line//'s'
         end if
+        if (res%solves > 1) line = line//' in '//itoa(res%solves)//' solves'
         if (len(res%fallback) > 0) line = line//' (fell back: '//res%fallback//')'
         line = line//', '//seconds_text(seconds)
     end function step_line

@@ -24,7 +24,7 @@ module ddc_model_records
     public :: lay_out_history, empty_growth_record, reason_coding
     public :: column_loads, column_element_steps, column_tip_steps, column_steps, &
         column_growth_steps, column_growing_tips, column_growing_tip_steps, column_records, &
-        column_path_records, column_elements
+        column_path_records, column_elements, column_strength_steps
     public :: units_none, units_length, units_stress, units_k, units_degree, units_one
     public :: state_coding
 
@@ -39,6 +39,9 @@ module ddc_model_records
     !> holds along a load path only (1 without one); one per element of the final geometry
     !> (n, in /elements)
     integer, parameter :: column_records = 8, column_path_records = 9, column_elements = 10
+    !> A history column per element (n, k) laid out only where the strengths in force can
+    !> change (lay_out_history's strengths) or it is there already
+    integer, parameter :: column_strength_steps = 11
 
     !> What the values of a column measure, for its units attribute: nothing (integers and
     !> strings), length, stress, stress intensity (stress * length**0.5), angle in degrees,
@@ -154,6 +157,8 @@ module ddc_model_records
         integer, allocatable :: origin(:)
         !> Lay out the columns of growth along a load path that are not there yet
         logical :: growth = .false.
+        !> Lay out the columns of the strengths in force that are not there yet
+        logical :: strengths = .false.
         !> The stat of an allocation that failed (0: none)
         integer :: stat = 0
     contains
@@ -185,6 +190,12 @@ contains
                                   history%shear_traction)
         call action%on_real_table(column('normal_traction', column_element_steps, &
                                          units_stress), history%normal_traction)
+        call action%on_real_table(column('mu_in_force', column_strength_steps, units_one), &
+                                  history%mu_in_force)
+        call action%on_real_table(column('sf_in_force', column_strength_steps, units_stress), &
+                                  history%sf_in_force)
+        call action%on_real_table(column('tensile_strength_in_force', column_strength_steps, &
+                                         units_stress), history%tensile_strength_in_force)
         call action%on_real_table(column('k1', column_tip_steps, units_k), history%k1)
         call action%on_real_table(column('k2', column_tip_steps, units_k), history%k2)
         call action%on_strings(column('method', column_steps), history%method)
@@ -286,8 +297,10 @@ contains
     !> history, by default its own; no row: NaN, state_not_grown), tip columns of `tips`
     !> rows, load columns of one row per quantity. The columns of growth along a load path are
     !> laid out when there or asked for; those of the tips that may grow are left as they are
-    !> (the growth record gives them at the end). Values not kept are NaN, 0 or blank.
-    subroutine lay_out_history(history, rows, tips, steps, kept, stat, origin, growth)
+    !> (the growth record gives them at the end); those of the strengths in force when there
+    !> or asked for. Values not kept are NaN, 0 or blank.
+    subroutine lay_out_history(history, rows, tips, steps, kept, stat, origin, growth, &
+                               strengths)
         !> The history
         type(history_record), intent(inout) :: history
         !> Rows of the element columns and of the tip columns, steps of every column
@@ -300,6 +313,8 @@ contains
         integer, intent(in), optional :: origin(:)
         !> Lay out the columns of growth along a load path too (default: when there)
         logical, intent(in), optional :: growth
+        !> Lay out the columns of the strengths in force too (default: when there)
+        logical, intent(in), optional :: strengths
         type(record_layout) :: layout
         integer :: i
 
@@ -313,6 +328,7 @@ contains
             layout%origin = [(i, i = 1, rows)]
         end if
         if (present(growth)) layout%growth = growth
+        if (present(strengths)) layout%strengths = strengths
         call for_each_history_column(history, layout)
         stat = layout%stat
     end subroutine lay_out_history
@@ -340,6 +356,8 @@ contains
             lays_out = .false.
         case (column_growth_steps)
             lays_out = there .or. layout%growth
+        case (column_strength_steps)
+            lays_out = there .or. layout%strengths
         case default
             lays_out = .true.
         end select
@@ -356,7 +374,7 @@ contains
         select case (column%kind)
         case (column_loads)
             table_rows = size(load_path_names)
-        case (column_element_steps)
+        case (column_element_steps, column_strength_steps)
             table_rows = layout%rows
         case default
             table_rows = layout%tips
@@ -486,7 +504,7 @@ contains
         integer :: origin(rows)
         integer :: i
 
-        if (column%kind == column_element_steps) then
+        if (column%kind == column_element_steps .or. column%kind == column_strength_steps) then
             origin = layout%origin
         else
             origin = [(i, i = 1, rows)]

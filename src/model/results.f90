@@ -67,6 +67,10 @@ module ddc_model_results
         real(wp), allocatable :: sf_in_force(:), tensile_in_force(:)
         !> Friction in force at the end (slip weakening; 0 for TWODD-style elements) [-]
         real(wp), allocatable :: mu_in_force(:)
+        !> Elastic part of the DDs of elastic joints, -traction / stiffness (0 for rigid
+        !> contact and TWODD-style elements; the plastic part is ds - ds_elastic) [length
+        !> unit]; not allocated for a model without joints
+        real(wp), allocatable :: ds_elastic(:), dn_elastic(:)
     end type element_results
 
     !> Crack tips: element ends shared with no other element.
@@ -157,6 +161,12 @@ module ddc_model_results
         !> equilibrium residual, shape (k) [-]
         real(wp), allocatable :: certificate_min_z(:), certificate_min_w(:)
         real(wp), allocatable :: certificate_max_complementarity(:), equilibrium_residual(:)
+        !> The strengths in force at the end of each step, where they can change (a law
+        !> beyond Coulomb's or open_cohesion = 'lost'; not allocated otherwise): friction
+        !> [-], cohesion and tensile strength [stress unit] (0 for TWODD-style elements),
+        !> shape (n, k)
+        real(wp), allocatable :: mu_in_force(:, :), sf_in_force(:, :), &
+            tensile_strength_in_force(:, :)
         !> With fracture growth (docs/theory/growth.md#growth-along-a-loading-history; not
         !> allocated otherwise): the rows of the element arrays are the final geometry's
         !> elements (NaN, state_not_grown before an element was made); the number of elements at

@@ -280,6 +280,11 @@ contains
                                stress//'/'//length, error)
             call write_real_1d(group, 'normal_stiffness', &
                                rigid_as_infinity(e%normal_stiffness), stress//'/'//length, error)
+            ! Elastic joints: the elastic part of the DDs (the plastic part is the rest).
+            if (allocated(r%ds_elastic)) then
+                call write_real_1d(group, 'ds_elastic', r%ds_elastic, length, error)
+                call write_real_1d(group, 'dn_elastic', r%dn_elastic, length, error)
+            end if
             call write_growth_elements(group, model, results%growth, error)
         end associate
         call close_group(group, error)

@@ -11,14 +11,14 @@
 !>   (ddc_contact_memory: Lemke 45 nc^2, Newton 1.375 m^2 for a reduced system of m
 !>   unknowns, up to 5.5 nc^2 when every element slips and opens); a loading history
 !>   solves each step with the same method (Newton keeps its factors between steps, Lemke
-!>   its LCP) and stores about 12 reals per element and step, held from the start; a
-!>   growth run whose elements are all contact elements solved by Newton keeps the
-!>   influence matrix and the reduced factors of the last accepted geometry beside those of
-!>   the trial (ddc_growth_solver), with the arrays of the update it may carry on (at most
-!>   3 m^2 / 16 for m = 2N unknowns): 9 N^2 more, counted at the input's N (the grown N is
-!>   not known before the run); elastic joints (a finite shear_stiffness or
-!>   normal_stiffness, ddc_solve_joints) hold A_j (2nc)^2 beside A, and build it with two
-!>   more such matrices, C + K^-1 and the load map;
+!>   its LCP) and stores about 12 reals per element and step (15 with the strengths in
+!>   force), held from the start; a growth run whose elements are all contact elements
+!>   solved by Newton keeps the influence matrix and the reduced factors of the last
+!>   accepted geometry beside those of the trial (ddc_growth_solver), with the arrays of
+!>   the update it may carry on (at most 3 m^2 / 16 for m = 2N unknowns): 9 N^2 more,
+!>   counted at the input's N (the grown N is not known before the run); elastic joints
+!>   (a finite shear_stiffness or normal_stiffness, ddc_solve_joints) hold A_j (2nc)^2
+!>   beside A, and build it with two more such matrices, C + K^-1 and the load map;
 !> - the model and its results, 50 reals per element and 13 per observation point;
 !> - the program itself (libraries, buffers), 20 MB.
 !> The Newton method is estimated twice: from the states its solve starts from (those of
@@ -42,6 +42,7 @@ module ddc_run_memory
     use ddc_contact_memory, only: lemke_bytes, newton_bytes
     use ddc_contact_active_set, only: starting_unknowns
     use ddc_contact_result, only: contact_stress_scale
+    use ddc_solve_frictional, only: strengths_change
     use ddc_model_loads, only: resolve_remote_stress, total_pressure
     implicit none
     private
@@ -52,8 +53,9 @@ module ddc_run_memory
     real(wp), parameter :: program_bytes = 20.0e6_wp
     !> Reals per element of the model and its results, and per observation point
     real(wp), parameter :: element_reals = 50.0_wp, point_reals = 13.0_wp
-    !> Reals per element and step that a loading history stores
-    real(wp), parameter :: history_reals = 12.0_wp
+    !> Reals per element and step that a loading history stores, and those it stores besides
+    !> where it records the strengths in force (records_strengths)
+    real(wp), parameter :: history_reals = 12.0_wp, strength_reals = 3.0_wp
     !> Reals per squared element that a growth run keeps for its base geometry (matrix,
     !> reduced factors and a carried update)
     real(wp), parameter :: growth_base_reals = 9.0_wp
@@ -141,8 +143,8 @@ contains
         history = ''
         if (allocated(model%load_path%vertex)) then
             history = ' (loading history)'
-            fixed = fixed + real_bytes * history_reals * n * &
-                real(1 + sum(model%load_path%steps), wp)
+            fixed = fixed + real_bytes * (history_reals + merge(strength_reals, 0.0_wp, &
+                records_strengths(model))) * n * real(1 + sum(model%load_path%steps), wp)
         end if
         matrix = real_bytes * 4.0_wp * n**2
         if (contact == 0) then
@@ -187,6 +189,21 @@ contains
             need%worst_bytes = need%bytes
         end if
     end function need_of
+
+    !> Whether a loading history of the model records the strengths in force of each step
+    !> (ddc_solve_frictional's strengths_change); not without the per-element laws.
+    pure logical function records_strengths(model)
+        type(model_type), intent(in) :: model
+
+        records_strengths = .false.
+        associate (e => model%elements)
+            if (allocated(e%mu) .and. allocated(e%sf) .and. allocated(e%tensile_strength) &
+                .and. allocated(e%sf_residual) .and. allocated(e%mu_dynamic) .and. &
+                allocated(e%slip_weakening_distance) .and. allocated(e%shear_stiffness) .and. &
+                allocated(e%normal_stiffness)) records_strengths = strengths_change(e, &
+                                                                                  model%solver)
+        end associate
+    end function records_strengths
 
     !> Whether a contact element has an elastic joint (a finite stiffness).
     pure logical function has_joints(model)

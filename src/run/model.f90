@@ -14,6 +14,7 @@ module ddc_run_model
     use ddc_influence_response, only: midpoint_response
     use ddc_solve_elastic, only: solve_elastic, row_kinds
     use ddc_solve_frictional, only: solve_frictional
+    use ddc_solve_joints, only: elastic_dds
     use ddc_post_fields, only: evaluate_field
     use ddc_run_engine, only: model_engine
     use ddc_post_tips, only: find_tips
@@ -101,6 +102,16 @@ contains
             if (allocated(matrix)) deallocate (matrix)
             results%solver%seconds_fields = results%solver%seconds_fields + wall_seconds() - &
                 t_free
+        end if
+        if (allocated(law%shear_stiffness)) then
+            if (law%has_joints()) then
+                associate (e => results%elements)
+                    allocate (e%ds_elastic(n), e%dn_elastic(n))
+                    call elastic_dds(law%joint_compliance(), loaded%pressure, &
+                                     e%shear_traction, e%normal_traction, e%ds_elastic, &
+                                     e%dn_elastic)
+                end associate
+            end if
         end if
         results%solver%seconds_total = wall_seconds() - t_start
     end subroutine run_model

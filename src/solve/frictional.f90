@@ -29,7 +29,7 @@ module ddc_solve_frictional
     use ddc_allocation, only: allocation_failed, real_bytes
     use ddc_contact_result, only: contact_result
     use ddc_contact_formulation, only: solve_contact
-    use ddc_contact_options, only: solver_options
+    use ddc_contact_options, only: solver_options, cohesion_lost
     use ddc_contact_fault_law, only: fault_law, new_fault_law
     use ddc_solve_joints, only: joint_system, joint_load, joint_dds
     implicit none
@@ -37,7 +37,7 @@ module ddc_solve_frictional
 
     public :: solve_frictional
     public :: condensed_contact, condense_contact, contact_load, complete_dds, record_contact
-    public :: release_matrix, fault_law_of
+    public :: release_matrix, fault_law_of, strengths_change
 
     !> The contact elements' view of a model with TWODD-style elements condensed out.
     type :: condensed_contact
@@ -162,6 +162,20 @@ contains
                 shear_stiffness=e%shear_stiffness(pick), normal_stiffness=e%normal_stiffness(pick))
         end associate
     end function fault_law_of
+
+    !> Whether a strength in force can change in a solve of the model: its law goes beyond
+    !> Coulomb's, or open elements lose their cohesion (open_cohesion = 'lost'). A loading
+    !> history records the strengths of each step only then.
+    pure logical function strengths_change(elements, options)
+        !> The model's elements
+        type(element_set), intent(in) :: elements
+        !> Its solver options
+        type(solver_options), intent(in) :: options
+        type(fault_law) :: law
+
+        law = fault_law_of(elements)
+        strengths_change = law%beyond_coulomb() .or. options%open_cohesion == cohesion_lost
+    end function strengths_change
 
     !> Hand over the influence matrix of every element (no copy): the contact block itself
     !> when every element is a contact element, else the whole system.

@@ -19,7 +19,7 @@ module ddc_solve_joints
     implicit none
     private
 
-    public :: joint_system, joint_load, joint_dds
+    public :: joint_system, joint_load, joint_dds, elastic_dds
 
 contains
 
@@ -78,11 +78,27 @@ contains
         real(wp), intent(in) :: p(:), shear(:), normal(:)
         !> Plastic DDs in, total DDs out, shape (n) [length]
         real(wp), intent(inout) :: ds(:), dn(:)
+        real(wp) :: ds_elastic(size(p)), dn_elastic(size(p))
+
+        call elastic_dds(compliance, p, shear, normal, ds_elastic, dn_elastic)
+        ds = ds + ds_elastic
+        dn = dn + dn_elastic
+    end subroutine joint_dds
+
+    !> The elastic DDs of the joints from their tractions: D_e = -K^-1 t' (0 for rigid
+    !> contact); the plastic DDs are the total ones less these.
+    pure subroutine elastic_dds(compliance, p, shear, normal, ds_elastic, dn_elastic)
+        !> Compliance [1/k_s; 1/k_n], shape (2n) [length / stress]
+        real(wp), intent(in) :: compliance(:)
+        !> Fluid pressure, total shear and normal traction, shape (n) [stress]
+        real(wp), intent(in) :: p(:), shear(:), normal(:)
+        !> Elastic shear and normal DDs, shape (n) [length]
+        real(wp), intent(out) :: ds_elastic(:), dn_elastic(:)
         integer :: n
 
         n = size(p)
-        ds = ds - compliance(1:n) * shear
-        dn = dn - compliance(n + 1:) * (normal + p)
-    end subroutine joint_dds
+        ds_elastic = -compliance(1:n) * shear
+        dn_elastic = -compliance(n + 1:) * (normal + p)
+    end subroutine elastic_dds
 
 end module ddc_solve_joints

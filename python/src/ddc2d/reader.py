@@ -47,7 +47,8 @@ HISTORY_LOADS = ("sxx", "syy", "sxy", "dsxx_dy", "dsyy_dy", "dsxy_dy", "p0")
 #: /history datasets of every loading history: DDs and states (steps, elements), leg_steps.
 HISTORY_DATASETS = ("ds", "dn", "state", "leg_steps")
 #: Per-step /history datasets beyond the loads, DDs and states (read when present).
-HISTORY_STEP_DATASETS = ("shear_traction", "normal_traction", "k1", "k2", "pivots",
+HISTORY_STEP_DATASETS = ("shear_traction", "normal_traction", "mu_in_force", "sf_in_force",
+                         "tensile_strength_in_force", "k1", "k2", "pivots",
                          "newton_iterations", "certificate_min_z", "certificate_min_w",
                          "certificate_max_complementarity", "equilibrium_residual")
 #: Per-step /history strings (read when present, decoded).
@@ -391,7 +392,9 @@ def read_history(path, handle, count):
     (steps, elements), ``leg_steps``; when the file has them, ``shear_traction``,
     ``normal_traction`` (steps, elements), ``k1``, ``k2`` (steps, tips), ``pivots``,
     ``newton_iterations``, ``certificate_min_z``, ``certificate_min_w``,
-    ``certificate_max_complementarity``, ``equilibrium_residual`` (steps,) and ``method``,
+    ``certificate_max_complementarity``, ``equilibrium_residual`` (steps,), the strengths in
+    force ``mu_in_force``, ``sf_in_force``, ``tensile_strength_in_force`` (steps, elements)
+    and ``method``,
     ``fallback``: one str per step; with
     fracture growth ``element_count`` (steps,), ``grown_length`` (steps, tips),
     ``tip_fracture_id``, ``tip_end`` (tips,), and element rows NaN (state -1) before an

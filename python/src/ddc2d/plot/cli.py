@@ -42,6 +42,9 @@ The name part of a file is left out when it repeats the kind (a grid named 'map'
   state, an arrow per leg showing the way the path runs; and the slip profiles (against
   the distance along each fracture; a profile equal to an earlier one says so) at chosen
   steps (1-based; default: the path's vertices);
+* ``<stem>_history_strengths.<fmt>`` for a loading history that records the strengths in
+  force (a law beyond Coulomb's): the friction, cohesion and tensile strength in force at
+  the same elements against the load parameter;
 * ``<stem>_growth.<fmt>`` for a fracture growth run (/growth; docs/plotting.md#growth): the grown
   geometry, the input's elements in black and every new element coloured by the step that
   created it (/elements/created_step), link points and a half-plane's surface, and K_eq /
@@ -238,7 +241,7 @@ def _figures(result, receivers, chosen, args, out_dir, stem):
     """(Figure maker, path without extension) of every figure of the result, in the order
     they are written; a maker is called only when its figure is written."""
     used = {f"{stem}_profiles", f"{stem}_history", f"{stem}_tips", f"{stem}_growth",
-            f"{stem}_growth_history"}
+            f"{stem}_growth_history", f"{stem}_history_strengths"}
     for fracture, profile in fracture_profiles(result):
         yield (lambda f=fracture, p=profile: figures.plot_profile(result, f, p),
                figure_base(out_dir, stem, "profile", fracture["label"], used))
@@ -262,6 +265,9 @@ def _figures(result, receivers, chosen, args, out_dir, stem):
                figure_base(out_dir, stem, field["kind"], name, used))
     if chosen is not None:
         yield (lambda: figures.plot_history(result, *chosen)), out_dir / f"{stem}_history"
+        if "mu_in_force" in result["history"]:
+            yield ((lambda: figures.plot_history_strengths(result, chosen[0])),
+                   out_dir / f"{stem}_history_strengths")
     if result["growth"] is not None:
         yield (lambda: figures.plot_growth(result)), out_dir / f"{stem}_growth"
     if result["history"] is not None and "grown_length" in result["history"]:

@@ -96,6 +96,16 @@ CLIM_PERCENTILE = 98.0
 HEADING_WIDTH = 80
 #: (axis index, profile key, axis label) of the two profile panels.
 PROFILE_PANELS = ((0, "slip", "slip $-D_s$"), (1, "opening", "opening $-D_n$"))
+#: The strength panels of a profile (strength_panels): (key, axis label, unit kind, lines),
+#: each line (dataset in force, dataset as given, legend text).
+STRENGTH_PANELS = (
+    ("friction", "friction", None, (("mu_in_force", "mu", r"$\mu$"),)),
+    ("strength", "strength", "stress",
+     (("sf_in_force", "sf", "cohesion $S_f$"),
+      ("tensile_strength_in_force", "tensile_strength", "tensile strength $T$"))),
+)
+#: (profile key, /elements total and elastic DD, legend text) of the joint panel.
+JOINT_PARTS = (("slip", "ds", "ds_elastic", "slip"), ("opening", "dn", "dn_elastic", "opening"))
 #: (field key, panel label, unit kind) of the observation line figures.
 LINE_PANELS = (("ux", "$u_x$", "length"), ("uy", "$u_y$", "length"),
                ("sxx", r"$\sigma_{xx}$", "stress"), ("syy", r"$\sigma_{yy}$", "stress"),
@@ -818,3 +828,63 @@ def map_figure_size(x, y, width=8.0):
 def quiver_step(nx, ny):
     """Stride through the grid so that at most QUIVER_MAX_ARROWS arrows fit on a side."""
     return max(1, -(-max(nx, ny) // QUIVER_MAX_ARROWS))
+
+
+def _fracture_values(result, fracture, key):
+    """/elements `key` over the elements of one fracture, as floats."""
+    return np.asarray(result["elements"][key][fracture["first"] - 1:fracture["last"]],
+                      dtype=float)
+
+
+def strength_panels(result, fracture):
+    """The strength panels of a fracture's profile, drawn below its DDs: (key, axis label,
+    unit kind, lines), each line (legend text, values in force, values as given) over the
+    fracture's elements (STRENGTH_PANELS). Friction when it weakens with slip (mu_dynamic
+    below mu on some element: weakened and intact slipping elements then differ);
+    cohesion and tensile strength when it has a tensile strength or a residual cohesion
+    below sf; a strength 0 throughout (as given and in force) has no line. None (an empty
+    tuple) for Coulomb's law, elastic joints alone, or a file without the strengths in
+    force."""
+    elements = result["elements"]
+    needed = ("mu_in_force", "sf_in_force", "tensile_strength_in_force", "mu", "sf",
+              "tensile_strength", "mu_dynamic", "sf_residual")
+    if not all(key in elements for key in needed):
+        return ()
+
+    def values(key):
+        return _fracture_values(result, fracture, key)
+
+    shown = {"friction": bool(np.any(values("mu_dynamic") < values("mu"))),
+             "strength": bool(np.any(values("tensile_strength") > 0.0)
+                              or np.any(values("sf_residual") < values("sf")))}
+    panels = []
+    for key, label, unit, lines in STRENGTH_PANELS:
+        # A strength that is 0 throughout, given and in force, is left out.
+        drawn = tuple((text, values(force), values(given)) for force, given, text in lines
+                      if np.any(values(force) != 0.0) or np.any(values(given) != 0.0))
+        if shown[key] and drawn:
+            panels.append((key, label, unit, drawn))
+    return tuple(panels)
+
+
+def joint_parts(result, fracture, keys):
+    """The elastic and plastic parts of the DDs `keys` ('slip', 'opening': the profile
+    panels shown) of a fracture of elastic joints (a finite shear_stiffness or
+    normal_stiffness): (legend text, values) pairs, elastic = -ds_elastic (-dn_elastic),
+    plastic = the total less the elastic part; empty when the fracture has no joint or the
+    file no elastic DDs."""
+    elements = result["elements"]
+    if not all(key in elements for key in ("ds_elastic", "dn_elastic", "shear_stiffness",
+                                           "normal_stiffness")):
+        return ()
+    finite = (np.isfinite(_fracture_values(result, fracture, "shear_stiffness"))
+              | np.isfinite(_fracture_values(result, fracture, "normal_stiffness")))
+    if not np.any(finite):
+        return ()
+    lines = []
+    for key, total, elastic, text in JOINT_PARTS:
+        if key in keys:
+            part = -_fracture_values(result, fracture, elastic)
+            lines += [(f"elastic {text}", part),
+                      (f"plastic {text}", -_fracture_values(result, fracture, total) - part)]
+    return tuple(lines)

@@ -34,6 +34,7 @@ from .data import (
     history_parameter,
     history_unit,
     is_cross_section,
+    joint_parts,
     leg_arrows,
     link_points,
     map_figure_size,
@@ -46,6 +47,7 @@ from .data import (
     same_profiles,
     slip_sense,
     state_names,
+    strength_panels,
     unit_label,
 )
 
@@ -130,6 +132,35 @@ def plot_history(result, elements, steps):
         ax.axhline(0.0, color="0.7", linewidth=0.5)
         ax.grid(True, linewidth=0.3)
     fig.suptitle(heading(result, f"loading history ({slip.shape[0]} steps)"))
+    return fig
+
+
+def plot_history_strengths(result, elements):
+    """The strengths in force at elements (0-based) against the load parameter of a loading
+    history that records them (/history mu_in_force, sf_in_force,
+    tensile_strength_in_force): the friction, and the cohesion and tensile strength.
+    Returns the Figure."""
+    history = result["history"]
+    name, load = history_parameter(history)
+    unit = history_unit(result, name)
+    fig, (ax_mu, ax_strength) = plt.subplots(1, 2, figsize=(11, 4.5),
+                                             constrained_layout=True)
+    for i, e in enumerate(elements):
+        colour = f"C{i % 10}"
+        ax_mu.plot(load, history["mu_in_force"][:, e], color=colour, marker=".",
+                   label=f"element {e + 1}", gid=f"mu_in_force:element_{e + 1}")
+        ax_strength.plot(load, history["sf_in_force"][:, e], color=colour, marker=".",
+                         label=f"cohesion, element {e + 1}", gid=f"sf_in_force:element_{e + 1}")
+        ax_strength.plot(load, history["tensile_strength_in_force"][:, e], color=colour,
+                         linestyle="--", label=f"tensile strength, element {e + 1}",
+                         gid=f"tensile_strength_in_force:element_{e + 1}")
+    ax_mu.set_ylabel("friction in force")
+    ax_strength.set_ylabel("strength in force" + unit_label(result["stress_unit"]))
+    for ax in (ax_mu, ax_strength):
+        ax.set_xlabel(f"{name}" + unit_label(unit))
+        ax.legend(fontsize="small", loc="best")
+        ax.grid(True, linewidth=0.3)
+    fig.suptitle(heading(result, f"strengths in force along the path ({load.size} steps)"))
     return fig
 
 
@@ -356,7 +387,9 @@ def plot_profile(result, fracture, profile):
     positive slip means (slip_sense); returns the Figure."""
     length_unit = result["length_unit"]
     panels = profile_panels(result)
-    fig, axes = _profile_axes(panels)
+    strengths = strength_panels(result, fracture)
+    joints = joint_parts(result, fracture, [key for _, key, _ in panels])
+    fig, axes = _profile_axes((*panels, *strengths, *((joints,) if joints else ())))
     for row, key, label in panels:
         ax = axes[row]
         ax.plot(profile["distance"], profile[key], color="0.3", linewidth=1.0,
@@ -367,6 +400,7 @@ def plot_profile(result, fracture, profile):
         ax.set_ylabel(label + unit_label(length_unit))
         ax.grid(True, linewidth=0.3)
     axes[0].legend(title="element state", loc="best", fontsize="small")
+    _draw_strengths(axes[len(panels):], profile["distance"], strengths, joints, result)
     if panels[0][1] == "slip":
         axes[0].set_title(slip_sense(result, fracture), fontsize="small", loc="left")
     axes[-1].set_xlabel("distance along fracture" + unit_label(length_unit))
@@ -376,6 +410,29 @@ def plot_profile(result, fracture, profile):
         text += "\nno element " + ("opens" if panels[0][1] == "slip" else "slips")
     fig.suptitle(heading(result, text))
     return fig
+
+
+def _draw_strengths(axes, distance, strengths, joints, result):
+    """The panels below a profile's DDs: each strength panel (strength_panels: a line in
+    force and a dashed one as given per strength), then the elastic and plastic parts of a
+    joint's DDs (joint_parts); one legend each."""
+    for ax, (key, label, unit, lines) in zip(axes, strengths):
+        for i, (text, in_force, given) in enumerate(lines):
+            ax.plot(distance, in_force, color=f"C{i}", linewidth=1.2, marker=".",
+                    label=f"{text} in force", gid=f"{key}:{text} in force")
+            ax.plot(distance, given, color=f"C{i}", linewidth=0.8, linestyle="--",
+                    label=f"{text} as given", gid=f"{key}:{text} as given")
+        ax.set_ylabel(label + (unit_label(result[f"{unit}_unit"]) if unit else ""))
+    if joints:
+        ax = axes[len(strengths)]
+        for i, (text, values) in enumerate(joints):
+            ax.plot(distance, values, color=f"C{i}", linewidth=1.0,
+                    linestyle=LINESTYLES[i % len(LINESTYLES)], label=text, gid=f"joint:{text}")
+        ax.axhline(0.0, color="0.7", linewidth=0.5)
+        ax.set_ylabel("joint DDs" + unit_label(result["length_unit"]))
+    for ax in axes:
+        ax.legend(loc="best", fontsize="small")
+        ax.grid(True, linewidth=0.3)
 
 
 def plot_overview(result):
