@@ -1,14 +1,14 @@
 """--resume OLD.h5 (docs/theory/earth.md#what-a-step-hands-on): the result files a run refuses
 to continue, those it accepts, and the continuation.
 
-Every refusal exits 2 with one message naming the resume file, writes no output (nor a
-.partial file) and leaves the resume file as it was; another model is named by the group and
-variable that changed. A resumed result records the file it continued (resumed_from). A
-resumed run equals the uninterrupted one to 1e-12 (tests/compare_results.py: every array of /elements, /tips, /fields, /history
-and /growth): growth along a load path resumed after a shorter path (the earlier run
-arrested) and after a step limit inside a load step, on the Lemke and on the kept Newton
-path; growth at a fixed load after a step limit; a loading history with residual cohesion
-and slip weakening (its memory: slip, strengths in force and slip path).
+Every refusal exits 2 with one message naming the resume file, writes no output (nor a .partial
+file) and leaves the resume file as it was; another model is named by the group and variable
+that changed. A resumed result records the file it continued (resumed_from). A resumed run
+equals the uninterrupted one to 1e-12 (tests/compare_results.py: every array of /elements,
+/tips, /fields, /history and /growth): growth along a load path resumed after a shorter path
+(the earlier run arrested) and after a step limit inside a load step, on the Lemke and on the
+kept Newton path; growth at a fixed load after a step limit; a loading history with residual
+cohesion and slip weakening (its memory: slip, strengths in force and slip path).
 """
 
 import subprocess
