@@ -67,7 +67,8 @@ GROWTH_MARKERS = {"grew": ("o", "grew"), "subcritical": ("o", "subcritical"),
                   "surface": ("^", "stopped: surface"),
                   "corrector": ("s", "grew at the MTS angle"),
                   "linked": ("P", "stopped: linked"), "closed": ("v", "closed (K_I = 0)"),
-                  "waiting": ("D", "waiting")}
+                  "waiting": ("D", "waiting"),
+                  "enclosing": ("x", "stopped: enclosing")}
 
 
 def plot_history(result, elements, steps):
