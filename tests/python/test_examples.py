@@ -203,11 +203,13 @@ def check_growth_along_path(f, first_load_step, length):
 
 def check_echelon_linking(f):
     """Step 2: the west inner tip links to east (5), the east one would close a contour
-    (refused, 2); the outer tips arrest; the link ends on a vertex of east, no tip there."""
+    (refused, 8 enclosing); the outer tips arrest; the link ends on a vertex of east, no tip
+    there."""
     g = f["growth"]
     reason = g["reason"][()]
     assert list(reason[growth_rows(f, "west", 1)]) == [0, 5]
-    assert list(reason[growth_rows(f, "east", 0)]) == [0, 2]
+    assert list(reason[growth_rows(f, "east", 0)]) == [0, 8]
+    assert b"8 enclosing" in g.attrs["reason_coding"]
     for fracture, outer in (("west", 0), ("east", 1)):
         assert reason[growth_rows(f, fracture, outer)][-1] == 1
     assert decode(g.attrs["end_reason"]) == "arrested"
