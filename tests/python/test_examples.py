@@ -233,11 +233,17 @@ def check_hydraulic_fracture(f):
 
 
 def check_joint_to_surface(f):
+    """The upper tip breaks through the surface: its last element ends on y = 0 and the
+    mouth is no tip; the lower tip arrests."""
     reason = f["growth/reason"][()]
-    assert reason[growth_rows(f, "joint", 1)[-1]] == 3  # the upper tip: at the surface
+    assert reason[growth_rows(f, "joint", 1)[-1]] == 3  # the upper tip: through the surface
     assert reason[growth_rows(f, "joint", 0)[-1]] == 1  # the lower tip: arrested
     assert decode(f["growth"].attrs["end_reason"]) == "arrested"
-    assert max(f["elements/y_begin"][()].max(), f["elements/y_end"][()].max()) < -2.5
+    e = f["elements"]
+    last = f["fractures/last_element"][()][0] - 1
+    assert abs(e["y_end"][()][last]) <= 1e-12
+    assert max(e["y_begin"][()].max(), np.delete(e["y_end"][()], last).max()) < -2.5
+    assert np.all(f["tips/y"][()] < -2.5)
 
 
 def check_progressive_failure(f):
