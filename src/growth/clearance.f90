@@ -196,8 +196,9 @@ contains
             if (e%domain == domain_half_plane) then
                 do i = 1, e%n
                     tol = 2.0e-8_wp * e%half_length(i)
-                    if (min(abs(e%y_begin(i)), abs(e%y_end(i))) <= tol) &
+                    if (min(abs(e%y_begin(i)), abs(e%y_end(i))) <= tol) then
                         call join(root, e%fracture_id(i), surface_target)
+                    end if
                 end do
             end if
             do i = 1, e%n

@@ -1,6 +1,6 @@
 !> What became of each tip of a growth run: its path length, the steps it grew in (a link
-!> and a break-through of the free surface count), its last record (why it stopped) from the growth record, and the fracture a
-!> linked tip ends on from the final geometry.
+!> and a break-through of the free surface count), its last record (why it stopped) from
+!> the growth record, and the fracture a linked tip ends on from the final geometry.
 module ddc_growth_summary
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type
