@@ -64,7 +64,7 @@ GROWTH_CMAP = "plasma"
 #: /growth/reason (an open marker for 'subcritical'); a reason not here gets a '+'.
 GROWTH_MARKERS = {"grew": ("o", "grew"), "subcritical": ("o", "subcritical"),
                   "intersection": ("X", "stopped: intersection"),
-                  "surface": ("^", "stopped: surface"),
+                  "surface": ("^", "broke through the surface"),
                   "corrector": ("s", "grew at the MTS angle"),
                   "linked": ("P", "stopped: linked"), "closed": ("v", "closed (K_I = 0)"),
                   "waiting": ("D", "waiting"),
