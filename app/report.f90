@@ -9,7 +9,7 @@ module ddc_app_report
         growth_tips_names, growth_criterion_names
     use ddc_model_results, only: model_results, state_names, point_near, point_on_element, &
         growth_reason_names, growth_end_names, growth_subcritical, growth_intersection, &
-        growth_surface, growth_linked, growth_closed, growth_waiting
+        growth_surface, growth_linked, growth_closed, growth_waiting, growth_enclosing
     use ddc_model_plausibility, only: plausibility_notes, depth_range
     use ddc_growth_summary, only: tip_summary, summarize_tips, linked_fracture
     use ddc_contact_options, only: lcp_method_names, open_cohesion_names
@@ -347,11 +347,13 @@ contains
         case (growth_intersection)
             text = 'intersection: next to another element'
         case (growth_surface)
-            text = 'surface: next to the free surface'
+            text = 'surface: broke through the free surface'
         case (growth_linked)
             text = 'linked: ends on fracture'
         case (growth_closed)
             text = 'closed: the kink closes (K_I = 0)'
+        case (growth_enclosing)
+            text = 'enclosing: a link would enclose a block'
         case (growth_waiting)
             text = 'step limit (critical, waiting for a more critical tip)'
         case default

@@ -3,6 +3,13 @@
 !> half-plane new elements that would come that close to the free surface y = 0 (or reach it).
 !> Nothing is ever meshed across another fracture.
 !>
+!> Breaking through: in a half-plane a path that would reach the surface, or come that close
+!> to it, ends on it instead (reason surface): a link whose target is the surface (target 0),
+!> to where the path crosses y = 0 or, where it only comes close, to the point of the surface
+!> above the path's highest point; its last point has y = 0 bit for bit and is a crack mouth,
+!> no tip. It is refused (the tip stops: intersection) when it would not keep clear of the
+!> other elements.
+!>
 !> Linking: a path that meets an element j of another fracture ends on it instead. The link
 !> point P is the crossing with j, or the point of j nearest to the path where it only comes
 !> close; P within a quarter of j's length of a vertex of j snaps to that vertex (no tiny
@@ -13,15 +20,17 @@
 !> clearance of an element of a third fracture or of its own, touch the other fracture
 !> before P (it may approach it at a shallow angle: a hook), or come within clearance of
 !> another path or link of the step (head-on); when two links would split the same
-!> element; or when the two fractures are connected already (by a shared vertex or an
-!> earlier link; of the step's tips the first in order links): the link would close a
-!> contour around a block of rock whose rigid motion leaves the system singular (with
-!> contact elements the block slides freely between open and slipping faces) and its DDs
+!> element. When the two fractures are connected already (by a shared vertex, an earlier
+!> link, or in a half-plane both by the free surface; of the step's tips the first in order
+!> links) the link is refused as enclosing: it would close a contour around a block of rock
+!> (or a wedge under the surface) whose rigid motion leaves the system singular (with contact
+!> elements the block slides freely between open and slipping faces) and its DDs
 !> undetermined.
 module ddc_growth_clearance
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type, domain_half_plane
-    use ddc_model_results, only: growth_intersection, growth_surface, growth_linked
+    use ddc_model_results, only: growth_intersection, growth_surface, growth_linked, &
+        growth_enclosing
     use ddc_growth_extension, only: tip_path, tip_element, path_element_length, &
         element_split, outward_direction
     use ddc_mesh_segments, only: segment_distance, point_segment_distance, crossing_fraction, &
@@ -29,14 +38,16 @@ module ddc_growth_clearance
     implicit none
     private
 
-    public :: check_paths, path_clear, tip_link, link_parts
+    public :: check_paths, path_clear, tip_link, link_parts, ends_on_link
 
-    !> A tip's link to another fracture (docs/theory/growth.md#linking-and-stops).
+    !> A tip's link to another fracture, or through the free surface
+    !> (docs/theory/growth.md#linking-and-stops).
     type :: tip_link
         !> The link path from the tip to the link point (its last point)
         type(tip_path) :: path
-        !> The element of the other fracture it ends on (index in the model before growing)
-        !> and whether that element is split at the link point (else the point is its vertex)
+        !> The element of the other fracture it ends on (index in the model before growing;
+        !> surface_target for the free surface) and whether that element is split at the link
+        !> point (else the point is its vertex)
         integer :: target = 0
         logical :: split = .false.
         !> Applied angle, counter-clockwise from the tip's outward direction [rad], and
@@ -51,9 +62,12 @@ module ddc_growth_clearance
     !> and from the free surface
     real(wp), parameter :: clearance_fraction = 0.5_wp
 
-    !> check_paths' code of a path that keeps clear (else a growth reason: growth_intersection
-    !> or growth_surface)
+    !> check_paths' code of a path that keeps clear (else a growth reason: growth_intersection,
+    !> growth_surface, growth_linked or growth_enclosing)
     integer, parameter :: path_clear = 0
+
+    !> The target of a link through the free surface (no element)
+    integer, parameter :: surface_target = 0
 
 contains
 
@@ -63,8 +77,11 @@ contains
     !> the surface. The first new element may meet the tip element only at the tip: its
     !> far end must keep clear of the tip element. With `links`, a path that meets an element
     !> of another fracture links (growth_linked, its link in links) unless the link is
-    !> refused; `fixed` are the links of the step made before, which the new paths and
-    !> links must keep clear of.
+    !> refused (growth_enclosing when the fractures are connected already, else
+    !> growth_intersection), and one that does not keep clear of the surface breaks through
+    !> it (growth_surface, its link in links) unless that link is refused
+    !> (growth_intersection); `fixed` are the links of the step made before, which the new
+    !> paths and links must keep clear of.
     pure subroutine check_paths(model, paths, active, problem, links, fixed)
         !> The model before growing, geometry computed
         type(model_type), intent(in) :: model
@@ -72,8 +89,7 @@ contains
         type(tip_path), intent(in) :: paths(:)
         !> Which paths are candidates, shape (size(paths))
         logical, intent(in) :: active(:)
-        !> path_clear, growth_intersection or growth_surface for each path (path_clear when
-        !> not active)
+        !> path_clear or a growth reason for each path (path_clear when not active)
         integer, intent(out) :: problem(:)
         !> The links of the paths that link, shape (size(paths))
         type(tip_link), intent(out), optional :: links(:)
@@ -90,13 +106,28 @@ contains
             clearance(p) = clearance_fraction * path_element_length(paths(p))
             used(p) = paths(p)
             call hits_model(model, paths(p), clearance(p), hit)
-            if (hit == 0) cycle
+            if (hit == 0) then
+                ! Clear of the elements: in a half-plane, maybe not of the surface.
+                if (model%elements%domain /= domain_half_plane) cycle
+                if (all(paths(p)%y(1:) <= -clearance(p))) cycle
+                problem(p) = growth_surface
+                if (.not. present(links)) cycle
+                call surface_link(model, paths(p), clearance(p), links(p), made)
+                if (made) then
+                    used(p) = links(p)%path
+                else
+                    problem(p) = growth_intersection
+                end if
+                cycle
+            end if
             problem(p) = growth_intersection
             if (.not. present(links)) cycle
             call make_link(model, paths(p), clearance(p), hit, links(p), made)
-            if (made) made = .not. connected(model, paths(p)%fracture, &
-                model%elements%fracture_id(hit), earlier())
-            if (made) then
+            if (.not. made) cycle
+            if (connected(model, paths(p)%fracture, model%elements%fracture_id(hit), &
+                          earlier())) then
+                problem(p) = growth_enclosing
+            else
                 problem(p) = growth_linked
                 used(p) = links(p)%path
             end if
@@ -123,11 +154,6 @@ contains
                 if (clash) problem(p) = growth_intersection
             end do
         end do
-        if (model%elements%domain /= domain_half_plane) return
-        do p = 1, size(paths)
-            if (.not. active(p) .or. problem(p) /= path_clear) cycle
-            if (any(paths(p)%y(1:) > -clearance(p))) problem(p) = growth_surface
-        end do
 
     contains
 
@@ -139,7 +165,7 @@ contains
             allocate (made_links(0))
             if (present(fixed)) made_links = fixed
             do q = 1, p - 1
-                if (problem(q) == growth_linked) made_links = [made_links, links(q)]
+                if (ends_on_link(problem(q))) made_links = [made_links, links(q)]
             end do
         end function earlier
 
@@ -147,21 +173,34 @@ contains
 
     !> Whether fractures a and b are connected: by chains of fractures that share an element
     !> end (within 1e-8 of the shorter element's length, as the tips are found) or that
-    !> the links join.
+    !> the links join; in a half-plane the free surface (node surface_target) joins the
+    !> fractures with an element end on it and those the step's links take through it.
     pure logical function connected(model, a, b, links)
         type(model_type), intent(in) :: model
         integer, intent(in) :: a, b
         type(tip_link), intent(in) :: links(:)
-        integer :: root(size(model%fractures)), i, j, k
+        integer :: root(surface_target:size(model%fractures)), i, j, k
         real(wp) :: tol
 
-        root = [(i, i = 1, size(root))]
+        root = [(i, i = surface_target, size(model%fractures))]
         do k = 1, size(links)
             associate (l => links(k))
-                call join(root, l%path%fracture, model%elements%fracture_id(l%target))
+                if (l%target == surface_target) then
+                    call join(root, l%path%fracture, surface_target)
+                else
+                    call join(root, l%path%fracture, model%elements%fracture_id(l%target))
+                end if
             end associate
         end do
         associate (e => model%elements)
+            if (e%domain == domain_half_plane) then
+                do i = 1, e%n
+                    tol = 2.0e-8_wp * e%half_length(i)
+                    if (min(abs(e%y_begin(i)), abs(e%y_end(i))) <= tol) then
+                        call join(root, e%fracture_id(i), surface_target)
+                    end if
+                end do
+            end if
             do i = 1, e%n
                 do j = i + 1, e%n
                     if (e%fracture_id(i) == e%fracture_id(j)) cycle
@@ -178,9 +217,10 @@ contains
         connected = find(root, a) == find(root, b)
     end function connected
 
-    !> The set of fracture f (union-find over fractures: root(f) == f at a set's root).
+    !> The set of fracture f (union-find over fractures and the surface: root(f) == f at a
+    !> set's root).
     pure integer function find(root, f)
-        integer, intent(in) :: root(:), f
+        integer, intent(in) :: root(surface_target:), f
 
         find = f
         do while (root(find) /= find)
@@ -188,9 +228,9 @@ contains
         end do
     end function find
 
-    !> Join the sets of fractures f and g.
+    !> Join the sets of fractures (or the surface) f and g.
     pure subroutine join(root, f, g)
-        integer, intent(inout) :: root(:)
+        integer, intent(inout) :: root(surface_target:)
         integer, intent(in) :: f, g
 
         root(find(root, f)) = find(root, g)
@@ -251,8 +291,8 @@ contains
         integer, intent(in) :: hit
         type(tip_link), intent(out) :: link
         logical, intent(out) :: made
-        real(wp) :: px, py, t, length, h, dx, dy, outward(2)
-        integer :: k, n, f, parent
+        real(wp) :: px, py, t, length
+        integer :: k, f
 
         made = .false.
         associate (e => model%elements)
@@ -278,12 +318,53 @@ contains
             k = model%fractures(f)%last_element
             if (hypot(px - e%x_end(k), py - e%y_end(k)) < clearance) return
         end associate
+        call straight_link(model, path, px, py, link, made)
+        if (made) made = link_clear(model, link, clearance)
+    end subroutine make_link
+
+    !> The link of a path (clear of every element) that does not keep clear of the free
+    !> surface: to where its first new element that reaches y = 0 crosses it, else to the
+    !> point of the surface above its highest point; made false when it may not break through
+    !> (the link would not keep clear of the other elements).
+    pure subroutine surface_link(model, path, clearance, link, made)
+        type(model_type), intent(in) :: model
+        type(tip_path), intent(in) :: path
+        real(wp), intent(in) :: clearance
+        type(tip_link), intent(out) :: link
+        logical, intent(out) :: made
+        real(wp) :: px, t
+        integer :: k
+
+        link%target = surface_target
+        px = path%x(maxloc(path%y, 1) - 1)
+        do k = 1, path%n
+            if (path%y(k) < 0.0_wp) cycle
+            t = -path%y(k - 1) / (path%y(k) - path%y(k - 1))
+            px = path%x(k - 1) + t * (path%x(k) - path%x(k - 1))
+            exit
+        end do
+        call straight_link(model, path, px, 0.0_wp, link, made)
+        if (made) made = link_clear(model, link, clearance)
+    end subroutine surface_link
+
+    !> The path, length and angle of a link running straight from a path's tip to the link
+    !> point (px, py) in n = max(1, nint(length / h)) equal elements, its last point (px, py)
+    !> bit for bit; made false when the link point is the tip.
+    pure subroutine straight_link(model, path, px, py, link, made)
+        type(model_type), intent(in) :: model
+        type(tip_path), intent(in) :: path
+        real(wp), intent(in) :: px, py
+        type(tip_link), intent(inout) :: link
+        logical, intent(out) :: made
+        real(wp) :: dx, dy, outward(2)
+        integer :: k, n, parent
+
         dx = px - path%x(0)
         dy = py - path%y(0)
         link%length = hypot(dx, dy)
-        if (link%length <= 0.0_wp) return
-        h = path_element_length(path)
-        n = max(1, nint(link%length / h))
+        made = link%length > 0.0_wp
+        if (.not. made) return
+        n = max(1, nint(link%length / path_element_length(path)))
         link%path%fracture = path%fracture
         link%path%end = path%end
         link%path%n = n
@@ -299,8 +380,7 @@ contains
         parent = tip_element(model, path%fracture, path%end)
         outward = outward_direction(model%elements, parent, path%end)
         link%theta = atan2(outward(1) * dy - outward(2) * dx, outward(1) * dx + outward(2) * dy)
-        made = link_clear(model, link, clearance)
-    end subroutine make_link
+    end subroutine straight_link
 
     !> Where a path meets element j: the crossing of its first new element that meets j, or
     !> where it only comes close, the point of j nearest to that element's end nearer to j;
@@ -349,18 +429,22 @@ contains
     !> element of the model, except from the target's fracture (which it must only not touch
     !> before the link point), the last one from those that hold the link point, and the
     !> first one from the tip element (only its far end must keep clear of it); in a
-    !> half-plane, every link point keeps clear of the surface.
+    !> half-plane, every point of a link to another fracture keeps clear of the surface.
     pure logical function link_clear(model, link, clearance)
         type(model_type), intent(in) :: model
         type(tip_link), intent(in) :: link
         real(wp), intent(in) :: clearance
         real(wp) :: px, py, d
-        integer :: k, j, parent
+        integer :: k, j, parent, target_fracture
 
         link_clear = .false.
+        target_fracture = 0
         associate (e => model%elements, p => link%path)
-            if (e%domain == domain_half_plane) then
-                if (any(p%y(1:) > -clearance)) return
+            if (link%target /= surface_target) then
+                target_fracture = e%fracture_id(link%target)
+                if (e%domain == domain_half_plane) then
+                    if (any(p%y(1:) > -clearance)) return
+                end if
             end if
             parent = tip_element(model, p%fracture, p%end)
             px = p%x(p%n)
@@ -380,7 +464,7 @@ contains
                     ! The link may meet its target's fracture at a shallow angle (a hook):
                     ! there it must not touch it before P, nor the last element the target's
                     ! neighbours (a quarter of the target's length from P at least).
-                    if (e%fracture_id(j) == e%fracture_id(link%target) .and. &
+                    if (e%fracture_id(j) == target_fracture .and. &
                         (k < p%n .or. next_to_target(j))) then
                         if (d <= 0.0_wp) return
                     else if (d < clearance) then
@@ -404,12 +488,14 @@ contains
         end function holds_point
 
         !> Element j shares an end with the target (bit for bit: the same fracture's
-        !> neighbours).
+        !> neighbours); never for a link through the surface.
         pure logical function next_to_target(j)
             integer, intent(in) :: j
             integer :: t
 
+            next_to_target = .false.
             t = link%target
+            if (t == surface_target) return
             associate (e => model%elements)
                 next_to_target = (e%x_begin(j) == e%x_end(t) .and. e%y_begin(j) == e%y_end(t)) &
                     .or. (e%x_end(j) == e%x_begin(t) .and. e%y_end(j) == e%y_begin(t))
@@ -449,5 +535,14 @@ contains
             end do
         end do
     end function path_distance
+
+    !> Whether a tip with this reason ends on a link: to another fracture (growth_linked) or
+    !> through the free surface (growth_surface with a link).
+    elemental logical function ends_on_link(reason)
+        !> A growth reason
+        integer, intent(in) :: reason
+
+        ends_on_link = reason == growth_linked .or. reason == growth_surface
+    end function ends_on_link
 
 end module ddc_growth_clearance

@@ -10,7 +10,8 @@
 !> open trial (the secant may overshoot into a closing kink; giving up there would stop
 !> the tip at a corrector artefact). A tip not converged within the solve budget grows at
 !> its MTS angle (reason growth_corrector_failed; that trial was open). A corrected path
-!> that meets another fracture links (ddc_growth_clearance, reason growth_linked); every
+!> that meets another fracture links (ddc_growth_clearance, reason growth_linked), one that
+!> reaches the free surface breaks through it (reason growth_surface); every
 !> later trial of the step holds the step's links, so the other tips are corrected against
 !> the linked network.
 module ddc_growth_corrector
@@ -19,10 +20,10 @@ module ddc_growth_corrector
     use ddc_error, only: error_type
     use ddc_model_types, only: model_type, growth_options, condition_contact
     use ddc_model_results, only: model_results, state_open, growth_grew, &
-        growth_corrector_failed, growth_closed, growth_linked
+        growth_corrector_failed, growth_closed
     use ddc_growth_solver, only: growth_solver, solve_grown
     use ddc_growth_extension, only: tip_path, extend_model, element_split
-    use ddc_growth_clearance, only: check_paths, path_clear, tip_link, link_parts
+    use ddc_growth_clearance, only: check_paths, path_clear, tip_link, link_parts, ends_on_link
     use ddc_growth_tips, only: fracture_tip
     use ddc_growth_mts, only: kink_slope
     use ddc_growth_kinks, only: kink, step_kinks, kink_path, step_links
@@ -275,7 +276,7 @@ contains
                 iteration(i)%active = .false.
                 kinks%tip(i)%reason = problem(i)
             end if
-            if (problem(i) == growth_linked) kinks%tip(i)%link = links(i)
+            if (ends_on_link(problem(i))) kinks%tip(i)%link = links(i)
         end do
     end subroutine update_paths
 

@@ -45,7 +45,7 @@ module ddc_growth_driver
     use ddc_error, only: error_type, set_internal_error
     use ddc_model_types, only: model_type, growth_options, growth_tips_most_critical
     use ddc_model_results, only: model_results, growth_record, growth_grew, growth_subcritical, &
-        growth_corrector_failed, growth_closed, growth_waiting, growth_linked, growth_arrested, &
+        growth_corrector_failed, growth_closed, growth_waiting, growth_arrested, &
         growth_step_limit
     use ddc_model_restart, only: restart_state
     use ddc_growth_run_state, only: reason_stopped, step_tips, growth_state, start_run, resume_run
@@ -55,7 +55,7 @@ module ddc_growth_driver
     use ddc_growth_criterion, only: assess_tip, kink_angles, most_critical
     use ddc_growth_kinks, only: kink, step_kinks, grow_paths
     use ddc_growth_extension, only: tip_path, make_path, tip_element
-    use ddc_growth_clearance, only: check_paths, path_clear
+    use ddc_growth_clearance, only: check_paths, path_clear, ends_on_link
     use ddc_growth_tips, only: growing_tip, fracture_tip
     use ddc_growth_load_steps, only: follow_growth, record_load_step, finish_load_steps
     use ddc_history_path, only: path_loads, apply_load, load_text
@@ -297,7 +297,7 @@ contains
 
         grown = 0
         which = pack([(i, i = 1, size(run%tips))], run%now%reason == growth_grew)
-        linked = pack([(i, i = 1, size(run%tips))], run%now%reason == growth_linked)
+        linked = pack([(i, i = 1, size(run%tips))], ends_on_link(run%now%reason))
         if (size(which) + size(linked) == 0) return
         kinks%step = step
         ! A copy, not run%now%link(linked) as an argument: gfortran's temporary of a vector
@@ -324,7 +324,7 @@ contains
                 grown = grown + 1
                 run%now%angle(t) = kinks%tip(i)%theta
                 run%now%length(t) = kinks%tip(i)%length
-            else if (kinks%tip(i)%reason == growth_linked) then
+            else if (ends_on_link(kinks%tip(i)%reason)) then
                 grown = grown + 1
                 run%tips(t)%stopped = .true.
                 run%now%angle(t) = kinks%tip(i)%link%theta
@@ -357,8 +357,9 @@ contains
         end if
         do i = 1, size(which)
             t = which(i)
-            ! A linked tip is no tip any more; one that did not grow has no new tip.
-            if (run%now%length(t) <= 0.0_wp .or. run%now%reason(t) == growth_linked) cycle
+            ! A linked tip, or one through the surface, is no tip any more; one that did not
+            ! grow has no new tip.
+            if (run%now%length(t) <= 0.0_wp .or. ends_on_link(run%now%reason(t))) cycle
             call fracture_tip(run%work, run%current%tips, run%tips(t)%fracture, &
                               run%tips(t)%end, k, error)
             if (allocated(error)) return
@@ -440,7 +441,7 @@ contains
             untried(best) = .false.
             call check_paths(work, paths, [(i == best, i = 1, size(tips))], problem, now%link)
             call stop_blocked()
-            if (problem(best) == path_clear .or. problem(best) == growth_linked) exit
+            if (problem(best) == path_clear .or. ends_on_link(problem(best))) exit
         end do
         where (untried) now%reason = growth_waiting
 

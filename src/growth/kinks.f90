@@ -5,10 +5,9 @@
 module ddc_growth_kinks
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type, growth_options
-    use ddc_model_results, only: model_results, growth_grew, growth_corrector_failed, &
-        growth_linked
+    use ddc_model_results, only: model_results, growth_grew, growth_corrector_failed
     use ddc_growth_extension, only: tip_path, make_path, extend_model, element_split
-    use ddc_growth_clearance, only: tip_link, link_parts
+    use ddc_growth_clearance, only: tip_link, link_parts, ends_on_link
     implicit none
     private
 
@@ -29,10 +28,10 @@ module ddc_growth_kinks
         real(wp) :: theta = 0.0_wp
         !> Solves this tip took part in (out)
         integer :: solves = 0
-        !> growth_grew, growth_corrector_failed, growth_intersection, growth_surface,
-        !> growth_linked or growth_closed (out)
+        !> growth_grew, growth_corrector_failed, growth_intersection, growth_surface (broke
+        !> through the free surface), growth_linked, growth_closed or growth_enclosing (out)
         integer :: reason = growth_grew
-        !> The link of a tip that linked (out)
+        !> The link of a tip that linked or broke through the surface (out)
         type(tip_link) :: link
     end type kink
 
@@ -83,7 +82,7 @@ contains
 
         made = kinks%fixed
         do i = 1, size(kinks%tip)
-            if (kinks%tip(i)%reason == growth_linked) made = [made, kinks%tip(i)%link]
+            if (ends_on_link(kinks%tip(i)%reason)) made = [made, kinks%tip(i)%link]
         end do
     end function step_links
 

@@ -12,7 +12,8 @@
 module ddc_growth_restart
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type
-    use ddc_model_results, only: growth_intersection, growth_surface, growth_linked
+    use ddc_model_results, only: growth_intersection, growth_surface, growth_linked, &
+        growth_enclosing
     use ddc_model_restart, only: restart_state
     use ddc_mesh_geometry, only: compute_geometry
     use ddc_growth_extension, only: inherit_values
@@ -120,7 +121,8 @@ contains
                 last = findloc(g%fracture_id == tips(i)%fracture .and. g%end == tips(i)%end, &
                                .true., 1, back=.true.)
                 tips(i)%stopped = any(g%reason(last) == [growth_intersection, &
-                                                         growth_surface, growth_linked])
+                                                         growth_surface, growth_linked, &
+                                                         growth_enclosing])
             end do
         end associate
     end function resumed_tips

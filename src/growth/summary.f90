@@ -1,11 +1,11 @@
 !> What became of each tip of a growth run: its path length, the steps it grew in (a link
-!> counts), its last record (why it stopped) from the growth record, and the fracture a
-!> linked tip ends on from the final geometry.
+!> and a break-through of the free surface count), its last record (why it stopped) from
+!> the growth record, and the fracture a linked tip ends on from the final geometry.
 module ddc_growth_summary
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type
-    use ddc_model_results, only: growth_record, growth_grew, growth_corrector_failed, &
-        growth_linked
+    use ddc_model_results, only: growth_record, growth_grew, growth_corrector_failed
+    use ddc_growth_clearance, only: ends_on_link
     use ddc_growth_extension, only: tip_element, tip_end_begin
     implicit none
     private
@@ -53,7 +53,7 @@ contains
                 tips(t)%last_reason = k
                 tips(t)%last_k_eq = record%k_eq(r)
                 if (k == growth_grew .or. k == growth_corrector_failed .or. &
-                    k == growth_linked) then
+                    ends_on_link(k)) then
                     tips(t)%steps_grown = tips(t)%steps_grown + 1
                     tips(t)%path_length = tips(t)%path_length + record%length(r)
                 end if

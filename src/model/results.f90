@@ -10,7 +10,7 @@ module ddc_model_results
     public :: history_record, growth_record
     public :: growth_grew, growth_subcritical, growth_intersection, growth_surface, &
         growth_corrector_failed, growth_linked, growth_closed, growth_waiting, &
-        growth_reason_names
+        growth_enclosing, growth_reason_names
     public :: growth_arrested, growth_step_limit, growth_end_names
     public :: state_free, state_stick, state_slip, state_open, state_names, state_not_grown
     public :: point_clear, point_near, point_on_element
@@ -31,19 +31,22 @@ module ddc_model_results
 
     !> Why a tip did or did not grow in a growth step
     !> (docs/theory/growth.md#why-a-tip-does-not-grow): it grew (the corrector converged, or is
-    !> switched off); it is subcritical (K_eq < toughness); it stopped for good at another element
-    !> or at the free surface; it grew at the MTS angle because the corrector did not converge; it
-    !> ended on another fracture (linked: docs/theory/growth.md#linking-and-stops); its kink closes
-    !> (K_I = 0 on the new tip: it does not grow in this step); it is critical but waits (tips =
-    !> 'most_critical' and another tip is more critical)
+    !> switched off); it is subcritical (K_eq < toughness); it stopped for good next to another
+    !> element; it broke through the free surface and stopped there; it grew at the MTS angle
+    !> because the corrector did not converge; it ended on another fracture (linked:
+    !> docs/theory/growth.md#linking-and-stops); its kink closes (K_I = 0 on the new tip: it does
+    !> not grow in this step); it is critical but waits (tips = 'most_critical' and another tip
+    !> is more critical); it stopped for good because linking to the fracture its path meets
+    !> would enclose a block (the two are connected already)
     integer, parameter :: growth_grew = 0, growth_subcritical = 1, growth_intersection = 2, &
                           growth_surface = 3, growth_corrector_failed = 4, growth_linked = 5, &
-                          growth_closed = 6, growth_waiting = 7
+                          growth_closed = 6, growth_waiting = 7, growth_enclosing = 8
     !> Names of the reasons, indexed by reason
-    character(len=*), parameter :: growth_reason_names(0:7) = [character(len=48) :: &
+    character(len=*), parameter :: growth_reason_names(0:8) = [character(len=48) :: &
         'grew', 'subcritical', 'intersection', 'surface', &
         'corrector failed (grew at mts_angle)', 'linked (ends on another fracture)', &
-        'closed (the kink closes, K_I = 0)', 'waiting (critical, not the most critical)']
+        'closed (the kink closes, K_I = 0)', 'waiting (critical, not the most critical)', &
+        'enclosing (a link would enclose a block)']
     !> Why a growth run ended: no tip can grow any more, or the step limit was reached
     integer, parameter :: growth_arrested = 1, growth_step_limit = 2
     !> Names of the end reasons, indexed by end reason

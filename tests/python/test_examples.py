@@ -203,11 +203,13 @@ def check_growth_along_path(f, first_load_step, length):
 
 def check_echelon_linking(f):
     """Step 2: the west inner tip links to east (5), the east one would close a contour
-    (refused, 2); the outer tips arrest; the link ends on a vertex of east, no tip there."""
+    (refused, 8 enclosing); the outer tips arrest; the link ends on a vertex of east, no tip
+    there."""
     g = f["growth"]
     reason = g["reason"][()]
     assert list(reason[growth_rows(f, "west", 1)]) == [0, 5]
-    assert list(reason[growth_rows(f, "east", 0)]) == [0, 2]
+    assert list(reason[growth_rows(f, "east", 0)]) == [0, 8]
+    assert b"8 enclosing" in g.attrs["reason_coding"]
     for fracture, outer in (("west", 0), ("east", 1)):
         assert reason[growth_rows(f, fracture, outer)][-1] == 1
     assert decode(g.attrs["end_reason"]) == "arrested"
@@ -231,11 +233,17 @@ def check_hydraulic_fracture(f):
 
 
 def check_joint_to_surface(f):
+    """The upper tip breaks through the surface: its last element ends on y = 0 and the
+    mouth is no tip; the lower tip arrests."""
     reason = f["growth/reason"][()]
-    assert reason[growth_rows(f, "joint", 1)[-1]] == 3  # the upper tip: at the surface
+    assert reason[growth_rows(f, "joint", 1)[-1]] == 3  # the upper tip: through the surface
     assert reason[growth_rows(f, "joint", 0)[-1]] == 1  # the lower tip: arrested
     assert decode(f["growth"].attrs["end_reason"]) == "arrested"
-    assert max(f["elements/y_begin"][()].max(), f["elements/y_end"][()].max()) < -2.5
+    e = f["elements"]
+    last = f["fractures/last_element"][()][0] - 1
+    assert abs(e["y_end"][()][last]) <= 1e-12
+    assert max(e["y_begin"][()].max(), np.delete(e["y_end"][()], last).max()) < -2.5
+    assert np.all(f["tips/y"][()] < -2.5)
 
 
 def check_progressive_failure(f):

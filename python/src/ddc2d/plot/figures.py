@@ -76,10 +76,11 @@ GROWTH_CMAP = "plasma"
 #: OTHER_REASON_MARKER and its name from the coding.
 GROWTH_MARKERS = {"grew": ("o", "grew"), "subcritical": ("o", "subcritical"),
                   "intersection": ("X", "stopped: intersection"),
-                  "surface": ("^", "stopped: surface"),
+                  "surface": ("^", "broke through the surface"),
                   "corrector": ("s", "grew at the MTS angle"),
                   "linked": ("P", "stopped: linked"), "closed": ("v", "closed (K_I = 0)"),
-                  "waiting": ("D", "waiting")}
+                  "waiting": ("D", "waiting"),
+                  "enclosing": ("x", "stopped: enclosing")}
 OTHER_REASON_MARKER = "*"
 #: Vertical distance between the end-reason texts of curves ending at one place [points],
 #: and how near (a fraction of the data's span on each axis) such ends count as one place.
