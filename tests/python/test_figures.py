@@ -294,9 +294,12 @@ def test_which_tip_linked_and_which_stopped_is_drawn(tmp_path):
         # The two texts at one curve end are stacked, not drawn over each other.
         offsets = sorted(text.xyann[1] for text in ax_k.texts if "fault A" in text.get_gid())
         assert offsets[1] - offsets[0] == plot_figures.END_TEXT_STEP
-        # Reason 8, unknown to the marker table, is in the legend by its coding's name.
+        # Reason 8 is in the legend; a reason the marker table does not know (a newer
+        # file's) would be there by its coding's name, with the marker of the unknown.
         legend = [text.get_text() for text in ax_k.get_legend().get_texts()]
-        assert "enclosing" in legend and "stopped: linked" in legend
+        assert "stopped: enclosing" in legend and "stopped: linked" in legend
+        assert plot_figures._reason_style("melted") == (plot_figures.OTHER_REASON_MARKER,
+                                                        "melted")
         # The link point: the end of fracture A, (1, 0).
         link = lines_by_gid(ax_map)["link_points"]
         np.testing.assert_array_equal(np.column_stack([link.get_xdata(), link.get_ydata()]),
