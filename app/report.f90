@@ -384,6 +384,12 @@ contains
                     ' on ', s%processes, ' process(es) (grid ', s%process_grid(1), ' x ', &
                     s%process_grid(2), ', block size ', s%block_size, '), ', s%threads, &
                     ' thread(s) each; equilibrium residual ', s%equilibrium_residual
+            else if (s%lcp_solves > 1 .and. .not. allocated(model%load_path%vertex) .and. &
+                     .not. model%growth%active) then
+                ! One model whose strengths in force changed: the fixed point's solves.
+                write (unit, '(a,a,a,i0,a,i0,a,es10.3)') 'solved with ', s%method, ' in ', &
+                    s%lcp_solves, ' solves (strengths in force) on ', s%threads, &
+                    ' thread(s); equilibrium residual ', s%equilibrium_residual
             else
                 write (unit, '(a,a,a,i0,a,es10.3)') 'solved with ', s%method, ' on ', &
                     s%threads, ' thread(s); equilibrium residual ', s%equilibrium_residual

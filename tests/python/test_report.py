@@ -170,6 +170,24 @@ def test_note_when_the_fluid_makes_every_contact_tensile(tmp_path, p0, tensile):
     assert not notes(solve(tmp_path, pulled.replace("syy = -20", "syy = 20")))
 
 
+WEAKENING = """\
+&model youngs_modulus = 50000, poissons_ratio = 0.25 /
+&remote_stress sxx = -10, syy = -20, sxy = 11 /
+&fracture name = 'fault', x = -1, 1, y = 0, 0, elements = 10, mu = 0.6, mu_dynamic = 0.3 /
+"""
+
+
+def test_summary_counts_the_solves_of_changing_strengths(tmp_path):
+    # Friction that drops at once where an element slips: the solve is repeated until no
+    # strength in force changes, and the summary says how many solves it took.
+    lines = solve(tmp_path, WEAKENING).stdout.splitlines()
+    solved = [line for line in lines if line.startswith("solved with ")]
+    assert len(solved) == 1 and " solves (strengths in force) on " in solved[0], solved
+    assert int(solved[0].split(" in ")[1].split()[0]) > 1
+    plain = solve(tmp_path, WEAKENING.replace(", mu_dynamic = 0.3", ""), "plain")
+    assert [line for line in plain.stdout.splitlines() if " solves " in line] == []
+
+
 def test_no_strain_note_for_twodd_decks(tmp_path):
     # TWODD decks carry no units (E = 1 and unit stresses are common): no strain note.
     done = run(["--twodd", REPO_ROOT / "tests" / "reference" / "twodd" / "inputs" /
