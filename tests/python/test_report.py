@@ -172,7 +172,7 @@ def test_note_when_the_fluid_makes_every_contact_tensile(tmp_path, p0, tensile):
 
 WEAKENING = """\
 &model youngs_modulus = 50000, poissons_ratio = 0.25 /
-&remote_stress sxx = -10, syy = -20, sxy = 11 /
+&remote_stress sxx = -10, syy = -20, sxy = 13 /
 &fracture name = 'fault', x = -1, 1, y = 0, 0, elements = 10, mu = 0.6, mu_dynamic = 0.3 /
 """
 
