@@ -12,7 +12,8 @@
 # earlier one of the list) is not run twice. Left out (they run in the main pass and, the
 # process-level ones, again under load): python_robustness (fuzzed inputs, signals, file
 # types, file-size and disk limits: how the program treats files and processes),
-# python_comp2ddm (workbooks to namelists; the paper's model it solves is solved under every
+# python_plot (figures of synthetic result files; its few solved models check that what is
+# drawn equals what the same run stored), python_comp2ddm (workbooks to namelists; the paper's model it solves is solved under every
 # kernel by the contact suite and python_examples), python_venv (the scripts from a plain
 # shell) and python_figures (where a figure's parts lie on its canvas): nothing they check
 # depends on the last bits of a solve. Needs a configured and built debug
@@ -34,7 +35,7 @@ kernel_in_use() {
     fi | sed -n 's/^Core: //p'
 }
 
-left_out='^(python_robustness|python_comp2ddm|python_venv|python_figures)$'
+left_out='^(python_robustness|python_plot|python_comp2ddm|python_venv|python_figures)$'
 requested=("$@")
 ((${#requested[@]} > 0)) || requested=(native Nehalem Sandybridge Haswell)
 done_cores=("$(OPENBLAS_VERBOSE=2 "$exe" --version 2>&1 >/dev/null | sed -n 's/^Core: //p')")
