@@ -11,14 +11,14 @@
 # ran with (the environment's, used by `ctest --preset debug` in scripts/test.sh, or an
 # earlier one of the list) is not run twice. Left out (they run in the main pass and, the
 # process-level ones, again under load): python_robustness (fuzzed inputs, signals, file
-# types, file-size and disk limits: how the program treats files and processes),
-# python_plot (figures of synthetic result files; its few solved models check that what is
-# drawn equals what the same run stored), python_comp2ddm (workbooks to namelists; the paper's model it solves is solved under every
-# kernel by the contact suite and python_examples), python_venv (the scripts from a plain
-# shell) and python_figures (where a figure's parts lie on its canvas): nothing they check
-# depends on the last bits of a solve. Needs a configured and built debug
-# preset (scripts/test.sh makes it). Exits non-zero when a kernel cannot be forced or a
-# test fails.
+# types, file-size and disk limits: how the program treats files and processes), python_plot
+# (figures of synthetic result files; its few solved models check that what is drawn equals
+# what the same run stored), python_comp2ddm (workbooks to namelists; the paper's model it
+# solves is solved under every kernel by the contact suite and python_examples), python_venv
+# (the scripts from a plain shell) and python_figures (where a figure's parts lie on its
+# canvas): nothing they check depends on the last bits of a solve. Needs a configured and
+# built debug preset (scripts/test.sh makes it). Exits non-zero when a kernel cannot be
+# forced or a test fails.
 set -euo pipefail
 
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
