@@ -28,8 +28,7 @@ from ..run import RunError
 from ..submit_sweep import find_exe, sbatch_lines
 from . import namelist
 from .report import FIGURE_FILE, draw_figure, table
-from .study import (STUDY_FILE, collect, default_out_dir, run_levels, write_levels,
-                    write_study)
+from .study import STUDY_FILE, collect, default_out_dir, run_levels, write_levels, write_study
 
 
 def parse_refine(text):
@@ -40,11 +39,13 @@ def array_script(exe, namelists, out_dir, job_name, sbatch_options):
     """The sbatch script running level $SLURM_ARRAY_TASK_ID of the study."""
     stem = namelists[0].name.removesuffix("_level0.nml")
     level = shlex.quote(str(out_dir / stem)) + '_level"$SLURM_ARRAY_TASK_ID"'
+    log = out_dir / "logs" / f"{stem}_%A_%a.out"
+    extra = sbatch_lines(sbatch_options)
     return f"""#!/bin/bash
 #SBATCH --job-name={job_name}
 #SBATCH --array=0-{len(namelists) - 1}
-#SBATCH --output={out_dir / "logs" / f"{stem}_%A_%a.out"}
-{sbatch_lines(sbatch_options)}# Written by ddc2d-converge: level $SLURM_ARRAY_TASK_ID of the study of {stem}.
+#SBATCH --output={log}
+{extra}# Written by ddc2d-converge: level $SLURM_ARRAY_TASK_ID of the study of {stem}.
 set -u
 threads="${{SLURM_CPUS_PER_TASK:-1}}"
 export OMP_NUM_THREADS="$threads" OPENBLAS_NUM_THREADS="$threads" MKL_NUM_THREADS="$threads"

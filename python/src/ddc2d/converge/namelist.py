@@ -125,7 +125,7 @@ def _scaled(item, factor, kind, where):
     """The item's values times `factor` as namelist text."""
     values = [_number(t, kind, where) * factor for t in expand(item.tokens)]
     if kind is int:
-        return ", ".join(str(int(round(v))) for v in values)
+        return ", ".join(str(v) for v in values)
     return ", ".join(repr(float(v)) for v in values)
 
 
@@ -155,12 +155,6 @@ def check_refinable(groups, refine):
                                   "and elements, or leave elements out of --refine")
             if group.item("elements") is None:
                 raise RefineError(f"{_describe(group, groups)}: no elements to refine")
-    if "steps" in refine and refine != ("steps",) and "load_path" not in names:
-        return
-    if refine == ("steps",) and "load_path" not in names:
-        raise RefineError("--refine steps: the model has no &load_path")
-    if refine == ("increment",) and "growth" not in names:
-        raise RefineError("--refine increment: the model has no &growth")
 
 
 def refined_text(text, groups, level, refine, folder):
@@ -178,9 +172,8 @@ def refined_text(text, groups, level, refine, folder):
                     "increment" in refine:
                 edits.append((item, _scaled(item, 1.0 / factor, float,
                                             f"{where} {item.name}")))
-            elif key == ("growth", "steps") and "increment" in refine:
-                edits.append((item, _scaled(item, factor, int, f"{where} steps")))
-            elif key == ("load_path", "steps") and "steps" in refine:
+            elif (key == ("growth", "steps") and "increment" in refine) or \
+                    (key == ("load_path", "steps") and "steps" in refine):
                 edits.append((item, _scaled(item, factor, int, f"{where} steps")))
             elif key == ("points", "file") and item.tokens:
                 path = Path(item.tokens[0].strip("'\""))

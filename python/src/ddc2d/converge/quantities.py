@@ -32,7 +32,8 @@ class Quantity:
 
 
 def _peak(values):
-    return float(values[np.argmax(np.abs(values))]) if values.size else 0.0
+    # + 0.0: a peak of -0.0 is reported as 0
+    return float(values[np.argmax(np.abs(values))]) + 0.0 if values.size else 0.0
 
 
 def _lengths(elements):

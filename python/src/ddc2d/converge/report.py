@@ -16,8 +16,8 @@ def table(study):
     """The study as text: one row per quantity, values coarse to fine, observed order,
     extrapolated value, error estimate of level 0 and verdict (quantum for quantised)."""
     lengths = ", ".join(_number(h, 4) for h in study["element_length"])
-    lines = [f"{study['model']}: {study['levels']} levels ({', '.join(study['refined'])} "
-             f"refined; element length {lengths}), tolerance {study['tolerance']:g}"]
+    lines = [(f"{study['model']}: {study['levels']} levels ({', '.join(study['refined'])} "
+              f"refined; element length {lengths}), tolerance {study['tolerance']:g}")]
     header = ["quantity", *(f"level {k}" for k in range(study["levels"])), "order",
               "extrapolated", "error (level 0)", "verdict"]
     rows = [header]

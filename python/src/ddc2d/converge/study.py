@@ -34,12 +34,15 @@ def level_stem(model_path, level):
     return f"{Path(model_path).stem}_level{level}"
 
 
+#: The group each refinement needs in the model.
+NEEDS = {"elements": "fracture", "increment": "growth", "steps": "load_path"}
+
+
 def applicable(groups, refine):
     """The chosen refinements that apply to the model (increment needs &growth, steps a
     &load_path)."""
     names = {g.name for g in groups}
-    needs = {"elements": "fracture", "increment": "growth", "steps": "load_path"}
-    return tuple(r for r in refine if needs[r] in names)
+    return tuple(r for r in refine if NEEDS[r] in names)
 
 
 def write_levels(model_path, levels, refine, out_dir):
@@ -59,8 +62,8 @@ def write_levels(model_path, levels, refine, out_dir):
     namelist.check_refinable(groups, tuple(refine))
     used = applicable(groups, refine)
     if not used:
-        raise namelist.RefineError(f"--refine {','.join(refine)}: nothing of the model to "
-                                   "refine")
+        missing = " or ".join(f"&{NEEDS[r]}" for r in refine)
+        raise namelist.RefineError(f"--refine {','.join(refine)}: the model has no {missing}")
     out_dir.mkdir(parents=True, exist_ok=True)
     paths = []
     for level in range(levels):
