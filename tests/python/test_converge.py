@@ -72,6 +72,8 @@ def test_refined_namelist_scales_what_it_refines_and_keeps_the_rest(tmp_path):
     ([7.5, 7.25, 7.0625], [0.25, 0.125, 0.0625], NOT_CONVERGING),  # 2, then 3 quanta
     ([1.0, 1.5, 1.5625], [0.25, 0.125, 0.0625], CONVERGED),      # last change 1/2 quantum
     ([1.0, 2.0, 2.375], [0.25, 0.125, 0.0625], CONVERGING),      # 8, then 6 quanta
+    ([4.2, 4.35, 4.425], [0.05, 0.025, 0.0125], CONVERGING),     # 6, then 6: order 1
+    ([1.0, 1.5, 2.25], [0.25, 0.125, 0.0625], NOT_CONVERGING),   # 4, then 12 quanta
 ])
 def test_verdicts_on_known_sequences(values, quanta, verdict):
     assert judge(values, quanta, 0.01)["verdict"] == verdict

@@ -10,9 +10,10 @@ Quantised quantities (lengths in elements, loads in load steps, grown lengths in
 increments): no Richardson value. The change between two levels is counted in quanta of
 the finer one; `converged` when the last change is at most one quantum of the coarser
 level (the finer level moved it no more than the coarser one can resolve), `converging`
-when the change, in quanta, shrinks from level to level, `not converging` when it does
-not (the value moves more than the mesh resolves ever more finely). The error estimate is
-level 0's distance from the finest level.
+when the change, in quanta, does not grow from level to level (it falls at least as fast
+as the quantum: order 1 or better), `not converging` when it grows (the value moves by
+more quanta at every refinement, as a result that depends on the mesh does). The error
+estimate is level 0's distance from the finest level.
 """
 
 from .. import richardson
@@ -46,7 +47,7 @@ def judge_quantised(values, quanta):
     in_quanta = [change / quanta[k + 1] for k, change in enumerate(changes)]
     if changes[-1] <= quanta[-2] * (1.0 + QUANTUM_SLACK):
         verdict = CONVERGED
-    elif len(in_quanta) >= 2 and in_quanta[-1] < in_quanta[-2] * (1.0 - QUANTUM_SLACK):
+    elif in_quanta[-1] <= in_quanta[-2] * (1.0 + QUANTUM_SLACK):
         verdict = CONVERGING
     else:
         verdict = NOT_CONVERGING
