@@ -12,8 +12,8 @@ estimate and verdict, and writes the levels, STUDY.json and convergence.png into
 (default <model stem>_converge/ in the current folder).
 
 --slurm writes the levels and submits them as a Slurm job array (other options go to
-sbatch as #SBATCH lines, as with submit-sweep); once it has finished, the same command
-with --collect instead gathers the results. Exit status: 0 the study is done (whatever
+sbatch as #SBATCH lines, as with submit-sweep) and prints the job id; once it has
+finished, the same command with --collect instead gathers the results. Exit status: 0 the study is done (whatever
 its verdicts), 1 a level's run failed, 2 bad arguments or a model that cannot be refined.
 """
 
@@ -68,7 +68,8 @@ def submit(exe, namelists, out_dir, sbatch_options):
 
 
 def parser():
-    p = argparse.ArgumentParser(prog="ddc2d-converge",
+    # No abbreviations: options it does not know go to sbatch whole.
+    p = argparse.ArgumentParser(prog="ddc2d-converge", allow_abbrev=False,
                                 description=__doc__.split("\n\n")[0])
     p.add_argument("model", type=Path, help="the namelist model")
     p.add_argument("--levels", type=int, default=3, help="levels, the model's own "
@@ -112,8 +113,10 @@ def main(argv=None):
         except RuntimeError as exc:
             print(f"ddc2d-converge: {exc}", file=sys.stderr)
             return 1
+        print(job)  # alone on stdout, as submit-sweep prints it, for scripts
         print(f"submitted the {len(namelists)} levels as job {job}; when it has finished: "
-              f"ddc2d-converge {args.model} --levels {args.levels} -o {out_dir} --collect")
+              f"ddc2d-converge {args.model} --levels {args.levels} -o {out_dir} --collect",
+              file=sys.stderr)
         return 0
     outputs = [path.with_suffix(".h5") for path in namelists]
     try:
