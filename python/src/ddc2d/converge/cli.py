@@ -13,8 +13,10 @@ estimate and verdict, and writes the levels, STUDY.json and convergence.png into
 
 --slurm writes the levels and submits them as a Slurm job array (other options go to
 sbatch as #SBATCH lines, as with submit-sweep) and prints the job id; once it has
-finished, the same command with --collect instead gathers the results. Exit status: 0 the study is done (whatever
-its verdicts), 1 a level's run failed, 2 bad arguments or a model that cannot be refined.
+finished, the same command with --collect instead gathers the results.
+
+Exit status: 0 the study is done (whatever its verdicts), 1 a level's run failed, 2 bad
+arguments or a model that cannot be refined.
 """
 
 import argparse
