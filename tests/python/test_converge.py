@@ -31,9 +31,10 @@ FAULT = "&fracture x = 0, 1, y = 0, 0, elements = 4, mu = 0.6 /\n"
 ENTRY_KEYS = {"values", "order", "extrapolated", "error_estimate", "verdict"}
 
 
-def without_grid(source, folder):
-    """A copy of the example model without its &grid group, in `folder`."""
-    text = re.sub(r"^&grid[^/]*/\n", "", source.read_text(), flags=re.MULTILINE)
+def without_grid(source, folder, extra=""):
+    """A copy of the example model without its &grid group (and with `extra` groups), in
+    `folder`."""
+    text = re.sub(r"^&grid[^/]*/\n", "", source.read_text(), flags=re.MULTILINE) + extra
     assert "&grid" not in text
     copy = folder / source.name
     copy.write_text(text)
@@ -87,7 +88,9 @@ def test_smooth_sequence_extrapolates_to_its_limit():
 
 
 def test_paper_fault_k2_extrapolates_to_closed_form(tmp_path):
-    model = without_grid(REPO_ROOT / "input" / "paper_fault_slip.nml", tmp_path)
+    above = "&line name = 'above', x_begin = 0, y_begin = 0.5, x_end = 0, y_end = 1.5, " \
+        "points = 3 /\n"
+    model = without_grid(REPO_ROOT / "input" / "paper_fault_slip.nml", tmp_path, above)
     result = study(model, levels=3, out_dir=tmp_path / "study", executable=ddc2d_exe(),
                    figure=False)
     assert result["element_length"] == pytest.approx([0.004, 0.002, 0.001], rel=1e-9)
@@ -98,6 +101,9 @@ def test_paper_fault_k2_extrapolates_to_closed_form(tmp_path):
         # The estimate lies within a factor 3 of the base level's true error, either side.
         assert true_error / 3 <= entry["error_estimate"] <= 3 * true_error, entry
         assert entry["order"] > 0
+    # The stress half a metre and more from the fault is resolved to well under 1 %.
+    for point in (1, 2, 3):
+        assert result["quantities"][f"sxy/above/{point}"]["verdict"] == CONVERGED
     on_disk = json.loads((tmp_path / "study" / "STUDY.json").read_text())
     assert on_disk["quantities"]["k2/fault/end"]["values"] == \
         result["quantities"]["k2/fault/end"]["values"]

@@ -60,11 +60,14 @@ def fracture_quantities(result):
     return out
 
 
-def tip_name(result, fracture_id, element):
-    """`fracture/begin` or `fracture/end` of the tip at `element` (1-based)."""
-    fracture = result["fractures"][int(fracture_id) - 1]
-    end = "begin" if int(element) == fracture["first"] else "end"
-    return f"{fracture['label']}/{end}"
+def tip_name(result, fracture_id, x, y):
+    """`fracture/begin` or `fracture/end` of the tip at (x, y): the end of the fracture's
+    polyline it lies nearer to (a one-element fracture has both tips on one element)."""
+    fracture, e = result["fractures"][int(fracture_id) - 1], result["elements"]
+    first, last = fracture["first"] - 1, fracture["last"] - 1
+    to_begin = math.dist((x, y), (e["x_begin"][first], e["y_begin"][first]))
+    to_end = math.dist((x, y), (e["x_end"][last], e["y_end"][last]))
+    return f"{fracture['label']}/{'begin' if to_begin < to_end else 'end'}"
 
 
 def tip_quantities(result):
@@ -72,7 +75,8 @@ def tip_quantities(result):
     +x: its tip element, from the element's other end towards the tip)."""
     tips, elements, out = result["tips"], result["elements"], {}
     for index in range(tips["x"].size):
-        name = tip_name(result, tips["fracture_id"][index], tips["element"][index])
+        name = tip_name(result, tips["fracture_id"][index], tips["x"][index],
+                        tips["y"][index])
         out[f"k1/{name}"] = Quantity(float(tips["k1"][index]))
         out[f"k2/{name}"] = Quantity(float(tips["k2"][index]))
         if result["growth"] is not None:
