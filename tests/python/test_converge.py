@@ -80,6 +80,13 @@ def test_verdicts_on_known_sequences(values, quanta, verdict):
     assert judge(values, quanta, 0.01)["verdict"] == verdict
 
 
+def test_direction_is_judged_against_half_a_turn():
+    # 0.7 degrees off: 2 % of -34.95 but 0.4 % of 180 degrees.
+    values = [-34.2518, -34.5426, -34.713]
+    assert judge(values, None, 0.01)["verdict"] == CONVERGING
+    assert judge(values, None, 0.01, scale=180.0)["verdict"] == CONVERGED
+
+
 def test_smooth_sequence_extrapolates_to_its_limit():
     entry = judge([3.0 + 0.2 * 0.5**k for k in range(3)], None, 0.01)
     assert entry["order"] == pytest.approx(1.0, rel=1e-9)

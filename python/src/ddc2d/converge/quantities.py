@@ -23,12 +23,19 @@ TIP_ENDS = ("begin", "end")
 FIELD_COMPONENTS = ("ux", "uy", "sxx", "syy", "sxy")
 
 
+#: What a relative error of a direction is measured against [degree]: an angle from +x has
+#: no size of its own (91 and -89 degrees are equally well resolved).
+DIRECTION_SCALE = 180.0
+
+
 @dataclass(frozen=True)
 class Quantity:
-    """One value of a level; `quantum` is the step it moves in (None: smooth)."""
+    """One value of a level; `quantum` is the step it moves in (None: smooth), `scale`
+    what its relative error is measured against (None: its own size)."""
 
     value: float
     quantum: float | None = None
+    scale: float | None = None
 
 
 def _peak(values):
@@ -86,7 +93,7 @@ def tip_quantities(result):
             tip = np.array([tips["x"][index], tips["y"][index]])
             far = max(ends, key=lambda p: math.dist(p, tip))
             angle = math.degrees(math.atan2(tip[1] - far[1], tip[0] - far[0]))
-            out[f"final_direction/{name}"] = Quantity(angle)
+            out[f"final_direction/{name}"] = Quantity(angle, scale=DIRECTION_SCALE)
     return out
 
 

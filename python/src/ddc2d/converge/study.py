@@ -108,7 +108,8 @@ def collect(model_path, outputs, refine, tolerance=0.01):
         values = [q.value if q else None for q in levels]
         quantised = all(q is not None and q.quantum is not None for q in levels)
         quanta = [q.quantum for q in levels] if quantised else None
-        entry = {"values": values, **judge(values, quanta, tolerance)}
+        scale = next((q.scale for q in levels if q), None)
+        entry = {"values": values, **judge(values, quanta, tolerance, scale)}
         if key in loads:
             entry["load"] = loads[key]
         entries[key] = entry

@@ -25,8 +25,9 @@ RATIO = 2.0
 QUANTUM_SLACK = 1e-9
 
 
-def judge_smooth(values, tolerance):
-    """The entry of a smooth quantity: order, extrapolated, error_estimate, verdict."""
+def judge_smooth(values, tolerance, scale=None):
+    """The entry of a smooth quantity: order, extrapolated, error_estimate, verdict; the
+    tolerance is relative to `scale`, by default the size of the quantity."""
     fit = richardson.extrapolate(values, RATIO)
     estimate = richardson.error_estimate(values[0], fit)
     if fit.order is None and fit.extrapolated is not None:
@@ -34,7 +35,8 @@ def judge_smooth(values, tolerance):
     elif fit.order is None or fit.order <= 0.0 or not fit.differences_shrink:
         verdict = NOT_CONVERGING
     else:
-        scale = max(abs(fit.extrapolated), max(abs(v) for v in values))
+        if scale is None:
+            scale = max(abs(fit.extrapolated), max(abs(v) for v in values))
         verdict = CONVERGED if estimate <= tolerance * scale else CONVERGING
     return {"order": fit.order, "extrapolated": fit.extrapolated,
             "error_estimate": estimate, "verdict": verdict}
@@ -56,13 +58,14 @@ def judge_quantised(values, quanta):
             "quantum": list(quanta), "changes_in_quanta": in_quanta}
 
 
-def judge(values, quanta, tolerance):
+def judge(values, quanta, tolerance, scale=None):
     """The entry of one quantity from its values per level (None where a level lacks
-    it: `not converging`) and its quanta (None for a smooth quantity)."""
+    it: `not converging`), its quanta (None for a smooth quantity) and the scale of its
+    relative error (judge_smooth)."""
     if any(v is None for v in values):
         return {"order": None, "extrapolated": None, "error_estimate": None,
                 "verdict": NOT_CONVERGING,
                 "note": "missing at some levels: the event or tip comes and goes"}
     if quanta is not None:
         return judge_quantised(values, quanta)
-    return judge_smooth(values, tolerance)
+    return judge_smooth(values, tolerance, scale)
