@@ -164,6 +164,16 @@ def test_what_cannot_be_refined_is_refused(tmp_path, capsys, text, args, message
     assert not (tmp_path / "out" / "STUDY.json").exists()
 
 
+def test_model_that_ddc2d_refuses_ends_with_its_message(tmp_path, capsys):
+    model = tmp_path / "model.nml"
+    model.write_text(MODEL.replace("youngs_modulus = 1", "youngs_modulus = -1") + FAULT)
+    status = cli.main([str(model), "-o", str(tmp_path / "out"), "--exe", str(ddc2d_exe())])
+    err = capsys.readouterr().err
+    assert status == 2
+    assert "youngs_modulus" in err, err
+    assert not (tmp_path / "out" / "STUDY.json").exists()
+
+
 def test_script_shim_prints_help():
     done = subprocess.run([sys.executable, str(SCRIPTS / "converge.py"), "--help"],
                           capture_output=True, text=True, timeout=120)

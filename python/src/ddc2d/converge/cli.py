@@ -16,7 +16,7 @@ sbatch as #SBATCH lines, as with submit-sweep) and prints the job id; once it ha
 finished, the same command with --collect instead gathers the results.
 
 Exit status: 0 the study is done (whatever its verdicts), 1 a level's run failed, 2 bad
-arguments or a model that cannot be refined.
+arguments, a model that cannot be refined or one that ddc2d refuses (its message printed).
 """
 
 import argparse
@@ -130,7 +130,7 @@ def main(argv=None):
             run_levels(namelists, args.exe, args.threads, echo=print)
     except (RunError, FileNotFoundError) as exc:
         print(f"ddc2d-converge: {exc}", file=sys.stderr)
-        return 1
+        return 2 if getattr(exc, "exit_code", None) == 2 else 1  # 2: ddc2d refused the model
     study = collect(args.model, outputs, used, args.tolerance)
     write_study(study, out_dir)
     draw_figure(study, out_dir)
