@@ -174,6 +174,15 @@ def test_model_that_ddc2d_refuses_ends_with_its_message(tmp_path, capsys):
     assert not (tmp_path / "out" / "STUDY.json").exists()
 
 
+def test_collect_without_results_names_the_missing_level(tmp_path, capsys):
+    model = tmp_path / "model.nml"
+    model.write_text(MODEL + FAULT)
+    status = cli.main([str(model), "-o", str(tmp_path / "out"), "--collect"])
+    err = capsys.readouterr().err
+    assert status == 1
+    assert "no result yet" in err and "model_level0.h5" in err, err
+
+
 def test_script_shim_prints_help():
     done = subprocess.run([sys.executable, str(SCRIPTS / "converge.py"), "--help"],
                           capture_output=True, text=True, timeout=120)
