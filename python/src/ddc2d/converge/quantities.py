@@ -1,0 +1,186 @@
+"""The quantities a user reports, gathered from one ddc2d result (ddc2d.reader's dict).
+
+Keys name the quantity, the fracture and the tip or point: `peak_slip/fault`,
+`k2/fault/end`, `grown_length/flaw/begin`, `sxx/above/3`. Each value is a Quantity: the
+number and, for quantities that move in steps of the discretization, their quantum (one
+element length, one growth increment, one load step); None for smooth ones.
+
+Sign conventions are the result file's (docs/output-reference.md#sign-conventions):
+slip is the shear DD `ds`, opening the normal DD `dn`; a peak is the value of largest
+magnitude, a mean the length-weighted mean over the fracture.
+"""
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..reader import STATE_CODES
+
+#: The end of a fracture a tip is at (the /growth `end` coding: 0 begin, 1 end).
+TIP_ENDS = ("begin", "end")
+#: Field components reported at &points and &line observation points.
+FIELD_COMPONENTS = ("ux", "uy", "sxx", "syy", "sxy")
+
+
+#: What a relative error of a direction is measured against [degree]: an angle from +x has
+#: no size of its own (91 and -89 degrees are equally well resolved).
+DIRECTION_SCALE = 180.0
+
+
+@dataclass(frozen=True)
+class Quantity:
+    """One value of a level; `quantum` is the step it moves in (None: smooth), `scale`
+    what its relative error is measured against (None: its own size)."""
+
+    value: float
+    quantum: float | None = None
+    scale: float | None = None
+
+
+def _peak(values):
+    # + 0.0: a peak of -0.0 is reported as 0
+    return float(values[np.argmax(np.abs(values))]) + 0.0 if values.size else 0.0
+
+
+def _lengths(elements):
+    return np.hypot(elements["x_end"] - elements["x_begin"],
+                    elements["y_end"] - elements["y_begin"])
+
+
+def fracture_quantities(result):
+    """Peak and mean slip and opening, slipping and open lengths of every fracture."""
+    elements, out = result["elements"], {}
+    lengths = _lengths(elements)
+    for fracture in result["fractures"]:
+        part = slice(fracture["first"] - 1, fracture["last"])
+        name, length, state = fracture["label"], lengths[part], elements["state"][part]
+        quantum = float(np.max(length))
+        for label, key in (("slip", "ds"), ("opening", "dn")):
+            values = elements[key][part]
+            out[f"peak_{label}/{name}"] = Quantity(_peak(values))
+            out[f"mean_{label}/{name}"] = Quantity(float(np.sum(values * length)
+                                                         / np.sum(length)))
+        for label, code in (("slipping_length", "slip"), ("open_length", "open")):
+            value = float(np.sum(length[state == STATE_CODES[code]]))
+            out[f"{label}/{name}"] = Quantity(value, quantum)
+    return out
+
+
+def tip_name(result, fracture_id, x, y):
+    """`fracture/begin` or `fracture/end` of the tip at (x, y): the end of the fracture's
+    polyline it lies nearer to (a one-element fracture has both tips on one element)."""
+    fracture, e = result["fractures"][int(fracture_id) - 1], result["elements"]
+    first, last = fracture["first"] - 1, fracture["last"] - 1
+    to_begin = math.dist((x, y), (e["x_begin"][first], e["y_begin"][first]))
+    to_end = math.dist((x, y), (e["x_end"][last], e["y_end"][last]))
+    return f"{fracture['label']}/{'begin' if to_begin < to_end else 'end'}"
+
+
+def tip_quantities(result):
+    """K_I and K_II of every tip; with growth, each tip's final direction (degrees from
+    +x: its tip element, from the element's other end towards the tip)."""
+    tips, elements, out = result["tips"], result["elements"], {}
+    for index in range(tips["x"].size):
+        name = tip_name(result, tips["fracture_id"][index], tips["x"][index],
+                        tips["y"][index])
+        out[f"k1/{name}"] = Quantity(float(tips["k1"][index]))
+        out[f"k2/{name}"] = Quantity(float(tips["k2"][index]))
+        if result["growth"] is not None:
+            element = int(tips["element"][index]) - 1
+            ends = [(elements["x_begin"][element], elements["y_begin"][element]),
+                    (elements["x_end"][element], elements["y_end"][element])]
+            tip = np.array([tips["x"][index], tips["y"][index]])
+            far = max(ends, key=lambda p: math.dist(p, tip))
+            angle = math.degrees(math.atan2(tip[1] - far[1], tip[0] - far[0]))
+            out[f"final_direction/{name}"] = Quantity(angle, scale=DIRECTION_SCALE)
+    return out
+
+
+def growth_quantities(result):
+    """Grown length of every tip that may grow, quantum the increment (the /growth
+    attribute; each record's own length where the increment was left to its default)."""
+    growth, out = result["growth"], {}
+    if growth is None:
+        return out
+    for fracture_id, end in sorted(set(zip(growth["fracture_id"].tolist(),
+                                           growth["end"].tolist()))):
+        mine = (growth["fracture_id"] == fracture_id) & (growth["end"] == end)
+        lengths = growth["length"][mine]
+        label = result["fractures"][int(fracture_id) - 1]["label"]
+        quantum = float(growth["attrs"].get("increment", 0.0) or 0.0)
+        if not quantum > 0.0:
+            quantum = float(np.max(lengths)) if lengths.size else 0.0
+        out[f"grown_length/{label}/{TIP_ENDS[int(end)]}"] = Quantity(
+            float(np.sum(lengths)), quantum or None)
+    return out
+
+
+def _load_axis(history):
+    """The name and values of the load that varies along the path (the first that does,
+    in ddc2d's order), or None when none varies."""
+    for name, values in history["loads"].items():
+        values = np.asarray(values, dtype=float)
+        if values.size and np.ptp(values) > 0.0:
+            return name, values
+    return None
+
+
+def _at_step(load, step):
+    """The load at `step` (0-based) and the load step that reached it."""
+    values = load[1]
+    quantum = abs(values[step] - values[step - 1]) if step > 0 else abs(values[1] - values[0])
+    return Quantity(float(values[step]), float(quantum))
+
+
+def load_path_quantities(result):
+    """Along a load path, the load at which each fracture first slips, first opens and
+    first slips or opens whole (every element it has: the failure load), and the load at
+    which growth starts; keys carry the load's name (`first_slip_load/fault`, the load in
+    the entry `load`). Events that do not happen are left out."""
+    history, out, loads = result["history"], {}, {}
+    if history is None or (load := _load_axis(history)) is None:
+        return out, loads
+    state = history["state"]
+    for fracture in result["fractures"]:
+        part = state[:, fracture["first"] - 1:fracture["last"]]
+        made = part >= 0  # -1: an element not made yet (growth along the path)
+        slip, opened = part == STATE_CODES["slip"], part == STATE_CODES["open"]
+        events = {"first_slip_load": np.any(slip, axis=1),
+                  "first_open_load": np.any(opened, axis=1),
+                  "whole_failure_load": np.all((slip | opened) | ~made, axis=1)}
+        for label, happened in events.items():
+            steps = np.flatnonzero(happened)
+            if steps.size:
+                key = f"{label}/{fracture['label']}"
+                out[key], loads[key] = _at_step(load, int(steps[0])), load[0]
+    growth = result["growth"]
+    if growth is not None and "load_step" in growth:
+        grew = growth["load_step"][growth["length"] > 0.0]
+        if grew.size:
+            out["growth_start_load"] = _at_step(load, int(np.min(grew)) - 1)
+            loads["growth_start_load"] = load[0]
+    return out, loads
+
+
+def field_quantities(result):
+    """Displacements and stresses at every point of the &points and &line sets (points on
+    an element, NaN, are left out)."""
+    out = {}
+    for name, field in result["fields"].items():
+        if field["kind"] not in ("points", "line"):
+            continue
+        for component in FIELD_COMPONENTS:
+            for index, value in enumerate(np.ravel(field[component]), start=1):
+                if math.isfinite(value):
+                    out[f"{component}/{name}/{index}"] = Quantity(float(value))
+    return out
+
+
+def gather(result):
+    """Every quantity of a result (key -> Quantity) and, for loads, the name of the load
+    (key -> e.g. 'sxy')."""
+    path, loads = load_path_quantities(result)
+    quantities = {**fracture_quantities(result), **tip_quantities(result),
+                  **growth_quantities(result), **path, **field_quantities(result)}
+    return quantities, loads

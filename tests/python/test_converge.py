@@ -1,0 +1,189 @@
+"""ddc2d-converge (ddc2d.converge): the refined namelists, the verdicts on synthetic
+sequences, two studies against what is known of them, the keys of STUDY.json and the
+refusals of what cannot be refined.
+
+The studies: the paper's fault (input/paper_fault_slip.nml, 500 elements: K_II =
+dtau sqrt(pi a) with dtau = 54.13 - 1 - 0.6 * 81.25 = 4.38 MPa, a = 1 m) and the README's
+strong patches (input/strong_patch_progressive_failure.nml: cohesion lost at once when an
+element slips, so the load at which the whole fault fails keeps moving with the mesh).
+Both are studied without their &grid map, which no quantity of the study reads and which
+only costs time.
+"""
+
+import json
+import math
+import re
+import subprocess
+import sys
+
+import pytest
+
+from conftest import REPO_ROOT, SCRIPTS, ddc2d_exe
+from ddc2d.converge import cli, namelist, study
+from ddc2d.converge.verdict import CONVERGED, CONVERGING, NOT_CONVERGING, judge
+
+K2_PAPER = 4.38 * math.sqrt(math.pi)  # 7.76335 MPa m^1/2
+#: The weak centre of the strong-patch fault slips at mu * 10 MPa (Sf = 0).
+FIRST_SLIP_STRONG_PATCH = 6.0
+#: A model and a fracture for the refusals.
+MODEL = "&model youngs_modulus = 1, poissons_ratio = 0.2 /\n"
+FAULT = "&fracture x = 0, 1, y = 0, 0, elements = 4, mu = 0.6 /\n"
+ENTRY_KEYS = {"values", "order", "extrapolated", "error_estimate", "verdict"}
+
+
+def without_grid(source, folder, extra=""):
+    """A copy of the example model without its &grid group (and with `extra` groups), in
+    `folder`."""
+    text = re.sub(r"^&grid[^/]*/\n", "", source.read_text(), flags=re.MULTILINE) + extra
+    assert "&grid" not in text
+    copy = folder / source.name
+    copy.write_text(text)
+    return copy
+
+
+def test_refined_namelist_scales_what_it_refines_and_keeps_the_rest(tmp_path):
+    (tmp_path / "pts.csv").write_text("x,y\n0,1\n")
+    text = ("! a comment with elements = 3 and a / in it\n"
+            "&model title = 'a/b = c', youngs_modulus = 1e4, poissons_ratio = 0.25 /\n"
+            "&fracture name = 'f', x = 0, 1, 2, y = 0, 0, 1, elements = 2*10,\n"
+            "          condition = 'contact', mu = 0.6 /\n"
+            "&points name = 'p', file = 'pts.csv' /\n"
+            "&load_path sxy = 0, 1, steps = 4 /\n"
+            "&growth steps = 5, toughness = 1, increment = 0.1, element_length = 0.05 /\n")
+    groups = namelist.parse(text)
+    refined = namelist.refined_text(text, groups, 2, namelist.REFINEMENTS, tmp_path)
+    assert refined.splitlines()[0] == text.splitlines()[0]
+    assert "title = 'a/b = c'" in refined
+    again = {g.name: g for g in namelist.parse(refined)}
+    assert again["fracture"].item("elements").tokens == ["40", "40"]
+    assert again["load_path"].item("steps").tokens == ["16"]
+    assert again["growth"].item("steps").tokens == ["20"]
+    assert float(again["growth"].item("increment").tokens[0]) == pytest.approx(0.025)
+    assert float(again["growth"].item("element_length").tokens[0]) == pytest.approx(0.0125)
+    assert again["points"].item("file").tokens == [f"'{(tmp_path / 'pts.csv').resolve()}'"]
+    only_steps = namelist.refined_text(text, groups, 1, ("steps",), tmp_path)
+    assert "elements = 2*10" in only_steps and "steps = 8 /" in only_steps
+
+
+@pytest.mark.parametrize("values, quanta, verdict", [
+    ([1.0 + 0.5**k for k in range(3)], None, CONVERGING),        # order 1, error 1
+    ([1.0 + 1e-3 * 0.25**k for k in range(3)], None, CONVERGED),  # order 2, error 1e-3
+    ([1.0, 1.5, 2.5], None, NOT_CONVERGING),                     # differences grow
+    ([2.0, 2.0, 2.0], None, CONVERGED),                          # no change at all
+    ([7.5, 7.25, 7.0625], [0.25, 0.125, 0.0625], NOT_CONVERGING),  # 2, then 3 quanta
+    ([1.0, 1.5, 1.5625], [0.25, 0.125, 0.0625], CONVERGED),      # last change 1/2 quantum
+    ([1.0, 2.0, 2.375], [0.25, 0.125, 0.0625], CONVERGING),      # 8, then 6 quanta
+    ([4.2, 4.35, 4.425], [0.05, 0.025, 0.0125], CONVERGING),     # 6, then 6: order 1
+    ([1.0, 1.5, 2.25], [0.25, 0.125, 0.0625], NOT_CONVERGING),   # 4, then 12 quanta
+])
+def test_verdicts_on_known_sequences(values, quanta, verdict):
+    assert judge(values, quanta, 0.01)["verdict"] == verdict
+
+
+def test_direction_is_judged_against_half_a_turn():
+    # 0.7 degrees off: 2 % of -34.95 but 0.4 % of 180 degrees.
+    values = [-34.2518, -34.5426, -34.713]
+    assert judge(values, None, 0.01)["verdict"] == CONVERGING
+    assert judge(values, None, 0.01, scale=180.0)["verdict"] == CONVERGED
+
+
+def test_smooth_sequence_extrapolates_to_its_limit():
+    entry = judge([3.0 + 0.2 * 0.5**k for k in range(3)], None, 0.01)
+    assert entry["order"] == pytest.approx(1.0, rel=1e-9)
+    assert entry["extrapolated"] == pytest.approx(3.0, rel=1e-12)
+    assert entry["error_estimate"] == pytest.approx(0.2, rel=1e-9)
+
+
+def test_paper_fault_k2_extrapolates_to_closed_form(tmp_path):
+    above = "&line name = 'above', x_begin = 0, y_begin = 0.5, x_end = 0, y_end = 1.5, " \
+        "points = 3 /\n"
+    model = without_grid(REPO_ROOT / "input" / "paper_fault_slip.nml", tmp_path, above)
+    result = study(model, levels=3, out_dir=tmp_path / "study", executable=ddc2d_exe(),
+                   figure=False)
+    assert result["element_length"] == pytest.approx([0.004, 0.002, 0.001], rel=1e-9)
+    for tip in ("begin", "end"):
+        entry = result["quantities"][f"k2/fault/{tip}"]
+        assert entry["extrapolated"] == pytest.approx(K2_PAPER, rel=1e-3)
+        true_error = abs(entry["values"][0] - K2_PAPER)
+        # The estimate lies within a factor 3 of the base level's true error, either side.
+        assert true_error / 3 <= entry["error_estimate"] <= 3 * true_error, entry
+        assert entry["order"] > 0
+    # The stress half a metre and more from the fault is resolved to well under 1 %.
+    for point in (1, 2, 3):
+        assert result["quantities"][f"sxy/above/{point}"]["verdict"] == CONVERGED
+    on_disk = json.loads((tmp_path / "study" / "STUDY.json").read_text())
+    assert on_disk["quantities"]["k2/fault/end"]["values"] == \
+        result["quantities"]["k2/fault/end"]["values"]
+
+
+def test_strong_patch_failure_load_is_not_converging(tmp_path, capsys):
+    model = without_grid(REPO_ROOT / "input" / "strong_patch_progressive_failure.nml",
+                         tmp_path)
+    out = tmp_path / "study"
+    status = cli.main([str(model), "-o", str(out), "--exe", str(ddc2d_exe())])
+    printed = capsys.readouterr()
+    assert status == 0, printed.err
+    assert "whole_failure_load/fault [sxy]" in printed.out
+    result = json.loads((out / "STUDY.json").read_text())
+    assert result["refined"] == ["elements", "steps"]
+    for key, entry in result["quantities"].items():
+        assert ENTRY_KEYS <= set(entry), key
+    failure = result["quantities"]["whole_failure_load/fault"]
+    assert failure["verdict"] == NOT_CONVERGING
+    assert failure["extrapolated"] is None
+    assert failure["quantum"] == pytest.approx([0.25, 0.125, 0.0625], rel=1e-9)
+    assert failure["load"] == "sxy"
+    first = result["quantities"]["first_slip_load/fault"]
+    for value, quantum in zip(first["values"], first["quantum"]):
+        assert abs(value - FIRST_SLIP_STRONG_PATCH) <= quantum * (1 + 1e-9)
+    assert first["verdict"] == CONVERGED
+    assert "quantum" not in result["quantities"]["k2/fault/end"]
+    assert (out / "convergence.png").read_bytes()[:4] == b"\x89PNG"
+
+
+@pytest.mark.parametrize("text, args, message", [
+    (MODEL + "&fracture name = 'f', elements_file = 'f.csv', condition = 'contact' /\n", [],
+     "elements_file"),
+    (MODEL + FAULT
+     + "&sweep parameters = 'mu', values_1 = 0.5, 0.6 /\n", [], "&sweep"),
+    ("1 0 0 0\n", [], "twodd2nml"),
+    (MODEL + FAULT, ["--levels", "2"],
+     "at least 3"),
+    (MODEL + FAULT, ["--refine", "steps"],
+     "no &load_path"),
+    (MODEL + FAULT, ["--refine", "mesh"],
+     "choose among"),
+])
+def test_what_cannot_be_refined_is_refused(tmp_path, capsys, text, args, message):
+    model = tmp_path / "model.nml"
+    model.write_text(text)
+    status = cli.main([str(model), "-o", str(tmp_path / "out"), *args])
+    err = capsys.readouterr().err
+    assert status == 2
+    assert message in err and err.count("\n") == 1, err
+    assert not (tmp_path / "out" / "STUDY.json").exists()
+
+
+def test_model_that_ddc2d_refuses_ends_with_its_message(tmp_path, capsys):
+    model = tmp_path / "model.nml"
+    model.write_text(MODEL.replace("youngs_modulus = 1", "youngs_modulus = -1") + FAULT)
+    status = cli.main([str(model), "-o", str(tmp_path / "out"), "--exe", str(ddc2d_exe())])
+    err = capsys.readouterr().err
+    assert status == 2
+    assert "youngs_modulus" in err, err
+    assert not (tmp_path / "out" / "STUDY.json").exists()
+
+
+def test_collect_without_results_names_the_missing_level(tmp_path, capsys):
+    model = tmp_path / "model.nml"
+    model.write_text(MODEL + FAULT)
+    status = cli.main([str(model), "-o", str(tmp_path / "out"), "--collect"])
+    err = capsys.readouterr().err
+    assert status == 1
+    assert "no result yet" in err and "model_level0.h5" in err, err
+
+
+def test_script_shim_prints_help():
+    done = subprocess.run([sys.executable, str(SCRIPTS / "converge.py"), "--help"],
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0 and "--levels" in done.stdout, done.stderr
