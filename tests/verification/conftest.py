@@ -7,12 +7,14 @@ into its temporary folder. DDC2D_EXE is the program (ddc2d.run finds one otherwi
 """
 
 import os
+import subprocess
 import sys
 from pathlib import Path
 
 import pytest
 
-from ddc2d import run
+from ddc2d import open_result, run
+from ddc2d.paths import find_executable
 from ddc2d.verification import make_row, write_row
 
 sys.dont_write_bytecode = True
@@ -46,3 +48,22 @@ def record(tmp_path):
         return row
 
     return _record
+
+
+@pytest.fixture
+def solve_deck(tmp_path):
+    """solve_deck(text, name) -> ddc2d.Result: a TWODD deck (its text), run with --twodd
+    in the test's temporary folder."""
+
+    def _solve(text, name):
+        deck = tmp_path / f"{name}.f60.txt"
+        deck.write_text(text)
+        out = tmp_path / f"{name}.h5"
+        done = subprocess.run([str(find_executable()), "--twodd", str(deck), "-o", str(out)],
+                              capture_output=True, text=True, timeout=RUN_TIMEOUT,
+                              env=dict(os.environ, OMP_NUM_THREADS="1",
+                                       OPENBLAS_NUM_THREADS="1"))
+        assert done.returncode == 0, done.stderr
+        return open_result(out)
+
+    return _solve
