@@ -9,8 +9,8 @@ import math
 import numpy as np
 
 import ddc2d
-from ddc2d.richardson import extrapolate
 from conftest import REPO_ROOT
+from ddc2d.richardson import extrapolate
 
 E, NU = 50000.0, 0.25
 G = E / (2 * (1 + NU))

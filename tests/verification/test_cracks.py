@@ -57,8 +57,9 @@ def test_griffith_crack(mode, solve, record):
     ratios = [value / e for (value, _), e in zip(peaks, exact, strict=True)]
     order = extrapolate(ratios).order
     label = "opening" if mode == "I" else "slip"
+    load = "tension" if mode == "I" else "shear"
     row = record(id=f"griffith-mode-{mode.lower()}-{label}",
-                 benchmark=f"Griffith crack, mode {mode} (remote {'tension' if mode == 'I' else 'shear'})",
+                 benchmark=f"Griffith crack, mode {mode} (remote {load})",
                  reference="D(x) = 2 (1 - nu) s sqrt(a^2 - x^2) / G (Griffith 1921; Crouch & "
                            "Starfield 1983)",
                  quantity=f"peak {label} / exact at that element", value=ratios[-1],

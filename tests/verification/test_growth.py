@@ -6,6 +6,7 @@ the infinitesimal-kink angle of Amestoy & Leblond (1992) as the increment shrink
 convergence study of docs/fracture-growth.md (ddc2d-growth-convergence, whose runs these
 are) resolves the arrest length and the final direction."""
 
+import itertools
 import math
 
 import numpy as np
@@ -81,7 +82,7 @@ def test_wing_cracks(tmp_path, record):
     # (Cotterell & Rice 1980), closer at each halving.
     angles = [r["first_angle"] for r in runs]
     gaps = [growth_convergence.PLS_ANGLE - a for a in angles]
-    assert all(0 < b < a for a, b in zip(gaps, gaps[1:])), f"first kinks {angles}"
+    assert all(0 < b < a for a, b in itertools.pairwise(gaps)), f"first kinks {angles}"
     row = record(id="wing-first-kink", benchmark=WINGS, reference="77.3 degrees: local "
                  "symmetry of an infinitesimal kink in pure mode II (Amestoy & Leblond "
                  "1992); the finite kink approaches it as sqrt(increment) (Cotterell & Rice "
