@@ -20,7 +20,8 @@ from pathlib import Path
 REPO_ROOT = Path(__file__).resolve().parents[2]
 #: The console entry points of python/pyproject.toml.
 ENTRY_POINTS = ("ddc2d-plot", "collect-sweep", "submit-sweep", "twodd2nml", "comp2ddm2nml",
-                "compare-twodd", "ddc2d-benchmark", "ddc2d-growth-convergence")
+                "compare-twodd", "ddc2d-benchmark", "ddc2d-growth-convergence",
+                "ddc2d-verification-table", "ddc2d-converge")
 #: pip's network waits are its own; the whole install takes a minute or two.
 TIMEOUT = 1200
 

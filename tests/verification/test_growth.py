@@ -1,0 +1,115 @@
+"""Fracture growth against closed forms (docs/verification.md;
+docs/fracture-growth.md#how-it-is-tested): a crack normal to a tension grows straight with
+K_I = s sqrt(pi a); the wings of a closed sliding flaw start at the MTS angle of pure mode
+II, their first applied kink (local symmetry, K_II = 0 at the new tip) converges towards
+the infinitesimal-kink angle of Amestoy & Leblond (1992) as the increment shrinks, and the
+convergence study of docs/fracture-growth.md (ddc2d-growth-convergence, whose runs these
+are) resolves the arrest length and the final direction."""
+
+import itertools
+import math
+
+import numpy as np
+
+import ddc2d
+from ddc2d import growth_convergence
+from ddc2d.paths import find_executable
+from ddc2d.richardson import extrapolate
+
+E, NU = 50000.0, 0.25
+#: Elements on the straight crack of the three levels; the increment stays 0.1.
+STRAIGHT_LEVELS = (40, 80, 160)
+
+
+def test_mode_i_growth_is_straight(solve, record):
+    """A crack of half-length 1 normal to syy = 10 (toughness 5, below K all along) grows
+    0.1 at each tip per step for 7 steps: K_I of the last step against s sqrt(pi a) of the
+    half-length then, 1.6; every element stays on y = 0."""
+    s, increment, steps = 10.0, 0.1, 7
+    ks = []
+    for n in STRAIGHT_LEVELS:
+        model = ddc2d.Model(youngs_modulus=E, poissons_ratio=NU, title="mode I growth")
+        model.remote_stress(syy=s)
+        model.fracture([-1.0, 1.0], [0.0, 0.0], elements=n, condition="traction",
+                       name="crack")
+        model.growth(steps=steps, toughness=5.0, increment=increment)
+        result = solve(model, f"straight{n}")
+        e = result.elements
+        assert np.max(np.abs([e["y_begin"], e["y_end"]])) < 1e-12, "the path is straight"
+        growth = result.growth
+        last = growth["step"] == steps
+        assert np.count_nonzero(last) == 2 and np.all(growth["reason"] == 0)
+        ks.append(float(np.mean(growth["k1"][last])))
+    half_length = 1.0 + increment * (steps - 1)
+    row = record(id="mode-i-growth-k1", benchmark="Mode I growth of a crack normal to a "
+                 "tension: straight path (|y| < 1e-12)", reference="K_I = s sqrt(pi a) of "
+                 "the grown half-length a (Griffith)", quantity="K_I at step 7, a = 1.6 "
+                 "[MPa m^1/2]", value=ks[-1],
+                 reference_value=s * math.sqrt(math.pi * half_length), tolerance=1e-2,
+                 mesh=f"{STRAIGHT_LEVELS[-1]} elements, increment 0.1 (levels "
+                      f"{', '.join(map(str, STRAIGHT_LEVELS))})",
+                 order=extrapolate(ks).order)
+    assert row["passed"], row
+
+
+#: The study's element count and increments (the three finest of
+#: docs/fracture-growth.md's table for N = 80), coarse to fine.
+WING_ELEMENTS = 80
+WING_INCREMENTS = (0.1, 0.05, 0.025)
+#: Pure mode II: the maximum tangential stress angle arccos(1/3) (Erdogan & Sih 1963) and
+#: the local-symmetry angle of an infinitesimal kink (Amestoy & Leblond 1992) [degree].
+MTS_ANGLE = math.degrees(math.acos(1.0 / 3.0))
+WINGS = "Sliding flaw at 45 degrees to sigma_1, mu = 0.6: wing cracks"
+
+
+def test_wing_cracks(tmp_path, record):
+    exe = find_executable()
+    runs = [growth_convergence.run_case(exe, tmp_path, WING_ELEMENTS, d)
+            for d in WING_INCREMENTS]
+    finest = runs[-1]
+    mesh = (f"{WING_ELEMENTS} elements on the flaw, increments "
+            f"{', '.join(f'{d:g}' for d in WING_INCREMENTS)} m")
+    # The MTS angle of the first step: K_I = 0 at the closed flaw's tips.
+    first = ddc2d.open_result(tmp_path / f"wing_n{WING_ELEMENTS}_d{WING_INCREMENTS[-1]:g}.h5")
+    mts = float(np.max(np.abs(first.growth["mts_angle"][first.growth["step"] == 1])))
+    row = record(id="wing-mts-angle", benchmark=WINGS, reference="theta = arccos(1/3) = "
+                 "70.53 degrees in pure mode II (maximum tangential stress; Erdogan & Sih "
+                 "1963)", quantity="mts_angle of the first step [degree, from the flaw]",
+                 value=mts, reference_value=MTS_ANGLE, tolerance=0.1,
+                 tolerance_kind="absolute", mesh=mesh)
+    assert row["passed"], row
+    # The applied first kink: below the infinitesimal-kink angle by about sqrt(increment)
+    # (Cotterell & Rice 1980), closer at each halving.
+    angles = [r["first_angle"] for r in runs]
+    gaps = [growth_convergence.PLS_ANGLE - a for a in angles]
+    assert all(0 < b < a for a, b in itertools.pairwise(gaps)), f"first kinks {angles}"
+    row = record(id="wing-first-kink", benchmark=WINGS, reference="77.3 degrees: local "
+                 "symmetry of an infinitesimal kink in pure mode II (Amestoy & Leblond "
+                 "1992); the finite kink approaches it as sqrt(increment) (Cotterell & Rice "
+                 "1980)", quantity="applied first kink at increment 0.025 = flaw length / "
+                 "80 [degree]; closer at each halving", value=angles[-1],
+                 reference_value=growth_convergence.PLS_ANGLE, tolerance=8.0,
+                 tolerance_kind="absolute", mesh=mesh, order=extrapolate(angles).order)
+    assert row["passed"], row
+    # The study (docs/fracture-growth.md): every run arrests, its arrest length within 10 %
+    # and its final direction within 5 degrees of the finest increment's.
+    assert not growth_convergence.check(runs), growth_convergence.check(runs)
+    coarsest = runs[0]
+    row = record(id="wing-arrest-length", benchmark=WINGS + ": convergence study "
+                 "(ddc2d-growth-convergence)", reference="the finest increment's arrest "
+                 "length, 0.95 m (a self-convergence check; the length moves in whole "
+                 "increments)", quantity="wing length at arrest at increment 0.1 [m]",
+                 value=coarsest["arrest_length"], reference_value=finest["arrest_length"],
+                 tolerance=growth_convergence.LENGTH_TOLERANCE, mesh=mesh)
+    assert row["passed"], row
+    # No observed order: the directions agree within 0.1 degree, below what the path's
+    # last element resolves.
+    directions = [r["final_direction"] for r in runs]
+    row = record(id="wing-final-direction", benchmark=WINGS + ": convergence study "
+                 "(ddc2d-growth-convergence)", reference="parallel to sigma_1 (90 degrees; "
+                 "Horii & Nemat-Nasser 1986)", quantity="direction of the wing's last "
+                 f"element [degree from +x]; the three increments within "
+                 f"{np.ptp(directions):.1f} degree", value=finest["final_direction"],
+                 reference_value=90.0, tolerance=growth_convergence.DIRECTION_TOLERANCE,
+                 tolerance_kind="absolute", mesh=mesh)
+    assert row["passed"], row
