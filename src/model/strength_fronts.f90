@@ -154,15 +154,26 @@ contains
                 warnings = warnings//'fracture '//itoa(k)//' '//model%fractures(k)% &
                     name//': the cohesive zone of '//name//', about (9 pi / 32) G d / '// &
                     '((1 - nu)(tau_p - tau_r)) with tau_p - tau_r '//drop//', spans only '// &
-                    short_real(minval(spans, mask=zone(first:last) > 0.0_wp))// &
+                    short_real(three_digits(minval(spans, mask=zone(first:last) > 0.0_wp)))// &
                     ' element lengths (fewer than 3 on '//itoa(short)//' of '// &
                     itoa(last - first + 1)//' elements; zone '// &
-                    short_real(minval(zone(first:last), mask=zone(first:last) > 0.0_wp))// &
+                    short_real(three_digits(minval(zone(first:last), &
+                                                   mask=zone(first:last) > 0.0_wp)))// &
                     ' '//model%length_unit//'): its failure loads still depend on the '// &
                     'element length; give a larger '//name//' or shorter elements'
             end associate
         end subroutine warn
 
     end function cohesive_zone_warnings
+
+    !> x rounded to three significant digits (an estimate needs no more).
+    pure real(wp) function three_digits(x)
+        !> The value
+        real(wp), intent(in) :: x
+        character(len=24) :: text
+
+        write (text, '(es24.2)') x
+        read (text, *) three_digits
+    end function three_digits
 
 end module ddc_model_strength_fronts
