@@ -171,11 +171,11 @@ def test_cohesive_zone_warning_and_instant_drop_note(tmp_path):
     # 50 elements of 0.04 m: the zone spans 1.96 element lengths, fewer than 3.
     done = solve(tmp_path, PATCHES.format(n="15, 20, 15", d_c="2e-5"))
     assert echo_warnings(done) == [
-        "warning: fracture 1 fault: the cohesive zone of slip_weakening_distance, about "
-        "(9 pi / 32) G d / ((1 - nu)(tau_p - tau_r)) with tau_p - tau_r the drop of cohesion "
-        "and friction at the remote normal stress, spans only 1.96 element lengths (fewer "
-        "than 3 on 30 of 50 elements; zone 0.0785 m): its failure loads still depend on the "
-        "element length; give a larger slip_weakening_distance or shorter elements"]
+        ("warning: fracture 1 fault: the cohesive zone of slip_weakening_distance, about "
+         "(9 pi / 32) G d / ((1 - nu)(tau_p - tau_r)) with tau_p - tau_r the drop of cohesion "
+         "and friction at the remote normal stress, spans only 1.96 element lengths (fewer "
+         "than 3 on 30 of 50 elements; zone 0.0785 m): its failure loads still depend on the "
+         "element length; give a larger slip_weakening_distance or shorter elements")]
     assert not notes(done)
     # 100 elements of 0.02 m: 3.9 element lengths, resolved.
     done = solve(tmp_path, PATCHES.format(n="30, 40, 30", d_c="2e-5"))
@@ -184,11 +184,11 @@ def test_cohesive_zone_warning_and_instant_drop_note(tmp_path):
     done = solve(tmp_path, PATCHES.format(n="30, 40, 30", d_c="0"))
     assert not echo_warnings(done)
     assert notes(done) == [
-        "note: fracture 1 fault: cohesion or friction drops at once on slip "
-        "(slip_weakening_distance = 0) on 100 of 100 elements: the stress at a slip or "
-        "opening front is singular, so the loads at which such strength fails depend on the "
-        "element length; give slip_weakening_distance (a cohesive zone of at least 3 "
-        "elements) for failure loads that converge with the mesh"]
+        ("note: fracture 1 fault: cohesion or friction drops at once on slip "
+         "(slip_weakening_distance = 0) on 100 of 100 elements: the stress at a slip or "
+         "opening front is singular, so the loads at which such strength fails depend on the "
+         "element length; give slip_weakening_distance (a cohesive zone of at least 3 "
+         "elements) for failure loads that converge with the mesh")]
 
 
 def test_note_on_a_weakening_distance_without_a_friction_drop(tmp_path):
