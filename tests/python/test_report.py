@@ -267,3 +267,18 @@ def test_k_has_units(tmp_path):
     tips = [line for line in done.stdout.splitlines() if line.startswith("  tip ")]
     assert len(tips) == 2
     assert all(line.endswith(" MPa km^1/2") and "K_I = " in line for line in tips)
+
+
+def test_opening_weakening_distance_is_read_echoed_and_checked(tmp_path):
+    text = TENSILE.replace("tensile_strength = 2 /", "tensile_strength = 2,\n"
+                           "          opening_weakening_distance = 1e-4 /")
+    lines = solve(tmp_path, text).stdout.splitlines()
+    strong = lines.index("  fracture 2 strong: 10 elements, condition contact")
+    assert lines[strong + 1] == ("    tensile_strength 2 .. 2 MPa (capped at sf/mu; falls to 0 "
+                                 "as the opening grows to opening_weakening_distance "
+                                 "0.0001 .. 0.0001 m)")
+    (tmp_path / "bad.nml").write_text(text.replace("= 1e-4", "= -1e-4"))
+    done = run(["bad.nml"], tmp_path)
+    assert done.returncode == 2
+    assert ("(line 6): opening_weakening_distance(1) = -0.100000E-3 must be >= 0"
+            in done.stderr), done.stderr
