@@ -11,6 +11,7 @@ module ddc_app_report
         growth_reason_names, growth_end_names, growth_subcritical, growth_intersection, &
         growth_surface, growth_linked, growth_closed, growth_waiting, growth_enclosing
     use ddc_model_plausibility, only: plausibility_notes, depth_range
+    use ddc_model_strength_fronts, only: instant_drop_notes, cohesive_zone_warnings
     use ddc_growth_summary, only: tip_summary, summarize_tips, linked_fracture
     use ddc_contact_options, only: lcp_method_names, open_cohesion_names
     use ddc_text, only: short_real, itoa, prefix_lines, join_integers
@@ -94,6 +95,10 @@ contains
         write (unit, '(a)') '  output: '//model%output_file
         notes = plausibility_notes(model, units_given)
         if (len(notes) > 0) write (unit, '(a)') prefix_lines('note: ', notes)
+        notes = instant_drop_notes(model)
+        if (len(notes) > 0) write (unit, '(a)') prefix_lines('note: ', notes)
+        notes = cohesive_zone_warnings(model)
+        if (len(notes) > 0) write (unit, '(a)') prefix_lines('warning: ', notes)
 
     contains
 
@@ -107,11 +112,21 @@ contains
                                            model%elements%mu(first:last)), &
                        sf => model%elements%sf(first:last), &
                        sfr => min(model%elements%sf(first:last), &
-                                  model%elements%sf_residual(first:last)))
-                if (any(t > 0.0_wp)) call print_tensile_strength(t, t_in)
-                if (any(sfr < sf)) write (unit, '(a)') '    sf_residual '// &
-                    short_real(minval(sfr))//' .. '//short_real(maxval(sfr))//stress// &
-                    ' (the cohesion once the element has slipped)'
+                                  model%elements%sf_residual(first:last)), &
+                       dc => model%elements%slip_weakening_distance(first:last))
+                if (any(t > 0.0_wp)) call print_tensile_strength(t, t_in, &
+                    model%elements%opening_weakening_distance(first:last))
+                if (any(sfr < sf .and. dc > 0.0_wp)) then
+                    write (unit, '(a)') '    sf_residual '//short_real(minval(sfr))//' .. '// &
+                        short_real(maxval(sfr))//stress//' (the cohesion falls to it as '// &
+                        'the slip grows to slip_weakening_distance '// &
+                        short_real(minval(dc, mask=sfr < sf))//' .. '// &
+                        short_real(maxval(dc, mask=sfr < sf))//' '//model%length_unit//')'
+                else if (any(sfr < sf)) then
+                    write (unit, '(a)') '    sf_residual '//short_real(minval(sfr))//' .. '// &
+                        short_real(maxval(sfr))//stress// &
+                        ' (the cohesion once the element has slipped)'
+                end if
             end associate
             associate (mu => model%elements%mu(first:last), &
                        mud => min(model%elements%mu(first:last), &
@@ -134,8 +149,8 @@ contains
 
         !> The tensile strength in force, and the given one where the cap at the Coulomb apex
         !> sf/mu lowers it (the plausibility notes say on which elements).
-        subroutine print_tensile_strength(given, in_force)
-            real(wp), intent(in) :: given(:), in_force(:)
+        subroutine print_tensile_strength(given, in_force, d_o)
+            real(wp), intent(in) :: given(:), in_force(:), d_o(:)
             character(len=:), allocatable :: line
 
             line = '    tensile_strength '//short_real(minval(in_force))//' .. '// &
@@ -146,7 +161,14 @@ contains
             else
                 line = line//' (capped at sf/mu;'
             end if
-            write (unit, '(a)') line//' lost once the element opens)'
+            if (any(d_o > 0.0_wp .and. given > 0.0_wp)) then
+                write (unit, '(a)') line//' falls to 0 as the opening grows to '// &
+                    'opening_weakening_distance '// &
+                    short_real(minval(d_o, mask=given > 0.0_wp))//' .. '// &
+                    short_real(maxval(d_o, mask=given > 0.0_wp))//' '//model%length_unit//')'
+            else
+                write (unit, '(a)') line//' lost once the element opens)'
+            end if
         end subroutine print_tensile_strength
 
         !> 'min .. max' of stiffnesses, 'rigid' for rigid contact.

@@ -7,8 +7,14 @@
 !>   in the shifted traction S_n'' = S_n' - T is the paper's LCP with s_n - T for the
 !>   resolved normal traction and Sf - mu T for Sf (shifted). T is capped at the apex
 !>   Sf/mu of the Coulomb envelope, where the shear strength vanishes.
-!> - Residual cohesion: an element that slipped keeps min(Sf, sf_residual) (weaken); with
+!> - Residual cohesion: with d_c = 0 an element that slipped keeps min(Sf, sf_residual)
+!>   at once (weaken); with d_c > 0 the cohesion falls linearly with the slip path as the
+!>   friction does, Sf(s) = Sf - (Sf - Sf_r) min(s / d_c, 1) (cohesion); with
 !>   open_cohesion = 'lost' an element that opens keeps none (lose_open_cohesion).
+!> - Opening weakening: with opening_weakening_distance d_o > 0 the tensile strength falls
+!>   linearly with the opening w, T(w) = T (1 - min(w / d_o, 1)) (tensile); with d_o = 0 it
+!>   is lost at once when the element opens. Both gradual drops regularize the singular
+!>   stress at a front, so that failure loads converge with the mesh.
 !> - Slip weakening: mu(s) = mu - (mu - mu_d) min(s / d_c, 1) for the slip s (the slip
 !>   path, accumulated over the steps of a loading history) and mu_d = min(mu, mu_dynamic);
 !>   with d_c = 0, mu_d once the element has slipped at all (friction).
@@ -43,8 +49,10 @@ module ddc_contact_fault_law
         !> cohesion after the element first slipped [stress] (no_residual_drop: no drop)
         real(wp), allocatable :: tensile_strength(:), sf_residual(:)
         !> Given: dynamic friction [-] (no_residual_drop: no drop) and slip-weakening
-        !> distance d_c >= 0 [length]
+        !> distance d_c >= 0 of friction and cohesion [length]
         real(wp), allocatable :: mu_dynamic(:), slip_weakening_distance(:)
+        !> Given: opening over which the tensile strength falls to 0 [length] (0: at once)
+        real(wp), allocatable :: opening_weakening_distance(:)
         !> Given: shear and normal stiffness of an elastic joint [stress / length]
         !> (rigid_joint: rigid contact)
         real(wp), allocatable :: shear_stiffness(:), normal_stiffness(:)
@@ -62,7 +70,10 @@ module ddc_contact_fault_law
         procedure :: has_joints
         procedure :: joint_compliance
         procedure :: weakens
+        procedure :: weakens_gradually
         procedure :: friction
+        procedure :: cohesion
+        procedure :: tensile
         procedure :: shifted
         procedure :: weaken
         procedure :: lose_open_cohesion
@@ -75,8 +86,8 @@ contains
     !> Coulomb's law as it is (no tensile strength, no drop of cohesion or friction, rigid
     !> contact); the values in force are the given ones and the slip path is 0.
     pure function new_fault_law(mu, sf, tensile_strength, sf_residual, mu_dynamic, &
-                                slip_weakening_distance, shear_stiffness, normal_stiffness) &
-        result(law)
+                                slip_weakening_distance, shear_stiffness, normal_stiffness, &
+                                opening_weakening_distance) result(law)
         !> Friction coefficient [-] and cohesion [stress], shape (n)
         real(wp), intent(in) :: mu(:), sf(:)
         !> Tensile strength (default 0) and cohesion after slip (default no_residual_drop)
@@ -87,6 +98,9 @@ contains
         real(wp), intent(in), optional :: mu_dynamic(:), slip_weakening_distance(:)
         !> Shear and normal joint stiffness (default rigid_joint) [stress / length], shape (n)
         real(wp), intent(in), optional :: shear_stiffness(:), normal_stiffness(:)
+        !> Opening over which the tensile strength falls to 0 (default 0: at once)
+        !> [length], shape (n)
+        real(wp), intent(in), optional :: opening_weakening_distance(:)
         type(fault_law) :: law
 
         allocate (law%mu, source=mu)
@@ -96,6 +110,8 @@ contains
         allocate (law%mu_dynamic, source=given_or(mu_dynamic, no_residual_drop))
         allocate (law%slip_weakening_distance, source=given_or(slip_weakening_distance, &
                                                                0.0_wp))
+        allocate (law%opening_weakening_distance, &
+                  source=given_or(opening_weakening_distance, 0.0_wp))
         allocate (law%shear_stiffness, source=given_or(shear_stiffness, rigid_joint))
         allocate (law%normal_stiffness, source=given_or(normal_stiffness, rigid_joint))
         allocate (law%sf_in_force, source=sf)
@@ -130,12 +146,14 @@ contains
         sizes_match = allocated(law%mu) .and. allocated(law%sf) .and. &
             allocated(law%tensile_strength) .and. allocated(law%sf_residual) .and. &
             allocated(law%mu_dynamic) .and. allocated(law%slip_weakening_distance) .and. &
-            allocated(law%shear_stiffness) .and. allocated(law%normal_stiffness) .and. &
+            allocated(law%opening_weakening_distance) .and. allocated(law%shear_stiffness) &
+            .and. allocated(law%normal_stiffness) .and. &
             allocated(law%sf_in_force) .and. allocated(law%tensile_in_force) .and. &
             allocated(law%mu_in_force) .and. allocated(law%slip_path)
         if (sizes_match) sizes_match = all([size(law%mu), size(law%sf), &
             size(law%tensile_strength), size(law%sf_residual), size(law%mu_dynamic), &
-            size(law%slip_weakening_distance), size(law%shear_stiffness), &
+            size(law%slip_weakening_distance), size(law%opening_weakening_distance), &
+            size(law%shear_stiffness), &
             size(law%normal_stiffness), size(law%sf_in_force), size(law%tensile_in_force), &
             size(law%mu_in_force), size(law%slip_path)] == n)
     end function sizes_match
@@ -157,7 +175,7 @@ contains
         any_negative = any(law%mu < 0.0_wp) .or. any(law%sf_in_force < 0.0_wp) .or. &
             any(law%tensile_in_force < 0.0_wp) .or. any(law%sf_residual < 0.0_wp) .or. &
             any(law%mu_dynamic < 0.0_wp) .or. any(law%slip_weakening_distance < 0.0_wp) .or. &
-            any(law%slip_path < 0.0_wp)
+            any(law%opening_weakening_distance < 0.0_wp) .or. any(law%slip_path < 0.0_wp)
     end function any_negative
 
     !> Whether any element's law goes beyond Coulomb's: a tensile strength, a drop of
@@ -200,6 +218,51 @@ contains
 
         weakens = any(law%mu_dynamic < law%mu)
     end function weakens
+
+    !> Whether any element's cohesion falls with slip over d_c > 0 or its tensile strength
+    !> with opening over d_o > 0: strengths that the iteration must bring to a fixed point
+    !> (weaken).
+    pure logical function weakens_gradually(law)
+        !> The law
+        class(fault_law), intent(in) :: law
+
+        weakens_gradually = any(law%slip_weakening_distance > 0.0_wp .and. &
+                                law%sf_residual < law%sf) .or. &
+            any(law%opening_weakening_distance > 0.0_wp .and. law%tensile_strength > 0.0_wp)
+    end function weakens_gradually
+
+    !> Cohesion after a slip path s: Sf - (Sf - Sf_r) min(s / d_c, 1) with Sf_r =
+    !> min(Sf, sf_residual), where d_c > 0; Sf elsewhere (there weaken drops it at once);
+    !> shape (n) [stress].
+    pure function cohesion(law, s) result(sf_s)
+        !> The law
+        class(fault_law), intent(in) :: law
+        !> Slip path of each element [length], shape (n)
+        real(wp), intent(in) :: s(:)
+        real(wp) :: sf_s(size(s))
+        real(wp) :: ratio(size(s))
+
+        ratio = 0.0_wp
+        where (law%slip_weakening_distance > 0.0_wp) &
+            ratio = min(s / law%slip_weakening_distance, 1.0_wp)
+        sf_s = law%sf - (law%sf - min(law%sf, law%sf_residual)) * ratio
+    end function cohesion
+
+    !> Tensile strength after an opening w: T (1 - min(w / d_o, 1)) where d_o > 0; T
+    !> elsewhere (there weaken drops it at once); shape (n) [stress].
+    pure function tensile(law, w) result(t_w)
+        !> The law
+        class(fault_law), intent(in) :: law
+        !> Opening of each element (-Dn, 0 where closed) [length], shape (n)
+        real(wp), intent(in) :: w(:)
+        real(wp) :: t_w(size(w))
+        real(wp) :: ratio(size(w))
+
+        ratio = 0.0_wp
+        where (law%opening_weakening_distance > 0.0_wp) &
+            ratio = min(max(w, 0.0_wp) / law%opening_weakening_distance, 1.0_wp)
+        t_w = law%tensile_strength * (1.0_wp - ratio)
+    end function tensile
 
     !> Friction after a slip path s: mu - (mu - mu_d) min(s / d_c, 1) with mu_d =
     !> min(mu, mu_dynamic); with d_c = 0, mu_d where the element has slipped (s > 0 or
@@ -259,24 +322,46 @@ contains
         if (mu * tensile_strength > sf) cap = sf / mu
     end function tensile_cap
 
-    !> After a solve: elements that opened lose their tensile strength, elements that
-    !> slipped drop their cohesion to min(sf_in_force, sf_residual); true when any strength
-    !> in force changed.
-    function weaken(law, state) result(changed)
+    !> After a solve: with d_o = 0, elements that opened lose their tensile strength, and
+    !> with d_c = 0 elements that slipped drop their cohesion to min(sf_in_force,
+    !> sf_residual), at once; with d_o > 0 or d_c > 0 the strength in force falls to that of
+    !> the law at the opening or slip path (tensile, cohesion; never upwards), when that
+    !> lowers some strength by more than tol. True when any strength in force changed.
+    function weaken(law, state, s, w, tol, moving) result(changed)
         !> The law; its tensile strength and cohesion in force change
         class(fault_law), intent(inout) :: law
         !> States of the solve (ddc_contact_states), shape (n)
         integer, intent(in) :: state(:)
+        !> Slip path after the solve [length], shape (n)
+        real(wp), intent(in) :: s(:)
+        !> Opening after the solve (-Dn) [length], shape (n)
+        real(wp), intent(in) :: w(:)
+        !> Smallest drop of a gradual strength that counts as a change [stress]
+        real(wp), intent(in) :: tol
+        !> The element whose gradual strength fell most, by more than tol; 0 if none did
+        integer, intent(out) :: moving
         logical :: changed
         logical :: opened(size(state)), slipped(size(state))
-        real(wp) :: sf_after(size(state))
+        real(wp) :: sf_after(size(state)), t_after(size(state)), drop(size(state))
 
         sf_after = min(law%sf_in_force, law%sf_residual)
-        opened = state == state_open .and. law%tensile_in_force > 0.0_wp
-        slipped = state == state_slip .and. law%sf_in_force > sf_after
+        opened = state == state_open .and. law%tensile_in_force > 0.0_wp .and. &
+            .not. law%opening_weakening_distance > 0.0_wp
+        slipped = state == state_slip .and. law%sf_in_force > sf_after .and. &
+            .not. law%slip_weakening_distance > 0.0_wp
         changed = any(opened) .or. any(slipped)
         where (opened) law%tensile_in_force = 0.0_wp
         where (slipped) law%sf_in_force = sf_after
+        moving = 0
+        if (.not. law%weakens_gradually()) return
+        sf_after = min(law%sf_in_force, law%cohesion(s))
+        t_after = min(law%tensile_in_force, law%tensile(w))
+        drop = max(law%sf_in_force - sf_after, law%tensile_in_force - t_after)
+        if (.not. maxval(drop) > tol) return
+        moving = maxloc(drop, 1)
+        changed = .true.
+        law%sf_in_force = sf_after
+        law%tensile_in_force = t_after
     end function weaken
 
     !> open_cohesion = 'lost': zero the cohesion in force of every open element that still

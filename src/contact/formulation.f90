@@ -62,6 +62,12 @@
 !> still change after max_weakening_solves solves, the load has no quasi-static solution
 !> this iteration can reach: an error (exit_solver_failure) naming the element whose
 !> friction changed most.
+!>
+!> Gradual strength drops (slip_weakening_distance with sf_residual, and
+!> opening_weakening_distance): the cohesion and tensile strength in force are brought to
+!> those of the law at the new slip path and opening after each solve, never upwards, in
+!> the same iteration, until none falls by more than weakening_tol times the stress scale;
+!> beyond max_weakening_solves solves that is the same error, naming the element.
 module ddc_contact_formulation
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, set_internal_error, exit_bad_input, &
@@ -309,7 +315,7 @@ contains
             logical, intent(in) :: warm
             real(wp), allocatable :: sf_in(:), srn_in(:), t_cap(:), mu_next(:), path(:)
             logical :: newton, automatic, changed, exceeded
-            integer :: rounds
+            integer :: rounds, moving
             character(len=:), allocatable :: reason
             character(len=200) :: line
             type(factor_counts) :: this_solve
@@ -388,7 +394,14 @@ contains
                 if (.not. newton) call keep_states(res, s)
                 res%normal_traction = res%normal_traction + t_cap
                 path = law%slip_path + abs(res%ds - held)
-                changed = law%weaken(res%state)
+                changed = law%weaken(res%state, path, -res%dn, weakening_tol * sigma0, moving)
+                if (moving > 0 .and. rounds >= solves_limit) then
+                    call set_error(error, exit_solver_failure, 'contact: strength '// &
+                        'weakening found no quasi-static solution: after '//itoa(rounds)// &
+                        ' solves the cohesion or tensile strength of element '// &
+                        itoa(moving)//' still falls (its slip or opening runs away)')
+                    return
+                end if
                 if (options%open_cohesion == cohesion_lost) then
                     if (law%lose_open_cohesion(res%state)) changed = .true.
                 end if

@@ -124,6 +124,7 @@ contains
             tensile_strength=fracture%tensile_strength, sf_residual=fracture%sf_residual, &
             mu_dynamic=fracture%mu_dynamic, &
             slip_weakening_distance=fracture%slip_weakening_distance, &
+            opening_weakening_distance=fracture%opening_weakening_distance, &
             shear_stiffness=fracture%shear_stiffness, normal_stiffness=fracture%normal_stiffness)
         strength_given = law%beyond_coulomb()
     end function strength_given
@@ -255,6 +256,8 @@ contains
             model%elements%mu_dynamic(first:last) = fractures(k)%mu_dynamic
             model%elements%slip_weakening_distance(first:last) = &
                 fractures(k)%slip_weakening_distance
+            model%elements%opening_weakening_distance(first:last) = &
+                fractures(k)%opening_weakening_distance
             model%elements%shear_stiffness(first:last) = fractures(k)%shear_stiffness
             model%elements%normal_stiffness(first:last) = fractures(k)%normal_stiffness
         end do

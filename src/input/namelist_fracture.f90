@@ -46,6 +46,8 @@ module ddc_input_namelist_fracture
         !> Dynamic friction (no_residual_drop where not given) [-] and slip-weakening
         !> distance [length unit], shape (elements)
         real(wp), allocatable :: mu_dynamic(:), slip_weakening_distance(:)
+        !> Opening over which the tensile strength falls to 0 [length unit], shape (elements)
+        real(wp), allocatable :: opening_weakening_distance(:)
         !> Joint stiffnesses (rigid_joint where not given) [stress unit / length unit],
         !> shape (elements)
         real(wp), allocatable :: shear_stiffness(:), normal_stiffness(:)
@@ -55,7 +57,8 @@ contains
 
     !> &fracture name, x, y, elements, mu, sf, pressure, condition, bc_s, bc_n,
     !> elements_file, tensile_strength, sf_residual, mu_dynamic, slip_weakening_distance,
-    !> shear_stiffness, normal_stiffness / (repeated, one per fracture)
+    !> shear_stiffness, normal_stiffness, opening_weakening_distance / (repeated, one per
+    !> fracture)
     subroutine read_fracture_groups(unit, text, path, dir, info, fractures, messages)
         integer, intent(in) :: unit
         character(len=*), intent(in) :: text
@@ -68,6 +71,7 @@ contains
         real(wp), allocatable :: tensile_strength(:), sf_residual(:), seg_t(:), seg_sfr(:)
         real(wp), allocatable :: mu_dynamic(:), slip_weakening_distance(:), seg_mud(:), seg_dc(:)
         real(wp), allocatable :: shear_stiffness(:), normal_stiffness(:), seg_ks(:), seg_kn(:)
+        real(wp), allocatable :: opening_weakening_distance(:), seg_do(:)
         logical, allocatable :: csv_given(:)
         integer, allocatable :: elements(:)
         character(len=512) :: iomsg
@@ -77,11 +81,11 @@ contains
         integer, allocatable :: counts(:), row_lines(:)
         type(error_type), allocatable :: csv_error
         integer :: stat, k, i, nx, ny, ne, nmu, nsf, npr, nbs, nbn, nseg, nbefore, cond
-        integer :: nt, nsr, nmd, ndc, nks, nkn
+        integer :: nt, nsr, nmd, ndc, nks, nkn, ndo
         logical :: from_csv, geometry_ok
         namelist /fracture/ name, x, y, elements, mu, sf, pressure, condition, bc_s, bc_n, &
             elements_file, tensile_strength, sf_residual, mu_dynamic, slip_weakening_distance, &
-            shear_stiffness, normal_stiffness
+            shear_stiffness, normal_stiffness, opening_weakening_distance
 
         allocate (fractures(info%count))
         if (info%count == 0) return
@@ -90,7 +94,7 @@ contains
                   elements(max_vertices), tensile_strength(max_vertices), &
                   sf_residual(max_vertices), mu_dynamic(max_vertices), &
                   slip_weakening_distance(max_vertices), shear_stiffness(max_vertices), &
-                  normal_stiffness(max_vertices))
+                  normal_stiffness(max_vertices), opening_weakening_distance(max_vertices))
         rewind (unit)
         do k = 1, info%count
             name = ''
@@ -109,6 +113,7 @@ contains
             slip_weakening_distance = unset_real
             shear_stiffness = unset_real
             normal_stiffness = unset_real
+            opening_weakening_distance = unset_real
             elements = unset_integer
             read (unit, nml=fracture, iostat=stat, iomsg=iomsg)
             if (stat /= 0) then
@@ -134,6 +139,8 @@ contains
             ndc = count_given(slip_weakening_distance, 'slip_weakening_distance', prefix, messages)
             nks = count_given(shear_stiffness, 'shear_stiffness', prefix, messages)
             nkn = count_given(normal_stiffness, 'normal_stiffness', prefix, messages)
+            ndo = count_given(opening_weakening_distance, 'opening_weakening_distance', prefix, &
+                              messages)
 
             cond = find_name(lower(trim(adjustl(condition))), condition_names)
             if (cond == 0) then
@@ -149,16 +156,16 @@ contains
                              'elements_file, not both')
                 end if
                 if (nmu > 0 .or. nsf > 0 .or. npr > 0 .or. nt > 0 .or. nsr > 0 .or. &
-                    nmd > 0 .or. ndc > 0 .or. nks > 0 .or. nkn > 0) then
+                    nmd > 0 .or. ndc > 0 .or. nks > 0 .or. nkn > 0 .or. ndo > 0) then
                     call add(messages, prefix//'mu, sf, pressure and the strength laws come '// &
                              'from elements_file; do not give them in the group as well')
                 end if
                 csv_path = resolve(dir, trim(adjustl(elements_file)))
                 call read_csv(csv_path, [character(len=8) :: 'x_begin', 'y_begin', 'x_end', &
                               'y_end', 'mu', 'sf', 'pressure'], rows, csv_error, row_lines, &
-                              [character(len=23) :: 'tensile_strength', 'sf_residual', &
+                              [character(len=26) :: 'tensile_strength', 'sf_residual', &
                               'mu_dynamic', 'slip_weakening_distance', 'shear_stiffness', &
-                              'normal_stiffness'], &
+                              'normal_stiffness', 'opening_weakening_distance'], &
                               csv_given, most_rows=max_elements)
                 if (allocated(csv_error)) then
                     call add(messages, prefix_lines(prefix//'elements_file: ', csv_error%message))
@@ -187,6 +194,7 @@ contains
                         if (csv_given(4)) call check_law_row(11, 'slip_weakening_distance')
                         if (csv_given(5)) call check_law_row(12, 'shear_stiffness')
                         if (csv_given(6)) call check_law_row(13, 'normal_stiffness')
+                        if (csv_given(7)) call check_law_row(14, 'opening_weakening_distance')
                     end do
                     if (.not. csv_given(1)) rows(8, :) = 0.0_wp
                     if (.not. csv_given(2)) rows(9, :) = no_residual_drop
@@ -194,6 +202,7 @@ contains
                     if (.not. csv_given(4)) rows(11, :) = 0.0_wp
                     if (.not. csv_given(5)) rows(12, :) = rigid_joint
                     if (.not. csv_given(6)) rows(13, :) = rigid_joint
+                    if (.not. csv_given(7)) rows(14, :) = 0.0_wp
                 end if
             else
                 if (nx /= ny) then
@@ -253,6 +262,9 @@ contains
                                      prefix, messages)
                     call check_range(slip_weakening_distance(1:ndc), 'slip_weakening_distance', &
                                      quantity_non_negative, prefix, messages)
+                    call check_range(opening_weakening_distance(1:ndo), &
+                                     'opening_weakening_distance', quantity_non_negative, &
+                                     prefix, messages)
                     call check_range(shear_stiffness(1:nks), 'shear_stiffness', &
                                      quantity_positive, prefix, messages)
                     call check_range(normal_stiffness(1:nkn), 'normal_stiffness', &
@@ -264,7 +276,8 @@ contains
                 end if
             else if (cond /= 0) then
                 if (.not. from_csv .and. (nmu > 0 .or. nsf > 0 .or. npr > 0 .or. nt > 0 .or. &
-                    nsr > 0 .or. nmd > 0 .or. ndc > 0 .or. nks > 0 .or. nkn > 0)) then
+                    nsr > 0 .or. nmd > 0 .or. ndc > 0 .or. nks > 0 .or. nkn > 0 .or. &
+                    ndo > 0)) then
                     call add(messages, prefix//"mu, sf, pressure and the strength laws are "// &
                              "for condition "// &
                              "'contact', not for condition '"//trim(condition_names(cond))//"'")
@@ -299,6 +312,10 @@ contains
                                      messages)) then
                         seg_dc = broadcast(slip_weakening_distance(1:ndc), nseg, 0.0_wp)
                     end if
+                    if (check_length(ndo, nseg, 'opening_weakening_distance', prefix, &
+                                     messages)) then
+                        seg_do = broadcast(opening_weakening_distance(1:ndo), nseg, 0.0_wp)
+                    end if
                     if (check_length(nks, nseg, 'shear_stiffness', prefix, messages)) then
                         seg_ks = broadcast(shear_stiffness(1:nks), nseg, rigid_joint)
                     end if
@@ -332,6 +349,7 @@ contains
                 fractures(k)%slip_weakening_distance = rows(11, :)
                 fractures(k)%shear_stiffness = rows(12, :)
                 fractures(k)%normal_stiffness = rows(13, :)
+                fractures(k)%opening_weakening_distance = rows(14, :)
                 fractures(k)%bc_s = seg_bc_s
                 fractures(k)%bc_n = seg_bc_n
             else
@@ -347,6 +365,7 @@ contains
                 fractures(k)%slip_weakening_distance = expand_per_segment(seg_dc, counts)
                 fractures(k)%shear_stiffness = expand_per_segment(seg_ks, counts)
                 fractures(k)%normal_stiffness = expand_per_segment(seg_kn, counts)
+                fractures(k)%opening_weakening_distance = expand_per_segment(seg_do, counts)
                 fractures(k)%bc_s = expand_per_segment(seg_bc_s, counts)
                 fractures(k)%bc_n = expand_per_segment(seg_bc_n, counts)
             end if
@@ -362,7 +381,7 @@ contains
             integer :: quantity
 
             quantity = quantity_non_negative
-            if (c >= 12) quantity = quantity_positive
+            if (c == 12 .or. c == 13) quantity = quantity_positive
             if (len(range_problem(quantity, rows(c, i))) > 0) then
                 call add(messages, prefix//'elements_file '//csv_path//' line '// &
                          itoa(row_lines(i))//': '//name//' = '//rtoa(rows(c, i))//' '// &

@@ -39,7 +39,7 @@ module ddc_input_namelist_groups
         group_spec('fracture', .true., 'name:c x:r y:r elements:i mu:r sf:r pressure:r '// &
                    'condition:c bc_s:r bc_n:r elements_file:c tensile_strength:r '// &
                    'sf_residual:r mu_dynamic:r slip_weakening_distance:r shear_stiffness:r '// &
-                   'normal_stiffness:r'), &
+                   'normal_stiffness:r opening_weakening_distance:r'), &
         group_spec('grid', .true., 'name:c xmin:r xmax:r nx:i ymin:r ymax:r ny:i'), &
         group_spec('line', .true., 'name:c x_begin:r y_begin:r x_end:r y_end:r points:i'), &
         group_spec('points', .true., 'name:c file:c'), &

@@ -49,6 +49,7 @@ contains
             elements%sf_residual = no_residual_drop
             elements%mu_dynamic = no_residual_drop
             elements%slip_weakening_distance = 0.0_wp
+            elements%opening_weakening_distance = 0.0_wp
             elements%shear_stiffness = rigid_joint
             elements%normal_stiffness = rigid_joint
         end where

@@ -32,6 +32,7 @@ module ddc_model_fingerprint
     contains
         procedure :: on_reals => hash_element_reals
         procedure :: on_integers => hash_element_integers
+        procedure :: on_later_law => hash_later_law
     end type fnv_hash
 
     integer(int64), parameter :: mask32 = int(z'FFFFFFFF', int64)
@@ -130,6 +131,17 @@ contains
 
         call add_allocated_reals(action, values)
     end subroutine hash_element_reals
+
+    !> Hash a per-element array of a law added later only where it is not all 0 (its
+    !> default, which leaves the law as it was): models that do not use the law keep the
+    !> fingerprint that earlier versions recorded, so their result files can be resumed.
+    subroutine hash_later_law(action, values)
+        class(fnv_hash), intent(inout) :: action
+        real(wp), allocatable, intent(inout) :: values(:)
+
+        if (.not. allocated(values)) return
+        if (any(values /= 0.0_wp)) call add_allocated_reals(action, values)
+    end subroutine hash_later_law
 
     !> Hash a real array (its size first; -1 when unallocated).
     subroutine add_allocated_reals(hash, values)

@@ -5,8 +5,8 @@
 !>   dp_dy < 0);
 !> - a tensile strength above the Coulomb apex sf/mu, which the law caps there (with the
 !>   default sf = 0 a fracture then has no tensile strength at all);
-!> - a slip_weakening_distance on elements whose friction does not drop (mu_dynamic not
-!>   below mu): it does nothing there;
+!> - a slip_weakening_distance on elements whose friction and cohesion do not drop
+!>   (mu_dynamic not below mu, sf_residual not below sf): it does nothing there;
 !> - a fluid pressure that makes the effective normal stress tensile beyond the tensile
 !>   strength on every contact element of a model without a loading history: all of them
 !>   open;
@@ -142,7 +142,8 @@ contains
             end associate
         end subroutine capped_tensile_strength
 
-        !> Fracture k's slip_weakening_distance where mu_dynamic is not below mu.
+        !> Fracture k's slip_weakening_distance where neither mu_dynamic is below mu nor
+        !> sf_residual below sf.
         subroutine idle_weakening_distance(k)
             integer, intent(in) :: k
             integer :: idle
@@ -151,8 +152,10 @@ contains
                        last => model%fractures(k)%last_element)
                 associate (dc => model%elements%slip_weakening_distance(first:last), &
                            mu => model%elements%mu(first:last), &
-                           mud => model%elements%mu_dynamic(first:last))
-                    idle = count(dc > 0.0_wp .and. .not. mud < mu)
+                           mud => model%elements%mu_dynamic(first:last), &
+                           sf => model%elements%sf(first:last), &
+                           sfr => model%elements%sf_residual(first:last))
+                    idle = count(dc > 0.0_wp .and. .not. mud < mu .and. .not. sfr < sf)
                     if (idle == 0) return
                     call add('fracture '//itoa(k)//' '//model%fractures(k)%name// &
                              ': slip_weakening_distance is given, but mu_dynamic is not '// &

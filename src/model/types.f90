@@ -96,6 +96,10 @@ module ddc_model_types
         !> min(mu, mu_dynamic) [-] as the slip grows from 0 to slip_weakening_distance d_c
         !> >= 0 [length unit] (no_residual_drop: no drop; d_c = 0: at once)
         real(wp), allocatable :: mu_dynamic(:), slip_weakening_distance(:)
+        !> Opening weakening, for contact elements: the tensile strength falls linearly to 0
+        !> as the opening grows from 0 to opening_weakening_distance d_o >= 0 [length unit]
+        !> (0: lost at once when the element opens)
+        real(wp), allocatable :: opening_weakening_distance(:)
         !> Elastic joint, for contact elements: shear and normal stiffness [stress unit /
         !> length unit] of the faces before they slip or open (rigid_joint: rigid contact)
         real(wp), allocatable :: shear_stiffness(:), normal_stiffness(:)
@@ -118,6 +122,9 @@ module ddc_model_types
         procedure(act_on_reals), deferred :: on_reals
         !> Act on one integer per-element array
         procedure(act_on_integers), deferred :: on_integers
+        !> Act on one real per-element array of a law added later whose default 0 leaves
+        !> the law as it was (on_reals unless the action says otherwise)
+        procedure :: on_later_law => act_on_later_law
     end type element_array_action
 
     abstract interface
@@ -287,6 +294,16 @@ module ddc_model_types
 
 contains
 
+    !> A real per-element array of a law added later: by default like any other.
+    subroutine act_on_later_law(action, values)
+        !> The action and its data
+        class(element_array_action), intent(inout) :: action
+        !> The array, shape (n) or unallocated
+        real(wp), allocatable, intent(inout) :: values(:)
+
+        call action%on_reals(values)
+    end subroutine act_on_later_law
+
     !> The one list of the per-element arrays of an element_set: the action gets each
     !> array once, in this order (the MPI broadcast relies on the order being the same on
     !> every process). A new per-element array is declared in the type and listed here;
@@ -312,6 +329,7 @@ contains
         call action%on_reals(elements%sf_residual)
         call action%on_reals(elements%mu_dynamic)
         call action%on_reals(elements%slip_weakening_distance)
+        call action%on_later_law(elements%opening_weakening_distance)
         call action%on_reals(elements%shear_stiffness)
         call action%on_reals(elements%normal_stiffness)
         call action%on_reals(elements%x_mid)

@@ -273,6 +273,8 @@ contains
             call write_real_1d(group, 'mu_dynamic', min(e%mu, e%mu_dynamic), '1', error)
             call write_real_1d(group, 'slip_weakening_distance', e%slip_weakening_distance, &
                                length, error)
+            call write_real_1d(group, 'opening_weakening_distance', &
+                               e%opening_weakening_distance, length, error)
             if (allocated(r%mu_in_force)) call write_real_1d(group, 'mu_in_force', &
                                                              r%mu_in_force, '1', error)
             ! Joint stiffness: +Inf for rigid contact (the default).

@@ -199,7 +199,8 @@ contains
         associate (e => model%elements)
             if (allocated(e%mu) .and. allocated(e%sf) .and. allocated(e%tensile_strength) &
                 .and. allocated(e%sf_residual) .and. allocated(e%mu_dynamic) .and. &
-                allocated(e%slip_weakening_distance) .and. allocated(e%shear_stiffness) .and. &
+                allocated(e%slip_weakening_distance) .and. &
+                allocated(e%opening_weakening_distance) .and. allocated(e%shear_stiffness) .and. &
                 allocated(e%normal_stiffness)) records_strengths = strengths_change(e, &
                                                                                   model%solver)
         end associate

@@ -159,6 +159,7 @@ contains
                 tensile_strength=e%tensile_strength(pick), sf_residual=e%sf_residual(pick), &
                 mu_dynamic=e%mu_dynamic(pick), &
                 slip_weakening_distance=e%slip_weakening_distance(pick), &
+                opening_weakening_distance=e%opening_weakening_distance(pick), &
                 shear_stiffness=e%shear_stiffness(pick), normal_stiffness=e%normal_stiffness(pick))
         end associate
     end function fault_law_of

@@ -134,12 +134,61 @@ def test_a_capped_tensile_strength_is_echoed_in_force_with_a_note(tmp_path):
     assert notes(done) == [
         ("note: fracture 1 joint: tensile_strength 2 MPa is above the Coulomb apex sf/mu on 5 "
          "of 10 elements and is capped there to 1 .. 1 MPa (where the shear strength "
-         "sf - mu T vanishes); a tensile strength T needs sf >= mu T")]
+         "sf - mu T vanishes); a tensile strength T needs sf >= mu T"),
+        *[instant_tensile_note(k, name) for k, name in ((1, "joint"), (2, "strong"))]]
     # With the default sf = 0 the cap takes the whole tensile strength.
     done = solve(tmp_path, TENSILE.replace("sf = 0.5, 3,", ""))
     lines = done.stdout.splitlines()
     assert lines[joint + 1].startswith("    tensile_strength 0 .. 0 MPa in force (given 2 .. 2")
     assert "on 10 of 10 elements and is capped there to 0 .. 0 MPa" in notes(done)[0]
+
+
+def instant_tensile_note(k, name):
+    return (f"note: fracture {k} {name}: the tensile strength drops at once on opening "
+            "(opening_weakening_distance = 0) on 10 of 10 elements: the stress at a slip or "
+            "opening front is singular, so the loads at which such strength fails depend on "
+            "the element length; give opening_weakening_distance (a cohesive zone of at least "
+            "3 elements) for failure loads that converge with the mesh")
+
+
+# Strong patches (cohesion 6 -> 1, friction 0.6 -> 0.5) around a weak centre, d_c = 2e-5 m:
+# the cohesive zone (9 pi / 32) G d_c / ((1 - nu)(tau_p - tau_r)) = 0.0785 m with G = 20000,
+# nu = 0.25 and tau_p - tau_r = 5 + 0.1 * 10 = 6 MPa.
+PATCHES = """\
+&model youngs_modulus = 50000, poissons_ratio = 0.25 /
+&remote_stress sxx = -10, syy = -10, sxy = 5 /
+&fracture name = 'fault', x = -1, -0.4, 0.4, 1, y = 0, 0, 0, 0, elements = {n}, mu = 0.6,
+          mu_dynamic = 0.5, sf = 6, 0, 6, sf_residual = 1, 0, 1,
+          slip_weakening_distance = {d_c} /
+"""
+
+
+def echo_warnings(done):
+    return [line for line in done.stdout.splitlines() if line.startswith("warning: ")]
+
+
+def test_cohesive_zone_warning_and_instant_drop_note(tmp_path):
+    # 50 elements of 0.04 m: the zone spans 1.96 element lengths, fewer than 3.
+    done = solve(tmp_path, PATCHES.format(n="15, 20, 15", d_c="2e-5"))
+    assert echo_warnings(done) == [
+        ("warning: fracture 1 fault: the cohesive zone of slip_weakening_distance, about "
+         "(9 pi / 32) G d / ((1 - nu)(tau_p - tau_r)) with tau_p - tau_r the drop of cohesion "
+         "and friction at the remote normal stress, spans only 1.96 element lengths (fewer "
+         "than 3 on 30 of 50 elements; zone 0.0785 m): its failure loads still depend on the "
+         "element length; give a larger slip_weakening_distance or shorter elements")]
+    assert not notes(done)
+    # 100 elements of 0.02 m: 3.9 element lengths, resolved.
+    done = solve(tmp_path, PATCHES.format(n="30, 40, 30", d_c="2e-5"))
+    assert not echo_warnings(done) and not notes(done)
+    # d_c = 0: the drop is at once, a note names slip_weakening_distance.
+    done = solve(tmp_path, PATCHES.format(n="30, 40, 30", d_c="0"))
+    assert not echo_warnings(done)
+    assert notes(done) == [
+        ("note: fracture 1 fault: cohesion or friction drops at once on slip "
+         "(slip_weakening_distance = 0) on 100 of 100 elements: the stress at a slip or "
+         "opening front is singular, so the loads at which such strength fails depend on the "
+         "element length; give slip_weakening_distance (a cohesive zone of at least 3 "
+         "elements) for failure loads that converge with the mesh")]
 
 
 def test_note_on_a_weakening_distance_without_a_friction_drop(tmp_path):
@@ -218,3 +267,18 @@ def test_k_has_units(tmp_path):
     tips = [line for line in done.stdout.splitlines() if line.startswith("  tip ")]
     assert len(tips) == 2
     assert all(line.endswith(" MPa km^1/2") and "K_I = " in line for line in tips)
+
+
+def test_opening_weakening_distance_is_read_echoed_and_checked(tmp_path):
+    text = TENSILE.replace("tensile_strength = 2 /", "tensile_strength = 2,\n"
+                           "          opening_weakening_distance = 1e-4 /")
+    lines = solve(tmp_path, text).stdout.splitlines()
+    strong = lines.index("  fracture 2 strong: 10 elements, condition contact")
+    assert lines[strong + 1] == ("    tensile_strength 2 .. 2 MPa (capped at sf/mu; falls to 0 "
+                                 "as the opening grows to opening_weakening_distance "
+                                 "0.0001 .. 0.0001 m)")
+    (tmp_path / "bad.nml").write_text(text.replace("= 1e-4", "= -1e-4"))
+    done = run(["bad.nml"], tmp_path)
+    assert done.returncode == 2
+    assert ("(line 6): opening_weakening_distance(1) = -0.100000E-3 must be >= 0"
+            in done.stderr), done.stderr

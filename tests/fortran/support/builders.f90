@@ -95,6 +95,8 @@ contains
             a%sf_residual = [a%sf_residual, b%sf_residual]
             a%mu_dynamic = [a%mu_dynamic, b%mu_dynamic]
             a%slip_weakening_distance = [a%slip_weakening_distance, b%slip_weakening_distance]
+            a%opening_weakening_distance = [a%opening_weakening_distance, &
+                                            b%opening_weakening_distance]
             a%shear_stiffness = [a%shear_stiffness, b%shear_stiffness]
             a%normal_stiffness = [a%normal_stiffness, b%normal_stiffness]
             a%n = n + b%n
