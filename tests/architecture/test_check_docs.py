@@ -22,7 +22,7 @@ import check_docs  # noqa: E402  (imported from this folder)
 @pytest.fixture
 def tree(tmp_path):
     """A copy of what the checks read."""
-    for folder in ("src", "app", "scripts", "input", "docs", "tests/fortran"):
+    for folder in ("src", "app", "scripts", "input", "docs", "tests/fortran", "python/src"):
         shutil.copytree(REPO_ROOT / folder, tmp_path / folder)
     shutil.copy(REPO_ROOT / "README.md", tmp_path)
     for name in ("CITATION.cff", "CHANGELOG.md"):
