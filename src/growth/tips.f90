@@ -3,6 +3,7 @@
 !> mouth on the free surface, or an end inside a fracture given as a CSV with gaps does
 !> not grow), and where such a tip is in a tip set.
 module ddc_growth_tips
+    use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_internal_error
     use ddc_text, only: itoa
     use ddc_model_types, only: model_type
@@ -19,6 +20,9 @@ module ddc_growth_tips
         integer :: fracture = 0, end = tip_end_end
         !> Stopped for good (at another element or the free surface)
         logical :: stopped = .false.
+        !> Length of the elements it grows by after a kink shorter than the increment (whose
+        !> element may be shorter) [length unit]; 0: its tip element's length
+        real(wp) :: element_length = 0.0_wp
     end type growing_tip
 
 contains
