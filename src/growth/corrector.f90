@@ -101,11 +101,33 @@ contains
         do
             call correct_round(solver, model, created, options, kinks, iteration, paths, error)
             if (allocated(error)) return
-            if (.not. shorten_kinks(kinks%tip, iteration, options%toughness)) return
+            if (.not. shorten_kinks(kinks%tip, iteration, options%toughness)) exit
             kinks%current = .false.
             call update_paths(model, kinks, iteration, paths)
         end do
+        call open_above_toughness(kinks, options%toughness)
     end subroutine correct_kinks
+
+    !> A tip whose K_I is at or above the toughness is never closed: where even its shortest
+    !> kink closed (the compression across an element that short still beats the tip's
+    !> tension), it grows by that kink at its MTS angle (growth_corrector_failed); the grown
+    !> model is then still to be built.
+    pure subroutine open_above_toughness(kinks, toughness)
+        !> The step's kinks
+        type(step_kinks), intent(inout) :: kinks
+        !> Fracture toughness [stress unit * length unit**0.5]
+        real(wp), intent(in) :: toughness
+        integer :: i
+
+        do i = 1, size(kinks%tip)
+            associate (k => kinks%tip(i))
+                if (k%reason /= growth_closed .or. k%k1 < toughness) cycle
+                k%reason = growth_corrector_failed
+                k%theta = k%theta_predictor
+                kinks%current = .false.
+            end associate
+        end do
+    end subroutine open_above_toughness
 
     !> One round of corrections at the kinks' current lengths: secant iterations of the
     !> kinks still corrected, all tips' trials solved together, at most max_corrections
