@@ -201,8 +201,7 @@ contains
                 again(i) = 0.5_wp * k%length >= min_kink_fraction * k%element_length * &
                            (1.0_wp - length_tolerance) .and. &
                            (k%reason == growth_closed .or. &
-                            (s%active .and. k%length < (1.0_wp - length_tolerance) * k%full_length &
-                             .and. s%k1 < toughness))
+                            (s%active .and. shortened(k) .and. s%k1 < toughness))
             end associate
         end do
         shortened = any(again)
@@ -374,6 +373,14 @@ contains
             if (ends_on_link(problem(i))) kinks%tip(i)%link = links(i)
         end do
     end subroutine update_paths
+
+    !> The kink is shorter than the increment.
+    pure logical function shortened(k)
+        !> The kink
+        type(kink), intent(in) :: k
+
+        shortened = k%length < (1.0_wp - length_tolerance) * k%full_length
+    end function shortened
 
     !> K_I and K_II of a kink's new tip in the grown model, and whether that tip is closed (a
     !> contact element that is not open, or another condition with K_I <= 0).

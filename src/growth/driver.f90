@@ -56,7 +56,7 @@ module ddc_growth_driver
     use ddc_growth_kinks, only: kink, step_kinks, grow_paths
     use ddc_growth_extension, only: tip_path, make_path, tip_element
     use ddc_growth_clearance, only: check_paths, path_clear, ends_on_link
-    use ddc_growth_tips, only: growing_tip, fracture_tip
+    use ddc_growth_tips, only: growing_tip, fracture_tip, increment_for
     use ddc_growth_load_steps, only: follow_growth, record_load_step, finish_load_steps
     use ddc_history_path, only: path_loads, apply_load, load_text
     use ddc_progress, only: report_progress, hold_progress, release_progress
@@ -490,11 +490,7 @@ contains
 
         tip_length = tip%element_length
         if (tip_length <= 0.0_wp) tip_length = 2.0_wp * work%elements%half_length(element)
-        length = options%increment
-        if (length <= 0.0_wp) length = 2.0_wp * tip_length
-        element_length = options%element_length
-        if (element_length <= 0.0_wp) element_length = tip_length
-        pieces = max(1, nint(length / element_length))
+        call increment_for(options, tip_length, length, pieces, element_length)
     end subroutine increment_of
 
     !> The path of tip i at its kink angle.
