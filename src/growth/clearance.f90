@@ -31,7 +31,7 @@ module ddc_growth_clearance
     use ddc_model_types, only: model_type, domain_half_plane
     use ddc_model_results, only: growth_intersection, growth_surface, growth_linked, &
         growth_enclosing
-    use ddc_growth_extension, only: tip_path, tip_element, path_element_length, &
+    use ddc_growth_extension, only: tip_path, tip_element, tip_end_begin, path_element_length, &
         element_split, outward_direction
     use ddc_mesh_segments, only: segment_distance, point_segment_distance, crossing_fraction, &
         far_apart
@@ -57,6 +57,8 @@ module ddc_growth_clearance
 
     !> A link point within this fraction of the element's length of a vertex snaps to it
     real(wp), parameter :: snap_fraction = 0.25_wp
+    !> Relative margin below the clearance of the tip elements' reach (at_tip)
+    real(wp), parameter :: near_tolerance = 1.0e-6_wp
 
     !> New elements keep at least this fraction of their length from every other element
     !> and from the free surface
@@ -237,18 +239,19 @@ contains
     end subroutine join
 
     !> The element of the model that a path's new elements come closer than `clearance` to
-    !> first (its tip element excepted at the tip itself), 0 when none does: of those within
-    !> clearance of the first new element that meets any, the one crossed nearest to the
-    !> element's start, else the nearest one (ties: the lowest index).
+    !> first (its tip elements excepted at the tip itself: at_tip), 0 when none does: of
+    !> those within clearance of the first new element that meets any, the one crossed
+    !> nearest to the element's start, else the nearest one (ties: the lowest index).
     pure subroutine hits_model(model, path, clearance, hit)
         type(model_type), intent(in) :: model
         type(tip_path), intent(in) :: path
         real(wp), intent(in) :: clearance
         integer, intent(out) :: hit
-        integer :: k, j, parent
+        integer :: k, j
         real(wp) :: d, best, t
+        logical :: near(model%elements%n)
 
-        parent = tip_element(model, path%fracture, path%end)
+        near = at_tip(model, path, clearance)
         hit = 0
         associate (e => model%elements)
             do k = 1, path%n
@@ -258,7 +261,7 @@ contains
                     if (far_apart(path%x(k - 1), path%y(k - 1), path%x(k), path%y(k), &
                                   e%x_begin(j), e%y_begin(j), e%x_end(j), e%y_end(j), &
                                   clearance)) cycle
-                    if (k == 1 .and. j == parent) then
+                    if (k == 1 .and. near(j)) then
                         d = point_segment_distance(path%x(1), path%y(1), e%x_begin(j), &
                                                    e%y_begin(j), e%x_end(j), e%y_end(j))
                     else
@@ -267,7 +270,7 @@ contains
                                              e%x_end(j), e%y_end(j))
                     end if
                     if (d >= clearance) cycle
-                    if (d <= 0.0_wp .and. .not. (k == 1 .and. j == parent)) then
+                    if (d <= 0.0_wp .and. .not. (k == 1 .and. near(j))) then
                         t = crossing_fraction(path%x(k - 1), path%y(k - 1), path%x(k), &
                             path%y(k), e%x_begin(j), e%y_begin(j), e%x_end(j), e%y_end(j))
                         d = t - 1.0_wp
@@ -281,6 +284,33 @@ contains
             end do
         end associate
     end subroutine hits_model
+
+    !> The elements a path's first new element touches at its tip, whose distance from it is
+    !> taken from that element's far end: the tip element, and behind it those of the tip's
+    !> fracture that begin (counted along the fracture from the tip) within twice the
+    !> clearance (a new element's length) of the tip, as after a kink shorter than that.
+    pure function at_tip(model, path, clearance) result(near)
+        type(model_type), intent(in) :: model
+        type(tip_path), intent(in) :: path
+        real(wp), intent(in) :: clearance
+        logical :: near(model%elements%n)
+        integer :: j, step, last
+        real(wp) :: along
+
+        near = .false.
+        associate (f => model%fractures(path%fracture))
+            j = tip_element(model, path%fracture, path%end)
+            step = merge(1, -1, path%end == tip_end_begin)
+            last = merge(f%last_element, f%first_element, step == 1)
+            along = 0.0_wp
+            do
+                near(j) = .true.
+                along = along + 2.0_wp * model%elements%half_length(j)
+                if (j == last .or. along >= (1.0_wp - near_tolerance) * 2.0_wp * clearance) exit
+                j = j + step
+            end do
+        end associate
+    end function at_tip
 
     !> The link of a path that meets element `hit` (hits_model); made false when it may not
     !> link.
@@ -428,14 +458,15 @@ contains
     !> Whether a link keeps clear: every element of the link keeps `clearance` from every
     !> element of the model, except from the target's fracture (which it must only not touch
     !> before the link point), the last one from those that hold the link point, and the
-    !> first one from the tip element (only its far end must keep clear of it); in a
+    !> first one from the tip elements (at_tip: only its far end must keep clear of them); in a
     !> half-plane, every point of a link to another fracture keeps clear of the surface.
     pure logical function link_clear(model, link, clearance)
         type(model_type), intent(in) :: model
         type(tip_link), intent(in) :: link
         real(wp), intent(in) :: clearance
         real(wp) :: px, py, d
-        integer :: k, j, parent, target_fracture
+        integer :: k, j, target_fracture
+        logical :: near(model%elements%n)
 
         link_clear = .false.
         target_fracture = 0
@@ -446,7 +477,7 @@ contains
                     if (any(p%y(1:) > -clearance)) return
                 end if
             end if
-            parent = tip_element(model, p%fracture, p%end)
+            near = at_tip(model, p, clearance)
             px = p%x(p%n)
             py = p%y(p%n)
             do k = 1, p%n
@@ -454,7 +485,7 @@ contains
                     if (far_apart(p%x(k - 1), p%y(k - 1), p%x(k), p%y(k), e%x_begin(j), &
                                   e%y_begin(j), e%x_end(j), e%y_end(j), clearance)) cycle
                     if (k == p%n .and. holds_point(j)) cycle
-                    if (k == 1 .and. j == parent) then
+                    if (k == 1 .and. near(j)) then
                         d = point_segment_distance(p%x(1), p%y(1), e%x_begin(j), &
                                                    e%y_begin(j), e%x_end(j), e%y_end(j))
                     else

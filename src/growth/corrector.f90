@@ -42,6 +42,11 @@ module ddc_growth_corrector
     !> The corrector stops when the new tip's |K_II| <= corrector_tolerance
     !> max(K_eq, toughness)
     real(wp), parameter :: corrector_tolerance = 1.0e-3_wp
+    !> The shortest kink, as a fraction of the length of the tip's new elements: a critical
+    !> tip whose kinks are closed down to this length is closed
+    real(wp), parameter :: min_kink_fraction = 1.0_wp / 64.0_wp
+    !> Relative tolerance on kink lengths (halved lengths compared with the shortest)
+    real(wp), parameter :: length_tolerance = 1.0e-9_wp
 
     !> The corrector's iteration on one kink (the kink holds its angle and reason).
     type :: secant
@@ -52,9 +57,9 @@ module ddc_growth_corrector
         !> The tip still grows (its path keeps clear), its angle is still corrected; the
         !> previous point of the secant exists; the last trial's new tip was open
         logical :: active = .true., correcting = .true., have_prev = .false., open = .true.
-        !> K_II of its new tip at the current angle, and the previous point of the secant
-        !> (angle [rad], K_II) [stress unit * length unit**0.5]
-        real(wp) :: k2 = 0.0_wp, theta_prev = 0.0_wp, k2_prev = 0.0_wp
+        !> K_I and K_II of its new tip at the current angle, and the previous point of the
+        !> secant (angle [rad], K_II) [stress unit * length unit**0.5]
+        real(wp) :: k1 = 0.0_wp, k2 = 0.0_wp, theta_prev = 0.0_wp, k2_prev = 0.0_wp
         !> The tip is open before growing (K_I > 0); its kink closed at the MTS angle, and
         !> how often the angle was halved since
         logical :: tip_open = .false., mts_closed = .false.
@@ -85,10 +90,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(secant) :: iteration(size(kinks%tip))
         type(tip_path) :: paths(size(kinks%tip))
-        type(tip_path), allocatable :: trial_paths(:)
-        type(element_split), allocatable :: splits(:)
-        logical :: changed
-        integer :: i, solves
+        integer :: i
 
         call start_kinks(kinks%tip, options%toughness, iteration)
         kinks%current = .false.
@@ -96,6 +98,62 @@ contains
         do i = 1, size(kinks%tip)
             paths(i) = kink_path(model, kinks%tip(i))
         end do
+        do
+            call correct_round(solver, model, created, options, kinks, iteration, paths, error)
+            if (allocated(error)) return
+            if (.not. shorten_kinks(kinks%tip, iteration, options%toughness)) exit
+            kinks%current = .false.
+            call update_paths(model, kinks, iteration, paths)
+        end do
+        call open_above_toughness(kinks, options%toughness)
+    end subroutine correct_kinks
+
+    !> A tip whose K_I is at or above the toughness is never closed: where even its shortest
+    !> kink closed (the compression across an element that short still beats the tip's
+    !> tension), it grows by that kink at its MTS angle (growth_corrector_failed); the grown
+    !> model is then still to be built.
+    pure subroutine open_above_toughness(kinks, toughness)
+        !> The step's kinks
+        type(step_kinks), intent(inout) :: kinks
+        !> Fracture toughness [stress unit * length unit**0.5]
+        real(wp), intent(in) :: toughness
+        integer :: i
+
+        do i = 1, size(kinks%tip)
+            associate (k => kinks%tip(i))
+                if (k%reason /= growth_closed .or. k%k1 < toughness) cycle
+                k%reason = growth_corrector_failed
+                k%theta = k%theta_predictor
+                kinks%current = .false.
+            end associate
+        end do
+    end subroutine open_above_toughness
+
+    !> One round of corrections at the kinks' current lengths: secant iterations of the
+    !> kinks still corrected, all tips' trials solved together, at most max_corrections
+    !> solves; then those not converged give up.
+    subroutine correct_round(solver, model, created, options, kinks, iteration, paths, error)
+        !> The solves of the run (the base: model)
+        type(growth_solver), intent(inout) :: solver
+        !> The model before growing (without observations)
+        type(model_type), intent(in) :: model
+        !> Growth step that created each element of model, shape (n)
+        integer, intent(in) :: created(:)
+        !> Growth options (max_corrections, new_mu, new_sf)
+        type(growth_options), intent(in) :: options
+        !> The step's kinks
+        type(step_kinks), intent(inout) :: kinks
+        !> Their iteration, shape (size(kinks%tip))
+        type(secant), intent(inout) :: iteration(:)
+        !> Their paths at the current angles and lengths, shape (size(kinks%tip))
+        type(tip_path), intent(inout) :: paths(:)
+        !> Set when a solve fails
+        type(error_type), allocatable, intent(out) :: error
+        type(tip_path), allocatable :: trial_paths(:)
+        type(element_split), allocatable :: splits(:)
+        logical :: changed
+        integer :: solves
+
         solves = 0
         changed = .true.
         do while (solves < options%max_corrections)
@@ -121,7 +179,43 @@ contains
         if (kinks%current) return
         call give_up(kinks%tip, iteration)
         call update_paths(model, kinks, iteration, paths)
-    end subroutine correct_kinks
+    end subroutine correct_round
+
+    !> Shorter kinks for the next round (docs/theory/growth.md#closed-kinks): a kink that
+    !> closed, or a shortened kink whose open new tip has K_I below the toughness, is halved
+    !> and corrected again from its MTS angle while it stays at least min_kink_fraction of
+    !> its new elements' length; the other kinks keep their angles and are no longer
+    !> corrected. True when any kink was shortened.
+    logical function shorten_kinks(tips, iteration, toughness) result(shortened)
+        !> The step's growing tips
+        type(kink), intent(inout) :: tips(:)
+        !> Their iteration, shape (size(tips))
+        type(secant), intent(inout) :: iteration(:)
+        !> Fracture toughness [stress unit * length unit**0.5]
+        real(wp), intent(in) :: toughness
+        logical :: again(size(tips))
+        integer :: i
+
+        do i = 1, size(tips)
+            associate (k => tips(i), s => iteration(i))
+                again(i) = 0.5_wp * k%length >= min_kink_fraction * k%element_length * &
+                           (1.0_wp - length_tolerance) .and. &
+                           (k%reason == growth_closed .or. &
+                            (s%active .and. shortened(k) .and. s%k1 < toughness))
+            end associate
+        end do
+        shortened = any(again)
+        if (.not. shortened) return
+        do i = 1, size(tips)
+            if (.not. again(i)) then
+                iteration(i)%correcting = .false.
+                cycle
+            end if
+            tips(i)%length = 0.5_wp * tips(i)%length
+            tips(i)%pieces = max(1, nint(tips(i)%length / tips(i)%element_length))
+            call start_kinks(tips(i:i), toughness, iteration(i:i))
+        end do
+    end function shorten_kinks
 
     !> The kinks at their predictor (MTS) angles, growing, and the start of their iteration:
     !> the first-order slope dK_II/dtheta (K_eq when that is not clearly positive) and the
@@ -195,7 +289,7 @@ contains
                 if (.not. s%active) cycle
                 k%solves = k%solves + 1
                 if (.not. s%correcting) cycle
-                call new_tip(kinks%trial, kinks%solved, k, s%k2, closed, error)
+                call new_tip(kinks%trial, kinks%solved, k, s%k1, s%k2, closed, error)
                 if (allocated(error)) return
                 s%open = .not. closed
                 if (closed .and. s%have_prev) then
@@ -280,27 +374,37 @@ contains
         end do
     end subroutine update_paths
 
-    !> K_II of a kink's new tip in the grown model, and whether that tip is closed (a
+    !> The kink is shorter than the increment.
+    pure logical function shortened(k)
+        !> The kink
+        type(kink), intent(in) :: k
+
+        shortened = k%length < (1.0_wp - length_tolerance) * k%full_length
+    end function shortened
+
+    !> K_I and K_II of a kink's new tip in the grown model, and whether that tip is closed (a
     !> contact element that is not open, or another condition with K_I <= 0).
-    subroutine new_tip(grown, solved, k, k2, closed, error)
+    subroutine new_tip(grown, solved, k, k1, k2, closed, error)
         !> The grown model and its solution
         type(model_type), intent(in) :: grown
         type(model_results), intent(in) :: solved
         !> The kink
         type(kink), intent(in) :: k
-        !> K_II of its new tip [stress unit * length unit**0.5]
-        real(wp), intent(out) :: k2
+        !> K_I and K_II of its new tip [stress unit * length unit**0.5]
+        real(wp), intent(out) :: k1, k2
         !> The new tip is closed
         logical, intent(out) :: closed
         !> Set when the new tip is not a tip of the solution
         type(error_type), allocatable, intent(out) :: error
         integer :: e, t
 
+        k1 = 0.0_wp
         k2 = 0.0_wp
         closed = .false.
         call fracture_tip(grown, solved%tips, k%fracture, k%end, t, error)
         if (allocated(error)) return
         e = solved%tips%element(t)
+        k1 = solved%tips%k1(t)
         k2 = solved%tips%k2(t)
         if (grown%elements%condition(e) == condition_contact) then
             closed = solved%elements%state(e) /= state_open

@@ -56,7 +56,7 @@ module ddc_growth_driver
     use ddc_growth_kinks, only: kink, step_kinks, grow_paths
     use ddc_growth_extension, only: tip_path, make_path, tip_element
     use ddc_growth_clearance, only: check_paths, path_clear, ends_on_link
-    use ddc_growth_tips, only: growing_tip, fracture_tip
+    use ddc_growth_tips, only: growing_tip, fracture_tip, increment_for
     use ddc_growth_load_steps, only: follow_growth, record_load_step, finish_load_steps
     use ddc_history_path, only: path_loads, apply_load, load_text
     use ddc_progress, only: report_progress, hold_progress, release_progress
@@ -324,6 +324,7 @@ contains
                 grown = grown + 1
                 run%now%angle(t) = kinks%tip(i)%theta
                 run%now%length(t) = kinks%tip(i)%length
+                run%tips(t)%element_length = regular_length(kinks%tip(i))
             else if (ends_on_link(kinks%tip(i)%reason)) then
                 grown = grown + 1
                 run%tips(t)%stopped = .true.
@@ -366,6 +367,16 @@ contains
             run%now%k2_after(t) = run%current%tips%k2(k)
         end do
     end subroutine grow_step
+
+    !> The element length a tip keeps after growing by kink k: 0 (its new tip element's)
+    !> after a whole increment, the increment's element length after a shorter kink (whose
+    !> element may be shorter).
+    pure real(wp) function regular_length(k)
+        type(kink), intent(in) :: k
+
+        regular_length = 0.0_wp
+        if (k%length < k%full_length) regular_length = k%element_length
+    end function regular_length
 
     !> K, kink angle and K_eq (the criterion's) of every tip that may still grow; reason
     !> growth_subcritical (K_eq < toughness) or growth_grew (critical) for those,
@@ -459,24 +470,27 @@ contains
 
     !> Length and number of elements of a tip's increment: `increment` (default twice the
     !> tip element's length) in n = nint(increment / element_length) >= 1 equal elements
-    !> (element_length default: the tip element's length).
-    pure subroutine increment_of(options, half_length, length, pieces)
+    !> (element_length default: the tip element's length). After a kink shorter than the
+    !> increment the tip's element length is the one before it (tip%element_length).
+    pure subroutine increment_of(options, work, tip, element, length, pieces, element_length)
         !> The growth options (increment, element_length)
         type(growth_options), intent(in) :: options
-        !> Half the tip element's length [length unit]
-        real(wp), intent(in) :: half_length
+        !> The current geometry
+        type(model_type), intent(in) :: work
+        !> The tip, and its tip element
+        type(growing_tip), intent(in) :: tip
+        integer, intent(in) :: element
         !> Length of the increment [length unit]
         real(wp), intent(out) :: length
         !> Number of its elements
         integer, intent(out) :: pieces
-        real(wp) :: tip_length, element_length
+        !> Length of the elements the tip grows by [length unit]
+        real(wp), intent(out) :: element_length
+        real(wp) :: tip_length
 
-        tip_length = 2.0_wp * half_length
-        length = options%increment
-        if (length <= 0.0_wp) length = 2.0_wp * tip_length
-        element_length = options%element_length
-        if (element_length <= 0.0_wp) element_length = tip_length
-        pieces = max(1, nint(length / element_length))
+        tip_length = tip%element_length
+        if (tip_length <= 0.0_wp) tip_length = 2.0_wp * work%elements%half_length(element)
+        call increment_for(options, tip_length, length, pieces, element_length)
     end subroutine increment_of
 
     !> The path of tip i at its kink angle.
@@ -487,10 +501,10 @@ contains
         type(step_tips), intent(in) :: now
         integer, intent(in) :: i
         type(tip_path) :: path
-        real(wp) :: length
+        real(wp) :: length, element_length
         integer :: pieces
 
-        call increment_of(options, work%elements%half_length(now%element(i)), length, pieces)
+        call increment_of(options, work, tip, now%element(i), length, pieces, element_length)
         path = make_path(work, tip%fracture, tip%end, now%theta(i), length, pieces)
     end function predictor_path
 
@@ -510,8 +524,9 @@ contains
         k%k2 = now%k2(i)
         k%k_eq = now%k_eq(i)
         k%theta_predictor = now%theta(i)
-        call increment_of(options, work%elements%half_length(now%element(i)), k%length, &
-                          k%pieces)
+        call increment_of(options, work, tip, now%element(i), k%length, k%pieces, &
+                          k%element_length)
+        k%full_length = k%length
     end function tip_kink
 
     !> Append the step's records: one per tip that could still grow at the step's start.

@@ -21,9 +21,12 @@ module ddc_growth_kinks
         real(wp) :: k1 = 0.0_wp, k2 = 0.0_wp, k_eq = 0.0_wp
         !> The criterion's kink angle from the tip's K (the predictor, the MTS angle) [rad]
         real(wp) :: theta_predictor = 0.0_wp
-        !> Length of the increment [length unit] and its number of elements
+        !> Length of the kink [length unit] and its number of elements: the increment, or
+        !> shorter where the criterion shortens the kink
         real(wp) :: length = 0.0_wp
         integer :: pieces = 1
+        !> Length of the increment, and of its elements [length unit]
+        real(wp) :: full_length = 0.0_wp, element_length = 0.0_wp
         !> The applied angle [rad] (out)
         real(wp) :: theta = 0.0_wp
         !> Solves this tip took part in (out)

@@ -10,14 +10,15 @@
 !> a new element takes (inherit_values); then its end points from the file (bit for bit)
 !> and the geometry computed.
 module ddc_growth_restart
+    use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type
     use ddc_model_results, only: growth_intersection, growth_surface, growth_linked, &
-        growth_enclosing
+        growth_enclosing, growth_grew, growth_corrector_failed
     use ddc_model_restart, only: restart_state
     use ddc_mesh_geometry, only: compute_geometry
-    use ddc_growth_extension, only: inherit_values
-    use ddc_growth_tips, only: growing_tip
+    use ddc_growth_extension, only: inherit_values, tip_element
+    use ddc_growth_tips, only: growing_tip, resumed_element_length
     implicit none
     private
 
@@ -101,12 +102,16 @@ contains
     end subroutine resumed_geometry
 
     !> The fracture ends that may grow, as the earlier run found them (those of its first
-    !> check's records), each stopped for good when its last record says so.
-    function resumed_tips(state) result(tips)
+    !> check's records), each stopped for good when its last record says so, and with the
+    !> element length its increments keep after a kink shorter than the increment.
+    function resumed_tips(model, state) result(tips)
+        !> The input model (its tip elements as given)
+        type(model_type), intent(in) :: model
         !> The earlier run's end
         type(restart_state), intent(in) :: state
         type(growing_tip), allocatable :: tips(:)
         integer :: i, k, last
+        logical, allocatable :: grew(:)
 
         associate (g => state%results%growth)
             allocate (tips(0))
@@ -123,6 +128,11 @@ contains
                 tips(i)%stopped = any(g%reason(last) == [growth_intersection, &
                                                          growth_surface, growth_linked, &
                                                          growth_enclosing])
+                grew = g%fracture_id == tips(i)%fracture .and. g%end == tips(i)%end .and. &
+                       (g%reason == growth_grew .or. g%reason == growth_corrector_failed)
+                tips(i)%element_length = resumed_element_length(model%growth, 2.0_wp * &
+                    model%elements%half_length(tip_element(model, tips(i)%fracture, &
+                                                           tips(i)%end)), pack(g%length, grew))
             end do
         end associate
     end function resumed_tips

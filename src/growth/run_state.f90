@@ -112,7 +112,7 @@ contains
         run%current%elements = restart%results%elements
         run%current%tips = restart%results%tips
         run%current%solver = restart%results%solver
-        run%tips = resumed_tips(restart)
+        run%tips = resumed_tips(model, restart)
         record = restart%results%growth
         ! Growth steps are numbered by the steps in which a tip grew
         step = record%steps_taken

@@ -3,15 +3,20 @@
 !> mouth on the free surface, or an end inside a fracture given as a CSV with gaps does
 !> not grow), and where such a tip is in a tip set.
 module ddc_growth_tips
+    use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_internal_error
     use ddc_text, only: itoa
-    use ddc_model_types, only: model_type
+    use ddc_model_types, only: model_type, growth_options
     use ddc_model_results, only: tip_set
     use ddc_growth_extension, only: tip_element, tip_end_begin, tip_end_end
     implicit none
     private
 
-    public :: growing_tip, find_growing_tips, fracture_tip, locate_tip
+    !> Relative tolerance of a kink counted as shorter than its increment
+    real(wp), parameter :: short_tolerance = 1.0e-6_wp
+
+    public :: growing_tip, find_growing_tips, fracture_tip, locate_tip, increment_for, &
+        resumed_element_length
 
     !> A fracture end that may grow.
     type :: growing_tip
@@ -19,6 +24,9 @@ module ddc_growth_tips
         integer :: fracture = 0, end = tip_end_end
         !> Stopped for good (at another element or the free surface)
         logical :: stopped = .false.
+        !> Length of the elements it grows by after a kink shorter than the increment (whose
+        !> element may be shorter) [length unit]; 0: its tip element's length
+        real(wp) :: element_length = 0.0_wp
     end type growing_tip
 
 contains
@@ -82,5 +90,55 @@ contains
         if (index == 0) call set_internal_error(error, 'fracture growth', 'end '//itoa(end)// &
                                                 ' of fracture '//itoa(fracture)//' is not a tip')
     end subroutine fracture_tip
+
+    !> Length and number of elements of an increment from a tip element of length tip_length:
+    !> `increment` (default 2 tip_length) in n = nint(increment / element_length) >= 1 equal
+    !> elements (element_length default: tip_length).
+    pure subroutine increment_for(options, tip_length, length, pieces, element_length)
+        !> The growth options (increment, element_length)
+        type(growth_options), intent(in) :: options
+        !> Length of the tip element (or of the elements before a short kink) [length unit]
+        real(wp), intent(in) :: tip_length
+        !> Length of the increment [length unit]
+        real(wp), intent(out) :: length
+        !> Number of its elements
+        integer, intent(out) :: pieces
+        !> Length of the elements the tip grows by [length unit]
+        real(wp), intent(out) :: element_length
+
+        length = options%increment
+        if (length <= 0.0_wp) length = 2.0_wp * tip_length
+        element_length = options%element_length
+        if (element_length <= 0.0_wp) element_length = tip_length
+        pieces = max(1, nint(length / element_length))
+    end subroutine increment_for
+
+    !> growing_tip%element_length of a tip after the kinks it grew by (lengths, in order) from
+    !> an input tip element of length first_length: the element length of its increments
+    !> after a kink shorter than the increment, 0 after a whole increment.
+    pure real(wp) function resumed_element_length(options, first_length, lengths) &
+        result(kept)
+        !> The growth options (increment, element_length)
+        type(growth_options), intent(in) :: options
+        !> Length of the input tip element [length unit]
+        real(wp), intent(in) :: first_length
+        !> Lengths of the tip's kinks, in order [length unit]
+        real(wp), intent(in) :: lengths(:)
+        real(wp) :: tip_length, full, element_length
+        integer :: j, pieces
+
+        kept = 0.0_wp
+        tip_length = first_length
+        do j = 1, size(lengths)
+            if (kept > 0.0_wp) tip_length = kept
+            call increment_for(options, tip_length, full, pieces, element_length)
+            if (lengths(j) < (1.0_wp - short_tolerance) * full) then
+                kept = element_length
+            else
+                kept = 0.0_wp
+                tip_length = full / real(pieces, wp)
+            end if
+        end do
+    end function resumed_element_length
 
 end module ddc_growth_tips

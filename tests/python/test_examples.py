@@ -186,8 +186,8 @@ def check_tail_cracks(f):
 
 
 def check_growth_along_path(f, first_load_step, length):
-    """Growth along a load path: nothing grows before `first_load_step` (1-based; the tips
-    may be critical, but their kinks are closed), both tips end `length` long (to 1e-9,
+    """Growth along a load path: nothing grows before `first_load_step` (1-based; the first
+    load step with K_eq at the toughness), both tips end `length` long (to 1e-9,
     point-symmetric) and arrested, the grown elements are open, and the grown length never
     falls from one load step to the next."""
     g, h = f["growth"], f["history"]
@@ -299,8 +299,8 @@ EXPECTED = {
     "slip_weakening_thrust": check_slip_weakening_thrust,
     "wing_cracks_sliding_flaw": check_wings,
     "fault_tail_cracks": check_tail_cracks,
-    "wings_rising_axial_load": lambda f: check_growth_along_path(f, 8, 1.1),
-    "tail_cracks_rising_pore_pressure": lambda f: check_growth_along_path(f, 7, 0.96),
+    "wings_rising_axial_load": lambda f: check_growth_along_path(f, 6, 1.0546875),
+    "tail_cracks_rising_pore_pressure": lambda f: check_growth_along_path(f, 1, 0.955),
     "echelon_cracks_linking": check_echelon_linking,
     "hydraulic_fracture_toward_fault": check_hydraulic_fracture,
     "joint_growing_to_surface": check_joint_to_surface,

@@ -139,15 +139,18 @@ def test_result_without_growth_has_no_growth_figure(tmp_path):
     assert not list((tmp_path / "fig").glob("*_growth.*"))
 
 
-# The wing flaw of docs/theory/growth.md#convergence-with-the-increment with a low toughness: after
-# 11 steps both kinks at the MTS angle close (K_I = 0 on the new tip), so neither tip grows and the
-# run arrests.
+# A fault that barely slides (principal stresses -100 and -40 MPa, sigma_1 25 degrees from it,
+# mu 0.5, sf 0.5, p0 6 MPa: K_II 0.22) with a toughness of 0.2: both tips are critical
+# (K_eq 0.25), but under the confinement even the shortest kink (1/64 of an element) closes
+# (K_I = 0 on the new tip), so neither tip grows and the run arrests
+# (docs/theory/growth.md#closed-kinks).
 CLOSED_MODEL = """\
 &model title = 'closed', youngs_modulus = 50000, poissons_ratio = 0.25 /
-&remote_stress sxx = -5, syy = -100 /
-&fracture name = 'flaw', x = -0.70710678, 0.70710678, y = -0.70710678, 0.70710678,
-          elements = 40, condition = 'contact', mu = 0.6, sf = 0 /
-&growth steps = 30, toughness = 0.1, new_sf = 0, increment = 0.1 /
+&remote_stress sxx = -89.2836, syy = -50.7164, sxy = 22.9813 /
+&pore_fluid p0 = 6.0 /
+&fracture name = 'fault', x = -1.0, 1.0, y = 0.0, 0.0, elements = 40, condition = 'contact',
+          mu = 0.5, sf = 0.5 /
+&growth steps = 30, toughness = 0.2, increment = 0.1 /
 """
 
 
@@ -155,7 +158,7 @@ def test_closed_tips_in_table_and_figure(tmp_path):
     done = solve(tmp_path, CLOSED_MODEL)
     assert done.returncode == 0, done.stdout + done.stderr
     assert "ended: arrested" in done.stdout
-    rows = [line for line in done.stdout.splitlines() if line.startswith("  flaw ")]
+    rows = [line for line in done.stdout.splitlines() if line.startswith("  fault ")]
     assert len(rows) == 2
     assert all("closed: the kink closes (K_I = 0)" in row for row in rows)
     with h5py.File(tmp_path / "wings.h5", "r") as f:

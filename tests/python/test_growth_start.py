@@ -1,0 +1,106 @@
+"""Where growth starts along a loading history (docs/theory/growth.md#closed-kinks): a 2 m
+sliding fault (40 elements, mu 0.5, sf 0.5, principal stresses -100 and -40 MPa with
+sigma_1 25 degrees from the fault, toughness 3) under a pore pressure rising from 0 to 14 MPa
+in 2 MPa steps.
+
+By hand the tips are critical from p0 = 8.69 MPa: the fault is closed and slides, so
+K_II = (tau - sf - mu (sigma_n - p0)) sqrt(pi a) with a = 1 m and K_I = 0, and the MTS
+criterion gives K_eq = 2 K_II / sqrt(3).
+
+- Growth starts at the first load step whose K_eq reaches the toughness (p0 = 10 MPa), for
+  increments 0.2, 0.1 and 0.05 m: the kink as long as the increment is closed there, a
+  shorter one is not.
+- The grown length at every load step does not depend on the increment (within the
+  shortest kink, 1/64 of an element, plus a tenth of the length), and it rises with the load.
+- No tip is called closed while its K_I is at or above the toughness."""
+
+import math
+import subprocess
+
+import h5py
+import numpy as np
+import pytest
+
+from conftest import ddc2d_exe
+
+SXX, SYY, SXY = -89.28362829059617, -50.716371709403816, 22.981333293569342
+MU, SF, HALF_LENGTH, TOUGHNESS = 0.5, 0.5, 1.0, 3.0
+ELEMENT = 2.0 * HALF_LENGTH / 40
+LOADS = np.arange(0.0, 14.5, 2.0)
+FAULT = f"""\
+&model youngs_modulus = 50000.0, poissons_ratio = 0.25, length_unit = 'm', stress_unit = 'MPa' /
+&remote_stress sxx = {SXX}, syy = {SYY}, sxy = {SXY} /
+&pore_fluid p0 = 0.0 /
+&fracture name = 'fault', x = -1.0, 1.0, y = 0.0, 0.0, elements = 40, condition = 'contact',
+          mu = {MU}, sf = {SF} /
+&load_path p0 = 0.0, {LOADS[-1]}, steps = {len(LOADS) - 1} /
+&growth steps = 60, toughness = {TOUGHNESS}, increment = {{increment}} /
+"""
+INCREMENTS = (0.2, 0.1, 0.05)
+GREW = (0, 4)
+CLOSED = 6
+
+
+def critical_pore_pressure():
+    """p0 at which K_eq = 2 K_II / sqrt(3) of the sliding fault reaches the toughness."""
+    drop = TOUGHNESS * math.sqrt(3.0) / 2.0 / math.sqrt(math.pi * HALF_LENGTH)
+    return (drop + SF - MU * SYY - abs(SXY)) / MU
+
+
+@pytest.fixture(scope="module")
+def runs(tmp_path_factory):
+    """{increment: result file} of the rising pore pressure."""
+    folder = tmp_path_factory.mktemp("growth_start")
+    out = {}
+    for increment in INCREMENTS:
+        model = folder / f"fault_{increment}.nml"
+        model.write_text(FAULT.format(increment=increment))
+        out[increment] = folder / f"fault_{increment}.h5"
+        done = subprocess.run([str(ddc2d_exe()), str(model), "-o", str(out[increment])],
+                              capture_output=True, text=True, timeout=900)
+        assert done.returncode == 0, done.stdout + done.stderr
+    return out
+
+
+def growth(path):
+    with h5py.File(path, "r") as f:
+        return {name: f["growth"][name][:] for name in ("load_step", "reason", "k1", "k_eq")}
+
+
+def first_step(load_step, mask):
+    """The first load step (1-based) of the records in mask; 0 when none."""
+    return int(load_step[mask].min()) if mask.any() else 0
+
+
+def test_hand_critical_load_is_between_the_steps():
+    """The closed form puts the critical load inside the 8 -> 10 MPa step."""
+    assert 8.6 < critical_pore_pressure() < 8.8
+
+
+@pytest.mark.parametrize("increment", INCREMENTS)
+def test_growth_starts_where_k_eq_reaches_the_toughness(runs, increment):
+    g = growth(runs[increment])
+    critical = first_step(g["load_step"], g["k_eq"] >= TOUGHNESS)
+    expected = 1 + int(np.argmax(LOADS >= critical_pore_pressure()))
+    assert critical == expected
+    assert first_step(g["load_step"], np.isin(g["reason"], GREW)) == expected
+
+
+@pytest.mark.parametrize("increment", INCREMENTS)
+def test_no_tip_above_the_toughness_is_closed(runs, increment):
+    g = growth(runs[increment])
+    assert (g["k1"][g["reason"] == CLOSED] < TOUGHNESS).all()
+
+
+def test_grown_length_per_load_does_not_depend_on_the_increment(runs):
+    lengths = {}
+    for increment, path in runs.items():
+        with h5py.File(path, "r") as f:
+            lengths[increment] = f["history/grown_length"][:, 0]
+    finest = lengths[INCREMENTS[-1]]
+    start = 1 + int(np.argmax(LOADS >= critical_pore_pressure()))
+    assert (finest[: start - 1] == 0.0).all()
+    assert (np.diff(finest[start - 1:]) > 0.0).all(), finest
+    for increment in INCREMENTS[:-1]:
+        assert np.allclose(lengths[increment], finest, rtol=0.1, atol=ELEMENT / 64), \
+            (increment, lengths[increment], finest)
