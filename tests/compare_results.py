@@ -49,8 +49,11 @@ KINDS = {
 }
 
 
-#: /history datasets that record how each step was solved (compared as no result)
-HISTORY_SOLVER_RECORD = ("pivots", "newton_iterations", "method", "fallback")
+#: /history datasets that record how each step was solved (compared as no result): the
+#: certificate and the residual are round-off sizes of that solve, scaled to 1 already
+HISTORY_SOLVER_RECORD = ("pivots", "newton_iterations", "method", "fallback",
+                         "certificate_min_z", "certificate_min_w",
+                         "certificate_max_complementarity", "equilibrium_residual")
 
 
 class Mismatch(AssertionError):
