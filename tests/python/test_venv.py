@@ -18,7 +18,8 @@ from conftest import REPO_ROOT, SCRIPTS, write_result
 SYSTEM_PATH = "/usr/bin:/bin"
 #: Every command-line script of scripts/ (Python and shell).
 COMMANDS = ("ddc2d-plot", "collect-sweep", "compare-twodd", "benchmark.py", "comp2ddm2nml",
-            "twodd2nml", "submit-sweep", "make-gallery", "growth_convergence.py")
+            "twodd2nml", "submit-sweep", "make-gallery", "growth_convergence.py", "converge.py",
+            "verification-table")
 #: The Python scripts: each runs a module of the ddc2d package (python/, in build/venv).
 NEEDS_VENV = {name: "ddc2d" for name in COMMANDS if name != "make-gallery"}
 
