@@ -8,19 +8,12 @@ import math
 import h5py
 import numpy as np
 import pytest
+from closed_forms import arc_crack_k
 
 from conftest import solve_text
 from ddc2d.richardson import extrapolate
 
 RADIUS, TENSION = 1.0, 1.0
-
-
-def closed_form(half_angle):
-    """K_I, K_II at the tips of a circular arc of half-angle `half_angle` [rad] under remote
-    isotropic tension (Sih, Paris & Erdogan 1962)."""
-    scale = TENSION * math.sqrt(math.pi * RADIUS * math.sin(half_angle))
-    scale /= 1.0 + math.sin(half_angle / 2.0) ** 2
-    return scale * math.cos(half_angle / 2.0), scale * math.sin(half_angle / 2.0)
 
 
 def arc_model(half_angle, n):
@@ -45,7 +38,7 @@ def arc(request, tmp_path_factory):
     meshes, shape (mesh, mode, tip)."""
     half_angle = request.param
     folder = tmp_path_factory.mktemp("arc")
-    exact = closed_form(math.radians(half_angle))
+    exact = arc_crack_k(math.radians(half_angle), RADIUS, TENSION)
     errors = []
     for n in ARCS[half_angle][0]:
         text = arc_model(math.radians(half_angle), n)
