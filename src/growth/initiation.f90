@@ -23,7 +23,8 @@ module ddc_growth_initiation
     use ddc_text, only: itoa
     use ddc_model_types, only: model_type, growth_options, initiation_options, &
         fracture_type, condition_contact
-    use ddc_model_results, only: model_results, field_result, point_on_element
+    use ddc_model_results, only: model_results, field_result, point_on_element, &
+        tip_set
     use ddc_model_initiations, only: initiation_record, initiation_tail, initiation_flaw, &
         append_initiation, empty_initiation_record
     use ddc_model_loads, only: shear_modulus_of
@@ -95,7 +96,7 @@ contains
 
         started = .false.
         if (.not. allocated(record%kind)) call empty_initiation_record(record)
-        found = probe_candidates(run%work, run%current, initiation, record)
+        found = probe_candidates(run%work, run%current, growth, initiation, record)
         allocate (usable(size(found)), source=.true.)
         n = run%work%elements%n
         do
@@ -146,11 +147,13 @@ contains
     !> Every probe of the current solution (both sides of both ends of every contact element
     !> that are not a fracture tip and have not started a tail, and every flaw point that has
     !> not started), with its tension. Probe points on an element are left out.
-    function probe_candidates(work, current, initiation, record) result(found)
+    function probe_candidates(work, current, growth, initiation, record) result(found)
         !> The current geometry, its elements' geometry computed
         type(model_type), intent(in) :: work
         !> Its solution (DDs and tips)
         type(model_results), intent(in) :: current
+        !> The growth options (the tips' increments)
+        type(growth_options), intent(in) :: growth
         !> The initiation options
         type(initiation_options), intent(in) :: initiation
         !> The initiations so far (allocated, maybe empty)
@@ -176,7 +179,8 @@ contains
                     else
                         vertex = [e%x_end(k), e%y_end(k)]
                     end if
-                    if (started_at(record, vertex, d)) cycle
+                    if (started_at(record, vertex, d) .or. &
+                        near_tip(work, current%tips, growth, vertex, d)) cycle
                     do side = -1, 1, 2
                         m = m + 1
                         all(m) = initiation_candidate(kind=initiation_tail, &
@@ -303,6 +307,27 @@ contains
         started_at = any(hypot(record%x - vertex(1), record%y - vertex(2)) <= &
                          same_point * distance)
     end function started_at
+
+    !> Whether a vertex is in a tip's zone: closer to it than its next growth increment, or
+    !> than the probe distance. The tip's own growth decides there (its next kink reaches that
+    !> far), and a probe there would sample the tip's singular field, which puts the start
+    !> next to the tip however fine the mesh.
+    pure logical function near_tip(work, tips, growth, vertex, distance)
+        type(model_type), intent(in) :: work
+        type(tip_set), intent(in) :: tips
+        type(growth_options), intent(in) :: growth
+        real(wp), intent(in) :: vertex(2), distance
+        real(wp) :: increment, element_length
+        integer :: k, pieces
+
+        near_tip = .false.
+        do k = 1, tips%n
+            call increment_for(growth, 2.0_wp * work%elements%half_length(tips%element(k)), &
+                               increment, pieces, element_length)
+            if (hypot(tips%x(k) - vertex(1), tips%y(k) - vertex(2)) < &
+                max(increment, distance)) near_tip = .true.
+        end do
+    end function near_tip
 
     !> A tail's vertices: from the parent's vertex, one increment (of the parent element) into
     !> the probe's side along `along`, in the increment's elements.
