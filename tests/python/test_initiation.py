@@ -1,8 +1,9 @@
 """New fractures inside the rock (&initiation; docs/fracture-growth.md#new-fractures-inside-the-rock).
 
-A straight frictionless fault (2 m, mu = sf = 0, closed and sliding under sxx = -20,
-syy = -50, sxy = 15 MPa: its slip is linear in the load) with &growth steps = 1 and a
-toughness no tip reaches, so that the only thing that can happen is one initiation:
+A straight frictionless fault (2 m, mu = sf = 0, closed and sliding under sxx = 0,
+syy = -20, sxy = 10 MPa: its slip is linear in the load) with &growth steps = 1, an
+increment of 0.39 m (the tips' zones, where nothing starts) and a toughness no tip reaches,
+so that the only thing that can happen is one initiation (probe_distance 0.2 m):
 
 - the probed tension is the field at the probe point: the same model without &initiation,
   with &points at every probe point (both sides of every vertex that is not a tip, at
@@ -13,8 +14,8 @@ toughness no tip reaches, so that the only thing that can happen is one initiati
 - nothing starts with tensile_strength 0.1 % above the largest probed tension, one tail
   with 0.1 % below;
 - at fixed probe_distance the initiation load (tensile_strength / probed tension per unit
-  load) and point converge as the 10, 20, 40 element meshes halve the elements (observed
-  order from ddc2d.richardson);
+  load) and point converge as the 20, 40, 80 element meshes halve the elements (observed
+  order from ddc2d.richardson; the probe distance must span a few elements);
 - a flaw point under tension starts a crack of flaw_length perpendicular to the tension;
 - bad input: one message naming &initiation and the variable, exit 2.
 """
@@ -29,15 +30,16 @@ import pytest
 from conftest import ddc2d_exe
 from ddc2d.richardson import extrapolate
 
-SXX, SYY, SXY = -20.0, -50.0, 15.0
-PROBE = 0.05
+SXX, SYY, SXY = 0.0, -20.0, 10.0
+PROBE = 0.2
 HEADER = f"""\
 &model youngs_modulus = 50000.0, poissons_ratio = 0.25, length_unit = 'm', stress_unit = 'MPa' /
 &remote_stress sxx = {SXX}, syy = {SYY}, sxy = {SXY} /
 """
 FAULT = ("&fracture name = 'fault', x = -1.0, 1.0, y = 0.0, 0.0, elements = {n}, "
          "condition = 'contact', mu = 0.0, sf = 0.0 /\n")
-GROWTH = "&growth steps = 1, toughness = 1.0e6 /\n"
+INCREMENT = 0.39
+GROWTH = f"&growth steps = 1, toughness = 1.0e6, increment = {INCREMENT} /\n"
 
 
 def run(folder, name, text, expect=0):
@@ -53,13 +55,14 @@ def run(folder, name, text, expect=0):
 
 
 def probes(n):
-    """Probe points of the n-element straight fault: both sides of every vertex but the
-    two tips, at PROBE along the normal (0, 1); in the order element, end, side."""
+    """Probe points of the n-element straight fault: both sides of every vertex outside the
+    tips' zones (closer to a tip than the increment), at PROBE along the normal (0, 1); in
+    the order element, end, side."""
     vertices = np.linspace(-1.0, 1.0, n + 1)
     points = []
     for k in range(n):
         for vertex in (vertices[k], vertices[k + 1]):
-            if vertex in (-1.0, 1.0):
+            if 1.0 - abs(vertex) < INCREMENT:
                 continue
             for side in (-1, 1):
                 points.append((k + 1, vertex, side * PROBE))
@@ -150,22 +153,25 @@ def test_nothing_starts_above_the_largest_tension(folder, field20):
 
 
 def test_initiation_converges_with_the_mesh(folder):
-    """At fixed probe_distance the initiation load (strength / tension per unit load) and
-    point converge as the elements halve: the differences shrink, observed order > 0.5."""
+    """At fixed probe_distance, as the elements halve (20, 40, 80), the initiation point is
+    the same vertex (the first outside the tips' zones, 0.4 m from the tips) and the
+    initiation load (strength / tension per unit load: the model is linear) converges: the
+    differences shrink, observed order > 0.5."""
     strength = 1.0
-    loads, xs = [], []
-    for n in (10, 20, 40):
+    loads, points = [], []
+    for n in (20, 40, 80):
         rows = initiations(run(folder, f"mesh{n}", tail_model(n, strength)))
         loads.append(strength / rows["tension"][0])
-        xs.append(abs(rows["x"][0]))
-    for values in (loads, xs):
-        result = extrapolate(values, 2.0)
-        assert result.differences_shrink, values
-        assert result.order is not None and result.order > 0.5, (values, result.order)
+        points.append((abs(rows["x"][0]), rows["y"][0]))
+    assert points == [pytest.approx((0.6, 0.0), abs=1e-12)] * 3, points
+    result = extrapolate(loads, 2.0)
+    assert result.differences_shrink, loads
+    assert result.order is not None and result.order > 0.5, (loads, result.order)
+    assert abs(loads[-1] - result.extrapolated) < 0.01 * result.extrapolated
 
 
 def test_flaw_starts_perpendicular_to_the_tension(folder):
-    """A flaw 30 m from a crack under sxx = 10 MPa (maximum tension 13.5 MPa) starts a crack
+    """A flaw 30 m from a crack under sxx = 10 MPa (maximum tension 13.0 MPa) starts a crack
     of flaw_length perpendicular to the tension, centred on the point."""
     # A traction-free crack: it has no contact elements to probe beside.
     crack = FAULT.format(n=10).replace("condition = 'contact', mu = 0.0, sf = 0.0",
