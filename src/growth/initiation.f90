@@ -7,8 +7,9 @@
 !> - a tail at the vertex, on the probe's side: one growth increment (in the increment's
 !>   elements) perpendicular to the maximum tension at the probe, named `<parent>_tail<k>`;
 !>   at most one per vertex and side;
-!> - at a flaw point, a crack of `flaw_length` centred on it, in the direction
-!>   flaw_direction chooses (perpendicular to the maximum tension under MTS), named
+!> - at a flaw point, a crack of `flaw_length` centred on it, in the direction the
+!>   criterion chooses (ddc_growth_criterion's flaw_direction: perpendicular to the maximum
+!>   tension under MTS), named
 !>   `flaw<k>`.
 !> One new fracture starts per check (growth step): the one with the largest tension; ties
 !> (within a relative 1e-9 of the strength, so that round-off does not decide) go to tails
@@ -36,11 +37,11 @@ module ddc_growth_initiation
     use ddc_growth_solver, only: solve_grown, accept_trial
     use ddc_growth_run_state, only: growth_state
     use ddc_growth_load_steps, only: follow_growth
+    use ddc_growth_criterion, only: flaw_direction
     implicit none
     private
 
-    public :: start_fracture, probe_candidates, initiation_candidate, principal_tension, &
-        flaw_direction
+    public :: start_fracture, probe_candidates, initiation_candidate, principal_tension
 
     !> Ties of probed tension within this fraction of the tensile strength are decided by
     !> index, not by round-off
@@ -111,7 +112,8 @@ contains
                        itoa(1 + count(record%parent == first%parent .and. &
                                       record%kind == initiation_tail))
             else
-                along = flaw_direction(growth%criterion, first%tension_direction)
+                call flaw_direction(growth, first%tension_direction, along, error)
+                if (allocated(error)) return
                 call flaw_path(growth, initiation, first%point, along, xs, ys)
                 name = 'flaw'//itoa(first%flaw)
             end if
@@ -244,22 +246,6 @@ contains
         phi = 0.5_wp * atan2(2.0_wp * stress(3), stress(1) - stress(2))
         direction = [cos(phi), sin(phi)]
     end subroutine principal_tension
-
-    !> The direction of a flaw's crack: the one place where a criterion chooses it. Under
-    !> MTS it is perpendicular to the maximum tension at the flaw point.
-    pure function flaw_direction(criterion, tension_direction) result(along)
-        !> The growth criterion (growth_criterion_mts)
-        integer, intent(in) :: criterion
-        !> Unit direction of the maximum tension at the flaw point
-        real(wp), intent(in) :: tension_direction(2)
-        real(wp) :: along(2)
-
-        select case (criterion)
-        case default
-            ! growth_criterion_mts: the crack opens against the maximum tension
-            along = [-tension_direction(2), tension_direction(1)]
-        end select
-    end function flaw_direction
 
     !> Index of the usable candidate that starts first: the largest tension reaching
     !> `strength`, ties by index (module header); 0 when none reaches it.

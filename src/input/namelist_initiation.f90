@@ -1,13 +1,12 @@
-!> The &initiation group of a namelist input file (docs/fracture-growth.md#new-fractures-inside-the-rock):
-!> new fractures inside the rock of a growth run, tails beside contact elements and cracks at
-!> flaw points, where the maximum tension reaches the rock's tensile strength. Sets the
-!> defaults, reads the group if present and checks every value; it needs &growth.
+!> The &initiation group of a namelist input file
+!> (docs/fracture-growth.md#new-fractures-inside-the-rock): new fractures inside the rock
+!> of a growth run, tails beside contact elements and cracks at flaw points, where the
+!> maximum tension reaches the rock's tensile strength. Sets the defaults, reads the group
+!> if present and checks every value; it needs &growth.
 module ddc_input_namelist_initiation
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type
     use ddc_model_limits, only: quantity_positive
-    use ddc_model_results, only: point_on_element
-    use ddc_influence_superposition, only: point_flag
     use ddc_text, only: itoa, rtoa
     use ddc_input_namelist_groups, only: group_record, message_list, add, group_prefix, &
         g_initiation, g_growth
@@ -103,9 +102,8 @@ contains
         associate (o => model%initiation, e => model%elements)
             do i = 1, size(o%flaw_x)
                 do j = 1, e%n
-                    if (point_flag(o%flaw_x(i), o%flaw_y(i), e%x_mid(j), e%y_mid(j), &
-                                   e%half_length(j), e%cos_beta(j), e%sin_beta(j)) &
-                        == point_on_element) then
+                    if (on_element(o%flaw_x(i) - e%x_mid(j), o%flaw_y(i) - e%y_mid(j), &
+                                   e%half_length(j), e%cos_beta(j), e%sin_beta(j))) then
                         call add(messages, group_prefix(path, g_initiation, &
                                                         groups(g_initiation), 1)// &
                                  'flaw_x('//itoa(i)//'), flaw_y('//itoa(i)//') = '// &
@@ -117,5 +115,15 @@ contains
             end do
         end associate
     end subroutine check_flaw_points
+
+    !> Whether the point (dx, dy) from an element's midpoint lies on it (its ends included),
+    !> within round-off of its length.
+    pure logical function on_element(dx, dy, a, cosb, sinb)
+        real(wp), intent(in) :: dx, dy, a, cosb, sinb
+        real(wp), parameter :: round_off = 1.0e-10_wp
+
+        on_element = abs(-sinb * dx + cosb * dy) <= round_off * a .and. &
+                     abs(cosb * dx + sinb * dy) <= a * (1.0_wp + round_off)
+    end function on_element
 
 end module ddc_input_namelist_initiation

@@ -248,9 +248,10 @@ module ddc_model_types
         real(wp) :: new_mu = 0.0_wp, new_sf = 0.0_wp
     end type growth_options
 
-    !> New fractures inside the rock (&initiation; docs/fracture-growth.md#new-fractures-inside-the-rock):
-    !> tails beside contact elements and cracks at flaw points, where the maximum tension
-    !> reaches the rock's tensile strength.
+    !> New fractures inside the rock (&initiation;
+    !> docs/fracture-growth.md#new-fractures-inside-the-rock): tails beside contact elements
+    !> and cracks at flaw points, where the maximum tension reaches the rock's tensile
+    !> strength.
     type :: initiation_options
         !> The model starts new fractures (an &initiation group was given)
         logical :: active = .false.

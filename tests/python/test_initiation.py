@@ -1,4 +1,5 @@
-"""New fractures inside the rock (&initiation; docs/fracture-growth.md#new-fractures-inside-the-rock).
+"""New fractures inside the rock (&initiation;
+docs/fracture-growth.md#new-fractures-inside-the-rock).
 
 A straight frictionless fault (2 m, mu = sf = 0, closed and sliding under sxx = 0,
 syy = -20, sxy = 10 MPa: its slip is linear in the load) with &growth steps = 1, an
@@ -106,9 +107,10 @@ def field20(folder):
     return probe_field(folder, 20)
 
 
-def tail_model(n, strength, extra=""):
+def tail_model(n, strength):
+    """The n-element fault with &initiation at this tensile strength."""
     return (HEADER + FAULT.format(n=n) + GROWTH +
-            f"&initiation tensile_strength = {float(strength)!r}, probe_distance = {PROBE} {extra}/\n")
+            f"&initiation tensile_strength = {float(strength)!r}, probe_distance = {PROBE} /\n")
 
 
 def test_probed_tension_is_the_field_there(folder, field20):
@@ -203,8 +205,8 @@ def test_flaw_starts_perpendicular_to_the_tension(folder):
     ("tensile_strength = 5.0", "probe_distance is required"),
     ("tensile_strength = 0.0, probe_distance = 0.05", "tensile_strength"),
     ("tensile_strength = -1.0, probe_distance = 0.05", "tensile_strength"),
-    ("tensile_strength = 5.0, probe_distance = 0.05, flaw_x = 0.5, flaw_y = 0.0, "
-     "flaw_length = 0.1", "flaw_x(1)"),
+    (("tensile_strength = 5.0, probe_distance = 0.05, flaw_x = 0.5, flaw_y = 0.0, "
+      "flaw_length = 0.1"), "flaw_x(1)"),
 ])
 def test_bad_input(folder, group, variable):
     """One message naming &initiation and the variable, exit 2."""
