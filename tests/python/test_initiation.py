@@ -215,3 +215,15 @@ def test_bad_input(folder, group, variable):
     lines = done.stderr.strip().splitlines()
     assert len(lines) == 1, done.stderr
     assert "&initiation" in lines[0] and variable in lines[0], lines[0]
+
+
+def test_along_a_load_path(folder):
+    """The load scaled by k = 1 .. 10 (load steps 1 .. 10, k = 10 the fixed load of the
+    other tests; the model is linear): the tail starts in the first load step whose probed
+    tension, k / 10 of the full load's, reaches the strength, and records that tension."""
+    full = initiations(run(folder, "full", tail_model(20, 1.0)))["tension"][0]
+    strength = 0.55 * full
+    path = ("&load_path sxx = 0.0, 0.0, syy = -2.0, -20.0, sxy = 1.0, 10.0, steps = 9 /\n")
+    rows = initiations(run(folder, "path", tail_model(20, strength) + path))
+    assert rows["load_step"].tolist() == [6], "k = 6 is the first with 0.6 full >= 0.55 full"
+    assert rows["tension"][0] == pytest.approx(0.6 * full, rel=1e-6)
