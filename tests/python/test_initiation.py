@@ -227,3 +227,14 @@ def test_along_a_load_path(folder):
     rows = initiations(run(folder, "path", tail_model(20, strength) + path))
     assert rows["load_step"].tolist() == [6], "k = 6 is the first with 0.6 full >= 0.55 full"
     assert rows["tension"][0] == pytest.approx(0.6 * full, rel=1e-6)
+
+
+def test_resume_is_refused(folder):
+    """--resume of a run with &initiation: one message naming &initiation, exit 2."""
+    out = run(folder, "resumable", tail_model(20, 1.0))
+    done = subprocess.run([str(ddc2d_exe()), str(folder / "resumable.nml"), "--resume",
+                           str(out), "-o", str(folder / "resumed.h5")], capture_output=True,
+                          text=True, timeout=600)
+    assert done.returncode == 2, done.stdout + done.stderr
+    lines = done.stderr.strip().splitlines()
+    assert len(lines) == 1 and "&initiation" in lines[0], done.stderr
