@@ -1,7 +1,8 @@
 !> New fractures inside the rock (docs/fracture-growth.md#new-fractures-inside-the-rock): after
 !> every solve of a growth run with &initiation, the maximum principal stress (tension positive,
 !> effective where there is pore fluid) is probed at `probe_distance` beside both ends of every
-!> contact element, on both sides, except at fracture tips (those grow by the criterion), and
+!> contact element, on both sides, except in a tip's zone (the tip, and vertices closer to it
+!> than its next increment or the probe distance: the tip's own growth decides there), and
 !> at every flaw point that has not started yet. Where it reaches the tensile strength a new
 !> fracture starts:
 !> - a tail at the vertex, on the probe's side: one growth increment (in the increment's
@@ -9,8 +10,9 @@
 !>   at most one per vertex and side;
 !> - at a flaw point, a crack of `flaw_length` centred on it, in the direction the
 !>   criterion chooses (ddc_growth_criterion's flaw_direction: perpendicular to the maximum
-!>   tension under MTS), named
-!>   `flaw<k>`.
+!>   tension under MTS), named `flaw<k>`.
+!> A new fracture whose elements would cross another element is not started; the next place
+!> is tried.
 !> One new fracture starts per check (growth step): the one with the largest tension; ties
 !> (within a relative 1e-9 of the strength, so that round-off does not decide) go to tails
 !> before flaws, then the lowest fracture, element, end (begin first) and side (-1 first),
