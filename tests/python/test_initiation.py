@@ -7,9 +7,9 @@ increment of 0.39 m (the tips' zones, where nothing starts) and a toughness no t
 so that the only thing that can happen is one initiation (probe_distance 0.2 m):
 
 - the probed tension is the field at the probe point: the same model without &initiation,
-  with &points at every probe point (both sides of every vertex that is not a tip, at
-  probe_distance along the element normal), gives the tension /growth/initiations records
-  to 1e-9, at the point with the largest tension (ties: the lowest element);
+  with a &grid through every probe point (both sides of every vertex outside the tips'
+  zones, at probe_distance along the element normal), gives the tension /growth/initiations
+  records to 1e-9, at the point with the largest tension (ties: the lowest element);
 - the new tail runs perpendicular to the maximum tension at that point in the field
   without it, within 5 degrees;
 - nothing starts with tensile_strength 0.1 % above the largest probed tension, one tail
@@ -77,17 +77,21 @@ def max_tension(sxx, syy, sxy):
 
 
 def probe_field(folder, n):
-    """(element, x, y, tension, direction) at every probe point of the n-element fault,
-    from &points on the model without &initiation."""
-    points = probes(n)
-    table = folder / f"probes_{n}.csv"
-    table.write_text("".join(f"{float(x)!r},{float(y)!r}\n" for _, x, y in points))
+    """(element, x, y, tension, direction) at every probe point of the n-element fault, from
+    a &grid on the model without &initiation: its nodes every element length along x and at
+    y = -PROBE, 0, PROBE hold every probe point (those at y = 0 are on the fault)."""
     out = run(folder, f"field_{n}", HEADER + FAULT.format(n=n) +
-              f"&points name = 'probes', file = '{table}' /\n")
+              f"&grid name = 'probes', xmin = -1.0, xmax = 1.0, nx = {n + 1}, "
+              f"ymin = {-PROBE}, ymax = {PROBE}, ny = 3 /\n")
     with h5py.File(out, "r") as f:
         field = f["fields/probes"]
         tension, direction = max_tension(field["sxx"][()], field["syy"][()], field["sxy"][()])
-    return [(k, x, y, t, d) for (k, x, y), t, d in zip(points, tension, direction)]
+    values = []
+    for k, x, y in probes(n):
+        i = round((x + 1.0) * n / 2.0)
+        j = round((y + PROBE) / PROBE)
+        values.append((k, x, y, tension[j, i], direction[j, i]))
+    return values
 
 
 def initiations(out):
