@@ -22,6 +22,7 @@ module ddc_input_namelist
         scan_groups, g_model, g_remote_stress, g_fracture, g_grid, g_line, g_points, g_solver, &
         g_output, g_symmetry, g_pore_fluid, g_load_path
     use ddc_input_namelist_growth, only: read_growth_group
+    use ddc_input_namelist_initiation, only: read_initiation_group, check_flaw_points
     use ddc_input_namelist_settings, only: read_model_group, read_remote_stress_group, &
         read_pore_fluid_group, read_solver_group, read_symmetry_group, read_output_group, &
         read_load_path_group
@@ -91,6 +92,7 @@ contains
                                   any(.not. fractures%valid .or. &
                                       fractures%condition == condition_contact), model, messages)
         call read_growth_group(unit, text, path, groups, fractures, model, messages)
+        call read_initiation_group(unit, text, path, groups, model, messages)
         close (unit)
 
         call check_names(path, fractures, observations, messages)
@@ -106,6 +108,11 @@ contains
         end if
 
         call build_model(fractures, observations, model)
+        call check_flaw_points(path, groups, model, messages)
+        if (messages%n > 0) then
+            call set_error(error, messages%code, messages%text)
+            return
+        end if
         call check_elements(model%elements, model%fractures, error)
         if (allocated(error)) then
             error%message = prefix_lines(path//': ', error%message)

@@ -122,6 +122,14 @@ contains
         else
             call add_integers(hash, [-1])
         end if
+        ! Only a model with &initiation hashes its options: every other model's fingerprint
+        ! stays as it was.
+        if (model%initiation%active) then
+            call add_reals(hash, [model%initiation%tensile_strength, &
+                                  model%initiation%probe_distance, model%initiation%flaw_length])
+            call add_allocated_reals(hash, model%initiation%flaw_x)
+            call add_allocated_reals(hash, model%initiation%flaw_y)
+        end if
     end subroutine hash_model
 
     !> Hash one real per-element array.

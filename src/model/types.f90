@@ -24,6 +24,7 @@ module ddc_model_types
     public :: observation_grid, observation_line, observation_points, observation_kind_names
     public :: growth_options, growth_tips_all, growth_tips_most_critical, growth_tips_names
     public :: growth_criterion_mts, growth_criterion_names
+    public :: initiation_options
     public :: default_block_size, no_residual_drop, rigid_joint, tensile_cap
     public :: element_array_action, for_each_element_array, select_elements
 
@@ -247,6 +248,23 @@ module ddc_model_types
         real(wp) :: new_mu = 0.0_wp, new_sf = 0.0_wp
     end type growth_options
 
+    !> New fractures inside the rock (&initiation;
+    !> docs/fracture-growth.md#new-fractures-inside-the-rock): tails beside contact elements
+    !> and cracks at flaw points, where the maximum tension reaches the rock's tensile
+    !> strength.
+    type :: initiation_options
+        !> The model starts new fractures (an &initiation group was given)
+        logical :: active = .false.
+        !> Tensile strength T0 of the rock [stress unit]
+        real(wp) :: tensile_strength = 0.0_wp
+        !> Distance of the probe points from the elements' ends [length unit]
+        real(wp) :: probe_distance = 0.0_wp
+        !> Length of a flaw's first crack [length unit]; 0: the growth increment
+        real(wp) :: flaw_length = 0.0_wp
+        !> Flaw points [length unit], shape (flaws)
+        real(wp), allocatable :: flaw_x(:), flaw_y(:)
+    end type initiation_options
+
     !> A complete model, independent of the input format it came from.
     type :: model_type
         !> Title of the model
@@ -284,6 +302,8 @@ module ddc_model_types
         type(load_path_type) :: load_path
         !> Fracture growth; inactive unless the input has &growth
         type(growth_options) :: growth
+        !> New fractures inside the rock, when it grows
+        type(initiation_options) :: initiation
         !> Fingerprint of the model as read (ddc_model_fingerprint), recorded by app before
         !> a run changes the model (growth adds elements); unallocated until then
         character(len=:), allocatable :: fingerprint
