@@ -9,6 +9,9 @@
 !> it), a grown element those of its fracture's input tip element at that end, with what
 !> a new element takes (inherit_values); then its end points from the file (bit for bit)
 !> and the geometry computed.
+!>
+!> Under a loading history the strength state goes on too (resumed_strengths): the strengths in
+!> force as the file holds them, and the slip path that gives them.
 module ddc_growth_restart
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
@@ -19,10 +22,12 @@ module ddc_growth_restart
     use ddc_mesh_geometry, only: compute_geometry
     use ddc_growth_extension, only: inherit_values, tip_element
     use ddc_growth_tips, only: growing_tip, resumed_element_length
+    use ddc_contact_fault_law, only: fault_law
+    use ddc_solve_frictional, only: fault_law_of
     implicit none
     private
 
-    public :: resumed_geometry, resumed_tips
+    public :: resumed_geometry, resumed_tips, resumed_strengths
 
 contains
 
@@ -136,5 +141,41 @@ contains
             end do
         end associate
     end function resumed_tips
+
+    !> The fault law of the earlier run's final geometry with its strength state: the
+    !> strengths in force of the file (the given ones where the file holds none) and the
+    !> slip path that the file does not hold, found from them: where friction (else
+    !> cohesion) falls over a slip-weakening distance d_c, the path on that linear law that
+    !> gives the value in force (d_c once fully weakened); elsewhere the slip itself where
+    !> a strength dropped at once (a path > 0 keeps it dropped), else 0.
+    function resumed_strengths(work, state) result(law)
+        !> The final geometry (resumed_geometry)
+        type(model_type), intent(in) :: work
+        !> The earlier run's end
+        type(restart_state), intent(in) :: state
+        type(fault_law) :: law
+        real(wp), allocatable :: fallen(:)
+
+        law = fault_law_of(work%elements)
+        associate (e => state%results%elements, d_c => law%slip_weakening_distance)
+            if (allocated(e%sf_in_force)) then
+                law%sf_in_force = e%sf_in_force
+                law%tensile_in_force = e%tensile_in_force
+            end if
+            if (allocated(e%mu_in_force)) law%mu_in_force = e%mu_in_force
+            allocate (fallen(work%elements%n), source=0.0_wp)
+            where (law%mu_dynamic < law%mu)
+                fallen = (law%mu - law%mu_in_force) / (law%mu - law%mu_dynamic)
+            elsewhere (law%sf_residual < law%sf)
+                fallen = (law%sf - law%sf_in_force) / (law%sf - law%sf_residual)
+            end where
+            fallen = min(max(fallen, 0.0_wp), 1.0_wp)
+            where (d_c > 0.0_wp)
+                law%slip_path = d_c * fallen
+            elsewhere (fallen > 0.0_wp)
+                law%slip_path = max(abs(e%ds), tiny(1.0_wp))
+            end where
+        end associate
+    end function resumed_strengths
 
 end module ddc_growth_restart

@@ -23,7 +23,7 @@ module ddc_input_namelist_groups
     type :: group_spec
         character(len=13) :: name
         logical :: repeatable
-        character(len=240) :: variables
+        character(len=480) :: variables
     end type group_spec
 
     !> Index of each group in namelist_groups
@@ -52,7 +52,10 @@ module ddc_input_namelist_groups
         group_spec('load_path', .false., 'sxx:r syy:r sxy:r dsxx_dy:r dsyy_dy:r dsxy_dy:r '// &
                    'p0:r steps:i'), &
         group_spec('growth', .false., 'steps:i toughness:r increment:r element_length:r '// &
-                   'tips:c fractures:c criterion:c max_corrections:i new_mu:r new_sf:r')]
+                   'tips:c fractures:c criterion:c max_corrections:i new_mu:r new_sf:r '// &
+                   'new_tensile_strength:r new_sf_residual:r new_mu_dynamic:r '// &
+                   'new_slip_weakening_distance:r new_opening_weakening_distance:r '// &
+                   'new_shear_stiffness:r new_normal_stiffness:r')]
 
     !> Where the occurrences of one group are in the file.
     type :: group_record

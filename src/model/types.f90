@@ -24,6 +24,7 @@ module ddc_model_types
     public :: observation_grid, observation_line, observation_points, observation_kind_names
     public :: growth_options, growth_tips_all, growth_tips_most_critical, growth_tips_names
     public :: growth_criterion_mts, growth_criterion_names
+    public :: new_law_names
     public :: default_block_size, no_residual_drop, rigid_joint, tensile_cap
     public :: element_array_action, for_each_element_array, select_elements
 
@@ -218,6 +219,12 @@ module ddc_model_types
     integer, parameter :: growth_criterion_mts = 1
     !> Input names of the criteria, indexed by criterion
     character(len=*), parameter :: growth_criterion_names(1) = [character(len=3) :: 'mts']
+    !> The &growth variables of the strength laws of new contact elements (growth_options
+    !> new_law), each the element_set array of the same name without 'new_'
+    character(len=*), parameter :: new_law_names(7) = [character(len=30) :: &
+        'new_tensile_strength', 'new_sf_residual', 'new_mu_dynamic', &
+        'new_slip_weakening_distance', 'new_opening_weakening_distance', &
+        'new_shear_stiffness', 'new_normal_stiffness']
 
     !> Fracture growth (&growth; docs/theory/growth.md#the-growth-step): quasi-static, one increment
     !> per step.
@@ -245,6 +252,10 @@ module ddc_model_types
         logical :: override_mu = .false., override_sf = .false.
         !> Friction [-] and cohesion [stress unit] of new contact elements, when overridden
         real(wp) :: new_mu = 0.0_wp, new_sf = 0.0_wp
+        !> New contact elements take new_law(k) for the strength law new_law_names(k) where
+        !> override_law(k), instead of the tip element's given value
+        logical :: override_law(size(new_law_names)) = .false.
+        real(wp) :: new_law(size(new_law_names)) = 0.0_wp
     end type growth_options
 
     !> A complete model, independent of the input format it came from.
