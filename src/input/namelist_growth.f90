@@ -163,20 +163,20 @@ contains
             if (g%override_law(k)) g%new_law(k) = values(k)
         end do
         if (g%override_sf .and. g%override_law(sf_residual_at)) call check_below( &
-            g%new_law(sf_residual_at), g%new_sf, 'new_sf_residual', 'new_sf')
+            g%new_law(sf_residual_at), g%new_sf, 'new_sf_residual', 'new_sf', 'cohesion')
         if (g%override_mu .and. g%override_law(mu_dynamic_at)) call check_below( &
-            g%new_law(mu_dynamic_at), g%new_mu, 'new_mu_dynamic', 'new_mu')
+            g%new_law(mu_dynamic_at), g%new_mu, 'new_mu_dynamic', 'new_mu', 'friction')
 
     contains
 
         !> A residual above the strength it falls from is an error.
-        subroutine check_below(residual, strength, residual_name, strength_name)
+        subroutine check_below(residual, strength, residual_name, strength_name, what)
             real(wp), intent(in) :: residual, strength
-            character(len=*), intent(in) :: residual_name, strength_name
+            character(len=*), intent(in) :: residual_name, strength_name, what
 
             if (residual > strength) call add(messages, prefix//residual_name//' = '// &
-                rtoa(residual)//' exceeds '//strength_name//' = '//rtoa(strength)// &
-                ': a strength cannot rise to its residual')
+                rtoa(residual)//' exceeds '//strength_name//' = '//rtoa(strength)//' (the '// &
+                what//' after slip must not exceed the intact one)')
         end subroutine check_below
 
     end subroutine check_new_laws
