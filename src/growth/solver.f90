@@ -27,11 +27,11 @@
 !> the friction memory: every solve starts from the total slip of the base, an element that is
 !> there, or was split, keeps its slip and a new element starts from none (it joins the memory from
 !> the step that made it); so does the strength state (ddc_contact_fault_law: the slip path and the
-!> strengths in force: a new element starts intact, with its given strengths); a new load step is a solve of the base geometry at the new load
-!> (solve_loaded), on the kept path with the base's matrix and factors. Tractions, face
-!> displacements and fields are computed once, for the final geometry (final_results). Every solve's
-!> K at tips of unequal elements is calibrated (ddc_growth_tip_zone,
-!> docs/theory/tips.md#tips-of-grown-fractures).
+!> strengths in force: a new element starts intact, with its given strengths); a new load step
+!> is a solve of the base geometry at the new load (solve_loaded), on the kept path with the
+!> base's matrix and factors. Tractions, face displacements and fields are computed once, for
+!> the final geometry (final_results). Every solve's K at tips of unequal elements is calibrated
+!> (ddc_growth_tip_zone, docs/theory/tips.md#tips-of-grown-fractures).
 module ddc_growth_solver
     use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
@@ -206,8 +206,9 @@ contains
         law = fault_law_of(model%elements)
         if (solver%memory .and. allocated(solver%base_ds)) then
             where (from > 0) held = solver%base_ds(max(from, 1))
-            if (allocated(solver%base_law%slip_path)) &
+            if (allocated(solver%base_law%slip_path)) then
                 call law%take_in_force(solver%base_law, from)
+            end if
         end if
         if (solver%trial_kept) then
             call solve_kept(solver, model, moved_to, held, law, results, error)

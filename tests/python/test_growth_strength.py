@@ -110,8 +110,8 @@ def test_new_elements_take_the_tip_law_as_given_and_carry_its_state(tmp_path):
     assert np.all((mu_in >= 0.45 - 1e-12) & (mu_in <= 0.6 + 1e-12))
     assert np.all((sf_in >= 0.2 - 1e-12) & (sf_in <= 2.0 + 1e-12))
     assert np.any(mu_in < 0.6 - 1e-3) and np.any(sf_in < 2.0 - 1e-3)
-    override = run(tmp_path, "override", FAULT.format(
-        p0=30.0, steps=2, growth=2, extra=", new_mu_dynamic = 0.5, new_slip_weakening_distance = 2e-4"))
+    extra = ", new_mu_dynamic = 0.5, new_slip_weakening_distance = 2e-4"
+    override = run(tmp_path, "override", FAULT.format(p0=30.0, steps=2, growth=2, extra=extra))
     with h5py.File(override, "r") as f:
         e = {k: v[:] for k, v in f["elements"].items()}
     new = e["created_step"] > 0
@@ -127,7 +127,7 @@ def test_resume_with_strength_laws_on_grown_elements(tmp_path):
     run(tmp_path, "old", instant.format(p0=30.0, steps=2, growth=1, extra=""))
     whole = run(tmp_path, "whole", whole_text)
     run(tmp_path, "new", whole_text, "--resume", "old.h5")
-    problems, report = compare_results.compare(whole, tmp_path / "new.h5", rtol=1e-9)
+    problems, _ = compare_results.compare(whole, tmp_path / "new.h5", rtol=1e-9)
     assert not problems, problems
     with h5py.File(tmp_path / "old.h5") as old, h5py.File(whole) as w:
         assert old["elements/x_mid"].size < w["elements/x_mid"].size
