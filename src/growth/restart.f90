@@ -11,8 +11,9 @@
 !> and the geometry computed.
 !>
 !> Under a loading history the strength state goes on too (resumed_strengths): the strengths in
-!> force as the file holds them, and the slip path that gives them.
+!> force as the file holds them, and the slip path summed over its load steps.
 module ddc_growth_restart
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type
@@ -144,37 +145,37 @@ contains
 
     !> The fault law of the earlier run's final geometry with its strength state: the
     !> strengths in force of the file (the given ones where the file holds none) and the
-    !> slip path that the file does not hold, found from them: where friction (else
-    !> cohesion) falls over a slip-weakening distance d_c, the path on that linear law that
-    !> gives the value in force (d_c once fully weakened); elsewhere the slip itself where
-    !> a strength dropped at once (a path > 0 keeps it dropped), else 0.
+    !> slip path, which the file does not hold: the sum of the slip increments between the
+    !> load steps of /history (an element not made yet slips none), else the slip itself.
+    !> It is the path of the uninterrupted run where slip does not reverse within a load
+    !> step (the friction in force follows from it at the next solve).
     function resumed_strengths(work, state) result(law)
         !> The final geometry (resumed_geometry)
         type(model_type), intent(in) :: work
         !> The earlier run's end
         type(restart_state), intent(in) :: state
         type(fault_law) :: law
-        real(wp), allocatable :: fallen(:)
+        real(wp), allocatable :: before(:), now(:)
+        integer :: k
 
         law = fault_law_of(work%elements)
-        associate (e => state%results%elements, d_c => law%slip_weakening_distance)
+        associate (e => state%results%elements, h => state%results%history)
             if (allocated(e%sf_in_force)) then
                 law%sf_in_force = e%sf_in_force
                 law%tensile_in_force = e%tensile_in_force
             end if
             if (allocated(e%mu_in_force)) law%mu_in_force = e%mu_in_force
-            allocate (fallen(work%elements%n), source=0.0_wp)
-            where (law%mu_dynamic < law%mu)
-                fallen = (law%mu - law%mu_in_force) / (law%mu - law%mu_dynamic)
-            elsewhere (law%sf_residual < law%sf)
-                fallen = (law%sf - law%sf_in_force) / (law%sf - law%sf_residual)
-            end where
-            fallen = min(max(fallen, 0.0_wp), 1.0_wp)
-            where (d_c > 0.0_wp)
-                law%slip_path = d_c * fallen
-            elsewhere (fallen > 0.0_wp)
-                law%slip_path = max(abs(e%ds), tiny(1.0_wp))
-            end where
+            if (.not. allocated(h%ds)) then
+                law%slip_path = abs(e%ds)
+                return
+            end if
+            allocate (before(work%elements%n), source=0.0_wp)
+            law%slip_path = 0.0_wp
+            do k = 1, size(h%ds, 2)
+                now = merge(h%ds(:, k), 0.0_wp, ieee_is_finite(h%ds(:, k)))
+                law%slip_path = law%slip_path + abs(now - before)
+                before = now
+            end do
         end associate
     end function resumed_strengths
 
