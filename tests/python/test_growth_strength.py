@@ -13,6 +13,8 @@
   uninterrupted run to 1e-12 (its new elements' slip path and strengths in force go on).
 - A crack of traction-given elements (no contact element) grows along a load path; its first
   growth step equals that of a fixed-load run at that load.
+- A sweep varies the laws of new elements by their &growth names; a task whose new residual
+  exceeds the intact value is refused before anything runs (exit 2, one line).
 """
 import math
 import subprocess
@@ -145,3 +147,25 @@ def test_growth_along_a_load_path_without_contact_elements(tmp_path):
         for name in ("k1", "k2", "length", "x", "y", "angle"):
             assert np.allclose(ga[name][:][first_a], gb[name][:][first_b], rtol=1e-10,
                                atol=1e-12), name
+
+
+def test_a_sweep_varies_the_laws_of_new_elements(tmp_path):
+    sweep = (CRACK.format(toughness=TOUGHNESS, extra=", new_sf = 10.0")
+             + "&grid name = 'map', xmin = -2, xmax = 2, nx = 5, ymin = -1, ymax = 1, ny = 3 /\n"
+             + "&sweep parameters = 'new_tensile_strength', values_1 = 0.0, 5.0 /\n")
+    for task, strength in enumerate((0.0, 5.0)):
+        run(tmp_path, "sweep", sweep, "--task", str(task))
+        with h5py.File(tmp_path / f"sweep_task000{task}.h5", "r") as f:
+            e = f["elements"]
+            new = e["created_step"][()] > 0
+            assert new.any() and np.all(e["tensile_strength"][()][new] == strength)
+            assert f["sweep"].attrs["new_tensile_strength"] == strength
+    # A residual above the intact value is refused for every task, before any runs.
+    (tmp_path / "bad.nml").write_text(sweep.replace(
+        "'new_tensile_strength', values_1 = 0.0, 5.0", "'new_sf_residual', values_1 = 11.0"))
+    done = subprocess.run([str(ddc2d_exe()), "bad.nml", "--list"], cwd=tmp_path,
+                          capture_output=True, text=True, timeout=60)
+    assert done.returncode == 2
+    assert done.stderr.count("\n") == 1
+    assert ("task 0 (new_sf_residual = 11): new_sf_residual = 11 exceeds new_sf = 10"
+            in done.stderr)
