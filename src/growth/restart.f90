@@ -16,7 +16,7 @@ module ddc_growth_restart
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
-    use ddc_model_types, only: model_type
+    use ddc_model_types, only: model_type, rigid_joint
     use ddc_model_results, only: growth_intersection, growth_surface, growth_linked, &
         growth_enclosing, growth_grew, growth_corrector_failed
     use ddc_model_restart, only: restart_state
@@ -29,6 +29,9 @@ module ddc_growth_restart
     private
 
     public :: resumed_geometry, resumed_tips, resumed_strengths
+
+    !> Places in new_law_names of the joint stiffnesses of new elements
+    integer, parameter :: joint_laws(2) = [6, 7]
 
 contains
 
@@ -50,6 +53,14 @@ contains
 
         n = size(state%x_begin)
         created = state%results%growth%created_step
+        if (allocated(model%load_path%vertex) .and. (any(model%elements%shear_stiffness < &
+            rigid_joint) .or. any(model%elements%normal_stiffness < rigid_joint) .or. &
+            any(model%growth%override_law(joint_laws)))) then
+            ! The memory of elastic joints is their plastic slip, which the file does not hold.
+            call set_error(error, exit_bad_input, '--resume: growth along a load path with '// &
+                           'elastic joints (shear_stiffness, normal_stiffness) cannot be resumed')
+            return
+        end if
         if (size(state%first_element) /= size(model%fractures) .or. size(created) /= n) then
             call mismatch('its fractures or elements do not match the model')
             return

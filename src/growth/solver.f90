@@ -38,7 +38,7 @@ module ddc_growth_solver
     use ddc_error, only: error_type
     use ddc_allocation, only: allocation_failed, real_bytes
     use ddc_text, only: itoa
-    use ddc_model_types, only: model_type, condition_contact
+    use ddc_model_types, only: model_type, condition_contact, rigid_joint
     use ddc_model_results, only: model_results, solver_record
     use ddc_model_loads, only: resolve_remote_stress, total_pressure, shear_modulus_of
     use ddc_influence_assembly, only: assemble_influence
@@ -100,8 +100,8 @@ module ddc_growth_solver
 
 contains
 
-    !> Whether a model is solved on the kept path: every element a contact element, and the
-    !> Newton method in use.
+    !> Whether a model is solved on the kept path: every element a rigid contact element (an
+    !> elastic joint's system is run_model's), and the Newton method in use.
     pure logical function keeps_solves(model)
         !> The model
         type(model_type), intent(in) :: model
@@ -109,6 +109,8 @@ contains
         keeps_solves = all(model%elements%condition == condition_contact) .and. &
             (model%solver%lcp_method == lcp_newton .or. (model%solver%lcp_method == &
              lcp_auto .and. model%elements%n >= auto_newton_min_elements))
+        if (keeps_solves) keeps_solves = .not. (any(model%elements%shear_stiffness < &
+            rigid_joint) .or. any(model%elements%normal_stiffness < rigid_joint))
     end function keeps_solves
 
     !> Number of solves done so far.
@@ -219,7 +221,10 @@ contains
         end if
         if (allocated(error)) return
         if (solver%memory) then
+            ! The memory of an elastic joint is its plastic slip, as in a loading history.
             solver%trial_ds = results%elements%ds
+            if (allocated(results%elements%ds_elastic)) solver%trial_ds = results%elements%ds &
+                - results%elements%ds_elastic
             solver%trial_law = law
         end if
         call calibrate_tips(model, results%tips, error)

@@ -13,6 +13,7 @@
   uninterrupted run to 1e-12 (its new elements' slip path and strengths in force go on).
 - A crack of traction-given elements (no contact element) grows along a load path; its first
   growth step equals that of a fixed-load run at that load.
+- New elastic joints grow; a resumed growth along a load path with them is refused.
 - A sweep varies the laws of new elements by their &growth names; a task whose new residual
   exceeds the intact value is refused before anything runs (exit 2, one line).
 """
@@ -169,3 +170,26 @@ def test_a_sweep_varies_the_laws_of_new_elements(tmp_path):
     assert done.stderr.count("\n") == 1
     assert ("task 0 (new_sf_residual = 11): new_sf_residual = 11 exceeds new_sf = 10"
             in done.stderr)
+
+
+def test_elastic_joints_grow_and_their_resume_is_refused(tmp_path):
+    """New elastic joints (solved whole, not on the kept Newton path) grow open, unloaded; a
+    resumed growth along the load path is refused: their memory is the plastic slip, which
+    the file does not hold."""
+    joints = ", new_shear_stiffness = 1000.0, new_normal_stiffness = 2000.0"
+    text = CRACK.format(toughness=TOUGHNESS, extra=joints)
+    path = run(tmp_path, "joints", text)
+    with h5py.File(path, "r") as f:
+        e = f["elements"]
+        new = e["created_step"][()] > 0
+        assert new.any() and np.all(e["normal_stiffness"][()][new] == 2000.0)
+        # Open faces carry no traction: the joints of the grown, open crack are unloaded.
+        assert np.all(e["state"][()][new] == 3)
+        assert np.all(np.abs(e["dn_elastic"][()][new]) < 1e-15)
+    (tmp_path / "more.nml").write_text(text.replace("steps = 3", "steps = 5"))
+    done = subprocess.run([str(ddc2d_exe()), "more.nml", "--resume", "joints.h5", "-o",
+                           "more.h5"], cwd=tmp_path, capture_output=True, text=True, timeout=60)
+    assert done.returncode == 2
+    assert done.stderr.strip().endswith("growth along a load path with elastic joints "
+                                        "(shear_stiffness, normal_stiffness) cannot be resumed")
+    assert not (tmp_path / "more.h5").exists()
