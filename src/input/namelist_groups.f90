@@ -24,7 +24,7 @@ module ddc_input_namelist_groups
     type :: group_spec
         character(len=13) :: name
         logical :: repeatable
-        character(len=240) :: variables
+        character(len=480) :: variables
     end type group_spec
 
     !> Index of each group in namelist_groups
@@ -54,7 +54,10 @@ module ddc_input_namelist_groups
         group_spec('load_path', .false., 'sxx:r syy:r sxy:r dsxx_dy:r dsyy_dy:r dsxy_dy:r '// &
                    'p0:r steps:i'), &
         group_spec('growth', .false., 'steps:i toughness:r increment:r element_length:r '// &
-                   'tips:c fractures:c criterion:c max_corrections:i new_mu:r new_sf:r'), &
+                   'tips:c fractures:c criterion:c max_corrections:i new_mu:r new_sf:r '// &
+                   'new_tensile_strength:r new_sf_residual:r new_mu_dynamic:r '// &
+                   'new_slip_weakening_distance:r new_opening_weakening_distance:r '// &
+                   'new_shear_stiffness:r new_normal_stiffness:r'), &
         group_spec('initiation', .false., 'tensile_strength:r probe_distance:r flaw_x:r '// &
                    'flaw_y:r flaw_length:r')]
 

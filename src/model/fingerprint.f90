@@ -117,6 +117,11 @@ contains
                                  model%growth%max_corrections])
         call add_integers(hash, merge(1, 0, [model%growth%override_mu, &
                                              model%growth%override_sf]))
+        ! Only when given: the fingerprints of models without them stay as they were.
+        if (any(model%growth%override_law)) then
+            call add_integers(hash, merge(1, 0, model%growth%override_law))
+            call add_reals(hash, model%growth%new_law)
+        end if
         if (allocated(model%growth%fracture_grows)) then
             call add_integers(hash, merge(1, 0, model%growth%fracture_grows))
         else

@@ -217,6 +217,18 @@ def check_growth_along_path(f, first_load_step, length):
     assert np.all(f["elements/state"][()][created > 0] == STATE_CODES["open"])
 
 
+def check_grown_strength_laws(f):
+    """The new elements take the tip element's laws as given and &growth's new_sf and
+    new_tensile_strength; the input elements keep theirs."""
+    e = f["elements"]
+    new = e["created_step"][()] > 0
+    assert new.sum() >= 4
+    for name, grown, given in [("sf_residual", 0.2, 0.2), ("mu_dynamic", 0.45, 0.45),
+                               ("slip_weakening_distance", 1e-4, 1e-4), ("sf", 2.0, 1.0),
+                               ("tensile_strength", 3.0, 1.0)]:
+        assert np.all(e[name][()][new] == grown) and np.all(e[name][()][~new] == given), name
+
+
 def check_echelon_linking(f):
     """Step 2: the west inner tip links to east (5), the east one would close a contour
     (refused, 8 enclosing); the outer tips arrest; the link ends on a vertex of east, no tip
@@ -318,6 +330,7 @@ EXPECTED = {
     "fault_bend_tails": check_bend_tails,
     "wings_rising_axial_load": lambda f: check_growth_along_path(f, 6, 1.0546875),
     "tail_cracks_rising_pore_pressure": lambda f: check_growth_along_path(f, 1, 0.955),
+    "fault_grown_with_strength_laws": check_grown_strength_laws,
     "echelon_cracks_linking": check_echelon_linking,
     "hydraulic_fracture_toward_fault": check_hydraulic_fracture,
     "joint_growing_to_surface": check_joint_to_surface,
