@@ -12,6 +12,7 @@ module ddc_growth_extension
 
     public :: tip_path, tip_end_begin, tip_end_end, tip_element, element_split
     public :: make_path, extend_model, path_element_length, outward_direction, inherit_values
+    public :: take_new_element_laws
 
     !> Ends of a fracture (the coding of /growth/end): its begin tip, its end tip
     integer, parameter :: tip_end_begin = 0, tip_end_end = 1
@@ -262,26 +263,34 @@ contains
         type(growth_options), intent(in) :: options
         !> The grown elements
         type(element_set), intent(out) :: grown
-        logical :: takes(size(pick))
 
         call select_elements(elements, pick, grown)
-        takes = is_new .and. grown%condition == condition_contact
-        associate (given => options%override_law, v => options%new_law)
-            if (given(1)) where (takes) grown%tensile_strength = v(1)
-            if (given(2)) where (takes) grown%sf_residual = v(2)
-            if (given(3)) where (takes) grown%mu_dynamic = v(3)
-            if (given(4)) where (takes) grown%slip_weakening_distance = v(4)
-            if (given(5)) where (takes) grown%opening_weakening_distance = v(5)
-            if (given(6)) where (takes) grown%shear_stiffness = v(6)
-            if (given(7)) where (takes) grown%normal_stiffness = v(7)
-        end associate
-        if (options%override_mu) then
-            where (is_new .and. grown%condition == condition_contact) grown%mu = options%new_mu
-        end if
-        if (options%override_sf) then
-            where (is_new .and. grown%condition == condition_contact) grown%sf = options%new_sf
-        end if
+        call take_new_element_laws(grown, is_new .and. grown%condition == condition_contact, &
+                                   options)
     end subroutine inherit_values
+
+    !> The elements marked `takes` take new_mu, new_sf and the strength laws new_law where
+    !> the growth options give them.
+    subroutine take_new_element_laws(elements, takes, options)
+        !> The elements
+        type(element_set), intent(inout) :: elements
+        !> Which elements take the options' values, shape (elements%n)
+        logical, intent(in) :: takes(:)
+        !> The growth options (override_mu, new_mu, override_sf, new_sf, override_law, new_law)
+        type(growth_options), intent(in) :: options
+
+        associate (given => options%override_law, v => options%new_law, e => elements)
+            if (given(1)) where (takes) e%tensile_strength = v(1)
+            if (given(2)) where (takes) e%sf_residual = v(2)
+            if (given(3)) where (takes) e%mu_dynamic = v(3)
+            if (given(4)) where (takes) e%slip_weakening_distance = v(4)
+            if (given(5)) where (takes) e%opening_weakening_distance = v(5)
+            if (given(6)) where (takes) e%shear_stiffness = v(6)
+            if (given(7)) where (takes) e%normal_stiffness = v(7)
+            if (options%override_mu) where (takes) e%mu = options%new_mu
+            if (options%override_sf) where (takes) e%sf = options%new_sf
+        end associate
+    end subroutine take_new_element_laws
 
     !> Index of the path at end `end` of fracture f; 0 when there is none.
     pure integer function find_path(paths, f, end)

@@ -25,7 +25,7 @@ module ddc_growth_initiation
     use ddc_error, only: error_type
     use ddc_text, only: itoa
     use ddc_model_types, only: model_type, growth_options, initiation_options, &
-        fracture_type, condition_contact
+        fracture_type, condition_contact, no_residual_drop, rigid_joint
     use ddc_model_results, only: model_results, field_result, point_on_element, &
         tip_set
     use ddc_model_initiations, only: initiation_record, initiation_tail, initiation_flaw, &
@@ -34,7 +34,8 @@ module ddc_growth_initiation
     use ddc_mesh_geometry, only: compute_geometry
     use ddc_mesh_checks, only: check_elements
     use ddc_post_fields, only: evaluate_field
-    use ddc_growth_extension, only: inherit_values, tip_end_begin, tip_end_end
+    use ddc_growth_extension, only: inherit_values, take_new_element_laws, tip_end_begin, &
+        tip_end_end
     use ddc_growth_tips, only: growing_tip, locate_tip, increment_for
     use ddc_growth_solver, only: solve_grown, accept_trial
     use ddc_growth_run_state, only: growth_state
@@ -358,8 +359,8 @@ contains
 
     !> The model with a new fracture of the polyline (xs, ys) appended after every element.
     !> A tail's elements take its parent element's values (as elements grown at a tip do);
-    !> a flaw's are frictionless, cohesionless contact elements (new_mu, new_sf where &growth
-    !> gives them) without pressure.
+    !> a flaw's are frictionless, cohesionless contact elements of intact rock (no strength
+    !> law) without pressure, but for the new-element values &growth gives.
     subroutine add_fracture(work, c, xs, ys, name, growth, grown)
         type(model_type), intent(in) :: work
         type(initiation_candidate), intent(in) :: c
@@ -383,14 +384,24 @@ contains
             e%y_end(new) = ys(2:)
             e%fracture_id(new) = size(work%fractures) + 1
             if (c%kind == initiation_flaw) then
+                ! Intact rock: no friction, cohesion or strength law but what &growth gives.
                 e%condition(new) = condition_contact
-                e%mu(new) = merge(growth%new_mu, 0.0_wp, growth%override_mu)
-                e%sf(new) = merge(growth%new_sf, 0.0_wp, growth%override_sf)
+                e%mu(new) = 0.0_wp
+                e%sf(new) = 0.0_wp
+                e%tensile_strength(new) = 0.0_wp
+                e%sf_residual(new) = no_residual_drop
+                e%mu_dynamic(new) = no_residual_drop
+                e%slip_weakening_distance(new) = 0.0_wp
+                e%opening_weakening_distance(new) = 0.0_wp
+                e%shear_stiffness(new) = rigid_joint
+                e%normal_stiffness(new) = rigid_joint
                 e%pressure(new) = 0.0_wp
                 e%bc_s(new) = 0.0_wp
                 e%bc_n(new) = 0.0_wp
             end if
         end associate
+        if (c%kind == initiation_flaw) call take_new_element_laws(grown%elements, &
+            [(i > n, i = 1, n + m)], growth)
         call compute_geometry(grown%elements)
         grown%fractures = [work%fractures, fracture_type(name=name, first_element=n + 1, &
                                                          last_element=n + m)]

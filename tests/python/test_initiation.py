@@ -205,6 +205,30 @@ def test_flaw_starts_perpendicular_to_the_tension(folder):
     assert ends.mean(axis=0) == pytest.approx([0.0, 30.0], abs=0.05)
 
 
+def test_flaw_elements_are_intact_rock_but_for_the_new_element_laws(folder):
+    """A flaw's elements take no strength law of the model's elements (the fault's tensile
+    strength and slip weakening), only the new-element values &growth gives."""
+    # One element: its ends are tips, so nothing is probed beside it and the flaw starts.
+    fault = ("&fracture name = 'fault', x = -1.0, 1.0, y = 0.0, 0.0, elements = 1, "
+             "mu = 0.6, sf = 2.0, tensile_strength = 1.0, mu_dynamic = 0.5, "
+             "slip_weakening_distance = 1e-4 /\n")
+    growth = GROWTH.replace(" /", ", new_mu = 0.3, new_mu_dynamic = 0.2 /")
+    text = (HEADER.replace(f"sxx = {SXX}", "sxx = 10.0") + fault + growth +
+            "&initiation tensile_strength = 5.0, probe_distance = 0.05, flaw_x = 0.0, "
+            "flaw_y = 30.0, flaw_length = 0.2 /\n")
+    out = run(folder, "flaw_laws", text)
+    rows = initiations(out)
+    assert list(rows["kind"]) == [2]
+    with h5py.File(out, "r") as f:
+        f_id = rows["fracture_id"][0] - 1
+        flaw = slice(f["fractures/first_element"][f_id] - 1, f["fractures/last_element"][f_id])
+        e = f["elements"]
+        assert e["tensile_strength"][0] == 1.0 and e["slip_weakening_distance"][0] == 1e-4
+        assert np.all(e["mu"][flaw] == 0.3) and np.all(e["mu_dynamic"][flaw] == 0.2)
+        assert np.all(e["sf"][flaw] == 0.0) and np.all(e["tensile_strength"][flaw] == 0.0)
+        assert np.all(e["slip_weakening_distance"][flaw] == 0.0)
+
+
 @pytest.mark.parametrize("group, variable", [
     ("tensile_strength = 5.0", "probe_distance is required"),
     ("tensile_strength = 0.0, probe_distance = 0.05", "tensile_strength"),
