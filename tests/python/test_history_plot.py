@@ -117,6 +117,22 @@ def test_hysteresis_figure_draws_the_history(tmp_path):
     assert plot_data.history_choices(result["history"]) == ([9], [0, 10, 30])
 
 
+def test_default_steps_of_a_growth_run_stopped_inside_the_path(tmp_path):
+    """A growth run that reaches its step limit in load step 4 of the path's 9 (vertices at
+    steps 1, 5 and 9): the default steps are those it reached, the path's start and its last
+    step, and the figures draw."""
+    text = PATH_MODEL.split("&load_path")[0] + (
+        "&growth steps = 2, toughness = 0.5, increment = 0.2 /\n"
+        "&load_path sxy = 0, 10, 0, steps = 4, 4 /\n")
+    assert solve(tmp_path, text).returncode == 0
+    result = load_result(tmp_path / "path.h5")
+    assert result["history"]["ds"].shape[0] == 4
+    assert plot_data.history_choices(result["history"])[1] == [0, 3]
+    proc = subprocess.run([sys.executable, str(PLOT_SCRIPT), str(tmp_path / "path.h5"), "-o",
+                           str(tmp_path / "fig")], capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stderr
+
+
 def test_history_step_out_of_range_exits_2(tmp_path):
     assert solve(tmp_path).returncode == 0
     proc = subprocess.run([sys.executable, str(PLOT_SCRIPT), str(tmp_path / "path.h5"), "-o",

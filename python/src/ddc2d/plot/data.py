@@ -148,10 +148,12 @@ def history_unit(result, name):
 
 def leg_arrows(history):
     """(from, to) row pairs of one arrow per leg of a loading history, at the leg's middle
-    row, pointing the way the path runs (its sense on an unloading branch)."""
+    row, pointing the way the path runs (its sense on an unloading branch); none for a leg
+    whose middle the run did not reach (a growth run may stop inside the path)."""
+    rows = history["ds"].shape[0]
     vertices = np.cumsum(np.concatenate([[0], history["leg_steps"]])).astype(int)
     return [((a + b) // 2, (a + b) // 2 + 1) for a, b in pairwise(vertices)
-            if b > a]
+            if b > a and (a + b) // 2 + 1 < rows]
 
 
 def same_profiles(profiles):
@@ -187,7 +189,8 @@ def along_fractures(result, values):
 
 def history_choices(history, elements=None, steps=None):
     """0-based element and step indices to plot: the given 1-based ones (checked), or the
-    element of largest |slip| over the path and the steps at the path's vertices. Of
+    element of largest |slip| over the path and the steps at the path's vertices that the
+    run reached, with its last step (a growth run may stop inside the path). Of
     elements whose largest |slip| is equal within the tie rule (the two centre elements of a
     symmetric fault), the lowest numbered (reader.index_of_extreme)."""
     nsteps, count = history["ds"].shape
@@ -195,7 +198,8 @@ def history_choices(history, elements=None, steps=None):
         # nanmax: with growth an element has no slip (NaN) before it was made
         elements = [index_of_extreme(np.nanmax(np.abs(history["ds"]), axis=0)) + 1]
     if steps is None:
-        steps = list(np.cumsum(np.concatenate([[1], history["leg_steps"]])))
+        vertices = np.cumsum(np.concatenate([[1], history["leg_steps"]]))
+        steps = [int(k) for k in vertices if k < nsteps] + [nsteps]
     for k, limit, what in [(k, count, "element") for k in elements] + \
             [(k, nsteps, "step") for k in steps]:
         if not 1 <= k <= limit:
