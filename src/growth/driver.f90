@@ -43,7 +43,7 @@ module ddc_growth_driver
     use ddc_kinds, only: wp
     use ddc_constants, only: pi
     use ddc_error, only: error_type, set_internal_error
-    use ddc_model_types, only: model_type, growth_options, growth_tips_most_critical
+    use ddc_model_types, only: model_type, growth_options
     use ddc_model_results, only: model_results, growth_record, growth_grew, growth_subcritical, &
         growth_corrector_failed, growth_closed, growth_waiting, growth_arrested, &
         growth_step_limit
@@ -52,7 +52,8 @@ module ddc_growth_driver
     use ddc_mesh_checks, only: check_elements
     use ddc_growth_solver, only: solve_grown, solve_loaded, accept_trial, final_results, &
         solves_done
-    use ddc_growth_criterion, only: assess_tip, kink_angles, most_critical
+    use ddc_growth_criterion, only: assess_tip, kink_angles, most_critical, searched_tip, &
+        picks_by_k
     use ddc_growth_kinks, only: kink, step_kinks, grow_paths
     use ddc_growth_extension, only: tip_path, make_path, tip_element
     use ddc_growth_clearance, only: check_paths, path_clear, ends_on_link
@@ -313,7 +314,7 @@ contains
         do i = 1, size(which)
             kinks%tip(i) = tip_kink(run%work, options, run%tips(which(i)), run%now, which(i))
         end do
-        call kink_angles(run%solver, run%work, run%created, options, kinks, error)
+        call kink_angles(run%solver, run%work, run%current, run%created, options, kinks, error)
         if (allocated(error)) return
         do i = 1, size(which)
             t = which(i)
@@ -418,7 +419,7 @@ contains
             call assess_tip(options, now%k1(i), now%k2(i), now%theta(i), now%k_eq(i), error)
             if (allocated(error)) return
             now%reason(i) = merge(growth_grew, growth_subcritical, &
-                                  now%k_eq(i) >= options%toughness)
+                                  searched_tip(options, now%k_eq(i)))
         end do
     end subroutine evaluate_tips
 
@@ -440,7 +441,7 @@ contains
             if (now%reason(i) /= growth_grew) cycle
             paths(i) = predictor_path(work, options, tips(i), now, i)
         end do
-        if (options%tips /= growth_tips_most_critical) then
+        if (.not. picks_by_k(options)) then
             call check_paths(work, paths, now%reason == growth_grew, problem, now%link)
             call stop_blocked()
             return

@@ -8,7 +8,7 @@ module ddc_input_namelist_growth
     use ddc_model_types, only: model_type, growth_tips_names, growth_criterion_names, &
         symmetry_none
     use ddc_model_limits, only: quantity_positive, quantity_non_negative
-    use ddc_text, only: itoa, lower, find_name, quoted_list
+    use ddc_text, only: itoa, rtoa, lower, find_name, quoted_list
     use ddc_input_namelist_groups, only: group_record, message_list, add, group_prefix, &
         g_growth, g_symmetry
     use ddc_input_namelist_diagnosis, only: report_malformed
@@ -27,7 +27,7 @@ module ddc_input_namelist_growth
 contains
 
     !> &growth steps, toughness, increment, element_length, tips, fractures, criterion,
-    !> max_corrections, new_mu, new_sf / (optional). Read after every other group: the
+    !> max_corrections, new_mu, new_sf, angle_range, angle_step, work_threshold / (optional). Read after every other group: the
     !> fracture names and the other groups are checked against it.
     subroutine read_growth_group(unit, text, path, groups, known, model, messages)
         !> Unit of the open input file
@@ -44,13 +44,15 @@ contains
         type(message_list), intent(inout) :: messages
         integer :: steps, max_corrections
         real(wp) :: toughness, increment, element_length, new_mu, new_sf
+        real(wp) :: angle_range, angle_step, work_threshold
         character(len=text_length) :: tips, criterion
         character(len=name_length), allocatable :: fractures(:)
         character(len=512) :: iomsg
         character(len=:), allocatable :: prefix
         integer :: stat, k
         namelist /growth/ steps, toughness, increment, element_length, tips, fractures, &
-            criterion, max_corrections, new_mu, new_sf
+            criterion, max_corrections, new_mu, new_sf, &
+            angle_range, angle_step, work_threshold
 
         associate (info => groups(g_growth))
             if (info%count == 0) return
@@ -65,6 +67,9 @@ contains
             max_corrections = 8
             new_mu = unset_real
             new_sf = unset_real
+            angle_range = 90.0_wp
+            angle_step = 5.0_wp
+            work_threshold = unset_real
             rewind (unit)
             read (unit, nml=growth, iostat=stat, iomsg=iomsg)
             if (stat /= 0) then
@@ -120,8 +125,36 @@ contains
                 g%max_corrections = max_corrections
             end if
         end associate
+        call check_work_search(prefix, angle_range, angle_step, work_threshold, model, &
+                               messages)
         call select_fractures(fractures, known, prefix, model%growth%fracture_grows, messages)
     end subroutine read_growth_group
+
+    !> The trial angles and threshold of criterion = 'work': 0 < angle_range < 180,
+    !> angle_step > 0, work_threshold > 0 when given (0 in the options: the default from
+    !> the toughness).
+    subroutine check_work_search(prefix, angle_range, angle_step, work_threshold, model, &
+                                 messages)
+        character(len=*), intent(in) :: prefix
+        real(wp), intent(in) :: angle_range, angle_step, work_threshold
+        type(model_type), intent(inout) :: model
+        type(message_list), intent(inout) :: messages
+
+        if (.not. (angle_range > 0.0_wp .and. angle_range < 180.0_wp)) then
+            call add(messages, prefix//'angle_range = '//rtoa(angle_range)// &
+                     ' must lie in (0, 180) degrees')
+        else
+            model%growth%angle_range = angle_range
+        end if
+        if (.not. (angle_step > 0.0_wp)) then
+            call add(messages, prefix//'angle_step = '//rtoa(angle_step)// &
+                     ' must be positive [degree]')
+        else
+            model%growth%angle_step = angle_step
+        end if
+        if (check_scalar(work_threshold, 'work_threshold', .false., prefix, messages, &
+                         quantity_positive)) model%growth%work_threshold = work_threshold
+    end subroutine check_work_search
 
     !> Growth with implicit image elements is not available.
     subroutine check_combinations(prefix, groups, model, messages)

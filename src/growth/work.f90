@@ -1,0 +1,107 @@
+!> The external work of a model's loads through its displacement discontinuities, and what the
+!> work criterion compares it with (docs/theory/growth.md#the-work-criterion).
+!>
+!> Per unit thickness, with D = u^- - u^+ (Crouch & Starfield) and tension positive,
+!> W_ext = - sum over elements of 2a (l_s D_s + l_n D_n), where the load (l_s, l_n) is the
+!> traction the DDs must cancel: the resolved remote stress (with its gradient) plus, on a
+!> contact element, its fluid pressure on the normal (pore fluid included), and minus the given
+!> total traction on a traction row of a TWODD-style element. An open crack under tension
+!> (l_n > 0, D_n < 0) or a crack slipping under its shear load gives W_ext > 0. Displacement
+!> and prescribed-DD rows do no work at fixed load and do not count.
+!>
+!> Beside it the trials of one growth step (trial_table: what /growth/trials holds) and the
+!> state codes of a trial's new elements.
+module ddc_growth_work
+    use ddc_kinds, only: wp
+    use ddc_model_types, only: model_type, growth_options, condition_contact, condition_traction, &
+        condition_mixed_us_sn, condition_mixed_ss_un
+    use ddc_model_loads, only: resolve_remote_stress, total_pressure
+    implicit none
+    private
+
+    public :: external_work, work_threshold_of, trial_table, add_trial
+    public :: trial_stuck, trial_slipping, trial_opening, trial_blocked, trial_state_coding
+
+    !> State of a trial's new elements: none opens or slips (no candidate); some slip, none
+    !> opens; some open; the trial's path does not keep clear of the other elements (not
+    !> solved, no candidate)
+    integer, parameter :: trial_stuck = 0, trial_slipping = 1, trial_opening = 2, &
+                          trial_blocked = 3
+    !> The coding of the trial states, as the result file states it
+    character(len=*), parameter :: trial_state_coding = &
+        '0 stuck (no candidate), 1 slipping, 2 opening, 3 blocked (the path does not keep '// &
+        'clear; not solved)'
+
+    !> The trials of the work criterion (k trials): the tip (fracture, end), its angle
+    !> [rad], efficiency [stress unit * length unit] (NaN when blocked) and state, shape (k).
+    type :: trial_table
+        integer, allocatable :: fracture(:), end(:), state(:)
+        real(wp), allocatable :: angle(:), efficiency(:)
+    end type trial_table
+
+contains
+
+    !> W_ext of a model with DDs ds, dn [stress unit * length unit] (per unit thickness).
+    pure real(wp) function external_work(model, ds, dn) result(work)
+        !> The model (geometry computed)
+        type(model_type), intent(in) :: model
+        !> Its DDs [length unit], shape (n)
+        real(wp), intent(in) :: ds(:), dn(:)
+        real(wp) :: load_s(model%elements%n), load_n(model%elements%n)
+
+        call resolve_remote_stress(model%elements, model%sxx, model%syy, model%sxy, load_s, &
+                                   load_n, model%stress_gradient)
+        associate (e => model%elements)
+            where (e%condition == condition_contact)
+                load_n = load_n + total_pressure(e, model%pore_fluid)
+            end where
+            where (e%condition == condition_traction .or. e%condition == condition_mixed_ss_un)
+                load_s = load_s - e%bc_s
+            elsewhere (e%condition /= condition_contact)
+                load_s = 0.0_wp
+            end where
+            where (e%condition == condition_traction .or. e%condition == condition_mixed_us_sn)
+                load_n = load_n - e%bc_n
+            elsewhere (e%condition /= condition_contact)
+                load_n = 0.0_wp
+            end where
+            work = -sum(2.0_wp * e%half_length * (load_s * ds + load_n * dn))
+        end associate
+    end function external_work
+
+    !> The efficiency a tip must reach to grow [stress unit * length unit]: work_threshold,
+    !> or 2 G_c with G_c = K_Ic^2 (1 - nu^2) / E when it is not given.
+    pure real(wp) function work_threshold_of(options, youngs_modulus, nu) result(threshold)
+        !> The growth options (work_threshold, toughness)
+        type(growth_options), intent(in) :: options
+        !> Young's modulus [stress unit] and Poisson's ratio [-]
+        real(wp), intent(in) :: youngs_modulus, nu
+
+        threshold = options%work_threshold
+        if (threshold > 0.0_wp) return
+        threshold = 2.0_wp * options%toughness**2 * (1.0_wp - nu**2) / youngs_modulus
+    end function work_threshold_of
+
+    !> Append one trial to a table (allocated on first use).
+    pure subroutine add_trial(table, fracture, end, angle, efficiency, state)
+        !> The table
+        type(trial_table), intent(inout) :: table
+        !> The tip: fracture (1-based) and end
+        integer, intent(in) :: fracture, end
+        !> Trial angle [rad] and efficiency [stress unit * length unit]
+        real(wp), intent(in) :: angle, efficiency
+        !> trial_stuck ... trial_blocked
+        integer, intent(in) :: state
+
+        if (.not. allocated(table%fracture)) then
+            allocate (table%fracture(0), table%end(0), table%state(0), table%angle(0), &
+                      table%efficiency(0))
+        end if
+        table%fracture = [table%fracture, fracture]
+        table%end = [table%end, end]
+        table%state = [table%state, state]
+        table%angle = [table%angle, angle]
+        table%efficiency = [table%efficiency, efficiency]
+    end subroutine add_trial
+
+end module ddc_growth_work
