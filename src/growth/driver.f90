@@ -58,6 +58,7 @@ module ddc_growth_driver
     use ddc_growth_extension, only: tip_path, make_path, tip_element
     use ddc_growth_clearance, only: check_paths, path_clear, ends_on_link
     use ddc_growth_tips, only: growing_tip, fracture_tip, increment_for
+    use ddc_growth_work, only: trial_table, add_trial
     use ddc_growth_load_steps, only: follow_growth, record_load_step, finish_load_steps
     use ddc_history_path, only: path_loads, apply_load, load_text
     use ddc_progress, only: report_progress, hold_progress, release_progress
@@ -316,10 +317,12 @@ contains
         end do
         call kink_angles(run%solver, run%work, run%current, run%created, options, kinks, error)
         if (allocated(error)) return
+        call keep_trials(run%now%trials, kinks%trials)
         do i = 1, size(which)
             t = which(i)
             run%now%reason(t) = kinks%tip(i)%reason
             run%now%solves(t) = kinks%tip(i)%solves
+            run%now%efficiency(t) = kinks%tip(i)%efficiency
             if (kinks%tip(i)%reason == growth_grew .or. &
                 kinks%tip(i)%reason == growth_corrector_failed) then
                 grown = grown + 1
@@ -394,7 +397,7 @@ contains
         n = size(tips)
         allocate (now%k1(n), now%k2(n), now%k_eq(n), now%theta(n), now%x(n), now%y(n), &
                   now%element(n), now%reason(n), now%angle(n), now%length(n), &
-                  now%k2_after(n), now%solves(n), now%link(n))
+                  now%k2_after(n), now%solves(n), now%link(n), now%efficiency(n))
         now%angle = ieee_value(1.0_wp, ieee_quiet_nan)
         now%k2_after = now%angle
         now%k1 = 0.0_wp
@@ -405,6 +408,7 @@ contains
         now%y = 0.0_wp
         now%element = 0
         now%length = 0.0_wp
+        now%efficiency = 0.0_wp
         now%solves = 0
         now%reason = reason_stopped
         do i = 1, n
@@ -560,6 +564,48 @@ contains
         record%k2_after = [record%k2_after, pack(now%k2_after, keep)]
         record%length = [record%length, pack(now%length, keep)]
         record%reason = [record%reason, pack(now%reason, keep)]
+        record%efficiency = [record%efficiency, pack(now%efficiency, keep)]
+        if (allocated(now%trials%fracture)) call append_trials(record, step, tips, now, keep)
     end subroutine append_records
+
+    !> The step's trials in the record, each with its tip's record (the tips' records of the
+    !> step are the last count(keep) records).
+    pure subroutine append_trials(record, step, tips, now, keep)
+        type(growth_record), intent(inout) :: record
+        integer, intent(in) :: step
+        type(growing_tip), intent(in) :: tips(:)
+        type(step_tips), intent(in) :: now
+        logical, intent(in) :: keep(:)
+        integer :: first, j, i, tip_record(size(now%trials%fracture))
+        real(wp), parameter :: degrees = 180.0_wp / pi
+
+        first = size(record%step) - count(keep)
+        tip_record = 0
+        do j = 1, size(tip_record)
+            do i = 1, size(tips)
+                if (tips(i)%fracture == now%trials%fracture(j) .and. &
+                    tips(i)%end == now%trials%end(j) .and. keep(i)) &
+                    tip_record(j) = first + count(keep(1:i))
+            end do
+        end do
+        record%trial_step = [record%trial_step, spread(step, 1, size(tip_record))]
+        record%trial_record = [record%trial_record, tip_record]
+        record%trial_angle = [record%trial_angle, now%trials%angle * degrees]
+        record%trial_efficiency = [record%trial_efficiency, now%trials%efficiency]
+        record%trial_state = [record%trial_state, now%trials%state]
+    end subroutine append_trials
+
+    !> Append a search's trials to the step's (the waiting loop may search again).
+    pure subroutine keep_trials(step_trials, found)
+        type(trial_table), intent(inout) :: step_trials
+        type(trial_table), intent(in) :: found
+        integer :: j
+
+        if (.not. allocated(found%fracture)) return
+        do j = 1, size(found%fracture)
+            call add_trial(step_trials, found%fracture(j), found%end(j), found%angle(j), &
+                           found%efficiency(j), found%state(j))
+        end do
+    end subroutine keep_trials
 
 end module ddc_growth_driver

@@ -18,13 +18,14 @@ module ddc_growth_trials
     use ddc_model_types, only: model_type, growth_options, growth_tips_most_critical, &
         condition_contact
     use ddc_model_results, only: model_results, state_open, state_slip, growth_grew, &
-        growth_subcritical, growth_closed, growth_waiting
+        growth_subcritical, growth_closed, growth_waiting, trial_stuck, trial_slipping, &
+        trial_opening, trial_blocked
     use ddc_growth_solver, only: growth_solver, solve_grown
     use ddc_growth_extension, only: tip_path, make_path, extend_model, element_split
     use ddc_growth_clearance, only: check_paths, path_clear, link_parts
     use ddc_growth_kinks, only: kink, step_kinks, step_links
-    use ddc_growth_work, only: external_work, work_threshold_of, add_trial, trial_stuck, &
-        trial_slipping, trial_opening, trial_blocked
+    use ddc_model_loads, only: work_threshold_of
+    use ddc_growth_work, only: external_work, add_trial
     implicit none
     private
 

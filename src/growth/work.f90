@@ -9,28 +9,16 @@
 !> (l_n > 0, D_n < 0) or a crack slipping under its shear load gives W_ext > 0. Displacement
 !> and prescribed-DD rows do no work at fixed load and do not count.
 !>
-!> Beside it the trials of one growth step (trial_table: what /growth/trials holds) and the
-!> state codes of a trial's new elements.
+!> Beside it the trials of one growth step (trial_table: what /growth/trials holds).
 module ddc_growth_work
     use ddc_kinds, only: wp
-    use ddc_model_types, only: model_type, growth_options, condition_contact, condition_traction, &
+    use ddc_model_types, only: model_type, condition_contact, condition_traction, &
         condition_mixed_us_sn, condition_mixed_ss_un
     use ddc_model_loads, only: resolve_remote_stress, total_pressure
     implicit none
     private
 
-    public :: external_work, work_threshold_of, trial_table, add_trial
-    public :: trial_stuck, trial_slipping, trial_opening, trial_blocked, trial_state_coding
-
-    !> State of a trial's new elements: none opens or slips (no candidate); some slip, none
-    !> opens; some open; the trial's path does not keep clear of the other elements (not
-    !> solved, no candidate)
-    integer, parameter :: trial_stuck = 0, trial_slipping = 1, trial_opening = 2, &
-                          trial_blocked = 3
-    !> The coding of the trial states, as the result file states it
-    character(len=*), parameter :: trial_state_coding = &
-        '0 stuck (no candidate), 1 slipping, 2 opening, 3 blocked (the path does not keep '// &
-        'clear; not solved)'
+    public :: external_work, trial_table, add_trial
 
     !> The trials of the work criterion (k trials): the tip (fracture, end), its angle
     !> [rad], efficiency [stress unit * length unit] (NaN when blocked) and state, shape (k).
@@ -68,19 +56,6 @@ contains
             work = -sum(2.0_wp * e%half_length * (load_s * ds + load_n * dn))
         end associate
     end function external_work
-
-    !> The efficiency a tip must reach to grow [stress unit * length unit]: work_threshold,
-    !> or 2 G_c with G_c = K_Ic^2 (1 - nu^2) / E when it is not given.
-    pure real(wp) function work_threshold_of(options, youngs_modulus, nu) result(threshold)
-        !> The growth options (work_threshold, toughness)
-        type(growth_options), intent(in) :: options
-        !> Young's modulus [stress unit] and Poisson's ratio [-]
-        real(wp), intent(in) :: youngs_modulus, nu
-
-        threshold = options%work_threshold
-        if (threshold > 0.0_wp) return
-        threshold = 2.0_wp * options%toughness**2 * (1.0_wp - nu**2) / youngs_modulus
-    end function work_threshold_of
 
     !> Append one trial to a table (allocated on first use).
     pure subroutine add_trial(table, fracture, end, angle, efficiency, state)
