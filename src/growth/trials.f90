@@ -23,7 +23,7 @@ module ddc_growth_trials
     use ddc_growth_solver, only: growth_solver, solve_grown
     use ddc_growth_extension, only: tip_path, make_path, extend_model, element_split
     use ddc_growth_clearance, only: check_paths, path_clear, link_parts
-    use ddc_growth_kinks, only: kink, step_kinks, step_links
+    use ddc_growth_kinks, only: step_kinks, step_links
     use ddc_model_loads, only: work_threshold_of
     use ddc_growth_work, only: external_work, add_trial
     implicit none

@@ -52,7 +52,8 @@ module ddc_input_namelist_groups
         group_spec('load_path', .false., 'sxx:r syy:r sxy:r dsxx_dy:r dsyy_dy:r dsxy_dy:r '// &
                    'p0:r steps:i'), &
         group_spec('growth', .false., 'steps:i toughness:r increment:r element_length:r '// &
-                   'tips:c fractures:c criterion:c max_corrections:i new_mu:r new_sf:r')]
+                   'tips:c fractures:c criterion:c max_corrections:i new_mu:r new_sf:r '// &
+                   'angle_range:r angle_step:r work_threshold:r')]
 
     !> Where the occurrences of one group are in the file.
     type :: group_record
