@@ -7,10 +7,11 @@
 !> - kink_angles: the angles the step's growing tips take, with the solves that needs.
 !>
 !> growth_criterion_mts: the maximum tangential stress (ddc_growth_mts), corrected for
-!> local symmetry (ddc_growth_corrector). growth_criterion_work: the largest external work per
-!> unit of new fracture (ddc_growth_trials); its predictor is straight ahead, every tip that
-!> may grow is searched (searched_tip) and the search picks the most critical tip. A criterion the growth code does not know is an
-!> internal error (the input reader accepts only the names of growth_criterion_names).
+!> local symmetry (ddc_growth_corrector). growth_criterion_work: the largest external work
+!> per unit of new fracture (ddc_growth_trials); its predictor is straight ahead, every tip
+!> that may grow is searched (searched_tip) and the search picks the most critical tip. A
+!> criterion the growth code does not know is an internal error (the input reader accepts
+!> only the names of growth_criterion_names).
 !> Beside them the choice of the most critical tip by K_eq.
 module ddc_growth_criterion
     use ddc_kinds, only: wp

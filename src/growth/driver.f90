@@ -584,8 +584,9 @@ contains
         do j = 1, size(tip_record)
             do i = 1, size(tips)
                 if (tips(i)%fracture == now%trials%fracture(j) .and. &
-                    tips(i)%end == now%trials%end(j) .and. keep(i)) &
-                    tip_record(j) = first + count(keep(1:i))
+                    tips(i)%end == now%trials%end(j) .and. keep(i)) then
+                  tip_record(j) = first + count(keep(1:i))
+                end if
             end do
         end do
         record%trial_step = [record%trial_step, spread(step, 1, size(tip_record))]

@@ -84,8 +84,9 @@ contains
         ! The lowest index among equal ratios (maxloc's first).
         best = maxloc(ratio, dim=1)
         do i = 1, size(kinks%tip)
-            if (i /= best .and. kinks%tip(i)%reason == growth_grew) &
-                kinks%tip(i)%reason = growth_waiting
+            if (i /= best .and. kinks%tip(i)%reason == growth_grew) then
+              kinks%tip(i)%reason = growth_waiting
+            end if
         end do
     end subroutine search_kinks
 

@@ -27,7 +27,8 @@ module ddc_input_namelist_growth
 contains
 
     !> &growth steps, toughness, increment, element_length, tips, fractures, criterion,
-    !> max_corrections, new_mu, new_sf, angle_range, angle_step, work_threshold / (optional). Read after every other group: the
+    !> max_corrections, new_mu, new_sf,
+    !> angle_range, angle_step, work_threshold / (optional). Read after every other group: the
     !> fracture names and the other groups are checked against it.
     subroutine read_growth_group(unit, text, path, groups, known, model, messages)
         !> Unit of the open input file

@@ -166,8 +166,9 @@ contains
 
         writes = there .and. (column%kind == column_elements .eqv. writer%elements)
         if (column%kind == column_path_records) writes = writes .and. writer%load_path
-        if (column%kind == column_work_records .or. column%kind == column_trials) &
-            writes = writes .and. writer%work
+        if (column%kind == column_work_records .or. column%kind == column_trials) then
+          writes = writes .and. writer%work
+        end if
     end function writes
 
     !> The group a column of one value per step, record or trial goes to.
