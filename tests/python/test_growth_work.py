@@ -6,12 +6,15 @@ threads, and bad input."""
 
 import os
 import subprocess
+import sys
 
 import h5py
 import numpy as np
 import pytest
 
-from conftest import ddc2d_exe
+from conftest import PLOT_SCRIPT, ddc2d_exe
+from ddc2d.plot import figures as plot_figures
+from ddc2d.reader import load_result
 
 NU = 0.25
 E_YOUNG = 1.0
@@ -150,3 +153,33 @@ def test_bad_work_input(tmp_path, setting, message):
     assert done.returncode == 2
     errors = [line for line in done.stderr.splitlines() if "error" in line]
     assert len(errors) == 1 and message in errors[0], done.stderr
+
+
+def test_trials_figure_draws_the_stored_trials(tmp_path):
+    done, out = run(tmp_path, FAULT)
+    assert done.returncode == 0, done.stdout + done.stderr
+    proc = subprocess.run([sys.executable, str(PLOT_SCRIPT), str(out), "-o",
+                           str(tmp_path / "fig")], capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    assert (tmp_path / "fig" / "model1_growth_trials.png").read_bytes()[:4] == b"\x89PNG"
+    result = load_result(out)
+    g = growth_of(out)
+    fig = plot_figures.plot_growth_trials(result)
+    try:
+        lines = {line.get_gid(): line for line in fig.axes[0].get_lines() if line.get_gid()}
+        trials = g["trials"]
+        for record, label in ((1, "step 1, fault begin"), (2, "step 1, fault end")):
+            mine = trials["trial_record"] == record
+            order = np.argsort(trials["trial_angle"][mine], kind="stable")
+            line = lines[f"efficiency:{label}"]
+            np.testing.assert_array_equal(line.get_xdata(), trials["trial_angle"][mine][order])
+            candidate = np.isin(trials["trial_state"][mine][order], (1, 2))
+            np.testing.assert_array_equal(line.get_ydata()[candidate],
+                                          trials["trial_efficiency"][mine][order][candidate])
+            assert np.all(np.isnan(line.get_ydata()[~candidate]))
+            chosen = lines[f"chosen:{label}"]
+            np.testing.assert_array_equal(chosen.get_xdata(), [g["angle"][record - 1]])
+        np.testing.assert_array_equal(lines["work_threshold"].get_ydata(),
+                                      [g["threshold"]] * 2)
+    finally:
+        plot_figures.plt.close(fig)
