@@ -178,7 +178,8 @@ def growth_model(n, grid, steps=25):
 def growth_work_model(n, grid, steps=25):
     """The growth case's flaw grown by the work criterion (37 trial angles per tip and step:
     the defaults angle_range = 90, angle_step = 5)."""
-    return growth_model(n, grid, steps).replace("new_sf = 0.0,", "new_sf = 0.0, criterion = 'work',")
+    return growth_model(n, grid, steps).replace("new_sf = 0.0,",
+                                                "new_sf = 0.0, criterion = 'work',")
 
 
 def growth_history_model(n, grid, steps=20):

@@ -31,7 +31,6 @@ from .data import (
     growth_curves,
     growth_series,
     heading,
-    trial_curves,
     history_parameter,
     history_unit,
     is_cross_section,
@@ -49,6 +48,7 @@ from .data import (
     slip_sense,
     state_names,
     strength_panels,
+    trial_curves,
     unit_label,
 )
 
