@@ -327,11 +327,11 @@ def compare_with_lemke(exe, text, name, workdir, env, lu_seconds, states, dds, l
                                      for a, b in zip(dds, lemke_dds)) / scale}
 
 
-def compare_with_mts(exe, n, grid, steps, record, workdir, env):
+def compare_with_mts(exe, n, grid, steps, method, record, workdir, env):
     """The growth case's MTS run of the same model beside a growth-work record: its
     seconds, solves, growth steps and N_final; the work run's time over it, and its solves
     and low-rank updates per growth step."""
-    stdout, _, _, solver, _, states, _ = run_model(exe, growth_model(n, grid, steps), "auto",
+    stdout, _, _, solver, _, states, _ = run_model(exe, growth_model(n, grid, steps), method,
                                                    f"growth_{n}_mts", workdir, env)
     mts = growth_summary(stdout, f"growth_{n}_mts")
     match = re.search(r"output\s+([0-9.]+)", stdout)
@@ -416,7 +416,7 @@ def benchmark_one(exe, lu_exe, n, case, threads, method, grid, workdir, steps=10
     if case in GROWTH_CASES:
         record.update(growth_summary(stdout, f"{name}_{method}"), n_final=n_final)
     if case == "growth-work":
-        record.update(compare_with_mts(exe, n, grid, steps, record, workdir, env))
+        record.update(compare_with_mts(exe, n, grid, steps, method, record, workdir, env))
     if history is not None:
         record["steps"] = int(history["state"].shape[0])
         record["fallback_steps"] = int(sum(1 for f in history.get("fallback", []) if f))
