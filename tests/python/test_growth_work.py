@@ -183,3 +183,32 @@ def test_trials_figure_draws_the_stored_trials(tmp_path):
                                       [g["threshold"]] * 2)
     finally:
         plot_figures.plt.close(fig)
+
+
+def test_resumed_run_goes_on_with_its_trials(tmp_path):
+    # Two steps at once, and one step resumed for a second: the same records and trials
+    # (the resumed run factorizes its first solve anew: equal within round-off).
+    two = FAULT.replace("steps = 1,", "steps = 2,")
+    (tmp_path / "full").mkdir()
+    full_done, full = run(tmp_path / "full", two)
+    assert full_done.returncode == 0, full_done.stderr
+    (tmp_path / "one").mkdir()
+    one_done, one = run(tmp_path / "one", FAULT)
+    assert one_done.returncode == 0, one_done.stderr
+    (tmp_path / "two.nml").write_text(two)
+    resumed = tmp_path / "resumed.h5"
+    done = subprocess.run([str(ddc2d_exe()), str(tmp_path / "two.nml"), "--resume", str(one),
+                           "-o", str(resumed)], capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, done.stdout + done.stderr
+    a, b = growth_of(full), growth_of(resumed)
+    np.testing.assert_array_equal(a["reason"], b["reason"])
+    np.testing.assert_allclose(b["angle"], a["angle"], rtol=1e-9)
+    np.testing.assert_allclose(b["efficiency"], a["efficiency"], rtol=1e-9)
+    for key in ("trial_step", "trial_record", "trial_state"):
+        np.testing.assert_array_equal(a["trials"][key], b["trials"][key])
+    np.testing.assert_allclose(b["trials"]["trial_angle"], a["trials"]["trial_angle"],
+                               rtol=1e-9)
+    # Efficiencies of stuck trials are round-off around 0: compared absolutely.
+    scale = np.nanmax(np.abs(a["trials"]["trial_efficiency"]))
+    np.testing.assert_allclose(b["trials"]["trial_efficiency"], a["trials"]["trial_efficiency"],
+                               rtol=0, atol=1e-9 * scale)
