@@ -229,8 +229,10 @@ def test_lcp_solver_reaching_the_fault_law_fails(tree, capsys, planted_in, messa
 
 
 def test_growth_criterion_without_its_case_fails(tree, capsys):
-    edit(tree / "src/model/types.f90", "    integer, parameter :: growth_criterion_mts = 1\n",
-         "    integer, parameter :: growth_criterion_mts = 1, growth_criterion_planted = 2\n")
+    edit(tree / "src/model/types.f90",
+         "    integer, parameter :: growth_criterion_mts = 1, growth_criterion_work = 2\n",
+         "    integer, parameter :: growth_criterion_mts = 1, growth_criterion_work = 2, "
+         "growth_criterion_planted = 3\n")
     expect_violation(tree, capsys, "src/growth/criterion.f90: assess_tip has no case for "
                      "growth_criterion_planted")
     expect_violation(tree, capsys, "src/growth/criterion.f90: kink_angles has no case for "
@@ -298,7 +300,7 @@ def test_column_under_another_name_fails(tree, capsys):
 def test_routine_around_a_record_list_fails(tree, capsys):
     edit(tree / "src/output/hdf5_records.f90",
          "        call for_each_growth_column(columns, writer)\n"
-         "        associate (group => writer%group", "        associate (group => writer%group")
+         "        if (writer%work)", "        if (writer%work)")
     expect_violation(tree, capsys, "src/output/hdf5_records.f90: write_growth does not go "
                      "through for_each_growth_column")
 
