@@ -111,8 +111,7 @@ contains
         allocate (grid(size(angles)))
         kinks%tip(i)%solves = 0
         do j = 1, size(angles)
-            call try_angle(solver, model, created, options, w_before, kinks, i, angles(j), &
-                           grid(j), error)
+            call try_angle(angles(j), grid(j), error)
             if (allocated(error)) return
         end do
         if (.not. any(grid%candidate)) then
@@ -124,13 +123,99 @@ contains
         best = grid(b)
         if (b > 1 .and. b < size(grid)) then
             if (grid(b - 1)%candidate .and. grid(b + 1)%candidate) then
-                call refine(solver, model, created, options, w_before, kinks, i, &
-                            grid(b - 1), grid(b), grid(b + 1), best, error)
+                call refine(grid(b - 1), grid(b), grid(b + 1), best, error)
                 if (allocated(error)) return
             end if
         end if
         kinks%tip(i)%theta = best%angle
         kinks%tip(i)%efficiency = best%efficiency
+
+    contains
+
+        !> Successive parabolas through the best trial m and its neighbours l < m < r
+        !> (each a candidate): the vertex is solved when it lies more than refine_tolerance
+        !> from m, and the three best around the maximum are kept; best is the best
+        !> candidate found.
+        subroutine refine(l0, m0, r0, best, error)
+            type(trial_point), intent(in) :: l0, m0, r0
+            type(trial_point), intent(inout) :: best
+            type(error_type), allocatable, intent(out) :: error
+            type(trial_point) :: l, m, r, v
+            real(wp) :: vertex, denominator
+            integer :: n
+
+            l = l0
+            m = m0
+            r = r0
+            do n = 1, max_refinements
+                denominator = (m%angle - l%angle) * (m%efficiency - r%efficiency) - &
+                              (m%angle - r%angle) * (m%efficiency - l%efficiency)
+                if (.not. (abs(denominator) > 0.0_wp)) exit
+                vertex = m%angle - 0.5_wp * ((m%angle - l%angle)**2 * (m%efficiency - &
+                         r%efficiency) - (m%angle - r%angle)**2 * (m%efficiency - &
+                         l%efficiency)) / denominator
+                vertex = max(l%angle, min(r%angle, vertex))
+                if (abs(vertex - m%angle) <= refine_tolerance) exit
+                call try_angle(vertex, v, error)
+                if (allocated(error)) return
+                if (.not. v%candidate) exit
+                if (v%efficiency > m%efficiency) then
+                    if (v%angle < m%angle) then
+                        r = m
+                    else
+                        l = m
+                    end if
+                    m = v
+                else if (v%angle < m%angle) then
+                    l = v
+                else
+                    r = v
+                end if
+            end do
+            best = m
+        end subroutine refine
+
+        !> Solve the tip's kink at angle theta (the step's links held) and record the trial.
+        subroutine try_angle(theta, point, error)
+            real(wp), intent(in) :: theta
+            type(trial_point), intent(out) :: point
+            type(error_type), allocatable, intent(out) :: error
+            type(tip_path) :: path(1)
+            type(tip_path), allocatable :: link_paths(:)
+            type(element_split), allocatable :: splits(:)
+            integer :: problem(1), state
+
+            point%angle = theta
+            associate (k => kinks%tip(i))
+                path(1) = make_path(model, k%fracture, k%end, theta, k%length, k%pieces)
+                call check_paths(model, path, [.true.], problem, fixed=kinks%fixed)
+                if (problem(1) /= path_clear) then
+                    point%efficiency = ieee_value(1.0_wp, ieee_quiet_nan)
+                    call add_trial(kinks%trials, k%fracture, k%end, theta, point%efficiency, &
+                                   trial_blocked)
+                    return
+                end if
+                call link_parts(step_links(kinks), link_paths, splits)
+                call extend_model(model, created, [path, link_paths], kinks%step, options, &
+                                  kinks%trial, kinks%trial_created, kinks%moved_to, splits, &
+                                  kinks%origin)
+                call solve_grown(solver, kinks%trial, kinks%moved_to, kinks%solved, error, &
+                                 kinks%origin)
+                k%solves = k%solves + 1
+                if (allocated(error)) then
+                    error%message = 'growth step '//itoa(kinks%step)//', work trial '// &
+                                    itoa(k%solves)//': '//error%message
+                    return
+                end if
+                point%efficiency = (external_work(kinks%trial, kinks%solved%elements%ds, &
+                                                  kinks%solved%elements%dn) - w_before) / &
+                                   k%length
+                state = new_elements_state(kinks%trial, kinks%solved, kinks%origin)
+                point%candidate = state == trial_opening .or. state == trial_slipping
+                call add_trial(kinks%trials, k%fracture, k%end, theta, point%efficiency, state)
+            end associate
+        end subroutine try_angle
+
     end subroutine search_tip
 
     !> The trial angles [rad]: 0, +-step, +-2 step, ... up to +-range, and +-range itself
@@ -165,105 +250,6 @@ contains
             end if
         end do
     end function best_candidate
-
-    !> Successive parabolas through the best trial m and its neighbours l < m < r (each a
-    !> candidate): the vertex is solved when it lies more than refine_tolerance from m, and the
-    !> three best around the maximum are kept; best is the best candidate found.
-    subroutine refine(solver, model, created, options, w_before, kinks, i, l0, m0, r0, best, &
-                      error)
-        type(growth_solver), intent(inout) :: solver
-        type(model_type), intent(in) :: model
-        integer, intent(in) :: created(:)
-        type(growth_options), intent(in) :: options
-        real(wp), intent(in) :: w_before
-        type(step_kinks), intent(inout) :: kinks
-        integer, intent(in) :: i
-        type(trial_point), intent(in) :: l0, m0, r0
-        type(trial_point), intent(inout) :: best
-        type(error_type), allocatable, intent(out) :: error
-        type(trial_point) :: l, m, r, v
-        real(wp) :: vertex, denominator
-        integer :: n
-
-        l = l0
-        m = m0
-        r = r0
-        do n = 1, max_refinements
-            denominator = (m%angle - l%angle) * (m%efficiency - r%efficiency) - &
-                          (m%angle - r%angle) * (m%efficiency - l%efficiency)
-            if (.not. (abs(denominator) > 0.0_wp)) exit
-            vertex = m%angle - 0.5_wp * ((m%angle - l%angle)**2 * (m%efficiency - &
-                     r%efficiency) - (m%angle - r%angle)**2 * (m%efficiency - l%efficiency)) / &
-                     denominator
-            vertex = max(l%angle, min(r%angle, vertex))
-            if (abs(vertex - m%angle) <= refine_tolerance) exit
-            call try_angle(solver, model, created, options, w_before, kinks, i, vertex, v, &
-                           error)
-            if (allocated(error)) return
-            if (.not. v%candidate) exit
-            if (v%efficiency > m%efficiency) then
-                if (v%angle < m%angle) then
-                    r = m
-                else
-                    l = m
-                end if
-                m = v
-            else if (v%angle < m%angle) then
-                l = v
-            else
-                r = v
-            end if
-        end do
-        best = m
-    end subroutine refine
-
-    !> Solve tip i's kink at angle theta (the step's links held) and record the trial.
-    subroutine try_angle(solver, model, created, options, w_before, kinks, i, theta, point, &
-                         error)
-        type(growth_solver), intent(inout) :: solver
-        type(model_type), intent(in) :: model
-        integer, intent(in) :: created(:)
-        type(growth_options), intent(in) :: options
-        real(wp), intent(in) :: w_before
-        type(step_kinks), intent(inout) :: kinks
-        integer, intent(in) :: i
-        real(wp), intent(in) :: theta
-        type(trial_point), intent(out) :: point
-        type(error_type), allocatable, intent(out) :: error
-        type(tip_path) :: path(1)
-        type(tip_path), allocatable :: link_paths(:)
-        type(element_split), allocatable :: splits(:)
-        integer :: problem(1), state
-
-        point%angle = theta
-        associate (k => kinks%tip(i))
-            path(1) = make_path(model, k%fracture, k%end, theta, k%length, k%pieces)
-            call check_paths(model, path, [.true.], problem, fixed=kinks%fixed)
-            if (problem(1) /= path_clear) then
-                point%efficiency = ieee_value(1.0_wp, ieee_quiet_nan)
-                call add_trial(kinks%trials, k%fracture, k%end, theta, point%efficiency, &
-                               trial_blocked)
-                return
-            end if
-            call link_parts(step_links(kinks), link_paths, splits)
-            call extend_model(model, created, [path, link_paths], kinks%step, options, &
-                              kinks%trial, kinks%trial_created, kinks%moved_to, splits, &
-                              kinks%origin)
-            call solve_grown(solver, kinks%trial, kinks%moved_to, kinks%solved, error, &
-                             kinks%origin)
-            k%solves = k%solves + 1
-            if (allocated(error)) then
-                error%message = 'growth step '//itoa(kinks%step)//', work trial '// &
-                                itoa(k%solves)//': '//error%message
-                return
-            end if
-            point%efficiency = (external_work(kinks%trial, kinks%solved%elements%ds, &
-                                              kinks%solved%elements%dn) - w_before) / k%length
-            state = new_elements_state(kinks%trial, kinks%solved, kinks%origin)
-            point%candidate = state == trial_opening .or. state == trial_slipping
-            call add_trial(kinks%trials, k%fracture, k%end, theta, point%efficiency, state)
-        end associate
-    end subroutine try_angle
 
     !> trial_opening when a new element opens, else trial_slipping when one slips, else
     !> trial_stuck (a TWODD-style element opens with D_n < 0 and slips with D_s /= 0).
