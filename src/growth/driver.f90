@@ -58,7 +58,7 @@ module ddc_growth_driver
     use ddc_growth_extension, only: tip_path, make_path, tip_element
     use ddc_growth_clearance, only: check_paths, path_clear, ends_on_link
     use ddc_growth_tips, only: growing_tip, fracture_tip, increment_for
-    use ddc_growth_work, only: trial_table, add_trial
+    use ddc_growth_work, only: append_table, append_trials
     use ddc_growth_load_steps, only: follow_growth, record_load_step, finish_load_steps
     use ddc_history_path, only: path_loads, apply_load, load_text
     use ddc_progress, only: report_progress, hold_progress, release_progress
@@ -317,7 +317,7 @@ contains
         end do
         call kink_angles(run%solver, run%work, run%current, run%created, options, kinks, error)
         if (allocated(error)) return
-        call keep_trials(run%now%trials, kinks%trials)
+        call append_table(run%now%trials, kinks%trials)
         do i = 1, size(which)
             t = which(i)
             run%now%reason(t) = kinks%tip(i)%reason
@@ -565,48 +565,8 @@ contains
         record%length = [record%length, pack(now%length, keep)]
         record%reason = [record%reason, pack(now%reason, keep)]
         record%efficiency = [record%efficiency, pack(now%efficiency, keep)]
-        if (allocated(now%trials%fracture)) call append_trials(record, step, tips, now, keep)
+        if (allocated(now%trials%fracture)) call append_trials(record, step, tips%fracture, &
+                                                               tips%end, keep, now%trials)
     end subroutine append_records
-
-    !> The step's trials in the record, each with its tip's record (the tips' records of the
-    !> step are the last count(keep) records).
-    pure subroutine append_trials(record, step, tips, now, keep)
-        type(growth_record), intent(inout) :: record
-        integer, intent(in) :: step
-        type(growing_tip), intent(in) :: tips(:)
-        type(step_tips), intent(in) :: now
-        logical, intent(in) :: keep(:)
-        integer :: first, j, i, tip_record(size(now%trials%fracture))
-        real(wp), parameter :: degrees = 180.0_wp / pi
-
-        first = size(record%step) - count(keep)
-        tip_record = 0
-        do j = 1, size(tip_record)
-            do i = 1, size(tips)
-                if (tips(i)%fracture == now%trials%fracture(j) .and. &
-                    tips(i)%end == now%trials%end(j) .and. keep(i)) then
-                  tip_record(j) = first + count(keep(1:i))
-                end if
-            end do
-        end do
-        record%trial_step = [record%trial_step, spread(step, 1, size(tip_record))]
-        record%trial_record = [record%trial_record, tip_record]
-        record%trial_angle = [record%trial_angle, now%trials%angle * degrees]
-        record%trial_efficiency = [record%trial_efficiency, now%trials%efficiency]
-        record%trial_state = [record%trial_state, now%trials%state]
-    end subroutine append_trials
-
-    !> Append a search's trials to the step's (the waiting loop may search again).
-    pure subroutine keep_trials(step_trials, found)
-        type(trial_table), intent(inout) :: step_trials
-        type(trial_table), intent(in) :: found
-        integer :: j
-
-        if (.not. allocated(found%fracture)) return
-        do j = 1, size(found%fracture)
-            call add_trial(step_trials, found%fracture(j), found%end(j), found%angle(j), &
-                           found%efficiency(j), found%state(j))
-        end do
-    end subroutine keep_trials
 
 end module ddc_growth_driver
