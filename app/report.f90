@@ -6,7 +6,7 @@ module ddc_app_report
     use ddc_model_types, only: model_type, rigid_joint, tensile_cap, condition_names, &
         observation_kind_names, symmetry_none, symmetry_names, domain_names, &
         domain_half_plane, load_path_names, &
-        growth_tips_names, growth_criterion_names
+        growth_tips_names, growth_criterion_names, new_law_names
     use ddc_model_results, only: model_results, state_names, point_near, point_on_element, &
         growth_reason_names, growth_end_names, growth_subcritical, growth_intersection, &
         growth_surface, growth_linked, growth_closed, growth_waiting, growth_enclosing
@@ -238,6 +238,7 @@ contains
         integer, intent(in) :: unit
         type(model_type), intent(in) :: model
         character(len=:), allocatable :: names
+        character(len=64) :: units(size(new_law_names))
         integer :: f
 
         associate (g => model%growth)
@@ -268,8 +269,63 @@ contains
             if (g%override_mu) write (unit, '(a,g0)') '    new contact elements: mu = ', g%new_mu
             if (g%override_sf) write (unit, '(a,g0,1x,a)') '    new contact elements: sf = ', &
                 g%new_sf, model%stress_unit
+            units = [character(len=64) :: model%stress_unit, model%stress_unit, '', &
+                     model%length_unit, model%length_unit, &
+                     model%stress_unit//'/'//model%length_unit, &
+                     model%stress_unit//'/'//model%length_unit]
+            do f = 1, size(new_law_names)
+                ! 'new_tensile_strength' echoes as the element's 'tensile_strength'
+                if (g%override_law(f)) write (unit, '(a,g0,1x,a)') '    new contact '// &
+                    'elements: '//trim(new_law_names(f)(5:))//' = ', g%new_law(f), &
+                    trim(units(f))
+            end do
         end associate
+        if (model%initiation%active) call print_initiation_options(unit, model)
     end subroutine print_growth_options
+
+    !> Echo the effective &initiation options.
+    subroutine print_initiation_options(unit, model)
+        integer, intent(in) :: unit
+        type(model_type), intent(in) :: model
+        integer :: p
+
+        associate (o => model%initiation)
+            write (unit, '(a,g0,1x,a,a,g0,1x,a)') '  initiation: tensile_strength = ', &
+                o%tensile_strength, model%stress_unit, ', probe_distance = ', &
+                o%probe_distance, model%length_unit
+            do p = 1, size(o%flaw_x)
+                write (unit, '(a,i0,a,g0,a,g0)') '    flaw ', p, ' at ', o%flaw_x(p), ', ', &
+                    o%flaw_y(p)
+            end do
+            if (size(o%flaw_x) == 0) return
+            if (o%flaw_length > 0.0_wp) then
+                write (unit, '(a,g0,1x,a)') '    flaw_length = ', o%flaw_length, &
+                    model%length_unit
+            else
+                write (unit, '(a)') '    flaw_length = the growth increment (default)'
+            end if
+        end associate
+    end subroutine print_initiation_options
+
+    !> One line per new fracture a growth run started inside the rock.
+    subroutine print_initiations(unit, model, results)
+        integer, intent(in) :: unit
+        type(model_type), intent(in) :: model
+        type(model_results), intent(in) :: results
+        integer :: i
+
+        associate (r => results%initiations)
+            if (.not. allocated(r%kind)) return
+            write (unit, '(a,i0,a)') 'initiation: ', size(r%kind), ' new fracture(s)'
+            do i = 1, size(r%kind)
+                write (unit, '(2x,a,a,i0,a,i0,a,es12.5,a,es12.5,a,es12.5,1x,a,a,f8.2,a)') &
+                    model%fractures(r%fracture_id(i))%name, ': step ', r%step(i), &
+                    ', load step ', r%load_step(i), ', at (', r%x(i), ', ', r%y(i), &
+                    '), tension ', r%tension(i), model%stress_unit, ', direction ', &
+                    r%angle(i), ' degrees'
+            end do
+        end associate
+    end subroutine print_initiations
 
     !> One line per growth step on standard output, flushed (a long run shows progress).
     subroutine print_growth_step(step, growing, largest_k_eq, solves, seconds, elapsed)
@@ -297,6 +353,7 @@ contains
         character(len=*), parameter :: ends(0:1) = [character(len=5) :: 'begin', 'end']
         integer :: i, width
 
+        call print_initiations(unit, model, results)
         call summarize_tips(results%growth, tips)
         write (unit, '(a,i0,a,a)') 'growth: ', results%growth%steps_taken, &
             ' step(s) with growth; ended: ', trim(growth_end_names(results%growth%end_reason))

@@ -13,7 +13,7 @@
 #      then the `mpi-slurm` test preset (a 2-task job on the local Slurm);
 #   4. the numerical suites again under other OpenBLAS kernels (scripts/test-kernels.sh);
 #   5. the process-level tests (python_robustness, python_memory, the Slurm tests and the
-#      MPI build's label mpi) a second time beside a CPU hog
+#      MPI build's process-level cases) a second time beside a CPU hog
 #      (stress-ng --cpu 4, bounded by --timeout and stopped when they end), so that a test
 #      that races with a process or a file, or assumes an idle machine, fails here. The
 #      fuzz test makes DDC2D_FUZZ_COUNT=400 runs in this pass (2000 in the first).

@@ -78,6 +78,7 @@ module ddc_contact_fault_law
         procedure :: weaken
         procedure :: lose_open_cohesion
         procedure :: place_in_force
+        procedure :: take_in_force
     end type fault_law
 
 contains
@@ -398,5 +399,24 @@ contains
         law%mu_in_force(subset) = part%mu_in_force
         law%slip_path(subset) = part%slip_path
     end subroutine place_in_force
+
+    !> The values in force and slip path of some elements from those of another law's
+    !> elements (an element carried over from an earlier solve keeps its state); the others
+    !> keep theirs.
+    pure subroutine take_in_force(law, other, source)
+        !> The law of n elements; values in force set where source > 0
+        class(fault_law), intent(inout) :: law
+        !> The law the states come from
+        type(fault_law), intent(in) :: other
+        !> The element of other each element of law takes its state from, 0: none, shape (n)
+        integer, intent(in) :: source(:)
+
+        where (source > 0)
+            law%sf_in_force = other%sf_in_force(max(source, 1))
+            law%tensile_in_force = other%tensile_in_force(max(source, 1))
+            law%mu_in_force = other%mu_in_force(max(source, 1))
+            law%slip_path = other%slip_path(max(source, 1))
+        end where
+    end subroutine take_in_force
 
 end module ddc_contact_fault_law

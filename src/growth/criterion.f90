@@ -4,7 +4,8 @@
 !>
 !> - assess_tip: what a tip's K say, its kink angle (the predictor, which the clearance
 !>   checks and links see) and K_eq (which the toughness and the choice of tips see);
-!> - kink_angles: the angles the step's growing tips take, with the solves that needs.
+!> - kink_angles: the angles the step's growing tips take, with the solves that needs;
+!> - flaw_direction: the direction of a new fracture at a flaw point (&initiation).
 !>
 !> growth_criterion_mts: the maximum tangential stress (ddc_growth_mts), corrected for
 !> local symmetry (ddc_growth_corrector). growth_criterion_work: the largest external work
@@ -28,7 +29,7 @@ module ddc_growth_criterion
     implicit none
     private
 
-    public :: assess_tip, kink_angles, most_critical, searched_tip, picks_by_k
+    public :: assess_tip, kink_angles, most_critical, flaw_direction, searched_tip, picks_by_k
 
     !> K_eq within this fraction of the largest count as tied for the most critical tip
     real(wp), parameter :: tie_tolerance = 1.0e-9_wp
@@ -61,6 +62,30 @@ contains
             call unknown_criterion('assess_tip', options%criterion, error)
         end select
     end subroutine assess_tip
+
+    !> The direction of a flaw's first crack under the model's criterion, from the maximum
+    !> tension at the flaw point (the field without a crack there). MTS opens it against
+    !> that tension: perpendicular to it. So does 'work': a short open crack draws the work
+    !> pi a^2 (1 - nu^2) |t|^2 / E from the traction t across it, largest across the maximum
+    !> tension.
+    subroutine flaw_direction(options, tension_direction, along, error)
+        !> The growth options (criterion)
+        type(growth_options), intent(in) :: options
+        !> Unit direction of the maximum tension at the flaw point
+        real(wp), intent(in) :: tension_direction(2)
+        !> Unit direction of the crack
+        real(wp), intent(out) :: along(2)
+        !> Set (internal error) for a criterion this code does not know
+        type(error_type), allocatable, intent(out) :: error
+
+        select case (options%criterion)
+        case (growth_criterion_mts, growth_criterion_work)
+            along = [-tension_direction(2), tension_direction(1)]
+        case default
+            along = tension_direction
+            call unknown_criterion('flaw_direction', options%criterion, error)
+        end select
+    end subroutine flaw_direction
 
     !> The applied kink angles of the step's growing tips under the model's criterion; their
     !> reasons, solves and links, and the last trial solved (ddc_growth_kinks).

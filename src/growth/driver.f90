@@ -42,8 +42,10 @@ module ddc_growth_driver
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use ddc_kinds, only: wp
     use ddc_constants, only: pi
-    use ddc_error, only: error_type, set_internal_error
-    use ddc_model_types, only: model_type, growth_options
+    use ddc_error, only: error_type, set_internal_error, set_error, exit_bad_input
+    use ddc_model_types, only: model_type, growth_options, initiation_options
+    use ddc_model_initiations, only: initiation_record
+    use ddc_growth_initiation, only: start_fracture
     use ddc_model_results, only: model_results, growth_record, growth_grew, growth_subcritical, &
         growth_corrector_failed, growth_closed, growth_waiting, growth_arrested, &
         growth_step_limit
@@ -105,6 +107,7 @@ contains
         type(restart_state), intent(in), optional :: restart
         type(growth_state) :: run
         type(growth_record) :: record
+        type(initiation_record) :: initiations
         real(wp), allocatable :: loads(:, :)
         integer :: step, load_step, steps_before, start, first
         integer(int64) :: t_start, t_end, rate
@@ -117,6 +120,11 @@ contains
             loads = path_loads(model%load_path)
         else
             allocate (loads(7, 1), source=0.0_wp)
+        end if
+        if (present(restart) .and. model%initiation%active) then
+            call set_error(error, exit_bad_input, '--resume: a run with &initiation cannot '// &
+                           'be resumed: run it again from the start')
+            return
         end if
         if (present(restart)) then
             call resume_run(model, restart, loads, run, record, step, start, first, error)
@@ -146,8 +154,8 @@ contains
             end if
             solved = .false.
             steps_before = record%steps_taken
-            call grow_to_stability(run, model%growth, load_step, history, step, first, &
-                                   record, error, progress, t_start)
+            call grow_to_stability(run, model%growth, model%initiation, load_step, history, &
+                                   step, first, record, initiations, error, progress, t_start)
             first = 0
             if (allocated(error)) then
                 if (history) error%message = where//': '//error%message
@@ -164,6 +172,11 @@ contains
 
         model%elements = run%work%elements
         model%fractures = run%work%fractures
+        if (model%initiation%active) then
+            ! New fractures grow as the others do.
+            model%growth%fracture_grows = [model%growth%fracture_grows, spread(.true., 1, &
+                size(model%fractures) - size(model%growth%fracture_grows))]
+        end if
         if (history) then
             model%sxx = run%work%sxx
             model%syy = run%work%syy
@@ -177,6 +190,7 @@ contains
                                             record, results%history, error)
         if (allocated(error)) return
         results%growth = record
+        if (model%initiation%active) results%initiations = initiations
         call system_clock(t_end)
         results%solver%seconds_total = real(t_end - t_start, wp) / real(rate, wp)
 
@@ -199,12 +213,14 @@ contains
     !> Grow the fractures at the current load until no tip is critical (end_reason
     !> growth_arrested) or for `steps` growth steps (growth_step_limit), after `first` growth
     !> steps of this load step done before; `step` counts the growth steps of the whole run.
-    subroutine grow_to_stability(run, options, load_step, along_path, step, first, record, &
-                                 error, progress, t_start)
+    subroutine grow_to_stability(run, options, initiation, load_step, along_path, step, first, &
+                                 record, initiations, error, progress, t_start)
         !> The run at the load step's start (its geometry solved at the step's load)
         type(growth_state), intent(inout) :: run
         !> The model's growth options
         type(growth_options), intent(in) :: options
+        !> The model's initiation options (new fractures inside the rock)
+        type(initiation_options), intent(in) :: initiation
         !> The load step (1 without a load path)
         integer, intent(in) :: load_step
         !> Growth along a load path (a check without growth is not reported)
@@ -215,6 +231,8 @@ contains
         integer, intent(in) :: first
         !> The run's growth record: the step's records appended, steps_taken and end_reason
         type(growth_record), intent(inout) :: record
+        !> The new fractures started so far; this load step's appended
+        type(initiation_record), intent(inout) :: initiations
         !> Set when a solve fails (naming the step) or a contract is broken
         type(error_type), allocatable, intent(out) :: error
         !> Called after every growth step
@@ -223,6 +241,7 @@ contains
         integer(int64), intent(in) :: t_start
         integer :: s, grown, solves_before, next
         integer(int64) :: t_step, rate
+        logical :: started
 
         record%end_reason = growth_step_limit
         do s = first + 1, options%steps
@@ -232,6 +251,14 @@ contains
             call system_clock(t_step, rate)
             solves_before = solves_done(run%solver)
             call hold_progress(progress_hold_seconds)
+            ! A new fracture inside the rock starts before the tips are assessed (it is solved
+            ! with them); it counts as growth of the step.
+            started = .false.
+            if (initiation%active) then
+                call start_fracture(run, options, initiation, next, load_step, initiations, &
+                                    started, error)
+                if (allocated(error)) exit
+            end if
             call evaluate_tips(run%work, run%current, run%tips, options, run%now, error)
             if (allocated(error)) exit
             grown = 0
@@ -246,6 +273,7 @@ contains
                 end do
                 if (allocated(error)) exit
             end if
+            if (started) grown = grown + 1
             call release_progress()
             call append_records(record, next, load_step, run%tips, run%now)
             if (grown == 0) then

@@ -6,7 +6,7 @@ module ddc_growth_extension
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type, element_set, growth_options, condition_contact, &
         select_elements
-    use ddc_mesh_geometry, only: compute_geometry, default_strength_laws
+    use ddc_mesh_geometry, only: compute_geometry
     implicit none
     private
 
@@ -246,10 +246,11 @@ contains
     end subroutine extend_model
 
     !> The values of the elements of a grown geometry (docs/theory/growth.md#new-elements), the one
-    !> rule for growth and for a resumed run: each takes those of the element it comes from; a new
-    !> one (grown at a tip) then the default strength laws (it is intact: no T, no drops,
-    !> rigid) and, a new contact element, new_mu and new_sf where the growth options
-    !> override them. End points and geometry are the caller's to set.
+    !> rule for growth and for a resumed run: each takes those of the element it comes from (a
+    !> new one, grown at a tip, the tip element's given values: the element arrays hold no
+    !> weakening) and, a new contact element, new_mu, new_sf and the strength laws new_law
+    !> where the growth options override them. End points and geometry are the caller's to
+    !> set.
     subroutine inherit_values(elements, pick, is_new, options, grown)
         !> The elements the grown ones come from
         type(element_set), intent(in) :: elements
@@ -257,13 +258,23 @@ contains
         integer, intent(in) :: pick(:)
         !> Whether each grown element is new, shape (grown n)
         logical, intent(in) :: is_new(:)
-        !> The growth options (override_mu, new_mu, override_sf, new_sf)
+        !> The growth options (override_mu, new_mu, override_sf, new_sf, override_law, new_law)
         type(growth_options), intent(in) :: options
         !> The grown elements
         type(element_set), intent(out) :: grown
+        logical :: takes(size(pick))
 
         call select_elements(elements, pick, grown)
-        call default_strength_laws(grown, is_new)
+        takes = is_new .and. grown%condition == condition_contact
+        associate (given => options%override_law, v => options%new_law)
+            if (given(1)) where (takes) grown%tensile_strength = v(1)
+            if (given(2)) where (takes) grown%sf_residual = v(2)
+            if (given(3)) where (takes) grown%mu_dynamic = v(3)
+            if (given(4)) where (takes) grown%slip_weakening_distance = v(4)
+            if (given(5)) where (takes) grown%opening_weakening_distance = v(5)
+            if (given(6)) where (takes) grown%shear_stiffness = v(6)
+            if (given(7)) where (takes) grown%normal_stiffness = v(7)
+        end associate
         if (options%override_mu) then
             where (is_new .and. grown%condition == condition_contact) grown%mu = options%new_mu
         end if

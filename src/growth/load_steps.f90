@@ -136,7 +136,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         integer :: k, f, end, i, t
 
-        call follow_rows(history, error)
+        call follow_rows(history, 2 * size(work%fractures), error)
         if (allocated(error)) return
         history%k = history%k + 1
         k = history%k
@@ -223,18 +223,19 @@ contains
         end do
     end subroutine finish_load_steps
 
-    !> Move the rows of the columns so far to the elements of the current geometry.
-    subroutine follow_rows(history, error)
+    !> Move the rows of the columns so far to the elements of the current geometry, and make
+    !> room for the K rows of its fracture ends (`ends`: new fractures add theirs).
+    subroutine follow_rows(history, ends, error)
         type(load_step_history), intent(inout) :: history
+        integer, intent(in) :: ends
         type(error_type), allocatable, intent(out) :: error
         integer :: i
 
         associate (h => history%h, lineage => history%lineage)
-            if (size(lineage) == size(h%ds, 1)) then
+            if (size(lineage) == size(h%ds, 1) .and. ends == size(h%k1, 1)) then
                 if (all(lineage == [(i, i = 1, size(lineage))])) return
             end if
-            call lay_out(h, size(lineage), size(h%k1, 1), size(h%ds, 2), history%k, error, &
-                         lineage)
+            call lay_out(h, size(lineage), ends, size(h%ds, 2), history%k, error, lineage)
             lineage = [(i, i = 1, size(lineage))]
         end associate
     end subroutine follow_rows

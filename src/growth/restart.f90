@@ -9,20 +9,29 @@
 !> it), a grown element those of its fracture's input tip element at that end, with what
 !> a new element takes (inherit_values); then its end points from the file (bit for bit)
 !> and the geometry computed.
+!>
+!> Under a loading history the strength state goes on too (resumed_strengths): the strengths in
+!> force as the file holds them, and the slip path summed over its load steps.
 module ddc_growth_restart
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
-    use ddc_model_types, only: model_type
+    use ddc_model_types, only: model_type, rigid_joint
     use ddc_model_results, only: growth_intersection, growth_surface, growth_linked, &
         growth_enclosing, growth_grew, growth_corrector_failed
     use ddc_model_restart, only: restart_state
     use ddc_mesh_geometry, only: compute_geometry
     use ddc_growth_extension, only: inherit_values, tip_element
     use ddc_growth_tips, only: growing_tip, resumed_element_length
+    use ddc_contact_fault_law, only: fault_law
+    use ddc_solve_frictional, only: fault_law_of
     implicit none
     private
 
-    public :: resumed_geometry, resumed_tips
+    public :: resumed_geometry, resumed_tips, resumed_strengths
+
+    !> Places in new_law_names of the joint stiffnesses of new elements
+    integer, parameter :: joint_laws(2) = [6, 7]
 
 contains
 
@@ -44,6 +53,14 @@ contains
 
         n = size(state%x_begin)
         created = state%results%growth%created_step
+        if (allocated(model%load_path%vertex) .and. (any(model%elements%shear_stiffness < &
+            rigid_joint) .or. any(model%elements%normal_stiffness < rigid_joint) .or. &
+            any(model%growth%override_law(joint_laws)))) then
+            ! The memory of elastic joints is their plastic slip, which the file does not hold.
+            call set_error(error, exit_bad_input, '--resume: growth along a load path with '// &
+                           'elastic joints (shear_stiffness, normal_stiffness) cannot be resumed')
+            return
+        end if
         if (size(state%first_element) /= size(model%fractures) .or. size(created) /= n) then
             call mismatch('its fractures or elements do not match the model')
             return
@@ -136,5 +153,41 @@ contains
             end do
         end associate
     end function resumed_tips
+
+    !> The fault law of the earlier run's final geometry with its strength state: the
+    !> strengths in force of the file (the given ones where the file holds none) and the
+    !> slip path, which the file does not hold: the sum of the slip increments between the
+    !> load steps of /history (an element not made yet slips none), else the slip itself.
+    !> It is the path of the uninterrupted run where slip does not reverse within a load
+    !> step (the friction in force follows from it at the next solve).
+    function resumed_strengths(work, state) result(law)
+        !> The final geometry (resumed_geometry)
+        type(model_type), intent(in) :: work
+        !> The earlier run's end
+        type(restart_state), intent(in) :: state
+        type(fault_law) :: law
+        real(wp), allocatable :: before(:), now(:)
+        integer :: k
+
+        law = fault_law_of(work%elements)
+        associate (e => state%results%elements, h => state%results%history)
+            if (allocated(e%sf_in_force)) then
+                law%sf_in_force = e%sf_in_force
+                law%tensile_in_force = e%tensile_in_force
+            end if
+            if (allocated(e%mu_in_force)) law%mu_in_force = e%mu_in_force
+            if (.not. allocated(h%ds)) then
+                law%slip_path = abs(e%ds)
+                return
+            end if
+            allocate (before(work%elements%n), source=0.0_wp)
+            law%slip_path = 0.0_wp
+            do k = 1, size(h%ds, 2)
+                now = merge(h%ds(:, k), 0.0_wp, ieee_is_finite(h%ds(:, k)))
+                law%slip_path = law%slip_path + abs(now - before)
+                before = now
+            end do
+        end associate
+    end function resumed_strengths
 
 end module ddc_growth_restart

@@ -16,7 +16,7 @@ module ddc_growth_run_state
     use ddc_growth_work, only: trial_table
     use ddc_growth_tips, only: growing_tip, find_growing_tips
     use ddc_growth_load_steps, only: load_step_history, start_load_steps, resume_load_steps
-    use ddc_growth_restart, only: resumed_geometry, resumed_tips
+    use ddc_growth_restart, only: resumed_geometry, resumed_tips, resumed_strengths
     implicit none
     private
 
@@ -146,7 +146,8 @@ contains
         ! The last column's solve is that of the current solution.
         run%current%solver%pivots = restart%results%history%pivots(done)
         run%current%solver%newton_iterations = restart%results%history%newton_iterations(done)
-        call restore_memory(run%solver, restart%results%elements%ds)
+        call restore_memory(run%solver, restart%results%elements%ds, &
+                            resumed_strengths(run%work, restart))
         call resume_load_steps(run%history, run%work, restart, loads, size(loads, 2), &
                                start - 1, error)
 

@@ -26,18 +26,19 @@
 !> Under a loading history (docs/theory/growth.md#growth-along-a-loading-history) the solver keeps
 !> the friction memory: every solve starts from the total slip of the base, an element that is
 !> there, or was split, keeps its slip and a new element starts from none (it joins the memory from
-!> the step that made it); a new load step is a solve of the base geometry at the new load
-!> (solve_loaded), on the kept path with the base's matrix and factors. Tractions, face
-!> displacements and fields are computed once, for the final geometry (final_results). Every solve's
-!> K at tips of unequal elements is calibrated (ddc_growth_tip_zone,
-!> docs/theory/tips.md#tips-of-grown-fractures).
+!> the step that made it); so does the strength state (ddc_contact_fault_law: the slip path and the
+!> strengths in force: a new element starts intact, with its given strengths); a new load step
+!> is a solve of the base geometry at the new load (solve_loaded), on the kept path with the
+!> base's matrix and factors. Tractions, face displacements and fields are computed once, for
+!> the final geometry (final_results). Every solve's K at tips of unequal elements is calibrated
+!> (ddc_growth_tip_zone, docs/theory/tips.md#tips-of-grown-fractures).
 module ddc_growth_solver
     use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
     use ddc_allocation, only: allocation_failed, real_bytes
     use ddc_text, only: itoa
-    use ddc_model_types, only: model_type, condition_contact
+    use ddc_model_types, only: model_type, condition_contact, rigid_joint
     use ddc_model_results, only: model_results, solver_record
     use ddc_model_loads, only: resolve_remote_stress, total_pressure, shear_modulus_of
     use ddc_influence_assembly, only: assemble_influence
@@ -92,12 +93,15 @@ module ddc_growth_solver
         !> the last trial [length unit], shape (n)
         logical :: memory = .false.
         real(wp), allocatable :: base_ds(:), trial_ds(:)
+        !> With the friction memory: the fault law of every element of the base and of the
+        !> last trial, for its strength state (values in force and slip path)
+        type(fault_law) :: base_law, trial_law
     end type growth_solver
 
 contains
 
-    !> Whether a model is solved on the kept path: every element a contact element, and the
-    !> Newton method in use.
+    !> Whether a model is solved on the kept path: every element a rigid contact element (an
+    !> elastic joint's system is run_model's), and the Newton method in use.
     pure logical function keeps_solves(model)
         !> The model
         type(model_type), intent(in) :: model
@@ -105,6 +109,8 @@ contains
         keeps_solves = all(model%elements%condition == condition_contact) .and. &
             (model%solver%lcp_method == lcp_newton .or. (model%solver%lcp_method == &
              lcp_auto .and. model%elements%n >= auto_newton_min_elements))
+        if (keeps_solves) keeps_solves = .not. (any(model%elements%shear_stiffness < &
+            rigid_joint) .or. any(model%elements%normal_stiffness < rigid_joint))
     end function keeps_solves
 
     !> Number of solves done so far.
@@ -136,14 +142,17 @@ contains
 
     !> A fresh solver for a resumed run (--resume): no kept base (the first solve assembles
     !> and factorizes whole), the friction memory of the earlier run's final geometry.
-    pure subroutine restore_memory(solver, ds)
+    pure subroutine restore_memory(solver, ds, law)
         !> The solver (fresh)
         type(growth_solver), intent(inout) :: solver
         !> Total slip of every element of the base [length unit], shape (n)
         real(wp), intent(in) :: ds(:)
+        !> The fault law of every element of the base with its strength state
+        type(fault_law), intent(in) :: law
 
         solver%memory = .true.
         solver%base_ds = ds
+        solver%base_law = law
     end subroutine restore_memory
 
     !> Solve the base geometry at a new load (model: the base at that load), from the
@@ -182,25 +191,42 @@ contains
         !> follows it
         integer, intent(in), optional :: origin(:)
         real(wp), allocatable :: held(:)
+        integer, allocatable :: from(:)
+        type(fault_law) :: law
+        integer :: i
 
         solver%pending = .true.
         solver%solves = solver%solves + 1
         solver%trial_kept = keeps_solves(model)
         allocate (held(model%elements%n), source=0.0_wp)
+        allocate (from(model%elements%n), source=0)
+        if (present(origin)) then
+            from = origin
+        else if (size(moved_to) > 0) then
+            from(moved_to) = [(i, i = 1, size(moved_to))]
+        end if
+        law = fault_law_of(model%elements)
         if (solver%memory .and. allocated(solver%base_ds)) then
-            if (present(origin)) then
-                where (origin > 0) held = solver%base_ds(max(origin, 1))
-            else if (size(moved_to) > 0) then
-                held(moved_to) = solver%base_ds
+            where (from > 0) held = solver%base_ds(max(from, 1))
+            if (allocated(solver%base_law%slip_path)) then
+                call law%take_in_force(solver%base_law, from)
             end if
         end if
         if (solver%trial_kept) then
-            call solve_kept(solver, model, moved_to, held, results, error)
+            call solve_kept(solver, model, moved_to, held, law, results, error)
+        else if (solver%memory) then
+            call run_model(model, results, error, ds_previous=held, strengths=law)
         else
             call run_model(model, results, error, ds_previous=held)
         end if
         if (allocated(error)) return
-        if (solver%memory) solver%trial_ds = results%elements%ds
+        if (solver%memory) then
+            ! The memory of an elastic joint is its plastic slip, as in a loading history.
+            solver%trial_ds = results%elements%ds
+            if (allocated(results%elements%ds_elastic)) solver%trial_ds = results%elements%ds &
+                - results%elements%ds_elastic
+            solver%trial_law = law
+        end if
         call calibrate_tips(model, results%tips, error)
         if (allocated(error)) return
         call add_record(solver%totals, results%solver)
@@ -214,7 +240,10 @@ contains
         if (.not. solver%pending) return
         solver%pending = .false.
         solver%kept = solver%trial_kept
-        if (solver%memory) call move_alloc(solver%trial_ds, solver%base_ds)
+        if (solver%memory) then
+            call move_alloc(solver%trial_ds, solver%base_ds)
+            solver%base_law = solver%trial_law
+        end if
         if (allocated(solver%base_matrix)) deallocate (solver%base_matrix)
         if (allocated(solver%layout)) deallocate (solver%layout)
         if (.not. solver%kept) then
@@ -290,11 +319,13 @@ contains
     !> A solve on the kept path: the influence matrix grown from the base's (or assembled
     !> whole without a kept base), the Newton method started from the base's states and
     !> factors.
-    subroutine solve_kept(solver, model, moved_to, held, results, error)
+    subroutine solve_kept(solver, model, moved_to, held, law, results, error)
         type(growth_solver), intent(inout), target :: solver
         type(model_type), intent(in) :: model
         integer, intent(in) :: moved_to(:)
         real(wp), intent(in) :: held(:)
+        !> The fault law: the strength state before the solve, after it on return
+        type(fault_law), intent(inout) :: law
         type(model_results), intent(out) :: results
         type(error_type), allocatable, intent(out) :: error
         type(reduced_factors) :: no_factors
@@ -353,7 +384,7 @@ contains
         results%solver%seconds_assembly = real(t1 - t0, wp) / real(rate, wp)
         ! The counts of this solve only (the factors carry those of the base's solves).
         solver%stiffness%counts = factor_counts()
-        call solve_contact_on(solver, solver%matrix, model, finite, held, results, error)
+        call solve_contact_on(solver, solver%matrix, model, finite, held, law, results, error)
     end subroutine solve_kept
 
     !> The Newton method's start for a grown model: the base's states at the old elements'
@@ -405,7 +436,7 @@ contains
     !> (solver%matrix), from the session's states (when allocated) and the stiffness
     !> operator's factors; the session keeps the states of the solution for the next trial;
     !> DDs, states, tractions, tips and the record set.
-    subroutine solve_contact_on(solver, a, model, checked, held, results, error)
+    subroutine solve_contact_on(solver, a, model, checked, held, law, results, error)
         type(growth_solver), intent(inout) :: solver
         real(wp), intent(in), target, contiguous :: a(:, :)
         type(model_type), intent(in) :: model
@@ -413,10 +444,11 @@ contains
         logical, intent(in) :: checked
         !> Total slip before this solve (friction memory), shape (n) [length]
         real(wp), intent(in) :: held(:)
+        !> The fault law: the strength state before the solve, after it on return
+        type(fault_law), intent(inout) :: law
         type(model_results), intent(inout) :: results
         type(error_type), allocatable, intent(out) :: error
         type(contact_result) :: res
-        type(fault_law) :: law
         real(wp), allocatable :: remote_shear(:), remote_normal(:), pressure(:)
         real(wp) :: seconds_assembly
         integer :: n
@@ -429,7 +461,6 @@ contains
         pressure = total_pressure(model%elements, model%pore_fluid)
         call new_matrix(solver%session, checked)
         solver%stiffness%a => a
-        law = fault_law_of(model%elements)
         call solve_contact_with(solver%stiffness, remote_shear, remote_normal, law, pressure, &
                                 model%solver, res, error, a=a, session=solver%session, &
                                 ds_previous=held)
@@ -443,6 +474,12 @@ contains
         results%elements%state = res%state
         results%elements%shear_traction = res%shear_traction
         results%elements%normal_traction = res%normal_traction
+        ! The strengths in force are results where they can change (as a one-shot solve's).
+        if (law%beyond_coulomb()) then
+            results%elements%sf_in_force = law%sf_in_force
+            results%elements%tensile_in_force = law%tensile_in_force
+            results%elements%mu_in_force = law%mu_in_force
+        end if
         call find_tips(model%elements, shear_modulus_of(model), model%poissons_ratio, res%ds, &
                        res%dn, results%tips)
     end subroutine solve_contact_on

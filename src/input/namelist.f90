@@ -13,15 +13,15 @@ module ddc_input_namelist
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type, condition_contact, symmetry_none, symmetry_names, &
         symmetry_x, domain_half_plane
-    use ddc_contact_fault_law, only: fault_law, new_fault_law
     use ddc_text, only: itoa, rtoa, prefix_lines
     use ddc_input_text_file, only: read_text_file, folder_of
     use ddc_mesh_geometry, only: allocate_elements, compute_geometry
     use ddc_mesh_checks, only: check_elements
     use ddc_input_namelist_groups, only: namelist_groups, group_record, message_list, add, &
         scan_groups, g_model, g_remote_stress, g_fracture, g_grid, g_line, g_points, g_solver, &
-        g_output, g_symmetry, g_pore_fluid, g_load_path
+        g_output, g_symmetry, g_pore_fluid, g_load_path, g_growth
     use ddc_input_namelist_growth, only: read_growth_group
+    use ddc_input_namelist_initiation, only: read_initiation_group, check_flaw_points
     use ddc_input_namelist_settings, only: read_model_group, read_remote_stress_group, &
         read_pore_fluid_group, read_solver_group, read_symmetry_group, read_output_group, &
         read_load_path_group
@@ -87,47 +87,33 @@ contains
         call read_symmetry_group(unit, text, path, groups(g_symmetry), model, messages)
         call read_pore_fluid_group(unit, text, path, groups(g_pore_fluid), model, messages)
         ! A fracture that could not be read may be a contact one: its own message is enough.
+        ! A model that grows needs none: its geometry changes, so its loads do not superpose.
         call read_load_path_group(unit, text, path, groups(g_load_path), &
+                                  groups(g_growth)%count > 0 .or. &
                                   any(.not. fractures%valid .or. &
                                       fractures%condition == condition_contact), model, messages)
         call read_growth_group(unit, text, path, groups, fractures, model, messages)
+        call read_initiation_group(unit, text, path, groups, model, messages)
         close (unit)
 
         call check_names(path, fractures, observations, messages)
         call check_half_plane(path, model, fractures, observations, messages)
-        if (model%growth%active .and. any(strength_given(fractures))) then
-            call add(messages, path//': &fracture tensile_strength, sf_residual, '// &
-                     'mu_dynamic and the joint stiffnesses are not honoured by fracture '// &
-                     'growth yet: remove them or the &growth group')
-        end if
         if (messages%n > 0) then
             call set_error(error, messages%code, messages%text)
             return
         end if
 
         call build_model(fractures, observations, model)
+        call check_flaw_points(path, groups, model, messages)
+        if (messages%n > 0) then
+            call set_error(error, messages%code, messages%text)
+            return
+        end if
         call check_elements(model%elements, model%fractures, error)
         if (allocated(error)) then
             error%message = prefix_lines(path//': ', error%message)
         end if
     end subroutine read_namelist_model
-
-    !> Whether a valid fracture has a strength beyond Coulomb (the fault law's
-    !> beyond_coulomb), one value per fracture.
-    elemental logical function strength_given(fracture)
-        type(fracture_input), intent(in) :: fracture
-        type(fault_law) :: law
-
-        strength_given = fracture%valid
-        if (.not. strength_given) return
-        law = new_fault_law(fracture%mu, fracture%sf, &
-            tensile_strength=fracture%tensile_strength, sf_residual=fracture%sf_residual, &
-            mu_dynamic=fracture%mu_dynamic, &
-            slip_weakening_distance=fracture%slip_weakening_distance, &
-            opening_weakening_distance=fracture%opening_weakening_distance, &
-            shear_stiffness=fracture%shear_stiffness, normal_stiffness=fracture%normal_stiffness)
-        strength_given = law%beyond_coulomb()
-    end function strength_given
 
     !> Half-plane rules (docs/theory/earth.md#a-free-surface): every vertex and field point at
     !> y <= 0, no element on the surface, a remote stress that is traction-free at y = 0, symmetry

@@ -17,22 +17,24 @@ module ddc_input_namelist_groups
     public :: scan_groups, group_line, group_label, group_prefix, is_name_character
     public :: g_model, g_remote_stress, g_fracture, g_grid, g_line, g_points, g_solver, &
         g_output, g_symmetry, g_sweep, g_pore_fluid, g_load_path, g_growth
+    public :: g_initiation
 
     !> One namelist group: its name, whether it may appear more than once, and its variables
     !> with their types ("name:c x:r n:i": c text, r real, i integer)
     type :: group_spec
         character(len=13) :: name
         logical :: repeatable
-        character(len=240) :: variables
+        character(len=480) :: variables
     end type group_spec
 
     !> Index of each group in namelist_groups
     integer, parameter :: g_model = 1, g_remote_stress = 2, g_fracture = 3, g_grid = 4, &
                           g_line = 5, g_points = 6, g_solver = 7, g_output = 8, g_symmetry = 9, &
                           g_sweep = 10, g_pore_fluid = 11, g_load_path = 12, g_growth = 13
+    integer, parameter :: g_initiation = 14
 
     !> Every group ddc2d knows (&sweep is read by ddc_input_sweep; the model reader skips it)
-    type(group_spec), parameter :: namelist_groups(13) = [ &
+    type(group_spec), parameter :: namelist_groups(14) = [ &
         group_spec('model', .false., 'title:c youngs_modulus:r poissons_ratio:r '// &
                    'length_unit:c stress_unit:c domain:c'), &
         group_spec('remote_stress', .false., 'sxx:r syy:r sxy:r dsxx_dy:r dsyy_dy:r dsxy_dy:r'), &
@@ -53,7 +55,12 @@ module ddc_input_namelist_groups
                    'p0:r steps:i'), &
         group_spec('growth', .false., 'steps:i toughness:r increment:r element_length:r '// &
                    'tips:c fractures:c criterion:c max_corrections:i new_mu:r new_sf:r '// &
-                   'angle_range:r angle_step:r work_threshold:r')]
+                   'angle_range:r angle_step:r work_threshold:r '// &
+                   'new_tensile_strength:r new_sf_residual:r new_mu_dynamic:r '// &
+                   'new_slip_weakening_distance:r new_opening_weakening_distance:r '// &
+                   'new_shear_stiffness:r new_normal_stiffness:r'), &
+        group_spec('initiation', .false., 'tensile_strength:r probe_distance:r flaw_x:r '// &
+                   'flaw_y:r flaw_length:r')]
 
     !> Where the occurrences of one group are in the file.
     type :: group_record

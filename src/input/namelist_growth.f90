@@ -5,8 +5,8 @@
 !> grows).
 module ddc_input_namelist_growth
     use ddc_kinds, only: wp
-    use ddc_model_types, only: model_type, growth_tips_names, growth_criterion_names, &
-        symmetry_none
+    use ddc_model_types, only: model_type, growth_options, growth_tips_names, &
+        growth_criterion_names, new_law_names, symmetry_none
     use ddc_model_limits, only: quantity_positive, quantity_non_negative
     use ddc_text, only: itoa, rtoa, lower, find_name, quoted_list
     use ddc_input_namelist_groups, only: group_record, message_list, add, group_prefix, &
@@ -27,8 +27,8 @@ module ddc_input_namelist_growth
 contains
 
     !> &growth steps, toughness, increment, element_length, tips, fractures, criterion,
-    !> max_corrections, new_mu, new_sf,
-    !> angle_range, angle_step, work_threshold / (optional). Read after every other group: the
+    !> max_corrections, new_mu, new_sf, angle_range, angle_step, work_threshold, the strength
+    !> laws of new elements (new_law_names) / (optional). Read after every other group: the
     !> fracture names and the other groups are checked against it.
     subroutine read_growth_group(unit, text, path, groups, known, model, messages)
         !> Unit of the open input file
@@ -46,14 +46,19 @@ contains
         integer :: steps, max_corrections
         real(wp) :: toughness, increment, element_length, new_mu, new_sf
         real(wp) :: angle_range, angle_step, work_threshold
+        real(wp) :: new_tensile_strength, new_sf_residual, new_mu_dynamic, &
+            new_slip_weakening_distance, new_opening_weakening_distance, new_shear_stiffness, &
+            new_normal_stiffness
         character(len=text_length) :: tips, criterion
         character(len=name_length), allocatable :: fractures(:)
         character(len=512) :: iomsg
         character(len=:), allocatable :: prefix
         integer :: stat, k
         namelist /growth/ steps, toughness, increment, element_length, tips, fractures, &
-            criterion, max_corrections, new_mu, new_sf, &
-            angle_range, angle_step, work_threshold
+            criterion, max_corrections, new_mu, new_sf, angle_range, angle_step, &
+            work_threshold, new_tensile_strength, new_sf_residual, new_mu_dynamic, &
+            new_slip_weakening_distance, new_opening_weakening_distance, new_shear_stiffness, &
+            new_normal_stiffness
 
         associate (info => groups(g_growth))
             if (info%count == 0) return
@@ -71,6 +76,13 @@ contains
             angle_range = 90.0_wp
             angle_step = 5.0_wp
             work_threshold = unset_real
+            new_tensile_strength = unset_real
+            new_sf_residual = unset_real
+            new_mu_dynamic = unset_real
+            new_slip_weakening_distance = unset_real
+            new_opening_weakening_distance = unset_real
+            new_shear_stiffness = unset_real
+            new_normal_stiffness = unset_real
             rewind (unit)
             read (unit, nml=growth, iostat=stat, iomsg=iomsg)
             if (stat /= 0) then
@@ -104,6 +116,9 @@ contains
             g%override_sf = check_scalar(new_sf, 'new_sf', .false., prefix, messages, &
                                          quantity_non_negative)
             if (g%override_sf) g%new_sf = new_sf
+            call check_new_laws([new_tensile_strength, new_sf_residual, new_mu_dynamic, &
+                                 new_slip_weakening_distance, new_opening_weakening_distance, &
+                                 new_shear_stiffness, new_normal_stiffness], prefix, g, messages)
             k = find_name(lower(trim(adjustl(tips))), growth_tips_names)
             if (k == 0) then
                 call add(messages, prefix//"tips = '"//trim(adjustl(tips))//"' is not one of "// &
@@ -156,6 +171,48 @@ contains
         if (check_scalar(work_threshold, 'work_threshold', .false., prefix, messages, &
                          quantity_positive)) model%growth%work_threshold = work_threshold
     end subroutine check_work_search
+
+    !> The strength laws of new contact elements, in the order of new_law_names: each one
+    !> given is kept (tensile strength, residuals and distances not negative, stiffnesses
+    !> positive), and a residual may not exceed the strength it falls from (new_sf, new_mu)
+    !> when both are given.
+    subroutine check_new_laws(values, prefix, g, messages)
+        !> The values read (unset_real: not given), shape (size(new_law_names))
+        real(wp), intent(in) :: values(:)
+        !> "file: &growth (line n): "
+        character(len=*), intent(in) :: prefix
+        !> override_law and new_law are set; override_mu, override_sf are read
+        type(growth_options), intent(inout) :: g
+        !> Violations are added here
+        type(message_list), intent(inout) :: messages
+        !> Places in new_law_names: the residuals, and the first of the stiffnesses
+        integer, parameter :: sf_residual_at = 2, mu_dynamic_at = 3, stiffness_first = 6
+        integer :: k
+
+        do k = 1, size(new_law_names)
+            g%override_law(k) = check_scalar(values(k), trim(new_law_names(k)), .false., &
+                prefix, messages, merge(quantity_positive, quantity_non_negative, &
+                                        k >= stiffness_first))
+            if (g%override_law(k)) g%new_law(k) = values(k)
+        end do
+        if (g%override_sf .and. g%override_law(sf_residual_at)) call check_below( &
+            g%new_law(sf_residual_at), g%new_sf, 'new_sf_residual', 'new_sf', 'cohesion')
+        if (g%override_mu .and. g%override_law(mu_dynamic_at)) call check_below( &
+            g%new_law(mu_dynamic_at), g%new_mu, 'new_mu_dynamic', 'new_mu', 'friction')
+
+    contains
+
+        !> A residual above the strength it falls from is an error.
+        subroutine check_below(residual, strength, residual_name, strength_name, what)
+            real(wp), intent(in) :: residual, strength
+            character(len=*), intent(in) :: residual_name, strength_name, what
+
+            if (residual > strength) call add(messages, prefix//residual_name//' = '// &
+                rtoa(residual)//' exceeds '//strength_name//' = '//rtoa(strength)//' (the '// &
+                what//' after slip must not exceed the intact one)')
+        end subroutine check_below
+
+    end subroutine check_new_laws
 
     !> Growth with implicit image elements is not available.
     subroutine check_combinations(prefix, groups, model, messages)

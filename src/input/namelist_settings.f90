@@ -275,7 +275,7 @@ contains
         character(len=*), intent(in) :: text
         character(len=*), intent(in) :: path
         type(group_record), intent(in) :: info
-        !> The model has contact elements
+        !> The model has contact elements, or grows (a growing geometry does not superpose)
         logical, intent(in) :: has_contact
         type(model_type), intent(inout) :: model
         type(message_list), intent(inout) :: messages

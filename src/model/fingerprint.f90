@@ -122,10 +122,23 @@ contains
             call add_reals(hash, [model%growth%angle_range, model%growth%angle_step, &
                                   model%growth%work_threshold])
         end if
+        ! Only when given: the fingerprints of models without them stay as they were.
+        if (any(model%growth%override_law)) then
+            call add_integers(hash, merge(1, 0, model%growth%override_law))
+            call add_reals(hash, model%growth%new_law)
+        end if
         if (allocated(model%growth%fracture_grows)) then
             call add_integers(hash, merge(1, 0, model%growth%fracture_grows))
         else
             call add_integers(hash, [-1])
+        end if
+        ! Only a model with &initiation hashes its options: every other model's fingerprint
+        ! stays as it was.
+        if (model%initiation%active) then
+            call add_reals(hash, [model%initiation%tensile_strength, &
+                                  model%initiation%probe_distance, model%initiation%flaw_length])
+            call add_allocated_reals(hash, model%initiation%flaw_x)
+            call add_allocated_reals(hash, model%initiation%flaw_y)
         end if
     end subroutine hash_model
 

@@ -452,7 +452,7 @@ contains
         if (stat /= 0) return
         laid = ieee_value(1.0_wp, ieee_quiet_nan)
         if (allocated(values) .and. action%kept > 0) then
-            origin = origin_of(action, column, size(laid, 1))
+            origin = origin_of(action, column, size(laid, 1), size(values, 1))
             made = pack([(i, i = 1, size(origin))], origin > 0)
             laid(made, 1:action%kept) = values(origin(made), 1:action%kept)
         end if
@@ -479,7 +479,7 @@ contains
         action%stat = stat
         if (stat /= 0) return
         if (allocated(values) .and. action%kept > 0) then
-            origin = origin_of(action, column, size(laid, 1))
+            origin = origin_of(action, column, size(laid, 1), size(values, 1))
             made = pack([(i, i = 1, size(origin))], origin > 0)
             laid(made, 1:action%kept) = values(origin(made), 1:action%kept)
         end if
@@ -508,20 +508,21 @@ contains
     end subroutine lay_out_strings
 
     !> The row of a table that each row of the laid out table takes (0: none).
-    pure function origin_of(layout, column, rows) result(origin)
+    pure function origin_of(layout, column, rows, held) result(origin)
         !> The layout
         type(record_layout), intent(in) :: layout
         !> The table's column
         type(record_column), intent(in) :: column
-        !> Rows of the laid out table
-        integer, intent(in) :: rows
+        !> Rows of the laid out table, and of the table before
+        integer, intent(in) :: rows, held
         integer :: origin(rows)
         integer :: i
 
         if (column%kind == column_element_steps .or. column%kind == column_strength_steps) then
             origin = layout%origin
         else
-            origin = [(i, i = 1, rows)]
+            ! Rows added since (the ends of fractures started inside the rock) have none
+            origin = [(merge(i, 0, i <= held), i = 1, rows)]
         end if
     end function origin_of
 

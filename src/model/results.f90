@@ -3,6 +3,7 @@ module ddc_model_results
     use ddc_kinds, only: wp
     use ddc_contact_states, only: state_stick, state_slip, state_open
     use ddc_contact_counts, only: factor_counts
+    use ddc_model_initiations, only: initiation_record
     implicit none
     private
 
@@ -245,6 +246,8 @@ module ddc_model_results
         type(history_record) :: history
         !> Every step of fracture growth, when the model grows
         type(growth_record) :: growth
+        !> The new fractures started inside the rock, when the model has &initiation
+        type(initiation_record) :: initiations
     end type model_results
 
 end module ddc_model_results

@@ -24,6 +24,8 @@ module ddc_model_types
     public :: observation_grid, observation_line, observation_points, observation_kind_names
     public :: growth_options, growth_tips_all, growth_tips_most_critical, growth_tips_names
     public :: growth_criterion_mts, growth_criterion_work, growth_criterion_names
+    public :: initiation_options
+    public :: new_law_names
     public :: default_block_size, no_residual_drop, rigid_joint, tensile_cap
     public :: element_array_action, for_each_element_array, select_elements
 
@@ -220,6 +222,12 @@ module ddc_model_types
     !> Input names of the criteria, indexed by criterion
     character(len=*), parameter :: growth_criterion_names(2) = [character(len=4) :: 'mts', &
         'work']
+    !> The &growth variables of the strength laws of new contact elements (growth_options
+    !> new_law), each the element_set array of the same name without 'new_'
+    character(len=*), parameter :: new_law_names(7) = [character(len=30) :: &
+        'new_tensile_strength', 'new_sf_residual', 'new_mu_dynamic', &
+        'new_slip_weakening_distance', 'new_opening_weakening_distance', &
+        'new_shear_stiffness', 'new_normal_stiffness']
 
     !> Fracture growth (&growth; docs/theory/growth.md#the-growth-step): quasi-static, one increment
     !> per step.
@@ -251,7 +259,28 @@ module ddc_model_types
         logical :: override_mu = .false., override_sf = .false.
         !> Friction [-] and cohesion [stress unit] of new contact elements, when overridden
         real(wp) :: new_mu = 0.0_wp, new_sf = 0.0_wp
+        !> New contact elements take new_law(k) for the strength law new_law_names(k) where
+        !> override_law(k), instead of the tip element's given value
+        logical :: override_law(size(new_law_names)) = .false.
+        real(wp) :: new_law(size(new_law_names)) = 0.0_wp
     end type growth_options
+
+    !> New fractures inside the rock (&initiation;
+    !> docs/fracture-growth.md#new-fractures-inside-the-rock): tails beside contact elements
+    !> and cracks at flaw points, where the maximum tension reaches the rock's tensile
+    !> strength.
+    type :: initiation_options
+        !> The model starts new fractures (an &initiation group was given)
+        logical :: active = .false.
+        !> Tensile strength T0 of the rock [stress unit]
+        real(wp) :: tensile_strength = 0.0_wp
+        !> Distance of the probe points from the elements' ends [length unit]
+        real(wp) :: probe_distance = 0.0_wp
+        !> Length of a flaw's first crack [length unit]; 0: the growth increment
+        real(wp) :: flaw_length = 0.0_wp
+        !> Flaw points [length unit], shape (flaws)
+        real(wp), allocatable :: flaw_x(:), flaw_y(:)
+    end type initiation_options
 
     !> A complete model, independent of the input format it came from.
     type :: model_type
@@ -290,6 +319,8 @@ module ddc_model_types
         type(load_path_type) :: load_path
         !> Fracture growth; inactive unless the input has &growth
         type(growth_options) :: growth
+        !> New fractures inside the rock, when it grows
+        type(initiation_options) :: initiation
         !> Fingerprint of the model as read (ddc_model_fingerprint), recorded by app before
         !> a run changes the model (growth adds elements); unallocated until then
         character(len=:), allocatable :: fingerprint

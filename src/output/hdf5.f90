@@ -48,6 +48,7 @@ module ddc_output_hdf5
         explain_write_failure
     use ddc_output_hdf5_handles, only: h5_object, open_session, close_session, create_file, &
         close_file, create_group, close_group
+    use ddc_output_hdf5_initiations, only: write_initiations
     use ddc_output_hdf5_records, only: write_history, write_growth, write_growth_elements
     use ddc_output_hdf5_write, only: write_real_1d, write_int_1d, write_real_dataset, &
         write_int_dataset, write_string_1d, write_attribute
@@ -116,6 +117,8 @@ contains
                                                                   results%history, error)
             if (allocated(results%growth%step)) call write_growth(root, model, results%growth, &
                                                                   error)
+            if (allocated(results%growth%step)) call write_initiations(root, model, &
+                                                                       results%initiations, error)
             call write_attribute(root, 'complete', 1, error)
             call close_file(root, error)
         end if

@@ -39,7 +39,7 @@ contains
     end function wall_seconds
 
     !> Solve a validated model and compute every result the output needs.
-    subroutine run_model(model, results, error, engine, ds_previous)
+    subroutine run_model(model, results, error, engine, ds_previous, strengths)
         !> A validated model with element geometry computed
         type(model_type), intent(in) :: model
         !> Element results, tips, fields and the solver record
@@ -51,6 +51,10 @@ contains
         !> Total slip of every element before this solve (friction memory of a growth run
         !> under a loading history; default 0; not with an engine), shape (n) [length]
         real(wp), intent(in), optional :: ds_previous(:)
+        !> The fault law of every element: on entry the values in force and slip path before
+        !> this solve (with ds_previous; not with an engine), on return those after it
+        !> (contact models)
+        type(fault_law), intent(inout), optional :: strengths
         real(wp), allocatable :: remote_shear(:), remote_normal(:), matrix(:, :)
         type(fault_law) :: law
         type(element_set) :: loaded
@@ -82,10 +86,11 @@ contains
                                   e%ds, e%dn, e%state, rec, error, law)
             else
                 call solve_here(loaded, g, nu, remote_shear, remote_normal, model%solver, e%ds, &
-                                e%dn, e%state, rec, matrix, error, law, ds_previous)
+                                e%dn, e%state, rec, matrix, error, law, ds_previous, strengths)
             end if
             if (allocated(error)) return
             if (allocated(law%sf_in_force)) then
+                if (present(strengths)) strengths = law
                 e%sf_in_force = law%sf_in_force
                 e%tensile_in_force = law%tensile_in_force
                 e%mu_in_force = law%mu_in_force
@@ -210,7 +215,7 @@ contains
     !> The solve in this process: contact models by solve_frictional, the others by
     !> solve_elastic (method 'lu'); the influence matrix of the solve is handed back.
     subroutine solve_here(elements, shear_modulus, nu, remote_shear, remote_normal, options, &
-                          ds, dn, state, record, matrix, error, law, ds_previous)
+                          ds, dn, state, record, matrix, error, law, ds_previous, law_start)
         type(element_set), intent(in) :: elements
         real(wp), intent(in) :: shear_modulus, nu
         real(wp), intent(in) :: remote_shear(:), remote_normal(:)
@@ -225,11 +230,13 @@ contains
         type(fault_law), intent(out) :: law
         !> Total slip before this solve (default 0), shape (n) [length]
         real(wp), intent(in), optional :: ds_previous(:)
+        !> Values in force and slip path before this solve (default: the given values)
+        type(fault_law), intent(in), optional :: law_start
 
         if (any(elements%condition == condition_contact)) then
             call solve_frictional(elements, shear_modulus, nu, remote_shear, remote_normal, &
                                   options, ds, dn, state, record, matrix, error, law, &
-                                  ds_previous)
+                                  ds_previous, law_start)
         else
             record%method = 'lu'
             call solve_elastic(elements, shear_modulus, nu, remote_shear, remote_normal, ds, dn, &

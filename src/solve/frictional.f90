@@ -66,7 +66,7 @@ contains
     !> Solve a model with at least one contact element.
     subroutine solve_frictional(elements, shear_modulus, nu, remote_shear, remote_normal, &
                                 options, ds, dn, state, record, matrix, error, law, &
-                                ds_previous)
+                                ds_previous, law_start)
         !> Elements with geometry computed
         type(element_set), intent(in) :: elements
         !> Shear modulus [stress unit] and Poisson's ratio [-]
@@ -92,6 +92,9 @@ contains
         !> Total slip of every element before this solve (friction memory of a growth run
         !> under a loading history; default 0), shape (n) [length]
         real(wp), intent(in), optional :: ds_previous(:)
+        !> The fault law of every element with the values in force and slip path before this
+        !> solve (a growth run under a loading history; default: the given values, no slip)
+        type(fault_law), intent(in), optional :: law_start
         type(condensed_contact) :: sys
         type(contact_result) :: res
         type(fault_law) :: contact_law
@@ -103,6 +106,7 @@ contains
         allocate (shift(2 * sys%nc), y_load(2 * sys%nf))
         call contact_load(sys, elements, remote_shear, remote_normal, shift, y_load)
         contact_law = fault_law_of(elements, sys%contact)
+        if (present(law_start)) call contact_law%take_in_force(law_start, sys%contact)
         compliance = contact_law%joint_compliance()
         ss = shift(1:sys%nc)
         sn = shift(sys%nc + 1:)

@@ -16,14 +16,17 @@
 !>   stress, the angle in (-90, 90]); not combinable with sxx, syy, sxy;
 !> - mu, sf, pressure: on every element of every fracture;
 !> - fracture(K)%mu, fracture(K)%sf, fracture(K)%pressure: on every element of fracture K
-!>   (1-based, in input order).
+!>   (1-based, in input order);
+!> - new_mu, new_sf and the strength laws of new elements (new_law_names: new_tensile_strength
+!>   ...): what the new contact elements of a growth run take.
 module ddc_sweep_tasks
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
-    use ddc_model_types, only: model_type, domain_half_plane, no_residual_drop
+    use ddc_model_types, only: model_type, growth_options, domain_half_plane, no_residual_drop, &
+        new_law_names
     use ddc_text, only: itoa, lower, short_real, add_message, messages_error
     use ddc_model_limits, only: range_problem, quantity_any, quantity_youngs_modulus, &
-        quantity_poissons_ratio, quantity_non_negative
+        quantity_poissons_ratio, quantity_non_negative, quantity_positive
     implicit none
     private
 
@@ -45,15 +48,21 @@ module ddc_sweep_tasks
     !> What a parameter changes in the model
     integer, parameter :: target_youngs = 1, target_poisson = 2, target_sxx = 3, &
                           target_syy = 4, target_sxy = 5, target_s1 = 6, target_s3 = 7, &
-                          target_angle = 8, target_mu = 9, target_sf = 10, target_pressure = 11
+                          target_angle = 8, target_mu = 9, target_sf = 10, target_pressure = 11, &
+                          target_new_mu = 12, target_new_sf = 13
+    !> The targets of new_law_names(k) are new_law_before + k
+    integer, parameter :: new_law_before = 13
     !> Names of the targets, indexed by target (per fracture: fracture(K)%<name>)
-    character(len=*), parameter :: target_names(11) = [character(len=14) :: &
-        'youngs_modulus', 'poissons_ratio', 'sxx', 'syy', 'sxy', 'remote_s1', 'remote_s3', &
-        'remote_angle', 'mu', 'sf', 'pressure']
+    character(len=*), parameter :: target_names(new_law_before + size(new_law_names)) = &
+        [character(len=30) :: 'youngs_modulus', 'poissons_ratio', 'sxx', 'syy', 'sxy', &
+         'remote_s1', 'remote_s3', 'remote_angle', 'mu', 'sf', 'pressure', 'new_mu', 'new_sf', &
+         new_law_names]
     !> The list of parameter names, for messages and the help text
     character(len=*), parameter :: parameter_help = 'youngs_modulus, poissons_ratio, '// &
         'sxx, syy, sxy, remote_s1, remote_s3, remote_angle, mu, sf, pressure, '// &
-        'fracture(K)%mu, fracture(K)%sf, fracture(K)%pressure'
+        'fracture(K)%mu, fracture(K)%sf, fracture(K)%pressure, new_mu, new_sf, '// &
+        'new_tensile_strength, new_sf_residual, new_mu_dynamic, new_slip_weakening_distance, '// &
+        'new_opening_weakening_distance, new_shear_stiffness, new_normal_stiffness (&growth)'
 
     real(wp), parameter :: degree = acos(-1.0_wp) / 180.0_wp
 
@@ -146,8 +155,15 @@ contains
             problem = range_problem(quantity_youngs_modulus, value)
         case (target_poisson)
             problem = range_problem(quantity_poissons_ratio, value)
-        case (target_mu, target_sf)
+        case (target_mu, target_sf, target_new_mu, target_new_sf)
             problem = range_problem(quantity_non_negative, value)
+        case (new_law_before + 1:new_law_before + size(new_law_names))
+            ! The new joint stiffnesses are positive, the other laws not negative.
+            if (index(target_names(target), 'stiffness') > 0) then
+                problem = range_problem(quantity_positive, value)
+            else
+                problem = range_problem(quantity_non_negative, value)
+            end if
         case default
             problem = range_problem(quantity_any, value)
         end select
@@ -272,6 +288,7 @@ contains
                 ! the remote stress: task_stress
             end select
         end do
+        model%growth = task_growth(model%growth, sweep, values)
         model%sweep%task = task
         model%sweep%tasks = sweep%tasks
         model%sweep%names = sweep%names
@@ -378,6 +395,7 @@ contains
         values = task_values(sweep, task)
         problem = half_plane_problem(model, sweep, values)
         if (len(problem) == 0) problem = weakening_problem(model, sweep, values)
+        if (len(problem) == 0) problem = new_law_problem(model, sweep, values)
         if (len(problem) > 0) problem = sweep%where//'task '//itoa(task)//' ('// &
             task_label(sweep, task)//'): '//problem
     end function task_problem
@@ -480,6 +498,74 @@ contains
         end function above_intact
 
     end function weakening_problem
+
+    !> The growth options of a task: new_mu, new_sf and the strength laws of new elements as
+    !> the task sets them, the base model's where it does not.
+    pure function task_growth(base, sweep, values) result(growth)
+        !> The base model's growth options
+        type(growth_options), intent(in) :: base
+        !> The sweep (validated against this model)
+        type(sweep_definition), intent(in) :: sweep
+        !> The task's value of each parameter, shape (np)
+        real(wp), intent(in) :: values(:)
+        type(growth_options) :: growth
+        integer :: p, k
+
+        growth = base
+        do p = 1, size(values)
+            select case (sweep%targets(p))
+            case (target_new_mu)
+                growth%override_mu = .true.
+                growth%new_mu = values(p)
+            case (target_new_sf)
+                growth%override_sf = .true.
+                growth%new_sf = values(p)
+            case (new_law_before + 1:new_law_before + size(new_law_names))
+                k = sweep%targets(p) - new_law_before
+                growth%override_law(k) = .true.
+                growth%new_law(k) = values(p)
+            case default
+                ! not a law of new elements
+            end select
+        end do
+    end function task_growth
+
+    !> A task that sets a law of new elements in a model without &growth, or whose new
+    !> elements would take a residual cohesion or friction above the intact one (refused in
+    !> &growth too): why, '' when there is no problem.
+    function new_law_problem(model, sweep, values) result(problem)
+        !> The base model (read and checked)
+        type(model_type), intent(in) :: model
+        !> The sweep (validated against this model)
+        type(sweep_definition), intent(in) :: sweep
+        !> The task's value of each parameter, shape (np)
+        real(wp), intent(in) :: values(:)
+        !> The problem, '' when there is none
+        character(len=:), allocatable :: problem
+        !> Places in new_law_names of the residual cohesion and friction
+        integer, parameter :: sf_residual_at = 2, mu_dynamic_at = 3
+        type(growth_options) :: g
+
+        problem = ''
+        if (.not. any(sweep%targets >= target_new_mu)) return
+        if (.not. model%growth%active) then
+            problem = 'the laws of new elements (new_mu, new_sf, new_tensile_strength ...) '// &
+                      'need a &growth group'
+            return
+        end if
+        g = task_growth(model%growth, sweep, values)
+        if (g%override_sf .and. g%override_law(sf_residual_at)) then
+            if (g%new_law(sf_residual_at) > g%new_sf) problem = 'new_sf_residual = '// &
+                short_real(g%new_law(sf_residual_at))//' exceeds new_sf = '// &
+                short_real(g%new_sf)//' (the cohesion after slip must not exceed the intact one)'
+        end if
+        if (len(problem) > 0) return
+        if (g%override_mu .and. g%override_law(mu_dynamic_at)) then
+            if (g%new_law(mu_dynamic_at) > g%new_mu) problem = 'new_mu_dynamic = '// &
+                short_real(g%new_law(mu_dynamic_at))//' exceeds new_mu = '// &
+                short_real(g%new_mu)//' (the friction after slip must not exceed the static one)'
+        end if
+    end function new_law_problem
 
     !> True for the targets that describe the remote stress by principal stresses.
     elemental logical function is_principal(target)

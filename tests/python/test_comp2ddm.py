@@ -13,8 +13,11 @@ and run with the real executable ($DDC2D_EXE, see conftest.py):
   2, no output file.
 """
 
+import contextlib
 import csv
+import io
 import math
+import os
 import shutil
 import subprocess
 import sys
@@ -27,6 +30,7 @@ import pytest
 import xlwt
 
 from conftest import REPO_ROOT, ddc2d_exe
+from ddc2d import comp2ddm2nml
 
 SCRIPT = REPO_ROOT / "scripts" / "comp2ddm2nml"
 REFERENCE = REPO_ROOT / "tests" / "reference" / "ritz2012" / "R2_straight_n100_mu0.6_sf0"
@@ -176,7 +180,28 @@ def run(args, cwd):
 
 
 def convert(workbook, cwd, *options):
+    """The converter as a program (scripts/comp2ddm2nml): exit status, stdout, stderr."""
     return run([sys.executable, SCRIPT, workbook, *options], cwd)
+
+
+def convert_in_process(workbook, cwd, *options):
+    """The converter's main() in this process, in cwd, as convert() returns it: the
+    bad-workbook cases check its messages, and the hundred of them as programs would
+    spend most of their time starting Python (the program's own exit status and streams
+    are checked by convert() in the other tests)."""
+    args = [str(a) for a in (workbook, *options)]
+    stdout, stderr = io.StringIO(), io.StringIO()
+    previous = os.getcwd()
+    os.chdir(cwd)
+    try:
+        with contextlib.redirect_stdout(stdout), contextlib.redirect_stderr(stderr):
+            try:
+                status = comp2ddm2nml.main(args)
+            except SystemExit as stop:
+                status = stop.code
+    finally:
+        os.chdir(previous)
+    return subprocess.CompletedProcess(args, status, stdout.getvalue(), stderr.getvalue())
 
 
 def convert_and_solve(workbook, tmp_path, stem, *options):
@@ -600,7 +625,7 @@ def test_bad_workbook(case, fmt, labels, tmp_path):
     workbook = write_workbook(tmp_path / f"bad_{name}.{fmt}", sheets)
     out = tmp_path / "out"
     out.mkdir()
-    done = convert(workbook.name, tmp_path, "-o", out / "model.nml")
+    done = convert_in_process(workbook.name, tmp_path, "-o", out / "model.nml")
     assert done.returncode == 2, done.stdout + done.stderr
     assert done.stdout == ""
     lines = done.stderr.strip().splitlines()
@@ -625,7 +650,8 @@ def test_bad_cases_are_good_without_the_change(fmt, tmp_path):
     for labels in (False, True):
         workbook = write_workbook(tmp_path / f"good_{labels}.{fmt}",
                                   layout(small_model(), labels=labels))
-        done = convert(workbook.name, tmp_path, "-o", tmp_path / f"good_{labels}.nml")
+        done = convert_in_process(workbook.name, tmp_path, "-o",
+                                  tmp_path / f"good_{labels}.nml")
         assert done.returncode == 0, done.stderr
 
 

@@ -185,6 +185,22 @@ def check_tail_cracks(f):
     check_smooth_growth(f, "fault", 11)
 
 
+def check_bend_tails(f):
+    """The first new fracture is a tail at the bend vertex (0, 0), in step 1, above the rock's
+    strength; it runs perpendicular to the maximum tension there (61.1 degrees from +x, 0.5
+    degree), grows and arrests; the run arrests."""
+    rows = f["growth/initiations"]
+    assert rows["kind"][0] == 1 and rows["step"][0] == 1
+    assert (rows["x"][0], rows["y"][0]) == (0.0, 0.0)
+    assert rows["tension"][0] >= rows.attrs["tensile_strength"]
+    assert abs(rows["angle"][0] - 61.1) < 0.5
+    names = [decode(n) for n in f["fractures/name"][()]]
+    assert names[rows["fracture_id"][0] - 1] == "fault_tail1"
+    assert decode(f["growth"].attrs["end_reason"]) == "arrested"
+    grown = f["growth/length"][()][f["growth/fracture_id"][()] == rows["fracture_id"][0]]
+    assert grown.sum() > 0.5
+
+
 def check_growth_along_path(f, first_load_step, length):
     """Growth along a load path: nothing grows before `first_load_step` (1-based; the first
     load step with K_eq at the toughness), both tips end `length` long (to 1e-9,
@@ -199,6 +215,18 @@ def check_growth_along_path(f, first_load_step, length):
     assert np.all(grown[:first_load_step - 1] == 0.0) and np.all(np.diff(grown, axis=0) >= 0)
     created = f["elements/created_step"][()]
     assert np.all(f["elements/state"][()][created > 0] == STATE_CODES["open"])
+
+
+def check_grown_strength_laws(f):
+    """The new elements take the tip element's laws as given and &growth's new_sf and
+    new_tensile_strength; the input elements keep theirs."""
+    e = f["elements"]
+    new = e["created_step"][()] > 0
+    assert new.sum() >= 4
+    for name, grown, given in [("sf_residual", 0.2, 0.2), ("mu_dynamic", 0.45, 0.45),
+                               ("slip_weakening_distance", 1e-4, 1e-4), ("sf", 2.0, 1.0),
+                               ("tensile_strength", 3.0, 1.0)]:
+        assert np.all(e[name][()][new] == grown) and np.all(e[name][()][~new] == given), name
 
 
 def check_echelon_linking(f):
@@ -299,8 +327,10 @@ EXPECTED = {
     "slip_weakening_thrust": check_slip_weakening_thrust,
     "wing_cracks_sliding_flaw": check_wings,
     "fault_tail_cracks": check_tail_cracks,
+    "fault_bend_tails": check_bend_tails,
     "wings_rising_axial_load": lambda f: check_growth_along_path(f, 6, 1.0546875),
     "tail_cracks_rising_pore_pressure": lambda f: check_growth_along_path(f, 1, 0.955),
+    "fault_grown_with_strength_laws": check_grown_strength_laws,
     "echelon_cracks_linking": check_echelon_linking,
     "hydraulic_fracture_toward_fault": check_hydraulic_fracture,
     "joint_growing_to_surface": check_joint_to_surface,
