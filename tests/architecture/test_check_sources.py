@@ -237,12 +237,14 @@ def test_growth_criterion_without_its_case_fails(tree, capsys):
                      "growth_criterion_planted")
     expect_violation(tree, capsys, "src/growth/criterion.f90: kink_angles has no case for "
                      "growth_criterion_planted")
-    # with its case in both dispatches, it passes
+    expect_violation(tree, capsys, "src/growth/criterion.f90: flaw_direction has no case for "
+                     "growth_criterion_planted")
+    # with its case in every dispatch, it passes
     path = tree / "src/growth/criterion.f90"
     text = path.read_text()
-    assert text.count("        case (growth_criterion_mts)\n") == 2
-    path.write_text(text.replace("        case (growth_criterion_mts)\n",
-                                 "        case (growth_criterion_mts, growth_criterion_planted)\n"))
+    assert text.count("        case (growth_criterion_mts") == 3
+    path.write_text(text.replace("        case (growth_criterion_mts",
+                                 "        case (growth_criterion_planted, growth_criterion_mts"))
     assert run_checks(tree, capsys)[0] == 0
 
 
