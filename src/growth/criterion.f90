@@ -8,22 +8,28 @@
 !> - flaw_direction: the direction of a new fracture at a flaw point (&initiation).
 !>
 !> growth_criterion_mts: the maximum tangential stress (ddc_growth_mts), corrected for
-!> local symmetry (ddc_growth_corrector). A criterion the growth code does not know is an
-!> internal error (the input reader accepts only the names of growth_criterion_names).
+!> local symmetry (ddc_growth_corrector). growth_criterion_work: the largest external work
+!> per unit of new fracture (ddc_growth_trials); its predictor is straight ahead, every tip
+!> that may grow is searched (searched_tip) and the search picks the most critical tip. A
+!> criterion the growth code does not know is an internal error (the input reader accepts
+!> only the names of growth_criterion_names).
 !> Beside them the choice of the most critical tip by K_eq.
 module ddc_growth_criterion
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_internal_error
     use ddc_text, only: itoa
-    use ddc_model_types, only: model_type, growth_options, growth_criterion_mts
+    use ddc_model_types, only: model_type, growth_options, growth_criterion_mts, &
+        growth_criterion_work, growth_tips_most_critical
+    use ddc_model_results, only: model_results
     use ddc_growth_solver, only: growth_solver
     use ddc_growth_kinks, only: step_kinks
     use ddc_growth_mts, only: mts_angle, equivalent_k
     use ddc_growth_corrector, only: correct_kinks
+    use ddc_growth_trials, only: search_kinks
     implicit none
     private
 
-    public :: assess_tip, kink_angles, most_critical, flaw_direction
+    public :: assess_tip, kink_angles, most_critical, flaw_direction, searched_tip, picks_by_k
 
     !> K_eq within this fraction of the largest count as tied for the most critical tip
     real(wp), parameter :: tie_tolerance = 1.0e-9_wp
@@ -49,6 +55,9 @@ contains
         case (growth_criterion_mts)
             theta = mts_angle(k1, k2)
             k_eq = equivalent_k(k1, k2, theta)
+        case (growth_criterion_work)
+            ! K_eq at the MTS angle for the record; the search starts straight ahead.
+            k_eq = equivalent_k(k1, k2, mts_angle(k1, k2))
         case default
             call unknown_criterion('assess_tip', options%criterion, error)
         end select
@@ -56,7 +65,9 @@ contains
 
     !> The direction of a flaw's first crack under the model's criterion, from the maximum
     !> tension at the flaw point (the field without a crack there). MTS opens it against
-    !> that tension: perpendicular to it.
+    !> that tension: perpendicular to it. So does 'work': a short open crack draws the work
+    !> pi a^2 (1 - nu^2) |t|^2 / E from the traction t across it, largest across the maximum
+    !> tension.
     subroutine flaw_direction(options, tension_direction, along, error)
         !> The growth options (criterion)
         type(growth_options), intent(in) :: options
@@ -68,7 +79,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         select case (options%criterion)
-        case (growth_criterion_mts)
+        case (growth_criterion_mts, growth_criterion_work)
             along = [-tension_direction(2), tension_direction(1)]
         case default
             along = tension_direction
@@ -78,11 +89,13 @@ contains
 
     !> The applied kink angles of the step's growing tips under the model's criterion; their
     !> reasons, solves and links, and the last trial solved (ddc_growth_kinks).
-    subroutine kink_angles(solver, model, created, options, kinks, error)
+    subroutine kink_angles(solver, model, before, created, options, kinks, error)
         !> The solves of the run (the base: model)
         type(growth_solver), intent(inout) :: solver
         !> The model before growing (without observations)
         type(model_type), intent(in) :: model
+        !> Its solution
+        type(model_results), intent(in) :: before
         !> Growth step that created each element of model, shape (n)
         integer, intent(in) :: created(:)
         !> The growth options (criterion, and what it reads)
@@ -95,10 +108,34 @@ contains
         select case (options%criterion)
         case (growth_criterion_mts)
             call correct_kinks(solver, model, created, options, kinks, error)
+        case (growth_criterion_work)
+            call search_kinks(solver, model, before, created, options, kinks, error)
         case default
             call unknown_criterion('kink_angles', options%criterion, error)
         end select
     end subroutine kink_angles
+
+    !> Whether a tip that may grow is searched in this step: under 'mts' when it is critical
+    !> (K_eq >= toughness), under 'work' always (its trials decide).
+    pure logical function searched_tip(options, k_eq)
+        !> The growth options (criterion, toughness)
+        type(growth_options), intent(in) :: options
+        !> K_eq of the tip [stress unit * length unit**0.5]
+        real(wp), intent(in) :: k_eq
+
+        searched_tip = options%criterion == growth_criterion_work .or. &
+            k_eq >= options%toughness
+    end function searched_tip
+
+    !> Whether tips = 'most_critical' picks its tip by K_eq before the kinks are turned (not
+    !> under 'work', whose search picks it by efficiency).
+    pure logical function picks_by_k(options)
+        !> The growth options (criterion, tips)
+        type(growth_options), intent(in) :: options
+
+        picks_by_k = options%tips == growth_tips_most_critical .and. &
+            options%criterion /= growth_criterion_work
+    end function picks_by_k
 
     !> The error of a criterion code that `where` has no case for.
     subroutine unknown_criterion(where, criterion, error)

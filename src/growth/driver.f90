@@ -43,8 +43,7 @@ module ddc_growth_driver
     use ddc_kinds, only: wp
     use ddc_constants, only: pi
     use ddc_error, only: error_type, set_internal_error, set_error, exit_bad_input
-    use ddc_model_types, only: model_type, growth_options, growth_tips_most_critical, &
-        initiation_options
+    use ddc_model_types, only: model_type, growth_options, initiation_options
     use ddc_model_initiations, only: initiation_record
     use ddc_growth_initiation, only: start_fracture
     use ddc_model_results, only: model_results, growth_record, growth_grew, growth_subcritical, &
@@ -55,11 +54,13 @@ module ddc_growth_driver
     use ddc_mesh_checks, only: check_elements
     use ddc_growth_solver, only: solve_grown, solve_loaded, accept_trial, final_results, &
         solves_done
-    use ddc_growth_criterion, only: assess_tip, kink_angles, most_critical
+    use ddc_growth_criterion, only: assess_tip, kink_angles, most_critical, searched_tip, &
+        picks_by_k
     use ddc_growth_kinks, only: kink, step_kinks, grow_paths
     use ddc_growth_extension, only: tip_path, make_path, tip_element
     use ddc_growth_clearance, only: check_paths, path_clear, ends_on_link
     use ddc_growth_tips, only: growing_tip, fracture_tip, increment_for
+    use ddc_growth_work, only: append_table, append_trials
     use ddc_growth_load_steps, only: follow_growth, record_load_step, finish_load_steps
     use ddc_history_path, only: path_loads, apply_load, load_text
     use ddc_progress, only: report_progress, hold_progress, release_progress
@@ -342,12 +343,14 @@ contains
         do i = 1, size(which)
             kinks%tip(i) = tip_kink(run%work, options, run%tips(which(i)), run%now, which(i))
         end do
-        call kink_angles(run%solver, run%work, run%created, options, kinks, error)
+        call kink_angles(run%solver, run%work, run%current, run%created, options, kinks, error)
         if (allocated(error)) return
+        call append_table(run%now%trials, kinks%trials)
         do i = 1, size(which)
             t = which(i)
             run%now%reason(t) = kinks%tip(i)%reason
             run%now%solves(t) = kinks%tip(i)%solves
+            run%now%efficiency(t) = kinks%tip(i)%efficiency
             if (kinks%tip(i)%reason == growth_grew .or. &
                 kinks%tip(i)%reason == growth_corrector_failed) then
                 grown = grown + 1
@@ -422,7 +425,7 @@ contains
         n = size(tips)
         allocate (now%k1(n), now%k2(n), now%k_eq(n), now%theta(n), now%x(n), now%y(n), &
                   now%element(n), now%reason(n), now%angle(n), now%length(n), &
-                  now%k2_after(n), now%solves(n), now%link(n))
+                  now%k2_after(n), now%solves(n), now%link(n), now%efficiency(n))
         now%angle = ieee_value(1.0_wp, ieee_quiet_nan)
         now%k2_after = now%angle
         now%k1 = 0.0_wp
@@ -433,6 +436,7 @@ contains
         now%y = 0.0_wp
         now%element = 0
         now%length = 0.0_wp
+        now%efficiency = 0.0_wp
         now%solves = 0
         now%reason = reason_stopped
         do i = 1, n
@@ -447,7 +451,7 @@ contains
             call assess_tip(options, now%k1(i), now%k2(i), now%theta(i), now%k_eq(i), error)
             if (allocated(error)) return
             now%reason(i) = merge(growth_grew, growth_subcritical, &
-                                  now%k_eq(i) >= options%toughness)
+                                  searched_tip(options, now%k_eq(i)))
         end do
     end subroutine evaluate_tips
 
@@ -469,7 +473,7 @@ contains
             if (now%reason(i) /= growth_grew) cycle
             paths(i) = predictor_path(work, options, tips(i), now, i)
         end do
-        if (options%tips /= growth_tips_most_critical) then
+        if (.not. picks_by_k(options)) then
             call check_paths(work, paths, now%reason == growth_grew, problem, now%link)
             call stop_blocked()
             return
@@ -588,6 +592,9 @@ contains
         record%k2_after = [record%k2_after, pack(now%k2_after, keep)]
         record%length = [record%length, pack(now%length, keep)]
         record%reason = [record%reason, pack(now%reason, keep)]
+        record%efficiency = [record%efficiency, pack(now%efficiency, keep)]
+        if (allocated(now%trials%fracture)) call append_trials(record, step, tips%fracture, &
+                                                               tips%end, keep, now%trials)
     end subroutine append_records
 
 end module ddc_growth_driver

@@ -8,6 +8,7 @@ module ddc_growth_kinks
     use ddc_model_results, only: model_results, growth_grew, growth_corrector_failed
     use ddc_growth_extension, only: tip_path, make_path, extend_model, element_split
     use ddc_growth_clearance, only: tip_link, link_parts, ends_on_link
+    use ddc_growth_work, only: trial_table
     implicit none
     private
 
@@ -31,6 +32,9 @@ module ddc_growth_kinks
         real(wp) :: theta = 0.0_wp
         !> Solves this tip took part in (out)
         integer :: solves = 0
+        !> The work criterion's efficiency at the applied angle [stress unit * length unit]
+        !> (out; 0 under another criterion)
+        real(wp) :: efficiency = 0.0_wp
         !> growth_grew, growth_corrector_failed, growth_intersection, growth_surface (broke
         !> through the free surface), growth_linked, growth_closed or growth_enclosing (out)
         integer :: reason = growth_grew
@@ -61,6 +65,8 @@ module ddc_growth_kinks
         !> trial and solved are the base grown at the applied angles (out); otherwise that
         !> model is still to be built (grow_paths) and solved
         logical :: current = .false.
+        !> The work criterion's trials of the step (out; not allocated under another)
+        type(trial_table) :: trials
     end type step_kinks
 
 contains

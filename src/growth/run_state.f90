@@ -13,6 +13,7 @@ module ddc_growth_run_state
     use ddc_history_path, only: apply_load
     use ddc_growth_solver, only: growth_solver, solve_input, restore_memory
     use ddc_growth_clearance, only: tip_link
+    use ddc_growth_work, only: trial_table
     use ddc_growth_tips, only: growing_tip, find_growing_tips
     use ddc_growth_load_steps, only: load_step_history, start_load_steps, resume_load_steps
     use ddc_growth_restart, only: resumed_geometry, resumed_tips, resumed_strengths
@@ -41,6 +42,10 @@ module ddc_growth_run_state
         integer, allocatable :: solves(:)
         !> The link of a tip that links in this step (reason growth_linked)
         type(tip_link), allocatable :: link(:)
+        !> The work criterion: each tip's efficiency at its applied angle [stress unit * length
+        !> unit] (NaN without a candidate trial, 0 under another criterion), and the step's trials
+        real(wp), allocatable :: efficiency(:)
+        type(trial_table) :: trials
     end type step_tips
 
     !> What a growth run carries from one step to the next.

@@ -27,8 +27,8 @@ module ddc_input_namelist_growth
 contains
 
     !> &growth steps, toughness, increment, element_length, tips, fractures, criterion,
-    !> max_corrections, new_mu, new_sf, the strength laws of new elements (new_law_names) /
-    !> (optional). Read after every other group: the
+    !> max_corrections, new_mu, new_sf, angle_range, angle_step, work_threshold, the strength
+    !> laws of new elements (new_law_names) / (optional). Read after every other group: the
     !> fracture names and the other groups are checked against it.
     subroutine read_growth_group(unit, text, path, groups, known, model, messages)
         !> Unit of the open input file
@@ -45,6 +45,7 @@ contains
         type(message_list), intent(inout) :: messages
         integer :: steps, max_corrections
         real(wp) :: toughness, increment, element_length, new_mu, new_sf
+        real(wp) :: angle_range, angle_step, work_threshold
         real(wp) :: new_tensile_strength, new_sf_residual, new_mu_dynamic, &
             new_slip_weakening_distance, new_opening_weakening_distance, new_shear_stiffness, &
             new_normal_stiffness
@@ -54,9 +55,10 @@ contains
         character(len=:), allocatable :: prefix
         integer :: stat, k
         namelist /growth/ steps, toughness, increment, element_length, tips, fractures, &
-            criterion, max_corrections, new_mu, new_sf, new_tensile_strength, new_sf_residual, &
-            new_mu_dynamic, new_slip_weakening_distance, new_opening_weakening_distance, &
-            new_shear_stiffness, new_normal_stiffness
+            criterion, max_corrections, new_mu, new_sf, angle_range, angle_step, &
+            work_threshold, new_tensile_strength, new_sf_residual, new_mu_dynamic, &
+            new_slip_weakening_distance, new_opening_weakening_distance, new_shear_stiffness, &
+            new_normal_stiffness
 
         associate (info => groups(g_growth))
             if (info%count == 0) return
@@ -71,6 +73,9 @@ contains
             max_corrections = 8
             new_mu = unset_real
             new_sf = unset_real
+            angle_range = 90.0_wp
+            angle_step = 5.0_wp
+            work_threshold = unset_real
             new_tensile_strength = unset_real
             new_sf_residual = unset_real
             new_mu_dynamic = unset_real
@@ -136,8 +141,36 @@ contains
                 g%max_corrections = max_corrections
             end if
         end associate
+        call check_work_search(prefix, angle_range, angle_step, work_threshold, model, &
+                               messages)
         call select_fractures(fractures, known, prefix, model%growth%fracture_grows, messages)
     end subroutine read_growth_group
+
+    !> The trial angles and threshold of criterion = 'work': 0 < angle_range < 180,
+    !> angle_step > 0, work_threshold > 0 when given (0 in the options: the default from
+    !> the toughness).
+    subroutine check_work_search(prefix, angle_range, angle_step, work_threshold, model, &
+                                 messages)
+        character(len=*), intent(in) :: prefix
+        real(wp), intent(in) :: angle_range, angle_step, work_threshold
+        type(model_type), intent(inout) :: model
+        type(message_list), intent(inout) :: messages
+
+        if (.not. (angle_range > 0.0_wp .and. angle_range < 180.0_wp)) then
+            call add(messages, prefix//'angle_range = '//rtoa(angle_range)// &
+                     ' must lie in (0, 180) degrees')
+        else
+            model%growth%angle_range = angle_range
+        end if
+        if (.not. (angle_step > 0.0_wp)) then
+            call add(messages, prefix//'angle_step = '//rtoa(angle_step)// &
+                     ' must be positive [degree]')
+        else
+            model%growth%angle_step = angle_step
+        end if
+        if (check_scalar(work_threshold, 'work_threshold', .false., prefix, messages, &
+                         quantity_positive)) model%growth%work_threshold = work_threshold
+    end subroutine check_work_search
 
     !> The strength laws of new contact elements, in the order of new_law_names: each one
     !> given is kept (tensile strength, residuals and distances not negative, stiffnesses

@@ -15,8 +15,8 @@
 module ddc_model_fingerprint
     use, intrinsic :: iso_fortran_env, only: int8, int64
     use ddc_kinds, only: wp
-    use ddc_model_types, only: model_type, element_set, element_array_action, &
-        for_each_element_array
+    use ddc_model_types, only: model_type, growth_criterion_work, element_set, &
+        element_array_action, for_each_element_array
     implicit none
     private
 
@@ -117,6 +117,11 @@ contains
                                  model%growth%max_corrections])
         call add_integers(hash, merge(1, 0, [model%growth%override_mu, &
                                              model%growth%override_sf]))
+        ! Only the work criterion reads them: other models keep their fingerprints.
+        if (model%growth%criterion == growth_criterion_work) then
+            call add_reals(hash, [model%growth%angle_range, model%growth%angle_step, &
+                                  model%growth%work_threshold])
+        end if
         ! Only when given: the fingerprints of models without them stay as they were.
         if (any(model%growth%override_law)) then
             call add_integers(hash, merge(1, 0, model%growth%override_law))

@@ -4,11 +4,11 @@
 !> processing and the output alike.
 module ddc_model_loads
     use ddc_kinds, only: wp
-    use ddc_model_types, only: model_type, element_set, condition_contact
+    use ddc_model_types, only: model_type, element_set, condition_contact, growth_options
     implicit none
     private
 
-    public :: shear_modulus_of, resolve_remote_stress, total_pressure
+    public :: shear_modulus_of, resolve_remote_stress, total_pressure, work_threshold_of
 
 contains
 
@@ -19,6 +19,19 @@ contains
 
         shear_modulus_of = model%youngs_modulus / (2.0_wp * (1.0_wp + model%poissons_ratio))
     end function shear_modulus_of
+
+    !> The efficiency a tip must reach to grow [stress unit * length unit]: work_threshold,
+    !> or 2 G_c with G_c = K_Ic^2 (1 - nu^2) / E when it is not given.
+    pure real(wp) function work_threshold_of(options, youngs_modulus, nu) result(threshold)
+        !> The growth options (work_threshold, toughness)
+        type(growth_options), intent(in) :: options
+        !> Young's modulus [stress unit] and Poisson's ratio [-]
+        real(wp), intent(in) :: youngs_modulus, nu
+
+        threshold = options%work_threshold
+        if (threshold > 0.0_wp) return
+        threshold = 2.0_wp * options%toughness**2 * (1.0_wp - nu**2) / youngs_modulus
+    end function work_threshold_of
 
     !> Remote stress resolved on every element
     !> (docs/theory/kernels.md#remote-stress-on-an-element), tension positive; with a

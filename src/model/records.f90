@@ -15,7 +15,7 @@ module ddc_model_records
     use ddc_text, only: itoa
     use ddc_model_types, only: load_path_names
     use ddc_model_results, only: history_record, growth_record, state_not_grown, &
-        growth_reason_names
+        growth_reason_names, trial_state_coding
     implicit none
     private
 
@@ -24,8 +24,9 @@ module ddc_model_records
     public :: lay_out_history, empty_growth_record, reason_coding
     public :: column_loads, column_element_steps, column_tip_steps, column_steps, &
         column_growth_steps, column_growing_tips, column_growing_tip_steps, column_records, &
-        column_path_records, column_elements, column_strength_steps
-    public :: units_none, units_length, units_stress, units_k, units_degree, units_one
+        column_path_records, column_elements, column_strength_steps, column_work_records, &
+        column_trials
+    public :: units_none, units_length, units_stress, units_k, units_degree, units_one, units_work
     public :: state_coding
 
     !> Kinds of history columns, by their shape: the load (one row per quantity of
@@ -42,12 +43,15 @@ module ddc_model_records
     !> A history column per element (n, k) laid out only where the strengths in force can
     !> change (lay_out_history's strengths) or it is there already
     integer, parameter :: column_strength_steps = 11
+    !> Growth record columns of the work criterion only: one value per record (k, in /growth);
+    !> one per trial (t, in /growth/trials)
+    integer, parameter :: column_work_records = 12, column_trials = 13
 
     !> What the values of a column measure, for its units attribute: nothing (integers and
     !> strings), length, stress, stress intensity (stress * length**0.5), angle in degrees,
     !> a ratio
     integer, parameter :: units_none = 0, units_length = 1, units_stress = 2, units_k = 3, &
-                          units_degree = 4, units_one = 5
+                          units_degree = 4, units_one = 5, units_work = 6
 
     !> Coding of the element states (/elements/state and the history's)
     character(len=*), parameter :: state_coding = '0 free (TWODD-style condition), ' &
@@ -246,6 +250,16 @@ contains
         call action%on_reals(column('length', column_records, units_length), record%length)
         call action%on_integers(column('reason', column_records, coding=reason_coding()), &
                                 record%reason)
+        call action%on_reals(column('efficiency', column_work_records, units_work), &
+                             record%efficiency)
+        call action%on_integers(column('trial_step', column_trials), record%trial_step)
+        call action%on_integers(column('trial_record', column_trials), record%trial_record)
+        call action%on_reals(column('trial_angle', column_trials, units_degree), &
+                             record%trial_angle)
+        call action%on_reals(column('trial_efficiency', column_trials, units_work), &
+                             record%trial_efficiency)
+        call action%on_integers(column('trial_state', column_trials, coding=trial_state_coding), &
+                                record%trial_state)
         call action%on_integers(column('created_step', column_elements, &
                                        coding='0 the input, k growth step k'), record%created_step)
     end subroutine for_each_growth_column

@@ -13,6 +13,7 @@ module ddc_model_results
         growth_corrector_failed, growth_linked, growth_closed, growth_waiting, &
         growth_enclosing, growth_reason_names
     public :: growth_arrested, growth_step_limit, growth_end_names
+    public :: trial_stuck, trial_slipping, trial_opening, trial_blocked, trial_state_coding
     public :: state_free, state_stick, state_slip, state_open, state_names, state_not_grown
     public :: point_clear, point_near, point_on_element
 
@@ -50,6 +51,15 @@ module ddc_model_results
         'enclosing (a link would enclose a block)']
     !> Why a growth run ended: no tip can grow any more, or the step limit was reached
     integer, parameter :: growth_arrested = 1, growth_step_limit = 2
+    !> State of a work criterion trial's new elements: none opens or slips (no candidate); some
+    !> slip, none opens; some open; the trial's path does not keep clear of the other elements
+    !> (not solved, no candidate)
+    integer, parameter :: trial_stuck = 0, trial_slipping = 1, trial_opening = 2, &
+                          trial_blocked = 3
+    !> The coding of the trial states, as the result file states it
+    character(len=*), parameter :: trial_state_coding = &
+        '0 stuck (no candidate), 1 slipping, 2 opening, 3 blocked (the path does not keep '// &
+        'clear; not solved)'
     !> Names of the end reasons, indexed by end reason
     character(len=*), parameter :: growth_end_names(2) = [character(len=10) :: &
         'arrested', 'step_limit']
@@ -207,6 +217,15 @@ module ddc_model_results
         real(wp), allocatable :: length(:)
         !> growth_grew ... growth_waiting, shape (k)
         integer, allocatable :: reason(:)
+        !> Criterion 'work' only: the efficiency dW_ext / dA at the applied angle (of the best
+        !> trial; NaN when no trial opened or slipped) [stress unit * length unit], shape (k)
+        real(wp), allocatable :: efficiency(:)
+        !> Criterion 'work' only, every trial (t trials, in /growth/trials): its growth step,
+        !> record (1-based index of the tip's record), angle [degree], efficiency [stress unit
+        !> * length unit] (NaN when not solved) and the state of its new elements
+        !> (ddc_growth_work's trial states), shape (t)
+        integer, allocatable :: trial_step(:), trial_record(:), trial_state(:)
+        real(wp), allocatable :: trial_angle(:), trial_efficiency(:)
         !> Steps in which at least one tip grew
         integer :: steps_taken = 0
         !> growth_arrested or growth_step_limit

@@ -23,7 +23,7 @@ module ddc_model_types
     public :: domain_full_plane, domain_half_plane, domain_names
     public :: observation_grid, observation_line, observation_points, observation_kind_names
     public :: growth_options, growth_tips_all, growth_tips_most_critical, growth_tips_names
-    public :: growth_criterion_mts, growth_criterion_names
+    public :: growth_criterion_mts, growth_criterion_work, growth_criterion_names
     public :: initiation_options
     public :: new_law_names
     public :: default_block_size, no_residual_drop, rigid_joint, tensile_cap
@@ -216,10 +216,12 @@ module ddc_model_types
     !> Input names of the tip choices, indexed by choice
     character(len=*), parameter :: growth_tips_names(2) = [character(len=13) :: &
         'all', 'most_critical']
-    !> Growth criteria: maximum tangential stress (Erdogan & Sih 1963)
-    integer, parameter :: growth_criterion_mts = 1
+    !> Growth criteria: maximum tangential stress (Erdogan & Sih 1963); the largest external
+    !> work per unit of new fracture (docs/theory/growth.md#the-work-criterion)
+    integer, parameter :: growth_criterion_mts = 1, growth_criterion_work = 2
     !> Input names of the criteria, indexed by criterion
-    character(len=*), parameter :: growth_criterion_names(1) = [character(len=3) :: 'mts']
+    character(len=*), parameter :: growth_criterion_names(2) = [character(len=4) :: 'mts', &
+        'work']
     !> The &growth variables of the strength laws of new contact elements (growth_options
     !> new_law), each the element_set array of the same name without 'new_'
     character(len=*), parameter :: new_law_names(7) = [character(len=30) :: &
@@ -242,8 +244,12 @@ module ddc_model_types
         real(wp) :: element_length = 0.0_wp
         !> growth_tips_all or growth_tips_most_critical
         integer :: tips = growth_tips_all
-        !> growth_criterion_mts
+        !> growth_criterion_mts or growth_criterion_work
         integer :: criterion = growth_criterion_mts
+        !> The work criterion: trial kinks from -angle_range to +angle_range about the tip's
+        !> direction every angle_step [degree]; a tip grows when its efficiency reaches
+        !> work_threshold [stress unit * length unit] (default 2 K_Ic^2 (1 - nu^2) / E)
+        real(wp) :: angle_range = 90.0_wp, angle_step = 5.0_wp, work_threshold = 0.0_wp
         !> Largest number of solves of the local-symmetry corrector per step (0: no
         !> corrector, tips grow at the MTS angle)
         integer :: max_corrections = 8

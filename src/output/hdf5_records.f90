@@ -6,12 +6,13 @@ module ddc_output_hdf5_records
     use ddc_error, only: error_type
     use ddc_text, only: allocated_text
     use ddc_model_types, only: model_type, load_path_names, growth_tips_names, &
-        growth_criterion_names
+        growth_criterion_names, growth_criterion_work
     use ddc_model_results, only: history_record, growth_record, growth_end_names
+    use ddc_model_loads, only: work_threshold_of
     use ddc_model_records, only: record_column, record_column_action, &
         for_each_history_column, for_each_growth_column, reason_coding, column_loads, &
-        column_path_records, column_elements, units_length, units_stress, units_k, &
-        units_degree, units_one
+        column_path_records, column_elements, column_work_records, column_trials, units_length, &
+        units_stress, units_k, units_degree, units_one, units_work
     use ddc_output_hdf5_handles, only: h5_object, create_group, close_group
     use ddc_output_hdf5_write, only: write_real_1d, write_int_1d, write_real_dataset, &
         write_int_dataset, write_string_1d, write_attribute
@@ -23,8 +24,8 @@ module ddc_output_hdf5_records
     !> Writes each column it is handed into a group: every allocated column of the group's
     !> kinds.
     type, extends(record_column_action) :: column_writer
-        !> The group the datasets go to
-        type(h5_object) :: group
+        !> The group the datasets go to, and /growth/trials (criterion 'work')
+        type(h5_object) :: group, trials
         !> Unit names of the model
         character(len=:), allocatable :: length, stress
         !> Which load quantities the load path varies (load_path_names), shape (7)
@@ -33,6 +34,8 @@ module ddc_output_hdf5_records
         logical :: load_path = .false.
         !> Write the per-element columns (the group is /elements) instead of the others
         logical :: elements = .false.
+        !> Write the work criterion's columns (the trials into group trials)
+        logical :: work = .false.
         !> Set when a write fails
         type(error_type), allocatable :: error
     contains
@@ -86,8 +89,15 @@ contains
         call create_group(root, 'growth', writer%group, error)
         if (allocated(error)) return
         call set_up(writer, model)
+        writer%work = model%growth%criterion == growth_criterion_work
+        if (writer%work) then
+            call create_group(writer%group, 'trials', writer%trials, writer%error)
+            call write_attribute(writer%group, 'work_threshold', work_threshold_of( &
+                model%growth, model%youngs_modulus, model%poissons_ratio), writer%error)
+        end if
         columns = record
         call for_each_growth_column(columns, writer)
+        if (writer%work) call close_group(writer%trials, writer%error)
         associate (group => writer%group, o => model%growth)
             call write_attribute(group, 'toughness', o%toughness, writer%error)
             ! 0: the default (per tip: twice / once the tip element's length)
@@ -156,7 +166,22 @@ contains
 
         writes = there .and. (column%kind == column_elements .eqv. writer%elements)
         if (column%kind == column_path_records) writes = writes .and. writer%load_path
+        if (column%kind == column_work_records .or. column%kind == column_trials) then
+          writes = writes .and. writer%work
+        end if
     end function writes
+
+    !> The group a column of one value per step, record or trial goes to.
+    function group_of(writer, column) result(group)
+        !> The writer
+        type(column_writer), intent(in) :: writer
+        !> The column
+        type(record_column), intent(in) :: column
+        type(h5_object) :: group
+
+        group = writer%group
+        if (column%kind == column_trials) group = writer%trials
+    end function group_of
 
     !> The units attribute of a real column.
     pure function units_of(writer, column) result(units)
@@ -177,6 +202,8 @@ contains
             units = 'degree'
         case (units_one)
             units = '1'
+        case (units_work)
+            units = writer%stress//' '//writer%length
         case default
             units = ''
         end select
@@ -192,8 +219,8 @@ contains
         real(wp), allocatable, intent(inout) :: values(:)
 
         if (.not. writes(action, column, allocated(values))) return
-        call write_real_1d(action%group, column%name, values, units_of(action, column), &
-                           action%error)
+        call write_real_1d(group_of(action, column), column%name, values, &
+                           units_of(action, column), action%error)
     end subroutine write_reals
 
     !> An integer column of one value per step or record, with its coding.
@@ -206,7 +233,8 @@ contains
         integer, allocatable, intent(inout) :: values(:)
 
         if (.not. writes(action, column, allocated(values))) return
-        call write_int_1d(action%group, column%name, values, action%error, column%coding)
+        call write_int_1d(group_of(action, column), column%name, values, action%error, &
+                          column%coding)
     end subroutine write_integers
 
     !> A real column of rows and steps; the load: one dataset per quantity the path varies

@@ -12,7 +12,7 @@ module ddc_output_restart_read
     use ddc_model_records, only: record_column, record_column_action, &
         for_each_history_column, for_each_growth_column, column_loads, column_growth_steps, &
         column_growing_tips, column_growing_tip_steps, column_records, column_path_records, &
-        column_elements, column_strength_steps
+        column_elements, column_strength_steps, column_work_records, column_trials
     use ddc_output_hdf5_read, only: read_real_dataset, read_int_dataset, read_string_dataset, &
         read_dataset_dims, read_string_attribute, read_int_attribute, read_real_attribute, &
         has_dataset
@@ -165,6 +165,12 @@ contains
         ! Without a load path the file has no load_step: every record is of load step 1.
         if (.not. allocated(record%load_step)) allocate (record%load_step(size(record%step)), &
                                                          source=1)
+        ! Under another criterion than 'work' the file has no efficiency and no trials.
+        if (.not. allocated(record%efficiency)) allocate (record%efficiency(size(record%step)), &
+                                                          source=0.0_wp)
+        if (.not. allocated(record%trial_step)) allocate (record%trial_step(0), &
+            record%trial_record(0), record%trial_state(0), record%trial_angle(0), &
+            record%trial_efficiency(0))
         call read_int_attribute(reader%path, '/growth', 'steps_taken', record%steps_taken, &
                                 reader%error)
         if (allocated(reader%error)) return
@@ -191,7 +197,8 @@ contains
         select case (column%kind)
         case (column_loads, column_growing_tips, column_growing_tip_steps)
             reads = .false.
-        case (column_growth_steps, column_path_records, column_strength_steps)
+        case (column_growth_steps, column_path_records, column_strength_steps, &
+              column_work_records, column_trials)
             reads = has_dataset(reader%path, dataset_of(column))
         case default
             reads = .true.
@@ -207,8 +214,10 @@ contains
         select case (column%kind)
         case (column_elements)
             dataset = '/elements/'//column%name
-        case (column_records, column_path_records)
+        case (column_records, column_path_records, column_work_records)
             dataset = '/growth/'//column%name
+        case (column_trials)
+            dataset = '/growth/trials/'//column%name
         case default
             dataset = '/history/'//column%name
         end select

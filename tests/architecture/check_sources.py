@@ -521,7 +521,9 @@ PYTHON_LISTS = [("HISTORY_GROWTH_DATASETS", "for_each_history_column",
                  {"column_growth_steps", "column_growing_tips", "column_growing_tip_steps"}),
                 ("HISTORY_STRING_DATASETS", "for_each_history_column", {"strings"}),
                 ("GROWTH_PATH_DATASETS", "for_each_growth_column", {"column_path_records"}),
-                ("GROWTH_DATASETS", "for_each_growth_column", {"column_records"})]
+                ("GROWTH_DATASETS", "for_each_growth_column", {"column_records"}),
+                ("GROWTH_WORK_DATASETS", "for_each_growth_column", {"column_work_records"}),
+                ("GROWTH_TRIAL_DATASETS", "for_each_growth_column", {"column_trials"})]
 REST = ("HISTORY_DATASETS", "HISTORY_STEP_DATASETS")
 # Columns that are not datasets of their group: the load (one dataset per quantity, the
 # Python list HISTORY_LOADS against load_path_names) and /elements/created_step (read_elements

@@ -229,18 +229,22 @@ def test_lcp_solver_reaching_the_fault_law_fails(tree, capsys, planted_in, messa
 
 
 def test_growth_criterion_without_its_case_fails(tree, capsys):
-    edit(tree / "src/model/types.f90", "    integer, parameter :: growth_criterion_mts = 1\n",
-         "    integer, parameter :: growth_criterion_mts = 1, growth_criterion_planted = 2\n")
+    edit(tree / "src/model/types.f90",
+         "    integer, parameter :: growth_criterion_mts = 1, growth_criterion_work = 2\n",
+         "    integer, parameter :: growth_criterion_mts = 1, growth_criterion_work = 2, "
+         "growth_criterion_planted = 3\n")
     expect_violation(tree, capsys, "src/growth/criterion.f90: assess_tip has no case for "
                      "growth_criterion_planted")
     expect_violation(tree, capsys, "src/growth/criterion.f90: kink_angles has no case for "
                      "growth_criterion_planted")
-    # with its case in both dispatches, it passes
+    expect_violation(tree, capsys, "src/growth/criterion.f90: flaw_direction has no case for "
+                     "growth_criterion_planted")
+    # with its case in every dispatch, it passes
     path = tree / "src/growth/criterion.f90"
     text = path.read_text()
-    assert text.count("        case (growth_criterion_mts)\n") == 2
-    path.write_text(text.replace("        case (growth_criterion_mts)\n",
-                                 "        case (growth_criterion_mts, growth_criterion_planted)\n"))
+    assert text.count("        case (growth_criterion_mts") == 3
+    path.write_text(text.replace("        case (growth_criterion_mts",
+                                 "        case (growth_criterion_planted, growth_criterion_mts"))
     assert run_checks(tree, capsys)[0] == 0
 
 
@@ -298,7 +302,7 @@ def test_column_under_another_name_fails(tree, capsys):
 def test_routine_around_a_record_list_fails(tree, capsys):
     edit(tree / "src/output/hdf5_records.f90",
          "        call for_each_growth_column(columns, writer)\n"
-         "        associate (group => writer%group", "        associate (group => writer%group")
+         "        if (writer%work)", "        if (writer%work)")
     expect_violation(tree, capsys, "src/output/hdf5_records.f90: write_growth does not go "
                      "through for_each_growth_column")
 

@@ -129,3 +129,18 @@ def test_benchmark_growth(tmp_path):
         # Counts over the whole run (at these sizes the new unknowns outnumber what an
         # update takes: suite growth_solver checks the bordering).
         assert r["factorizations"] >= 1 and r["newton_iterations"] >= r["solves"]
+
+
+def test_benchmark_growth_work(tmp_path):
+    # One growth step of the growth case's flaw by the work criterion: 37 trial kinks per tip
+    # (two tips) and their refinement, beside the MTS run of the same model.
+    stdout, records = run_benchmark(tmp_path, "--case", "growth-work", "--steps", "1",
+                                    "--lcp-method", "newton", sizes="80")
+    assert "x the MTS run" in stdout and "per growth step" in stdout
+    r = records[0]
+    assert r["case"] == "growth-work" and r["growth_steps"] == 1
+    assert r["solves"] >= 1 + 2 * 37
+    assert r["solves_per_step"] == r["solves"] / r["growth_steps"]
+    assert r["updates_per_step"] == r["low_rank_updates"] / r["growth_steps"]
+    assert r["mts"]["growth_steps"] == 1 and r["mts"]["solves"] >= 2
+    assert r["over_mts"] == r["seconds"]["total"] / r["mts"]["seconds"]

@@ -2,7 +2,7 @@
 repository also scripts/benchmark.py.
 
     benchmark.py --exe PATH --sizes 250,500,1000
-                 --case straight|mixed|history|fields|growth|growth-history
+                 --case straight|mixed|history|fields|growth|growth-work|growth-history
                  --json FILE [--threads T[,T...]] [--lcp-method auto|lemke|newton] [--grid NX]
                  [--steps K] [--compare-lemke] [--lu-exe PATH] [--workdir DIR]
                  [--mpi P [--mpiexec PATH] [--block-size NB]]
@@ -32,6 +32,13 @@ Cases (CASES: a model builder per case; a new case adds one):
             The reference LU is that of the final geometry, LU(2 N_final); the record adds
             ``n_final``, ``growth_steps``, ``solves`` (from the progress lines) and
             ``end_reason``.
+  growth-work  the growth case with criterion = 'work' (docs/theory/growth.md#the-work-criterion:
+            37 trial kinks from -90 to 90 degrees per tip and step, each solved with contact
+            by updating the kept factors, the best refined). Measured against LU(2 N_final)
+            and against the growth case's run of the same model (MTS with the corrector),
+            run in the same call: the record adds ``mts`` (its seconds, solves, growth steps,
+            N_final), ``over_mts`` (total / the MTS run's total; target at most 10) and
+            ``solves_per_step``, ``updates_per_step`` (low-rank updates per growth step).
   growth-history  the growth case's flaw along a loading history
             (docs/theory/growth.md#growth-along-a-loading-history): syy rises from -2 to
             -100 MPa in K load steps (--steps, default 20) at sxx = -2 MPa, and at each load
@@ -91,9 +98,11 @@ from .reader import SOLVER_PHASES, read_history, read_solver
 
 #: Default grid (GRID x GRID points) of each case
 DEFAULT_GRID = {"straight": 100, "mixed": 100, "history": 0, "fields": 500, "growth": 0,
-                "growth-history": 0}
+                "growth-work": 0, "growth-history": 0}
 #: Default --steps of each case that has steps
-DEFAULT_STEPS = {"history": 100, "growth": 25, "growth-history": 20}
+DEFAULT_STEPS = {"history": 100, "growth": 25, "growth-work": 25, "growth-history": 20}
+#: The growth cases (a record adds the growth summary)
+GROWTH_CASES = ("growth", "growth-work", "growth-history")
 #: New elements per tip and growth step of the growth case
 GROWTH_ELEMENTS = 20
 
@@ -166,6 +175,13 @@ def growth_model(n, grid, steps=25):
         + grid_group(grid))
 
 
+def growth_work_model(n, grid, steps=25):
+    """The growth case's flaw grown by the work criterion (37 trial angles per tip and step:
+    the defaults angle_range = 90, angle_step = 5)."""
+    return growth_model(n, grid, steps).replace("new_sf = 0.0,",
+                                                "new_sf = 0.0, criterion = 'work',")
+
+
 def growth_history_model(n, grid, steps=20):
     """The growth case's flaw with syy rising from -2 to -100 MPa in `steps` load steps;
     the wings grow to arrest at each (at most 100 growth steps per load step)."""
@@ -180,6 +196,7 @@ CASES = {
     "history": history_model,
     "fields": lambda n, grid, steps: straight_model(n, grid),
     "growth": growth_model,
+    "growth-work": growth_work_model,
     "growth-history": growth_history_model,
 }
 
@@ -310,6 +327,25 @@ def compare_with_lemke(exe, text, name, workdir, env, lu_seconds, states, dds, l
                                      for a, b in zip(dds, lemke_dds)) / scale}
 
 
+def compare_with_mts(exe, n, grid, steps, method, record, workdir, env):
+    """The growth case's MTS run of the same model beside a growth-work record: its
+    seconds, solves, growth steps and N_final; the work run's time over it, and its solves
+    and low-rank updates per growth step."""
+    stdout, _, _, solver, _, states, _ = run_model(exe, growth_model(n, grid, steps), method,
+                                                   f"growth_{n}_mts", workdir, env)
+    mts = growth_summary(stdout, f"growth_{n}_mts")
+    match = re.search(r"output\s+([0-9.]+)", stdout)
+    seconds = solver["seconds"]["total"]
+    if match:
+        seconds += float(match.group(1)) - solver["seconds"]["output"]
+    steps_taken = max(record["growth_steps"], 1)
+    return {"mts": {"seconds": seconds, "solves": mts["solves"],
+                    "growth_steps": mts["growth_steps"], "n_final": len(states)},
+            "over_mts": record["seconds"]["total"] / seconds if seconds > 0 else None,
+            "solves_per_step": record["solves"] / steps_taken,
+            "updates_per_step": record["low_rank_updates"] / steps_taken}
+
+
 def benchmark_one(exe, lu_exe, n, case, threads, method, grid, workdir, steps=100,
                   compare_lemke=False, processes=0, mpiexec="mpiexec", block_size=None):
     """Run one model of n elements (on `processes` MPI processes when > 0); return its JSON
@@ -377,8 +413,10 @@ def benchmark_one(exe, lu_exe, n, case, threads, method, grid, workdir, steps=10
                       peak_rss_mb=max(r["peak_rss_mb"] for r in ranks))
         for f in Path(workdir).glob(f"{prefix.name}.*"):
             f.unlink()
-    if case in ("growth", "growth-history"):
+    if case in GROWTH_CASES:
         record.update(growth_summary(stdout, f"{name}_{method}"), n_final=n_final)
+    if case == "growth-work":
+        record.update(compare_with_mts(exe, n, grid, steps, method, record, workdir, env))
     if history is not None:
         record["steps"] = int(history["state"].shape[0])
         record["fallback_steps"] = int(sum(1 for f in history.get("fallback", []) if f))
@@ -421,6 +459,13 @@ def print_table(records, out=sys.stdout):
             print(f"  n = {r['n']}: {r['growth_steps']} growth steps ({r['end_reason']}), "
                   f"{r['solves']} solves, N_final = {r['n_final']}, LU ref of "
                   f"2 N_final = {2 * r['n_final']}", file=out)
+        if "over_mts" in r:
+            m = r["mts"]
+            print(f"  n = {r['n']}: work {r['seconds']['total']:.3f} s = {r['over_mts']:.2f} x "
+                  f"the MTS run ({m['seconds']:.3f} s, {m['solves']} solves, "
+                  f"{m['growth_steps']} growth steps, N_final = {m['n_final']}); "
+                  f"{r['solves_per_step']:.1f} solves and {r['updates_per_step']:.1f} "
+                  "low-rank updates per growth step", file=out)
         if "steps" in r:
             print(f"  n = {r['n']}: {r['steps']} steps, {r['newton_iterations']} Newton "
                   f"iterations, {r['pivots']} Lemke pivots, {r['fallback_steps']} steps fell "

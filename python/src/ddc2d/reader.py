@@ -62,6 +62,11 @@ GROWTH_DATASETS = ("step", "fracture_id", "end", "x", "y", "k1", "k2", "k_eq", "
                    "angle", "corrections", "k2_after", "length", "reason")
 #: /growth datasets of fracture growth along a load path only, one value per record.
 GROWTH_PATH_DATASETS = ("load_step",)
+#: /growth datasets of the work criterion only, one value per record.
+GROWTH_WORK_DATASETS = ("efficiency",)
+#: /growth/trials datasets of the work criterion, one value per trial kink.
+GROWTH_TRIAL_DATASETS = ("trial_step", "trial_record", "trial_angle", "trial_efficiency",
+                         "trial_state")
 #: Phases timed in /solver/seconds.
 SOLVER_PHASES = ("assembly", "factorization", "lcp", "fields", "output", "total")
 
@@ -420,20 +425,24 @@ def read_history(path, handle, count):
 def read_growth(path, handle):
     """/growth of a fracture growth run as a dict: every dataset of GROWTH_DATASETS (1-D,
     one value per record: one record per tip per step), ``attrs`` (strings decoded: toughness,
-    end_reason, ...) and ``reasons`` (code -> name, from the attribute reason_coding); None
-    when the file has no /growth."""
+    end_reason, ...) and ``reasons`` (code -> name, from the attribute reason_coding); under
+    the work criterion also ``efficiency`` and ``trials`` (dict of GROWTH_TRIAL_DATASETS, one
+    value per trial kink); None when the file has no /growth."""
     if "growth" not in handle:
         return None
     group = handle["growth"]
     growth = {}
-    for key in GROWTH_DATASETS + GROWTH_PATH_DATASETS:
+    for key in GROWTH_DATASETS + GROWTH_PATH_DATASETS + GROWTH_WORK_DATASETS:
         if key not in group:
-            if key in GROWTH_PATH_DATASETS:
+            if key not in GROWTH_DATASETS:
                 continue
             raise ResultError(f"'{path}' lacks /growth/{key}")
         growth[key] = np.asarray(group[key][()]).ravel()
         if growth[key].size != growth["step"].size:
             raise ResultError(f"'{path}': /growth datasets differ in length")
+    if "trials" in group:
+        growth["trials"] = {key: np.asarray(group["trials"][key][()]).ravel()
+                            for key in GROWTH_TRIAL_DATASETS}
     growth["attrs"] = decoded_attrs(group.attrs)
     growth["reasons"] = parse_coding(group.attrs.get("reason_coding", ""))
     return growth

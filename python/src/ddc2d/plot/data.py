@@ -248,6 +248,40 @@ def growth_series(result):
     return series
 
 
+def trial_curves(result):
+    """The trial kinks of a work-criterion growth run (/growth/trials), one dict per tip and
+    step in record order: ``label`` ('step <k>, <fracture> <end>'), ``step``, ``record``
+    (0-based index of the tip's /growth record), ``angle`` and ``efficiency`` of its solved
+    trials sorted by angle (refinement trials among the grid's), ``state`` (the codes of
+    /growth/trials/trial_state) and ``chosen`` (the applied angle, NaN when the tip did not
+    grow). Empty without trials."""
+    growth = result["growth"]
+    trials = growth.get("trials")
+    if trials is None:
+        return []
+    labels = {record: tip["label"] for tip in growth_series(result)
+              for record in _records_of(growth, tip)}
+    curves = []
+    for record in dict.fromkeys(trials["trial_record"].tolist()):
+        rows = np.flatnonzero(trials["trial_record"] == record)
+        rows = rows[np.argsort(trials["trial_angle"][rows], kind="stable")]
+        index = record - 1
+        curves.append({
+            "label": f"step {growth['step'][index]}, {labels[index]}",
+            "step": int(growth["step"][index]), "record": index,
+            "angle": trials["trial_angle"][rows],
+            "efficiency": trials["trial_efficiency"][rows],
+            "state": trials["trial_state"][rows],
+            "chosen": float(growth["angle"][index])})
+    return curves
+
+
+def _records_of(growth, tip):
+    """0-based indices of the /growth records of one tip of growth_series."""
+    return np.flatnonzero((growth["fracture_id"] == tip["fracture_id"])
+                          & (growth["end"] == tip["end"])).tolist()
+
+
 def growth_curves(series):
     """The tips of growth_series grouped by equal K_eq curves (same steps and reasons,
     ratios equal under the tie rule relative to the largest ratio of the run: the wings of

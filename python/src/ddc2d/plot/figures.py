@@ -48,6 +48,7 @@ from .data import (
     slip_sense,
     state_names,
     strength_panels,
+    trial_curves,
     unit_label,
 )
 
@@ -186,6 +187,40 @@ def plot_growth_history(result):
     ax.grid(True, linewidth=0.3)
     ax.set_title("growth along the load path (a point per load step)", fontsize="medium")
     fig.suptitle(heading(result, f"growth under a loading history ({load.size} steps)"))
+    return fig
+
+
+def plot_growth_trials(result):
+    """The efficiency dW_ext / da of every trial kink against its angle (criterion 'work':
+    docs/theory/growth.md#the-work-criterion), one line per tip and step (the refinement's
+    trials among the grid's), the trials that neither open nor slip as crosses, the applied
+    angle as a filled marker and the threshold as a dashed line. Returns the Figure."""
+    growth = result["growth"]
+    curves = trial_curves(result)
+    unit = f"{result['stress_unit']} {result['length_unit']}".strip()
+    fig, ax = plt.subplots(figsize=(6.5, 4.5), constrained_layout=True)
+    for index, curve in enumerate(curves):
+        colour = f"C{index % 10}"
+        candidate = np.isin(curve["state"], (1, 2))
+        ax.plot(curve["angle"], np.where(candidate, curve["efficiency"], np.nan), marker=".",
+                linewidth=1.0, color=colour, linestyle=LINESTYLES[index % len(LINESTYLES)],
+                label=curve["label"], gid=f"efficiency:{curve['label']}")
+        stuck = curve["state"] == 0
+        if np.any(stuck):
+            ax.plot(curve["angle"][stuck], curve["efficiency"][stuck], "x", color=colour,
+                    linestyle="none")
+        chosen = curve["angle"] == curve["chosen"]
+        if np.any(chosen):
+            ax.plot(curve["angle"][chosen], curve["efficiency"][chosen], "o", color=colour,
+                    markersize=7, linestyle="none", gid=f"chosen:{curve['label']}")
+    ax.axhline(float(growth["attrs"]["work_threshold"]), color="black", linestyle="--",
+               linewidth=0.8, label="work_threshold", gid="work_threshold")
+    ax.set_xlabel("trial angle [degree]")
+    ax.set_ylabel("efficiency dW_ext/da" + unit_label(unit))
+    ax.legend(fontsize="small", loc="best")
+    ax.grid(True, linewidth=0.3)
+    ax.set_title("trial kinks (x: neither opens nor slips; o: applied)", fontsize="medium")
+    fig.suptitle(heading(result, f"work criterion: {len(curves)} searches"))
     return fig
 
 

@@ -1,0 +1,277 @@
+!> The search of the work criterion (docs/theory/growth.md#the-work-criterion): every growing tip
+!> tries kinks of its increment at the trial angles (-angle_range .. +angle_range about its
+!> direction, every angle_step), one tip's kink at a time, each solved with contact by the growth
+!> solver (a bordered update of the kept factors where the model is on the kept path). A trial's
+!> efficiency is E = (W_ext(trial) - W_ext(before)) / increment (ddc_growth_work); a trial whose
+!> new elements neither open nor slip, or whose path does not keep clear, is no candidate. The
+!> best candidate is refined between its neighbours by successive parabolas through the best
+!> three trials until the next vertex lies within half the resolution (0.25 degree) of the best.
+!> A tip without a candidate is closed; one whose best E reaches the threshold grows at its
+!> angle; with tips = 'most_critical' only the largest E / threshold grows (the others that
+!> reach it wait).
+module ddc_growth_trials
+    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+    use ddc_kinds, only: wp
+    use ddc_constants, only: pi
+    use ddc_error, only: error_type
+    use ddc_text, only: itoa
+    use ddc_model_types, only: model_type, growth_options, growth_tips_most_critical, &
+        condition_contact
+    use ddc_model_results, only: model_results, state_open, state_slip, growth_grew, &
+        growth_subcritical, growth_closed, growth_waiting, trial_stuck, trial_slipping, &
+        trial_opening, trial_blocked
+    use ddc_growth_solver, only: growth_solver, solve_grown
+    use ddc_growth_extension, only: tip_path, make_path, extend_model, element_split
+    use ddc_growth_clearance, only: check_paths, path_clear, link_parts
+    use ddc_growth_kinks, only: step_kinks, step_links
+    use ddc_model_loads, only: work_threshold_of
+    use ddc_growth_work, only: external_work, add_trial
+    implicit none
+    private
+
+    public :: search_kinks
+
+    !> One degree [rad]; the refinement stops when the next vertex lies within
+    !> refine_tolerance of the best trial (the angle is then known to 0.5 degree)
+    real(wp), parameter :: degree = pi / 180.0_wp, refine_tolerance = 0.25_wp * degree
+    !> Largest number of refining solves per tip
+    integer, parameter :: max_refinements = 8
+
+    !> One solved trial of a tip.
+    type :: trial_point
+        real(wp) :: angle = 0.0_wp, efficiency = 0.0_wp
+        logical :: candidate = .false.
+    end type trial_point
+
+contains
+
+    !> Search every growing tip of the step (their reasons growth_grew on entry). On return each
+    !> has its applied angle, efficiency, solves and reason (growth_grew, growth_subcritical,
+    !> growth_closed or growth_waiting); kinks%trials holds every trial and kinks%current is
+    !> false (the grown model is still to be built and solved).
+    subroutine search_kinks(solver, model, before, created, options, kinks, error)
+        !> The solves of the run (the base: model)
+        type(growth_solver), intent(inout) :: solver
+        !> The model before growing (without observations)
+        type(model_type), intent(in) :: model
+        !> Its solution
+        type(model_results), intent(in) :: before
+        !> Growth step that created each element of model, shape (n)
+        integer, intent(in) :: created(:)
+        !> The growth options (trial angles, threshold, tips, new_mu, new_sf)
+        type(growth_options), intent(in) :: options
+        !> The step's kinks: the growing tips in; angles, efficiencies, reasons and trials out
+        type(step_kinks), intent(inout) :: kinks
+        !> Set when a solve fails
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: w_before, threshold, ratio(size(kinks%tip))
+        integer :: i, best
+
+        w_before = external_work(model, before%elements%ds, before%elements%dn)
+        threshold = work_threshold_of(options, model%youngs_modulus, model%poissons_ratio)
+        kinks%current = .false.
+        ratio = -huge(1.0_wp)
+        do i = 1, size(kinks%tip)
+            call search_tip(solver, model, created, options, w_before, kinks, i, error)
+            if (allocated(error)) return
+            associate (k => kinks%tip(i))
+                if (k%reason == growth_closed) cycle
+                k%reason = merge(growth_grew, growth_subcritical, k%efficiency >= threshold)
+                if (k%reason == growth_grew) ratio(i) = k%efficiency / threshold
+            end associate
+        end do
+        if (options%tips /= growth_tips_most_critical) return
+        ! The lowest index among equal ratios (maxloc's first).
+        best = maxloc(ratio, dim=1)
+        do i = 1, size(kinks%tip)
+            if (i /= best .and. kinks%tip(i)%reason == growth_grew) then
+              kinks%tip(i)%reason = growth_waiting
+            end if
+        end do
+    end subroutine search_kinks
+
+    !> The trials of tip i: the grid, then the refinement of the best candidate; the tip's
+    !> angle and efficiency are the best candidate's (reason growth_closed without one).
+    subroutine search_tip(solver, model, created, options, w_before, kinks, i, error)
+        type(growth_solver), intent(inout) :: solver
+        type(model_type), intent(in) :: model
+        integer, intent(in) :: created(:)
+        type(growth_options), intent(in) :: options
+        !> W_ext of the model before growing [stress unit * length unit]
+        real(wp), intent(in) :: w_before
+        type(step_kinks), intent(inout) :: kinks
+        integer, intent(in) :: i
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: angles(:)
+        type(trial_point), allocatable :: grid(:)
+        type(trial_point) :: best
+        integer :: j, b
+
+        call trial_angles(options%angle_range * degree, options%angle_step * degree, angles)
+        allocate (grid(size(angles)))
+        kinks%tip(i)%solves = 0
+        do j = 1, size(angles)
+            call try_angle(angles(j), grid(j), error)
+            if (allocated(error)) return
+        end do
+        if (.not. any(grid%candidate)) then
+            kinks%tip(i)%reason = growth_closed
+            kinks%tip(i)%efficiency = ieee_value(1.0_wp, ieee_quiet_nan)
+            return
+        end if
+        b = best_candidate(grid)
+        best = grid(b)
+        if (b > 1 .and. b < size(grid)) then
+            if (grid(b - 1)%candidate .and. grid(b + 1)%candidate) then
+                call refine(grid(b - 1), grid(b), grid(b + 1), best, error)
+                if (allocated(error)) return
+            end if
+        end if
+        kinks%tip(i)%theta = best%angle
+        kinks%tip(i)%efficiency = best%efficiency
+
+    contains
+
+        !> Successive parabolas through the best trial m and its neighbours l < m < r
+        !> (each a candidate): the vertex is solved when it lies more than refine_tolerance
+        !> from m, and the three best around the maximum are kept; best is the best
+        !> candidate found.
+        subroutine refine(l0, m0, r0, best, error)
+            type(trial_point), intent(in) :: l0, m0, r0
+            type(trial_point), intent(inout) :: best
+            type(error_type), allocatable, intent(out) :: error
+            type(trial_point) :: l, m, r, v
+            real(wp) :: vertex, denominator
+            integer :: n
+
+            l = l0
+            m = m0
+            r = r0
+            do n = 1, max_refinements
+                denominator = (m%angle - l%angle) * (m%efficiency - r%efficiency) - &
+                              (m%angle - r%angle) * (m%efficiency - l%efficiency)
+                if (.not. (abs(denominator) > 0.0_wp)) exit
+                vertex = m%angle - 0.5_wp * ((m%angle - l%angle)**2 * (m%efficiency - &
+                         r%efficiency) - (m%angle - r%angle)**2 * (m%efficiency - &
+                         l%efficiency)) / denominator
+                vertex = max(l%angle, min(r%angle, vertex))
+                if (abs(vertex - m%angle) <= refine_tolerance) exit
+                call try_angle(vertex, v, error)
+                if (allocated(error)) return
+                if (.not. v%candidate) exit
+                if (v%efficiency > m%efficiency) then
+                    if (v%angle < m%angle) then
+                        r = m
+                    else
+                        l = m
+                    end if
+                    m = v
+                else if (v%angle < m%angle) then
+                    l = v
+                else
+                    r = v
+                end if
+            end do
+            best = m
+        end subroutine refine
+
+        !> Solve the tip's kink at angle theta (the step's links held) and record the trial.
+        subroutine try_angle(theta, point, error)
+            real(wp), intent(in) :: theta
+            type(trial_point), intent(out) :: point
+            type(error_type), allocatable, intent(out) :: error
+            type(tip_path) :: path(1)
+            type(tip_path), allocatable :: link_paths(:)
+            type(element_split), allocatable :: splits(:)
+            integer :: problem(1), state
+
+            point%angle = theta
+            associate (k => kinks%tip(i))
+                path(1) = make_path(model, k%fracture, k%end, theta, k%length, k%pieces)
+                call check_paths(model, path, [.true.], problem, fixed=kinks%fixed)
+                if (problem(1) /= path_clear) then
+                    point%efficiency = ieee_value(1.0_wp, ieee_quiet_nan)
+                    call add_trial(kinks%trials, k%fracture, k%end, theta, point%efficiency, &
+                                   trial_blocked)
+                    return
+                end if
+                call link_parts(step_links(kinks), link_paths, splits)
+                call extend_model(model, created, [path, link_paths], kinks%step, options, &
+                                  kinks%trial, kinks%trial_created, kinks%moved_to, splits, &
+                                  kinks%origin)
+                call solve_grown(solver, kinks%trial, kinks%moved_to, kinks%solved, error, &
+                                 kinks%origin)
+                k%solves = k%solves + 1
+                if (allocated(error)) then
+                    error%message = 'growth step '//itoa(kinks%step)//', work trial '// &
+                                    itoa(k%solves)//': '//error%message
+                    return
+                end if
+                point%efficiency = (external_work(kinks%trial, kinks%solved%elements%ds, &
+                                                  kinks%solved%elements%dn) - w_before) / &
+                                   k%length
+                state = new_elements_state(kinks%trial, kinks%solved, kinks%origin)
+                point%candidate = state == trial_opening .or. state == trial_slipping
+                call add_trial(kinks%trials, k%fracture, k%end, theta, point%efficiency, state)
+            end associate
+        end subroutine try_angle
+
+    end subroutine search_tip
+
+    !> The trial angles [rad]: 0, +-step, +-2 step, ... up to +-range, and +-range itself
+    !> where it is no multiple of the step; ascending.
+    pure subroutine trial_angles(range, step, angles)
+        real(wp), intent(in) :: range, step
+        real(wp), allocatable, intent(out) :: angles(:)
+        integer :: n, j, m
+
+        n = floor(range / step * (1.0_wp + 1.0e-9_wp))
+        m = merge(1, 0, real(n, wp) * step < range * (1.0_wp - 1.0e-9_wp))
+        allocate (angles(2 * (n + m) + 1))
+        angles(m + 1:m + 2 * n + 1) = [(real(j, wp) * step, j = -n, n)]
+        if (m == 1) then
+            angles(1) = -range
+            angles(size(angles)) = range
+        end if
+    end subroutine trial_angles
+
+    !> The first candidate of largest efficiency.
+    pure integer function best_candidate(points) result(b)
+        type(trial_point), intent(in) :: points(:)
+        integer :: j
+
+        b = 0
+        do j = 1, size(points)
+            if (.not. points(j)%candidate) cycle
+            if (b == 0) then
+                b = j
+            else if (points(j)%efficiency > points(b)%efficiency) then
+                b = j
+            end if
+        end do
+    end function best_candidate
+
+    !> trial_opening when a new element opens, else trial_slipping when one slips, else
+    !> trial_stuck (a TWODD-style element opens with D_n < 0 and slips with D_s /= 0).
+    pure integer function new_elements_state(grown, solved, origin) result(state)
+        type(model_type), intent(in) :: grown
+        type(model_results), intent(in) :: solved
+        integer, intent(in) :: origin(:)
+        logical :: fresh(size(origin)), contact(size(origin))
+
+        fresh = origin == 0
+        contact = grown%elements%condition == condition_contact
+        associate (s => solved%elements)
+            if (any(fresh .and. ((contact .and. s%state == state_open) .or. &
+                                 (.not. contact .and. s%dn < 0.0_wp)))) then
+                state = trial_opening
+            else if (any(fresh .and. ((contact .and. s%state == state_slip) .or. &
+                                      (.not. contact .and. s%ds /= 0.0_wp)))) then
+                state = trial_slipping
+            else
+                state = trial_stuck
+            end if
+        end associate
+    end function new_elements_state
+
+end module ddc_growth_trials

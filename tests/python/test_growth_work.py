@@ -1,0 +1,214 @@
+"""The work criterion of fracture growth (docs/theory/growth.md#the-work-criterion): the
+efficiency E = dW_ext / da of trial kinks against closed forms (E / 2 = K^2 (1 - nu^2) / E_young
+for frictionless faces), the kink of an inclined crack against the maximum energy release rate
+direction of a short kink (Nuismer 1975), a frictional fault that grows in shear, 1 and 2
+threads, and bad input."""
+
+import os
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+import pytest
+
+from conftest import PLOT_SCRIPT, ddc2d_exe
+from ddc2d.plot import figures as plot_figures
+from ddc2d.reader import load_result
+
+NU = 0.25
+E_YOUNG = 1.0
+HALF_LENGTH = 1.0
+
+
+def crack_model(stress, elements, growth, mu=0.0):
+    """A straight crack from (-1, 0) to (1, 0) under remote `stress`, growing by 'work'."""
+    return (f"&model youngs_modulus = {E_YOUNG}, poissons_ratio = {NU} /\n"
+            f"&remote_stress {stress} /\n"
+            f"&fracture name = 'crack', x = -1, 1, y = 0, 0, elements = {elements}, "
+            f"mu = {mu} /\n"
+            f"&growth steps = 1, toughness = 1.0e-6, increment = 0.02, criterion = 'work', "
+            f"tips = 'most_critical', {growth} /\n")
+
+
+def run(folder, text, threads=1):
+    model = folder / "model.nml"
+    model.write_text(text)
+    out = folder / f"model{threads}.h5"
+    # OpenBLAS on one thread: its blocking depends on its thread count; ddc2d's own loops
+    # are what the thread count varies.
+    env = dict(os.environ, OMP_NUM_THREADS=str(threads), OPENBLAS_NUM_THREADS="1")
+    done = subprocess.run([str(ddc2d_exe()), str(model), "-o", str(out)], capture_output=True,
+                          text=True, timeout=600, env=env)
+    return done, out
+
+
+def growth_of(path):
+    with h5py.File(path, "r") as f:
+        g = f["growth"]
+        t = g["trials"]
+        record = {k: g[k][()] for k in ("end", "k1", "k2", "angle", "efficiency", "reason")}
+        record["threshold"] = g.attrs["work_threshold"]
+        record["trials"] = {k: t[k][()] for k in t}
+    return record
+
+
+def energy_release_rate(k):
+    """K^2 (1 - nu^2) / E_young (plane strain)."""
+    return k**2 * (1.0 - NU**2) / E_YOUNG
+
+
+def test_mode_one_crack_releases_g_and_grows_straight(tmp_path):
+    # Increment 0.02: 1 % of the crack length 2.
+    done, out = run(tmp_path, crack_model("syy = 1.0e-3", 200, "angle_range = 10"))
+    assert done.returncode == 0, done.stdout + done.stderr
+    g = growth_of(out)
+    expected = energy_release_rate(1.0e-3 * np.sqrt(np.pi * HALF_LENGTH))
+    grew = g["reason"] == 0
+    assert grew.sum() == 1
+    assert g["efficiency"][grew][0] / 2 == pytest.approx(expected, rel=0.02)
+    assert abs(g["angle"][grew][0]) < 1e-3
+    # The default threshold is 2 G_c = 2 K_Ic^2 (1 - nu^2) / E_young.
+    assert g["threshold"] == pytest.approx(2 * energy_release_rate(1.0e-6), rel=1e-12)
+
+
+def test_frictionless_mode_two_crack_releases_g(tmp_path):
+    done, out = run(tmp_path, crack_model("sxy = 1.0e-3", 200,
+                                          "angle_range = 5, angle_step = 5"))
+    assert done.returncode == 0, done.stdout + done.stderr
+    trials = growth_of(out)["trials"]
+    straight = trials["trial_angle"] == 0.0
+    expected = energy_release_rate(1.0e-3 * np.sqrt(np.pi * HALF_LENGTH))
+    assert straight.sum() == 2
+    # The straight trial slips (state 1) and releases the mode II energy.
+    assert list(trials["trial_state"][straight]) == [1, 1]
+    assert trials["trial_efficiency"][straight] / 2 == pytest.approx([expected] * 2, rel=0.02)
+
+
+def nuismer_angle(k1, k2):
+    """Kink angle [degree] of the largest energy release rate of an infinitesimal kink whose
+    K are the parent tip's stress factors at the kink angle (Nuismer 1975): the maximum of
+    k_tt^2 + k_rt^2 over theta in [-90, 90] degrees, on a 0.001 degree grid."""
+    theta = np.radians(np.linspace(-90.0, 90.0, 180001))
+    c, s = np.cos(theta / 2), np.sin(theta)
+    k_tt = c * (k1 * c**2 - 1.5 * k2 * s)
+    k_rt = 0.5 * c * (k1 * s + k2 * (3 * np.cos(theta) - 1))
+    return np.degrees(theta[np.argmax(k_tt**2 + k_rt**2)])
+
+
+def test_inclined_crack_kinks_towards_the_largest_energy_release(tmp_path):
+    # Uniaxial tension 1e-3 at 45 degrees to the crack: K_I = K_II.
+    done, out = run(tmp_path, crack_model("sxx = 0.5e-3, syy = 0.5e-3, sxy = 0.5e-3", 400,
+                                          "angle_range = 65"))
+    assert done.returncode == 0, done.stdout + done.stderr
+    g = growth_of(out)
+    grew = g["reason"] == 0
+    reference = nuismer_angle(g["k1"][grew][0], g["k2"][grew][0])
+    assert reference == pytest.approx(-53.13, abs=0.01)
+    assert abs(g["angle"][grew][0] - reference) <= 3.0
+
+
+FAULT = """\
+&model youngs_modulus = 1.0e4, poissons_ratio = 0.25 /
+&remote_stress sxx = -100, syy = -100, sxy = 40 /
+&fracture name = 'fault', x = -1, 1, y = 0, 0, elements = 40, mu = 0.3 /
+&growth steps = 1, toughness = 1.0e-3, increment = 0.1, criterion = 'work', new_mu = 0.3,
+        angle_range = 85 /
+"""
+
+
+def test_frictional_fault_grows_in_shear(tmp_path):
+    done, out = run(tmp_path, FAULT)
+    assert done.returncode == 0, done.stdout + done.stderr
+    g = growth_of(out)
+    # No trial kink opens under the confining pressure; both tips grow by slipping kinks.
+    assert not np.any(g["trials"]["trial_state"] == 2)
+    assert list(g["reason"]) == [0, 0]
+    assert np.all(np.abs(g["angle"]) <= 30.0)
+
+
+def test_one_and_two_threads_agree(tmp_path):
+    one_done, one = run(tmp_path, FAULT, threads=1)
+    two_done, two = run(tmp_path, FAULT, threads=2)
+    assert one_done.returncode == 0 and two_done.returncode == 0
+    a, b = growth_of(one), growth_of(two)
+    for key in ("angle", "efficiency"):
+        np.testing.assert_array_equal(a[key], b[key])
+    for key in a["trials"]:
+        np.testing.assert_array_equal(a["trials"][key], b["trials"][key])
+
+
+@pytest.mark.parametrize("setting, message", [
+    ("criterion = 'works'", "criterion = 'works' is not one of 'mts', 'work'"),
+    ("criterion = 'work', angle_range = 180", "angle_range = 180.000 must lie in (0, 180)"),
+    ("criterion = 'work', angle_range = 0", "angle_range = 0.00000 must lie in (0, 180)"),
+    ("criterion = 'work', angle_step = 0", "angle_step = 0.00000 must be positive"),
+    ("criterion = 'work', angle_step = -5", "angle_step = -5.00000 must be positive"),
+])
+def test_bad_work_input(tmp_path, setting, message):
+    text = ("&model youngs_modulus = 1.0, poissons_ratio = 0.25 /\n&remote_stress syy = 1 /\n"
+            "&fracture name = 'crack', x = -1, 1, y = 0, 0, elements = 10, mu = 0 /\n"
+            f"&growth steps = 1, toughness = 1, {setting} /\n")
+    done, _ = run(tmp_path, text)
+    assert done.returncode == 2
+    errors = [line for line in done.stderr.splitlines() if "error" in line]
+    assert len(errors) == 1 and message in errors[0], done.stderr
+
+
+def test_trials_figure_draws_the_stored_trials(tmp_path):
+    done, out = run(tmp_path, FAULT)
+    assert done.returncode == 0, done.stdout + done.stderr
+    proc = subprocess.run([sys.executable, str(PLOT_SCRIPT), str(out), "-o",
+                           str(tmp_path / "fig")], capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    assert (tmp_path / "fig" / "model1_growth_trials.png").read_bytes()[:4] == b"\x89PNG"
+    result = load_result(out)
+    g = growth_of(out)
+    fig = plot_figures.plot_growth_trials(result)
+    try:
+        lines = {line.get_gid(): line for line in fig.axes[0].get_lines() if line.get_gid()}
+        trials = g["trials"]
+        for record, label in ((1, "step 1, fault begin"), (2, "step 1, fault end")):
+            mine = trials["trial_record"] == record
+            order = np.argsort(trials["trial_angle"][mine], kind="stable")
+            line = lines[f"efficiency:{label}"]
+            np.testing.assert_array_equal(line.get_xdata(), trials["trial_angle"][mine][order])
+            candidate = np.isin(trials["trial_state"][mine][order], (1, 2))
+            np.testing.assert_array_equal(line.get_ydata()[candidate],
+                                          trials["trial_efficiency"][mine][order][candidate])
+            assert np.all(np.isnan(line.get_ydata()[~candidate]))
+            chosen = lines[f"chosen:{label}"]
+            np.testing.assert_array_equal(chosen.get_xdata(), [g["angle"][record - 1]])
+        np.testing.assert_array_equal(lines["work_threshold"].get_ydata(),
+                                      [g["threshold"]] * 2)
+    finally:
+        plot_figures.plt.close(fig)
+
+
+def test_resumed_run_goes_on_with_its_trials(tmp_path):
+    # Two steps at once, and one step resumed for a second: the same records and trials
+    # (the resumed run factorizes its first solve anew: equal within round-off).
+    two = FAULT.replace("steps = 1,", "steps = 2,")
+    (tmp_path / "full").mkdir()
+    full_done, full = run(tmp_path / "full", two)
+    assert full_done.returncode == 0, full_done.stderr
+    (tmp_path / "one").mkdir()
+    one_done, one = run(tmp_path / "one", FAULT)
+    assert one_done.returncode == 0, one_done.stderr
+    (tmp_path / "two.nml").write_text(two)
+    resumed = tmp_path / "resumed.h5"
+    done = subprocess.run([str(ddc2d_exe()), str(tmp_path / "two.nml"), "--resume", str(one),
+                           "-o", str(resumed)], capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, done.stdout + done.stderr
+    a, b = growth_of(full), growth_of(resumed)
+    np.testing.assert_array_equal(a["reason"], b["reason"])
+    np.testing.assert_allclose(b["angle"], a["angle"], rtol=1e-9)
+    np.testing.assert_allclose(b["efficiency"], a["efficiency"], rtol=1e-9)
+    for key in ("trial_step", "trial_record", "trial_state"):
+        np.testing.assert_array_equal(a["trials"][key], b["trials"][key])
+    np.testing.assert_allclose(b["trials"]["trial_angle"], a["trials"]["trial_angle"],
+                               rtol=1e-9)
+    # Efficiencies of stuck trials are round-off around 0: compared absolutely.
+    scale = np.nanmax(np.abs(a["trials"]["trial_efficiency"]))
+    np.testing.assert_allclose(b["trials"]["trial_efficiency"], a["trials"]["trial_efficiency"],
+                               rtol=0, atol=1e-9 * scale)
