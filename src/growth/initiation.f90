@@ -368,7 +368,7 @@ contains
         character(len=*), intent(in) :: name
         type(growth_options), intent(in) :: growth
         type(model_type), intent(out) :: grown
-        integer :: n, m, i, parent
+        integer :: n, m, i, parent, nf
 
         n = work%elements%n
         m = size(xs) - 1
@@ -403,8 +403,15 @@ contains
         if (c%kind == initiation_flaw) call take_new_element_laws(grown%elements, &
             [(i > n, i = 1, n + m)], growth)
         call compute_geometry(grown%elements)
-        grown%fractures = [work%fractures, fracture_type(name=name, first_element=n + 1, &
-                                                         last_element=n + m)]
+        ! Element by element: an array constructor of a type with an allocatable name
+        ! leaks its temporaries with gfortran (valgrind).
+        nf = size(work%fractures)
+        deallocate (grown%fractures)
+        allocate (grown%fractures(nf + 1))
+        grown%fractures(:nf) = work%fractures
+        grown%fractures(nf + 1)%name = name
+        grown%fractures(nf + 1)%first_element = n + 1
+        grown%fractures(nf + 1)%last_element = n + m
     end subroutine add_fracture
 
     !> The new fracture's tips join the run's growing tips: both ends of a flaw, the free end

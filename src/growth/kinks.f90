@@ -109,16 +109,21 @@ contains
         type(step_kinks), intent(inout) :: kinks
         type(tip_path), allocatable :: paths(:), link_paths(:)
         type(element_split), allocatable :: splits(:)
-        integer :: i
+        logical :: grows(size(kinks%tip))
+        integer :: i, m
 
         call link_parts(step_links(kinks), link_paths, splits)
-        allocate (paths(0))
+        grows = kinks%tip%reason == growth_grew .or. kinks%tip%reason == growth_corrector_failed
+        ! Filled in place: array constructors of a type with allocatable components leak
+        ! their temporaries with gfortran (valgrind).
+        allocate (paths(count(grows) + size(link_paths)))
+        m = 0
         do i = 1, size(kinks%tip)
-            if (kinks%tip(i)%reason /= growth_grew .and. &
-                kinks%tip(i)%reason /= growth_corrector_failed) cycle
-            paths = [paths, kink_path(model, kinks%tip(i))]
+            if (.not. grows(i)) cycle
+            m = m + 1
+            paths(m) = kink_path(model, kinks%tip(i))
         end do
-        paths = [paths, link_paths]
+        paths(m + 1:) = link_paths
         call extend_model(model, created, paths, kinks%step, options, kinks%trial, &
                           kinks%trial_created, kinks%moved_to, splits, kinks%origin)
     end subroutine grow_paths

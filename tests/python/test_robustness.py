@@ -625,6 +625,18 @@ MEMCHECK_MODELS = {
                         "&grid xmin = -2, xmax = 2, nx = 9, ymin = -1, ymax = 1, ny = 7 /\n"
                         "&line x_begin = -2, y_begin = 0.3, x_end = 2, y_end = 0.3, "
                         "points = 5 /\n",
+    # The work criterion's trial kinks, and a flaw point that starts a crack
+    "work_criterion.nml": "&model youngs_modulus = 50000.0, poissons_ratio = 0.25 /\n"
+                          "&remote_stress syy = 10.0, sxy = 5.0 /\n"
+                          "&fracture x = -1.0, 1.0, y = 0.0, 0.0, elements = 10, mu = 0.0 /\n"
+                          "&growth steps = 2, toughness = 1.0, increment = 0.2, "
+                          "criterion = 'work', angle_step = 15 /\n",
+    "flaw.nml": "&model youngs_modulus = 50000.0, poissons_ratio = 0.25 /\n"
+                "&remote_stress sxx = 10.0, syy = -20.0, sxy = 10.0 /\n"
+                "&fracture x = -1.0, 1.0, y = 0.0, 0.0, elements = 1, mu = 0.6, sf = 2.0 /\n"
+                "&growth steps = 2, toughness = 1.0e6, increment = 0.39 /\n"
+                "&initiation tensile_strength = 5.0, probe_distance = 0.05, flaw_x = 0.0, "
+                "flaw_y = 30.0, flaw_length = 0.2 /\n",
     "bad.nml": "&model youngs_modulus = -1.0, poissons_ratio = 0.25 /\n"
                "&fracture x = -1.0, 1.0, y = 0.0, 0.0, elements = 4, mu = 0.6 /\n",
 }
