@@ -5,7 +5,8 @@
 !> - assess_tip: what a tip's K say, its kink angle (the predictor, which the clearance
 !>   checks and links see) and K_eq (which the toughness and the choice of tips see);
 !> - kink_angles: the angles the step's growing tips take, with the solves that needs;
-!> - flaw_direction: the direction of a new fracture at a flaw point (&initiation).
+!> - assess_flaw: the direction of a new fracture at a flaw point (&initiation), and whether
+!>   it starts.
 !>
 !> growth_criterion_mts: the maximum tangential stress (ddc_growth_mts), corrected for
 !> local symmetry (ddc_growth_corrector). growth_criterion_work: the largest external work
@@ -15,21 +16,25 @@
 !> only the names of growth_criterion_names).
 !> Beside them the choice of the most critical tip by K_eq.
 module ddc_growth_criterion
+    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_internal_error
     use ddc_text, only: itoa
-    use ddc_model_types, only: model_type, growth_options, growth_criterion_mts, &
-        growth_criterion_work, growth_tips_most_critical
+    use ddc_model_types, only: model_type, growth_options, initiation_options, &
+        growth_criterion_mts, growth_criterion_work, growth_tips_most_critical
+    use ddc_model_initiations, only: initiation_record
+    use ddc_model_loads, only: work_threshold_of
     use ddc_model_results, only: model_results
     use ddc_growth_solver, only: growth_solver
     use ddc_growth_kinks, only: step_kinks
     use ddc_growth_mts, only: mts_angle, equivalent_k
     use ddc_growth_corrector, only: correct_kinks
     use ddc_growth_trials, only: search_kinks
+    use ddc_growth_flaw_search, only: search_flaw
     implicit none
     private
 
-    public :: assess_tip, kink_angles, most_critical, flaw_direction, searched_tip, picks_by_k
+    public :: assess_tip, kink_angles, most_critical, assess_flaw, searched_tip, picks_by_k
 
     !> K_eq within this fraction of the largest count as tied for the most critical tip
     real(wp), parameter :: tie_tolerance = 1.0e-9_wp
@@ -63,29 +68,57 @@ contains
         end select
     end subroutine assess_tip
 
-    !> The direction of a flaw's first crack under the model's criterion, from the maximum
-    !> tension at the flaw point (the field without a crack there). MTS opens it against
-    !> that tension: perpendicular to it. So does 'work': a short open crack draws the work
-    !> pi a^2 (1 - nu^2) |t|^2 / E from the traction t across it, largest across the maximum
-    !> tension.
-    subroutine flaw_direction(options, tension_direction, along, error)
-        !> The growth options (criterion)
+    !> How a flaw's first crack starts under the model's criterion: its direction, and its
+    !> score (1 or more starts it; docs/fracture-growth.md#new-fractures-inside-the-rock). MTS
+    !> opens it against the maximum tension at the flaw point (the field without a crack
+    !> there), perpendicular to it, when that tension reaches the tensile strength: score
+    !> tension / tensile_strength. 'work' searches its orientations (ddc_growth_flaw_search):
+    !> score efficiency / work threshold of the best one that opens or slips.
+    subroutine assess_flaw(solver, work, before, options, initiation, flaw, point, tension, &
+                           tension_direction, step, record, along, score, efficiency, error)
+        !> The solves of the run (the base: work)
+        type(growth_solver), intent(inout) :: solver
+        !> The current geometry (without observations), and its solution
+        type(model_type), intent(in) :: work
+        type(model_results), intent(in) :: before
+        !> The growth options (criterion, and what it reads)
         type(growth_options), intent(in) :: options
-        !> Unit direction of the maximum tension at the flaw point
-        real(wp), intent(in) :: tension_direction(2)
+        !> The initiation options
+        type(initiation_options), intent(in) :: initiation
+        !> The flaw's index and point [length unit]
+        integer, intent(in) :: flaw
+        real(wp), intent(in) :: point(2)
+        !> The maximum tension at the point [stress unit], and its unit direction
+        real(wp), intent(in) :: tension, tension_direction(2)
+        !> The growth step of the check
+        integer, intent(in) :: step
+        !> The run's initiations ('work' appends the flaw's trials)
+        type(initiation_record), intent(inout) :: record
         !> Unit direction of the crack
         real(wp), intent(out) :: along(2)
-        !> Set (internal error) for a criterion this code does not know
+        !> How far past its threshold the flaw is (-huge when nothing can start)
+        real(wp), intent(out) :: score
+        !> Its efficiency under 'work' (NaN otherwise) [stress unit * length unit]
+        real(wp), intent(out) :: efficiency
+        !> Set when a trial's solve fails, or (internal error) for an unknown criterion
         type(error_type), allocatable, intent(out) :: error
+        logical :: candidate
 
+        along = [-tension_direction(2), tension_direction(1)]
+        score = -huge(1.0_wp)
+        efficiency = ieee_value(1.0_wp, ieee_quiet_nan)
         select case (options%criterion)
-        case (growth_criterion_mts, growth_criterion_work)
-            along = [-tension_direction(2), tension_direction(1)]
+        case (growth_criterion_mts)
+            score = tension / initiation%tensile_strength
+        case (growth_criterion_work)
+            call search_flaw(solver, work, before, options, initiation, flaw, point, step, &
+                             record, along, efficiency, candidate, error)
+            if (candidate) score = efficiency / work_threshold_of(options, &
+                work%youngs_modulus, work%poissons_ratio)
         case default
-            along = tension_direction
-            call unknown_criterion('flaw_direction', options%criterion, error)
+            call unknown_criterion('assess_flaw', options%criterion, error)
         end select
-    end subroutine flaw_direction
+    end subroutine assess_flaw
 
     !> The applied kink angles of the step's growing tips under the model's criterion; their
     !> reasons, solves and links, and the last trial solved (ddc_growth_kinks).

@@ -8,46 +8,47 @@
 !> - a tail at the vertex, on the probe's side: one growth increment (in the increment's
 !>   elements) perpendicular to the maximum tension at the probe, named `<parent>_tail<k>`;
 !>   at most one per vertex and side;
-!> - at a flaw point, a crack of `flaw_length` centred on it, in the direction the
-!>   criterion chooses (ddc_growth_criterion's flaw_direction: perpendicular to the maximum
-!>   tension under MTS), named `flaw<k>`.
+!> - at a flaw point, a crack of `flaw_length` centred on it, named `flaw<k>`, as the
+!>   criterion decides (ddc_growth_criterion's assess_flaw): under MTS where the tension there
+!>   reaches the strength, perpendicular to it; under 'work' where the best of its
+!>   orientations reaches the work threshold, in that orientation.
 !> A new fracture whose elements would cross another element is not started; the next place
 !> is tried.
-!> One new fracture starts per check (growth step): the one with the largest tension; ties
-!> (within a relative 1e-9 of the strength, so that round-off does not decide) go to tails
+!> One new fracture starts per check (growth step): the one furthest past its threshold (the
+!> largest score: tension / tensile strength, or a flaw's efficiency / work threshold under
+!> 'work'); ties (within 1e-9 of the score, so that round-off does not decide) go to tails
 !> before flaws, then the lowest fracture, element, end (begin first) and side (-1 first),
 !> or the lowest flaw. The model is solved with it before anything else happens, and the
 !> next check (the next growth step, at the same load until nothing grows or starts) may
 !> start the next one.
 module ddc_growth_initiation
+    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use ddc_kinds, only: wp
     use ddc_constants, only: pi
     use ddc_error, only: error_type
     use ddc_text, only: itoa
     use ddc_model_types, only: model_type, growth_options, initiation_options, &
-        fracture_type, condition_contact, no_residual_drop, rigid_joint
+        fracture_type, condition_contact
     use ddc_model_results, only: model_results, field_result, point_on_element, &
         tip_set
     use ddc_model_initiations, only: initiation_record, initiation_tail, initiation_flaw, &
         append_initiation, empty_initiation_record
     use ddc_model_loads, only: shear_modulus_of
-    use ddc_mesh_geometry, only: compute_geometry
     use ddc_mesh_checks, only: check_elements
     use ddc_post_fields, only: evaluate_field
-    use ddc_growth_extension, only: inherit_values, take_new_element_laws, tip_end_begin, &
-        tip_end_end
+    use ddc_growth_extension, only: tip_end_begin, tip_end_end
+    use ddc_growth_new_fracture, only: flaw_path, add_fracture
     use ddc_growth_tips, only: growing_tip, locate_tip, increment_for
     use ddc_growth_solver, only: solve_grown, accept_trial
     use ddc_growth_run_state, only: growth_state
     use ddc_growth_load_steps, only: follow_growth
-    use ddc_growth_criterion, only: flaw_direction
+    use ddc_growth_criterion, only: assess_flaw
     implicit none
     private
 
     public :: start_fracture, probe_candidates, initiation_candidate, principal_tension
 
-    !> Ties of probed tension within this fraction of the tensile strength are decided by
-    !> index, not by round-off
+    !> Scores within this of each other are tied: decided by index, not by round-off
     real(wp), parameter :: tie_tolerance = 1.0e-9_wp
     !> Two vertices closer than this fraction of the probe distance are one
     real(wp), parameter :: same_point = 1.0e-6_wp
@@ -65,6 +66,11 @@ module ddc_growth_initiation
         real(wp) :: tension = 0.0_wp
         !> Unit direction of the maximum tension at the probe
         real(wp) :: tension_direction(2) = [1.0_wp, 0.0_wp]
+        !> How far past its threshold (1 or more starts it): tension / tensile strength, or a
+        !> flaw's as the criterion scores it
+        real(wp) :: score = 0.0_wp
+        !> A flaw's crack direction and efficiency (NaN but under 'work')
+        real(wp) :: along(2) = [1.0_wp, 0.0_wp], efficiency = 0.0_wp
     end type initiation_candidate
 
 contains
@@ -101,26 +107,37 @@ contains
         started = .false.
         if (.not. allocated(record%kind)) call empty_initiation_record(record)
         found = probe_candidates(run%work, run%current, growth, initiation, record)
+        do i = 1, size(found)
+            associate (c => found(i))
+                c%efficiency = ieee_value(1.0_wp, ieee_quiet_nan)
+                c%score = c%tension / initiation%tensile_strength
+                if (c%kind == initiation_flaw) then
+                    call assess_flaw(run%solver, run%work, run%current, growth, initiation, &
+                                     c%flaw, c%point, c%tension, c%tension_direction, step, &
+                                     record, c%along, c%score, c%efficiency, error)
+                    if (allocated(error)) return
+                end if
+            end associate
+        end do
         allocate (usable(size(found)), source=.true.)
         n = run%work%elements%n
         do
-            i = first_over(found, usable, initiation%tensile_strength)
+            i = first_over(found, usable)
             if (i == 0) return
             first = found(i)
-            ! The crack runs perpendicular to the maximum tension.
-            along = [-first%tension_direction(2), first%tension_direction(1)]
             if (first%kind == initiation_tail) then
+                ! The crack runs perpendicular to the maximum tension.
+                along = [-first%tension_direction(2), first%tension_direction(1)]
                 call tail_path(run%work, growth, first, along, xs, ys)
                 name = allocated_name(run%work%fractures(first%parent))//'_tail'// &
                        itoa(1 + count(record%parent == first%parent .and. &
                                       record%kind == initiation_tail))
             else
-                call flaw_direction(growth, first%tension_direction, along, error)
-                if (allocated(error)) return
+                along = first%along
                 call flaw_path(growth, initiation, first%point, along, xs, ys)
                 name = 'flaw'//itoa(first%flaw)
             end if
-            call add_fracture(run%work, first, xs, ys, name, growth, trial)
+            call add_fracture(run%work, first%kind, first%element, xs, ys, name, growth, trial)
             ! A new fracture that would cross another is not meshed: the next place is tried.
             call check_elements(trial%elements, trial%fractures, error)
             if (.not. allocated(error)) exit
@@ -145,7 +162,7 @@ contains
         call append_initiation(record, first%kind, step, load_step, f, first%parent, &
                                first%element, first%flaw, first%side, first%point, &
                                first%probe, first%tension, &
-                               atan2(along(2), along(1)) * 180.0_wp / pi)
+                               atan2(along(2), along(1)) * 180.0_wp / pi, first%efficiency)
         started = .true.
     end subroutine start_fracture
 
@@ -250,22 +267,21 @@ contains
         direction = [cos(phi), sin(phi)]
     end subroutine principal_tension
 
-    !> Index of the usable candidate that starts first: the largest tension reaching
-    !> `strength`, ties by index (module header); 0 when none reaches it.
-    pure integer function first_over(found, usable, strength) result(best)
+    !> Index of the usable candidate that starts first: the largest score of 1 or more, ties
+    !> by index (module header); 0 when none reaches 1.
+    pure integer function first_over(found, usable) result(best)
         type(initiation_candidate), intent(in) :: found(:)
         logical, intent(in) :: usable(:)
-        real(wp), intent(in) :: strength
         integer :: k
 
         best = 0
         do k = 1, size(found)
-            if (.not. usable(k) .or. .not. (found(k)%tension >= strength)) cycle
+            if (.not. usable(k) .or. .not. (found(k)%score >= 1.0_wp)) cycle
             if (best == 0) then
                 best = k
-            else if (found(k)%tension > found(best)%tension + tie_tolerance * strength) then
+            else if (found(k)%score > found(best)%score + tie_tolerance) then
                 best = k
-            else if (found(k)%tension >= found(best)%tension - tie_tolerance * strength) then
+            else if (found(k)%score >= found(best)%score - tie_tolerance) then
                 if (ranks_before(found(k), found(best))) best = k
             end if
         end do
@@ -338,81 +354,6 @@ contains
         xs = [(c%point(1) + along(1) * length * j / pieces, j = 0, pieces)]
         ys = [(c%point(2) + along(2) * length * j / pieces, j = 0, pieces)]
     end subroutine tail_path
-
-    !> A flaw's vertices: flaw_length (default the increment) centred on the point along
-    !> `along`, in elements of the growth's element_length (default: two elements).
-    pure subroutine flaw_path(growth, initiation, point, along, xs, ys)
-        type(growth_options), intent(in) :: growth
-        type(initiation_options), intent(in) :: initiation
-        real(wp), intent(in) :: point(2), along(2)
-        real(wp), allocatable, intent(out) :: xs(:), ys(:)
-        real(wp) :: length
-        integer :: pieces, j
-
-        length = initiation%flaw_length
-        if (length <= 0.0_wp) length = growth%increment
-        pieces = 2
-        if (growth%element_length > 0.0_wp) pieces = max(2, nint(length / growth%element_length))
-        xs = [(point(1) + along(1) * length * (real(j, wp) / pieces - 0.5_wp), j = 0, pieces)]
-        ys = [(point(2) + along(2) * length * (real(j, wp) / pieces - 0.5_wp), j = 0, pieces)]
-    end subroutine flaw_path
-
-    !> The model with a new fracture of the polyline (xs, ys) appended after every element.
-    !> A tail's elements take its parent element's values (as elements grown at a tip do);
-    !> a flaw's are frictionless, cohesionless contact elements of intact rock (no strength
-    !> law) without pressure, but for the new-element values &growth gives.
-    subroutine add_fracture(work, c, xs, ys, name, growth, grown)
-        type(model_type), intent(in) :: work
-        type(initiation_candidate), intent(in) :: c
-        real(wp), intent(in) :: xs(:), ys(:)
-        character(len=*), intent(in) :: name
-        type(growth_options), intent(in) :: growth
-        type(model_type), intent(out) :: grown
-        integer :: n, m, i, parent, nf
-
-        n = work%elements%n
-        m = size(xs) - 1
-        parent = max(c%element, 1)
-        grown = work
-        call inherit_values(work%elements, [(i, i = 1, n), spread(parent, 1, m)], &
-                            [spread(.false., 1, n), spread(.true., 1, m)], growth, &
-                            grown%elements)
-        associate (e => grown%elements, new => [(i, i = n + 1, n + m)])
-            e%x_begin(new) = xs(:m)
-            e%y_begin(new) = ys(:m)
-            e%x_end(new) = xs(2:)
-            e%y_end(new) = ys(2:)
-            e%fracture_id(new) = size(work%fractures) + 1
-            if (c%kind == initiation_flaw) then
-                ! Intact rock: no friction, cohesion or strength law but what &growth gives.
-                e%condition(new) = condition_contact
-                e%mu(new) = 0.0_wp
-                e%sf(new) = 0.0_wp
-                e%tensile_strength(new) = 0.0_wp
-                e%sf_residual(new) = no_residual_drop
-                e%mu_dynamic(new) = no_residual_drop
-                e%slip_weakening_distance(new) = 0.0_wp
-                e%opening_weakening_distance(new) = 0.0_wp
-                e%shear_stiffness(new) = rigid_joint
-                e%normal_stiffness(new) = rigid_joint
-                e%pressure(new) = 0.0_wp
-                e%bc_s(new) = 0.0_wp
-                e%bc_n(new) = 0.0_wp
-            end if
-        end associate
-        if (c%kind == initiation_flaw) call take_new_element_laws(grown%elements, &
-            [(i > n, i = 1, n + m)], growth)
-        call compute_geometry(grown%elements)
-        ! Element by element: an array constructor of a type with an allocatable name
-        ! leaks its temporaries with gfortran (valgrind).
-        nf = size(work%fractures)
-        deallocate (grown%fractures)
-        allocate (grown%fractures(nf + 1))
-        grown%fractures(:nf) = work%fractures
-        grown%fractures(nf + 1)%name = name
-        grown%fractures(nf + 1)%first_element = n + 1
-        grown%fractures(nf + 1)%last_element = n + m
-    end subroutine add_fracture
 
     !> The new fracture's tips join the run's growing tips: both ends of a flaw, the free end
     !> of a tail (whose other end is on its parent), where the solve reports them as tips.

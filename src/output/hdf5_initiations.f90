@@ -1,10 +1,13 @@
 !> /growth/initiations (docs/output-reference.md#growthinitiations): one row per new fracture a
-!> growth run with &initiation started inside the rock, and the group's settings.
+!> growth run with &initiation started inside the rock, and the group's settings; under
+!> criterion 'work' with flaw points also each start's efficiency and every trial of the
+!> flaws' first cracks (/growth/initiations/flaw_trials).
 module ddc_output_hdf5_initiations
     use ddc_error, only: error_type
     use ddc_text, only: allocated_text
     use ddc_model_types, only: model_type
     use ddc_model_initiations, only: initiation_record
+    use ddc_model_results, only: trial_state_coding
     use ddc_output_hdf5_handles, only: h5_object, create_group, close_group
     use ddc_output_hdf5_write, only: write_real_1d, write_int_1d, write_attribute
     implicit none
@@ -24,8 +27,8 @@ contains
         type(initiation_record), intent(in) :: record
         !> Set when a write fails (nothing is written when it is set already)
         type(error_type), allocatable, intent(inout) :: error
-        type(h5_object) :: group
-        character(len=:), allocatable :: length, stress
+        type(h5_object) :: group, trials
+        character(len=:), allocatable :: length, stress, work
 
         if (.not. allocated(record%kind)) return
         length = allocated_text(model%length_unit)
@@ -46,6 +49,19 @@ contains
         call write_real_1d(group, 'probe_y', record%probe_y, length, error)
         call write_real_1d(group, 'tension', record%tension, stress, error)
         call write_real_1d(group, 'angle', record%angle, 'degree', error)
+        ! The flaws' searches (criterion 'work' with flaw points) allocate the trials.
+        if (allocated(record%trial_step)) then
+            work = stress//' '//length
+            call write_real_1d(group, 'efficiency', record%efficiency, work, error)
+            call create_group(group, 'flaw_trials', trials, error)
+            call write_int_1d(trials, 'step', record%trial_step, error)
+            call write_int_1d(trials, 'flaw', record%trial_flaw, error)
+            call write_real_1d(trials, 'angle', record%trial_angle, 'degree', error)
+            call write_real_1d(trials, 'efficiency', record%trial_efficiency, work, error)
+            call write_int_1d(trials, 'state', record%trial_state, error, &
+                              coding=trial_state_coding)
+            call close_group(trials, error)
+        end if
         associate (o => model%initiation)
             call write_attribute(group, 'tensile_strength', o%tensile_strength, error)
             call write_attribute(group, 'probe_distance', o%probe_distance, error)

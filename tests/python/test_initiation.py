@@ -18,6 +18,11 @@ so that the only thing that can happen is one initiation (probe_distance 0.2 m):
   load) and point converge as the 20, 40, 80 element meshes halve the elements (observed
   order from ddc2d.richardson; the probe distance must span a few elements);
 - a flaw point under tension starts a crack of flaw_length perpendicular to the tension;
+- under criterion = 'work' a flaw searches the orientations of its first crack: under
+  uniaxial tension the best is the open crack across the tension, with the efficiency of a
+  Griffith crack; under all-round compression, with frictional new elements, the sliding
+  crack that maximizes tau (tau - mu sigma_n), with its efficiency, where MTS starts
+  nothing; it starts when its efficiency reaches the work threshold, not below;
 - bad input: one message naming &initiation and the variable, exit 2.
 """
 
@@ -98,6 +103,14 @@ def initiations(out):
     """The /growth/initiations columns of a result file, as a dict of arrays."""
     with h5py.File(out, "r") as f:
         group = f["growth/initiations"]
+        return {name: item[()] for name, item in group.items()
+                if isinstance(item, h5py.Dataset)}
+
+
+def flaw_trials(out):
+    """The /growth/initiations/flaw_trials columns of a result file, as a dict of arrays."""
+    with h5py.File(out, "r") as f:
+        group = f["growth/initiations/flaw_trials"]
         return {name: group[name][()] for name in group}
 
 
@@ -266,3 +279,144 @@ def test_resume_is_refused(folder):
     assert done.returncode == 2, done.stdout + done.stderr
     lines = done.stderr.strip().splitlines()
     assert len(lines) == 1 and "&initiation" in lines[0], done.stderr
+
+
+# A flaw under the work criterion: a crack of FLAW_LENGTH centred on the origin, the only other
+# fracture a 2 cm crack 100 m away (its field there is a 1e-8 of the remote one) whose
+# friction (mu = 10) locks it under compression. Plane strain, E = 50 GPa, nu = 0.25. A
+# constant-DD crack of n elements overestimates a crack's work by 1/n (measured: 5.0, 2.5,
+# 1.25 % at 20, 40, 80 elements), so efficiencies are compared with the closed forms after
+# Richardson extrapolation from 10 and 20 elements.
+YOUNG, NU = 50000.0, 0.25
+FLAW_LENGTH = 0.2
+FAR_CRACK = ("&fracture name = 'far', x = -0.01, 0.01, y = -100.0, -100.0, elements = 4, "
+             "condition = 'contact', mu = 10.0 /\n")
+
+
+def flaw_model(stress, elements=20, criterion="work", new_mu=0.0, threshold=1.0e6,
+               strength=1.0e3):
+    """One flaw at the origin in `elements` elements; &growth with an increment of a quarter
+    of the flaw and tip trials within 10 degrees (the tips do not matter here)."""
+    sxx, syy, sxy = stress
+    return (HEADER.replace(f"sxx = {SXX}, syy = {SYY}, sxy = {SXY}",
+                           f"sxx = {sxx!r}, syy = {syy!r}, sxy = {sxy!r}") + FAR_CRACK +
+            f"&growth steps = 1, toughness = 1.0e6, increment = {FLAW_LENGTH / 4}, "
+            f"element_length = {FLAW_LENGTH / elements}, criterion = '{criterion}', "
+            f"angle_step = 5.0, angle_range = 10.0, work_threshold = {threshold!r}, "
+            f"new_mu = {new_mu!r} /\n"
+            f"&initiation tensile_strength = {strength!r}, probe_distance = 0.05, "
+            f"flaw_x = 0.0, flaw_y = 0.0, flaw_length = {FLAW_LENGTH} /\n")
+
+
+def rotated(s1, s2, degrees):
+    """(sxx, syy, sxy) of principal stresses s1 along `degrees` from x, s2 across it."""
+    c, s = math.cos(math.radians(degrees)), math.sin(math.radians(degrees))
+    return (s1 * c * c + s2 * s * s, s1 * s * s + s2 * c * c, (s1 - s2) * s * c)
+
+
+def best_sliding_cracks(stress, mu):
+    """Orientations [degree] and efficiency pi a (1 - nu^2) tau (tau - mu |sigma_n|) / E of
+    the closed frictional cracks of half-length a that maximize it (sigma_n < 0 everywhere):
+    the work of the remote shear traction tau on the slip of a crack driven by
+    tau - mu |sigma_n| (Pollard & Segall 1987), over a 0.001-degree grid. The two conjugate
+    orientations, symmetric about the most compressive stress, tie."""
+    sxx, syy, sxy = stress
+    angles = np.radians(np.arange(-90.0, 90.0, 0.001))
+    c, s = np.cos(angles), np.sin(angles)
+    normal = sxx * s * s + syy * c * c - 2.0 * sxy * s * c
+    shear = np.abs((syy - sxx) * s * c + sxy * (c * c - s * s))
+    drive = np.maximum(shear - mu * np.abs(normal), 0.0)
+    efficiency = math.pi * 0.5 * FLAW_LENGTH * (1.0 - NU**2) * shear * drive / YOUNG
+    peaks = (efficiency > np.roll(efficiency, 1)) & (efficiency >= np.roll(efficiency, -1))
+    assert np.count_nonzero(peaks) == 2
+    return np.degrees(angles[peaks]), efficiency.max()
+
+
+def orientation_gap(a, b):
+    """Difference of two crack orientations [degree], modulo half a turn."""
+    difference = (a - b) % 180.0
+    return min(difference, 180.0 - difference)
+
+
+def best_trial(trials):
+    """Index of the best trial that opens or slips."""
+    return np.nanargmax(np.where(trials["state"] >= 1, trials["efficiency"], np.nan))
+
+
+def extrapolated(coarse, fine):
+    """The efficiency of 10 and 20 elements extrapolated to zero element length (order 1)."""
+    return 2.0 * fine - coarse
+
+
+def test_work_flaw_under_tension_opens_across_it(folder):
+    """Uniaxial tension of 10 MPa at 22 degrees: the best trial crack is the open one across
+    the tension (orientation 112 = -68 degrees, between grid angles), within 1 degree, and
+    its efficiency, extrapolated, is a Griffith crack's pi a sigma^2 (1 - nu^2) / E (its work
+    per unit length, its G) within 0.5 %; it starts (threshold below it) in that direction."""
+    sigma = 10.0
+    griffith = math.pi * 0.5 * FLAW_LENGTH * sigma**2 * (1.0 - NU**2) / YOUNG
+    stress = rotated(sigma, 0.0, 22.0)
+    efficiency = []
+    for n in (10, 20):
+        out = run(folder, f"work_flaw_tension{n}",
+                  flaw_model(stress, elements=n, threshold=0.5 * griffith))
+        rows = initiations(out)
+        assert rows["kind"].tolist() == [2]
+        assert orientation_gap(rows["angle"][0], -68.0) < 1.0, rows["angle"]
+        efficiency.append(rows["efficiency"][0])
+        trials = flaw_trials(out)
+        # The grid (36 orientations every 5 degrees), then the refinement
+        assert trials["angle"][:36] == pytest.approx(np.arange(-90.0, 90.0, 5.0), abs=1e-9)
+        assert np.nanmax(trials["efficiency"]) == pytest.approx(efficiency[-1], rel=1e-12)
+        assert set(trials["state"][:36]) == {2}, "every trial crack opens under tension"
+    assert extrapolated(*efficiency) == pytest.approx(griffith, rel=0.005)
+
+
+@pytest.fixture(scope="module")
+def compression_search(folder):
+    """Principal stresses -10 and -40 MPa (s1 at 10 degrees), frictional new elements
+    (new_mu = 0.6), a work threshold nothing reaches: the flaw's searches of the first
+    check with 10 and 20 elements, and the expected best sliding crack."""
+    stress = rotated(-10.0, -40.0, 10.0)
+    searches = []
+    for n in (10, 20):
+        out = run(folder, f"work_flaw_search{n}", flaw_model(stress, elements=n, new_mu=0.6))
+        searches.append((flaw_trials(out), initiations(out)))
+    return stress, searches, best_sliding_cracks(stress, 0.6)
+
+
+def test_work_flaw_under_compression_slides(folder, compression_search):
+    """All-round compression: no trial opens, some slip; the best sliding crack is one of
+    the closed form's two conjugate ones within 1 degree, its efficiency extrapolated within
+    0.5 %; nothing starts below the threshold."""
+    _, searches, (angles, efficiency) = compression_search
+    found = []
+    for trials, rows in searches:
+        assert rows["kind"].size == 0
+        assert 2 not in set(trials["state"]) and 1 in set(trials["state"])
+        best = best_trial(trials)
+        gap = min(orientation_gap(trials["angle"][best], angle) for angle in angles)
+        assert gap < 1.0, (trials["angle"][best], angles)
+        found.append(trials["efficiency"][best])
+    assert extrapolated(*found) == pytest.approx(efficiency, rel=0.005)
+
+
+def test_work_flaw_starts_at_its_threshold(folder, compression_search):
+    """The flaw under compression (20 elements) starts a sliding crack when the work
+    threshold is 0.1 % below its best efficiency, in the best trial's direction; not 0.1 %
+    above it; MTS starts nothing there (no tension)."""
+    stress, searches, _ = compression_search
+    trials = searches[1][0]
+    best = best_trial(trials)
+    top = float(trials["efficiency"][best])
+    below = initiations(run(folder, "work_flaw_below",
+                            flaw_model(stress, new_mu=0.6, threshold=0.999 * top)))
+    assert below["kind"].tolist() == [2]
+    assert below["efficiency"][0] == pytest.approx(top, rel=1e-9)
+    assert orientation_gap(below["angle"][0], trials["angle"][best]) < 1e-6
+    above = initiations(run(folder, "work_flaw_above",
+                            flaw_model(stress, new_mu=0.6, threshold=1.001 * top)))
+    assert above["kind"].size == 0
+    mts = initiations(run(folder, "mts_flaw_compression",
+                          flaw_model(stress, criterion="mts", new_mu=0.6, strength=1.0e-3)))
+    assert mts["kind"].size == 0
