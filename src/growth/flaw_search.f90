@@ -1,11 +1,12 @@
-!> A flaw's first crack under the work criterion (docs/fracture-growth.md#new-fractures-inside-the-rock):
-!> a crack of flaw_length centred on the flaw point is tried in every orientation of a
-!> half-turn (-90 .. 90 degrees from the x axis, every angle_step; a crack and its reverse are
-!> one), each solved with contact by the growth solver (a bordered update of the kept factors),
-!> with its efficiency E = (W_ext(trial) - W_ext(before)) / flaw_length (ddc_growth_work). A
-!> trial whose new elements neither open nor slip, or that would cross an element, is no
-!> candidate. The best candidate is refined as a tip's kink is (ddc_growth_angle_search), the
-!> grid wrapping round at +-90 degrees. Every trial goes to the run's initiation record.
+!> A flaw's first crack under the work criterion
+!> (docs/fracture-growth.md#new-fractures-inside-the-rock): a crack of flaw_length centred on
+!> the flaw point is tried in every orientation of a half-turn (-90 .. 90 degrees from the x
+!> axis, every angle_step; a crack and its reverse are one), each solved with contact by the
+!> growth solver (a bordered update of the kept factors), with its efficiency
+!> E = (W_ext(trial) - W_ext(before)) / flaw_length (ddc_growth_work). A trial whose new
+!> elements neither open nor slip, or that would cross an element, is no candidate. The best
+!> candidate is refined as a tip's kink is (ddc_growth_angle_search), the grid wrapping round
+!> at +-90 degrees. Every trial goes to the run's initiation record.
 module ddc_growth_flaw_search
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use ddc_kinds, only: wp

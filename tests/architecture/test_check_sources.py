@@ -237,7 +237,7 @@ def test_growth_criterion_without_its_case_fails(tree, capsys):
                      "growth_criterion_planted")
     expect_violation(tree, capsys, "src/growth/criterion.f90: kink_angles has no case for "
                      "growth_criterion_planted")
-    expect_violation(tree, capsys, "src/growth/criterion.f90: flaw_direction has no case for "
+    expect_violation(tree, capsys, "src/growth/criterion.f90: assess_flaw has no case for "
                      "growth_criterion_planted")
     # with its case in every dispatch, it passes
     path = tree / "src/growth/criterion.f90"
