@@ -208,7 +208,9 @@ def check_releasing_bend_tails(f):
     west corner (0, 0) in step 1, at the east corner (0, -0.5) in step 2, each into the
     corner's inside, perpendicular to the maximum tension there (-128.8 and 51.3 degrees from
     +x, 0.5 degree); both open (K_I above the toughness, no K_II to speak of), grow at least
-    0.05 m further, every element of theirs open, and arrest before the step limit."""
+    0.05 m further, every element of theirs open, and stop at the toughness: in the last two
+    steps K_eq stays within 2 % of it and they grow less than 2 mm (they hover at K_eq =
+    toughness while the fault's tips grow, so whether the last one grew is not checked)."""
     rows = f["growth/initiations"]
     assert list(rows["kind"][()]) == [1, 1] and list(rows["step"][()]) == [1, 2]
     np.testing.assert_allclose(rows["x"][()], [0.0, 0.0], atol=1e-9)
@@ -223,7 +225,8 @@ def check_releasing_bend_tails(f):
         tip = growth_rows(f, name, 1)
         assert g["k1"][tip[0]] > 5.0 * toughness and abs(g["k2"][tip[0]]) < 0.2 * g["k1"][tip[0]]
         assert g["length"][()][tip].sum() > 0.05
-        assert g["reason"][tip[-1]] == 1  # arrested: subcritical
+        assert np.all(g["k_eq"][()][tip[-2:]] < 1.02 * toughness)
+        assert g["length"][()][tip[-2:]].sum() < 0.002
         own = f["elements/fracture_id"][()] == names.index(name) + 1
         assert np.all(f["elements/state"][()][own] == STATE_CODES["open"])
 
