@@ -203,6 +203,34 @@ def check_restraining_bend_tails(f):
         assert f["growth/length"][()][f["growth/fracture_id"][()] == k].sum() > 0.05
 
 
+def check_releasing_bend_tails(f):
+    """Tails start at both corners of the releasing bend, above the rock's strength: at the
+    west corner (0, 0) in step 1, at the east corner (0, -0.5) in step 2, each into the
+    corner's inside, perpendicular to the maximum tension there (-128.8 and 51.3 degrees from
+    +x, 0.5 degree); both open (K_I above the toughness, no K_II to speak of), grow at least
+    0.05 m further, every element of theirs open, and stop at the toughness: in the last two
+    steps K_eq stays within 2 % of it and they grow less than 2 mm (they hover at K_eq =
+    toughness while the fault's tips grow, so whether the last one grew is not checked)."""
+    rows = f["growth/initiations"]
+    assert list(rows["kind"][()]) == [1, 1] and list(rows["step"][()]) == [1, 2]
+    np.testing.assert_allclose(rows["x"][()], [0.0, 0.0], atol=1e-9)
+    np.testing.assert_allclose(rows["y"][()], [0.0, -0.5], atol=1e-9)
+    assert np.all(rows["tension"][()] >= rows.attrs["tensile_strength"])
+    np.testing.assert_allclose(rows["angle"][()], [-128.8, 51.3], atol=0.5)
+    names = [decode(n) for n in f["fractures/name"][()]]
+    assert [names[k - 1] for k in rows["fracture_id"][()]] == ["fault_tail1", "fault_tail2"]
+    g = f["growth"]
+    toughness = g.attrs["toughness"]
+    for name in ("fault_tail1", "fault_tail2"):
+        tip = growth_rows(f, name, 1)
+        assert g["k1"][tip[0]] > 5.0 * toughness and abs(g["k2"][tip[0]]) < 0.2 * g["k1"][tip[0]]
+        assert g["length"][()][tip].sum() > 0.05
+        assert np.all(g["k_eq"][()][tip[-2:]] < 1.02 * toughness)
+        assert g["length"][()][tip[-2:]].sum() < 0.002
+        own = f["elements/fracture_id"][()] == names.index(name) + 1
+        assert np.all(f["elements/state"][()][own] == STATE_CODES["open"])
+
+
 def check_growth_along_path(f, first_load_step, length):
     """Growth along a load path: nothing grows before `first_load_step` (1-based; the first
     load step with K_eq at the toughness), both tips end `length` long (to 1e-9,
@@ -330,6 +358,7 @@ EXPECTED = {
     "wing_cracks_sliding_flaw": check_wings,
     "fault_tail_cracks": check_tail_cracks,
     "restraining_bend_tails": check_restraining_bend_tails,
+    "releasing_bend_tails": check_releasing_bend_tails,
     "wings_rising_axial_load": lambda f: check_growth_along_path(f, 6, 1.0546875),
     "tail_cracks_rising_pore_pressure": lambda f: check_growth_along_path(f, 1, 0.955),
     "fault_grown_with_strength_laws": check_grown_strength_laws,
