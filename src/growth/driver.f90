@@ -569,7 +569,7 @@ contains
         type(growing_tip), intent(in) :: tips(:)
         type(step_tips), intent(in) :: now
         logical :: keep(size(tips))
-        integer :: n, tip_values(size(tips))
+        integer :: n, i, tip_values(size(tips))
         real(wp), parameter :: degrees = 180.0_wp / pi
 
         keep = now%reason /= reason_stopped
@@ -593,8 +593,10 @@ contains
         record%length = [record%length, pack(now%length, keep)]
         record%reason = [record%reason, pack(now%reason, keep)]
         record%efficiency = [record%efficiency, pack(now%efficiency, keep)]
-        if (allocated(now%trials%fracture)) call append_trials(record, step, tips%fracture, &
-                                                               tips%end, keep, now%trials)
+        ! Contiguous copies of the strided components (no temporaries)
+        if (allocated(now%trials%fracture)) call append_trials(record, step, &
+            [(tips(i)%fracture, i = 1, size(tips))], [(tips(i)%end, i = 1, size(tips))], keep, &
+            now%trials)
     end subroutine append_records
 
 end module ddc_growth_driver

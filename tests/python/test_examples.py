@@ -231,6 +231,31 @@ def check_releasing_bend_tails(f):
         assert np.all(f["elements/state"][()][own] == STATE_CODES["open"])
 
 
+def check_thrust_ramp_from_flaw(f):
+    """The flaw under compression (its largest principal stress negative: no tension starts
+    it) starts a sliding crack in step 1, at 30 degrees from +x (a thrust dipping towards the
+    hinterland, 1 degree), its efficiency above the threshold; its upper tip grows to the
+    surface (broke through it in step 6) and every element of it slips or opens (none
+    sticks); its lower tip and the detachment's updip tip stop next to each other."""
+    rows = f["growth/initiations"]
+    assert list(rows["kind"][()]) == [2] and list(rows["step"][()]) == [1]
+    assert rows["tension"][0] < 0.0
+    assert abs(rows["angle"][0] - 30.0) < 1.0
+    g = f["growth"]
+    assert rows["efficiency"][0] >= g.attrs["work_threshold"]
+    names = [decode(n) for n in f["fractures/name"][()]]
+    assert names == ["detachment", "flaw1"]
+    upper, lower = growth_rows(f, "flaw1", 1), growth_rows(f, "flaw1", 0)
+    reason = g["reason"][()]
+    assert reason[upper[-1]] == 3 and g["step"][upper[-1]] == 6  # surface
+    assert np.all(reason[upper[:-1]] == 0)
+    assert reason[lower[0]] == 2 and reason[growth_rows(f, "detachment", 1)[0]] == 2
+    own = f["elements/fracture_id"][()] == 2
+    states = f["elements/state"][()][own]
+    assert np.all((states == STATE_CODES["slip"]) | (states == STATE_CODES["open"]))
+    assert np.count_nonzero(states == STATE_CODES["slip"]) > own.sum() // 2
+
+
 def check_growth_along_path(f, first_load_step, length):
     """Growth along a load path: nothing grows before `first_load_step` (1-based; the first
     load step with K_eq at the toughness), both tips end `length` long (to 1e-9,
@@ -359,6 +384,7 @@ EXPECTED = {
     "fault_tail_cracks": check_tail_cracks,
     "restraining_bend_tails": check_restraining_bend_tails,
     "releasing_bend_tails": check_releasing_bend_tails,
+    "thrust_ramp_from_flaw": check_thrust_ramp_from_flaw,
     "wings_rising_axial_load": lambda f: check_growth_along_path(f, 6, 1.0546875),
     "tail_cracks_rising_pore_pressure": lambda f: check_growth_along_path(f, 1, 0.955),
     "fault_grown_with_strength_laws": check_grown_strength_laws,
