@@ -28,12 +28,15 @@ so that the only thing that can happen is one initiation (probe_distance 0.2 m):
 
 import math
 import subprocess
+import sys
 
 import h5py
 import numpy as np
 import pytest
 
-from conftest import ddc2d_exe
+from conftest import PLOT_SCRIPT, ddc2d_exe
+from ddc2d.plot import figures as plot_figures
+from ddc2d.reader import load_result
 from ddc2d.richardson import extrapolate
 
 SXX, SYY, SXY = 0.0, -20.0, 10.0
@@ -401,22 +404,61 @@ def test_work_flaw_under_compression_slides(folder, compression_search):
     assert extrapolated(*found) == pytest.approx(efficiency, rel=0.005)
 
 
-def test_work_flaw_starts_at_its_threshold(folder, compression_search):
-    """The flaw under compression (20 elements) starts a sliding crack when the work
-    threshold is 0.1 % below its best efficiency, in the best trial's direction; not 0.1 %
-    above it; MTS starts nothing there (no tension)."""
+@pytest.fixture(scope="module")
+def started_flaw(folder, compression_search):
+    """The flaw under compression (20 elements) with the work threshold 0.1 % below its best
+    efficiency: the result file, the stress, the best efficiency and its trial's angle."""
     stress, searches, _ = compression_search
     trials = searches[1][0]
     best = best_trial(trials)
     top = float(trials["efficiency"][best])
-    below = initiations(run(folder, "work_flaw_below",
-                            flaw_model(stress, new_mu=0.6, threshold=0.999 * top)))
+    out = run(folder, "work_flaw_below", flaw_model(stress, new_mu=0.6, threshold=0.999 * top))
+    return out, stress, top, trials["angle"][best]
+
+
+def test_work_flaw_starts_at_its_threshold(folder, started_flaw):
+    """The flaw under compression (20 elements) starts a sliding crack when the work
+    threshold is 0.1 % below its best efficiency, in the best trial's direction; not 0.1 %
+    above it; MTS starts nothing there (no tension)."""
+    out, stress, top, angle = started_flaw
+    below = initiations(out)
     assert below["kind"].tolist() == [2]
     assert below["efficiency"][0] == pytest.approx(top, rel=1e-9)
-    assert orientation_gap(below["angle"][0], trials["angle"][best]) < 1e-6
+    assert orientation_gap(below["angle"][0], angle) < 1e-6
     above = initiations(run(folder, "work_flaw_above",
                             flaw_model(stress, new_mu=0.6, threshold=1.001 * top)))
     assert above["kind"].size == 0
     mts = initiations(run(folder, "mts_flaw_compression",
                           flaw_model(stress, criterion="mts", new_mu=0.6, strength=1.0e-3)))
     assert mts["kind"].size == 0
+
+
+def test_flaw_trials_figure_draws_the_stored_trials(folder, started_flaw):
+    """ddc2d-plot writes <stem>_flaw_trials.png; its line is the stored trials (sorted by
+    direction, the stuck ones left out of the line), the started direction marked, the
+    threshold dashed."""
+    out = started_flaw[0]
+    done = subprocess.run([sys.executable, str(PLOT_SCRIPT), str(out), "-o",
+                           str(folder / "figures")], capture_output=True, text=True,
+                          timeout=300)
+    assert done.returncode == 0, done.stderr
+    assert (folder / "figures" / "work_flaw_below_flaw_trials.png").read_bytes()[:4] == \
+        b"\x89PNG"
+    trials, rows = flaw_trials(out), initiations(out)
+    fig = plot_figures.plot_flaw_trials(load_result(out))
+    try:
+        lines = {line.get_gid(): line for line in fig.axes[0].get_lines() if line.get_gid()}
+        order = np.argsort(trials["angle"], kind="stable")
+        line = lines["efficiency:step 1, flaw1"]
+        np.testing.assert_array_equal(line.get_xdata(), trials["angle"][order])
+        candidate = np.isin(trials["state"][order], (1, 2))
+        np.testing.assert_array_equal(line.get_ydata()[candidate],
+                                      trials["efficiency"][order][candidate])
+        assert np.all(np.isnan(line.get_ydata()[~candidate]))
+        chosen = lines["chosen:step 1, flaw1"].get_xdata()
+        assert chosen.size == 1 and orientation_gap(chosen[0], rows["angle"][0]) < 1e-9
+        with h5py.File(out, "r") as f:
+            threshold = f["growth"].attrs["work_threshold"]
+        np.testing.assert_array_equal(lines["work_threshold"].get_ydata(), [threshold] * 2)
+    finally:
+        plot_figures.plt.close(fig)

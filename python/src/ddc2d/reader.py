@@ -67,6 +67,9 @@ GROWTH_WORK_DATASETS = ("efficiency",)
 #: /growth/trials datasets of the work criterion, one value per trial kink.
 GROWTH_TRIAL_DATASETS = ("trial_step", "trial_record", "trial_angle", "trial_efficiency",
                          "trial_state")
+#: Datasets of /growth/initiations/flaw_trials (criterion 'work' with flaw points), one value
+#: per trial of a flaw's first crack.
+FLAW_TRIAL_DATASETS = ("step", "flaw", "angle", "efficiency", "state")
 #: Phases timed in /solver/seconds.
 SOLVER_PHASES = ("assembly", "factorization", "lcp", "fields", "output", "total")
 
@@ -427,7 +430,10 @@ def read_growth(path, handle):
     one value per record: one record per tip per step), ``attrs`` (strings decoded: toughness,
     end_reason, ...) and ``reasons`` (code -> name, from the attribute reason_coding); under
     the work criterion also ``efficiency`` and ``trials`` (dict of GROWTH_TRIAL_DATASETS, one
-    value per trial kink); None when the file has no /growth."""
+    value per trial kink), and with flaw points ``flaw_trials`` (dict of FLAW_TRIAL_DATASETS,
+    one value per trial of a flaw's first crack) and ``flaw_starts`` (``flaw``, ``step`` and
+    ``angle`` of every flaw that started, from /growth/initiations); None when the file has
+    no /growth."""
     if "growth" not in handle:
         return None
     group = handle["growth"]
@@ -443,6 +449,14 @@ def read_growth(path, handle):
     if "trials" in group:
         growth["trials"] = {key: np.asarray(group["trials"][key][()]).ravel()
                             for key in GROWTH_TRIAL_DATASETS}
+    if "initiations/flaw_trials" in group:
+        trials = group["initiations/flaw_trials"]
+        growth["flaw_trials"] = {key: np.asarray(trials[key][()]).ravel()
+                                 for key in FLAW_TRIAL_DATASETS}
+        rows = group["initiations"]
+        flaws = np.asarray(rows["kind"][()]).ravel() == 2
+        growth["flaw_starts"] = {key: np.asarray(rows[key][()]).ravel()[flaws]
+                                 for key in ("flaw", "step", "angle")}
     growth["attrs"] = decoded_attrs(group.attrs)
     growth["reasons"] = parse_coding(group.attrs.get("reason_coding", ""))
     return growth

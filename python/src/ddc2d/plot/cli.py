@@ -56,6 +56,10 @@ The name part of a file is left out when it repeats the kind (a grid named 'map'
 * ``<stem>_growth_trials.<fmt>`` for growth by the work criterion (/growth/trials;
   docs/plotting.md#growth): the efficiency of every trial kink against its angle, a line per
   tip and step, the applied angle marked and the threshold dashed.
+* ``<stem>_flaw_trials.<fmt>`` for flaw points under the work criterion
+  (/growth/initiations/flaw_trials; docs/plotting.md#growth): the efficiency of every trial
+  of a flaw's first crack against its direction, a line per flaw and check, the direction it
+  started in marked and the threshold dashed.
 * ``<stem>_growth_history.<fmt>`` for growth along a load path (/history/grown_length;
   docs/plotting.md#growth): the length each tip has grown against the load parameter, a point
   per load step.
@@ -244,7 +248,8 @@ def _figures(result, receivers, chosen, args, out_dir, stem):
     """(Figure maker, path without extension) of every figure of the result, in the order
     they are written; a maker is called only when its figure is written."""
     used = {f"{stem}_profiles", f"{stem}_history", f"{stem}_tips", f"{stem}_growth",
-            f"{stem}_growth_history", f"{stem}_growth_trials", f"{stem}_history_strengths"}
+            f"{stem}_growth_history", f"{stem}_growth_trials", f"{stem}_flaw_trials",
+            f"{stem}_history_strengths"}
     for fracture, profile in fracture_profiles(result):
         yield (lambda f=fracture, p=profile: figures.plot_profile(result, f, p),
                figure_base(out_dir, stem, "profile", fracture["label"], used))
@@ -276,6 +281,8 @@ def _figures(result, receivers, chosen, args, out_dir, stem):
         if "trials" in result["growth"]:
             yield ((lambda: figures.plot_growth_trials(result)),
                    out_dir / f"{stem}_growth_trials")
+        if "flaw_trials" in result["growth"]:
+            yield ((lambda: figures.plot_flaw_trials(result)), out_dir / f"{stem}_flaw_trials")
     if result["history"] is not None and "grown_length" in result["history"]:
         yield (lambda: figures.plot_growth_history(result)), out_dir / f"{stem}_growth_history"
 

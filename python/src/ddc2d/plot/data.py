@@ -276,6 +276,31 @@ def trial_curves(result):
     return curves
 
 
+def flaw_trial_curves(result):
+    """The trials of the flaws' first cracks (criterion 'work': /growth/initiations/flaw_trials),
+    one dict per flaw and check: ``label`` ('step <k>, flaw<p>'), ``angle`` (the crack's
+    direction from +x) and ``efficiency`` of its trials sorted by angle (the refinement's among
+    the grid's), ``state`` and ``chosen`` (the direction it started in, in [-90, 90), NaN
+    when it did not start in that check). Empty without flaw trials."""
+    growth = result["growth"]
+    trials = growth.get("flaw_trials") if growth is not None else None
+    if trials is None:
+        return []
+    starts = growth["flaw_starts"]
+    curves = []
+    for step, flaw in dict.fromkeys(zip(trials["step"].tolist(), trials["flaw"].tolist())):
+        rows = np.flatnonzero((trials["step"] == step) & (trials["flaw"] == flaw))
+        rows = rows[np.argsort(trials["angle"][rows], kind="stable")]
+        started = np.flatnonzero((starts["step"] == step) & (starts["flaw"] == flaw))
+        curves.append({
+            "label": f"step {step}, flaw{flaw}",
+            "angle": trials["angle"][rows], "efficiency": trials["efficiency"][rows],
+            "state": trials["state"][rows],
+            "chosen": (float((starts["angle"][started[0]] + 90.0) % 180.0 - 90.0)
+                       if started.size else float("nan"))})
+    return curves
+
+
 def _records_of(growth, tip):
     """0-based indices of the /growth records of one tip of growth_series."""
     return np.flatnonzero((growth["fracture_id"] == tip["fracture_id"])

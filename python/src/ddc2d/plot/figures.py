@@ -25,6 +25,7 @@ from .data import (
     default_clim,
     distance_along,
     element_segments,
+    flaw_trial_curves,
     fracture_profiles,
     grid_quantity,
     growth_abscissa,
@@ -195,8 +196,29 @@ def plot_growth_trials(result):
     docs/theory/growth.md#the-work-criterion), one line per tip and step (the refinement's
     trials among the grid's), the trials that neither open nor slip as crosses, the applied
     angle as a filled marker and the threshold as a dashed line. Returns the Figure."""
-    growth = result["growth"]
     curves = trial_curves(result)
+    fig = _trials_figure(result, curves, "trial angle [degree]", "efficiency dW_ext/da",
+                         "trial kinks (x: neither opens nor slips; o: applied)")
+    fig.suptitle(heading(result, f"work criterion: {len(curves)} searches"))
+    return fig
+
+
+def plot_flaw_trials(result):
+    """The efficiency of every trial of a flaw's first crack against the crack's direction
+    (criterion 'work' with flaw points: docs/fracture-growth.md#new-fractures-inside-the-rock),
+    one line per flaw and check, as plot_growth_trials draws a tip's. Returns the Figure."""
+    curves = flaw_trial_curves(result)
+    fig = _trials_figure(result, curves, "crack direction from +x [degree]",
+                         "efficiency dW_ext/L", "flaws' first cracks "
+                         "(x: neither opens nor slips; o: started)")
+    fig.suptitle(heading(result, f"work criterion: {len(curves)} flaw searches"))
+    return fig
+
+
+def _trials_figure(result, curves, xlabel, ylabel, title):
+    """Efficiency against angle of trial curves (trial_curves, flaw_trial_curves): the
+    candidates joined, the stuck trials as crosses, the chosen one filled, the work threshold
+    dashed."""
     unit = f"{result['stress_unit']} {result['length_unit']}".strip()
     fig, ax = plt.subplots(figsize=(6.5, 4.5), constrained_layout=True)
     for index, curve in enumerate(curves):
@@ -209,18 +231,17 @@ def plot_growth_trials(result):
         if np.any(stuck):
             ax.plot(curve["angle"][stuck], curve["efficiency"][stuck], "x", color=colour,
                     linestyle="none")
-        chosen = curve["angle"] == curve["chosen"]
+        chosen = np.abs(curve["angle"] - curve["chosen"]) <= 1e-9
         if np.any(chosen):
             ax.plot(curve["angle"][chosen], curve["efficiency"][chosen], "o", color=colour,
                     markersize=7, linestyle="none", gid=f"chosen:{curve['label']}")
-    ax.axhline(float(growth["attrs"]["work_threshold"]), color="black", linestyle="--",
-               linewidth=0.8, label="work_threshold", gid="work_threshold")
-    ax.set_xlabel("trial angle [degree]")
-    ax.set_ylabel("efficiency dW_ext/da" + unit_label(unit))
+    ax.axhline(float(result["growth"]["attrs"]["work_threshold"]), color="black",
+               linestyle="--", linewidth=0.8, label="work_threshold", gid="work_threshold")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel + unit_label(unit))
     ax.legend(fontsize="small", loc="best")
     ax.grid(True, linewidth=0.3)
-    ax.set_title("trial kinks (x: neither opens nor slips; o: applied)", fontsize="medium")
-    fig.suptitle(heading(result, f"work criterion: {len(curves)} searches"))
+    ax.set_title(title, fontsize="medium")
     return fig
 
 
