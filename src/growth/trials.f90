@@ -15,33 +15,24 @@ module ddc_growth_trials
     use ddc_constants, only: pi
     use ddc_error, only: error_type
     use ddc_text, only: itoa
-    use ddc_model_types, only: model_type, growth_options, growth_tips_most_critical, &
-        condition_contact
-    use ddc_model_results, only: model_results, state_open, state_slip, growth_grew, &
-        growth_subcritical, growth_closed, growth_waiting, trial_stuck, trial_slipping, &
-        trial_opening, trial_blocked
+    use ddc_model_types, only: model_type, growth_options, growth_tips_most_critical
+    use ddc_model_results, only: model_results, growth_grew, growth_subcritical, &
+        growth_closed, growth_waiting, trial_slipping, trial_opening, trial_blocked
     use ddc_growth_solver, only: growth_solver, solve_grown
     use ddc_growth_extension, only: tip_path, make_path, extend_model, element_split
     use ddc_growth_clearance, only: check_paths, path_clear, link_parts
     use ddc_growth_kinks, only: step_kinks, step_links
     use ddc_model_loads, only: work_threshold_of
     use ddc_growth_work, only: external_work, add_trial
+    use ddc_growth_angle_search, only: trial_point, best_candidate, parabola_vertex, &
+        narrow_bracket, new_elements_state, refine_tolerance, max_refinements
     implicit none
     private
 
     public :: search_kinks
 
-    !> One degree [rad]; the refinement stops when the next vertex lies within
-    !> refine_tolerance of the best trial (the angle is then known to 0.5 degree)
-    real(wp), parameter :: degree = pi / 180.0_wp, refine_tolerance = 0.25_wp * degree
-    !> Largest number of refining solves per tip
-    integer, parameter :: max_refinements = 8
-
-    !> One solved trial of a tip.
-    type :: trial_point
-        real(wp) :: angle = 0.0_wp, efficiency = 0.0_wp
-        logical :: candidate = .false.
-    end type trial_point
+    !> One degree [rad]
+    real(wp), parameter :: degree = pi / 180.0_wp
 
 contains
 
@@ -141,36 +132,20 @@ contains
             type(trial_point), intent(inout) :: best
             type(error_type), allocatable, intent(out) :: error
             type(trial_point) :: l, m, r, v
-            real(wp) :: vertex, denominator
+            real(wp) :: vertex
             integer :: n
+            logical :: found
 
             l = l0
             m = m0
             r = r0
             do n = 1, max_refinements
-                denominator = (m%angle - l%angle) * (m%efficiency - r%efficiency) - &
-                              (m%angle - r%angle) * (m%efficiency - l%efficiency)
-                if (.not. (abs(denominator) > 0.0_wp)) exit
-                vertex = m%angle - 0.5_wp * ((m%angle - l%angle)**2 * (m%efficiency - &
-                         r%efficiency) - (m%angle - r%angle)**2 * (m%efficiency - &
-                         l%efficiency)) / denominator
-                vertex = max(l%angle, min(r%angle, vertex))
-                if (abs(vertex - m%angle) <= refine_tolerance) exit
+                call parabola_vertex(l, m, r, vertex, found)
+                if (.not. found .or. abs(vertex - m%angle) <= refine_tolerance) exit
                 call try_angle(vertex, v, error)
                 if (allocated(error)) return
                 if (.not. v%candidate) exit
-                if (v%efficiency > m%efficiency) then
-                    if (v%angle < m%angle) then
-                        r = m
-                    else
-                        l = m
-                    end if
-                    m = v
-                else if (v%angle < m%angle) then
-                    l = v
-                else
-                    r = v
-                end if
+                call narrow_bracket(l, m, r, v)
             end do
             best = m
         end subroutine refine
@@ -234,44 +209,5 @@ contains
             angles(size(angles)) = range
         end if
     end subroutine trial_angles
-
-    !> The first candidate of largest efficiency.
-    pure integer function best_candidate(points) result(b)
-        type(trial_point), intent(in) :: points(:)
-        integer :: j
-
-        b = 0
-        do j = 1, size(points)
-            if (.not. points(j)%candidate) cycle
-            if (b == 0) then
-                b = j
-            else if (points(j)%efficiency > points(b)%efficiency) then
-                b = j
-            end if
-        end do
-    end function best_candidate
-
-    !> trial_opening when a new element opens, else trial_slipping when one slips, else
-    !> trial_stuck (a TWODD-style element opens with D_n < 0 and slips with D_s /= 0).
-    pure integer function new_elements_state(grown, solved, origin) result(state)
-        type(model_type), intent(in) :: grown
-        type(model_results), intent(in) :: solved
-        integer, intent(in) :: origin(:)
-        logical :: fresh(size(origin)), contact(size(origin))
-
-        fresh = origin == 0
-        contact = grown%elements%condition == condition_contact
-        associate (s => solved%elements)
-            if (any(fresh .and. ((contact .and. s%state == state_open) .or. &
-                                 (.not. contact .and. s%dn < 0.0_wp)))) then
-                state = trial_opening
-            else if (any(fresh .and. ((contact .and. s%state == state_slip) .or. &
-                                      (.not. contact .and. s%ds /= 0.0_wp)))) then
-                state = trial_slipping
-            else
-                state = trial_stuck
-            end if
-        end associate
-    end function new_elements_state
 
 end module ddc_growth_trials
