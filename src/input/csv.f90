@@ -243,7 +243,6 @@ contains
         call decimal_value(field, value, stat)
         if (stat /= 0) then
             problem = " '"//field//"' is not a number"
-            value = 0.0_wp
         else if (.not. within_limits(value)) then
             problem = " '"//field//"'"//limits_text
             value = 0.0_wp

@@ -65,7 +65,7 @@ contains
     end function is_number
 
     !> The value of s, a number as is_number accepts it, as a list-directed read gives it;
-    !> stat is that read's status (non-zero for a value beyond double precision).
+    !> stat is that read's status (non-zero, and value 0, for a value beyond double precision).
     !> With at most 15 significant digits and a power of ten within 22, the value is one
     !> correctly rounded product or quotient of two exact doubles (Clinger's fast path), as
     !> the read's correctly rounded conversion; any other number is read.
@@ -119,15 +119,16 @@ contains
         power = scale + exponent
         if (i <= n .or. abs(power) > ubound(exact_powers, 1)) then
             read (s, *, iostat=stat) value
-        else
-            stat = 0
-            if (power >= 0) then
-                value = real(digits, wp) * exact_powers(power)
-            else
-                value = real(digits, wp) / exact_powers(-power)
-            end if
-            if (s(1:1) == '-') value = -value
+            if (stat /= 0) value = 0.0_wp
+            return
         end if
+        stat = 0
+        if (power >= 0) then
+            value = real(digits, wp) * exact_powers(power)
+        else
+            value = real(digits, wp) / exact_powers(-power)
+        end if
+        if (s(1:1) == '-') value = -value
     end subroutine decimal_value
 
     pure function is_digit(c) result(yes)
