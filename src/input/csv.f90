@@ -7,12 +7,16 @@ module ddc_input_csv
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_input_text_file, only: read_text_file
+    use ddc_input_decimal, only: is_number, decimal_value
     use ddc_text, only: newline, add_message, messages_error, itoa, lower
     use ddc_model_limits, only: within_limits, limits_text
     implicit none
     private
 
     public :: read_csv
+
+    !> What may surround a field
+    character(len=*), parameter :: blanks = ' '//achar(9)
 
 contains
 
@@ -42,7 +46,7 @@ contains
         character(len=:), allocatable :: text, line, expected, messages
         integer, allocatable :: row_line(:), column(:)
         real(wp), allocatable :: row(:)
-        integer :: ncols, nrows, max_rows, pos, line_no, nbad, i, nopt
+        integer :: ncols, nrows, max_rows, pos, first, last, line_no, nbad, i, nopt
         logical :: header_seen, header_optional, extended
 
         call read_text_file(path, text, error)
@@ -74,14 +78,16 @@ contains
         header_seen = .false.
         pos = 1
         line_no = 0
+        ! Rows are parsed where they lie in text, into one row buffer: a file of millions of
+        ! rows spent most of its time allocating copies of each line and field.
         do while (pos <= len(text))
-            call next_line(text, pos, line)
+            call next_line(text, pos, first, last)
             line_no = line_no + 1
-            line = trim(adjustl(line))
-            if (len(line) == 0) cycle
-            if (line(1:1) == '#') cycle
+            if (last < first) cycle
+            if (text(first:first) == '#') cycle
             if (.not. header_seen) then
                 header_seen = .true.
+                line = text(first:last)
                 if (normalized_header(line) == expected) cycle
                 if (nopt > 0) then
                     call optional_columns(normalized_header(line), expected, optional_header, &
@@ -108,11 +114,9 @@ contains
             end if
             nrows = nrows + 1
             row_line(nrows) = line_no
-            allocate (row(size(column)))
-            call parse_row(line, row, path//' line '//itoa(line_no)//': ', &
-                           expected, messages, nbad)
+            if (.not. allocated(row)) allocate (row(size(column)))
+            call parse_row(text(first:last), row, path, line_no, expected, messages, nbad)
             values(column, nrows) = row
-            deallocate (row)
         end do
 
         if (nbad > 0) then
@@ -171,75 +175,106 @@ contains
         end do
     end function join
 
-    !> Parse one row into row; append a message for every bad field.
-    subroutine parse_row(line, row, prefix, expected, messages, nbad)
+    !> Parse one row, line line_no of path, into row; append a message for every bad field.
+    subroutine parse_row(line, row, path, line_no, expected, messages, nbad)
         character(len=*), intent(in) :: line
         real(wp), intent(out) :: row(:)
-        character(len=*), intent(in) :: prefix, expected
+        character(len=*), intent(in) :: path
+        integer, intent(in) :: line_no
+        character(len=*), intent(in) :: expected
         character(len=:), allocatable, intent(inout) :: messages
         integer, intent(inout) :: nbad
-        character(len=:), allocatable :: field
-        integer :: nfields, start, comma, k, stat
+        character(len=:), allocatable :: problem
+        integer :: nfields, start, finish, comma, k
 
         row = 0.0_wp
         nfields = count_pieces(line, ',')
         if (nfields /= size(row)) then
-            call add_message(messages, nbad, prefix//itoa(nfields)//' fields, expected '// &
-                             itoa(size(row))//' ('//expected//')')
+            call add_message(messages, nbad, path//' line '//itoa(line_no)//': '// &
+                             itoa(nfields)//' fields, expected '//itoa(size(row))//' ('// &
+                             expected//')')
             return
         end if
         start = 1
         do k = 1, nfields
             comma = index(line(start:), ',')
-            if (comma == 0) then
-                field = trim(adjustl(line(start:)))
-            else
-                field = trim(adjustl(line(start:start + comma - 2)))
-                start = start + comma
-            end if
-            ! Tabs around a field are blanks too.
-            field = strip(field)
-            if (len(field) == 0) then
-                call add_message(messages, nbad, prefix//'field '//itoa(k)//' is empty')
-            else if (.not. is_number(field)) then
-                if (is_nonfinite_word(field)) then
-                    call add_message(messages, nbad, prefix//'field '//itoa(k)//" '"//field// &
-                                     "' is not a finite number")
-                else
-                    call add_message(messages, nbad, prefix//'field '//itoa(k)//" '"//field// &
-                                     "' is not a number")
-                end if
-            else
-                read (field, *, iostat=stat) row(k)
-                if (stat /= 0) then
-                    call add_message(messages, nbad, prefix//'field '//itoa(k)//" '"//field// &
-                                     "' is not a number")
-                else if (.not. within_limits(row(k))) then
-                    call add_message(messages, nbad, prefix//'field '//itoa(k)//" '"//field// &
-                                     "'"//limits_text)
-                    row(k) = 0.0_wp
-                end if
-            end if
+            finish = len(line)
+            if (comma > 0) finish = start + comma - 2
+            call parse_field(line(start:finish), row(k), problem)
+            if (allocated(problem)) call add_message(messages, nbad, path//' line '// &
+                                                     itoa(line_no)//': field '//itoa(k)//problem)
+            start = finish + 2
         end do
     end subroutine parse_row
 
-    !> Return the line starting at pos (without its newline or carriage return); move pos on.
-    subroutine next_line(text, pos, line)
+    !> The number in a field, blanks and tabs around it ignored; problem, allocated when the
+    !> field holds no finite number within the model's limits, says why (value is 0 then).
+    subroutine parse_field(field, value, problem)
+        character(len=*), intent(in) :: field
+        real(wp), intent(out) :: value
+        character(len=:), allocatable, intent(out) :: problem
+        integer :: first, last
+
+        value = 0.0_wp
+        first = verify(field, blanks)
+        if (first == 0) then
+            problem = ' is empty'
+            return
+        end if
+        last = verify(field, blanks, back=.true.)
+        call parse_number(field(first:last), value, problem)
+    end subroutine parse_field
+
+    !> parse_field for a field without blanks around it.
+    subroutine parse_number(field, value, problem)
+        character(len=*), intent(in) :: field
+        real(wp), intent(inout) :: value
+        character(len=:), allocatable, intent(inout) :: problem
+        integer :: stat
+
+        if (.not. is_number(field)) then
+            if (is_nonfinite_word(field)) then
+                problem = " '"//field//"' is not a finite number"
+            else
+                problem = " '"//field//"' is not a number"
+            end if
+            return
+        end if
+        call decimal_value(field, value, stat)
+        if (stat /= 0) then
+            problem = " '"//field//"' is not a number"
+        else if (.not. within_limits(value)) then
+            problem = " '"//field//"'"//limits_text
+            value = 0.0_wp
+        end if
+    end subroutine parse_number
+
+    !> The line starting at pos is text(first:last), without its newline, a carriage return
+    !> before that and the blanks around it (last < first for a blank line); move pos on.
+    pure subroutine next_line(text, pos, first, last)
         character(len=*), intent(in) :: text
         integer, intent(inout) :: pos
-        character(len=:), allocatable, intent(out) :: line
-        integer :: eol
+        integer, intent(out) :: first, last
+        integer :: eol, skip
 
+        first = pos
         eol = index(text(pos:), newline)
         if (eol == 0) then
-            line = text(pos:)
+            last = len(text)
             pos = len(text) + 1
         else
-            line = text(pos:pos + eol - 2)
+            last = pos + eol - 2
             pos = pos + eol
         end if
-        if (len(line) > 0) then
-            if (line(len(line):len(line)) == achar(13)) line = line(1:len(line) - 1)
+        if (last >= first) then
+            if (text(last:last) == achar(13)) last = last - 1
+        end if
+        skip = verify(text(first:last), ' ')
+        if (skip == 0) then
+            last = first - 1
+        else
+            first = first + skip - 1
+            last = first - 1 + len_trim(text(first:last))
         end if
     end subroutine next_line
 
@@ -273,64 +308,6 @@ contains
         end do
     end function normalized_header
 
-    !> The string without leading and trailing blanks and tabs.
-    pure function strip(s) result(out)
-        character(len=*), intent(in) :: s
-        character(len=:), allocatable :: out
-        integer :: first, last
-
-        first = verify(s, ' '//achar(9))
-        last = verify(s, ' '//achar(9), back=.true.)
-        if (first == 0) then
-            out = ''
-        else
-            out = s(first:last)
-        end if
-    end function strip
-
-    !> True when s is a decimal number: [sign] digits [. digits] [e|d [sign] digits].
-    pure function is_number(s) result(ok)
-        character(len=*), intent(in) :: s
-        logical :: ok
-        integer :: i, n, ndigits
-
-        ok = .false.
-        n = len(s)
-        i = 1
-        if (n == 0) return
-        if (s(1:1) == '+' .or. s(1:1) == '-') i = 2
-        ndigits = 0
-        do while (i <= n)
-            if (.not. is_digit(s(i:i))) exit
-            ndigits = ndigits + 1
-            i = i + 1
-        end do
-        if (i <= n) then
-            if (s(i:i) == '.') then
-                i = i + 1
-                do while (i <= n)
-                    if (.not. is_digit(s(i:i))) exit
-                    ndigits = ndigits + 1
-                    i = i + 1
-                end do
-            end if
-        end if
-        if (ndigits == 0) return
-        if (i <= n) then
-            if (index('eEdD', s(i:i)) == 0) return
-            i = i + 1
-            if (i <= n) then
-                if (s(i:i) == '+' .or. s(i:i) == '-') i = i + 1
-            end if
-            if (i > n) return
-            do while (i <= n)
-                if (.not. is_digit(s(i:i))) return
-                i = i + 1
-            end do
-        end if
-        ok = .true.
-    end function is_number
-
     !> True for the spellings of NaN and infinity.
     pure function is_nonfinite_word(s) result(yes)
         character(len=*), intent(in) :: s
@@ -343,12 +320,5 @@ contains
         end if
         yes = t == 'nan' .or. t == 'inf' .or. t == 'infinity'
     end function is_nonfinite_word
-
-    pure function is_digit(c) result(yes)
-        character(len=1), intent(in) :: c
-        logical :: yes
-
-        yes = c >= '0' .and. c <= '9'
-    end function is_digit
 
 end module ddc_input_csv

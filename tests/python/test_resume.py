@@ -64,6 +64,20 @@ def earlier_run(folder, text, name="old"):
     return folder / f"{name}.h5"
 
 
+@pytest.fixture(scope="module")
+def whole_run(tmp_path_factory):
+    """whole_run(text): the result of an uninterrupted run of a model, made once for this
+    file: several cases compare with the same run (the wings' 40 growth steps along their path
+    cost seconds in the Debug build). Read only: each case resumes into a folder of its own."""
+    results = {}
+
+    def result(text):
+        if text not in results:
+            results[text] = earlier_run(tmp_path_factory.mktemp("whole"), text, "whole")
+        return results[text]
+    return result
+
+
 def resume(folder, text, old):
     (folder / "new.nml").write_text(text)
     return run(["new.nml", "--resume", old, "-o", "new.h5"], folder)
@@ -263,9 +277,9 @@ WEAKENING = (PLAIN.format(mu="0.6, sf = 1, sf_residual = 0.2, mu_dynamic = 0.45,
     # a loading history whose elements lose cohesion and weaken as they slip
     (WEAKENING.format(path="0, 6, steps = 4"), WEAKENING.format(path="0, 6, -6, steps = 4, 10")),
 ])
-def test_a_resumed_run_equals_the_uninterrupted_one(tmp_path, old_text, new_text):
+def test_a_resumed_run_equals_the_uninterrupted_one(tmp_path, whole_run, old_text, new_text):
     earlier_run(tmp_path, old_text)
-    whole = earlier_run(tmp_path, new_text, "whole")
+    whole = whole_run(new_text)
     done = resume(tmp_path, new_text, "old.h5")
     assert done.returncode == 0, done.stderr
     problems, report = compare_results.compare(whole, tmp_path / "new.h5", rtol=1e-12)
@@ -286,12 +300,12 @@ def test_a_resumed_run_equals_the_uninterrupted_one(tmp_path, old_text, new_text
     assert ddc2d.open_result(tmp_path / "new.h5").provenance["resumed_from"] == "old.h5"
 
 
-def test_a_run_that_arrests_at_once_when_resumed(tmp_path):
+def test_a_run_that_arrests_at_once_when_resumed(tmp_path, whole_run):
     """The earlier run's step limit was its last growing step: the resumed run arrests in its
     first step without solving, and its result (the final solve's record included) is the
     uninterrupted run's."""
     fixed = WINGS.format(steps=40, solver="").replace("syy = -5.0", "syy = -100.0")
-    whole = earlier_run(tmp_path, fixed, "whole")
+    whole = whole_run(fixed)
     with h5py.File(whole) as f:
         taken = int(f["growth"].attrs["steps_taken"])
         method = f["solver"].attrs["method"]
