@@ -6,12 +6,13 @@ module ddc_app_report
     use ddc_model_types, only: model_type, rigid_joint, tensile_cap, condition_names, &
         observation_kind_names, symmetry_none, symmetry_names, domain_names, &
         domain_half_plane, load_path_names, &
-        growth_tips_names, growth_criterion_names, new_law_names
+        growth_tips_names, growth_criterion_names, growth_criterion_work, new_law_names
     use ddc_model_results, only: model_results, state_names, point_near, point_on_element, &
         growth_reason_names, growth_end_names, growth_subcritical, growth_intersection, &
         growth_surface, growth_linked, growth_closed, growth_waiting, growth_enclosing
     use ddc_model_plausibility, only: plausibility_notes, depth_range
     use ddc_model_strength_fronts, only: instant_drop_notes, cohesive_zone_warnings
+    use ddc_model_loads, only: work_threshold_of
     use ddc_growth_summary, only: tip_summary, summarize_tips, linked_fracture
     use ddc_contact_options, only: lcp_method_names, open_cohesion_names
     use ddc_text, only: short_real, itoa, prefix_lines, join_integers
@@ -259,6 +260,18 @@ contains
             write (unit, '(a,a,a,a,a,i0)') "    tips = '", trim(growth_tips_names(g%tips)), &
                 "', criterion = '", trim(growth_criterion_names(g%criterion)), &
                 "', max_corrections = ", g%max_corrections
+            if (g%criterion == growth_criterion_work) then
+                write (unit, '(a,g0,a,g0,a)') '    angle_range = ', g%angle_range, &
+                    ' degrees, angle_step = ', g%angle_step, ' degrees'
+                if (g%work_threshold > 0.0_wp) then
+                    write (unit, '(a,g0,1x,a)') '    work_threshold = ', g%work_threshold, &
+                        model%stress_unit//' '//model%length_unit
+                else
+                    write (unit, '(a,g0,1x,a)') '    work_threshold = ', work_threshold_of(g, &
+                        model%youngs_modulus, model%poissons_ratio), model%stress_unit//' '// &
+                        model%length_unit//' (default: 2 toughness^2 (1 - nu^2) / E)'
+                end if
+            end if
             names = ''
             do f = 1, size(model%fractures)
                 if (.not. g%fracture_grows(f)) cycle

@@ -44,6 +44,8 @@ module ddc_contact_reduced_factors
 
     !> Most changes handled by an update: max(min_update_rank, m / update_fraction)
     integer, parameter :: min_update_rank = 16, update_fraction = 8
+    !> Base rows gathered together from the columns of A (C^T, Delta^T)
+    integer, parameter :: gather_block = 64
 
     !> The reduced system of the current states and the factors it is solved with. Its
     !> components are private: the procedures below keep them consistent.
@@ -218,19 +220,31 @@ contains
 
     !> to = from, with to's storage of the LU factors reused when it has their shape: a
     !> growth run copies its base's factors for every trial, and a fresh matrix of that
-    !> size costs its page faults on top of the copy.
-    subroutine copy_factors(to, from)
+    !> size costs its page faults on top of the copy. With same_lu, to holds a copy of
+    !> from's LU factors already (neither was factorized anew since one was copied from the
+    !> other): they are not copied again (O(m^2) bytes a trial of the work criterion
+    !> saves), the rest is.
+    subroutine copy_factors(to, from, same_lu)
         !> The copy
         type(reduced_factors), intent(inout) :: to
         !> The factors copied (left as they were)
         type(reduced_factors), intent(inout) :: from
+        !> to's LU factors are a copy of from's (default no)
+        logical, intent(in), optional :: same_lu
         real(wp), allocatable :: storage(:, :), lu(:, :)
+        logical :: keep
         integer :: l
 
         call move_alloc(to%factors, storage)
         call move_alloc(from%factors, lu)
         to = from
-        if (allocated(lu)) then
+        keep = .false.
+        if (present(same_lu)) keep = same_lu
+        if (keep) keep = allocated(lu) .and. allocated(storage)
+        if (keep) keep = all(shape(storage) == shape(lu))
+        if (keep) then
+            call move_alloc(storage, to%factors)
+        else if (allocated(lu)) then
             if (allocated(storage)) then
                 if (any(shape(storage) /= shape(lu))) deallocate (storage)
             end if
@@ -402,7 +416,7 @@ contains
         integer, allocatable :: kept_rows(:), fresh(:)
         real(wp), allocatable :: z(:, :), zf(:, :)
         real(wp) :: d, scale
-        integer :: mb, nr, q, r, p, g, l, k
+        integer :: mb, nr, q, r, p, g, l, k, l0
 
         ok = .true.
         mb = sys%mb
@@ -434,17 +448,20 @@ contains
         if (allocated(sys%delta_t)) deallocate (sys%delta_t, sys%capacitance, &
                                                 sys%capacitance_ipiv)
         allocate (sys%delta_t(mb, nr), sys%capacitance(nr, nr), sys%capacitance_ipiv(nr))
-        do l = 1, mb
-            g = sys%base_unknown(l)
+        ! In blocks of base rows, as C^T in border.
+        do l0 = 1, mb, gather_block
             do q = 1, nr
                 r = changed(q)
                 p = sys%base_partner(r)
-                if (row_coef(q) < huge(1.0_wp)) then
-                    sys%delta_t(l, q) = (row_coef(q) - sys%base_coef(r)) * a(p, g)
-                else
-                    sys%delta_t(l, q) = -(a(sys%base_unknown(r), g) + &
-                                          sys%base_coef(r) * a(p, g))
-                end if
+                do l = l0, min(mb, l0 + gather_block - 1)
+                    g = sys%base_unknown(l)
+                    if (row_coef(q) < huge(1.0_wp)) then
+                        sys%delta_t(l, q) = (row_coef(q) - sys%base_coef(r)) * a(p, g)
+                    else
+                        sys%delta_t(l, q) = -(a(sys%base_unknown(r), g) + &
+                                              sys%base_coef(r) * a(p, g))
+                    end if
+                end do
             end do
         end do
         do q = 1, nr
@@ -484,7 +501,7 @@ contains
         type(error_type), allocatable :: singular, ill_conditioned
         integer, allocatable :: ga(:), pa(:), fresh(:), column_of(:)
         real(wp), allocatable :: ca(:), y0(:, :), yf(:, :), t(:, :)
-        integer :: mb, nr, na, q, r, p, g, l
+        integer :: mb, nr, na, q, r, p, g, l, l0
 
         ok = .true.
         mb = sys%mb
@@ -535,9 +552,15 @@ contains
         end if
         sys%na = na
         allocate (sys%c_t(mb, na), sys%schur(na, na), sys%schur_ipiv(na))
-        do l = 1, mb
-            g = sys%base_unknown(l)
-            sys%c_t(l, :) = a(ga, g) + ca * a(pa, g)
+        ! In blocks of base rows: C^T is written by columns while the block's columns of A
+        ! stay in cache (row by row, each row of C^T would touch na cache lines).
+        do l0 = 1, mb, gather_block
+            do q = 1, na
+                do l = l0, min(mb, l0 + gather_block - 1)
+                    g = sys%base_unknown(l)
+                    sys%c_t(l, q) = a(ga(q), g) + ca(q) * a(pa(q), g)
+                end do
+            end do
         end do
         do q = 1, na
             sys%schur(:, q) = a(ga, ga(q)) + ca * a(pa, ga(q))

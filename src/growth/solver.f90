@@ -52,7 +52,7 @@ module ddc_growth_solver
     use ddc_contact_fault_law, only: fault_law
     use ddc_contact_stiffness, only: dense_stiffness
     use ddc_contact_reduced_factors, only: reduced_factors, renumber_factors, copy_factors, &
-        refactor_full_update
+        refactor_full_update, counts_of
     use ddc_post_tips, only: find_tips
     use ddc_growth_tip_zone, only: calibrate_tips
     use ddc_run_model, only: run_model, finish_model, evaluate_fields
@@ -85,6 +85,10 @@ module ddc_growth_solver
         integer, allocatable :: layout(:)
         type(contact_session) :: session
         type(dense_stiffness) :: stiffness
+        !> The LU factors of stiffness%factors are a copy of base_factors' (or these of
+        !> those), neither factorized anew since: factorizations counted by both then
+        logical :: lu_shared = .false.
+        integer :: shared_factorizations = 0
         !> Sums over every solve of the run: phase times and counts
         type(solver_record) :: totals
         !> Solves done
@@ -248,6 +252,7 @@ contains
         if (allocated(solver%layout)) deallocate (solver%layout)
         if (.not. solver%kept) then
             if (allocated(solver%matrix)) deallocate (solver%matrix)
+            solver%lu_shared = .false.
             return
         end if
         call move_alloc(solver%matrix, solver%base_matrix)
@@ -256,8 +261,25 @@ contains
         ! A full update would leave the next step's trials no room: factorize it anew.
         call refactor_full_update(solver%stiffness%factors, solver%base_matrix, &
                                   solver%totals%counts)
-        call copy_factors(solver%base_factors, solver%stiffness%factors)
+        call share_factors(solver, solver%base_factors, solver%stiffness%factors)
     end subroutine accept_trial
+
+    !> to = from for the kept factors of the base and of the trial (one of each), without
+    !> copying their LU factors again where to's are a copy of from's already (the
+    !> trials of a step all start from the base's).
+    subroutine share_factors(solver, to, from)
+        type(growth_solver), intent(inout) :: solver
+        type(reduced_factors), intent(inout) :: to, from
+        type(factor_counts) :: made
+
+        ! Every new factorization of the trial's factors is counted there.
+        made = counts_of(solver%stiffness%factors)
+        call copy_factors(to, from, same_lu=solver%lu_shared .and. &
+                          made%factorizations == solver%shared_factorizations)
+        made = counts_of(solver%stiffness%factors)
+        solver%lu_shared = .true.
+        solver%shared_factorizations = made%factorizations
+    end subroutine share_factors
 
     !> The results of the final geometry (the last accepted one): tractions, face
     !> displacements and tips from the kept matrix when kept, and the fields; the solver
@@ -361,7 +383,7 @@ contains
             call grow_influence(solver%base_matrix, moved_to, model%elements, g, &
                                 model%poissons_ratio, placed, solver%matrix, finite)
             solver%layout = moved_to
-            call copy_factors(solver%stiffness%factors, solver%base_factors)
+            call share_factors(solver, solver%stiffness%factors, solver%base_factors)
             call renumber_factors(solver%stiffness%factors, unknown_map(moved_to, n))
             ! A later trial of the step starts from the states of the one before (its new
             ! elements lie close to these), the first one from the base's.
@@ -375,6 +397,7 @@ contains
                                     normal_row, solver%matrix)
             if (allocated(solver%layout)) deallocate (solver%layout)
             solver%stiffness%factors = no_factors
+            solver%lu_shared = .false.
             if (allocated(solver%session%open)) deallocate (solver%session%open, &
                                                             solver%session%shear_state)
             ! solve_contact_with checks the whole matrix.

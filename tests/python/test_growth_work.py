@@ -5,6 +5,7 @@ direction of a short kink (Nuismer 1975), a frictional fault that grows in shear
 threads, and bad input."""
 
 import os
+import re
 import subprocess
 import sys
 
@@ -153,6 +154,42 @@ def test_bad_work_input(tmp_path, setting, message):
     assert done.returncode == 2
     errors = [line for line in done.stderr.splitlines() if "error" in line]
     assert len(errors) == 1 and message in errors[0], done.stderr
+
+
+def echoed(stdout, name):
+    """The number after `name = ` in the input echo, and the rest of its line."""
+    for line in stdout.splitlines():
+        match = re.search(rf"\b{name} = ([-+0-9.eE]+)(.*)", line)
+        if match:
+            return float(match.group(1)), match.group(2)
+    return None
+
+
+@pytest.mark.parametrize("criterion", ["work", "mts"])
+def test_echo_names_the_trial_angles_and_threshold(tmp_path, criterion):
+    # Given: the threshold as given; by default: 2 K_Ic^2 (1 - nu^2) / E, said so. Other
+    # criteria echo none of them.
+    for given in ("", ", work_threshold = 0.25"):
+        text = ("&model youngs_modulus = 2.0, poissons_ratio = 0.25 /\n"
+                "&remote_stress syy = 1 /\n"
+                "&fracture name = 'crack', x = -1, 1, y = 0, 0, elements = 10, mu = 0 /\n"
+                f"&growth steps = 1, toughness = 1, criterion = '{criterion}', "
+                f"angle_range = 30, angle_step = 7.5{given} /\n")
+        done, _ = run(tmp_path, text)
+        assert done.returncode == 0, done.stdout + done.stderr
+        names = ("angle_range", "angle_step", "work_threshold")
+        if criterion == "mts":
+            assert all(echoed(done.stdout, name) is None for name in names), done.stdout
+            continue
+        angle_range, rest = echoed(done.stdout, "angle_range")
+        assert angle_range == 30.0 and rest.startswith(" degrees, angle_step = "), rest
+        assert echoed(done.stdout, "angle_step")[0] == 7.5
+        threshold, rest = echoed(done.stdout, "work_threshold")
+        if given:
+            assert threshold == 0.25 and "default" not in rest
+        else:
+            assert threshold == pytest.approx(2 * (1 - NU**2) / 2.0, rel=1e-15)
+            assert rest.endswith(" (default: 2 toughness^2 (1 - nu^2) / E)")
 
 
 def test_trials_figure_draws_the_stored_trials(tmp_path):
