@@ -9,7 +9,9 @@ module ddc_app_memory
     use ddc_error, only: error_type
     use ddc_text, only: bytes_text, itoa
     use ddc_model_types, only: model_type
-    use ddc_run_memory, only: memory_need, estimate_memory, check_memory
+    use ddc_run_memory, only: memory_need, estimate_memory, check_memory, &
+        hierarchical_allowed, hierarchical_min_elements
+    use ddc_contact_options, only: matrix_dense, matrix_hierarchical
     use ddc_run_available_memory, only: available_memory, no_limit
     implicit none
     private
@@ -34,6 +36,7 @@ contains
         call available_memory(available, source)
         there = 'no limit found'
         if (available < no_limit) there = bytes_text(available)//' available ('//source//')'
+        call choose_matrix(unit, model, need, available)
         if (need%worst_bytes > need%bytes) then
             ! The Newton method from its starting states, and at its largest beside it.
             write (unit, '(a)') '  memory: about '//bytes_text(need%bytes)//' needed ('// &
@@ -51,7 +54,45 @@ contains
         call check_memory(model, need, available, source, error)
         if (allocated(error)) return
         model%solver%work_bytes = max(available - need%held_bytes, 0.0_wp)
+        ! The Newton method's own limit counts dense reduced systems.
+        if (model%solver%matrix == matrix_hierarchical) model%solver%work_bytes = huge(1.0_wp)
     end subroutine check_model_memory
+
+    !> Resolve &solver matrix = 'auto' (docs/theory/hierarchical.md#choosing-the-matrix):
+    !> where the model allows a hierarchical matrix, it from hierarchical_min_elements
+    !> elements on or where the dense need does not fit (then `need` is re-estimated), else
+    !> dense; echo the matrix and why.
+    subroutine choose_matrix(unit, model, need, available)
+        integer, intent(in) :: unit
+        type(model_type), intent(inout) :: model
+        type(memory_need), intent(inout) :: need
+        real(wp), intent(in) :: available
+        character(len=:), allocatable :: why
+        integer :: n
+
+        select case (model%solver%matrix)
+        case (matrix_hierarchical)
+            write (unit, '(a)') "  matrix: hierarchical (&solver matrix = 'hierarchical')"
+        case (matrix_dense)
+            if (hierarchical_allowed(model)) write (unit, '(a)') "  matrix: dense "// &
+                "(&solver matrix = 'dense')"
+        case default
+            model%solver%matrix = matrix_dense
+            if (.not. hierarchical_allowed(model)) return
+            n = model%elements%n
+            if (n >= hierarchical_min_elements) then
+                why = itoa(n)//' elements, from '//itoa(hierarchical_min_elements)// &
+                    ' on a hierarchical matrix is faster'
+            else if (need%bytes > available) then
+                why = 'the dense matrix would need about '//bytes_text(need%bytes)
+            else
+                return
+            end if
+            model%solver%matrix = matrix_hierarchical
+            need = estimate_memory(model)
+            write (unit, '(a)') '  matrix: hierarchical ('//why//')'
+        end select
+    end subroutine choose_matrix
 
     !> The least size of the HDF5 result file: the field datasets alone, known before the
     !> solve (x, y, ux, uy, sxx, syy, sxy as 8-byte reals and near_element as a 4-byte

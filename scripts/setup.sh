@@ -27,7 +27,7 @@ set -euo pipefail
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$repo_root"
 
-debian_packages=(gfortran cmake ninja-build libopenblas-dev liblapack-dev libhdf5-dev
+debian_packages=(gfortran cmake ninja-build libopenblas-dev liblapack-dev libhdf5-dev libhmat-oss-dev
                  hdf5-tools python3 python3-venv valgrind stress-ng)
 # The MPI build: Open MPI with its Fortran mpi_f08 module, and ScaLAPACK (with BLACS) built
 # for it. Not libhdf5-openmpi-dev: the output stays serial HDF5, written by one process.

@@ -11,6 +11,7 @@ module ddc_contact_options
     public :: solver_options, parse_solver_options, option_code
     public :: lcp_auto, lcp_lemke, lcp_newton, lcp_method_names
     public :: cohesion_kept, cohesion_lost, open_cohesion_names
+    public :: matrix_auto, matrix_dense, matrix_hierarchical, matrix_names
 
     !> LCP methods: 'auto' (Newton from auto_newton_min_elements contact elements on, else
     !> Lemke), 'lemke' (the paper's LCP, the reference), 'newton' (active set)
@@ -26,6 +27,14 @@ module ddc_contact_options
     character(len=*), parameter :: open_cohesion_names(2) = [character(len=4) :: &
         'kept', 'lost']
 
+    !> Influence matrices (docs/theory/hierarchical.md): 'auto' (dense where it fits in
+    !> memory, else hierarchical where the model allows it), 'dense', 'hierarchical'
+    !> (hmat-oss: compressed blocks and H-LU; models without contact elements, one solve)
+    integer, parameter :: matrix_auto = 1, matrix_dense = 2, matrix_hierarchical = 3
+    !> Input names of the matrix kinds, indexed by code
+    character(len=*), parameter :: matrix_names(3) = [character(len=12) :: &
+        'auto', 'dense', 'hierarchical']
+
     !> Options of the contact solver, passed as one object.
     type :: solver_options
         !> lcp_auto, lcp_lemke or lcp_newton
@@ -36,6 +45,14 @@ module ddc_contact_options
         !> fallback from Newton to Lemke that needs more stops with exit_out_of_memory
         !> instead of starting (set from the machine's memory; no limit by default)
         real(wp) :: work_bytes = huge(1.0_wp)
+        !> matrix_auto, matrix_dense or matrix_hierarchical as given (run/memory resolves
+        !> 'auto' before the solve)
+        integer :: matrix = matrix_auto
+        !> Hierarchical matrices: relative accuracy of each compressed block, most unknowns
+        !> in a leaf of the cluster tree, admissibility parameter eta
+        real(wp) :: hmatrix_tolerance = 1.0e-6_wp
+        integer :: hmatrix_leaf_size = 64
+        real(wp) :: hmatrix_eta = 2.0_wp
     end type solver_options
 
 contains
@@ -60,9 +77,9 @@ contains
 
     !> Solver options from their input names; a bad name is an error (exit_bad_input) with
     !> one line per bad name: "lcp_method = 'x' is not one of 'auto', 'lemke', 'newton'".
-    subroutine parse_solver_options(lcp_method, open_cohesion, options, error)
-        !> Input names of the LCP method and of the cohesion mode
-        character(len=*), intent(in) :: lcp_method, open_cohesion
+    subroutine parse_solver_options(lcp_method, open_cohesion, matrix, options, error)
+        !> Input names of the LCP method, of the cohesion mode and of the matrix kind
+        character(len=*), intent(in) :: lcp_method, open_cohesion, matrix
         !> The options (the defaults where a name is bad)
         type(solver_options), intent(out) :: options
         !> Allocated when a name is bad
@@ -82,6 +99,12 @@ contains
             call add_problem('open_cohesion', open_cohesion, open_cohesion_names)
         else
             options%open_cohesion = code
+        end if
+        code = option_code(matrix, matrix_names)
+        if (code == 0) then
+            call add_problem('matrix', matrix, matrix_names)
+        else
+            options%matrix = code
         end if
         if (len(problems) > 0) call set_error(error, exit_bad_input, problems)
 

@@ -12,7 +12,7 @@ module ddc_input_namelist
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type, condition_contact, symmetry_none, symmetry_names, &
-        symmetry_x, domain_half_plane
+        symmetry_x, domain_half_plane, rigid_joint
     use ddc_text, only: itoa, rtoa, prefix_lines
     use ddc_input_text_file, only: read_text_file, folder_of
     use ddc_mesh_geometry, only: allocate_elements, compute_geometry
@@ -26,6 +26,7 @@ module ddc_input_namelist
         read_pore_fluid_group, read_solver_group, read_symmetry_group, read_output_group, &
         read_load_path_group
     use ddc_input_namelist_fracture, only: fracture_input, read_fracture_groups
+    use ddc_contact_options, only: matrix_hierarchical, lcp_lemke
     use ddc_input_namelist_observations, only: observation_input, read_grid_groups, &
         read_line_groups, read_points_groups
     implicit none
@@ -98,6 +99,7 @@ contains
 
         call check_names(path, fractures, observations, messages)
         call check_half_plane(path, model, fractures, observations, messages)
+        call check_matrix(path, groups, model, fractures, messages)
         if (messages%n > 0) then
             call set_error(error, messages%code, messages%text)
             return
@@ -114,6 +116,47 @@ contains
             error%message = prefix_lines(path//': ', error%message)
         end if
     end subroutine read_namelist_model
+
+    !> matrix = 'hierarchical' serves one solve of TWODD-style elements, or of contact
+    !> elements alone by the Newton method (no elastic joints); no loading history, no
+    !> growth: the other solvers work on dense matrices
+    !> (docs/theory/hierarchical.md#what-it-solves).
+    subroutine check_matrix(path, groups, model, fractures, messages)
+        character(len=*), intent(in) :: path
+        type(group_record), intent(in) :: groups(:)
+        type(model_type), intent(in) :: model
+        type(fracture_input), intent(in) :: fractures(:)
+        type(message_list), intent(inout) :: messages
+        character(len=:), allocatable :: what
+        logical :: contact
+        integer :: i
+
+        if (model%solver%matrix /= matrix_hierarchical) return
+        what = ''
+        contact = any(fractures%valid .and. fractures%condition == condition_contact)
+        if (contact .and. any(fractures%valid .and. fractures%condition /= condition_contact)) then
+            what = 'contact elements beside elements of other conditions'
+        else if (contact .and. model%solver%lcp_method == lcp_lemke) then
+            what = "lcp_method = 'lemke' (its tableau is dense)"
+        else if (groups(g_load_path)%count > 0) then
+            what = 'a loading history (&load_path)'
+        else if (groups(g_growth)%count > 0) then
+            what = 'fracture growth (&growth)'
+        end if
+        do i = 1, size(fractures)
+            if (len(what) > 0) exit
+            if (.not. fractures(i)%valid) cycle
+            if (allocated(fractures(i)%shear_stiffness)) then
+                if (any(fractures(i)%shear_stiffness /= rigid_joint)) what = 'elastic joints'
+            end if
+            if (allocated(fractures(i)%normal_stiffness)) then
+                if (any(fractures(i)%normal_stiffness /= rigid_joint)) what = 'elastic joints'
+            end if
+        end do
+        if (len(what) == 0) return
+        call add(messages, path//": &solver: matrix = 'hierarchical' does not solve "//what// &
+                 " yet: use matrix = 'dense' or 'auto'")
+    end subroutine check_matrix
 
     !> Half-plane rules (docs/theory/earth.md#a-free-surface): every vertex and field point at
     !> y <= 0, no element on the surface, a remote stress that is traction-free at y = 0, symmetry

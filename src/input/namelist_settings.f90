@@ -9,7 +9,7 @@ module ddc_input_namelist_settings
         domain_half_plane, load_path_names, default_block_size
     use ddc_model_limits, only: quantity_youngs_modulus, quantity_poissons_ratio
     use ddc_contact_options, only: parse_solver_options
-    use ddc_text, only: itoa, lower, find_name, quoted_list, prefix_lines, counted
+    use ddc_text, only: itoa, rtoa, lower, find_name, quoted_list, prefix_lines, counted
     use ddc_input_text_file, only: base_name, resolve
     use ddc_input_namelist_groups, only: group_record, message_list, add, group_prefix, &
         g_model, g_remote_stress, g_pore_fluid, g_solver, g_symmetry, g_output, g_load_path
@@ -158,8 +158,9 @@ contains
         if (check_scalar(dp_dy, 'dp_dy', .false., prefix, messages)) model%pore_fluid(2) = dp_dy
     end subroutine read_pore_fluid_group
 
-    !> &solver lcp_method, open_cohesion, block_size / (block_size: of the distributed
-    !> matrices of the MPI build, at least 1)
+    !> &solver lcp_method, open_cohesion, block_size, matrix, hmatrix_tolerance,
+    !> hmatrix_leaf_size, hmatrix_eta / (block_size: of the distributed matrices of the MPI
+    !> build, at least 1; the hmatrix_ settings: docs/theory/hierarchical.md)
     subroutine read_solver_group(unit, text, path, info, model, messages)
         integer, intent(in) :: unit
         character(len=*), intent(in) :: text
@@ -167,32 +168,54 @@ contains
         type(group_record), intent(in) :: info
         type(model_type), intent(inout) :: model
         type(message_list), intent(inout) :: messages
-        character(len=text_length) :: lcp_method, open_cohesion
+        character(len=text_length) :: lcp_method, open_cohesion, matrix
         character(len=512) :: iomsg
+        character(len=:), allocatable :: prefix
         type(error_type), allocatable :: problems
-        integer :: stat, block_size
-        namelist /solver/ lcp_method, open_cohesion, block_size
+        integer :: stat, block_size, hmatrix_leaf_size
+        real(wp) :: hmatrix_tolerance, hmatrix_eta
+        namelist /solver/ lcp_method, open_cohesion, block_size, matrix, hmatrix_tolerance, &
+            hmatrix_leaf_size, hmatrix_eta
 
         if (info%count == 0) return
         lcp_method = 'auto'
         open_cohesion = 'kept'
+        matrix = 'auto'
         block_size = default_block_size
+        hmatrix_tolerance = model%solver%hmatrix_tolerance
+        hmatrix_leaf_size = model%solver%hmatrix_leaf_size
+        hmatrix_eta = model%solver%hmatrix_eta
         rewind (unit)
         read (unit, nml=solver, iostat=stat, iomsg=iomsg)
         if (stat /= 0) then
             call report_malformed(text, path, g_solver, info, 1, stat, iomsg, messages)
             return
         end if
-        call parse_solver_options(lcp_method, open_cohesion, model%solver, problems)
-        if (allocated(problems)) then
-            call add(messages, prefix_lines(group_prefix(path, g_solver, info, 1), &
-                                            problems%message))
-        end if
+        prefix = group_prefix(path, g_solver, info, 1)
+        call parse_solver_options(lcp_method, open_cohesion, matrix, model%solver, problems)
+        if (allocated(problems)) call add(messages, prefix_lines(prefix, problems%message))
         if (block_size < 1) then
-            call add(messages, group_prefix(path, g_solver, info, 1)//'block_size = '// &
-                     itoa(block_size)//' must be at least 1')
+            call add(messages, prefix//'block_size = '//itoa(block_size)//' must be at least 1')
         else
             model%block_size = block_size
+        end if
+        ! The tolerance is relative to a block's norm: 1 or more keeps nothing of it.
+        if (.not. (hmatrix_tolerance > 0.0_wp .and. hmatrix_tolerance < 1.0_wp)) then
+            call add(messages, prefix//'hmatrix_tolerance = '//rtoa(hmatrix_tolerance)// &
+                     ' must lie between 0 and 1 (exclusive)')
+        else
+            model%solver%hmatrix_tolerance = hmatrix_tolerance
+        end if
+        if (hmatrix_leaf_size < 2) then
+            call add(messages, prefix//'hmatrix_leaf_size = '//itoa(hmatrix_leaf_size)// &
+                     ' must be at least 2')
+        else
+            model%solver%hmatrix_leaf_size = hmatrix_leaf_size
+        end if
+        if (.not. hmatrix_eta > 0.0_wp .or. hmatrix_eta > huge(1.0_wp)) then
+            call add(messages, prefix//'hmatrix_eta = '//rtoa(hmatrix_eta)//' must be positive')
+        else
+            model%solver%hmatrix_eta = hmatrix_eta
         end if
     end subroutine read_solver_group
 

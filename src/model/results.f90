@@ -137,6 +137,10 @@ module ddc_model_results
         integer :: pivots = 0, lcp_solves = 0
         !> Relative residual of the recovered DDs against the unfactored system
         real(wp) :: equilibrium_residual = 0.0_wp
+        !> A hierarchical matrix solved the model (docs/theory/hierarchical.md): its reals
+        !> over those of the dense matrix, and the accuracy asked of its compressed blocks
+        logical :: hierarchical = .false.
+        real(wp) :: compression_ratio = 1.0_wp, hmatrix_tolerance = 0.0_wp
         !> LCP certificate of the last solve, each scaled by its block's magnitude:
         !> min z, min w (>= -tolerance) and max |z_i w_i| (<= tolerance)
         real(wp) :: certificate_min_z = 0.0_wp, certificate_min_w = 0.0_wp

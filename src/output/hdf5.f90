@@ -484,6 +484,12 @@ contains
             call write_attribute(solver, 'elements_stick', count(state == state_stick), error)
             call write_attribute(solver, 'elements_slip', count(state == state_slip), error)
             call write_attribute(solver, 'elements_open', count(state == state_open), error)
+            ! Only a hierarchical run says which matrix (a file without `matrix`: dense).
+            if (s%hierarchical) then
+                call write_attribute(solver, 'matrix', 'hierarchical', error)
+                call write_attribute(solver, 'compression_ratio', s%compression_ratio, error)
+                call write_attribute(solver, 'hmatrix_tolerance', s%hmatrix_tolerance, error)
+            end if
             if (s%processes > 0) then
                 call write_attribute(solver, 'processes', s%processes, error)
                 call write_attribute(solver, 'process_grid', s%process_grid, error)

@@ -6,7 +6,7 @@ module ddc_parallel_plan
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_text, only: itoa, newline
     use ddc_model_types, only: model_type, condition_contact
-    use ddc_contact_options, only: lcp_auto, lcp_lemke
+    use ddc_contact_options, only: lcp_auto, lcp_lemke, matrix_hierarchical
     use ddc_contact_formulation, only: auto_newton_min_elements
     use ddc_contact_fault_law, only: fault_law
     use ddc_solve_frictional, only: fault_law_of
@@ -41,6 +41,8 @@ contains
         if (allocated(model%load_path%vertex)) call refuse('&load_path (loading histories '// &
             'are not distributed)')
         if (model%growth%active) call refuse('&growth (fracture growth is not distributed)')
+        if (model%solver%matrix == matrix_hierarchical) call refuse("&solver matrix = "// &
+            "'hierarchical' (hmat-oss is sequential; the distributed solve is dense)")
         law = fault_law_of(model%elements)
         if (law%beyond_coulomb()) call refuse('&fracture '// &
             'tensile_strength, sf_residual, mu_dynamic or a joint stiffness (strength '// &

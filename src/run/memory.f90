@@ -37,7 +37,7 @@ module ddc_run_memory
     use ddc_allocation, only: real_bytes
     use ddc_text, only: bytes_text, itoa
     use ddc_model_types, only: model_type, condition_contact, rigid_joint
-    use ddc_contact_options, only: lcp_auto, lcp_newton
+    use ddc_contact_options, only: lcp_auto, lcp_newton, lcp_lemke, matrix_hierarchical
     use ddc_contact_formulation, only: auto_newton_min_elements
     use ddc_contact_memory, only: lemke_bytes, newton_bytes
     use ddc_contact_active_set, only: starting_unknowns
@@ -48,6 +48,7 @@ module ddc_run_memory
     private
 
     public :: memory_need, estimate_memory, check_memory, elements_that_fit
+    public :: hierarchical_allowed, hierarchical_min_elements
 
     !> The program's own memory: libraries, OpenBLAS and HDF5 buffers [bytes]
     real(wp), parameter :: program_bytes = 20.0e6_wp
@@ -59,6 +60,15 @@ module ddc_run_memory
     !> Reals per squared element that a growth run keeps for its base geometry (matrix,
     !> reduced factors and a carried update)
     real(wp), parameter :: growth_base_reals = 9.0_wp
+    !> A hierarchical matrix of m unknowns stores about hmatrix_reals m log2(m) reals at
+    !> the default settings (measured: docs/performance.md#hierarchical-matrices); its
+    !> assembly and solve work on hmatrix_work_reals reals per unknown beside it
+    real(wp), parameter :: hmatrix_reals = 30.0_wp, hmatrix_work_reals = 20.0_wp
+    !> &solver matrix = 'auto' takes a hierarchical matrix from this many elements on (where
+    !> the model allows it): measured on a 2-core machine, the straight fault and the kinked
+    !> network of the benchmark solve faster on it from about there
+    !> (docs/performance.md#hierarchical-matrices)
+    integer, parameter :: hierarchical_min_elements = 8000
 
     !> What a model needs, and where it was estimated to peak.
     type :: memory_need
@@ -147,6 +157,12 @@ contains
                 records_strengths(model))) * n * real(1 + sum(model%load_path%steps), wp)
         end if
         matrix = real_bytes * 4.0_wp * n**2
+        if (model%solver%matrix == matrix_hierarchical) then
+            need%method = trim(merge('newton', 'lu    ', contact > 0))//', hierarchical matrix'
+            need%bytes = fixed + hierarchical_bytes(elements)
+            need%worst_bytes = need%bytes
+            return
+        end if
         if (contact == 0) then
             need%method = 'lu'
             need%bytes = fixed + 2.0_wp * matrix
@@ -189,6 +205,18 @@ contains
             need%worst_bytes = need%bytes
         end if
     end function need_of
+
+    !> The peak of a hierarchical solve of n elements (ddc_solve_hierarchical): the
+    !> compressed matrix and its H-LU factors beside it, hmatrix_reals reals per unknown
+    !> each, and the assembly's workspace.
+    pure real(wp) function hierarchical_bytes(elements)
+        integer, intent(in) :: elements
+        real(wp) :: m
+
+        m = 2.0_wp * real(elements, wp)
+        hierarchical_bytes = real_bytes * (2.0_wp * hmatrix_reals * m * log(m) / log(2.0_wp) + &
+                                           hmatrix_work_reals * m)
+    end function hierarchical_bytes
 
     !> Whether a loading history of the model records the strengths in force of each step
     !> (ddc_solve_frictional's strengths_change); not without the per-element laws.
@@ -262,6 +290,22 @@ contains
         end function scaled_unknowns
 
     end function elements_that_fit
+
+    !> Whether a hierarchical matrix can solve the model: one solve of TWODD-style elements,
+    !> or of contact elements alone by the Newton method without elastic joints; no loading
+    !> history, no growth (the input's rules: ddc_input_namelist's check_matrix).
+    pure logical function hierarchical_allowed(model)
+        type(model_type), intent(in) :: model
+
+        associate (e => model%elements)
+            hierarchical_allowed = .not. (allocated(model%load_path%vertex) .or. &
+                                          model%growth%active)
+            if (.not. any(e%condition == condition_contact)) return
+            hierarchical_allowed = hierarchical_allowed .and. &
+                all(e%condition == condition_contact) .and. &
+                model%solver%lcp_method /= lcp_lemke .and. .not. has_joints(model)
+        end associate
+    end function hierarchical_allowed
 
     !> Refuse a model whose estimate exceeds the memory available (exit_out_of_memory),
     !> with one message saying how much it needs, how much there is, where that limit comes

@@ -9,10 +9,11 @@ module ddc_run_model
     use ddc_model_types, only: model_type, element_set, condition_contact, domain_half_plane
     use ddc_model_results, only: model_results, solver_record, state_free
     use ddc_model_loads, only: resolve_remote_stress, total_pressure, shear_modulus_of
-    use ddc_contact_options, only: solver_options
+    use ddc_contact_options, only: solver_options, matrix_hierarchical
     use ddc_contact_fault_law, only: fault_law
-    use ddc_influence_response, only: midpoint_response
+    use ddc_influence_response, only: midpoint_response, kernel_response
     use ddc_solve_elastic, only: solve_elastic, row_kinds
+    use ddc_solve_hierarchical, only: solve_hierarchical
     use ddc_solve_frictional, only: solve_frictional
     use ddc_solve_joints, only: elastic_dds
     use ddc_post_fields, only: evaluate_field
@@ -153,6 +154,10 @@ contains
                 call engine%midpoint_response(model%elements, g, nu, e%ds, e%dn, &
                                               e%shear_traction, e%normal_traction, e%us_minus, &
                                               e%un_minus)
+            else if (.not. present(matrix)) then
+                ! A hierarchical solve keeps no dense matrix: the kernel sums instead.
+                call kernel_response(model%elements, g, nu, e%ds, e%dn, e%shear_traction, &
+                                     e%normal_traction, e%us_minus, e%un_minus)
             else
                 allocate (shear_row(n), normal_row(n))
                 call row_kinds(model%elements%condition, shear_row, normal_row)
@@ -237,6 +242,15 @@ contains
             call solve_frictional(elements, shear_modulus, nu, remote_shear, remote_normal, &
                                   options, ds, dn, state, record, matrix, error, law, &
                                   ds_previous, law_start)
+        else if (options%matrix == matrix_hierarchical) then
+            record%method = 'lu'
+            record%hierarchical = .true.
+            record%hmatrix_tolerance = options%hmatrix_tolerance
+            call solve_hierarchical(elements, shear_modulus, nu, remote_shear, remote_normal, &
+                                    options, ds, dn, record%equilibrium_residual, &
+                                    record%compression_ratio, record%seconds_assembly, &
+                                    record%counts%seconds, error)
+            state = state_free
         else
             record%method = 'lu'
             call solve_elastic(elements, shear_modulus, nu, remote_shear, remote_normal, ds, dn, &

@@ -17,7 +17,7 @@
 module ddc_solve_frictional
     use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
-    use ddc_error, only: error_type, set_error, exit_solver_failure
+    use ddc_error, only: error_type, set_error, set_internal_error, exit_solver_failure
     use ddc_model_types, only: element_set, condition_contact
     use ddc_model_results, only: solver_record, state_free
     use ddc_influence_assembly, only: assemble_influence
@@ -28,8 +28,11 @@ module ddc_solve_frictional
     use ddc_progress, only: report_progress, reports_phases
     use ddc_allocation, only: allocation_failed, real_bytes
     use ddc_contact_result, only: contact_result
-    use ddc_contact_formulation, only: solve_contact
-    use ddc_contact_options, only: solver_options, cohesion_lost
+    use ddc_contact_formulation, only: solve_contact, solve_contact_with
+    use ddc_contact_options, only: solver_options, cohesion_lost, matrix_hierarchical
+    use ddc_linalg_hmatrix, only: hmatrix_settings
+    use ddc_solve_hierarchical_stiffness, only: hierarchical_stiffness, &
+        new_hierarchical_stiffness
     use ddc_contact_fault_law, only: fault_law, new_fault_law
     use ddc_solve_joints, only: joint_system, joint_load, joint_dds
     implicit none
@@ -101,6 +104,12 @@ contains
         real(wp), allocatable :: shift(:), y_load(:), compliance(:), a_joint(:, :), &
             load_map(:, :), ss(:), sn(:), held(:)
 
+        if (options%matrix == matrix_hierarchical) then
+            call solve_on_hierarchical(elements, shear_modulus, nu, remote_shear, &
+                                       remote_normal, options, ds, dn, state, record, error, &
+                                       law, ds_previous, law_start)
+            return
+        end if
         call condense_contact(elements, shear_modulus, nu, sys, record, error)
         if (allocated(error)) return
         allocate (shift(2 * sys%nc), y_load(2 * sys%nf))
@@ -141,6 +150,69 @@ contains
             call law%place_in_force(contact_law, sys%contact)
         end if
     end subroutine solve_frictional
+
+    !> solve_frictional on a hierarchical matrix (docs/theory/hierarchical.md): every
+    !> element a contact element, no elastic joints (the input's rules), the Newton method
+    !> on ddc_solve_hierarchical_stiffness; no dense matrix is handed back.
+    subroutine solve_on_hierarchical(elements, shear_modulus, nu, remote_shear, remote_normal, &
+                                     options, ds, dn, state, record, error, law, &
+                                     ds_previous, law_start)
+        type(element_set), intent(in) :: elements
+        real(wp), intent(in) :: shear_modulus, nu
+        real(wp), intent(in) :: remote_shear(:), remote_normal(:)
+        type(solver_options), intent(in) :: options
+        real(wp), intent(out) :: ds(:), dn(:)
+        integer, intent(out) :: state(:)
+        type(solver_record), intent(inout) :: record
+        type(error_type), allocatable, intent(out) :: error
+        type(fault_law), intent(out), optional :: law
+        real(wp), intent(in), optional :: ds_previous(:)
+        type(fault_law), intent(in), optional :: law_start
+        ! The operator points at the elements: a copy that lives as long as it does
+        type(element_set), target :: kept
+        type(hierarchical_stiffness) :: stiffness
+        type(contact_result) :: res
+        type(fault_law) :: contact_law
+        real(wp), allocatable :: held(:)
+        integer :: n, i
+        integer(int64) :: t0, t1, rate
+
+        n = elements%n
+        if (any(elements%condition /= condition_contact)) then
+            call set_internal_error(error, 'solve_on_hierarchical', &
+                                    'called with elements that are not contact elements')
+            return
+        end if
+        call system_clock(t0, rate)
+        kept = elements
+        call new_hierarchical_stiffness(kept, shear_modulus, nu, hmatrix_settings( &
+            options%hmatrix_tolerance, options%hmatrix_leaf_size, options%hmatrix_eta), &
+            stiffness, error)
+        call system_clock(t1)
+        record%seconds_assembly = real(t1 - t0, wp) / real(rate, wp)
+        record%counts%seconds = 0.0_wp
+        if (.not. allocated(error)) then
+            record%hierarchical = .true.
+            record%compression_ratio = stiffness%a%stored_fraction()
+            record%hmatrix_tolerance = options%hmatrix_tolerance
+            if (reports_phases(n)) call report_progress('hierarchical assembly done in '// &
+                seconds_text(record%seconds_assembly)//' ('//itoa(2 * n)//' unknowns, '// &
+                rtoa(100.0_wp * record%compression_ratio)//' % of the dense matrix)')
+            contact_law = fault_law_of(elements)
+            if (present(law_start)) call contact_law%take_in_force(law_start, [(i, i = 1, n)])
+            allocate (held(n), source=0.0_wp)
+            if (present(ds_previous)) held = ds_previous
+            call solve_contact_with(stiffness, remote_shear, remote_normal, contact_law, &
+                                    elements%pressure, options, res, error, ds_previous=held)
+        end if
+        call stiffness%release()
+        if (allocated(error)) return
+        call record_contact(res, 0.0_wp, record)
+        ds = res%ds
+        dn = res%dn
+        state = res%state
+        if (present(law)) law = contact_law
+    end subroutine solve_on_hierarchical
 
     !> The fault law of the elements `subset` (default: every element), from the model's
     !> per-element arrays.

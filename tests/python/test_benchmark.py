@@ -144,3 +144,22 @@ def test_benchmark_growth_work(tmp_path):
     assert r["updates_per_step"] == r["low_rank_updates"] / r["growth_steps"]
     assert r["mts"]["growth_steps"] == 1 and r["mts"]["solves"] >= 2
     assert r["over_mts"] == r["seconds"]["total"] / r["mts"]["seconds"]
+
+
+def test_benchmark_hierarchical_matrix(tmp_path):
+    """--matrix hierarchical --compare-dense: the records say which matrix, its compression
+    and its gap to the dense run; the fitted time exponent and the figure."""
+    figure = tmp_path / "scaling.png"
+    stdout, records = run_benchmark(tmp_path, "--case", "mixed", "--grid", "0",
+                                    "--lcp-method", "newton", "--matrix", "hierarchical",
+                                    "--compare-dense", "--figure", str(figure),
+                                    sizes="300,600")
+    assert [r["n"] for r in records] == [300, 600]
+    for r in records:
+        assert r["matrix"] == "hierarchical" and r["method"] == "newton"
+        assert 0.0 < r["compression_ratio"] < 1.0
+        assert r["error_vs_dense"]["same_states"]
+        assert r["error_vs_dense"]["max_dd_difference"] <= 1e-6
+        assert r["time_exponent"] == records[0]["time_exponent"]
+    assert "hierarchical matrix" in stdout and "grows as N^" in stdout
+    assert figure.stat().st_size > 10_000

@@ -6,6 +6,7 @@ repository also scripts/benchmark.py.
                  --json FILE [--threads T[,T...]] [--lcp-method auto|lemke|newton] [--grid NX]
                  [--steps K] [--compare-lemke] [--lu-exe PATH] [--workdir DIR]
                  [--mpi P [--mpiexec PATH] [--block-size NB]]
+                 [--matrix dense|hierarchical [--compare-dense]] [--figure PNG]
 
 For every size N it writes a namelist model with N contact elements, runs ``ddc2d`` on it,
 reads the phase times from ``/solver/seconds`` of the HDF5 output (the output phase from
@@ -51,6 +52,16 @@ Cases (CASES: a model builder per case; a new case adds one):
 record ``lemke``: Lemke's seconds, peak memory and ratio to the LU, whether the states are
 the same, and the largest DD difference relative to the largest DD (of every step for a
 history).
+
+Matrices (``--matrix``, default dense; docs/theory/hierarchical.md): every model is run
+with &solver matrix set to it. The record adds ``matrix`` and ``compression_ratio`` (the
+hierarchical matrix's reals over the dense one's; 1 for dense); ``--compare-dense`` runs
+each hierarchical model on the dense matrix too where that fits (else ``None``) and adds
+``error_vs_dense``: whether the states are the same and the largest DD difference relative
+to the largest DD. Every record holds ``time_exponent``, the exponent of a least-squares
+fit of the total time against N over the sizes of the call; ``--figure`` draws total time
+and peak memory against N. The reference LU is run only where its matrix (2N)^2 fits in
+half of this machine's memory (else its fields are ``None``).
 
 Threads: ``OMP_NUM_THREADS`` and ``OPENBLAS_NUM_THREADS`` are both set to T (default: the
 number of CPUs); ddc2d calls BLAS outside its OpenMP regions only, so the two never nest.
@@ -209,9 +220,9 @@ def grid_group(nx):
             f"ymin = -2.0, ymax = 2.0, ny = {nx} /\n")
 
 
-def solver_group(method, block_size=None):
+def solver_group(method, block_size=None, matrix="dense"):
     size = "" if block_size is None else f", block_size = {block_size}"
-    return f"&solver lcp_method = '{method}'{size} /\n"
+    return f"&solver lcp_method = '{method}', matrix = '{matrix}'{size} /\n"
 
 
 def run_measured(command, env):
@@ -268,13 +279,15 @@ def mpi_command(mpiexec, processes, threads, prefix):
                       "--"]
 
 
-def run_model(exe, text, method, name, workdir, env, launcher=(), block_size=None):
-    """Run one model with a method (through the MPI launcher when given); return (stdout,
-    wall seconds, peak RSS MB, the result file's /solver and /history (None without a
-    path), its element states and DDs)."""
-    nml = Path(workdir) / f"{name}_{method}.nml"
-    h5 = Path(workdir) / f"{name}_{method}.h5"
-    nml.write_text(text + solver_group(method, block_size) + f"&output file = '{h5.name}' /\n")
+def run_model(exe, text, method, name, workdir, env, launcher=(), block_size=None,
+              matrix="dense"):
+    """Run one model with a method and matrix (through the MPI launcher when given); return
+    (stdout, wall seconds, peak RSS MB, the result file's /solver and /history (None
+    without a path), its element states and DDs)."""
+    nml = Path(workdir) / f"{name}_{method}_{matrix}.nml"
+    h5 = Path(workdir) / f"{name}_{method}_{matrix}.h5"
+    nml.write_text(text + solver_group(method, block_size, matrix)
+                   + f"&output file = '{h5.name}' /\n")
     stdout, wall, rss = run_measured([*launcher, str(exe), str(nml), "-o", str(h5)], env)
     with h5py.File(h5, "r") as f:
         solver = read_solver(f)
@@ -346,10 +359,71 @@ def compare_with_mts(exe, n, grid, steps, method, record, workdir, env):
             "updates_per_step": record["low_rank_updates"] / steps_taken}
 
 
+def machine_memory_bytes():
+    """MemTotal of /proc/meminfo [bytes] (infinite where it cannot be read)."""
+    try:
+        for line in Path("/proc/meminfo").read_text().splitlines():
+            if line.startswith("MemTotal:"):
+                return float(line.split()[1]) * 1024.0
+    except OSError:
+        pass
+    return math.inf
+
+
+def error_vs_dense(exe, text, method, name, workdir, env, states, dds):
+    """The same model on the dense matrix: whether the states are the same and the largest
+    DD difference relative to the largest DD; None where the dense run does not fit (exit
+    status 5)."""
+    try:
+        _, _, _, _, _, dense_states, dense_dds = run_model(exe, text, method, name, workdir,
+                                                           env, matrix="dense")
+    except RuntimeError as failure:
+        if "exit status 5" in str(failure):
+            return None
+        raise
+    peak = max(float(np.max(np.abs(d))) for d in dense_dds)
+    return {"same_states": bool(np.array_equal(states, dense_states)),
+            "max_dd_difference": max(float(np.max(np.abs(a - b)))
+                                     for a, b in zip(dds, dense_dds)) / peak}
+
+
+def time_exponent(records):
+    """The exponent p of a least-squares fit total seconds ~ c n^p over the records (None
+    with fewer than two sizes)."""
+    sizes = sorted({r["n"] for r in records})
+    if len(sizes) < 2:
+        return None
+    n = np.log([r["n"] for r in records])
+    t = np.log([max(r["seconds"]["total"], 1e-9) for r in records])
+    return float(np.polyfit(n, t, 1)[0])
+
+
+def plot_scaling(records, path):
+    """Total time and peak memory against n, log-log, one line per case and matrix."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    figure, (left, right) = plt.subplots(1, 2, figsize=(10, 4), constrained_layout=True)
+    for key in sorted({(r["case"], r["matrix"]) for r in records}):
+        rows = sorted((r for r in records if (r["case"], r["matrix"]) == key),
+                      key=lambda r: r["n"])
+        label = f"{key[0]}, {key[1]}"
+        left.loglog([r["n"] for r in rows], [r["seconds"]["total"] for r in rows], "o-",
+                    label=label)
+        right.loglog([r["n"] for r in rows], [r["peak_rss_mb"] / 1e3 for r in rows], "o-",
+                     label=label)
+    left.set(xlabel="elements N", ylabel="total time [s]")
+    right.set(xlabel="elements N", ylabel="peak resident memory [GB]")
+    left.legend()
+    figure.savefig(path, dpi=120)
+    plt.close(figure)
+
+
 def benchmark_one(exe, lu_exe, n, case, threads, method, grid, workdir, steps=100,
-                  compare_lemke=False, processes=0, mpiexec="mpiexec", block_size=None):
-    """Run one model of n elements (on `processes` MPI processes when > 0); return its JSON
-    record."""
+                  compare_lemke=False, processes=0, mpiexec="mpiexec", block_size=None,
+                  matrix="dense", compare_dense=False):
+    """Run one model of n elements (on `processes` MPI processes when > 0) on the dense or
+    the hierarchical matrix; return its JSON record."""
     env = dict(os.environ, OMP_NUM_THREADS=str(threads),
                OPENBLAS_NUM_THREADS=str(threads))
     if processes and os.geteuid() == 0:
@@ -361,7 +435,7 @@ def benchmark_one(exe, lu_exe, n, case, threads, method, grid, workdir, steps=10
     if processes:
         launcher = mpi_command(mpiexec, processes, threads, prefix)
     stdout, wall, rss, solver, history, states, dds = run_model(
-        exe, text, method, name, workdir, env, launcher, block_size)
+        exe, text, method, name, workdir, env, launcher, block_size, matrix)
     seconds, attrs = solver["seconds"], solver["attrs"]
     # The output phase is timed while the file is written: the file holds its part up to
     # /solver (in its total too); take the whole from the summary.
@@ -372,8 +446,13 @@ def benchmark_one(exe, lu_exe, n, case, threads, method, grid, workdir, steps=10
     lu_threads = threads * max(processes, 1)
     # A growth run is measured against the LU of its final geometry.
     n_final = len(states[-1]) if history is not None else len(states)
-    lu_seconds, lu_gflops = lu_reference(lu_exe, 2 * n_final, dict(
-        env, OMP_NUM_THREADS=str(lu_threads), OPENBLAS_NUM_THREADS=str(lu_threads)))
+    # The reference LU only where its matrix fits in half of this machine's memory (a
+    # hierarchical run goes far beyond).
+    if 8.0 * (2 * n_final) ** 2 <= 0.5 * machine_memory_bytes():
+        lu_seconds, lu_gflops = lu_reference(lu_exe, 2 * n_final, dict(
+            env, OMP_NUM_THREADS=str(lu_threads), OPENBLAS_NUM_THREADS=str(lu_threads)))
+    else:
+        lu_seconds, lu_gflops = None, None
     flops = float(attrs.get("factorization_flops", 0.0))
     fact = seconds["factorization"]
     final = states[-1] if history is not None else states
@@ -397,10 +476,15 @@ def benchmark_one(exe, lu_exe, n, case, threads, method, grid, workdir, steps=10
         "factorization_flops": flops,
         "factorization_gflops": flops / fact * 1e-9 if fact > 0 else None,
         "lu_reference_gflops": lu_gflops,
-        "total_over_lu": seconds["total"] / lu_seconds if lu_seconds > 0 else None,
-        "fields_over_lu": seconds["fields"] / lu_seconds if lu_seconds > 0 else None,
+        "total_over_lu": seconds["total"] / lu_seconds if lu_seconds else None,
+        "fields_over_lu": seconds["fields"] / lu_seconds if lu_seconds else None,
         "wall_seconds": wall,
+        "matrix": attrs.get("matrix", "dense").strip() or "dense",
+        "compression_ratio": float(attrs.get("compression_ratio", 1.0)),
     }
+    if compare_dense and matrix == "hierarchical":
+        record["error_vs_dense"] = error_vs_dense(exe, text, method, name, workdir, env,
+                                                  states, dds)
     if processes:
         ranks = sorted((json.loads(f.read_text()) for f in Path(workdir).glob(f"{prefix.name}.*")),
                        key=lambda r: r["rank"])
@@ -426,6 +510,11 @@ def benchmark_one(exe, lu_exe, n, case, threads, method, grid, workdir, steps=10
     return record
 
 
+def optional(value, spec):
+    """A table cell: the value formatted, '-' for None."""
+    return "-" if value is None else format(value, spec)
+
+
 def print_table(records, out=sys.stdout):
     """One row per record; with MPI records the processes and each one's peak RSS."""
     mpi = any("processes" in r for r in records)
@@ -443,9 +532,10 @@ def print_table(records, out=sys.stdout):
                      str(r["threads"]), r["method"] + ("*" if r["fallback"] else ""),
                      *(f"{s[p]:.3f}" for p in SOLVER_PHASES),
                      f"{100.0 * r['untimed_share']:.1f}%",
-                     f"{r['lu_reference_seconds']:.3f}", f"{r['total_over_lu']:.2f}",
-                     f"{r['fields_over_lu']:.2f}", "-" if gf is None else f"{gf:.1f}",
-                     f"{r['lu_reference_gflops']:.1f}", f"{r['peak_rss_mb']:.0f}",
+                     optional(r["lu_reference_seconds"], ".3f"),
+                     optional(r["total_over_lu"], ".2f"), optional(r["fields_over_lu"], ".2f"),
+                     optional(gf, ".1f"), optional(r["lu_reference_gflops"], ".1f"),
+                     f"{r['peak_rss_mb']:.0f}",
                      *((ranks or "-",) if mpi else ()),
                      f"{st['stick']}/{st['slip']}/{st['open']}",
                      "/".join(str(r[k]) for k in ("factorizations", "low_rank_updates",
@@ -472,6 +562,13 @@ def print_table(records, out=sys.stdout):
                   "back", file=out)
         if r["fallback"]:
             print(f"* n = {r['n']}: {r['fallback']}", file=out)
+        if r.get("matrix") == "hierarchical":
+            dense = r.get("error_vs_dense")
+            versus = "" if dense is None else (
+                f"; against dense: same states {dense['same_states']}, largest DD "
+                f"difference {dense['max_dd_difference']:.1e}")
+            print(f"  n = {r['n']}: hierarchical matrix, {100 * r['compression_ratio']:.3f} % "
+                  f"of the dense one{versus}", file=out)
         if "lemke" in r:
             lk = r["lemke"]
             print(f"  n = {r['n']}: lemke {lk['seconds']:.3f} s ({lk['total_over_lu']:.2f} x "
@@ -514,6 +611,13 @@ def main(argv=None):
     parser.add_argument("--mpiexec", default="mpiexec", help="MPI launcher (default mpiexec)")
     parser.add_argument("--block-size", type=int, default=None,
                         help="&solver block_size of the distributed matrices (default 64)")
+    parser.add_argument("--matrix", default="dense", choices=("dense", "hierarchical"),
+                        help="&solver matrix (default dense)")
+    parser.add_argument("--compare-dense", action="store_true",
+                        help="with --matrix hierarchical: also run every model on the dense "
+                             "matrix where it fits and compare")
+    parser.add_argument("--figure", type=Path, default=None,
+                        help="also draw total time and peak memory against N (PNG)")
     args = parser.parse_args(argv)
 
     try:
@@ -556,14 +660,23 @@ def main(argv=None):
                 records.append(benchmark_one(exe, lu_exe, n, args.case, threads,
                                              args.lcp_method, args.grid, workdir, args.steps,
                                              args.compare_lemke, args.mpi, args.mpiexec,
-                                             args.block_size))
+                                             args.block_size, args.matrix,
+                                             args.compare_dense))
     processes = f"{args.mpi} MPI processes of " if args.mpi else ""
     threads = ",".join(map(str, thread_counts))
     cores = sorted({r["blas_core"] for r in records})
+    exponent = time_exponent(records)
+    for record in records:
+        record["time_exponent"] = exponent
     print(f"# ddc2d benchmark, case {args.case}, {processes}{threads} thread(s), "
-          f"lcp_method = {args.lcp_method}, grid {args.grid} x {args.grid}, "
-          f"BLAS kernel {', '.join(cores) or 'unknown'}, {time.strftime('%Y-%m-%d')}")
+          f"lcp_method = {args.lcp_method}, matrix = {args.matrix}, grid {args.grid} x "
+          f"{args.grid}, BLAS kernel {', '.join(cores) or 'unknown'}, "
+          f"{time.strftime('%Y-%m-%d')}")
     print_table(records)
+    if exponent is not None:
+        print(f"  total time grows as N^{exponent:.2f} over these sizes (least squares)")
+    if args.figure:
+        plot_scaling(records, args.figure)
     args.json.write_text(json.dumps(records, indent=2) + "\n")
     return 0
 

@@ -1,0 +1,178 @@
+!> The elastic solve of TWODD-style elements on a hierarchical matrix
+!> (docs/theory/hierarchical.md): the influence matrix assembled block by block into
+!> hmat-oss (compressed where groups of elements are well separated), H-LU factorized and
+!> solved; the residual is that of the compressed matrix. The rows and the right-hand side
+!> are those of the dense solve (ddc_solve_elastic).
+module ddc_solve_hierarchical
+    use, intrinsic :: iso_fortran_env, only: int64
+    use ddc_kinds, only: wp
+    use ddc_error, only: error_type, set_error, set_internal_error, exit_solver_failure
+    use ddc_model_types, only: element_set, condition_contact
+    use ddc_influence_assembly, only: fill_influence_block
+    use ddc_linalg_hmatrix, only: hmatrix, block_source, hmatrix_settings
+    use ddc_linalg_lu, only: residual_tol, influence_hint
+    use ddc_contact_options, only: solver_options
+    use ddc_solve_elastic, only: row_kinds, given_values
+    use ddc_text, only: rtoa, itoa, seconds_text
+    use ddc_progress, only: report_progress, reports_phases
+    implicit none
+    private
+
+    public :: solve_hierarchical, influence_source, new_influence_source, unknown_points
+    public :: max_refinements, refined_residual
+
+    !> Steps of refinement at most, and the relative residual at which they stop: far below
+    !> what the solve accepts (residual_tol), a few steps above round-off
+    integer, parameter :: max_refinements = 10
+    real(wp), parameter :: refined_residual = 1.0e-12_wp
+
+    !> The influence matrix of a set of elements, unknowns [Ds(1:n); Dn(1:n)] and rows
+    !> [shear rows; normal rows] as in ddc_influence_assembly.
+    type, extends(block_source) :: influence_source
+        type(element_set), pointer :: elements => null()
+        real(wp) :: shear_modulus = 0.0_wp, nu = 0.0_wp
+        integer, allocatable :: shear_row(:), normal_row(:)
+    contains
+        procedure :: fill => fill_influence
+    end type influence_source
+
+contains
+
+    !> Solve for Ds, Dn of elements whose conditions are all TWODD-style (no contact).
+    subroutine solve_hierarchical(elements, shear_modulus, nu, remote_shear, remote_normal, &
+                                  options, ds, dn, residual, compression_ratio, &
+                                  seconds_assembly, seconds_factorization, error)
+        !> Elements with geometry computed
+        type(element_set), intent(in), target :: elements
+        !> Shear modulus [stress unit] and Poisson's ratio [-]
+        real(wp), intent(in) :: shear_modulus, nu
+        !> Remote stress resolved on each element [stress unit], shape (n)
+        real(wp), intent(in) :: remote_shear(:), remote_normal(:)
+        !> The hmatrix_ settings of &solver
+        type(solver_options), intent(in) :: options
+        !> Displacement discontinuities [length unit], shape (n)
+        real(wp), intent(out) :: ds(:), dn(:)
+        !> Relative residual |A x - b| / |b| with the compressed matrix A
+        real(wp), intent(out) :: residual
+        !> Reals stored over those of the dense matrix
+        real(wp), intent(out) :: compression_ratio
+        !> Wall time of assembly (with compression) and factorization + solve [s]
+        real(wp), intent(out) :: seconds_assembly, seconds_factorization
+        !> Set when hmat-oss fails or the residual is too large
+        type(error_type), allocatable, intent(out) :: error
+        type(influence_source) :: source
+        type(hmatrix) :: matrix, factors
+        real(wp), allocatable :: points(:, :), rhs(:, :), correction(:, :), product(:), given(:)
+        integer :: n, i, step
+        integer(int64) :: t0, t1, t2, rate
+
+        n = elements%n
+        if (any(elements%condition == condition_contact)) then
+            call set_internal_error(error, 'solve_hierarchical', 'called with contact elements')
+            return
+        end if
+        call system_clock(t0, rate)
+        source = new_influence_source(elements, shear_modulus, nu)
+        points = unknown_points(elements)
+        call matrix%assemble(points, source, hmatrix_settings(options%hmatrix_tolerance, &
+                             options%hmatrix_leaf_size, options%hmatrix_eta), error)
+        if (allocated(error)) return
+        compression_ratio = matrix%stored_fraction()
+        allocate (rhs(2 * n, 1), correction(2 * n, 1), product(2 * n))
+        rhs(:, 1) = given_values(elements, source%shear_row, source%normal_row, remote_shear, &
+                                 remote_normal, [(i, i = 1, n)])
+        call system_clock(t1)
+        if (reports_phases(n)) call report_progress('hierarchical assembly done in '// &
+            seconds_text(real(t1 - t0, wp) / real(rate, wp))//' ('//itoa(2 * n)//' unknowns, '// &
+            rtoa(100.0_wp * compression_ratio)//' % of the dense matrix)')
+
+        ! The residual needs the unfactored matrix: the factors overwrite a copy.
+        call factors%copy_of(matrix, error)
+        if (allocated(error)) return
+        call factors%factor(error)
+        if (allocated(error)) error%message = error%message//influence_hint
+        given = rhs(:, 1)
+        if (.not. allocated(error)) call factors%solve(rhs, error)
+        ! Refinement against the compressed matrix: H-LU is only as accurate as its
+        ! recompressions (hmatrix_tolerance).
+        residual = huge(1.0_wp)
+        do step = 1, max_refinements
+            if (allocated(error)) exit
+            call matrix%multiply(rhs(:, 1), product, error)
+            if (allocated(error)) exit
+            correction(:, 1) = given - product
+            residual = norm2(correction(:, 1)) / max(norm2(given), tiny(1.0_wp))
+            if (residual <= refined_residual) exit
+            call factors%solve(correction, error)
+            rhs = rhs + correction
+        end do
+        ! Before the original, whose cluster tree the copy shares
+        call factors%release()
+        if (allocated(error)) return
+        call system_clock(t2)
+        if (reports_phases(n)) call report_progress('H-LU factorization and solve done in '// &
+            seconds_text(real(t2 - t1, wp) / real(rate, wp)))
+        if (.not. residual <= residual_tol) then
+            call set_error(error, exit_solver_failure, 'the hierarchical solve has a relative '// &
+                           'residual of '//rtoa(residual)//' (more than '//rtoa(residual_tol)// &
+                           ') after '//itoa(max_refinements)//' refinements; a smaller '// &
+                           '&solver hmatrix_tolerance, or'//influence_hint)
+            return
+        end if
+        ds = rhs(1:n, 1)
+        dn = rhs(n + 1:, 1)
+        seconds_assembly = real(t1 - t0, wp) / real(rate, wp)
+        seconds_factorization = real(t2 - t1, wp) / real(rate, wp)
+    end subroutine solve_hierarchical
+
+    !> The influence matrix of the elements, rows as their conditions say (row_kinds).
+    function new_influence_source(elements, shear_modulus, nu) result(source)
+        type(element_set), intent(in), target :: elements
+        real(wp), intent(in) :: shear_modulus, nu
+        type(influence_source) :: source
+
+        source%elements => elements
+        source%shear_modulus = shear_modulus
+        source%nu = nu
+        allocate (source%shear_row(elements%n), source%normal_row(elements%n))
+        call row_kinds(elements%condition, source%shear_row, source%normal_row)
+    end function new_influence_source
+
+    !> Where the unknowns [Ds; Dn] sit: both at their element's midpoint, shape (2, 2n).
+    pure function unknown_points(elements) result(points)
+        type(element_set), intent(in) :: elements
+        real(wp) :: points(2, 2 * elements%n)
+
+        points(1, :) = [elements%x_mid, elements%x_mid]
+        points(2, :) = [elements%y_mid, elements%y_mid]
+    end function unknown_points
+
+    !> block(k, l): the entry of unknown rows(k) against unknown cols(l).
+    subroutine fill_influence(source, rows, cols, block)
+        class(influence_source), intent(in) :: source
+        integer, intent(in) :: rows(:), cols(:)
+        real(wp), intent(out) :: block(:, :)
+        integer :: n, k
+        integer :: row_element(size(rows)), row_s(size(rows)), row_n(size(rows))
+        integer :: col_element(size(cols)), col_s(size(cols)), col_n(size(cols))
+
+        n = source%elements%n
+        ! Unknown u <= n is Ds of element u, else Dn of element u - n: each row (column) of
+        ! the block is one element's shear or normal row (Ds or Dn column), the other 0.
+        do k = 1, size(rows)
+            row_element(k) = modulo(rows(k) - 1, n) + 1
+            row_s(k) = merge(k, 0, rows(k) <= n)
+            row_n(k) = merge(0, k, rows(k) <= n)
+        end do
+        do k = 1, size(cols)
+            col_element(k) = modulo(cols(k) - 1, n) + 1
+            col_s(k) = merge(k, 0, cols(k) <= n)
+            col_n(k) = merge(0, k, cols(k) <= n)
+        end do
+        block = 0.0_wp
+        call fill_influence_block(source%elements, source%shear_modulus, source%nu, &
+                                  source%shear_row, source%normal_row, row_element, row_s, &
+                                  row_n, col_element, col_s, col_n, block)
+    end subroutine fill_influence
+
+end module ddc_solve_hierarchical

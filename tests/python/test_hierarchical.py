@@ -1,0 +1,195 @@
+"""Hierarchical matrices (&solver matrix = 'hierarchical', hmat-oss;
+docs/theory/hierarchical.md) against the dense path: models of TWODD-style elements (the
+TWODD reference decks, two cracks) and contact models solved by the Newton method on the
+compressed operator (the benchmark's straight fault and kinked network, the examples'
+branching and intersecting faults): the same element states, and DDs, K and fields within
+1e-6 of the dense results relative to their largest value; 'auto'; bad input."""
+
+import subprocess
+from pathlib import Path
+
+import h5py
+import numpy as np
+import pytest
+
+from conftest import REPO_ROOT, SCRIPTS, ddc2d_exe, solve_text
+from ddc2d import benchmark
+
+#: Accuracy asked of the hierarchical path, relative to the largest value of each quantity
+RELATIVE = 1e-6
+
+TWO_CRACKS = """\
+&model title = 'two cracks', youngs_modulus = 50000.0, poissons_ratio = 0.25 /
+&remote_stress sxx = 0.0, syy = 10.0, sxy = 3.0 /
+&fracture name = 'a', x = -1.0, 1.0, y = 0.0, 0.0, elements = 1200,
+          condition = 'traction', bc_s = 0.0, bc_n = 0.0 /
+&fracture name = 'b', x = -1.0, 0.5, y = 0.3, 1.2, elements = 800,
+          condition = 'traction', bc_s = 0.0, bc_n = 0.0 /
+&grid name = 'map', xmin = -1.5, xmax = 1.5, nx = 21, ymin = -1.0, ymax = 1.5, ny = 21 /
+"""
+
+
+def solve_both(folder, stem, text, settings=""):
+    """Solve the model on the dense and on the hierarchical path; the two result files."""
+    dense = solve_text(folder, f"{stem}_dense", text + "&solver matrix = 'dense' /\n")
+    hierarchical = solve_text(folder, f"{stem}_hierarchical",
+                              text + f"&solver matrix = 'hierarchical'{settings} /\n")
+    return dense, hierarchical
+
+
+def relative_gap(a, b, scale=None):
+    """Largest |a - b| over `scale` (default: the largest |a|), finite entries."""
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    keep = np.isfinite(a)
+    if scale is None:
+        scale = np.max(np.abs(a[keep]))
+    return float(np.max(np.abs(a[keep] - b[keep])) / scale)
+
+
+def assert_same_results(dense_file, hierarchical_file, compressed=True):
+    """Same states; DDs, K and every field within RELATIVE of the dense ones; compressed:
+    the hierarchical matrix is smaller than the dense one (not so for a few elements)."""
+    with h5py.File(dense_file, "r") as d, h5py.File(hierarchical_file, "r") as h:
+        np.testing.assert_array_equal(d["elements/state"][()], h["elements/state"][()])
+        dds = np.concatenate([d["elements/ds"][()], d["elements/dn"][()]])
+        assert relative_gap(dds, np.concatenate([h["elements/ds"][()],
+                                                 h["elements/dn"][()]])) <= RELATIVE
+        ks = np.concatenate([d["tips/k1"][()], d["tips/k2"][()]])
+        if np.any(ks != 0.0):
+            assert relative_gap(ks, np.concatenate([h["tips/k1"][()],
+                                                    h["tips/k2"][()]])) <= RELATIVE
+        # Each field against the largest of its kind (displacements: or the largest DD,
+        # where the field's displacements vanish by symmetry).
+        for name in d.get("fields", {}):
+            for quantities, floor in ((("ux", "uy"), np.max(np.abs(dds))),
+                                      (("sxx", "syy", "sxy"), 0.0)):
+                scale = max(floor, *(np.nanmax(np.abs(d[f"fields/{name}/{q}"][()]))
+                                     for q in quantities))
+                for q in quantities:
+                    assert relative_gap(d[f"fields/{name}/{q}"][()], h[f"fields/{name}/{q}"][()],
+                                        scale) <= RELATIVE, q
+        solver = h["solver"].attrs
+        assert solver["matrix"].decode().strip() == "hierarchical"
+        assert solver["compression_ratio"] > 0.0
+        assert solver["compression_ratio"] < 1.0 or not compressed
+        assert solver["hmatrix_tolerance"] == pytest.approx(1e-6, rel=1e-12)
+        assert solver["equilibrium_residual"] <= 1e-8
+        assert "matrix" not in d["solver"].attrs  # a dense run does not say
+
+
+def test_cracks_match_the_dense_solve(tmp_path):
+    assert_same_results(*solve_both(tmp_path, "cracks", TWO_CRACKS))
+
+
+DECKS = {"A1_press_n20": REPO_ROOT / "tests" / "reference" / "twodd" / "inputs",
+         "B1_rshear_n20": REPO_ROOT / "tests" / "reference" / "twodd" / "inputs",
+         "A1_half_ksym2": REPO_ROOT / "tests" / "data" / "twodd"}
+
+
+@pytest.mark.parametrize("deck", sorted(DECKS))
+def test_twodd_decks_match_the_dense_solve(tmp_path, deck):
+    """TWODD decks (pressure, shear, a symmetry plane) with leaves of 4 unknowns, so that
+    most blocks are compressed."""
+    nml = tmp_path / f"{deck}.nml"
+    done = subprocess.run([str(SCRIPTS / "twodd2nml"), str(DECKS[deck] / f"{deck}.f60.txt"),
+                           "-o", str(nml)], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert_same_results(*solve_both(tmp_path, deck, nml.read_text(),
+                                    ", hmatrix_leaf_size = 4"), compressed=False)
+
+
+@pytest.mark.parametrize("case", ["straight", "mixed"])
+def test_benchmark_contact_models_match_the_dense_solve(tmp_path, case):
+    """N = 2000: every element slipping (straight), or stick, slip and open over several
+    Newton iterations (mixed)."""
+    text = benchmark.CASES[case](2000, 21, 0)
+    dense, hierarchical = solve_both(tmp_path, case, text)
+    assert_same_results(dense, hierarchical)
+    with h5py.File(hierarchical, "r") as h:
+        assert h["solver"].attrs["method"].decode().strip() == "newton"
+
+
+@pytest.mark.parametrize("example", ["branching_fault", "intersecting_faults"])
+def test_example_faults_match_the_dense_solve(tmp_path, example):
+    text = (REPO_ROOT / "input" / f"{example}.nml").read_text()
+    assert_same_results(*solve_both(tmp_path, example, text))
+
+
+def echo_of(folder, stem, text):
+    """Solve; the echo lines that name the matrix."""
+    (folder / f"{stem}.nml").write_text(text)
+    done = subprocess.run([str(ddc2d_exe()), f"{stem}.nml", "-o", f"{stem}.h5"], cwd=folder,
+                          capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, done.stdout + done.stderr
+    return [line for line in done.stdout.splitlines() if line.startswith("  matrix: ")]
+
+
+def test_auto_takes_the_hierarchical_matrix_from_the_crossover(tmp_path):
+    """'auto' (the default): dense below hierarchical_min_elements elements, hierarchical
+    from there on (docs/theory/hierarchical.md#choosing-the-matrix), and the echo says why."""
+    small = TWO_CRACKS.replace("elements = 800,", "elements = 80,").replace(
+        "elements = 1200,", "elements = 120,")
+    assert echo_of(tmp_path, "small", small) == []
+    with h5py.File(tmp_path / "small.h5", "r") as f:
+        assert "matrix" not in f["solver"].attrs
+    large = TWO_CRACKS.replace("elements = 800,", "elements = 1,").replace(
+        "elements = 1200,", f"elements = {CROSSOVER},")
+    assert echo_of(tmp_path, "large", large) == [
+        f"  matrix: hierarchical ({CROSSOVER + 1} elements, from "
+        f"{CROSSOVER} on a hierarchical matrix is faster)"]
+    with h5py.File(tmp_path / "large.h5", "r") as f:
+        assert f["solver"].attrs["matrix"].decode().strip() == "hierarchical"
+
+
+#: hierarchical_min_elements of src/run/memory.f90
+CROSSOVER = int(next(line.split("=")[1].split("!")[0] for line in
+                     (REPO_ROOT / "src" / "run" / "memory.f90").read_text().splitlines()
+                     if "integer, parameter :: hierarchical_min_elements" in line))
+
+
+BAD = [
+    ("matrix = 'sparse'", "matrix = 'sparse' is not one of 'auto', 'dense', 'hierarchical'"),
+    ("hmatrix_tolerance = 0.0", "hmatrix_tolerance = "),
+    ("hmatrix_tolerance = 1.0", "hmatrix_tolerance = "),
+    ("hmatrix_leaf_size = 1", "hmatrix_leaf_size = 1 must be at least 2"),
+    ("hmatrix_eta = 0.0", "hmatrix_eta = "),
+    ("matrix = 'hierarchical', lcp_method = 'lemke'",
+     "matrix = 'hierarchical' does not solve lcp_method = 'lemke'"),
+]
+
+
+@pytest.mark.parametrize("settings, message", BAD, ids=[b[0] for b in BAD])
+def test_bad_solver_settings(tmp_path, settings, message):
+    """One message naming &solver and the variable, exit 2, no result file."""
+    text = benchmark.CASES["straight"](40, 0, 0) + f"&solver {settings} /\n"
+    (tmp_path / "bad.nml").write_text(text)
+    done = subprocess.run([str(ddc2d_exe()), "bad.nml", "-o", "bad.h5"], cwd=tmp_path,
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 2, done.stdout + done.stderr
+    errors = [line for line in done.stderr.splitlines() if line.startswith("ddc2d: error: ")]
+    assert len(errors) == 1 and "&solver" in errors[0] and message in errors[0], done.stderr
+    assert not Path(tmp_path / "bad.h5").exists()
+
+
+UNSUPPORTED = [
+    ("&load_path steps = 2, sxy = 0, 54.13 /\n", "a loading history (&load_path)"),
+    ("&growth toughness = 1.0, steps = 2 /\n", "fracture growth (&growth)"),
+    ("&fracture name = 'crack', x = 3, 4, y = 0, 0, elements = 4, condition = 'traction' /\n",
+     "contact elements beside elements of other conditions"),
+    ("&fracture name = 'joint', x = 3, 4, y = 0, 0, elements = 4, mu = 0.6, sf = 0,\n"
+     "          shear_stiffness = 1e4 /\n", "elastic joints"),
+]
+
+
+@pytest.mark.parametrize("extra, what", UNSUPPORTED, ids=[u[1] for u in UNSUPPORTED])
+def test_what_the_hierarchical_path_does_not_solve_is_refused(tmp_path, extra, what):
+    text = (benchmark.CASES["straight"](40, 0, 0) + extra
+            + "&solver matrix = 'hierarchical' /\n")
+    (tmp_path / "model.nml").write_text(text)
+    done = subprocess.run([str(ddc2d_exe()), "model.nml", "-o", "model.h5"], cwd=tmp_path,
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 2, done.stdout + done.stderr
+    errors = [line for line in done.stderr.splitlines() if line.startswith("ddc2d: error: ")]
+    assert len(errors) == 1, done.stderr
+    assert f"matrix = 'hierarchical' does not solve {what} yet" in errors[0], errors[0]
+    assert not (tmp_path / "model.h5").exists()
