@@ -45,11 +45,12 @@ function(ddc2d_link_words out)
 endfunction()
 
 # pkg-config: the library is static, so Libs names what it needs (LAPACK, HDF5 Fortran,
-# OpenMP) for a plain `gfortran main.f90 $(pkg-config --cflags --libs ddc2d)`.
+# hmat-oss, OpenMP) for a plain `gfortran main.f90 $(pkg-config --cflags --libs ddc2d)`.
 file(RELATIVE_PATH pc_to_prefix /root/${CMAKE_INSTALL_LIBDIR}/pkgconfig /root)
 string(REGEX REPLACE "/$" "" pc_to_prefix "${pc_to_prefix}")
+get_target_property(hmat_library HMAT::hmat LOCATION)
 ddc2d_link_words(pc_dependencies ${LAPACK_LIBRARIES} ${LAPACK_LINKER_FLAGS}
-                 ${HDF5_Fortran_LIBRARIES} ${OpenMP_Fortran_FLAGS})
+                 ${HDF5_Fortran_LIBRARIES} ${hmat_library} ${OpenMP_Fortran_FLAGS})
 list(TRANSFORM HDF5_Fortran_INCLUDE_DIRS PREPEND "-I" OUTPUT_VARIABLE pc_includes)
 string(JOIN " " pc_includes ${pc_includes})
 configure_file(${PROJECT_SOURCE_DIR}/packaging/ddc2d.pc.in

@@ -195,9 +195,11 @@ contains
         real(wp), intent(inout), contiguous :: b(:, :)
         type(error_type), allocatable, intent(out) :: error
 
-        if (.not. matrix%factorized .or. &
-            hmatrix_solve_c(matrix%handle, b, int(size(b, 2), c_int)) /= 0) &
+        if (.not. matrix%factorized) then
             call set_error(error, exit_solver_failure, 'the solve with the H-LU factors failed')
+        else if (hmatrix_solve_c(matrix%handle, b, int(size(b, 2), c_int)) /= 0) then
+            call set_error(error, exit_solver_failure, 'the solve with the H-LU factors failed')
+        end if
     end subroutine solve
 
     !> y = A x by the compressed matrix (before it is factorized).
@@ -209,9 +211,13 @@ contains
         real(wp) :: work(size(x))
 
         work = x
-        if (matrix%factorized .or. hmatrix_multiply_c(matrix%handle, work, y) /= 0) &
+        if (matrix%factorized) then
+            call set_error(error, exit_solver_failure, 'a product with the factors of a '// &
+                           'hierarchical matrix')
+        else if (hmatrix_multiply_c(matrix%handle, work, y) /= 0) then
             call set_error(error, exit_solver_failure, 'the product with the hierarchical '// &
                            'matrix failed')
+        end if
     end subroutine multiply
 
     !> Reals stored over those of the dense matrix (the compression ratio).

@@ -48,6 +48,11 @@ contains
         call share(context, model%solver%open_cohesion)
         ! Root only: model%solver%work_bytes (the root's memory check sets it for the
         ! fallback from Newton to Lemke, which a distributed solve does not have).
+        ! Root only: model%solver%matrix (hierarchical is refused with more than one
+        ! process, ddc_parallel_plan; the others are dense), and so its settings:
+        ! Root only: model%solver%hmatrix_tolerance (as matrix)
+        ! Root only: model%solver%hmatrix_leaf_size (as matrix)
+        ! Root only: model%solver%hmatrix_eta (as matrix)
         call share(context, model%block_size)
         call share_elements(context, model%elements)
 

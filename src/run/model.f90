@@ -13,7 +13,7 @@ module ddc_run_model
     use ddc_contact_fault_law, only: fault_law
     use ddc_influence_response, only: midpoint_response, kernel_response
     use ddc_solve_elastic, only: solve_elastic, row_kinds
-    use ddc_solve_hierarchical, only: solve_hierarchical
+    use ddc_solve_hierarchical, only: solve_hierarchical, hierarchical_response
     use ddc_solve_frictional, only: solve_frictional
     use ddc_solve_joints, only: elastic_dds
     use ddc_post_fields, only: evaluate_field
@@ -139,6 +139,7 @@ contains
         !> The engine of a distributed run
         class(model_engine), intent(inout), optional :: engine
         integer, allocatable :: shear_row(:), normal_row(:)
+        type(error_type), allocatable :: failed
         real(wp) :: g, nu, t0
         integer :: n
 
@@ -155,9 +156,13 @@ contains
                                               e%shear_traction, e%normal_traction, e%us_minus, &
                                               e%un_minus)
             else if (.not. present(matrix)) then
-                ! A hierarchical solve keeps no dense matrix: the kernel sums instead.
-                call kernel_response(model%elements, g, nu, e%ds, e%dn, e%shear_traction, &
-                                     e%normal_traction, e%us_minus, e%un_minus)
+                ! A hierarchical solve keeps no dense matrix: products with hierarchical
+                ! ones, or the kernel sums where hmat-oss fails.
+                call hierarchical_response(model%elements, g, nu, e%ds, e%dn, model%solver, &
+                                           e%shear_traction, e%normal_traction, e%us_minus, &
+                                           e%un_minus, failed)
+                if (allocated(failed)) call kernel_response(model%elements, g, nu, e%ds, &
+                    e%dn, e%shear_traction, e%normal_traction, e%us_minus, e%un_minus)
             else
                 allocate (shear_row(n), normal_row(n))
                 call row_kinds(model%elements%condition, shear_row, normal_row)

@@ -8,7 +8,7 @@ module ddc_solve_hierarchical
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, set_internal_error, exit_solver_failure
     use ddc_model_types, only: element_set, condition_contact
-    use ddc_influence_assembly, only: fill_influence_block
+    use ddc_influence_assembly, only: fill_influence_block, row_traction, row_displacement
     use ddc_linalg_hmatrix, only: hmatrix, block_source, hmatrix_settings
     use ddc_linalg_lu, only: residual_tol, influence_hint
     use ddc_contact_options, only: solver_options
@@ -19,6 +19,7 @@ module ddc_solve_hierarchical
     private
 
     public :: solve_hierarchical, influence_source, new_influence_source, unknown_points
+    public :: hierarchical_response
     public :: max_refinements, refined_residual
 
     !> Steps of refinement at most, and the relative residual at which they stop: far below
@@ -124,6 +125,47 @@ contains
         seconds_assembly = real(t1 - t0, wp) / real(rate, wp)
         seconds_factorization = real(t2 - t1, wp) / real(rate, wp)
     end subroutine solve_hierarchical
+
+    !> Induced tractions and negative-face displacements at the element midpoints (as
+    !> ddc_influence_response's kernel_response) by products with two hierarchical matrices,
+    !> one of traction rows and one of displacement rows: O(N log N) instead of the O(N^2)
+    !> sums, to the accuracy of hmatrix_tolerance.
+    subroutine hierarchical_response(elements, shear_modulus, nu, ds, dn, options, &
+                                     shear_traction, normal_traction, us_minus, un_minus, error)
+        type(element_set), intent(in), target :: elements
+        real(wp), intent(in) :: shear_modulus, nu
+        real(wp), intent(in) :: ds(:), dn(:)
+        type(solver_options), intent(in) :: options
+        real(wp), intent(out) :: shear_traction(:), normal_traction(:)
+        real(wp), intent(out) :: us_minus(:), un_minus(:)
+        !> Set when hmat-oss fails (the caller then sums directly)
+        type(error_type), allocatable, intent(out) :: error
+        type(influence_source) :: source
+        type(hmatrix) :: matrix
+        real(wp), allocatable :: points(:, :), product(:)
+        integer :: n, kind
+
+        n = elements%n
+        source = new_influence_source(elements, shear_modulus, nu)
+        points = unknown_points(elements)
+        allocate (product(2 * n))
+        do kind = 1, 2
+            source%shear_row = merge(row_traction, row_displacement, kind == 1)
+            source%normal_row = source%shear_row
+            call matrix%assemble(points, source, hmatrix_settings(options%hmatrix_tolerance, &
+                                 options%hmatrix_leaf_size, options%hmatrix_eta), error)
+            if (allocated(error)) return
+            call matrix%multiply([ds, dn], product, error)
+            if (allocated(error)) return
+            if (kind == 1) then
+                shear_traction = product(1:n)
+                normal_traction = product(n + 1:)
+            else
+                us_minus = product(1:n)
+                un_minus = product(n + 1:)
+            end if
+        end do
+    end subroutine hierarchical_response
 
     !> The influence matrix of the elements, rows as their conditions say (row_kinds).
     function new_influence_source(elements, shear_modulus, nu) result(source)

@@ -3,9 +3,10 @@
 !> A D by the compressed A (kept unfactorized: the certificate and the method's checks use
 !> it), and every reduced system J (rows unknown(k) + coef(k) partner(k), columns
 !> unknown(l) of A: ddc_contact_stiffness) assembled as a hierarchical matrix of its own
-!> from the kernel, H-LU factorized, and solved with refinement against the compressed A, so that the tractions the method imposes hold for the operator that
-!> checks them. A system of the same unknowns, partners and coefficients as the last
-!> reuses its factors; hmat-oss offers no low-rank update, so any change factorizes anew.
+!> from the kernel, H-LU factorized, and solved with refinement against the compressed
+!> A, so that the tractions the method imposes hold for the operator that checks them. A
+!> system of the same unknowns, partners and coefficients as the last reuses its factors;
+!> hmat-oss offers no low-rank update, so any change factorizes anew.
 module ddc_solve_hierarchical_stiffness
     use, intrinsic :: iso_fortran_env, only: int64
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -161,7 +162,7 @@ contains
             this%counts%reuses = this%counts%reuses + 1
             this%action = action_reused
         end if
-        allocate (rhs(m, 1), full(2 * size(this%source%shear_row)), t(2 * size(this%source%shear_row)))
+        allocate (rhs(m, 1), full(2 * this%source%elements%n), t(2 * this%source%elements%n))
         rhs(:, 1) = system%rhs
         call this%factors%solve(rhs, singular)
         if (allocated(singular)) return

@@ -134,9 +134,9 @@ def test_auto_takes_the_hierarchical_matrix_from_the_crossover(tmp_path):
         assert "matrix" not in f["solver"].attrs
     large = TWO_CRACKS.replace("elements = 800,", "elements = 1,").replace(
         "elements = 1200,", f"elements = {CROSSOVER},")
-    assert echo_of(tmp_path, "large", large) == [
-        f"  matrix: hierarchical ({CROSSOVER + 1} elements, from "
-        f"{CROSSOVER} on a hierarchical matrix is faster)"]
+    expected = (f"  matrix: hierarchical ({CROSSOVER + 1} elements, from {CROSSOVER} on a "
+                "hierarchical matrix is faster)")
+    assert echo_of(tmp_path, "large", large) == [expected]
     with h5py.File(tmp_path / "large.h5", "r") as f:
         assert f["solver"].attrs["matrix"].decode().strip() == "hierarchical"
 
@@ -154,7 +154,7 @@ BAD = [
     ("hmatrix_leaf_size = 1", "hmatrix_leaf_size = 1 must be at least 2"),
     ("hmatrix_eta = 0.0", "hmatrix_eta = "),
     ("matrix = 'hierarchical', lcp_method = 'lemke'",
-     "matrix = 'hierarchical' does not solve lcp_method = 'lemke'"),
+     ("matrix = 'hierarchical' does not solve lcp_method = 'lemke'")),
 ]
 
 
@@ -176,8 +176,8 @@ UNSUPPORTED = [
     ("&growth toughness = 1.0, steps = 2 /\n", "fracture growth (&growth)"),
     ("&fracture name = 'crack', x = 3, 4, y = 0, 0, elements = 4, condition = 'traction' /\n",
      "contact elements beside elements of other conditions"),
-    ("&fracture name = 'joint', x = 3, 4, y = 0, 0, elements = 4, mu = 0.6, sf = 0,\n"
-     "          shear_stiffness = 1e4 /\n", "elastic joints"),
+    (("&fracture name = 'joint', x = 3, 4, y = 0, 0, elements = 4, mu = 0.6, sf = 0,\n"
+      "          shear_stiffness = 1e4 /\n"), "elastic joints"),
 ]
 
 

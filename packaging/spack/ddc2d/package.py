@@ -30,6 +30,7 @@ class Ddc2d(CMakePackage):
     depends_on("lapack")
     # Serial HDF5 in the MPI build too: one process writes the result file.
     depends_on("hdf5+fortran~mpi")
+    depends_on("hmat-oss")
     depends_on("mpi", when="+mpi")
     depends_on("scalapack", when="+mpi")
 
