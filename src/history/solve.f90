@@ -1,6 +1,8 @@
 !> Incremental quasi-static loading along a load path (docs/theory/earth.md#loading-histories).
 !>
-!> The influence matrix is assembled and the TWODD-style elements condensed out once; every
+!> The influence matrix is assembled and the TWODD-style elements condensed out once (or,
+!> with &solver matrix = 'hierarchical', compressed: ddc_solve_hierarchical_stiffness, for
+!> models of contact elements alone, by the Newton method); every
 !> step is then one contact solve (ddc_contact_formulation, with &solver lcp_method and its
 !> fallbacks, as a one-shot solve) for the step's load and the total slip of the step
 !> before, with one dense stiffness operator and a contact_session that the steps share:
@@ -19,7 +21,7 @@ module ddc_history_solve
     use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
-    use ddc_model_types, only: model_type, condition_contact
+    use ddc_model_types, only: model_type, element_set, condition_contact
     use ddc_model_results, only: model_results, history_record
     use ddc_model_records, only: lay_out_history
     use ddc_model_restart, only: restart_state
@@ -27,10 +29,14 @@ module ddc_history_solve
     use ddc_contact_result, only: contact_result, contact_stress_scale
     use ddc_contact_formulation, only: solve_contact_with, contact_session
     use ddc_contact_fault_law, only: fault_law
-    use ddc_contact_stiffness, only: dense_stiffness
+    use ddc_contact_stiffness, only: stiffness_operator, dense_stiffness
+    use ddc_contact_options, only: matrix_hierarchical
+    use ddc_solve_hierarchical_stiffness, only: hierarchical_stiffness, &
+        new_hierarchical_stiffness
     use ddc_solve_joints, only: joint_system, joint_load, joint_dds, elastic_dds
     use ddc_solve_frictional, only: condensed_contact, condense_contact, contact_load, &
-        complete_dds, record_contact, release_matrix, fault_law_of, strengths_change
+        complete_dds, record_contact, release_matrix, fault_law_of, strengths_change, &
+        contact_only_system
     use ddc_influence_response, only: listed_tractions
     use ddc_post_tips, only: find_tips, stress_intensity
     use ddc_history_path, only: path_loads, apply_load, load_text
@@ -66,7 +72,10 @@ contains
         type(restart_state), intent(in), optional :: restart
         type(condensed_contact), target :: sys
         type(contact_session) :: session
-        type(dense_stiffness) :: stiffness
+        class(stiffness_operator), allocatable :: stiffness
+        ! A hierarchical operator points at the elements: a copy that lives as long as it
+        type(element_set), target :: kept
+        logical :: hierarchical
         type(contact_result) :: res
         type(history_record) :: h
         type(fault_law) :: law
@@ -93,8 +102,24 @@ contains
         call system_clock(t_start, rate)
         n = model%elements%n
         g = shear_modulus_of(model)
-        call condense_contact(model%elements, g, model%poissons_ratio, sys, results%solver, &
-                              error)
+        hierarchical = model%solver%matrix == matrix_hierarchical
+        if (hierarchical) then
+            call contact_only_system(model%elements, sys)
+            kept = model%elements
+            allocate (hierarchical_stiffness :: stiffness)
+            select type (stiffness)
+            type is (hierarchical_stiffness)
+                call new_hierarchical_stiffness(kept, g, model%poissons_ratio, model%solver, &
+                                                stiffness, error)
+                results%solver%hierarchical = .true.
+                results%solver%compression_ratio = stiffness%a%stored_fraction()
+                results%solver%hmatrix_tolerance = model%solver%hmatrix_tolerance
+            end select
+        else
+            allocate (dense_stiffness :: stiffness)
+            call condense_contact(model%elements, g, model%poissons_ratio, sys, &
+                                  results%solver, error)
+        end if
         if (allocated(error)) return
         nc = sys%nc
 
@@ -136,7 +161,7 @@ contains
         ! Elastic joints: the contact problem of the plastic DDs (ddc_solve_joints); the
         ! slip a step holds is the plastic one.
         compliance = law%joint_compliance()
-        a_solve => sys%a
+        if (.not. hierarchical) a_solve => sys%a
         if (any(compliance > 0.0_wp)) then
             call joint_system(sys%a, compliance, a_joint, load_map, error)
             if (allocated(error)) return
@@ -155,7 +180,10 @@ contains
                               strengths_change(model%elements, model%solver), error)
         if (allocated(error)) return
         h%load = loads
-        stiffness%a => a_solve
+        select type (stiffness)
+        type is (dense_stiffness)
+            stiffness%a => a_solve
+        end select
         pivots = 0
         solves = 0
         iterations = 0
@@ -165,11 +193,20 @@ contains
         flops = 0.0_wp
         call system_clock(t0, rate)
         do k = done + 1, nsteps
-            call solve_contact_with(stiffness, shift(1:nc, k), shift(nc + 1:, k), law, &
-                                    pressure(:, k), model%solver, res, error, a=a_solve, &
-                                    max_iterations=max_iterations, ds_previous=ds_previous, &
-                                    session=session, stress_scale=sigma0, &
-                                    max_pivots=max_pivots)
+            ! Lemke needs the dense matrix: the hierarchical operator goes without it.
+            if (hierarchical) then
+                call solve_contact_with(stiffness, shift(1:nc, k), shift(nc + 1:, k), law, &
+                                        pressure(:, k), model%solver, res, error, &
+                                        max_iterations=max_iterations, &
+                                        ds_previous=ds_previous, session=session, &
+                                        stress_scale=sigma0)
+            else
+                call solve_contact_with(stiffness, shift(1:nc, k), shift(nc + 1:, k), law, &
+                                        pressure(:, k), model%solver, res, error, a=a_solve, &
+                                        max_iterations=max_iterations, &
+                                        ds_previous=ds_previous, session=session, &
+                                        stress_scale=sigma0, max_pivots=max_pivots)
+            end if
             if (allocated(error)) then
                 error%message = 'loading history: step '//itoa(k)//' of '//itoa(nsteps)// &
                     ' ('//load_text(loads(:, k), model%load_path%varies)//') failed: '// &
@@ -229,7 +266,12 @@ contains
         results%elements%mu_in_force(sys%contact) = law%mu_in_force
         results%elements%sf_in_force(sys%contact) = law%sf_in_force
         results%elements%tensile_in_force(sys%contact) = law%tensile_in_force
-        nullify (stiffness%a)
+        select type (stiffness)
+        type is (dense_stiffness)
+            nullify (stiffness%a)
+        type is (hierarchical_stiffness)
+            call stiffness%release()
+        end select
         call release_matrix(sys, matrix)
         call finish_model(apply_load(model, loads(:, nsteps)), shear(:, nsteps), &
                           normal(:, nsteps), results, matrix=matrix)

@@ -117,9 +117,9 @@ contains
         end if
     end subroutine read_namelist_model
 
-    !> matrix = 'hierarchical' serves one solve of TWODD-style elements, or of contact
-    !> elements alone by the Newton method (no elastic joints); no loading history, no
-    !> growth: the other solvers work on dense matrices
+    !> matrix = 'hierarchical' serves one solve of TWODD-style elements, or one solve or a
+    !> loading history of contact elements alone by the Newton method (no elastic joints);
+    !> no growth: the growth solver works on dense matrices
     !> (docs/theory/hierarchical.md#what-it-solves).
     subroutine check_matrix(path, groups, model, fractures, messages)
         character(len=*), intent(in) :: path
@@ -138,8 +138,6 @@ contains
             what = 'contact elements beside elements of other conditions'
         else if (contact .and. model%solver%lcp_method == lcp_lemke) then
             what = "lcp_method = 'lemke' (its tableau is dense)"
-        else if (groups(g_load_path)%count > 0) then
-            what = 'a loading history (&load_path)'
         else if (groups(g_growth)%count > 0) then
             what = 'fracture growth (&growth)'
         end if

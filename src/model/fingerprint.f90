@@ -81,8 +81,9 @@ contains
         ! Not hashed: model%growth%steps, model%load_path%steps, model%load_path%vertex
         ! Not hashed: model%load_path%varies (a resumed run may go further)
         ! Not hashed: model%solver%work_bytes (this machine's memory, not the model)
-        ! Not hashed: model%solver%matrix (the runs that resume, loading histories and
-        ! growth, are solved on dense matrices), and so its settings:
+        ! Not hashed: model%solver%matrix (it changes a result within hmatrix_tolerance
+        ! only: a loading history may go on from its file on either matrix), and so its
+        ! settings:
         ! Not hashed: model%solver%hmatrix_tolerance (as matrix)
         ! Not hashed: model%solver%hmatrix_leaf_size (as matrix)
         ! Not hashed: model%solver%hmatrix_eta (as matrix)

@@ -292,14 +292,14 @@ contains
     end function elements_that_fit
 
     !> Whether a hierarchical matrix can solve the model: one solve of TWODD-style elements,
-    !> or of contact elements alone by the Newton method without elastic joints; no loading
-    !> history, no growth (the input's rules: ddc_input_namelist's check_matrix).
+    !> or one solve or a loading history of contact elements alone by the Newton method
+    !> without elastic joints; no growth (the input's rules: ddc_input_namelist's
+    !> check_matrix).
     pure logical function hierarchical_allowed(model)
         type(model_type), intent(in) :: model
 
         associate (e => model%elements)
-            hierarchical_allowed = .not. (allocated(model%load_path%vertex) .or. &
-                                          model%growth%active)
+            hierarchical_allowed = .not. model%growth%active
             if (.not. any(e%condition == condition_contact)) return
             hierarchical_allowed = hierarchical_allowed .and. &
                 all(e%condition == condition_contact) .and. &

@@ -30,7 +30,6 @@ module ddc_solve_frictional
     use ddc_contact_result, only: contact_result
     use ddc_contact_formulation, only: solve_contact, solve_contact_with
     use ddc_contact_options, only: solver_options, cohesion_lost, matrix_hierarchical
-    use ddc_linalg_hmatrix, only: hmatrix_settings
     use ddc_solve_hierarchical_stiffness, only: hierarchical_stiffness, &
         new_hierarchical_stiffness
     use ddc_contact_fault_law, only: fault_law, new_fault_law
@@ -40,7 +39,7 @@ module ddc_solve_frictional
 
     public :: solve_frictional
     public :: condensed_contact, condense_contact, contact_load, complete_dds, record_contact
-    public :: release_matrix, fault_law_of, strengths_change
+    public :: release_matrix, fault_law_of, strengths_change, contact_only_system
 
     !> The contact elements' view of a model with TWODD-style elements condensed out.
     type :: condensed_contact
@@ -185,9 +184,7 @@ contains
         end if
         call system_clock(t0, rate)
         kept = elements
-        call new_hierarchical_stiffness(kept, shear_modulus, nu, hmatrix_settings( &
-            options%hmatrix_tolerance, options%hmatrix_leaf_size, options%hmatrix_eta), &
-            stiffness, error)
+        call new_hierarchical_stiffness(kept, shear_modulus, nu, options, stiffness, error)
         call system_clock(t1)
         record%seconds_assembly = real(t1 - t0, wp) / real(rate, wp)
         record%counts%seconds = 0.0_wp
@@ -371,6 +368,20 @@ contains
         if (reports_phases(n) .and. nf > 0) call report_progress('condensation of '// &
             itoa(nf)//' elements done in '//seconds_text(record%counts%seconds))
     end subroutine condense_contact
+
+    !> The condensed system of a model whose elements are all contact elements, without its
+    !> matrix (a hierarchical operator holds A: ddc_solve_hierarchical_stiffness).
+    pure subroutine contact_only_system(elements, sys)
+        type(element_set), intent(in) :: elements
+        type(condensed_contact), intent(out) :: sys
+        integer :: i
+
+        sys%nc = elements%n
+        sys%nf = 0
+        sys%contact = [(i, i = 1, elements%n)]
+        allocate (sys%free(0), sys%shear_row(elements%n), sys%normal_row(elements%n))
+        call row_kinds(elements%condition, sys%shear_row, sys%normal_row)
+    end subroutine contact_only_system
 
     !> Remote traction on the contact elements for one load, free elements condensed out:
     !> shift = [S_r,C shear; S_r,C normal] + K_CF K_FF^-1 b_F.

@@ -14,6 +14,7 @@ module ddc_solve_hierarchical_stiffness
     use ddc_error, only: error_type
     use ddc_model_types, only: element_set
     use ddc_linalg_hmatrix, only: hmatrix, block_source, hmatrix_settings
+    use ddc_contact_options, only: solver_options
     use ddc_contact_stiffness, only: stiffness_operator, reduced_system, action_solved, &
         action_factorized, action_reused
     use ddc_solve_hierarchical, only: influence_source, new_influence_source, unknown_points, &
@@ -57,12 +58,13 @@ module ddc_solve_hierarchical_stiffness
 
 contains
 
-    !> The operator of the elements (all contact elements: traction rows), A assembled.
-    subroutine new_hierarchical_stiffness(elements, shear_modulus, nu, settings, stiffness, &
+    !> The operator of the elements (all contact elements: traction rows), A assembled with
+    !> the hmatrix_ settings of &solver.
+    subroutine new_hierarchical_stiffness(elements, shear_modulus, nu, options, stiffness, &
                                           error)
         type(element_set), intent(in), target :: elements
         real(wp), intent(in) :: shear_modulus, nu
-        type(hmatrix_settings), intent(in) :: settings
+        type(solver_options), intent(in) :: options
         type(hierarchical_stiffness), intent(out) :: stiffness
         type(error_type), allocatable, intent(out) :: error
         real(wp) :: own(2, 2)
@@ -70,8 +72,10 @@ contains
 
         allocate (stiffness%source, stiffness%a, stiffness%factors)
         stiffness%source = new_influence_source(elements, shear_modulus, nu)
-        stiffness%settings = settings
-        call stiffness%a%assemble(unknown_points(elements), stiffness%source, settings, error)
+        stiffness%settings = hmatrix_settings(options%hmatrix_tolerance, &
+                                              options%hmatrix_leaf_size, options%hmatrix_eta)
+        call stiffness%a%assemble(unknown_points(elements), stiffness%source, &
+                                  stiffness%settings, error)
         if (allocated(error)) return
         n = elements%n
         do i = 1, n
