@@ -18,7 +18,7 @@ typedef void (*ddc_fill_block)(void *context, int row_count, const int *rows, in
 
 typedef struct {
     hmat_interface_t api;
-    hmat_cluster_tree_t *tree;
+    hmat_cluster_tree_t *tree, *col_tree; /* col_tree: a rectangular matrix's columns */
     hmat_matrix_t *matrix;
     int owns_tree; /* a copy shares its original's cluster tree */
     ddc_fill_block fill;
@@ -63,29 +63,44 @@ static void prepare_block(int row_start, int row_count, int col_start, int col_c
     info->release_user_data = release_block;
 }
 
-/* The matrix of `order` unknowns at points coordinates[2 k], [2 k + 1] (k = 0 .. order - 1),
- * clustered by median splits into leaves of at most leaf_size unknowns, blocks admissible
- * by Hackbusch's condition with eta, compressed by ACA+ to the relative accuracy epsilon.
- * NULL when hmat-oss fails. */
-void *ddc2d_hmatrix_assemble(int order, const double *coordinates, int leaf_size, double eta,
+static hmat_cluster_tree_t *cluster_tree(int count, const double *coordinates,
+                                         int leaf_size) {
+    hmat_clustering_algorithm_t *median = hmat_create_clustering_median();
+    hmat_clustering_algorithm_t *leaves = hmat_create_clustering_max_dof(median, leaf_size);
+    hmat_cluster_tree_t *tree = hmat_create_cluster_tree((double *)coordinates, 2, count,
+                                                         leaves);
+    hmat_delete_clustering(leaves);
+    hmat_delete_clustering(median);
+    return tree;
+}
+
+static void free_trees(ddc_hmatrix *h) {
+    if (h->col_tree) hmat_delete_cluster_tree(h->col_tree);
+    if (h->tree) hmat_delete_cluster_tree(h->tree);
+}
+
+/* The matrix of rows rows and cols columns whose unknowns sit at row_coordinates[2 k],
+ * [2 k + 1] and col_coordinates (NULL: the rows' points, a square matrix of one cluster
+ * tree), each tree split at medians into leaves of at most leaf_size unknowns, blocks
+ * admissible by Hackbusch's condition with eta, compressed by ACA+ to the relative
+ * accuracy epsilon (also that of the recompressions of H-LU). NULL when hmat-oss fails. */
+void *ddc2d_hmatrix_assemble(int rows, const double *row_coordinates, int cols,
+                             const double *col_coordinates, int leaf_size, double eta,
                              double epsilon, ddc_fill_block fill, void *context) {
     ddc_hmatrix *h = calloc(1, sizeof *h);
     if (!h) return NULL;
     hmat_init_default_interface(&h->api, HMAT_DOUBLE_PRECISION);
-    hmat_clustering_algorithm_t *median = hmat_create_clustering_median();
-    hmat_clustering_algorithm_t *leaves = hmat_create_clustering_max_dof(median, leaf_size);
-    h->tree = hmat_create_cluster_tree((double *)coordinates, 2, order, leaves);
-    hmat_delete_clustering(leaves);
-    hmat_delete_clustering(median);
+    h->tree = cluster_tree(rows, row_coordinates, leaf_size);
+    if (col_coordinates) h->col_tree = cluster_tree(cols, col_coordinates, leaf_size);
     hmat_admissibility_t *admissibility = hmat_create_admissibility_standard(eta);
-    h->matrix = h->api.create_empty_hmatrix_admissibility(h->tree, h->tree, 0, admissibility);
+    h->matrix = h->api.create_empty_hmatrix_admissibility(
+        h->tree, h->col_tree ? h->col_tree : h->tree, 0, admissibility);
     hmat_delete_admissibility(admissibility);
     if (!h->matrix) {
-        hmat_delete_cluster_tree(h->tree);
+        free_trees(h);
         free(h);
         return NULL;
     }
-    /* The accuracy of the recompressions (assembly and H-LU), else hmat-oss's default. */
     h->api.set_low_rank_epsilon(h->matrix, epsilon);
     h->owns_tree = 1;
     h->fill = fill;
@@ -104,7 +119,7 @@ void *ddc2d_hmatrix_assemble(int order, const double *coordinates, int leaf_size
     h->context = NULL; /* the filler's context lives only for the assembly */
     if (status != 0) {
         h->api.destroy(h->matrix);
-        hmat_delete_cluster_tree(h->tree);
+        free_trees(h);
         free(h);
         return NULL;
     }
@@ -143,7 +158,8 @@ int ddc2d_hmatrix_solve(void *handle, double *b, int nrhs) {
     return h->api.solve_systems(h->matrix, b, nrhs);
 }
 
-/* y := A x (caller's numbering; x is reordered and restored in place); 0 on success. */
+/* y := A x (caller's numbering; x is reordered and restored in place; a rectangular
+ * matrix: x of its columns, y of its rows); 0 on success. */
 int ddc2d_hmatrix_multiply(void *handle, double *x, double *y) {
     ddc_hmatrix *h = handle;
     double one = 1.0, zero = 0.0;
@@ -164,6 +180,6 @@ void ddc2d_hmatrix_free(void *handle) {
     ddc_hmatrix *h = handle;
     if (!h) return;
     h->api.destroy(h->matrix);
-    if (h->owns_tree) hmat_delete_cluster_tree(h->tree);
+    if (h->owns_tree) free_trees(h);
     free(h);
 }

@@ -52,6 +52,7 @@ module ddc_linalg_hmatrix
         logical :: factorized = .false.
     contains
         procedure :: assemble
+        procedure :: assemble_rectangular
         procedure :: copy_of
         procedure :: factor
         procedure :: solve
@@ -68,12 +69,15 @@ module ddc_linalg_hmatrix
     end type source_holder
 
     interface
-        function hmatrix_assemble_c(order, coordinates, leaf_size, eta, epsilon, fill, context) &
+        function hmatrix_assemble_c(rows, row_coordinates, cols, col_coordinates, leaf_size, &
+                                    eta, epsilon, fill, context) &
             bind(C, name='ddc2d_hmatrix_assemble') result(handle)
             import :: c_ptr, c_int, c_double, c_funptr
             implicit none
-            integer(c_int), value :: order, leaf_size
-            real(c_double), intent(in) :: coordinates(*)
+            integer(c_int), value :: rows, cols, leaf_size
+            real(c_double), intent(in) :: row_coordinates(*)
+            !> NULL (c_null_ptr) for a square matrix on the rows' points
+            type(c_ptr), value :: col_coordinates
             real(c_double), value :: eta, epsilon
             type(c_funptr), value :: fill
             type(c_ptr), value :: context
@@ -147,7 +151,35 @@ contains
         holder%source => source
         matrix%order = size(points, 2)
         matrix%handle = hmatrix_assemble_c(int(matrix%order, c_int), &
-            real(reshape(points, [size(points)]), c_double), int(settings%leaf_size, c_int), &
+            real(reshape(points, [size(points)]), c_double), int(matrix%order, c_int), &
+            c_null_ptr, int(settings%leaf_size, c_int), real(settings%eta, c_double), &
+            real(settings%tolerance, c_double), c_funloc(fill_from_source), c_loc(holder))
+        if (.not. c_associated(matrix%handle)) then
+            matrix%order = 0
+            call set_error(error, exit_solver_failure, 'hmat-oss could not assemble the '// &
+                           'hierarchical matrix')
+        end if
+    end subroutine assemble
+
+    !> Assemble the rectangular matrix of the rows at `row_points` against the columns at
+    !> `col_points` from `source` (for products only: no H-LU).
+    subroutine assemble_rectangular(matrix, row_points, col_points, source, settings, error)
+        class(hmatrix), intent(inout) :: matrix
+        !> Position of each row's and each column's unknown (x, y) [length unit], shape
+        !> (2, rows), (2, cols)
+        real(wp), intent(in) :: row_points(:, :)
+        real(wp), intent(in), target, contiguous :: col_points(:, :)
+        class(block_source), intent(in), target :: source
+        type(hmatrix_settings), intent(in) :: settings
+        type(error_type), allocatable, intent(out) :: error
+        type(source_holder), target :: holder
+
+        call matrix%release()
+        holder%source => source
+        matrix%order = size(row_points, 2)
+        matrix%handle = hmatrix_assemble_c(int(size(row_points, 2), c_int), &
+            real(reshape(row_points, [size(row_points)]), c_double), &
+            int(size(col_points, 2), c_int), c_loc(col_points), int(settings%leaf_size, c_int), &
             real(settings%eta, c_double), real(settings%tolerance, c_double), &
             c_funloc(fill_from_source), c_loc(holder))
         if (.not. c_associated(matrix%handle)) then
@@ -155,7 +187,7 @@ contains
             call set_error(error, exit_solver_failure, 'hmat-oss could not assemble the '// &
                            'hierarchical matrix')
         end if
-    end subroutine assemble
+    end subroutine assemble_rectangular
 
     !> This matrix becomes a copy of `original` (assembled, not factorized), which shares
     !> the original's cluster tree: release the copy first.

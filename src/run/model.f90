@@ -13,7 +13,8 @@ module ddc_run_model
     use ddc_contact_fault_law, only: fault_law
     use ddc_influence_response, only: midpoint_response, kernel_response
     use ddc_solve_elastic, only: solve_elastic, row_kinds
-    use ddc_solve_hierarchical, only: solve_hierarchical, hierarchical_response
+    use ddc_solve_hierarchical, only: solve_hierarchical, hierarchical_response, &
+        hierarchical_field
     use ddc_solve_frictional, only: solve_frictional
     use ddc_solve_joints, only: elastic_dds
     use ddc_post_fields, only: evaluate_field
@@ -192,6 +193,7 @@ contains
         type(model_results), intent(inout) :: results
         !> The engine of a distributed run (default: the work is done in this process)
         class(model_engine), intent(inout), optional :: engine
+        type(error_type), allocatable :: failed
         real(wp) :: t0
         integer :: i
 
@@ -209,6 +211,16 @@ contains
                     call engine%evaluate_field(model%elements, shear_modulus_of(model), &
                                                model%poissons_ratio, remote, e%ds, e%dn, o%x, &
                                                o%y, results%fields(i), model%stress_gradient)
+                else if (results%solver%hierarchical) then
+                    ! Products with a compressed field matrix, or the sums where hmat-oss
+                    ! fails.
+                    call hierarchical_field(model%elements, shear_modulus_of(model), &
+                                            model%poissons_ratio, remote, &
+                                            model%stress_gradient, e%ds, e%dn, o%x, o%y, &
+                                            model%solver, results%fields(i), failed)
+                    if (allocated(failed)) call evaluate_field(model%elements, &
+                        shear_modulus_of(model), model%poissons_ratio, remote, e%ds, e%dn, &
+                        o%x, o%y, results%fields(i), model%stress_gradient)
                 else
                     call evaluate_field(model%elements, shear_modulus_of(model), &
                                         model%poissons_ratio, remote, e%ds, e%dn, o%x, o%y, &

@@ -8,7 +8,12 @@ module ddc_solve_hierarchical
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, set_internal_error, exit_solver_failure
     use ddc_model_types, only: element_set, condition_contact
-    use ddc_influence_assembly, only: fill_influence_block, row_traction, row_displacement
+    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+    use ddc_influence_assembly, only: fill_influence_block, row_traction, row_displacement, &
+        image_transform, image_transforms, kernel_with_images, kernel_function, select_kernel
+    use ddc_influence_kernel, only: dd_kernel, face_positive
+    use ddc_influence_superposition, only: source_table, build_sources, flag_at
+    use ddc_model_results, only: field_result, point_on_element
     use ddc_linalg_hmatrix, only: hmatrix, block_source, hmatrix_settings
     use ddc_linalg_lu, only: residual_tol, influence_hint
     use ddc_contact_options, only: solver_options
@@ -19,13 +24,17 @@ module ddc_solve_hierarchical
     private
 
     public :: solve_hierarchical, influence_source, new_influence_source, unknown_points
-    public :: hierarchical_response
+    public :: hierarchical_response, hierarchical_field
     public :: max_refinements, refined_residual
 
     !> Steps of refinement at most, and the relative residual at which they stop: far below
     !> what the solve accepts (residual_tol), a few steps above round-off
     integer, parameter :: max_refinements = 10
     real(wp), parameter :: refined_residual = 1.0e-12_wp
+    !> The matrices whose products are results (midpoint responses, fields) are compressed
+    !> this much more finely than hmatrix_tolerance: a product sums the blocks' errors, which
+    !> no refinement corrects
+    real(wp), parameter :: product_refinement = 1.0e-2_wp
 
     !> The influence matrix of a set of elements, unknowns [Ds(1:n); Dn(1:n)] and rows
     !> [shear rows; normal rows] as in ddc_influence_assembly.
@@ -36,6 +45,20 @@ module ddc_solve_hierarchical
     contains
         procedure :: fill => fill_influence
     end type influence_source
+
+    !> Displacement (ux, uy) and stress (sxx, syy, sxy) at observation points per unit DD:
+    !> row 5 (p - 1) + q is quantity q at point p, columns [Ds; Dn] of the elements.
+    type, extends(block_source) :: field_source
+        type(element_set), pointer :: elements => null()
+        real(wp) :: shear_modulus = 0.0_wp, nu = 0.0_wp
+        real(wp), allocatable :: x(:), y(:)
+        !> Flag of each point (a point on an element gets no kernel: it is NaN there)
+        integer, allocatable :: flag(:)
+        type(image_transform), allocatable :: images(:)
+        procedure(kernel_function), pointer, nopass :: kernel => null()
+    contains
+        procedure :: fill => fill_field
+    end type field_source
 
 contains
 
@@ -129,7 +152,7 @@ contains
     !> Induced tractions and negative-face displacements at the element midpoints (as
     !> ddc_influence_response's kernel_response) by products with two hierarchical matrices,
     !> one of traction rows and one of displacement rows: O(N log N) instead of the O(N^2)
-    !> sums, to the accuracy of hmatrix_tolerance.
+    !> sums, to product_refinement times hmatrix_tolerance.
     subroutine hierarchical_response(elements, shear_modulus, nu, ds, dn, options, &
                                      shear_traction, normal_traction, us_minus, un_minus, error)
         type(element_set), intent(in), target :: elements
@@ -152,8 +175,9 @@ contains
         do kind = 1, 2
             source%shear_row = merge(row_traction, row_displacement, kind == 1)
             source%normal_row = source%shear_row
-            call matrix%assemble(points, source, hmatrix_settings(options%hmatrix_tolerance, &
-                                 options%hmatrix_leaf_size, options%hmatrix_eta), error)
+            call matrix%assemble(points, source, hmatrix_settings(product_refinement * &
+                                 options%hmatrix_tolerance, options%hmatrix_leaf_size, &
+                                 options%hmatrix_eta), error)
             if (allocated(error)) return
             call matrix%multiply([ds, dn], product, error)
             if (allocated(error)) return
@@ -166,6 +190,115 @@ contains
             end if
         end do
     end subroutine hierarchical_response
+
+    !> Fields at the points (x, y), as ddc_post_fields' evaluate_field gives them, the
+    !> elements' part by the product with a rectangular hierarchical matrix (O((P + N)
+    !> log) instead of O(P N)), to product_refinement times hmatrix_tolerance; the flags
+    !> from the cell index of the elements (ddc_influence_superposition).
+    subroutine hierarchical_field(elements, shear_modulus, nu, remote, gradient, ds, dn, x, y, &
+                                  options, field, error)
+        type(element_set), intent(in), target :: elements
+        real(wp), intent(in) :: shear_modulus, nu
+        !> Remote stress and its gradient d/dy [stress unit], [stress unit / length unit]
+        real(wp), intent(in) :: remote(3), gradient(3)
+        real(wp), intent(in) :: ds(:), dn(:)
+        !> Observation points [length unit], shape (np)
+        real(wp), intent(in) :: x(:), y(:)
+        type(solver_options), intent(in) :: options
+        type(field_result), intent(out) :: field
+        !> Set when hmat-oss fails (the caller then sums directly)
+        type(error_type), allocatable, intent(out) :: error
+        type(field_source) :: source
+        type(source_table) :: cells
+        type(hmatrix) :: matrix
+        real(wp), allocatable :: rows(:, :), product(:)
+        real(wp) :: nan
+        logical :: use_general
+        integer :: np, ip
+
+        np = size(x)
+        allocate (field%ux(np), field%uy(np), field%sxx(np), field%syy(np), field%sxy(np), &
+                  field%flag(np))
+        if (np == 0) return
+        source%elements => elements
+        source%shear_modulus = shear_modulus
+        source%nu = nu
+        source%x = x
+        source%y = y
+        source%images = image_transforms(elements%symmetry)
+        call select_kernel(elements, .true., use_general, source%kernel)
+        call build_sources(elements, source%images, ds, dn, cells)
+        allocate (source%flag(np))
+        !$omp parallel do default(none) private(ip) shared(cells, x, y, source, np)
+        do ip = 1, np
+            source%flag(ip) = flag_at(cells, x(ip), y(ip))
+        end do
+        !$omp end parallel do
+        field%flag = source%flag
+        allocate (rows(2, 5 * np), product(5 * np))
+        rows(1, :) = [(x((ip + 4) / 5), ip = 1, 5 * np)]
+        rows(2, :) = [(y((ip + 4) / 5), ip = 1, 5 * np)]
+        call matrix%assemble_rectangular(rows, unknown_points(elements), source, &
+            hmatrix_settings(product_refinement * options%hmatrix_tolerance, &
+                             options%hmatrix_leaf_size, options%hmatrix_eta), error)
+        if (allocated(error)) return
+        call matrix%multiply([ds, dn], product, error)
+        if (allocated(error)) return
+        nan = ieee_value(1.0_wp, ieee_quiet_nan)
+        !$omp parallel do default(none) private(ip) shared(y, field, product, remote, &
+        !$omp    gradient, nan, np)
+        do ip = 1, np
+            if (field%flag(ip) == point_on_element) then
+                field%ux(ip) = nan
+                field%uy(ip) = nan
+                field%sxx(ip) = nan
+                field%syy(ip) = nan
+                field%sxy(ip) = nan
+            else
+                field%ux(ip) = product(5 * ip - 4)
+                field%uy(ip) = product(5 * ip - 3)
+                field%sxx(ip) = product(5 * ip - 2) + remote(1) + gradient(1) * y(ip)
+                field%syy(ip) = product(5 * ip - 1) + remote(2) + gradient(2) * y(ip)
+                field%sxy(ip) = product(5 * ip) + remote(3) + gradient(3) * y(ip)
+            end if
+        end do
+        !$omp end parallel do
+    end subroutine hierarchical_field
+
+    !> block(k, l): quantity of row rows(k) per unit DD of column cols(l) (0 at a point on
+    !> an element, whose field is NaN).
+    subroutine fill_field(source, rows, cols, block)
+        class(field_source), intent(in) :: source
+        integer, intent(in) :: rows(:), cols(:)
+        real(wp), intent(out) :: block(:, :)
+        type(dd_kernel) :: k
+        real(wp) :: values(5, 2)
+        integer :: n, kk, l, point, element, last_point, last_element
+
+        n = source%elements%n
+        last_point = 0
+        last_element = 0
+        ! Columns outer, rows inner: a point's five rows lie together, so each pair of
+        ! point and element is evaluated about once.
+        do l = 1, size(cols)
+            element = modulo(cols(l) - 1, n) + 1
+            do kk = 1, size(rows)
+                point = (rows(kk) - 1) / 5 + 1
+                if (source%flag(point) == point_on_element) then
+                    values = 0.0_wp
+                else if (point /= last_point .or. element /= last_element) then
+                    k = kernel_with_images(source%kernel, source%x(point), source%y(point), &
+                                           source%elements, element, source%images, &
+                                           source%shear_modulus, source%nu, face_positive)
+                    values(:, 1) = [k%ux(1), k%uy(1), k%sxx(1), k%syy(1), k%sxy(1)]
+                    values(:, 2) = [k%ux(2), k%uy(2), k%sxx(2), k%syy(2), k%sxy(2)]
+                    last_point = point
+                    last_element = element
+                end if
+                block(kk, l) = values(modulo(rows(kk) - 1, 5) + 1, merge(1, 2, cols(l) <= n))
+            end do
+        end do
+    end subroutine fill_field
 
     !> The influence matrix of the elements, rows as their conditions say (row_kinds).
     function new_influence_source(elements, shear_modulus, nu) result(source)
