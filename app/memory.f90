@@ -61,7 +61,7 @@ contains
     !> Resolve &solver matrix = 'auto' (docs/theory/hierarchical.md#choosing-the-matrix):
     !> where the model allows a hierarchical matrix, it from hierarchical_min_elements
     !> elements on or where the dense need does not fit (then `need` is re-estimated), else
-    !> dense; echo the matrix and why.
+    !> dense; echo the matrix and why (every run).
     subroutine choose_matrix(unit, model, need, available)
         integer, intent(in) :: unit
         type(model_type), intent(inout) :: model
@@ -74,18 +74,22 @@ contains
         case (matrix_hierarchical)
             write (unit, '(a)') "  matrix: hierarchical (&solver matrix = 'hierarchical')"
         case (matrix_dense)
-            if (hierarchical_allowed(model)) write (unit, '(a)') "  matrix: dense "// &
-                "(&solver matrix = 'dense')"
+            write (unit, '(a)') "  matrix: dense (&solver matrix = 'dense')"
         case default
             model%solver%matrix = matrix_dense
-            if (.not. hierarchical_allowed(model)) return
             n = model%elements%n
-            if (n >= hierarchical_min_elements) then
+            if (.not. hierarchical_allowed(model)) then
+                write (unit, '(a)') '  matrix: dense (a hierarchical matrix does not solve '// &
+                    'this model: docs/theory/hierarchical.md#what-it-solves)'
+                return
+            else if (n >= hierarchical_min_elements) then
                 why = itoa(n)//' elements, from '//itoa(hierarchical_min_elements)// &
                     ' on a hierarchical matrix is faster'
             else if (need%bytes > available) then
                 why = 'the dense matrix would need about '//bytes_text(need%bytes)
             else
+                write (unit, '(a)') '  matrix: dense ('//itoa(n)//' elements: below '// &
+                    itoa(hierarchical_min_elements)//' a dense matrix is faster)'
                 return
             end if
             model%solver%matrix = matrix_hierarchical

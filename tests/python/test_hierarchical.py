@@ -149,10 +149,12 @@ def echo_of(folder, stem, text):
 
 def test_auto_takes_the_hierarchical_matrix_from_the_crossover(tmp_path):
     """'auto' (the default): dense below hierarchical_min_elements elements, hierarchical
-    from there on (docs/theory/hierarchical.md#choosing-the-matrix), and the echo says why."""
+    from there on (docs/theory/hierarchical.md#choosing-the-matrix), dense for a model it
+    does not solve, and the echo says which and why."""
     small = TWO_CRACKS.replace("elements = 800,", "elements = 80,").replace(
         "elements = 1200,", "elements = 120,")
-    assert echo_of(tmp_path, "small", small) == []
+    assert echo_of(tmp_path, "small", small) == [
+        f"  matrix: dense (200 elements: below {CROSSOVER} a dense matrix is faster)"]
     with h5py.File(tmp_path / "small.h5", "r") as f:
         assert "matrix" not in f["solver"].attrs
     large = TWO_CRACKS.replace("elements = 800,", "elements = 1,").replace(
@@ -162,6 +164,10 @@ def test_auto_takes_the_hierarchical_matrix_from_the_crossover(tmp_path):
     assert echo_of(tmp_path, "large", large) == [expected]
     with h5py.File(tmp_path / "large.h5", "r") as f:
         assert f["solver"].attrs["matrix"].decode().strip() == "hierarchical"
+    lemke = benchmark.CASES["straight"](40, 0, 0) + "&solver lcp_method = 'lemke' /\n"
+    refusal = ("  matrix: dense (a hierarchical matrix does not solve this model: "
+               "docs/theory/hierarchical.md#what-it-solves)")
+    assert echo_of(tmp_path, "lemke", lemke) == [refusal]
 
 
 #: hierarchical_min_elements of src/run/memory.f90

@@ -32,7 +32,8 @@ def run(tmp_path, n, extra=""):
     # would take a hierarchical matrix here (test_hierarchical.py).
     ("&solver matrix = 'dense' /\n", "newton", "1.7 TB"),
     ("&solver lcp_method = 'lemke' /\n", "lemke", "16 TB"),
-    ("&load_path steps = 4, sxy = 0, 54.13 /\n", "newton (loading history)", "3 TB"),
+    ("&load_path steps = 4, sxy = 0, 54.13 /\n&solver matrix = 'dense' /\n",
+     "newton (loading history)", "3 TB"),
     ("&load_path steps = 4, sxy = 0, 54.13 /\n&solver lcp_method = 'lemke' /\n",
      "lemke (loading history)", "16 TB"),
 ])
