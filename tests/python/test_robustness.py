@@ -637,6 +637,22 @@ MEMCHECK_MODELS = {
                 "&growth steps = 2, toughness = 1.0e6, increment = 0.39 /\n"
                 "&initiation tensile_strength = 5.0, probe_distance = 0.05, flaw_x = 0.0, "
                 "flaw_y = 30.0, flaw_length = 0.2 /\n",
+    # Hierarchical matrices (hmat-oss through src/linalg/hmatrix.c): an elastic solve with
+    # a grid (rectangular field matrix), and a contact history (reduced systems, refinement)
+    "hierarchical_cracks.nml": "&model youngs_modulus = 50000.0, poissons_ratio = 0.25 /\n"
+                               "&remote_stress syy = 10.0, sxy = 3.0 /\n"
+                               "&fracture condition = 'traction', x = -1.0, 1.0, y = 0.0, 0.0, "
+                               "elements = 40 /\n"
+                               "&fracture condition = 'traction', x = -1.0, 0.5, y = 0.3, 1.2, "
+                               "elements = 30 /\n"
+                               "&grid xmin = -2, xmax = 2, nx = 9, ymin = -1, ymax = 2, ny = 7 /\n"
+                               "&solver matrix = 'hierarchical', hmatrix_leaf_size = 8 /\n",
+    "hierarchical_history.nml": "&model youngs_modulus = 50000.0, poissons_ratio = 0.25 /\n"
+                                "&remote_stress sxx = -5.0, syy = -20.0, sxy = 0.0 /\n"
+                                "&fracture x = -1.0, 0.0, 0.8, y = 0.0, 0.0, 0.5, "
+                                "elements = 30, 30, mu = 0.6, sf = 0.0, pressure = 12.0 /\n"
+                                "&load_path sxy = 0.0, 8.0, -8.0, steps = 2, 2 /\n"
+                                "&solver matrix = 'hierarchical', hmatrix_leaf_size = 8 /\n",
     "bad.nml": "&model youngs_modulus = -1.0, poissons_ratio = 0.25 /\n"
                "&fracture x = -1.0, 1.0, y = 0.0, 0.0, elements = 4, mu = 0.6 /\n",
 }
