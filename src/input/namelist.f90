@@ -12,7 +12,7 @@ module ddc_input_namelist
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type, condition_contact, symmetry_none, symmetry_names, &
-        symmetry_x, domain_half_plane, rigid_joint
+        symmetry_x, domain_half_plane, hierarchical_refusal
     use ddc_text, only: itoa, rtoa, prefix_lines
     use ddc_input_text_file, only: read_text_file, folder_of
     use ddc_mesh_geometry, only: allocate_elements, compute_geometry
@@ -26,7 +26,7 @@ module ddc_input_namelist
         read_pore_fluid_group, read_solver_group, read_symmetry_group, read_output_group, &
         read_load_path_group
     use ddc_input_namelist_fracture, only: fracture_input, read_fracture_groups
-    use ddc_contact_options, only: matrix_hierarchical, lcp_lemke
+    use ddc_contact_options, only: matrix_hierarchical
     use ddc_input_namelist_observations, only: observation_input, read_grid_groups, &
         read_line_groups, read_points_groups
     implicit none
@@ -99,7 +99,6 @@ contains
 
         call check_names(path, fractures, observations, messages)
         call check_half_plane(path, model, fractures, observations, messages)
-        call check_matrix(path, groups, model, fractures, messages)
         if (messages%n > 0) then
             call set_error(error, messages%code, messages%text)
             return
@@ -107,6 +106,7 @@ contains
 
         call build_model(fractures, observations, model)
         call check_flaw_points(path, groups, model, messages)
+        call check_matrix(path, model, messages)
         if (messages%n > 0) then
             call set_error(error, messages%code, messages%text)
             return
@@ -117,40 +117,16 @@ contains
         end if
     end subroutine read_namelist_model
 
-    !> matrix = 'hierarchical' serves one solve of TWODD-style elements, or one solve or a
-    !> loading history of contact elements alone by the Newton method (no elastic joints);
-    !> no growth: the growth solver works on dense matrices
-    !> (docs/theory/hierarchical.md#what-it-solves).
-    subroutine check_matrix(path, groups, model, fractures, messages)
+    !> matrix = 'hierarchical' on a model a hierarchical matrix does not solve
+    !> (hierarchical_refusal: docs/theory/hierarchical.md#what-it-solves) is refused.
+    subroutine check_matrix(path, model, messages)
         character(len=*), intent(in) :: path
-        type(group_record), intent(in) :: groups(:)
         type(model_type), intent(in) :: model
-        type(fracture_input), intent(in) :: fractures(:)
         type(message_list), intent(inout) :: messages
         character(len=:), allocatable :: what
-        logical :: contact
-        integer :: i
 
         if (model%solver%matrix /= matrix_hierarchical) return
-        what = ''
-        contact = any(fractures%valid .and. fractures%condition == condition_contact)
-        if (contact .and. any(fractures%valid .and. fractures%condition /= condition_contact)) then
-            what = 'contact elements beside elements of other conditions'
-        else if (contact .and. model%solver%lcp_method == lcp_lemke) then
-            what = "lcp_method = 'lemke' (its tableau is dense)"
-        else if (groups(g_growth)%count > 0) then
-            what = 'fracture growth (&growth)'
-        end if
-        do i = 1, size(fractures)
-            if (len(what) > 0) exit
-            if (.not. fractures(i)%valid) cycle
-            if (allocated(fractures(i)%shear_stiffness)) then
-                if (any(fractures(i)%shear_stiffness /= rigid_joint)) what = 'elastic joints'
-            end if
-            if (allocated(fractures(i)%normal_stiffness)) then
-                if (any(fractures(i)%normal_stiffness /= rigid_joint)) what = 'elastic joints'
-            end if
-        end do
+        what = hierarchical_refusal(model)
         if (len(what) == 0) return
         call add(messages, path//": &solver: matrix = 'hierarchical' does not solve "//what// &
                  " yet: use matrix = 'dense' or 'auto'")

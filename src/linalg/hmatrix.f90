@@ -1,6 +1,6 @@
-!> Hierarchical matrices (hmat-oss, docs/theory/hierarchical.md): a square matrix whose
-!> blocks between well-separated groups of unknowns are stored compressed (low rank, by
-!> ACA+), its H-LU factors, solves and products. The entries come from the caller, as
+!> Hierarchical matrices (hmat-oss, docs/theory/hierarchical.md): a matrix whose blocks
+!> between well-separated groups of unknowns are stored compressed (low rank, by ACA+);
+!> products, and for a square one its H-LU factors and solves. The entries come from the caller, as
 !> blocks, through an extension of block_source; hmatrix.c holds the C side.
 !>
 !> hmat-oss is sequential and its assembly calls back into Fortran: the source is reached
@@ -48,7 +48,6 @@ module ddc_linalg_hmatrix
     type :: hmatrix
         private
         type(c_ptr) :: handle = c_null_ptr
-        integer :: order = 0
         logical :: factorized = .false.
     contains
         procedure :: assemble
@@ -58,7 +57,6 @@ module ddc_linalg_hmatrix
         procedure :: solve
         procedure :: multiply
         procedure :: stored_fraction
-        procedure :: stored_bytes
         procedure :: release
         final :: finalize
     end type hmatrix
@@ -145,20 +143,10 @@ contains
         type(hmatrix_settings), intent(in) :: settings
         !> Set when hmat-oss fails
         type(error_type), allocatable, intent(out) :: error
-        type(source_holder), target :: holder
 
-        call matrix%release()
-        holder%source => source
-        matrix%order = size(points, 2)
-        matrix%handle = hmatrix_assemble_c(int(matrix%order, c_int), &
-            real(reshape(points, [size(points)]), c_double), int(matrix%order, c_int), &
-            c_null_ptr, int(settings%leaf_size, c_int), real(settings%eta, c_double), &
-            real(settings%tolerance, c_double), c_funloc(fill_from_source), c_loc(holder))
-        if (.not. c_associated(matrix%handle)) then
-            matrix%order = 0
-            call set_error(error, exit_solver_failure, 'hmat-oss could not assemble the '// &
-                           'hierarchical matrix')
-        end if
+        ! No column points: the rows' cluster tree serves the columns too (as H-LU needs).
+        call assemble_from(matrix, points, size(points, 2), c_null_ptr, source, settings, &
+                           error)
     end subroutine assemble
 
     !> Assemble the rectangular matrix of the rows at `row_points` against the columns at
@@ -172,22 +160,31 @@ contains
         class(block_source), intent(in), target :: source
         type(hmatrix_settings), intent(in) :: settings
         type(error_type), allocatable, intent(out) :: error
+
+        call assemble_from(matrix, row_points, size(col_points, 2), c_loc(col_points), source, &
+                           settings, error)
+    end subroutine assemble_rectangular
+
+    !> assemble and assemble_rectangular: columns at col_points (c_null_ptr: the rows').
+    subroutine assemble_from(matrix, row_points, cols, col_points, source, settings, error)
+        class(hmatrix), intent(inout) :: matrix
+        real(wp), intent(in) :: row_points(:, :)
+        integer, intent(in) :: cols
+        type(c_ptr), intent(in) :: col_points
+        class(block_source), intent(in), target :: source
+        type(hmatrix_settings), intent(in) :: settings
+        type(error_type), allocatable, intent(out) :: error
         type(source_holder), target :: holder
 
         call matrix%release()
         holder%source => source
-        matrix%order = size(row_points, 2)
         matrix%handle = hmatrix_assemble_c(int(size(row_points, 2), c_int), &
-            real(reshape(row_points, [size(row_points)]), c_double), &
-            int(size(col_points, 2), c_int), c_loc(col_points), int(settings%leaf_size, c_int), &
-            real(settings%eta, c_double), real(settings%tolerance, c_double), &
-            c_funloc(fill_from_source), c_loc(holder))
-        if (.not. c_associated(matrix%handle)) then
-            matrix%order = 0
-            call set_error(error, exit_solver_failure, 'hmat-oss could not assemble the '// &
-                           'hierarchical matrix')
-        end if
-    end subroutine assemble_rectangular
+            real(reshape(row_points, [size(row_points)]), c_double), int(cols, c_int), &
+            col_points, int(settings%leaf_size, c_int), real(settings%eta, c_double), &
+            real(settings%tolerance, c_double), c_funloc(fill_from_source), c_loc(holder))
+        if (.not. c_associated(matrix%handle)) call set_error(error, exit_solver_failure, &
+            'hmat-oss could not assemble the hierarchical matrix')
+    end subroutine assemble_from
 
     !> This matrix becomes a copy of `original` (assembled, not factorized), which shares
     !> the original's cluster tree: release the copy first.
@@ -201,9 +198,7 @@ contains
         if (.not. c_associated(matrix%handle)) then
             call set_error(error, exit_solver_failure, 'hmat-oss could not copy the '// &
                            'hierarchical matrix')
-            return
         end if
-        matrix%order = original%order
     end subroutine copy_of
 
     !> H-LU factorization in place.
@@ -223,15 +218,15 @@ contains
     !> b := A^-1 b by the H-LU factors (factor first).
     subroutine solve(matrix, b, error)
         class(hmatrix), intent(in) :: matrix
-        !> Right-hand sides on entry, solutions on exit, shape (order, nrhs)
+        !> Right-hand sides on entry, solutions on exit, shape (unknowns, nrhs)
         real(wp), intent(inout), contiguous :: b(:, :)
         type(error_type), allocatable, intent(out) :: error
+        logical :: failed
 
-        if (.not. matrix%factorized) then
-            call set_error(error, exit_solver_failure, 'the solve with the H-LU factors failed')
-        else if (hmatrix_solve_c(matrix%handle, b, int(size(b, 2), c_int)) /= 0) then
-            call set_error(error, exit_solver_failure, 'the solve with the H-LU factors failed')
-        end if
+        failed = .not. matrix%factorized
+        if (.not. failed) failed = hmatrix_solve_c(matrix%handle, b, int(size(b, 2), c_int)) /= 0
+        if (failed) call set_error(error, exit_solver_failure, 'the solve with the H-LU '// &
+                                   'factors failed')
     end subroutine solve
 
     !> y = A x by the compressed matrix (before it is factorized).
@@ -261,22 +256,12 @@ contains
         stored_fraction = real(stored, wp) / max(real(dense, wp), 1.0_wp)
     end function stored_fraction
 
-    !> Bytes of the reals stored.
-    real(wp) function stored_bytes(matrix)
-        class(hmatrix), intent(in) :: matrix
-        real(c_double) :: stored, dense
-
-        call hmatrix_sizes_c(matrix%handle, stored, dense)
-        stored_bytes = 8.0_wp * real(stored, wp)
-    end function stored_bytes
-
     !> Free the matrix (nothing when there is none).
     subroutine release(matrix)
         class(hmatrix), intent(inout) :: matrix
 
         if (c_associated(matrix%handle)) call hmatrix_free_c(matrix%handle)
         matrix%handle = c_null_ptr
-        matrix%order = 0
         matrix%factorized = .false.
     end subroutine release
 

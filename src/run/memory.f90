@@ -37,7 +37,7 @@ module ddc_run_memory
     use ddc_allocation, only: real_bytes
     use ddc_text, only: bytes_text, itoa
     use ddc_model_types, only: model_type, condition_contact, rigid_joint
-    use ddc_contact_options, only: lcp_auto, lcp_newton, lcp_lemke, matrix_hierarchical
+    use ddc_contact_options, only: lcp_auto, lcp_newton, matrix_hierarchical
     use ddc_contact_formulation, only: auto_newton_min_elements
     use ddc_contact_memory, only: lemke_bytes, newton_bytes
     use ddc_contact_active_set, only: starting_unknowns
@@ -48,7 +48,7 @@ module ddc_run_memory
     private
 
     public :: memory_need, estimate_memory, check_memory, elements_that_fit
-    public :: hierarchical_allowed, hierarchical_min_elements
+    public :: hierarchical_min_elements
 
     !> The program's own memory: libraries, OpenBLAS and HDF5 buffers [bytes]
     real(wp), parameter :: program_bytes = 20.0e6_wp
@@ -290,22 +290,6 @@ contains
         end function scaled_unknowns
 
     end function elements_that_fit
-
-    !> Whether a hierarchical matrix can solve the model: one solve of TWODD-style elements,
-    !> or one solve or a loading history of contact elements alone by the Newton method
-    !> without elastic joints; no growth (the input's rules: ddc_input_namelist's
-    !> check_matrix).
-    pure logical function hierarchical_allowed(model)
-        type(model_type), intent(in) :: model
-
-        associate (e => model%elements)
-            hierarchical_allowed = .not. model%growth%active
-            if (.not. any(e%condition == condition_contact)) return
-            hierarchical_allowed = hierarchical_allowed .and. &
-                all(e%condition == condition_contact) .and. &
-                model%solver%lcp_method /= lcp_lemke .and. .not. has_joints(model)
-        end associate
-    end function hierarchical_allowed
 
     !> Refuse a model whose estimate exceeds the memory available (exit_out_of_memory),
     !> with one message saying how much it needs, how much there is, where that limit comes

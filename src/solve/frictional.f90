@@ -32,6 +32,7 @@ module ddc_solve_frictional
     use ddc_contact_options, only: solver_options, cohesion_lost, matrix_hierarchical
     use ddc_solve_hierarchical_stiffness, only: hierarchical_stiffness, &
         new_hierarchical_stiffness
+    use ddc_solve_hierarchical, only: report_assembly
     use ddc_contact_fault_law, only: fault_law, new_fault_law
     use ddc_solve_joints, only: joint_system, joint_load, joint_dds
     implicit none
@@ -192,9 +193,7 @@ contains
             record%hierarchical = .true.
             record%compression_ratio = stiffness%a%stored_fraction()
             record%hmatrix_tolerance = options%hmatrix_tolerance
-            if (reports_phases(n)) call report_progress('hierarchical assembly done in '// &
-                seconds_text(record%seconds_assembly)//' ('//itoa(2 * n)//' unknowns, '// &
-                rtoa(100.0_wp * record%compression_ratio)//' % of the dense matrix)')
+            call report_assembly(n, record%seconds_assembly, record%compression_ratio)
             contact_law = fault_law_of(elements)
             if (present(law_start)) call contact_law%take_in_force(law_start, [(i, i = 1, n)])
             allocate (held(n), source=0.0_wp)

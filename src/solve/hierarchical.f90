@@ -24,7 +24,7 @@ module ddc_solve_hierarchical
     private
 
     public :: solve_hierarchical, influence_source, new_influence_source, unknown_points
-    public :: hierarchical_response, hierarchical_field
+    public :: hierarchical_response, hierarchical_field, settings_of, report_assembly
     public :: max_refinements, refined_residual
 
     !> Steps of refinement at most, and the relative residual at which they stop: far below
@@ -98,17 +98,14 @@ contains
         call system_clock(t0, rate)
         source = new_influence_source(elements, shear_modulus, nu)
         points = unknown_points(elements)
-        call matrix%assemble(points, source, hmatrix_settings(options%hmatrix_tolerance, &
-                             options%hmatrix_leaf_size, options%hmatrix_eta), error)
+        call matrix%assemble(points, source, settings_of(options), error)
         if (allocated(error)) return
         compression_ratio = matrix%stored_fraction()
         allocate (rhs(2 * n, 1), correction(2 * n, 1), product(2 * n))
         rhs(:, 1) = given_values(elements, source%shear_row, source%normal_row, remote_shear, &
                                  remote_normal, [(i, i = 1, n)])
         call system_clock(t1)
-        if (reports_phases(n)) call report_progress('hierarchical assembly done in '// &
-            seconds_text(real(t1 - t0, wp) / real(rate, wp))//' ('//itoa(2 * n)//' unknowns, '// &
-            rtoa(100.0_wp * compression_ratio)//' % of the dense matrix)')
+        call report_assembly(n, real(t1 - t0, wp) / real(rate, wp), compression_ratio)
 
         ! The residual needs the unfactored matrix: the factors overwrite a copy.
         call factors%copy_of(matrix, error)
@@ -175,9 +172,8 @@ contains
         do kind = 1, 2
             source%shear_row = merge(row_traction, row_displacement, kind == 1)
             source%normal_row = source%shear_row
-            call matrix%assemble(points, source, hmatrix_settings(product_refinement * &
-                                 options%hmatrix_tolerance, options%hmatrix_leaf_size, &
-                                 options%hmatrix_eta), error)
+            call matrix%assemble(points, source, settings_of(options, product_refinement), &
+                                 error)
             if (allocated(error)) return
             call matrix%multiply([ds, dn], product, error)
             if (allocated(error)) return
@@ -239,8 +235,7 @@ contains
         rows(1, :) = [(x((ip + 4) / 5), ip = 1, 5 * np)]
         rows(2, :) = [(y((ip + 4) / 5), ip = 1, 5 * np)]
         call matrix%assemble_rectangular(rows, unknown_points(elements), source, &
-            hmatrix_settings(product_refinement * options%hmatrix_tolerance, &
-                             options%hmatrix_leaf_size, options%hmatrix_eta), error)
+                                         settings_of(options, product_refinement), error)
         if (allocated(error)) return
         call matrix%multiply([ds, dn], product, error)
         if (allocated(error)) return
@@ -299,6 +294,28 @@ contains
             end do
         end do
     end subroutine fill_field
+
+    !> The progress line of an assembly of n elements' hierarchical matrix (for large n).
+    subroutine report_assembly(n, seconds, compression_ratio)
+        integer, intent(in) :: n
+        real(wp), intent(in) :: seconds, compression_ratio
+
+        if (reports_phases(n)) call report_progress('hierarchical assembly done in '// &
+            seconds_text(seconds)//' ('//itoa(2 * n)//' unknowns, '// &
+            rtoa(100.0_wp * compression_ratio)//' % of the dense matrix)')
+    end subroutine report_assembly
+
+    !> The hierarchical matrix settings of &solver, the tolerance scaled by `finer`
+    !> (default 1).
+    pure function settings_of(options, finer) result(settings)
+        type(solver_options), intent(in) :: options
+        real(wp), intent(in), optional :: finer
+        type(hmatrix_settings) :: settings
+
+        settings = hmatrix_settings(options%hmatrix_tolerance, options%hmatrix_leaf_size, &
+                                    options%hmatrix_eta)
+        if (present(finer)) settings%tolerance = finer * settings%tolerance
+    end function settings_of
 
     !> The influence matrix of the elements, rows as their conditions say (row_kinds).
     function new_influence_source(elements, shear_modulus, nu) result(source)

@@ -18,7 +18,7 @@ module ddc_solve_hierarchical_stiffness
     use ddc_contact_stiffness, only: stiffness_operator, reduced_system, action_solved, &
         action_factorized, action_reused
     use ddc_solve_hierarchical, only: influence_source, new_influence_source, unknown_points, &
-        max_refinements, refined_residual
+        max_refinements, refined_residual, settings_of
     implicit none
     private
 
@@ -72,8 +72,7 @@ contains
 
         allocate (stiffness%source, stiffness%a, stiffness%factors)
         stiffness%source = new_influence_source(elements, shear_modulus, nu)
-        stiffness%settings = hmatrix_settings(options%hmatrix_tolerance, &
-                                              options%hmatrix_leaf_size, options%hmatrix_eta)
+        stiffness%settings = settings_of(options)
         call stiffness%a%assemble(unknown_points(elements), stiffness%source, &
                                   stiffness%settings, error)
         if (allocated(error)) return
@@ -118,7 +117,7 @@ contains
     end subroutine hierarchical_multiply
 
     !> Solve J x = rhs: the kept factors when the system is the last one, else J
-    !> assembled and H-LU factorized; refined once against the compressed A.
+    !> assembled and H-LU factorized; refined against the compressed A.
     subroutine hierarchical_solve_reduced(this, system, x, subject, singular, seconds, flops)
         class(hierarchical_stiffness), intent(inout) :: this
         type(reduced_system), intent(in) :: system
@@ -207,7 +206,8 @@ contains
         this%action = action_solved
     end subroutine hierarchical_discard_factors
 
-    !> Free everything (the factors before A, whose cluster tree they do not share).
+    !> Free the compressed A, the kept factors and the source (their hmat-oss matrices by
+    !> the hmatrix finalizer).
     subroutine hierarchical_release(this)
         class(hierarchical_stiffness), intent(inout) :: this
 

@@ -170,6 +170,9 @@ ERRORS = {
                   "one process"]),
     "growth": (DATA / "growth" / "good.nml", 2,
                ["good.nml", "with 4 processes", "&growth", "one process"]),
+    "hierarchical": (DATA / "mpi" / "hierarchical.nml", 2,
+                     ["hierarchical.nml", "with 4 processes", "matrix = 'hierarchical'",
+                      "one process"]),
     "solver_failure": (DATA / "mpi" / "unbalanced_hole.nml", 1,
                        ["influence matrix is numerically singular", "relative residual"]),
 }
