@@ -12,6 +12,7 @@ module ddc_contact_options
     public :: lcp_auto, lcp_lemke, lcp_newton, lcp_method_names
     public :: cohesion_kept, cohesion_lost, open_cohesion_names
     public :: matrix_auto, matrix_dense, matrix_hierarchical, matrix_names
+    public :: k_auto, k_higher_order, k_tip_element, k_method_names
 
     !> LCP methods: 'auto' (Newton from auto_newton_min_elements contact elements on, else
     !> Lemke), 'lemke' (the paper's LCP, the reference), 'newton' (active set)
@@ -35,6 +36,14 @@ module ddc_contact_options
     character(len=*), parameter :: matrix_names(3) = [character(len=12) :: &
         'auto', 'dense', 'hierarchical']
 
+    !> How the tips' K is computed (docs/theory/tips.md#choosing-the-method): 'auto' (the
+    !> higher-order re-solve up to higher_order_max_elements elements re-solved, without
+    !> growth; else the tip element), 'higher_order', 'tip_element'
+    integer, parameter :: k_auto = 1, k_higher_order = 2, k_tip_element = 3
+    !> Input names of the K methods, indexed by code
+    character(len=*), parameter :: k_method_names(3) = [character(len=12) :: &
+        'auto', 'higher_order', 'tip_element']
+
     !> Options of the contact solver, passed as one object.
     type :: solver_options
         !> lcp_auto, lcp_lemke or lcp_newton
@@ -53,6 +62,8 @@ module ddc_contact_options
         real(wp) :: hmatrix_tolerance = 1.0e-6_wp
         integer :: hmatrix_leaf_size = 64
         real(wp) :: hmatrix_eta = 2.0_wp
+        !> k_auto, k_higher_order or k_tip_element
+        integer :: k_method = k_auto
     end type solver_options
 
 contains

@@ -36,6 +36,7 @@ module ddc_influence_assembly
     public :: assemble_influence, fill_influence_block, pair_at_midpoint
     public :: row_traction, row_displacement, row_identity
     public :: image_transform, image_transforms, image_of, kernel_with_images
+    public :: segment_kernel_with_images, resolved_tractions
     public :: kernel_function, select_kernel
 
     abstract interface
@@ -138,6 +139,16 @@ contains
         ym = elements%y_mid(j)
         cosb = elements%cos_beta(j)
         sinb = elements%sin_beta(j)
+        call mirror_segment(t, xm, ym, cosb, sinb)
+    end subroutine image_of
+
+    !> A segment's midpoint and direction cosines mirrored by transform t, in place.
+    pure subroutine mirror_segment(t, xm, ym, cosb, sinb)
+        !> The image transform
+        type(image_transform), intent(in) :: t
+        !> Midpoint [length unit] and direction cosines
+        real(wp), intent(inout) :: xm, ym, cosb, sinb
+
         if (t%mirror_x) then
             xm = 2.0_wp * t%xsym - xm
             cosb = -cosb
@@ -146,7 +157,7 @@ contains
             ym = 2.0_wp * t%ysym - ym
             sinb = -sinb
         end if
-    end subroutine image_of
+    end subroutine mirror_segment
 
     !> Global-frame kernel of element j plus its images at (x, y), per unit Ds and Dn of j.
     pure function kernel_with_images(kernel, x, y, elements, j, images, shear_modulus, nu, &
@@ -167,16 +178,42 @@ contains
         integer, intent(in) :: face
         !> Displacement and stress per unit Ds (index 1) and Dn (index 2) of element j
         type(dd_kernel) :: k
+
+        k = segment_kernel_with_images(kernel, x, y, elements%x_mid(j), elements%y_mid(j), &
+                                       elements%half_length(j), elements%cos_beta(j), &
+                                       elements%sin_beta(j), images, shear_modulus, nu, face)
+    end function kernel_with_images
+
+    !> Global-frame kernel at (x, y) of a constant-DD segment plus its images, per unit Ds
+    !> and Dn of the segment.
+    pure function segment_kernel_with_images(kernel, x, y, xm, ym, a, cosb, sinb, images, &
+                                             shear_modulus, nu, face) result(k)
+        !> The kernel of the model (from select_kernel)
+        procedure(kernel_function) :: kernel
+        !> Point, segment midpoint and half-length [length unit]
+        real(wp), intent(in) :: x, y, xm, ym, a
+        !> Segment direction cosines
+        real(wp), intent(in) :: cosb, sinb
+        !> Image transforms from image_transforms (empty without symmetry)
+        type(image_transform), intent(in) :: images(:)
+        !> Shear modulus [stress unit] and Poisson's ratio [-]
+        real(wp), intent(in) :: shear_modulus, nu
+        !> Face reported for a point on the segment (face_negative or face_positive)
+        integer, intent(in) :: face
+        !> Displacement and stress per unit Ds (index 1) and Dn (index 2)
+        type(dd_kernel) :: k
         type(dd_kernel) :: ki
-        real(wp) :: xm, ym, cosb, sinb, f(2)
+        real(wp) :: xi, yi, ci, si, f(2)
         integer :: t
 
-        k = kernel(x, y, elements%x_mid(j), elements%y_mid(j), elements%half_length(j), &
-                   elements%cos_beta(j), elements%sin_beta(j), shear_modulus, nu, face)
+        k = kernel(x, y, xm, ym, a, cosb, sinb, shear_modulus, nu, face)
         do t = 1, size(images)
-            call image_of(elements, j, images(t), xm, ym, cosb, sinb)
-            ki = kernel(x, y, xm, ym, elements%half_length(j), cosb, sinb, shear_modulus, nu, &
-                        face)
+            xi = xm
+            yi = ym
+            ci = cosb
+            si = sinb
+            call mirror_segment(images(t), xi, yi, ci, si)
+            ki = kernel(x, y, xi, yi, a, ci, si, shear_modulus, nu, face)
             f = [images(t)%sign_s, 1.0_wp]
             k%ux = k%ux + f * ki%ux
             k%uy = k%uy + f * ki%uy
@@ -184,7 +221,21 @@ contains
             k%syy = k%syy + f * ki%syy
             k%sxy = k%sxy + f * ki%sxy
         end do
-    end function kernel_with_images
+    end function segment_kernel_with_images
+
+    !> The shear and normal traction, per unit Ds (index 1) and Dn (index 2), of a kernel's
+    !> stress on the plane with direction cosines (c, s).
+    pure subroutine resolved_tractions(k, c, s, ts, tn)
+        !> Global-frame kernel
+        type(dd_kernel), intent(in) :: k
+        !> Direction cosines of the plane
+        real(wp), intent(in) :: c, s
+        !> Shear and normal traction [stress unit / length unit]
+        real(wp), intent(out) :: ts(2), tn(2)
+
+        ts = -(k%sxx - k%syy) * s * c + k%sxy * (c**2 - s**2)
+        tn = k%sxx * s**2 - 2.0_wp * k%sxy * s * c + k%syy * c**2
+    end subroutine resolved_tractions
 
     !> Influence of element j (and its images) on the midpoint of element i, resolved in
     !> i's s, n frame.
@@ -208,8 +259,7 @@ contains
                                images, shear_modulus, nu, face_negative)
         c = elements%cos_beta(i)
         s = elements%sin_beta(i)
-        p%ts = -(k%sxx - k%syy) * s * c + k%sxy * (c**2 - s**2)
-        p%tn = k%sxx * s**2 - 2.0_wp * k%sxy * s * c + k%syy * c**2
+        call resolved_tractions(k, c, s, p%ts, p%tn)
         p%us = k%ux * c + k%uy * s
         p%un = -k%ux * s + k%uy * c
     end function pair_at_midpoint

@@ -8,7 +8,7 @@ module ddc_input_namelist_settings
     use ddc_model_types, only: model_type, symmetry_none, symmetry_names, domain_names, &
         domain_half_plane, load_path_names, default_block_size
     use ddc_model_limits, only: quantity_youngs_modulus, quantity_poissons_ratio
-    use ddc_contact_options, only: parse_solver_options
+    use ddc_contact_options, only: parse_solver_options, option_code, k_method_names, k_auto
     use ddc_text, only: itoa, rtoa, lower, find_name, quoted_list, prefix_lines, counted
     use ddc_input_text_file, only: base_name, resolve
     use ddc_input_namelist_groups, only: group_record, message_list, add, group_prefix, &
@@ -159,8 +159,9 @@ contains
     end subroutine read_pore_fluid_group
 
     !> &solver lcp_method, open_cohesion, block_size, matrix, hmatrix_tolerance,
-    !> hmatrix_leaf_size, hmatrix_eta / (block_size: of the distributed matrices of the MPI
-    !> build, at least 1; the hmatrix_ settings: docs/theory/hierarchical.md)
+    !> hmatrix_leaf_size, hmatrix_eta, k_method / (block_size: of the distributed matrices
+    !> of the MPI build, at least 1; the hmatrix_ settings: docs/theory/hierarchical.md;
+    !> k_method: docs/theory/tips.md#choosing-the-method)
     subroutine read_solver_group(unit, text, path, info, model, messages)
         integer, intent(in) :: unit
         character(len=*), intent(in) :: text
@@ -168,19 +169,20 @@ contains
         type(group_record), intent(in) :: info
         type(model_type), intent(inout) :: model
         type(message_list), intent(inout) :: messages
-        character(len=text_length) :: lcp_method, open_cohesion, matrix
+        character(len=text_length) :: lcp_method, open_cohesion, matrix, k_method
         character(len=512) :: iomsg
         character(len=:), allocatable :: prefix
         type(error_type), allocatable :: problems
         integer :: stat, block_size, hmatrix_leaf_size
         real(wp) :: hmatrix_tolerance, hmatrix_eta
         namelist /solver/ lcp_method, open_cohesion, block_size, matrix, hmatrix_tolerance, &
-            hmatrix_leaf_size, hmatrix_eta
+            hmatrix_leaf_size, hmatrix_eta, k_method
 
         if (info%count == 0) return
         lcp_method = 'auto'
         open_cohesion = 'kept'
         matrix = 'auto'
+        k_method = 'auto'
         block_size = default_block_size
         hmatrix_tolerance = model%solver%hmatrix_tolerance
         hmatrix_leaf_size = model%solver%hmatrix_leaf_size
@@ -194,6 +196,12 @@ contains
         prefix = group_prefix(path, g_solver, info, 1)
         call parse_solver_options(lcp_method, open_cohesion, matrix, model%solver, problems)
         if (allocated(problems)) call add(messages, prefix_lines(prefix, problems%message))
+        model%solver%k_method = option_code(k_method, k_method_names)
+        if (model%solver%k_method == 0) then
+            model%solver%k_method = k_auto
+            call add(messages, prefix//"k_method = '"//trim(adjustl(k_method))// &
+                     "' is not one of 'auto', 'higher_order', 'tip_element'")
+        end if
         if (block_size < 1) then
             call add(messages, prefix//'block_size = '//itoa(block_size)//' must be at least 1')
         else

@@ -102,6 +102,9 @@ module ddc_model_results
         integer, allocatable :: graded(:)
         !> The end of its element the tip is: 1 begin, 2 end
         integer, allocatable :: side(:)
+        !> How K was computed: 'higher_order' or 'tip_element', with the reason where the
+        !> tip element serves a model that asked for the other
+        character(len=:), allocatable :: k_method
     end type tip_set
 
     !> Displacement and stress at the points of one observation set, shape (npoints).

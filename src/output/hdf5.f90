@@ -15,7 +15,7 @@
 !> - /elements/<quantity> shape (n), every real dataset with a `units` attribute;
 !> - /fractures/{name, first_element, last_element};
 !> - /tips/{x, y, fracture_id, element, k1, k2, graded} (empty datasets when there are no
-!>   tips);
+!>   tips) and the attribute k_method (how K was computed);
 !> - /fields/<name>/{x, y, ux, uy, sxx, syy, sxy, near_element}, grids shaped (ny, nx)
 !>   in h5py (Fortran dims (nx, ny)), lines and point lists 1-D;
 !> - /solver attributes (blas and blas_core among them) and /solver/seconds/<phase> scalar
@@ -378,6 +378,7 @@ contains
         call create_group(root, 'tips', group, error)
         if (allocated(error)) return
         associate (t => results%tips)
+            if (allocated(t%k_method)) call write_attribute(group, 'k_method', t%k_method, error)
             if (t%n > 0) then
                 call write_real_1d(group, 'x', t%x, length, error)
                 call write_real_1d(group, 'y', t%y, length, error)

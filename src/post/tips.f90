@@ -8,7 +8,7 @@ module ddc_post_tips
     implicit none
     private
 
-    public :: find_tips, stress_intensity
+    public :: find_tips, stress_intensity, tip_chain
 
     !> End points closer than this fraction of the shorter element's length are shared.
     real(wp), parameter :: shared_end_tolerance = 1.0e-8_wp
@@ -63,11 +63,24 @@ contains
     end function end_is_shared
 
     !> The lowest-numbered other element with an end at end `side` (1 begin, 2 end) of
-    !> element i; 0 if none. Only the ends within the tolerance in x are looked at.
+    !> element i; 0 if none.
     pure integer function element_at_end(elements, index, i, side)
         type(element_set), intent(in) :: elements
         type(end_index), intent(in) :: index
         integer, intent(in) :: i, side
+        integer :: count, first_side
+
+        call elements_at_end(elements, index, i, side, element_at_end, first_side, count)
+    end function element_at_end
+
+    !> The other elements with an end at end `side` (1 begin, 2 end) of element i: the
+    !> lowest-numbered (0 if none), which of its ends is there, and how many there are.
+    !> Only the ends within the tolerance in x are looked at.
+    pure subroutine elements_at_end(elements, index, i, side, first, first_side, count)
+        type(element_set), intent(in) :: elements
+        type(end_index), intent(in) :: index
+        integer, intent(in) :: i, side
+        integer, intent(out) :: first, first_side, count
         real(wp) :: x, y, xe, ye, tol, window
         integer :: k, e, j, n
 
@@ -75,19 +88,55 @@ contains
         call end_point(elements, i, side, x, y)
         ! Every pair tolerance is at most half this window (it takes the shorter element).
         window = shared_end_tolerance * 4.0_wp * elements%half_length(i)
-        element_at_end = 0
+        first = 0
+        first_side = 0
+        count = 0
         do k = first_at_least(index%x, x - window), size(index%x)
             if (index%x(k) > x + window) exit
             e = index%end(k)
             j = modulo(e - 1, n) + 1
             if (j == i) cycle
-            if (element_at_end > 0 .and. j >= element_at_end) cycle
             call end_point(elements, j, merge(1, 2, e <= n), xe, ye)
             tol = shared_end_tolerance * 2.0_wp * &
                   min(elements%half_length(i), elements%half_length(j))
-            if (hypot(xe - x, ye - y) <= tol) element_at_end = j
+            if (hypot(xe - x, ye - y) > tol) cycle
+            count = count + 1
+            if (first == 0 .or. j < first) then
+                first = j
+                first_side = merge(1, 2, e <= n)
+            end if
         end do
-    end function element_at_end
+    end subroutine elements_at_end
+
+    !> The chain of elements from a tip inward: the tip element, then each element that
+    !> alone shares the previous one's inner end, up to a junction, the fracture's other
+    !> end or a loop. Each element's end nearer the tip is recorded (1 begin, 2 end).
+    pure subroutine tip_chain(elements, element, side, chain, near_side)
+        !> Elements with geometry computed
+        type(element_set), intent(in) :: elements
+        !> Tip element and the end at the tip (1 begin, 2 end)
+        integer, intent(in) :: element, side
+        !> Elements of the chain from the tip, and the end of each toward the tip
+        integer, allocatable, intent(out) :: chain(:), near_side(:)
+        type(end_index) :: index
+        integer :: path(elements%n), sides(elements%n), m, next, next_side, count
+
+        index = index_ends(elements)
+        m = 1
+        path(1) = element
+        sides(1) = side
+        do while (m < elements%n)
+            call elements_at_end(elements, index, path(m), 3 - sides(m), next, next_side, &
+                                 count)
+            if (count /= 1) exit
+            if (any(path(:m) == next)) exit
+            m = m + 1
+            path(m) = next
+            sides(m) = next_side
+        end do
+        chain = path(:m)
+        near_side = sides(:m)
+    end subroutine tip_chain
 
     !> End `side` (1 begin, 2 end) of element i.
     pure subroutine end_point(elements, i, side, x, y)
@@ -158,6 +207,7 @@ contains
         end do
         call stress_intensity(elements, shear_modulus, nu, tips%element, ds, dn, tips%k1, &
                               tips%k2)
+        tips%k_method = 'tip_element'
     end subroutine find_tips
 
     !> K_I and K_II of tips from their elements' DDs: K = -G D / (2 (1 - nu) sqrt(h)), h the

@@ -20,6 +20,8 @@ module ddc_run_model
     use ddc_post_fields, only: evaluate_field
     use ddc_run_engine, only: model_engine
     use ddc_post_tips, only: find_tips
+    use ddc_post_higher_order_k, only: higher_order_solver, prepare_higher_order, &
+        higher_order_k, uses_higher_order
     use ddc_progress, only: report_progress, reports_phases
     use ddc_text, only: itoa, seconds_text
     implicit none
@@ -127,7 +129,8 @@ contains
     !> tractions and face displacements at the midpoints (from the matrix of the solve,
     !> ddc_influence_response, or from the engine), tips with K and the fields; the time
     !> goes to results%solver%seconds_fields, and the number of threads is recorded.
-    subroutine finish_model(model, remote_shear, remote_normal, results, matrix, engine)
+    subroutine finish_model(model, remote_shear, remote_normal, results, matrix, engine, &
+                            higher_order)
         !> The model at the load the DDs were solved for
         type(model_type), intent(in) :: model
         !> Remote stress resolved on each element [stress unit], shape (n)
@@ -139,6 +142,9 @@ contains
         real(wp), intent(in), optional :: matrix(:, :)
         !> The engine of a distributed run
         class(model_engine), intent(inout), optional :: engine
+        !> The factorized higher-order re-solve of this geometry where the caller has it
+        !> (a loading history)
+        type(higher_order_solver), intent(in), optional :: higher_order
         integer, allocatable :: shear_row(:), normal_row(:)
         type(error_type), allocatable :: failed
         real(wp) :: g, nu, t0
@@ -177,12 +183,55 @@ contains
             e%us_plus = e%us_minus - e%ds
             e%un_plus = e%un_minus - e%dn
             call find_tips(model%elements, g, nu, e%ds, e%dn, results%tips)
+            call higher_order_tip_k(model, results, higher_order)
             if (reports_phases(n)) call report_progress('tractions, face displacements '// &
                 'and tips done in '//seconds_text(wall_seconds() - t0))
         end associate
         call evaluate_fields(model, results, engine)
         results%solver%seconds_fields = wall_seconds() - t0
     end subroutine finish_model
+
+    !> The tips' K by the higher-order re-solve where &solver k_method asks for it
+    !> (docs/theory/tips.md#choosing-the-method); elsewhere, and where the re-solve's matrix
+    !> is singular, the tip element's K of find_tips stays, and tips%k_method says why.
+    subroutine higher_order_tip_k(model, results, prepared)
+        !> The model at the load the DDs were solved for
+        type(model_type), intent(in) :: model
+        !> Element results and tips (find_tips) on entry; K replaced
+        type(model_results), intent(inout) :: results
+        !> The re-solve of this geometry, factorized, where the caller has it
+        type(higher_order_solver), intent(in), optional :: prepared
+        type(higher_order_solver) :: solver
+        type(error_type), allocatable :: failed
+        character(len=:), allocatable :: why_not
+        logical :: uses
+
+        call uses_higher_order(model%solver%k_method, model%growth%active, model%elements, &
+                               results%tips, uses, why_not)
+        if (.not. uses) then
+            if (len(why_not) > 0) results%tips%k_method = 'tip_element ('//why_not//')'
+            return
+        end if
+        if (present(prepared)) then
+            solver = prepared
+        else
+            call prepare_higher_order(model%elements, shear_modulus_of(model), &
+                                      model%poissons_ratio, results%tips, solver, failed)
+            if (allocated(failed)) then
+                results%tips%k_method = 'tip_element (the higher-order re-solve failed: '// &
+                                        failed%message//')'
+                return
+            end if
+        end if
+        associate (e => results%elements, t => results%tips)
+            call higher_order_k(solver, model%elements, shear_modulus_of(model), &
+                                model%poissons_ratio, e%ds, e%dn, e%shear_traction, &
+                                e%normal_traction, [model%sxx, model%syy, model%sxy], &
+                                model%stress_gradient, e%state, t, t%k1, t%k2)
+            t%graded = 0
+            t%k_method = 'higher_order'
+        end associate
+    end subroutine higher_order_tip_k
 
     !> The fields at every observation set of the model for the DDs in results (allocates
     !> results%fields, one per observation set).

@@ -1,0 +1,407 @@
+!> K_I and K_II by a higher-order re-solve (docs/theory/tips.md#k-from-a-higher-order-re-solve).
+!>
+!> The fractures that have tips are solved again with higher-order elements
+!> (ddc_influence_higher_order) under the tractions the solve found on them (each element's
+!> midpoint traction, less the remote stress at each node), the other elements acting with
+!> their constant DDs. Where the tractions are prescribed this is the model itself, solved
+!> to higher order; on contact elements it takes the solve's tractions as given. K comes
+!> from the limit of D / sqrt(r) at each tip. Where the fracture near a tip is a sampled
+!> curve, the tip element's chord, turned from the curve's tangent, is turned back to it
+!> (Cotterell & Rice 1980, to first order). The matrix depends on the geometry alone: it is
+!> factorized once (prepare_higher_order) and serves every load (higher_order_k).
+module ddc_post_higher_order_k
+    use ddc_kinds, only: wp
+    use ddc_constants, only: pi
+    use ddc_error, only: error_type
+    use ddc_model_types, only: element_set, condition_contact
+    use ddc_model_results, only: tip_set
+    use ddc_contact_states, only: state_stick, state_slip
+    use ddc_influence_kernel, only: dd_kernel, face_negative
+    use ddc_influence_assembly, only: kernel_function, select_kernel, image_transform, &
+        image_transforms, kernel_with_images, resolved_tractions
+    use ddc_influence_higher_order, only: weighted_element, node_xi, nodal_basis, &
+        element_tractions
+    use ddc_post_tips, only: tip_chain
+    use ddc_linalg_lu, only: lu_factor, lu_solve
+    use ddc_contact_options, only: k_higher_order, k_tip_element
+    use ddc_text, only: itoa
+    implicit none
+    private
+
+    public :: higher_order_solver, prepare_higher_order, higher_order_k, uses_higher_order
+    public :: higher_order_max_elements
+
+    !> k_method = 'auto' re-solves at most this many elements (a dense matrix of 6 unknowns
+    !> per element: 288 MB here)
+    integer, parameter :: higher_order_max_elements = 1000
+    !> Unknowns per element: three nodes, two DDs
+    integer, parameter :: per_element = 6
+    !> A chain whose first vertex turns by more than this [rad] is kinked there, not curved
+    real(wp), parameter :: max_curve_turn = 0.35_wp
+    !> The curvatures at the first two vertices of a sampled curve agree within this fraction
+    real(wp), parameter :: curvature_agreement = 0.5_wp
+
+    !> The factorized re-solve of one geometry and its tips.
+    type :: higher_order_solver
+        !> Elements re-solved (model numbering), and each element's place among them (0: not
+        !> re-solved), shape (re-solved) and (n)
+        integer, allocatable :: solved(:), local(:)
+        !> Their geometry and weights
+        type(weighted_element), allocatable :: weighted(:)
+        !> LU factors and pivots of the matrix, shape (6 re-solved, 6 re-solved)
+        real(wp), allocatable :: lu(:, :)
+        integer, allocatable :: ipiv(:)
+        !> Angle from the fracture's tangent to the tip chord of each tip [rad], shape (tips)
+        real(wp), allocatable :: turn(:)
+    end type higher_order_solver
+
+contains
+
+    !> Whether K comes from the higher-order re-solve, and why not where it does not.
+    pure subroutine uses_higher_order(k_method, growth, elements, tips, uses, why_not)
+        !> &solver k_method (k_auto, k_higher_order or k_tip_element)
+        integer, intent(in) :: k_method
+        !> Whether the model grows its fractures
+        logical, intent(in) :: growth
+        !> Elements with geometry computed
+        type(element_set), intent(in) :: elements
+        !> The tips (ddc_post_tips)
+        type(tip_set), intent(in) :: tips
+        !> Whether the re-solve serves
+        logical, intent(out) :: uses
+        !> Why the tip element serves instead ('' where the re-solve serves or there are
+        !> no tips)
+        character(len=:), allocatable, intent(out) :: why_not
+        integer :: n
+
+        uses = .false.
+        why_not = ''
+        if (tips%n == 0) return
+        if (k_method == k_tip_element) then
+            why_not = "&solver k_method = 'tip_element'"
+        else if (growth) then
+            why_not = 'growth calibrates the tip element'
+        else
+            n = count(re_solved(elements, tips))
+            uses = k_method == k_higher_order .or. n <= higher_order_max_elements
+            if (.not. uses) why_not = itoa(n)//' elements to re-solve, above '// &
+                itoa(higher_order_max_elements)//" (k_method = 'higher_order' asks for it)"
+        end if
+    end subroutine uses_higher_order
+
+    !> Assemble and factorize the re-solve of the fractures with tips.
+    subroutine prepare_higher_order(elements, shear_modulus, nu, tips, solver, error)
+        !> Elements with geometry computed
+        type(element_set), intent(in) :: elements
+        !> Shear modulus [stress unit] and Poisson's ratio [-]
+        real(wp), intent(in) :: shear_modulus, nu
+        !> The tips (ddc_post_tips)
+        type(tip_set), intent(in) :: tips
+        !> The factorized re-solve
+        type(higher_order_solver), intent(out) :: solver
+        !> Allocated when the matrix is singular
+        type(error_type), allocatable, intent(out) :: error
+        integer :: k, m, u
+
+        associate (s => solver)
+            s%solved = pack([(k, k = 1, elements%n)], re_solved(elements, tips))
+            allocate (s%local(elements%n), source=0)
+            s%local(s%solved) = [(k, k = 1, size(s%solved))]
+            s%weighted = tip_weighted_elements(elements, tips, s%solved, s%local)
+            m = per_element * size(s%solved)
+            allocate (s%lu(m, m), s%ipiv(m))
+            call assemble(elements, shear_modulus, nu, s%solved, s%weighted, s%local, s%lu)
+            call lu_factor(s%lu, s%ipiv, 'matrix of the higher-order re-solve for K', error, &
+                           [(s%solved((u - 1) / per_element + 1), u = 1, m)], &
+                           [(mod(u - 1, 2) == 0, u = 1, m)])
+            s%turn = [(chord_turn(elements, tips, k), k = 1, tips%n)]
+        end associate
+    end subroutine prepare_higher_order
+
+    !> K_I and K_II of the tips for one solution of the model.
+    subroutine higher_order_k(solver, elements, shear_modulus, nu, ds, dn, shear_traction, &
+                              normal_traction, remote, gradient, state, tips, k1, k2)
+        !> The factorized re-solve (prepare_higher_order)
+        type(higher_order_solver), intent(in) :: solver
+        !> Elements with geometry computed
+        type(element_set), intent(in) :: elements
+        !> Shear modulus [stress unit] and Poisson's ratio [-]
+        real(wp), intent(in) :: shear_modulus, nu
+        !> The solve's DDs [length unit] and total midpoint tractions [stress unit], shape (n)
+        real(wp), intent(in) :: ds(:), dn(:), shear_traction(:), normal_traction(:)
+        !> Remote stress sxx, syy, sxy (at y = 0) [stress unit] and its gradient d/dy
+        !> [stress unit / length unit]
+        real(wp), intent(in) :: remote(3), gradient(3)
+        !> Element states (a closed contact tip element has K_I = 0), shape (n)
+        integer, intent(in) :: state(:)
+        !> The tips
+        type(tip_set), intent(in) :: tips
+        !> Stress intensity factors [stress unit * length unit**0.5], shape (tips)
+        real(wp), intent(out) :: k1(:), k2(:)
+        real(wp), allocatable :: q(:, :)
+        integer :: k, i
+
+        allocate (q(size(solver%lu, 1), 1))
+        call load_of(elements, shear_modulus, nu, ds, dn, shear_traction, normal_traction, &
+                     remote, gradient, solver%solved, solver%local, q(:, 1))
+        call lu_solve(solver%lu, solver%ipiv, q)
+        do k = 1, tips%n
+            call tip_k(elements, shear_modulus, nu, solver, q(:, 1), tips, k, k1(k), k2(k))
+            i = tips%element(k)
+            if (elements%condition(i) == condition_contact .and. &
+                (state(i) == state_stick .or. state(i) == state_slip)) k1(k) = 0.0_wp
+        end do
+    end subroutine higher_order_k
+
+    !> Elements of the fractures with tips and of the chains from each tip.
+    pure function re_solved(elements, tips) result(mask)
+        type(element_set), intent(in) :: elements
+        type(tip_set), intent(in) :: tips
+        logical :: mask(elements%n)
+        integer, allocatable :: chain(:), near_side(:)
+        integer :: k, i
+
+        do i = 1, elements%n
+            mask(i) = any(tips%fracture_id == elements%fracture_id(i))
+        end do
+        do k = 1, tips%n
+            call tip_chain(elements, tips%element(k), tips%side(k), chain, near_side)
+            mask(chain) = .true.
+        end do
+    end function re_solved
+
+    !> The re-solved elements' geometry, with a square-root weight on the first half of
+    !> each tip's chain (a zone of fixed size, so the DD over the weight is smooth).
+    function tip_weighted_elements(elements, tips, solved, local) result(weighted)
+        type(element_set), intent(in) :: elements
+        type(tip_set), intent(in) :: tips
+        integer, intent(in) :: solved(:), local(:)
+        type(weighted_element) :: weighted(size(solved))
+        integer, allocatable :: chain(:), near_side(:)
+        real(wp) :: reach, r_near, length
+        integer :: k, c, i, l
+
+        do l = 1, size(solved)
+            i = solved(l)
+            weighted(l)%xb = elements%x_begin(i)
+            weighted(l)%yb = elements%y_begin(i)
+            weighted(l)%cosb = elements%cos_beta(i)
+            weighted(l)%sinb = elements%sin_beta(i)
+            weighted(l)%length = 2.0_wp * elements%half_length(i)
+        end do
+        do k = 1, tips%n
+            call tip_chain(elements, tips%element(k), tips%side(k), chain, near_side)
+            reach = sum(elements%half_length(chain))
+            r_near = 0.0_wp
+            do c = 1, size(chain)
+                length = 2.0_wp * elements%half_length(chain(c))
+                if (r_near + 0.5_wp * length > reach * (1.0_wp + 1.0e-9_wp)) exit
+                associate (e => weighted(local(chain(c))))
+                    if (e%factors < 2) then
+                        e%factors = e%factors + 1
+                        if (near_side(c) == 1) then
+                            e%r0(e%factors) = r_near
+                            e%dr(e%factors) = 1.0_wp
+                        else
+                            e%r0(e%factors) = r_near + length
+                            e%dr(e%factors) = -1.0_wp
+                        end if
+                    end if
+                end associate
+                r_near = r_near + length
+            end do
+        end do
+    end function tip_weighted_elements
+
+    !> The re-solve's matrix: tractions at the nodes per unit nodal DD.
+    subroutine assemble(elements, shear_modulus, nu, solved, weighted, local, matrix)
+        type(element_set), intent(in) :: elements
+        real(wp), intent(in) :: shear_modulus, nu
+        integer, intent(in) :: solved(:), local(:)
+        type(weighted_element), intent(in) :: weighted(:)
+        real(wp), intent(out) :: matrix(:, :)
+        procedure(kernel_function), pointer :: kernel
+        type(image_transform), allocatable :: images(:)
+        logical :: use_general
+        real(wp) :: x, y, s_self
+        integer :: l, i, node, row, m, j
+
+        call select_kernel(elements, .true., use_general, kernel)
+        images = image_transforms(elements%symmetry)
+        ! Each thread owns the rows of its receiving elements.
+        !$omp parallel do default(none) schedule(dynamic) private(l, i, node, row, m, j, x, y, &
+        !$omp     s_self) shared(elements, shear_modulus, nu, solved, weighted, local, matrix, &
+        !$omp     kernel, images)
+        do l = 1, size(solved)
+            i = solved(l)
+            do node = 1, 3
+                row = per_element * (l - 1) + 2 * (node - 1)
+                call node_point(elements, i, node, x, y)
+                do m = 1, size(solved)
+                    j = solved(m)
+                    s_self = merge(elements%half_length(i) * (1.0_wp + node_xi(node)), &
+                                   -1.0_wp, j == i)
+                    call element_tractions(kernel, images, shear_modulus, nu, weighted(m), &
+                        s_self, x, y, elements%cos_beta(i), elements%sin_beta(i), &
+                        matrix(row + 1:row + 2, per_element * (m - 1) + 1:per_element * m))
+                end do
+            end do
+        end do
+        !$omp end parallel do
+    end subroutine assemble
+
+    !> The re-solve's right-hand side: at each node the solve's traction on its element,
+    !> less the remote stress there and the share of the elements not re-solved.
+    subroutine load_of(elements, shear_modulus, nu, ds, dn, shear_traction, normal_traction, &
+                       remote, gradient, solved, local, rhs)
+        type(element_set), intent(in) :: elements
+        real(wp), intent(in) :: shear_modulus, nu
+        real(wp), intent(in) :: ds(:), dn(:), shear_traction(:), normal_traction(:)
+        real(wp), intent(in) :: remote(3), gradient(3)
+        integer, intent(in) :: solved(:), local(:)
+        real(wp), intent(out) :: rhs(:)
+        procedure(kernel_function), pointer :: kernel
+        type(image_transform), allocatable :: images(:)
+        type(dd_kernel) :: kj
+        logical :: use_general
+        real(wp) :: x, y, c, s, ts(2), tn(2), stress(3)
+        integer :: l, i, node, row, j
+
+        call select_kernel(elements, .true., use_general, kernel)
+        images = image_transforms(elements%symmetry)
+        !$omp parallel do default(none) schedule(dynamic) private(l, i, node, row, j, x, y, c, &
+        !$omp     s, ts, tn, stress, kj) shared(elements, shear_modulus, nu, ds, dn, &
+        !$omp     shear_traction, normal_traction, remote, gradient, solved, local, rhs, kernel, &
+        !$omp     images)
+        do l = 1, size(solved)
+            i = solved(l)
+            c = elements%cos_beta(i)
+            s = elements%sin_beta(i)
+            do node = 1, 3
+                row = per_element * (l - 1) + 2 * (node - 1)
+                call node_point(elements, i, node, x, y)
+                stress = remote + gradient * y
+                rhs(row + 1) = shear_traction(i) - &
+                               (-(stress(1) - stress(2)) * s * c + stress(3) * (c**2 - s**2))
+                rhs(row + 2) = normal_traction(i) - &
+                               (stress(1) * s**2 - 2.0_wp * stress(3) * s * c + stress(2) * c**2)
+                do j = 1, elements%n
+                    if (local(j) > 0) cycle
+                    kj = kernel_with_images(kernel, x, y, elements, j, images, shear_modulus, &
+                                            nu, face_negative)
+                    call resolved_tractions(kj, c, s, ts, tn)
+                    rhs(row + 1) = rhs(row + 1) - ts(1) * ds(j) - ts(2) * dn(j)
+                    rhs(row + 2) = rhs(row + 2) - tn(1) * ds(j) - tn(2) * dn(j)
+                end do
+            end do
+        end do
+        !$omp end parallel do
+    end subroutine load_of
+
+    !> Node `node` of element i [length unit].
+    pure subroutine node_point(elements, i, node, x, y)
+        type(element_set), intent(in) :: elements
+        integer, intent(in) :: i, node
+        real(wp), intent(out) :: x, y
+
+        x = elements%x_mid(i) + node_xi(node) * elements%half_length(i) * elements%cos_beta(i)
+        y = elements%y_mid(i) + node_xi(node) * elements%half_length(i) * elements%sin_beta(i)
+    end subroutine node_point
+
+    !> K of tip k from the re-solve's nodal DDs q, turned from the tip chord to the
+    !> fracture's tangent.
+    pure subroutine tip_k(elements, shear_modulus, nu, solver, q, tips, k, k1, k2)
+        type(element_set), intent(in) :: elements
+        real(wp), intent(in) :: shear_modulus, nu
+        type(higher_order_solver), intent(in) :: solver
+        real(wp), intent(in) :: q(:)
+        type(tip_set), intent(in) :: tips
+        integer, intent(in) :: k
+        real(wp), intent(out) :: k1, k2
+        real(wp) :: n(3), dn(3), limit(2), s_tip, h, factor, chord_k1, chord_k2, phi
+        integer :: i, col, f, c
+
+        i = tips%element(k)
+        h = elements%half_length(i)
+        s_tip = merge(0.0_wp, 2.0_wp * h, tips%side(k) == 1)
+        call nodal_basis(merge(-1.0_wp, 1.0_wp, tips%side(k) == 1), n, dn)
+        col = per_element * (solver%local(i) - 1)
+        do c = 1, 2
+            limit(c) = sum(n * q(col + c:col + per_element:2))
+        end do
+        ! D = limit sqrt(r / h) near the tip: the tip's own factor is sqrt(r / h); another
+        ! (a one-element crack's other tip) is at its value there.
+        associate (e => solver%weighted(solver%local(i)))
+            do f = 1, e%factors
+                if (abs(e%r0(f) + e%dr(f) * s_tip) > 1.0e-9_wp * e%length) &
+                    limit = limit * sqrt((e%r0(f) + e%dr(f) * s_tip) / (e%r0(f) + e%dr(f) * h))
+            end do
+        end associate
+        ! The opening 4 (1 - nu) / G K sqrt(r / (2 pi)) behind a tip, with D = -opening.
+        factor = -shear_modulus * sqrt(2.0_wp * pi / h) / (4.0_wp * (1.0_wp - nu))
+        chord_k1 = factor * limit(2)
+        chord_k2 = factor * limit(1)
+        ! Cotterell & Rice: a tip turned by phi from the tangent has k_I = K_I - 3/2 phi K_II,
+        ! k_II = K_II + 1/2 phi K_I; inverted to first order. + 0 turns -0 into 0.
+        phi = solver%turn(k)
+        k1 = chord_k1 + 1.5_wp * phi * chord_k2 + 0.0_wp
+        k2 = chord_k2 - 0.5_wp * phi * chord_k1 + 0.0_wp
+    end subroutine tip_k
+
+    !> The angle [rad] from the fracture's tangent at tip k to its tip element's chord, both
+    !> pointing ahead of the tip, counter-clockwise positive, where the chain from the tip
+    !> samples a curve: its first two vertices turn alike (curvatures within
+    !> curvature_agreement, the first turn below max_curve_turn); the tangent is that of
+    !> the circle through the tip and those vertices. 0 elsewhere: on a straight chain, at a
+    !> kink, or with fewer than three elements to tell a curve from a kink.
+    real(wp) function chord_turn(elements, tips, k) result(phi)
+        type(element_set), intent(in) :: elements
+        type(tip_set), intent(in) :: tips
+        integer, intent(in) :: k
+        integer, allocatable :: chain(:), near_side(:)
+        real(wp) :: p(2, 0:3), a(2), b(2), chord(2), tangent(2), centre(2), turn(2)
+        real(wp) :: curvature(2), d
+        integer :: v
+
+        phi = 0.0_wp
+        call tip_chain(elements, tips%element(k), tips%side(k), chain, near_side)
+        if (size(chain) < 3) return
+        p(:, 0) = [tips%x(k), tips%y(k)]
+        do v = 1, 3
+            p(:, v) = far_end(elements, chain(v), near_side(v))
+        end do
+        do v = 1, 2
+            a = p(:, v) - p(:, v - 1)
+            b = p(:, v + 1) - p(:, v)
+            turn(v) = atan2(a(1) * b(2) - a(2) * b(1), dot_product(a, b))
+            curvature(v) = 2.0_wp * turn(v) / (norm2(a) + norm2(b))
+        end do
+        if (turn(1) == 0.0_wp .or. abs(turn(1)) > max_curve_turn) return
+        if (abs(curvature(1) - curvature(2)) > curvature_agreement * &
+            max(abs(curvature(1)), abs(curvature(2)))) return
+        ! The circle's centre relative to the tip, from the tip and the next two vertices.
+        a = p(:, 1) - p(:, 0)
+        b = p(:, 2) - p(:, 0)
+        d = 2.0_wp * (a(1) * b(2) - a(2) * b(1))
+        centre = [(b(2) * dot_product(a, a) - a(2) * dot_product(b, b)) / d, &
+                  (a(1) * dot_product(b, b) - b(1) * dot_product(a, a)) / d]
+        chord = -a / norm2(a)
+        tangent = [centre(2), -centre(1)] / norm2(centre)
+        if (dot_product(tangent, chord) < 0.0_wp) tangent = -tangent
+        phi = atan2(tangent(1) * chord(2) - tangent(2) * chord(1), dot_product(tangent, chord))
+    end function chord_turn
+
+    !> The end of element i away from the tip (near_side the end toward it).
+    pure function far_end(elements, i, near_side) result(p)
+        type(element_set), intent(in) :: elements
+        integer, intent(in) :: i, near_side
+        real(wp) :: p(2)
+
+        if (near_side == 1) then
+            p = [elements%x_end(i), elements%y_end(i)]
+        else
+            p = [elements%x_begin(i), elements%y_begin(i)]
+        end if
+    end function far_end
+
+end module ddc_post_higher_order_k
