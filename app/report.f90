@@ -493,6 +493,8 @@ contains
             write (unit, '(a,es12.5,1x,a)') '  peak |ds| = ', maxval(abs(e%ds)), model%length_unit
             write (unit, '(a,es12.5,1x,a)') '  peak opening = ', max(0.0_wp, maxval(-e%dn)), &
                 model%length_unit
+            if (results%tips%n > 0 .and. allocated(results%tips%k_method)) &
+                write (unit, '(a)') '  K: '//k_method_text(results%tips%k_method)
             do i = 1, results%tips%n
                 write (unit, '(a,i0,a,2(es12.5,1x),a,es12.5,a,es12.5,1x,a)') '  tip ', i, &
                     ' at ', results%tips%x(i), results%tips%y(i), ' K_I = ', &
@@ -545,5 +547,19 @@ contains
             end associate
         end do
     end function field_warnings
+
+    !> The echo's words for /tips k_method.
+    pure function k_method_text(k_method) result(text)
+        character(len=*), intent(in) :: k_method
+        character(len=:), allocatable :: text
+
+        if (k_method == 'higher_order') then
+            text = 'higher-order re-solve (docs/theory/tips.md#k-from-a-higher-order-re-solve)'
+        else
+            ! 'tip_element' and its reason in brackets
+            text = 'tip element'//k_method(len('tip_element') + 1:)// &
+                   ' (docs/theory/tips.md#k-from-the-tip-element)'
+        end if
+    end function k_method_text
 
 end module ddc_app_report

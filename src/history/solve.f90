@@ -15,7 +15,8 @@
 !> other one solves it is recorded (/history method and fallback).
 !>
 !> Each step records DDs, states, tractions and the stress intensity factors of the tips
-!> (found once). The last step's element results, tips and fields are those of
+!> (found once; by the higher-order re-solve, factorized once, where it serves:
+!> docs/theory/tips.md#k-along-a-loading-history). The last step's element results, tips and fields are those of
 !> finish_model (ddc_run_model) for the model at the last load.
 module ddc_history_solve
     use, intrinsic :: iso_fortran_env, only: int64
@@ -39,6 +40,8 @@ module ddc_history_solve
         contact_only_system
     use ddc_influence_response, only: listed_tractions
     use ddc_post_tips, only: find_tips, stress_intensity
+    use ddc_post_higher_order_k, only: higher_order_solver, prepare_higher_order, &
+        higher_order_k, uses_higher_order
     use ddc_history_path, only: path_loads, apply_load, load_text
     use ddc_run_model, only: finish_model
     use ddc_progress, only: report_progress
@@ -72,6 +75,11 @@ contains
         type(restart_state), intent(in), optional :: restart
         type(condensed_contact), target :: sys
         type(contact_session) :: session
+        ! The tips' K by the higher-order re-solve, factorized once for every step
+        type(higher_order_solver) :: k_solver
+        logical :: higher_order
+        character(len=:), allocatable :: why_not
+        type(error_type), allocatable :: k_failed
         class(stiffness_operator), allocatable :: stiffness
         ! A hierarchical operator points at the elements: a copy that lives as long as it
         type(element_set), target :: kept
@@ -152,6 +160,13 @@ contains
         ! The tips, found once; their K at every step.
         allocate (no_dd(n), source=0.0_wp)
         call find_tips(model%elements, g, model%poissons_ratio, no_dd, no_dd, results%tips)
+        call uses_higher_order(model%solver%k_method, model%growth%active, model%elements, &
+                               results%tips, higher_order, why_not)
+        if (higher_order) then
+            call prepare_higher_order(model%elements, g, model%poissons_ratio, results%tips, &
+                                      k_solver, k_failed)
+            higher_order = .not. allocated(k_failed)
+        end if
         allocate (ts(sys%nf), tn(sys%nf))
         ! The fault law and its values in force: what an element lost (tensile strength on
         ! opening, cohesion on slip) stays lost for the rest of the history.
@@ -246,9 +261,19 @@ contains
                 h%shear_traction(sys%free, k) = ts + shear(sys%free, k)
                 h%normal_traction(sys%free, k) = tn + normal(sys%free, k)
             end if
+            ! The tip element's K, replaced by the re-solve's where it serves (a step where
+            ! it fails keeps them: the run's K method is then the tip element's throughout).
             call stress_intensity(model%elements, g, model%poissons_ratio, &
                                   results%tips%element, h%ds(:, k), h%dn(:, k), h%k1(:, k), &
                                   h%k2(:, k))
+            if (higher_order) then
+                call higher_order_k(k_solver, model%elements, g, model%poissons_ratio, &
+                                    h%ds(:, k), h%dn(:, k), h%shear_traction(:, k), &
+                                    h%normal_traction(:, k), loads(1:3, k), loads(4:6, k), &
+                                    h%state(:, k), results%tips, h%k1(:, k), h%k2(:, k), &
+                                    k_failed)
+                higher_order = .not. allocated(k_failed)
+            end if
             call system_clock(t1)
             call report_progress(step_line(k, nsteps, loads(:, k), model%load_path%varies, &
                                            res, real(t1 - t_start, wp) / real(rate, wp)))
@@ -273,8 +298,13 @@ contains
             call stiffness%release()
         end select
         call release_matrix(sys, matrix)
-        call finish_model(apply_load(model, loads(:, nsteps)), shear(:, nsteps), &
-                          normal(:, nsteps), results, matrix=matrix)
+        if (higher_order) then
+            call finish_model(apply_load(model, loads(:, nsteps)), shear(:, nsteps), &
+                              normal(:, nsteps), results, matrix=matrix, higher_order=k_solver)
+        else
+            call finish_model(apply_load(model, loads(:, nsteps)), shear(:, nsteps), &
+                              normal(:, nsteps), results, matrix=matrix)
+        end if
         if (any(compliance > 0.0_wp)) call record_elastic_dds(pressure(:, nsteps))
         results%solver%counts%seconds = results%solver%counts%seconds + &
             seconds_factorization - res%counts%seconds

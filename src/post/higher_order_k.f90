@@ -1,26 +1,29 @@
 !> K_I and K_II by a higher-order re-solve (docs/theory/tips.md#k-from-a-higher-order-re-solve).
 !>
-!> The fractures that have tips are solved again with higher-order elements
-!> (ddc_influence_higher_order) under the tractions the solve found on them (each element's
-!> midpoint traction, less the remote stress at each node), the other elements acting with
-!> their constant DDs. Where the tractions are prescribed this is the model itself, solved
-!> to higher order; on contact elements it takes the solve's tractions as given. K comes
-!> from the limit of D / sqrt(r) at each tip. Where the fracture near a tip is a sampled
-!> curve, the tip element's chord, turned from the curve's tangent, is turned back to it
-!> (Cotterell & Rice 1980, to first order). The matrix depends on the geometry alone: it is
-!> factorized once (prepare_higher_order) and serves every load (higher_order_k).
+!> The traction and contact elements of the fractures that have tips are solved again with
+!> higher-order elements (ddc_influence_higher_order), the other elements acting with their
+!> constant DDs. Each re-solved element takes the traction the solve found on it (less the
+!> remote stress at each node), except where the solve holds a contact element's DD at
+!> zero (closed, or stuck and never slipped): that DD is zero at all three nodes. Where the
+!> tractions are prescribed this is the model itself, solved to higher order. K comes from
+!> the limit of D / sqrt(r) at each tip. Where the fracture near a tip is a sampled curve,
+!> the tip element's chord, turned from the curve's tangent, is turned back to it
+!> (Cotterell & Rice 1980, to first order). The traction rows depend on the geometry alone
+!> and are assembled once (prepare_higher_order); the system is factorized again only when
+!> the contact states change (higher_order_k, once per step of a loading history).
 module ddc_post_higher_order_k
     use ddc_kinds, only: wp
     use ddc_constants, only: pi
     use ddc_error, only: error_type
-    use ddc_model_types, only: element_set, condition_contact
+    use ddc_model_types, only: element_set, condition_contact, condition_traction
     use ddc_model_results, only: tip_set
     use ddc_contact_states, only: state_stick, state_slip
+    use ddc_allocation, only: allocation_failed, real_bytes
     use ddc_influence_kernel, only: dd_kernel, face_negative
     use ddc_influence_assembly, only: kernel_function, select_kernel, image_transform, &
         image_transforms, kernel_with_images, resolved_tractions
     use ddc_influence_higher_order, only: weighted_element, node_xi, nodal_basis, &
-        element_tractions
+        element_tractions, weight_at
     use ddc_post_tips, only: tip_chain
     use ddc_linalg_lu, only: lu_factor, lu_solve
     use ddc_contact_options, only: k_higher_order, k_tip_element
@@ -41,16 +44,23 @@ module ddc_post_higher_order_k
     !> The curvatures at the first two vertices of a sampled curve agree within this fraction
     real(wp), parameter :: curvature_agreement = 0.5_wp
 
-    !> The factorized re-solve of one geometry and its tips.
+    !> Kinds of re-solve rows: traction, or the DD itself at the node
+    integer, parameter :: row_traction = 1, row_dd = 2
+
+    !> The re-solve of one geometry and its tips.
     type :: higher_order_solver
         !> Elements re-solved (model numbering), and each element's place among them (0: not
         !> re-solved), shape (re-solved) and (n)
         integer, allocatable :: solved(:), local(:)
         !> Their geometry and weights
         type(weighted_element), allocatable :: weighted(:)
-        !> LU factors and pivots of the matrix, shape (6 re-solved, 6 re-solved)
+        !> Traction rows: the tractions at the nodes per unit nodal value, shape (6 re-solved,
+        !> 6 re-solved)
+        real(wp), allocatable :: traction(:, :)
+        !> The system of the row kinds `kinds` (row_traction, row_dd per unknown), factorized
+        !> (LU and pivots); kinds unallocated before the first
         real(wp), allocatable :: lu(:, :)
-        integer, allocatable :: ipiv(:)
+        integer, allocatable :: ipiv(:), kinds(:)
         !> Angle from the fracture's tangent to the tip chord of each tip [rad], shape (tips)
         real(wp), allocatable :: turn(:)
     end type higher_order_solver
@@ -83,13 +93,17 @@ contains
             why_not = 'growth calibrates the tip element'
         else
             n = count(re_solved(elements, tips))
-            uses = k_method == k_higher_order .or. n <= higher_order_max_elements
-            if (.not. uses) why_not = itoa(n)//' elements to re-solve, above '// &
-                itoa(higher_order_max_elements)//" (k_method = 'higher_order' asks for it)"
+            uses = n > 0 .and. (k_method == k_higher_order .or. n <= higher_order_max_elements)
+            if (n == 0) then
+                why_not = 'no tip on a traction or contact element'
+            else if (.not. uses) then
+                why_not = itoa(n)//' elements to re-solve, above '// &
+                    itoa(higher_order_max_elements)//" (k_method = 'higher_order' asks for it)"
+            end if
         end if
     end subroutine uses_higher_order
 
-    !> Assemble and factorize the re-solve of the fractures with tips.
+    !> Assemble the traction rows of the re-solve of the fractures with tips.
     subroutine prepare_higher_order(elements, shear_modulus, nu, tips, solver, error)
         !> Elements with geometry computed
         type(element_set), intent(in) :: elements
@@ -99,9 +113,9 @@ contains
         type(tip_set), intent(in) :: tips
         !> The factorized re-solve
         type(higher_order_solver), intent(out) :: solver
-        !> Allocated when the matrix is singular
+        !> Allocated when the matrices do not fit in memory
         type(error_type), allocatable, intent(out) :: error
-        integer :: k, m, u
+        integer :: k, m, stat
 
         associate (s => solver)
             s%solved = pack([(k, k = 1, elements%n)], re_solved(elements, tips))
@@ -109,20 +123,23 @@ contains
             s%local(s%solved) = [(k, k = 1, size(s%solved))]
             s%weighted = tip_weighted_elements(elements, tips, s%solved, s%local)
             m = per_element * size(s%solved)
-            allocate (s%lu(m, m), s%ipiv(m))
-            call assemble(elements, shear_modulus, nu, s%solved, s%weighted, s%local, s%lu)
-            call lu_factor(s%lu, s%ipiv, 'matrix of the higher-order re-solve for K', error, &
-                           [(s%solved((u - 1) / per_element + 1), u = 1, m)], &
-                           [(mod(u - 1, 2) == 0, u = 1, m)])
+            allocate (s%traction(m, m), s%lu(m, m), s%ipiv(m), stat=stat)
+            if (stat /= 0) then
+                call allocation_failed(error, 'the higher-order re-solve for K of '// &
+                    itoa(size(s%solved))//' elements', 2.0_wp * real_bytes * real(m, wp)**2)
+                return
+            end if
+            call assemble(elements, shear_modulus, nu, s%solved, s%weighted, s%traction)
             s%turn = [(chord_turn(elements, tips, k), k = 1, tips%n)]
         end associate
     end subroutine prepare_higher_order
 
-    !> K_I and K_II of the tips for one solution of the model.
+    !> K_I and K_II of the re-solved tips for one solution of the model; the other tips'
+    !> values are left as given.
     subroutine higher_order_k(solver, elements, shear_modulus, nu, ds, dn, shear_traction, &
-                              normal_traction, remote, gradient, state, tips, k1, k2)
-        !> The factorized re-solve (prepare_higher_order)
-        type(higher_order_solver), intent(in) :: solver
+                              normal_traction, remote, gradient, state, tips, k1, k2, error)
+        !> The re-solve (prepare_higher_order); factorized again where the states changed
+        type(higher_order_solver), intent(inout) :: solver
         !> Elements with geometry computed
         type(element_set), intent(in) :: elements
         !> Shear modulus [stress unit] and Poisson's ratio [-]
@@ -132,41 +149,110 @@ contains
         !> Remote stress sxx, syy, sxy (at y = 0) [stress unit] and its gradient d/dy
         !> [stress unit / length unit]
         real(wp), intent(in) :: remote(3), gradient(3)
-        !> Element states (a closed contact tip element has K_I = 0), shape (n)
+        !> Element states, shape (n)
         integer, intent(in) :: state(:)
         !> The tips
         type(tip_set), intent(in) :: tips
         !> Stress intensity factors [stress unit * length unit**0.5], shape (tips)
-        real(wp), intent(out) :: k1(:), k2(:)
+        real(wp), intent(inout) :: k1(:), k2(:)
+        !> Allocated when the re-solve's matrix is singular (K left as given)
+        type(error_type), allocatable, intent(out) :: error
         real(wp), allocatable :: q(:, :)
-        integer :: k, i
+        integer, allocatable :: kinds(:)
+        integer :: k, u
 
-        allocate (q(size(solver%lu, 1), 1))
+        kinds = row_kinds(elements, ds, dn, state, solver%solved)
+        if (.not. allocated(solver%kinds)) then
+            call factorize(solver, kinds, error)
+        else if (any(kinds /= solver%kinds)) then
+            call factorize(solver, kinds, error)
+        end if
+        if (allocated(error)) return
+        allocate (q(size(kinds), 1))
         call load_of(elements, shear_modulus, nu, ds, dn, shear_traction, normal_traction, &
                      remote, gradient, solver%solved, solver%local, q(:, 1))
+        where (kinds == row_dd) q(:, 1) = 0.0_wp
         call lu_solve(solver%lu, solver%ipiv, q)
         do k = 1, tips%n
+            if (solver%local(tips%element(k)) == 0) cycle
             call tip_k(elements, shear_modulus, nu, solver, q(:, 1), tips, k, k1(k), k2(k))
-            i = tips%element(k)
-            if (elements%condition(i) == condition_contact .and. &
-                (state(i) == state_stick .or. state(i) == state_slip)) k1(k) = 0.0_wp
         end do
     end subroutine higher_order_k
 
-    !> Elements of the fractures with tips and of the chains from each tip.
+    !> The row kind of every unknown: a DD row where the solve holds a contact element's DD
+    !> at zero (the normal DD of a closed element, the shear DD of one that sticks and never
+    !> slipped: known to vanish along the whole element), a traction row elsewhere.
+    pure function row_kinds(elements, ds, dn, state, solved) result(kinds)
+        type(element_set), intent(in) :: elements
+        real(wp), intent(in) :: ds(:), dn(:)
+        integer, intent(in) :: state(:), solved(:)
+        integer :: kinds(per_element * size(solved))
+        integer :: l, i, node, row
+
+        kinds = row_traction
+        do l = 1, size(solved)
+            i = solved(l)
+            if (elements%condition(i) /= condition_contact) cycle
+            if (state(i) /= state_stick .and. state(i) /= state_slip) cycle
+            do node = 1, 3
+                row = per_element * (l - 1) + 2 * (node - 1)
+                if (state(i) == state_stick .and. ds(i) == 0.0_wp) kinds(row + 1) = row_dd
+                if (dn(i) == 0.0_wp) kinds(row + 2) = row_dd
+            end do
+        end do
+    end function row_kinds
+
+    !> The system of the given row kinds from the traction rows, factorized.
+    subroutine factorize(solver, kinds, error)
+        type(higher_order_solver), intent(inout) :: solver
+        integer, intent(in) :: kinds(:)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: w, dw
+        integer :: u, l, node, m
+
+        m = size(kinds)
+        solver%lu = solver%traction
+        do u = 1, m
+            if (kinds(u) /= row_dd) cycle
+            ! The DD at the node is its weight times the nodal value.
+            l = (u - 1) / per_element + 1
+            node = mod(u - 1, per_element) / 2 + 1
+            call weight_at(solver%weighted(l), 0.5_wp * solver%weighted(l)%length * &
+                           (1.0_wp + node_xi(node)), w, dw)
+            solver%lu(u, :) = 0.0_wp
+            solver%lu(u, u) = w
+        end do
+        solver%kinds = kinds
+        call lu_factor(solver%lu, solver%ipiv, 'matrix of the higher-order re-solve for K', &
+                       error, [(solver%solved((u - 1) / per_element + 1), u = 1, m)], &
+                       [(mod(u - 1, 2) == 0, u = 1, m)])
+        if (allocated(error)) deallocate (solver%kinds)
+    end subroutine factorize
+
+    !> The traction and contact elements of the fractures whose tips are on such elements,
+    !> and of the chains from those tips.
     pure function re_solved(elements, tips) result(mask)
         type(element_set), intent(in) :: elements
         type(tip_set), intent(in) :: tips
         logical :: mask(elements%n)
+        logical :: kind_serves(elements%n), tip_serves(tips%n)
         integer, allocatable :: chain(:), near_side(:)
         integer :: k, i
 
+        kind_serves = elements%condition == condition_traction .or. &
+                      elements%condition == condition_contact
+        tip_serves = kind_serves(tips%element)
         do i = 1, elements%n
-            mask(i) = any(tips%fracture_id == elements%fracture_id(i))
+            mask(i) = kind_serves(i) .and. &
+                      any(tip_serves .and. tips%fracture_id == elements%fracture_id(i))
         end do
         do k = 1, tips%n
+            if (.not. tip_serves(k)) cycle
             call tip_chain(elements, tips%element(k), tips%side(k), chain, near_side)
-            mask(chain) = .true.
+            do i = 1, size(chain)
+                if (.not. kind_serves(chain(i))) exit
+                mask(chain(i)) = .true.
+            end do
         end do
     end function re_solved
 
@@ -190,7 +276,11 @@ contains
             weighted(l)%length = 2.0_wp * elements%half_length(i)
         end do
         do k = 1, tips%n
+            if (local(tips%element(k)) == 0) cycle
             call tip_chain(elements, tips%element(k), tips%side(k), chain, near_side)
+            ! The chain as far as it is re-solved.
+            c = findloc(local(chain) == 0, .true., dim=1)
+            if (c > 0) chain = chain(:c - 1)
             reach = sum(elements%half_length(chain))
             r_near = 0.0_wp
             do c = 1, size(chain)
@@ -214,10 +304,10 @@ contains
     end function tip_weighted_elements
 
     !> The re-solve's matrix: tractions at the nodes per unit nodal DD.
-    subroutine assemble(elements, shear_modulus, nu, solved, weighted, local, matrix)
+    subroutine assemble(elements, shear_modulus, nu, solved, weighted, matrix)
         type(element_set), intent(in) :: elements
         real(wp), intent(in) :: shear_modulus, nu
-        integer, intent(in) :: solved(:), local(:)
+        integer, intent(in) :: solved(:)
         type(weighted_element), intent(in) :: weighted(:)
         real(wp), intent(out) :: matrix(:, :)
         procedure(kernel_function), pointer :: kernel
@@ -230,8 +320,8 @@ contains
         images = image_transforms(elements%symmetry)
         ! Each thread owns the rows of its receiving elements.
         !$omp parallel do default(none) schedule(dynamic) private(l, i, node, row, m, j, x, y, &
-        !$omp     s_self) shared(elements, shear_modulus, nu, solved, weighted, local, matrix, &
-        !$omp     kernel, images)
+        !$omp     s_self) shared(elements, shear_modulus, nu, solved, weighted, matrix, kernel, &
+        !$omp     images)
         do l = 1, size(solved)
             i = solved(l)
             do node = 1, 3

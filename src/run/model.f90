@@ -142,9 +142,9 @@ contains
         real(wp), intent(in), optional :: matrix(:, :)
         !> The engine of a distributed run
         class(model_engine), intent(inout), optional :: engine
-        !> The factorized higher-order re-solve of this geometry where the caller has it
-        !> (a loading history)
-        type(higher_order_solver), intent(in), optional :: higher_order
+        !> The higher-order re-solve of this geometry where the caller has it (a loading
+        !> history)
+        type(higher_order_solver), intent(inout), optional :: higher_order
         integer, allocatable :: shear_row(:), normal_row(:)
         type(error_type), allocatable :: failed
         real(wp) :: g, nu, t0
@@ -199,8 +199,8 @@ contains
         type(model_type), intent(in) :: model
         !> Element results and tips (find_tips) on entry; K replaced
         type(model_results), intent(inout) :: results
-        !> The re-solve of this geometry, factorized, where the caller has it
-        type(higher_order_solver), intent(in), optional :: prepared
+        !> The re-solve of this geometry where the caller has it
+        type(higher_order_solver), intent(inout), optional :: prepared
         type(higher_order_solver) :: solver
         type(error_type), allocatable :: failed
         character(len=:), allocatable :: why_not
@@ -213,24 +213,35 @@ contains
             return
         end if
         if (present(prepared)) then
-            solver = prepared
+            call tip_k_of(prepared)
         else
             call prepare_higher_order(model%elements, shear_modulus_of(model), &
                                       model%poissons_ratio, results%tips, solver, failed)
-            if (allocated(failed)) then
-                results%tips%k_method = 'tip_element (the higher-order re-solve failed: '// &
-                                        failed%message//')'
-                return
-            end if
+            if (.not. allocated(failed)) call tip_k_of(solver)
         end if
-        associate (e => results%elements, t => results%tips)
-            call higher_order_k(solver, model%elements, shear_modulus_of(model), &
-                                model%poissons_ratio, e%ds, e%dn, e%shear_traction, &
-                                e%normal_traction, [model%sxx, model%syy, model%sxy], &
-                                model%stress_gradient, e%state, t, t%k1, t%k2)
-            t%graded = 0
-            t%k_method = 'higher_order'
-        end associate
+        if (allocated(failed)) results%tips%k_method = &
+            'tip_element (the higher-order re-solve failed: '//failed%message//')'
+
+    contains
+
+        subroutine tip_k_of(re_solve)
+            type(higher_order_solver), intent(inout) :: re_solve
+            real(wp), allocatable :: k1(:), k2(:)
+
+            associate (e => results%elements, t => results%tips)
+                k1 = t%k1
+                k2 = t%k2
+                call higher_order_k(re_solve, model%elements, shear_modulus_of(model), &
+                                    model%poissons_ratio, e%ds, e%dn, e%shear_traction, &
+                                    e%normal_traction, [model%sxx, model%syy, model%sxy], &
+                                    model%stress_gradient, e%state, t, k1, k2, failed)
+                if (allocated(failed)) return
+                t%k1 = k1
+                t%k2 = k2
+                where (re_solve%local(t%element) > 0) t%graded = 0
+                t%k_method = 'higher_order'
+            end associate
+        end subroutine tip_k_of
     end subroutine higher_order_tip_k
 
     !> The fields at every observation set of the model for the DDs in results (allocates
