@@ -80,6 +80,7 @@ contains
         logical :: higher_order
         character(len=:), allocatable :: why_not
         type(error_type), allocatable :: k_failed
+        real(wp), allocatable :: mu(:)
         class(stiffness_operator), allocatable :: stiffness
         ! A hierarchical operator points at the elements: a copy that lives as long as it
         type(element_set), target :: kept
@@ -267,11 +268,16 @@ contains
                                   results%tips%element, h%ds(:, k), h%dn(:, k), h%k1(:, k), &
                                   h%k2(:, k))
             if (higher_order) then
+                if (allocated(h%mu_in_force)) then
+                    mu = h%mu_in_force(:, k)
+                else
+                    mu = model%elements%mu
+                end if
                 call higher_order_k(k_solver, model%elements, g, model%poissons_ratio, &
                                     h%ds(:, k), h%dn(:, k), h%shear_traction(:, k), &
-                                    h%normal_traction(:, k), loads(1:3, k), loads(4:6, k), &
-                                    h%state(:, k), results%tips, h%k1(:, k), h%k2(:, k), &
-                                    k_failed)
+                                    h%normal_traction(:, k), mu, loads(1:3, k), &
+                                    loads(4:6, k), h%state(:, k), results%tips, h%k1(:, k), &
+                                    h%k2(:, k), k_failed)
                 higher_order = .not. allocated(k_failed)
             end if
             call system_clock(t1)

@@ -2,9 +2,10 @@
 !>
 !> The traction and contact elements of the fractures that have tips are solved again with
 !> higher-order elements (ddc_influence_higher_order), the other elements acting with their
-!> constant DDs. Each re-solved element takes the traction the solve found on it (less the
-!> remote stress at each node), except where the solve holds a contact element's DD at
-!> zero (closed, or stuck and never slipped): that DD is zero at all three nodes. Where the
+!> constant DDs. Each re-solved element keeps its condition in the solve (row_conditions),
+!> at each of its three nodes, with the solve's values on the element: a traction element
+!> its tractions, a closed contact element its DD or joint law and the Coulomb law where it
+!> slips. Where the
 !> tractions are prescribed this is the model itself, solved to higher order. K comes from
 !> the limit of D / sqrt(r) at each tip. Where the fracture near a tip is a sampled curve,
 !> the tip element's chord, turned from the curve's tangent, is turned back to it
@@ -15,7 +16,7 @@ module ddc_post_higher_order_k
     use ddc_kinds, only: wp
     use ddc_constants, only: pi
     use ddc_error, only: error_type
-    use ddc_model_types, only: element_set, condition_contact, condition_traction
+    use ddc_model_types, only: element_set, condition_contact, condition_traction, rigid_joint
     use ddc_model_results, only: tip_set
     use ddc_contact_states, only: state_stick, state_slip
     use ddc_allocation, only: allocation_failed, real_bytes
@@ -44,9 +45,6 @@ module ddc_post_higher_order_k
     !> The curvatures at the first two vertices of a sampled curve agree within this fraction
     real(wp), parameter :: curvature_agreement = 0.5_wp
 
-    !> Kinds of re-solve rows: traction, or the DD itself at the node
-    integer, parameter :: row_traction = 1, row_dd = 2
-
     !> The re-solve of one geometry and its tips.
     type :: higher_order_solver
         !> Elements re-solved (model numbering), and each element's place among them (0: not
@@ -57,10 +55,10 @@ module ddc_post_higher_order_k
         !> Traction rows: the tractions at the nodes per unit nodal value, shape (6 re-solved,
         !> 6 re-solved)
         real(wp), allocatable :: traction(:, :)
-        !> The system of the row kinds `kinds` (row_traction, row_dd per unknown), factorized
-        !> (LU and pivots); kinds unallocated before the first
-        real(wp), allocatable :: lu(:, :)
-        integer, allocatable :: ipiv(:), kinds(:)
+        !> The system of the row conditions `rows` (row_conditions), factorized (LU and
+        !> pivots); rows unallocated before the first
+        real(wp), allocatable :: lu(:, :), rows(:, :)
+        integer, allocatable :: ipiv(:)
         !> Angle from the fracture's tangent to the tip chord of each tip [rad], shape (tips)
         real(wp), allocatable :: turn(:)
     end type higher_order_solver
@@ -137,8 +135,8 @@ contains
     !> K_I and K_II of the re-solved tips for one solution of the model; the other tips'
     !> values are left as given.
     subroutine higher_order_k(solver, elements, shear_modulus, nu, ds, dn, shear_traction, &
-                              normal_traction, remote, gradient, state, tips, k1, k2, error)
-        !> The re-solve (prepare_higher_order); factorized again where the states changed
+                              normal_traction, mu, remote, gradient, state, tips, k1, k2, error)
+        !> The re-solve (prepare_higher_order); factorized again where the conditions changed
         type(higher_order_solver), intent(inout) :: solver
         !> Elements with geometry computed
         type(element_set), intent(in) :: elements
@@ -146,6 +144,8 @@ contains
         real(wp), intent(in) :: shear_modulus, nu
         !> The solve's DDs [length unit] and total midpoint tractions [stress unit], shape (n)
         real(wp), intent(in) :: ds(:), dn(:), shear_traction(:), normal_traction(:)
+        !> Friction in force [-], shape (n)
+        real(wp), intent(in) :: mu(:)
         !> Remote stress sxx, syy, sxy (at y = 0) [stress unit] and its gradient d/dy
         !> [stress unit / length unit]
         real(wp), intent(in) :: remote(3), gradient(3)
@@ -157,21 +157,29 @@ contains
         real(wp), intent(inout) :: k1(:), k2(:)
         !> Allocated when the re-solve's matrix is singular (K left as given)
         type(error_type), allocatable, intent(out) :: error
-        real(wp), allocatable :: q(:, :)
-        integer, allocatable :: kinds(:)
-        integer :: k, u
+        real(wp), allocatable :: q(:, :), r(:), rows(:, :)
+        integer :: k, l, i, node, row
 
-        kinds = row_kinds(elements, ds, dn, state, solver%solved)
-        if (.not. allocated(solver%kinds)) then
-            call factorize(solver, kinds, error)
-        else if (any(kinds /= solver%kinds)) then
-            call factorize(solver, kinds, error)
+        rows = row_conditions(elements, ds, shear_traction, mu, state, solver%solved)
+        if (.not. allocated(solver%rows)) then
+            call factorize(solver, rows, error)
+        else if (any(rows /= solver%rows)) then
+            call factorize(solver, rows, error)
         end if
         if (allocated(error)) return
-        allocate (q(size(kinds), 1))
+        allocate (r(size(solver%lu, 1)), q(size(solver%lu, 1), 1))
         call load_of(elements, shear_modulus, nu, ds, dn, shear_traction, normal_traction, &
-                     remote, gradient, solver%solved, solver%local, q(:, 1))
-        where (kinds == row_dd) q(:, 1) = 0.0_wp
+                     remote, gradient, solver%solved, solver%local, r)
+        ! Each row's condition holds for the solve's values on its element.
+        do l = 1, size(solver%solved)
+            i = solver%solved(l)
+            do node = 1, 3
+                row = per_element * (l - 1) + 2 * (node - 1)
+                q(row + 1, 1) = rows(1, l) * r(row + 1) + rows(2, l) * r(row + 2) + &
+                                rows(3, l) * ds(i)
+                q(row + 2, 1) = rows(4, l) * r(row + 2) + rows(5, l) * dn(i)
+            end do
+        end do
         call lu_solve(solver%lu, solver%ipiv, q)
         do k = 1, tips%n
             if (solver%local(tips%element(k)) == 0) cycle
@@ -179,54 +187,74 @@ contains
         end do
     end subroutine higher_order_k
 
-    !> The row kind of every unknown: a DD row where the solve holds a contact element's DD
-    !> at zero (the normal DD of a closed element, the shear DD of one that sticks and never
-    !> slipped: known to vanish along the whole element), a traction row elsewhere.
-    pure function row_kinds(elements, ds, dn, state, solved) result(kinds)
+    !> The condition of each re-solved element, as the coefficients (a_ss, a_sn, b_s, a_nn,
+    !> b_n) of its rows a_ss t_s + a_sn t_n + b_s D_s = const and a_nn t_n + b_n D_n = const
+    !> at each node, the constants those of the solve's values on the element. A traction
+    !> element and an open contact element: t_s, t_n. A closed contact element: D_n (rigid:
+    !> the solve holds it at zero) or t_n + k_n D_n (an elastic joint); slipping, the
+    !> Coulomb law t_s + sign(t_s) mu t_n; sticking, D_s where it never slipped (rigid),
+    !> t_s + k_s D_s (an elastic joint), else t_s (the shape of a slip it kept is unknown).
+    pure function row_conditions(elements, ds, shear_traction, mu, state, solved) result(rows)
         type(element_set), intent(in) :: elements
-        real(wp), intent(in) :: ds(:), dn(:)
+        real(wp), intent(in) :: ds(:), shear_traction(:), mu(:)
         integer, intent(in) :: state(:), solved(:)
-        integer :: kinds(per_element * size(solved))
-        integer :: l, i, node, row
+        real(wp) :: rows(5, size(solved))
+        real(wp) :: ks, kn
+        integer :: l, i
 
-        kinds = row_traction
         do l = 1, size(solved)
             i = solved(l)
+            rows(:, l) = [1.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp]
             if (elements%condition(i) /= condition_contact) cycle
             if (state(i) /= state_stick .and. state(i) /= state_slip) cycle
+            ks = rigid_joint
+            kn = rigid_joint
+            if (allocated(elements%shear_stiffness)) ks = elements%shear_stiffness(i)
+            if (allocated(elements%normal_stiffness)) kn = elements%normal_stiffness(i)
+            if (kn < rigid_joint) then
+                rows(4:5, l) = [1.0_wp, kn]
+            else
+                rows(4:5, l) = [0.0_wp, 1.0_wp]
+            end if
+            if (state(i) == state_slip) then
+                rows(2, l) = sign(mu(i), shear_traction(i))
+            else if (ks < rigid_joint) then
+                rows(3, l) = ks
+            else if (ds(i) == 0.0_wp) then
+                rows(1:3, l) = [0.0_wp, 0.0_wp, 1.0_wp]
+            end if
+        end do
+    end function row_conditions
+
+    !> The system of the given row conditions from the traction rows, factorized.
+    subroutine factorize(solver, rows, error)
+        type(higher_order_solver), intent(inout) :: solver
+        real(wp), intent(in) :: rows(:, :)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: w(3), dw
+        integer :: l, node, row, m, u
+
+        m = size(solver%traction, 1)
+        do l = 1, size(solver%solved)
+            ! The DD at a node is its weight times the nodal value.
+            do node = 1, 3
+                call weight_at(solver%weighted(l), 0.5_wp * solver%weighted(l)%length * &
+                               (1.0_wp + node_xi(node)), w(node), dw)
+            end do
             do node = 1, 3
                 row = per_element * (l - 1) + 2 * (node - 1)
-                if (state(i) == state_stick .and. ds(i) == 0.0_wp) kinds(row + 1) = row_dd
-                if (dn(i) == 0.0_wp) kinds(row + 2) = row_dd
+                solver%lu(row + 1, :) = rows(1, l) * solver%traction(row + 1, :) + &
+                                        rows(2, l) * solver%traction(row + 2, :)
+                solver%lu(row + 1, row + 1) = solver%lu(row + 1, row + 1) + rows(3, l) * w(node)
+                solver%lu(row + 2, :) = rows(4, l) * solver%traction(row + 2, :)
+                solver%lu(row + 2, row + 2) = solver%lu(row + 2, row + 2) + rows(5, l) * w(node)
             end do
         end do
-    end function row_kinds
-
-    !> The system of the given row kinds from the traction rows, factorized.
-    subroutine factorize(solver, kinds, error)
-        type(higher_order_solver), intent(inout) :: solver
-        integer, intent(in) :: kinds(:)
-        type(error_type), allocatable, intent(out) :: error
-        real(wp) :: w, dw
-        integer :: u, l, node, m
-
-        m = size(kinds)
-        solver%lu = solver%traction
-        do u = 1, m
-            if (kinds(u) /= row_dd) cycle
-            ! The DD at the node is its weight times the nodal value.
-            l = (u - 1) / per_element + 1
-            node = mod(u - 1, per_element) / 2 + 1
-            call weight_at(solver%weighted(l), 0.5_wp * solver%weighted(l)%length * &
-                           (1.0_wp + node_xi(node)), w, dw)
-            solver%lu(u, :) = 0.0_wp
-            solver%lu(u, u) = w
-        end do
-        solver%kinds = kinds
+        solver%rows = rows
         call lu_factor(solver%lu, solver%ipiv, 'matrix of the higher-order re-solve for K', &
                        error, [(solver%solved((u - 1) / per_element + 1), u = 1, m)], &
                        [(mod(u - 1, 2) == 0, u = 1, m)])
-        if (allocated(error)) deallocate (solver%kinds)
+        if (allocated(error)) deallocate (solver%rows)
     end subroutine factorize
 
     !> The traction and contact elements of the fractures whose tips are on such elements,

@@ -226,14 +226,19 @@ contains
 
         subroutine tip_k_of(re_solve)
             type(higher_order_solver), intent(inout) :: re_solve
-            real(wp), allocatable :: k1(:), k2(:)
+            real(wp), allocatable :: k1(:), k2(:), mu(:)
 
             associate (e => results%elements, t => results%tips)
                 k1 = t%k1
                 k2 = t%k2
+                if (allocated(e%mu_in_force)) then
+                    mu = e%mu_in_force
+                else
+                    mu = model%elements%mu
+                end if
                 call higher_order_k(re_solve, model%elements, shear_modulus_of(model), &
                                     model%poissons_ratio, e%ds, e%dn, e%shear_traction, &
-                                    e%normal_traction, [model%sxx, model%syy, model%sxy], &
+                                    e%normal_traction, mu, [model%sxx, model%syy, model%sxy], &
                                     model%stress_gradient, e%state, t, k1, k2, failed)
                 if (allocated(failed)) return
                 t%k1 = k1
