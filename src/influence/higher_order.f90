@@ -1,15 +1,21 @@
 !> Influence of higher-order elements (docs/theory/tips.md#k-from-a-higher-order-re-solve).
 !>
-!> The DD of such an element varies along it as w(s) q(s): q quadratic, fixed by its values
-!> at three nodes (-2/3, 0 and 2/3 of the half-length h from the midpoint m), and w a weight,
-!> 1 or, near a crack tip, sqrt(r(s) / r(m)) with r the distance from the tip along the
-!> fracture (so the DD of a tip element varies as the square root of r). An element with two
-!> tip weights (a one-element crack) takes their product.
+!> Such an element is a circular arc (curvature kappa, 0 for a straight element) of length
+!> L = 2h, and its DD, in the arc's own (s, n) frame at each point, varies along it as
+!> w(s) q(s): q quadratic, fixed by its values at three nodes (-2/3, 0 and 2/3 of h from
+!> the midpoint m), and w a weight, 1 or, near a crack tip, sqrt(r(s) / r(m)) with r the
+!> distance from the tip along the fracture (so the DD of a tip element varies as the
+!> square root of r). An element with two tip weights (a one-element crack) takes their
+!> product.
 !>
 !> Such an element is a superposition of constant-DD segments, which the model's kernel
-!> serves (full plane or half-plane, with symmetry images): writing D(s) = D(m) + int_m^s D',
-!>     element = D(m) [0, L] - int_0^m D'(t) [0, t] dt + int_m^L D'(t) [t, L] dt,
-!> with [a, b] the unit constant segment from s = a to s = b and L = 2h. The integrals are
+!> serves (full plane or half-plane, with symmetry images). A constant DD vector on a
+!> straight segment stresses the body as two dislocations at its ends, whatever the path
+!> between them; so, with D(s) the DD vector in a fixed frame and y(s) the point at s,
+!>     element = D(m) [y(0), y(L)] - int_0^m D'(t) [y(0), y(t)] dt + int_m^L D'(t) [y(t), y(L)] dt,
+!> with [p, q] the constant segment from p to q, D' = dD/ds in the frame of each segment
+!> (on an arc the frame turns: D' holds kappa times D besides the derivatives of the
+!> components). The integrals are
 !> Gauss-Legendre sums: near a tip in t = tip + (m - tip) v^2, where D' ~ 1/sqrt(r) becomes
 !> smooth in v; in pieces no longer than the receiver's distance where it is close; and for
 !> a receiver on the element itself as a Cauchy principal value, by points mirrored about
@@ -17,14 +23,14 @@
 !> distance to its end).
 module ddc_influence_higher_order
     use ddc_kinds, only: wp
-    use ddc_influence_kernel, only: dd_kernel, face_negative
+    use ddc_influence_kernel, only: face_negative
     use ddc_influence_assembly, only: kernel_function, image_transform, &
         segment_kernel_with_images, resolved_tractions
     implicit none
     private
 
-    public :: weighted_element, node_xi, nodal_basis, weight_at, element_tractions
-    public :: gauss_8_x, gauss_8_w
+    public :: weighted_element, arc_element, node_xi, nodal_basis, weight_at, point_at
+    public :: element_tractions
 
     !> Positions of the three nodes, in half-lengths from the midpoint
     real(wp), parameter :: node_xi(3) = [-2.0_wp / 3.0_wp, 0.0_wp, 2.0_wp / 3.0_wp]
@@ -51,8 +57,10 @@ module ddc_influence_higher_order
 
     !> One element's geometry and weight.
     type :: weighted_element
-        !> Begin point [length unit], direction cosines, length [length unit]
-        real(wp) :: xb = 0.0_wp, yb = 0.0_wp, cosb = 1.0_wp, sinb = 0.0_wp, length = 1.0_wp
+        !> Begin point [length unit], tangent angle there [rad], curvature [1 / length unit]
+        !> (positive turning counter-clockwise), arc length [length unit]
+        real(wp) :: xb = 0.0_wp, yb = 0.0_wp, angle = 0.0_wp, curvature = 0.0_wp
+        real(wp) :: length = 1.0_wp
         !> Number of square-root factors of the weight (0, 1 or 2)
         integer :: factors = 0
         !> Factor f: r(s) = r0(f) + dr(f) s is the distance from its tip at s from the
@@ -69,6 +77,48 @@ module ddc_influence_higher_order
     end type quadrature_rule
 
 contains
+
+    !> The arc from (xb, yb) to (xe, ye) with the given curvature [1 / length unit] (0: the
+    !> straight element), without weight.
+    pure function arc_element(xb, yb, xe, ye, curvature) result(element)
+        real(wp), intent(in) :: xb, yb, xe, ye, curvature
+        type(weighted_element) :: element
+        real(wp) :: chord, half_turn
+
+        chord = hypot(xe - xb, ye - yb)
+        half_turn = asin(min(1.0_wp, 0.5_wp * curvature * chord))
+        element%xb = xb
+        element%yb = yb
+        element%curvature = curvature
+        element%length = chord
+        if (half_turn /= 0.0_wp) element%length = 2.0_wp * half_turn / curvature
+        element%angle = atan2(ye - yb, xe - xb) - half_turn
+    end function arc_element
+
+    !> The point at arc length s from the element's begin, and the tangent's direction
+    !> cosines there.
+    pure subroutine point_at(element, s, x, y, c, sn)
+        type(weighted_element), intent(in) :: element
+        !> Arc length [length unit]
+        real(wp), intent(in) :: s
+        !> Point [length unit] and tangent
+        real(wp), intent(out) :: x, y, c, sn
+        real(wp) :: half, factor, mid_angle
+
+        half = 0.5_wp * element%curvature * s
+        ! The chord from the begin: length s sin(half) / half, at the angle of its midpoint.
+        factor = 1.0_wp
+        if (abs(half) > 1.0e-4_wp) then
+            factor = sin(half) / half
+        else
+            factor = 1.0_wp - half**2 / 6.0_wp
+        end if
+        mid_angle = element%angle + half
+        x = element%xb + s * factor * cos(mid_angle)
+        y = element%yb + s * factor * sin(mid_angle)
+        c = cos(element%angle + 2.0_wp * half)
+        sn = sin(element%angle + 2.0_wp * half)
+    end subroutine point_at
 
     !> The quadratic basis functions through the nodes and their derivatives at xi.
     pure subroutine nodal_basis(xi, n, dn)
@@ -115,7 +165,7 @@ contains
         real(wp), intent(in) :: shear_modulus, nu
         !> The source element
         type(weighted_element), intent(in) :: element
-        !> The receiver's position from the element's begin where it lies on the element
+        !> The receiver's arc length from the element's begin where it lies on the element
         !> [length unit]; negative elsewhere
         real(wp), intent(in) :: s_self
         !> Receiver [length unit] and its plane's direction cosines
@@ -123,48 +173,70 @@ contains
         !> Tractions per unit nodal value [stress unit / length unit], shape (2, 6)
         real(wp), intent(out) :: block(2, 6)
         type(quadrature_rule) :: rule
-        type(dd_kernel) :: k
-        real(wp) :: ts(2), tn(2), h, t, a, xi, w, dw, n(3), dn(3), coefficient
+        real(wp) :: ts(2), tn(2), h, t, xi, w, dw, n(3), dn(3), value, slope, b(2), turn
+        real(wp) :: p(2, 3), cb, sb, ct, st, seg_angle
         integer :: g, node, c
 
         h = 0.5_wp * element%length
         block = 0.0_wp
-        ! D(m) [0, L]: the weight is 1 at the midpoint, and so is node 2's basis only.
-        k = segment_kernel_with_images(kernel, x, y, element%xb + h * element%cosb, &
-                                       element%yb + h * element%sinb, h, element%cosb, &
-                                       element%sinb, images, shear_modulus, nu, face_negative)
-        call resolved_tractions(k, cr, sr, ts, tn)
+        call point_at(element, 0.0_wp, p(1, 1), p(2, 1), cb, sb)
+        call point_at(element, element%length, p(1, 3), p(2, 3), cb, sb)
+        ! D(m) on the chord: the chord is parallel to the arc's tangent at m, and only node 2
+        ! is 1 there (the weight is 1 at m).
+        call segment_tractions(p(:, 1), p(:, 3), ts, tn)
         block(1, 3:4) = ts
         block(2, 3:4) = tn
         call build_rule(element, s_self, x, y, rule)
         do g = 1, rule%n
             t = rule%t(g)
-            ! The segment [0, t] or [t, L]: its midpoint a from the begin, half-length.
+            call point_at(element, t, p(1, 2), p(2, 2), ct, st)
             if (rule%side(g) < 0.0_wp) then
-                a = 0.5_wp * t
+                call segment_tractions(p(:, 1), p(:, 2), ts, tn)
+                seg_angle = atan2(p(2, 2) - p(2, 1), p(1, 2) - p(1, 1))
             else
-                a = 0.5_wp * (t + element%length)
+                call segment_tractions(p(:, 2), p(:, 3), ts, tn)
+                seg_angle = atan2(p(2, 3) - p(2, 2), p(1, 3) - p(1, 2))
             end if
-            k = segment_kernel_with_images(kernel, x, y, element%xb + a * element%cosb, &
-                                           element%yb + a * element%sinb, &
-                                           merge(a, element%length - a, rule%side(g) < 0.0_wp), &
-                                           element%cosb, element%sinb, images, shear_modulus, &
-                                           nu, face_negative)
-            call resolved_tractions(k, cr, sr, ts, tn)
+            ! The turn from the segment's frame to the arc's frame at t.
+            turn = element%angle + element%curvature * t - seg_angle
             xi = (t - h) / h
             call nodal_basis(xi, n, dn)
             call weight_at(element, t, w, dw)
             do node = 1, 3
-                ! d/dt of node's w N: the weight of segment (t) in the superposition.
-                coefficient = rule%side(g) * rule%w(g) * (dw * n(node) + w * dn(node) / h)
+                value = w * n(node)
+                slope = dw * n(node) + w * dn(node) / h
                 do c = 1, 2
+                    ! dD/ds of this unknown in the arc's frame (the frame turns at kappa),
+                    ! then in the segment's.
+                    if (c == 1) then
+                        b = [slope, element%curvature * value]
+                    else
+                        b = [-element%curvature * value, slope]
+                    end if
+                    b = [cos(turn) * b(1) - sin(turn) * b(2), sin(turn) * b(1) + cos(turn) * b(2)]
+                    b = rule%side(g) * rule%w(g) * b
                     block(1, 2 * (node - 1) + c) = block(1, 2 * (node - 1) + c) + &
-                                                   coefficient * ts(c)
+                                                   b(1) * ts(1) + b(2) * ts(2)
                     block(2, 2 * (node - 1) + c) = block(2, 2 * (node - 1) + c) + &
-                                                   coefficient * tn(c)
+                                                   b(1) * tn(1) + b(2) * tn(2)
                 end do
             end do
         end do
+
+    contains
+
+        !> Tractions at the receiver per unit Ds, Dn of the constant segment from a to e.
+        pure subroutine segment_tractions(a, e, ts, tn)
+            real(wp), intent(in) :: a(2), e(2)
+            real(wp), intent(out) :: ts(2), tn(2)
+            real(wp) :: half_length
+
+            half_length = 0.5_wp * hypot(e(1) - a(1), e(2) - a(2))
+            call resolved_tractions(segment_kernel_with_images(kernel, x, y, &
+                0.5_wp * (a(1) + e(1)), 0.5_wp * (a(2) + e(2)), half_length, &
+                (e(1) - a(1)) / (2.0_wp * half_length), (e(2) - a(2)) / (2.0_wp * half_length), &
+                images, shear_modulus, nu, face_negative), cr, sr, ts, tn)
+        end subroutine segment_tractions
     end subroutine element_tractions
 
     !> The quadrature rule of the two integrals for one receiver.
@@ -200,15 +272,19 @@ contains
         end if
     end subroutine build_rule
 
-    !> Distance from (x, y) to the part of the element between s = a and s = b.
+    !> Distance from (x, y) to the chord of the part of the element between s = a and s = b
+    !> (the arc lies within a sagitta of it).
     pure real(wp) function distance_to(element, a, b, x, y)
         type(weighted_element), intent(in) :: element
         real(wp), intent(in) :: a, b, x, y
-        real(wp) :: along, across
+        real(wp) :: pa(2), pb(2), c, s, along, length, across
 
-        along = (x - element%xb) * element%cosb + (y - element%yb) * element%sinb
-        across = -(x - element%xb) * element%sinb + (y - element%yb) * element%cosb
-        along = along - min(max(along, a), b)
+        call point_at(element, a, pa(1), pa(2), c, s)
+        call point_at(element, b, pb(1), pb(2), c, s)
+        length = hypot(pb(1) - pa(1), pb(2) - pa(2))
+        along = ((x - pa(1)) * (pb(1) - pa(1)) + (y - pa(2)) * (pb(2) - pa(2))) / length
+        across = (-(x - pa(1)) * (pb(2) - pa(2)) + (y - pa(2)) * (pb(1) - pa(1))) / length
+        along = along - min(max(along, 0.0_wp), length)
         distance_to = hypot(along, across)
     end function distance_to
 

@@ -23,9 +23,9 @@ module ddc_post_higher_order_k
     use ddc_influence_kernel, only: dd_kernel, face_negative
     use ddc_influence_assembly, only: kernel_function, select_kernel, image_transform, &
         image_transforms, kernel_with_images, resolved_tractions
-    use ddc_influence_higher_order, only: weighted_element, node_xi, nodal_basis, &
-        element_tractions, weight_at
-    use ddc_post_tips, only: tip_chain
+    use ddc_influence_higher_order, only: weighted_element, arc_element, node_xi, &
+        nodal_basis, element_tractions, weight_at, point_at
+    use ddc_post_tips, only: tip_chain, end_neighbours
     use ddc_linalg_lu, only: lu_factor, lu_solve
     use ddc_contact_options, only: k_higher_order, k_tip_element
     use ddc_text, only: itoa
@@ -40,9 +40,9 @@ module ddc_post_higher_order_k
     integer, parameter :: higher_order_max_elements = 1000
     !> Unknowns per element: three nodes, two DDs
     integer, parameter :: per_element = 6
-    !> A chain whose first vertex turns by more than this [rad] is kinked there, not curved
+    !> A vertex that turns by more than this [rad] is a kink, not a sample of a curve
     real(wp), parameter :: max_curve_turn = 0.35_wp
-    !> The curvatures at the first two vertices of a sampled curve agree within this fraction
+    !> The curvatures at two vertices of a sampled curve agree within this fraction
     real(wp), parameter :: curvature_agreement = 0.5_wp
 
     !> The re-solve of one geometry and its tips.
@@ -59,8 +59,6 @@ module ddc_post_higher_order_k
         !> pivots); rows unallocated before the first
         real(wp), allocatable :: lu(:, :), rows(:, :)
         integer, allocatable :: ipiv(:)
-        !> Angle from the fracture's tangent to the tip chord of each tip [rad], shape (tips)
-        real(wp), allocatable :: turn(:)
     end type higher_order_solver
 
 contains
@@ -128,7 +126,6 @@ contains
                 return
             end if
             call assemble(elements, shear_modulus, nu, s%solved, s%weighted, s%traction)
-            s%turn = [(chord_turn(elements, tips, k), k = 1, tips%n)]
         end associate
     end subroutine prepare_higher_order
 
@@ -169,7 +166,7 @@ contains
         if (allocated(error)) return
         allocate (r(size(solver%lu, 1)), q(size(solver%lu, 1), 1))
         call load_of(elements, shear_modulus, nu, ds, dn, shear_traction, normal_traction, &
-                     remote, gradient, solver%solved, solver%local, r)
+                     remote, gradient, solver%solved, solver%local, solver%weighted, r)
         ! Each row's condition holds for the solve's values on its element.
         do l = 1, size(solver%solved)
             i = solver%solved(l)
@@ -183,7 +180,7 @@ contains
         call lu_solve(solver%lu, solver%ipiv, q)
         do k = 1, tips%n
             if (solver%local(tips%element(k)) == 0) cycle
-            call tip_k(elements, shear_modulus, nu, solver, q(:, 1), tips, k, k1(k), k2(k))
+            call tip_k(shear_modulus, nu, solver, q(:, 1), tips, k, k1(k), k2(k))
         end do
     end subroutine higher_order_k
 
@@ -284,24 +281,23 @@ contains
         end do
     end function re_solved
 
-    !> The re-solved elements' geometry, with a square-root weight on the first half of
-    !> each tip's chain (a zone of fixed size, so the DD over the weight is smooth).
+    !> The re-solved elements as arcs (sampled_curvature), with a square-root weight on the
+    !> first half of each tip's chain (a zone of fixed size, so the DD over the weight is
+    !> smooth).
     function tip_weighted_elements(elements, tips, solved, local) result(weighted)
         type(element_set), intent(in) :: elements
         type(tip_set), intent(in) :: tips
         integer, intent(in) :: solved(:), local(:)
         type(weighted_element) :: weighted(size(solved))
         integer, allocatable :: chain(:), near_side(:)
-        real(wp) :: reach, r_near, length
+        real(wp) :: curvature(elements%n), reach, r_near, length
         integer :: k, c, i, l
 
+        curvature = sampled_curvature(elements)
         do l = 1, size(solved)
             i = solved(l)
-            weighted(l)%xb = elements%x_begin(i)
-            weighted(l)%yb = elements%y_begin(i)
-            weighted(l)%cosb = elements%cos_beta(i)
-            weighted(l)%sinb = elements%sin_beta(i)
-            weighted(l)%length = 2.0_wp * elements%half_length(i)
+            weighted(l) = arc_element(elements%x_begin(i), elements%y_begin(i), &
+                                      elements%x_end(i), elements%y_end(i), curvature(i))
         end do
         do k = 1, tips%n
             if (local(tips%element(k)) == 0) cycle
@@ -309,12 +305,12 @@ contains
             ! The chain as far as it is re-solved.
             c = findloc(local(chain) == 0, .true., dim=1)
             if (c > 0) chain = chain(:c - 1)
-            reach = sum(elements%half_length(chain))
+            reach = 0.5_wp * sum(weighted(local(chain))%length)
             r_near = 0.0_wp
             do c = 1, size(chain)
-                length = 2.0_wp * elements%half_length(chain(c))
-                if (r_near + 0.5_wp * length > reach * (1.0_wp + 1.0e-9_wp)) exit
                 associate (e => weighted(local(chain(c))))
+                    length = e%length
+                    if (r_near + 0.5_wp * length > reach * (1.0_wp + 1.0e-9_wp)) exit
                     if (e%factors < 2) then
                         e%factors = e%factors + 1
                         if (near_side(c) == 1) then
@@ -331,6 +327,92 @@ contains
         end do
     end function tip_weighted_elements
 
+    !> The curvature of each element [1 / length unit] where the polyline samples a smooth
+    !> curve, in the element's direction (positive turning counter-clockwise); 0 elsewhere.
+    !> At a vertex shared by two elements alone, the circle through it and its two
+    !> neighbouring vertices has curvature 2 sin(turn) / |next - previous|. A vertex samples
+    !> a curve where it turns by at most max_curve_turn and its curvature agrees (within
+    !> curvature_agreement) with that of the element's other end, or, at an element with
+    !> one such vertex (beside a tip, junction or kink), with that of the neighbour's far
+    !> end. An element takes the mean of its ends' curvatures that sample a curve.
+    pure function sampled_curvature(elements) result(curvature)
+        type(element_set), intent(in) :: elements
+        real(wp) :: curvature(elements%n)
+        integer :: neighbour(2, elements%n), neighbour_side(2, elements%n)
+        real(wp) :: at_end(2, elements%n), other
+        logical :: known(2, elements%n)
+        integer :: i, side, j
+
+        call end_neighbours(elements, neighbour, neighbour_side)
+        do i = 1, elements%n
+            do side = 1, 2
+                call vertex_curvature(i, side, at_end(side, i), known(side, i))
+            end do
+        end do
+        do i = 1, elements%n
+            curvature(i) = 0.0_wp
+            if (known(1, i) .and. known(2, i)) then
+                if (agree(at_end(1, i), at_end(2, i))) curvature(i) = 0.5_wp * sum(at_end(:, i))
+            else if (known(1, i) .or. known(2, i)) then
+                side = merge(1, 2, known(1, i))
+                j = neighbour(side, i)
+                ! The neighbour's far end, in this element's direction.
+                if (.not. known(3 - neighbour_side(side, i), j)) cycle
+                other = at_end(3 - neighbour_side(side, i), j)
+                if (neighbour_side(side, i) == side) other = -other
+                if (agree(at_end(side, i), other)) curvature(i) = at_end(side, i)
+            end if
+        end do
+
+    contains
+
+        !> The curvature at end `side` of element i in its direction, where that end is
+        !> shared with one other element and turns by at most max_curve_turn.
+        pure subroutine vertex_curvature(i, side, kappa, is_known)
+            integer, intent(in) :: i, side
+            real(wp), intent(out) :: kappa
+            logical, intent(out) :: is_known
+            real(wp) :: p(2), v(2), q(2), a(2), b(2), turn
+
+            kappa = 0.0_wp
+            is_known = neighbour(side, i) > 0
+            if (.not. is_known) return
+            ! previous p, vertex v, next q along the element's direction
+            if (side == 2) then
+                p = [elements%x_begin(i), elements%y_begin(i)]
+                v = [elements%x_end(i), elements%y_end(i)]
+                q = far_point(neighbour(2, i), neighbour_side(2, i))
+            else
+                p = far_point(neighbour(1, i), neighbour_side(1, i))
+                v = [elements%x_begin(i), elements%y_begin(i)]
+                q = [elements%x_end(i), elements%y_end(i)]
+            end if
+            a = v - p
+            b = q - v
+            turn = atan2(a(1) * b(2) - a(2) * b(1), dot_product(a, b))
+            is_known = abs(turn) <= max_curve_turn
+            if (is_known) kappa = 2.0_wp * sin(turn) / norm2(q - p)
+        end subroutine vertex_curvature
+
+        !> The end of element j other than `near` (1 begin, 2 end).
+        pure function far_point(j, near) result(p)
+            integer, intent(in) :: j, near
+            real(wp) :: p(2)
+
+            if (near == 1) then
+                p = [elements%x_end(j), elements%y_end(j)]
+            else
+                p = [elements%x_begin(j), elements%y_begin(j)]
+            end if
+        end function far_point
+
+        pure logical function agree(a, b)
+            real(wp), intent(in) :: a, b
+
+            agree = abs(a - b) <= curvature_agreement * max(abs(a), abs(b))
+        end function agree
+    end function sampled_curvature
+
     !> The re-solve's matrix: tractions at the nodes per unit nodal DD.
     subroutine assemble(elements, shear_modulus, nu, solved, weighted, matrix)
         type(element_set), intent(in) :: elements
@@ -341,26 +423,24 @@ contains
         procedure(kernel_function), pointer :: kernel
         type(image_transform), allocatable :: images(:)
         logical :: use_general
-        real(wp) :: x, y, s_self
-        integer :: l, i, node, row, m, j
+        real(wp) :: x, y, c, s, s_self
+        integer :: l, node, row, m
 
         call select_kernel(elements, .true., use_general, kernel)
         images = image_transforms(elements%symmetry)
         ! Each thread owns the rows of its receiving elements.
-        !$omp parallel do default(none) schedule(dynamic) private(l, i, node, row, m, j, x, y, &
+        !$omp parallel do default(none) schedule(dynamic) private(l, node, row, m, x, y, c, s, &
         !$omp     s_self) shared(elements, shear_modulus, nu, solved, weighted, matrix, kernel, &
         !$omp     images)
         do l = 1, size(solved)
-            i = solved(l)
             do node = 1, 3
                 row = per_element * (l - 1) + 2 * (node - 1)
-                call node_point(elements, i, node, x, y)
+                call node_point(weighted(l), node, x, y, c, s)
                 do m = 1, size(solved)
-                    j = solved(m)
-                    s_self = merge(elements%half_length(i) * (1.0_wp + node_xi(node)), &
-                                   -1.0_wp, j == i)
+                    s_self = merge(0.5_wp * weighted(l)%length * (1.0_wp + node_xi(node)), &
+                                   -1.0_wp, m == l)
                     call element_tractions(kernel, images, shear_modulus, nu, weighted(m), &
-                        s_self, x, y, elements%cos_beta(i), elements%sin_beta(i), &
+                        s_self, x, y, c, s, &
                         matrix(row + 1:row + 2, per_element * (m - 1) + 1:per_element * m))
                 end do
             end do
@@ -371,12 +451,13 @@ contains
     !> The re-solve's right-hand side: at each node the solve's traction on its element,
     !> less the remote stress there and the share of the elements not re-solved.
     subroutine load_of(elements, shear_modulus, nu, ds, dn, shear_traction, normal_traction, &
-                       remote, gradient, solved, local, rhs)
+                       remote, gradient, solved, local, weighted, rhs)
         type(element_set), intent(in) :: elements
         real(wp), intent(in) :: shear_modulus, nu
         real(wp), intent(in) :: ds(:), dn(:), shear_traction(:), normal_traction(:)
         real(wp), intent(in) :: remote(3), gradient(3)
         integer, intent(in) :: solved(:), local(:)
+        type(weighted_element), intent(in) :: weighted(:)
         real(wp), intent(out) :: rhs(:)
         procedure(kernel_function), pointer :: kernel
         type(image_transform), allocatable :: images(:)
@@ -389,15 +470,13 @@ contains
         images = image_transforms(elements%symmetry)
         !$omp parallel do default(none) schedule(dynamic) private(l, i, node, row, j, x, y, c, &
         !$omp     s, ts, tn, stress, kj) shared(elements, shear_modulus, nu, ds, dn, &
-        !$omp     shear_traction, normal_traction, remote, gradient, solved, local, rhs, kernel, &
-        !$omp     images)
+        !$omp     shear_traction, normal_traction, remote, gradient, solved, local, weighted, &
+        !$omp     rhs, kernel, images)
         do l = 1, size(solved)
             i = solved(l)
-            c = elements%cos_beta(i)
-            s = elements%sin_beta(i)
             do node = 1, 3
                 row = per_element * (l - 1) + 2 * (node - 1)
-                call node_point(elements, i, node, x, y)
+                call node_point(weighted(l), node, x, y, c, s)
                 stress = remote + gradient * y
                 rhs(row + 1) = shear_traction(i) - &
                                (-(stress(1) - stress(2)) * s * c + stress(3) * (c**2 - s**2))
@@ -416,110 +495,48 @@ contains
         !$omp end parallel do
     end subroutine load_of
 
-    !> Node `node` of element i [length unit].
-    pure subroutine node_point(elements, i, node, x, y)
-        type(element_set), intent(in) :: elements
-        integer, intent(in) :: i, node
-        real(wp), intent(out) :: x, y
+    !> Node `node` of a re-solved element [length unit] and the tangent there.
+    pure subroutine node_point(element, node, x, y, c, s)
+        type(weighted_element), intent(in) :: element
+        integer, intent(in) :: node
+        real(wp), intent(out) :: x, y, c, s
 
-        x = elements%x_mid(i) + node_xi(node) * elements%half_length(i) * elements%cos_beta(i)
-        y = elements%y_mid(i) + node_xi(node) * elements%half_length(i) * elements%sin_beta(i)
+        call point_at(element, 0.5_wp * element%length * (1.0_wp + node_xi(node)), x, y, c, s)
     end subroutine node_point
 
-    !> K of tip k from the re-solve's nodal DDs q, turned from the tip chord to the
-    !> fracture's tangent.
-    pure subroutine tip_k(elements, shear_modulus, nu, solver, q, tips, k, k1, k2)
-        type(element_set), intent(in) :: elements
+    !> K of tip k from the re-solve's nodal DDs q (in the frame of the fracture's tangent at
+    !> the tip).
+    pure subroutine tip_k(shear_modulus, nu, solver, q, tips, k, k1, k2)
         real(wp), intent(in) :: shear_modulus, nu
         type(higher_order_solver), intent(in) :: solver
         real(wp), intent(in) :: q(:)
         type(tip_set), intent(in) :: tips
         integer, intent(in) :: k
         real(wp), intent(out) :: k1, k2
-        real(wp) :: n(3), dn(3), limit(2), s_tip, h, factor, chord_k1, chord_k2, phi
-        integer :: i, col, f, c
+        real(wp) :: n(3), dn(3), limit(2), s_tip, h, factor
+        integer :: l, col, f, c
 
-        i = tips%element(k)
-        h = elements%half_length(i)
-        s_tip = merge(0.0_wp, 2.0_wp * h, tips%side(k) == 1)
-        call nodal_basis(merge(-1.0_wp, 1.0_wp, tips%side(k) == 1), n, dn)
-        col = per_element * (solver%local(i) - 1)
-        do c = 1, 2
-            limit(c) = sum(n * q(col + c:col + per_element:2))
-        end do
-        ! D = limit sqrt(r / h) near the tip: the tip's own factor is sqrt(r / h); another
-        ! (a one-element crack's other tip) is at its value there.
-        associate (e => solver%weighted(solver%local(i)))
+        l = solver%local(tips%element(k))
+        associate (e => solver%weighted(l))
+            h = 0.5_wp * e%length
+            s_tip = merge(0.0_wp, e%length, tips%side(k) == 1)
+            call nodal_basis(merge(-1.0_wp, 1.0_wp, tips%side(k) == 1), n, dn)
+            col = per_element * (l - 1)
+            do c = 1, 2
+                limit(c) = sum(n * q(col + c:col + per_element:2))
+            end do
+            ! D = limit sqrt(r / h) near the tip: the tip's own factor is sqrt(r / h);
+            ! another (a one-element crack's other tip) is at its value there.
             do f = 1, e%factors
                 if (abs(e%r0(f) + e%dr(f) * s_tip) > 1.0e-9_wp * e%length) &
                     limit = limit * sqrt((e%r0(f) + e%dr(f) * s_tip) / (e%r0(f) + e%dr(f) * h))
             end do
         end associate
-        ! The opening 4 (1 - nu) / G K sqrt(r / (2 pi)) behind a tip, with D = -opening.
+        ! The opening 4 (1 - nu) / G K sqrt(r / (2 pi)) behind a tip, with D = -opening;
+        ! + 0 turns -0 into 0.
         factor = -shear_modulus * sqrt(2.0_wp * pi / h) / (4.0_wp * (1.0_wp - nu))
-        chord_k1 = factor * limit(2)
-        chord_k2 = factor * limit(1)
-        ! Cotterell & Rice: a tip turned by phi from the tangent has k_I = K_I - 3/2 phi K_II,
-        ! k_II = K_II + 1/2 phi K_I; inverted to first order. + 0 turns -0 into 0.
-        phi = solver%turn(k)
-        k1 = chord_k1 + 1.5_wp * phi * chord_k2 + 0.0_wp
-        k2 = chord_k2 - 0.5_wp * phi * chord_k1 + 0.0_wp
+        k1 = factor * limit(2) + 0.0_wp
+        k2 = factor * limit(1) + 0.0_wp
     end subroutine tip_k
-
-    !> The angle [rad] from the fracture's tangent at tip k to its tip element's chord, both
-    !> pointing ahead of the tip, counter-clockwise positive, where the chain from the tip
-    !> samples a curve: its first two vertices turn alike (curvatures within
-    !> curvature_agreement, the first turn below max_curve_turn); the tangent is that of
-    !> the circle through the tip and those vertices. 0 elsewhere: on a straight chain, at a
-    !> kink, or with fewer than three elements to tell a curve from a kink.
-    real(wp) function chord_turn(elements, tips, k) result(phi)
-        type(element_set), intent(in) :: elements
-        type(tip_set), intent(in) :: tips
-        integer, intent(in) :: k
-        integer, allocatable :: chain(:), near_side(:)
-        real(wp) :: p(2, 0:3), a(2), b(2), chord(2), tangent(2), centre(2), turn(2)
-        real(wp) :: curvature(2), d
-        integer :: v
-
-        phi = 0.0_wp
-        call tip_chain(elements, tips%element(k), tips%side(k), chain, near_side)
-        if (size(chain) < 3) return
-        p(:, 0) = [tips%x(k), tips%y(k)]
-        do v = 1, 3
-            p(:, v) = far_end(elements, chain(v), near_side(v))
-        end do
-        do v = 1, 2
-            a = p(:, v) - p(:, v - 1)
-            b = p(:, v + 1) - p(:, v)
-            turn(v) = atan2(a(1) * b(2) - a(2) * b(1), dot_product(a, b))
-            curvature(v) = 2.0_wp * turn(v) / (norm2(a) + norm2(b))
-        end do
-        if (turn(1) == 0.0_wp .or. abs(turn(1)) > max_curve_turn) return
-        if (abs(curvature(1) - curvature(2)) > curvature_agreement * &
-            max(abs(curvature(1)), abs(curvature(2)))) return
-        ! The circle's centre relative to the tip, from the tip and the next two vertices.
-        a = p(:, 1) - p(:, 0)
-        b = p(:, 2) - p(:, 0)
-        d = 2.0_wp * (a(1) * b(2) - a(2) * b(1))
-        centre = [(b(2) * dot_product(a, a) - a(2) * dot_product(b, b)) / d, &
-                  (a(1) * dot_product(b, b) - b(1) * dot_product(a, a)) / d]
-        chord = -a / norm2(a)
-        tangent = [centre(2), -centre(1)] / norm2(centre)
-        if (dot_product(tangent, chord) < 0.0_wp) tangent = -tangent
-        phi = atan2(tangent(1) * chord(2) - tangent(2) * chord(1), dot_product(tangent, chord))
-    end function chord_turn
-
-    !> The end of element i away from the tip (near_side the end toward it).
-    pure function far_end(elements, i, near_side) result(p)
-        type(element_set), intent(in) :: elements
-        integer, intent(in) :: i, near_side
-        real(wp) :: p(2)
-
-        if (near_side == 1) then
-            p = [elements%x_end(i), elements%y_end(i)]
-        else
-            p = [elements%x_begin(i), elements%y_begin(i)]
-        end if
-    end function far_end
 
 end module ddc_post_higher_order_k

@@ -8,7 +8,7 @@ module ddc_post_tips
     implicit none
     private
 
-    public :: find_tips, stress_intensity, tip_chain
+    public :: find_tips, stress_intensity, tip_chain, end_neighbours
 
     !> End points closer than this fraction of the shorter element's length are shared.
     real(wp), parameter :: shared_end_tolerance = 1.0e-8_wp
@@ -107,6 +107,26 @@ contains
             end if
         end do
     end subroutine elements_at_end
+
+    !> For every element end, the one other element that shares it (0 where none or more
+    !> than one do) and which end of that element it is (1 begin, 2 end).
+    pure subroutine end_neighbours(elements, neighbour, neighbour_side)
+        !> Elements with geometry computed
+        type(element_set), intent(in) :: elements
+        !> Neighbour and its end at each end (1 begin, 2 end) of each element, shape (2, n)
+        integer, intent(out) :: neighbour(:, :), neighbour_side(:, :)
+        type(end_index) :: index
+        integer :: i, side, count
+
+        index = index_ends(elements)
+        do i = 1, elements%n
+            do side = 1, 2
+                call elements_at_end(elements, index, i, side, neighbour(side, i), &
+                                     neighbour_side(side, i), count)
+                if (count /= 1) neighbour(side, i) = 0
+            end do
+        end do
+    end subroutine end_neighbours
 
     !> The chain of elements from a tip inward: the tip element, then each element that
     !> alone shares the previous one's inner end, up to a junction, the fracture's other
