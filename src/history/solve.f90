@@ -268,6 +268,7 @@ contains
                                   results%tips%element, h%ds(:, k), h%dn(:, k), h%k1(:, k), &
                                   h%k2(:, k))
             if (higher_order) then
+                if (.not. allocated(mu)) allocate (mu(n))
                 if (allocated(h%mu_in_force)) then
                     mu = h%mu_in_force(:, k)
                 else

@@ -15,6 +15,7 @@
 module ddc_model_fingerprint
     use, intrinsic :: iso_fortran_env, only: int8, int64
     use ddc_kinds, only: wp
+    use ddc_contact_options, only: k_auto
     use ddc_model_types, only: model_type, growth_criterion_work, element_set, &
         element_array_action, for_each_element_array
     implicit none
@@ -114,6 +115,8 @@ contains
         end do
         call add_integers(hash, [model%solver%lcp_method, model%solver%open_cohesion, &
                                  model%block_size])
+        ! The K method where it is given (the default leaves earlier fingerprints as they were).
+        if (model%solver%k_method /= k_auto) call add_integers(hash, [model%solver%k_method])
         call add_integers(hash, merge(1, 0, [allocated(model%load_path%vertex), &
                                              model%growth%active]))
         call add_reals(hash, [model%growth%toughness, model%growth%increment, &

@@ -25,7 +25,7 @@ module ddc_post_higher_order_k
         image_transforms, kernel_with_images, resolved_tractions
     use ddc_influence_higher_order, only: weighted_element, arc_element, node_xi, &
         nodal_basis, element_tractions, weight_at, point_at
-    use ddc_post_tips, only: tip_chain, end_neighbours
+    use ddc_post_tips, only: tip_chain, end_neighbours, end_on_mirror
     use ddc_linalg_lu, only: lu_factor, lu_solve
     use ddc_contact_options, only: k_higher_order, k_tip_element
     use ddc_text, only: itoa
@@ -157,6 +157,7 @@ contains
         real(wp), allocatable :: q(:, :), r(:), rows(:, :)
         integer :: k, l, i, node, row
 
+        allocate (rows(5, size(solver%solved)))
         rows = row_conditions(elements, ds, shear_traction, mu, state, solver%solved)
         if (.not. allocated(solver%rows)) then
             call factorize(solver, rows, error)
@@ -305,7 +306,11 @@ contains
             ! The chain as far as it is re-solved.
             c = findloc(local(chain) == 0, .true., dim=1)
             if (c > 0) chain = chain(:c - 1)
+            ! Half the chain; all of it where it ends on a symmetry line (its image is the
+            ! other half), so that a symmetric model is weighted as its full counterpart.
             reach = 0.5_wp * sum(weighted(local(chain))%length)
+            if (end_on_mirror(elements, chain(size(chain)), 3 - near_side(size(chain)))) &
+                reach = 2.0_wp * reach
             r_near = 0.0_wp
             do c = 1, size(chain)
                 associate (e => weighted(local(chain(c))))
@@ -423,14 +428,14 @@ contains
         procedure(kernel_function), pointer :: kernel
         type(image_transform), allocatable :: images(:)
         logical :: use_general
-        real(wp) :: x, y, c, s, s_self
+        real(wp) :: x, y, c, s, s_self, block(2, per_element)
         integer :: l, node, row, m
 
         call select_kernel(elements, .true., use_general, kernel)
         images = image_transforms(elements%symmetry)
         ! Each thread owns the rows of its receiving elements.
         !$omp parallel do default(none) schedule(dynamic) private(l, node, row, m, x, y, c, s, &
-        !$omp     s_self) shared(elements, shear_modulus, nu, solved, weighted, matrix, kernel, &
+        !$omp     s_self, block) shared(elements, shear_modulus, nu, solved, weighted, matrix, kernel, &
         !$omp     images)
         do l = 1, size(solved)
             do node = 1, 3
@@ -440,8 +445,8 @@ contains
                     s_self = merge(0.5_wp * weighted(l)%length * (1.0_wp + node_xi(node)), &
                                    -1.0_wp, m == l)
                     call element_tractions(kernel, images, shear_modulus, nu, weighted(m), &
-                        s_self, x, y, c, s, &
-                        matrix(row + 1:row + 2, per_element * (m - 1) + 1:per_element * m))
+                                           s_self, x, y, c, s, block)
+                    matrix(row + 1:row + 2, per_element * (m - 1) + 1:per_element * m) = block
                 end do
             end do
         end do

@@ -8,7 +8,7 @@ module ddc_post_tips
     implicit none
     private
 
-    public :: find_tips, stress_intensity, tip_chain, end_neighbours
+    public :: find_tips, stress_intensity, tip_chain, end_neighbours, end_on_mirror
 
     !> End points closer than this fraction of the shorter element's length are shared.
     real(wp), parameter :: shared_end_tolerance = 1.0e-8_wp
@@ -47,20 +47,32 @@ contains
         type(element_set), intent(in) :: elements
         type(end_index), intent(in) :: index
         integer, intent(in) :: i, side
-        real(wp) :: x, y, tol
+        real(wp) :: x, y
 
         call end_point(elements, i, side, x, y)
         end_is_shared = .true.
-        tol = shared_end_tolerance * 2.0_wp * elements%half_length(i)
-        associate (sym => elements%symmetry)
-            if ((sym%kind == symmetry_x .or. sym%kind == symmetry_both) .and. &
-                abs(x - sym%xsym) <= tol) return
-            if ((sym%kind == symmetry_y .or. sym%kind == symmetry_both) .and. &
-                abs(y - sym%ysym) <= tol) return
-        end associate
-        if (elements%domain == domain_half_plane .and. abs(y) <= tol) return
+        if (end_on_mirror(elements, i, side)) return
+        if (elements%domain == domain_half_plane .and. &
+            abs(y) <= shared_end_tolerance * 2.0_wp * elements%half_length(i)) return
         end_is_shared = element_at_end(elements, index, i, side) > 0
     end function end_is_shared
+
+    !> True when end `side` (1 begin, 2 end) of element i lies on a symmetry line, where the
+    !> element meets its own image.
+    pure logical function end_on_mirror(elements, i, side)
+        type(element_set), intent(in) :: elements
+        integer, intent(in) :: i, side
+        real(wp) :: x, y, tol
+
+        call end_point(elements, i, side, x, y)
+        tol = shared_end_tolerance * 2.0_wp * elements%half_length(i)
+        associate (sym => elements%symmetry)
+            end_on_mirror = ((sym%kind == symmetry_x .or. sym%kind == symmetry_both) .and. &
+                             abs(x - sym%xsym) <= tol) .or. &
+                            ((sym%kind == symmetry_y .or. sym%kind == symmetry_both) .and. &
+                             abs(y - sym%ysym) <= tol)
+        end associate
+    end function end_on_mirror
 
     !> The lowest-numbered other element with an end at end `side` (1 begin, 2 end) of
     !> element i; 0 if none.

@@ -229,6 +229,7 @@ contains
             real(wp), allocatable :: k1(:), k2(:), mu(:)
 
             associate (e => results%elements, t => results%tips)
+                allocate (k1(t%n), k2(t%n), mu(model%elements%n))
                 k1 = t%k1
                 k2 = t%k2
                 if (allocated(e%mu_in_force)) then
