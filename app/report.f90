@@ -493,8 +493,9 @@ contains
             write (unit, '(a,es12.5,1x,a)') '  peak |ds| = ', maxval(abs(e%ds)), model%length_unit
             write (unit, '(a,es12.5,1x,a)') '  peak opening = ', max(0.0_wp, maxval(-e%dn)), &
                 model%length_unit
-            if (results%tips%n > 0 .and. allocated(results%tips%k_method)) &
+            if (results%tips%n > 0 .and. allocated(results%tips%k_method)) then
                 write (unit, '(a)') '  K: '//k_method_text(results%tips%k_method)
+            end if
             do i = 1, results%tips%n
                 write (unit, '(a,i0,a,2(es12.5,1x),a,es12.5,a,es12.5,1x,a)') '  tip ', i, &
                     ' at ', results%tips%x(i), results%tips%y(i), ' K_I = ', &

@@ -15,9 +15,9 @@
 !> other one solves it is recorded (/history method and fallback).
 !>
 !> Each step records DDs, states, tractions and the stress intensity factors of the tips
-!> (found once; by the higher-order re-solve, factorized once, where it serves:
-!> docs/theory/tips.md#k-along-a-loading-history). The last step's element results, tips and fields are those of
-!> finish_model (ddc_run_model) for the model at the last load.
+!> (found once; by the higher-order re-solve where it serves, assembled once:
+!> docs/theory/tips.md#k-along-a-loading-history). The last step's element results, tips
+!> and fields are those of finish_model (ddc_run_model) for the model at the last load.
 module ddc_history_solve
     use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp

@@ -359,8 +359,9 @@ contains
 
         vanishes_at = .false.
         do f = 1, element%factors
-            if (abs(element%r0(f) + element%dr(f) * s) <= 1.0e-9_wp * element%length) &
+            if (abs(element%r0(f) + element%dr(f) * s) <= 1.0e-9_wp * element%length) then
                 vanishes_at = .true.
+            end if
         end do
     end function vanishes_at
 

@@ -119,7 +119,9 @@ contains
             s%local(s%solved) = [(k, k = 1, size(s%solved))]
             s%weighted = tip_weighted_elements(elements, tips, s%solved, s%local)
             m = per_element * size(s%solved)
-            allocate (s%traction(m, m), s%lu(m, m), s%ipiv(m), stat=stat)
+            allocate (s%traction(m, m), stat=stat)
+            if (stat == 0) allocate (s%lu(m, m), stat=stat)
+            if (stat == 0) allocate (s%ipiv(m), stat=stat)
             if (stat /= 0) then
                 call allocation_failed(error, 'the higher-order re-solve for K of '// &
                     itoa(size(s%solved))//' elements', 2.0_wp * real_bytes * real(m, wp)**2)
@@ -309,8 +311,9 @@ contains
             ! Half the chain; all of it where it ends on a symmetry line (its image is the
             ! other half), so that a symmetric model is weighted as its full counterpart.
             reach = 0.5_wp * sum(weighted(local(chain))%length)
-            if (end_on_mirror(elements, chain(size(chain)), 3 - near_side(size(chain)))) &
+            if (end_on_mirror(elements, chain(size(chain)), 3 - near_side(size(chain)))) then
                 reach = 2.0_wp * reach
+            end if
             r_near = 0.0_wp
             do c = 1, size(chain)
                 associate (e => weighted(local(chain(c))))
@@ -435,8 +438,8 @@ contains
         images = image_transforms(elements%symmetry)
         ! Each thread owns the rows of its receiving elements.
         !$omp parallel do default(none) schedule(dynamic) private(l, node, row, m, x, y, c, s, &
-        !$omp     s_self, block) shared(elements, shear_modulus, nu, solved, weighted, matrix, kernel, &
-        !$omp     images)
+        !$omp     s_self, block) shared(elements, shear_modulus, nu, solved, weighted, matrix, &
+        !$omp     kernel, images)
         do l = 1, size(solved)
             do node = 1, 3
                 row = per_element * (l - 1) + 2 * (node - 1)
@@ -533,8 +536,9 @@ contains
             ! D = limit sqrt(r / h) near the tip: the tip's own factor is sqrt(r / h);
             ! another (a one-element crack's other tip) is at its value there.
             do f = 1, e%factors
-                if (abs(e%r0(f) + e%dr(f) * s_tip) > 1.0e-9_wp * e%length) &
+                if (abs(e%r0(f) + e%dr(f) * s_tip) > 1.0e-9_wp * e%length) then
                     limit = limit * sqrt((e%r0(f) + e%dr(f) * s_tip) / (e%r0(f) + e%dr(f) * h))
+                end if
             end do
         end associate
         ! The opening 4 (1 - nu) / G K sqrt(r / (2 pi)) behind a tip, with D = -opening;

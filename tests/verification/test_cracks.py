@@ -74,7 +74,7 @@ def test_griffith_crack(mode, solve, record):
     row = record(id=f"griffith-mode-{mode.lower()}-k", benchmark=f"Griffith crack, mode {mode}",
                  reference=f"K = s sqrt(pi a) ({TIPS_BY})",
                  quantity=f"K_{mode} at the tips [MPa m^1/2]", value=ks[-1],
-                 reference_value=p * math.sqrt(math.pi), tolerance=1e-2,
+                 reference_value=p * math.sqrt(math.pi), tolerance=1e-4,
                  mesh=mesh_text(LEVELS), order=extrapolate(ks).order)
     assert row["passed"], row
 
@@ -93,14 +93,14 @@ def test_inclined_crack(solve, record):
                      reference=f"K_I = s cos^2 b sqrt(pi a), K_II = s sin b cos b sqrt(pi a) "
                                f"({TIPS_BY})",
                      quantity=f"K_{mode} at the tips [MPa m^1/2]", value=ks[-1],
-                     reference_value=exact * math.sqrt(math.pi), tolerance=1e-2,
+                     reference_value=exact * math.sqrt(math.pi), tolerance=1e-4,
                      mesh=mesh_text(LEVELS), order=extrapolate(ks).order)
         assert row["passed"], row
 
 
-#: Elements on the 90-degree arc: K's error falls as 1/N (3.5 % at 50 elements), so 400
-#: elements are the first power-of-two level within 1 %.
-ARC_LEVELS = (100, 200, 400)
+#: Chords on the 90-degree arc: K by the higher-order re-solve is within 1e-5 from 25 on
+#: and its error falls as 1/N^3 (docs/theory/tips.md#k-from-a-higher-order-re-solve).
+ARC_LEVELS = (25, 50, 100)
 
 
 def arc_crack(n, half_angle, p):
@@ -126,9 +126,8 @@ def test_circular_arc_crack(solve, record):
                      reference="K_I + i K_II = s sqrt(pi R sin a) (cos(a/2) + i sin(a/2)) / "
                                "(1 + sin^2(a/2)) (Sih, Paris & Erdogan 1962)",
                      quantity=f"K_{mode} at the tips [MPa m^1/2]", value=ks[-1],
-                     reference_value=exact, tolerance=1e-2,
-                     mesh=mesh_text(ARC_LEVELS, "chords on the arc; K's error falls as "
-                                                "1/N: 3.5 % at 50"),
+                     reference_value=exact, tolerance=1e-4,
+                     mesh=mesh_text(ARC_LEVELS, "chords on the arc"),
                      order=extrapolate(ks).order)
         assert row["passed"], row
 
@@ -162,7 +161,7 @@ def test_fault_under_linear_stress_drop(solve, record):
                      benchmark="Frictional fault under a stress drop linear along it",
                      reference=f"K_II(+-a) = sqrt(pi a) (A +- B a / 2) ({reference})",
                      quantity=f"K_II at the {label} tip [MPa m^1/2]", value=ks[-1],
-                     reference_value=exact, tolerance=1e-2, mesh=mesh_text(LEVELS),
+                     reference_value=exact, tolerance=1e-4, mesh=mesh_text(LEVELS),
                      order=extrapolate(ks).order)
         assert row["passed"], row
     # The peak slip against the continuum's, found on a fine grid of s.
