@@ -1,67 +1,194 @@
-"""Accuracy of K on a curved crack (docs/theory/tips.md#curved-cracks): a circular-arc
-crack under isotropic tension against its closed form (Sih, Paris & Erdogan 1962): the
-error of one mesh, its observed order and the Richardson value of three meshes
+"""Accuracy of K (docs/theory/tips.md): the higher-order re-solve (the default) against
+closed forms on straight, graded and circular-arc cracks, its order of convergence there
+and on models without a closed form; and the tip element's K (k_method = 'tip_element')
+on the arcs as the guide documents it, with the Richardson value of three meshes
 (ddc2d.richardson)."""
 
 import math
+import re
 
 import h5py
 import numpy as np
 import pytest
 from closed_forms import arc_crack_k
 
-from conftest import solve_text
+from conftest import REPO_ROOT, solve_text
 from ddc2d.richardson import extrapolate
 
 RADIUS, TENSION = 1.0, 1.0
+HEAD = "&model title = 'k', youngs_modulus = 50000.0, poissons_ratio = 0.25 /\n"
 
 
-def arc_model(half_angle, n):
+def polyline(x, y, extra="condition = 'traction', bc_s = 0.0, bc_n = 0.0"):
+    xs = ", ".join(f"{v:.17g}" for v in x)
+    ys = ", ".join(f"{v:.17g}" for v in y)
+    return f"&fracture name = 'crack', x = {xs}, y = {ys}, elements = 1, {extra} /\n"
+
+
+def solve_k(folder, stem, text, k_method="auto"):
+    """K_I, K_II of every tip and the /tips k_method attribute."""
+    text += f"&solver k_method = '{k_method}' /\n"
+    with h5py.File(solve_text(folder, stem, text), "r") as f:
+        return f["tips/k1"][()], f["tips/k2"][()], f["tips"].attrs["k_method"].decode()
+
+
+def arc_text(half_angle, n):
     """The arc in n equal chords, traction-free faces, sxx = syy = TENSION."""
     angles = np.linspace(-half_angle, half_angle, n + 1)
-    x = ", ".join(f"{v:.17g}" for v in RADIUS * np.sin(angles))
-    y = ", ".join(f"{v:.17g}" for v in RADIUS * np.cos(angles))
-    return (f"&model title = 'arc', youngs_modulus = 50000.0, poissons_ratio = 0.25 /\n"
-            f"&remote_stress sxx = {TENSION}, syy = {TENSION}, sxy = 0.0 /\n"
-            f"&fracture name = 'arc', x = {x}, y = {y}, elements = 1,\n"
-            f"          condition = 'traction', bc_s = 0.0, bc_n = 0.0 /\n")
+    return (HEAD + f"&remote_stress sxx = {TENSION}, syy = {TENSION}, sxy = 0.0 /\n"
+            + polyline(RADIUS * np.sin(angles), RADIUS * np.cos(angles)))
 
 
-# Half-angle [degrees], the three meshes [chords], the documented relative errors of K_I
-# and K_II on the first (docs/theory/tips.md#curved-cracks).
-ARCS = {90: ((50, 100, 200), 0.0351, 0.0250), 145: ((145, 290, 580), 0.0663, 0.0127)}
+def graded_x(n, ratio=3.0):
+    """Vertices of a crack from -1 to 1 in n elements whose lengths fall geometrically by
+    `ratio` from the centre to each tip."""
+    half = n // 2
+    lengths = ratio ** (-np.arange(half) / (half - 1))[::-1]
+    lengths /= lengths.sum()
+    left = np.concatenate([[-1.0], -1.0 + np.cumsum(lengths)])
+    return np.concatenate([left, -left[-2::-1]])
+
+
+def order_of(errors):
+    """Observed orders of successive meshes each twice as fine."""
+    errors = np.abs(np.asarray(errors))
+    return np.log2(errors[:-1] / errors[1:])
+
+
+# Half-angle [degrees], meshes [chords], the largest relative error of K_I, K_II allowed on
+# the middle mesh (the issue's 50 and 145 chords; measured 4e-7 and 1e-6, 1.1e-6 and
+# 1.8e-7).
+ARCS = {90: (25, 50, 100), 145: (73, 145, 290)}
 
 
 @pytest.fixture(scope="module", params=sorted(ARCS), ids=lambda a: f"{a}deg")
-def arc(request, tmp_path_factory):
-    """The arc's half-angle and K_I, |K_II| / closed form - 1 at both tips on its three
-    meshes, shape (mesh, mode, tip)."""
+def arc_errors(request, tmp_path_factory):
+    """K_I, |K_II| / closed form - 1 at both tips on the arc's meshes, shape
+    (mesh, mode, tip), by the re-solve."""
     half_angle = request.param
     folder = tmp_path_factory.mktemp("arc")
     exact = arc_crack_k(math.radians(half_angle), RADIUS, TENSION)
     errors = []
-    for n in ARCS[half_angle][0]:
-        text = arc_model(math.radians(half_angle), n)
-        with h5py.File(solve_text(folder, f"arc{n}", text), "r") as f:
-            k1, k2 = f["tips/k1"][()], f["tips/k2"][()]
+    for n in ARCS[half_angle]:
+        k1, k2, method = solve_k(folder, f"arc{n}", arc_text(math.radians(half_angle), n))
+        assert method == "higher_order"
+        errors.append((k1 / exact[0] - 1.0, np.abs(k2) / exact[1] - 1.0))
+    return np.array(errors)
+
+
+def test_arc_k_within_1e_5_on_the_issue_meshes(arc_errors):
+    """90 degrees on 50 chords, 145 degrees on 145: K_I and K_II within 1e-5 (the issue
+    asks for 1 %), the same at both tips."""
+    assert np.max(np.abs(arc_errors[1])) < 1e-5
+    assert np.max(np.abs(arc_errors[:, :, 0] - arc_errors[:, :, 1])) < 1e-7
+
+
+def test_arc_k_converges_at_least_as_one_over_n_squared(arc_errors):
+    """Observed orders of K_I and K_II over the three meshes (measured 3.0-3.3)."""
+    for mode in (0, 1):
+        assert np.all(order_of(arc_errors[:, mode, 0]) > 2.5)
+
+
+@pytest.mark.parametrize("graded", [False, True], ids=["equal", "graded_3_to_1"])
+def test_straight_crack_k(tmp_path, graded):
+    """Straight crack of half-length 1 under syy = 1, sxy = 0.5, in 10, 20, 40 equal
+    elements or elements graded 3:1 toward the tips: K within 5e-6 of sqrt(pi) and
+    0.5 sqrt(pi) on 20 elements (the issue asks for 0.5 %; measured 9.5e-7 and 2.2e-6),
+    order above 2.5 (measured 2.9-3.1)."""
+    errors = []
+    for n in (10, 20, 40):
+        x = graded_x(n) if graded else np.linspace(-1.0, 1.0, n + 1)
+        text = (HEAD + "&remote_stress sxx = 0.0, syy = 1.0, sxy = 0.5 /\n"
+                + polyline(x, 0.0 * x))
+        k1, k2, _ = solve_k(tmp_path, f"straight{n}", text)
+        errors.append(max(np.max(np.abs(k1 / math.sqrt(math.pi) - 1.0)),
+                          np.max(np.abs(k2 / (0.5 * math.sqrt(math.pi)) - 1.0))))
+    assert errors[1] < 5e-6
+    assert np.all(order_of(errors) > 2.5)
+
+
+def test_tip_element_k_on_a_graded_crack_is_what_the_guide_says(tmp_path):
+    """The tip element's K on 20 elements graded 3:1: 3.8 % high (docs/theory/tips.md
+    #graded-tips), flagged graded; the re-solve flags nothing."""
+    x = graded_x(20)
+    text = HEAD + "&remote_stress sxx = 0.0, syy = 1.0, sxy = 0.0 /\n" + polyline(x, 0.0 * x)
+    k1, _, method = solve_k(tmp_path, "tip_element", text, "tip_element")
+    assert method.startswith("tip_element")
+    assert k1 / math.sqrt(math.pi) - 1.0 == pytest.approx([0.038, 0.038], abs=1e-3)
+    with h5py.File(tmp_path / "tip_element.h5", "r") as f:
+        assert np.all(f["tips/graded"][()] == 1)
+    solve_k(tmp_path, "re_solve", text)
+    with h5py.File(tmp_path / "re_solve.h5", "r") as f:
+        assert np.all(f["tips/graded"][()] == 0)
+
+
+def scaled(example, factor):
+    """input/<example> with every fracture's element count times `factor`, without its
+    observation sets."""
+    text = (REPO_ROOT / "input" / example).read_text()
+    text = re.sub(r"elements\s*=\s*(\d+)",
+                  lambda m: f"elements = {round(int(m.group(1)) * factor)}", text)
+    return re.sub(r"&(grid|line|points)\b.*?/\s*\n", "", text, flags=re.S)
+
+
+@pytest.mark.parametrize("example, tip, factors, tolerance", [
+    ("joint_set_pressurized_crack.nml", 0, (0.5, 1.0, 2.0), 1e-3),
+    ("en_echelon.nml", 2, (0.25, 0.5, 1.0), 1e-4),
+    ("branching_fault.nml", 0, (0.5, 1.0, 2.0), 1e-4),
+])
+def test_example_k_converges(tmp_path, example, tip, factors, tolerance):
+    """Models without a closed form (a pressurized crack among elastic joints, echelon and
+    branching frictional faults): |K| of one tip on three meshes, each twice as fine as the
+    one before, differs between the first two by less than `tolerance` (relative; measured
+    1.9e-4, 2.8e-5, 1e-6), and the differences shrink at least fourfold (measured 6.9, 6.5,
+    and to rounding) where the tip element's K on the joint set moves by 1.5 % between the
+    example's mesh and one twice as fine. (The joint set's coarser meshes, a quarter of the
+    example's, are not yet converged in the joints' states: K moves by 2e-4 twice.)"""
+    values = []
+    for factor in factors:
+        k1, k2, method = solve_k(tmp_path, f"level{factor}", scaled(example, factor),
+                                 "higher_order")
+        assert method == "higher_order"
+        values.append(math.hypot(k1[tip], k2[tip]))
+    values = np.array(values)
+    differences = np.abs(np.diff(values)) / values[-1]
+    assert differences[0] < tolerance
+    assert differences[1] < differences[0] / 4
+
+
+# The tip element's K on the arcs (k_method = 'tip_element'): the documented relative
+# errors of K_I and K_II on the coarsest of three meshes (docs/theory/tips.md
+# #curved-cracks-and-the-tip-element).
+TIP_ELEMENT_ARCS = {90: ((50, 100, 200), 0.0351, 0.0250),
+                    145: ((145, 290, 580), 0.0663, 0.0127)}
+
+
+@pytest.fixture(scope="module", params=sorted(TIP_ELEMENT_ARCS), ids=lambda a: f"{a}deg")
+def tip_element_arc(request, tmp_path_factory):
+    half_angle = request.param
+    folder = tmp_path_factory.mktemp("arc_tip_element")
+    exact = arc_crack_k(math.radians(half_angle), RADIUS, TENSION)
+    errors = []
+    for n in TIP_ELEMENT_ARCS[half_angle][0]:
+        k1, k2, _ = solve_k(folder, f"arc{n}", arc_text(math.radians(half_angle), n),
+                            "tip_element")
         errors.append((k1 / exact[0] - 1.0, np.abs(k2) / exact[1] - 1.0))
     return half_angle, np.array(errors)
 
 
-def test_arc_error_as_documented(arc):
-    """The coarsest mesh's errors as in the table of docs/theory/tips.md, the same at both
-    tips."""
-    half_angle, errors = arc
-    _, k1_error, k2_error = ARCS[half_angle]
+def test_tip_element_arc_error_as_documented(tip_element_arc):
+    half_angle, errors = tip_element_arc
+    _, k1_error, k2_error = TIP_ELEMENT_ARCS[half_angle]
     assert errors[0, 0] == pytest.approx([k1_error, k1_error], abs=5e-4)
     assert errors[0, 1] == pytest.approx([k2_error, k2_error], abs=5e-4)
 
 
 @pytest.mark.parametrize("mode", [0, 1], ids=["K_I", "K_II"])
-def test_arc_error_falls_about_as_one_over_n_and_extrapolates(arc, mode):
-    """Observed order 0.6-0.9, below 1 and far from 2 (docs/theory/tips.md#curved-cracks),
-    and the Richardson value of the three meshes within 0.5 % of the closed form."""
-    _, errors = arc
+def test_tip_element_arc_error_falls_about_as_one_over_n_and_extrapolates(tip_element_arc,
+                                                                          mode):
+    """Observed order 0.6-0.9, below 1 and far from 2, and the Richardson value of the
+    three meshes within 0.5 % of the closed form."""
+    _, errors = tip_element_arc
     result = extrapolate(1.0 + errors[:, mode, 0])
     assert result.differences_shrink
     assert 0.45 < result.order < 1.05
