@@ -182,8 +182,13 @@ contains
         end do
         call lu_solve(solver%lu, solver%ipiv, q)
         do k = 1, tips%n
-            if (solver%local(tips%element(k)) == 0) cycle
+            l = solver%local(tips%element(k))
+            if (l == 0) cycle
             call tip_k(shear_modulus, nu, solver, q(:, 1), tips, k, k1(k), k2(k))
+            ! A DD held at zero on the tip element has no K (exactly: the factorization's
+            ! pivots may leave rounding in it).
+            if (rows(1, l) == 0.0_wp) k2(k) = 0.0_wp
+            if (rows(4, l) == 0.0_wp) k1(k) = 0.0_wp
         end do
     end subroutine higher_order_k
 
