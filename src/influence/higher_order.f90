@@ -315,7 +315,7 @@ contains
         type(weighted_element), intent(in) :: element
         real(wp), intent(in) :: a, b, side, distance
         type(quadrature_rule), intent(inout) :: rule
-        real(wp) :: e, o, v, width, t, jacobian
+        real(wp) :: e, o, v, width, t, jacobian, x, w
         integer :: pieces, p, g, points
         logical :: tip_a, tip_b, far
 
@@ -335,7 +335,8 @@ contains
         width = 1.0_wp / pieces
         do p = 1, pieces
             do g = 1, points
-                v = width * (p - 1 + 0.5_wp * (node_of(g, points) + 1.0_wp))
+                call gauss_point(g, points, x, w)
+                v = width * (p - 1 + 0.5_wp * (x + 1.0_wp))
                 rule%n = rule%n + 1
                 if (tip_a .or. tip_b) then
                     t = e + (o - e) * v**2
@@ -345,7 +346,7 @@ contains
                     jacobian = b - a
                 end if
                 rule%t(rule%n) = t
-                rule%w(rule%n) = 0.5_wp * width * weight_of(g, points) * jacobian
+                rule%w(rule%n) = 0.5_wp * width * w * jacobian
                 rule%side(rule%n) = side
             end do
         end do
@@ -365,24 +366,19 @@ contains
         end do
     end function vanishes_at
 
-    pure real(wp) function node_of(g, points)
+    !> Point g of the Gauss-Legendre rule of `points` (4 or 8) points on [-1, 1], and its
+    !> weight.
+    pure subroutine gauss_point(g, points, x, w)
         integer, intent(in) :: g, points
+        real(wp), intent(out) :: x, w
 
         if (points == 4) then
-            node_of = gauss_4_x(g)
+            x = gauss_4_x(g)
+            w = gauss_4_w(g)
         else
-            node_of = gauss_8_x(g)
+            x = gauss_8_x(g)
+            w = gauss_8_w(g)
         end if
-    end function node_of
-
-    pure real(wp) function weight_of(g, points)
-        integer, intent(in) :: g, points
-
-        if (points == 4) then
-            weight_of = gauss_4_w(g)
-        else
-            weight_of = gauss_8_w(g)
-        end if
-    end function weight_of
+    end subroutine gauss_point
 
 end module ddc_influence_higher_order

@@ -128,7 +128,7 @@ def scaled(example, factor):
     text = (REPO_ROOT / "input" / example).read_text()
     text = re.sub(r"elements\s*=\s*(\d+)",
                   lambda m: f"elements = {round(int(m.group(1)) * factor)}", text)
-    return re.sub(r"&(grid|line|points)\b.*?/\s*\n", "", text, flags=re.S)
+    return re.sub(r"&(grid|line|points)\b.*?/\s*\n", "", text, flags=re.DOTALL)
 
 
 @pytest.mark.parametrize("example, tip, factors, tolerance", [
