@@ -1,17 +1,17 @@
 !> K_I and K_II by a higher-order re-solve (docs/theory/tips.md#k-from-a-higher-order-re-solve).
 !>
 !> The traction and contact elements of the fractures that have tips are solved again with
-!> higher-order elements (ddc_influence_higher_order), the other elements acting with their
-!> constant DDs. Each re-solved element keeps its condition in the solve (row_conditions),
-!> at each of its three nodes, with the solve's values on the element: a traction element
-!> its tractions, a closed contact element its DD or joint law and the Coulomb law where it
-!> slips. Where the
-!> tractions are prescribed this is the model itself, solved to higher order. K comes from
-!> the limit of D / sqrt(r) at each tip. Where the fracture near a tip is a sampled curve,
-!> the tip element's chord, turned from the curve's tangent, is turned back to it
-!> (Cotterell & Rice 1980, to first order). The traction rows depend on the geometry alone
-!> and are assembled once (prepare_higher_order); the system is factorized again only when
-!> the contact states change (higher_order_k, once per step of a loading history).
+!> higher-order elements (ddc_influence_higher_order: quadratic, square-root weighted over
+!> the first half of each tip's chain, circular arcs where the polyline samples a curve),
+!> the other elements acting with their constant DDs. Each re-solved element keeps its
+!> condition in the solve (row_conditions) at each of its three nodes, with the solve's
+!> values on the element: a traction element its tractions, a closed contact element its
+!> DD or joint law and the Coulomb law where it slips. Where the tractions are prescribed
+!> this is the model itself, solved to higher order. K comes from the limit of D / sqrt(r)
+!> at each tip, in the frame of the fracture's tangent there. The traction rows depend on
+!> the geometry alone and are assembled once (prepare_higher_order); the system is
+!> factorized again only when the conditions change (higher_order_k, once per step of a
+!> loading history).
 module ddc_post_higher_order_k
     use ddc_kinds, only: wp
     use ddc_constants, only: pi
@@ -33,10 +33,9 @@ module ddc_post_higher_order_k
     private
 
     public :: higher_order_solver, prepare_higher_order, higher_order_k, uses_higher_order
-    public :: higher_order_max_elements
 
-    !> k_method = 'auto' re-solves at most this many elements (a dense matrix of 6 unknowns
-    !> per element: 288 MB here)
+    !> k_method = 'auto' re-solves at most this many elements (two dense matrices of 6
+    !> unknowns per element, the traction rows and the factors: 576 MB here)
     integer, parameter :: higher_order_max_elements = 1000
     !> Unknowns per element: three nodes, two DDs
     integer, parameter :: per_element = 6
@@ -107,7 +106,7 @@ contains
         real(wp), intent(in) :: shear_modulus, nu
         !> The tips (ddc_post_tips)
         type(tip_set), intent(in) :: tips
-        !> The factorized re-solve
+        !> The re-solve, its traction rows assembled (factorized by higher_order_k)
         type(higher_order_solver), intent(out) :: solver
         !> Allocated when the matrices do not fit in memory
         type(error_type), allocatable, intent(out) :: error
