@@ -27,7 +27,8 @@ module ddc_influence_assembly
     use ddc_kinds, only: wp
     use ddc_model_types, only: element_set, symmetry_options, symmetry_x, symmetry_y, &
         symmetry_both, domain_half_plane
-    use ddc_influence_kernel, only: dd_kernel, dd_kernel_global, face_negative
+    use ddc_influence_kernel, only: dd_kernel, dd_kernel_global, dd_stress_global, &
+        face_negative
     use ddc_influence_kernel_half_plane, only: dd_kernel_half_plane
     use ddc_constants, only: pi
     implicit none
@@ -82,7 +83,7 @@ contains
 
     !> Whether the general path (the kernel pair by pair) serves, and its kernel: always in
     !> the half plane (the fast paths are full-plane only), in the full plane when asked.
-    subroutine select_kernel(elements, general, use_general, kernel)
+    subroutine select_kernel(elements, general, use_general, kernel, stress_only)
         !> Elements (their domain is used)
         type(element_set), intent(in) :: elements
         !> Take the general path even in the full plane (tests; absent: false)
@@ -91,6 +92,8 @@ contains
         logical, intent(out) :: use_general
         !> Associated with dd_kernel_half_plane or dd_kernel_global
         procedure(kernel_function), pointer, intent(out) :: kernel
+        !> The caller needs stresses only: in the full plane dd_stress_global (absent: false)
+        logical, intent(in), optional :: stress_only
 
         use_general = elements%domain == domain_half_plane
         if (present(general)) use_general = use_general .or. general
@@ -98,6 +101,9 @@ contains
             kernel => dd_kernel_half_plane
         else
             kernel => dd_kernel_global
+            if (present(stress_only)) then
+                if (stress_only) kernel => dd_stress_global
+            end if
         end if
     end subroutine select_kernel
 

@@ -11,7 +11,7 @@ module ddc_influence_kernel
     implicit none
     private
 
-    public :: dd_kernel_at, dd_kernel_global, kernel_functions
+    public :: dd_kernel_at, dd_kernel_global, dd_stress_global, kernel_functions
     public :: face_negative, face_positive
 
     !> On the element itself (y = 0, |x| < a) the displacement jumps: which face to report
@@ -67,23 +67,37 @@ contains
         real(wp), intent(in) :: x, y, a, shear_modulus, nu
         integer, intent(in) :: face
         type(dd_kernel) :: k
-        real(wp) :: f(2:7), g2
+        real(wp) :: f(2:7)
 
         call kernel_functions(x, y, a, nu, face, f)
-        g2 = 2.0_wp * shear_modulus
         ! Unit Ds
         k%ux(1) = 2.0_wp * (1.0_wp - nu) * f(3) - y * f(5)
         k%uy(1) = (1.0_wp - 2.0_wp * nu) * f(2) - y * f(4)
+        ! Unit Dn
+        k%ux(2) = -(1.0_wp - 2.0_wp * nu) * f(2) - y * f(4)
+        k%uy(2) = 2.0_wp * (1.0_wp - nu) * f(3) + y * f(5)
+        call local_stress(f(4:7), y, shear_modulus, k)
+    end function dd_kernel_at
+
+    !> The stresses of C&S eq. 5.2.5 from F4..F7 at local y, into k.
+    pure subroutine local_stress(f, y, shear_modulus, k)
+        !> F4..F7
+        real(wp), intent(in) :: f(4:7)
+        !> Local y [length unit], shear modulus [stress unit]
+        real(wp), intent(in) :: y, shear_modulus
+        type(dd_kernel), intent(inout) :: k
+        real(wp) :: g2
+
+        g2 = 2.0_wp * shear_modulus
+        ! Unit Ds
         k%sxx(1) = g2 * (2.0_wp * f(4) + y * f(6))
         k%syy(1) = g2 * (-y * f(6))
         k%sxy(1) = g2 * (-f(5) + y * f(7))
         ! Unit Dn
-        k%ux(2) = -(1.0_wp - 2.0_wp * nu) * f(2) - y * f(4)
-        k%uy(2) = 2.0_wp * (1.0_wp - nu) * f(3) + y * f(5)
         k%sxx(2) = g2 * (-f(5) + y * f(7))
         k%syy(2) = g2 * (-f(5) - y * f(7))
         k%sxy(2) = g2 * (-y * f(6))
-    end function dd_kernel_at
+    end subroutine local_stress
 
     !> Global-frame displacement and stress at global point (x, y) for unit Ds and unit Dn on
     !> the element with midpoint (xm, ym), half-length a and direction (cosb, sinb).
@@ -99,19 +113,64 @@ contains
         integer, intent(in) :: face
         type(dd_kernel) :: k
         type(dd_kernel) :: kl
-        real(wp) :: xl, yl, c2, s2, cs
+        real(wp) :: xl, yl
 
         xl = (x - xm) * cosb + (y - ym) * sinb
         yl = -(x - xm) * sinb + (y - ym) * cosb
         kl = dd_kernel_at(xl, yl, a, shear_modulus, nu, face)
+        k%ux = kl%ux * cosb - kl%uy * sinb
+        k%uy = kl%ux * sinb + kl%uy * cosb
+        call global_stress(kl, cosb, sinb, k)
+    end function dd_kernel_global
+
+    !> The stress part of dd_kernel_global (its displacements 0): F4..F7 alone, without the
+    !> logarithms and angles of F2 and F3, for callers that need tractions only.
+    pure function dd_stress_global(x, y, xm, ym, a, cosb, sinb, shear_modulus, nu, face) &
+        result(k)
+        !> Observation point [length unit]
+        real(wp), intent(in) :: x, y
+        !> Element midpoint [length unit], half-length [length unit], direction cosines
+        real(wp), intent(in) :: xm, ym, a, cosb, sinb
+        !> Shear modulus [stress unit] and Poisson's ratio
+        real(wp), intent(in) :: shear_modulus, nu
+        !> Face of a point on the element itself: it picks a displacement, and there is none
+        !> here (the stress is the same on both faces)
+        integer, intent(in) :: face
+        type(dd_kernel) :: k
+        type(dd_kernel) :: kl
+        real(wp) :: xl, yl, con, xa, xb, r1s, r2s, f(4:7)
+
+        xl = (x - xm) * cosb + (y - ym) * sinb
+        yl = -(x - xm) * sinb + (y - ym) * cosb
+        con = 1.0_wp / (4.0_wp * pi * (1.0_wp - nu))
+        xa = xl - a
+        xb = xl + a
+        r1s = xa**2 + yl**2
+        r2s = xb**2 + yl**2
+        f(4) = con * (yl / r1s - yl / r2s)
+        f(5) = con * (xa / r1s - xb / r2s)
+        f(6) = con * ((xa**2 - yl**2) / r1s**2 - (xb**2 - yl**2) / r2s**2)
+        f(7) = 2.0_wp * con * yl * (xa / r1s**2 - xb / r2s**2)
+        call local_stress(f, yl, shear_modulus, kl)
+        ! No displacement, on either face.
+        k%ux = real(0 * face, wp)
+        k%uy = 0.0_wp
+        call global_stress(kl, cosb, sinb, k)
+    end function dd_stress_global
+
+    !> The local stresses of kl in the global frame of an element with direction (cosb, sinb).
+    pure subroutine global_stress(kl, cosb, sinb, k)
+        type(dd_kernel), intent(in) :: kl
+        real(wp), intent(in) :: cosb, sinb
+        type(dd_kernel), intent(inout) :: k
+        real(wp) :: c2, s2, cs
+
         c2 = cosb**2
         s2 = sinb**2
         cs = cosb * sinb
-        k%ux = kl%ux * cosb - kl%uy * sinb
-        k%uy = kl%ux * sinb + kl%uy * cosb
         k%sxx = kl%sxx * c2 - 2.0_wp * kl%sxy * cs + kl%syy * s2
         k%syy = kl%sxx * s2 + 2.0_wp * kl%sxy * cs + kl%syy * c2
         k%sxy = (kl%sxx - kl%syy) * cs + kl%sxy * (c2 - s2)
-    end function dd_kernel_global
+    end subroutine global_stress
 
 end module ddc_influence_kernel

@@ -438,7 +438,7 @@ contains
         real(wp) :: x, y, c, s, s_self, block(2, per_element)
         integer :: l, node, row, m
 
-        call select_kernel(elements, .true., use_general, kernel)
+        call select_kernel(elements, .true., use_general, kernel, stress_only=.true.)
         images = image_transforms(elements%symmetry)
         ! Each thread owns the rows of its receiving elements.
         !$omp parallel do default(none) schedule(dynamic) private(l, node, row, m, x, y, c, s, &
@@ -478,7 +478,7 @@ contains
         real(wp) :: x, y, c, s, ts(2), tn(2), stress(3)
         integer :: l, i, node, row, j
 
-        call select_kernel(elements, .true., use_general, kernel)
+        call select_kernel(elements, .true., use_general, kernel, stress_only=.true.)
         images = image_transforms(elements%symmetry)
         !$omp parallel do default(none) schedule(dynamic) private(l, i, node, row, j, x, y, c, &
         !$omp     s, ts, tn, stress, kj) shared(elements, shear_modulus, nu, ds, dn, &
