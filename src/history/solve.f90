@@ -75,7 +75,7 @@ contains
         type(restart_state), intent(in), optional :: restart
         type(condensed_contact), target :: sys
         type(contact_session) :: session
-        ! The tips' K by the higher-order re-solve, factorized once for every step
+        ! The tips' K by the higher-order re-solve: assembled once, factorized as states change
         type(higher_order_solver) :: k_solver
         logical :: higher_order
         character(len=:), allocatable :: why_not
