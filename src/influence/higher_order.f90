@@ -15,12 +15,11 @@
 !>     element = D(m) [y(0), y(L)] - int_0^m D'(t) [y(0), y(t)] dt + int_m^L D'(t) [y(t), y(L)] dt,
 !> with [p, q] the constant segment from p to q, D' = dD/ds in the frame of each segment
 !> (on an arc the frame turns: D' holds kappa times D besides the derivatives of the
-!> components). The integrals are
-!> Gauss-Legendre sums: near a tip in t = tip + (m - tip) v^2, where D' ~ 1/sqrt(r) becomes
-!> smooth in v; in pieces no longer than the receiver's distance where it is close; and for
-!> a receiver on the element itself as a Cauchy principal value, by points mirrored about
-!> the receiver (the stress of a segment at a point on its line grows as the inverse of the
-!> distance to its end).
+!> components). The integrals are Gauss-Legendre sums: near a tip in t = tip + (m - tip) v^2,
+!> where D' ~ 1/sqrt(r) becomes smooth in v; in pieces no longer than the receiver's
+!> distance where it is close; and for a receiver on the element itself as a Cauchy
+!> principal value, by points mirrored about the receiver (the stress of a segment at a
+!> point on its line grows as the inverse of the distance to its end).
 module ddc_influence_higher_order
     use ddc_kinds, only: wp
     use ddc_influence_kernel, only: face_negative
@@ -107,7 +106,6 @@ contains
 
         half = 0.5_wp * element%curvature * s
         ! The chord from the begin: length s sin(half) / half, at the angle of its midpoint.
-        factor = 1.0_wp
         if (abs(half) > 1.0e-4_wp) then
             factor = sin(half) / half
         else

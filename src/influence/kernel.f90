@@ -55,11 +55,29 @@ contains
         else
             f(3) = -con * (atan2(y, xm) - atan2(y, xp))
         end if
+        call stress_functions(x, y, a, nu, f(4:7))
+    end subroutine kernel_functions
+
+    !> F4..F7 alone (the stresses need no more): rational in the coordinates.
+    pure subroutine stress_functions(x, y, a, nu, f)
+        !> Local coordinates of the point [length unit]
+        real(wp), intent(in) :: x, y
+        !> Element half-length [length unit] and Poisson's ratio
+        real(wp), intent(in) :: a, nu
+        !> F4 .. F7, shape (4:7)
+        real(wp), intent(out) :: f(4:7)
+        real(wp) :: con, xm, xp, r1s, r2s
+
+        con = 1.0_wp / (4.0_wp * pi * (1.0_wp - nu))
+        xm = x - a
+        xp = x + a
+        r1s = xm**2 + y**2
+        r2s = xp**2 + y**2
         f(4) = con * (y / r1s - y / r2s)
         f(5) = con * (xm / r1s - xp / r2s)
         f(6) = con * ((xm**2 - y**2) / r1s**2 - (xp**2 - y**2) / r2s**2)
         f(7) = 2.0_wp * con * y * (xm / r1s**2 - xp / r2s**2)
-    end subroutine kernel_functions
+    end subroutine stress_functions
 
     !> Local displacement and stress at (x, y) for unit Ds and unit Dn (C&S eq. 5.2.5).
     !> The point must not be an element end (singular there).
@@ -138,19 +156,11 @@ contains
         integer, intent(in) :: face
         type(dd_kernel) :: k
         type(dd_kernel) :: kl
-        real(wp) :: xl, yl, con, xa, xb, r1s, r2s, f(4:7)
+        real(wp) :: xl, yl, f(4:7)
 
         xl = (x - xm) * cosb + (y - ym) * sinb
         yl = -(x - xm) * sinb + (y - ym) * cosb
-        con = 1.0_wp / (4.0_wp * pi * (1.0_wp - nu))
-        xa = xl - a
-        xb = xl + a
-        r1s = xa**2 + yl**2
-        r2s = xb**2 + yl**2
-        f(4) = con * (yl / r1s - yl / r2s)
-        f(5) = con * (xa / r1s - xb / r2s)
-        f(6) = con * ((xa**2 - yl**2) / r1s**2 - (xb**2 - yl**2) / r2s**2)
-        f(7) = 2.0_wp * con * yl * (xa / r1s**2 - xb / r2s**2)
+        call stress_functions(xl, yl, a, nu, f)
         call local_stress(f, yl, shear_modulus, kl)
         ! No displacement, on either face.
         k%ux = real(0 * face, wp)
