@@ -55,7 +55,7 @@ module ddc_growth_solver
         refactor_full_update, counts_of
     use ddc_post_tips, only: find_tips
     use ddc_growth_tip_zone, only: calibrate_tips
-    use ddc_run_model, only: run_model, finish_model, evaluate_fields
+    use ddc_run_model, only: run_model, finish_model, evaluate_fields, model_load
     use ddc_growth_influence, only: grow_influence, unknown_map
     implicit none
     private
@@ -293,21 +293,14 @@ contains
         type(model_results), intent(in) :: current
         !> Its complete results
         type(model_results), intent(out) :: results
-        real(wp), allocatable :: remote_shear(:), remote_normal(:)
         type(solver_record) :: last
-        integer :: n
 
         results = current
         last = results%solver
         if (solver%kept) then
-            n = model%elements%n
-            allocate (remote_shear(n), remote_normal(n))
-            call resolve_remote_stress(model%elements, model%sxx, model%syy, model%sxy, &
-                                       remote_shear, remote_normal, model%stress_gradient)
             ! finish_model computes the tractions anew, with the face displacements.
             deallocate (results%elements%shear_traction, results%elements%normal_traction)
-            call finish_model(model, remote_shear, remote_normal, results, &
-                              matrix=solver%base_matrix)
+            call finish_model(model, model_load(model), results, matrix=solver%base_matrix)
         else
             call evaluate_fields(model, results)
         end if

@@ -1,14 +1,16 @@
-!> An engine that does the heavy work of one model run in its own way: the solve, the
-!> midpoint responses and the fields. run_model (ddc_run_model) holds the steps around them
-!> once and does the work in this process when given no engine; a distributed engine
-!> (src/parallel/, MPI build) spreads it over processes.
+!> An engine that does the heavy work of one model run in its own way: the elastic
+!> operator of the contact run, the midpoint responses and the fields. run_model
+!> (ddc_run_model) holds the steps around them once and does the work in this process when
+!> given no engine; a distributed engine (src/parallel/, MPI build) spreads it over
+!> processes.
 module ddc_run_engine
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
     use ddc_model_types, only: element_set
-    use ddc_model_results, only: solver_record, field_result
+    use ddc_model_medium, only: elastic_medium
+    use ddc_model_results, only: field_result
     use ddc_contact_options, only: solver_options
-    use ddc_contact_fault_law, only: fault_law
+    use ddc_solve_operator, only: elastic_operator
     implicit none
     private
 
@@ -18,8 +20,8 @@ module ddc_run_engine
     !> distributed run with the same arguments.
     type, abstract :: model_engine
     contains
-        !> Displacement discontinuities, states and the solver record
-        procedure(solve_interface), deferred :: solve
+        !> The operator the contact run solves on
+        procedure(operator_interface), deferred :: make_operator
         !> Induced tractions and face displacements at every element midpoint
         procedure(response_interface), deferred :: midpoint_response
         !> Displacement and stress at observation points
@@ -27,36 +29,23 @@ module ddc_run_engine
     end type model_engine
 
     abstract interface
-        !> Solve for the DDs of every element (contact elements with the contact solver,
-        !> TWODD-style ones by their conditions).
-        subroutine solve_interface(this, elements, shear_modulus, nu, remote_shear, &
-                                   remote_normal, options, ds, dn, state, record, error, &
-                                   law)
-            import :: model_engine, element_set, solver_options, solver_record, error_type, &
-                fault_law, wp
+        !> The elastic operator of a medium that the contact run of the model solves on
+        !> (ddc_solve_operator), timed into its record.
+        subroutine operator_interface(this, medium, options, operator, error)
+            import :: model_engine, elastic_medium, solver_options, elastic_operator, &
+                error_type
             implicit none
             !> The engine
             class(model_engine), intent(inout) :: this
-            !> Elements with geometry computed; contact elements carry their total pressure
-            type(element_set), intent(in) :: elements
-            !> Shear modulus [stress unit] and Poisson's ratio [-]
-            real(wp), intent(in) :: shear_modulus, nu
-            !> Remote stress resolved on each element [stress unit], shape (n)
-            real(wp), intent(in) :: remote_shear(:), remote_normal(:)
+            !> The medium, geometry computed
+            type(elastic_medium), intent(in) :: medium
             !> Options of the contact solver
             type(solver_options), intent(in) :: options
-            !> Displacement discontinuities [length unit], shape (n)
-            real(wp), intent(out) :: ds(:), dn(:)
-            !> Element states (state_free for TWODD-style elements), shape (n)
-            integer, intent(out) :: state(:)
-            !> Method, residual, certificate and timings are filled in
-            type(solver_record), intent(inout) :: record
-            !> Set when the model has no solution or the solver failed
+            !> The operator
+            class(elastic_operator), allocatable, intent(out) :: operator
+            !> Set when the operator cannot be made
             type(error_type), allocatable, intent(out) :: error
-            !> The fault law of every element with the values in force at the end (contact
-            !> models; see ddc_solve_frictional)
-            type(fault_law), intent(out), optional :: law
-        end subroutine solve_interface
+        end subroutine operator_interface
 
         !> Induced tractions and negative-face displacements at every element midpoint.
         subroutine response_interface(this, elements, shear_modulus, nu, ds, dn, &

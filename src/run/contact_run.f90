@@ -1,0 +1,489 @@
+!> The contact run (docs/ARCHITECTURE.md#the-contact-run): what every driver steps. It owns
+!> the medium's elastic operator (dense, hierarchical or distributed: ddc_solve_operator),
+!> the fault law of the contact elements with its values in force and the slip they hold,
+!> elastic joints, the contact session the steps share (ddc_contact_formulation: the
+!> Newton method's states and factors, Lemke's LCP and basis) and the K method.
+!>
+!> - prepare: once per geometry (assembly, condensation of the TWODD-style elements,
+!>   compression or distribution of A, the joints' system);
+!> - step: one equilibrium under a load (remote stress and fluid pressure), from the
+!>   friction memory and strengths in force the steps before left;
+!> - tip_k: the stress intensity factors of a step's DDs by the run's K method;
+!> - finish: free what the run holds.
+!> A one-shot solve is prepare + step; a loading history a loop of steps; growth solves
+!> each grown geometry on a run of its own, with the memory carried over (hold). What a run
+!> cannot do with a model is answered by run_refusal, once.
+!>
+!> A run is not copied: its operator points into memory the run owns.
+module ddc_run_contact_run
+    use ddc_kinds, only: wp
+    use ddc_error, only: error_type, set_error, exit_bad_input
+    use ddc_text, only: itoa
+    use ddc_model_types, only: model_type, element_set, condition_contact, rigid_joint
+    use ddc_model_medium, only: elastic_medium
+    use ddc_model_results, only: solver_record, state_free, tip_set, element_results
+    use ddc_model_loads, only: resolve_remote_stress, total_pressure
+    use ddc_contact_options, only: solver_options, matrix_hierarchical, lcp_lemke, &
+        k_higher_order
+    use ddc_contact_result, only: contact_result, contact_stress_scale
+    use ddc_contact_formulation, only: solve_contact_with, contact_session
+    use ddc_contact_fault_law, only: fault_law
+    use ddc_solve_operator, only: elastic_operator, elastic_load, free_part
+    use ddc_solve_dense_operator, only: dense_operator, new_dense_operator
+    use ddc_solve_hierarchical_operator, only: hierarchical_operator, &
+        new_hierarchical_operator
+    use ddc_solve_frictional, only: fault_law_of, record_contact
+    use ddc_solve_joints, only: joint_load, joint_dds
+    use ddc_post_tips, only: stress_intensity
+    use ddc_post_higher_order_k, only: higher_order_solver, prepare_higher_order, &
+        higher_order_k, uses_higher_order
+    implicit none
+    private
+
+    public :: contact_run, contact_step, load_of, run_refusal
+    public :: operator_dense, operator_hierarchical, operator_distributed
+
+    !> The kinds of elastic operator a run solves on
+    integer, parameter :: operator_dense = 1, operator_hierarchical = 2, &
+        operator_distributed = 3
+
+    !> The solution of one step.
+    type :: contact_step
+        !> Displacement discontinuities of every element [length unit], shape (n)
+        real(wp), allocatable :: ds(:), dn(:)
+        !> Element states (state_free for TWODD-style elements), shape (n)
+        integer, allocatable :: state(:)
+        !> The contact elements' solution: method, counts, certificate, tractions
+        type(contact_result) :: contact
+        !> Method, pivots, certificate, counts and equilibrium residual of this step (the
+        !> preparation's times and counts not included)
+        type(solver_record) :: record
+    end type contact_step
+
+    !> What the steps of one geometry share.
+    type :: contact_run
+        private
+        !> The medium
+        type(elastic_medium), public :: medium
+        !> Options of the contact solver
+        type(solver_options) :: options
+        !> The elastic operator
+        class(elastic_operator), allocatable, public :: operator
+        !> The fault law of the contact elements, with the values in force
+        type(fault_law) :: law
+        !> Total (plastic) slip of the contact elements before the next step [length unit],
+        !> shape (nc)
+        real(wp), allocatable :: held(:)
+        !> Joint compliance of the contact elements (elastic joints), shape (2 nc)
+        real(wp), allocatable :: compliance(:)
+        !> What the steps share: states, factors, Lemke's LCP and basis
+        type(contact_session) :: session
+        !> Stress scale of every step's certificate (a history's, over all its loads)
+        real(wp), allocatable :: stress_scale
+        !> Pivot limit of Lemke and iteration limit of Newton (tests)
+        integer, allocatable :: max_pivots, max_iterations
+        !> The K method: the higher-order re-solve when it serves (decided on the first
+        !> tip_k), and why the tip element serves where it does ('' before the decision)
+        logical :: higher_order = .false., k_decided = .false.
+        type(higher_order_solver) :: k_solver
+        character(len=:), allocatable :: tip_element_reason
+    contains
+        procedure :: start
+        procedure :: prepare
+        procedure :: record_of
+        procedure :: hold
+        procedure :: limit
+        procedure :: set_stress_scale
+        procedure :: stress_scale_of
+        procedure :: step
+        procedure :: law_in_force
+        procedure :: free_tractions
+        procedure :: tip_k
+        procedure :: finish
+    end type contact_run
+
+contains
+
+    !> What a run on an operator of the given kind cannot do with a model ('' when it can):
+    !> the one answer to the input's check, the choice of 'auto' and the MPI build's plan.
+    pure function run_refusal(model, kind) result(what)
+        !> The model
+        type(model_type), intent(in) :: model
+        !> operator_dense, operator_hierarchical or operator_distributed
+        integer, intent(in) :: kind
+        character(len=:), allocatable :: what
+        logical :: contact
+
+        what = ''
+        associate (e => model%elements)
+            contact = any(e%condition == condition_contact)
+            select case (kind)
+            case (operator_hierarchical)
+                if (contact .and. any(e%condition /= condition_contact)) then
+                    call add('contact elements beside elements of other conditions')
+                else if (contact .and. model%solver%lcp_method == lcp_lemke) then
+                    call add("lcp_method = 'lemke' (its tableau is dense)")
+                else if (model%growth%active) then
+                    call add('fracture growth (&growth)')
+                else if (elastic(e%shear_stiffness) .or. elastic(e%normal_stiffness)) then
+                    call add('elastic joints')
+                end if
+            case (operator_distributed)
+                if (model%solver%lcp_method == lcp_lemke) call add("&solver lcp_method = "// &
+                    "'lemke' (Lemke's tableau is not distributed; 'newton' and 'auto' are)")
+                if (allocated(model%load_path%vertex)) call add('&load_path (loading '// &
+                    'histories are not distributed)')
+                if (model%growth%active) call add('&growth (fracture growth is not '// &
+                    'distributed)')
+                if (model%solver%matrix == matrix_hierarchical) call add("&solver matrix "// &
+                    "= 'hierarchical' (hmat-oss is sequential; the distributed solve is dense)")
+                if (beyond_coulomb()) call add('&fracture tensile_strength, sf_residual, '// &
+                    'mu_dynamic or a joint stiffness (strength beyond Coulomb is not '// &
+                    'distributed)')
+            end select
+        end associate
+
+    contains
+
+        pure subroutine add(feature)
+            character(len=*), intent(in) :: feature
+
+            if (len(what) > 0) what = what//new_line('a')
+            what = what//feature
+        end subroutine add
+
+        pure logical function elastic(stiffness)
+            real(wp), allocatable, intent(in) :: stiffness(:)
+
+            elastic = .false.
+            if (allocated(stiffness)) elastic = any(stiffness < rigid_joint)
+        end function elastic
+
+        pure logical function beyond_coulomb()
+            type(fault_law) :: law
+
+            law = fault_law_of(model%elements)
+            beyond_coulomb = law%beyond_coulomb()
+        end function beyond_coulomb
+    end function run_refusal
+
+    !> The load of elements at a remote stress and pore fluid: the stress resolved on each
+    !> element, the contact elements' own pressure plus the pore fluid's.
+    pure function load_of(elements, remote, gradient, pore_fluid) result(load)
+        !> The elements, geometry computed
+        type(element_set), intent(in) :: elements
+        !> Remote stress sxx, syy, sxy at y = 0 [stress unit] and d/dy of it [stress unit /
+        !> length unit]
+        real(wp), intent(in) :: remote(3), gradient(3)
+        !> Pore pressure p0 at y = 0 [stress unit] and its gradient d/dy [stress / length]
+        real(wp), intent(in) :: pore_fluid(2)
+        type(elastic_load) :: load
+
+        allocate (load%shear(elements%n), load%normal(elements%n))
+        call resolve_remote_stress(elements, remote(1), remote(2), remote(3), load%shear, &
+                                   load%normal, gradient)
+        load%pressure = total_pressure(elements, pore_fluid)
+        load%remote = remote
+        load%gradient = gradient
+    end function load_of
+
+    !> A run of a medium without an operator yet: enough for tip_k (the K of DDs solved
+    !> elsewhere); prepare makes the operator.
+    pure subroutine start(this, medium, options)
+        !> The run (fresh)
+        class(contact_run), intent(inout) :: this
+        !> The medium, geometry computed
+        type(elastic_medium), intent(in) :: medium
+        !> Options of the contact solver
+        type(solver_options), intent(in) :: options
+
+        this%medium = medium
+        this%options = options
+    end subroutine start
+
+    !> The solver record of a step with the preparation's times, counts and compression.
+    pure function record_of(this, solution) result(record)
+        !> The run
+        class(contact_run), intent(in) :: this
+        !> The step
+        type(contact_step), intent(in) :: solution
+        type(solver_record) :: record
+
+        record = solution%record
+        associate (p => this%operator%record)
+            record%seconds_assembly = p%seconds_assembly + record%seconds_assembly
+            record%counts%seconds = p%counts%seconds + record%counts%seconds
+            record%hierarchical = p%hierarchical
+            record%hmatrix_tolerance = p%hmatrix_tolerance
+            ! The compression is the operator's, or that of a solve without contact elements
+            record%compression_ratio = p%compression_ratio + record%compression_ratio
+        end associate
+    end function record_of
+
+    !> Prepare the run of a medium: its operator (given: a distributed one; else dense or
+    !> hierarchical as options%matrix says), the fault law of its contact elements and,
+    !> for elastic joints, the system of their plastic DDs.
+    subroutine prepare(this, medium, options, error, operator)
+        !> The run (fresh)
+        class(contact_run), intent(inout) :: this
+        !> The medium, geometry computed
+        type(elastic_medium), intent(in) :: medium
+        !> Options of the contact solver
+        type(solver_options), intent(in) :: options
+        !> Set when the operator cannot be made (singular, out of memory)
+        type(error_type), allocatable, intent(out) :: error
+        !> An operator made elsewhere (the MPI build's), moved in
+        class(elastic_operator), allocatable, intent(inout), optional :: operator
+        type(dense_operator), allocatable :: dense
+        type(hierarchical_operator), allocatable :: compressed
+
+        call this%start(medium, options)
+        if (present(operator)) then
+            call move_alloc(operator, this%operator)
+        else if (options%matrix == matrix_hierarchical) then
+            allocate (compressed)
+            call new_hierarchical_operator(medium, options, compressed, error)
+            call move_alloc(compressed, this%operator)
+        else
+            allocate (dense)
+            call new_dense_operator(medium, dense, error)
+            call move_alloc(dense, this%operator)
+        end if
+        if (allocated(error)) return
+        associate (op => this%operator)
+            this%law = fault_law_of(medium%elements, op%contact)
+            allocate (this%held(op%nc), source=0.0_wp)
+            this%compliance = this%law%joint_compliance()
+            if (any(this%compliance > 0.0_wp)) then
+                call op%add_joints(this%compliance, error)
+            else
+                deallocate (this%compliance)
+            end if
+        end associate
+    end subroutine prepare
+
+    !> The friction memory and strength state the next step starts from (a growth run's
+    !> solves, a resumed history): the total slip of every element and, when given, the
+    !> fault law of every element with its values in force and slip path.
+    pure subroutine hold(this, ds, law)
+        !> The run (prepared)
+        class(contact_run), intent(inout) :: this
+        !> Total (plastic) slip of every element [length unit], shape (n)
+        real(wp), intent(in) :: ds(:)
+        !> The fault law of every element with its strength state
+        type(fault_law), intent(in), optional :: law
+
+        this%held = ds(this%operator%contact)
+        if (present(law)) call this%law%take_in_force(law, this%operator%contact)
+    end subroutine hold
+
+    !> Limits of the methods (tests): Lemke's pivots and Newton's iterations per solve.
+    pure subroutine limit(this, max_pivots, max_iterations)
+        !> The run
+        class(contact_run), intent(inout) :: this
+        !> Pivot limit of each Lemke solve and iteration limit of each Newton solve
+        integer, intent(in), optional :: max_pivots, max_iterations
+
+        if (present(max_pivots)) this%max_pivots = max_pivots
+        if (present(max_iterations)) this%max_iterations = max_iterations
+    end subroutine limit
+
+    !> One stress scale for the certificate and Lemke's scaling of every step (a history's:
+    !> the largest stress_scale_of its loads).
+    pure subroutine set_stress_scale(this, scale)
+        !> The run
+        class(contact_run), intent(inout) :: this
+        !> The stress scale [stress unit]
+        real(wp), intent(in) :: scale
+
+        this%stress_scale = scale
+    end subroutine set_stress_scale
+
+    !> The stress scale of a load on the contact elements (ddc_contact_result).
+    subroutine stress_scale_of(this, load, scale, error)
+        !> The run (prepared)
+        class(contact_run), intent(inout) :: this
+        !> The load
+        type(elastic_load), intent(in) :: load
+        !> The stress scale [stress unit]
+        real(wp), intent(out) :: scale
+        !> Set when the free elements' system has no solution
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: shift(:)
+        type(free_part) :: kept
+
+        associate (op => this%operator)
+            allocate (shift(2 * op%nc))
+            call op%load_contact(this%medium, load, shift, kept, error)
+            scale = contact_stress_scale(shift(1:op%nc), shift(op%nc + 1:), &
+                                         this%medium%elements%sf(op%contact), &
+                                         load%pressure(op%contact))
+        end associate
+    end subroutine stress_scale_of
+
+    !> One equilibrium under a load: the contact problem of the contact elements (with the
+    !> method and fallbacks of ddc_contact_formulation, from the session's states and the
+    !> memory), then the free elements' DDs. The memory and strengths in force move on.
+    subroutine step(this, load, solution, error)
+        !> The run (prepared)
+        class(contact_run), intent(inout), target :: this
+        !> The load
+        type(elastic_load), intent(in) :: load
+        !> DDs, states and the record of this step
+        type(contact_step), intent(out) :: solution
+        !> Set when the contact problem or the free elements' system has no solution
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: shift(:), pressure(:)
+        type(free_part) :: kept
+        integer :: n, nc
+
+        n = this%medium%elements%n
+        associate (op => this%operator, res => solution%contact, rec => solution%record)
+            nc = op%nc
+            allocate (solution%ds(n), solution%dn(n), solution%state(n), shift(2 * nc))
+            call op%load_contact(this%medium, load, shift, kept, error)
+            if (allocated(error)) return
+            solution%state = state_free
+            if (nc == 0) then
+                rec%method = 'lu'
+                allocate (res%ds(0), res%dn(0))
+            else
+                pressure = load%pressure(op%contact)
+                if (allocated(op%load_map)) call joint_load(op%load_map, pressure, &
+                                                            shift(1:nc), shift(nc + 1:))
+                call solve_contact_with(op%stiffness, shift(1:nc), shift(nc + 1:), this%law, &
+                                        pressure, this%options, res, error, a=op%matrix, &
+                                        max_iterations=this%max_iterations, &
+                                        ds_previous=this%held, session=this%session, &
+                                        stress_scale=this%stress_scale, &
+                                        max_pivots=this%max_pivots)
+                if (allocated(error)) then
+                    if (allocated(op%hint)) error%message = error%message//op%hint
+                    return
+                end if
+                ! The memory of an elastic joint is its plastic slip.
+                this%held = res%ds
+                if (allocated(this%compliance)) call joint_dds(this%compliance, pressure, &
+                    res%shear_traction, res%normal_traction, res%ds, res%dn)
+                call record_contact(res, op%flops, rec)
+                solution%state(op%contact) = res%state
+            end if
+            call op%complete(this%medium, load, [res%ds, res%dn], kept, solution%ds, &
+                             solution%dn, rec, error)
+        end associate
+    end subroutine step
+
+    !> The fault law of every element with the values in force the steps left on the
+    !> contact elements (the given values on the others).
+    pure function law_in_force(this) result(law)
+        !> The run
+        class(contact_run), intent(in) :: this
+        type(fault_law) :: law
+
+        law = fault_law_of(this%medium%elements)
+        call law%place_in_force(this%law, this%operator%contact)
+    end function law_in_force
+
+    !> The total midpoint tractions of a step: the contact elements' as solved, the free
+    !> elements' from their rows (operators that keep them), both with the remote stress.
+    subroutine free_tractions(this, load, solution, shear_traction, normal_traction, error)
+        !> The run
+        class(contact_run), intent(in) :: this
+        !> The step's load
+        type(elastic_load), intent(in) :: load
+        !> The step's solution
+        type(contact_step), intent(in) :: solution
+        !> Total shear and normal traction of every element [stress unit], shape (n)
+        real(wp), intent(out) :: shear_traction(:), normal_traction(:)
+        !> Set when the operator keeps no rows of the free elements
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: ts(this%operator%nf), tn(this%operator%nf)
+
+        associate (op => this%operator)
+            shear_traction(op%contact) = solution%contact%shear_traction
+            normal_traction(op%contact) = solution%contact%normal_traction
+            if (op%nf == 0) return
+            call op%free_tractions(this%medium, solution%ds, solution%dn, ts, tn, error)
+            if (allocated(error)) return
+            shear_traction(op%free) = ts + load%shear(op%free)
+            normal_traction(op%free) = tn + load%normal(op%free)
+        end associate
+    end subroutine free_tractions
+
+    !> K_I and K_II at tips of solved DDs: the tip element's, replaced by the higher-order
+    !> re-solve's where the run's K method (&solver k_method, decided on the first call)
+    !> has it serve; tips%k_method says which, and why.
+    subroutine tip_k(this, load, solved, growth, tips, k1, k2)
+        !> The run (started)
+        class(contact_run), intent(inout) :: this
+        !> The load the DDs were solved for
+        type(elastic_load), intent(in) :: load
+        !> DDs, states, total midpoint tractions and (where recorded) friction in force of
+        !> every element
+        type(element_results), intent(in) :: solved
+        !> Whether the model grows its fractures (growth calibrates the tip element)
+        logical, intent(in) :: growth
+        !> The tips (ddc_post_tips); k_method set, graded cleared where the re-solve serves
+        type(tip_set), intent(inout) :: tips
+        !> K_I and K_II of each tip [stress unit * length unit**0.5], shape (tips)
+        real(wp), intent(out) :: k1(:), k2(:)
+        type(error_type), allocatable :: failed
+        real(wp), allocatable :: k1_high(:), k2_high(:), mu(:)
+
+        associate (m => this%medium)
+            call stress_intensity(m%elements, m%shear_modulus, m%poissons_ratio, &
+                                  tips%element, solved%ds, solved%dn, k1, k2)
+            if (.not. this%k_decided) then
+                this%k_decided = .true.
+                call uses_higher_order(this%options%k_method, growth, m%elements, tips, &
+                                       this%higher_order, this%tip_element_reason)
+                if (this%higher_order) then
+                    call prepare_higher_order(m%elements, m%shear_modulus, &
+                                              m%poissons_ratio, tips, this%k_solver, failed)
+                    call note_failure()
+                end if
+            end if
+            if (this%higher_order) then
+                if (allocated(solved%mu_in_force)) then
+                    mu = solved%mu_in_force
+                else
+                    mu = m%elements%mu
+                end if
+                k1_high = k1
+                k2_high = k2
+                call higher_order_k(this%k_solver, m%elements, m%shear_modulus, &
+                                    m%poissons_ratio, solved%ds, solved%dn, &
+                                    solved%shear_traction, solved%normal_traction, mu, &
+                                    load%remote, load%gradient, solved%state, tips, k1_high, &
+                                    k2_high, failed)
+                call note_failure()
+            end if
+            if (this%higher_order) then
+                k1 = k1_high
+                k2 = k2_high
+                where (this%k_solver%local(tips%element) > 0) tips%graded = 0
+                tips%k_method = 'higher_order'
+            else if (len(this%tip_element_reason) > 0) then
+                tips%k_method = 'tip_element ('//this%tip_element_reason//')'
+            end if
+        end associate
+
+    contains
+
+        !> A re-solve that fails leaves the run's K method the tip element's.
+        subroutine note_failure()
+            if (.not. allocated(failed)) return
+            this%higher_order = .false.
+            this%tip_element_reason = 'the higher-order re-solve failed: '//failed%message
+        end subroutine note_failure
+    end subroutine tip_k
+
+    !> Free what the run holds.
+    subroutine finish(this)
+        !> The run
+        class(contact_run), intent(inout) :: this
+
+        if (allocated(this%operator)) call this%operator%release()
+    end subroutine finish
+
+end module ddc_run_contact_run
