@@ -8,7 +8,8 @@ module ddc_app_memory
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
     use ddc_text, only: bytes_text, itoa
-    use ddc_model_types, only: model_type, hierarchical_refusal
+    use ddc_model_types, only: model_type
+    use ddc_model_capabilities, only: run_refusal, operator_hierarchical
     use ddc_run_memory, only: memory_need, estimate_memory, check_memory, &
         hierarchical_min_elements
     use ddc_contact_options, only: matrix_dense, matrix_hierarchical
@@ -78,7 +79,7 @@ contains
         case default
             model%solver%matrix = matrix_dense
             n = model%elements%n
-            if (len(hierarchical_refusal(model)) > 0) then
+            if (len(run_refusal(model, operator_hierarchical)) > 0) then
                 write (unit, '(a)') '  matrix: dense (a hierarchical matrix does not solve '// &
                     'this model: docs/theory/hierarchical.md#what-it-solves)'
                 return

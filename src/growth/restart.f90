@@ -24,7 +24,7 @@ module ddc_growth_restart
     use ddc_growth_extension, only: inherit_values, tip_element
     use ddc_growth_tips, only: growing_tip, resumed_element_length
     use ddc_contact_fault_law, only: fault_law
-    use ddc_solve_frictional, only: fault_law_of
+    use ddc_model_element_laws, only: fault_law_of
     implicit none
     private
 

@@ -43,7 +43,7 @@ module ddc_growth_solver
     use ddc_model_loads, only: resolve_remote_stress, total_pressure, shear_modulus_of
     use ddc_influence_assembly, only: assemble_influence
     use ddc_solve_elastic, only: row_kinds
-    use ddc_solve_frictional, only: record_contact, fault_law_of
+    use ddc_model_element_laws, only: fault_law_of
     use ddc_contact_options, only: lcp_auto, lcp_newton
     use ddc_contact_result, only: contact_result
     use ddc_contact_formulation, only: solve_contact_with, contact_session, new_matrix, &
@@ -56,6 +56,7 @@ module ddc_growth_solver
     use ddc_post_tips, only: find_tips
     use ddc_growth_tip_zone, only: calibrate_tips
     use ddc_run_model, only: run_model, finish_model, evaluate_fields, model_load
+    use ddc_run_contact_run, only: record_contact
     use ddc_growth_influence, only: grow_influence, unknown_map
     implicit none
     private

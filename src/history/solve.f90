@@ -48,7 +48,7 @@ module ddc_history_solve
     use ddc_contact_result, only: contact_result
     use ddc_contact_fault_law, only: fault_law
     use ddc_solve_joints, only: elastic_dds
-    use ddc_solve_frictional, only: strengths_change
+    use ddc_model_element_laws, only: strengths_change
     use ddc_solve_operator, only: elastic_load
     use ddc_post_tips, only: find_tips
     use ddc_history_path, only: path_loads, apply_load, load_text

@@ -11,8 +11,9 @@
 module ddc_input_namelist
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
+    use ddc_model_capabilities, only: run_refusal, operator_hierarchical
     use ddc_model_types, only: model_type, condition_contact, symmetry_none, symmetry_names, &
-        symmetry_x, domain_half_plane, hierarchical_refusal
+        symmetry_x, domain_half_plane
     use ddc_text, only: itoa, rtoa, prefix_lines
     use ddc_input_text_file, only: read_text_file, folder_of
     use ddc_mesh_geometry, only: allocate_elements, compute_geometry
@@ -119,7 +120,7 @@ contains
     end subroutine read_namelist_model
 
     !> matrix = 'hierarchical' on a model a hierarchical matrix does not solve
-    !> (hierarchical_refusal: docs/theory/hierarchical.md#what-it-solves) is refused.
+    !> (run_refusal: docs/theory/hierarchical.md#what-it-solves) is refused.
     subroutine check_matrix(path, model, messages)
         character(len=*), intent(in) :: path
         type(model_type), intent(in) :: model
@@ -127,7 +128,7 @@ contains
         character(len=:), allocatable :: what
 
         if (model%solver%matrix /= matrix_hierarchical) return
-        what = hierarchical_refusal(model)
+        what = run_refusal(model, operator_hierarchical)
         if (len(what) == 0) return
         call add(messages, path//": &solver: matrix = 'hierarchical' does not solve "//what// &
                  " yet: use matrix = 'dense' or 'auto'")

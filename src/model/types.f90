@@ -8,7 +8,7 @@
 !> (ddc_model_fingerprint) go through it.
 module ddc_model_types
     use ddc_kinds, only: wp
-    use ddc_contact_options, only: solver_options, lcp_lemke
+    use ddc_contact_options, only: solver_options
     ! The defaults of the fault law, for the per-element arrays that hold its given values,
     ! and its cap on the tensile strength, for what the echo reports in force.
     use ddc_contact_fault_law, only: no_residual_drop, rigid_joint, tensile_cap
@@ -28,7 +28,6 @@ module ddc_model_types
     public :: new_law_names
     public :: default_block_size, no_residual_drop, rigid_joint, tensile_cap
     public :: element_array_action, for_each_element_array, select_elements
-    public :: hierarchical_refusal
 
     !> Boundary conditions; 1-4 are the TWODD KODE values.
     integer, parameter :: condition_traction = 1
@@ -413,38 +412,5 @@ contains
 
         if (allocated(values)) values = values(action%pick)
     end subroutine select_integers
-
-    !> What of the model a hierarchical matrix does not solve ('' when it solves the model:
-    !> TWODD-style elements, or contact elements alone without elastic joints by the Newton
-    !> method, one solve or a loading history; docs/theory/hierarchical.md#what-it-solves).
-    !> The input's check of matrix = 'hierarchical' and the choice of 'auto' both ask here.
-    pure function hierarchical_refusal(model) result(what)
-        type(model_type), intent(in) :: model
-        character(len=:), allocatable :: what
-        logical :: contact
-
-        what = ''
-        associate (e => model%elements)
-            contact = any(e%condition == condition_contact)
-            if (contact .and. any(e%condition /= condition_contact)) then
-                what = 'contact elements beside elements of other conditions'
-            else if (contact .and. model%solver%lcp_method == lcp_lemke) then
-                what = "lcp_method = 'lemke' (its tableau is dense)"
-            else if (model%growth%active) then
-                what = 'fracture growth (&growth)'
-            else if (elastic(e%shear_stiffness) .or. elastic(e%normal_stiffness)) then
-                what = 'elastic joints'
-            end if
-        end associate
-
-    contains
-
-        pure logical function elastic(stiffness)
-            real(wp), allocatable, intent(in) :: stiffness(:)
-
-            elastic = .false.
-            if (allocated(stiffness)) elastic = any(stiffness < rigid_joint)
-        end function elastic
-    end function hierarchical_refusal
 
 end module ddc_model_types

@@ -1,20 +1,20 @@
 !> The engine of a distributed run (ddc_run_engine): run_model's heavy work spread over the
-!> processes. The solve is ddc_parallel_solve's; the midpoint responses are split by
-!> elements and every process gets them all (O(n)); the fields are split by points and
-!> gathered on the root, which alone writes them.
+!> processes. The contact run's operator is ddc_parallel_solve's; the midpoint responses
+!> are split by elements and every process gets them all (O(n)); the fields are split by
+!> points and gathered on the root, which alone writes them.
 module ddc_parallel_run
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
     use ddc_model_types, only: element_set
-    use ddc_model_results, only: solver_record, field_result
-    use ddc_contact_options, only: solver_options
-    use ddc_contact_fault_law, only: fault_law
+    use ddc_model_medium, only: elastic_medium
+    use ddc_model_results, only: field_result
+    use ddc_solve_operator, only: elastic_operator
     use ddc_influence_response, only: kernel_response
     use ddc_post_fields, only: evaluate_field
     use ddc_run_engine, only: model_engine
     use ddc_parallel_context, only: parallel_context
     use ddc_parallel_collective, only: split_range, gather_on_root, gather_on_all
-    use ddc_parallel_solve, only: solve_distributed
+    use ddc_parallel_solve, only: distributed_operator, new_distributed_operator
     implicit none
     private
 
@@ -25,31 +25,25 @@ module ddc_parallel_run
         !> The processes and their grid (open)
         type(parallel_context) :: context
     contains
-        procedure :: solve => distributed_solve_model
+        procedure :: make_operator => distributed_make_operator
         procedure :: midpoint_response => distributed_response
         procedure :: evaluate_field => distributed_field
     end type distributed_engine
 
 contains
 
-    !> solve_distributed on the engine's processes.
-    subroutine distributed_solve_model(this, elements, shear_modulus, nu, remote_shear, &
-                                       remote_normal, options, ds, dn, state, record, error, &
-                                       law)
+    !> The medium's operator distributed over the engine's processes.
+    subroutine distributed_make_operator(this, medium, operator, error)
         class(distributed_engine), intent(inout) :: this
-        type(element_set), intent(in) :: elements
-        real(wp), intent(in) :: shear_modulus, nu
-        real(wp), intent(in) :: remote_shear(:), remote_normal(:)
-        type(solver_options), intent(in) :: options
-        real(wp), intent(out) :: ds(:), dn(:)
-        integer, intent(out) :: state(:)
-        type(solver_record), intent(inout) :: record
+        type(elastic_medium), intent(in) :: medium
+        class(elastic_operator), allocatable, intent(out) :: operator
         type(error_type), allocatable, intent(out) :: error
-        type(fault_law), intent(out), optional :: law
+        type(distributed_operator), allocatable :: distributed
 
-        call solve_distributed(this%context, elements, shear_modulus, nu, remote_shear, &
-                               remote_normal, options, ds, dn, state, record, error, law)
-    end subroutine distributed_solve_model
+        allocate (distributed)
+        call new_distributed_operator(this%context, medium, distributed, error)
+        if (.not. allocated(error)) call move_alloc(distributed, operator)
+    end subroutine distributed_make_operator
 
     !> Each process computes the responses of its share of the elements; all get them all.
     subroutine distributed_response(this, elements, shear_modulus, nu, ds, dn, &

@@ -140,7 +140,7 @@ contains
         real(wp), intent(out) :: ds(:), dn(:)
         type(solver_record), intent(inout) :: record
         type(error_type), allocatable, intent(out) :: error
-        real(wp), allocatable :: x_free(:)
+        real(wp) :: x_free(2 * this%nf)
 
         x_free = kept%dd
         if (this%nc == 0) then

@@ -12,19 +12,17 @@
 !> - finish: free what the run holds.
 !> A one-shot solve is prepare + step; a loading history a loop of steps; growth solves
 !> each grown geometry on a run of its own, with the memory carried over (hold). What a run
-!> cannot do with a model is answered by run_refusal, once.
+!> cannot do with a model is answered once, by run_refusal (ddc_model_capabilities).
 !>
 !> A run is not copied: its operator points into memory the run owns.
 module ddc_run_contact_run
     use ddc_kinds, only: wp
-    use ddc_error, only: error_type, set_error, exit_bad_input
-    use ddc_text, only: itoa
-    use ddc_model_types, only: model_type, element_set, condition_contact, rigid_joint
+    use ddc_error, only: error_type
+    use ddc_model_types, only: element_set
     use ddc_model_medium, only: elastic_medium
     use ddc_model_results, only: solver_record, state_free, tip_set, element_results
     use ddc_model_loads, only: resolve_remote_stress, total_pressure
-    use ddc_contact_options, only: solver_options, matrix_hierarchical, lcp_lemke, &
-        k_higher_order
+    use ddc_contact_options, only: solver_options, matrix_hierarchical
     use ddc_contact_result, only: contact_result, contact_stress_scale
     use ddc_contact_formulation, only: solve_contact_with, contact_session
     use ddc_contact_fault_law, only: fault_law
@@ -32,7 +30,7 @@ module ddc_run_contact_run
     use ddc_solve_dense_operator, only: dense_operator, new_dense_operator
     use ddc_solve_hierarchical_operator, only: hierarchical_operator, &
         new_hierarchical_operator
-    use ddc_solve_frictional, only: fault_law_of, record_contact
+    use ddc_model_element_laws, only: fault_law_of
     use ddc_solve_joints, only: joint_load, joint_dds
     use ddc_post_tips, only: stress_intensity
     use ddc_post_higher_order_k, only: higher_order_solver, prepare_higher_order, &
@@ -40,12 +38,7 @@ module ddc_run_contact_run
     implicit none
     private
 
-    public :: contact_run, contact_step, load_of, run_refusal
-    public :: operator_dense, operator_hierarchical, operator_distributed
-
-    !> The kinds of elastic operator a run solves on
-    integer, parameter :: operator_dense = 1, operator_hierarchical = 2, &
-        operator_distributed = 3
+    public :: contact_run, contact_step, load_of, record_contact
 
     !> The solution of one step.
     type :: contact_step
@@ -103,69 +96,6 @@ module ddc_run_contact_run
     end type contact_run
 
 contains
-
-    !> What a run on an operator of the given kind cannot do with a model ('' when it can):
-    !> the one answer to the input's check, the choice of 'auto' and the MPI build's plan.
-    pure function run_refusal(model, kind) result(what)
-        !> The model
-        type(model_type), intent(in) :: model
-        !> operator_dense, operator_hierarchical or operator_distributed
-        integer, intent(in) :: kind
-        character(len=:), allocatable :: what
-        logical :: contact
-
-        what = ''
-        associate (e => model%elements)
-            contact = any(e%condition == condition_contact)
-            select case (kind)
-            case (operator_hierarchical)
-                if (contact .and. any(e%condition /= condition_contact)) then
-                    call add('contact elements beside elements of other conditions')
-                else if (contact .and. model%solver%lcp_method == lcp_lemke) then
-                    call add("lcp_method = 'lemke' (its tableau is dense)")
-                else if (model%growth%active) then
-                    call add('fracture growth (&growth)')
-                else if (elastic(e%shear_stiffness) .or. elastic(e%normal_stiffness)) then
-                    call add('elastic joints')
-                end if
-            case (operator_distributed)
-                if (model%solver%lcp_method == lcp_lemke) call add("&solver lcp_method = "// &
-                    "'lemke' (Lemke's tableau is not distributed; 'newton' and 'auto' are)")
-                if (allocated(model%load_path%vertex)) call add('&load_path (loading '// &
-                    'histories are not distributed)')
-                if (model%growth%active) call add('&growth (fracture growth is not '// &
-                    'distributed)')
-                if (model%solver%matrix == matrix_hierarchical) call add("&solver matrix "// &
-                    "= 'hierarchical' (hmat-oss is sequential; the distributed solve is dense)")
-                if (beyond_coulomb()) call add('&fracture tensile_strength, sf_residual, '// &
-                    'mu_dynamic or a joint stiffness (strength beyond Coulomb is not '// &
-                    'distributed)')
-            end select
-        end associate
-
-    contains
-
-        pure subroutine add(feature)
-            character(len=*), intent(in) :: feature
-
-            if (len(what) > 0) what = what//new_line('a')
-            what = what//feature
-        end subroutine add
-
-        pure logical function elastic(stiffness)
-            real(wp), allocatable, intent(in) :: stiffness(:)
-
-            elastic = .false.
-            if (allocated(stiffness)) elastic = any(stiffness < rigid_joint)
-        end function elastic
-
-        pure logical function beyond_coulomb()
-            type(fault_law) :: law
-
-            law = fault_law_of(model%elements)
-            beyond_coulomb = law%beyond_coulomb()
-        end function beyond_coulomb
-    end function run_refusal
 
     !> The load of elements at a remote stress and pore fluid: the stress resolved on each
     !> element, the contact elements' own pressure plus the pore fluid's.
@@ -485,5 +415,34 @@ contains
 
         if (allocated(this%operator)) call this%operator%release()
     end subroutine finish
+
+
+    !> Fill the solver record from a contact solution.
+    subroutine record_contact(res, flops, record)
+        !> The contact solution
+        type(contact_result), intent(in) :: res
+        !> Nominal flops of the factorizations outside the contact solve (the condensation)
+        real(wp), intent(in) :: flops
+        !> Method, pivots, counts, certificate, residual, flops and LCP time are set; the
+        !> factorization time is added to
+        type(solver_record), intent(inout) :: record
+        real(wp) :: seconds
+
+        record%method = res%method
+        record%fallback = res%fallback
+        record%newton_iterations = res%iterations
+        seconds = record%counts%seconds
+        record%counts = res%counts
+        record%counts%flops = res%counts%flops + flops
+        record%counts%seconds = seconds + res%counts%seconds
+        record%pivots = res%pivots
+        record%lcp_solves = res%solves
+        record%certificate_min_z = res%certificate%min_z
+        record%certificate_min_w = res%certificate%min_w
+        record%certificate_max_complementarity = res%certificate%max_complementarity
+        record%certificate_tolerance = res%certificate%tolerance
+        record%seconds_lcp = res%seconds_lcp
+        record%equilibrium_residual = maxval(res%equilibrium_residual)
+    end subroutine record_contact
 
 end module ddc_run_contact_run

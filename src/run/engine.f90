@@ -9,7 +9,6 @@ module ddc_run_engine
     use ddc_model_types, only: element_set
     use ddc_model_medium, only: elastic_medium
     use ddc_model_results, only: field_result
-    use ddc_contact_options, only: solver_options
     use ddc_solve_operator, only: elastic_operator
     implicit none
     private
@@ -31,16 +30,13 @@ module ddc_run_engine
     abstract interface
         !> The elastic operator of a medium that the contact run of the model solves on
         !> (ddc_solve_operator), timed into its record.
-        subroutine operator_interface(this, medium, options, operator, error)
-            import :: model_engine, elastic_medium, solver_options, elastic_operator, &
-                error_type
+        subroutine operator_interface(this, medium, operator, error)
+            import :: model_engine, elastic_medium, elastic_operator, error_type
             implicit none
             !> The engine
             class(model_engine), intent(inout) :: this
             !> The medium, geometry computed
             type(elastic_medium), intent(in) :: medium
-            !> Options of the contact solver
-            type(solver_options), intent(in) :: options
             !> The operator
             class(elastic_operator), allocatable, intent(out) :: operator
             !> Set when the operator cannot be made

@@ -42,7 +42,7 @@ module ddc_run_memory
     use ddc_contact_memory, only: lemke_bytes, newton_bytes
     use ddc_contact_active_set, only: starting_unknowns
     use ddc_contact_result, only: contact_stress_scale
-    use ddc_solve_frictional, only: strengths_change
+    use ddc_model_element_laws, only: strengths_change
     use ddc_model_loads, only: resolve_remote_stress, total_pressure
     implicit none
     private
@@ -219,7 +219,7 @@ contains
     end function hierarchical_bytes
 
     !> Whether a loading history of the model records the strengths in force of each step
-    !> (ddc_solve_frictional's strengths_change); not without the per-element laws.
+    !> (ddc_model_element_laws' strengths_change); not without the per-element laws.
     pure logical function records_strengths(model)
         type(model_type), intent(in) :: model
 

@@ -76,7 +76,7 @@ contains
         end if
         n = model%elements%n
         if (present(engine)) then
-            call engine%make_operator(medium_of(model), model%solver, operator, error)
+            call engine%make_operator(medium_of(model), operator, error)
             if (.not. allocated(error)) call run%prepare(medium_of(model), model%solver, &
                                                          error, operator)
         else

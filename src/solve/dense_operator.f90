@@ -168,8 +168,9 @@ contains
                 return
             end if
             ! A singular K_FF is judged by the residual of the solve (complete).
-            if (allocated(ill_conditioned)) &
+            if (allocated(ill_conditioned)) then
                 call move_alloc(ill_conditioned%message, op%ill_conditioned)
+            end if
             return
         end if
         op%a(:, :) = op%system(cu, cu)
@@ -291,9 +292,10 @@ contains
             residual = max(residual, norm2(residual_free) / max(norm2(b_free), tiny(1.0_wp)))
             ! A hole (closed contour) is numerically singular but consistent: its residual
             ! is small.
-            if (allocated(this%ill_conditioned) .and. .not. residual <= residual_tol) &
+            if (allocated(this%ill_conditioned) .and. .not. residual <= residual_tol) then
                 call set_error(error, exit_solver_failure, this%ill_conditioned// &
                                influence_hint//' (relative residual '//rtoa(residual)//')')
+            end if
         end associate
     end subroutine dense_complete
 

@@ -154,9 +154,10 @@ contains
 
         shear_traction = 0.0_wp
         normal_traction = 0.0_wp
-        if (this%nf > 0 .and. medium%elements%n == size(ds) .and. size(dn) == size(ds)) &
-            call set_internal_error(error, 'free_tractions', 'this operator keeps no '// &
-                                    'rows of the free elements')
+        call set_internal_error(error, 'free_tractions', 'an operator that keeps no rows '// &
+                                'of the '//itoa(this%nf)//' free elements (of '// &
+                                itoa(medium%elements%n)//', with DDs of '//itoa(size(ds))// &
+                                ' and '//itoa(size(dn))//')')
     end subroutine no_free_tractions
 
     !> Operators other than dense ones take no elastic joints (the run's capabilities

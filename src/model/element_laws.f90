@@ -1,18 +1,14 @@
-!> What the contact solves of every driver share beside the contact run
-!> (ddc_run_contact_run): the fault law of a model's (contact) elements, read from their
-!> per-element arrays (fault_law_of), whether a solve can change the strengths in force
-!> (strengths_change), and the solver record of a contact solution (record_contact).
-module ddc_solve_frictional
-    use ddc_kinds, only: wp
+!> The fault law of a model's elements (ddc_contact_fault_law), read from their
+!> per-element arrays: for every contact run (one-shot, loading history, growth, MPI), the
+!> input's and the run's capability checks, and a resumed run's memory.
+module ddc_model_element_laws
     use ddc_model_types, only: element_set
-    use ddc_model_results, only: solver_record
-    use ddc_contact_result, only: contact_result
     use ddc_contact_options, only: solver_options, cohesion_lost
     use ddc_contact_fault_law, only: fault_law, new_fault_law
     implicit none
     private
 
-    public :: fault_law_of, strengths_change, record_contact
+    public :: fault_law_of, strengths_change
 
 contains
 
@@ -56,31 +52,4 @@ contains
         strengths_change = law%beyond_coulomb() .or. options%open_cohesion == cohesion_lost
     end function strengths_change
 
-    !> Fill the solver record from a contact solution.
-    subroutine record_contact(res, flops, record)
-        !> The contact solution
-        type(contact_result), intent(in) :: res
-        !> Nominal flops of the factorizations outside the contact solve (the condensation)
-        real(wp), intent(in) :: flops
-        !> Method, pivots, counts, certificate, residual, flops and LCP time are set; the
-        !> factorization time is added to
-        type(solver_record), intent(inout) :: record
-        real(wp) :: seconds
-
-        record%method = res%method
-        record%fallback = res%fallback
-        record%newton_iterations = res%iterations
-        seconds = record%counts%seconds
-        record%counts = res%counts
-        record%counts%flops = res%counts%flops + flops
-        record%counts%seconds = seconds + res%counts%seconds
-        record%pivots = res%pivots
-        record%lcp_solves = res%solves
-        record%certificate_min_z = res%certificate%min_z
-        record%certificate_min_w = res%certificate%min_w
-        record%certificate_max_complementarity = res%certificate%max_complementarity
-        record%certificate_tolerance = res%certificate%tolerance
-        record%seconds_lcp = res%seconds_lcp
-        record%equilibrium_residual = maxval(res%equilibrium_residual)
-    end subroutine record_contact
-end module ddc_solve_frictional
+end module ddc_model_element_laws
