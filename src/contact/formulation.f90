@@ -92,6 +92,7 @@ module ddc_contact_formulation
     private
 
     public :: solve_contact, solve_contact_with, contact_session, auto_newton_min_elements
+    public :: contact_problem, contact_limits
     public :: new_matrix
     public :: newton_max_iterations
 
@@ -105,10 +106,42 @@ module ddc_contact_formulation
     real(wp), parameter :: weakening_tol = 1.0e-12_wp
     integer, parameter :: max_weakening_solves = 200
 
+    !> One contact problem of n elements: the load on them and the slip they hold.
+    type :: contact_problem
+        !> Remote shear and normal traction (tension positive) resolved on each element,
+        !> plus any traction from non-contact elements, shape (n) [stress]
+        real(wp), allocatable :: shear(:), normal(:)
+        !> Fluid pressure inside each element, compression positive, shape (n) [stress]
+        real(wp), allocatable :: pressure(:)
+        !> Total slip before this solve (friction memory; default 0), shape (n) [length]
+        real(wp), allocatable :: ds_previous(:)
+        !> Stress scale of the certificate and of Lemke's scaling (default: from this load,
+        !> contact_stress_scale) [stress]
+        real(wp), allocatable :: stress_scale
+    end type contact_problem
+
+    !> Limits of the methods (tests; each default where not allocated).
+    type :: contact_limits
+        !> Tie-breaking rule of Lemke (default lexicographic)
+        integer, allocatable :: rule
+        !> Iteration limit of 'newton' (default newton_max_iterations)
+        integer, allocatable :: max_iterations
+        !> Pivot limit of each Lemke solve (default that of solve_lcp_lemke)
+        integer, allocatable :: max_pivots
+        !> Largest number of solves of the strength fixed point (default
+        !> 2n + 1 + max_weakening_solves)
+        integer, allocatable :: max_solves
+    end type contact_limits
+
     !> What successive solves on the same contact elements (the steps of a loading history)
     !> keep besides their stiffness operator: the paper's LCP once built and Lemke's last
-    !> basis, the Newton method's states and fixed tractions.
+    !> basis, the Newton method's states and fixed tractions; and the methods' limits.
     type :: contact_session
+        !> Limits of the methods (tests)
+        type(contact_limits) :: limits
+        !> Lemke starts each solve from its last basis (the steps of a loading history, the
+        !> trials of a growth run); else each solve of the strength fixed point afresh
+        logical :: warm = .false.
         !> The paper's LCP (built on the first Lemke solve)
         type(contact_lcp) :: lcp
         !> Lemke's last basis, shape (3n); 0 entries: none yet
@@ -136,28 +169,23 @@ contains
 
         call move_alloc(session%open, fresh%open)
         call move_alloc(session%shear_state, fresh%shear_state)
+        fresh%limits = session%limits
+        fresh%warm = session%warm
         fresh%a_checked = checked
         session = fresh
     end subroutine new_matrix
 
     !> Solve the frictional contact problem of n elements
-    !> (docs/theory/contact.md#the-contact-law-of-one-element).
-    subroutine solve_contact(a, s_r_s, s_r_n, law, pressure, options, res, error, rule, &
-                             max_iterations, max_solves, ds_previous)
+    !> (docs/theory/contact.md#the-contact-law-of-one-element) on a dense matrix.
+    subroutine solve_contact(a, problem, law, options, res, error, limits)
         !> Influence matrix ordered [s; n]: traction = s_r + a [Ds; Dn], shape (2n, 2n)
         !> [stress / length]
         real(wp), intent(in), target, contiguous :: a(:, :)
-        !> Remote shear traction resolved on each element (plus any traction from
-        !> non-contact elements), shape (n) [stress]
-        real(wp), intent(in) :: s_r_s(:)
-        !> Remote normal traction resolved on each element, tension positive, shape (n)
-        !> [stress]
-        real(wp), intent(in) :: s_r_n(:)
+        !> The load on the n elements and the slip they hold
+        type(contact_problem), intent(in) :: problem
         !> The fault law of the n elements: the values in force at the start, those at the
         !> end on return (see solve_contact_with)
         type(fault_law), intent(inout) :: law
-        !> Fluid pressure inside the crack, compression positive, shape (n) [stress]
-        real(wp), intent(in) :: pressure(:)
         !> LCP method and cohesion of open elements
         type(solver_options), intent(in) :: options
         !> The solution
@@ -165,26 +193,20 @@ contains
         !> Allocated on failure (exit_solver_failure; exit_bad_input for NaN or Inf data,
         !> exit_internal_error for inconsistent arguments)
         type(error_type), allocatable, intent(out) :: error
-        !> Tie-breaking rule of Lemke (tests only; default lexicographic)
-        integer, intent(in), optional :: rule
-        !> Iteration limit of 'newton' (default newton_max_iterations)
-        integer, intent(in), optional :: max_iterations
-        !> Largest number of solves of the strength fixed point (tests; default
-        !> 2n + 1 + max_weakening_solves)
-        integer, intent(in), optional :: max_solves
-        !> Total slip before this solve (friction memory; default 0), shape (n) [length]
-        real(wp), intent(in), optional :: ds_previous(:)
+        !> Limits of the methods (tests)
+        type(contact_limits), intent(in), optional :: limits
         type(dense_stiffness) :: stiffness
+        type(contact_session) :: session
         integer(int64) :: t0, t1, rate
 
-        if (size(a, 1) /= 2 * size(s_r_s) .or. size(a, 2) /= 2 * size(s_r_s)) then
+        if (size(a, 1) /= 2 * size(problem%shear) .or. size(a, 2) /= 2 * size(problem%shear)) &
+            then
             call set_internal_error(error, 'solve_contact', 'array sizes do not match')
             return
         end if
         stiffness%a => a
-        call solve_contact_with(stiffness, s_r_s, s_r_n, law, pressure, options, res, error, &
-                                a, rule, max_iterations, max_solves=max_solves, &
-                                ds_previous=ds_previous)
+        if (present(limits)) session%limits = limits
+        call solve_contact_with(stiffness, problem, law, options, res, error, a, session)
         ! Freeing the factors (up to (2n)^2 reals) is part of the contact solve's time.
         call system_clock(t0, rate)
         call stiffness%discard_factors()
@@ -196,25 +218,18 @@ contains
     !> (docs/theory/contact.md#the-contact-law-of-one-element) on any stiffness operator, or one
     !> step of a loading history (ds_previous, session); without the dense matrix a, by the Newton
     !> method alone.
-    subroutine solve_contact_with(stiffness, s_r_s, s_r_n, law, pressure, options, res, &
-                                  error, a, rule, max_iterations, ds_previous, session, &
-                                  stress_scale, max_pivots, max_solves)
+    subroutine solve_contact_with(stiffness, problem, law, options, res, error, a, session)
         !> The influence matrix A ordered [s; n]: traction = s_r + A [Ds; Dn], 2n x 2n
         !> [stress / length]
         class(stiffness_operator), intent(inout) :: stiffness
-        !> Remote shear traction resolved on each element (plus any traction from
-        !> non-contact elements), shape (n) [stress]
-        real(wp), intent(in) :: s_r_s(:)
-        !> Remote normal traction resolved on each element, tension positive, shape (n)
-        !> [stress]
-        real(wp), intent(in) :: s_r_n(:)
+        !> The load on the n elements and the slip they hold (a step of a loading history:
+        !> the total slip at the end of the previous step)
+        type(contact_problem), intent(in) :: problem
         !> The fault law of the n elements: its given values, and the values in force at
         !> the start (cohesion and tensile strength; the slip path, from which the friction
         !> in force follows); on return those at the end, with which the last solve was
         !> certified (undefined after an error)
         type(fault_law), intent(inout) :: law
-        !> Fluid pressure inside the crack, compression positive, shape (n) [stress]
-        real(wp), intent(in) :: pressure(:)
         !> LCP method and cohesion of open elements (the method is 'newton' without a)
         type(solver_options), intent(in) :: options
         !> The solution
@@ -224,24 +239,9 @@ contains
         type(error_type), allocatable, intent(out) :: error
         !> The same matrix in memory, shape (2n, 2n): Lemke's method needs it
         real(wp), intent(in), optional :: a(:, :)
-        !> Tie-breaking rule of Lemke (tests only; default lexicographic)
-        integer, intent(in), optional :: rule
-        !> Iteration limit of 'newton' (default newton_max_iterations)
-        integer, intent(in), optional :: max_iterations
-        !> Total slip at the end of the previous step of a loading history (default 0),
-        !> shape (n) [length]
-        real(wp), intent(in), optional :: ds_previous(:)
-        !> What the steps of a loading history share (default: a fresh one); with it, Lemke
-        !> starts from its last basis
+        !> What the steps of a loading history share, with the methods' limits (default: a
+        !> fresh one); with it, Lemke starts from its last basis
         type(contact_session), intent(inout), optional :: session
-        !> Stress scale of the certificate and of Lemke's scaling (default: from this
-        !> load, contact_stress_scale) [stress]
-        real(wp), intent(in), optional :: stress_scale
-        !> Pivot limit of each Lemke solve (tests; default that of solve_lcp_lemke)
-        integer, intent(in), optional :: max_pivots
-        !> Largest number of solves of the strength fixed point (tests; default
-        !> 2n + 1 + max_weakening_solves)
-        integer, intent(in), optional :: max_solves
         type(contact_session), allocatable :: fresh
         logical :: weakening
         real(wp), allocatable :: held(:)
@@ -253,35 +253,41 @@ contains
         ! The lcp phase: everything from here on (the checks of A included, 4 n^2 reads)
         ! but the factorizations, so that no part of the solve is in no phase.
         call system_clock(t_start, rate)
-        n = size(s_r_s)
-        if (size(s_r_n) /= n .or. size(pressure) /= n .or. .not. law%sizes_match(n)) then
+        n = size(problem%shear)
+        if (size(problem%normal) /= n .or. size(problem%pressure) /= n .or. &
+            .not. law%sizes_match(n)) then
             call set_internal_error(error, 'solve_contact', 'array sizes do not match')
             return
         end if
         allocate (held(n), source=0.0_wp)
         weakening = law%weakens()
         solves_limit = 2 * n + 1 + max_weakening_solves
-        if (present(max_solves)) solves_limit = max_solves
-        if (present(ds_previous)) then
-            if (size(ds_previous) /= n) then
+        if (present(session)) then
+            if (allocated(session%limits%max_solves)) solves_limit = session%limits%max_solves
+        end if
+        if (allocated(problem%ds_previous)) then
+            if (size(problem%ds_previous) /= n) then
                 call set_internal_error(error, 'solve_contact', 'array sizes do not match')
                 return
             end if
-            held = ds_previous
+            held = problem%ds_previous
         end if
         ! A is checked once per session (the steps of a history share it).
         checked = .false.
         if (present(session)) checked = session%a_checked
         if (.not. checked) checked = stiffness%all_finite()
-        if (.not. (checked .and. all(ieee_is_finite(s_r_s)) .and. &
-            all(ieee_is_finite(s_r_n)) .and. law%all_finite() .and. &
-            all(ieee_is_finite(pressure)) .and. all(ieee_is_finite(held)))) then
+        if (.not. (checked .and. all(ieee_is_finite(problem%shear)) .and. &
+            all(ieee_is_finite(problem%normal)) .and. law%all_finite() .and. &
+            all(ieee_is_finite(problem%pressure)) .and. all(ieee_is_finite(held)))) then
             call set_error(error, exit_bad_input, 'contact: NaN or Inf in the input arrays')
             return
         end if
         if (present(session)) session%a_checked = .true.
         limit = newton_max_iterations
-        if (present(max_iterations)) limit = max_iterations
+        if (present(session)) then
+            if (allocated(session%limits%max_iterations)) limit = &
+                session%limits%max_iterations
+        end if
         if (law%any_negative()) then
             call set_internal_error(error, 'solve_contact', &
                                     'the strength laws must not be negative')
@@ -293,13 +299,14 @@ contains
             res%certificate%passed = .true.
             return
         end if
-        sigma0 = contact_stress_scale(s_r_s, s_r_n, law%sf_in_force, pressure)
-        if (present(stress_scale)) sigma0 = stress_scale
+        sigma0 = contact_stress_scale(problem%shear, problem%normal, law%sf_in_force, &
+                                      problem%pressure)
+        if (allocated(problem%stress_scale)) sigma0 = problem%stress_scale
         if (present(session)) then
-            call solve_in_session(session, .true.)
+            call strength_fixed_point(session, session%warm)
         else
             allocate (fresh)
-            call solve_in_session(fresh, .false.)
+            call strength_fixed_point(fresh, .false.)
             deallocate (fresh)
         end if
         call system_clock(t_end)
@@ -308,21 +315,20 @@ contains
 
     contains
 
-        !> The methods and fallbacks, with what the session keeps; warm: Lemke starts from
-        !> the session's basis.
-        subroutine solve_in_session(s, warm)
+        !> The strength fixed point (docs/theory/strength.md): solves under the strengths in
+        !> force (solve_by_method), each followed by the laws' rules, until no strength in
+        !> force changes; warm: Lemke starts from the session's basis.
+        subroutine strength_fixed_point(s, warm)
             type(contact_session), intent(inout) :: s
             logical, intent(in) :: warm
             real(wp), allocatable :: sf_in(:), srn_in(:), t_cap(:), mu_next(:), path(:)
-            logical :: newton, automatic, changed, exceeded
+            logical :: newton, changed
             integer :: rounds, moving
-            character(len=:), allocatable :: reason
             character(len=200) :: line
             type(factor_counts) :: this_solve
 
-            automatic = options%lcp_method == lcp_auto
             newton = options%lcp_method == lcp_newton .or. .not. present(a) .or. &
-                (automatic .and. n >= auto_newton_min_elements)
+                (options%lcp_method == lcp_auto .and. n >= auto_newton_min_elements)
             if (newton) then
                 res%method = 'newton'
             else
@@ -333,54 +339,13 @@ contains
             law%mu_in_force = law%friction(law%slip_path, spread(0, 1, n))
             do
                 rounds = rounds + 1
-                call law%shifted(s_r_n, sf_in, srn_in, t_cap)
+                call law%shifted(problem%normal, sf_in, srn_in, t_cap)
                 res%residual_scale_floor = 0.0_wp
                 if (any(t_cap > 0.0_wp)) res%residual_scale_floor = &
-                    max(norm2([s_r_s, s_r_n]), norm2(t_cap))
+                    max(norm2([problem%shear, problem%normal]), norm2(t_cap))
                 ! The reduced systems hold mu in their slip rows: no factors of another mu.
                 if (weakening) call stiffness%discard_factors()
-                if (newton) then
-                    call solve_once_newton(stiffness, s_r_s, srn_in, law%mu_in_force, sf_in, &
-                        pressure, limit, held, sigma0, present(stress_scale), &
-                        options%work_bytes, res, s, reason, exceeded)
-                    if (exceeded) then
-                        call set_error(error, exit_out_of_memory, 'contact: '//reason)
-                    else if (len(reason) > 0 .and. .not. present(a)) then
-                        call set_error(error, exit_solver_failure, 'contact: '//reason)
-                    else if (len(reason) > 0) then
-                        ! Lemke's memory, not the Newton factors beside it.
-                        call stiffness%discard_factors()
-                        newton = .false.
-                        res%method = 'lemke'
-                        res%fallback = reason
-                    end if
-                end if
-                if (.not. newton .and. .not. allocated(error)) then
-                    call solve_once_lemke(s, warm, sf_in, srn_in, law%mu_in_force)
-                    if (allocated(error) .and. automatic .and. len(res%fallback) == 0) then
-                        ! M is not copositive-plus: Lemke can end on a ray where the contact
-                        ! problem has a solution (seen at acute fault branches). 'auto' then
-                        ! asks the Newton method, whose answer is checked the same way, and
-                        ! keeps it for the rounds after cohesion is lost.
-                        call solve_once_newton(stiffness, s_r_s, srn_in, law%mu_in_force, &
-                            sf_in, pressure, limit, held, sigma0, present(stress_scale), &
-                            options%work_bytes, res, s, reason, exceeded)
-                        if (exceeded) then
-                            reason = error%message//' (the Newton method then stopped: '// &
-                                reason//')'
-                            deallocate (error)
-                            call set_error(error, exit_out_of_memory, reason)
-                        else if (len(reason) == 0) then
-                            newton = .true.
-                            res%method = 'newton'
-                            res%fallback = 'lemke failed: '//error%message
-                            deallocate (error)
-                        else
-                            error%message = error%message//' (the Newton method failed too: '// &
-                                reason//')'
-                        end if
-                    end if
-                end if
+                call solve_by_method(s, warm, sf_in, srn_in, newton)
                 if (allocated(error)) then
                     if (rounds > 1) then
                         write (line, '(a,i0,a)') ' (solve ', rounds, &
@@ -435,7 +400,58 @@ contains
             res%counts = stiffness%counts
             res%counts%seconds = this_solve%seconds
             res%counts%flops = this_solve%flops
-        end subroutine solve_in_session
+        end subroutine strength_fixed_point
+
+        !> One solve under the strengths in force by the method in use (newton), and the
+        !> one place of its fallbacks: a Newton failure falls back to Lemke where the dense
+        !> matrix is at hand (for the rest of the fixed point), a Lemke failure under 'auto'
+        !> asks the Newton method; error is set when no method solves it.
+        subroutine solve_by_method(s, warm, sf_in, srn_in, newton)
+            type(contact_session), intent(inout) :: s
+            logical, intent(in) :: warm
+            !> Cohesion and resolved normal traction of the shifted law [stress], shape (n)
+            real(wp), intent(in) :: sf_in(:), srn_in(:)
+            !> The Newton method is in use (else Lemke's); changed by a fallback
+            logical, intent(inout) :: newton
+            character(len=:), allocatable :: reason
+            logical :: exceeded
+
+            if (newton) then
+                call solve_once_newton(s, srn_in, sf_in, reason, exceeded)
+                if (exceeded) then
+                    call set_error(error, exit_out_of_memory, 'contact: '//reason)
+                else if (len(reason) > 0 .and. .not. present(a)) then
+                    call set_error(error, exit_solver_failure, 'contact: '//reason)
+                else if (len(reason) > 0) then
+                    ! Lemke's memory, not the Newton factors beside it.
+                    call stiffness%discard_factors()
+                    newton = .false.
+                    res%method = 'lemke'
+                    res%fallback = reason
+                end if
+            end if
+            if (newton .or. allocated(error)) return
+            call solve_once_lemke(s, warm, sf_in, srn_in, law%mu_in_force)
+            if (.not. (allocated(error) .and. options%lcp_method == lcp_auto .and. &
+                       len(res%fallback) == 0)) return
+            ! M is not copositive-plus: Lemke can end on a ray where the contact problem has
+            ! a solution (seen at acute fault branches). 'auto' then asks the Newton method,
+            ! whose answer is checked the same way, and keeps it for the rounds after
+            ! cohesion is lost.
+            call solve_once_newton(s, srn_in, sf_in, reason, exceeded)
+            if (exceeded) then
+                reason = error%message//' (the Newton method then stopped: '//reason//')'
+                deallocate (error)
+                call set_error(error, exit_out_of_memory, reason)
+            else if (len(reason) == 0) then
+                newton = .true.
+                res%method = 'newton'
+                res%fallback = 'lemke failed: '//error%message
+                deallocate (error)
+            else
+                error%message = error%message//' (the Newton method failed too: '//reason//')'
+            end if
+        end subroutine solve_by_method
 
         !> One Lemke solve of the paper's LCP (built once per session, when memory allows),
         !> from the session's last basis when warm.
@@ -465,13 +481,93 @@ contains
                 s%basis = 0
             end if
             if (warm) then
-                call solve_paper_lcp(s%lcp, s_r_s, srn, sf_eff, pressure, held, sigma0, res, &
-                                     error, rule=rule, basis=s%basis, max_pivots=max_pivots)
+                call solve_paper_lcp(s%lcp, problem%shear, srn, sf_eff, problem%pressure, held, &
+                                     sigma0, res, error, rule=s%limits%rule, basis=s%basis, &
+                                     max_pivots=s%limits%max_pivots)
             else
-                call solve_paper_lcp(s%lcp, s_r_s, srn, sf_eff, pressure, held, sigma0, res, &
-                                     error, rule=rule, max_pivots=max_pivots)
+                call solve_paper_lcp(s%lcp, problem%shear, srn, sf_eff, problem%pressure, held, &
+                                     sigma0, res, error, rule=s%limits%rule, &
+                                     max_pivots=s%limits%max_pivots)
             end if
         end subroutine solve_once_lemke
+
+        !> One solve by the active-set Newton method (no inverse of A), certified as the
+        !> equivalent LCP. reason is empty on success, else why Lemke must take over.
+        subroutine solve_once_newton(s, s_r_n, sf, reason, exceeded)
+            !> The session: its states are the warm start and take this solve's
+            type(contact_session), intent(inout) :: s
+            !> Resolved normal traction and cohesion of the shifted law [stress], shape (n)
+            real(wp), intent(in) :: s_r_n(:), sf(:)
+            character(len=:), allocatable, intent(out) :: reason
+            !> The states asked for a reduced system larger than the memory left (reason says
+            !> so): no other method can take over (Lemke needs more)
+            logical, intent(out) :: exceeded
+            type(active_set_result) :: next
+            real(wp), allocatable :: tau(:), z(:), w(:), zs(:), ws(:), snp(:), slip(:)
+            real(wp) :: dscale, stiffness_scale
+            integer :: n, i
+            character(len=:), allocatable :: failure
+
+            associate (s_r_s => problem%shear, p => problem%pressure, mu => law%mu_in_force)
+                n = size(sf)
+                stiffness_scale = stiffness%max_diagonal()
+                if (.not. stiffness_scale > 0.0_wp) stiffness_scale = stiffness%max_entry()
+                call problem_scales(stiffness_scale, s_r_s, s_r_n, sf, p, res)
+                if (allocated(problem%stress_scale)) then
+                    res%dd_scale = res%dd_scale * sigma0 / res%stress_scale
+                    res%stress_scale = sigma0
+                end if
+                if (allocated(s%open)) then
+                    call solve_contact_active_set(stiffness, s_r_s, s_r_n + p, mu, sf, &
+                        res%stress_scale, next, limit, s%newton, s%open, s%shear_state, &
+                        ds_previous=held, work_bytes=options%work_bytes)
+                else
+                    call solve_contact_active_set(stiffness, s_r_s, s_r_n + p, mu, sf, &
+                        res%stress_scale, next, limit, s%newton, ds_previous=held, &
+                        work_bytes=options%work_bytes)
+                end if
+                exceeded = next%memory_exceeded
+                res%iterations = res%iterations + next%iterations
+                res%solves = res%solves + 1
+                res%counts%seconds = res%counts%seconds + next%seconds_factorization
+                res%counts%flops = res%counts%flops + next%factorization_flops
+                if (.not. next%converged) then
+                    reason = 'newton: '//next%reason
+                    return
+                end if
+                s%open = next%open
+                s%shear_state = next%shear_state
+
+                ! z and w of the paper's LCP from the DDs and the tractions A D + S_r of the
+                ! unfactored A; the slip increment split as D_L - D_R with the smaller part zero.
+                slip = next%ds - held
+                associate (ss => next%shear, snf => next%normal_effective)
+                    tau = sf - mu * snf
+                    z = [-snf, tau - ss, max(slip, 0.0_wp)]
+                    w = [-next%dn, max(-slip, 0.0_wp), tau + ss]
+                end associate
+                dscale = max(res%dd_scale, maxval(abs(next%ds)), maxval(abs(next%dn)))
+                call block_scales(n, res%stress_scale, dscale, zs, ws)
+                res%certificate = certify_complementarity(z, w, zs, ws, &
+                                                          default_certificate_tolerance)
+
+                ! The tractions the iteration imposed: S_n' = 0 on open elements, s_s = +-tau_s
+                ! on slipping ones; elsewhere those of A D + S_r.
+                snp = merge(0.0_wp, next%normal_effective, next%open)
+                res%shear_traction = next%shear
+                do i = 1, n
+                    if (next%shear_state(i) /= 0) res%shear_traction(i) = &
+                        real(next%shear_state(i), wp) * (sf(i) - mu(i) * snp(i))
+                end do
+                res%normal_traction = snp - p
+                res%ds = next%ds
+                res%dn = next%dn
+                ! A D of the last iteration (the product the states were updated from).
+                call check_solution(next%ad, s_r_s, s_r_n, mu, sf, snp, dscale, res, failure, held)
+                reason = ''
+                if (len(failure) > 0) reason = 'newton: '//failure
+            end associate
+        end subroutine solve_once_newton
 
     end subroutine solve_contact_with
 
@@ -485,90 +581,5 @@ contains
         s%shear_state = merge(0, int(sign(1.0_wp, res%shear_traction)), &
                               res%state == state_stick)
     end subroutine keep_states
-
-    !> One solve by the active-set Newton method (no inverse of A), certified as the
-    !> equivalent LCP. reason is empty on success, else why Lemke must take over.
-    subroutine solve_once_newton(stiffness, s_r_s, s_r_n, mu, sf, p, limit, held, sigma0, &
-                                 given, work_bytes, res, s, reason, exceeded)
-        class(stiffness_operator), intent(inout) :: stiffness
-        real(wp), intent(in) :: s_r_s(:), s_r_n(:), mu(:), sf(:), p(:)
-        integer, intent(in) :: limit
-        !> Total slip of the previous step (0 for a one-shot solve), shape (n)
-        real(wp), intent(in) :: held(:)
-        !> Stress scale [stress], used when given (else that of this problem)
-        real(wp), intent(in) :: sigma0
-        logical, intent(in) :: given
-        !> Memory left for the reduced systems [bytes]
-        real(wp), intent(in) :: work_bytes
-        type(contact_result), intent(inout) :: res
-        !> The session: its states are the warm start and take this solve's
-        type(contact_session), intent(inout) :: s
-        character(len=:), allocatable, intent(out) :: reason
-        !> The states asked for a reduced system larger than work_bytes (reason says so):
-        !> no other method can take over (Lemke needs more)
-        logical, intent(out) :: exceeded
-        type(active_set_result) :: next
-        real(wp), allocatable :: tau(:), z(:), w(:), zs(:), ws(:), snp(:), slip(:)
-        real(wp) :: dscale, stiffness_scale
-        integer :: n, i
-        character(len=:), allocatable :: problem
-
-        n = size(mu)
-        stiffness_scale = stiffness%max_diagonal()
-        if (.not. stiffness_scale > 0.0_wp) stiffness_scale = stiffness%max_entry()
-        call problem_scales(stiffness_scale, s_r_s, s_r_n, sf, p, res)
-        if (given) then
-            res%dd_scale = res%dd_scale * sigma0 / res%stress_scale
-            res%stress_scale = sigma0
-        end if
-        if (allocated(s%open)) then
-            call solve_contact_active_set(stiffness, s_r_s, s_r_n + p, mu, sf, &
-                res%stress_scale, next, limit, s%newton, s%open, s%shear_state, &
-                ds_previous=held, work_bytes=work_bytes)
-        else
-            call solve_contact_active_set(stiffness, s_r_s, s_r_n + p, mu, sf, &
-                res%stress_scale, next, limit, s%newton, ds_previous=held, &
-                work_bytes=work_bytes)
-        end if
-        exceeded = next%memory_exceeded
-        res%iterations = res%iterations + next%iterations
-        res%solves = res%solves + 1
-        res%counts%seconds = res%counts%seconds + next%seconds_factorization
-        res%counts%flops = res%counts%flops + next%factorization_flops
-        if (.not. next%converged) then
-            reason = 'newton: '//next%reason
-            return
-        end if
-        s%open = next%open
-        s%shear_state = next%shear_state
-
-        ! z and w of the paper's LCP from the DDs and the tractions A D + S_r of the
-        ! unfactored A; the slip increment split as D_L - D_R with the smaller part zero.
-        slip = next%ds - held
-        associate (ss => next%shear, snf => next%normal_effective)
-            tau = sf - mu * snf
-            z = [-snf, tau - ss, max(slip, 0.0_wp)]
-            w = [-next%dn, max(-slip, 0.0_wp), tau + ss]
-        end associate
-        dscale = max(res%dd_scale, maxval(abs(next%ds)), maxval(abs(next%dn)))
-        call block_scales(n, res%stress_scale, dscale, zs, ws)
-        res%certificate = certify_complementarity(z, w, zs, ws, default_certificate_tolerance)
-
-        ! The tractions the iteration imposed: S_n' = 0 on open elements, s_s = +-tau_s
-        ! on slipping ones; elsewhere those of A D + S_r.
-        snp = merge(0.0_wp, next%normal_effective, next%open)
-        res%shear_traction = next%shear
-        do i = 1, n
-            if (next%shear_state(i) /= 0) res%shear_traction(i) = &
-                real(next%shear_state(i), wp) * (sf(i) - mu(i) * snp(i))
-        end do
-        res%normal_traction = snp - p
-        res%ds = next%ds
-        res%dn = next%dn
-        ! A D of the last iteration (the product the states were updated from).
-        call check_solution(next%ad, s_r_s, s_r_n, mu, sf, snp, dscale, res, problem, held)
-        reason = ''
-        if (len(problem) > 0) reason = 'newton: '//problem
-    end subroutine solve_once_newton
 
 end module ddc_contact_formulation

@@ -40,14 +40,12 @@ module ddc_growth_solver
     use ddc_text, only: itoa
     use ddc_model_types, only: model_type, condition_contact, rigid_joint
     use ddc_model_results, only: model_results, solver_record
-    use ddc_model_loads, only: resolve_remote_stress, total_pressure, shear_modulus_of
+    use ddc_model_loads, only: shear_modulus_of
     use ddc_influence_assembly, only: assemble_influence
     use ddc_solve_elastic, only: row_kinds
     use ddc_model_element_laws, only: fault_law_of
     use ddc_contact_options, only: lcp_auto, lcp_newton
-    use ddc_contact_result, only: contact_result
-    use ddc_contact_formulation, only: solve_contact_with, contact_session, new_matrix, &
-        auto_newton_min_elements
+    use ddc_contact_formulation, only: auto_newton_min_elements
     use ddc_contact_counts, only: factor_counts
     use ddc_contact_fault_law, only: fault_law
     use ddc_contact_stiffness, only: dense_stiffness
@@ -56,7 +54,9 @@ module ddc_growth_solver
     use ddc_post_tips, only: find_tips
     use ddc_growth_tip_zone, only: calibrate_tips
     use ddc_run_model, only: run_model, finish_model, evaluate_fields, model_load
-    use ddc_run_contact_run, only: record_contact
+    use ddc_run_contact_run, only: contact_run, contact_step
+    use ddc_model_medium, only: medium_of
+    use ddc_solve_dense_operator, only: dense_operator
     use ddc_growth_influence, only: grow_influence, unknown_map
     implicit none
     private
@@ -79,14 +79,13 @@ module ddc_growth_solver
         !> A trial was solved since the last accept_trial, and on the kept path
         logical :: pending = .false., trial_kept = .false.
         !> The last trial: its matrix, where the base block sits in it (moved_to; not
-        !> allocated when the matrix was assembled whole), the contact session of its solves
-        !> (its states: the next trial's start) and the stiffness operator, in which its
-        !> factors live
+        !> allocated when the matrix was assembled whole), and the contact run of its solves
+        !> (ddc_run_contact_run), whose session holds its states (the next trial's start)
+        !> and whose dense stiffness its factors
         real(wp), allocatable :: matrix(:, :)
         integer, allocatable :: layout(:)
-        type(contact_session) :: session
-        type(dense_stiffness) :: stiffness
-        !> The LU factors of stiffness%factors are a copy of base_factors' (or these of
+        type(contact_run) :: run
+        !> The LU factors of the run's factors are a copy of base_factors' (or these of
         !> those), neither factorized anew since: factorizations counted by both then
         logical :: lu_shared = .false.
         integer :: shared_factorizations = 0
@@ -240,7 +239,8 @@ contains
     !> The last trial becomes the base of the next step (nothing happens without a trial).
     subroutine accept_trial(solver)
         !> The solver
-        type(growth_solver), intent(inout) :: solver
+        type(growth_solver), intent(inout), target :: solver
+        type(dense_stiffness), pointer :: stiffness
 
         if (.not. solver%pending) return
         solver%pending = .false.
@@ -257,27 +257,29 @@ contains
             return
         end if
         call move_alloc(solver%matrix, solver%base_matrix)
-        call move_alloc(solver%session%open, solver%base_open)
-        call move_alloc(solver%session%shear_state, solver%base_shear)
+        call move_alloc(solver%run%session%open, solver%base_open)
+        call move_alloc(solver%run%session%shear_state, solver%base_shear)
         ! A full update would leave the next step's trials no room: factorize it anew.
-        call refactor_full_update(solver%stiffness%factors, solver%base_matrix, &
-                                  solver%totals%counts)
-        call share_factors(solver, solver%base_factors, solver%stiffness%factors)
+        call kept_stiffness(solver, stiffness)
+        call refactor_full_update(stiffness%factors, solver%base_matrix, solver%totals%counts)
+        call share_factors(solver, solver%base_factors, stiffness%factors)
     end subroutine accept_trial
 
     !> to = from for the kept factors of the base and of the trial (one of each), without
     !> copying their LU factors again where to's are a copy of from's already (the
     !> trials of a step all start from the base's).
     subroutine share_factors(solver, to, from)
-        type(growth_solver), intent(inout) :: solver
+        type(growth_solver), intent(inout), target :: solver
         type(reduced_factors), intent(inout) :: to, from
+        type(dense_stiffness), pointer :: stiffness
         type(factor_counts) :: made
 
         ! Every new factorization of the trial's factors is counted there.
-        made = counts_of(solver%stiffness%factors)
+        call kept_stiffness(solver, stiffness)
+        made = counts_of(stiffness%factors)
         call copy_factors(to, from, same_lu=solver%lu_shared .and. &
                           made%factorizations == solver%shared_factorizations)
-        made = counts_of(solver%stiffness%factors)
+        made = counts_of(stiffness%factors)
         solver%lu_shared = .true.
         solver%shared_factorizations = made%factorizations
     end subroutine share_factors
@@ -345,6 +347,7 @@ contains
         type(model_results), intent(out) :: results
         type(error_type), allocatable, intent(out) :: error
         type(reduced_factors) :: no_factors
+        type(dense_stiffness), pointer :: stiffness
         integer, allocatable :: shear_row(:), normal_row(:)
         logical :: grow, placed, finite
         integer :: n, stat
@@ -377,11 +380,12 @@ contains
             call grow_influence(solver%base_matrix, moved_to, model%elements, g, &
                                 model%poissons_ratio, placed, solver%matrix, finite)
             solver%layout = moved_to
-            call share_factors(solver, solver%stiffness%factors, solver%base_factors)
-            call renumber_factors(solver%stiffness%factors, unknown_map(moved_to, n))
+            call kept_stiffness(solver, stiffness)
+            call share_factors(solver, stiffness%factors, solver%base_factors)
+            call renumber_factors(stiffness%factors, unknown_map(moved_to, n))
             ! A later trial of the step starts from the states of the one before (its new
             ! elements lie close to these), the first one from the base's.
-            if (.not. (placed .and. allocated(solver%session%open))) then
+            if (.not. (placed .and. allocated(solver%run%session%open))) then
                 call inherit_states(solver, model, moved_to)
             end if
         else
@@ -390,18 +394,20 @@ contains
             call assemble_influence(model%elements, g, model%poissons_ratio, shear_row, &
                                     normal_row, solver%matrix)
             if (allocated(solver%layout)) deallocate (solver%layout)
-            solver%stiffness%factors = no_factors
+            call kept_stiffness(solver, stiffness)
+            stiffness%factors = no_factors
             solver%lu_shared = .false.
-            if (allocated(solver%session%open)) deallocate (solver%session%open, &
-                                                            solver%session%shear_state)
+            if (allocated(solver%run%session%open)) deallocate (solver%run%session%open, &
+                                                                solver%run%session%shear_state)
             ! solve_contact_with checks the whole matrix.
             finite = .false.
         end if
         call system_clock(t1)
         results%solver%seconds_assembly = real(t1 - t0, wp) / real(rate, wp)
         ! The counts of this solve only (the factors carry those of the base's solves).
-        solver%stiffness%counts = factor_counts()
-        call solve_contact_on(solver, solver%matrix, model, finite, held, law, results, error)
+        call kept_stiffness(solver, stiffness)
+        stiffness%counts = factor_counts()
+        call solve_contact_on(solver, model, finite, held, law, results, error)
     end subroutine solve_kept
 
     !> The Newton method's start for a grown model: the base's states at the old elements'
@@ -432,8 +438,8 @@ contains
         do i = 2, n
             if (.not. known(i)) call take_from(i, i - 1)
         end do
-        call move_alloc(open_state, solver%session%open)
-        call move_alloc(shear_state, solver%session%shear_state)
+        call move_alloc(open_state, solver%run%session%open)
+        call move_alloc(shear_state, solver%run%session%shear_state)
 
     contains
 
@@ -449,15 +455,32 @@ contains
 
     end subroutine inherit_states
 
-    !> The contact solve of a model whose elements are all contact elements on the matrix a
-    !> (solver%matrix), from the session's states (when allocated) and the stiffness
-    !> operator's factors; the session keeps the states of the solution for the next trial;
+    !> The dense stiffness of the trials' contact run, in which their factors live (made
+    !> on first use).
+    subroutine kept_stiffness(solver, stiffness)
+        type(growth_solver), intent(inout), target :: solver
+        type(dense_stiffness), pointer, intent(out) :: stiffness
+
+        associate (run => solver%run)
+            if (.not. allocated(run%operator)) allocate (dense_operator :: run%operator)
+            if (.not. allocated(run%operator%stiffness)) then
+                allocate (dense_stiffness :: run%operator%stiffness)
+            end if
+            select type (s => run%operator%stiffness)
+            type is (dense_stiffness)
+                stiffness => s
+            end select
+        end associate
+    end subroutine kept_stiffness
+
+    !> The contact solve of a model whose elements are all contact elements: a step of the
+    !> trials' contact run on the solver's matrix, from the session's states (when
+    !> allocated) and the run's factors, which keep the solution's for the next trial;
     !> DDs, states, tractions, tips and the record set.
-    subroutine solve_contact_on(solver, a, model, checked, held, law, results, error)
-        type(growth_solver), intent(inout) :: solver
-        real(wp), intent(in), target, contiguous :: a(:, :)
+    subroutine solve_contact_on(solver, model, checked, held, law, results, error)
+        type(growth_solver), intent(inout), target :: solver
         type(model_type), intent(in) :: model
-        !> Every entry of a is known to be finite
+        !> Every entry of the solver's matrix is known to be finite
         logical, intent(in) :: checked
         !> Total slip before this solve (friction memory), shape (n) [length]
         real(wp), intent(in) :: held(:)
@@ -465,40 +488,32 @@ contains
         type(fault_law), intent(inout) :: law
         type(model_results), intent(inout) :: results
         type(error_type), allocatable, intent(out) :: error
-        type(contact_result) :: res
-        real(wp), allocatable :: remote_shear(:), remote_normal(:), pressure(:)
+        type(contact_step) :: solution
         real(wp) :: seconds_assembly
-        integer :: n
 
-        n = model%elements%n
-        allocate (remote_shear(n), remote_normal(n))
-        call resolve_remote_stress(model%elements, model%sxx, model%syy, model%sxy, &
-                                   remote_shear, remote_normal, model%stress_gradient)
-        ! The contact elements see their pressure plus the pore fluid.
-        pressure = total_pressure(model%elements, model%pore_fluid)
-        call new_matrix(solver%session, checked)
-        solver%stiffness%a => a
-        call solve_contact_with(solver%stiffness, remote_shear, remote_normal, law, pressure, &
-                                model%solver, res, error, a=a, session=solver%session, &
-                                ds_previous=held)
-        nullify (solver%stiffness%a)
+        call solver%run%border(medium_of(model), model%solver, solver%matrix, checked)
+        call solver%run%hold(held, law)
+        call solver%run%step(model_load(model), solution, error)
         if (allocated(error)) return
+        law = solver%run%law_in_force()
         seconds_assembly = results%solver%seconds_assembly
-        call record_contact(res, 0.0_wp, results%solver)
+        results%solver = solution%record
         results%solver%seconds_assembly = seconds_assembly
-        results%elements%ds = res%ds
-        results%elements%dn = res%dn
-        results%elements%state = res%state
-        results%elements%shear_traction = res%shear_traction
-        results%elements%normal_traction = res%normal_traction
+        associate (res => solution%contact)
+            results%elements%ds = res%ds
+            results%elements%dn = res%dn
+            results%elements%state = res%state
+            results%elements%shear_traction = res%shear_traction
+            results%elements%normal_traction = res%normal_traction
+        end associate
         ! The strengths in force are results where they can change (as a one-shot solve's).
         if (law%beyond_coulomb()) then
             results%elements%sf_in_force = law%sf_in_force
             results%elements%tensile_in_force = law%tensile_in_force
             results%elements%mu_in_force = law%mu_in_force
         end if
-        call find_tips(model%elements, shear_modulus_of(model), model%poissons_ratio, res%ds, &
-                       res%dn, results%tips)
+        call find_tips(model%elements, shear_modulus_of(model), model%poissons_ratio, &
+                       solution%ds, solution%dn, results%tips)
     end subroutine solve_contact_on
 
 end module ddc_growth_solver

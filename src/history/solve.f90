@@ -114,7 +114,7 @@ contains
         nsteps = size(loads, 2)
         call run%prepare(medium_of(model), model%solver, error)
         if (allocated(error)) return
-        call run%limit(max_pivots, max_iterations)
+        call run%take_steps(max_pivots, max_iterations)
         ! One stress scale for every step's certificate: that of the largest load.
         sigma0 = 0.0_wp
         do k = 1, nsteps

@@ -24,7 +24,8 @@ module ddc_run_contact_run
     use ddc_model_loads, only: resolve_remote_stress, total_pressure
     use ddc_contact_options, only: solver_options, matrix_hierarchical
     use ddc_contact_result, only: contact_result, contact_stress_scale
-    use ddc_contact_formulation, only: solve_contact_with, contact_session
+    use ddc_contact_formulation, only: solve_contact_with, contact_session, contact_problem, &
+        new_matrix
     use ddc_contact_fault_law, only: fault_law
     use ddc_solve_operator, only: elastic_operator, elastic_load, free_part
     use ddc_solve_dense_operator, only: dense_operator, new_dense_operator
@@ -69,12 +70,11 @@ module ddc_run_contact_run
         real(wp), allocatable :: held(:)
         !> Joint compliance of the contact elements (elastic joints), shape (2 nc)
         real(wp), allocatable :: compliance(:)
-        !> What the steps share: states, factors, Lemke's LCP and basis
-        type(contact_session) :: session
+        !> What the steps share: states, factors, Lemke's LCP and basis (growth's kept path
+        !> seeds the Newton method's states of a grown geometry)
+        type(contact_session), public :: session
         !> Stress scale of every step's certificate (a history's, over all its loads)
         real(wp), allocatable :: stress_scale
-        !> Pivot limit of Lemke and iteration limit of Newton (tests)
-        integer, allocatable :: max_pivots, max_iterations
         !> The K method: the higher-order re-solve when it serves (decided on the first
         !> tip_k), and why the tip element serves where it does ('' before the decision)
         logical :: higher_order = .false., k_decided = .false.
@@ -83,9 +83,10 @@ module ddc_run_contact_run
     contains
         procedure :: start
         procedure :: prepare
+        procedure :: border
         procedure :: record_of
         procedure :: hold
-        procedure :: limit
+        procedure :: take_steps
         procedure :: set_stress_scale
         procedure :: stress_scale_of
         procedure :: step
@@ -145,8 +146,9 @@ contains
             record%counts%seconds = p%counts%seconds + record%counts%seconds
             record%hierarchical = p%hierarchical
             record%hmatrix_tolerance = p%hmatrix_tolerance
-            ! The compression is the operator's, or that of a solve without contact elements
-            record%compression_ratio = p%compression_ratio + record%compression_ratio
+            ! The compression is the operator's, but that of the step's solve without
+            ! contact elements
+            if (this%operator%nc > 0) record%compression_ratio = p%compression_ratio
         end associate
     end function record_of
 
@@ -192,6 +194,35 @@ contains
         end associate
     end subroutine prepare
 
+    !> Prepare the run of a grown geometry of contact elements alone on the matrix the
+    !> caller bordered from the base's (growth's kept path, ddc_growth_solver; the matrix
+    !> lives as long as the run uses it): the dense operator views it and keeps the factors
+    !> of the geometry before (the caller renumbers them), the session its states (the
+    !> Newton method's start) and forgets what depended on the old matrix.
+    subroutine border(this, medium, options, matrix, checked)
+        !> The run (fresh, or the previous geometry's)
+        class(contact_run), intent(inout) :: this
+        !> The grown medium, every element a rigid contact element
+        type(elastic_medium), intent(in) :: medium
+        !> Options of the contact solver
+        type(solver_options), intent(in) :: options
+        !> Its influence matrix [s; n], shape (2n, 2n) [stress / length]
+        real(wp), intent(in), target, contiguous :: matrix(:, :)
+        !> Every entry of the matrix is known to be finite
+        logical, intent(in) :: checked
+
+        call this%start(medium, options)
+        if (.not. allocated(this%operator)) allocate (dense_operator :: this%operator)
+        select type (op => this%operator)
+        type is (dense_operator)
+            call op%view_matrix(medium, matrix)
+        end select
+        this%session%warm = .true.
+        call new_matrix(this%session, checked)
+        this%law = fault_law_of(medium%elements, this%operator%contact)
+        this%held = spread(0.0_wp, 1, this%operator%nc)
+    end subroutine border
+
     !> The friction memory and strength state the next step starts from (a growth run's
     !> solves, a resumed history): the total slip of every element and, when given, the
     !> fault law of every element with its values in force and slip path.
@@ -207,16 +238,19 @@ contains
         if (present(law)) call this%law%take_in_force(law, this%operator%contact)
     end subroutine hold
 
-    !> Limits of the methods (tests): Lemke's pivots and Newton's iterations per solve.
-    pure subroutine limit(this, max_pivots, max_iterations)
+    !> A run of many steps (a loading history): Lemke starts each solve from its last
+    !> basis; and the limits of the methods (tests): Lemke's pivots and Newton's
+    !> iterations per solve.
+    pure subroutine take_steps(this, max_pivots, max_iterations)
         !> The run
         class(contact_run), intent(inout) :: this
         !> Pivot limit of each Lemke solve and iteration limit of each Newton solve
         integer, intent(in), optional :: max_pivots, max_iterations
 
-        if (present(max_pivots)) this%max_pivots = max_pivots
-        if (present(max_iterations)) this%max_iterations = max_iterations
-    end subroutine limit
+        this%session%warm = .true.
+        if (present(max_pivots)) this%session%limits%max_pivots = max_pivots
+        if (present(max_iterations)) this%session%limits%max_iterations = max_iterations
+    end subroutine take_steps
 
     !> One stress scale for the certificate and Lemke's scaling of every step (a history's:
     !> the largest stress_scale_of its loads).
@@ -263,7 +297,8 @@ contains
         type(contact_step), intent(out) :: solution
         !> Set when the contact problem or the free elements' system has no solution
         type(error_type), allocatable, intent(out) :: error
-        real(wp), allocatable :: shift(:), pressure(:)
+        real(wp), allocatable :: shift(:)
+        type(contact_problem) :: problem
         type(free_part) :: kept
         integer :: n, nc
 
@@ -278,23 +313,23 @@ contains
                 rec%method = 'lu'
                 allocate (res%ds(0), res%dn(0))
             else
-                pressure = load%pressure(op%contact)
-                if (allocated(op%load_map)) call joint_load(op%load_map, pressure, &
+                problem%pressure = load%pressure(op%contact)
+                if (allocated(op%load_map)) call joint_load(op%load_map, problem%pressure, &
                                                             shift(1:nc), shift(nc + 1:))
-                call solve_contact_with(op%stiffness, shift(1:nc), shift(nc + 1:), this%law, &
-                                        pressure, this%options, res, error, a=op%matrix, &
-                                        max_iterations=this%max_iterations, &
-                                        ds_previous=this%held, session=this%session, &
-                                        stress_scale=this%stress_scale, &
-                                        max_pivots=this%max_pivots)
+                problem%shear = shift(1:nc)
+                problem%normal = shift(nc + 1:)
+                problem%ds_previous = this%held
+                if (allocated(this%stress_scale)) problem%stress_scale = this%stress_scale
+                call solve_contact_with(op%stiffness, problem, this%law, this%options, res, &
+                                        error, op%matrix, this%session)
                 if (allocated(error)) then
                     if (allocated(op%hint)) error%message = error%message//op%hint
                     return
                 end if
                 ! The memory of an elastic joint is its plastic slip.
                 this%held = res%ds
-                if (allocated(this%compliance)) call joint_dds(this%compliance, pressure, &
-                    res%shear_traction, res%normal_traction, res%ds, res%dn)
+                if (allocated(this%compliance)) call joint_dds(this%compliance, &
+                    problem%pressure, res%shear_traction, res%normal_traction, res%ds, res%dn)
                 call record_contact(res, op%flops, rec)
                 solution%state(op%contact) = res%state
             end if

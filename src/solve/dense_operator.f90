@@ -41,6 +41,8 @@ module ddc_solve_dense_operator
         real(wp), pointer, contiguous :: a_joint(:, :) => null()
         !> The whole system (kept only when nf > 0), shape (2n, 2n)
         real(wp), pointer, contiguous :: system(:, :) => null()
+        !> The matrix is the caller's, viewed (a growth run's grown matrix): not freed here
+        logical :: viewed = .false.
         !> Why K_FF is ill-conditioned where no contact element is left to judge it (the
         !> solve's residual does: complete)
         character(len=:), allocatable :: ill_conditioned
@@ -55,6 +57,7 @@ module ddc_solve_dense_operator
         procedure :: free_tractions => dense_free_tractions
         procedure :: multiply_elements => dense_multiply_elements
         procedure :: add_joints
+        procedure :: view_matrix
         procedure :: release => dense_release
     end type dense_operator
 
@@ -102,7 +105,6 @@ contains
                 ! Every element is a contact element: A is the whole matrix (no copy).
                 op%a => matrix
                 op%whole => matrix
-                allocate (op%y(0, 2 * op%nc), op%kff(0, 0), op%ipiv(0))
             else
                 op%system => matrix
                 op%whole => matrix
@@ -200,9 +202,34 @@ contains
         deallocate (kcf)
     end subroutine condense
 
+    !> The operator of a medium of contact elements alone on a matrix the caller holds (a
+    !> growth run's matrix, bordered from the base's: ddc_growth_influence), which must
+    !> live as long as the operator uses it; the stiffness keeps the factors it had.
+    subroutine view_matrix(this, medium, matrix)
+        !> The operator
+        class(dense_operator), intent(inout) :: this
+        !> The medium, every element a contact element
+        type(elastic_medium), intent(in) :: medium
+        !> Its influence matrix [s; n], shape (2n, 2n) [stress / length]
+        real(wp), intent(in), target, contiguous :: matrix(:, :)
+        integer :: i, n
+
+        n = medium%elements%n
+        this%contact = [(i, i = 1, n)]
+        this%free = [integer ::]
+        this%nc = n
+        this%nf = 0
+        if (.not. allocated(this%stiffness)) allocate (dense_stiffness :: this%stiffness)
+        this%a => matrix
+        this%matrix => matrix
+        this%whole => matrix
+        this%viewed = .true.
+        call bind_stiffness(this)
+    end subroutine view_matrix
+
     !> The Newton method's operator works on the matrix of the contact problem.
     subroutine bind_stiffness(op)
-        type(dense_operator), intent(inout) :: op
+        class(dense_operator), intent(inout) :: op
 
         select type (s => op%stiffness)
         type is (dense_stiffness)
@@ -342,6 +369,7 @@ contains
         end select
         nullify (this%matrix, this%whole)
         if (associated(this%a_joint)) deallocate (this%a_joint)
+        if (this%viewed) nullify (this%a)
         if (associated(this%a)) deallocate (this%a)
         if (associated(this%system)) deallocate (this%system)
     end subroutine dense_release

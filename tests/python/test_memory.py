@@ -69,7 +69,7 @@ def limit_address_space():
 
 @pytest.mark.parametrize("n, extra, what", [
     (20, "&load_path steps = 1000000, sxy = 0, 54.13 /\n",
-     "the loads of 20 elements at 1000001 steps (1.1 GB)"),
+     "the history of 20 elements at 1000001 steps (800 MB)"),
     (2000, "&solver lcp_method = 'lemke' /\n",
      "the LCP matrices of 2000 contact elements (Lemke) (704 MB)"),
 ])
