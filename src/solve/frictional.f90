@@ -18,7 +18,8 @@ module ddc_solve_frictional
     use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, set_internal_error, exit_solver_failure
-    use ddc_model_types, only: element_set, condition_contact
+    use ddc_model_types, only: element_set, condition_contact, strength_law_count
+    use ddc_model_laws, only: strength_law, strength_laws, law_values
     use ddc_model_results, only: solver_record, state_free
     use ddc_influence_assembly, only: assemble_influence
     use ddc_solve_elastic, only: row_kinds, given_values
@@ -211,29 +212,29 @@ contains
     end subroutine solve_on_hierarchical
 
     !> The fault law of the elements `subset` (default: every element), from the model's
-    !> per-element arrays.
+    !> per-element arrays: mu, sf and each strength law of the list (ddc_model_laws).
     pure function fault_law_of(elements, subset) result(law)
         !> The model's elements
         type(element_set), intent(in) :: elements
         !> Indices of the elements, shape (m)
         integer, intent(in), optional :: subset(:)
         type(fault_law) :: law
+        type(strength_law) :: laws(strength_law_count)
+        real(wp), allocatable :: given(:, :)
         integer, allocatable :: pick(:)
-        integer :: i
+        integer :: i, k
 
         if (present(subset)) then
             pick = subset
         else
             pick = [(i, i = 1, elements%n)]
         end if
-        associate (e => elements)
-            law = new_fault_law(e%mu(pick), e%sf(pick), &
-                tensile_strength=e%tensile_strength(pick), sf_residual=e%sf_residual(pick), &
-                mu_dynamic=e%mu_dynamic(pick), &
-                slip_weakening_distance=e%slip_weakening_distance(pick), &
-                opening_weakening_distance=e%opening_weakening_distance(pick), &
-                shear_stiffness=e%shear_stiffness(pick), normal_stiffness=e%normal_stiffness(pick))
-        end associate
+        laws = strength_laws()
+        given = law_values(elements)
+        law = new_fault_law(elements%mu(pick), elements%sf(pick))
+        do k = 1, size(laws)
+            call law%set_given(laws(k)%name, given(pick, k))
+        end do
     end function fault_law_of
 
     !> Whether a strength in force can change in a solve of the model: its law goes beyond
