@@ -29,8 +29,9 @@ contains
 
     !> &growth steps, toughness, increment, element_length, tips, fractures, criterion,
     !> max_corrections, new_mu, new_sf, angle_range, angle_step, work_threshold, the strength
-    !> laws of new elements (new_<name> of each law of ddc_model_laws) / (optional). Read after every other group: the
-    !> fracture names and the other groups are checked against it.
+    !> laws of new elements (new_<name> of each law of ddc_model_laws) / (optional). Read
+    !> after every other group: the fracture names and the other groups are checked
+    !> against it.
     subroutine read_growth_group(unit, text, path, groups, known, model, messages)
         !> Unit of the open input file
         integer, intent(in) :: unit

@@ -76,7 +76,7 @@ module ddc_model_laws
         !> The laws listed so far
         type(strength_law) :: laws(strength_law_count)
         !> Whether each one's array is allocated
-        logical :: allocated(strength_law_count) = .false.
+        logical :: has_array(strength_law_count) = .false.
         !> Their values, column k law k, shape (n, strength_law_count); unallocated: not asked
         real(wp), allocatable :: values(:, :)
         !> How many
@@ -237,7 +237,7 @@ contains
 
         copy = elements
         call for_each_law(copy, listing)
-        laws_allocated = all(listing%allocated)
+        laws_allocated = all(listing%has_array)
     end function laws_allocated
 
     !> The values of a law as they act: a value after slip capped by the Coulomb value it falls
@@ -312,7 +312,7 @@ contains
 
         action%listed = action%listed + 1
         action%laws(action%listed) = law
-        action%allocated(action%listed) = allocated(values)
+        action%has_array(action%listed) = allocated(values)
         if (allocated(action%values)) action%values(:, action%listed) = values
     end subroutine list_law
 

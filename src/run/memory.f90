@@ -224,10 +224,9 @@ contains
     pure logical function records_strengths(model)
         type(model_type), intent(in) :: model
 
-        records_strengths = .false.
         associate (e => model%elements)
-            if (allocated(e%mu) .and. allocated(e%sf) .and. laws_allocated(e)) &
-                records_strengths = strengths_change(e, model%solver)
+            records_strengths = allocated(e%mu) .and. allocated(e%sf) .and. laws_allocated(e)
+            if (records_strengths) records_strengths = strengths_change(e, model%solver)
         end associate
     end function records_strengths
 
