@@ -139,10 +139,10 @@ contains
 
     end function new_fault_law
 
-    !> Set the given values of the law `name` beyond Coulomb's (a component above: the list of
-    !> them, ddc_model_laws' for_each_law, names each one so), before a solve: the tensile
-    !> strength in force is the given one, as in new_fault_law. A name that is none of them
-    !> sets nothing (the CTest architecture holds the cases here to that list).
+    !> Set the given values of the law beyond Coulomb's named `name`: the component of that
+    !> name, as the list of the laws (ddc_model_laws' for_each_law) names it. Before a solve:
+    !> the tensile strength in force is the given one, as in new_fault_law. A name that is
+    !> none of them sets nothing (the CTest architecture holds the cases here to that list).
     pure subroutine set_given(law, name, values)
         !> The law of n elements
         class(fault_law), intent(inout) :: law

@@ -51,6 +51,7 @@ contains
 
         n = size(state%x_begin)
         created = state%results%growth%created_step
+        ! The laws of new elements that make joints of them
         joint_laws = [law_index('shear_stiffness'), law_index('normal_stiffness')]
         if (allocated(model%load_path%vertex) .and. (any(model%elements%shear_stiffness < &
             rigid_joint) .or. any(model%elements%normal_stiffness < rigid_joint) .or. &

@@ -34,7 +34,7 @@ module ddc_sweep_tasks
     private
 
     public :: sweep_definition, combine_product, combine_zip, combine_names
-    public :: max_parameters, max_tasks, parameter_help
+    public :: max_parameters, max_tasks
     public :: parse_parameter, check_value, task_values, task_label, task_file_name
     public :: check_task, apply_task, task_problem, check_tasks
     public :: target_sxx, target_syy, target_sxy, target_s1, target_s3, target_angle
