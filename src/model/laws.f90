@@ -100,9 +100,10 @@ module ddc_model_laws
 contains
 
     !> The one list of the strength laws: the action gets each law with its per-element array
-    !> of element_set, once, in this order (that of growth_options' new_law). A new law is
-    !> declared in element_set (and listed in for_each_element_array) and in fault_law, and
-    !> listed here; the CTest architecture fails when they disagree.
+    !> of element_set, once, in this order: that of growth_options' new_law, which the model
+    !> fingerprint hashes, so a new law goes at the end. A new law is declared in element_set
+    !> (and listed in for_each_element_array) and in fault_law, and listed here; the CTest
+    !> architecture fails when they disagree.
     pure subroutine for_each_law(elements, action)
         !> The set whose arrays the action gets
         type(element_set), intent(inout) :: elements
