@@ -6,7 +6,9 @@ module ddc_app_report
     use ddc_model_types, only: model_type, rigid_joint, tensile_cap, condition_names, &
         observation_kind_names, symmetry_none, symmetry_names, domain_names, &
         domain_half_plane, load_path_names, &
-        growth_tips_names, growth_criterion_names, growth_criterion_work, new_law_names
+        growth_tips_names, growth_criterion_names, growth_criterion_work, strength_law_count
+    use ddc_model_laws, only: strength_law, strength_laws
+    use ddc_model_records, only: units_one, units_text
     use ddc_model_results, only: model_results, state_names, point_near, point_on_element, &
         growth_reason_names, growth_end_names, growth_subcritical, growth_intersection, &
         growth_surface, growth_linked, growth_closed, growth_waiting, growth_enclosing
@@ -238,8 +240,8 @@ contains
     subroutine print_growth_options(unit, model)
         integer, intent(in) :: unit
         type(model_type), intent(in) :: model
-        character(len=:), allocatable :: names
-        character(len=64) :: units(size(new_law_names))
+        character(len=:), allocatable :: names, units
+        type(strength_law) :: laws(strength_law_count)
         integer :: f
 
         associate (g => model%growth)
@@ -282,15 +284,15 @@ contains
             if (g%override_mu) write (unit, '(a,g0)') '    new contact elements: mu = ', g%new_mu
             if (g%override_sf) write (unit, '(a,g0,1x,a)') '    new contact elements: sf = ', &
                 g%new_sf, model%stress_unit
-            units = [character(len=64) :: model%stress_unit, model%stress_unit, '', &
-                     model%length_unit, model%length_unit, &
-                     model%stress_unit//'/'//model%length_unit, &
-                     model%stress_unit//'/'//model%length_unit]
-            do f = 1, size(new_law_names)
-                ! 'new_tensile_strength' echoes as the element's 'tensile_strength'
-                if (g%override_law(f)) write (unit, '(a,g0,1x,a)') '    new contact '// &
-                    'elements: '//trim(new_law_names(f)(5:))//' = ', g%new_law(f), &
-                    trim(units(f))
+            laws = strength_laws()
+            do f = 1, size(laws)
+                if (.not. g%override_law(f)) cycle
+                ! A ratio echoes without units
+                units = ''
+                if (laws(f)%units /= units_one) units = units_text(laws(f)%units, &
+                    model%stress_unit, model%length_unit)
+                write (unit, '(a,g0,1x,a)') '    new contact elements: '//laws(f)%name// &
+                    ' = ', g%new_law(f), units
             end do
         end associate
         if (model%initiation%active) call print_initiation_options(unit, model)

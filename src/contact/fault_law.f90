@@ -23,9 +23,10 @@
 !>   (joint_compliance).
 !>
 !> A new law: its given values (and values in force) here, with new_fault_law's default
-!> that leaves Coulomb's law as it is, its rule as a procedure of fault_law, its part of
-!> beyond_coulomb, and the per-element array of the model that ddc_solve_frictional's
-!> fault_law_of reads (docs/ARCHITECTURE.md, "A new strength law").
+!> that leaves Coulomb's law as it is and its case in set_given, its rule as a procedure of
+!> fault_law, its part of beyond_coulomb, and its entry in the list of the laws that
+!> ddc_model_element_laws' fault_law_of goes through (ddc_model_laws' for_each_law;
+!> docs/ARCHITECTURE.md, "A new strength law").
 module ddc_contact_fault_law
     use ddc_kinds, only: wp
     use ddc_contact_states, only: state_slip, state_open
@@ -63,6 +64,7 @@ module ddc_contact_fault_law
         real(wp), allocatable :: sf_in_force(:), tensile_in_force(:), mu_in_force(:)
         real(wp), allocatable :: slip_path(:)
     contains
+        procedure :: set_given
         procedure :: sizes_match
         procedure :: all_finite
         procedure :: any_negative
@@ -136,6 +138,39 @@ contains
         end function given_or
 
     end function new_fault_law
+
+    !> Set the given values of the law beyond Coulomb's named `name`: the component of that
+    !> name, as the list of the laws (ddc_model_laws' for_each_law) names it. Before a solve:
+    !> the tensile strength in force is the given one, as in new_fault_law. A name that is
+    !> none of them sets nothing (the CTest architecture holds the cases here to that list).
+    pure subroutine set_given(law, name, values)
+        !> The law of n elements
+        class(fault_law), intent(inout) :: law
+        !> The name of the law
+        character(len=*), intent(in) :: name
+        !> Its given values, shape (n)
+        real(wp), intent(in) :: values(:)
+
+        select case (name)
+        case ('tensile_strength')
+            law%tensile_strength = values
+            law%tensile_in_force = values
+        case ('sf_residual')
+            law%sf_residual = values
+        case ('mu_dynamic')
+            law%mu_dynamic = values
+        case ('slip_weakening_distance')
+            law%slip_weakening_distance = values
+        case ('opening_weakening_distance')
+            law%opening_weakening_distance = values
+        case ('shear_stiffness')
+            law%shear_stiffness = values
+        case ('normal_stiffness')
+            law%normal_stiffness = values
+        case default
+            ! not a law of this type
+        end select
+    end subroutine set_given
 
     !> Whether every value is there for n elements.
     pure logical function sizes_match(law, n)

@@ -5,7 +5,8 @@
 module ddc_growth_extension
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type, element_set, growth_options, condition_contact, &
-        select_elements
+        select_elements, strength_law_count
+    use ddc_model_laws, only: strength_law, strength_laws, set_law
     use ddc_mesh_geometry, only: compute_geometry
     implicit none
     private
@@ -278,18 +279,18 @@ contains
         logical, intent(in) :: takes(:)
         !> The growth options (override_mu, new_mu, override_sf, new_sf, override_law, new_law)
         type(growth_options), intent(in) :: options
+        type(strength_law) :: laws(strength_law_count)
+        integer, allocatable :: rows(:)
+        integer :: k, i
 
-        associate (given => options%override_law, v => options%new_law, e => elements)
-            if (given(1)) where (takes) e%tensile_strength = v(1)
-            if (given(2)) where (takes) e%sf_residual = v(2)
-            if (given(3)) where (takes) e%mu_dynamic = v(3)
-            if (given(4)) where (takes) e%slip_weakening_distance = v(4)
-            if (given(5)) where (takes) e%opening_weakening_distance = v(5)
-            if (given(6)) where (takes) e%shear_stiffness = v(6)
-            if (given(7)) where (takes) e%normal_stiffness = v(7)
-            if (options%override_mu) where (takes) e%mu = options%new_mu
-            if (options%override_sf) where (takes) e%sf = options%new_sf
-        end associate
+        laws = strength_laws()
+        rows = pack([(i, i = 1, elements%n)], takes)
+        do k = 1, size(laws)
+            if (options%override_law(k)) call set_law(elements, laws(k)%name, rows, &
+                                                      spread(options%new_law(k), 1, size(rows)))
+        end do
+        if (options%override_mu) where (takes) elements%mu = options%new_mu
+        if (options%override_sf) where (takes) elements%sf = options%new_sf
     end subroutine take_new_element_laws
 
     !> Index of the path at end `end` of fracture f; 0 when there is none.

@@ -5,7 +5,8 @@
 module ddc_growth_new_fracture
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type, growth_options, initiation_options, &
-        condition_contact, no_residual_drop, rigid_joint
+        condition_contact
+    use ddc_model_laws, only: default_strength_laws
     use ddc_model_initiations, only: initiation_flaw
     use ddc_mesh_geometry, only: compute_geometry
     use ddc_growth_extension, only: inherit_values, take_new_element_laws
@@ -78,20 +79,15 @@ contains
                 e%condition(new) = condition_contact
                 e%mu(new) = 0.0_wp
                 e%sf(new) = 0.0_wp
-                e%tensile_strength(new) = 0.0_wp
-                e%sf_residual(new) = no_residual_drop
-                e%mu_dynamic(new) = no_residual_drop
-                e%slip_weakening_distance(new) = 0.0_wp
-                e%opening_weakening_distance(new) = 0.0_wp
-                e%shear_stiffness(new) = rigid_joint
-                e%normal_stiffness(new) = rigid_joint
                 e%pressure(new) = 0.0_wp
                 e%bc_s(new) = 0.0_wp
                 e%bc_n(new) = 0.0_wp
             end if
         end associate
-        if (kind == initiation_flaw) call take_new_element_laws(grown%elements, &
-            [(i > n, i = 1, n + m)], growth)
+        if (kind == initiation_flaw) then
+            call default_strength_laws(grown%elements, [(i > n, i = 1, n + m)])
+            call take_new_element_laws(grown%elements, [(i > n, i = 1, n + m)], growth)
+        end if
         call compute_geometry(grown%elements)
         ! Element by element: an array constructor of a type with an allocatable name
         ! leaks its temporaries with gfortran (valgrind).

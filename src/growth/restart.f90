@@ -17,6 +17,7 @@ module ddc_growth_restart
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type, rigid_joint
+    use ddc_model_laws, only: law_index
     use ddc_model_results, only: growth_intersection, growth_surface, growth_linked, &
         growth_enclosing, growth_grew, growth_corrector_failed
     use ddc_model_restart, only: restart_state
@@ -29,9 +30,6 @@ module ddc_growth_restart
     private
 
     public :: resumed_geometry, resumed_tips, resumed_strengths
-
-    !> Places in new_law_names of the joint stiffnesses of new elements
-    integer, parameter :: joint_laws(2) = [6, 7]
 
 contains
 
@@ -49,10 +47,12 @@ contains
         !> Set (exit_bad_input) when the file's geometry does not follow from the model
         type(error_type), allocatable, intent(out) :: error
         integer, allocatable :: pick(:)
-        integer :: f, i, j, n
+        integer :: f, i, j, n, joint_laws(2)
 
         n = size(state%x_begin)
         created = state%results%growth%created_step
+        ! The laws of new elements that make joints of them
+        joint_laws = [law_index('shear_stiffness'), law_index('normal_stiffness')]
         if (allocated(model%load_path%vertex) .and. (any(model%elements%shear_stiffness < &
             rigid_joint) .or. any(model%elements%normal_stiffness < rigid_joint) .or. &
             any(model%growth%override_law(joint_laws)))) then

@@ -13,7 +13,8 @@ module ddc_input_namelist
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_capabilities, only: run_refusal, operator_hierarchical
     use ddc_model_types, only: model_type, condition_contact, symmetry_none, symmetry_names, &
-        symmetry_x, domain_half_plane
+        symmetry_x, domain_half_plane, strength_law_count
+    use ddc_model_laws, only: strength_law, strength_laws, set_law
     use ddc_text, only: itoa, rtoa, prefix_lines
     use ddc_input_text_file, only: read_text_file, folder_of
     use ddc_mesh_geometry, only: allocate_elements, compute_geometry
@@ -243,8 +244,10 @@ contains
         type(fracture_input), intent(in) :: fractures(:)
         type(observation_input), intent(in) :: observations(:)
         type(model_type), intent(inout) :: model
-        integer :: k, n, first, last
+        type(strength_law) :: laws(strength_law_count)
+        integer :: k, n, first, last, i, j
 
+        laws = strength_laws()
         n = 0
         do k = 1, size(fractures)
             n = n + size(fractures(k)%x_begin)
@@ -269,15 +272,10 @@ contains
             model%elements%mu(first:last) = fractures(k)%mu
             model%elements%sf(first:last) = fractures(k)%sf
             model%elements%pressure(first:last) = fractures(k)%pressure
-            model%elements%tensile_strength(first:last) = fractures(k)%tensile_strength
-            model%elements%sf_residual(first:last) = fractures(k)%sf_residual
-            model%elements%mu_dynamic(first:last) = fractures(k)%mu_dynamic
-            model%elements%slip_weakening_distance(first:last) = &
-                fractures(k)%slip_weakening_distance
-            model%elements%opening_weakening_distance(first:last) = &
-                fractures(k)%opening_weakening_distance
-            model%elements%shear_stiffness(first:last) = fractures(k)%shear_stiffness
-            model%elements%normal_stiffness(first:last) = fractures(k)%normal_stiffness
+            do j = 1, size(laws)
+                call set_law(model%elements, laws(j)%name, [(i, i = first, last)], &
+                             fractures(k)%laws(:, j))
+            end do
         end do
         call compute_geometry(model%elements)
 

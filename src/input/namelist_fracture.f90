@@ -4,9 +4,10 @@
 module ddc_input_namelist_fracture
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
-    use ddc_model_types, only: condition_names, condition_contact, no_residual_drop, rigid_joint
-    use ddc_model_limits, only: range_problem, quantity_non_negative, quantity_positive, &
-                                within_limits
+    use ddc_model_types, only: condition_names, condition_contact, no_residual_drop, &
+        strength_law_count
+    use ddc_model_laws, only: strength_law, strength_laws, at_most_rule
+    use ddc_model_limits, only: range_problem, quantity_non_negative, within_limits
     use ddc_text, only: itoa, rtoa, lower, find_name, quoted_list, prefix_lines, counted
     use ddc_input_text_file, only: resolve
     use ddc_input_csv, only: read_csv
@@ -25,6 +26,9 @@ module ddc_input_namelist_fracture
     integer, parameter :: max_vertices = 100000
     !> Largest number of elements in a model
     integer, parameter :: max_elements = 1000000
+    !> The columns of an elements_file before those of the strength laws (x_begin, y_begin,
+    !> x_end, y_end, mu, sf, pressure)
+    integer, parameter :: law_column = 7
 
     !> One fracture as read, expanded to elements (valid when its group had no problem).
     type :: fracture_input
@@ -40,17 +44,9 @@ module ddc_input_namelist_fracture
         real(wp), allocatable :: x_begin(:), y_begin(:), x_end(:), y_end(:)
         !> Per-element values (docs/input-reference.md#fracture), shape (elements)
         real(wp), allocatable :: mu(:), sf(:), pressure(:), bc_s(:), bc_n(:)
-        !> Tensile strength and residual cohesion (no_residual_drop where not given),
-        !> shape (elements) [stress unit]
-        real(wp), allocatable :: tensile_strength(:), sf_residual(:)
-        !> Dynamic friction (no_residual_drop where not given) [-] and slip-weakening
-        !> distance [length unit], shape (elements)
-        real(wp), allocatable :: mu_dynamic(:), slip_weakening_distance(:)
-        !> Opening over which the tensile strength falls to 0 [length unit], shape (elements)
-        real(wp), allocatable :: opening_weakening_distance(:)
-        !> Joint stiffnesses (rigid_joint where not given) [stress unit / length unit],
-        !> shape (elements)
-        real(wp), allocatable :: shear_stiffness(:), normal_stiffness(:)
+        !> The strength laws beyond Coulomb, column k law k of the list (ddc_model_laws; its
+        !> default where not given), shape (elements, strength_law_count)
+        real(wp), allocatable :: laws(:, :)
     end type fracture_input
 
 contains
@@ -68,10 +64,16 @@ contains
         type(message_list), intent(inout) :: messages
         character(len=text_length) :: name, condition, elements_file
         real(wp), allocatable :: x(:), y(:), mu(:), sf(:), pressure(:), bc_s(:), bc_n(:)
-        real(wp), allocatable :: tensile_strength(:), sf_residual(:), seg_t(:), seg_sfr(:)
-        real(wp), allocatable :: mu_dynamic(:), slip_weakening_distance(:), seg_mud(:), seg_dc(:)
-        real(wp), allocatable :: shear_stiffness(:), normal_stiffness(:), seg_ks(:), seg_kn(:)
-        real(wp), allocatable :: opening_weakening_distance(:), seg_do(:)
+        ! The strength laws' variables
+        real(wp), allocatable :: tensile_strength(:), sf_residual(:), mu_dynamic(:), &
+            slip_weakening_distance(:), shear_stiffness(:), normal_stiffness(:), &
+            opening_weakening_distance(:)
+        ! The laws: what the list says of each, their values as read and per segment (column k
+        ! law k), how many values of each were given, which the CSV gives
+        type(strength_law) :: laws(strength_law_count)
+        real(wp), allocatable :: law_values(:, :), seg_laws(:, :)
+        character(len=text_length) :: law_names(strength_law_count)
+        integer :: nlaw(strength_law_count)
         logical, allocatable :: csv_given(:)
         integer, allocatable :: elements(:)
         character(len=512) :: iomsg
@@ -80,8 +82,7 @@ contains
                                  seg_bc_s(:), seg_bc_n(:)
         integer, allocatable :: counts(:), row_lines(:)
         type(error_type), allocatable :: csv_error
-        integer :: stat, k, i, nx, ny, ne, nmu, nsf, npr, nbs, nbn, nseg, nbefore, cond
-        integer :: nt, nsr, nmd, ndc, nks, nkn, ndo
+        integer :: stat, k, i, j, nx, ny, ne, nmu, nsf, npr, nbs, nbn, nseg, nbefore, cond
         logical :: from_csv, geometry_ok
         namelist /fracture/ name, x, y, elements, mu, sf, pressure, condition, bc_s, bc_n, &
             elements_file, tensile_strength, sf_residual, mu_dynamic, slip_weakening_distance, &
@@ -89,6 +90,10 @@ contains
 
         allocate (fractures(info%count))
         if (info%count == 0) return
+        laws = strength_laws()
+        do j = 1, size(laws)
+            law_names(j) = laws(j)%name
+        end do
         allocate (x(max_vertices), y(max_vertices), mu(max_vertices), sf(max_vertices), &
                   pressure(max_vertices), bc_s(max_vertices), bc_n(max_vertices), &
                   elements(max_vertices), tensile_strength(max_vertices), &
@@ -133,14 +138,14 @@ contains
             npr = count_given(pressure, 'pressure', prefix, messages)
             nbs = count_given(bc_s, 'bc_s', prefix, messages)
             nbn = count_given(bc_n, 'bc_n', prefix, messages)
-            nt = count_given(tensile_strength, 'tensile_strength', prefix, messages)
-            nsr = count_given(sf_residual, 'sf_residual', prefix, messages)
-            nmd = count_given(mu_dynamic, 'mu_dynamic', prefix, messages)
-            ndc = count_given(slip_weakening_distance, 'slip_weakening_distance', prefix, messages)
-            nks = count_given(shear_stiffness, 'shear_stiffness', prefix, messages)
-            nkn = count_given(normal_stiffness, 'normal_stiffness', prefix, messages)
-            ndo = count_given(opening_weakening_distance, 'opening_weakening_distance', prefix, &
-                              messages)
+            ! In the order of the list of the laws (the CTest architecture holds it to that)
+            law_values = reshape([tensile_strength, sf_residual, mu_dynamic, &
+                                  slip_weakening_distance, opening_weakening_distance, &
+                                  shear_stiffness, normal_stiffness], &
+                                 [max_vertices, strength_law_count])
+            do j = 1, size(laws)
+                nlaw(j) = count_given(law_values(:, j), laws(j)%name, prefix, messages)
+            end do
 
             cond = find_name(lower(trim(adjustl(condition))), condition_names)
             if (cond == 0) then
@@ -155,18 +160,14 @@ contains
                     call add(messages, prefix//'give either x, y and elements or '// &
                              'elements_file, not both')
                 end if
-                if (nmu > 0 .or. nsf > 0 .or. npr > 0 .or. nt > 0 .or. nsr > 0 .or. &
-                    nmd > 0 .or. ndc > 0 .or. nks > 0 .or. nkn > 0 .or. ndo > 0) then
+                if (nmu > 0 .or. nsf > 0 .or. npr > 0 .or. any(nlaw > 0)) then
                     call add(messages, prefix//'mu, sf, pressure and the strength laws come '// &
                              'from elements_file; do not give them in the group as well')
                 end if
                 csv_path = resolve(dir, trim(adjustl(elements_file)))
                 call read_csv(csv_path, [character(len=8) :: 'x_begin', 'y_begin', 'x_end', &
                               'y_end', 'mu', 'sf', 'pressure'], rows, csv_error, row_lines, &
-                              [character(len=26) :: 'tensile_strength', 'sf_residual', &
-                              'mu_dynamic', 'slip_weakening_distance', 'shear_stiffness', &
-                              'normal_stiffness', 'opening_weakening_distance'], &
-                              csv_given, most_rows=max_elements)
+                              law_names, csv_given, most_rows=max_elements)
                 if (allocated(csv_error)) then
                     call add(messages, prefix_lines(prefix//'elements_file: ', csv_error%message))
                     deallocate (csv_error)
@@ -188,21 +189,13 @@ contains
                                      itoa(row_lines(i))//': sf = '//rtoa(rows(6, i))//' '// &
                                      range_problem(quantity_non_negative, rows(6, i)))
                         end if
-                        if (csv_given(1)) call check_law_row(8, 'tensile_strength')
-                        if (csv_given(2)) call check_law_row(9, 'sf_residual')
-                        if (csv_given(3)) call check_law_row(10, 'mu_dynamic')
-                        if (csv_given(4)) call check_law_row(11, 'slip_weakening_distance')
-                        if (csv_given(5)) call check_law_row(12, 'shear_stiffness')
-                        if (csv_given(6)) call check_law_row(13, 'normal_stiffness')
-                        if (csv_given(7)) call check_law_row(14, 'opening_weakening_distance')
+                        do j = 1, size(laws)
+                            if (csv_given(j)) call check_law_row(j)
+                        end do
                     end do
-                    if (.not. csv_given(1)) rows(8, :) = 0.0_wp
-                    if (.not. csv_given(2)) rows(9, :) = no_residual_drop
-                    if (.not. csv_given(3)) rows(10, :) = no_residual_drop
-                    if (.not. csv_given(4)) rows(11, :) = 0.0_wp
-                    if (.not. csv_given(5)) rows(12, :) = rigid_joint
-                    if (.not. csv_given(6)) rows(13, :) = rigid_joint
-                    if (.not. csv_given(7)) rows(14, :) = 0.0_wp
+                    do j = 1, size(laws)
+                        if (.not. csv_given(j)) rows(law_column + j, :) = laws(j)%default
+                    end do
                 end if
             else
                 if (nx /= ny) then
@@ -254,30 +247,18 @@ contains
                     end if
                     call check_range(mu(1:nmu), 'mu', quantity_non_negative, prefix, messages)
                     call check_range(sf(1:nsf), 'sf', quantity_non_negative, prefix, messages)
-                    call check_range(tensile_strength(1:nt), 'tensile_strength', &
-                                     quantity_non_negative, prefix, messages)
-                    call check_range(sf_residual(1:nsr), 'sf_residual', quantity_non_negative, &
-                                     prefix, messages)
-                    call check_range(mu_dynamic(1:nmd), 'mu_dynamic', quantity_non_negative, &
-                                     prefix, messages)
-                    call check_range(slip_weakening_distance(1:ndc), 'slip_weakening_distance', &
-                                     quantity_non_negative, prefix, messages)
-                    call check_range(opening_weakening_distance(1:ndo), &
-                                     'opening_weakening_distance', quantity_non_negative, &
-                                     prefix, messages)
-                    call check_range(shear_stiffness(1:nks), 'shear_stiffness', &
-                                     quantity_positive, prefix, messages)
-                    call check_range(normal_stiffness(1:nkn), 'normal_stiffness', &
-                                     quantity_positive, prefix, messages)
+                    do j = 1, size(laws)
+                        call check_range(law_values(1:nlaw(j), j), laws(j)%name, &
+                                         laws(j)%quantity, prefix, messages)
+                    end do
                 end if
                 if (nbs > 0 .or. nbn > 0) then
                     call add(messages, prefix//'bc_s and bc_n are for the TWODD-style '// &
                              "conditions, not for condition 'contact'")
                 end if
             else if (cond /= 0) then
-                if (.not. from_csv .and. (nmu > 0 .or. nsf > 0 .or. npr > 0 .or. nt > 0 .or. &
-                    nsr > 0 .or. nmd > 0 .or. ndc > 0 .or. nks > 0 .or. nkn > 0 .or. &
-                    ndo > 0)) then
+                if (.not. from_csv .and. (nmu > 0 .or. nsf > 0 .or. npr > 0 .or. &
+                                          any(nlaw > 0))) then
                     call add(messages, prefix//"mu, sf, pressure and the strength laws are "// &
                              "for condition "// &
                              "'contact', not for condition '"//trim(condition_names(cond))//"'")
@@ -295,33 +276,24 @@ contains
                     if (check_length(npr, nseg, 'pressure', prefix, messages)) then
                         seg_pressure = broadcast(pressure(1:npr), nseg, 0.0_wp)
                     end if
-                    if (check_length(nt, nseg, 'tensile_strength', prefix, messages)) then
-                        seg_t = broadcast(tensile_strength(1:nt), nseg, 0.0_wp)
-                    end if
-                    if (check_length(nsr, nseg, 'sf_residual', prefix, messages)) then
-                        seg_sfr = broadcast(sf_residual(1:nsr), nseg, no_residual_drop)
-                        if (allocated(seg_sf)) call check_residual(seg_sf, seg_sfr, &
-                                                                   'segment', 'sf')
-                    end if
-                    if (check_length(nmd, nseg, 'mu_dynamic', prefix, messages)) then
-                        seg_mud = broadcast(mu_dynamic(1:nmd), nseg, no_residual_drop)
-                        if (allocated(seg_mu)) call check_residual(seg_mu, seg_mud, &
-                                                                   'segment', 'mu')
-                    end if
-                    if (check_length(ndc, nseg, 'slip_weakening_distance', prefix, &
-                                     messages)) then
-                        seg_dc = broadcast(slip_weakening_distance(1:ndc), nseg, 0.0_wp)
-                    end if
-                    if (check_length(ndo, nseg, 'opening_weakening_distance', prefix, &
-                                     messages)) then
-                        seg_do = broadcast(opening_weakening_distance(1:ndo), nseg, 0.0_wp)
-                    end if
-                    if (check_length(nks, nseg, 'shear_stiffness', prefix, messages)) then
-                        seg_ks = broadcast(shear_stiffness(1:nks), nseg, rigid_joint)
-                    end if
-                    if (check_length(nkn, nseg, 'normal_stiffness', prefix, messages)) then
-                        seg_kn = broadcast(normal_stiffness(1:nkn), nseg, rigid_joint)
-                    end if
+                    if (allocated(seg_laws)) deallocate (seg_laws)
+                    allocate (seg_laws(nseg, size(laws)))
+                    do j = 1, size(laws)
+                        if (.not. check_length(nlaw(j), nseg, laws(j)%name, prefix, &
+                                               messages)) cycle
+                        seg_laws(:, j) = broadcast(law_values(1:nlaw(j), j), nseg, &
+                                                   laws(j)%default)
+                        select case (laws(j)%at_most)
+                        case ('sf')
+                            if (allocated(seg_sf)) call check_residual(seg_sf, seg_laws(:, j), &
+                                                                       'segment', laws(j))
+                        case ('mu')
+                            if (allocated(seg_mu)) call check_residual(seg_mu, seg_laws(:, j), &
+                                                                       'segment', laws(j))
+                        case default
+                            ! no Coulomb value it may not exceed
+                        end select
+                    end do
                 end if
                 if (check_length(nbs, nseg, 'bc_s', prefix, messages)) then
                     seg_bc_s = broadcast(bc_s(1:nbs), nseg, 0.0_wp)
@@ -343,13 +315,7 @@ contains
                 fractures(k)%mu = rows(5, :)
                 fractures(k)%sf = rows(6, :)
                 fractures(k)%pressure = rows(7, :)
-                fractures(k)%tensile_strength = rows(8, :)
-                fractures(k)%sf_residual = rows(9, :)
-                fractures(k)%mu_dynamic = rows(10, :)
-                fractures(k)%slip_weakening_distance = rows(11, :)
-                fractures(k)%shear_stiffness = rows(12, :)
-                fractures(k)%normal_stiffness = rows(13, :)
-                fractures(k)%opening_weakening_distance = rows(14, :)
+                fractures(k)%laws = transpose(rows(law_column + 1:, :))
                 fractures(k)%bc_s = seg_bc_s
                 fractures(k)%bc_n = seg_bc_n
             else
@@ -359,13 +325,10 @@ contains
                 fractures(k)%mu = expand_per_segment(seg_mu, counts)
                 fractures(k)%sf = expand_per_segment(seg_sf, counts)
                 fractures(k)%pressure = expand_per_segment(seg_pressure, counts)
-                fractures(k)%tensile_strength = expand_per_segment(seg_t, counts)
-                fractures(k)%sf_residual = expand_per_segment(seg_sfr, counts)
-                fractures(k)%mu_dynamic = expand_per_segment(seg_mud, counts)
-                fractures(k)%slip_weakening_distance = expand_per_segment(seg_dc, counts)
-                fractures(k)%shear_stiffness = expand_per_segment(seg_ks, counts)
-                fractures(k)%normal_stiffness = expand_per_segment(seg_kn, counts)
-                fractures(k)%opening_weakening_distance = expand_per_segment(seg_do, counts)
+                allocate (fractures(k)%laws(size(fractures(k)%mu), size(laws)))
+                do j = 1, size(laws)
+                    fractures(k)%laws(:, j) = expand_per_segment(seg_laws(:, j), counts)
+                end do
                 fractures(k)%bc_s = expand_per_segment(seg_bc_s, counts)
                 fractures(k)%bc_n = expand_per_segment(seg_bc_n, counts)
             end if
@@ -373,54 +336,45 @@ contains
 
     contains
 
-        !> The law in column c of CSV row i is not negative (a stiffness positive; and
-        !> sf_residual <= sf, mu_dynamic <= mu).
-        subroutine check_law_row(c, name)
-            integer, intent(in) :: c
-            character(len=*), intent(in) :: name
-            integer :: quantity
+        !> Law l in CSV row i is within its range, and not above the Coulomb value it may not
+        !> exceed (law%at_most: sf_residual <= sf, mu_dynamic <= mu).
+        subroutine check_law_row(l)
+            integer, intent(in) :: l
+            character(len=:), allocatable :: where
 
-            quantity = quantity_non_negative
-            if (c == 12 .or. c == 13) quantity = quantity_positive
-            if (len(range_problem(quantity, rows(c, i))) > 0) then
-                call add(messages, prefix//'elements_file '//csv_path//' line '// &
-                         itoa(row_lines(i))//': '//name//' = '//rtoa(rows(c, i))//' '// &
-                         range_problem(quantity, rows(c, i)))
-            else if (c == 9) then
-                call check_residual(rows(6, i:i), rows(9, i:i), 'elements_file '//csv_path// &
-                                    ' line '//itoa(row_lines(i))//':', 'sf')
-            else if (c == 10) then
-                call check_residual(rows(5, i:i), rows(10, i:i), 'elements_file '//csv_path// &
-                                    ' line '//itoa(row_lines(i))//':', 'mu')
-            end if
+            associate (law => laws(l), given => rows(law_column + l, i))
+                where = 'elements_file '//csv_path//' line '//itoa(row_lines(i))//':'
+                if (len(range_problem(law%quantity, given)) > 0) then
+                    call add(messages, prefix//where//' '//law%name//' = '//rtoa(given)//' '// &
+                             range_problem(law%quantity, given))
+                else if (law%at_most == 'sf') then
+                    call check_residual(rows(6, i:i), rows(law_column + l, i:i), where, law)
+                else if (law%at_most == 'mu') then
+                    call check_residual(rows(5, i:i), rows(law_column + l, i:i), where, law)
+                end if
+            end associate
         end subroutine check_law_row
 
-        !> A residual cohesion (intact = 'sf') or a dynamic friction (intact = 'mu') above the
-        !> intact one is a mistake, not a strengthening.
-        subroutine check_residual(intact, residual, where, intact_name)
+        !> A value after slip (a residual cohesion, a dynamic friction) above the Coulomb value
+        !> it falls from (law%at_most) is a mistake, not a strengthening.
+        subroutine check_residual(intact, residual, where, law)
             real(wp), intent(in) :: intact(:), residual(:)
-            character(len=*), intent(in) :: where, intact_name
-            character(len=:), allocatable :: name, what
+            character(len=*), intent(in) :: where
+            type(strength_law), intent(in) :: law
             integer :: j
 
-            name = 'sf_residual'
-            what = ' (the cohesion after slip must not exceed the intact one)'
-            if (intact_name == 'mu') then
-                name = 'mu_dynamic'
-                what = ' (the friction after slip must not exceed the static one)'
-            end if
             do j = 1, size(residual)
                 ! NaN and Inf are reported by count_given; compared here they would trap
                 if (.not. (within_limits(residual(j)) .and. within_limits(intact(j)))) cycle
                 if (residual(j) > intact(j) .and. residual(j) < no_residual_drop) then
                     if (where == 'segment') then
-                        call add(messages, prefix//name//' = '//rtoa(residual(j))// &
-                                 ' exceeds '//intact_name//' = '//rtoa(intact(j))// &
-                                 ' on segment '//itoa(j)//what)
+                        call add(messages, prefix//law%name//' = '//rtoa(residual(j))// &
+                                 ' exceeds '//law%at_most//' = '//rtoa(intact(j))// &
+                                 ' on segment '//itoa(j)//' ('//at_most_rule(law)//')')
                     else
-                        call add(messages, prefix//where//' '//name//' = '// &
-                                 rtoa(residual(j))//' exceeds '//intact_name//' = '// &
-                                 rtoa(intact(j))//what)
+                        call add(messages, prefix//where//' '//law%name//' = '// &
+                                 rtoa(residual(j))//' exceeds '//law%at_most//' = '// &
+                                 rtoa(intact(j))//' ('//at_most_rule(law)//')')
                     end if
                     return
                 end if

@@ -6,7 +6,8 @@
 module ddc_input_namelist_growth
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type, growth_options, growth_tips_names, &
-        growth_criterion_names, new_law_names, symmetry_none
+        growth_criterion_names, symmetry_none, strength_law_count
+    use ddc_model_laws, only: strength_law, strength_laws, new_law_bound, at_most_rule
     use ddc_model_limits, only: quantity_positive, quantity_non_negative
     use ddc_text, only: itoa, rtoa, lower, find_name, quoted_list
     use ddc_input_namelist_groups, only: group_record, message_list, add, group_prefix, &
@@ -28,8 +29,9 @@ contains
 
     !> &growth steps, toughness, increment, element_length, tips, fractures, criterion,
     !> max_corrections, new_mu, new_sf, angle_range, angle_step, work_threshold, the strength
-    !> laws of new elements (new_law_names) / (optional). Read after every other group: the
-    !> fracture names and the other groups are checked against it.
+    !> laws of new elements (new_<name> of each law of ddc_model_laws) / (optional). Read
+    !> after every other group: the fracture names and the other groups are checked
+    !> against it.
     subroutine read_growth_group(unit, text, path, groups, known, model, messages)
         !> Unit of the open input file
         integer, intent(in) :: unit
@@ -116,6 +118,7 @@ contains
             g%override_sf = check_scalar(new_sf, 'new_sf', .false., prefix, messages, &
                                          quantity_non_negative)
             if (g%override_sf) g%new_sf = new_sf
+            ! In the order of the list of the laws (the CTest architecture holds it to that)
             call check_new_laws([new_tensile_strength, new_sf_residual, new_mu_dynamic, &
                                  new_slip_weakening_distance, new_opening_weakening_distance, &
                                  new_shear_stiffness, new_normal_stiffness], prefix, g, messages)
@@ -172,12 +175,11 @@ contains
                          quantity_positive)) model%growth%work_threshold = work_threshold
     end subroutine check_work_search
 
-    !> The strength laws of new contact elements, in the order of new_law_names: each one
-    !> given is kept (tensile strength, residuals and distances not negative, stiffnesses
-    !> positive), and a residual may not exceed the strength it falls from (new_sf, new_mu)
-    !> when both are given.
+    !> The strength laws of new contact elements, in the order of the list (ddc_model_laws):
+    !> each one given is kept (within its range), and a value after slip may not exceed the
+    !> strength it falls from (new_sf, new_mu) when both are given.
     subroutine check_new_laws(values, prefix, g, messages)
-        !> The values read (unset_real: not given), shape (size(new_law_names))
+        !> The values read (unset_real: not given), shape (strength_law_count)
         real(wp), intent(in) :: values(:)
         !> "file: &growth (line n): "
         character(len=*), intent(in) :: prefix
@@ -185,32 +187,25 @@ contains
         type(growth_options), intent(inout) :: g
         !> Violations are added here
         type(message_list), intent(inout) :: messages
-        !> Places in new_law_names: the residuals, and the first of the stiffnesses
-        integer, parameter :: sf_residual_at = 2, mu_dynamic_at = 3, stiffness_first = 6
+        type(strength_law) :: laws(strength_law_count)
+        real(wp) :: bound
+        logical :: bounded
         integer :: k
 
-        do k = 1, size(new_law_names)
-            g%override_law(k) = check_scalar(values(k), trim(new_law_names(k)), .false., &
-                prefix, messages, merge(quantity_positive, quantity_non_negative, &
-                                        k >= stiffness_first))
+        laws = strength_laws()
+        do k = 1, size(laws)
+            g%override_law(k) = check_scalar(values(k), 'new_'//laws(k)%name, .false., &
+                                             prefix, messages, laws(k)%quantity)
             if (g%override_law(k)) g%new_law(k) = values(k)
         end do
-        if (g%override_sf .and. g%override_law(sf_residual_at)) call check_below( &
-            g%new_law(sf_residual_at), g%new_sf, 'new_sf_residual', 'new_sf', 'cohesion')
-        if (g%override_mu .and. g%override_law(mu_dynamic_at)) call check_below( &
-            g%new_law(mu_dynamic_at), g%new_mu, 'new_mu_dynamic', 'new_mu', 'friction')
-
-    contains
-
-        !> A residual above the strength it falls from is an error.
-        subroutine check_below(residual, strength, residual_name, strength_name, what)
-            real(wp), intent(in) :: residual, strength
-            character(len=*), intent(in) :: residual_name, strength_name, what
-
-            if (residual > strength) call add(messages, prefix//residual_name//' = '// &
-                rtoa(residual)//' exceeds '//strength_name//' = '//rtoa(strength)//' (the '// &
-                what//' after slip must not exceed the intact one)')
-        end subroutine check_below
+        do k = 1, size(laws)
+            call new_law_bound(g, laws(k), bounded, bound)
+            if (g%override_law(k) .and. bounded) then
+                if (g%new_law(k) > bound) call add(messages, prefix//'new_'//laws(k)%name// &
+                    ' = '//rtoa(g%new_law(k))//' exceeds new_'//laws(k)%at_most//' = '// &
+                    rtoa(bound)//' ('//at_most_rule(laws(k))//')')
+            end if
+        end do
 
     end subroutine check_new_laws
 

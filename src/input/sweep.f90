@@ -165,7 +165,8 @@ contains
             call add_message(messages, nbad, prefix//'parameters('//itoa(np + 1)//') '// &
                              'is empty but a later name is given; give the names without gaps')
         end if
-        allocate (definition%names(np), definition%targets(np), definition%fractures(np))
+        allocate (definition%names(np), definition%targets(np), definition%fractures(np), &
+                  definition%laws(np))
         do p = 1, size(parameters)
             counts(p) = count_values(lists(:, p), 'values_'//itoa(p), prefix, messages, nbad)
             if (p > np) then
@@ -176,14 +177,15 @@ contains
             name = lower(trim(adjustl(parameters(p))))
             definition%names(p) = name
             call parse_parameter(name, nfractures, definition%targets(p), &
-                                 definition%fractures(p), problem)
+                                 definition%fractures(p), definition%laws(p), problem)
             if (len(problem) > 0) then
                 call add_message(messages, nbad, prefix//'parameters('//itoa(p)//'): '//problem)
                 cycle
             end if
             do q = 1, p - 1
                 if (definition%targets(q) == definition%targets(p) .and. &
-                    definition%fractures(q) == definition%fractures(p)) then
+                    definition%fractures(q) == definition%fractures(p) .and. &
+                    definition%laws(q) == definition%laws(p)) then
                     call add_message(messages, nbad, prefix//'parameters('//itoa(p)//") = '"// &
                         name//"' repeats parameters("//itoa(q)//'); sweep each parameter once')
                 end if
@@ -193,7 +195,7 @@ contains
                                  "give at least one value of '"//name//"'")
             end if
             do i = 1, counts(p)
-                problem = check_value(definition%targets(p), lists(i, p))
+                problem = check_value(definition%targets(p), definition%laws(p), lists(i, p))
                 if (len(problem) > 0) then
                     call add_message(messages, nbad, prefix//'values_'//itoa(p)//'('// &
                         itoa(i)//') = '//rtoa(lists(i, p))//': '//name//' '//problem)

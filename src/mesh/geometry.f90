@@ -1,12 +1,12 @@
 !> Geometry derived from element end points: midpoint, half-length, orientation.
 module ddc_mesh_geometry
     use ddc_kinds, only: wp
-    use ddc_model_types, only: element_set, element_array_action, for_each_element_array, &
-                               no_residual_drop, rigid_joint
+    use ddc_model_types, only: element_set, element_array_action, for_each_element_array
+    use ddc_model_laws, only: default_strength_laws
     implicit none
     private
 
-    public :: compute_geometry, allocate_elements, default_strength_laws
+    public :: compute_geometry, allocate_elements
 
     !> Allocates every per-element array for n elements (allocate_elements).
     type, extends(element_array_action) :: element_allocation
@@ -34,26 +34,6 @@ contains
         call for_each_element_array(elements, allocation)
         call default_strength_laws(elements, spread(.true., 1, n))
     end subroutine allocate_elements
-
-    !> The strength laws beyond Coulomb at their defaults (no tensile strength, no drops,
-    !> rigid contact) on the elements where `which` holds: intact elements of a fracture
-    !> that gives none of them.
-    pure subroutine default_strength_laws(elements, which)
-        !> The set (its arrays allocated)
-        type(element_set), intent(inout) :: elements
-        !> The elements to set, shape (n)
-        logical, intent(in) :: which(:)
-
-        where (which)
-            elements%tensile_strength = 0.0_wp
-            elements%sf_residual = no_residual_drop
-            elements%mu_dynamic = no_residual_drop
-            elements%slip_weakening_distance = 0.0_wp
-            elements%opening_weakening_distance = 0.0_wp
-            elements%shear_stiffness = rigid_joint
-            elements%normal_stiffness = rigid_joint
-        end where
-    end subroutine default_strength_laws
 
     !> Allocate one real array for the set's elements.
     subroutine allocate_reals(action, values)

@@ -2,7 +2,9 @@
 !> per-element arrays: for every contact run (one-shot, loading history, growth, MPI), the
 !> input's and the run's capability checks, and a resumed run's memory.
 module ddc_model_element_laws
-    use ddc_model_types, only: element_set
+    use ddc_kinds, only: wp
+    use ddc_model_types, only: element_set, strength_law_count
+    use ddc_model_laws, only: strength_law, strength_laws, law_values
     use ddc_contact_options, only: solver_options, cohesion_lost
     use ddc_contact_fault_law, only: fault_law, new_fault_law
     implicit none
@@ -20,22 +22,22 @@ contains
         !> Indices of the elements, shape (m)
         integer, intent(in), optional :: subset(:)
         type(fault_law) :: law
+        type(strength_law) :: laws(strength_law_count)
+        real(wp), allocatable :: given(:, :)
         integer, allocatable :: pick(:)
-        integer :: i
+        integer :: i, k
 
         if (present(subset)) then
             pick = subset
         else
             pick = [(i, i = 1, elements%n)]
         end if
-        associate (e => elements)
-            law = new_fault_law(e%mu(pick), e%sf(pick), &
-                tensile_strength=e%tensile_strength(pick), sf_residual=e%sf_residual(pick), &
-                mu_dynamic=e%mu_dynamic(pick), &
-                slip_weakening_distance=e%slip_weakening_distance(pick), &
-                opening_weakening_distance=e%opening_weakening_distance(pick), &
-                shear_stiffness=e%shear_stiffness(pick), normal_stiffness=e%normal_stiffness(pick))
-        end associate
+        laws = strength_laws()
+        given = law_values(elements)
+        law = new_fault_law(elements%mu(pick), elements%sf(pick))
+        do k = 1, size(laws)
+            call law%set_given(laws(k)%name, given(pick, k))
+        end do
     end function fault_law_of
 
     !> Whether a strength in force can change in a solve of the model: its law goes beyond

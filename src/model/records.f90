@@ -27,6 +27,7 @@ module ddc_model_records
         column_path_records, column_elements, column_strength_steps, column_work_records, &
         column_trials
     public :: units_none, units_length, units_stress, units_k, units_degree, units_one, units_work
+    public :: units_stiffness, units_text
     public :: state_coding
 
     !> Kinds of history columns, by their shape: the load (one row per quantity of
@@ -47,11 +48,12 @@ module ddc_model_records
     !> one per trial (t, in /growth/trials)
     integer, parameter :: column_work_records = 12, column_trials = 13
 
-    !> What the values of a column measure, for its units attribute: nothing (integers and
-    !> strings), length, stress, stress intensity (stress * length**0.5), angle in degrees,
-    !> a ratio
+    !> What the values of a column (or of a strength law, ddc_model_laws) measure, for its
+    !> units attribute: nothing (integers and strings), length, stress, stress intensity
+    !> (stress * length**0.5), angle in degrees, a ratio, work per length (stress * length),
+    !> a joint stiffness (stress / length)
     integer, parameter :: units_none = 0, units_length = 1, units_stress = 2, units_k = 3, &
-                          units_degree = 4, units_one = 5, units_work = 6
+                          units_degree = 4, units_one = 5, units_work = 6, units_stiffness = 7
 
     !> Coding of the element states (/elements/state and the history's)
     character(len=*), parameter :: state_coding = '0 free (TWODD-style condition), ' &
@@ -65,7 +67,7 @@ module ddc_model_records
         character(len=:), allocatable :: name
         !> column_loads ... column_elements
         integer :: kind = 0
-        !> units_none ... units_one
+        !> units_none ... units_work
         integer :: units = units_none
         !> Coding of an integer column; unallocated when it has none (passed on as an absent
         !> optional argument)
@@ -264,13 +266,42 @@ contains
                                        coding='0 the input, k growth step k'), record%created_step)
     end subroutine for_each_growth_column
 
+    !> The units attribute of values that measure `units` (units_none ... units_stiffness) in
+    !> a model of these unit names; '' for units_none.
+    pure function units_text(units, stress, length) result(text)
+        !> What the values measure
+        integer, intent(in) :: units
+        !> The model's stress and length unit names
+        character(len=*), intent(in) :: stress, length
+        character(len=:), allocatable :: text
+
+        select case (units)
+        case (units_length)
+            text = length
+        case (units_stress)
+            text = stress
+        case (units_k)
+            text = stress//' '//length//'^0.5'
+        case (units_degree)
+            text = 'degree'
+        case (units_one)
+            text = '1'
+        case (units_work)
+            text = stress//' '//length
+        case (units_stiffness)
+            text = stress//'/'//length
+        case default
+            text = ''
+        end select
+    end function units_text
+
     !> What a column is.
     pure function column(name, kind, units, coding) result(described)
         !> Dataset name
         character(len=*), intent(in) :: name
         !> column_loads ... column_elements
         integer, intent(in) :: kind
-        !> units_none ... units_one (default units_none)
+        !> units_none ... units_work (default units_none)
         integer, intent(in), optional :: units
         !> Coding of an integer column (default none)
         character(len=*), intent(in), optional :: coding

@@ -25,7 +25,7 @@ module ddc_model_types
     public :: growth_options, growth_tips_all, growth_tips_most_critical, growth_tips_names
     public :: growth_criterion_mts, growth_criterion_work, growth_criterion_names
     public :: initiation_options
-    public :: new_law_names
+    public :: strength_law_count
     public :: default_block_size, no_residual_drop, rigid_joint, tensile_cap
     public :: element_array_action, for_each_element_array, select_elements
 
@@ -222,12 +222,9 @@ module ddc_model_types
     !> Input names of the criteria, indexed by criterion
     character(len=*), parameter :: growth_criterion_names(2) = [character(len=4) :: 'mts', &
         'work']
-    !> The &growth variables of the strength laws of new contact elements (growth_options
-    !> new_law), each the element_set array of the same name without 'new_'
-    character(len=*), parameter :: new_law_names(7) = [character(len=30) :: &
-        'new_tensile_strength', 'new_sf_residual', 'new_mu_dynamic', &
-        'new_slip_weakening_distance', 'new_opening_weakening_distance', &
-        'new_shear_stiffness', 'new_normal_stiffness']
+    !> Number of the strength laws beyond Coulomb, the per-element arrays of element_set that
+    !> for_each_law (ddc_model_laws) lists; the CTest architecture holds the two equal
+    integer, parameter :: strength_law_count = 7
 
     !> Fracture growth (&growth; docs/theory/growth.md#the-growth-step): quasi-static, one increment
     !> per step.
@@ -259,10 +256,11 @@ module ddc_model_types
         logical :: override_mu = .false., override_sf = .false.
         !> Friction [-] and cohesion [stress unit] of new contact elements, when overridden
         real(wp) :: new_mu = 0.0_wp, new_sf = 0.0_wp
-        !> New contact elements take new_law(k) for the strength law new_law_names(k) where
-        !> override_law(k), instead of the tip element's given value
-        logical :: override_law(size(new_law_names)) = .false.
-        real(wp) :: new_law(size(new_law_names)) = 0.0_wp
+        !> New contact elements take new_law(k) for strength law k of for_each_law
+        !> (ddc_model_laws; the &growth variable new_<name>) where override_law(k), instead of
+        !> the tip element's given value
+        logical :: override_law(strength_law_count) = .false.
+        real(wp) :: new_law(strength_law_count) = 0.0_wp
     end type growth_options
 
     !> New fractures inside the rock (&initiation;

@@ -36,13 +36,14 @@ module ddc_output_hdf5
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_internal_error
     use ddc_version, only: program_name, program_version, git_commit
-    use ddc_model_types, only: model_type, rigid_joint, observation_grid, observation_kind_names, &
-        symmetry_names, domain_names
+    use ddc_model_types, only: model_type, observation_grid, observation_kind_names, &
+        symmetry_names, domain_names, strength_law_count
+    use ddc_model_laws, only: strength_law, strength_laws, law_values, acting_values
     use ddc_model_loads, only: total_pressure, shear_modulus_of
     use ddc_model_fingerprint, only: recorded_fingerprint
     use ddc_model_results, only: model_results, state_free, state_stick, state_slip, &
         state_open
-    use ddc_model_records, only: state_coding
+    use ddc_model_records, only: state_coding, units_text
     use ddc_contact_options, only: lcp_method_names, open_cohesion_names
     use ddc_output_atomic, only: partial_name, publish_file, remove_file, resolve_target, &
         explain_write_failure
@@ -265,26 +266,15 @@ contains
             ! Contact elements: the given pressure plus the pore fluid
             call write_real_1d(group, 'pressure', total_pressure(e, model%pore_fluid), stress, &
                                error)
-            ! Strength beyond Coulomb as given, and what was left of it at the end.
-            call write_real_1d(group, 'tensile_strength', e%tensile_strength, stress, error)
-            call write_real_1d(group, 'sf_residual', min(e%sf, e%sf_residual), stress, error)
+            ! Strength beyond Coulomb as it acts, and what was left of it at the end.
+            call write_strength_laws(group, model, stress, length, error)
             if (allocated(r%sf_in_force)) then
                 call write_real_1d(group, 'sf_in_force', r%sf_in_force, stress, error)
                 call write_real_1d(group, 'tensile_strength_in_force', r%tensile_in_force, &
                                    stress, error)
             end if
-            call write_real_1d(group, 'mu_dynamic', min(e%mu, e%mu_dynamic), '1', error)
-            call write_real_1d(group, 'slip_weakening_distance', e%slip_weakening_distance, &
-                               length, error)
-            call write_real_1d(group, 'opening_weakening_distance', &
-                               e%opening_weakening_distance, length, error)
             if (allocated(r%mu_in_force)) call write_real_1d(group, 'mu_in_force', &
                                                              r%mu_in_force, '1', error)
-            ! Joint stiffness: +Inf for rigid contact (the default).
-            call write_real_1d(group, 'shear_stiffness', rigid_as_infinity(e%shear_stiffness), &
-                               stress//'/'//length, error)
-            call write_real_1d(group, 'normal_stiffness', &
-                               rigid_as_infinity(e%normal_stiffness), stress//'/'//length, error)
             ! Elastic joints: the elastic part of the DDs (the plastic part is the rest).
             if (allocated(r%ds_elastic)) then
                 call write_real_1d(group, 'ds_elastic', r%ds_elastic, length, error)
@@ -295,14 +285,28 @@ contains
         call close_group(group, error)
     end subroutine write_elements
 
-    !> The stiffnesses with rigid_joint written as +Inf.
-    pure function rigid_as_infinity(k) result(out)
-        real(wp), intent(in) :: k(:)
-        real(wp) :: out(size(k))
+    !> One dataset per strength law of the list (ddc_model_laws) in /elements: its values as
+    !> they act (a value after slip capped by the Coulomb value it falls from), the mark of
+    !> none (no_residual_drop, rigid_joint: the largest real) written as +Inf.
+    subroutine write_strength_laws(group, model, stress, length, error)
+        type(h5_object), intent(in) :: group
+        type(model_type), intent(in) :: model
+        !> The unit names
+        character(len=*), intent(in) :: stress, length
+        type(error_type), allocatable, intent(inout) :: error
+        type(strength_law) :: laws(strength_law_count)
+        real(wp), allocatable :: given(:, :), acting(:)
+        integer :: k
 
-        out = k
-        where (k >= rigid_joint) out = ieee_value(1.0_wp, ieee_positive_inf)
-    end function rigid_as_infinity
+        laws = strength_laws()
+        given = law_values(model%elements)
+        do k = 1, size(laws)
+            acting = acting_values(model%elements, laws(k), given(:, k))
+            where (acting >= huge(acting)) acting = ieee_value(1.0_wp, ieee_positive_inf)
+            call write_real_1d(group, laws(k)%name, acting, &
+                               units_text(laws(k)%units, stress, length), error)
+        end do
+    end subroutine write_strength_laws
 
     !> /fractures: name, first_element, last_element (1-based), one entry per fracture.
     subroutine write_fractures(root, model, error)

@@ -11,8 +11,7 @@ module ddc_output_hdf5_records
     use ddc_model_loads, only: work_threshold_of
     use ddc_model_records, only: record_column, record_column_action, &
         for_each_history_column, for_each_growth_column, reason_coding, column_loads, &
-        column_path_records, column_elements, column_work_records, column_trials, units_length, &
-        units_stress, units_k, units_degree, units_one, units_work
+        column_path_records, column_elements, column_work_records, column_trials, units_text
     use ddc_output_hdf5_handles, only: h5_object, create_group, close_group
     use ddc_output_hdf5_write, only: write_real_1d, write_int_1d, write_real_dataset, &
         write_int_dataset, write_string_1d, write_attribute
@@ -191,22 +190,7 @@ contains
         type(record_column), intent(in) :: column
         character(len=:), allocatable :: units
 
-        select case (column%units)
-        case (units_length)
-            units = writer%length
-        case (units_stress)
-            units = writer%stress
-        case (units_k)
-            units = writer%stress//' '//writer%length//'^0.5'
-        case (units_degree)
-            units = 'degree'
-        case (units_one)
-            units = '1'
-        case (units_work)
-            units = writer%stress//' '//writer%length
-        case default
-            units = ''
-        end select
+        units = units_text(column%units, writer%stress, writer%length)
     end function units_of
 
     !> A real column of one value per step or record.

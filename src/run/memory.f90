@@ -37,6 +37,7 @@ module ddc_run_memory
     use ddc_allocation, only: real_bytes
     use ddc_text, only: bytes_text, itoa
     use ddc_model_types, only: model_type, condition_contact, rigid_joint
+    use ddc_model_laws, only: laws_allocated
     use ddc_contact_options, only: lcp_auto, lcp_newton, matrix_hierarchical
     use ddc_contact_formulation, only: auto_newton_min_elements
     use ddc_contact_memory, only: lemke_bytes, newton_bytes
@@ -223,14 +224,9 @@ contains
     pure logical function records_strengths(model)
         type(model_type), intent(in) :: model
 
-        records_strengths = .false.
         associate (e => model%elements)
-            if (allocated(e%mu) .and. allocated(e%sf) .and. allocated(e%tensile_strength) &
-                .and. allocated(e%sf_residual) .and. allocated(e%mu_dynamic) .and. &
-                allocated(e%slip_weakening_distance) .and. &
-                allocated(e%opening_weakening_distance) .and. allocated(e%shear_stiffness) .and. &
-                allocated(e%normal_stiffness)) records_strengths = strengths_change(e, &
-                                                                                  model%solver)
+            records_strengths = allocated(e%mu) .and. allocated(e%sf) .and. laws_allocated(e)
+            if (records_strengths) records_strengths = strengths_change(e, model%solver)
         end associate
     end function records_strengths
 

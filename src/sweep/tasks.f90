@@ -17,21 +17,24 @@
 !> - mu, sf, pressure: on every element of every fracture;
 !> - fracture(K)%mu, fracture(K)%sf, fracture(K)%pressure: on every element of fracture K
 !>   (1-based, in input order);
-!> - new_mu, new_sf and the strength laws of new elements (new_law_names: new_tensile_strength
-!>   ...): what the new contact elements of a growth run take.
+!> - new_mu, new_sf and the strength laws of new elements (new_<name> of each law of
+!>   ddc_model_laws: new_tensile_strength ...): what the new contact elements of a growth run
+!>   take.
 module ddc_sweep_tasks
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type, growth_options, domain_half_plane, no_residual_drop, &
-        new_law_names
+        strength_law_count
+    use ddc_model_laws, only: strength_law, strength_laws, law_values, new_law_bound, &
+        at_most_rule
     use ddc_text, only: itoa, lower, short_real, add_message, messages_error
     use ddc_model_limits, only: range_problem, quantity_any, quantity_youngs_modulus, &
-        quantity_poissons_ratio, quantity_non_negative, quantity_positive
+        quantity_poissons_ratio, quantity_non_negative
     implicit none
     private
 
     public :: sweep_definition, combine_product, combine_zip, combine_names
-    public :: max_parameters, max_tasks, parameter_help
+    public :: max_parameters, max_tasks
     public :: parse_parameter, check_value, task_values, task_label, task_file_name
     public :: check_task, apply_task, task_problem, check_tasks
     public :: target_sxx, target_syy, target_sxy, target_s1, target_s3, target_angle
@@ -50,19 +53,13 @@ module ddc_sweep_tasks
                           target_syy = 4, target_sxy = 5, target_s1 = 6, target_s3 = 7, &
                           target_angle = 8, target_mu = 9, target_sf = 10, target_pressure = 11, &
                           target_new_mu = 12, target_new_sf = 13
-    !> The targets of new_law_names(k) are new_law_before + k
-    integer, parameter :: new_law_before = 13
-    !> Names of the targets, indexed by target (per fracture: fracture(K)%<name>)
-    character(len=*), parameter :: target_names(new_law_before + size(new_law_names)) = &
-        [character(len=30) :: 'youngs_modulus', 'poissons_ratio', 'sxx', 'syy', 'sxy', &
-         'remote_s1', 'remote_s3', 'remote_angle', 'mu', 'sf', 'pressure', 'new_mu', 'new_sf', &
-         new_law_names]
-    !> The list of parameter names, for messages and the help text
-    character(len=*), parameter :: parameter_help = 'youngs_modulus, poissons_ratio, '// &
-        'sxx, syy, sxy, remote_s1, remote_s3, remote_angle, mu, sf, pressure, '// &
-        'fracture(K)%mu, fracture(K)%sf, fracture(K)%pressure, new_mu, new_sf, '// &
-        'new_tensile_strength, new_sf_residual, new_mu_dynamic, new_slip_weakening_distance, '// &
-        'new_opening_weakening_distance, new_shear_stiffness, new_normal_stiffness (&growth)'
+    !> A strength law of new elements, new_<name> (which one: sweep_definition's laws)
+    integer, parameter :: target_new_law = 14
+    !> Names of the targets but target_new_law, indexed by target (per fracture:
+    !> fracture(K)%<name>)
+    character(len=*), parameter :: target_names(13) = [character(len=14) :: 'youngs_modulus', &
+        'poissons_ratio', 'sxx', 'syy', 'sxy', 'remote_s1', 'remote_s3', 'remote_angle', 'mu', &
+        'sf', 'pressure', 'new_mu', 'new_sf']
 
     real(wp), parameter :: degree = acos(-1.0_wp) / 180.0_wp
 
@@ -72,10 +69,13 @@ module ddc_sweep_tasks
         integer :: combine = combine_product
         !> Parameter names as written (lower case, no blanks), shape (np)
         character(len=64), allocatable :: names(:)
-        !> Target of each parameter (target_youngs ... target_pressure), shape (np)
+        !> Target of each parameter (target_youngs ... target_new_law), shape (np)
         integer, allocatable :: targets(:)
         !> Fracture of each per-fracture parameter (1-based), 0 for all, shape (np)
         integer, allocatable :: fractures(:)
+        !> Law of each parameter of target_new_law (its place in ddc_model_laws' list), 0 for
+        !> the others, shape (np)
+        integer, allocatable :: laws(:)
         !> Number of values of each parameter, shape (np)
         integer, allocatable :: counts(:)
         !> Value lists, column p holds counts(p) values, shape (max(counts), np)
@@ -88,24 +88,29 @@ module ddc_sweep_tasks
 
 contains
 
-    !> Parse a parameter name: its target and fracture; problem is '' when the name is good.
-    subroutine parse_parameter(name, nfractures, target, fracture, problem)
+    !> Parse a parameter name: its target, fracture and law; problem is '' when the name is
+    !> good.
+    subroutine parse_parameter(name, nfractures, target, fracture, law, problem)
         !> The name as written (case and blanks do not matter)
         character(len=*), intent(in) :: name
         !> Number of fractures of the base model
         integer, intent(in) :: nfractures
-        !> target_youngs ... target_pressure; 0 when the name is bad
+        !> target_youngs ... target_new_law; 0 when the name is bad
         integer, intent(out) :: target
         !> Fracture number for fracture(K)%..., 0 otherwise
         integer, intent(out) :: fracture
+        !> The law of new_<name> (its place in ddc_model_laws' list), 0 otherwise
+        integer, intent(out) :: law
         !> Why the name is bad, '' when it is good
         character(len=:), allocatable, intent(out) :: problem
+        type(strength_law) :: laws(strength_law_count)
         character(len=:), allocatable :: key
         integer :: close_paren, stat, i
 
         key = squeeze(lower(name))
         target = 0
         fracture = 0
+        law = 0
         problem = ''
         if (index(key, 'fracture(') == 1) then
             close_paren = index(key, ')%')
@@ -135,20 +140,46 @@ contains
         do i = 1, size(target_names)
             if (key == trim(target_names(i))) target = i
         end do
+        laws = strength_laws()
+        do i = 1, size(laws)
+            if (key == 'new_'//laws(i)%name) then
+                target = target_new_law
+                law = i
+            end if
+        end do
         if (target == 0) then
             problem = "'"//trim(name)//"' is not a sweep parameter; the parameters are: "// &
-                      parameter_help
+                      parameter_help()
         end if
     end subroutine parse_parameter
 
+    !> The list of parameter names, for messages.
+    function parameter_help() result(help)
+        character(len=:), allocatable :: help
+        type(strength_law) :: laws(strength_law_count)
+        integer :: k
+
+        help = 'youngs_modulus, poissons_ratio, sxx, syy, sxy, remote_s1, remote_s3, '// &
+            'remote_angle, mu, sf, pressure, fracture(K)%mu, fracture(K)%sf, '// &
+            'fracture(K)%pressure, new_mu, new_sf'
+        laws = strength_laws()
+        do k = 1, size(laws)
+            help = help//', new_'//laws(k)%name
+        end do
+        help = help//' (&growth)'
+    end function parameter_help
+
     !> Check a value of a parameter; problem is '' when it is acceptable.
-    function check_value(target, value) result(problem)
-        !> target_youngs ... target_pressure
+    function check_value(target, law, value) result(problem)
+        !> target_youngs ... target_new_law
         integer, intent(in) :: target
+        !> The law of target_new_law (its place in ddc_model_laws' list)
+        integer, intent(in) :: law
         !> The value
         real(wp), intent(in) :: value
         !> Why the value is bad, '' when it is good
         character(len=:), allocatable :: problem
+        type(strength_law) :: laws(strength_law_count)
 
         select case (target)
         case (target_youngs)
@@ -157,13 +188,9 @@ contains
             problem = range_problem(quantity_poissons_ratio, value)
         case (target_mu, target_sf, target_new_mu, target_new_sf)
             problem = range_problem(quantity_non_negative, value)
-        case (new_law_before + 1:new_law_before + size(new_law_names))
-            ! The new joint stiffnesses are positive, the other laws not negative.
-            if (index(target_names(target), 'stiffness') > 0) then
-                problem = range_problem(quantity_positive, value)
-            else
-                problem = range_problem(quantity_non_negative, value)
-            end if
+        case (target_new_law)
+            laws = strength_laws()
+            problem = range_problem(laws(law)%quantity, value)
         case default
             problem = range_problem(quantity_any, value)
         end select
@@ -448,10 +475,11 @@ contains
         real(wp), intent(in) :: values(:)
         !> The problem, '' when there is none
         character(len=:), allocatable :: problem
-        real(wp), allocatable :: mu(:), sf(:)
+        real(wp), allocatable :: mu(:), sf(:), given(:, :)
         ! The parameter that set each element's mu and sf (0: the base model's value)
         integer, allocatable :: mu_from(:), sf_from(:)
-        integer :: p, first, last
+        type(strength_law) :: laws(strength_law_count)
+        integer :: p, first, last, k
 
         mu = model%elements%mu
         sf = model%elements%sf
@@ -469,32 +497,42 @@ contains
                 ! not a strength parameter
             end select
         end do
-        problem = above_intact(model%elements%mu_dynamic, mu, mu_from, 'mu_dynamic', &
-                               'the friction after slip must not exceed the static one')
-        if (len(problem) == 0) problem = above_intact(model%elements%sf_residual, sf, &
-            sf_from, 'sf_residual', 'the cohesion after slip must not exceed the intact one')
+        laws = strength_laws()
+        given = law_values(model%elements)
+        problem = ''
+        do k = 1, size(laws)
+            select case (laws(k)%at_most)
+            case ('sf')
+                problem = above_intact(given(:, k), sf, sf_from, laws(k))
+            case ('mu')
+                problem = above_intact(given(:, k), mu, mu_from, laws(k))
+            case default
+                ! no Coulomb value it may not exceed
+            end select
+            if (len(problem) > 0) return
+        end do
 
     contains
 
         !> The first swept element whose given residual (below no_residual_drop, the mark
         !> of none) exceeds its swept intact value.
-        function above_intact(residual, intact, from, name, why) result(problem)
+        function above_intact(residual, intact, from, law) result(problem)
             real(wp), intent(in) :: residual(:), intact(:)
             integer, intent(in) :: from(:)
-            character(len=*), intent(in) :: name, why
+            type(strength_law), intent(in) :: law
             character(len=:), allocatable :: problem
-            integer :: j, k
+            integer :: j, f
 
             problem = ''
             j = findloc(from > 0 .and. residual < no_residual_drop .and. residual > intact, &
                         .true., 1)
             if (j == 0) return
-            k = model%elements%fracture_id(j)
+            f = model%elements%fracture_id(j)
             problem = trim(sweep%names(from(j)))//' = '//short_real(values(from(j)))// &
-                ' is below '//name//' = '//short_real(residual(j))//' of fracture '// &
-                itoa(k)//' '//model%fractures(k)%name//' ('//why//'; one model with '// &
-                'these values is refused too): sweep values of at least '// &
-                short_real(residual(j))//', or lower '//name
+                ' is below '//law%name//' = '//short_real(residual(j))//' of fracture '// &
+                itoa(f)//' '//model%fractures(f)%name//' ('//at_most_rule(law)// &
+                '; one model with these values is refused too): sweep values of at least '// &
+                short_real(residual(j))//', or lower '//law%name
         end function above_intact
 
     end function weakening_problem
@@ -520,8 +558,8 @@ contains
             case (target_new_sf)
                 growth%override_sf = .true.
                 growth%new_sf = values(p)
-            case (new_law_before + 1:new_law_before + size(new_law_names))
-                k = sweep%targets(p) - new_law_before
+            case (target_new_law)
+                k = sweep%laws(p)
                 growth%override_law(k) = .true.
                 growth%new_law(k) = values(p)
             case default
@@ -542,29 +580,32 @@ contains
         real(wp), intent(in) :: values(:)
         !> The problem, '' when there is none
         character(len=:), allocatable :: problem
-        !> Places in new_law_names of the residual cohesion and friction
-        integer, parameter :: sf_residual_at = 2, mu_dynamic_at = 3
         type(growth_options) :: g
+        type(strength_law) :: laws(strength_law_count)
+        real(wp) :: bound
+        logical :: bounded
+        integer :: k
 
         problem = ''
-        if (.not. any(sweep%targets >= target_new_mu)) return
+        if (.not. any(sweep%targets == target_new_mu .or. sweep%targets == target_new_sf .or. &
+                      sweep%targets == target_new_law)) return
         if (.not. model%growth%active) then
             problem = 'the laws of new elements (new_mu, new_sf, new_tensile_strength ...) '// &
                       'need a &growth group'
             return
         end if
         g = task_growth(model%growth, sweep, values)
-        if (g%override_sf .and. g%override_law(sf_residual_at)) then
-            if (g%new_law(sf_residual_at) > g%new_sf) problem = 'new_sf_residual = '// &
-                short_real(g%new_law(sf_residual_at))//' exceeds new_sf = '// &
-                short_real(g%new_sf)//' (the cohesion after slip must not exceed the intact one)'
-        end if
-        if (len(problem) > 0) return
-        if (g%override_mu .and. g%override_law(mu_dynamic_at)) then
-            if (g%new_law(mu_dynamic_at) > g%new_mu) problem = 'new_mu_dynamic = '// &
-                short_real(g%new_law(mu_dynamic_at))//' exceeds new_mu = '// &
-                short_real(g%new_mu)//' (the friction after slip must not exceed the static one)'
-        end if
+        laws = strength_laws()
+        do k = 1, size(laws)
+            call new_law_bound(g, laws(k), bounded, bound)
+            if (.not. (g%override_law(k) .and. bounded)) cycle
+            if (g%new_law(k) > bound) then
+                problem = 'new_'//laws(k)%name//' = '//short_real(g%new_law(k))// &
+                    ' exceeds new_'//laws(k)%at_most//' = '//short_real(bound)//' ('// &
+                    at_most_rule(laws(k))//')'
+                return
+            end if
+        end do
     end function new_law_problem
 
     !> True for the targets that describe the remote stress by principal stresses.

@@ -56,6 +56,16 @@
     tests/ or scripts/ they name is there, and every procedure, type or list they name
     beside a file (`` `name` (`src/x/y.f90`) `` or `` `src/x/y.f90` (`name` ``) is a word
     of that file.
+13. The strength laws are listed once: every entry of `for_each_law` (src/model/laws.f90)
+    hands the per-element real array of `element_set` of its own name, and the list has
+    `strength_law_count` (src/model/types.f90) entries; the fault law
+    (src/contact/fault_law.f90) has each law as a component, sets it by name in
+    `set_given` (a case per law, no other), gives it the list's default in `new_fault_law`
+    (`given_or(<name>, <default>)`, no other), and `beyond_coulomb` reads exactly the laws
+    the list marks beyond Coulomb; the &fracture and &growth namelist statements declare
+    each law (`new_<name>` in &growth), and the arrays of their values that the readers
+    build name them in the list's order; the routines that handle every law go through
+    the list.
 
 Prints every violation and exits 1 when there is one; --graph prints the folder graph.
 """
@@ -726,6 +736,196 @@ def check_criteria(root, problems):
                             f"{DISPATCH}, the one place that dispatches on it")
 
 
+# The strength laws (check 13): the one list, the constant of its length, the fault law.
+LAW_LIST = ("src/model/laws.f90", "for_each_law")
+LAW_COUNT = ("src/model/types.f90", "strength_law_count")
+FAULT_LAW_FILE = "src/contact/fault_law.f90"
+# A list line: call action%on_law(law('<name>', <default>, <quantity>, <units>,
+# beyond_coulomb=.<true|false>.[, at_most='<x>']), elements%<component>)
+LAW_ENTRY = re.compile(r"call\s+action\s*%\s*on_law\s*\(\s*law\s*\(\s*'(\w+)'\s*,\s*([\w.]+)\s*,"
+                       r"\s*\w+\s*,\s*\w+\s*,\s*beyond_coulomb\s*=\s*\.(true|false)\.\s*"
+                       r"(?:,\s*at_most\s*=\s*'\w*'\s*)?\)\s*,\s*elements\s*%\s*(\w+)\s*\)$",
+                       re.IGNORECASE)
+# The namelist statements that declare the laws (with a prefix), and the array constructor
+# that gathers the values read in the list's order: (file, group, prefix, routine, what
+# opens the constructor).
+LAW_NAMELISTS = [("src/input/namelist_fracture.f90", "fracture", "", "read_fracture_groups",
+                  "reshape("),
+                 ("src/input/namelist_growth.f90", "growth", "new_", "read_growth_group",
+                  "check_new_laws(")]
+# The routines that handle every law, and what of the list each goes through.
+THROUGH_LAW_LIST = [("src/model/laws.f90", "default_strength_laws", "strength_laws"),
+                    ("src/mesh/geometry.f90", "allocate_elements", "default_strength_laws"),
+                    ("src/growth/new_fracture.f90", "add_fracture", "default_strength_laws"),
+                    ("src/growth/extension.f90", "take_new_element_laws", "strength_laws"),
+                    ("src/model/element_laws.f90", "fault_law_of", "law_values"),
+                    ("src/input/namelist_fracture.f90", "read_fracture_groups",
+                     "strength_laws"),
+                    ("src/input/namelist.f90", "build_model", "strength_laws"),
+                    ("src/input/namelist_growth.f90", "check_new_laws", "strength_laws"),
+                    ("src/sweep/tasks.f90", "parse_parameter", "strength_laws"),
+                    ("src/sweep/tasks.f90", "new_law_problem", "strength_laws"),
+                    ("src/output/hdf5.f90", "write_strength_laws", "law_values"),
+                    ("app/report.f90", "print_growth_options", "strength_laws"),
+                    ("src/run/memory.f90", "records_strengths", "laws_allocated")]
+
+
+def procedure(root, file, name, problems):
+    """The text of a subroutine or function (with comments), or None after a problem."""
+    found = re.search(rf"^[ \t]*(?:[\w()]+[ \t]+)*(subroutine|function)[ \t]+{name}\b(.*?)"
+                      rf"^\s*end\s+\1\s+{name}\b", (root / file).read_text(),
+                      LINES | re.DOTALL)
+    if not found:
+        problems.append(f"{file}: no subroutine or function {name}")
+        return None
+    return found.group(2)
+
+
+def law_entries(root, problems):
+    """[(name, default, beyond Coulomb?)] of the list of the strength laws."""
+    file, name = LAW_LIST
+    text = procedure(root, file, name, problems)
+    if text is None:
+        return []
+    entries = []
+    for _, statement in statements(text):
+        found = LAW_ENTRY.match(statement)
+        if found:
+            law, default, beyond, component = found.groups()
+            if law.lower() != component.lower():
+                problems.append(f"{file}: {name} hands elements%{component} as the law "
+                                f"'{law}' (a law is named after its array)")
+            entries.append((law.lower(), default.lower(), beyond.lower() == "true"))
+        elif re.match(r"call\s+action\s*%", statement, re.IGNORECASE):
+            problems.append(f"{file}: {name} has an entry not of the form call action%on_law("
+                            "law('<name>', <default>, <quantity>, <units>, beyond_coulomb=..."
+                            f"), elements%<name>): {statement}")
+    return entries
+
+
+def check_law_count(root, laws, problems):
+    file, constant = LAW_COUNT
+    found = re.search(rf"\b{constant}\s*=\s*(\d+)", strip_comments((root / file).read_text()))
+    if not found:
+        problems.append(f"{file}: no {constant}")
+    elif int(found.group(1)) != len(laws):
+        problems.append(f"{file}: {constant} = {found.group(1)}, but {LAW_LIST[1]} "
+                        f"({LAW_LIST[0]}) lists {len(laws)} laws")
+
+
+def check_law_arrays(root, laws, problems):
+    """Every law is a per-element real array of element_set."""
+    types = strip_comments((root / "src/model/types.f90").read_text())
+    found = re.search(r"^\s*type\b[^\n]*::\s*element_set\s*$(.*?)^\s*end\s*type",
+                      types, LINES | re.DOTALL)
+    arrays = set()
+    for line in re.sub(r"&\s*\n\s*", " ", found.group(1) if found else "").splitlines():
+        if "::" in line and re.match(r"\s*real\b[^:]*allocatable", line, re.IGNORECASE):
+            arrays |= {m.lower() for m in re.findall(r"(\w+)\s*\(\s*:\s*\)",
+                                                     line.split("::", 1)[1])}
+    for law, _, _ in laws:
+        if law not in arrays:
+            problems.append(f"{LAW_LIST[0]}: the law {law} of {LAW_LIST[1]} is no per-element "
+                            "real array of element_set (src/model/types.f90)")
+
+
+def reached_names(text, start, seen=None):
+    """The law%<name> references of a procedure of the fault law and of the procedures of the
+    law it calls (law%<procedure>())."""
+    seen = seen if seen is not None else set()
+    if start in seen:
+        return set()
+    seen.add(start)
+    found = re.search(rf"^[ \t]*(?:[\w()]+[ \t]+)*(subroutine|function)[ \t]+{start}\b(.*?)"
+                      rf"^\s*end\s+\1\s+{start}\b", text, LINES | re.DOTALL)
+    if not found:
+        return set()
+    body = strip_comments(found.group(2))
+    names = {n.lower() for n in re.findall(r"\blaw\s*%\s*(\w+)\b(?!\s*\()", body)}
+    for called in re.findall(r"\blaw\s*%\s*(\w+)\s*\(\s*\)", body):
+        names |= reached_names(text, called.lower(), seen)
+    return names
+
+
+def check_fault_law(root, laws, problems):
+    """The fault law has each law, sets it by name, defaults it as the list does, and goes
+    beyond Coulomb on the laws the list marks so."""
+    text = (root / FAULT_LAW_FILE).read_text()
+    names = {law for law, _, _ in laws}
+    components = {c for c, _, _ in type_components(text, "fault_law") or []}
+    for law in sorted(names - components):
+        problems.append(f"{FAULT_LAW_FILE}: fault_law has no component {law}, a law of "
+                        f"{LAW_LIST[1]} ({LAW_LIST[0]})")
+    setter = procedure(root, FAULT_LAW_FILE, "set_given", problems) or ""
+    cases = {c.lower() for c in re.findall(r"\bcase\s*\(\s*'(\w+)'\s*\)",
+                                           strip_comments(setter), re.IGNORECASE)}
+    compare_names(f"{FAULT_LAW_FILE}: set_given", cases, names, f"the laws of {LAW_LIST[1]}",
+                  problems)
+    # new_fault_law's own statements, not those of its internal given_or
+    maker = re.split(r"^\s*contains\s*$", procedure(root, FAULT_LAW_FILE, "new_fault_law",
+                                                     problems) or "", maxsplit=1,
+                     flags=re.IGNORECASE | re.MULTILINE)[0]
+    defaults = {n.lower(): d.lower() for n, d in re.findall(
+        r"\bgiven_or\s*\(\s*(\w+)\s*,\s*([\w.]+)\s*\)",
+        re.sub(r"&\s*\n\s*", " ", strip_comments(maker)), re.IGNORECASE)}
+    compare_names(f"{FAULT_LAW_FILE}: new_fault_law's given_or", defaults, names,
+                  f"the laws of {LAW_LIST[1]}", problems)
+    for law, default, _ in laws:
+        if law in defaults and defaults[law] != default:
+            problems.append(f"{FAULT_LAW_FILE}: new_fault_law gives {law} the default "
+                            f"{defaults[law]}, {LAW_LIST[1]} ({LAW_LIST[0]}) {default}")
+    read = reached_names(text, "beyond_coulomb") & names
+    beyond = {law for law, _, marked in laws if marked}
+    for law in sorted(beyond - read):
+        problems.append(f"{LAW_LIST[0]}: {LAW_LIST[1]} marks {law} beyond Coulomb, which "
+                        f"beyond_coulomb ({FAULT_LAW_FILE}) does not read")
+    for law in sorted(read - beyond):
+        problems.append(f"{LAW_LIST[0]}: {LAW_LIST[1]} does not mark {law} beyond Coulomb, "
+                        f"which beyond_coulomb ({FAULT_LAW_FILE}) reads")
+
+
+def check_law_namelists(root, laws, problems):
+    """The namelists declare each law; the values read are gathered in the list's order."""
+    for file, group, prefix, reader, opening in LAW_NAMELISTS:
+        text = strip_comments((root / file).read_text())
+        wanted = [prefix + law for law, _, _ in laws]
+        names = []
+        for found_group, listed in NAMELIST.findall(text):
+            if found_group.lower() == group:
+                names = [n.strip().lower() for n in listed.replace("&", " ").split(",")]
+        if not names:
+            problems.append(f"{file}: no namelist /{group}/")
+            continue
+        for name in wanted:
+            if name not in names:
+                problems.append(f"{file}: namelist /{group}/ does not declare {name}, a law "
+                                f"of {LAW_LIST[1]}")
+        body = re.sub(r"&\s*\n\s*", " ", strip_comments(procedure(root, file, reader,
+                                                                   problems) or ""))
+        gathered = re.search(re.escape(opening) + r"\s*\[([^\]]*)\]", body, re.IGNORECASE)
+        order = [n.strip().lower() for n in gathered.group(1).split(",")] if gathered else []
+        if order != wanted:
+            problems.append(f"{file}: {reader} gathers the laws' values as {order}, not in the "
+                            f"order of {LAW_LIST[1]} {wanted}")
+
+
+def check_laws(root, problems):
+    """Check 13: the list of the strength laws agrees with what holds and reads them."""
+    laws = law_entries(root, problems)
+    if not laws:
+        problems.append(f"{LAW_LIST[0]}: {LAW_LIST[1]} lists no law")
+        return
+    check_law_count(root, laws, problems)
+    check_law_arrays(root, laws, problems)
+    check_fault_law(root, laws, problems)
+    check_law_namelists(root, laws, problems)
+    for file, name, through in THROUGH_LAW_LIST:
+        text = procedure(root, file, name, problems)
+        if text is not None and not names_in(strip_comments(text), through):
+            problems.append(f"{file}: {name} does not go through {through} (the list of "
+                            f"the strength laws, {LAW_LIST[0]})")
+
+
 # A file of the repository named in the recipes, and a name written beside it.
 RECIPE_PATH = r"(?:src|app|tests|scripts)/[\w./-]+\.(?:f90|pf|py|c|sh)"
 NAME_THEN_PATH = re.compile(r"`(\w+)`\s*\(\s*`(" + RECIPE_PATH + r")`")
@@ -765,6 +965,7 @@ def main(argv):
     check_lcp_solvers(root, problems)
     check_criteria(root, problems)
     check_record_lists(root, problems)
+    check_laws(root, problems)
     check_recipes(root, problems)
     if graph_wanted:
         for folder in sorted(graph):
@@ -780,7 +981,9 @@ def main(argv):
               "fingerprint or marked not hashed; no LCP solver reaches the fault law; "
               "every growth criterion has its case in each dispatch, the only reader of "
               "the criterion; every column of the history and growth records is in its "
-              "list, and the Python reader knows its dataset; the recipes name what exists")
+              "list, and the Python reader knows its dataset; the strength laws are listed "
+              "once, as the element arrays, the fault law and the namelists have them; the "
+              "recipes name what exists")
     return 1 if problems else 0
 
 

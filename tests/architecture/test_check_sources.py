@@ -322,6 +322,101 @@ def test_python_loads_off_load_path_names_fail(tree, capsys):
     expect_violation(tree, capsys, "python/src/ddc2d/reader.py: HISTORY_LOADS ")
 
 
+def test_strength_law_off_what_holds_it_fails(tree, capsys):
+    # A law listed, and nowhere else yet
+    edit(tree / "src/model/laws.f90",
+         "units_stiffness, beyond_coulomb=.true.), elements%normal_stiffness)\n",
+         "units_stiffness, beyond_coulomb=.true.), elements%normal_stiffness)\n"
+         "        call action%on_law(law('planted', 0.0_wp, quantity_non_negative, "
+         "units_length, &\n                               beyond_coulomb=.false.), "
+         "elements%planted)\n")
+    for message in [
+            "src/model/laws.f90: the law planted of for_each_law is no per-element real array",
+            "src/model/types.f90: strength_law_count = 7, but for_each_law",
+            "src/contact/fault_law.f90: fault_law has no component planted",
+            "src/contact/fault_law.f90: set_given lacks 'planted'",
+            "src/contact/fault_law.f90: new_fault_law's given_or lacks 'planted'",
+            "src/input/namelist_fracture.f90: namelist /fracture/ does not declare planted",
+            "src/input/namelist_growth.f90: namelist /growth/ does not declare new_planted",
+            "src/input/namelist_fracture.f90: read_fracture_groups gathers the laws' values",
+            "src/input/namelist_growth.f90: read_growth_group gathers the laws' values"]:
+        expect_violation(tree, capsys, message)
+    # an array of the elements, counted, in the fault law and both namelists: it passes
+    types = tree / "src/model/types.f90"
+    edit(types, "        integer :: domain = domain_full_plane\n",
+         "        integer :: domain = domain_full_plane\n"
+         "        real(wp), allocatable :: planted(:)\n")
+    edit(types, "        call action%on_reals(elements%sin_beta)\n",
+         "        call action%on_reals(elements%sin_beta)\n"
+         "        call action%on_reals(elements%planted)\n")
+    edit(types, "strength_law_count = 7", "strength_law_count = 8")
+    law = tree / "src/contact/fault_law.f90"
+    edit(law, "        real(wp), allocatable :: shear_stiffness(:), normal_stiffness(:)\n",
+         "        real(wp), allocatable :: shear_stiffness(:), normal_stiffness(:), planted(:)\n")
+    edit(law, "        case default\n            ! not a law of this type\n",
+         "        case ('planted')\n            law%planted = values\n"
+         "        case default\n            ! not a law of this type\n")
+    edit(law, "        allocate (law%sf_in_force, source=sf)\n",
+         "        allocate (law%planted, source=given_or(planted, 0.0_wp))\n"
+         "        allocate (law%sf_in_force, source=sf)\n")
+    edit(tree / "src/input/namelist_fracture.f90",
+         "            shear_stiffness, normal_stiffness, opening_weakening_distance\n",
+         "            shear_stiffness, normal_stiffness, opening_weakening_distance, planted\n")
+    edit(tree / "src/input/namelist_fracture.f90", "shear_stiffness, normal_stiffness], &",
+         "shear_stiffness, normal_stiffness, planted], &")
+    edit(tree / "src/input/namelist_growth.f90",
+         "new_shear_stiffness, &\n            new_normal_stiffness\n\n",
+         "new_shear_stiffness, &\n            new_normal_stiffness, new_planted\n\n")
+    edit(tree / "src/input/namelist_growth.f90", "new_shear_stiffness, new_normal_stiffness], ",
+         "new_shear_stiffness, new_normal_stiffness, new_planted], ")
+    groups = tree / "src/input/namelist_groups.f90"
+    edit(groups, "'normal_stiffness:r opening_weakening_distance:r'",
+         "'normal_stiffness:r opening_weakening_distance:r planted:r'")
+    edit(groups, "'new_shear_stiffness:r new_normal_stiffness:r'",
+         "'new_shear_stiffness:r new_normal_stiffness:r new_planted:r'")
+    status, out = run_checks(tree, capsys)
+    assert status == 0, out
+
+
+def test_strength_law_default_off_the_fault_law_fails(tree, capsys):
+    edit(tree / "src/contact/fault_law.f90", "given_or(sf_residual, no_residual_drop)",
+         "given_or(sf_residual, 0.0_wp)")
+    expect_violation(tree, capsys, "src/contact/fault_law.f90: new_fault_law gives sf_residual "
+                     "the default 0.0_wp, for_each_law (src/model/laws.f90) no_residual_drop")
+
+
+def test_strength_law_beyond_coulomb_off_the_fault_law_fails(tree, capsys):
+    laws = tree / "src/model/laws.f90"
+    edit(laws, "units_length, beyond_coulomb=.false.), &\n"
+         "                           elements%slip_weakening_distance)",
+         "units_length, beyond_coulomb=.true.), &\n"
+         "                           elements%slip_weakening_distance)")
+    edit(laws, "units_stress, beyond_coulomb=.true.), elements%tensile_strength)",
+         "units_stress, beyond_coulomb=.false.), elements%tensile_strength)")
+    expect_violation(tree, capsys, "src/model/laws.f90: for_each_law marks "
+                     "slip_weakening_distance beyond Coulomb, which beyond_coulomb "
+                     "(src/contact/fault_law.f90) does not read")
+    expect_violation(tree, capsys, "src/model/laws.f90: for_each_law does not mark "
+                     "tensile_strength beyond Coulomb, which beyond_coulomb "
+                     "(src/contact/fault_law.f90) reads")
+
+
+def test_strength_laws_gathered_out_of_order_fail(tree, capsys):
+    edit(tree / "src/input/namelist_fracture.f90", "shear_stiffness, normal_stiffness], &",
+         "normal_stiffness, shear_stiffness], &")
+    expect_violation(tree, capsys, "src/input/namelist_fracture.f90: read_fracture_groups "
+                     "gathers the laws' values as")
+
+
+def test_routine_around_the_law_list_fails(tree, capsys):
+    # the flaw's new elements would keep element 1's laws
+    edit(tree / "src/growth/new_fracture.f90",
+         "            call default_strength_laws(grown%elements, [(i > n, i = 1, n + m)])\n",
+         "")
+    expect_violation(tree, capsys, "src/growth/new_fracture.f90: add_fracture does not go "
+                     "through default_strength_laws")
+
+
 def test_recipe_naming_a_missing_file_fails(tree, capsys):
     edit(tree / "docs/ARCHITECTURE.md", "`src/contact/formulation.f90`: call it from",
          "`src/contact/formulations.f90`: call it from")
@@ -330,8 +425,8 @@ def test_recipe_naming_a_missing_file_fails(tree, capsys):
 
 
 def test_recipe_naming_a_missing_procedure_fails(tree, capsys):
-    for path in (tree / "src/mesh/geometry.f90", tree / "src/growth/extension.f90"):
-        path.write_text(path.read_text().replace("default_strength_laws", "default_laws"))
+    for path in (tree / "src/growth/extension.f90", tree / "src/growth/new_fracture.f90"):
+        path.write_text(path.read_text().replace("take_new_element_laws", "take_new_laws"))
     expect_violation(tree, capsys, "docs/ARCHITECTURE.md: a recipe names "
-                     "default_strength_laws in src/mesh/geometry.f90, which has no "
-                     "default_strength_laws")
+                     "take_new_element_laws in src/growth/extension.f90, which has no "
+                     "take_new_element_laws")

@@ -2,7 +2,7 @@
 module ddc_test_builders
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type, fracture_type, symmetry_options, condition_traction, &
-                               condition_contact
+                               condition_contact, element_array_action, for_each_element_array
     use ddc_contact_options, only: solver_options
     use ddc_mesh_geometry, only: allocate_elements, compute_geometry
     use ddc_mesh_polyline, only: polyline_elements
@@ -12,6 +12,28 @@ module ddc_test_builders
 
     public :: polyline_model, straight_crack, circular_hole, join_fractures, kinked_network
     public :: kinked_contact_fault
+
+    !> One per-element array, held.
+    type :: held_reals
+        real(wp), allocatable :: values(:)
+    end type held_reals
+    type :: held_integers
+        integer, allocatable :: values(:)
+    end type held_integers
+
+    !> Takes the per-element arrays of one set, then appends each to the same array of
+    !> another (join_fractures): both passes go through for_each_element_array, in its order.
+    type, extends(element_array_action) :: element_append
+        !> The arrays taken
+        type(held_reals), allocatable :: reals(:)
+        type(held_integers), allocatable :: integers(:)
+        !> Arrays appended so far; appending (the second pass) once taken
+        integer :: real_count = 0, integer_count = 0
+        logical :: appending = .false.
+    contains
+        procedure :: on_reals => append_reals
+        procedure :: on_integers => append_integers
+    end type element_append
 
 contains
 
@@ -76,31 +98,19 @@ contains
     subroutine join_fractures(model, other)
         type(model_type), intent(inout) :: model
         type(model_type), intent(in) :: other
+        type(model_type) :: taken
+        type(element_append) :: append
         integer :: n
 
         n = model%elements%n
-        associate (a => model%elements, b => other%elements)
-            a%x_begin = [a%x_begin, b%x_begin]
-            a%y_begin = [a%y_begin, b%y_begin]
-            a%x_end = [a%x_end, b%x_end]
-            a%y_end = [a%y_end, b%y_end]
-            a%fracture_id = [a%fracture_id, b%fracture_id + size(model%fractures)]
-            a%condition = [a%condition, b%condition]
-            a%bc_s = [a%bc_s, b%bc_s]
-            a%bc_n = [a%bc_n, b%bc_n]
-            a%mu = [a%mu, b%mu]
-            a%sf = [a%sf, b%sf]
-            a%pressure = [a%pressure, b%pressure]
-            a%tensile_strength = [a%tensile_strength, b%tensile_strength]
-            a%sf_residual = [a%sf_residual, b%sf_residual]
-            a%mu_dynamic = [a%mu_dynamic, b%mu_dynamic]
-            a%slip_weakening_distance = [a%slip_weakening_distance, b%slip_weakening_distance]
-            a%opening_weakening_distance = [a%opening_weakening_distance, &
-                                            b%opening_weakening_distance]
-            a%shear_stiffness = [a%shear_stiffness, b%shear_stiffness]
-            a%normal_stiffness = [a%normal_stiffness, b%normal_stiffness]
-            a%n = n + b%n
-        end associate
+        taken = other
+        allocate (append%reals(0), append%integers(0))
+        call for_each_element_array(taken%elements, append)
+        append%appending = .true.
+        call for_each_element_array(model%elements, append)
+        model%elements%fracture_id(n + 1:) = model%elements%fracture_id(n + 1:) + &
+                                             size(model%fractures)
+        model%elements%n = n + other%elements%n
         call compute_geometry(model%elements)
         model%fractures = [model%fractures, fracture_type(name='fracture_2', &
             first_element=n + 1, last_element=n + other%elements%n)]
@@ -141,5 +151,45 @@ contains
         model%syy = -20.0_wp
         model%sxy = 0.5_wp
     end function kinked_contact_fault
+
+    !> Take a real array (first pass) or append the one taken in its place (second pass).
+    subroutine append_reals(action, values)
+        class(element_append), intent(inout) :: action
+        real(wp), allocatable, intent(inout) :: values(:)
+        type(held_reals), allocatable :: more(:)
+        integer :: i
+
+        if (action%appending) then
+            action%real_count = action%real_count + 1
+            values = [values, action%reals(action%real_count)%values]
+            return
+        end if
+        allocate (more(size(action%reals) + 1))
+        do i = 1, size(action%reals)
+            call move_alloc(action%reals(i)%values, more(i)%values)
+        end do
+        more(size(more))%values = values
+        call move_alloc(more, action%reals)
+    end subroutine append_reals
+
+    !> Take an integer array (first pass) or append the one taken in its place (second pass).
+    subroutine append_integers(action, values)
+        class(element_append), intent(inout) :: action
+        integer, allocatable, intent(inout) :: values(:)
+        type(held_integers), allocatable :: more(:)
+        integer :: i
+
+        if (action%appending) then
+            action%integer_count = action%integer_count + 1
+            values = [values, action%integers(action%integer_count)%values]
+            return
+        end if
+        allocate (more(size(action%integers) + 1))
+        do i = 1, size(action%integers)
+            call move_alloc(action%integers(i)%values, more(i)%values)
+        end do
+        more(size(more))%values = values
+        call move_alloc(more, action%integers)
+    end subroutine append_integers
 
 end module ddc_test_builders
