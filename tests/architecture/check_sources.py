@@ -56,6 +56,11 @@
     tests/ or scripts/ they name is there, and every procedure, type or list they name
     beside a file (`` `name` (`src/x/y.f90`) `` or `` `src/x/y.f90` (`name` ``) is a word
     of that file.
+13. No test names the system's temporary folder: a quoted path that begins with /tmp in
+    tests/ or scripts/ would bypass the TMPDIR of its own that CTest gives every test (and
+    the check that the test left nothing there: tests/temporary_folders.py). The one
+    exception is the fallback of the Fortran suites run by hand
+    (tests/fortran/support/temporary.f90).
 
 Prints every violation and exits 1 when there is one; --graph prints the folder graph.
 """
@@ -747,6 +752,32 @@ def check_recipes(root, problems):
             problems.append(f"{TABLE}: a recipe names {name} in {path}, which has no {name}")
 
 
+#: Where tests and scripts live, and the one file that names /tmp (its fallback).
+TEMPORARY_FOLDERS = ("tests", "scripts")
+TEMPORARY_SKIPPED = ("tests/data/", "tests/reference/")
+TEMPORARY_FALLBACK = "tests/fortran/support/temporary.f90"
+SYSTEM_TEMPORARY = re.compile(r"['\"]/tmp(?=[/'\"])")
+
+
+def check_temporary_paths(root, problems):
+    """Check 13: no test or script writes into /tmp by name."""
+    for folder in TEMPORARY_FOLDERS:
+        for path in sorted((root / folder).rglob("*")):
+            relative = path.relative_to(root).as_posix()
+            if not path.is_file() or relative.startswith(TEMPORARY_SKIPPED) or \
+                    relative == TEMPORARY_FALLBACK or "__pycache__" in relative:
+                continue
+            try:
+                lines = path.read_text().splitlines()
+            except UnicodeDecodeError:
+                continue
+            for number, line in enumerate(lines, start=1):
+                if SYSTEM_TEMPORARY.search(line):
+                    problems.append(f"{relative}:{number}: names /tmp: write into the "
+                                    "test's own temporary folder ($TMPDIR, tmp_path, "
+                                    "temporary_path)")
+
+
 def main(argv):
     graph_wanted = "--graph" in argv
     args = [a for a in argv if a != "--graph"]
@@ -766,6 +797,7 @@ def main(argv):
     check_criteria(root, problems)
     check_record_lists(root, problems)
     check_recipes(root, problems)
+    check_temporary_paths(root, problems)
     if graph_wanted:
         for folder in sorted(graph):
             print(f"{folder}: {', '.join(sorted(graph[folder])) or '-'}")
@@ -780,7 +812,8 @@ def main(argv):
               "fingerprint or marked not hashed; no LCP solver reaches the fault law; "
               "every growth criterion has its case in each dispatch, the only reader of "
               "the criterion; every column of the history and growth records is in its "
-              "list, and the Python reader knows its dataset; the recipes name what exists")
+              "list, and the Python reader knows its dataset; the recipes name what exists; "
+              "no test names /tmp")
     return 1 if problems else 0
 
 

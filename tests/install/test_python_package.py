@@ -66,6 +66,7 @@ def test_pip_install_into_an_empty_venv(tmp_path):
     assert done.returncode == 0, done.stderr
     where, version, distribution_version, licence = done.stdout.split()
     assert Path(where).is_relative_to(tmp_path / "venv")
+    assert (Path(where).parent / "py.typed").is_file(), "the hints are not marked (PEP 561)"
     assert version == distribution_version == os.environ["DDC2D_VERSION"]
     assert licence == "MIT"
     for name in ENTRY_POINTS:
