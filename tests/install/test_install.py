@@ -196,7 +196,7 @@ def spack_mapping(path):
 def test_spack_package_maps_the_options():
     package = REPO_ROOT / "packaging" / "spack" / "ddc2d" / "package.py"
     mapping, variants = spack_mapping(package)
-    assert mapping == {"DDC2D_MPI": "mpi", "DDC2D_NATIVE": "native"}
+    assert mapping == {"DDC2D_MPI": "mpi", "DDC2D_NATIVE": "native", "DDC2D_HMATRIX": "hmatrix"}
     assert set(mapping.values()) == variants, "a variant that no CMake option takes"
     options = cmake_options(REPO_ROOT / "CMakeLists.txt")
     missing = set(mapping) - options

@@ -96,7 +96,7 @@ def test_setup_installs_the_package_of_its_working_tree(tmp_path):
                   tmp_path).stdout.strip()
     # A plain path line: build/venv's own path files (its editable ddc2d) are not read.
     (Path(purelib) / "project_packages.pth").write_text(ours + "\n")
-    for tool in ("ruff", "fortitude"):
+    for tool in ("ruff", "fortitude", "mypy"):
         (venv / "bin" / tool).symlink_to(Path(sys.prefix) / "bin" / tool)
     before = run([python, "-c", "import ddc2d"], tmp_path)
     assert before.returncode != 0, "the clone's venv already imports a ddc2d package"
