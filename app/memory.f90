@@ -8,6 +8,7 @@ module ddc_app_memory
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
     use ddc_text, only: bytes_text, itoa
+    use ddc_version, only: with_hmatrix
     use ddc_model_types, only: model_type
     use ddc_model_capabilities, only: run_refusal, operator_hierarchical
     use ddc_run_memory, only: memory_need, estimate_memory, check_memory, &
@@ -60,9 +61,9 @@ contains
     end subroutine check_model_memory
 
     !> Resolve &solver matrix = 'auto' (docs/theory/hierarchical.md#choosing-the-matrix):
-    !> where the model allows a hierarchical matrix, it from hierarchical_min_elements
-    !> elements on or where the dense need does not fit (then `need` is re-estimated), else
-    !> dense; echo the matrix and why (every run).
+    !> dense in a build without hmat-oss; else, where the model allows a hierarchical
+    !> matrix, it from hierarchical_min_elements elements on or where the dense need does not
+    !> fit (then `need` is re-estimated), else dense; echo the matrix and why (every run).
     subroutine choose_matrix(unit, model, need, available)
         integer, intent(in) :: unit
         type(model_type), intent(inout) :: model
@@ -79,7 +80,11 @@ contains
         case default
             model%solver%matrix = matrix_dense
             n = model%elements%n
-            if (len(run_refusal(model, operator_hierarchical)) > 0) then
+            if (.not. with_hmatrix) then
+                write (unit, '(a)') '  matrix: dense (built without hmat-oss: CMake option '// &
+                    'DDC2D_HMATRIX=OFF)'
+                return
+            else if (len(run_refusal(model, operator_hierarchical)) > 0) then
                 write (unit, '(a)') '  matrix: dense (a hierarchical matrix does not solve '// &
                     'this model: docs/theory/hierarchical.md#what-it-solves)'
                 return

@@ -45,10 +45,14 @@ function(ddc2d_link_words out)
 endfunction()
 
 # pkg-config: the library is static, so Libs names what it needs (LAPACK, HDF5 Fortran,
-# hmat-oss, OpenMP) for a plain `gfortran main.f90 $(pkg-config --cflags --libs ddc2d)`.
+# hmat-oss unless DDC2D_HMATRIX is off, OpenMP) for a plain
+# `gfortran main.f90 $(pkg-config --cflags --libs ddc2d)`.
 file(RELATIVE_PATH pc_to_prefix /root/${CMAKE_INSTALL_LIBDIR}/pkgconfig /root)
 string(REGEX REPLACE "/$" "" pc_to_prefix "${pc_to_prefix}")
-get_target_property(hmat_library HMAT::hmat LOCATION)
+set(hmat_library "")
+if(DDC2D_HMATRIX)
+    get_target_property(hmat_library HMAT::hmat LOCATION)
+endif()
 ddc2d_link_words(pc_dependencies ${LAPACK_LIBRARIES} ${LAPACK_LINKER_FLAGS}
                  ${HDF5_Fortran_LIBRARIES} ${hmat_library} ${OpenMP_Fortran_FLAGS})
 list(TRANSFORM HDF5_Fortran_INCLUDE_DIRS PREPEND "-I" OUTPUT_VARIABLE pc_includes)

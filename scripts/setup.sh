@@ -12,7 +12,7 @@
 #    working tree (python/, docs/python.md) installed editable with its extra 'test': numpy,
 #    h5py, matplotlib, xarray, xlrd and openpyxl (comp2ddm2nml reads .xls / .xlsx
 #    workbooks), pytest and xlwt (the tests write .xls workbooks), all from PyPI; FORD
-#    (the API pages, scripts/build-api-docs.sh) and the linters fortitude-lint and ruff:
+#    (the API pages, scripts/build-api-docs.sh) and the linters fortitude-lint, ruff and mypy:
 #    created/installed only when missing or broken (a ddc2d package that is not this
 #    working tree's is installed over).
 # 3. With --tests, pFUnit 4.14 for the Fortran test suites (scripts/setup-pfunit.sh): an
@@ -40,7 +40,7 @@ package_modules="ddc2d, numpy, h5py, matplotlib, xarray, pytest, xlrd, openpyxl,
 python_modules="$package_modules, ford"
 # Linters run by the tests, as PyPI package:executable in the venv's bin/.
 # Pinned: their default rule sets change between releases.
-python_tools=(fortitude-lint==0.10.0:fortitude ruff==0.17.6:ruff)
+python_tools=(fortitude-lint==0.10.0:fortitude ruff==0.17.6:ruff mypy==2.4.1:mypy)
 venv_dir="$repo_root/build/venv"
 
 say() { printf 'setup: %s\n' "$*"; }

@@ -16,6 +16,7 @@ module ddc_input_namelist
         symmetry_x, domain_half_plane, strength_law_count
     use ddc_model_laws, only: strength_law, strength_laws, set_law
     use ddc_text, only: itoa, rtoa, prefix_lines
+    use ddc_version, only: with_hmatrix
     use ddc_input_text_file, only: read_text_file, folder_of
     use ddc_mesh_geometry, only: allocate_elements, compute_geometry
     use ddc_mesh_checks, only: check_elements
@@ -121,7 +122,8 @@ contains
     end subroutine read_namelist_model
 
     !> matrix = 'hierarchical' on a model a hierarchical matrix does not solve
-    !> (run_refusal: docs/theory/hierarchical.md#what-it-solves) is refused.
+    !> (run_refusal: docs/theory/hierarchical.md#what-it-solves), or in a build
+    !> without hmat-oss, is refused.
     subroutine check_matrix(path, model, messages)
         character(len=*), intent(in) :: path
         type(model_type), intent(in) :: model
@@ -129,6 +131,12 @@ contains
         character(len=:), allocatable :: what
 
         if (model%solver%matrix /= matrix_hierarchical) return
+        if (.not. with_hmatrix) then
+            call add(messages, path//": &solver: matrix = 'hierarchical' needs hmat-oss, "// &
+                     "and this ddc2d was built without it (CMake option DDC2D_HMATRIX=OFF): "// &
+                     "use matrix = 'dense' or 'auto'")
+            return
+        end if
         what = run_refusal(model, operator_hierarchical)
         if (len(what) == 0) return
         call add(messages, path//": &solver: matrix = 'hierarchical' does not solve "//what// &

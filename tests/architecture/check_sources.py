@@ -66,6 +66,11 @@
     each law (`new_<name>` in &growth), and the arrays of their values that the readers
     build name them in the list's order; the routines that handle every law go through
     the list.
+14. No test names the system's temporary folder: a quoted path that begins with /tmp in
+    tests/ or scripts/ would bypass the TMPDIR of its own that CTest gives every test (and
+    the check that the test left nothing there: tests/temporary_folders.py). The
+    exceptions are the fallback of the Fortran suites run by hand
+    (tests/fortran/support/temporary.f90) and this check's planted violations.
 
 Prints every violation and exits 1 when there is one; --graph prints the folder graph.
 """
@@ -947,6 +952,34 @@ def check_recipes(root, problems):
             problems.append(f"{TABLE}: a recipe names {name} in {path}, which has no {name}")
 
 
+#: Where tests and scripts live, and the files that may name /tmp: the Fortran suites'
+#: fallback and the planted violations of this check.
+TEMPORARY_FOLDERS = ("tests", "scripts")
+TEMPORARY_SKIPPED = ("tests/data/", "tests/reference/")
+TEMPORARY_ALLOWED = ("tests/fortran/support/temporary.f90",
+                     "tests/architecture/test_check_sources.py")
+SYSTEM_TEMPORARY = re.compile(r"['\"]/tmp(?=[/'\"])")
+
+
+def check_temporary_paths(root, problems):
+    """Check 13: no test or script writes into /tmp by name."""
+    for folder in TEMPORARY_FOLDERS:
+        for path in sorted((root / folder).rglob("*")):
+            relative = path.relative_to(root).as_posix()
+            if not path.is_file() or relative.startswith(TEMPORARY_SKIPPED) or \
+                    relative in TEMPORARY_ALLOWED or "__pycache__" in relative:
+                continue
+            try:
+                lines = path.read_text().splitlines()
+            except UnicodeDecodeError:
+                continue
+            for number, line in enumerate(lines, start=1):
+                if SYSTEM_TEMPORARY.search(line):
+                    problems.append(f"{relative}:{number}: names /tmp: write into the "
+                                    "test's own temporary folder ($TMPDIR, tmp_path, "
+                                    "temporary_path)")
+
+
 def main(argv):
     graph_wanted = "--graph" in argv
     args = [a for a in argv if a != "--graph"]
@@ -967,6 +1000,7 @@ def main(argv):
     check_record_lists(root, problems)
     check_laws(root, problems)
     check_recipes(root, problems)
+    check_temporary_paths(root, problems)
     if graph_wanted:
         for folder in sorted(graph):
             print(f"{folder}: {', '.join(sorted(graph[folder])) or '-'}")
@@ -983,7 +1017,7 @@ def main(argv):
               "the criterion; every column of the history and growth records is in its "
               "list, and the Python reader knows its dataset; the strength laws are listed "
               "once, as the element arrays, the fault law and the namelists have them; the "
-              "recipes name what exists")
+              "recipes name what exists; no test names /tmp")
     return 1 if problems else 0
 
 

@@ -25,7 +25,7 @@ def tree(tmp_path):
     for folder in ("src", "app", "scripts", "input", "docs", "tests/fortran", "python/src"):
         shutil.copytree(REPO_ROOT / folder, tmp_path / folder)
     shutil.copy(REPO_ROOT / "README.md", tmp_path)
-    for name in ("CITATION.cff", "CHANGELOG.md"):
+    for name in ("CITATION.cff", "CHANGELOG.md", "LICENSE"):
         if (REPO_ROOT / name).exists():
             shutil.copy(REPO_ROOT / name, tmp_path)
     return tmp_path

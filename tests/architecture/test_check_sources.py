@@ -430,3 +430,13 @@ def test_recipe_naming_a_missing_procedure_fails(tree, capsys):
     expect_violation(tree, capsys, "docs/ARCHITECTURE.md: a recipe names "
                      "take_new_element_laws in src/growth/extension.f90, which has no "
                      "take_new_element_laws")
+
+
+def test_a_test_naming_tmp_fails(tree, capsys):
+    edit(tree / "tests/fortran/test_sweep.pf", "temporary_path('ddc2d_test_sweep_complete.h5')",
+         "'/tmp/ddc2d_test_sweep_complete.h5'")
+    path = tree / "tests/python/test_cli.py"
+    path.write_text(path.read_text() + '\nLEFT = "/tmp/ddc2d_planted"\n')
+    expect_violation(tree, capsys, "tests/fortran/test_sweep.pf:")
+    expect_violation(tree, capsys, "tests/python/test_cli.py:")
+    expect_violation(tree, capsys, "names /tmp: write into the test's own temporary folder")

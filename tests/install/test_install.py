@@ -10,10 +10,12 @@ prefix, then what a user does with it.
   built in code, checked here against the closed form;
 - the Lmod module file loaded with Debian's Lmod, and both it and the pkg-config file in a
   copy of the installed tree;
-- the Spack package's variants and CMake options against the options of CMakeLists.txt.
+- the Spack package's variants and CMake options against the options of CMakeLists.txt;
+- the version of the installed program, pkg-config file and module file: project(VERSION).
 
 Run by the CTest `install` with DDC2D_BUILD_DIR (the build to install), DDC2D_CMAKE,
-DDC2D_GENERATOR, FC (the build's Fortran compiler) and DDC2D_MPI (ON or OFF).
+DDC2D_GENERATOR, FC (the build's Fortran compiler), DDC2D_MPI (ON or OFF) and
+DDC2D_VERSION (project(VERSION) of CMakeLists.txt).
 """
 
 import ast
@@ -33,6 +35,7 @@ CMAKE = os.environ.get("DDC2D_CMAKE", "cmake")
 GENERATOR = os.environ.get("DDC2D_GENERATOR", "Ninja")
 FC = os.environ.get("FC", "gfortran")
 MPI_BUILD = os.environ.get("DDC2D_MPI", "OFF").upper() in ("ON", "1", "TRUE")
+VERSION = os.environ.get("DDC2D_VERSION", "")
 LMOD_INIT = Path("/usr/share/lmod/lmod/init/bash")  # Debian's lmod package
 
 # The crack of input/pressurized_crack.nml and examples/library/: half-length a = 1 m,
@@ -147,6 +150,16 @@ def test_lmod_module_file(prefix):
     assert pkg_config_path.split(":")[0] == f"{prefix}/lib/pkgconfig"
 
 
+def test_installed_version(prefix):
+    assert VERSION, "DDC2D_VERSION is not set (CTest sets it to project(VERSION))"
+    program = prefix / "bin" / ("ddc2d_serial" if MPI_BUILD else "ddc2d")
+    assert run([str(program), "--version"]).stdout.startswith(f"ddc2d {VERSION} ")
+    environment = dict(os.environ, PKG_CONFIG_PATH=str(prefix / "lib" / "pkgconfig"))
+    assert run(["pkg-config", "--modversion", "ddc2d"], env=environment).stdout.strip() == \
+        VERSION
+    assert (prefix / "share" / "modulefiles" / "ddc2d" / f"{VERSION}.lua").is_file()
+
+
 def test_moved_prefix(prefix, tmp_path):
     """The installed tree copied elsewhere: the module file and the pkg-config file point
     into the copy."""
@@ -183,7 +196,7 @@ def spack_mapping(path):
 def test_spack_package_maps_the_options():
     package = REPO_ROOT / "packaging" / "spack" / "ddc2d" / "package.py"
     mapping, variants = spack_mapping(package)
-    assert mapping == {"DDC2D_MPI": "mpi", "DDC2D_NATIVE": "native"}
+    assert mapping == {"DDC2D_MPI": "mpi", "DDC2D_NATIVE": "native", "DDC2D_HMATRIX": "hmatrix"}
     assert set(mapping.values()) == variants, "a variant that no CMake option takes"
     options = cmake_options(REPO_ROOT / "CMakeLists.txt")
     missing = set(mapping) - options

@@ -7,7 +7,9 @@
   gets it on the next run, and the run after that finds it ready.
 
 Both install from a copy of python/ in a temporary folder (pip writes build files beside
-the sources). They need PyPI or pip's cache; CTest label install.
+the sources), which also shows that python/ builds alone: the installed package has the
+program's version (DDC2D_VERSION: project(VERSION), given by CTest) and the MIT licence.
+They need PyPI or pip's cache; CTest label install.
 """
 
 import os
@@ -57,11 +59,16 @@ def test_pip_install_into_an_empty_venv(tmp_path):
     done = run([python, "-m", "pip", "install", "--quiet", copy_package(tmp_path / "python")],
                tmp_path)
     assert done.returncode == 0, done.stdout + done.stderr
-    show = "import ddc2d, xarray; print(ddc2d.__file__); print(ddc2d.__version__)"
+    show = ("import ddc2d, xarray; from importlib import metadata; print(ddc2d.__file__); "
+            "print(ddc2d.__version__); print(metadata.version('ddc2d')); "
+            "print(metadata.metadata('ddc2d')['License-Expression'])")
     done = run([python, "-c", show], tmp_path)
     assert done.returncode == 0, done.stderr
-    where, version = done.stdout.split()
-    assert Path(where).is_relative_to(tmp_path / "venv") and version == "0.1.0"
+    where, version, distribution_version, licence = done.stdout.split()
+    assert Path(where).is_relative_to(tmp_path / "venv")
+    assert (Path(where).parent / "py.typed").is_file(), "the hints are not marked (PEP 561)"
+    assert version == distribution_version == os.environ["DDC2D_VERSION"]
+    assert licence == "MIT"
     for name in ENTRY_POINTS:
         done = run([tmp_path / "venv" / "bin" / name, "--help"], tmp_path)
         assert done.returncode == 0, f"{name}: {done.stderr}"
@@ -89,7 +96,7 @@ def test_setup_installs_the_package_of_its_working_tree(tmp_path):
                   tmp_path).stdout.strip()
     # A plain path line: build/venv's own path files (its editable ddc2d) are not read.
     (Path(purelib) / "project_packages.pth").write_text(ours + "\n")
-    for tool in ("ruff", "fortitude"):
+    for tool in ("ruff", "fortitude", "mypy"):
         (venv / "bin" / tool).symlink_to(Path(sys.prefix) / "bin" / tool)
     before = run([python, "-c", "import ddc2d"], tmp_path)
     assert before.returncode != 0, "the clone's venv already imports a ddc2d package"

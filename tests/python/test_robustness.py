@@ -258,8 +258,15 @@ def make_special(kind, path, keep):
         # A reader, so that a program writing into the FIFO would not block but be caught.
         keep.append(os.open(path, os.O_RDONLY | os.O_NONBLOCK))
     elif kind == "socket":
+        # A socket's path holds at most 107 bytes (AF_UNIX), less than a temporary folder in
+        # the build tree may take: bound by its name alone, from its folder.
         server = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
-        server.bind(str(path))
+        here = os.getcwd()
+        os.chdir(path.parent)
+        try:
+            server.bind(path.name)
+        finally:
+            os.chdir(here)
         keep.append(server)
     else:
         path.mkdir()

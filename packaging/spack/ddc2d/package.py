@@ -14,13 +14,20 @@ class Ddc2d(CMakePackage):
     fractures: the program ddc2d, a Fortran library (find_package(ddc2d)) and an Lmod
     module file."""
 
+    # ddc2d's own sources; hmat-oss (+hmatrix) is GPL-2.0-or-later, and a program linked
+    # with it is distributed under the GPL's terms (README.md#licence).
+    license("MIT")
+
     # ddc2d has no public release address yet: from the root of a checkout, build it with
     # `spack dev-build ddc2d@0.1.0` (or `spack develop`); set `git` (and a
     # version("main", branch="main")) to your copy of the repository to fetch it instead.
+    # The newest version is project(VERSION) of CMakeLists.txt (the test package_metadata).
     version("0.1.0")
 
     variant("mpi", default=False, description="One model over many processes (MPI, ScaLAPACK)")
     variant("native", default=False, description="Optimise for the building CPU (-march=native)")
+    variant("hmatrix", default=True,
+            description="Hierarchical matrices with hmat-oss (GPL-2.0-or-later)")
 
     depends_on("cmake@3.25:", type="build")
     depends_on("ninja", type="build")
@@ -30,7 +37,7 @@ class Ddc2d(CMakePackage):
     depends_on("lapack")
     # Serial HDF5 in the MPI build too: one process writes the result file.
     depends_on("hdf5+fortran~mpi")
-    depends_on("hmat-oss")
+    depends_on("hmat-oss", when="+hmatrix")
     depends_on("mpi", when="+mpi")
     depends_on("scalapack", when="+mpi")
 
@@ -40,6 +47,7 @@ class Ddc2d(CMakePackage):
         args = [
             self.define_from_variant("DDC2D_MPI", "mpi"),
             self.define_from_variant("DDC2D_NATIVE", "native"),
+            self.define_from_variant("DDC2D_HMATRIX", "hmatrix"),
             # The tests need pFUnit and a Python venv: not part of an installation.
             self.define("BUILD_TESTING", False),
         ]

@@ -15,5 +15,5 @@ from .reader import ResultError
 from .result import Result, open_result
 from .run import RunError, run
 
-__version__ = "0.1.0"
+__version__ = "0.1.0"  # project(VERSION) of CMakeLists.txt: the test package_metadata
 __all__ = ["Model", "Result", "ResultError", "RunError", "__version__", "open_result", "run"]

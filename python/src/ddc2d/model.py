@@ -14,7 +14,11 @@ model (every problem at once, ddc2d.RunError from ddc2d.run).
 """
 
 import math
+from collections.abc import Iterable, Mapping
 from pathlib import Path
+from typing import Any, Self
+
+from .reader import FilePath
 
 #: Groups that a model has at most once (docs/input-reference.md#the-groups).
 SINGLE_GROUPS = ("remote_stress", "pore_fluid", "solver", "symmetry", "load_path", "sweep",
@@ -26,7 +30,7 @@ GROUP_ORDER = ("model", "remote_stress", "pore_fluid", "fracture", "grid", "line
 LINE_WIDTH = 90
 
 
-def namelist_value(value):
+def namelist_value(value: Any) -> str:
     """`value` in namelist syntax: text quoted ('' doubles a quote), booleans .true. /
     .false., reals in full precision (repr), sequences comma-separated."""
     if isinstance(value, str):
@@ -48,7 +52,7 @@ def namelist_value(value):
     raise TypeError(f"{value!r} ({type(value).__name__}) is not a namelist value")
 
 
-def namelist_group(group, variables):
+def namelist_group(group: str, variables: Mapping[str, Any]) -> str:
     """One group `&group name = value, ... /`, wrapped at LINE_WIDTH."""
     lines = [f"&{group}"]
     for name, value in variables.items():
@@ -66,30 +70,33 @@ def namelist_group(group, variables):
 class Model:
     """A ddc2d model: the &model group and the groups added by the methods below."""
 
-    def __init__(self, youngs_modulus, poissons_ratio, **model):
+    def __init__(self, youngs_modulus: float, poissons_ratio: float, **model: Any) -> None:
         """`youngs_modulus`, `poissons_ratio` and the other &model variables (title,
         length_unit, stress_unit, domain)."""
-        self.groups = [("model", {"youngs_modulus": youngs_modulus,
-                                  "poissons_ratio": poissons_ratio, **model})]
+        self.groups: list[tuple[str, dict[str, Any]]] = [
+            ("model", {"youngs_modulus": youngs_modulus, "poissons_ratio": poissons_ratio,
+                       **model})]
         #: Point sets of &points: the name -> (x, y), written to CSV files by write().
-        self.point_sets = {}
+        self.point_sets: dict[str, tuple[list[float], list[float]]] = {}
 
-    def _add(self, group, variables):
+    def _add(self, group: str, variables: Mapping[str, Any]) -> Self:
         if group in SINGLE_GROUPS:
             self.groups = [(g, v) for g, v in self.groups if g != group]
         self.groups.append((group, {k: v for k, v in variables.items() if v is not None}))
         return self
 
-    def remote_stress(self, sxx=0.0, syy=0.0, sxy=0.0, **gradients):
+    def remote_stress(self, sxx: float = 0.0, syy: float = 0.0, sxy: float = 0.0,
+                      **gradients: float) -> Self:
         """&remote_stress: the remote stress [stress unit] and dsxx_dy, ... (replaces an
         earlier one)."""
         return self._add("remote_stress", {"sxx": sxx, "syy": syy, "sxy": sxy, **gradients})
 
-    def pore_fluid(self, p0=0.0, dp_dy=0.0):
+    def pore_fluid(self, p0: float = 0.0, dp_dy: float = 0.0) -> Self:
         """&pore_fluid: pore pressure at y = 0 and its change with y."""
         return self._add("pore_fluid", {"p0": p0, "dp_dy": dp_dy})
 
-    def fracture(self, x, y, elements, condition="contact", name=None, **values):
+    def fracture(self, x: Iterable[float], y: Iterable[float], elements: int | Iterable[int],
+                 condition: str = "contact", name: str | None = None, **values: Any) -> Self:
         """&fracture: a polyline through the vertices (x, y) cut into `elements` equal
         elements (one count, or one per segment), with its condition and values (mu, sf,
         pressure for 'contact'; bc_s, bc_n for the others; the strength laws)."""
@@ -97,39 +104,41 @@ class Model:
                                       "elements": elements, "condition": condition,
                                       **values})
 
-    def grid(self, xmin, xmax, nx, ymin, ymax, ny, name=None):
+    def grid(self, xmin: float, xmax: float, nx: int, ymin: float, ymax: float, ny: int,
+             name: str | None = None) -> Self:
         """&grid: nx x ny observation points from (xmin, ymin) to (xmax, ymax)."""
         return self._add("grid", {"name": name, "xmin": xmin, "xmax": xmax, "nx": nx,
                                   "ymin": ymin, "ymax": ymax, "ny": ny})
 
-    def line(self, x_begin, y_begin, x_end, y_end, points, name=None):
+    def line(self, x_begin: float, y_begin: float, x_end: float, y_end: float, points: int,
+             name: str | None = None) -> Self:
         """&line: `points` equally spaced observation points from begin to end."""
         return self._add("line", {"name": name, "x_begin": x_begin, "y_begin": y_begin,
                                   "x_end": x_end, "y_end": y_end, "points": points})
 
-    def points(self, x, y, name):
+    def points(self, x: Iterable[float], y: Iterable[float], name: str) -> Self:
         """&points: observation points at (x, y), written to <namelist stem>_<name>.csv
         beside the namelist file."""
         self.point_sets[name] = (list(x), list(y))
         return self._add("points", {"name": name})
 
-    def solver(self, **values):
+    def solver(self, **values: Any) -> Self:
         """&solver: lcp_method, open_cohesion, block_size."""
         return self._add("solver", values)
 
-    def symmetry(self, **values):
+    def symmetry(self, **values: Any) -> Self:
         """&symmetry: kind, xsym, ysym."""
         return self._add("symmetry", values)
 
-    def load_path(self, steps, **loads):
+    def load_path(self, steps: int | Iterable[int], **loads: Any) -> Self:
         """&load_path: steps per leg and the loads at every vertex (sxx, ..., p0)."""
         return self._add("load_path", {"steps": steps, **loads})
 
-    def growth(self, steps, toughness, **values):
+    def growth(self, steps: int, toughness: float, **values: Any) -> Self:
         """&growth: most steps, toughness K_Ic and increment, element_length, tips, ..."""
         return self._add("growth", {"steps": steps, "toughness": toughness, **values})
 
-    def namelist(self, stem="model"):
+    def namelist(self, stem: str = "model") -> str:
         """The namelist text; &points files are named <stem>_<name>.csv."""
         order = {group: index for index, group in enumerate(GROUP_ORDER)}
         text = []
@@ -139,7 +148,7 @@ class Model:
             text.append(namelist_group(group, variables))
         return "".join(text)
 
-    def write(self, path):
+    def write(self, path: FilePath) -> Path:
         """Write the namelist to `path` and the &points files beside it; returns the path."""
         path = Path(path)
         for name, (x, y) in self.point_sets.items():

@@ -19,11 +19,31 @@ Used by ddc2d.open_result, ``ddc2d-plot``, ``collect-sweep``, ``compare-twodd``,
   kernels on other CPUs).
 """
 
+import os
 import re
+from collections.abc import Mapping
 from pathlib import Path
+from typing import Any, Protocol
 
 import h5py
 import numpy as np
+import numpy.typing as npt
+
+#: A file name as the functions take it.
+FilePath = str | os.PathLike[str]
+#: A loaded result (load_result): plain Python and numpy objects by key.
+Loaded = dict[str, Any]
+#: Arrays by dataset name.
+Arrays = dict[str, np.ndarray]
+#: The meaning of each integer code of a dataset (code -> name).
+Coding = dict[int, str]
+
+
+class ResultData(Protocol):
+    """What the figures and tools read a result through, ``result["elements"]``, ...: a
+    ddc2d.Result or the dict of load_result."""
+
+    def __getitem__(self, key: str, /) -> Any: ...
 
 #: Element states as coded in /elements/state (and /history/state).
 STATE_NAMES = {0: "free", 1: "stick", 2: "slip", 3: "open"}
@@ -84,7 +104,7 @@ class ResultError(Exception):
 # --------------------------------------------------------------------------- ties
 
 
-def index_of_extreme(values, kind="max", rtol=TIE_RTOL):
+def index_of_extreme(values: npt.ArrayLike, kind: str = "max", rtol: float = TIE_RTOL) -> int:
     """Index of the largest (kind 'max') or smallest ('min') value, defined under ties.
 
     Returns the lowest index among the values within ``rtol * |extreme|`` of the extreme
@@ -107,7 +127,7 @@ def index_of_extreme(values, kind="max", rtol=TIE_RTOL):
     return int(np.flatnonzero(near)[0])
 
 
-def is_tie(a, b, scale=None, rtol=TIE_RTOL):
+def is_tie(a: float, b: float, scale: float | None = None, rtol: float = TIE_RTOL) -> bool:
     """True when a and b are equal under the tie rule: ``|a - b| <= rtol * scale``, with
     ``scale`` the larger of |a| and |b| unless given (e.g. the magnitude of the data that
     a and b are compared within)."""
@@ -119,7 +139,7 @@ def is_tie(a, b, scale=None, rtol=TIE_RTOL):
 # --------------------------------------------------------------------------- strings
 
 
-def decode(value):
+def decode(value: Any) -> str:
     """Return an HDF5 string value (bytes, numpy bytes/str, 0-d or 1-element array) as str.
 
     Strings written from Fortran come back from h5py as blank- or NUL-padded bytes; an
@@ -134,47 +154,47 @@ def decode(value):
     return str(value).rstrip("\x00 ").strip()
 
 
-def is_text(value):
+def is_text(value: Any) -> bool:
     """True for an attribute value that is a string (or an array of strings)."""
     return isinstance(value, (bytes, np.bytes_, str)) or (
         isinstance(value, np.ndarray) and value.dtype.kind in "SUO")
 
 
-def decoded_attrs(attrs):
+def decoded_attrs(attrs: Mapping[str, Any]) -> dict[str, Any]:
     """The attributes of an HDF5 object as a dict, strings decoded, numbers as stored."""
     return {key: decode(value) if is_text(value) else value for key, value in attrs.items()}
 
 
-def attr_text(attrs, name, default=""):
+def attr_text(attrs: Mapping[str, Any], name: str, default: str = "") -> str:
     """A string attribute as str, or `default` when absent."""
     return decode(attrs[name]) if name in attrs else default
 
 
-def attr_int(attrs, name, default):
+def attr_int(attrs: Mapping[str, Any], name: str, default: int) -> int:
     """An integer attribute (scalar or 1-element array) as int, or `default` when absent."""
     if name not in attrs:
         return default
     return int(np.asarray(attrs[name]).ravel()[0])
 
 
-def units_of(dataset):
+def units_of(dataset: h5py.Dataset) -> str:
     """The `units` attribute of a dataset as str ('' when it has none)."""
     return attr_text(dataset.attrs, "units")
 
 
-def parse_coding(text):
+def parse_coding(text: Any) -> Coding:
     """A `coding` attribute ('0 free (TWODD-style condition), 1 stick, ...') as a dict
     code -> name (the first word after each code)."""
     return {int(code): name for code, name in re.findall(r"(\d+) ([A-Za-z_]+)", decode(text))}
 
 
-def read_codings(handle):
+def read_codings(handle: h5py.Group) -> dict[str, Coding]:
     """The `coding` attribute of every dataset of an open file that has one, parsed
     (parse_coding), by dataset path ('/elements/state', '/fields/map/near_element', ...);
     DEFAULT_CODINGS for the datasets that are there without one."""
-    codings = {}
+    codings: dict[str, Coding] = {}
 
-    def visit(name, item):
+    def visit(name: str, item: Any) -> None:
         if isinstance(item, h5py.Dataset):
             if "coding" in item.attrs:
                 codings["/" + name] = parse_coding(item.attrs["coding"])
@@ -185,14 +205,14 @@ def read_codings(handle):
     return codings
 
 
-def coding_of(result, path, default=None):
+def coding_of(result: ResultData, path: str, default: Coding | None = None) -> Coding:
     """The coding (code -> name) of the dataset `path` of a loaded result: the file's, else
     DEFAULT_CODINGS's, else `default` (an empty dict when None)."""
     found = result["codings"].get(path, DEFAULT_CODINGS.get(path, default))
     return dict(found or {})
 
 
-def code_of(coding, name):
+def code_of(coding: Coding, name: str) -> int:
     """The code of `name` in a coding (code -> name); KeyError naming the codes known."""
     for code, known in coding.items():
         if known == name:
@@ -200,7 +220,7 @@ def code_of(coding, name):
     raise KeyError(f"no code for '{name}' in the coding {coding}")
 
 
-def is_complete(attrs, when_missing=False):
+def is_complete(attrs: Mapping[str, Any], when_missing: bool = False) -> bool:
     """True when the root attributes mark the file complete (`complete` = 1, written last
     by ddc2d); `when_missing` is the answer for a file without the attribute."""
     return attr_int(attrs, "complete", 1 if when_missing else 0) == 1
@@ -209,7 +229,7 @@ def is_complete(attrs, when_missing=False):
 # --------------------------------------------------------------------------- whole file
 
 
-def load_result(path):
+def load_result(path: FilePath) -> Loaded:
     """Read a ddc2d result file into plain Python / numpy objects.
 
     Returns a dict with keys ``path``, ``attrs`` (root attributes; strings decoded),
@@ -243,7 +263,7 @@ def load_result(path):
         raise ResultError(f"cannot read '{path}': damaged or unexpected content ({exc})") from exc
 
 
-def _read_open_file(path, handle):
+def _read_open_file(path: Path, handle: h5py.File) -> Loaded:
     elements = read_elements(path, handle)
     count = elements["ds"].size
     if "state" not in elements:
@@ -271,7 +291,7 @@ def _read_open_file(path, handle):
 # --------------------------------------------------------------------------- groups
 
 
-def read_elements(path, handle):
+def read_elements(path: FilePath, handle: h5py.Group) -> Arrays:
     """Every dataset of /elements as a 1-D array (dict name -> array); checks that the
     datasets of ELEMENT_DATASETS are there with one value per element."""
     if "elements" not in handle or not isinstance(handle["elements"], h5py.Group):
@@ -291,12 +311,12 @@ def read_elements(path, handle):
     return elements
 
 
-def read_fractures(path, handle, elements):
+def read_fractures(path: FilePath, handle: h5py.Group, elements: Arrays) -> list[dict[str, Any]]:
     """Fractures from /fractures, or (if absent) from runs of equal /elements/fracture_id:
     a list of dicts ``name``, ``first``, ``last`` (1-based, inclusive) and ``label`` (the
     name made usable in file names, unique)."""
     count = elements["ds"].size
-    fractures = []
+    fractures: list[dict[str, Any]] = []
     if "fractures" in handle:
         group = handle["fractures"]
         first = np.asarray(group["first_element"][()]).ravel().astype(int)
@@ -330,17 +350,17 @@ def read_fractures(path, handle, elements):
     return fractures
 
 
-def read_fields(handle):
+def read_fields(handle: h5py.Group) -> dict[str, dict[str, Any]]:
     """Every group of /fields as a dict name -> {kind, nx, ny, ``codings`` (dataset name ->
     its parsed `coding` attribute: near_element) and each dataset as an array}; empty
     without /fields."""
-    fields = {}
+    fields: dict[str, dict[str, Any]] = {}
     if "fields" not in handle:
         return fields
     for name, group in handle["fields"].items():
         if not isinstance(group, h5py.Group):
             continue
-        field = {
+        field: dict[str, Any] = {
             "kind": attr_text(group.attrs, "kind"),
             "nx": attr_int(group.attrs, "nx", 0),
             "ny": attr_int(group.attrs, "ny", 0),
@@ -355,12 +375,12 @@ def read_fields(handle):
     return fields
 
 
-def read_tips(path, handle):
+def read_tips(path: FilePath, handle: h5py.Group) -> dict[str, Any]:
     """The /tips datasets as 1-D arrays (empty arrays without the group) and ``k_unit``,
     the unit of K (the `units` of /tips/k1, else built from the root units)."""
     stress = attr_text(handle.attrs, "stress_unit")
     length = attr_text(handle.attrs, "length_unit")
-    tips = {key: np.zeros(0) for key in TIP_DATASETS}
+    tips: dict[str, Any] = {key: np.zeros(0) for key in TIP_DATASETS}
     tips["k_unit"] = f"{stress} {length}^0.5".strip() if stress or length else ""
     if "tips" not in handle:
         return tips
@@ -376,14 +396,14 @@ def read_tips(path, handle):
     return tips
 
 
-def read_remote_stress(path, handle):
+def read_remote_stress(path: FilePath, handle: h5py.Group) -> tuple[float, ...] | None:
     """The root attribute remote_stress as (sxx, syy, sxy), or None when absent."""
     if "remote_stress" not in handle.attrs:
         return None
     return read_root_reals(path, handle, "remote_stress", 3)
 
 
-def read_root_reals(path, handle, name, size):
+def read_root_reals(path: FilePath, handle: h5py.Group, name: str, size: int) -> tuple[float, ...]:
     """A root attribute of `size` reals as a tuple; zeros when absent (files written
     before ddc2d stored it, e.g. remote_stress_gradient and pore_fluid)."""
     if name not in handle.attrs:
@@ -395,7 +415,7 @@ def read_root_reals(path, handle, name, size):
     return tuple(float(v) for v in values)
 
 
-def read_history(path, handle, count):
+def read_history(path: FilePath, handle: h5py.Group, count: int) -> dict[str, Any] | None:
     """/history as a dict (``loads``: name -> (steps,), ``ds``, ``dn``, ``state``:
     (steps, elements), ``leg_steps``; when the file has them, ``shear_traction``,
     ``normal_traction`` (steps, elements), ``k1``, ``k2`` (steps, tips), ``pivots``,
@@ -410,7 +430,8 @@ def read_history(path, handle, count):
     if "history" not in handle:
         return None
     group = handle["history"]
-    history = {"loads": {k: np.asarray(group[k][()]) for k in HISTORY_LOADS if k in group}}
+    history: dict[str, Any] = {
+        "loads": {k: np.asarray(group[k][()]) for k in HISTORY_LOADS if k in group}}
     for key in HISTORY_DATASETS:
         history[key] = np.asarray(group[key][()])
     for key in HISTORY_STEP_DATASETS + HISTORY_GROWTH_DATASETS:
@@ -425,7 +446,7 @@ def read_history(path, handle, count):
     return history
 
 
-def read_growth(path, handle):
+def read_growth(path: FilePath, handle: h5py.Group) -> dict[str, Any] | None:
     """/growth of a fracture growth run as a dict: every dataset of GROWTH_DATASETS (1-D,
     one value per record: one record per tip per step), ``attrs`` (strings decoded: toughness,
     end_reason, ...) and ``reasons`` (code -> name, from the attribute reason_coding); under
@@ -437,7 +458,7 @@ def read_growth(path, handle):
     if "growth" not in handle:
         return None
     group = handle["growth"]
-    growth = {}
+    growth: dict[str, Any] = {}
     for key in GROWTH_DATASETS + GROWTH_PATH_DATASETS + GROWTH_WORK_DATASETS:
         if key not in group:
             if key not in GROWTH_DATASETS:
@@ -462,7 +483,7 @@ def read_growth(path, handle):
     return growth
 
 
-def read_solver(handle):
+def read_solver(handle: h5py.Group) -> dict[str, Any]:
     """/solver: ``attrs`` (strings decoded) and ``seconds`` (phase -> float, every phase of
     SOLVER_PHASES from /solver/seconds)."""
     group = handle["solver"]
@@ -470,7 +491,7 @@ def read_solver(handle):
             "seconds": {phase: float(group["seconds"][phase][()]) for phase in SOLVER_PHASES}}
 
 
-def read_sweep(handle):
+def read_sweep(handle: h5py.Group) -> dict[str, Any] | None:
     """/sweep of a sweep task: ``task``, ``tasks`` and ``parameters`` (dict name -> value,
     in &sweep order), or None when the file is not a sweep task."""
     if "sweep" not in handle:

@@ -7,10 +7,16 @@ attributes). ``Result.to_xarray`` gives an observation set or the loading histor
 xarray Dataset with named dimensions, coordinates and units.
 """
 
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, overload
+
 import h5py
 import numpy as np
 
-from .reader import ResultError, load_result
+from .reader import Arrays, Coding, FilePath, Loaded, ResultError, load_result
+
+if TYPE_CHECKING:
+    import xarray
 
 #: Quantities of an observation set (docs/output-reference.md), in the order shown.
 FIELD_QUANTITIES = ("ux", "uy", "sxx", "syy", "sxy", "near_element")
@@ -22,7 +28,7 @@ HISTORY_TIP_DATASETS = ("k1", "k2", "grown_length")
 HISTORY = "history"
 
 
-def open_result(path):
+def open_result(path: FilePath) -> "Result":
     """Read the ddc2d result file at `path` (HDF5) into a Result; raises
     ddc2d.ResultError, naming the file and the problem, when it is missing, unreadable or
     not a ddc2d result."""
@@ -35,12 +41,12 @@ def open_result(path):
     return Result(loaded, units)
 
 
-def read_units(handle):
+def read_units(handle: h5py.Group) -> dict[str, str]:
     """The ``units`` attribute of every dataset of an open file, by path without the
     leading slash ('elements/ds' -> 'm')."""
-    units = {}
+    units: dict[str, str] = {}
 
-    def visit(name, item):
+    def visit(name: str, item: Any) -> None:
         if isinstance(item, h5py.Dataset) and "units" in item.attrs:
             value = item.attrs["units"]
             units[name] = (value.decode() if isinstance(value, bytes) else str(value)).strip()
@@ -70,40 +76,47 @@ class Result:
     * ``codings``: the meaning of every integer code ('/elements/state' -> {0: 'free', ...}).
     """
 
-    def __init__(self, loaded, units):
-        self.path = loaded["path"]
-        self.title = loaded["title"]
-        self.complete = loaded["complete"]
-        self.length_unit = loaded["length_unit"]
-        self.stress_unit = loaded["stress_unit"]
-        self.provenance = loaded["attrs"]
-        self.input_text = loaded["attrs"].get("input_text", "")
-        self.elements = loaded["elements"]
-        self.fractures = loaded["fractures"]
-        self.tips = {k: v for k, v in loaded["tips"].items() if k != "k_unit"}
-        self.fields = loaded["fields"]
-        self.history = loaded["history"]
-        self.growth = loaded["growth"]
-        self.codings = loaded["codings"]
+    def __init__(self, loaded: Loaded, units: dict[str, str]) -> None:
+        self.path: Path = loaded["path"]
+        self.title: str = loaded["title"]
+        self.complete: bool = loaded["complete"]
+        self.length_unit: str = loaded["length_unit"]
+        self.stress_unit: str = loaded["stress_unit"]
+        self.provenance: dict[str, Any] = loaded["attrs"]
+        self.input_text: str = loaded["attrs"].get("input_text", "")
+        self.elements: Arrays = loaded["elements"]
+        self.fractures: list[dict[str, Any]] = loaded["fractures"]
+        self.tips: Arrays = {k: v for k, v in loaded["tips"].items() if k != "k_unit"}
+        self.fields: dict[str, dict[str, Any]] = loaded["fields"]
+        self.history: dict[str, Any] | None = loaded["history"]
+        self.growth: dict[str, Any] | None = loaded["growth"]
+        self.codings: dict[str, Coding] = loaded["codings"]
         self.units = units
         self._loaded = loaded
 
-    def __getitem__(self, key):
+    def __getitem__(self, key: str) -> Any:
         """The entry `key` of the reader's dict (ddc2d.reader.load_result), so that the
         functions of ddc2d.plot, written for it, take a Result."""
         return self._loaded[key]
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return (f"<ddc2d.Result '{self.path}': {self.elements['ds'].size} elements, "
                 f"{self.tips['x'].size} tips, fields {sorted(self.fields)}"
                 f"{', history' if self.history is not None else ''}"
                 f"{', growth' if self.growth is not None else ''}>")
 
-    def unit(self, path):
+    def unit(self, path: str) -> str:
         """The unit of a dataset ('elements/ds', 'fields/map/sxx'); '' when it has none."""
         return self.units.get(path.strip("/"), "")
 
-    def to_xarray(self, name=None):
+    @overload
+    def to_xarray(self, name: None = None) -> "dict[str, xarray.Dataset]": ...
+
+    @overload
+    def to_xarray(self, name: str) -> "xarray.Dataset": ...
+
+    def to_xarray(self, name: str | None = None
+                  ) -> "xarray.Dataset | dict[str, xarray.Dataset]":
         """An observation set (`name` of /fields) or the loading history ('history') as an
         xarray.Dataset; without a name, a dict of every one of them by name.
 
@@ -125,12 +138,14 @@ class Result:
                            f"{', '.join(self.fields) or 'none'})")
         return self._field_dataset(name)
 
-    def _field_dataset(self, name):
+    def _field_dataset(self, name: str) -> "xarray.Dataset":
         import xarray as xr  # only here: reading a file needs no xarray
 
         field = self.fields[name]
         units = {q: self.unit(f"fields/{name}/{q}") for q in ("x", *FIELD_QUANTITIES)}
         present = [q for q in FIELD_QUANTITIES if q in field]
+        coords: dict[str, Any]
+        variables: dict[str, Any]
         if field["kind"] == "grid":
             shape = (field["ny"], field["nx"])
             x = np.reshape(field["x"], shape)[0, :]
@@ -148,16 +163,17 @@ class Result:
         return xr.Dataset(variables, coords=coords,
                           attrs={"name": name, "kind": field["kind"], "source": str(self.path)})
 
-    def _history_dataset(self):
+    def _history_dataset(self) -> "xarray.Dataset":
         import xarray as xr
 
         history = self.history
+        assert history is not None, "to_xarray asks only a result with a history"
         steps, elements = history["ds"].shape
-        coords = {"step": ("step", np.arange(1, steps + 1)),
-                  "element": ("element", np.arange(1, elements + 1))}
+        coords: dict[str, Any] = {"step": ("step", np.arange(1, steps + 1)),
+                                  "element": ("element", np.arange(1, elements + 1))}
         for load, values in history["loads"].items():
             coords[load] = ("step", values, {"units": self.unit(f"history/{load}")})
-        variables = {}
+        variables: dict[str, Any] = {}
         for key in HISTORY_ELEMENT_DATASETS:
             if key in history:
                 variables[key] = (("step", "element"), history[key],

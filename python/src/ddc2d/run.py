@@ -8,11 +8,13 @@ input or usage, 3 an output problem, 4 an internal error).
 
 import os
 import subprocess
+from collections.abc import Sequence
 from pathlib import Path
 
 from .model import Model
 from .paths import EXE_VARIABLE, find_executable
-from .result import open_result
+from .reader import FilePath
+from .result import Result, open_result
 
 #: Output of a run of a Model when none is given: in the current folder.
 DEFAULT_MODEL_OUTPUT = "model.h5"
@@ -22,14 +24,17 @@ class RunError(Exception):
     """A run of ddc2d that failed: the message is the program's error line(s);
     ``exit_code`` its exit status, ``stdout`` and ``stderr`` all it printed."""
 
-    def __init__(self, message, exit_code, stdout="", stderr=""):
+    def __init__(self, message: str, exit_code: int, stdout: str = "", stderr: str = ""
+                 ) -> None:
         super().__init__(message)
         self.exit_code = exit_code
         self.stdout = stdout
         self.stderr = stderr
 
 
-def run(input, output=None, executable=None, threads=None, options=(), timeout=None):
+def run(input: FilePath | Model, output: FilePath | None = None,
+        executable: FilePath | None = None, threads: int | None = None,
+        options: Sequence[object] = (), timeout: float | None = None) -> Result:
     """Solve `input`, a namelist file or a ddc2d.Model, and return its ddc2d.Result.
 
     output: the result file (default: for a file, its name with .h5 in the current

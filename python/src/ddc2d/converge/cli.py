@@ -23,6 +23,7 @@ import argparse
 import shlex
 import subprocess
 import sys
+from collections.abc import Sequence
 from pathlib import Path
 
 from ..files import write_text_atomically
@@ -94,7 +95,7 @@ def parser():
     return p
 
 
-def main(argv=None):
+def main(argv: Sequence[str] | None = None) -> int:
     p = parser()
     args, sbatch_options = p.parse_known_args(argv)
     if sbatch_options and not args.slurm:

@@ -9,11 +9,13 @@ quantities of every level and judge each (ddc2d.converge.verdict).
 """
 
 import json
+from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
-from ..reader import load_result
+from ..reader import FilePath, Loaded, load_result
 from ..run import run
 from . import namelist
 from .quantities import gather
@@ -25,12 +27,12 @@ STUDY_FILE = "STUDY.json"
 MIN_LEVELS = 3
 
 
-def default_out_dir(model_path):
+def default_out_dir(model_path: FilePath) -> Path:
     """`<model stem>_converge/` in the current folder."""
     return Path(f"{Path(model_path).stem}_converge")
 
 
-def level_stem(model_path, level):
+def level_stem(model_path: FilePath, level: int) -> str:
     return f"{Path(model_path).stem}_level{level}"
 
 
@@ -38,14 +40,15 @@ def level_stem(model_path, level):
 NEEDS = {"elements": "fracture", "increment": "growth", "steps": "load_path"}
 
 
-def applicable(groups, refine):
+def applicable(groups: Iterable[namelist.Group], refine: Iterable[str]) -> tuple[str, ...]:
     """The chosen refinements that apply to the model (increment needs &growth, steps a
     &load_path)."""
     names = {g.name for g in groups}
     return tuple(r for r in refine if NEEDS[r] in names)
 
 
-def write_levels(model_path, levels, refine, out_dir):
+def write_levels(model_path: FilePath, levels: int, refine: Sequence[str], out_dir: Path
+                 ) -> tuple[list[Path], tuple[str, ...]]:
     """Write the namelist of every level into out_dir; returns their paths and the
     refinements applied. Raises namelist.RefineError (what cannot be refined),
     ValueError (fewer than three levels, an unknown refinement) and OSError."""
@@ -74,7 +77,9 @@ def write_levels(model_path, levels, refine, out_dir):
     return paths, used
 
 
-def run_levels(namelists, executable=None, threads=None, echo=None):
+def run_levels(namelists: Iterable[Path], executable: FilePath | None = None,
+               threads: int | None = None, echo: Callable[[str], object] | None = None
+               ) -> list[Path]:
     """Run every level (ddc2d.run); returns the result paths. Raises ddc2d.RunError."""
     outputs = []
     for path in namelists:
@@ -85,7 +90,7 @@ def run_levels(namelists, executable=None, threads=None, echo=None):
     return outputs
 
 
-def element_length(result):
+def element_length(result: Loaded) -> float:
     """The median length of the elements the model was given (not those grown)."""
     e = result["elements"]
     lengths = np.hypot(e["x_end"] - e["x_begin"], e["y_end"] - e["y_begin"])
@@ -94,7 +99,8 @@ def element_length(result):
     return float(np.median(lengths))
 
 
-def collect(model_path, outputs, refine, tolerance=0.01):
+def collect(model_path: FilePath, outputs: Sequence[FilePath], refine: Iterable[str],
+            tolerance: float = 0.01) -> dict[str, Any]:
     """The study from the results of the levels, coarse to fine: a dict with the model,
     the levels' element lengths, and `quantities` -> key -> values, order, extrapolated,
     error_estimate, verdict (and quantum, load as they apply)."""
@@ -119,15 +125,17 @@ def collect(model_path, outputs, refine, tolerance=0.01):
             "results": [str(p) for p in outputs], "quantities": entries}
 
 
-def write_study(study_dict, out_dir):
+def write_study(study_dict: dict[str, Any], out_dir: FilePath) -> Path:
     """STUDY.json in out_dir; returns its path."""
     path = Path(out_dir) / STUDY_FILE
     path.write_text(json.dumps(study_dict, indent=1) + "\n")
     return path
 
 
-def study(model_path, levels=3, refine=namelist.REFINEMENTS, tolerance=0.01, out_dir=None,
-          executable=None, threads=None, figure=True, echo=None):
+def study(model_path: FilePath, levels: int = 3, refine: Iterable[str] = namelist.REFINEMENTS,
+          tolerance: float = 0.01, out_dir: FilePath | None = None,
+          executable: FilePath | None = None, threads: int | None = None, figure: bool = True,
+          echo: Callable[[str], object] | None = None) -> dict[str, Any]:
     """Run the convergence study of the namelist model at `model_path` and return it
     (see collect); writes the levels, their results, STUDY.json and (figure=True)
     convergence.png into out_dir (default <model stem>_converge/ in the current folder).

@@ -78,13 +78,15 @@ Prints the tips table, then the path of every file written, one per line. Exit s
 
 import argparse
 import sys
+from collections.abc import Sequence
 from pathlib import Path
+from typing import Any
 
 import matplotlib
 import numpy as np
 
 from ..files import write_text_atomically
-from ..reader import ResultError, load_result
+from ..reader import Loaded, ResultError, load_result
 from . import figures
 from .data import (
     BACKGROUND_QUANTITIES,
@@ -120,7 +122,7 @@ SENSE_CHOICES = ("auto", "right", "left", "reverse", "normal")
 # --------------------------------------------------------------------------- command line
 
 
-def _quantity_list(text):
+def _quantity_list(text: str) -> list[str]:
     """argparse type of --quantity: comma-separated names, or 'all'."""
     names = [name.strip() for name in text.split(",") if name.strip()]
     if names == ["all"]:
@@ -133,14 +135,14 @@ def _quantity_list(text):
     return list(dict.fromkeys(names))
 
 
-def _index_list(text):
+def _index_list(text: str) -> list[int]:
     try:
         return [int(item) for item in text.split(",")]
     except ValueError:
         raise argparse.ArgumentTypeError(f"'{text}' is not a list of integers") from None
 
 
-def parse_arguments(argv):
+def parse_arguments(argv: Sequence[str] | None) -> argparse.Namespace:
     parser = argparse.ArgumentParser(
         prog=PROGRAM,
         description="Plot slip/opening profiles and field maps of a ddc2d result file and "
@@ -192,7 +194,7 @@ def parse_arguments(argv):
     return args
 
 
-def main(argv=None):
+def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit status."""
     matplotlib.use("Agg")  # files only, no window
     args = parse_arguments(argv)
@@ -221,7 +223,8 @@ def main(argv=None):
     return EXIT_OK
 
 
-def _read(args):
+def _read(args: argparse.Namespace
+          ) -> tuple[Loaded, dict[str, Receiver | None], tuple[list[int], list[int]] | None]:
     """The loaded result, the Receiver of each grid (None without a Coulomb map) and the
     history's chosen elements and steps (None without a history); every map's data is
     computed once here, so that a file that cannot be drawn fails before anything is
@@ -287,7 +290,9 @@ def _figures(result, receivers, chosen, args, out_dir, stem):
         yield (lambda: figures.plot_growth_history(result)), out_dir / f"{stem}_growth_history"
 
 
-def _write_all(result, receivers, chosen, args, out_dir):
+def _write_all(result: Loaded, receivers: dict[str, Receiver | None],
+               chosen: tuple[list[int], list[int]] | None, args: argparse.Namespace,
+               out_dir: Path) -> list[Path]:
     """Write every figure and the tips tables; returns the paths written (OSError when
     one cannot be written)."""
     stem = Path(args.result).stem
@@ -300,7 +305,8 @@ def _write_all(result, receivers, chosen, args, out_dir):
     return written
 
 
-def _receiver(result, args, field):
+def _receiver(result: Loaded, args: argparse.Namespace, field: dict[str, Any]
+              ) -> Receiver | None:
     """The Receiver of the Coulomb map of a grid field, or None when no map is of
     'coulomb'; a change map without remote_stress in the file, or a sense the receiver
     cannot have, is an error (ResultError)."""

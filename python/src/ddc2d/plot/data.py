@@ -35,12 +35,14 @@ Skempton's B as --friction.
 
 import re
 from itertools import pairwise
+from typing import Any
 
 import numpy as np
 
 from ..reader import (
     STATE_NAMES,
     TIE_RTOL,
+    ResultData,
     ResultError,
     code_of,
     coding_of,
@@ -400,7 +402,7 @@ def fracture_profile(elements, first, last):
     }
 
 
-def fracture_profiles(result):
+def fracture_profiles(result: ResultData) -> list[tuple[dict[str, Any], dict[str, Any]]]:
     """List of (fracture, profile) pairs for every fracture of a loaded result."""
     return [
         (fracture, fracture_profile(result["elements"], fracture["first"], fracture["last"]))
@@ -532,7 +534,7 @@ def tips_csv(result):
     return "\n".join(lines) + "\n"
 
 
-def grid_fields(result):
+def grid_fields(result: ResultData) -> list[str]:
     """Names of the fields of kind 'grid', in file order."""
     return [name for name, field in result["fields"].items() if field["kind"] == "grid"]
 

@@ -8,18 +8,24 @@ ddc2d.plot.data.map_figure_size); ``save_figure`` writes one. Used by ddc2d-plot
 picks Agg.
 """
 
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.collections import LineCollection
+from matplotlib.figure import Figure
 from matplotlib.ticker import MaxNLocator
 
 from ..files import atomic_path
-from ..reader import coding_of
+from ..reader import ResultData, coding_of
 from .data import (
     COLORBAR_LABELS,
     LINE_PANELS,
     SIGNED_QUANTITIES,
     Background,
+    Receiver,
     along_fractures,
     as_grid,
     default_clim,
@@ -92,7 +98,7 @@ END_NEAR = 0.03
 PROFILE_MARKERS = ("o", "s", "^", "v", "D", "x")
 
 
-def plot_history(result, elements, steps):
+def plot_history(result: ResultData, elements: Sequence[int], steps: Sequence[int]) -> Figure:
     """Hysteresis (slip at elements against the load parameter) and slip profiles at
     steps of a loading history; elements and steps are 0-based. Returns the Figure."""
     history = result["history"]
@@ -101,7 +107,7 @@ def plot_history(result, elements, steps):
     slip = -history["ds"]
     fig, (ax_loop, ax_profile) = plt.subplots(1, 2, figsize=(11, 4.5),
                                               constrained_layout=True)
-    labelled = set()
+    labelled: set[str] = set()
     for e in elements:
         ax_loop.plot(load, slip[:, e], color="0.3", linewidth=1.0, gid=f"element_{e + 1}",
                      label=f"element {e + 1}")
@@ -138,7 +144,7 @@ def plot_history(result, elements, steps):
     return fig
 
 
-def plot_history_strengths(result, elements):
+def plot_history_strengths(result: ResultData, elements: Sequence[int]) -> Figure:
     """The strengths in force at elements (0-based) against the load parameter of a loading
     history that records them (/history mu_in_force, sf_in_force,
     tensile_strength_in_force): the friction, and the cohesion and tensile strength.
@@ -167,7 +173,7 @@ def plot_history_strengths(result, elements):
     return fig
 
 
-def plot_growth_history(result):
+def plot_growth_history(result: ResultData) -> Figure:
     """The length each tip has grown against the load parameter of a loading history
     (growth along a load path: docs/theory/growth.md#growth-along-a-loading-history). Returns
     the Figure."""
@@ -191,7 +197,7 @@ def plot_growth_history(result):
     return fig
 
 
-def plot_growth_trials(result):
+def plot_growth_trials(result: ResultData) -> Figure:
     """The efficiency dW_ext / da of every trial kink against its angle (criterion 'work':
     docs/theory/growth.md#the-work-criterion), one line per tip and step (the refinement's
     trials among the grid's), the trials that neither open nor slip as crosses, the applied
@@ -203,7 +209,7 @@ def plot_growth_trials(result):
     return fig
 
 
-def plot_flaw_trials(result):
+def plot_flaw_trials(result: ResultData) -> Figure:
     """The efficiency of every trial of a flaw's first crack against the crack's direction
     (criterion 'work' with flaw points: docs/fracture-growth.md#new-fractures-inside-the-rock),
     one line per flaw and check, as plot_growth_trials draws a tip's. Returns the Figure."""
@@ -264,7 +270,7 @@ def _draw_elements(ax, elements):
     return collection
 
 
-def plot_growth(result):
+def plot_growth(result: ResultData) -> Figure:
     """The grown geometry coloured by step, with the points where tips linked and the
     surface y = 0 of a half-plane (left), and K_eq / toughness of every tip (right) against
     the growth step, or against the load along a load path (growth_abscissa), each curve
@@ -365,7 +371,7 @@ def _reason_style(name):
     return GROWTH_MARKERS.get(name, (OTHER_REASON_MARKER, name))
 
 
-def plot_surface(result, name):
+def plot_surface(result: ResultData, name: str) -> Figure:
     """Figure of the surface displacement profile ux, uy against x; returns the Figure."""
     field = result["fields"][name]
     length_unit = result["length_unit"]
@@ -381,7 +387,7 @@ def plot_surface(result, name):
     return fig
 
 
-def plot_observation_line(result, name):
+def plot_observation_line(result: ResultData, name: str) -> Figure:
     """Figure of ux, uy, sxx, syy, sxy against the distance along an observation line or
     point list (total stress, tension positive; NaN points are gaps)."""
     field = result["fields"][name]
@@ -439,7 +445,8 @@ def _profile_axes(panels):
     return fig, axes[:, 0]
 
 
-def plot_profile(result, fracture, profile):
+def plot_profile(result: ResultData, fracture: dict[str, Any], profile: dict[str, Any]
+                 ) -> Figure:
     """Figure with slip (and opening, see profile_panels) along one fracture, saying what
     positive slip means (slip_sense); returns the Figure."""
     length_unit = result["length_unit"]
@@ -492,7 +499,7 @@ def _draw_strengths(axes, distance, strengths, joints, result):
         ax.grid(True, linewidth=0.3)
 
 
-def plot_overview(result):
+def plot_overview(result: ResultData) -> Figure:
     """Slip (and opening, see profile_panels) of every fracture in one figure, each against
     the x or y coordinate of its element midpoints (overview_axis of the fracture: its
     longer extent); one line style per fracture, markers by state; the legend gives each
@@ -503,7 +510,7 @@ def plot_overview(result):
     panels = profile_panels(result)
     fig, axes = _profile_axes(panels)
     names = state_names(result)
-    labelled = set()
+    labelled: set[str] = set()
     used_axes = set()
     for index, (fracture, profile) in enumerate(fracture_profiles(result)):
         sl = slice(fracture["first"] - 1, fracture["last"])
@@ -543,7 +550,8 @@ def plot_overview(result):
     return fig
 
 
-def plot_map(result, name, quantity, clim=None, receiver=None):
+def plot_map(result: ResultData, name: str, quantity: str,
+             clim: Sequence[float] | None = None, receiver: Receiver | None = None) -> Figure:
     """Map of a quantity on grid field `name` with the elements drawn (and displacement
     vectors for 'displacement'); 'coulomb' needs a Receiver. Returns the Figure."""
     field = result["fields"][name]
@@ -556,7 +564,8 @@ def plot_map(result, name, quantity, clim=None, receiver=None):
     # The compressed layout sizes the axes at their fixed aspect before placing the labels
     # and colour bars (the constrained one cut them off a map taller than wide).
     fig, ax = plt.subplots(figsize=map_figure_size(x, y), layout="compressed")
-    fig.get_layout_engine().set(w_pad=MAP_PAD, h_pad=MAP_PAD)
+    # A ConstrainedLayoutEngine, whose set() takes the pads; the stubs know the base class.
+    fig.get_layout_engine().set(w_pad=MAP_PAD, h_pad=MAP_PAD)  # type: ignore[union-attr,call-arg]
     mesh = ax.pcolormesh(x, y, values, shading="nearest", cmap=cmap, vmin=vmin, vmax=vmax)
     xlim, ylim = ax.get_xlim(), ax.get_ylim()  # the grid's extent
     near = near_grown(field, result["elements"])
@@ -594,7 +603,7 @@ def _draw_vectors(ax, field, x, y, magnitude):
                   linewidth=0.3, pivot="middle", gid="vectors")
 
 
-def save_figure(fig, base, fmt, dpi):
+def save_figure(fig: Figure, base: Path, fmt: str, dpi: float) -> Path:
     """Write `fig` to `base` + '.' + fmt (png, pdf or svg) and close it; returns the path."""
     path = base.with_name(base.name + "." + fmt)
     try:
