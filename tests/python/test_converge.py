@@ -20,6 +20,7 @@ import numpy as np
 import pytest
 
 from conftest import REPO_ROOT, SCRIPTS, ddc2d_exe
+from ddc2d import growth_convergence
 from ddc2d.converge import cli, namelist, study
 from ddc2d.converge.quantities import gather
 from ddc2d.converge.verdict import CONVERGED, CONVERGING, NOT_CONVERGING, OSCILLATING, judge
@@ -243,3 +244,45 @@ def test_script_shim_prints_help():
     done = subprocess.run([sys.executable, str(SCRIPTS / "converge.py"), "--help"],
                           capture_output=True, text=True, timeout=120)
     assert done.returncode == 0 and "--levels" in done.stdout, done.stderr
+
+
+def same_cell(printed, shown, rtol):
+    """A cell of the study's table as the guide shows it: both '-', or numbers within rtol."""
+    if "-" in (printed, shown):
+        return printed == shown
+    return float(printed) == pytest.approx(float(shown), rel=rtol)
+
+
+def test_wings_study_is_as_the_guide_shows(tmp_path, capsys):
+    """The wings of a sliding flaw (the model of ddc2d-growth-convergence, 20 elements,
+    increment 0.1) as docs/error-estimates.md shows them: the rows of its table, the values
+    to 1e-3, order, estimate and quantum to 1 %, no extrapolated value, the verdicts. K_I
+    at the arrested tips, quantised by its last increment, lies below the toughness by less
+    than one quantum at every level."""
+    model = tmp_path / "wing.nml"
+    model.write_text(growth_convergence.MODEL.format(n=20, increment=0.1, element_length=0.1))
+    status = cli.main([str(model), "-o", str(tmp_path / "study"), "--exe", str(ddc2d_exe()),
+                       "--threads", "1"])
+    printed = capsys.readouterr().out
+    assert status == 0, printed
+    guide = (REPO_ROOT / "docs" / "error-estimates.md").read_text(encoding="utf-8")
+    block = guide.split("The wings of a sliding flaw", 1)[1].split("\n\n")[1]
+    shown = [line.replace("(quantum ", "").rstrip(")").split()
+             for line in block.splitlines()[1:]]
+    assert [row[0] for row in shown] == ["peak_opening/flaw", "k1/flaw/end",
+                                         "final_direction/flaw/end", "grown_length/flaw/end"]
+    rows = {line.split()[0]: line.replace("(quantum ", "").rstrip(")").split()
+            for line in printed.splitlines() if line.strip()}
+    for row in shown:
+        got = rows[row[0]]
+        for column, rtol in zip(range(1, 7), (1e-3, 1e-3, 1e-3, 1e-2, 0.0, 1e-2)):
+            assert same_cell(got[column], row[column], rtol), (got, row)
+        verdict = [cell for cell in got[7:] if not cell[0].isdigit()]
+        assert verdict == [cell for cell in row[7:] if not cell[0].isdigit()], (got, row)
+        if len(row) > 7 and row[-1][0].isdigit():  # the quantum
+            assert same_cell(got[-1], row[-1], 1e-2), (got, row)
+    quantities = json.loads((tmp_path / "study" / "STUDY.json").read_text())["quantities"]
+    assert min(quantities["peak_opening/flaw"]["values"]) > 0  # opening: -dn
+    k1 = quantities["k1/flaw/end"]
+    for value, quantum in zip(k1["values"], k1["quantum"]):
+        assert 2.0 - quantum <= value < 2.0, (value, quantum)
