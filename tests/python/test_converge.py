@@ -133,6 +133,15 @@ def test_k_at_a_grown_tip_is_quantised_by_its_last_increment():
     # Opening is -dn: positive where the fracture opens.
     assert quantities["peak_opening/wing"].value == pytest.approx(3e-3, rel=1e-12)
     assert quantities["mean_opening/wing"].value == pytest.approx(2e-3, rel=1e-12)
+    # Along a load path the final K is at the last load: the change is the one the tip's
+    # next record (where it stopped) holds; without one (it grew in the last step), the
+    # final K's.
+    result = grown_tip_result((1.9, 0.03), (2.5, -0.05), [1e-3, 3e-3])
+    result["tips"]["k1"][1] = 0.5
+    assert gather(result)[0]["k1/wing/end"].quantum == pytest.approx(change, rel=1e-12)
+    result["growth"]["length"][2] = 0.5
+    assert gather(result)[0]["k1/wing/end"].quantum == pytest.approx(
+        math.hypot(0.5 - 1.9, 0.03 - 0.03), rel=1e-12)
 
 
 def test_direction_is_judged_against_half_a_turn():

@@ -81,16 +81,19 @@ def tip_name(result, fracture_id, x, y):
 
 
 def last_increment_change(result, fracture_id, end, k1, k2):
-    """How far (K_I, K_II) of a tip moved over the tip's last increment: the distance from
-    its /growth record of the last step in which it grew (K before that increment) to the
-    final (k1, k2); None when the tip never grew or the change is zero."""
+    """How far (K_I, K_II) of a tip moved over the tip's last increment: from its /growth
+    record of the last step in which it grew (K before that increment) to its next record
+    (K after it, where growth stopped), or to the final (k1, k2) where there is none; None
+    when the tip never grew or the change is zero."""
     growth = result["growth"]
-    grew = np.flatnonzero((growth["fracture_id"] == fracture_id) & (growth["end"] == end)
-                          & (growth["length"] > 0.0))
+    mine = np.flatnonzero((growth["fracture_id"] == fracture_id) & (growth["end"] == end))
+    grew = mine[growth["length"][mine] > 0.0]
     if not grew.size:
         return None
-    last = grew[-1]
-    return math.hypot(k1 - growth["k1"][last], k2 - growth["k2"][last]) or None
+    before, after = grew[-1], mine[mine > grew[-1]]
+    if after.size:
+        k1, k2 = growth["k1"][after[0]], growth["k2"][after[0]]
+    return float(math.hypot(k1 - growth["k1"][before], k2 - growth["k2"][before])) or None
 
 
 def tip_quantities(result):
