@@ -5,8 +5,10 @@
 !>   dp_dy < 0);
 !> - a tensile strength above the Coulomb apex sf/mu, which the law caps there (with the
 !>   default sf = 0 a fracture then has no tensile strength at all);
-!> - a slip_weakening_distance on elements whose friction and cohesion do not drop
-!>   (mu_dynamic not below mu, sf_residual not below sf): it does nothing there;
+!> - a slip_weakening_distance on a fracture none of whose elements with it has a friction
+!>   or cohesion that drops (mu_dynamic not below mu, sf_residual not below sf): it does
+!>   nothing (where some elements weaken, the others, say a weak centre without cohesion,
+!>   are no mistake);
 !> - a fluid pressure that makes the effective normal stress tensile beyond the tensile
 !>   strength on every contact element of a model without a loading history: all of them
 !>   open;
@@ -142,11 +144,11 @@ contains
             end associate
         end subroutine capped_tensile_strength
 
-        !> Fracture k's slip_weakening_distance where neither mu_dynamic is below mu nor
-        !> sf_residual below sf.
+        !> Fracture k's slip_weakening_distance where no element that has it weakens:
+        !> neither mu_dynamic is below mu nor sf_residual below sf on any of them.
         subroutine idle_weakening_distance(k)
             integer, intent(in) :: k
-            integer :: idle
+            integer :: given
 
             associate (first => model%fractures(k)%first_element, &
                        last => model%fractures(k)%last_element)
@@ -155,12 +157,14 @@ contains
                            mud => model%elements%mu_dynamic(first:last), &
                            sf => model%elements%sf(first:last), &
                            sfr => model%elements%sf_residual(first:last))
-                    idle = count(dc > 0.0_wp .and. .not. mud < mu .and. .not. sfr < sf)
-                    if (idle == 0) return
+                    given = count(dc > 0.0_wp)
+                    if (given == 0 .or. any(dc > 0.0_wp .and. (mud < mu .or. sfr < sf))) return
                     call add('fracture '//itoa(k)//' '//model%fractures(k)%name// &
-                             ': slip_weakening_distance is given, but mu_dynamic is not '// &
-                             'below mu on '//itoa(idle)//' of '//itoa(size(dc))// &
-                             ' elements: their friction does not weaken (give mu_dynamic < mu)')
+                             ': slip_weakening_distance is given, but neither friction nor '// &
+                             'cohesion weakens on any of the '//itoa(given)//' elements '// &
+                             'that have it (mu_dynamic is not below mu, sf_residual not '// &
+                             'below sf): it does nothing (give mu_dynamic < mu or '// &
+                             'sf_residual < sf)')
                 end associate
             end associate
         end subroutine idle_weakening_distance

@@ -7,7 +7,8 @@ prefix, then what a user does with it.
   result file against p sqrt(pi a));
 - examples/library/ built against the prefix with find_package(ddc2d), and the same source
   linked with `gfortran $(pkg-config --cflags --libs ddc2d)`: both print K_I of a crack
-  built in code, checked here against the closed form;
+  built in code, checked here against the closed form, and what the first prints against
+  what docs/install.md shows;
 - the Lmod module file loaded with Debian's Lmod, and both it and the pkg-config file in a
   copy of the installed tree;
 - the Spack package's variants and CMake options against the options of CMakeLists.txt;
@@ -73,6 +74,29 @@ def printed_k(output):
     return np.array([float(k) for k in re.findall(r"K_I = +([-0-9.Ee+]+)", output)])
 
 
+#: One line the library example prints: tip x, K_I, closed form, relative error.
+PRINTED_LINE = (r"tip x = +([-0-9.]+): K_I = +([-0-9.]+) MPa m\^1/2, closed form +([-0-9.]+), "
+                r"relative error +([0-9.E+-]+)")
+
+
+def printed_lines(text):
+    """The numbers of every line of the library example's output in `text`, one row per
+    tip."""
+    return np.array([[float(v) for v in m] for m in re.findall(PRINTED_LINE, text)])
+
+
+def assert_as_the_guide_shows(output):
+    """docs/install.md shows what the example prints: the same lines, x, K_I and the closed
+    form to the printed digits and the relative error (3 digits) to 1 %."""
+    shown = printed_lines((REPO_ROOT / "docs" / "install.md").read_text())
+    printed = printed_lines(output)
+    assert shown.shape == printed.shape == (2, 4), (shown, output)
+    np.testing.assert_allclose(printed[:, :3], shown[:, :3], rtol=0, atol=1.5e-4,
+                               err_msg="docs/install.md: x, K_I, closed form of the example")
+    np.testing.assert_allclose(printed[:, 3], shown[:, 3], rtol=0.01,
+                               err_msg="docs/install.md: relative error of the example")
+
+
 def test_installed_files(prefix):
     programs = ["ddc2d", "ddc2d_serial"] if MPI_BUILD else ["ddc2d"]
     for program in programs:
@@ -118,6 +142,7 @@ def test_example_project_with_find_package(prefix, tmp_path):
     assert k1.shape == (2,), output
     np.testing.assert_allclose(k1, K_EXACT, rtol=K_TOLERANCE,
                                err_msg="K_I of examples/library against p sqrt(pi a)")
+    assert_as_the_guide_shows(output)
 
 
 def test_example_with_pkg_config(prefix, tmp_path):

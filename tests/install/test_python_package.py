@@ -2,16 +2,21 @@
 
 * ``pip install ./python`` into an empty virtual environment pulls numpy, h5py, matplotlib
   and xarray from PyPI, and every console entry point runs there;
+* that copy, which knows no working tree, runs the program that ``cmake --install`` put
+  under $DDC2D_ROOT or into the venv's own prefix (neither on PATH), and without one says
+  in one line how to point at it;
 * scripts/setup.sh installs the package of its own working tree editable into build/venv,
   and its completeness check counts it: a venv made before, with every other package,
   gets it on the next run, and the run after that finds it ready.
 
-Both install from a copy of python/ in a temporary folder (pip writes build files beside
+They install from a copy of python/ in a temporary folder (pip writes build files beside
 the sources), which also shows that python/ builds alone: the installed package has the
-program's version (DDC2D_VERSION: project(VERSION), given by CTest) and the MIT licence.
+program's version (DDC2D_VERSION: project(VERSION), given by CTest) and the MIT licence;
+the program from DDC2D_BUILD_DIR (default build/debug) with DDC2D_CMAKE.
 They need PyPI or pip's cache; CTest label install.
 """
 
+import math
 import os
 import shutil
 import subprocess
@@ -19,7 +24,11 @@ import sys
 import sysconfig
 from pathlib import Path
 
+import pytest
+
 REPO_ROOT = Path(__file__).resolve().parents[2]
+BUILD_DIR = Path(os.environ.get("DDC2D_BUILD_DIR", REPO_ROOT / "build" / "debug"))
+CMAKE = os.environ.get("DDC2D_CMAKE", "cmake")
 #: The console entry points of python/pyproject.toml.
 ENTRY_POINTS = ("ddc2d-plot", "collect-sweep", "submit-sweep", "twodd2nml", "comp2ddm2nml",
                 "compare-twodd", "ddc2d-benchmark", "ddc2d-growth-convergence",
@@ -53,33 +62,84 @@ def make_venv(path, cwd):
     return path / "bin" / "python"
 
 
-def test_pip_install_into_an_empty_venv(tmp_path):
-    python = make_venv(tmp_path / "venv", tmp_path)
-    assert run([python, "-c", "import numpy"], tmp_path).returncode != 0  # empty indeed
-    done = run([python, "-m", "pip", "install", "--quiet", copy_package(tmp_path / "python")],
-               tmp_path)
+@pytest.fixture(scope="module")
+def installed(tmp_path_factory):
+    """An empty venv into which `pip install ./python` installed the package: its folder."""
+    root = tmp_path_factory.mktemp("pip")
+    python = make_venv(root / "venv", root)
+    assert run([python, "-c", "import numpy"], root).returncode != 0  # empty indeed
+    done = run([python, "-m", "pip", "install", "--quiet", copy_package(root / "python")],
+               root)
     assert done.returncode == 0, done.stdout + done.stderr
+    return root / "venv"
+
+
+def test_pip_install_into_an_empty_venv(installed):
+    python, folder = installed / "bin" / "python", installed.parent
     show = ("import ddc2d, xarray; from importlib import metadata; print(ddc2d.__file__); "
             "print(ddc2d.__version__); print(metadata.version('ddc2d')); "
             "print(metadata.metadata('ddc2d')['License-Expression'])")
-    done = run([python, "-c", show], tmp_path)
+    done = run([python, "-c", show], folder)
     assert done.returncode == 0, done.stderr
     where, version, distribution_version, licence = done.stdout.split()
-    assert Path(where).is_relative_to(tmp_path / "venv")
+    assert Path(where).is_relative_to(installed)
     assert (Path(where).parent / "py.typed").is_file(), "the hints are not marked (PEP 561)"
     assert version == distribution_version == os.environ["DDC2D_VERSION"]
     assert licence == "MIT"
     for name in ENTRY_POINTS:
-        done = run([tmp_path / "venv" / "bin" / name, "--help"], tmp_path)
+        done = run([installed / "bin" / name, "--help"], folder)
         assert done.returncode == 0, f"{name}: {done.stderr}"
         assert done.stdout.startswith("usage: "), f"{name}: {done.stdout}"
     # Without the extra 'workbooks', comp2ddm2nml says in one line what to install.
-    (tmp_path / "book.xlsx").write_bytes(b"")
-    done = run([tmp_path / "venv" / "bin" / "comp2ddm2nml", "book.xlsx"], tmp_path)
+    (folder / "book.xlsx").write_bytes(b"")
+    done = run([installed / "bin" / "comp2ddm2nml", "book.xlsx"], folder)
     assert done.returncode == 2
     assert done.stderr.strip().splitlines() == [
         ("comp2ddm2nml: error: the Python package openpyxl is missing: install it (pip "
          "install 'ddc2d[workbooks]'; in the repository: scripts/setup.sh)")]
+
+
+#: Runs the namelist argv[1] with ddc2d.run (output argv[2]) and prints K_I of its first tip;
+#: prints the error and exits 3 when no program is found.
+RUN_MODEL = """\
+import sys, ddc2d
+try:
+    result = ddc2d.run(sys.argv[1], output=sys.argv[2])
+except FileNotFoundError as error:
+    print(error)
+    sys.exit(3)
+print(result.tips["k1"][0])
+"""
+
+
+def test_the_copy_runs_the_installed_program(installed, tmp_path):
+    """Not on PATH: nothing found (one line: how to point at it), then the program of a
+    prefix named by DDC2D_ROOT, then the one installed into the venv's own prefix."""
+    python = installed / "bin" / "python"
+    model = shutil.copy(REPO_ROOT / "input" / "pressurized_crack.nml", tmp_path)
+    environment = {key: value for key, value in clean_environment().items()
+                   if key not in ("DDC2D_EXE", "DDC2D_ROOT")}
+    environment["PATH"] = "/usr/bin:/bin"
+    assert shutil.which("ddc2d", path=environment["PATH"]) is None
+
+    def run_model(output, **extra):
+        return subprocess.run([str(python), "-c", RUN_MODEL, str(model), str(output)],
+                              cwd=tmp_path, env={**environment, **extra}, capture_output=True,
+                              text=True, timeout=TIMEOUT)
+
+    done = run_model(tmp_path / "none.h5")
+    assert done.returncode == 3, done.stdout + done.stderr
+    message = done.stdout.strip()
+    assert "\n" not in message and message.startswith("no ddc2d executable: "), message
+    assert "DDC2D_EXE=" in message and f"cmake --install BUILD --prefix {installed}" in message
+    k_exact = 10.0 * math.sqrt(math.pi)  # p sqrt(pi a) of the example's crack
+    prefix = tmp_path / "prefix"
+    for where, extra in ((prefix, {"DDC2D_ROOT": str(prefix)}), (installed, {})):
+        done = run([CMAKE, "--install", BUILD_DIR, "--prefix", where], tmp_path)
+        assert done.returncode == 0, done.stdout + done.stderr
+        done = run_model(tmp_path / f"{where.name}.h5", **extra)
+        assert done.returncode == 0, done.stdout + done.stderr
+        assert abs(float(done.stdout) - k_exact) <= 0.01 * k_exact, done.stdout
 
 
 def test_setup_installs_the_package_of_its_working_tree(tmp_path):

@@ -16,11 +16,15 @@ import re
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 
 from conftest import REPO_ROOT, SCRIPTS, ddc2d_exe
+from ddc2d import growth_convergence
 from ddc2d.converge import cli, namelist, study
-from ddc2d.converge.verdict import CONVERGED, CONVERGING, NOT_CONVERGING, judge
+from ddc2d.converge.quantities import gather
+from ddc2d.converge.verdict import CONVERGED, CONVERGING, NOT_CONVERGING, OSCILLATING, judge
+from ddc2d.reader import STATE_CODES
 
 K2_PAPER = 4.38 * math.sqrt(math.pi)  # 7.76335 MPa m^1/2
 #: The weak centre of the strong-patch fault slips at mu * 10 MPa (Sf = 0).
@@ -75,9 +79,69 @@ def test_refined_namelist_scales_what_it_refines_and_keeps_the_rest(tmp_path):
     ([1.0, 2.0, 2.375], [0.25, 0.125, 0.0625], CONVERGING),      # 8, then 6 quanta
     ([4.2, 4.35, 4.425], [0.05, 0.025, 0.0125], CONVERGING),     # 6, then 6: order 1
     ([1.0, 1.5, 2.25], [0.25, 0.125, 0.0625], NOT_CONVERGING),   # 4, then 12 quanta
+    # K_I at the arrested tips of wings (20 / 40 / 80 elements, increments 0.1 / 0.05 /
+    # 0.025, 0.0125), judged as smooth: differences of both signs, on 3 and on 4 levels.
+    ([1.97522, 1.6527, 1.81705], None, OSCILLATING),
+    ([1.97522, 1.6527, 1.81705, 1.91688], None, OSCILLATING),
+    ([1.0, 1.000002, 1.000001], None, CONVERGED),                # both signs, within 1e-2
+    # Their peak opening: differences that shrink by 15 % (order 0.23) and by 11 %.
+    ([0.000670777, 0.000802253, 0.000914554], None, NOT_CONVERGING),
+    ([0.000670777, 0.000802253, 0.000914554, 0.0010145], None, NOT_CONVERGING),
+    # Their mean slip: the last difference shrinks (order 0.55), the one before grew.
+    ([0.000796402, 0.00080329, 0.000824451, 0.000838909], None, NOT_CONVERGING),
+    ([2.0 + 0.5**k for k in range(4)], None, CONVERGING),        # order 1 on 4 levels
 ])
 def test_verdicts_on_known_sequences(values, quanta, verdict):
     assert judge(values, quanta, 0.01)["verdict"] == verdict
+
+
+@pytest.mark.parametrize("values", [[1.97522, 1.6527, 1.81705],
+                                    [0.000670777, 0.000802253, 0.000914554]])
+def test_no_limit_where_the_differences_oscillate_or_shrink_slowly(values):
+    entry = judge(values, None, 0.01)
+    assert entry["extrapolated"] is None and entry["error_estimate"] is None, entry
+
+
+def grown_tip_result(k_final, k_before, opening):
+    """A result (reader's dict) of one fracture of 2 elements whose end tip grew in steps 1
+    and 2 and arrested in step 3 with (K_I, K_II) = k_final; k_before is the record of
+    step 2 (before its last increment); its elements open by `opening` (dn = -opening)."""
+    elements = {"x_begin": np.array([0.0, 1.0]), "y_begin": np.zeros(2),
+                "x_end": np.array([1.0, 2.0]), "y_end": np.zeros(2),
+                "ds": np.array([-1e-3, -2e-3]), "dn": -np.asarray(opening, dtype=float),
+                "state": np.array([STATE_CODES["open"]] * 2),
+                "created_step": np.array([0, 2])}
+    growth = {"step": np.array([1, 2, 3]), "fracture_id": np.ones(3, dtype=int),
+              "end": np.ones(3, dtype=int), "length": np.array([0.5, 0.5, 0.0]),
+              "k1": np.array([5.0, k_before[0], k_final[0]]),
+              "k2": np.array([0.1, k_before[1], k_final[1]]),
+              "attrs": {"increment": 0.5}}
+    return {"elements": elements, "growth": growth, "history": None, "fields": {},
+            "fractures": [{"label": "wing", "first": 1, "last": 2}],
+            "tips": {"x": np.array([0.0, 2.0]), "y": np.zeros(2),
+                     "fracture_id": np.array([1, 1]), "element": np.array([1, 2]),
+                     "k1": np.array([1.0, k_final[0]]), "k2": np.array([0.0, k_final[1]])}}
+
+
+def test_k_at_a_grown_tip_is_quantised_by_its_last_increment():
+    quantities, _ = gather(grown_tip_result((1.9, 0.03), (2.5, -0.05), [1e-3, 3e-3]))
+    change = math.hypot(2.5 - 1.9, -0.05 - 0.03)
+    for key in ("k1/wing/end", "k2/wing/end"):
+        assert quantities[key].quantum == pytest.approx(change, rel=1e-12), key
+    assert quantities["k1/wing/end"].value == 1.9
+    assert quantities["k1/wing/begin"].quantum is None  # the begin tip never grew
+    # Opening is -dn: positive where the fracture opens.
+    assert quantities["peak_opening/wing"].value == pytest.approx(3e-3, rel=1e-12)
+    assert quantities["mean_opening/wing"].value == pytest.approx(2e-3, rel=1e-12)
+    # Along a load path the final K is at the last load: the change is the one the tip's
+    # next record (where it stopped) holds; without one (it grew in the last step), the
+    # final K's.
+    result = grown_tip_result((1.9, 0.03), (2.5, -0.05), [1e-3, 3e-3])
+    result["tips"]["k1"][1] = 0.5
+    assert gather(result)[0]["k1/wing/end"].quantum == pytest.approx(change, rel=1e-12)
+    result["growth"]["length"][2] = 0.5
+    assert gather(result)[0]["k1/wing/end"].quantum == pytest.approx(
+        math.hypot(0.5 - 1.9, 0.03 - 0.03), rel=1e-12)
 
 
 def test_direction_is_judged_against_half_a_turn():
@@ -189,3 +253,45 @@ def test_script_shim_prints_help():
     done = subprocess.run([sys.executable, str(SCRIPTS / "converge.py"), "--help"],
                           capture_output=True, text=True, timeout=120)
     assert done.returncode == 0 and "--levels" in done.stdout, done.stderr
+
+
+def same_cell(printed, shown, rtol):
+    """A cell of the study's table as the guide shows it: both '-', or numbers within rtol."""
+    if "-" in (printed, shown):
+        return printed == shown
+    return float(printed) == pytest.approx(float(shown), rel=rtol)
+
+
+def test_wings_study_is_as_the_guide_shows(tmp_path, capsys):
+    """The wings of a sliding flaw (the model of ddc2d-growth-convergence, 20 elements,
+    increment 0.1) as docs/error-estimates.md shows them: the rows of its table, the values
+    to 1e-3, order, estimate and quantum to 1 %, no extrapolated value, the verdicts. K_I
+    at the arrested tips, quantised by its last increment, lies below the toughness by less
+    than one quantum at every level."""
+    model = tmp_path / "wing.nml"
+    model.write_text(growth_convergence.MODEL.format(n=20, increment=0.1, element_length=0.1))
+    status = cli.main([str(model), "-o", str(tmp_path / "study"), "--exe", str(ddc2d_exe()),
+                       "--threads", "1"])
+    printed = capsys.readouterr().out
+    assert status == 0, printed
+    guide = (REPO_ROOT / "docs" / "error-estimates.md").read_text(encoding="utf-8")
+    block = guide.split("The wings of a sliding flaw", 1)[1].split("\n\n")[1]
+    shown = [line.replace("(quantum ", "").rstrip(")").split()
+             for line in block.splitlines()[1:]]
+    assert [row[0] for row in shown] == ["peak_opening/flaw", "k1/flaw/end",
+                                         "final_direction/flaw/end", "grown_length/flaw/end"]
+    rows = {line.split()[0]: line.replace("(quantum ", "").rstrip(")").split()
+            for line in printed.splitlines() if line.strip()}
+    for row in shown:
+        got = rows[row[0]]
+        for column, rtol in zip(range(1, 7), (1e-3, 1e-3, 1e-3, 1e-2, 0.0, 1e-2)):
+            assert same_cell(got[column], row[column], rtol), (got, row)
+        verdict = [cell for cell in got[7:] if not cell[0].isdigit()]
+        assert verdict == [cell for cell in row[7:] if not cell[0].isdigit()], (got, row)
+        if len(row) > 7 and row[-1][0].isdigit():  # the quantum
+            assert same_cell(got[-1], row[-1], 1e-2), (got, row)
+    quantities = json.loads((tmp_path / "study" / "STUDY.json").read_text())["quantities"]
+    assert min(quantities["peak_opening/flaw"]["values"]) > 0  # opening: -dn
+    k1 = quantities["k1/flaw/end"]
+    for value, quantum in zip(k1["values"], k1["quantum"]):
+        assert 2.0 - quantum <= value < 2.0, (value, quantum)

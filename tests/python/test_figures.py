@@ -366,3 +366,98 @@ def test_map_points_near_a_grown_element_are_veiled(tmp_path):
     # Without grown elements nothing is veiled: the maps of other models are unchanged.
     result["elements"].pop("created_step")
     assert not np.any(plot_data.near_grown(field, result["elements"]))
+
+
+def test_the_growth_legend_covers_no_element_of_a_tall_section(tmp_path):
+    """A joint-like section (a tall, narrow map): the input fracture across the middle, the
+    grown one down to the lower left corner of the view. The legend of the map (surface,
+    elements) lies over none of them."""
+    path = with_growth(tmp_path / "tall.h5", half_plane=True)
+    ends = {"x_begin": [0.4, 0.2, 0.0, -0.2, -0.4, -0.45, -0.5],
+            "y_begin": [-1.0, -1.1, -1.2, -1.3, -1.4, -1.9, -2.4],
+            "x_end": [0.2, 0.0, -0.2, -0.4, -0.45, -0.5, -0.5],
+            "y_end": [-1.1, -1.2, -1.3, -1.4, -1.9, -2.4, -2.9]}
+    with h5py.File(path, "r+") as f:
+        for key, values in ends.items():
+            f["elements"][key][...] = values
+    result = load_result(path)
+    fig = plot_figures.plot_growth(result)
+    try:
+        fig.savefig(io.BytesIO(), format="png", dpi=60)
+        renderer = fig.canvas.get_renderer()
+        ax_map = fig.axes[0]
+        legends = [legend for legend in (ax_map.get_legend(), *fig.legends) if legend]
+        assert [text.get_text() for legend in legends for text in legend.get_texts()] == \
+            ["elements", "grown elements", "linked here", "surface y = 0"]
+        t = np.linspace(0.0, 1.0, 11)[:, None]
+        e = result["elements"]
+        points = np.concatenate([(1 - t) * np.column_stack([e["x_begin"], e["y_begin"]])[k]
+                                 + t * np.column_stack([e["x_end"], e["y_end"]])[k]
+                                 for k in range(e["x_begin"].size)])
+        on_canvas = ax_map.transData.transform(points)
+        for legend in legends:
+            box = legend.get_window_extent(renderer)
+            covered = [tuple(p) for p, c in zip(points, on_canvas) if box.contains(*c)]
+            assert not covered, f"the legend covers elements at {covered}"
+        assert_inside_the_canvas(fig)
+    finally:
+        plot_figures.plt.close(fig)
+
+
+# A path that rises, falls past zero and comes back: sxy 0 -> 6 (4 steps), 6 -> -6
+# (6 steps), -6 -> 0 (3 steps); the middle rows of its legs are 2 -> 3, 7 -> 8, 11 -> 12.
+REVERSING_LEGS = [4, 6, 3]
+REVERSING_SXY = np.concatenate([np.linspace(0.0, 6.0, 5), np.linspace(6.0, -6.0, 7)[1:],
+                                np.linspace(-6.0, 0.0, 4)[1:]])
+LEG_MIDDLES = [(2, 3), (7, 8), (11, 12)]
+
+
+def reversing_history(**per_step):
+    """A result (reader's dict) of a loading history along REVERSING_SXY with the given
+    arrays of one row per step."""
+    rows = REVERSING_SXY.size
+    history = {"loads": {"sxy": REVERSING_SXY}, "leg_steps": np.array(REVERSING_LEGS),
+               "ds": np.zeros((rows, 2)), **per_step}
+    return {"history": history, "title": "reversing", "stress_unit": "MPa",
+            "length_unit": "m", "fractures": [{"name": "wing", "label": "wing"}]}
+
+
+def direction_arrows(ax):
+    """(tail, head) of every leg arrow of an axes, as ((x, y), (x, y))."""
+    return [(tuple(a.xyann), tuple(a.xy)) for a in ax.texts if a.get_gid() == "direction"]
+
+
+def expected_arrows(x, y):
+    return [((x[a], y[a]), (x[b], y[b])) for a, b in LEG_MIDDLES]
+
+
+def test_strengths_along_a_reversing_path_show_the_sense_of_each_leg():
+    rows = REVERSING_SXY.size
+    mu = np.column_stack([np.linspace(0.6, 0.4, rows), np.full(rows, 0.6)])
+    sf = np.column_stack([np.linspace(5.0, 1.0, rows), np.full(rows, 5.0)])
+    result = reversing_history(mu_in_force=mu, sf_in_force=sf,
+                               tensile_strength_in_force=np.zeros((rows, 2)))
+    fig = plot_figures.plot_history_strengths(result, [0])
+    try:
+        ax_mu, ax_strength = fig.axes
+        assert direction_arrows(ax_mu) == expected_arrows(REVERSING_SXY, mu[:, 0])
+        assert direction_arrows(ax_strength) == [
+            *expected_arrows(REVERSING_SXY, sf[:, 0]),
+            *expected_arrows(REVERSING_SXY, np.zeros(rows))]
+        # Down the falling leg: the arrow points to the lower load.
+        tail, head = direction_arrows(ax_mu)[1]
+        assert head[0] < tail[0]
+    finally:
+        plot_figures.plt.close(fig)
+
+
+def test_growth_under_loading_and_unloading_shows_the_sense_of_each_leg():
+    rows = REVERSING_SXY.size
+    grown = np.minimum(np.arange(rows), 6).astype(float)[:, None] * 0.1  # then stays
+    result = reversing_history(grown_length=grown, tip_fracture_id=np.array([1]),
+                               tip_end=np.array([1]))
+    fig = plot_figures.plot_growth_history(result)
+    try:
+        assert direction_arrows(fig.axes[0]) == expected_arrows(REVERSING_SXY, grown[:, 0])
+    finally:
+        plot_figures.plt.close(fig)

@@ -195,10 +195,19 @@ def test_note_on_a_weakening_distance_without_a_friction_drop(tmp_path):
     text = CRACK.replace("condition = 'traction',\n          bc_n = -5",
                          "mu = 0.6, slip_weakening_distance = 1e-3")
     found = notes(solve(tmp_path, text))
-    assert found == [("note: fracture 1 crack: slip_weakening_distance is given, but "
-                      "mu_dynamic is not below mu on 10 of 10 elements: their friction does "
-                      "not weaken (give mu_dynamic < mu)")]
+    assert found == [("note: fracture 1 crack: slip_weakening_distance is given, but neither "
+                      "friction nor cohesion weakens on any of the 10 elements that have it "
+                      "(mu_dynamic is not below mu, sf_residual not below sf): it does nothing "
+                      "(give mu_dynamic < mu or sf_residual < sf)")]
     assert not notes(solve(tmp_path, text.replace("mu = 0.6,", "mu = 0.6, mu_dynamic = 0.4,")))
+
+
+def test_no_weakening_note_where_only_the_cohesion_weakens(tmp_path):
+    # The strong patches lose cohesion (6 -> 1) and keep their friction; the weak centre has
+    # no cohesion to lose. The weakening distance acts on the patches: no note names it.
+    text = PATCHES.format(n="15, 20, 15", d_c="2e-5").replace("mu_dynamic = 0.5, ", "")
+    assert "mu_dynamic" not in text
+    assert not [n for n in notes(solve(tmp_path, text)) if "slip_weakening_distance" in n]
 
 
 @pytest.mark.parametrize("p0, tensile", [(25, True), (15, False)])

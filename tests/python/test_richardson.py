@@ -27,6 +27,23 @@ def test_growing_differences_give_negative_order_and_no_limit():
     assert error_estimate(1.0, result) is None
 
 
+def test_differences_of_both_signs_oscillate_and_give_no_limit():
+    # |d_2| < |d_1|, order 0.97: a power law would extrapolate, but the sign changed.
+    result = extrapolate([1.97522, 1.6527, 1.81705])
+    assert result.oscillates and result.extrapolated is None
+    assert error_estimate(1.97522, result) is None
+    assert not extrapolate([1.0 + 0.5**k for k in range(3)]).oscillates
+
+
+def test_shrinking_is_checked_over_every_level():
+    # The last two differences shrink, the first two did not.
+    result = extrapolate([1.0, 1.1, 1.4, 1.5])
+    assert not result.differences_shrink and result.extrapolated is None
+    assert result.order == pytest.approx(math.log(3) / math.log(2))
+    # A sign change among the first levels counts too.
+    assert extrapolate([1.0, 0.0, 0.5, 0.75, 0.875]).oscillates
+
+
 def test_settled_quantity_is_its_own_limit():
     result = extrapolate([2.0, 2.0, 2.0])
     assert result.order is None and result.extrapolated == 2.0

@@ -11,6 +11,7 @@ import h5py
 import numpy as np
 
 from conftest import PLOT_SCRIPT, ddc2d_exe, solve_text
+from ddc2d import open_result
 from ddc2d.plot import data as plot_data
 from ddc2d.plot import figures as plot_figures
 from ddc2d.reader import load_result
@@ -85,6 +86,13 @@ def test_history_holds_the_friction_of_the_slip_weakening_law(tmp_path):
         assert "mu_in_force" not in f["history"] and "sf_in_force" not in f["history"]
     result = load_result(path)
     assert result["history"]["mu_in_force"].shape == (11, 20)
+    # Result.to_xarray: the strengths in force on (step, element), with their units.
+    history = open_result(path).to_xarray("history")
+    with h5py.File(path, "r") as f:
+        for key in ("mu_in_force", "sf_in_force", "tensile_strength_in_force"):
+            assert history[key].dims == ("step", "element"), key
+            np.testing.assert_array_equal(history[key].values, f["history"][key][()])
+    assert history["sf_in_force"].attrs["units"] == "MPa"
 
 
 def test_progress_line_counts_the_weakening_solves(tmp_path):

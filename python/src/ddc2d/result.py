@@ -20,8 +20,10 @@ if TYPE_CHECKING:
 
 #: Quantities of an observation set (docs/output-reference.md), in the order shown.
 FIELD_QUANTITIES = ("ux", "uy", "sxx", "syy", "sxy", "near_element")
-#: Datasets of /history with one value per step and element.
-HISTORY_ELEMENT_DATASETS = ("ds", "dn", "state", "shear_traction", "normal_traction")
+#: Datasets of /history with one value per step and element (the strengths in force where
+#: a strength law can change them).
+HISTORY_ELEMENT_DATASETS = ("ds", "dn", "state", "shear_traction", "normal_traction",
+                            "mu_in_force", "sf_in_force", "tensile_strength_in_force")
 #: Datasets of /history with one value per step and tip.
 HISTORY_TIP_DATASETS = ("k1", "k2", "grown_length")
 #: The name of the loading history in ``Result.to_xarray``.
@@ -124,7 +126,9 @@ class Result:
         coordinates; a line or a point set gives 1-D variables along ``point`` (numbered
         from 1) with x and y as coordinates. The history gives ds, dn, state, ... on
         (step, element) and K on (step, tip), steps and elements numbered from 1 as in the
-        file, with the loads as coordinates along ``step``. Every variable carries its
+        file, with the loads as coordinates along ``step``; the strengths in force
+        (mu_in_force, sf_in_force, tensile_strength_in_force) where the file holds them.
+        Every variable carries its
         ``units`` attribute."""
         if name is None:
             names = list(self.fields) + ([HISTORY] if self.history is not None else [])

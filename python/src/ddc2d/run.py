@@ -1,9 +1,10 @@
 """Run the ddc2d program from Python: ``ddc2d.run(input, output=..., executable=...)``.
 
-The program is the one given, else $DDC2D_EXE, else ``ddc2d`` on PATH, else a build of
-the working tree (ddc2d.paths.find_executable). A failed run raises RunError with the
-program's error lines and its exit status (docs/troubleshooting.md: 1 no solution, 2 bad
-input or usage, 3 an output problem, 4 an internal error).
+The program is the one given, else $DDC2D_EXE, else ``ddc2d`` on PATH, else one installed
+beside this package (the bin/ of this Python environment's prefix, then of $DDC2D_ROOT),
+else a build of the working tree (ddc2d.paths.find_executable). A failed run raises
+RunError with the program's error lines and its exit status (docs/troubleshooting.md: 1 no
+solution, 2 bad input or usage, 3 an output problem, 4 an internal error).
 """
 
 import os
@@ -12,7 +13,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from .model import Model
-from .paths import EXE_VARIABLE, find_executable
+from .paths import find_executable, not_found_message
 from .reader import FilePath
 from .result import Result, open_result
 
@@ -45,8 +46,7 @@ def run(input: FilePath | Model, output: FilePath | None = None,
     Raises RunError when the program fails, FileNotFoundError when there is none."""
     exe = find_executable(executable)
     if exe is None or not exe.is_file():
-        raise FileNotFoundError(f"no ddc2d executable{f' at {exe}' if exe else ''}: give "
-                                f"executable=..., set {EXE_VARIABLE} or put ddc2d on PATH")
+        raise FileNotFoundError(not_found_message(exe))
     if isinstance(input, Model):
         output = Path(output or DEFAULT_MODEL_OUTPUT).resolve()
         namelist = input.write(output.with_suffix(".nml"))

@@ -6,8 +6,11 @@ number and, for quantities that move in steps of the discretization, their quant
 element length, one growth increment, one load step); None for smooth ones.
 
 Sign conventions are the result file's (docs/output-reference.md#sign-conventions):
-slip is the shear DD `ds`, opening the normal DD `dn`; a peak is the value of largest
-magnitude, a mean the length-weighted mean over the fracture.
+slip is the shear DD `ds`, opening `-dn` (positive where a fracture opens); a peak is the
+value of largest magnitude, a mean the length-weighted mean over the fracture.
+
+K at a tip that grew is fixed by where its last increment ended: it moves in steps of
+what that increment changed, and is quantised by that change (tip_quantities).
 """
 
 import math
@@ -56,8 +59,8 @@ def fracture_quantities(result):
         part = slice(fracture["first"] - 1, fracture["last"])
         name, length, state = fracture["label"], lengths[part], elements["state"][part]
         quantum = float(np.max(length))
-        for label, key in (("slip", "ds"), ("opening", "dn")):
-            values = elements[key][part]
+        for label, values in (("slip", elements["ds"][part]),
+                              ("opening", -elements["dn"][part])):
             out[f"peak_{label}/{name}"] = Quantity(_peak(values))
             out[f"mean_{label}/{name}"] = Quantity(float(np.sum(values * length)
                                                          / np.sum(length)))
@@ -77,15 +80,37 @@ def tip_name(result, fracture_id, x, y):
     return f"{fracture['label']}/{'begin' if to_begin < to_end else 'end'}"
 
 
+def last_increment_change(result, fracture_id, end, k1, k2):
+    """How far (K_I, K_II) of a tip moved over the tip's last increment: from its /growth
+    record of the last step in which it grew (K before that increment) to its next record
+    (K after it, where growth stopped), or to the final (k1, k2) where there is none; None
+    when the tip never grew or the change is zero."""
+    growth = result["growth"]
+    mine = np.flatnonzero((growth["fracture_id"] == fracture_id) & (growth["end"] == end))
+    grew = mine[growth["length"][mine] > 0.0]
+    if not grew.size:
+        return None
+    before, after = grew[-1], mine[mine > grew[-1]]
+    if after.size:
+        k1, k2 = growth["k1"][after[0]], growth["k2"][after[0]]
+    return float(math.hypot(k1 - growth["k1"][before], k2 - growth["k2"][before])) or None
+
+
 def tip_quantities(result):
-    """K_I and K_II of every tip; with growth, each tip's final direction (degrees from
-    +x: its tip element, from the element's other end towards the tip)."""
+    """K_I and K_II of every tip, quantised at a tip that grew (last_increment_change); with
+    growth, each tip's final direction (degrees from +x: its tip element, from the
+    element's other end towards the tip)."""
     tips, elements, out = result["tips"], result["elements"], {}
     for index in range(tips["x"].size):
         name = tip_name(result, tips["fracture_id"][index], tips["x"][index],
                         tips["y"][index])
-        out[f"k1/{name}"] = Quantity(float(tips["k1"][index]))
-        out[f"k2/{name}"] = Quantity(float(tips["k2"][index]))
+        k1, k2 = float(tips["k1"][index]), float(tips["k2"][index])
+        quantum = None
+        if result["growth"] is not None:
+            quantum = last_increment_change(result, tips["fracture_id"][index],
+                                            TIP_ENDS.index(name.rsplit("/", 1)[1]), k1, k2)
+        out[f"k1/{name}"] = Quantity(k1, quantum)
+        out[f"k2/{name}"] = Quantity(k2, quantum)
         if result["growth"] is not None:
             element = int(tips["element"][index]) - 1
             ends = [(elements["x_begin"][element], elements["y_begin"][element]),

@@ -113,11 +113,7 @@ def plot_history(result: ResultData, elements: Sequence[int], steps: Sequence[in
                      label=f"element {e + 1}")
         _mark_states(ax_loop, load, slip[:, e], history["state"][:, e], state_names(result),
                      labelled, markersize=4)
-        for start, stop in leg_arrows(history):  # the sense of each leg, unloading too
-            ax_loop.annotate("", xy=(load[stop], slip[stop, e]),
-                             xytext=(load[start], slip[start, e]),
-                             arrowprops={"arrowstyle": "-|>", "color": "0.3",
-                                         "mutation_scale": 14}).set_gid("direction")
+        _draw_leg_arrows(ax_loop, history, load, slip[:, e], "0.3")
     ax_loop.set_xlabel(f"{name}" + unit_label(unit))
     ax_loop.set_ylabel("slip $-D_s$" + unit_label(result["length_unit"]))
     ax_loop.legend(fontsize="small", loc="best")
@@ -144,6 +140,19 @@ def plot_history(result: ResultData, elements: Sequence[int], steps: Sequence[in
     return fig
 
 
+def _draw_leg_arrows(ax, history, x, y, colour):
+    """An arrow on the curve (x, y) of one value per step at the middle of each leg of the
+    loading history (leg_arrows), pointing the way the path runs: the sense of a curve
+    that goes back over itself when the load reverses (gid 'direction'); none where the
+    curve has no value yet (an element growth had not made)."""
+    for start, stop in leg_arrows(history):
+        if not np.all(np.isfinite([x[start], x[stop], y[start], y[stop]])):
+            continue
+        ax.annotate("", xy=(x[stop], y[stop]), xytext=(x[start], y[start]),
+                    arrowprops={"arrowstyle": "-|>", "color": colour,
+                                "mutation_scale": 14}).set_gid("direction")
+
+
 def plot_history_strengths(result: ResultData, elements: Sequence[int]) -> Figure:
     """The strengths in force at elements (0-based) against the load parameter of a loading
     history that records them (/history mu_in_force, sf_in_force,
@@ -163,6 +172,9 @@ def plot_history_strengths(result: ResultData, elements: Sequence[int]) -> Figur
         ax_strength.plot(load, history["tensile_strength_in_force"][:, e], color=colour,
                          linestyle="--", label=f"tensile strength, element {e + 1}",
                          gid=f"tensile_strength_in_force:element_{e + 1}")
+        for ax, key in ((ax_mu, "mu_in_force"), (ax_strength, "sf_in_force"),
+                        (ax_strength, "tensile_strength_in_force")):
+            _draw_leg_arrows(ax, history, load, history[key][:, e], colour)
     ax_mu.set_ylabel("friction in force")
     ax_strength.set_ylabel("strength in force" + unit_label(result["stress_unit"]))
     for ax in (ax_mu, ax_strength):
@@ -188,6 +200,7 @@ def plot_growth_history(result: ResultData) -> Figure:
         ax.plot(load, history["grown_length"][:, t], marker="o", markersize=3,
                 linewidth=1.2, linestyle=LINESTYLES[t % len(LINESTYLES)], color=f"C{t % 10}",
                 label=label, gid=f"grown_length:{label}")
+        _draw_leg_arrows(ax, history, load, history["grown_length"][:, t], f"C{t % 10}")
     ax.set_xlabel(f"{name}" + unit_label(unit))
     ax.set_ylabel("grown length" + unit_label(result["length_unit"]))
     ax.legend(fontsize="small", loc="best")
@@ -295,7 +308,10 @@ def plot_growth(result: ResultData) -> Figure:
         ax_map.axhline(0.0, color="saddlebrown", linewidth=1.2, label="surface y = 0",
                        gid="surface")
     if links.size or half_plane:
-        ax_map.legend(fontsize="small", loc="best")
+        # Below the panels, not inside the map: where the map has room depends on the
+        # geometry, and 'best' does not see the elements (line collections).
+        fig.legend(*ax_map.get_legend_handles_labels(), fontsize="small",
+                   loc="outside lower left", ncols=3)
     ax_map.set_aspect("equal")
     if grown is not None:
         bar = fig.colorbar(grown, ax=ax_map, label="growth step", shrink=0.8)
