@@ -10,6 +10,7 @@ module ddc_app_solve
     use ddc_output_restart_read, only: read_restart
     use ddc_app_command_line, only: command_line_options
     use ddc_app_report, only: print_growth_step
+    use ddc_output_hdf5, only: write_results
     implicit none
     private
 
@@ -34,10 +35,22 @@ contains
             ! The file was checked in prepare_run: complete, this version, this model.
             call read_restart(options%resume_file, restart, error)
             if (allocated(error)) return
-            call solve_model(model, results, error, print_growth_step, restart)
+            call solve_model(model, results, error, print_growth_step, restart, write_so_far)
         else
-            call solve_model(model, results, error, print_growth_step)
+            call solve_model(model, results, error, print_growth_step, writer=write_so_far)
         end if
     end subroutine solve_on_one_process
+
+    !> The result file of a cycle run so far: a checkpoint, or the run that stopped.
+    subroutine write_so_far(model, results, error)
+        !> The model
+        type(model_type), intent(in) :: model
+        !> Its results so far
+        type(model_results), intent(in) :: results
+        !> Set when the file cannot be written
+        type(error_type), allocatable, intent(out) :: error
+
+        call write_results(model%output_file, model, results, error)
+    end subroutine write_so_far
 
 end module ddc_app_solve

@@ -36,7 +36,7 @@ mpi_packages=(openmpi-bin libopenmpi-dev libscalapack-openmpi-dev)
 # it; each one's import name is the same.
 package_spec="$repo_root/python[test]"
 python_packages=(ford)
-package_modules="ddc2d, numpy, h5py, matplotlib, xarray, pytest, xlrd, openpyxl, xlwt"
+package_modules="ddc2d, numpy, h5py, matplotlib, xarray, pytest, xlrd, openpyxl, xlwt, scipy"
 python_modules="$package_modules, ford"
 # Linters run by the tests, as PyPI package:executable in the venv's bin/.
 # Pinned: their default rule sets change between releases.

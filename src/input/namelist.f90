@@ -15,6 +15,7 @@ module ddc_input_namelist
     use ddc_model_types, only: model_type, condition_contact, symmetry_none, symmetry_names, &
         symmetry_x, domain_half_plane, strength_law_count
     use ddc_model_laws, only: strength_law, strength_laws, set_law
+    use ddc_model_rate_state, only: set_rate_state
     use ddc_text, only: itoa, rtoa, prefix_lines
     use ddc_version, only: with_hmatrix
     use ddc_input_text_file, only: read_text_file, folder_of
@@ -29,6 +30,7 @@ module ddc_input_namelist
         read_pore_fluid_group, read_solver_group, read_symmetry_group, read_output_group, &
         read_load_path_group
     use ddc_input_namelist_fracture, only: fracture_input, read_fracture_groups
+    use ddc_input_namelist_cycle, only: read_cycle_group
     use ddc_contact_options, only: matrix_hierarchical, k_higher_order
     use ddc_input_namelist_observations, only: observation_input, read_grid_groups, &
         read_line_groups, read_points_groups
@@ -98,6 +100,7 @@ contains
                                       fractures%condition == condition_contact), model, messages)
         call read_growth_group(unit, text, path, groups, fractures, model, messages)
         call read_initiation_group(unit, text, path, groups, model, messages)
+        call read_cycle_group(unit, text, path, groups, fractures, model, messages)
         close (unit)
 
         call check_names(path, fractures, observations, messages)
@@ -284,6 +287,7 @@ contains
                 call set_law(model%elements, laws(j)%name, [(i, i = first, last)], &
                              fractures(k)%laws(:, j))
             end do
+            call set_rate_state(model%elements, [(i, i = first, last)], fractures(k)%rate_state)
         end do
         call compute_geometry(model%elements)
 

@@ -5,7 +5,8 @@ module ddc_input_namelist_fracture
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
     use ddc_model_types, only: condition_names, condition_contact, no_residual_drop, &
-        strength_law_count
+        strength_law_count, condition_rate_state
+    use ddc_model_rate_state, only: rate_state_value, rate_state_count, rate_state_values
     use ddc_model_laws, only: strength_law, strength_laws, at_most_rule
     use ddc_model_limits, only: range_problem, quantity_non_negative, within_limits
     use ddc_text, only: itoa, rtoa, lower, find_name, quoted_list, prefix_lines, counted
@@ -47,14 +48,17 @@ module ddc_input_namelist_fracture
         !> The strength laws beyond Coulomb, column k law k of the list (ddc_model_laws; its
         !> default where not given), shape (elements, strength_law_count)
         real(wp), allocatable :: laws(:, :)
+        !> The values of rate-and-state elements, column k value k of the list
+        !> (ddc_model_rate_state; 0 for other conditions), shape (elements, rate_state_count)
+        real(wp), allocatable :: rate_state(:, :)
     end type fracture_input
 
 contains
 
     !> &fracture name, x, y, elements, mu, sf, pressure, condition, bc_s, bc_n,
     !> elements_file, tensile_strength, sf_residual, mu_dynamic, slip_weakening_distance,
-    !> shear_stiffness, normal_stiffness, opening_weakening_distance / (repeated, one per
-    !> fracture)
+    !> shear_stiffness, normal_stiffness, opening_weakening_distance, a, b, dc, f0, v0, v_init,
+    !> sigma0, tau0 / (repeated, one per fracture)
     subroutine read_fracture_groups(unit, text, path, dir, info, fractures, messages)
         integer, intent(in) :: unit
         character(len=*), intent(in) :: text
@@ -68,6 +72,12 @@ contains
         real(wp), allocatable :: tensile_strength(:), sf_residual(:), mu_dynamic(:), &
             slip_weakening_distance(:), shear_stiffness(:), normal_stiffness(:), &
             opening_weakening_distance(:)
+        ! The values of rate-and-state elements, as read (column k value k of the list), how
+        ! many of each were given, and per segment
+        real(wp), allocatable :: a(:), b(:), dc(:), f0(:), v0(:), v_init(:), sigma0(:), &
+            tau0(:), rs_values(:, :), seg_rs(:, :)
+        type(rate_state_value) :: rs_list(rate_state_count)
+        integer :: nrs(rate_state_count)
         ! The laws: what the list says of each, their values as read and per segment (column k
         ! law k), how many values of each were given, which the CSV gives
         type(strength_law) :: laws(strength_law_count)
@@ -86,11 +96,13 @@ contains
         logical :: from_csv, geometry_ok
         namelist /fracture/ name, x, y, elements, mu, sf, pressure, condition, bc_s, bc_n, &
             elements_file, tensile_strength, sf_residual, mu_dynamic, slip_weakening_distance, &
-            shear_stiffness, normal_stiffness, opening_weakening_distance
+            shear_stiffness, normal_stiffness, opening_weakening_distance, a, b, dc, f0, v0, &
+            v_init, sigma0, tau0
 
         allocate (fractures(info%count))
         if (info%count == 0) return
         laws = strength_laws()
+        rs_list = rate_state_values()
         do j = 1, size(laws)
             law_names(j) = laws(j)%name
         end do
@@ -99,7 +111,10 @@ contains
                   elements(max_vertices), tensile_strength(max_vertices), &
                   sf_residual(max_vertices), mu_dynamic(max_vertices), &
                   slip_weakening_distance(max_vertices), shear_stiffness(max_vertices), &
-                  normal_stiffness(max_vertices), opening_weakening_distance(max_vertices))
+                  normal_stiffness(max_vertices), opening_weakening_distance(max_vertices), &
+                  a(max_vertices), b(max_vertices), dc(max_vertices), f0(max_vertices), &
+                  v0(max_vertices), v_init(max_vertices), sigma0(max_vertices), &
+                  tau0(max_vertices))
         rewind (unit)
         do k = 1, info%count
             name = ''
@@ -119,6 +134,14 @@ contains
             shear_stiffness = unset_real
             normal_stiffness = unset_real
             opening_weakening_distance = unset_real
+            a = unset_real
+            b = unset_real
+            dc = unset_real
+            f0 = unset_real
+            v0 = unset_real
+            v_init = unset_real
+            sigma0 = unset_real
+            tau0 = unset_real
             elements = unset_integer
             read (unit, nml=fracture, iostat=stat, iomsg=iomsg)
             if (stat /= 0) then
@@ -146,6 +169,12 @@ contains
             do j = 1, size(laws)
                 nlaw(j) = count_given(law_values(:, j), laws(j)%name, prefix, messages)
             end do
+            ! In the order of the list of the rate-and-state values
+            rs_values = reshape([a, b, dc, f0, v0, v_init, sigma0, tau0], &
+                                [max_vertices, rate_state_count])
+            do j = 1, rate_state_count
+                nrs(j) = count_given(rs_values(:, j), rs_list(j)%name, prefix, messages)
+            end do
 
             cond = find_name(lower(trim(adjustl(condition))), condition_names)
             if (cond == 0) then
@@ -160,14 +189,19 @@ contains
                     call add(messages, prefix//'give either x, y and elements or '// &
                              'elements_file, not both')
                 end if
-                if (nmu > 0 .or. nsf > 0 .or. npr > 0 .or. any(nlaw > 0)) then
-                    call add(messages, prefix//'mu, sf, pressure and the strength laws come '// &
-                             'from elements_file; do not give them in the group as well')
+                if (nmu > 0 .or. nsf > 0 .or. npr > 0 .or. any(nlaw > 0) .or. any(nrs > 0)) then
+                    call add(messages, prefix//'mu, sf, pressure, the strength laws and the '// &
+                             'rate-and-state values come from elements_file; do not give '// &
+                             'them in the group as well')
                 end if
                 csv_path = resolve(dir, trim(adjustl(elements_file)))
-                call read_csv(csv_path, [character(len=8) :: 'x_begin', 'y_begin', 'x_end', &
-                              'y_end', 'mu', 'sf', 'pressure'], rows, csv_error, row_lines, &
-                              law_names, csv_given, most_rows=max_elements)
+                if (cond == condition_rate_state) then
+                    call read_rate_state_csv()
+                else
+                    call read_csv(csv_path, [character(len=8) :: 'x_begin', 'y_begin', &
+                                  'x_end', 'y_end', 'mu', 'sf', 'pressure'], rows, csv_error, &
+                                  row_lines, law_names, csv_given, most_rows=max_elements)
+                end if
                 if (allocated(csv_error)) then
                     call add(messages, prefix_lines(prefix//'elements_file: ', csv_error%message))
                     deallocate (csv_error)
@@ -178,24 +212,11 @@ contains
                         call add(messages, prefix//'elements_file '//csv_path//' has '// &
                                  itoa(nseg)//' rows; at most '//itoa(max_elements)//' elements')
                     end if
-                    do i = 1, nseg
-                        if (len(range_problem(quantity_non_negative, rows(5, i))) > 0) then
-                            call add(messages, prefix//'elements_file '//csv_path//' line '// &
-                                     itoa(row_lines(i))//': mu = '//rtoa(rows(5, i))//' '// &
-                                     range_problem(quantity_non_negative, rows(5, i)))
-                        end if
-                        if (len(range_problem(quantity_non_negative, rows(6, i))) > 0) then
-                            call add(messages, prefix//'elements_file '//csv_path//' line '// &
-                                     itoa(row_lines(i))//': sf = '//rtoa(rows(6, i))//' '// &
-                                     range_problem(quantity_non_negative, rows(6, i)))
-                        end if
-                        do j = 1, size(laws)
-                            if (csv_given(j)) call check_law_row(j)
-                        end do
-                    end do
-                    do j = 1, size(laws)
-                        if (.not. csv_given(j)) rows(law_column + j, :) = laws(j)%default
-                    end do
+                    if (cond == condition_rate_state) then
+                        call check_rate_state_rows()
+                    else
+                        call check_contact_rows()
+                    end if
                 end if
             else
                 if (nx /= ny) then
@@ -264,6 +285,7 @@ contains
                              "'contact', not for condition '"//trim(condition_names(cond))//"'")
                 end if
             end if
+            call check_rate_state_group()
 
             if (geometry_ok) then
                 if (.not. from_csv) then
@@ -301,13 +323,34 @@ contains
                 if (check_length(nbn, nseg, 'bc_n', prefix, messages)) then
                     seg_bc_n = broadcast(bc_n(1:nbn), nseg, 0.0_wp)
                 end if
+                if (allocated(seg_rs)) deallocate (seg_rs)
+                allocate (seg_rs(nseg, rate_state_count))
+                do j = 1, rate_state_count
+                    if (check_length(nrs(j), nseg, rs_list(j)%name, prefix, messages)) then
+                        seg_rs(:, j) = broadcast(rs_values(1:nrs(j), j), nseg, 0.0_wp)
+                    end if
+                end do
             end if
             if (messages%n > nbefore) cycle
 
             ! Valid: expand to elements.
             fractures(k)%valid = .true.
             fractures(k)%condition = cond
-            if (from_csv) then
+            if (from_csv .and. cond == condition_rate_state) then
+                fractures(k)%x_begin = rows(1, :)
+                fractures(k)%y_begin = rows(2, :)
+                fractures(k)%x_end = rows(3, :)
+                fractures(k)%y_end = rows(4, :)
+                fractures(k)%rate_state = transpose(rows(5:, :))
+                allocate (fractures(k)%mu(nseg), fractures(k)%sf(nseg), &
+                          fractures(k)%pressure(nseg), source=0.0_wp)
+                allocate (fractures(k)%laws(nseg, size(laws)))
+                do j = 1, size(laws)
+                    fractures(k)%laws(:, j) = laws(j)%default
+                end do
+                fractures(k)%bc_s = seg_bc_s
+                fractures(k)%bc_n = seg_bc_n
+            else if (from_csv) then
                 fractures(k)%x_begin = rows(1, :)
                 fractures(k)%y_begin = rows(2, :)
                 fractures(k)%x_end = rows(3, :)
@@ -318,6 +361,7 @@ contains
                 fractures(k)%laws = transpose(rows(law_column + 1:, :))
                 fractures(k)%bc_s = seg_bc_s
                 fractures(k)%bc_n = seg_bc_n
+                allocate (fractures(k)%rate_state(nseg, rate_state_count), source=0.0_wp)
             else
                 call polyline_elements(x(1:nx), y(1:ny), counts, fractures(k)%x_begin, &
                                        fractures(k)%y_begin, fractures(k)%x_end, &
@@ -331,15 +375,99 @@ contains
                 end do
                 fractures(k)%bc_s = expand_per_segment(seg_bc_s, counts)
                 fractures(k)%bc_n = expand_per_segment(seg_bc_n, counts)
+                allocate (fractures(k)%rate_state(size(fractures(k)%mu), rate_state_count))
+                do j = 1, rate_state_count
+                    fractures(k)%rate_state(:, j) = expand_per_segment(seg_rs(:, j), counts)
+                end do
             end if
         end do
 
     contains
 
+        !> Every row of an elements_file of contact (or TWODD-style) elements: mu and sf not
+        !> negative, each law within its range and bound; a law not given takes its default.
+        subroutine check_contact_rows()
+            integer :: r, l
+
+            do r = 1, nseg
+                if (len(range_problem(quantity_non_negative, rows(5, r))) > 0) then
+                    call add(messages, prefix//'elements_file '//csv_path//' line '// &
+                             itoa(row_lines(r))//': mu = '//rtoa(rows(5, r))//' '// &
+                             range_problem(quantity_non_negative, rows(5, r)))
+                end if
+                if (len(range_problem(quantity_non_negative, rows(6, r))) > 0) then
+                    call add(messages, prefix//'elements_file '//csv_path//' line '// &
+                             itoa(row_lines(r))//': sf = '//rtoa(rows(6, r))//' '// &
+                             range_problem(quantity_non_negative, rows(6, r)))
+                end if
+                do l = 1, size(laws)
+                    if (csv_given(l)) call check_law_row(l, r)
+                end do
+            end do
+            do l = 1, size(laws)
+                if (.not. csv_given(l)) rows(law_column + l, :) = laws(l)%default
+            end do
+        end subroutine check_contact_rows
+
+        !> An elements_file of rate-and-state elements: the end points, then a, b, dc, f0,
+        !> v0, v_init, sigma0, tau0 (the list's order).
+        subroutine read_rate_state_csv()
+            character(len=8) :: header(4 + rate_state_count)
+            integer :: l
+
+            header(1:4) = [character(len=8) :: 'x_begin', 'y_begin', 'x_end', 'y_end']
+            do l = 1, rate_state_count
+                header(4 + l) = rs_list(l)%name
+            end do
+            call read_csv(csv_path, header, rows, csv_error, row_lines, most_rows=max_elements)
+        end subroutine read_rate_state_csv
+
+        !> Every value of every row of a rate-and-state elements_file within its range.
+        subroutine check_rate_state_rows()
+            integer :: l, r
+
+            do r = 1, nseg
+                do l = 1, rate_state_count
+                    associate (given => rows(4 + l, r))
+                        if (len(range_problem(rs_list(l)%quantity, given)) > 0) then
+                            call add(messages, prefix//'elements_file '//csv_path//' line '// &
+                                     itoa(row_lines(r))//': '//rs_list(l)%name//' = '// &
+                                     rtoa(given)//' '//range_problem(rs_list(l)%quantity, given))
+                            return
+                        end if
+                    end associate
+                end do
+            end do
+        end subroutine check_rate_state_rows
+
+        !> A rate-and-state fracture gives every value of the list (or its elements_file
+        !> does) and no TWODD-style value; no other fracture gives any of them.
+        subroutine check_rate_state_group()
+            integer :: l
+
+            if (cond /= condition_rate_state) then
+                if (any(nrs > 0)) call add(messages, prefix//'a, b, dc, f0, v0, v_init, '// &
+                    "sigma0 and tau0 are for condition 'rate_state'")
+                return
+            end if
+            if (nbs > 0 .or. nbn > 0) call add(messages, prefix//'bc_s and bc_n are for '// &
+                "the TWODD-style conditions, not for condition 'rate_state'")
+            if (from_csv) return
+            do l = 1, rate_state_count
+                if (nrs(l) == 0) then
+                    call add(messages, prefix//rs_list(l)%name//" is required for condition "// &
+                             "'rate_state'")
+                else
+                    call check_range(rs_values(1:nrs(l), l), rs_list(l)%name, &
+                                     rs_list(l)%quantity, prefix, messages)
+                end if
+            end do
+        end subroutine check_rate_state_group
+
         !> Law l in CSV row i is within its range, and not above the Coulomb value it may not
         !> exceed (law%at_most: sf_residual <= sf, mu_dynamic <= mu).
-        subroutine check_law_row(l)
-            integer, intent(in) :: l
+        subroutine check_law_row(l, i)
+            integer, intent(in) :: l, i
             character(len=:), allocatable :: where
 
             associate (law => laws(l), given => rows(law_column + l, i))

@@ -27,7 +27,8 @@ module ddc_input_namelist_settings
 
 contains
 
-    !> &model title, youngs_modulus, poissons_ratio, length_unit, stress_unit /
+    !> &model title, youngs_modulus, poissons_ratio, length_unit, stress_unit, time_unit,
+    !> domain / (the units are labels, stored in the output)
     subroutine read_model_group(unit, text, path, info, the_model, messages)
         integer, intent(in) :: unit
         character(len=*), intent(in) :: text
@@ -35,22 +36,25 @@ contains
         type(group_record), intent(in) :: info
         type(model_type), intent(inout) :: the_model
         type(message_list), intent(inout) :: messages
-        character(len=text_length) :: title, length_unit, stress_unit, domain
+        character(len=text_length) :: title, length_unit, stress_unit, time_unit, domain
         real(wp) :: youngs_modulus, poissons_ratio
         character(len=512) :: iomsg
         character(len=:), allocatable :: prefix
         integer :: stat
-        namelist /model/ title, youngs_modulus, poissons_ratio, length_unit, stress_unit, domain
+        namelist /model/ title, youngs_modulus, poissons_ratio, length_unit, stress_unit, &
+            time_unit, domain
 
         the_model%title = base_name(path, .false.)
         the_model%length_unit = 'm'
         the_model%stress_unit = 'MPa'
+        the_model%time_unit = 's'
         if (info%count == 0) return
         title = ''
         youngs_modulus = unset_real
         poissons_ratio = unset_real
         length_unit = 'm'
         stress_unit = 'MPa'
+        time_unit = 's'
         domain = 'full_plane'
         rewind (unit)
         read (unit, nml=model, iostat=stat, iomsg=iomsg)
@@ -66,8 +70,12 @@ contains
         if (len_trim(stress_unit) == 0) then
             call add(messages, prefix//'stress_unit is empty')
         end if
+        if (len_trim(time_unit) == 0) then
+            call add(messages, prefix//'time_unit is empty')
+        end if
         the_model%length_unit = trim(adjustl(length_unit))
         the_model%stress_unit = trim(adjustl(stress_unit))
+        the_model%time_unit = trim(adjustl(time_unit))
         stat = find_name(lower(trim(adjustl(domain))), domain_names)
         if (stat == 0) then
             call add(messages, prefix//"domain = '"//trim(adjustl(domain))//"' is not one of "// &

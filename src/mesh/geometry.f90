@@ -3,6 +3,7 @@ module ddc_mesh_geometry
     use ddc_kinds, only: wp
     use ddc_model_types, only: element_set, element_array_action, for_each_element_array
     use ddc_model_laws, only: default_strength_laws
+    use ddc_model_rate_state, only: clear_rate_state
     implicit none
     private
 
@@ -20,8 +21,8 @@ module ddc_mesh_geometry
 contains
 
     !> Allocate every per-element array of an element set (those of the geometry too) for
-    !> n elements; values unset, but the strength laws beyond Coulomb at their defaults: no
-    !> tensile strength, no drops, rigid contact.
+    !> n elements; values unset, but the strength laws beyond Coulomb at their defaults (no
+    !> tensile strength, no drops, rigid contact) and no rate-and-state values (0).
     subroutine allocate_elements(elements, n)
         !> The set to allocate (its arrays unallocated)
         type(element_set), intent(inout) :: elements
@@ -33,6 +34,7 @@ contains
         allocation%n = n
         call for_each_element_array(elements, allocation)
         call default_strength_laws(elements, spread(.true., 1, n))
+        call clear_rate_state(elements)
     end subroutine allocate_elements
 
     !> Allocate one real array for the set's elements.

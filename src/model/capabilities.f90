@@ -5,7 +5,7 @@
 module ddc_model_capabilities
     use ddc_kinds, only: wp
     use ddc_text, only: newline
-    use ddc_model_types, only: model_type, condition_contact, rigid_joint
+    use ddc_model_types, only: model_type, condition_contact, condition_rate_state, rigid_joint
     use ddc_model_element_laws, only: fault_law_of
     use ddc_contact_options, only: lcp_lemke, matrix_hierarchical
     use ddc_contact_fault_law, only: fault_law
@@ -33,10 +33,13 @@ contains
 
         what = ''
         associate (e => model%elements)
-            contact = any(e%condition == condition_contact)
+            ! A cycle run's rate-and-state elements are its operator's contact elements.
+            contact = any(e%condition == condition_contact .or. &
+                          e%condition == condition_rate_state)
             select case (kind)
             case (operator_hierarchical)
-                if (contact .and. any(e%condition /= condition_contact)) then
+                if (contact .and. any(e%condition /= condition_contact .and. &
+                                      e%condition /= condition_rate_state)) then
                     call add('contact elements beside elements of other conditions')
                 else if (contact .and. model%solver%lcp_method == lcp_lemke) then
                     call add("lcp_method = 'lemke' (its tableau is dense)")
@@ -56,6 +59,8 @@ contains
                     "= 'hierarchical' (hmat-oss is sequential; the distributed solve is dense)")
                 if (beyond_coulomb()) call add('&fracture tensile_strength, sf_residual, '// &
                     'mu_dynamic or a joint stiffness (strength beyond Coulomb is not '// &
+                    'distributed)')
+                if (model%cycle%active) call add('&cycle (earthquake cycles are not '// &
                     'distributed)')
             case default
                 ! A dense operator in this process solves every model.

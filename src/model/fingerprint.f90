@@ -81,6 +81,7 @@ contains
         ! Not hashed: model%resumed_from, model%resumed_from_created (a record of the run)
         ! Not hashed: model%growth%steps, model%load_path%steps, model%load_path%vertex
         ! Not hashed: model%load_path%varies (a resumed run may go further)
+        ! Not hashed: model%cycle%active (the options below are hashed when it holds)
         ! Not hashed: model%solver%work_bytes (this machine's memory, not the model)
         ! Not hashed: model%solver%matrix (it changes a result within hmatrix_tolerance
         ! only: a loading history may go on from its file on either matrix), and so its
@@ -148,6 +149,19 @@ contains
                                   model%initiation%probe_distance, model%initiation%flaw_length])
             call add_allocated_reals(hash, model%initiation%flaw_x)
             call add_allocated_reals(hash, model%initiation%flaw_y)
+        end if
+        ! Only a cycle model hashes its options and time unit: every other model's
+        ! fingerprint stays as it was.
+        ! Not hashed: model%cycle%end_time (a resumed run may go further)
+        ! Not hashed: model%cycle%checkpoint_interval (when the file is written, not what)
+        if (model%cycle%active) then
+            call add_text(hash, model%time_unit)
+            call add_integers(hash, [model%cycle%state_law])
+            call add_reals(hash, [model%cycle%tolerance, model%cycle%radiation_damping, &
+                                  model%cycle%shear_wave_speed, model%cycle%plate_rate, &
+                                  model%cycle%seismic_threshold, model%cycle%output_interval, &
+                                  model%cycle%event_output_interval, &
+                                  model%cycle%profile_spacing])
         end if
     end subroutine hash_model
 

@@ -4,6 +4,7 @@ module ddc_model_results
     use ddc_contact_states, only: state_stick, state_slip, state_open
     use ddc_contact_counts, only: factor_counts
     use ddc_model_initiations, only: initiation_record
+    use ddc_model_cycles, only: cycle_record
     implicit none
     private
 
@@ -255,6 +256,8 @@ module ddc_model_results
         type(growth_record) :: growth
         !> The new fractures started inside the rock, when the model has &initiation
         type(initiation_record) :: initiations
+        !> Earthquake cycles, when the model has &cycle (cycle%elements allocated)
+        type(cycle_record) :: cycle
     end type model_results
 
 end module ddc_model_results

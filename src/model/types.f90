@@ -12,6 +12,7 @@ module ddc_model_types
     ! The defaults of the fault law, for the per-element arrays that hold its given values,
     ! and its cap on the tensile strength, for what the echo reports in force.
     use ddc_contact_fault_law, only: no_residual_drop, rigid_joint, tensile_cap
+    use ddc_model_cycles, only: cycle_options
     implicit none
     private
 
@@ -20,6 +21,7 @@ module ddc_model_types
     public :: symmetry_names, sweep_task_record, load_path_type, load_path_names
     public :: condition_traction, condition_displacement, condition_mixed_us_sn
     public :: condition_mixed_ss_un, condition_contact, condition_prescribed_dd, condition_names
+    public :: condition_rate_state
     public :: domain_full_plane, domain_half_plane, domain_names
     public :: observation_grid, observation_line, observation_points, observation_kind_names
     public :: growth_options, growth_tips_all, growth_tips_most_critical, growth_tips_names
@@ -37,9 +39,12 @@ module ddc_model_types
     integer, parameter :: condition_contact = 5
     !> Kinematic DDs: bc_s, bc_n are Ds, Dn themselves (docs/theory/kernels.md#element-conditions)
     integer, parameter :: condition_prescribed_dd = 6
+    !> A rate-and-state fault element of an earthquake-cycle run (docs/theory/cycles.md)
+    integer, parameter :: condition_rate_state = 7
     !> Input names of the conditions, indexed by condition code
-    character(len=*), parameter :: condition_names(6) = [character(len=13) :: &
-        'traction', 'displacement', 'mixed_us_sn', 'mixed_ss_un', 'contact', 'prescribed_dd']
+    character(len=*), parameter :: condition_names(7) = [character(len=13) :: &
+        'traction', 'displacement', 'mixed_us_sn', 'mixed_ss_un', 'contact', 'prescribed_dd', &
+        'rate_state']
 
     !> Elastic domain: the full plane, or the half-plane y < 0 with a free surface y = 0
     integer, parameter :: domain_full_plane = 1, domain_half_plane = 2
@@ -105,6 +110,12 @@ module ddc_model_types
         !> Elastic joint, for contact elements: shear and normal stiffness [stress unit /
         !> length unit] of the faces before they slip or open (rigid_joint: rigid contact)
         real(wp), allocatable :: shear_stiffness(:), normal_stiffness(:)
+        !> Rate-and-state elements (ddc_model_rate_state; 0 on other elements): a, b [-], the
+        !> characteristic slip dc [length unit], f0 [-], v0 and the initial slip rate v_init
+        !> [length unit / time unit], the initial effective normal stress sigma0 (compression
+        !> positive) and shear traction tau0 [stress unit]
+        real(wp), allocatable :: rs_a(:), rs_b(:), rs_dc(:), rs_f0(:), rs_v0(:), rs_v_init(:), &
+            rs_sigma0(:), rs_tau0(:)
         !> Derived geometry: midpoint, half-length [length unit], cos and sin of the
         !> element angle beta (counter-clockwise from +x)
         real(wp), allocatable :: x_mid(:), y_mid(:), half_length(:)
@@ -124,8 +135,9 @@ module ddc_model_types
         procedure(act_on_reals), deferred :: on_reals
         !> Act on one integer per-element array
         procedure(act_on_integers), deferred :: on_integers
-        !> Act on one real per-element array of a law added later whose default 0 leaves
-        !> the law as it was (on_reals unless the action says otherwise)
+        !> Act on one real per-element array added later (a law, the rate-and-state values)
+        !> whose default 0 leaves earlier models as they were (on_reals unless the action
+        !> says otherwise)
         procedure :: on_later_law => act_on_later_law
     end type element_array_action
 
@@ -286,8 +298,8 @@ module ddc_model_types
         character(len=:), allocatable :: title
         !> Young's modulus [stress unit] and Poisson's ratio [-]
         real(wp) :: youngs_modulus = 0.0_wp, poissons_ratio = 0.0_wp
-        !> Unit names, stored in the output
-        character(len=:), allocatable :: length_unit, stress_unit
+        !> Unit names, stored in the output (labels only: ddc2d converts nothing)
+        character(len=:), allocatable :: length_unit, stress_unit, time_unit
         !> Remote stress, tension positive [stress unit]
         real(wp) :: sxx = 0.0_wp, syy = 0.0_wp, sxy = 0.0_wp
         !> Remote stress gradients d(sxx, syy, sxy)/dy [stress unit / length unit]:
@@ -319,6 +331,9 @@ module ddc_model_types
         type(growth_options) :: growth
         !> New fractures inside the rock, when it grows
         type(initiation_options) :: initiation
+        !> Earthquake cycles on its rate-and-state elements; inactive unless the input has
+        !> &cycle
+        type(cycle_options) :: cycle
         !> Fingerprint of the model as read (ddc_model_fingerprint), recorded by app before
         !> a run changes the model (growth adds elements); unallocated until then
         character(len=:), allocatable :: fingerprint
@@ -367,6 +382,14 @@ contains
         call action%on_later_law(elements%opening_weakening_distance)
         call action%on_reals(elements%shear_stiffness)
         call action%on_reals(elements%normal_stiffness)
+        call action%on_later_law(elements%rs_a)
+        call action%on_later_law(elements%rs_b)
+        call action%on_later_law(elements%rs_dc)
+        call action%on_later_law(elements%rs_f0)
+        call action%on_later_law(elements%rs_v0)
+        call action%on_later_law(elements%rs_v_init)
+        call action%on_later_law(elements%rs_sigma0)
+        call action%on_later_law(elements%rs_tau0)
         call action%on_reals(elements%x_mid)
         call action%on_reals(elements%y_mid)
         call action%on_reals(elements%half_length)

@@ -29,7 +29,10 @@
 !>   path varies (the remote stress always); /growth attributes toughness, increment,
 !>   element_length, tips, criterion, max_corrections, fractures, steps, steps_taken,
 !>   end_reason, reason_coding; /elements/created_step. /elements hold the last step of a
-!>   history; /elements, /tips and /fields describe the final geometry of a growth run.
+!>   history; /elements, /tips and /fields describe the final geometry of a growth run;
+!> - /cycle (earthquake cycles only, docs/output-reference.md#cycle: ddc_output_hdf5_cycle)
+!>   and the rate-and-state values in /elements; /elements, /tips and /fields then hold the
+!>   run's last state (its back-slip DDs).
 module ddc_output_hdf5
     use, intrinsic :: iso_fortran_env, only: int64
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_positive_inf
@@ -51,6 +54,7 @@ module ddc_output_hdf5
         close_file, create_group, close_group
     use ddc_output_hdf5_initiations, only: write_initiations
     use ddc_output_hdf5_records, only: write_history, write_growth, write_growth_elements
+    use ddc_output_hdf5_cycle, only: write_cycle, write_rate_state
     use ddc_output_hdf5_write, only: write_real_1d, write_int_1d, write_real_dataset, &
         write_int_dataset, write_string_1d, write_attribute
     use ddc_output_timestamp, only: utc_timestamp
@@ -70,6 +74,8 @@ module ddc_output_hdf5
     !> Codings stored as attributes of the integer datasets
     character(len=*), parameter :: condition_coding = '1 traction, 2 displacement, ' &
         //'3 mixed_us_sn, 4 mixed_ss_un, 5 contact, 6 prescribed_dd'
+    !> What a cycle model's coding adds (the files of other models stay as they were)
+    character(len=*), parameter :: rate_state_coding = ', 7 rate_state'
     character(len=*), parameter :: graded_coding = '0 tip element as long as its ' &
         //'neighbour, 1 graded mesh at the tip (K less accurate)'
     character(len=*), parameter :: near_coding = '0 clear, 1 within one element length ' &
@@ -120,6 +126,8 @@ contains
                                                                   error)
             if (allocated(results%growth%step)) call write_initiations(root, model, &
                                                                        results%initiations, error)
+            if (allocated(results%cycle%elements)) call write_cycle(root, model, results%cycle, &
+                                                                    error)
             call write_attribute(root, 'complete', 1, error)
             call close_file(root, error)
         end if
@@ -248,7 +256,12 @@ contains
             call write_real_1d(group, 'y_mid', e%y_mid, length, error)
             call write_real_1d(group, 'half_length', e%half_length, length, error)
             call write_int_1d(group, 'fracture_id', e%fracture_id, error)
-            call write_int_1d(group, 'condition', e%condition, error, condition_coding)
+            if (model%cycle%active) then
+                call write_int_1d(group, 'condition', e%condition, error, &
+                                  condition_coding//rate_state_coding)
+            else
+                call write_int_1d(group, 'condition', e%condition, error, condition_coding)
+            end if
             call write_real_1d(group, 'bc_s', e%bc_s, given, error)
             call write_real_1d(group, 'bc_n', e%bc_n, given, error)
             call write_real_1d(group, 'ds', r%ds, length, error)
@@ -281,6 +294,7 @@ contains
                 call write_real_1d(group, 'dn_elastic', r%dn_elastic, length, error)
             end if
             call write_growth_elements(group, model, results%growth, error)
+            if (model%cycle%active) call write_rate_state(group, model, error)
         end associate
         call close_group(group, error)
     end subroutine write_elements

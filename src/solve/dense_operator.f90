@@ -56,6 +56,7 @@ module ddc_solve_dense_operator
         procedure :: complete => dense_complete
         procedure :: free_tractions => dense_free_tractions
         procedure :: multiply_elements => dense_multiply_elements
+        procedure :: multiply_shear => dense_multiply_shear
         procedure :: add_joints
         procedure :: view_matrix
         procedure :: release => dense_release
@@ -357,6 +358,16 @@ contains
         end associate
         call dgemv('N', 2 * mr, 2 * mc, 1.0_wp, block, 2 * mr, dd, 1, 1.0_wp, t, 1)
     end subroutine dense_multiply_elements
+
+    !> t = t + A [ds; 0]: the first nc columns of A alone (no copy: they are contiguous).
+    subroutine dense_multiply_shear(this, ds, t)
+        class(dense_operator), intent(in) :: this
+        real(wp), intent(in) :: ds(:)
+        real(wp), intent(inout) :: t(:)
+
+        call dgemv('N', 2 * this%nc, this%nc, 1.0_wp, this%matrix, 2 * this%nc, ds, 1, &
+                   1.0_wp, t, 1)
+    end subroutine dense_multiply_shear
 
     !> Free the matrices and factors.
     subroutine dense_release(this)

@@ -77,6 +77,8 @@ module ddc_solve_operator
         procedure :: free_tractions => no_free_tractions
         !> t = t + A(rows, columns) dd: the product on a subset of the contact elements
         procedure :: multiply_elements
+        !> t = t + A [ds; 0]: the tractions of every contact element from shear DDs alone
+        procedure :: multiply_shear
         !> Elastic joints: the contact problem of the plastic DDs (ddc_solve_joints)
         procedure :: add_joints => no_joints
         !> Free what the operator holds
@@ -197,5 +199,22 @@ contains
         t(1:size(rows)) = t(1:size(rows)) + product(rows)
         t(size(rows) + 1:) = t(size(rows) + 1:) + product(this%nc + rows)
     end subroutine multiply_elements
+
+    !> t = t + A [ds; 0]: the shear and normal tractions of every contact element from shear
+    !> DDs of every contact element and no normal DDs (a fault that does not open: the
+    !> products of an earthquake-cycle run, docs/theory/cycles.md#the-elastic-product).
+    subroutine multiply_shear(this, ds, t)
+        !> The operator
+        class(elastic_operator), intent(in) :: this
+        !> Shear DDs of the contact elements [length unit], shape (nc)
+        real(wp), intent(in) :: ds(:)
+        !> Tractions [shear; normal] of the contact elements [stress unit], shape (2 nc)
+        real(wp), intent(inout) :: t(:)
+        real(wp) :: product(2 * this%nc)
+
+        product = 0.0_wp
+        call this%stiffness%multiply([ds, spread(0.0_wp, 1, this%nc)], product)
+        t = t + product
+    end subroutine multiply_shear
 
 end module ddc_solve_operator
