@@ -1,8 +1,10 @@
 !> Whether a result file can be continued by a model (--resume OLD.h5;
 !> docs/theory/earth.md#what-a-step-hands-on): it is a complete ddc2d result of this program
-!> version, of a model with the same fingerprint (ddc_model_fingerprint: the same input apart
-!> from &growth steps and the load path), and a growth run and/or loading history as the model
-!> is; a loading history's steps are the first steps of the model's path:
+!> version (or a cycle run's checkpoint), of a model with the same fingerprint
+!> (ddc_model_fingerprint: the same input apart from &growth steps, the load path and &cycle
+!> end_time), and a growth run and/or loading history or a cycle run as the model is; a cycle
+!> run that stopped (an effective normal stress at zero) does not go on; a loading history's
+!> steps are the first steps of the model's path:
 !>
 !>     |load_new(q, j) - load_old(q, j)| <= 1e-12 * max_j(|load_old(q, j)|, |load_new(q, j)|)
 !>
@@ -21,6 +23,7 @@ module ddc_app_resume_check
     use ddc_output_file_system, only: path_kind, kind_missing
     use ddc_output_hdf5_read, only: is_hdf5_file, output_is_complete, read_string_attribute, &
         read_real_dataset, has_dataset
+    use ddc_model_cycles, only: cycle_end_names, cycle_running, cycle_end_time
     use ddc_text, only: itoa, rtoa, counted
     use ddc_app_input_difference, only: input_difference
     implicit none
@@ -43,15 +46,16 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(error_type), allocatable :: read_error
         character(len=:), allocatable :: prefix, final_path, description, value, input, change
-        logical :: growth_run, history_run
+        logical :: growth_run, history_run, cycle_run
         integer :: kind
 
         prefix = '--resume '//path//': '
         input = 'the input'
         if (allocated(model%input_file)) input = model%input_file
-        if (.not. (model%growth%active .or. allocated(model%load_path%vertex))) then
-            call refuse('--resume continues a growth run or a loading history, and '//input// &
-                        ' has neither &growth nor &load_path')
+        if (.not. (model%growth%active .or. allocated(model%load_path%vertex) .or. &
+                   model%cycle%active)) then
+            call refuse('--resume continues a growth run, a loading history or a cycle run, '// &
+                        'and '//input//' has no &growth, &load_path or &cycle')
             return
         end if
         call resolve_target(path, final_path, read_error)
@@ -67,7 +71,9 @@ contains
             call refuse('is not an HDF5 file (or not readable)')
             return
         end if
-        if (.not. output_is_complete(path)) then
+        cycle_run = has_dataset(path, '/cycle/time')
+        ! A cycle run's checkpoint is complete but for its end: it goes on.
+        if (.not. (output_is_complete(path) .or. (cycle_run .and. model%cycle%active))) then
             call refuse('is incomplete: the run that wrote it did not finish (no complete = 1)')
             return
         end if
@@ -80,7 +86,9 @@ contains
         end if
         growth_run = has_dataset(path, '/growth/step')
         history_run = has_dataset(path, '/history/sxx')
-        if (.not. (growth_run .or. history_run)) then
+        if (model%cycle%active .or. cycle_run) then
+            call check_cycle_run()
+        else if (.not. (growth_run .or. history_run)) then
             call refuse('holds neither a growth run (/growth) nor a loading history '// &
                         '(/history): there is nothing to continue')
         else if (growth_run .and. .not. model%growth%active) then
@@ -99,11 +107,12 @@ contains
             change = changed_input(path, model)
             if (len(change) > 0) then
                 call refuse('is the result of another model: '//change//' (only &growth '// &
-                            'steps and the length of &load_path may change)')
+                            'steps, the length of &load_path and &cycle end_time may change)')
             else
                 call refuse('is the result of another model: its fingerprint is '//value// &
                             ', that of '//input//' is '//recorded_fingerprint(model)// &
-                            ' (only &growth steps and the length of &load_path may change)')
+                            ' (only &growth steps, the length of &load_path and &cycle '// &
+                            'end_time may change)')
             end if
             return
         end if
@@ -116,6 +125,25 @@ contains
 
             call set_error(error, exit_bad_input, prefix//message)
         end subroutine refuse
+
+        !> A cycle run goes on from a cycle run that reached its end time or a checkpoint.
+        subroutine check_cycle_run()
+            type(error_type), allocatable :: failed
+            character(len=:), allocatable :: reason
+
+            if (.not. cycle_run) then
+                call refuse('is not a cycle run (no /cycle), and '//input//' has &cycle')
+                return
+            else if (.not. model%cycle%active) then
+                call refuse('is a cycle run, and '//input//' has no &cycle')
+                return
+            end if
+            call read_string_attribute(path, '/cycle', 'end_reason', reason, failed)
+            if (allocated(failed)) reason = 'unknown'
+            if (reason /= trim(cycle_end_names(cycle_running)) .and. &
+                reason /= trim(cycle_end_names(cycle_end_time))) call refuse('is a cycle run '// &
+                "that stopped (end_reason '"//reason//"'): it cannot go on")
+        end subroutine check_cycle_run
     end subroutine check_resume_file
 
     !> Which group and variable of the input differ from the earlier run's (its root

@@ -18,7 +18,7 @@ module ddc_cycle_driver
     use ddc_model_results, only: model_results, state_slip
     use ddc_model_medium, only: elastic_medium, medium_of
     use ddc_model_loads, only: shear_modulus_of
-    use ddc_model_rate_state, only: rate_state_table, rs_v_init
+    use ddc_model_rate_state, only: rate_state_table, rate_state_count, rs_v_init
     use ddc_solve_operator, only: elastic_load
     use ddc_run_contact_run, only: contact_run
     use ddc_run_model, only: finish_model
@@ -112,6 +112,7 @@ contains
             call loop%run%finish()
             return
         end if
+        call loop%run%operator%prepare_shear_products()
         call start(model, loop, restart)
         call integrate(model, loop, reason, lost, writer, error)
         if (allocated(error)) then
@@ -176,6 +177,7 @@ contains
                                          model%poissons_ratio, x, y)
             loop%pair = dormand_prince()
             allocate (loop%stages(2 * m, loop%pair%stages), loop%first(2 * m))
+            ! Slip errors relative to L, state errors absolute (docs/theory/cycles.md#error-control)
             loop%scale = [loop%fault%dc, spread(1.0_wp, 1, m)]
             if (present(restart)) then
                 loop%record = restart
@@ -202,8 +204,8 @@ contains
     pure function rate_state_column(model, rows) result(v)
         type(model_type), intent(in) :: model
         integer, intent(in) :: rows(:)
-        real(wp), allocatable :: v(:)
-        real(wp), allocatable :: table(:, :)
+        real(wp) :: v(size(rows))
+        real(wp) :: table(size(rows), rate_state_count)
 
         table = rate_state_table(model%elements, rows)
         v = table(:, rs_v_init)
@@ -321,7 +323,7 @@ contains
     subroutine end_event(model, loop)
         type(model_type), intent(in) :: model
         type(cycle_loop), intent(inout), target :: loop
-        real(wp), allocatable :: slip(:)
+        real(wp) :: slip(loop%fault%m)
 
         associate (now => loop%record%now, m => loop%fault%m, e => model%elements, &
                    rows => loop%record%elements)
@@ -388,7 +390,7 @@ contains
             load%normal = -model%elements%rs_sigma0
             load%remote = [model%sxx, model%syy, model%sxy]
             load%gradient = model%stress_gradient
-            results%solver%method = loop%pair%name
+            results%solver%method = trim(loop%pair%name)
             results%solver%hierarchical = op%record%hierarchical
             results%solver%compression_ratio = op%record%compression_ratio
             results%solver%hmatrix_tolerance = op%record%hmatrix_tolerance

@@ -14,7 +14,7 @@ module ddc_cycle_fault
     use ddc_kinds, only: wp
     use ddc_model_types, only: element_set
     use ddc_model_cycles, only: cycle_options
-    use ddc_model_rate_state, only: rate_state_table, rs_a, rs_b, rs_dc, rs_f0, rs_v0, &
+    use ddc_model_rate_state, only: rate_state_table, rate_state_count, rs_a, rs_b, rs_dc, rs_f0, rs_v0, &
         rs_v_init, rs_sigma0, rs_tau0
     use ddc_solve_operator, only: elastic_operator
     use ddc_cycle_friction, only: slip_rate, state_rate, initial_state
@@ -65,6 +65,8 @@ contains
         type(rate_state_fault) :: fault
         real(wp), allocatable :: table(:, :)
 
+        ! Allocated first: gfortran -Og warns of the descriptor of a bare assignment here.
+        allocate (table(size(rows), rate_state_count))
         table = rate_state_table(elements, rows)
         fault%m = size(rows)
         fault%a = table(:, rs_a)
@@ -105,8 +107,8 @@ contains
         real(wp), intent(in) :: y(:)
         real(wp), intent(out) :: dydt(:)
         integer, intent(out) :: failure
-        real(wp) :: traction(2 * system%m)
-        integer :: iterations
+        real(wp) :: traction(2 * system%m), guess(system%m)
+        integer :: iterations(system%m)
 
         associate (m => system%m, f => system)
             traction = 0.0_wp
@@ -117,40 +119,15 @@ contains
             if (failure > 0) return
             f%shear = f%tau0 + traction(:m)
             ! The driving stress is -t_s: a shear traction (tension positive) drives a slip
-            ! ds of the opposite sign. The last slip rates are the guesses.
-            call solve_rates(-f%shear, f%sigma, f%eta, y(m + 1:), f%a, f%b, f%f0, f%v0, f%v, &
-                             iterations)
-            f%newton_iterations = f%newton_iterations + iterations
+            ! ds of the opposite sign. The last slip rates are the guesses. (Serial: a
+            ! thread team's barrier at every stage costs more than these few iterations.)
+            guess = f%v
+            call slip_rate(-f%shear, f%sigma, f%eta, y(m + 1:), f%a, f%b, f%f0, f%v0, guess, &
+                           f%v, iterations)
+            f%newton_iterations = f%newton_iterations + sum(iterations)
             dydt(:m) = f%v
             dydt(m + 1:) = state_rate(f%law, f%v, y(m + 1:), f%dc, f%v0)
         end associate
     end subroutine fault_rates
-
-    !> The slip rate of every element (ddc_cycle_friction's slip_rate), in parallel.
-    subroutine solve_rates(drive, sigma, eta, psi, a, b, f0, v0, v, iterations)
-        !> Driving shear stress, effective normal stress [stress], shape (m)
-        real(wp), intent(in) :: drive(:), sigma(:)
-        !> Radiation damping [stress time / length]
-        real(wp), intent(in) :: eta
-        !> State psi, a, b, f0 [-], V0 [length / time], shape (m)
-        real(wp), intent(in) :: psi(:), a(:), b(:), f0(:), v0(:)
-        !> In: the guesses; out: the slip rates [length / time], shape (m)
-        real(wp), intent(inout) :: v(:)
-        !> Newton iterations of all elements
-        integer, intent(out) :: iterations
-        real(wp) :: guess
-        integer :: i, taken
-
-        iterations = 0
-        !$omp parallel do default(none) shared(drive, sigma, eta, psi, a, b, f0, v0, v) &
-        !$omp private(guess, taken) reduction(+:iterations) schedule(static)
-        do i = 1, size(v)
-            guess = v(i)
-            call slip_rate(drive(i), sigma(i), eta, psi(i), a(i), b(i), f0(i), v0(i), guess, &
-                           v(i), taken)
-            iterations = iterations + taken
-        end do
-        !$omp end parallel do
-    end subroutine solve_rates
 
 end module ddc_cycle_fault

@@ -165,7 +165,7 @@ contains
                 lo = x
             end if
             step = -h / dh
-            newton = x + step > lo .and. x + step < hi
+            newton = x + step >= lo .and. x + step <= hi
             if (.not. newton) step = 0.5_wp * (lo + hi) - x
             x = x + step
             if ((newton .and. abs(step) <= newton_tolerance) .or. &

@@ -34,14 +34,13 @@ contains
         integer :: j
 
         ! Distance of each element's begin from its fracture's first rate-and-state element
-        do j = 1, size(rows)
-            if (j > 1) then
-                if (elements%fracture_id(rows(j - 1)) == elements%fracture_id(rows(j))) then
-                    start(j) = start(j - 1) + 2.0_wp * elements%half_length(rows(j - 1))
-                    cycle
-                end if
+        if (size(rows) > 0) start(1) = 0.0_wp
+        do j = 2, size(rows)
+            if (elements%fracture_id(rows(j - 1)) == elements%fracture_id(rows(j))) then
+                start(j) = start(j - 1) + 2.0_wp * elements%half_length(rows(j - 1))
+            else
+                start(j) = 0.0_wp
             end if
-            start(j) = 0.0_wp
         end do
         picked = spacing <= 0.0_wp
         do j = 1, size(rows)
@@ -153,7 +152,7 @@ contains
         type(cycle_record), intent(inout) :: record
         integer :: room
 
-        room = 2 * size(record%time)
+        room = max(2 * size(record%time), first_room)
         call grow_1d(record%time, room)
         call grow_1d(record%max_slip_rate, room)
         call grow_int(record%max_rate_element, room)
@@ -173,7 +172,7 @@ contains
         type(cycle_record), intent(inout) :: record
         integer :: room
 
-        room = 2 * size(record%event_start)
+        room = max(2 * size(record%event_start), first_room)
         call grow_1d(record%event_start, room)
         call grow_1d(record%event_end, room)
         call grow_1d(record%event_x, room)

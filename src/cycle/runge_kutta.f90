@@ -1,7 +1,6 @@
-!> Embedded explicit Runge-Kutta pairs with the first stage of a step the last of the one
+!> An embedded explicit Runge-Kutta pair with the first stage of a step the last of the one
 !> before (FSAL) and the error control of a cycle run (docs/theory/cycles.md#the-integrator):
-!> Dormand-Prince 5(4) (7 stages, 6 new per step) and Bogacki-Shampine 3(2) (4 stages, 3
-!> new per step).
+!> Dormand-Prince 5(4) (7 stages, 6 new per step).
 !>
 !> A step of size h from (t, y) with y' = F(t, y) takes the stages k_i = F(t + c_i h, y + h
 !> sum_j a_ij k_j), advances y_new = y + h sum_i b_i k_i (the higher order) and estimates its
@@ -14,8 +13,10 @@ module ddc_cycle_runge_kutta
     implicit none
     private
 
-    public :: ode_system, embedded_pair, dormand_prince, bogacki_shampine, attempt_step, &
-        next_step
+    public :: ode_system, embedded_pair, dormand_prince, attempt_step, next_step
+
+    !> Most stages of a pair
+    integer, parameter :: max_stages = 7
 
     !> A system y' = F(t, y) whose evaluation may fail (outside the domain of F).
     type, abstract :: ode_system
@@ -45,11 +46,12 @@ module ddc_cycle_runge_kutta
     !> An embedded pair: its tableau, with the last stage at (t + h, y_new).
     type :: embedded_pair
         !> Name, number of stages, lower order q
-        character(len=:), allocatable :: name
+        character(len=16) :: name = ''
         integer :: stages = 0, lower_order = 0
-        !> Nodes c, shape (stages); coefficients a, shape (stages, stages); weights b of the
-        !> higher order and the error weights b - bhat, shape (stages)
-        real(wp), allocatable :: c(:), a(:, :), b(:), e(:)
+        !> Nodes c; coefficients a; weights b of the higher order and the error weights b -
+        !> bhat; the first `stages` of each dimension
+        real(wp) :: c(max_stages) = 0.0_wp, a(max_stages, max_stages) = 0.0_wp, &
+            b(max_stages) = 0.0_wp, e(max_stages) = 0.0_wp
     end type embedded_pair
 
 contains
@@ -63,7 +65,6 @@ contains
         pair%lower_order = 4
         pair%c = [0.0_wp, 1.0_wp / 5.0_wp, 3.0_wp / 10.0_wp, 4.0_wp / 5.0_wp, 8.0_wp / 9.0_wp, &
                   1.0_wp, 1.0_wp]
-        allocate (pair%a(7, 7), source=0.0_wp)
         pair%a(2, 1) = 1.0_wp / 5.0_wp
         pair%a(3, 1:2) = [3.0_wp / 40.0_wp, 9.0_wp / 40.0_wp]
         pair%a(4, 1:3) = [44.0_wp / 45.0_wp, -56.0_wp / 15.0_wp, 32.0_wp / 9.0_wp]
@@ -78,22 +79,6 @@ contains
                            393.0_wp / 640.0_wp, -92097.0_wp / 339200.0_wp, 187.0_wp / 2100.0_wp, &
                            1.0_wp / 40.0_wp]
     end function dormand_prince
-
-    !> Bogacki & Shampine (1989), RK3(2).
-    pure function bogacki_shampine() result(pair)
-        type(embedded_pair) :: pair
-
-        pair%name = 'bogacki_shampine'
-        pair%stages = 4
-        pair%lower_order = 2
-        pair%c = [0.0_wp, 0.5_wp, 0.75_wp, 1.0_wp]
-        allocate (pair%a(4, 4), source=0.0_wp)
-        pair%a(2, 1) = 0.5_wp
-        pair%a(3, 2) = 0.75_wp
-        pair%b = [2.0_wp / 9.0_wp, 1.0_wp / 3.0_wp, 4.0_wp / 9.0_wp, 0.0_wp]
-        pair%a(4, 1:3) = pair%b(1:3)
-        pair%e = pair%b - [7.0_wp / 24.0_wp, 0.25_wp, 1.0_wp / 3.0_wp, 0.125_wp]
-    end function bogacki_shampine
 
     !> One attempted step of size h from (t, y), whose rate first is F(t, y): the new state,
     !> its rate (the last stage) and the error norm; failure > 0 when a stage left the

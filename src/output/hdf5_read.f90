@@ -263,13 +263,15 @@ contains
         call close_attribute(file, attribute, path, error)
     end subroutine read_int_attribute
 
-    !> True when path holds a readable ddc2d result with the root attribute complete = 1.
+    !> True when path holds a readable ddc2d result with the root attribute complete = 1, and
+    !> for a cycle run one that did not stop at a checkpoint (/cycle end_reason 'running').
     function output_is_complete(path) result(complete)
         !> Path of the result file
         character(len=*), intent(in) :: path
         !> The file exists, is readable HDF5 and is complete
         logical :: complete
         type(error_type), allocatable :: error
+        character(len=:), allocatable :: reason
         integer :: flag
 
         inquire (file=path, exist=complete)
@@ -277,6 +279,10 @@ contains
         call read_int_attribute(path, '/', 'complete', flag, error)
         complete = .not. allocated(error)
         if (complete) complete = flag == 1
+        if (.not. (complete .and. has_dataset(path, '/cycle/time'))) return
+        call read_string_attribute(path, '/cycle', 'end_reason', reason, error)
+        complete = .not. allocated(error)
+        if (complete) complete = reason /= 'running'
     end function output_is_complete
 
     !> Whether a result file holds a dataset (false too when it cannot be read).

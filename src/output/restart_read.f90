@@ -1,7 +1,8 @@
 !> Read the end of an earlier run from its complete result file (--resume;
 !> docs/theory/earth.md#what-a-step-hands-on): the final geometry's end points and fracture ranges,
 !> its element results and tips, the growth record and the loading history (every column of their
-!> lists, ddc_model_records, that a resumed run goes on from), bit for bit as written
+!> lists, ddc_model_records, that a resumed run goes on from) and the record of a cycle run
+!> (ddc_output_cycle_read), bit for bit as written
 !> (ddc_output_hdf5). The file was checked before (app/resume_check: complete, same version and
 !> model), so a dataset that is missing here is an error of the file.
 module ddc_output_restart_read
@@ -16,6 +17,7 @@ module ddc_output_restart_read
     use ddc_output_hdf5_read, only: read_real_dataset, read_int_dataset, read_string_dataset, &
         read_dataset_dims, read_string_attribute, read_int_attribute, read_real_attribute, &
         has_dataset
+    use ddc_output_cycle_read, only: read_cycle_record
     implicit none
     private
 
@@ -54,6 +56,8 @@ contains
         if (has_dataset(path, '/history/pivots')) call for_each_history_column( &
             state%results%history, reader)
         call move_alloc(reader%error, error)
+        if (.not. allocated(error) .and. has_dataset(path, '/cycle/time')) &
+            call read_cycle_record(path, state%results%cycle, error)
     end subroutine read_restart
 
     !> The final geometry's end points and fracture ranges, its element results and tips.

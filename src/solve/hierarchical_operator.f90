@@ -13,7 +13,9 @@ module ddc_solve_hierarchical_operator
     use ddc_model_results, only: solver_record
     use ddc_contact_options, only: solver_options
     use ddc_solve_operator, only: elastic_operator, elastic_load, free_part
-    use ddc_solve_hierarchical, only: solve_hierarchical, report_assembly
+    use ddc_solve_hierarchical, only: solve_hierarchical, report_assembly, unknown_points, &
+        settings_of
+    use ddc_linalg_hmatrix, only: hmatrix
     use ddc_solve_hierarchical_stiffness, only: hierarchical_stiffness, &
         new_hierarchical_stiffness
     implicit none
@@ -27,9 +29,13 @@ module ddc_solve_hierarchical_operator
         type(element_set), pointer :: kept => null()
         !> The hmatrix_ settings of &solver (the solves without contact elements)
         type(solver_options) :: options
+        !> The shear columns of A alone, compressed (prepare_shear_products)
+        type(hmatrix), pointer :: shear => null()
     contains
         procedure :: load_contact => hierarchical_load_contact
         procedure :: complete => hierarchical_complete
+        procedure :: prepare_shear_products => hierarchical_prepare_shear
+        procedure :: multiply_shear => hierarchical_multiply_shear
         procedure :: release => hierarchical_release
     end type hierarchical_operator
 
@@ -123,6 +129,50 @@ contains
                                 record%seconds_assembly, record%counts%seconds, error)
     end subroutine hierarchical_complete
 
+    !> The shear columns of A (every row against the contact elements' Ds) compressed alone:
+    !> half of A, for the many products of an earthquake-cycle run. Where hmat-oss cannot,
+    !> the products stay those of the whole A.
+    subroutine hierarchical_prepare_shear(this)
+        class(hierarchical_operator), intent(inout) :: this
+        type(error_type), allocatable :: failed
+        real(wp), allocatable :: rows(:, :), columns(:, :)
+
+        if (this%nc == 0 .or. this%nf > 0 .or. associated(this%shear)) return
+        select type (s => this%stiffness)
+        type is (hierarchical_stiffness)
+            allocate (this%shear)
+            ! The entries of A: its column u <= nc is the Ds of contact element u.
+            rows = unknown_points(this%kept)
+            columns = rows(:, :this%nc)
+            call this%shear%assemble_rectangular(rows, columns, s%source, &
+                                                 settings_of(this%options), failed)
+        end select
+        this%shear_columns_apart = associated(this%shear) .and. .not. allocated(failed)
+        if (associated(this%shear) .and. .not. this%shear_columns_apart) then
+            call this%shear%release()
+            deallocate (this%shear)
+        end if
+    end subroutine hierarchical_prepare_shear
+
+    !> t = t + A [ds; 0] by the compressed shear columns (else by the whole A).
+    subroutine hierarchical_multiply_shear(this, ds, t)
+        class(hierarchical_operator), intent(in) :: this
+        real(wp), intent(in) :: ds(:)
+        real(wp), intent(inout) :: t(:)
+        real(wp) :: product(size(t))
+        type(error_type), allocatable :: failed
+
+        if (.not. this%shear_columns_apart) then
+            product = 0.0_wp
+            call this%stiffness%multiply([ds, spread(0.0_wp, 1, this%nc)], product)
+        else
+            call this%shear%multiply(ds, product, failed)
+            ! hmat-oss fails a product only on a broken matrix: poison the result.
+            if (allocated(failed)) product = huge(1.0_wp)
+        end if
+        t = t + product
+    end subroutine hierarchical_multiply_shear
+
     !> Free the compressed A and its elements.
     subroutine hierarchical_release(this)
         class(hierarchical_operator), intent(inout) :: this
@@ -132,6 +182,10 @@ contains
             type is (hierarchical_stiffness)
                 call s%release()
             end select
+        end if
+        if (associated(this%shear)) then
+            call this%shear%release()
+            deallocate (this%shear)
         end if
         if (associated(this%kept)) deallocate (this%kept)
     end subroutine hierarchical_release

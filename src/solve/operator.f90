@@ -68,6 +68,8 @@ module ddc_solve_operator
         !> What making the operator took: seconds_assembly, counts%seconds (factorization),
         !> and for a compressed one hierarchical, hmatrix_tolerance, compression_ratio
         type(solver_record) :: record
+        !> multiply_shear has the shear columns of A apart (prepare_shear_products)
+        logical :: shear_columns_apart = .false.
     contains
         !> The remote traction on the contact elements for a load, free elements included
         procedure(load_interface), deferred :: load_contact
@@ -79,6 +81,9 @@ module ddc_solve_operator
         procedure :: multiply_elements
         !> t = t + A [ds; 0]: the tractions of every contact element from shear DDs alone
         procedure :: multiply_shear
+        !> Ready the operator for many products multiply_shear (a compressed operator
+        !> compresses those columns of A alone)
+        procedure :: prepare_shear_products => shear_columns_of_stiffness
         !> Elastic joints: the contact problem of the plastic DDs (ddc_solve_joints)
         procedure :: add_joints => no_joints
         !> Free what the operator holds
@@ -199,6 +204,14 @@ contains
         t(1:size(rows)) = t(1:size(rows)) + product(rows)
         t(size(rows) + 1:) = t(size(rows) + 1:) + product(this%nc + rows)
     end subroutine multiply_elements
+
+    !> Operators whose multiply_shear takes the shear columns from A as it is.
+    subroutine shear_columns_of_stiffness(this)
+        !> The operator
+        class(elastic_operator), intent(inout) :: this
+
+        this%shear_columns_apart = .false.
+    end subroutine shear_columns_of_stiffness
 
     !> t = t + A [ds; 0]: the shear and normal tractions of every contact element from shear
     !> DDs of every contact element and no normal DDs (a fault that does not open: the

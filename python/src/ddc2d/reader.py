@@ -11,7 +11,7 @@ Used by ddc2d.open_result, ``ddc2d-plot``, ``collect-sweep``, ``compare-twodd``,
   attribute and for tools that read single datasets;
 * the groups of a result: ``load_result`` reads a whole file, ``read_elements``,
   ``read_fractures``, ``read_tips``, ``read_fields``, ``read_history``, ``read_growth``,
-  ``read_solver`` and ``read_sweep`` one group of an open file; ``is_complete`` tells a
+  ``read_cycle``, ``read_solver`` and ``read_sweep`` one group of an open file; ``is_complete`` tells a
   finished file;
 * the tie rule of every default that picks "the largest" or "the first": ``index_of_extreme``
   and ``is_tie`` (values within ``TIE_RTOL`` = 1e-9 relative count as equal, the lowest index
@@ -50,7 +50,7 @@ STATE_NAMES = {0: "free", 1: "stick", 2: "slip", 3: "open"}
 STATE_CODES = {name: code for code, name in STATE_NAMES.items()}
 #: Element conditions as coded in /elements/condition (1-4 are TWODD's KODE 1-4).
 CONDITION_NAMES = {1: "traction", 2: "displacement", 3: "mixed_us_sn", 4: "mixed_ss_un",
-                   5: "contact", 6: "prescribed_dd"}
+                   5: "contact", 6: "prescribed_dd", 7: "rate_state"}
 CONDITION_CODES = {name: code for code, name in CONDITION_NAMES.items()}
 
 #: Codings assumed for a file whose dataset lacks its `coding` attribute, by dataset path.
@@ -90,6 +90,16 @@ GROWTH_TRIAL_DATASETS = ("trial_step", "trial_record", "trial_angle", "trial_eff
 #: Datasets of /growth/initiations/flaw_trials (criterion 'work' with flaw points), one value
 #: per trial of a flaw's first crack.
 FLAW_TRIAL_DATASETS = ("step", "flaw", "angle", "efficiency", "state")
+#: /cycle datasets of an earthquake-cycle run (docs/output-reference.md#cycle): of every row
+#: (time, largest slip rate and its element), of every row and recorded element (rows,
+#: elements), of every row and observation point (rows, points), of every event, of the
+#: recorded elements and of the points.
+CYCLE_ROW_DATASETS = ("time", "max_slip_rate", "max_rate_element")
+CYCLE_PROFILE_DATASETS = ("slip", "slip_rate", "shear_traction", "normal_traction", "state")
+CYCLE_POINT_DATASETS = ("ux", "uy", "vx", "vy")
+CYCLE_EVENT_DATASETS = ("event_start", "event_end", "event_element", "event_x", "event_y",
+                        "event_peak_rate", "event_max_slip", "event_moment", "event_slip")
+CYCLE_FIXED_DATASETS = ("elements", "profile", "distance", "point_x", "point_y")
 #: Phases timed in /solver/seconds.
 SOLVER_PHASES = ("assembly", "factorization", "lcp", "fields", "output", "total")
 
@@ -241,8 +251,8 @@ def load_result(path: FilePath) -> Loaded:
     arrays without /tips), ``remote_stress`` ((sxx, syy, sxy) or None),
     ``remote_stress_gradient`` ((dsxx_dy, dsyy_dy, dsxy_dy)) and ``pore_fluid`` ((p0,
     dp_dy)), zeros when the file predates them, ``codings`` (read_codings), ``history``
-    (see read_history; None without /history) and ``growth`` (see read_growth; None
-    without /growth).
+    (see read_history; None without /history), ``growth`` (see read_growth; None without
+    /growth) and ``cycle`` (see read_cycle; None without /cycle).
     Raises ResultError with a message naming the file and the problem.
     """
     path = Path(path)
@@ -285,6 +295,7 @@ def _read_open_file(path: Path, handle: h5py.File) -> Loaded:
         "codings": read_codings(handle),
         "history": read_history(path, handle, count),
         "growth": read_growth(path, handle),
+        "cycle": read_cycle(path, handle),
     }
 
 
@@ -481,6 +492,32 @@ def read_growth(path: FilePath, handle: h5py.Group) -> dict[str, Any] | None:
     growth["attrs"] = decoded_attrs(group.attrs)
     growth["reasons"] = parse_coding(group.attrs.get("reason_coding", ""))
     return growth
+
+
+def read_cycle(path: FilePath, handle: h5py.Group) -> dict[str, Any] | None:
+    """/cycle of an earthquake-cycle run as a dict: every dataset of the CYCLE_ lists (rows
+    first: ``slip`` (rows, recorded elements), ``ux`` (rows, points), ``event_slip``
+    (events, recorded elements)), ``attrs`` (strings decoded: state_law, end_reason,
+    time_unit, ...) and ``resume`` (the datasets and attributes of /cycle/resume); None when
+    the file has no /cycle."""
+    if "cycle" not in handle:
+        return None
+    group = handle["cycle"]
+    cycle: dict[str, Any] = {"attrs": decoded_attrs(group.attrs)}
+    for key in (CYCLE_ROW_DATASETS + CYCLE_PROFILE_DATASETS + CYCLE_POINT_DATASETS
+                + CYCLE_EVENT_DATASETS + CYCLE_FIXED_DATASETS):
+        if key not in group:
+            raise ResultError(f"'{path}' lacks /cycle/{key}")
+        cycle[key] = np.asarray(group[key][()])
+    rows = cycle["time"].size
+    for key in CYCLE_PROFILE_DATASETS:
+        if cycle[key].shape != (rows, cycle["profile"].size):
+            raise ResultError(f"'{path}': /cycle/{key} has shape {cycle[key].shape}, "
+                              f"expected ({rows}, {cycle['profile'].size})")
+    resume = group["resume"]
+    cycle["resume"] = {key: np.asarray(item[()]) for key, item in resume.items()}
+    cycle["resume"].update(decoded_attrs(resume.attrs))
+    return cycle
 
 
 def read_solver(handle: h5py.Group) -> dict[str, Any]:

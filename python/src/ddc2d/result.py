@@ -74,6 +74,8 @@ class Result:
       and the arrays x, y, ux, uy, sxx, syy, sxy, near_element);
     * ``history``: the loading history (loads, ds, dn, state shaped (steps, elements),
       ...) or None; ``growth``: the growth records (one per tip per step) or None;
+      ``cycle``: an earthquake-cycle run (rows, recorded elements, points, events:
+      ddc2d.reader.read_cycle) or None;
     * ``units``: dataset path -> unit ('elements/ds' -> 'm'); ``unit(path)`` reads it;
     * ``codings``: the meaning of every integer code ('/elements/state' -> {0: 'free', ...}).
     """
@@ -92,6 +94,7 @@ class Result:
         self.fields: dict[str, dict[str, Any]] = loaded["fields"]
         self.history: dict[str, Any] | None = loaded["history"]
         self.growth: dict[str, Any] | None = loaded["growth"]
+        self.cycle: dict[str, Any] | None = loaded["cycle"]
         self.codings: dict[str, Coding] = loaded["codings"]
         self.units = units
         self._loaded = loaded
@@ -105,7 +108,8 @@ class Result:
         return (f"<ddc2d.Result '{self.path}': {self.elements['ds'].size} elements, "
                 f"{self.tips['x'].size} tips, fields {sorted(self.fields)}"
                 f"{', history' if self.history is not None else ''}"
-                f"{', growth' if self.growth is not None else ''}>")
+                f"{', growth' if self.growth is not None else ''}"
+                f"{', cycle' if self.cycle is not None else ''}>")
 
     def unit(self, path: str) -> str:
         """The unit of a dataset ('elements/ds', 'fields/map/sxx'); '' when it has none."""

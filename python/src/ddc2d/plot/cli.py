@@ -63,6 +63,11 @@ The name part of a file is left out when it repeats the kind (a grid named 'map'
 * ``<stem>_growth_history.<fmt>`` for growth along a load path (/history/grown_length;
   docs/plotting.md#growth): the length each tip has grown against the load parameter, a point
   per load step.
+* ``<stem>_cycle_slip.<fmt>``, ``<stem>_cycle_rate.<fmt>`` and ``<stem>_cycle_events.<fmt>``
+  for an earthquake-cycle run (/cycle; docs/plotting.md#earthquake-cycles): the cumulative
+  slip along the fault every 5 years between events and every second during them, the
+  largest slip rate against time, and the catalogue (each event's largest slip, the time to
+  the next).
 
 The maps' quantities, the background stress and the Coulomb stress change (receiver plane,
 friction, slip sense: right- / left-lateral in a map view, reverse / normal in a
@@ -252,7 +257,8 @@ def _figures(result, receivers, chosen, args, out_dir, stem):
     they are written; a maker is called only when its figure is written."""
     used = {f"{stem}_profiles", f"{stem}_history", f"{stem}_tips", f"{stem}_growth",
             f"{stem}_growth_history", f"{stem}_growth_trials", f"{stem}_flaw_trials",
-            f"{stem}_history_strengths"}
+            f"{stem}_history_strengths", f"{stem}_cycle_slip", f"{stem}_cycle_rate",
+            f"{stem}_cycle_events"}
     for fracture, profile in fracture_profiles(result):
         yield (lambda f=fracture, p=profile: figures.plot_profile(result, f, p),
                figure_base(out_dir, stem, "profile", fracture["label"], used))
@@ -288,6 +294,10 @@ def _figures(result, receivers, chosen, args, out_dir, stem):
             yield ((lambda: figures.plot_flaw_trials(result)), out_dir / f"{stem}_flaw_trials")
     if result["history"] is not None and "grown_length" in result["history"]:
         yield (lambda: figures.plot_growth_history(result)), out_dir / f"{stem}_growth_history"
+    if result["cycle"] is not None:
+        yield (lambda: figures.plot_cycle_slip(result)), out_dir / f"{stem}_cycle_slip"
+        yield (lambda: figures.plot_cycle_rate(result)), out_dir / f"{stem}_cycle_rate"
+        yield (lambda: figures.plot_cycle_events(result)), out_dir / f"{stem}_cycle_events"
 
 
 def _write_all(result: Loaded, receivers: dict[str, Receiver | None],

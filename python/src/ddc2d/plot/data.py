@@ -953,3 +953,55 @@ def joint_parts(result, fracture, keys):
             lines += [(f"elastic {text}", part),
                       (f"plastic {text}", -_fracture_values(result, fracture, total) - part)]
     return tuple(lines)
+
+
+# --------------------------------------------------------------------------- cycles
+
+#: Seconds per unit of the time labels a cycle's times convert from (others: unconverted).
+TIME_SECONDS = {"s": 1.0, "min": 60.0, "h": 3600.0, "day": 86400.0, "yr": 365.25 * 86400.0}
+#: A year [s] (365.25 days), the unit of the cycle figures' times.
+YEAR_SECONDS = 365.25 * 86400.0
+#: Interval of the cumulative slip lines between events [yr] and during them [s].
+SLIP_LINES_BETWEEN, SLIP_LINES_DURING = 5.0, 1.0
+
+
+def cycle_years(cycle, times):
+    """Times of a cycle run in years (their unit when it is none of TIME_SECONDS) and the
+    unit's name."""
+    unit = cycle["attrs"].get("time_unit", "s")
+    if unit not in TIME_SECONDS:
+        return np.asarray(times, dtype=float), unit
+    return np.asarray(times, dtype=float) * TIME_SECONDS[unit] / YEAR_SECONDS, "yr"
+
+
+def cycle_slip_lines(result):
+    """The cumulative slip profiles to draw (docs/plotting.md#earthquake-cycles): the rows
+    every SLIP_LINES_BETWEEN years between events and every SLIP_LINES_DURING seconds
+    during them (the largest slip rate at least seismic_threshold), as (distance along the
+    fault, slip at each, whether seismic), in time order."""
+    cycle = result["cycle"]
+    unit = cycle["attrs"].get("time_unit", "s")
+    seconds = cycle["time"] * TIME_SECONDS.get(unit, 1.0)
+    seismic = cycle["max_slip_rate"] >= cycle["attrs"]["seismic_threshold"]
+    lines = []
+    last = {True: -np.inf, False: -np.inf}
+    for k in range(seconds.size):
+        step = SLIP_LINES_DURING if seismic[k] else SLIP_LINES_BETWEEN * YEAR_SECONDS
+        if seconds[k] - last[bool(seismic[k])] >= step:
+            last[bool(seismic[k])] = seconds[k]
+            lines.append((cycle["distance"], cycle["slip"][k], bool(seismic[k])))
+    return lines
+
+
+def cycle_catalogue(result):
+    """The events of a cycle run as a dict: start, end [yr or the time unit], interval to
+    the next start, largest slip, moment per unit length and the hypocentre's distance
+    along the fault (that of the recorded element nearest it); the unit of the times."""
+    cycle = result["cycle"]
+    start, unit = cycle_years(cycle, cycle["event_start"])
+    end, _ = cycle_years(cycle, cycle["event_end"])
+    # The distance of the element, interpolated between the recorded elements around it
+    along = np.interp(cycle["event_element"], cycle["profile"], cycle["distance"])
+    return {"start": start, "end": end, "interval": np.diff(start),
+            "max_slip": cycle["event_max_slip"], "moment": cycle["event_moment"],
+            "hypocentre": along, "unit": unit}

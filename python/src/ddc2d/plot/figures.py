@@ -24,10 +24,15 @@ from .data import (
     COLORBAR_LABELS,
     LINE_PANELS,
     SIGNED_QUANTITIES,
+    SLIP_LINES_BETWEEN,
+    SLIP_LINES_DURING,
     Background,
     Receiver,
     along_fractures,
     as_grid,
+    cycle_catalogue,
+    cycle_slip_lines,
+    cycle_years,
     default_clim,
     distance_along,
     element_segments,
@@ -628,3 +633,66 @@ def save_figure(fig: Figure, base: Path, fmt: str, dpi: float) -> Path:
     finally:
         plt.close(fig)
     return path
+
+
+# --------------------------------------------------------------------------- cycles
+
+
+def plot_cycle_slip(result: ResultData) -> Figure:
+    """Cumulative slip along the fault (docs/plotting.md#earthquake-cycles): a line every 5
+    years between events (blue) and every second during them (red), against the distance
+    along the fault from its first vertex. Returns the Figure."""
+    lines = cycle_slip_lines(result)
+    fig, ax = plt.subplots(figsize=(7.0, 4.5), constrained_layout=True)
+    for seismic in (False, True):
+        segments = [np.column_stack((d, s)) for d, s, q in lines if q == seismic]
+        if segments:
+            ax.add_collection(LineCollection(
+                segments, colors="tab:red" if seismic else "tab:blue",
+                linewidths=0.6 if seismic else 0.8,
+                label=f"every {SLIP_LINES_DURING:g} s in events" if seismic else
+                f"every {SLIP_LINES_BETWEEN:g} yr between events"))
+    ax.autoscale()
+    length = result["length_unit"]
+    ax.set_xlabel("distance along the fault" + unit_label(length))
+    ax.set_ylabel("slip $D_s$" + unit_label(length))
+    ax.legend(fontsize="small", loc="upper left")
+    ax.grid(True, linewidth=0.3)
+    fig.suptitle(heading(result, "cumulative slip"))
+    return fig
+
+
+def plot_cycle_rate(result: ResultData) -> Figure:
+    """The largest slip rate on the faults against time, the seismic threshold dashed.
+    Returns the Figure."""
+    cycle = result["cycle"]
+    years, unit = cycle_years(cycle, cycle["time"])
+    rate = f"{result['length_unit']}/{cycle['attrs'].get('time_unit', 's')}"
+    fig, ax = plt.subplots(figsize=(7.0, 4.0), constrained_layout=True)
+    ax.semilogy(years, np.maximum(cycle["max_slip_rate"], np.finfo(float).tiny),
+                linewidth=0.8, gid="max_slip_rate")
+    ax.axhline(cycle["attrs"]["seismic_threshold"], color="k", linestyle="--", linewidth=0.6,
+               label="seismic threshold")
+    ax.set_xlabel(f"time [{unit}]")
+    ax.set_ylabel("largest slip rate" + unit_label(rate))
+    ax.legend(fontsize="small", loc="lower right")
+    ax.grid(True, linewidth=0.3)
+    fig.suptitle(heading(result, f"{cycle['event_start'].size} events"))
+    return fig
+
+
+def plot_cycle_events(result: ResultData) -> Figure:
+    """The catalogue of a cycle run: each event's largest slip against its start time, and
+    the time from each event to the next. Returns the Figure."""
+    events = cycle_catalogue(result)
+    fig, (top, bottom) = plt.subplots(2, 1, figsize=(7.0, 5.5), sharex=True,
+                                      constrained_layout=True)
+    top.plot(events["start"], events["max_slip"], "o", gid="max_slip")
+    top.set_ylabel("largest slip" + unit_label(result["length_unit"]))
+    bottom.plot(events["start"][:-1], events["interval"], "s", color="C1", gid="interval")
+    bottom.set_ylabel(f"time to the next event [{events['unit']}]")
+    bottom.set_xlabel(f"event start [{events['unit']}]")
+    for ax in (top, bottom):
+        ax.grid(True, linewidth=0.3)
+    fig.suptitle(heading(result, f"catalogue: {events['start'].size} events"))
+    return fig
