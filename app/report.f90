@@ -16,6 +16,7 @@ module ddc_app_report
     use ddc_model_strength_fronts, only: instant_drop_notes, cohesive_zone_warnings
     use ddc_model_loads, only: work_threshold_of
     use ddc_growth_summary, only: tip_summary, summarize_tips, linked_fracture
+    use ddc_app_report_cycle, only: print_cycle_options, print_cycle_summary
     use ddc_contact_options, only: lcp_method_names, open_cohesion_names
     use ddc_text, only: short_real, itoa, prefix_lines, join_integers
     use ddc_output_provenance, only: describe_run, provenance_line
@@ -95,6 +96,7 @@ contains
             trim(lcp_method_names(model%solver%lcp_method)), ', open_cohesion = ', &
             trim(open_cohesion_names(model%solver%open_cohesion))
         if (model%growth%active) call print_growth_options(unit, model)
+        if (model%cycle%active) call print_cycle_options(unit, model)
         write (unit, '(a)') '  output: '//model%output_file
         notes = plausibility_notes(model, units_given)
         if (len(notes) > 0) write (unit, '(a)') prefix_lines('note: ', notes)
@@ -524,6 +526,8 @@ contains
             write (unit, '(a)') '  '//provenance_line(describe_run())
         end associate
         if (allocated(results%growth%step)) call print_growth_summary(unit, model, results)
+        if (allocated(results%cycle%elements)) call print_cycle_summary(unit, model, &
+                                                                        results%cycle)
         write (unit, '(a)') 'wrote '//model%output_file
     end subroutine print_results_summary
 

@@ -55,7 +55,7 @@ contains
         if (.not. (model%growth%active .or. allocated(model%load_path%vertex) .or. &
                    model%cycle%active)) then
             call refuse('--resume continues a growth run, a loading history or a cycle run, '// &
-                        'and '//input//' has no &growth, &load_path or &cycle')
+                        'and '//input//' has none of &growth, &load_path, &cycle')
             return
         end if
         call resolve_target(path, final_path, read_error)

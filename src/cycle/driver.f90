@@ -10,7 +10,7 @@
 module ddc_cycle_driver
     use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
-    use ddc_error, only: error_type, set_error, exit_solver_failure
+    use ddc_error, only: error_type, set_error, exit_solver_failure, exit_bad_input
     use ddc_text, only: itoa, short_real
     use ddc_model_types, only: model_type, condition_rate_state, condition_contact
     use ddc_model_cycles, only: cycle_record, cycle_end_time, cycle_normal_stress, &
@@ -113,8 +113,8 @@ contains
             return
         end if
         call loop%run%operator%prepare_shear_products()
-        call start(model, loop, restart)
-        call integrate(model, loop, reason, lost, writer, error)
+        call start(model, loop, error, restart)
+        if (.not. allocated(error)) call integrate(model, loop, reason, lost, writer, error)
         if (allocated(error)) then
             call loop%run%finish()
             return
@@ -155,17 +155,20 @@ contains
     end function time_unit
 
     !> The fault, the points, the record and the state to start from: time 0, or the earlier
-    !> run's end; the rate at the start.
-    subroutine start(model, loop, restart)
+    !> run's end; the rate at the start. Error (bad input): an element whose initial values
+    !> give no state (a sweep task's shear modulus may change the damping the input's check
+    !> saw).
+    subroutine start(model, loop, error, restart)
         type(model_type), intent(in) :: model
         type(cycle_loop), intent(inout), target :: loop
+        type(error_type), allocatable, intent(out) :: error
         type(cycle_record), intent(in), optional :: restart
         real(wp), allocatable :: x(:), y(:), v_init(:)
         integer :: i, m, failure
 
         associate (op => loop%run%operator, c => model%cycle)
             m = op%nc
-            loop%fault = new_fault(model%elements, op%contact, c, op)
+            loop%fault = new_fault(model%elements, op%contact, c, shear_modulus_of(model), op)
             allocate (x(0), y(0))
             if (allocated(model%observations)) then
                 do i = 1, size(model%observations)
@@ -186,6 +189,15 @@ contains
             else
                 loop%record = new_record(model%elements, op%contact, c%profile_spacing, size(x))
                 v_init = rate_state_column(model, op%contact)
+                i = findloc((-loop%fault%tau0 - loop%fault%eta * v_init) * v_init > 0.0_wp, &
+                            .false., 1)
+                if (i > 0) then
+                    call set_error(error, exit_bad_input, 'cycle: element '// &
+                        itoa(op%contact(i))//': tau0 and v_init give no initial state with '// &
+                        'the radiation damping '//short_real(loop%fault%eta)//' (-tau0 - '// &
+                        'eta v_init must have the sign of v_init)')
+                    return
+                end if
                 loop%y = loop%fault%initial(v_init)
                 loop%record%now%step = 1.0e-3_wp * minval(loop%fault%dc / abs(v_init))
                 loop%record%now%time = 0.0_wp

@@ -13,9 +13,9 @@ module ddc_cycle_fault
     use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
     use ddc_model_types, only: element_set
-    use ddc_model_cycles, only: cycle_options
-    use ddc_model_rate_state, only: rate_state_table, rate_state_count, rs_a, rs_b, rs_dc, rs_f0, rs_v0, &
-        rs_v_init, rs_sigma0, rs_tau0
+    use ddc_model_cycles, only: cycle_options, radiation_damping_of
+    use ddc_model_rate_state, only: rate_state_table, rate_state_count, rs_a, rs_b, rs_dc, &
+        rs_f0, rs_v0, rs_v_init, rs_sigma0, rs_tau0
     use ddc_solve_operator, only: elastic_operator
     use ddc_cycle_friction, only: slip_rate, state_rate, initial_state
     use ddc_cycle_runge_kutta, only: ode_system
@@ -52,7 +52,7 @@ contains
 
     !> The fault of the rate-and-state elements `rows` of a set of elements, for a cycle
     !> run's options, on an operator whose contact elements they are.
-    function new_fault(elements, rows, options, operator) result(fault)
+    function new_fault(elements, rows, options, shear_modulus, operator) result(fault)
         !> The elements with their rate-and-state values
         type(element_set), intent(in) :: elements
         !> The rate-and-state elements, in the order of the operator's contact elements,
@@ -60,6 +60,8 @@ contains
         integer, intent(in) :: rows(:)
         !> The cycle run's options
         type(cycle_options), intent(in) :: options
+        !> Shear modulus [stress unit] (the radiation damping of a shear wave speed)
+        real(wp), intent(in) :: shear_modulus
         !> The operator (it must outlive the fault)
         class(elastic_operator), intent(in), target :: operator
         type(rate_state_fault) :: fault
@@ -76,7 +78,7 @@ contains
         fault%v0 = table(:, rs_v0)
         fault%sigma0 = table(:, rs_sigma0)
         fault%tau0 = table(:, rs_tau0)
-        fault%eta = options%radiation_damping
+        fault%eta = radiation_damping_of(options, shear_modulus)
         fault%plate_rate = options%plate_rate
         fault%law = options%state_law
         fault%operator => operator

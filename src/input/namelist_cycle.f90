@@ -6,7 +6,7 @@
 module ddc_input_namelist_cycle
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type, condition_rate_state, condition_contact
-    use ddc_model_cycles, only: state_law_names
+    use ddc_model_cycles, only: state_law_names, radiation_damping_of
     use ddc_model_rate_state, only: rs_v_init, rs_tau0
     use ddc_model_loads, only: shear_modulus_of
     use ddc_model_limits, only: quantity_positive, quantity_non_negative
@@ -91,8 +91,9 @@ contains
                 end if
             end if
             call read_damping()
-            if (check_scalar(plate_rate, 'plate_rate', .false., prefix, messages)) &
-                c%plate_rate = plate_rate
+            if (check_scalar(plate_rate, 'plate_rate', .false., prefix, messages)) then
+              c%plate_rate = plate_rate
+            end if
             if (check_scalar(seismic_threshold, 'seismic_threshold', .false., prefix, &
                              messages, quantity_positive)) c%seismic_threshold = seismic_threshold
             law = find_name(lower(trim(adjustl(state_law))), state_law_names)
@@ -103,18 +104,21 @@ contains
                 c%state_law = law
             end if
             ! About 10^4 rows between events unless given (docs/input-reference.md#cycle)
-            if (output_interval == unset_real .and. c%end_time > 0.0_wp) &
-                output_interval = c%end_time / 1.0e4_wp
+            if (output_interval == unset_real .and. c%end_time > 0.0_wp) then
+              output_interval = c%end_time / 1.0e4_wp
+            end if
             if (check_scalar(output_interval, 'output_interval', .false., prefix, messages, &
                              quantity_non_negative)) c%output_interval = output_interval
             if (check_scalar(event_output_interval, 'event_output_interval', .false., prefix, &
-                             messages, quantity_non_negative)) &
-                c%event_output_interval = event_output_interval
+                             messages, quantity_non_negative)) then
+              c%event_output_interval = event_output_interval
+            end if
             if (check_scalar(profile_spacing, 'profile_spacing', .false., prefix, messages, &
                              quantity_non_negative)) c%profile_spacing = profile_spacing
             if (check_scalar(checkpoint_interval, 'checkpoint_interval', .false., prefix, &
-                             messages, quantity_non_negative)) &
-                c%checkpoint_interval = checkpoint_interval
+                             messages, quantity_non_negative)) then
+              c%checkpoint_interval = checkpoint_interval
+            end if
         end associate
         call check_cycle_model()
 
@@ -130,13 +134,12 @@ contains
                     if (check_scalar(shear_wave_speed, 'shear_wave_speed', .false., prefix, &
                                      messages, quantity_positive)) then
                         c%shear_wave_speed = shear_wave_speed
-                        c%radiation_damping = shear_modulus_of(model) / &
-                                              (2.0_wp * shear_wave_speed)
                     end if
                 else if (radiation_damping /= unset_real) then
                     if (check_scalar(radiation_damping, 'radiation_damping', .false., prefix, &
-                                     messages, quantity_non_negative)) &
-                        c%radiation_damping = radiation_damping
+                                     messages, quantity_non_negative)) then
+                      c%radiation_damping = radiation_damping
+                    end if
                 else
                     call add(messages, prefix//'shear_wave_speed or radiation_damping is '// &
                              'required (the radiation damping G / (2 c_s) of every '// &
@@ -150,11 +153,14 @@ contains
         subroutine check_cycle_model()
             integer :: k
 
-            if (.not. rate_state) call add(messages, prefix//"needs rate-and-state "// &
-                "elements (a &fracture with condition = 'rate_state')")
-            if (any(fractures%valid .and. fractures%condition == condition_contact)) &
-                call add(messages, prefix//"does not take elements of condition 'contact' "// &
+            ! A fracture that could not be read may be a rate-and-state one: its own message
+            ! is enough.
+            if (.not. rate_state .and. all(fractures%valid)) call add(messages, prefix// &
+                "needs rate-and-state elements (a &fracture with condition = 'rate_state')")
+            if (any(fractures%valid .and. fractures%condition == condition_contact)) then
+              call add(messages, prefix//"does not take elements of condition 'contact' "// &
                          "(a cycle run's faults are its rate-and-state elements)")
+            end if
             if (groups(g_growth)%count > 0) call add(messages, prefix//'does not combine '// &
                                                      'with &growth')
             if (groups(g_load_path)%count > 0) call add(messages, prefix//'does not '// &
@@ -177,7 +183,7 @@ contains
             do i = 1, size(fracture%rate_state, 1)
                 v = fracture%rate_state(i, rs_v_init)
                 tau = fracture%rate_state(i, rs_tau0)
-                drive = -tau - model%cycle%radiation_damping * v
+                drive = -tau - radiation_damping_of(model%cycle, shear_modulus_of(model)) * v
                 if (v == 0.0_wp) then
                     call add(messages, prefix//fracture%label//': element '//itoa(i)// &
                              ' has v_init = 0: the initial state follows from a slip rate '// &

@@ -8,7 +8,7 @@ module ddc_model_cycles
     implicit none
     private
 
-    public :: cycle_options, cycle_record, cycle_resume
+    public :: cycle_options, cycle_record, cycle_resume, radiation_damping_of
     public :: state_law_aging, state_law_slip, state_law_names
     public :: cycle_running, cycle_end_time, cycle_normal_stress, cycle_step_size, &
         cycle_end_names
@@ -38,11 +38,10 @@ module ddc_model_cycles
         !> Tolerance of the time integration: the largest accepted local error of a step,
         !> relative (docs/theory/cycles.md#error-control) [-]
         real(wp) :: tolerance = 1.0e-7_wp
-        !> Radiation damping eta = G / (2 c_s) [stress unit * time unit / length unit], as
-        !> given or from the shear wave speed
-        real(wp) :: radiation_damping = 0.0_wp
-        !> The shear wave speed it came from [length unit / time unit] (0: given directly)
-        real(wp) :: shear_wave_speed = 0.0_wp
+        !> Radiation damping eta [stress unit * time unit / length unit] as given, or the shear
+        !> wave speed c_s [length unit / time unit] it is G / (2 c_s) of (0 where the other is
+        !> given: radiation_damping_of)
+        real(wp) :: radiation_damping = 0.0_wp, shear_wave_speed = 0.0_wp
         !> Plate rate of the back-slip loading, in the sign of ds [length unit / time unit]
         real(wp) :: plate_rate = 0.0_wp
         !> A time is seismic while the largest slip rate is at least this [length unit / time
@@ -123,5 +122,22 @@ module ddc_model_cycles
         !> Where the run stands, for --resume
         type(cycle_resume) :: now
     end type cycle_record
+
+contains
+
+    !> The radiation damping of a cycle run [stress unit * time unit / length unit]: as given,
+    !> or G / (2 c_s) (docs/theory/cycles.md#the-fault).
+    pure real(wp) function radiation_damping_of(options, shear_modulus)
+        !> The run's options
+        type(cycle_options), intent(in) :: options
+        !> The shear modulus G [stress unit]
+        real(wp), intent(in) :: shear_modulus
+
+        if (options%shear_wave_speed > 0.0_wp) then
+            radiation_damping_of = shear_modulus / (2.0_wp * options%shear_wave_speed)
+        else
+            radiation_damping_of = options%radiation_damping
+        end if
+    end function radiation_damping_of
 
 end module ddc_model_cycles

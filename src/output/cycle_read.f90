@@ -4,6 +4,7 @@
 !> (app/resume_check: same version and model), so a dataset that is missing here is an
 !> error of the file.
 module ddc_output_cycle_read
+    use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_io_failure
     use ddc_text, only: find_name, itoa
@@ -74,7 +75,7 @@ contains
         call integer_attribute('/cycle', 'rejected_steps', record%rejected)
         call integer_attribute('/cycle', 'products', record%products)
         call real_attribute('/cycle', 'newton_iterations')
-        if (allocated(value)) record%newton_iterations = nint(value(1), kind(record%newton_iterations))
+        if (allocated(value)) record%newton_iterations = nint(value(1), int64)
         call real_attribute('/cycle', 'seconds')
         if (allocated(value)) record%seconds = value(1)
         associate (now => record%now)

@@ -7,7 +7,9 @@ module ddc_output_hdf5_cycle
     use ddc_error, only: error_type
     use ddc_text, only: allocated_text
     use ddc_model_types, only: model_type
-    use ddc_model_cycles, only: cycle_record, cycle_resume, state_law_names, cycle_end_names
+    use ddc_model_cycles, only: cycle_record, cycle_resume, state_law_names, cycle_end_names, &
+        radiation_damping_of
+    use ddc_model_loads, only: shear_modulus_of
     use ddc_model_rate_state, only: rate_state_value, rate_state_count, rate_state_values, &
         rate_state_table, rate_state_units
     use ddc_output_hdf5_handles, only: h5_object, create_group, close_group
@@ -83,7 +85,8 @@ contains
             call write_attribute(group, 'time_unit', time, error)
             call write_attribute(group, 'end_time', c%end_time, error)
             call write_attribute(group, 'tolerance', c%tolerance, error)
-            call write_attribute(group, 'radiation_damping', c%radiation_damping, error)
+            call write_attribute(group, 'radiation_damping', &
+                                 radiation_damping_of(c, shear_modulus_of(model)), error)
             call write_attribute(group, 'shear_wave_speed', c%shear_wave_speed, error)
             call write_attribute(group, 'plate_rate', c%plate_rate, error)
             call write_attribute(group, 'seismic_threshold', c%seismic_threshold, error)

@@ -56,8 +56,9 @@ contains
         if (has_dataset(path, '/history/pivots')) call for_each_history_column( &
             state%results%history, reader)
         call move_alloc(reader%error, error)
-        if (.not. allocated(error) .and. has_dataset(path, '/cycle/time')) &
+        if (.not. allocated(error) .and. has_dataset(path, '/cycle/time')) then
             call read_cycle_record(path, state%results%cycle, error)
+        end if
     end subroutine read_restart
 
     !> The final geometry's end points and fracture ranges, its element results and tips.

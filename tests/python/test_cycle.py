@@ -68,7 +68,10 @@ def spring_slider(law, end):
 
     def rate(drive, psi):
         shift = (F0 + B * psi) / A - np.log(2.0 * V0)
-        balance = lambda x: SIGMA * A * np.arcsinh(np.exp(x + shift)) + ETA * np.exp(x) - drive
+
+        def balance(x):
+            return SIGMA * A * np.arcsinh(np.exp(x + shift)) + ETA * np.exp(x) - drive
+
         return np.exp(brentq(balance, -200.0, np.log(drive / ETA), xtol=1e-14, rtol=1e-15))
 
     def rates(t, y):

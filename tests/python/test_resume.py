@@ -136,8 +136,8 @@ def test_incomplete_or_foreign_files_are_refused(tmp_path, change, words):
      "is the result of another model: &fracture mu: 0.6 before, 0.5 now"),
     (history().replace("syy = -10", "syy = -10, sxx = -2"),
      "is the result of another model: &remote_stress sxx: not given before, -2 now"),
-    (PLAIN.format(mu=0.6), ("--resume continues a growth run or a loading history, and new.nml "
-                            "has neither &growth nor &load_path")),
+    (PLAIN.format(mu=0.6), ("--resume continues a growth run, a loading history or a cycle run, "
+                            "and new.nml has none of &growth, &load_path, &cycle")),
     (GROWTH.format(steps=3), "is not a growth run (no /growth), and new.nml has &growth"),
     (history(steps="2, 2"), ("the &load_path of new.nml has 5 steps, fewer than the 6 of the "
                              "earlier run")),

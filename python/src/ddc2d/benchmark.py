@@ -7,6 +7,8 @@ repository also scripts/benchmark.py.
                  [--steps K] [--compare-lemke] [--lu-exe PATH] [--workdir DIR]
                  [--mpi P [--mpiexec PATH] [--block-size NB]]
                  [--matrix dense|hierarchical [--compare-dense]] [--figure PNG]
+    benchmark.py --exe PATH --case bp3 --json FILE [--threads T] [--matrix M] [--years Y]
+                 [--cell C] [--tolerance TOL] [--workdir DIR]
 
 For every size N it writes a namelist model with N contact elements, runs ``ddc2d`` on it,
 reads the phase times from ``/solver/seconds`` of the HDF5 output (the output phase from
@@ -47,6 +49,16 @@ Cases (CASES: a model builder per case; a new case adds one):
             critical. One set of kept factors serves every load step (a new load changes the
             right-hand side, not the matrix). Measured against LU(2 N_final) like the growth
             case; the record adds ``steps`` (load steps) too.
+
+The case ``bp3`` is an earthquake-cycle run (docs/earthquake-cycles.md#bp3-qd): the SCEC
+SEAS benchmark BP3-QD, thrust at 60 degrees (ddc2d.seas.bp3_namelist; --cell, default 25 m;
+--years, default 1500; --tolerance, default 1e-7; --matrix, default hierarchical for this
+case), run once. It prints and records the wall time, the run's own seconds, accepted and
+rejected steps, products of the elastic operator and the peak memory, the first event and
+the last complete cycle of four events (inter-event times from the one of about 63 years,
+and the slip at the station 7.5 km down-dip of each event) against the community's numbers
+(BP3_COMMUNITY: the FDRA submission, 25 m cells; Erickson et al. 2023), with the relative
+differences (the issue's target: within 2 %).
 
 --compare-lemke runs every model a second time with lcp_method = 'lemke' and adds to its
 record ``lemke``: Lemke's seconds, peak memory and ratio to the LU, whether the states are
@@ -116,6 +128,10 @@ DEFAULT_STEPS = {"history": 100, "growth": 25, "growth-work": 25, "growth-histor
 GROWTH_CASES = ("growth", "growth-work", "growth-history")
 #: New elements per tip and growth step of the growth case
 GROWTH_ELEMENTS = 20
+#: BP3-QD thrust 60 (FDRA, 25 m cells; Erickson et al. 2023): the first event's start [yr],
+#: the inter-event times of the cycle of four [yr] and the slip of its events at 7.5 km [m]
+BP3_COMMUNITY = {"first_event": 177.1, "intervals": (63.3, 87.1, 91.1, 97.5),
+                 "slips": (2.33, 2.59, 2.78, 2.97)}
 
 
 def straight_model(n, grid):
@@ -510,6 +526,80 @@ def benchmark_one(exe, lu_exe, n, case, threads, method, grid, workdir, steps=10
     return record
 
 
+def bp3_cycle(starts, slips):
+    """The last complete cycle of four events: inter-event times from the one nearest
+    BP3_COMMUNITY's first (the short one, within 10 %) and the slips of the four events it
+    leads to; (None, None) when the record holds no such cycle."""
+    intervals = np.diff(starts)
+    short = BP3_COMMUNITY["intervals"][0]
+    for k in range(len(intervals) - 4, -1, -1):
+        if abs(intervals[k] / short - 1.0) < 0.1:
+            return [float(v) for v in intervals[k:k + 4]], [float(v) for v in slips[k + 1:k + 5]]
+    return None, None
+
+
+def bp3_benchmark(exe, threads, matrix, years, cell, tolerance, workdir):
+    """Run BP3-QD thrust 60 once; its record (docs/earthquake-cycles.md#bp3-qd)."""
+    from .seas import YEAR, bp3_namelist
+    env = dict(os.environ, OMP_NUM_THREADS=str(threads), OPENBLAS_NUM_THREADS=str(threads))
+    path = Path(workdir) / "bp3qd_thrust60.nml"
+    path.write_text(bp3_namelist(cell=cell, years=years, matrix=matrix, tolerance=tolerance))
+    result = path.with_suffix(".h5")
+    _, wall, rss = run_measured([str(exe), str(path), "-o", str(result)], env)
+    with h5py.File(result, "r") as f:
+        cycle = f["cycle"]
+        starts = cycle["event_start"][()] / YEAR
+        station = int(np.argmin(np.abs(cycle["distance"][()] - 7500.0)))
+        slips = cycle["event_slip"][()][:, station] if starts.size else np.zeros(0)
+        attrs = dict(cycle.attrs)
+        compression = float(f["solver"].attrs.get("compression_ratio", 1.0))
+    intervals, cycle_slips = bp3_cycle(starts, slips)
+    community = BP3_COMMUNITY
+    record = {
+        "case": "bp3", "threads": threads, "matrix": matrix, "cell": cell, "years": years,
+        "tolerance": tolerance, "wall_seconds": wall, "seconds": float(attrs["seconds"]),
+        "steps": int(attrs["steps"]), "rejected_steps": int(attrs["rejected_steps"]),
+        "products": int(attrs["products"]), "peak_rss_mb": rss,
+        "compression_ratio": compression, "event_starts_yr": [float(v) for v in starts],
+        "cycle_intervals_yr": intervals, "cycle_slips_m": cycle_slips,
+        "first_event_difference": float(starts[0] / community["first_event"] - 1.0)
+        if starts.size else None,
+        "interval_differences": None if intervals is None else
+        [a / b - 1.0 for a, b in zip(intervals, community["intervals"])],
+        "slip_differences": None if cycle_slips is None else
+        [a / b - 1.0 for a, b in zip(cycle_slips, community["slips"])],
+    }
+    return record
+
+
+def print_bp3(record, out=sys.stdout):
+    """The BP3-QD record as text: cost, then the comparison with the community."""
+    r = record
+    print(f"# ddc2d benchmark, case bp3 (BP3-QD thrust 60), {r['cell']:g} m cells, "
+          f"{r['years']:g} years, tolerance {r['tolerance']:g}, matrix {r['matrix']} "
+          f"({100 * r['compression_ratio']:.1f} %), {r['threads']} thread(s), "
+          f"{time.strftime('%Y-%m-%d')}", file=out)
+    print(f"  wall {r['wall_seconds']:.1f} s (run {r['seconds']:.1f} s), {r['steps']} steps "
+          f"({r['rejected_steps']} rejected), {r['products']} products, peak "
+          f"{r['peak_rss_mb']:.0f} MB", file=out)
+    community = BP3_COMMUNITY
+    if r["first_event_difference"] is not None:
+        print(f"  first event {r['event_starts_yr'][0]:.2f} yr (community "
+              f"{community['first_event']}, {100 * r['first_event_difference']:+.2f} %)",
+              file=out)
+    if r["cycle_intervals_yr"] is None:
+        print("  no complete cycle of four events", file=out)
+        return
+    for name, values, reference, differences, unit in (
+            ("inter-event times", r["cycle_intervals_yr"], community["intervals"],
+             r["interval_differences"], "yr"),
+            ("slips at 7.5 km", r["cycle_slips_m"], community["slips"],
+             r["slip_differences"], "m")):
+        cells = ", ".join(f"{v:.2f} ({ref}, {100 * d:+.2f} %)"
+                          for v, ref, d in zip(values, reference, differences))
+        print(f"  {name} [{unit}]: {cells}", file=out)
+
+
 def optional(value, spec):
     """A table cell: the value formatted, '-' for None."""
     return "-" if value is None else format(value, spec)
@@ -583,9 +673,9 @@ def main(argv=None):
         return measure_rank(argv[1:])
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--exe", required=True, type=Path, help="the ddc2d executable")
-    parser.add_argument("--sizes", required=True,
-                        help="comma-separated numbers of contact elements")
-    parser.add_argument("--case", required=True, choices=sorted(CASES))
+    parser.add_argument("--sizes", default=None,
+                        help="comma-separated numbers of contact elements (not for bp3)")
+    parser.add_argument("--case", required=True, choices=sorted([*CASES, "bp3"]))
     parser.add_argument("--json", required=True, type=Path, help="JSON file to write")
     parser.add_argument("--threads", default=None,
                         help="OpenMP and OpenBLAS threads of each process, or a comma-"
@@ -611,14 +701,25 @@ def main(argv=None):
     parser.add_argument("--mpiexec", default="mpiexec", help="MPI launcher (default mpiexec)")
     parser.add_argument("--block-size", type=int, default=None,
                         help="&solver block_size of the distributed matrices (default 64)")
-    parser.add_argument("--matrix", default="dense", choices=("dense", "hierarchical"),
-                        help="&solver matrix (default dense)")
+    parser.add_argument("--matrix", default=None, choices=("dense", "hierarchical"),
+                        help="&solver matrix (default dense; hierarchical for bp3)")
+    parser.add_argument("--years", type=float, default=1500.0,
+                        help="bp3: years simulated (default 1500)")
+    parser.add_argument("--cell", type=float, default=25.0,
+                        help="bp3: cell size [m] (default 25)")
+    parser.add_argument("--tolerance", type=float, default=1e-7,
+                        help="bp3: &cycle tolerance (default 1e-7)")
     parser.add_argument("--compare-dense", action="store_true",
                         help="with --matrix hierarchical: also run every model on the dense "
                              "matrix where it fits and compare")
     parser.add_argument("--figure", type=Path, default=None,
                         help="also draw total time and peak memory against N (PNG)")
     args = parser.parse_args(argv)
+    if args.case == "bp3":
+        return main_bp3(args, parser)
+    if args.sizes is None:
+        parser.error("--sizes is required for this case")
+    args.matrix = args.matrix or "dense"
 
     try:
         sizes = [int(s) for s in args.sizes.split(",") if s.strip()]
@@ -678,6 +779,22 @@ def main(argv=None):
     if args.figure:
         plot_scaling(records, args.figure)
     args.json.write_text(json.dumps(records, indent=2) + "\n")
+    return 0
+
+
+def main_bp3(args, parser):
+    """--case bp3: one earthquake-cycle run, printed and written as a one-record JSON list."""
+    exe = args.exe.resolve()
+    if not exe.is_file():
+        parser.error(f"--exe {exe} does not exist")
+    threads = int(args.threads or 1)
+    with tempfile.TemporaryDirectory() as tmp:
+        workdir = args.workdir or Path(tmp)
+        workdir.mkdir(parents=True, exist_ok=True)
+        record = bp3_benchmark(exe, threads, args.matrix or "hierarchical", args.years,
+                               args.cell, args.tolerance, workdir)
+    print_bp3(record)
+    args.json.write_text(json.dumps([record], indent=2) + "\n")
     return 0
 
 

@@ -11,8 +11,8 @@ Used by ddc2d.open_result, ``ddc2d-plot``, ``collect-sweep``, ``compare-twodd``,
   attribute and for tools that read single datasets;
 * the groups of a result: ``load_result`` reads a whole file, ``read_elements``,
   ``read_fractures``, ``read_tips``, ``read_fields``, ``read_history``, ``read_growth``,
-  ``read_cycle``, ``read_solver`` and ``read_sweep`` one group of an open file; ``is_complete`` tells a
-  finished file;
+  ``read_cycle``, ``read_solver`` and ``read_sweep`` one group of an open file;
+  ``is_complete`` tells a finished file;
 * the tie rule of every default that picks "the largest" or "the first": ``index_of_extreme``
   and ``is_tie`` (values within ``TIE_RTOL`` = 1e-9 relative count as equal, the lowest index
   wins), so that a choice never depends on last-bit rounding (symmetric models, other BLAS

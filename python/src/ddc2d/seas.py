@@ -85,11 +85,13 @@ def bp3_namelist(dip: float = 60.0, thrust: bool = True, cell: float = 25.0,
     tau = (p["sigma"] * p["amax"] * np.arcsinh(abs(vp) / (2.0 * p["v0"]) * np.exp(
         (p["f0"] + p["b"] * np.log(p["v0"] / abs(vp))) / p["amax"])) + eta * abs(vp))
     corners = [0.0, p["H"] * scale, (p["H"] + p["h"]) * scale, p["Wf"] * scale]
-    count = int(round(corners[-1] / cell))
+    count = round(corners[-1] / cell)
     middle = (np.arange(count) + 0.5) * corners[-1] / count
     a = np.interp(middle, corners, [p["a0"], p["a0"], p["amax"], p["amax"]])
     # A polyline segment per run of equal a (the transition: one per element)
-    vertices, counts, values = [0.0], [], []
+    vertices: list[float] = [0.0]
+    counts: list[int] = []
+    values: list[float] = []
     for k in range(count):
         if values and a[k] == values[-1]:
             counts[-1] += 1
@@ -101,9 +103,9 @@ def bp3_namelist(dip: float = 60.0, thrust: bool = True, cell: float = 25.0,
     cos, sin = np.cos(np.radians(dip)), np.sin(np.radians(dip))
 
     def listed(numbers: Sequence[float]) -> str:
-        """The numbers, eight to a line."""
-        texts = [f"{v:.12g}" for v in numbers]
-        return ",\n    ".join(", ".join(texts[k:k + 8]) for k in range(0, len(texts), 8))
+        """The numbers, six to a line (no negative zero)."""
+        texts = [f"{v + 0.0:.12g}" for v in numbers]
+        return ",\n    ".join(", ".join(texts[k:k + 6]) for k in range(0, len(texts), 6))
 
     points = f"&points name = 'surface', file = '{points_file}' /\n" if points_file else ""
     return (
@@ -136,7 +138,7 @@ def unit_factor(label: str, table: dict[str, float], what: str) -> float:
 def surface_name(x_m: float) -> str:
     """The benchmark's name of a surface station at x [m] from the trace: 'srfst_fn+08';
     the sign tells the two sides of the trace apart (+00, -00)."""
-    km = int(round(abs(x_m) / 1.0e3))
+    km = round(abs(x_m) / 1.0e3)
     return f"srfst_fn{'-' if x_m < 0 else '+'}{km:02d}"
 
 
@@ -192,7 +194,7 @@ def seas_files(result_path: str | Path, problem: str = "SEAS Benchmark BP3-QD",
                            -cycle["shear_traction"][:, j] * stress,
                            -cycle["normal_traction"][:, j] * stress,
                            cycle["state"][:, j] + np.log10(time)])
-        files[f"fltst_dp{int(round(km * 10)):03d}"] = text
+        files[f"fltst_dp{round(km * 10):03d}"] = text
     for p, (x, y) in enumerate(zip(cycle["point_x"] * length, cycle["point_y"] * length)):
         if abs(y) > SURFACE_TOLERANCE_M:
             continue
