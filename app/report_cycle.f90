@@ -2,7 +2,7 @@
 !> what the program prints of &cycle before the run and of /cycle after it.
 module ddc_app_report_cycle
     use ddc_kinds, only: wp
-    use ddc_text, only: itoa, short_real
+    use ddc_text, only: itoa, short_real, counted, allocated_text
     use ddc_model_types, only: model_type
     use ddc_model_cycles, only: cycle_record, state_law_names, cycle_end_names, &
         radiation_damping_of
@@ -22,8 +22,7 @@ contains
         type(model_type), intent(in) :: model
         character(len=:), allocatable :: time, rate, damping
 
-        time = 's'
-        if (allocated(model%time_unit)) time = model%time_unit
+        time = allocated_text(model%time_unit)
         rate = model%length_unit//'/'//time
         associate (c => model%cycle)
             damping = short_real(radiation_damping_of(c, shear_modulus_of(model)))//' '// &
@@ -52,9 +51,8 @@ contains
         type(cycle_record), intent(in) :: record
         character(len=:), allocatable :: time
 
-        time = 's'
-        if (allocated(model%time_unit)) time = model%time_unit
-        write (unit, '(a)') '  cycle: '//itoa(record%events)//' events to t = '// &
+        time = allocated_text(model%time_unit)
+        write (unit, '(a)') '  cycle: '//counted(record%events, 'event', 'events')//' to t = '// &
             short_real(record%now%time)//' '//time//' ('//trim(cycle_end_names( &
             record%end_reason))//'), '//itoa(record%steps)//' steps ('//itoa(record%rejected)// &
             ' rejected), '//itoa(record%products)//' products, '//itoa(record%rows)// &

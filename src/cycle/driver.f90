@@ -8,10 +8,9 @@
 !> the time) the run stops: the writer keeps what was computed, and the error says which
 !> element, when.
 module ddc_cycle_driver
-    use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_solver_failure, exit_bad_input
-    use ddc_text, only: itoa, short_real
+    use ddc_text, only: itoa, short_real, allocated_text
     use ddc_model_types, only: model_type, condition_rate_state, condition_contact
     use ddc_model_cycles, only: cycle_record, cycle_end_time, cycle_normal_stress, &
         cycle_step_size
@@ -21,7 +20,7 @@ module ddc_cycle_driver
     use ddc_model_rate_state, only: rate_state_table, rate_state_count, rs_v_init
     use ddc_solve_operator, only: elastic_load
     use ddc_run_contact_run, only: contact_run
-    use ddc_run_model, only: finish_model
+    use ddc_run_model, only: finish_model, wall_seconds
     use ddc_progress, only: report_progress
     use ddc_cycle_fault, only: rate_state_fault, new_fault
     use ddc_cycle_runge_kutta, only: embedded_pair, dormand_prince, attempt_step, next_step
@@ -74,14 +73,6 @@ module ddc_cycle_driver
 
 contains
 
-    !> Wall-clock seconds since an arbitrary origin.
-    real(wp) function wall_seconds()
-        integer(int64) :: count, rate
-
-        call system_clock(count, rate)
-        wall_seconds = real(count, wp) / real(rate, wp)
-    end function wall_seconds
-
     !> Run the model's earthquake cycles to end_time, from time 0 or from the record of an
     !> earlier run of the same model (--resume).
     subroutine run_cycles(model, results, error, writer, restart)
@@ -120,20 +111,19 @@ contains
             return
         end if
         loop%record%end_reason = reason
+        if (reason == cycle_normal_stress) loop%record%end_element = loop%record%elements(lost)
         call fill_results(model, loop, results)
         if (reason /= cycle_end_time) then
             if (reason == cycle_normal_stress) then
-                loop%record%end_element = loop%record%elements(lost)
-                results%cycle%end_element = loop%record%end_element
                 call set_error(error, exit_solver_failure, 'cycle: the effective normal '// &
                     'stress of element '//itoa(loop%record%elements(lost))//' reaches zero '// &
-                    'at t = '//short_real(loop%record%now%time)//' '//time_unit(model)// &
+                    'at t = '//short_real(loop%record%now%time)//' '//allocated_text(model%time_unit)// &
                     ' (rate-and-state friction needs it positive); the result file keeps '// &
                     'the run up to then')
             else
                 call set_error(error, exit_solver_failure, 'cycle: no time step advances '// &
                     'the time at t = '//short_real(loop%record%now%time)//' '// &
-                    time_unit(model)//' (the error control rejects every step): the '// &
+                    allocated_text(model%time_unit)//' (the error control rejects every step): the '// &
                     'result file keeps the run up to then; a larger tolerance may pass')
             end if
             if (present(writer)) then
@@ -144,15 +134,6 @@ contains
         end if
         call loop%run%finish()
     end subroutine run_cycles
-
-    !> The model's time unit name.
-    pure function time_unit(model) result(name)
-        type(model_type), intent(in) :: model
-        character(len=:), allocatable :: name
-
-        name = 's'
-        if (allocated(model%time_unit)) name = model%time_unit
-    end function time_unit
 
     !> The fault, the points, the record and the state to start from: time 0, or the earlier
     !> run's end; the rate at the start. Error (bad input): an element whose initial values
@@ -308,7 +289,7 @@ contains
                 now%event_start_slip = loop%y(:m)
                 due = .true.
                 call report_progress('cycle: event '//itoa(loop%record%events + 1)// &
-                    ' starts at t = '//short_real(now%time)//' '//time_unit(model)// &
+                    ' starts at t = '//short_real(now%time)//' '//allocated_text(model%time_unit)// &
                     ' on element '//itoa(loop%record%elements(imax)))
             else if (now%in_event) then
                 now%event_peak_rate = max(now%event_peak_rate, vmax)
@@ -324,7 +305,7 @@ contains
             if (wall_seconds() - loop%reported >= progress_seconds) then
                 loop%reported = wall_seconds()
                 call report_progress('cycle: t = '//short_real(now%time)//' '// &
-                    time_unit(model)//', step '//itoa(loop%record%steps)// &
+                    allocated_text(model%time_unit)//', step '//itoa(loop%record%steps)// &
                     ', largest slip rate '//short_real(vmax)//', events '// &
                     itoa(loop%record%events))
             end if
@@ -347,7 +328,7 @@ contains
                            slip(loop%recorded))
             now%in_event = .false.
             call report_progress('cycle: event '//itoa(loop%record%events)//' ends at t = '// &
-                short_real(now%time)//' '//time_unit(model)//', largest slip '// &
+                short_real(now%time)//' '//allocated_text(model%time_unit)//', largest slip '// &
                 short_real(maxval(abs(slip))))
         end associate
     end subroutine end_event

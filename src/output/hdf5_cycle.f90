@@ -22,15 +22,14 @@ module ddc_output_hdf5_cycle
 
 contains
 
-    !> The model's unit names: length, stress, time (the time unit 's' when not given).
+    !> The model's unit names: length, stress, time.
     pure subroutine unit_names(model, length, stress, time)
         type(model_type), intent(in) :: model
         character(len=:), allocatable, intent(out) :: length, stress, time
 
         length = allocated_text(model%length_unit)
         stress = allocated_text(model%stress_unit)
-        time = 's'
-        if (allocated(model%time_unit)) time = model%time_unit
+        time = allocated_text(model%time_unit)
     end subroutine unit_names
 
     !> /elements/<value> of every rate-and-state value (ddc_model_rate_state; 0 on elements

@@ -25,7 +25,7 @@ module ddc_run_model
     implicit none
     private
 
-    public :: run_model, finish_model, evaluate_fields, model_load
+    public :: run_model, finish_model, evaluate_fields, model_load, wall_seconds
 
     !> A field of at least this many point-element pairs reports its end (progress)
     real(wp), parameter :: field_report_pairs = 1.0e8_wp

@@ -170,6 +170,8 @@ ERRORS = {
                   "one process"]),
     "growth": (DATA / "growth" / "good.nml", 2,
                ["good.nml", "with 4 processes", "&growth", "one process"]),
+    "cycle": (DATA / "cycle" / "good_slider.nml", 2,
+              ["good_slider.nml", "with 4 processes", "&cycle", "one process"]),
     "hierarchical": (DATA / "mpi" / "hierarchical.nml", 2,
                      ["hierarchical.nml", "with 4 processes", "matrix = 'hierarchical'",
                       "one process"]),

@@ -3,8 +3,8 @@ docs/theory/cycles.md): the run against independent solutions, its invariances, 
 where an effective normal stress reaches zero, --resume, the SEAS files and the figures.
 
 * One element in the full plane is a spring-slider: its own self-stiffness k = G / (pi (1 -
-  nu) a) and back-slip at V_p give tau = tau0 + k (delta - V_p t). scipy's DOP853 at rtol
-  1e-12 integrates the same equations (slip rate by brentq to 1e-15); with the aging and the
+  nu) a) and back-slip at V_p give tau = tau0 + k (delta - V_p t). scipy integrates the same
+  equations (tests/spring_slider.py: DOP853 at rtol 1e-12); with the aging and the
   slip law ddc2d's event times (largest slip rate crossing 1e-3) agree within 1e-7 relative
   (measured: 4e-9 at tolerance 1e-7), its slip between events (rate below 2e-9) within 1e-8
   (measured 2.6e-9) and log10 of its state within 1e-3 (measured 4e-5).
@@ -20,32 +20,18 @@ where an effective normal stress reaches zero, --resume, the SEAS files and the 
   run's tolerance of the uninterrupted run: event times within 1e-7 relative.
 """
 
+import re
 import subprocess
 
 import h5py
 import numpy as np
 import pytest
-from scipy.integrate import solve_ivp
-from scipy.optimize import brentq
 
 import ddc2d.plot.cli
 import ddc2d.seas
-from conftest import ddc2d_exe
+from conftest import REPO_ROOT, ddc2d_exe
 from ddc2d.reader import load_result
-
-E, NU, HALF = 75000.0, 0.25, 500.0
-G = E / (2.0 * (1.0 + NU))
-A, B, DC, F0, V0, SIGMA, TAU0, VP, CS = 0.01, 0.015, 0.008, 0.6, 1.0e-6, 50.0, -30.0, 1e-9, 3464.0
-ETA = G / (2.0 * CS)
-
-SLIDER = f"""\
-&model youngs_modulus = {E}, poissons_ratio = {NU} /
-&fracture name = 'slider', x = -{HALF}, {HALF}, y = 0, 0, elements = 1,
-  condition = 'rate_state', a = {A}, b = {B}, dc = {DC}, f0 = {F0}, v0 = {V0},
-  v_init = {VP}, sigma0 = {SIGMA}, tau0 = {TAU0} /
-&cycle end_time = {{end}}, shear_wave_speed = {CS}, plate_rate = {VP}, output_interval = 0,
-  state_law = '{{law}}', checkpoint_interval = 0 /
-"""
+from spring_slider import CS, DC, ETA, F0, NU, SIGMA, SLIDER, V0, VP, B, E, spring_slider
 
 
 def run(args, cwd, check=True):
@@ -60,35 +46,6 @@ def solved(tmp_path, text, name="model", extra=()):
     (tmp_path / f"{name}.nml").write_text(text)
     run([f"{name}.nml", "-o", f"{name}.h5", *extra], tmp_path)
     return load_result(tmp_path / f"{name}.h5")["cycle"]
-
-
-def spring_slider(law, end):
-    """Event times and the solution (dense) of the spring-slider of SLIDER, by scipy."""
-    k = G / (np.pi * (1.0 - NU) * HALF)
-
-    def rate(drive, psi):
-        shift = (F0 + B * psi) / A - np.log(2.0 * V0)
-
-        def balance(x):
-            return SIGMA * A * np.arcsinh(np.exp(x + shift)) + ETA * np.exp(x) - drive
-
-        return np.exp(brentq(balance, -200.0, np.log(drive / ETA), xtol=1e-14, rtol=1e-15))
-
-    def rates(t, y):
-        v = rate(-(TAU0 + k * (y[0] - VP * t)), y[1])
-        if law == "aging":
-            return [v, (V0 * np.exp(-y[1]) - v) / DC]
-        return [v, -(v / DC) * (y[1] + np.log(v / V0))]
-
-    def seismic(t, y):
-        return rate(-(TAU0 + k * (y[0] - VP * t)), y[1]) - 1.0e-3
-
-    seismic.direction = 1
-    psi0 = (A * (np.log(2.0 * V0 / VP) + np.log(np.sinh((-TAU0 - ETA * VP) / (A * SIGMA))))
-            - F0) / B
-    solution = solve_ivp(rates, (0.0, end), [0.0, psi0], method="DOP853", rtol=1e-12,
-                         atol=[1e-14, 1e-12], dense_output=True, events=seismic)
-    return solution.t_events[0], solution.sol
 
 
 @pytest.mark.parametrize("law", ["aging", "slip"])
@@ -263,3 +220,35 @@ def test_bad_input_exits_2_without_output(tmp_path, old):
     for word in words:
         assert word in done.stderr
     assert sorted(p.name for p in tmp_path.iterdir()) == ["bad.nml"]
+
+
+EXAMPLES = {
+    "bp3qd_thrust60": {"dip": 60.0, "thrust": True, "matrix": "hierarchical",
+                       "points_file": "bp3qd_surface.csv"},
+    "bp3qd_normal30": {"dip": 30.0, "thrust": False, "matrix": "hierarchical",
+                       "points_file": "bp3qd_surface.csv"},
+    "quick_cycle": {"cell": 100.0, "scale": 0.2, "dc_scale": 1.0, "years": 150.0},
+}
+
+
+@pytest.mark.parametrize("name", EXAMPLES)
+def test_examples_are_bp3_as_specified(name):
+    # input/seas/ holds what ddc2d.seas.bp3_namelist writes (below its comment block) ...
+    text = (REPO_ROOT / "input" / "seas" / f"{name}.nml").read_text()
+    assert text.startswith("!")
+    body = "".join(line for line in text.splitlines(True) if not line.startswith("!"))
+    assert body == ddc2d.seas.bp3_namelist(**EXAMPLES[name])
+    if not name.startswith("bp3qd"):
+        return
+    # ... and that is BP3-QD's specification: 1600 cells of 25 m to 40 km, 1500 years,
+    # tau0 = 26.546 MPa of the sign that drives V_init = +-1e-9 m/s, a from 0.010 to 0.025.
+    values = re.sub(r"\s+", " ", body)
+    counts = re.search(r"elements = ([\d, ]+),", values).group(1)
+    assert sum(int(c) for c in counts.split(",")) == 1600
+    thrust = EXAMPLES[name]["thrust"]
+    assert f"v_init = {1e-9 if thrust else -1e-9:g}" in values
+    assert f"tau0 = {'-' if thrust else ''}26.5461223651" in values
+    assert f"end_time = {1500 * ddc2d.seas.YEAR:.12g}" in values
+    a = [float(v) for v in re.search(r"a = ([\d., ]+), b =", values).group(1).split(",")]
+    assert (a[0], a[-1], len(a)) == (0.01, 0.025, 122)
+    assert "profile_spacing = 500" in values and "b = 0.015, dc = 0.008" in values

@@ -19,7 +19,7 @@ SYSTEM_PATH = "/usr/bin:/bin"
 #: Every command-line script of scripts/ (Python and shell).
 COMMANDS = ("ddc2d-plot", "collect-sweep", "compare-twodd", "benchmark.py", "comp2ddm2nml",
             "twodd2nml", "submit-sweep", "make-gallery", "growth_convergence.py", "converge.py",
-            "verification-table")
+            "verification-table", "ddc2d-seas")
 #: The Python scripts: each runs a module of the ddc2d package (python/, in build/venv).
 NEEDS_VENV = {name: "ddc2d" for name in COMMANDS if name != "make-gallery"}
 

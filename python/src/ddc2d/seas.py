@@ -154,7 +154,7 @@ def header(problem: str, modeler: str, element_size: float, rows: int,
 
 def rows_text(columns: Sequence[np.ndarray]) -> str:
     """One line per row: the time in %21.13E, the other columns in %14.6E."""
-    table = np.column_stack(columns)
+    table = np.column_stack(columns) + 0.0  # no negative zero
     formats = "%21.13E " + " ".join(["%14.6E"] * (table.shape[1] - 1))
     return "".join(formats % tuple(row) + "\n" for row in table)
 

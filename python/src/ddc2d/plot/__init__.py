@@ -14,6 +14,9 @@ draws it, and ddc2d.plot.cli is the command ddc2d-plot.
 
 from .data import QUANTITIES, Receiver, fracture_profiles, grid_fields, grid_quantity
 from .figures import (
+    plot_cycle_events,
+    plot_cycle_rate,
+    plot_cycle_slip,
     plot_growth,
     plot_growth_history,
     plot_history,
@@ -26,6 +29,7 @@ from .figures import (
 )
 
 __all__ = ["QUANTITIES", "Receiver", "fracture_profiles", "grid_fields", "grid_quantity",
+           "plot_cycle_events", "plot_cycle_rate", "plot_cycle_slip",
            "plot_growth", "plot_growth_history", "plot_history", "plot_map",
            "plot_observation_line", "plot_overview", "plot_profile", "plot_surface",
            "save_figure"]
