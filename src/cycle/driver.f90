@@ -117,14 +117,15 @@ contains
             if (reason == cycle_normal_stress) then
                 call set_error(error, exit_solver_failure, 'cycle: the effective normal '// &
                     'stress of element '//itoa(loop%record%elements(lost))//' reaches zero '// &
-                    'at t = '//short_real(loop%record%now%time)//' '//allocated_text(model%time_unit)// &
-                    ' (rate-and-state friction needs it positive); the result file keeps '// &
-                    'the run up to then')
+                    'at t = '//short_real(loop%record%now%time)//' '// &
+                    allocated_text(model%time_unit)//' (rate-and-state friction needs it '// &
+                    'positive); the result file keeps the run up to then')
             else
                 call set_error(error, exit_solver_failure, 'cycle: no time step advances '// &
                     'the time at t = '//short_real(loop%record%now%time)//' '// &
-                    allocated_text(model%time_unit)//' (the error control rejects every step): the '// &
-                    'result file keeps the run up to then; a larger tolerance may pass')
+                    allocated_text(model%time_unit)//' (the error control rejects every '// &
+                    'step): the result file keeps the run up to then; a larger tolerance '// &
+                    'may pass')
             end if
             if (present(writer)) then
                 call writer(model, results, failed)
@@ -289,8 +290,9 @@ contains
                 now%event_start_slip = loop%y(:m)
                 due = .true.
                 call report_progress('cycle: event '//itoa(loop%record%events + 1)// &
-                    ' starts at t = '//short_real(now%time)//' '//allocated_text(model%time_unit)// &
-                    ' on element '//itoa(loop%record%elements(imax)))
+                    ' starts at t = '//short_real(now%time)//' '// &
+                    allocated_text(model%time_unit)//' on element '// &
+                    itoa(loop%record%elements(imax)))
             else if (now%in_event) then
                 now%event_peak_rate = max(now%event_peak_rate, vmax)
                 if (.not. seismic) then
