@@ -5,7 +5,7 @@ module ddc_app_report
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type, rigid_joint, tensile_cap, condition_names, &
         observation_kind_names, symmetry_none, symmetry_names, domain_names, &
-        domain_half_plane, load_path_names, &
+        domain_half_plane, load_path_names, source_overpressure, &
         growth_tips_names, growth_criterion_names, growth_criterion_work, strength_law_count
     use ddc_model_laws, only: strength_law, strength_laws
     use ddc_model_records, only: units_one, units_text
@@ -216,6 +216,14 @@ contains
                 end do
                 write (unit, '(a)') ''
             end do
+            if (allocated(model%load_path%time)) then
+                write (unit, '(a)', advance='no') '    time at the vertices:'
+                do v = 1, size(model%load_path%time)
+                    write (unit, '(a)', advance='no') ' '//short_real(model%load_path%time(v))
+                end do
+                write (unit, '(a)') ' '//model%time_unit
+            end if
+            if (allocated(model%injections)) call print_injections()
             ! Said here, before a user relies on --resume to go on with the path
             if (.not. model%growth%active .and. (any(model%elements%shear_stiffness < &
                 rigid_joint) .or. any(model%elements%normal_stiffness < rigid_joint))) then
@@ -223,6 +231,29 @@ contains
                     'joints'' memory is their plastic slip, which the result file does not hold'
             end if
         end subroutine print_load_path
+
+        !> One line per fluid source.
+        subroutine print_injections()
+            integer :: k
+            character(len=:), allocatable :: what, when
+
+            do k = 1, size(model%injections)
+                associate (s => model%injections(k))
+                    if (s%kind == source_overpressure) then
+                        what = 'overpressure '//short_real(s%value)//' '//model%stress_unit
+                    else
+                        what = 'rate '//short_real(s%value)//' '//model%length_unit//'^2/'// &
+                            model%time_unit
+                    end if
+                    when = ''
+                    if (s%start /= -huge(1.0_wp)) when = ' from '//short_real(s%start)
+                    if (s%stop /= huge(1.0_wp)) when = when//' until '//short_real(s%stop)
+                    write (unit, '(a)') '    injection '//s%name//' on '// &
+                        model%fractures(s%fracture_id)%name//' at ('//short_real(s%x)//', '// &
+                        short_real(s%y)//'): '//what//when
+                end associate
+            end do
+        end subroutine print_injections
 
     end subroutine print_model_summary
 

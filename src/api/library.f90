@@ -114,6 +114,7 @@ contains
         model%model%title = text_or(title, 'library model')
         model%model%length_unit = text_or(length_unit, 'm')
         model%model%stress_unit = text_or(stress_unit, 'MPa')
+        model%model%time_unit = 's'
         model%model%youngs_modulus = youngs_modulus
         model%model%poissons_ratio = poissons_ratio
         model%model%solver = solver_options()

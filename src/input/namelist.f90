@@ -22,9 +22,11 @@ module ddc_input_namelist
     use ddc_mesh_checks, only: check_elements
     use ddc_input_namelist_groups, only: namelist_groups, group_record, message_list, add, &
         scan_groups, g_model, g_remote_stress, g_fracture, g_grid, g_line, g_points, g_solver, &
-        g_output, g_symmetry, g_pore_fluid, g_load_path, g_growth
+        g_output, g_symmetry, g_pore_fluid, g_load_path, g_growth, g_injection
     use ddc_input_namelist_growth, only: read_growth_group
     use ddc_input_namelist_initiation, only: read_initiation_group, check_flaw_points
+    use ddc_input_namelist_injection, only: read_injection_groups, check_injection_points
+    use ddc_input_namelist_values, only: text_length
     use ddc_input_namelist_settings, only: read_model_group, read_remote_stress_group, &
         read_pore_fluid_group, read_solver_group, read_symmetry_group, read_output_group, &
         read_load_path_group
@@ -98,6 +100,8 @@ contains
                                       fractures%condition == condition_contact), model, messages)
         call read_growth_group(unit, text, path, groups, fractures, model, messages)
         call read_initiation_group(unit, text, path, groups, model, messages)
+        call read_injection_groups(unit, text, path, groups(g_injection), &
+                                   names_of(fractures), model, messages)
         close (unit)
 
         call check_names(path, fractures, observations, messages)
@@ -109,6 +113,7 @@ contains
 
         call build_model(fractures, observations, model)
         call check_flaw_points(path, groups, model, messages)
+        call check_injection_points(path, groups(g_injection), model, messages)
         call check_matrix(path, model, messages)
         call check_k_method(path, model, messages)
         if (messages%n > 0) then
@@ -120,6 +125,18 @@ contains
             error%message = prefix_lines(path//': ', error%message)
         end if
     end subroutine read_namelist_model
+
+    !> The fractures' names ('' for a group that was not read).
+    pure function names_of(fractures) result(names)
+        type(fracture_input), intent(in) :: fractures(:)
+        character(len=text_length) :: names(size(fractures))
+        integer :: k
+
+        names = ''
+        do k = 1, size(fractures)
+            if (allocated(fractures(k)%name)) names(k) = fractures(k)%name
+        end do
+    end function names_of
 
     !> matrix = 'hierarchical' on a model a hierarchical matrix does not solve
     !> (run_refusal: docs/theory/hierarchical.md#what-it-solves), or in a build
@@ -280,6 +297,8 @@ contains
             model%elements%mu(first:last) = fractures(k)%mu
             model%elements%sf(first:last) = fractures(k)%sf
             model%elements%pressure(first:last) = fractures(k)%pressure
+            model%elements%diffusivity(first:last) = fractures(k)%diffusivity
+            model%elements%transmissivity(first:last) = fractures(k)%transmissivity
             do j = 1, size(laws)
                 call set_law(model%elements, laws(j)%name, [(i, i = first, last)], &
                              fractures(k)%laws(:, j))

@@ -7,7 +7,8 @@ module ddc_input_namelist_fracture
     use ddc_model_types, only: condition_names, condition_contact, no_residual_drop, &
         strength_law_count
     use ddc_model_laws, only: strength_law, strength_laws, at_most_rule
-    use ddc_model_limits, only: range_problem, quantity_non_negative, within_limits
+    use ddc_model_limits, only: range_problem, quantity_non_negative, quantity_positive, &
+        within_limits
     use ddc_text, only: itoa, rtoa, lower, find_name, quoted_list, prefix_lines, counted
     use ddc_input_text_file, only: resolve
     use ddc_input_csv, only: read_csv
@@ -47,6 +48,9 @@ module ddc_input_namelist_fracture
         !> The strength laws beyond Coulomb, column k law k of the list (ddc_model_laws; its
         !> default where not given), shape (elements, strength_law_count)
         real(wp), allocatable :: laws(:, :)
+        !> Hydraulic diffusivity and transmissivity (0 where not given: no flow), shape
+        !> (elements)
+        real(wp), allocatable :: diffusivity(:), transmissivity(:)
     end type fracture_input
 
 contains
@@ -64,6 +68,8 @@ contains
         type(message_list), intent(inout) :: messages
         character(len=text_length) :: name, condition, elements_file
         real(wp), allocatable :: x(:), y(:), mu(:), sf(:), pressure(:), bc_s(:), bc_n(:)
+        real(wp), allocatable :: diffusivity(:), transmissivity(:), seg_diffusivity(:), &
+            seg_transmissivity(:)
         ! The strength laws' variables
         real(wp), allocatable :: tensile_strength(:), sf_residual(:), mu_dynamic(:), &
             slip_weakening_distance(:), shear_stiffness(:), normal_stiffness(:), &
@@ -83,10 +89,12 @@ contains
         integer, allocatable :: counts(:), row_lines(:)
         type(error_type), allocatable :: csv_error
         integer :: stat, k, i, j, nx, ny, ne, nmu, nsf, npr, nbs, nbn, nseg, nbefore, cond
+        integer :: ndiff, ntrans, hydraulic_column
         logical :: from_csv, geometry_ok
         namelist /fracture/ name, x, y, elements, mu, sf, pressure, condition, bc_s, bc_n, &
             elements_file, tensile_strength, sf_residual, mu_dynamic, slip_weakening_distance, &
-            shear_stiffness, normal_stiffness, opening_weakening_distance
+            shear_stiffness, normal_stiffness, opening_weakening_distance, diffusivity, &
+            transmissivity
 
         allocate (fractures(info%count))
         if (info%count == 0) return
@@ -99,7 +107,10 @@ contains
                   elements(max_vertices), tensile_strength(max_vertices), &
                   sf_residual(max_vertices), mu_dynamic(max_vertices), &
                   slip_weakening_distance(max_vertices), shear_stiffness(max_vertices), &
-                  normal_stiffness(max_vertices), opening_weakening_distance(max_vertices))
+                  normal_stiffness(max_vertices), opening_weakening_distance(max_vertices), &
+                  diffusivity(max_vertices), transmissivity(max_vertices))
+        ! The CSV's optional columns: the laws, then the hydraulic properties.
+        hydraulic_column = law_column + size(laws)
         rewind (unit)
         do k = 1, info%count
             name = ''
@@ -119,6 +130,8 @@ contains
             shear_stiffness = unset_real
             normal_stiffness = unset_real
             opening_weakening_distance = unset_real
+            diffusivity = unset_real
+            transmissivity = unset_real
             elements = unset_integer
             read (unit, nml=fracture, iostat=stat, iomsg=iomsg)
             if (stat /= 0) then
@@ -138,6 +151,14 @@ contains
             npr = count_given(pressure, 'pressure', prefix, messages)
             nbs = count_given(bc_s, 'bc_s', prefix, messages)
             nbn = count_given(bc_n, 'bc_n', prefix, messages)
+            ndiff = count_given(diffusivity, 'diffusivity', prefix, messages)
+            ntrans = count_given(transmissivity, 'transmissivity', prefix, messages)
+            call check_range(diffusivity(1:ndiff), 'diffusivity', quantity_positive, prefix, &
+                             messages)
+            call check_range(transmissivity(1:ntrans), 'transmissivity', quantity_positive, &
+                             prefix, messages)
+            if ((ndiff > 0) .neqv. (ntrans > 0)) call add(messages, prefix//'give both '// &
+                'diffusivity and transmissivity (a fracture without them does not conduct)')
             ! In the order of the list of the laws (the CTest architecture holds it to that)
             law_values = reshape([tensile_strength, sf_residual, mu_dynamic, &
                                   slip_weakening_distance, opening_weakening_distance, &
@@ -165,9 +186,14 @@ contains
                              'from elements_file; do not give them in the group as well')
                 end if
                 csv_path = resolve(dir, trim(adjustl(elements_file)))
+                if (ndiff > 0 .or. ntrans > 0) then
+                    call add(messages, prefix//'diffusivity and transmissivity come from '// &
+                             'elements_file; do not give them in the group as well')
+                end if
                 call read_csv(csv_path, [character(len=8) :: 'x_begin', 'y_begin', 'x_end', &
                               'y_end', 'mu', 'sf', 'pressure'], rows, csv_error, row_lines, &
-                              law_names, csv_given, most_rows=max_elements)
+                              [character(len=text_length) :: law_names, 'diffusivity', &
+                              'transmissivity'], csv_given, most_rows=max_elements)
                 if (allocated(csv_error)) then
                     call add(messages, prefix_lines(prefix//'elements_file: ', csv_error%message))
                     deallocate (csv_error)
@@ -196,6 +222,7 @@ contains
                     do j = 1, size(laws)
                         if (.not. csv_given(j)) rows(law_column + j, :) = laws(j)%default
                     end do
+                    call check_hydraulic_rows()
                 end if
             else
                 if (nx /= ny) then
@@ -301,6 +328,12 @@ contains
                 if (check_length(nbn, nseg, 'bc_n', prefix, messages)) then
                     seg_bc_n = broadcast(bc_n(1:nbn), nseg, 0.0_wp)
                 end if
+                if (check_length(ndiff, nseg, 'diffusivity', prefix, messages)) then
+                    seg_diffusivity = broadcast(diffusivity(1:ndiff), nseg, 0.0_wp)
+                end if
+                if (check_length(ntrans, nseg, 'transmissivity', prefix, messages)) then
+                    seg_transmissivity = broadcast(transmissivity(1:ntrans), nseg, 0.0_wp)
+                end if
             end if
             if (messages%n > nbefore) cycle
 
@@ -315,7 +348,9 @@ contains
                 fractures(k)%mu = rows(5, :)
                 fractures(k)%sf = rows(6, :)
                 fractures(k)%pressure = rows(7, :)
-                fractures(k)%laws = transpose(rows(law_column + 1:, :))
+                fractures(k)%laws = transpose(rows(law_column + 1:hydraulic_column, :))
+                fractures(k)%diffusivity = rows(hydraulic_column + 1, :)
+                fractures(k)%transmissivity = rows(hydraulic_column + 2, :)
                 fractures(k)%bc_s = seg_bc_s
                 fractures(k)%bc_n = seg_bc_n
             else
@@ -331,10 +366,37 @@ contains
                 end do
                 fractures(k)%bc_s = expand_per_segment(seg_bc_s, counts)
                 fractures(k)%bc_n = expand_per_segment(seg_bc_n, counts)
+                fractures(k)%diffusivity = expand_per_segment(seg_diffusivity, counts)
+                fractures(k)%transmissivity = expand_per_segment(seg_transmissivity, counts)
             end if
         end do
 
     contains
+
+        !> The CSV's hydraulic columns: both or neither, positive; 0 (no flow) when absent.
+        subroutine check_hydraulic_rows()
+            integer :: c, row
+            character(len=*), parameter :: names(2) = ['diffusivity   ', 'transmissivity']
+
+            if (csv_given(size(laws) + 1) .neqv. csv_given(size(laws) + 2)) then
+                call add(messages, prefix//'elements_file '//csv_path//': give both '// &
+                         'diffusivity and transmissivity columns, or neither')
+            end if
+            do c = 1, 2
+                if (.not. csv_given(size(laws) + c)) then
+                    rows(hydraulic_column + c, :) = 0.0_wp
+                    cycle
+                end if
+                do row = 1, nseg
+                    if (len(range_problem(quantity_positive, rows(hydraulic_column + c, &
+                                                                   row))) == 0) cycle
+                    call add(messages, prefix//'elements_file '//csv_path//' line '// &
+                             itoa(row_lines(row))//': '//trim(names(c))//' = '// &
+                             rtoa(rows(hydraulic_column + c, row))//' '// &
+                             range_problem(quantity_positive, rows(hydraulic_column + c, row)))
+                end do
+            end do
+        end subroutine check_hydraulic_rows
 
         !> Law l in CSV row i is within its range, and not above the Coulomb value it may not
         !> exceed (law%at_most: sf_residual <= sf, mu_dynamic <= mu).

@@ -17,7 +17,7 @@ module ddc_input_namelist_groups
     public :: scan_groups, group_line, group_label, group_prefix, is_name_character
     public :: g_model, g_remote_stress, g_fracture, g_grid, g_line, g_points, g_solver, &
         g_output, g_symmetry, g_sweep, g_pore_fluid, g_load_path, g_growth
-    public :: g_initiation
+    public :: g_initiation, g_injection
 
     !> One namelist group: its name, whether it may appear more than once, and its variables
     !> with their types ("name:c x:r n:i": c text, r real, i integer)
@@ -31,17 +31,18 @@ module ddc_input_namelist_groups
     integer, parameter :: g_model = 1, g_remote_stress = 2, g_fracture = 3, g_grid = 4, &
                           g_line = 5, g_points = 6, g_solver = 7, g_output = 8, g_symmetry = 9, &
                           g_sweep = 10, g_pore_fluid = 11, g_load_path = 12, g_growth = 13
-    integer, parameter :: g_initiation = 14
+    integer, parameter :: g_initiation = 14, g_injection = 15
 
     !> Every group ddc2d knows (&sweep is read by ddc_input_sweep; the model reader skips it)
-    type(group_spec), parameter :: namelist_groups(14) = [ &
+    type(group_spec), parameter :: namelist_groups(15) = [ &
         group_spec('model', .false., 'title:c youngs_modulus:r poissons_ratio:r '// &
-                   'length_unit:c stress_unit:c domain:c'), &
+                   'length_unit:c stress_unit:c time_unit:c domain:c'), &
         group_spec('remote_stress', .false., 'sxx:r syy:r sxy:r dsxx_dy:r dsyy_dy:r dsxy_dy:r'), &
         group_spec('fracture', .true., 'name:c x:r y:r elements:i mu:r sf:r pressure:r '// &
                    'condition:c bc_s:r bc_n:r elements_file:c tensile_strength:r '// &
                    'sf_residual:r mu_dynamic:r slip_weakening_distance:r shear_stiffness:r '// &
-                   'normal_stiffness:r opening_weakening_distance:r'), &
+                   'normal_stiffness:r opening_weakening_distance:r diffusivity:r '// &
+                   'transmissivity:r'), &
         group_spec('grid', .true., 'name:c xmin:r xmax:r nx:i ymin:r ymax:r ny:i'), &
         group_spec('line', .true., 'name:c x_begin:r y_begin:r x_end:r y_end:r points:i'), &
         group_spec('points', .true., 'name:c file:c'), &
@@ -53,7 +54,7 @@ module ddc_input_namelist_groups
                    'values_3:r values_4:r values_5:r values_6:r'), &
         group_spec('pore_fluid', .false., 'p0:r dp_dy:r'), &
         group_spec('load_path', .false., 'sxx:r syy:r sxy:r dsxx_dy:r dsyy_dy:r dsxy_dy:r '// &
-                   'p0:r steps:i'), &
+                   'p0:r steps:i time:r'), &
         group_spec('growth', .false., 'steps:i toughness:r increment:r element_length:r '// &
                    'tips:c fractures:c criterion:c max_corrections:i new_mu:r new_sf:r '// &
                    'angle_range:r angle_step:r work_threshold:r '// &
@@ -61,7 +62,9 @@ module ddc_input_namelist_groups
                    'new_slip_weakening_distance:r new_opening_weakening_distance:r '// &
                    'new_shear_stiffness:r new_normal_stiffness:r'), &
         group_spec('initiation', .false., 'tensile_strength:r probe_distance:r flaw_x:r '// &
-                   'flaw_y:r flaw_length:r')]
+                   'flaw_y:r flaw_length:r'), &
+        group_spec('injection', .true., 'name:c fracture:c x:r y:r overpressure:r rate:r '// &
+                   'start:r stop:r')]
 
     !> Where the occurrences of one group are in the file.
     type :: group_record

@@ -27,7 +27,8 @@ module ddc_input_namelist_settings
 
 contains
 
-    !> &model title, youngs_modulus, poissons_ratio, length_unit, stress_unit /
+    !> &model title, youngs_modulus, poissons_ratio, length_unit, stress_unit, time_unit,
+    !> domain /
     subroutine read_model_group(unit, text, path, info, the_model, messages)
         integer, intent(in) :: unit
         character(len=*), intent(in) :: text
@@ -35,22 +36,25 @@ contains
         type(group_record), intent(in) :: info
         type(model_type), intent(inout) :: the_model
         type(message_list), intent(inout) :: messages
-        character(len=text_length) :: title, length_unit, stress_unit, domain
+        character(len=text_length) :: title, length_unit, stress_unit, time_unit, domain
         real(wp) :: youngs_modulus, poissons_ratio
         character(len=512) :: iomsg
         character(len=:), allocatable :: prefix
         integer :: stat
-        namelist /model/ title, youngs_modulus, poissons_ratio, length_unit, stress_unit, domain
+        namelist /model/ title, youngs_modulus, poissons_ratio, length_unit, stress_unit, &
+            time_unit, domain
 
         the_model%title = base_name(path, .false.)
         the_model%length_unit = 'm'
         the_model%stress_unit = 'MPa'
+        the_model%time_unit = 's'
         if (info%count == 0) return
         title = ''
         youngs_modulus = unset_real
         poissons_ratio = unset_real
         length_unit = 'm'
         stress_unit = 'MPa'
+        time_unit = 's'
         domain = 'full_plane'
         rewind (unit)
         read (unit, nml=model, iostat=stat, iomsg=iomsg)
@@ -66,8 +70,12 @@ contains
         if (len_trim(stress_unit) == 0) then
             call add(messages, prefix//'stress_unit is empty')
         end if
+        if (len_trim(time_unit) == 0) then
+            call add(messages, prefix//'time_unit is empty')
+        end if
         the_model%length_unit = trim(adjustl(length_unit))
         the_model%stress_unit = trim(adjustl(stress_unit))
+        the_model%time_unit = trim(adjustl(time_unit))
         stat = find_name(lower(trim(adjustl(domain))), domain_names)
         if (stat == 0) then
             call add(messages, prefix//"domain = '"//trim(adjustl(domain))//"' is not one of "// &
@@ -296,11 +304,11 @@ contains
         if (len_trim(file) > 0) model%output_file = resolve(dir, trim(adjustl(file)))
     end subroutine read_output_group
 
-    !> &load_path sxx, syy, sxy, dsxx_dy, dsyy_dy, dsxy_dy, p0, steps /
+    !> &load_path sxx, syy, sxy, dsxx_dy, dsyy_dy, dsxy_dy, p0, steps, time /
     !> (docs/loading-histories.md#the-input; optional): the load at the path's vertices (the first
     !> is the starting state), each quantity either absent (held at its &remote_stress or
-    !> &pore_fluid value) or given at every vertex, and steps(l) increments on leg l. Needs contact
-    !> elements.
+    !> &pore_fluid value) or given at every vertex, steps(l) increments on leg l, and the time of
+    !> each vertex (strictly increasing; a path may give times alone). Needs contact elements.
     subroutine read_load_path_group(unit, text, path, info, has_contact, model, messages)
         integer, intent(in) :: unit
         character(len=*), intent(in) :: text
@@ -311,18 +319,19 @@ contains
         type(model_type), intent(inout) :: model
         type(message_list), intent(inout) :: messages
         real(wp), allocatable :: sxx(:), syy(:), sxy(:), dsxx_dy(:), dsyy_dy(:), dsxy_dy(:), &
-                                 p0(:), values(:, :), fixed(:)
+                                 p0(:), time(:), values(:, :), fixed(:)
         integer, allocatable :: steps(:)
         character(len=512) :: iomsg
         character(len=:), allocatable :: prefix
-        integer :: stat, nlegs, nv, q, given
+        integer :: stat, nlegs, nv, q, given, ntime
         logical :: ok
-        namelist /load_path/ sxx, syy, sxy, dsxx_dy, dsyy_dy, dsxy_dy, p0, steps
+        namelist /load_path/ sxx, syy, sxy, dsxx_dy, dsyy_dy, dsxy_dy, p0, steps, time
 
         if (info%count == 0) return
         allocate (sxx(max_path_vertices), syy(max_path_vertices), sxy(max_path_vertices), &
                   dsxx_dy(max_path_vertices), dsyy_dy(max_path_vertices), &
-                  dsxy_dy(max_path_vertices), p0(max_path_vertices), steps(max_path_vertices))
+                  dsxy_dy(max_path_vertices), p0(max_path_vertices), steps(max_path_vertices), &
+                  time(max_path_vertices))
         sxx = unset_real
         syy = unset_real
         sxy = unset_real
@@ -330,6 +339,7 @@ contains
         dsyy_dy = unset_real
         dsxy_dy = unset_real
         p0 = unset_real
+        time = unset_real
         steps = unset_integer
         rewind (unit)
         read (unit, nml=load_path, iostat=stat, iomsg=iomsg)
@@ -375,9 +385,23 @@ contains
                 model%load_path%vertex(q, :) = values(1:nv, q)
             end if
         end do
-        if (given == 0) then
+        ntime = count_given(time, 'time', prefix, messages)
+        if (ntime > 0 .and. ntime /= nv .and. nlegs > 0) then
+            call add(messages, prefix//'time has '//counted(ntime, 'value', 'values')// &
+                     '; give one per vertex: '//itoa(nv)//' (one more than steps)')
+            ok = .false.
+        else if (ntime > 1) then
+            if (any(time(2:ntime) <= time(1:ntime - 1))) then
+                call add(messages, prefix//'time('//itoa(findloc(time(2:ntime) <= &
+                         time(1:ntime - 1), .true., 1) + 1)//') = '// &
+                         rtoa(time(findloc(time(2:ntime) <= time(1:ntime - 1), .true., 1) + &
+                         1))//' is not after the time before it: times must increase')
+                ok = .false.
+            end if
+        end if
+        if (given == 0 .and. ntime == 0) then
             call add(messages, prefix//'give the load at each vertex: at least one of sxx, '// &
-                     'syy, sxy, dsxx_dy, dsyy_dy, dsxy_dy, p0')
+                     'syy, sxy, dsxx_dy, dsyy_dy, dsxy_dy, p0 (or the time of each vertex)')
             ok = .false.
         end if
         if (.not. has_contact) then
@@ -394,6 +418,7 @@ contains
         end if
         if (ok) then
             model%load_path%steps = steps(1:nlegs)
+            if (ntime > 0) model%load_path%time = time(1:nv)
         else
             deallocate (model%load_path%vertex)
         end if

@@ -20,8 +20,9 @@ module ddc_mesh_geometry
 contains
 
     !> Allocate every per-element array of an element set (those of the geometry too) for
-    !> n elements; values unset, but the strength laws beyond Coulomb at their defaults: no
-    !> tensile strength, no drops, rigid contact.
+    !> n elements; values unset, but the strength laws beyond Coulomb at their defaults (no
+    !> tensile strength, no drops, rigid contact) and no flow (diffusivity and
+    !> transmissivity 0).
     subroutine allocate_elements(elements, n)
         !> The set to allocate (its arrays unallocated)
         type(element_set), intent(inout) :: elements
@@ -33,6 +34,8 @@ contains
         allocation%n = n
         call for_each_element_array(elements, allocation)
         call default_strength_laws(elements, spread(.true., 1, n))
+        elements%diffusivity = 0.0_wp
+        elements%transmissivity = 0.0_wp
     end subroutine allocate_elements
 
     !> Allocate one real array for the set's elements.

@@ -81,6 +81,7 @@ contains
         ! Not hashed: model%resumed_from, model%resumed_from_created (a record of the run)
         ! Not hashed: model%growth%steps, model%load_path%steps, model%load_path%vertex
         ! Not hashed: model%load_path%varies (a resumed run may go further)
+        ! Not hashed: model%load_path%time (as the vertices: a resumed run may go further)
         ! Not hashed: model%solver%work_bytes (this machine's memory, not the model)
         ! Not hashed: model%solver%matrix (it changes a result within hmatrix_tolerance
         ! only: a loading history may go on from its file on either matrix), and so its
@@ -91,6 +92,18 @@ contains
         call add_reals(hash, [model%youngs_modulus, model%poissons_ratio])
         call add_text(hash, model%length_unit)
         call add_text(hash, model%stress_unit)
+        ! Only where not the default: the fingerprints of earlier models stay as they were.
+        if (model%time_unit /= 's') call add_text(hash, model%time_unit)
+        if (allocated(model%injections)) then
+            do i = 1, size(model%injections)
+                call add_text(hash, model%injections(i)%name)
+                call add_integers(hash, [model%injections(i)%fracture_id, &
+                                         model%injections(i)%kind])
+                call add_reals(hash, [model%injections(i)%x, model%injections(i)%y, &
+                                      model%injections(i)%value, model%injections(i)%start, &
+                                      model%injections(i)%stop])
+            end do
+        end if
         call add_reals(hash, [model%sxx, model%syy, model%sxy])
         call add_reals(hash, model%stress_gradient)
         call add_reals(hash, model%pore_fluid)

@@ -196,6 +196,19 @@ module ddc_model_results
         !> [length unit], shape (tips, k)
         integer, allocatable :: element_count(:), tip_fracture_id(:), tip_end(:)
         real(wp), allocatable :: grown_length(:, :)
+        !> The time of each step, where the path has a time axis [time unit], shape (k)
+        real(wp), allocatable :: time(:)
+        !> With fluid sources (docs/injection.md#output; not allocated otherwise): the
+        !> pressure change that diffused into each element [stress unit], shape (n, k); the
+        !> volume injected by then, per unit length out of the plane [length^2], shape (k);
+        !> of each fracture, the length of its slipping elements, where its slipping patch
+        !> begins and ends (arc length from its first vertex to the outer ends of its
+        !> outermost slipping elements; NaN when none slips) [length unit], and its seismic
+        !> moment per unit length out of the plane (G times its slip's integral) [stress unit
+        !> length unit], shape (fractures, k)
+        real(wp), allocatable :: pressure(:, :), injected_volume(:)
+        real(wp), allocatable :: slipping_length(:, :), front_begin(:, :), front_end(:, :), &
+            moment(:, :)
     end type history_record
 
     !> A fracture growth run (docs/fracture-growth.md#output): one record per tip per step, in step

@@ -18,6 +18,7 @@ module ddc_model_types
     public :: model_type, element_set, fracture_type, observation_set
     public :: symmetry_options, symmetry_none, symmetry_x, symmetry_y, symmetry_both
     public :: symmetry_names, sweep_task_record, load_path_type, load_path_names
+    public :: injection_source, source_overpressure, source_rate
     public :: condition_traction, condition_displacement, condition_mixed_us_sn
     public :: condition_mixed_ss_un, condition_contact, condition_prescribed_dd, condition_names
     public :: domain_full_plane, domain_half_plane, domain_names
@@ -105,6 +106,10 @@ module ddc_model_types
         !> Elastic joint, for contact elements: shear and normal stiffness [stress unit /
         !> length unit] of the faces before they slip or open (rigid_joint: rigid contact)
         real(wp), allocatable :: shear_stiffness(:), normal_stiffness(:)
+        !> Flow along the fractures (docs/injection.md): hydraulic diffusivity alpha [length^2 /
+        !> time unit] and transmissivity T [length^3 / (stress unit time unit)]; 0: the
+        !> element does not conduct
+        real(wp), allocatable :: diffusivity(:), transmissivity(:)
         !> Derived geometry: midpoint, half-length [length unit], cos and sin of the
         !> element angle beta (counter-clockwise from +x)
         real(wp), allocatable :: x_mid(:), y_mid(:), half_length(:)
@@ -124,8 +129,9 @@ module ddc_model_types
         procedure(act_on_reals), deferred :: on_reals
         !> Act on one integer per-element array
         procedure(act_on_integers), deferred :: on_integers
-        !> Act on one real per-element array of a law added later whose default 0 leaves
-        !> the law as it was (on_reals unless the action says otherwise)
+        !> Act on one real per-element array added later whose default 0 leaves the model as
+        !> it was (a strength law, the hydraulic properties; on_reals unless the action says
+        !> otherwise)
         procedure :: on_later_law => act_on_later_law
     end type element_array_action
 
@@ -197,6 +203,27 @@ module ddc_model_types
     character(len=*), parameter :: load_path_names(7) = [character(len=7) :: &
         'sxx', 'syy', 'sxy', 'dsxx_dy', 'dsyy_dy', 'dsxy_dy', 'p0']
 
+    !> Kinds of fluid source (&injection): a pressure change held at a point, a volume rate
+    !> into the network at a point
+    integer, parameter :: source_overpressure = 1, source_rate = 2
+
+    !> A fluid source at a point of a fracture (&injection; docs/injection.md).
+    type :: injection_source
+        !> Name given by the user, or injection_<k>
+        character(len=:), allocatable :: name
+        !> The fracture (1-based) and the point on it [length unit]
+        integer :: fracture_id = 0
+        real(wp) :: x = 0.0_wp, y = 0.0_wp
+        !> source_overpressure or source_rate
+        integer :: kind = source_rate
+        !> The pressure change held [stress unit], or the rate per unit length out of the
+        !> plane [length^2 / time unit] (negative: production)
+        real(wp) :: value = 0.0_wp
+        !> When it acts [time unit]: from start (default: the path's first time) until stop
+        !> (default: never stops; a stopped source is shut in: no flux at its point)
+        real(wp) :: start = -huge(1.0_wp), stop = huge(1.0_wp)
+    end type injection_source
+
     !> A loading history (&load_path; docs/theory/earth.md#loading-histories): the load at the
     !> path's vertices (the first is the starting state) and the increments on each leg.
     type :: load_path_type
@@ -206,6 +233,9 @@ module ddc_model_types
         real(wp), allocatable :: vertex(:, :)
         !> Number of increments on each leg, shape (vertices - 1)
         integer, allocatable :: steps(:)
+        !> The time of each vertex, strictly increasing [time unit], shape (vertices); not
+        !> allocated when the path has no time axis (its steps spaced evenly on each leg)
+        real(wp), allocatable :: time(:)
         !> Which quantities were given per vertex, shape (7)
         logical :: varies(7) = .false.
     end type load_path_type
@@ -287,7 +317,7 @@ module ddc_model_types
         !> Young's modulus [stress unit] and Poisson's ratio [-]
         real(wp) :: youngs_modulus = 0.0_wp, poissons_ratio = 0.0_wp
         !> Unit names, stored in the output
-        character(len=:), allocatable :: length_unit, stress_unit
+        character(len=:), allocatable :: length_unit, stress_unit, time_unit
         !> Remote stress, tension positive [stress unit]
         real(wp) :: sxx = 0.0_wp, syy = 0.0_wp, sxy = 0.0_wp
         !> Remote stress gradients d(sxx, syy, sxy)/dy [stress unit / length unit]:
@@ -315,6 +345,9 @@ module ddc_model_types
         type(sweep_task_record) :: sweep
         !> Loading history; vertex not allocated when the model has none (one state)
         type(load_path_type) :: load_path
+        !> Fluid sources on the fractures (&injection; none: allocated with size 0 or not
+        !> allocated)
+        type(injection_source), allocatable :: injections(:)
         !> Fracture growth; inactive unless the input has &growth
         type(growth_options) :: growth
         !> New fractures inside the rock, when it grows
@@ -367,6 +400,8 @@ contains
         call action%on_later_law(elements%opening_weakening_distance)
         call action%on_reals(elements%shear_stiffness)
         call action%on_reals(elements%normal_stiffness)
+        call action%on_later_law(elements%diffusivity)
+        call action%on_later_law(elements%transmissivity)
         call action%on_reals(elements%x_mid)
         call action%on_reals(elements%y_mid)
         call action%on_reals(elements%half_length)

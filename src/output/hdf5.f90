@@ -49,6 +49,7 @@ module ddc_output_hdf5
         explain_write_failure
     use ddc_output_hdf5_handles, only: h5_object, open_session, close_session, create_file, &
         close_file, create_group, close_group
+    use ddc_output_hdf5_injections, only: write_injections
     use ddc_output_hdf5_initiations, only: write_initiations
     use ddc_output_hdf5_records, only: write_history, write_growth, write_growth_elements
     use ddc_output_hdf5_write, only: write_real_1d, write_int_1d, write_real_dataset, &
@@ -107,6 +108,7 @@ contains
             call write_root_attributes(root, model, provenance, error)
             call write_elements(root, model, results, error)
             call write_fractures(root, model, error)
+            call write_injections(root, model, error)
             call write_tips(root, model, results, error)
             call write_fields(root, model, results, error)
             ! The file's own writing time: everything written before the solver record.
@@ -197,6 +199,8 @@ contains
         end if
         call write_attribute(root, 'length_unit', allocated_text(model%length_unit), error)
         call write_attribute(root, 'stress_unit', allocated_text(model%stress_unit), error)
+        if (allocated(model%load_path%time)) call write_attribute(root, 'time_unit', &
+            allocated_text(model%time_unit), error)
         call write_attribute(root, 'youngs_modulus', model%youngs_modulus, error)
         call write_attribute(root, 'poissons_ratio', model%poissons_ratio, error)
         call write_attribute(root, 'shear_modulus', shear_modulus_of(model), error)

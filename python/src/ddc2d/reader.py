@@ -76,6 +76,11 @@ HISTORY_STRING_DATASETS = ("method", "fallback")
 #: /history datasets of fracture growth along a load path, read when present
 #: (docs/fracture-growth.md#output).
 HISTORY_GROWTH_DATASETS = ("element_count", "grown_length", "tip_fracture_id", "tip_end")
+#: /history datasets of a load path with a time axis (time) and of fluid sources
+#: (docs/injection.md#output: pressure per element; injected volume per step; slipping
+#: length, front positions and moment per fracture), read when present.
+HISTORY_FLOW_DATASETS = ("time", "pressure", "injected_volume", "slipping_length",
+                         "front_begin", "front_end", "moment")
 #: /growth datasets (fracture growth; docs/fracture-growth.md#output), one value per record
 #: (tip and step).
 GROWTH_DATASETS = ("step", "fracture_id", "end", "x", "y", "k1", "k2", "k_eq", "mts_angle",
@@ -434,7 +439,7 @@ def read_history(path: FilePath, handle: h5py.Group, count: int) -> dict[str, An
         "loads": {k: np.asarray(group[k][()]) for k in HISTORY_LOADS if k in group}}
     for key in HISTORY_DATASETS:
         history[key] = np.asarray(group[key][()])
-    for key in HISTORY_STEP_DATASETS + HISTORY_GROWTH_DATASETS:
+    for key in HISTORY_STEP_DATASETS + HISTORY_GROWTH_DATASETS + HISTORY_FLOW_DATASETS:
         if key in group:
             history[key] = np.asarray(group[key][()])
     for key in HISTORY_STRING_DATASETS:
