@@ -343,8 +343,6 @@ contains
                 res%residual_scale_floor = 0.0_wp
                 if (any(t_cap > 0.0_wp)) res%residual_scale_floor = &
                     max(norm2([problem%shear, problem%normal]), norm2(t_cap))
-                ! The reduced systems hold mu in their slip rows: no factors of another mu.
-                if (weakening) call stiffness%discard_factors()
                 call solve_by_method(s, warm, sf_in, srn_in, newton)
                 if (allocated(error)) then
                     if (rounds > 1) then

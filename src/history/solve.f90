@@ -57,7 +57,7 @@ module ddc_history_solve
     use ddc_run_contact_run, only: contact_run, contact_step
     use ddc_run_model, only: finish_model, model_load
     use ddc_progress, only: report_progress
-    use ddc_text, only: itoa, seconds_text
+    use ddc_text, only: itoa, seconds_text, short_real
     use ddc_allocation, only: allocation_failed, real_bytes
     use, intrinsic :: iso_fortran_env, only: int64
     implicit none
@@ -158,6 +158,7 @@ contains
             call record_step(run, load_at(k), solution, k, h, solved, error)
             if (allocated(error)) return
             if (allocated(volume)) call record_fronts(model, run%medium%shear_modulus, k, h)
+            if (allocated(volume)) call report_jumps(model, times, k, h)
             call totals%add(solution%contact, k)
             call run%tip_k(load_at(k), solved, model%growth%active, results%tips, &
                            h%k1(:, k), h%k2(:, k))
@@ -288,6 +289,39 @@ contains
             end do
         end associate
     end subroutine record_fronts
+
+    !> A progress line for each fracture whose slipping patch jumped in step k: it grew by
+    !> more than jump_elements of its elements, at more than jump_factor times the rate (per
+    !> change of sqrt(t), the rate of a self-similar front) of the step before. That is an
+    !> instability: no quasi-static state lies near the step before, and the equilibrium found
+    !> is the arrested one (docs/theory/injection.md#instability).
+    subroutine report_jumps(model, times, k, h)
+        type(model_type), intent(in) :: model
+        real(wp), intent(in) :: times(:)
+        integer, intent(in) :: k
+        type(history_record), intent(in) :: h
+        integer, parameter :: jump_elements = 5
+        real(wp), parameter :: jump_factor = 4.0_wp
+        real(wp) :: grown, rate, rate_before, element
+        integer :: f
+
+        if (k < 3) return
+        do f = 1, size(model%fractures)
+            associate (fr => model%fractures(f), length => h%slipping_length(f, :))
+                grown = length(k) - length(k - 1)
+                rate = grown / (sqrt(times(k) - times(1)) - sqrt(times(k - 1) - times(1)))
+                rate_before = (length(k - 1) - length(k - 2)) / &
+                    (sqrt(times(k - 1) - times(1)) - sqrt(times(k - 2) - times(1)))
+                element = 2.0_wp * sum(model%elements%half_length(fr%first_element: &
+                    fr%last_element)) / real(fr%last_element - fr%first_element + 1, wp)
+                if (grown > jump_elements * element .and. rate > jump_factor * &
+                    max(rate_before, 0.0_wp)) call report_progress(fr%name//': the '// &
+                    'slipping patch jumped from '//short_real(length(k - 1))//' to '// &
+                    short_real(length(k))//' '//model%length_unit//' in step '//itoa(k)// &
+                    ' (an instability: the equilibrium found is the arrested one)')
+            end associate
+        end do
+    end subroutine report_jumps
 
     !> A load path needs contact elements (without them the response is elastic).
     subroutine check_path(model, error)

@@ -93,7 +93,9 @@ contains
         call add_text(hash, model%length_unit)
         call add_text(hash, model%stress_unit)
         ! Only where not the default: the fingerprints of earlier models stay as they were.
-        if (model%time_unit /= 's') call add_text(hash, model%time_unit)
+        if (allocated(model%time_unit)) then
+            if (model%time_unit /= 's') call add_text(hash, model%time_unit)
+        end if
         if (allocated(model%injections)) then
             do i = 1, size(model%injections)
                 call add_text(hash, model%injections(i)%name)
