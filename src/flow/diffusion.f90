@@ -158,8 +158,9 @@ contains
         held = .false.
         do k = 1, size(state%sources)
             associate (s => state%sources(k))
-                if (s%kind == source_overpressure .and. acts(s, t_new, .true.)) &
-                    held(s%cells) = .true.
+                if (s%kind == source_overpressure .and. acts(s, t_new, .true.)) then
+                  held(s%cells) = .true.
+                end if
             end associate
         end do
         ap = laplacian(network, state%p)

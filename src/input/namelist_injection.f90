@@ -79,8 +79,9 @@ contains
                              'held at the point) or rate (a volume rate into it), one of them')
                 else if (overpressure /= unset_real) then
                     s%kind = source_overpressure
-                    if (check_scalar(overpressure, 'overpressure', .true., prefix, messages)) &
-                        s%value = overpressure
+                    if (check_scalar(overpressure, 'overpressure', .true., prefix, messages)) then
+                      s%value = overpressure
+                    end if
                 else
                     s%kind = source_rate
                     if (check_scalar(rate, 'rate', .true., prefix, messages)) s%value = rate

@@ -16,9 +16,13 @@ import math
 import numpy as np
 import pytest
 
-import ddc2d
-from ddc2d.injection import (critical_slip_profile, front_factor, injection_parameter,
-                             marginal_slip_profile, overpressure_profile)
+from ddc2d.injection import (
+    critical_slip_profile,
+    front_factor,
+    injection_parameter,
+    marginal_slip_profile,
+    overpressure_profile,
+)
 
 E, NU, F, S0, DP = 30000.0, 0.25, 0.6, 10.0, 5.0
 G = E / (2 * (1 + NU))
