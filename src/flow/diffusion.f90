@@ -159,7 +159,7 @@ contains
         do k = 1, size(state%sources)
             associate (s => state%sources(k))
                 if (s%kind == source_overpressure .and. acts(s, t_new, .true.)) then
-                  held(s%cells) = .true.
+                    held(s%cells) = .true.
                 end if
             end associate
         end do

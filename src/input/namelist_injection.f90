@@ -80,7 +80,7 @@ contains
                 else if (overpressure /= unset_real) then
                     s%kind = source_overpressure
                     if (check_scalar(overpressure, 'overpressure', .true., prefix, messages)) then
-                      s%value = overpressure
+                        s%value = overpressure
                     end if
                 else
                     s%kind = source_rate
