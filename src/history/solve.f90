@@ -290,8 +290,9 @@ contains
         end associate
     end subroutine record_fronts
 
-    !> A progress line for each fracture whose slipping patch jumped in step k: it grew by
-    !> more than jump_elements of its elements, at more than jump_factor times the rate (per
+    !> A progress line for each fracture whose slipping patch jumped in step k: a patch that
+    !> slipped before grew by more than jump_elements of its elements, at more than
+    !> jump_factor times the rate (per
     !> change of sqrt(t), the rate of a self-similar front) of the step before. That is an
     !> instability: no quasi-static state lies near the step before, and the equilibrium found
     !> is the arrested one (docs/theory/injection.md#instability).
@@ -314,8 +315,9 @@ contains
                     (sqrt(times(k - 1) - times(1)) - sqrt(times(k - 2) - times(1)))
                 element = 2.0_wp * sum(model%elements%half_length(fr%first_element: &
                     fr%last_element)) / real(fr%last_element - fr%first_element + 1, wp)
-                if (grown > jump_elements * element .and. rate > jump_factor * &
-                    max(rate_before, 0.0_wp)) call report_progress(fr%name//': the '// &
+                ! A patch that starts (none the step before) has nothing to jump from.
+                if (length(k - 1) > 0.0_wp .and. grown > jump_elements * element .and. &
+                    rate > jump_factor * max(rate_before, 0.0_wp)) call report_progress(fr%name//': the '// &
                     'slipping patch jumped from '//short_real(length(k - 1))//' to '// &
                     short_real(length(k))//' '//model%length_unit//' in step '//itoa(k)// &
                     ' (an instability: the equilibrium found is the arrested one)')
