@@ -201,12 +201,12 @@ contains
         type(elastic_load) function load_at(j)
             integer, intent(in) :: j
 
-            load_at = model_load(apply_load(model, loads(:, j)))
+            type(model_type) :: loaded
+
+            loaded = apply_load(model, loads(:, j))
             ! The pressure that diffused from the sources acts inside the contact elements.
-            if (allocated(flow_pressure)) then
-                where (model%elements%condition == condition_contact) &
-                    load_at%pressure = load_at%pressure + flow_pressure(:, j)
-            end if
+            if (allocated(flow_pressure)) loaded%elements%flow_pressure = flow_pressure(:, j)
+            load_at = model_load(loaded)
         end function load_at
 
         !> The elastic DDs of the joints at the last step (0 on the other elements).

@@ -110,6 +110,10 @@ module ddc_model_types
         !> time unit] and transmissivity T [length^3 / (stress unit time unit)]; 0: the
         !> element does not conduct
         real(wp), allocatable :: diffusivity(:), transmissivity(:)
+        !> The pressure change that diffused into the element from the fluid sources by the
+        !> current time [stress unit] (0 without sources; a contact element's pore pressure
+        !> rises by it); a new element of a growth run takes its tip element's
+        real(wp), allocatable :: flow_pressure(:)
         !> Derived geometry: midpoint, half-length [length unit], cos and sin of the
         !> element angle beta (counter-clockwise from +x)
         real(wp), allocatable :: x_mid(:), y_mid(:), half_length(:)
@@ -402,6 +406,7 @@ contains
         call action%on_reals(elements%normal_stiffness)
         call action%on_later_law(elements%diffusivity)
         call action%on_later_law(elements%transmissivity)
+        call action%on_later_law(elements%flow_pressure)
         call action%on_reals(elements%x_mid)
         call action%on_reals(elements%y_mid)
         call action%on_reals(elements%half_length)
