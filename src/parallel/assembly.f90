@@ -4,7 +4,6 @@
 !> row; 2i: Dn and the normal row), so that with an even block size the four entries of a
 !> pair of elements lie on one process and each pair is evaluated once.
 module ddc_parallel_assembly
-    use ddc_kinds, only: wp
     use ddc_error, only: error_type
     use ddc_model_medium, only: elastic_medium
     use ddc_influence_assembly, only: fill_influence_block

@@ -439,10 +439,19 @@ def has_dd(result, key):
 
 
 def is_cross_section(result):
-    """True when y is the vertical of the model: a half-plane, or a stress or pore
-    pressure that changes with y (gravity); otherwise a map view."""
-    return (result["attrs"].get("domain") == "half_plane"
+    """True when y is the vertical of the model: a half-plane, layers (two bonded
+    half-planes), or a stress or pore pressure that changes with y (gravity); otherwise a
+    map view."""
+    return (result["attrs"].get("domain") in ("half_plane", "bimaterial")
             or any(result["remote_stress_gradient"]) or result["pore_fluid"][1] != 0.0)
+
+
+def interface_height(result):
+    """The height y of the interface of two bonded half-planes (domain 'bimaterial'), None
+    in any other domain."""
+    if result["attrs"].get("domain") != "bimaterial":
+        return None
+    return float(result["attrs"]["interface_y"])
 
 
 def direction_sense(sx, sy):
