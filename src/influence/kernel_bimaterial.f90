@@ -22,18 +22,16 @@ module ddc_influence_kernel_bimaterial
     !> Index of each material in the arrays of moduli and ratios
     integer, parameter :: material_lower = 1, material_upper = 2
 
-    !> The rational and logarithmic functions of one element at one point z (relative to
-    !> the interface), from which its potentials follow (docs/theory/bimaterial.md).
-    type :: segment_functions
+    !> One element seen from one point, relative to the interface.
+    type :: element_view
         !> The point and its conjugate
         complex(wp) :: z = (0.0_wp, 0.0_wp), zb = (0.0_wp, 0.0_wp)
-        !> 1 / (z - z_k) and 1 / (z - conj(z_k)) for the ends k = 1, 2
-        complex(wp) :: r(2) = (0.0_wp, 0.0_wp), s(2) = (0.0_wp, 0.0_wp)
-        !> z_k - conj(z_k): twice i times the ends' heights above the interface
-        complex(wp) :: b(2) = (0.0_wp, 0.0_wp)
-        !> log((z - z_1) / (z - z_2)) and log((z - conj(z_1)) / (z - conj(z_2)))
-        complex(wp) :: l = (0.0_wp, 0.0_wp), m = (0.0_wp, 0.0_wp)
-    end type segment_functions
+        !> The element's ends, and their heights above the interface times 2i
+        !> (z_k - conj(z_k))
+        complex(wp) :: ends(2) = (0.0_wp, 0.0_wp), b(2) = (0.0_wp, 0.0_wp)
+        !> Its midpoint, half-length, direction cosines
+        real(wp) :: xm = 0.0_wp, ys = 0.0_wp, a = 0.0_wp, cosb = 1.0_wp, sinb = 0.0_wp
+    end type element_view
 
 contains
 
@@ -54,7 +52,7 @@ contains
         !> Face reported for a point on the element itself
         integer, intent(in) :: face
         type(dd_kernel) :: k
-        type(segment_functions) :: f
+        type(element_view) :: v
         real(wp) :: yr, ys, kappa(2), image_a, image_b
         integer :: receiver, source, other
         logical :: lies_on
@@ -82,45 +80,40 @@ contains
             image_a = (go - gs) / (gs + ks * go)
             image_b = (ks * go - ko * gs) / (go + ko * gs)
         end associate
-        f = functions_at(x, yr, xm, ys, a, cosb, sinb, face)
+        v = view_of(x, yr, xm, ys, a, cosb, sinb)
         if (receiver == source) then
             k = dd_kernel_global(x, y, xm, ym, a, cosb, sinb, shear_moduli(source), &
                                  poissons_ratios(source), face)
-            call add_potentials(f, cosb, sinb, shear_moduli(source), kappa(source), &
-                                [0.0_wp, image_a], [image_b, 0.0_wp], shear_moduli(source), &
-                                kappa(source), k)
+            call add_image_part(v, shear_moduli(source), kappa(source), image_a, image_b, &
+                                face, k)
         else
             k = dd_kernel([0.0_wp, 0.0_wp], [0.0_wp, 0.0_wp], [0.0_wp, 0.0_wp], &
                           [0.0_wp, 0.0_wp], [0.0_wp, 0.0_wp])
-            call add_potentials(f, cosb, sinb, shear_moduli(source), kappa(source), &
-                                [1.0_wp + image_b, 0.0_wp], [0.0_wp, 1.0_wp + image_a], &
-                                shear_moduli(other), kappa(other), k)
+            call add_transmitted_part(v, shear_moduli(source), kappa(source), &
+                                      shear_moduli(other), kappa(other), image_a, image_b, &
+                                      face, k)
         end if
     end function dd_kernel_bimaterial
 
-    !> The functions of the element (midpoint (xm, ys), ys above the interface) at the point
+    !> The element (midpoint (xm, ys), ys above the interface) seen from the point
     !> (x, yr), yr above the interface.
-    pure function functions_at(x, yr, xm, ys, a, cosb, sinb, face) result(f)
+    pure function view_of(x, yr, xm, ys, a, cosb, sinb) result(v)
         real(wp), intent(in) :: x, yr, xm, ys, a, cosb, sinb
-        integer, intent(in) :: face
-        type(segment_functions) :: f
-        complex(wp) :: zm, e, ends(2)
+        type(element_view) :: v
+        complex(wp) :: zm, e
 
-        f%z = cmplx(x, yr, wp)
-        f%zb = conjg(f%z)
+        v%z = cmplx(x, yr, wp)
+        v%zb = conjg(v%z)
         zm = cmplx(xm, ys, wp)
         e = cmplx(cosb, sinb, wp)
-        ends = [zm - a * e, zm + a * e]
-        f%r = 1.0_wp / (f%z - ends)
-        f%s = 1.0_wp / (f%z - conjg(ends))
-        f%b = ends - conjg(ends)
-        ! The element in its own frame, and its mirror image (midpoint (xm, -ys), direction
-        ! (cosb, -sinb)) in its frame: each logarithm is cut along its segment only.
-        f%l = log_ratio((x - xm) * cosb + (yr - ys) * sinb, -(x - xm) * sinb + (yr - ys) * cosb, &
-                        a, face)
-        f%m = log_ratio((x - xm) * cosb - (yr + ys) * sinb, (x - xm) * sinb + (yr + ys) * cosb, &
-                        a, face)
-    end function functions_at
+        v%ends = [zm - a * e, zm + a * e]
+        v%b = v%ends - conjg(v%ends)
+        v%xm = xm
+        v%ys = ys
+        v%a = a
+        v%cosb = cosb
+        v%sinb = sinb
+    end function view_of
 
     !> log((w + a) / (w - a)) at w = xl + i yl, a segment of half-length a in its own frame:
     !> the principal branch, cut along the segment, where the one-sided limit of the face
@@ -139,54 +132,110 @@ contains
                           angle, wp)
     end function log_ratio
 
-    !> Add to k the field of the potentials Phi = p(1) Phi_0 + p(2) Omega_0 and
-    !> Omega = q(1) Phi_0 + q(2) Omega_0, where Phi_0, Omega_0 are the element's full-plane
-    !> potentials in its own material (shear modulus g_source, kappa_source), in a material
-    !> of shear modulus g and kappa = 3 - 4 nu, per unit Ds and unit Dn.
-    pure subroutine add_potentials(f, cosb, sinb, g_source, kappa_source, p, q, g, kappa, k)
-        type(segment_functions), intent(in) :: f
-        real(wp), intent(in) :: cosb, sinb, g_source, kappa_source, p(2), q(2), g, kappa
-        type(dd_kernel), intent(inout) :: k
+    !> The DD in the global frame (u(-) - u(+), complex) of unit Ds (c = 1) or unit Dn
+    !> (c = 2), and gamma of the element's full-plane potentials in a material of shear
+    !> modulus g_source and kappa_source.
+    pure complex(wp) function gamma_of(v, c, g_source, kappa_source) result(gamma)
+        type(element_view), intent(in) :: v
+        integer, intent(in) :: c
+        real(wp), intent(in) :: g_source, kappa_source
         complex(wp), parameter :: i = (0.0_wp, 1.0_wp)
-        complex(wp) :: gamma, gammab, d, phi0(3), omega0(3), phi0b(2), omega0b(2)
-        complex(wp) :: big_phi, big_phi_prime, small_phi, big_omega_b, small_omega_b, t, u
-        real(wp) :: syy
+
+        gamma = -i * g_source * merge((1.0_wp, 0.0_wp), i, c == 1) * &
+                cmplx(v%cosb, v%sinb, wp) / (pi * (kappa_source + 1.0_wp))
+    end function gamma_of
+
+    !> The image part in the element's own material (shear modulus g, kappa): the field of
+    !> Phi = image_a Omega_0 and Omega = image_b Phi_0. It needs Omega_0 at z and Phi_0 at
+    !> conj(z) only, singular at the mirror images of the element's ends, which lie in the
+    !> other material.
+    pure subroutine add_image_part(v, g, kappa, image_a, image_b, face, k)
+        type(element_view), intent(in) :: v
+        real(wp), intent(in) :: g, kappa, image_a, image_b
+        integer, intent(in) :: face
+        type(dd_kernel), intent(inout) :: k
+        complex(wp) :: s(2), m, gamma, gammab
+        complex(wp) :: big_phi, big_phi_prime, small_phi, big_omega_b, small_omega_b
         integer :: c
 
+        ! 1 / (z - conj(z_k)), and log((z - conj(z_1)) / (z - conj(z_2))) in the frame of
+        ! the element's mirror image (midpoint (xm, -ys), direction (cosb, -sinb))
+        s = 1.0_wp / (v%z - conjg(v%ends))
+        m = log_ratio((real(v%z, wp) - v%xm) * v%cosb - (aimag(v%z) + v%ys) * v%sinb, &
+                      (real(v%z, wp) - v%xm) * v%sinb + (aimag(v%z) + v%ys) * v%cosb, v%a, face)
         do c = 1, 2
-            ! The DD in the global frame (u(-) - u(+), complex), unit Ds then unit Dn
-            d = merge((1.0_wp, 0.0_wp), i, c == 1) * cmplx(cosb, sinb, wp)
-            gamma = -i * g_source * d / (pi * (kappa_source + 1.0_wp))
+            gamma = gamma_of(v, c, g, kappa)
             gammab = conjg(gamma)
-            ! Phi_0, Phi_0', phi_0 and Omega_0, Omega_0', omega_0 at z
-            phi0 = [gamma * (f%r(1) - f%r(2)), -gamma * (f%r(1)**2 - f%r(2)**2), gamma * f%l]
-            omega0 = [gamma * (f%s(1) - f%s(2)) + gammab * (f%b(1) * f%s(1)**2 - &
-                                                            f%b(2) * f%s(2)**2), &
-                      -gamma * (f%s(1)**2 - f%s(2)**2) - 2.0_wp * gammab * &
-                      (f%b(1) * f%s(1)**3 - f%b(2) * f%s(2)**3), &
-                      gamma * f%m - gammab * (f%b(1) * f%s(1) - f%b(2) * f%s(2))]
-            ! Phi_0, phi_0 and Omega_0, omega_0 at conj(z): 1 / (conj(z) - z_k) is
-            ! conj(s_k), 1 / (conj(z) - conj(z_k)) is conj(r_k)
-            phi0b = [gamma * (conjg(f%s(1)) - conjg(f%s(2))), gamma * conjg(f%m)]
-            omega0b = [gamma * (conjg(f%r(1)) - conjg(f%r(2))) + gammab * &
-                       (f%b(1) * conjg(f%r(1))**2 - f%b(2) * conjg(f%r(2))**2), &
-                       gamma * conjg(f%l) - gammab * (f%b(1) * conjg(f%r(1)) - &
-                                                      f%b(2) * conjg(f%r(2)))]
-            big_phi = p(1) * phi0(1) + p(2) * omega0(1)
-            big_phi_prime = p(1) * phi0(2) + p(2) * omega0(2)
-            small_phi = p(1) * phi0(3) + p(2) * omega0(3)
-            big_omega_b = q(1) * phi0b(1) + q(2) * omega0b(1)
-            small_omega_b = q(1) * phi0b(2) + q(2) * omega0b(2)
-            ! syy - i sxy, sxx + syy = 4 Re Phi, 2 G (ux + i uy)
-            t = big_phi + big_omega_b + (f%z - f%zb) * conjg(big_phi_prime)
-            syy = real(t, wp)
-            u = (kappa * small_phi - small_omega_b - (f%z - f%zb) * conjg(big_phi)) / (2.0_wp * g)
-            k%ux(c) = k%ux(c) + real(u, wp)
-            k%uy(c) = k%uy(c) + aimag(u)
-            k%sxx(c) = k%sxx(c) + 4.0_wp * real(big_phi, wp) - syy
-            k%syy(c) = k%syy(c) + syy
-            k%sxy(c) = k%sxy(c) - aimag(t)
+            ! Omega_0, Omega_0' and omega_0 at z
+            big_phi = image_a * (gamma * (s(1) - s(2)) + gammab * (v%b(1) * s(1)**2 - &
+                                                                   v%b(2) * s(2)**2))
+            big_phi_prime = image_a * (-gamma * (s(1)**2 - s(2)**2) - 2.0_wp * gammab * &
+                                       (v%b(1) * s(1)**3 - v%b(2) * s(2)**3))
+            small_phi = image_a * (gamma * m - gammab * (v%b(1) * s(1) - v%b(2) * s(2)))
+            ! Phi_0 and phi_0 at conj(z): 1 / (conj(z) - z_k) is conj(s_k)
+            big_omega_b = image_b * gamma * (conjg(s(1)) - conjg(s(2)))
+            small_omega_b = image_b * gamma * conjg(m)
+            call add_field(v, big_phi, big_phi_prime, small_phi, big_omega_b, small_omega_b, &
+                           g, kappa, c, k)
         end do
-    end subroutine add_potentials
+    end subroutine add_image_part
+
+    !> The field in the other material (shear modulus g, kappa) of an element whose own
+    !> material has g_source, kappa_source: Phi = (1 + image_b) Phi_0 and
+    !> Omega = (1 + image_a) Omega_0. It needs Phi_0 at z and Omega_0 at conj(z) only,
+    !> singular at the element's ends, which lie in its own material.
+    pure subroutine add_transmitted_part(v, g_source, kappa_source, g, kappa, image_a, &
+                                         image_b, face, k)
+        type(element_view), intent(in) :: v
+        real(wp), intent(in) :: g_source, kappa_source, g, kappa, image_a, image_b
+        integer, intent(in) :: face
+        type(dd_kernel), intent(inout) :: k
+        complex(wp) :: r(2), l, gamma, gammab
+        complex(wp) :: big_phi, big_phi_prime, small_phi, big_omega_b, small_omega_b
+        integer :: c
+
+        ! 1 / (z - z_k), and log((z - z_1) / (z - z_2)) in the element's own frame
+        r = 1.0_wp / (v%z - v%ends)
+        l = log_ratio((real(v%z, wp) - v%xm) * v%cosb + (aimag(v%z) - v%ys) * v%sinb, &
+                      -(real(v%z, wp) - v%xm) * v%sinb + (aimag(v%z) - v%ys) * v%cosb, v%a, &
+                      face)
+        do c = 1, 2
+            gamma = gamma_of(v, c, g_source, kappa_source)
+            gammab = conjg(gamma)
+            ! Phi_0, Phi_0' and phi_0 at z
+            big_phi = (1.0_wp + image_b) * gamma * (r(1) - r(2))
+            big_phi_prime = -(1.0_wp + image_b) * gamma * (r(1)**2 - r(2)**2)
+            small_phi = (1.0_wp + image_b) * gamma * l
+            ! Omega_0 and omega_0 at conj(z): 1 / (conj(z) - conj(z_k)) is conj(r_k)
+            big_omega_b = (1.0_wp + image_a) * (gamma * (conjg(r(1)) - conjg(r(2))) + &
+                          gammab * (v%b(1) * conjg(r(1))**2 - v%b(2) * conjg(r(2))**2))
+            small_omega_b = (1.0_wp + image_a) * (gamma * conjg(l) - gammab * &
+                            (v%b(1) * conjg(r(1)) - v%b(2) * conjg(r(2))))
+            call add_field(v, big_phi, big_phi_prime, small_phi, big_omega_b, small_omega_b, &
+                           g, kappa, c, k)
+        end do
+    end subroutine add_transmitted_part
+
+    !> Add to column c of k the field of Phi, Phi' and phi at z and Omega, omega at conj(z)
+    !> in a material of shear modulus g and kappa: syy - i sxy, sxx + syy = 4 Re Phi and
+    !> 2 G (ux + i uy).
+    pure subroutine add_field(v, big_phi, big_phi_prime, small_phi, big_omega_b, &
+                              small_omega_b, g, kappa, c, k)
+        type(element_view), intent(in) :: v
+        complex(wp), intent(in) :: big_phi, big_phi_prime, small_phi, big_omega_b, &
+            small_omega_b
+        real(wp), intent(in) :: g, kappa
+        integer, intent(in) :: c
+        type(dd_kernel), intent(inout) :: k
+        complex(wp) :: t, u
+
+        t = big_phi + big_omega_b + (v%z - v%zb) * conjg(big_phi_prime)
+        u = (kappa * small_phi - small_omega_b - (v%z - v%zb) * conjg(big_phi)) / (2.0_wp * g)
+        k%ux(c) = k%ux(c) + real(u, wp)
+        k%uy(c) = k%uy(c) + aimag(u)
+        k%sxx(c) = k%sxx(c) + 4.0_wp * real(big_phi, wp) - real(t, wp)
+        k%syy(c) = k%syy(c) + real(t, wp)
+        k%sxy(c) = k%sxy(c) - aimag(t)
+    end subroutine add_field
 
 end module ddc_influence_kernel_bimaterial

@@ -376,7 +376,26 @@ def check_slip_weakening_thrust(f):
     assert np.nanmax(f["fields/surface/uy"][()]) > 0.5
 
 
+def check_crack_toward_soft_layer(f):
+    """The tip near the soft bed has the larger K_I, both above the one material's."""
+    y, k1 = f["tips/y"][()], f["tips/k1"][()]
+    griffith = 10.0 * np.sqrt(np.pi)
+    upper, lower = k1[np.argmax(y)], k1[np.argmin(y)]
+    assert upper > 1.4 * griffith and griffith < lower < upper, (upper, lower)
+
+
+def check_fault_across_layers(f):
+    """Split at the interface; every element slips, more in the soft upper bed."""
+    e = f["elements"]
+    y, ds = e["y_mid"][()], e["ds"][()]
+    assert y.size == 42 and np.any(e["y_end"][()] == 0.0)
+    _all(f, "fault", "slip")
+    assert np.max(np.abs(ds[y > 0])) > 1.5 * np.max(np.abs(ds[y < 0])), ds
+
+
 EXPECTED = {
+    "crack_toward_soft_layer": check_crack_toward_soft_layer,
+    "fault_across_layers": check_fault_across_layers,
     "strong_patch_progressive_failure": check_progressive_failure,
     "joint_set_pressurized_crack": check_joint_set,
     "slip_weakening_thrust": check_slip_weakening_thrust,
