@@ -19,7 +19,7 @@ module ddc_input_namelist
     use ddc_version, only: with_hmatrix
     use ddc_input_text_file, only: read_text_file, folder_of
     use ddc_mesh_geometry, only: allocate_elements, compute_geometry
-    use ddc_mesh_polyline, only: crossing_fraction, split_at_height
+    use ddc_mesh_polyline, only: crossing_fraction, split_at_height, snap_to_height
     use ddc_mesh_checks, only: check_elements
     use ddc_input_namelist_groups, only: namelist_groups, group_record, message_list, add, &
         scan_groups, g_model, g_remote_stress, g_fracture, g_grid, g_line, g_points, g_solver, &
@@ -108,6 +108,7 @@ contains
 
         call check_names(path, fractures, observations, messages)
         call check_half_plane(path, model, fractures, observations, messages)
+        call snap_to_interface(model, fractures)
         call check_bimaterial(path, model, fractures, groups, messages)
         if (messages%n > 0) then
             call set_error(error, messages%code, messages%text)
@@ -256,6 +257,33 @@ contains
             end associate
         end do
     end subroutine check_bimaterial
+
+    !> Two bonded half-planes: element ends within a few rounding steps of the largest
+    !> coordinate from the interface are put on it (a vertex meant to lie there but made by
+    !> dividing a polyline's segment is off by its rounding).
+    subroutine snap_to_interface(model, fractures)
+        type(model_type), intent(in) :: model
+        type(fracture_input), intent(inout) :: fractures(:)
+        real(wp) :: scale
+        integer :: k
+
+        if (model%elements%domain /= domain_bimaterial) return
+        scale = abs(model%interface_y)
+        do k = 1, size(fractures)
+            if (.not. fractures(k)%valid) cycle
+            associate (f => fractures(k))
+                scale = max(scale, maxval(abs(f%x_begin)), maxval(abs(f%y_begin)), &
+                            maxval(abs(f%x_end)), maxval(abs(f%y_end)))
+            end associate
+        end do
+        do k = 1, size(fractures)
+            if (.not. fractures(k)%valid) cycle
+            call snap_to_height(fractures(k)%y_begin, model%interface_y, &
+                                16.0_wp * epsilon(scale) * scale)
+            call snap_to_height(fractures(k)%y_end, model%interface_y, &
+                                16.0_wp * epsilon(scale) * scale)
+        end do
+    end subroutine snap_to_interface
 
     !> Split the elements of two bonded half-planes that cross the interface
     !> (split_at_height): both parts keep the element's values.

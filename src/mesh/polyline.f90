@@ -8,6 +8,7 @@ module ddc_mesh_polyline
     private
 
     public :: polyline_elements, expand_per_segment, crossing_fraction, split_at_height
+    public :: snap_to_height
 
 contains
 
@@ -68,6 +69,16 @@ contains
             first = first + counts(segment)
         end do
     end function expand_per_segment
+
+    !> A height within tolerance of the line y = y_line put on it (exactly y_line).
+    elemental subroutine snap_to_height(y, y_line, tolerance)
+        !> The height [length unit]
+        real(wp), intent(inout) :: y
+        !> Height of the line, tolerance [length unit]
+        real(wp), intent(in) :: y_line, tolerance
+
+        if (abs(y - y_line) <= tolerance) y = y_line
+    end subroutine snap_to_height
 
     !> Where an element from (yb) to (ye) crosses the line y = y_line, as the fraction of
     !> the way from its begin; -1 when it does not cross it (both ends on one side, or an
