@@ -217,7 +217,7 @@ contains
         end do
     end subroutine check_half_plane
 
-    !> Rules of two bonded half-planes (docs/theory/bimaterial.md#elements-at-the-interface):
+    !> Rules of two bonded half-planes (docs/theory/bimaterial.md#elements-and-points-at-the-interface):
     !> symmetry about a vertical line only (a line y = ysym would mirror one material into
     !> the other), no element crossing the interface within split_tolerance of its length
     !> from an end (it is split there), no growth or new fractures yet.

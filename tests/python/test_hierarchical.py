@@ -127,8 +127,9 @@ def test_benchmark_contact_models_match_the_dense_solve(tmp_path, case):
 def test_example_faults_match_the_dense_solve(tmp_path, example):
     """Examples in the full plane, in the half-plane (a thrust fault with pore pressure
     to the surface, a buried fault of given slip) and in two bonded half-planes (a crack
-    near the interface), the contact ones by the Newton method on both paths (the dense path's 'auto' takes Lemke below 300 contact elements, which may
-    choose other states where the contact problem has more than one solution)."""
+    near the interface), the contact ones by the Newton method on both paths (the dense
+    path's 'auto' takes Lemke below 300 contact elements, which may choose other states
+    where the contact problem has more than one solution)."""
     text = (REPO_ROOT / "input" / f"{example}.nml").read_text()
     assert_same_results(*solve_both(tmp_path, example, text, both=", lcp_method = 'newton'"))
 

@@ -24,8 +24,8 @@ from .reader import FilePath
 SINGLE_GROUPS = ("remote_stress", "pore_fluid", "solver", "symmetry", "load_path", "sweep",
                  "growth")
 #: The order of the groups in the file: as in docs/input-reference.md.
-GROUP_ORDER = ("model", "material", "remote_stress", "pore_fluid", "fracture", "grid", "line", "points",
-               "solver", "symmetry", "load_path", "sweep", "growth")
+GROUP_ORDER = ("model", "material", "remote_stress", "pore_fluid", "fracture", "grid", "line",
+               "points", "solver", "symmetry", "load_path", "sweep", "growth")
 #: Namelist lines are kept under this width (values wrap onto continuation lines).
 LINE_WIDTH = 90
 
