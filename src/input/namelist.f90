@@ -217,10 +217,11 @@ contains
         end do
     end subroutine check_half_plane
 
-    !> Rules of two bonded half-planes (docs/theory/bimaterial.md#elements-and-points-at-the-interface):
-    !> symmetry about a vertical line only (a line y = ysym would mirror one material into
-    !> the other), no element crossing the interface within split_tolerance of its length
-    !> from an end (it is split there), no growth or new fractures yet.
+    !> Rules of two bonded half-planes
+    !> (docs/theory/bimaterial.md#elements-and-points-at-the-interface): symmetry about a
+    !> vertical line only (a line y = ysym would mirror one material into the other), no
+    !> element crossing the interface within split_tolerance of its length from an end (it
+    !> is split there), no growth or new fractures yet.
     subroutine check_bimaterial(path, model, fractures, groups, messages)
         character(len=*), intent(in) :: path
         type(model_type), intent(in) :: model
