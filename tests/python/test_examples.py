@@ -10,8 +10,10 @@ it shows (states, which tips slip more), so that a figure in the gallery (docs/g
 silently turn into something else.
 """
 
+import os
 import re
 import subprocess
+import sys
 
 import h5py
 import numpy as np
@@ -374,6 +376,23 @@ def check_slip_weakening_thrust(f):
     assert 10 < lower_slipping < 90 and np.allclose(mu[~upper], 0.7, rtol=1e-12), \
         lower_slipping
     assert np.nanmax(f["fields/surface/uy"][()]) > 0.5
+
+
+def test_layered_k_approach_script(tmp_path):
+    """examples/layered/k_approach.py (docs/layered-rock.md#what-to-expect) at two gaps: K_I
+    at the upper tip rises as it nears a softer bed, falls as it nears a stiffer one."""
+    script = REPO_ROOT / "examples" / "layered" / "k_approach.py"
+    done = subprocess.run([sys.executable, str(script), "--gaps", "0.5", "0.12", "--output",
+                           str(tmp_path / "k.png")],
+                          capture_output=True, text=True, timeout=300, cwd=tmp_path,
+                          env=dict(os.environ, DDC2D_EXE=str(ddc2d_exe())))
+    assert done.returncode == 0, done.stderr
+    rows = [line.split() for line in done.stdout.splitlines()[2:4]]
+    stiff_below = [float(row[1]) for row in rows]
+    soft_below = [float(row[3]) for row in rows]
+    assert 1.0 < stiff_below[0] < stiff_below[1], done.stdout
+    assert 1.0 > soft_below[0] > soft_below[1], done.stdout
+    assert (tmp_path / "k.png").stat().st_size > 0
 
 
 def check_crack_toward_soft_layer(f):
