@@ -132,8 +132,7 @@ contains
         end do
         call run%set_stress_scale(sigma0)
         ! The tips, found once (their geometry); their K at every step.
-        call find_tips(model%elements, run%medium%shear_modulus, model%poissons_ratio, &
-                       spread(0.0_wp, 1, n), spread(0.0_wp, 1, n), results%tips)
+        call find_tips(run%medium, spread(0.0_wp, 1, n), spread(0.0_wp, 1, n), results%tips)
         done = 0
         if (present(restart)) call resume_steps(run, restart, nsteps, h, done, error)
         if (.not. allocated(error)) call allocate_history(h, n, results%tips%n, nsteps, &
