@@ -1,5 +1,5 @@
 !> Pressure that diffuses along the fracture network from its sources
-!> (docs/theory/injection.md#diffusion-along-the-network): the storage of each cell times
+!> (docs/theory/injection.md#integration-in-time): the storage of each cell times
 !> the rate of change of its pressure equals what flows in through its connections plus its
 !> sources, M dp/dt = -A p + Q, A the network's symmetric Laplacian (ddc_flow_network).
 !>

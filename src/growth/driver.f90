@@ -43,7 +43,7 @@ module ddc_growth_driver
     use ddc_kinds, only: wp
     use ddc_constants, only: pi
     use ddc_error, only: error_type, set_internal_error, set_error, exit_bad_input
-    use ddc_model_types, only: model_type, growth_options, initiation_options
+    use ddc_model_types, only: model_type, growth_options, initiation_options, has_sources
     use ddc_model_initiations, only: initiation_record
     use ddc_growth_initiation, only: start_fracture
     use ddc_model_results, only: model_results, growth_record, growth_grew, growth_subcritical, &
@@ -63,6 +63,7 @@ module ddc_growth_driver
     use ddc_growth_work, only: append_table, append_trials
     use ddc_growth_load_steps, only: follow_growth, record_load_step, finish_load_steps
     use ddc_history_path, only: path_loads, apply_load, load_text
+    use ddc_flow_injection, only: follow_flow, injected
     use ddc_progress, only: report_progress, hold_progress, release_progress
     use ddc_text, only: itoa, rtoa, seconds_text
     implicit none
@@ -141,10 +142,13 @@ contains
         do load_step = start, size(loads, 2)
             if (history) then
                 where = 'load step '//itoa(load_step)//' of '//itoa(size(loads, 2))//' ('// &
-                    load_text(loads(:, load_step), model%load_path%varies)//')'
+                    step_text(load_step)//')'
                 if (.not. solved) then
                     run%work = apply_load(run%work, loads(:, load_step))
-                    call solve_loaded(run%solver, run%work, run%current, error)
+                    if (has_sources(model)) call follow_flow(run%flow, run%work, &
+                                                             run%times(load_step), error)
+                    if (.not. allocated(error)) call solve_loaded(run%solver, run%work, &
+                                                                  run%current, error)
                     if (allocated(error)) then
                         error%message = where//': '//error%message//'; no result is written'
                         return
@@ -162,8 +166,17 @@ contains
                 return
             end if
             if (history) then
-                call record_load_step(run%history, run%work, run%current, loads(:, load_step), &
-                                      error)
+                if (has_sources(model)) then
+                    call record_load_step(run%history, run%work, run%current, &
+                                          loads(:, load_step), error, run%times(load_step), &
+                                          injected(run%flow))
+                else if (allocated(run%times)) then
+                    call record_load_step(run%history, run%work, run%current, &
+                                          loads(:, load_step), error, run%times(load_step))
+                else
+                    call record_load_step(run%history, run%work, run%current, &
+                                          loads(:, load_step), error)
+                end if
                 if (allocated(error)) return
                 call report_load_step(record%steps_taken - steps_before)
             end if
@@ -195,6 +208,19 @@ contains
         results%solver%seconds_total = real(t_end - t_start, wp) / real(rate, wp)
 
     contains
+
+        !> 'syy = -60' or 't = 2.5 s, syy = -60': what load step k is.
+        function step_text(k) result(text)
+            integer, intent(in) :: k
+            character(len=:), allocatable :: text
+
+            if (allocated(run%times)) then
+                text = load_text(loads(:, k), model%load_path%varies, run%times(k), &
+                                 model%time_unit)
+            else
+                text = load_text(loads(:, k), model%load_path%varies)
+            end if
+        end function step_text
 
         !> 'load step 3 of 20 (syy = -60): 2 growth steps, 1.2 grown, 3.5 s' (time since the start).
         subroutine report_load_step(steps_grown)

@@ -37,12 +37,11 @@
 !> last step's element results, tips and fields are those of finish_model (ddc_run_model)
 !> for the model at the last load.
 module ddc_history_solve
-    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_nan
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
-    use ddc_model_types, only: model_type, condition_contact
+    use ddc_model_types, only: model_type, condition_contact, has_sources
     use ddc_model_results, only: model_results, history_record, element_results, &
-        solver_record, state_slip, state_open
+        solver_record
     use ddc_model_records, only: lay_out_history
     use ddc_model_restart, only: restart_state
     use ddc_model_medium, only: medium_of
@@ -54,10 +53,11 @@ module ddc_history_solve
     use ddc_post_tips, only: find_tips
     use ddc_history_path, only: path_loads, path_times, apply_load, load_text
     use ddc_flow_injection, only: pressure_history
+    use ddc_history_fronts, only: record_fronts, report_jumps
     use ddc_run_contact_run, only: contact_run, contact_step
     use ddc_run_model, only: finish_model, model_load
     use ddc_progress, only: report_progress
-    use ddc_text, only: itoa, seconds_text, short_real
+    use ddc_text, only: itoa, seconds_text
     use ddc_allocation, only: allocation_failed, real_bytes
     use, intrinsic :: iso_fortran_env, only: int64
     implicit none
@@ -228,14 +228,6 @@ contains
 
     end subroutine solve_history
 
-    !> Whether the model has fluid sources.
-    pure logical function has_sources(model)
-        type(model_type), intent(in) :: model
-
-        has_sources = .false.
-        if (allocated(model%injections)) has_sources = size(model%injections) > 0
-    end function has_sources
-
     !> Room for the columns of a time axis and of the fluid sources, where the model has
     !> them (the first `kept` steps kept).
     subroutine lay_out_time(h, model, n, nsteps, kept, error)
@@ -256,73 +248,6 @@ contains
                                               ' elements at '//itoa(nsteps)//' steps', &
                                               real_bytes * real(n, wp) * real(nsteps, wp))
     end subroutine lay_out_time
-
-    !> Step k's slipping patch of each fracture (elements that slip or open): its length,
-    !> where it begins and ends along the fracture, and the fracture's seismic moment.
-    pure subroutine record_fronts(model, shear_modulus, k, h)
-        type(model_type), intent(in) :: model
-        real(wp), intent(in) :: shear_modulus
-        integer, intent(in) :: k
-        type(history_record), intent(inout) :: h
-        real(wp) :: s
-        integer :: f, i
-
-        associate (e => model%elements)
-            do f = 1, size(model%fractures)
-                h%slipping_length(f, k) = 0.0_wp
-                h%front_begin(f, k) = ieee_value(1.0_wp, ieee_quiet_nan)
-                h%front_end(f, k) = ieee_value(1.0_wp, ieee_quiet_nan)
-                h%moment(f, k) = 0.0_wp
-                s = 0.0_wp
-                do i = model%fractures(f)%first_element, model%fractures(f)%last_element
-                    h%moment(f, k) = h%moment(f, k) + shear_modulus * abs(h%ds(i, k)) * &
-                        2.0_wp * e%half_length(i)
-                    if (h%state(i, k) == state_slip .or. h%state(i, k) == state_open) then
-                        h%slipping_length(f, k) = h%slipping_length(f, k) + &
-                            2.0_wp * e%half_length(i)
-                        if (ieee_is_nan(h%front_begin(f, k))) h%front_begin(f, k) = s
-                        h%front_end(f, k) = s + 2.0_wp * e%half_length(i)
-                    end if
-                    s = s + 2.0_wp * e%half_length(i)
-                end do
-            end do
-        end associate
-    end subroutine record_fronts
-
-    !> A progress line for each fracture whose slipping patch jumped in step k: a patch that
-    !> slipped before grew by more than jump_elements of its elements, at more than
-    !> jump_factor times the rate (per
-    !> change of sqrt(t), the rate of a self-similar front) of the step before. That is an
-    !> instability: no quasi-static state lies near the step before, and the equilibrium found
-    !> is the arrested one (docs/theory/injection.md#instability).
-    subroutine report_jumps(model, times, k, h)
-        type(model_type), intent(in) :: model
-        real(wp), intent(in) :: times(:)
-        integer, intent(in) :: k
-        type(history_record), intent(in) :: h
-        integer, parameter :: jump_elements = 5
-        real(wp), parameter :: jump_factor = 4.0_wp
-        real(wp) :: grown, rate, rate_before, element
-        integer :: f
-
-        if (k < 3) return
-        do f = 1, size(model%fractures)
-            associate (fr => model%fractures(f), length => h%slipping_length(f, :))
-                grown = length(k) - length(k - 1)
-                rate = grown / (sqrt(times(k) - times(1)) - sqrt(times(k - 1) - times(1)))
-                rate_before = (length(k - 1) - length(k - 2)) / &
-                    (sqrt(times(k - 1) - times(1)) - sqrt(times(k - 2) - times(1)))
-                element = 2.0_wp * sum(model%elements%half_length(fr%first_element: &
-                    fr%last_element)) / real(fr%last_element - fr%first_element + 1, wp)
-                ! A patch that starts (none the step before) has nothing to jump from.
-                if (length(k - 1) > 0.0_wp .and. grown > jump_elements * element .and. &
-                    rate > jump_factor * max(rate_before, 0.0_wp)) call report_progress(fr%name//': the '// &
-                    'slipping patch jumped from '//short_real(length(k - 1))//' to '// &
-                    short_real(length(k))//' '//model%length_unit//' in step '//itoa(k)// &
-                    ' (an instability: the equilibrium found is the arrested one)')
-            end associate
-        end do
-    end subroutine report_jumps
 
     !> A load path needs contact elements (without them the response is elastic).
     subroutine check_path(model, error)

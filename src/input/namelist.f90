@@ -320,6 +320,8 @@ contains
         fracture%bc_s = fracture%bc_s(source)
         fracture%bc_n = fracture%bc_n(source)
         fracture%laws = fracture%laws(source, :)
+        fracture%diffusivity = fracture%diffusivity(source)
+        fracture%transmissivity = fracture%transmissivity(source)
     end subroutine split_at_interface
 
     !> Reject duplicate names of fractures and of observation sets, and bad set names.

@@ -18,7 +18,7 @@ module ddc_model_types
     public :: model_type, element_set, fracture_type, observation_set
     public :: symmetry_options, symmetry_none, symmetry_x, symmetry_y, symmetry_both
     public :: symmetry_names, sweep_task_record, load_path_type, load_path_names
-    public :: injection_source, source_overpressure, source_rate
+    public :: injection_source, source_overpressure, source_rate, has_sources
     public :: condition_traction, condition_displacement, condition_mixed_us_sn
     public :: condition_mixed_ss_un, condition_contact, condition_prescribed_dd, condition_names
     public :: domain_full_plane, domain_half_plane, domain_bimaterial, domain_names
@@ -373,6 +373,15 @@ module ddc_model_types
     end type model_type
 
 contains
+
+    !> Whether a model has fluid sources (&injection).
+    pure logical function has_sources(model)
+        !> The model
+        type(model_type), intent(in) :: model
+
+        has_sources = .false.
+        if (allocated(model%injections)) has_sources = size(model%injections) > 0
+    end function has_sources
 
     !> A real per-element array of a law added later: by default like any other.
     subroutine act_on_later_law(action, values)

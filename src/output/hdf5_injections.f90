@@ -1,4 +1,4 @@
-!> /injection (docs/output-reference.md#injection): the model's fluid sources, one row each
+!> /injection (docs/injection.md#output): the model's fluid sources, one row each
 !> (name, fracture, point, overpressure or rate, start and stop), for the tools that plot what
 !> they did.
 module ddc_output_hdf5_injections

@@ -360,8 +360,8 @@ def test_strength_law_off_what_holds_it_fails(tree, capsys):
          "        allocate (law%planted, source=given_or(planted, 0.0_wp))\n"
          "        allocate (law%sf_in_force, source=sf)\n")
     edit(tree / "src/input/namelist_fracture.f90",
-         "            shear_stiffness, normal_stiffness, opening_weakening_distance\n",
-         "            shear_stiffness, normal_stiffness, opening_weakening_distance, planted\n")
+         "opening_weakening_distance, diffusivity, &\n            transmissivity\n",
+         "opening_weakening_distance, diffusivity, &\n            transmissivity, planted\n")
     edit(tree / "src/input/namelist_fracture.f90", "shear_stiffness, normal_stiffness], &",
          "shear_stiffness, normal_stiffness, planted], &")
     edit(tree / "src/input/namelist_growth.f90",
@@ -370,8 +370,7 @@ def test_strength_law_off_what_holds_it_fails(tree, capsys):
     edit(tree / "src/input/namelist_growth.f90", "new_shear_stiffness, new_normal_stiffness], ",
          "new_shear_stiffness, new_normal_stiffness, new_planted], ")
     groups = tree / "src/input/namelist_groups.f90"
-    edit(groups, "'normal_stiffness:r opening_weakening_distance:r'",
-         "'normal_stiffness:r opening_weakening_distance:r planted:r'")
+    edit(groups, "'transmissivity:r'", "'transmissivity:r planted:r'")
     edit(groups, "'new_shear_stiffness:r new_normal_stiffness:r'",
          "'new_shear_stiffness:r new_normal_stiffness:r new_planted:r'")
     status, out = run_checks(tree, capsys)

@@ -109,3 +109,50 @@ def test_bad_injection_input_exits_2_without_output(tmp_path, old, new, words):
     for word in words:
         assert word in done.stderr, done.stderr
     assert not list(tmp_path.glob("*.h5"))
+
+
+GROWING = """\
+&model youngs_modulus = 30000.0, poissons_ratio = 0.25 /
+&remote_stress sxx = -20.0, syy = -10.0 /
+&fracture name = 'crack', x = -0.5, 0.5, y = 0.0, 0.0, elements = 21, mu = 0.6, sf = 0.0,
+          diffusivity = 1.0, transmissivity = 1.0 /
+&injection name = 'well', fracture = 'crack', x = 0.0, y = 0.0, overpressure = 15.0 /
+&load_path time = 0.0, 0.2, steps = 4 /
+&growth toughness = 3.0, increment = 0.05, steps = 4 /
+"""
+
+
+def test_a_crack_the_pressure_opens_grows(tmp_path):
+    """A closed crack (s_yy = -10) with a source of 15 at its middle: the crack opens as the
+    pressure spreads and grows at its ends; the new elements conduct and start at the
+    pressure of the tip they grew from."""
+    (tmp_path / "grow.nml").write_text(GROWING)
+    done = run(["grow.nml"], tmp_path)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert "load step 5 of 5 (t = 0.2" in done.stdout
+    with h5py.File(tmp_path / "grow.h5") as f:
+        history = f["history"]
+        count = history["element_count"][()]
+        assert count[0] == 21 and count[-1] == 21 + 2 * 4
+        pressure = history["pressure"][()]
+        assert pressure.shape == (5, count[-1])
+        # Rows follow the geometry: the grown elements have none before they were made.
+        created = f["elements/created_step"][()]
+        assert np.all(np.isnan(pressure[0, created > 0]))
+        # They grew in the last load step: each has its old tip element's pressure then.
+        x = f["elements/x_mid"][()]
+        old = np.flatnonzero(created == 0)
+        tips = old[[np.argmin(x[old]), np.argmax(x[old])]]
+        assert pressure[-1, tips[0]] == pytest.approx(pressure[-1, tips[1]], rel=1e-12)
+        assert 10.0 < pressure[-1, tips[0]] < 15.0
+        assert pressure[-1, created > 0] == pytest.approx(pressure[-1, tips[0]], rel=1e-12)
+        assert np.all(f["elements/diffusivity"][()] == 1.0)
+        assert np.all(np.diff(history["injected_volume"][()]) > 0.0)
+
+
+def test_a_growth_run_with_sources_is_not_resumed(tmp_path):
+    (tmp_path / "grow.nml").write_text(GROWING)
+    assert run(["grow.nml"], tmp_path).returncode == 0
+    done = run(["grow.nml", "--resume", "grow.h5", "-o", "again.h5"], tmp_path)
+    assert done.returncode == 2, done.stdout + done.stderr
+    assert "cannot be resumed" in done.stderr
