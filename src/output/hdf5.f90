@@ -291,6 +291,13 @@ contains
                 call write_real_1d(group, 'ds_elastic', r%ds_elastic, length, error)
                 call write_real_1d(group, 'dn_elastic', r%dn_elastic, length, error)
             end if
+            ! Flow along the fractures, only where some element conducts (docs/injection.md)
+            if (any(e%transmissivity > 0.0_wp)) then
+                call write_real_1d(group, 'diffusivity', e%diffusivity, &
+                                   length//'^2/'//allocated_text(model%time_unit), error)
+                call write_real_1d(group, 'transmissivity', e%transmissivity, length//'^3/('// &
+                                   stress//' '//allocated_text(model%time_unit)//')', error)
+            end if
             call write_growth_elements(group, model, results%growth, error)
         end associate
         call close_group(group, error)
