@@ -257,3 +257,20 @@ def test_history_to_xarray_runs_along_time(fault):
                                       f["history/pressure"][2])
         np.testing.assert_array_equal(by_time["front_end"].sel(fracture=1),
                                       f["history/front_end"][:, 0])
+
+
+def test_the_model_builder_writes_an_injection(fault, tmp_path):
+    model = ddc2d.Model(youngs_modulus=30000.0, poissons_ratio=0.25, time_unit="h")
+    model.remote_stress(syy=-10.0, sxy=4.5)
+    model.fracture([-4.0, 4.0], [0.0, 0.0], elements=201, mu=0.6, sf=0.0, name="fault",
+                   diffusivity=1.0, transmissivity=1.0)
+    model.injection("fault", 0.0, 0.0, name="well", overpressure=5.0)
+    model.load_path(steps=4, time=[0.0, 0.4])
+    model.solver(k_method="tip_element")
+    assert "&injection name = 'well', fracture = 'fault', x = 0.0, y = 0.0, overpressure = " \
+        "5.0 /" in model.namelist()
+    built = ddc2d.run(model, output=tmp_path / "built.h5", executable=ddc2d_exe())
+    with h5py.File(fault[1]) as f:
+        for key in ("front_begin", "front_end", "injected_volume"):
+            np.testing.assert_allclose(built.history[key], f["history"][key][()], rtol=1e-12)
+    assert built.injection["name"] == ["well"] and built.time_unit == "h"
