@@ -124,7 +124,7 @@ contains
         character(len=:), allocatable, intent(out) :: problem
         type(strength_law) :: laws(strength_law_count)
         character(len=:), allocatable :: key
-        integer :: close_paren, stat, i
+        integer :: stat, i
 
         key = squeeze(lower(name))
         target = 0
@@ -136,13 +136,7 @@ contains
             call parse_source(name, key, nsources, source, problem)
             if (len(problem) > 0) return
         else if (index(key, 'fracture(') == 1) then
-            close_paren = index(key, ')%')
-            stat = 1
-            if (close_paren > 10) then
-                if (verify(key(10:close_paren - 1), '0123456789') == 0) then
-                    read (key(10:close_paren - 1), *, iostat=stat) fracture
-                end if
-            end if
+            call group_number(key, 'fracture', fracture, stat)
             if (stat /= 0) then
                 problem = "'"//trim(name)//"' is not a sweep parameter: write fracture(K)%mu"// &
                           ' with K the fracture number (1-based)'
@@ -153,7 +147,6 @@ contains
                           ' fracture(s); K must be 1 to '//itoa(nfractures)
                 return
             end if
-            key = key(close_paren + 2:)
             if (all(key /= [character(len=14) :: 'mu', 'sf', 'pressure', 'diffusivity', &
                                                  'transmissivity'])) then
                 problem = "'"//trim(name)//"': a fracture's sweep parameters are mu, sf, "// &
@@ -193,31 +186,46 @@ contains
         integer, intent(out) :: source
         !> Why the name is bad, '' when it is good
         character(len=:), allocatable, intent(out) :: problem
-        integer :: close_paren, stat
+        integer :: stat
 
-        source = 0
         problem = ''
-        close_paren = index(key, ')%')
-        stat = 1
-        if (close_paren > 11) then
-            if (verify(key(11:close_paren - 1), '0123456789') == 0) then
-                read (key(11:close_paren - 1), *, iostat=stat) source
-            end if
-        end if
+        call group_number(key, 'injection', source, stat)
         if (stat /= 0) then
             problem = "'"//trim(name)//"' is not a sweep parameter: write "// &
                       'injection(K)%overpressure with K the &injection group (1-based)'
         else if (source < 1 .or. source > nsources) then
             problem = "'"//trim(name)//"': the model has "//itoa(nsources)// &
                       ' &injection group(s); K must be 1 to '//itoa(nsources)
-        else
-            key = key(close_paren + 2:)
-            if (key /= 'overpressure' .and. key /= 'rate') then
-                problem = "'"//trim(name)//"': a source's sweep parameters are "// &
-                          'overpressure and rate'
-            end if
+        else if (key /= 'overpressure' .and. key /= 'rate') then
+            problem = "'"//trim(name)//"': a source's sweep parameters are overpressure "// &
+                      'and rate'
         end if
     end subroutine parse_source
+
+    !> K of a name <group>(K)%<rest> (key, lower case without blanks, starting with
+    !> '<group>('): stat 0, k = K and key the rest when K is a number; stat nonzero else.
+    subroutine group_number(key, group, k, stat)
+        !> The name; on return the part after the % when K is a number
+        character(len=:), allocatable, intent(inout) :: key
+        !> The group's name
+        character(len=*), intent(in) :: group
+        !> K, 0 when it is no number
+        integer, intent(out) :: k
+        !> 0 when K is a number
+        integer, intent(out) :: stat
+        integer :: first, close_paren
+
+        k = 0
+        stat = 1
+        first = len(group) + 2
+        close_paren = index(key, ')%')
+        if (close_paren > first) then
+            if (verify(key(first:close_paren - 1), '0123456789') == 0) then
+                read (key(first:close_paren - 1), *, iostat=stat) k
+            end if
+        end if
+        if (stat == 0) key = key(close_paren + 2:)
+    end subroutine group_number
 
     !> The list of parameter names, for messages.
     function parameter_help() result(help)
