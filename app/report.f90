@@ -5,7 +5,7 @@ module ddc_app_report
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type, rigid_joint, tensile_cap, condition_names, &
         observation_kind_names, symmetry_none, symmetry_names, domain_names, &
-        domain_half_plane, load_path_names, source_overpressure, &
+        domain_half_plane, domain_bimaterial, load_path_names, source_overpressure, &
         growth_tips_names, growth_criterion_names, growth_criterion_work, strength_law_count
     use ddc_model_laws, only: strength_law, strength_laws
     use ddc_model_records, only: units_one, units_text
@@ -15,6 +15,7 @@ module ddc_app_report
     use ddc_model_plausibility, only: plausibility_notes, depth_range
     use ddc_model_strength_fronts, only: instant_drop_notes, cohesive_zone_warnings
     use ddc_model_loads, only: work_threshold_of
+    use ddc_model_medium, only: medium_of, upper_remote_stress
     use ddc_growth_summary, only: tip_summary, summarize_tips, linked_fracture
     use ddc_contact_options, only: lcp_method_names, open_cohesion_names
     use ddc_text, only: short_real, itoa, prefix_lines, join_integers
@@ -46,10 +47,27 @@ contains
         gradient = ' '//model%stress_unit//'/'//model%length_unit
         call depth_range(model, deepest, highest)
         write (unit, '(a)') 'ddc2d model: '//model%title
-        write (unit, '(a)') '  youngs_modulus = '//short_real(model%youngs_modulus)//stress// &
-            ', poissons_ratio = '//short_real(model%poissons_ratio)
+        if (model%elements%domain == domain_bimaterial) then
+            write (unit, '(a)') '  lower material: youngs_modulus = '// &
+                short_real(model%youngs_modulus)//stress//', poissons_ratio = '// &
+                short_real(model%poissons_ratio)
+            write (unit, '(a)') '  upper material: youngs_modulus = '// &
+                short_real(model%upper_youngs_modulus)//stress//', poissons_ratio = '// &
+                short_real(model%upper_poissons_ratio)
+        else
+            write (unit, '(a)') '  youngs_modulus = '//short_real(model%youngs_modulus)// &
+                stress//', poissons_ratio = '//short_real(model%poissons_ratio)
+        end if
         if (model%elements%domain == domain_half_plane) then
             write (unit, '(a)') '  domain: half_plane (free surface y = 0, the body y < 0)'
+        else if (model%elements%domain == domain_bimaterial) then
+            associate (upper => upper_remote_stress(medium_of(model), &
+                                                    [model%sxx, model%syy, model%sxy]))
+                write (unit, '(a)') '  domain: bimaterial (two bonded half-planes, interface '// &
+                    'y = '//short_real(model%interface_y)//'; the remote stress below is '// &
+                    "the lower material's, the upper one's sxx = "//short_real(upper(1))// &
+                    stress//')'
+            end associate
         else
             write (unit, '(a)') '  domain: '//trim(domain_names(model%elements%domain))
         end if

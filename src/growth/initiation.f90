@@ -33,7 +33,7 @@ module ddc_growth_initiation
         tip_set
     use ddc_model_initiations, only: initiation_record, initiation_tail, initiation_flaw, &
         append_initiation, empty_initiation_record
-    use ddc_model_loads, only: shear_modulus_of
+    use ddc_model_medium, only: medium_of
     use ddc_mesh_checks, only: check_elements
     use ddc_post_fields, only: evaluate_field
     use ddc_growth_extension, only: tip_end_begin, tip_end_end
@@ -225,9 +225,9 @@ contains
         ! Contiguous copies of the probe points (components of found are strided)
         px = [(found(k)%probe(1), k = 1, m)]
         py = [(found(k)%probe(2), k = 1, m)]
-        call evaluate_field(work%elements, shear_modulus_of(work), work%poissons_ratio, &
-                            [work%sxx, work%syy, work%sxy], current%elements%ds, &
-                            current%elements%dn, px, py, field, work%stress_gradient)
+        call evaluate_field(medium_of(work), [work%sxx, work%syy, work%sxy], &
+                            current%elements%ds, current%elements%dn, px, py, field, &
+                            work%stress_gradient)
         allocate (keep(m))
         keep = field%flag /= point_on_element
         do k = 1, m

@@ -132,8 +132,7 @@ contains
         end do
         call run%set_stress_scale(sigma0)
         ! The tips, found once (their geometry); their K at every step.
-        call find_tips(model%elements, run%medium%shear_modulus, model%poissons_ratio, &
-                       spread(0.0_wp, 1, n), spread(0.0_wp, 1, n), results%tips)
+        call find_tips(run%medium, spread(0.0_wp, 1, n), spread(0.0_wp, 1, n), results%tips)
         done = 0
         if (present(restart)) call resume_steps(run, restart, nsteps, h, done, error)
         if (.not. allocated(error)) call allocate_history(h, n, results%tips%n, nsteps, &
@@ -201,12 +200,12 @@ contains
         type(elastic_load) function load_at(j)
             integer, intent(in) :: j
 
-            load_at = model_load(apply_load(model, loads(:, j)))
+            type(model_type) :: loaded
+
+            loaded = apply_load(model, loads(:, j))
             ! The pressure that diffused from the sources acts inside the contact elements.
-            if (allocated(flow_pressure)) then
-                where (model%elements%condition == condition_contact) &
-                    load_at%pressure = load_at%pressure + flow_pressure(:, j)
-            end if
+            if (allocated(flow_pressure)) loaded%elements%flow_pressure = flow_pressure(:, j)
+            load_at = model_load(loaded)
         end function load_at
 
         !> The elastic DDs of the joints at the last step (0 on the other elements).

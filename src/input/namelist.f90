@@ -13,23 +13,25 @@ module ddc_input_namelist
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_capabilities, only: run_refusal, operator_hierarchical
     use ddc_model_types, only: model_type, condition_contact, symmetry_none, symmetry_names, &
-        symmetry_x, domain_half_plane, strength_law_count
+        symmetry_x, domain_half_plane, domain_bimaterial, strength_law_count
     use ddc_model_laws, only: strength_law, strength_laws, set_law
     use ddc_text, only: itoa, rtoa, prefix_lines
     use ddc_version, only: with_hmatrix
     use ddc_input_text_file, only: read_text_file, folder_of
     use ddc_mesh_geometry, only: allocate_elements, compute_geometry
+    use ddc_mesh_polyline, only: crossing_fraction, split_at_height, snap_to_height
     use ddc_mesh_checks, only: check_elements
     use ddc_input_namelist_groups, only: namelist_groups, group_record, message_list, add, &
         scan_groups, g_model, g_remote_stress, g_fracture, g_grid, g_line, g_points, g_solver, &
-        g_output, g_symmetry, g_pore_fluid, g_load_path, g_growth, g_injection
+        g_output, g_symmetry, g_pore_fluid, g_load_path, g_growth, g_injection, g_material, &
+        g_initiation
     use ddc_input_namelist_growth, only: read_growth_group
     use ddc_input_namelist_initiation, only: read_initiation_group, check_flaw_points
     use ddc_input_namelist_injection, only: read_injection_groups, check_injection_points
     use ddc_input_namelist_values, only: text_length
     use ddc_input_namelist_settings, only: read_model_group, read_remote_stress_group, &
         read_pore_fluid_group, read_solver_group, read_symmetry_group, read_output_group, &
-        read_load_path_group
+        read_load_path_group, read_material_groups
     use ddc_input_namelist_fracture, only: fracture_input, read_fracture_groups
     use ddc_contact_options, only: matrix_hierarchical, k_higher_order
     use ddc_input_namelist_observations, only: observation_input, read_grid_groups, &
@@ -38,6 +40,10 @@ module ddc_input_namelist
     private
 
     public :: read_namelist_model
+
+    !> An element that crosses the interface of two bonded half-planes closer to an end
+    !> than this fraction of its length is refused (split there, it would leave a sliver)
+    real(wp), parameter :: split_tolerance = 1.0e-6_wp
 
 contains
 
@@ -83,6 +89,7 @@ contains
         end if
         allocate (observations(nobs))
         call read_model_group(unit, text, path, groups(g_model), model, messages)
+        call read_material_groups(unit, text, path, groups(g_material), model, messages)
         call read_remote_stress_group(unit, text, path, groups(g_remote_stress), model, messages)
         call read_fracture_groups(unit, text, path, dir, groups(g_fracture), fractures, messages)
         call read_grid_groups(unit, text, path, groups(g_grid), observations, messages)
@@ -106,6 +113,8 @@ contains
 
         call check_names(path, fractures, observations, messages)
         call check_half_plane(path, model, fractures, observations, messages)
+        call snap_to_interface(model, fractures)
+        call check_bimaterial(path, model, fractures, groups, messages)
         if (messages%n > 0) then
             call set_error(error, messages%code, messages%text)
             return
@@ -226,6 +235,93 @@ contains
         end do
     end subroutine check_half_plane
 
+    !> Rules of two bonded half-planes
+    !> (docs/theory/bimaterial.md#elements-and-points-at-the-interface): symmetry about a
+    !> vertical line only (a line y = ysym would mirror one material into the other), no
+    !> element crossing the interface within split_tolerance of its length from an end (it
+    !> is split there), no growth or new fractures yet.
+    subroutine check_bimaterial(path, model, fractures, groups, messages)
+        character(len=*), intent(in) :: path
+        type(model_type), intent(in) :: model
+        type(fracture_input), intent(in) :: fractures(:)
+        type(group_record), intent(in) :: groups(:)
+        type(message_list), intent(inout) :: messages
+        character(len=:), allocatable :: prefix
+        integer :: k, i
+
+        if (model%elements%domain /= domain_bimaterial) return
+        prefix = path//": &model domain = 'bimaterial': "
+        if (model%elements%symmetry%kind /= symmetry_none .and. &
+            model%elements%symmetry%kind /= symmetry_x) then
+            call add(messages, prefix//"&symmetry kind = '"// &
+                     trim(symmetry_names(model%elements%symmetry%kind))//"' is not "// &
+                     "available with two materials; only kind = 'x' (a vertical line)")
+        end if
+        if (groups(g_growth)%count > 0 .or. groups(g_initiation)%count > 0) then
+            call add(messages, prefix//'&growth and &initiation are not available yet '// &
+                     'with two materials (a tip that reaches the interface needs a rule to '// &
+                     'cross or deflect: docs/theory/bimaterial.md#growth)')
+        end if
+        do k = 1, size(fractures)
+            if (.not. fractures(k)%valid) cycle
+            associate (t => crossing_fraction(fractures(k)%y_begin, fractures(k)%y_end, &
+                                              model%interface_y))
+                i = findloc(t >= 0.0_wp .and. min(t, 1.0_wp - t) < split_tolerance, .true., 1)
+                if (i > 0) then
+                    call add(messages, path//': '//fractures(k)%label//': element '//itoa(i)// &
+                             ' crosses the interface y = '//rtoa(model%interface_y)// &
+                             ' at a fraction '//rtoa(t(i))//' of its length: put its end '// &
+                             'on the interface, or farther from it')
+                end if
+            end associate
+        end do
+    end subroutine check_bimaterial
+
+    !> Two bonded half-planes: element ends within a few rounding steps of the largest
+    !> coordinate from the interface are put on it (a vertex meant to lie there but made by
+    !> dividing a polyline's segment is off by its rounding).
+    subroutine snap_to_interface(model, fractures)
+        type(model_type), intent(in) :: model
+        type(fracture_input), intent(inout) :: fractures(:)
+        real(wp) :: scale
+        integer :: k
+
+        if (model%elements%domain /= domain_bimaterial) return
+        scale = abs(model%interface_y)
+        do k = 1, size(fractures)
+            if (.not. fractures(k)%valid) cycle
+            associate (f => fractures(k))
+                scale = max(scale, maxval(abs(f%x_begin)), maxval(abs(f%y_begin)), &
+                            maxval(abs(f%x_end)), maxval(abs(f%y_end)))
+            end associate
+        end do
+        do k = 1, size(fractures)
+            if (.not. fractures(k)%valid) cycle
+            call snap_to_height(fractures(k)%y_begin, model%interface_y, &
+                                16.0_wp * epsilon(scale) * scale)
+            call snap_to_height(fractures(k)%y_end, model%interface_y, &
+                                16.0_wp * epsilon(scale) * scale)
+        end do
+    end subroutine snap_to_interface
+
+    !> Split the elements of two bonded half-planes that cross the interface
+    !> (split_at_height): both parts keep the element's values.
+    pure subroutine split_at_interface(fracture, interface_y)
+        type(fracture_input), intent(inout) :: fracture
+        real(wp), intent(in) :: interface_y
+        integer, allocatable :: source(:)
+
+        call split_at_height(fracture%x_begin, fracture%y_begin, fracture%x_end, &
+                             fracture%y_end, interface_y, source)
+        if (size(source) == size(fracture%mu)) return
+        fracture%mu = fracture%mu(source)
+        fracture%sf = fracture%sf(source)
+        fracture%pressure = fracture%pressure(source)
+        fracture%bc_s = fracture%bc_s(source)
+        fracture%bc_n = fracture%bc_n(source)
+        fracture%laws = fracture%laws(source, :)
+    end subroutine split_at_interface
+
     !> Reject duplicate names of fractures and of observation sets, and bad set names.
     subroutine check_names(path, fractures, observations, messages)
         character(len=*), intent(in) :: path
@@ -266,7 +362,7 @@ contains
 
     !> Put the validated fractures and observation sets into the model.
     subroutine build_model(fractures, observations, model)
-        type(fracture_input), intent(in) :: fractures(:)
+        type(fracture_input), intent(inout) :: fractures(:)
         type(observation_input), intent(in) :: observations(:)
         type(model_type), intent(inout) :: model
         type(strength_law) :: laws(strength_law_count)
@@ -275,6 +371,9 @@ contains
         laws = strength_laws()
         n = 0
         do k = 1, size(fractures)
+            if (model%elements%domain == domain_bimaterial) then
+                call split_at_interface(fractures(k), model%interface_y)
+            end if
             n = n + size(fractures(k)%x_begin)
         end do
         call allocate_elements(model%elements, n)

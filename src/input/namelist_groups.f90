@@ -17,7 +17,7 @@ module ddc_input_namelist_groups
     public :: scan_groups, group_line, group_label, group_prefix, is_name_character
     public :: g_model, g_remote_stress, g_fracture, g_grid, g_line, g_points, g_solver, &
         g_output, g_symmetry, g_sweep, g_pore_fluid, g_load_path, g_growth
-    public :: g_initiation, g_injection
+    public :: g_initiation, g_injection, g_material
 
     !> One namelist group: its name, whether it may appear more than once, and its variables
     !> with their types ("name:c x:r n:i": c text, r real, i integer)
@@ -31,12 +31,12 @@ module ddc_input_namelist_groups
     integer, parameter :: g_model = 1, g_remote_stress = 2, g_fracture = 3, g_grid = 4, &
                           g_line = 5, g_points = 6, g_solver = 7, g_output = 8, g_symmetry = 9, &
                           g_sweep = 10, g_pore_fluid = 11, g_load_path = 12, g_growth = 13
-    integer, parameter :: g_initiation = 14, g_injection = 15
+    integer, parameter :: g_initiation = 14, g_injection = 15, g_material = 16
 
     !> Every group ddc2d knows (&sweep is read by ddc_input_sweep; the model reader skips it)
-    type(group_spec), parameter :: namelist_groups(15) = [ &
+    type(group_spec), parameter :: namelist_groups(16) = [ &
         group_spec('model', .false., 'title:c youngs_modulus:r poissons_ratio:r '// &
-                   'length_unit:c stress_unit:c time_unit:c domain:c'), &
+                   'length_unit:c stress_unit:c time_unit:c domain:c interface_y:r'), &
         group_spec('remote_stress', .false., 'sxx:r syy:r sxy:r dsxx_dy:r dsyy_dy:r dsxy_dy:r'), &
         group_spec('fracture', .true., 'name:c x:r y:r elements:i mu:r sf:r pressure:r '// &
                    'condition:c bc_s:r bc_n:r elements_file:c tensile_strength:r '// &
@@ -64,7 +64,8 @@ module ddc_input_namelist_groups
         group_spec('initiation', .false., 'tensile_strength:r probe_distance:r flaw_x:r '// &
                    'flaw_y:r flaw_length:r'), &
         group_spec('injection', .true., 'name:c fracture:c x:r y:r overpressure:r rate:r '// &
-                   'start:r stop:r')]
+                   'start:r stop:r'), &
+        group_spec('material', .true., 'name:c youngs_modulus:r poissons_ratio:r')]
 
     !> Where the occurrences of one group are in the file.
     type :: group_record

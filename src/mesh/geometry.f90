@@ -36,6 +36,7 @@ contains
         call default_strength_laws(elements, spread(.true., 1, n))
         elements%diffusivity = 0.0_wp
         elements%transmissivity = 0.0_wp
+        elements%flow_pressure = 0.0_wp
     end subroutine allocate_elements
 
     !> Allocate one real array for the set's elements.

@@ -17,7 +17,7 @@ module ddc_model_fingerprint
     use ddc_kinds, only: wp
     use ddc_contact_options, only: k_auto
     use ddc_model_types, only: model_type, growth_criterion_work, element_set, &
-        element_array_action, for_each_element_array
+        element_array_action, for_each_element_array, domain_bimaterial
     implicit none
     private
 
@@ -111,6 +111,11 @@ contains
         call add_reals(hash, model%pore_fluid)
         call add_integers(hash, [model%elements%n, model%elements%domain, &
                                  model%elements%symmetry%kind])
+        ! Only in two bonded half-planes: the other models keep their fingerprints.
+        if (model%elements%domain == domain_bimaterial) then
+            call add_reals(hash, [model%interface_y, model%upper_youngs_modulus, &
+                                  model%upper_poissons_ratio])
+        end if
         call add_reals(hash, [model%elements%symmetry%xsym, model%elements%symmetry%ysym])
         elements = model%elements
         call for_each_element_array(elements, hash)

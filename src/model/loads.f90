@@ -70,8 +70,10 @@ contains
         real(wp) :: pressure(elements%n)
 
         pressure = elements%pressure
+        ! The fluid sources' diffused pressure adds to the pore fluid's (docs/injection.md).
         where (elements%condition == condition_contact) &
-            pressure = pressure + pore_fluid(1) + pore_fluid(2) * elements%y_mid
+            pressure = pressure + pore_fluid(1) + pore_fluid(2) * elements%y_mid + &
+            elements%flow_pressure
     end function total_pressure
 
 end module ddc_model_loads

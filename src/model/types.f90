@@ -21,7 +21,7 @@ module ddc_model_types
     public :: injection_source, source_overpressure, source_rate
     public :: condition_traction, condition_displacement, condition_mixed_us_sn
     public :: condition_mixed_ss_un, condition_contact, condition_prescribed_dd, condition_names
-    public :: domain_full_plane, domain_half_plane, domain_names
+    public :: domain_full_plane, domain_half_plane, domain_bimaterial, domain_names
     public :: observation_grid, observation_line, observation_points, observation_kind_names
     public :: growth_options, growth_tips_all, growth_tips_most_critical, growth_tips_names
     public :: growth_criterion_mts, growth_criterion_work, growth_criterion_names
@@ -42,11 +42,12 @@ module ddc_model_types
     character(len=*), parameter :: condition_names(6) = [character(len=13) :: &
         'traction', 'displacement', 'mixed_us_sn', 'mixed_ss_un', 'contact', 'prescribed_dd']
 
-    !> Elastic domain: the full plane, or the half-plane y < 0 with a free surface y = 0
-    integer, parameter :: domain_full_plane = 1, domain_half_plane = 2
+    !> Elastic domain: the full plane, the half-plane y < 0 with a free surface y = 0, or two
+    !> bonded half-planes of different materials (docs/theory/bimaterial.md)
+    integer, parameter :: domain_full_plane = 1, domain_half_plane = 2, domain_bimaterial = 3
     !> Input names of the domains, indexed by domain
-    character(len=*), parameter :: domain_names(2) = [character(len=10) :: &
-        'full_plane', 'half_plane']
+    character(len=*), parameter :: domain_names(3) = [character(len=10) :: &
+        'full_plane', 'half_plane', 'bimaterial']
 
     !> Block size of the distributed matrices of the MPI build (&solver block_size)
     integer, parameter :: default_block_size = 64
@@ -110,6 +111,10 @@ module ddc_model_types
         !> time unit] and transmissivity T [length^3 / (stress unit time unit)]; 0: the
         !> element does not conduct
         real(wp), allocatable :: diffusivity(:), transmissivity(:)
+        !> The pressure change that diffused into the element from the fluid sources by the
+        !> current time [stress unit] (0 without sources; a contact element's pore pressure
+        !> rises by it); a new element of a growth run takes its tip element's
+        real(wp), allocatable :: flow_pressure(:)
         !> Derived geometry: midpoint, half-length [length unit], cos and sin of the
         !> element angle beta (counter-clockwise from +x)
         real(wp), allocatable :: x_mid(:), y_mid(:), half_length(:)
@@ -117,7 +122,8 @@ module ddc_model_types
         !> Symmetry lines whose implicit image elements every influence sum includes (set by
         !> the input readers; none by default)
         type(symmetry_options) :: symmetry
-        !> domain_full_plane or domain_half_plane: the kernel of every influence sum
+        !> domain_full_plane, domain_half_plane or domain_bimaterial: the kernel of every
+        !> influence sum
         integer :: domain = domain_full_plane
     end type element_set
 
@@ -314,8 +320,14 @@ module ddc_model_types
     type :: model_type
         !> Title of the model
         character(len=:), allocatable :: title
-        !> Young's modulus [stress unit] and Poisson's ratio [-]
+        !> Young's modulus [stress unit] and Poisson's ratio [-] (of the lower material in two
+        !> bonded half-planes)
         real(wp) :: youngs_modulus = 0.0_wp, poissons_ratio = 0.0_wp
+        !> Two bonded half-planes (elements%domain == domain_bimaterial): the material above
+        !> the interface y = interface_y [length unit], its Young's modulus [stress unit]
+        !> and Poisson's ratio [-]
+        real(wp) :: interface_y = 0.0_wp
+        real(wp) :: upper_youngs_modulus = 0.0_wp, upper_poissons_ratio = 0.0_wp
         !> Unit names, stored in the output
         character(len=:), allocatable :: length_unit, stress_unit, time_unit
         !> Remote stress, tension positive [stress unit]
@@ -402,6 +414,7 @@ contains
         call action%on_reals(elements%normal_stiffness)
         call action%on_later_law(elements%diffusivity)
         call action%on_later_law(elements%transmissivity)
+        call action%on_later_law(elements%flow_pressure)
         call action%on_reals(elements%x_mid)
         call action%on_reals(elements%y_mid)
         call action%on_reals(elements%half_length)

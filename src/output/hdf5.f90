@@ -37,7 +37,7 @@ module ddc_output_hdf5
     use ddc_error, only: error_type, set_internal_error
     use ddc_version, only: program_name, program_version, git_commit
     use ddc_model_types, only: model_type, observation_grid, observation_kind_names, &
-        symmetry_names, domain_names, strength_law_count
+        symmetry_names, domain_names, strength_law_count, domain_bimaterial
     use ddc_model_laws, only: strength_law, strength_laws, law_values, acting_values
     use ddc_model_loads, only: total_pressure, shear_modulus_of
     use ddc_model_fingerprint, only: recorded_fingerprint
@@ -215,9 +215,16 @@ contains
                              trim(symmetry_names(model%elements%symmetry%kind)), error)
         call write_attribute(root, 'symmetry_lines', [model%elements%symmetry%xsym, &
                                                       model%elements%symmetry%ysym], error)
-        ! 'full_plane' or 'half_plane' (free surface y = 0), d(sxx, syy, sxy)/dy and the pore
-        ! fluid (p0, dp_dy): docs/output-reference.md#layout
+        ! 'full_plane', 'half_plane' (free surface y = 0) or 'bimaterial' (with the interface
+        ! and the upper material; youngs_modulus, poissons_ratio and shear_modulus are then
+        ! the lower one's), d(sxx, syy, sxy)/dy and the pore fluid (p0, dp_dy):
+        ! docs/output-reference.md#layout
         call write_attribute(root, 'domain', trim(domain_names(model%elements%domain)), error)
+        if (model%elements%domain == domain_bimaterial) then
+            call write_attribute(root, 'interface_y', model%interface_y, error)
+            call write_attribute(root, 'upper_youngs_modulus', model%upper_youngs_modulus, error)
+            call write_attribute(root, 'upper_poissons_ratio', model%upper_poissons_ratio, error)
+        end if
         call write_attribute(root, 'remote_stress_gradient', model%stress_gradient, error)
         call write_attribute(root, 'pore_fluid', model%pore_fluid, error)
         call write_attribute(root, 'model_fingerprint', recorded_fingerprint(model), error)

@@ -4,6 +4,7 @@ module ddc_post_tips
     use ddc_model_types, only: element_set, symmetry_x, symmetry_y, symmetry_both, &
         domain_half_plane
     use ddc_model_results, only: tip_set
+    use ddc_model_medium, only: elastic_medium, elastic_material, element_material
     use ddc_sorting, only: sorted_order, first_at_least
     implicit none
     private
@@ -186,15 +187,24 @@ contains
     end subroutine end_point
 
     !> Tips (element ends shared with no other element) with K_I and K_II from the tip
-    !> element's DDs: K = -G D / (2 (1 - nu) sqrt(h)), h the tip element's half-length.
-    subroutine find_tips(elements, shear_modulus, nu, ds, dn, tips)
-        !> Elements with geometry computed
-        type(element_set), intent(in) :: elements
-        !> Shear modulus [stress unit] and Poisson's ratio [-]
-        real(wp), intent(in) :: shear_modulus, nu
+    !> element's DDs: K = -G D / (2 (1 - nu) sqrt(h)), h the tip element's half-length, G
+    !> and nu those of the tip element's material.
+    subroutine find_tips(medium, ds, dn, tips)
+        !> The medium, element geometry computed
+        type(elastic_medium), intent(in) :: medium
         !> Displacement discontinuities [length unit], shape (n)
         real(wp), intent(in) :: ds(:), dn(:)
         !> The tips found, in element order (begin before end)
+        type(tip_set), intent(out) :: tips
+
+        call locate_tips(medium%elements, tips)
+        call stress_intensity(medium, tips%element, ds, dn, tips%k1, tips%k2)
+        tips%k_method = 'tip_element'
+    end subroutine find_tips
+
+    !> The tips of the elements, K allocated.
+    subroutine locate_tips(elements, tips)
+        type(element_set), intent(in) :: elements
         type(tip_set), intent(out) :: tips
         logical :: is_tip(2, elements%n)
         type(end_index) :: index
@@ -237,30 +247,28 @@ contains
                 end if
             end do
         end do
-        call stress_intensity(elements, shear_modulus, nu, tips%element, ds, dn, tips%k1, &
-                              tips%k2)
-        tips%k_method = 'tip_element'
-    end subroutine find_tips
+    end subroutine locate_tips
 
     !> K_I and K_II of tips from their elements' DDs: K = -G D / (2 (1 - nu) sqrt(h)), h the
-    !> tip element's half-length.
-    pure subroutine stress_intensity(elements, shear_modulus, nu, element, ds, dn, k1, k2)
-        !> Elements with geometry computed
-        type(element_set), intent(in) :: elements
-        !> Shear modulus [stress unit] and Poisson's ratio [-]
-        real(wp), intent(in) :: shear_modulus, nu
+    !> tip element's half-length, G and nu those of its material.
+    pure subroutine stress_intensity(medium, element, ds, dn, k1, k2)
+        !> The medium, element geometry computed
+        type(elastic_medium), intent(in) :: medium
         !> Tip element of each tip, shape (tips)
         integer, intent(in) :: element(:)
         !> Displacement discontinuities of every element [length unit], shape (n)
         real(wp), intent(in) :: ds(:), dn(:)
         !> Stress intensity factors [stress unit * length unit**0.5], shape (tips)
         real(wp), intent(out) :: k1(:), k2(:)
+        type(elastic_material) :: material
         real(wp) :: factor
         integer :: k, i
 
         do k = 1, size(element)
             i = element(k)
-            factor = -shear_modulus / (2.0_wp * (1.0_wp - nu) * sqrt(elements%half_length(i)))
+            material = element_material(medium, i)
+            factor = -material%shear_modulus / (2.0_wp * (1.0_wp - material%poissons_ratio) * &
+                                                sqrt(medium%elements%half_length(i)))
             ! + 0 turns the -0 of an unloaded mode into 0 for printing.
             k1(k) = factor * dn(i) + 0.0_wp
             k2(k) = factor * ds(i) + 0.0_wp

@@ -10,8 +10,10 @@ it shows (states, which tips slip more), so that a figure in the gallery (docs/g
 silently turn into something else.
 """
 
+import os
 import re
 import subprocess
+import sys
 
 import h5py
 import numpy as np
@@ -401,7 +403,43 @@ def check_injection_well(f):
     assert np.all(ds <= 0.0) and abs(ds.min() + 0.0147) < 0.0002  # normal slip
 
 
+def test_layered_k_approach_script(tmp_path):
+    """examples/layered/k_approach.py (docs/layered-rock.md#what-to-expect) at two gaps: K_I
+    at the upper tip rises as it nears a softer bed, falls as it nears a stiffer one."""
+    script = REPO_ROOT / "examples" / "layered" / "k_approach.py"
+    done = subprocess.run([sys.executable, str(script), "--gaps", "0.5", "0.12", "--output",
+                           str(tmp_path / "k.png")],
+                          capture_output=True, text=True, timeout=300, cwd=tmp_path,
+                          env=dict(os.environ, DDC2D_EXE=str(ddc2d_exe())))
+    assert done.returncode == 0, done.stderr
+    rows = [line.split() for line in done.stdout.splitlines()[2:4]]
+    stiff_below = [float(row[1]) for row in rows]
+    soft_below = [float(row[3]) for row in rows]
+    assert 1.0 < stiff_below[0] < stiff_below[1], done.stdout
+    assert 1.0 > soft_below[0] > soft_below[1], done.stdout
+    assert (tmp_path / "k.png").stat().st_size > 0
+
+
+def check_crack_toward_soft_layer(f):
+    """The tip near the soft bed has the larger K_I, both above the one material's."""
+    y, k1 = f["tips/y"][()], f["tips/k1"][()]
+    griffith = 10.0 * np.sqrt(np.pi)
+    upper, lower = k1[np.argmax(y)], k1[np.argmin(y)]
+    assert upper > 1.4 * griffith and griffith < lower < upper, (upper, lower)
+
+
+def check_fault_across_layers(f):
+    """Split at the interface; every element slips, more in the soft upper bed."""
+    e = f["elements"]
+    y, ds = e["y_mid"][()], e["ds"][()]
+    assert y.size == 42 and np.any(e["y_end"][()] == 0.0)
+    _all(f, "fault", "slip")
+    assert np.max(np.abs(ds[y > 0])) > 1.5 * np.max(np.abs(ds[y < 0])), ds
+
+
 EXPECTED = {
+    "crack_toward_soft_layer": check_crack_toward_soft_layer,
+    "fault_across_layers": check_fault_across_layers,
     "injection_well_normal_fault": check_injection_well,
     "strong_patch_progressive_failure": check_progressive_failure,
     "joint_set_pressurized_crack": check_joint_set,

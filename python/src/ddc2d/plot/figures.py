@@ -41,6 +41,7 @@ from .data import (
     heading,
     history_parameter,
     history_unit,
+    interface_height,
     is_cross_section,
     joint_parts,
     leg_arrows,
@@ -723,6 +724,10 @@ def plot_map(result: ResultData, name: str, quantity: str,
                       shading="nearest", cmap="Greys", vmin=0.0, vmax=1.0,
                       alpha=NEAR_GROWN_ALPHA, gid="near_grown")
     grown = _draw_elements(ax, result["elements"])
+    interface = interface_height(result)
+    if interface is not None:
+        ax.axhline(interface, color="saddlebrown", linestyle="--", linewidth=1.0,
+                   gid="interface")
     if quantity == "displacement":
         _draw_vectors(ax, field, x, y, values)
     ax.set_xlim(xlim)  # the view is the grid; elements beyond it are clipped
