@@ -28,7 +28,7 @@ module ddc_model_records
         column_trials, column_time_steps, column_flow_element_steps, column_flow_steps, &
         column_fracture_steps
     public :: units_none, units_length, units_stress, units_k, units_degree, units_one, units_work
-    public :: units_stiffness, units_time, units_area, units_text
+    public :: units_stiffness, units_time, units_area, units_moment, units_text
     public :: state_coding
 
     !> Kinds of history columns, by their shape: the load (one row per quantity of
@@ -58,10 +58,10 @@ module ddc_model_records
     !> units attribute: nothing (integers and strings), length, stress, stress intensity
     !> (stress * length**0.5), angle in degrees, a ratio, work per length (stress * length),
     !> a joint stiffness (stress / length), time, a volume per unit length out of the plane
-    !> (length^2)
+    !> (length^2), a seismic moment per unit length out of the plane (stress * length^2)
     integer, parameter :: units_none = 0, units_length = 1, units_stress = 2, units_k = 3, &
                           units_degree = 4, units_one = 5, units_work = 6, units_stiffness = 7, &
-                          units_time = 8, units_area = 9
+                          units_time = 8, units_area = 9, units_moment = 10
 
     !> Coding of the element states (/elements/state and the history's)
     character(len=*), parameter :: state_coding = '0 free (TWODD-style condition), ' &
@@ -225,7 +225,7 @@ contains
                                   history%front_begin)
         call action%on_real_table(column('front_end', column_fracture_steps, units_length), &
                                   history%front_end)
-        call action%on_real_table(column('moment', column_fracture_steps, units_work), &
+        call action%on_real_table(column('moment', column_fracture_steps, units_moment), &
                                   history%moment)
         call action%on_real_table(column('k1', column_tip_steps, units_k), history%k1)
         call action%on_real_table(column('k2', column_tip_steps, units_k), history%k2)
@@ -322,6 +322,8 @@ contains
             if (present(time)) text = time
         case (units_area)
             text = length//'^2'
+        case (units_moment)
+            text = stress//' '//length//'^2'
         case default
             text = ''
         end select

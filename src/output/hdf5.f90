@@ -243,7 +243,7 @@ contains
         type(model_results), intent(in) :: results
         type(error_type), allocatable, intent(inout) :: error
         type(h5_object) :: group
-        character(len=:), allocatable :: length, stress, given
+        character(len=:), allocatable :: length, stress, given, time
 
         length = allocated_text(model%length_unit)
         stress = allocated_text(model%stress_unit)
@@ -291,12 +291,14 @@ contains
                 call write_real_1d(group, 'ds_elastic', r%ds_elastic, length, error)
                 call write_real_1d(group, 'dn_elastic', r%dn_elastic, length, error)
             end if
-            ! Flow along the fractures, only where some element conducts (docs/injection.md)
-            if (any(e%transmissivity > 0.0_wp)) then
-                call write_real_1d(group, 'diffusivity', e%diffusivity, &
-                                   length//'^2/'//allocated_text(model%time_unit), error)
-                call write_real_1d(group, 'transmissivity', e%transmissivity, length//'^3/('// &
-                                   stress//' '//allocated_text(model%time_unit)//')', error)
+            ! Flow along the fractures: the hydraulic properties, where some element conducts
+            ! (the closed forms ddc2d-plot draws need them).
+            if (any(e%diffusivity > 0.0_wp)) then
+                time = allocated_text(model%time_unit)
+                call write_real_1d(group, 'diffusivity', e%diffusivity, length//'^2/'//time, &
+                                   error)
+                call write_real_1d(group, 'transmissivity', e%transmissivity, &
+                                   length//'^3/('//stress//' '//time//')', error)
             end if
             call write_growth_elements(group, model, results%growth, error)
         end associate

@@ -26,6 +26,8 @@ contains
         type(error_type), allocatable, intent(inout) :: error
         type(h5_object) :: group
         character(len=:), allocatable :: length, time
+        integer, allocatable :: fracture_id(:)
+        real(wp), allocatable :: x(:), y(:)
         integer :: k, n, width
 
         if (.not. allocated(model%injections)) return
@@ -45,9 +47,13 @@ contains
             call write_string_1d(group, 'name', names, error)
         end block
         associate (s => model%injections)
-            call write_int_1d(group, 'fracture_id', s%fracture_id, error)
-            call write_real_1d(group, 'x', s%x, length, error)
-            call write_real_1d(group, 'y', s%y, length, error)
+            ! Contiguous copies: a component of an array of sources is strided.
+            fracture_id = s%fracture_id
+            x = s%x
+            y = s%y
+            call write_int_1d(group, 'fracture_id', fracture_id, error)
+            call write_real_1d(group, 'x', x, length, error)
+            call write_real_1d(group, 'y', y, length, error)
             ! Each source is one of the two: NaN in the other's column.
             call write_real_1d(group, 'overpressure', merge(s%value, ieee_nan(), &
                                s%kind == source_overpressure), &

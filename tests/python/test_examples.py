@@ -378,6 +378,31 @@ def check_slip_weakening_thrust(f):
     assert np.nanmax(f["fields/surface/uy"][()]) > 0.5
 
 
+def check_injection_well(f):
+    """The fault sticks until day 22, then slips around the junction with the fracture; the
+    patch reaches the fault's top (its first vertex, 2 km depth) on day 25 and spans 1050 m
+    of the 1155 m fault on day 30, with up to 14.7 mm of normal slip; the fracture never
+    slips."""
+    h, e = f["history"], f["elements"]
+    time, state = h["time"][()], h["state"][()]
+    fault, fracture = (slice(first - 1, last) for first, last in
+                       zip(f["fractures/first_element"][()], f["fractures/last_element"][()]))
+    slipping = np.any(state[:, fault] == STATE_CODES["slip"], axis=1)
+    assert abs(time[np.argmax(slipping)] - 22.0) < 1e-9 and np.all(slipping[22:])
+    # Where it starts: 50 m (10 elements) around the junction, half the fault's length down.
+    half = 0.5 * np.sum(2.0 * e["half_length"][fault])
+    first = np.argmax(slipping)
+    assert h["front_begin"][first, 0] < half < h["front_end"][first, 0]
+    assert 45.0 < h["slipping_length"][first, 0] < 55.0
+    top = np.flatnonzero(h["front_begin"][:, 0] == 0.0)
+    assert abs(time[top[0]] - 25.0) < 1e-9 and np.all(np.diff(top) == 1)
+    assert 1045.0 < h["slipping_length"][-1, 0] < 1055.0 and 1154.0 < 2 * half < 1156.0
+    assert np.all(state[:, fracture] == STATE_CODES["stick"])
+    assert abs(h["pressure"][first, fault][115] - 2.1) < 0.05  # at the junction
+    ds = e["ds"][fault]
+    assert np.all(ds <= 0.0) and abs(ds.min() + 0.0147) < 0.0002  # normal slip
+
+
 def test_layered_k_approach_script(tmp_path):
     """examples/layered/k_approach.py (docs/layered-rock.md#what-to-expect) at two gaps: K_I
     at the upper tip rises as it nears a softer bed, falls as it nears a stiffer one."""
@@ -415,6 +440,7 @@ def check_fault_across_layers(f):
 EXPECTED = {
     "crack_toward_soft_layer": check_crack_toward_soft_layer,
     "fault_across_layers": check_fault_across_layers,
+    "injection_well_normal_fault": check_injection_well,
     "strong_patch_progressive_failure": check_progressive_failure,
     "joint_set_pressurized_crack": check_joint_set,
     "slip_weakening_thrust": check_slip_weakening_thrust,

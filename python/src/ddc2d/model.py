@@ -25,7 +25,7 @@ SINGLE_GROUPS = ("remote_stress", "pore_fluid", "solver", "symmetry", "load_path
                  "growth")
 #: The order of the groups in the file: as in docs/input-reference.md.
 GROUP_ORDER = ("model", "material", "remote_stress", "pore_fluid", "fracture", "grid", "line",
-               "points", "solver", "symmetry", "load_path", "sweep", "growth")
+               "points", "solver", "symmetry", "load_path", "injection", "sweep", "growth")
 #: Namelist lines are kept under this width (values wrap onto continuation lines).
 LINE_WIDTH = 90
 
@@ -140,8 +140,17 @@ class Model:
         return self._add("symmetry", values)
 
     def load_path(self, steps: int | Iterable[int], **loads: Any) -> Self:
-        """&load_path: steps per leg and the loads at every vertex (sxx, ..., p0)."""
+        """&load_path: steps per leg and the loads at every vertex (sxx, ..., p0) and
+        their times (time)."""
         return self._add("load_path", {"steps": steps, **loads})
+
+    def injection(self, fracture: str, x: float, y: float, name: str | None = None,
+                  **values: Any) -> Self:
+        """&injection: a fluid source at (x, y) on the fracture named `fracture`, with
+        overpressure or rate, and start, stop (one group per source; the path needs times:
+        load_path(time=...))."""
+        return self._add("injection", {"name": name, "fracture": fracture, "x": x, "y": y,
+                                       **values})
 
     def growth(self, steps: int, toughness: float, **values: Any) -> Self:
         """&growth: most steps, toughness K_Ic and increment, element_length, tips, ..."""

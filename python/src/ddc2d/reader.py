@@ -10,9 +10,9 @@ Used by ddc2d.open_result, ``ddc2d-plot``, ``collect-sweep``, ``compare-twodd``,
   inverses ``STATE_CODES``, ``CONDITION_CODES`` are what ddc2d writes, for files without the
   attribute and for tools that read single datasets;
 * the groups of a result: ``load_result`` reads a whole file, ``read_elements``,
-  ``read_fractures``, ``read_tips``, ``read_fields``, ``read_history``, ``read_growth``,
-  ``read_solver`` and ``read_sweep`` one group of an open file; ``is_complete`` tells a
-  finished file;
+  ``read_fractures``, ``read_tips``, ``read_fields``, ``read_history``,
+  ``read_injection``, ``read_growth``, ``read_solver`` and ``read_sweep`` one group of an
+  open file; ``is_complete`` tells a finished file;
 * the tie rule of every default that picks "the largest" or "the first": ``index_of_extreme``
   and ``is_tie`` (values within ``TIE_RTOL`` = 1e-9 relative count as equal, the lowest index
   wins), so that a choice never depends on last-bit rounding (symmetric models, other BLAS
@@ -81,6 +81,9 @@ HISTORY_GROWTH_DATASETS = ("element_count", "grown_length", "tip_fracture_id", "
 #: length, front positions and moment per fracture), read when present.
 HISTORY_FLOW_DATASETS = ("time", "pressure", "injected_volume", "slipping_length",
                          "front_begin", "front_end", "moment")
+#: /injection datasets (docs/output-reference.md), one value per fluid source: overpressure
+#: NaN for a rate source, rate NaN for a pressure source, start and stop NaN where not given.
+INJECTION_DATASETS = ("fracture_id", "x", "y", "overpressure", "rate", "start", "stop")
 #: /growth datasets (fracture growth; docs/fracture-growth.md#output), one value per record
 #: (tip and step).
 GROWTH_DATASETS = ("step", "fracture_id", "end", "x", "y", "k1", "k2", "k_eq", "mts_angle",
@@ -245,9 +248,10 @@ def load_result(path: FilePath) -> Loaded:
     ``tips`` (dict of 1-D arrays x, y, fracture_id, element, k1, k2 and ``k_unit``; empty
     arrays without /tips), ``remote_stress`` ((sxx, syy, sxy) or None),
     ``remote_stress_gradient`` ((dsxx_dy, dsyy_dy, dsxy_dy)) and ``pore_fluid`` ((p0,
-    dp_dy)), zeros when the file predates them, ``codings`` (read_codings), ``history``
-    (see read_history; None without /history) and ``growth`` (see read_growth; None
-    without /growth).
+    dp_dy)), zeros when the file predates them, ``time_unit`` ('' without a time axis),
+    ``codings`` (read_codings), ``history`` (see read_history; None without /history),
+    ``injection`` (see read_injection; None without fluid sources) and ``growth`` (see
+    read_growth; None without /growth).
     Raises ResultError with a message naming the file and the problem.
     """
     path = Path(path)
@@ -279,6 +283,7 @@ def _read_open_file(path: Path, handle: h5py.File) -> Loaded:
         "title": attr_text(handle.attrs, "title"),
         "length_unit": attr_text(handle.attrs, "length_unit"),
         "stress_unit": attr_text(handle.attrs, "stress_unit"),
+        "time_unit": attr_text(handle.attrs, "time_unit"),
         "complete": is_complete(handle.attrs, when_missing=True),
         "elements": elements,
         "fractures": read_fractures(path, handle, elements),
@@ -289,6 +294,7 @@ def _read_open_file(path: Path, handle: h5py.File) -> Loaded:
         "pore_fluid": read_root_reals(path, handle, "pore_fluid", 2),
         "codings": read_codings(handle),
         "history": read_history(path, handle, count),
+        "injection": read_injection(path, handle),
         "growth": read_growth(path, handle),
     }
 
@@ -431,7 +437,10 @@ def read_history(path: FilePath, handle: h5py.Group, count: int) -> dict[str, An
     ``fallback``: one str per step; with
     fracture growth ``element_count`` (steps,), ``grown_length`` (steps, tips),
     ``tip_fracture_id``, ``tip_end`` (tips,), and element rows NaN (state -1) before an
-    element was made), or None when the file has no loading history."""
+    element was made; with a time axis ``time`` (steps,) and with fluid sources
+    ``pressure`` (steps, elements), ``injected_volume`` (steps,), ``slipping_length``,
+    ``front_begin``, ``front_end``, ``moment`` (steps, fractures)), or None when the file
+    has no loading history."""
     if "history" not in handle:
         return None
     group = handle["history"]
@@ -449,6 +458,21 @@ def read_history(path: FilePath, handle: h5py.Group, count: int) -> dict[str, An
         raise ResultError(f"'{path}': /history/ds has shape {history['ds'].shape}, "
                           f"expected (steps, {count})")
     return history
+
+
+def read_injection(path: FilePath, handle: h5py.Group) -> dict[str, Any] | None:
+    """/injection, the fluid sources, as a dict: ``name`` (a list of str) and the 1-D arrays
+    of INJECTION_DATASETS, one value per source (``fracture_id`` 1-based); None when the
+    file has no fluid sources."""
+    if "injection" not in handle:
+        return None
+    group = handle["injection"]
+    sources: dict[str, Any] = {"name": [decode(v) for v in np.ravel(group["name"][()])]}
+    for key in INJECTION_DATASETS:
+        sources[key] = np.asarray(group[key][()]).ravel()
+        if sources[key].size != len(sources["name"]):
+            raise ResultError(f"'{path}': /injection datasets differ in length")
+    return sources
 
 
 def read_growth(path: FilePath, handle: h5py.Group) -> dict[str, Any] | None:

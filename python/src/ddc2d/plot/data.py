@@ -135,15 +135,22 @@ def heading(result, text):
 
 def history_parameter(history):
     """(name, values) of the load quantity with the largest range along the path; of
-    ranges equal within the tie rule (reader.index_of_extreme), the first in file order."""
+    ranges equal within the tie rule (reader.index_of_extreme), the first in file order.
+    A path with a time axis along which no load changes (an injection at constant stress)
+    runs along its time: ('time', the time of each step)."""
     names = list(history["loads"])
-    name = names[index_of_extreme([np.ptp(history["loads"][k]) for k in names])]
+    ranges = [np.ptp(history["loads"][k]) for k in names]
+    if "time" in history and not any(r > 0.0 for r in ranges):
+        return "time", history["time"]
+    name = names[index_of_extreme(ranges)]
     return name, history["loads"][name]
 
 
 def history_unit(result, name):
-    """The unit of history load quantity `name`: the stress unit, per length unit for a
-    gradient (a name starting with 'd')."""
+    """The unit of history quantity `name` (history_parameter): the time unit of 'time';
+    else the stress unit, per length unit for a gradient (a name starting with 'd')."""
+    if name == "time":
+        return result["time_unit"]
     return result["stress_unit"] + ("/" + result["length_unit"] if name.startswith("d")
                                     else "")
 
