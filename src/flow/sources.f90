@@ -26,14 +26,14 @@ contains
         type(flow_source) :: sources(size(injections))
         integer :: k
 
+        ! Whole constructors: gfortran leaves the default values of an array function result
+        ! unset (the volume came out uninitialised under valgrind).
         do k = 1, size(injections)
-            associate (s => sources(k), given => injections(k))
-                s%kind = given%kind
-                s%value = given%value
-                s%start = max(given%start, first_time)
-                s%stop = given%stop
-                s%cells = network%cell(elements_at_point(elements, given%fracture_id, &
-                                                         given%x, given%y))
+            associate (given => injections(k))
+                sources(k) = flow_source(kind=given%kind, value=given%value, &
+                                         start=max(given%start, first_time), stop=given%stop, &
+                                         cells=network%cell(elements_at_point(elements, &
+                                         given%fracture_id, given%x, given%y)), volume=0.0_wp)
             end associate
         end do
     end function network_sources

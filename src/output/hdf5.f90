@@ -39,7 +39,7 @@ module ddc_output_hdf5
     use ddc_model_types, only: model_type, observation_grid, observation_kind_names, &
         symmetry_names, domain_names, strength_law_count, domain_bimaterial
     use ddc_model_laws, only: strength_law, strength_laws, law_values, acting_values
-    use ddc_model_loads, only: total_pressure, shear_modulus_of
+    use ddc_model_loads, only: static_pressure, shear_modulus_of
     use ddc_model_fingerprint, only: recorded_fingerprint
     use ddc_model_results, only: model_results, state_free, state_stick, state_slip, &
         state_open
@@ -274,8 +274,9 @@ contains
             call write_int_1d(group, 'state', r%state, error, state_coding)
             call write_real_1d(group, 'mu', e%mu, '1', error)
             call write_real_1d(group, 'sf', e%sf, stress, error)
-            ! Contact elements: the given pressure plus the pore fluid
-            call write_real_1d(group, 'pressure', total_pressure(e, model%pore_fluid), stress, &
+            ! Contact elements: the given pressure plus the pore fluid (what diffused from
+            ! fluid sources changes in time: /history/pressure)
+            call write_real_1d(group, 'pressure', static_pressure(e, model%pore_fluid), stress, &
                                error)
             ! Strength beyond Coulomb as it acts, and what was left of it at the end.
             call write_strength_laws(group, model, stress, length, error)
