@@ -313,10 +313,11 @@ contains
                          same_point * distance)
     end function started_at
 
-    !> Whether a vertex is in a tip's zone: closer to it than its next growth increment, or
-    !> than the probe distance. The tip's own growth decides there (its next kink reaches that
-    !> far), and a probe there would sample the tip's singular field, which puts the start
-    !> next to the tip however fine the mesh.
+    !> Whether a vertex is in a tip's zone: not further from it than its next growth
+    !> increment, or than the probe distance. The tip's own growth decides there (its next kink
+    !> reaches that far), and a probe there would sample the tip's singular field, which puts
+    !> the start next to the tip however fine the mesh. A vertex on the zone's edge (the old
+    !> tip one increment behind, up to round-off) is in it.
     pure logical function near_tip(work, tips, growth, vertex, distance)
         type(model_type), intent(in) :: work
         type(tip_set), intent(in) :: tips
@@ -329,8 +330,8 @@ contains
         do k = 1, tips%n
             call increment_for(growth, 2.0_wp * work%elements%half_length(tips%element(k)), &
                                increment, pieces, element_length)
-            if (hypot(tips%x(k) - vertex(1), tips%y(k) - vertex(2)) < &
-                max(increment, distance)) near_tip = .true.
+            if (hypot(tips%x(k) - vertex(1), tips%y(k) - vertex(2)) <= &
+                max(increment, distance) + same_point * distance) near_tip = .true.
         end do
     end function near_tip
 
