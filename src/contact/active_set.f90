@@ -25,7 +25,7 @@
 !> Where it is the last resort (escape), a cycle is not the end yet. The two states of the
 !> cycle differ on a few elements whose conditions no state of theirs meets while the others
 !> keep theirs: the way out needs other elements to change, ones that no condition of their
-!> own tells to (seen at tails branching off a fault at 20 degrees: the fault element beside
+!> own tells to (seen at tails branching off a fault at 30 degrees: the fault element beside
 !> each must close where the cycle keeps it open). They are among those whose DDs change most
 !> between the two states of the cycle (the response to the cycling elements): every set of
 !> the escape_candidates elements of largest response (in binary order: the first, the

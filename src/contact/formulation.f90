@@ -452,7 +452,9 @@ contains
                 res%fallback = 'lemke failed: '//error%message
                 deallocate (error)
             else
-                error%message = error%message//' (the Newton method failed too: '//reason//')'
+                error%message = error%message//' (the Newton method failed too: '//reason// &
+                    '); frictional contact may have no solution here, as at a branch at a '// &
+                    'small angle (docs/contact-and-strength.md#junctions)'
             end if
         end subroutine solve_by_method
 

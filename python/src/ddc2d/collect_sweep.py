@@ -15,7 +15,8 @@ the swept parameters (from the /sweep group, in &sweep order) and the results
 and, when the tasks grow fractures (a ``&growth`` group; the columns of the first task's
 file name the fractures):
 
-* ``growth_steps``: steps in which a tip grew; ``end_reason``: ``arrested`` or ``step_limit``;
+* ``growth_steps``: steps in which a tip grew; ``end_reason``: ``arrested``, ``step_limit``
+  or ``failed``;
 * ``grown_length_<fracture>``: length grown at both tips of each fracture [length unit];
 * ``k_eq_ratio``: the largest K_eq / toughness of the last step's records (below 1: every
   tip left is subcritical).
