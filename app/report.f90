@@ -504,7 +504,7 @@ contains
                     results%tips%k1(i), ', K_II = ', results%tips%k2(i), &
                     model%stress_unit//' '//model%length_unit//'^1/2'
                 if (results%tips%graded(i) == 1) write (unit, '(a)') '    (graded mesh at '// &
-                    'this tip: the tip element differs from its neighbour, K is less accurate)'
+                    'this tip: the elements near it differ in length, K is less accurate)'
             end do
             if (allocated(results%fields)) then
                 do i = 1, size(results%fields)

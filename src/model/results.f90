@@ -98,7 +98,8 @@ module ddc_model_results
         integer, allocatable :: fracture_id(:), element(:)
         !> Stress intensity factors [stress unit * length unit**0.5]
         real(wp), allocatable :: k1(:), k2(:)
-        !> 1 when the tip element's length differs from its neighbour's by more than 1 %
+        !> 1 when an element of the tip's zone differs in length from the tip element by more
+        !> than 1 % (ddc_post_tips)
         !> (the K formula assumes equal elements: K is less accurate there), else 0
         integer, allocatable :: graded(:)
         !> The end of its element the tip is: 1 begin, 2 end
