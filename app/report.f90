@@ -339,6 +339,9 @@ contains
                     '), tension ', r%tension(i), model%stress_unit, ', direction ', &
                     r%angle(i), ' degrees'
             end do
+            if (r%largest_step > 0) write (unit, '(2x,a,i0,a,es12.5,1x,a,a,es12.5,a,es12.5,a)') &
+                'none started in step ', r%largest_step, ': largest probed tension ', &
+                r%largest_tension, model%stress_unit, ' at (', r%largest_x, ', ', r%largest_y, ')'
         end associate
     end subroutine print_initiations
 

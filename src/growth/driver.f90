@@ -165,8 +165,10 @@ contains
             first = 0
             if (allocated(error)) then
                 if (history) error%message = where//': '//error%message
-                if (error%code /= exit_solver_failure .and. error%code /= exit_out_of_memory) &
+                if (error%code /= exit_solver_failure .and. &
+                    error%code /= exit_out_of_memory) then
                     return
+                end if
                 ! The run ends before the failed step; what it completed is its result.
                 call move_alloc(error, failure)
                 record%end_reason = growth_failed

@@ -14,6 +14,8 @@
 !>   orientations reaches the work threshold, in that orientation.
 !> A new fracture whose elements would cross another element is not started; the next place
 !> is tried.
+!> When a check starts nothing, the largest tension it probed and where are kept (the last
+!> such check's, in /growth/initiations): how far the rock was from a new fracture.
 !> One new fracture starts per check (growth step): the one furthest past its threshold (the
 !> largest score: tension / tensile strength, or a flaw's efficiency / work threshold under
 !> 'work'); ties (within 1e-9 of the score, so that round-off does not decide) go to tails
@@ -123,7 +125,10 @@ contains
         n = run%work%elements%n
         do
             i = first_over(found, usable)
-            if (i == 0) return
+            if (i == 0) then
+                call keep_largest(found, step, record)
+                return
+            end if
             first = found(i)
             if (first%kind == initiation_tail) then
                 ! The crack runs perpendicular to the maximum tension.
@@ -249,6 +254,22 @@ contains
         pressure = work%pore_fluid(1) + work%pore_fluid(2) * point(2)
         felt = stress + [pressure, pressure, 0.0_wp]
     end function effective
+
+    !> The largest tension of a check that started nothing (the first of equal ones), its
+    !> step and probe point, into the record; nothing without probes.
+    pure subroutine keep_largest(found, step, record)
+        type(initiation_candidate), intent(in) :: found(:)
+        integer, intent(in) :: step
+        type(initiation_record), intent(inout) :: record
+        integer :: k
+
+        if (size(found) == 0) return
+        k = maxloc(found%tension, 1)
+        record%largest_step = step
+        record%largest_tension = found(k)%tension
+        record%largest_x = found(k)%probe(1)
+        record%largest_y = found(k)%probe(2)
+    end subroutine keep_largest
 
     !> The maximum principal stress (tension positive) of (sxx, syy, sxy) and its unit
     !> direction (the one of the two opposite ones with a non-negative x, or +y).

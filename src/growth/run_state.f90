@@ -128,8 +128,9 @@ contains
         if (record%end_reason == growth_step_limit .or. record%end_reason == growth_failed) then
             ! Growth steps (evaluations) of the last load step so far (none when its first
             ! one failed)
-            if (any(record%load_step == done)) &
+            if (any(record%load_step == done)) then
                 first = step - minval(record%step, record%load_step == done) + 1
+            end if
             if (first >= model%growth%steps) call nothing_left('raise &growth steps to go on')
         else
             start = done + 1

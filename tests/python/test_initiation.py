@@ -165,11 +165,20 @@ def test_tail_runs_perpendicular_to_the_tension(folder, field20):
 
 
 def test_nothing_starts_above_the_largest_tension(folder, field20):
-    """tensile_strength 0.1 % above the largest probed tension: nothing; 0.1 % below: one."""
+    """tensile_strength 0.1 % above the largest probed tension: nothing, and the file keeps
+    that tension and its probe point (the first of equal ones, as the tie rule orders them);
+    0.1 % below: one."""
     largest = max(p[3] for p in field20)
     assert largest > 0.0
-    above = initiations(run(folder, "above", tail_model(20, 1.001 * largest)))
+    out = run(folder, "above", tail_model(20, 1.001 * largest))
+    above = initiations(out)
     assert above["kind"].size == 0, "nothing starts above the largest probed tension"
+    first = next(p for p in field20 if p[3] >= largest * (1.0 - 1e-9))
+    kept = load_result(out)["growth"]["initiations"]["attrs"]
+    assert kept["largest_tension"] == pytest.approx(largest, rel=1e-9)
+    assert (kept["largest_tension_x"], kept["largest_tension_y"]) == \
+        pytest.approx(first[1:3], abs=1e-12)
+    assert kept["largest_tension_step"] == 1
     below = initiations(run(folder, "below", tail_model(20, 0.999 * largest)))
     assert below["kind"].size == 1
 

@@ -152,10 +152,10 @@ def test_a_capped_tensile_strength_of_new_elements_has_a_note(tmp_path):
     text = TENSILE.split("&fracture")[0] + growth
     done = solve(tmp_path, text.format(new_sf=", new_sf = 0"))
     assert notes(done) == [
-        "note: &growth: new_tensile_strength 2 MPa is above the Coulomb apex sf/mu of the new "
-        "contact elements of joint (new_sf, new_mu, or the values of their tip element) and is "
-        "capped there to 0 .. 0 MPa (where the shear strength sf - mu T vanishes); a tensile "
-        "strength T needs sf >= mu T (give new_sf)"]
+        ("note: &growth: new_tensile_strength 2 MPa is above the Coulomb apex sf/mu of the new "
+         "contact elements of joint (new_sf, new_mu, or the values of their tip element) and is "
+         "capped there to 0 .. 0 MPa (where the shear strength sf - mu T vanishes); a tensile "
+         "strength T needs sf >= mu T (give new_sf)")]
     assert notes(solve(tmp_path, text.format(new_sf=""))) == []
 
 
