@@ -255,16 +255,24 @@ contains
         felt = stress + [pressure, pressure, 0.0_wp]
     end function effective
 
-    !> The largest tension of a check that started nothing (the first of equal ones), its
-    !> step and probe point, into the record; nothing without probes.
+    !> The largest tension of a check that started nothing (ties within tie_tolerance of it
+    !> in the order of the tie rule), its step and probe point, into the record; nothing
+    !> without probes.
     pure subroutine keep_largest(found, step, record)
         type(initiation_candidate), intent(in) :: found(:)
         integer, intent(in) :: step
         type(initiation_record), intent(inout) :: record
-        integer :: k
+        real(wp) :: tolerance
+        integer :: k, i
 
         if (size(found) == 0) return
-        k = maxloc(found%tension, 1)
+        tolerance = tie_tolerance * maxval(abs(found%tension))
+        k = 1
+        do i = 2, size(found)
+            if (found(i)%tension > found(k)%tension + tolerance .or. &
+                (found(i)%tension >= found(k)%tension - tolerance .and. &
+                 ranks_before(found(i), found(k)))) k = i
+        end do
         record%largest_step = step
         record%largest_tension = found(k)%tension
         record%largest_x = found(k)%probe(1)
