@@ -96,6 +96,8 @@ contains
             trim(open_cohesion_names(model%solver%open_cohesion))
         if (model%growth%active) call print_growth_options(unit, model)
         write (unit, '(a)') '  output: '//model%output_file
+        if (allocated(model%resumed_from)) write (unit, '(a)') '  resumed from '// &
+            model%resumed_from//' (written '//model%resumed_from_created//')'
         notes = plausibility_notes(model, units_given)
         if (len(notes) > 0) write (unit, '(a)') prefix_lines('note: ', notes)
         notes = instant_drop_notes(model)

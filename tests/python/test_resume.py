@@ -287,9 +287,12 @@ def test_a_resumed_run_equals_the_uninterrupted_one(tmp_path, whole_run, old_tex
     assert "largest relative difference" in report
     with h5py.File(tmp_path / "old.h5") as old, h5py.File(tmp_path / "new.h5") as new, \
             h5py.File(whole) as uninterrupted:
-        # The resumed result names the file it continued and when that was written.
+        # The resumed result names the file it continued and when that was written, and so
+        # does the run's log.
         assert new.attrs["resumed_from"] == b"old.h5"
         assert new.attrs["resumed_from_created"] == old.attrs["created"]
+        assert f"  resumed from old.h5 (written {old.attrs['created'].decode()})" in \
+            done.stdout.splitlines()
         assert "resumed_from" not in uninterrupted.attrs
         # The earlier run did less: the resumed one went on.
         if "growth" in new:
