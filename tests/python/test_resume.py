@@ -305,20 +305,18 @@ def test_a_resumed_run_equals_the_uninterrupted_one(tmp_path, whole_run, old_tex
 
 def test_a_run_that_stopped_at_a_failed_step_goes_on(tmp_path, whole_run):
     """A growth run whose step failed (exit status 6) ends as a step limit does: its file, the
-    steps before the failure with /growth end_reason 'failed' and the failure, goes on in the
-    load step it stopped in and gives the uninterrupted run. (Here the file of a run stopped
-    by the step limit inside a load step, marked failed as such a run marks it.)"""
-    path_text = WINGS.format(steps=40, solver="") + WINGS_PATH
-    earlier_run(tmp_path, WINGS.format(steps=2, solver="") + WINGS_PATH)
+    steps before the failure with /growth end_reason 'failed' and the failure, goes on where
+    it stopped and gives the uninterrupted run. (Here the file of a run stopped by the step
+    limit, marked failed as such a run marks it.)"""
+    text = GROWTH.format(steps=4)
+    earlier_run(tmp_path, GROWTH.format(steps=2))
     with h5py.File(tmp_path / "old.h5", "r+") as f:
+        assert f["growth"].attrs["steps_taken"] == 2
         f["growth"].attrs["end_reason"] = np.bytes_("failed")
         f["growth"].attrs["failure"] = np.bytes_("growth step 3: contact: ...")
-    # Only &growth steps may change: the failed run's own input goes on.
-    (tmp_path / "old.nml").write_text(path_text)
-    done = run(["old.nml", "--resume", "old.h5", "-o", "new.h5"], tmp_path)
+    done = resume(tmp_path, text, "old.h5")
     assert done.returncode == 0, done.stderr
-    problems, _ = compare_results.compare(whole_run(path_text), tmp_path / "new.h5",
-                                          rtol=1e-12)
+    problems, _ = compare_results.compare(whole_run(text), tmp_path / "new.h5", rtol=1e-12)
     assert not problems, problems
     with h5py.File(tmp_path / "new.h5") as f:
         assert "failure" not in f["growth"].attrs
