@@ -114,6 +114,8 @@ contains
             trim(open_cohesion_names(model%solver%open_cohesion))
         if (model%growth%active) call print_growth_options(unit, model)
         write (unit, '(a)') '  output: '//model%output_file
+        if (allocated(model%resumed_from)) write (unit, '(a)') '  resumed from '// &
+            model%resumed_from//' (written '//model%resumed_from_created//')'
         notes = plausibility_notes(model, units_given)
         if (len(notes) > 0) write (unit, '(a)') prefix_lines('note: ', notes)
         notes = instant_drop_notes(model)
@@ -388,6 +390,9 @@ contains
                     '), tension ', r%tension(i), model%stress_unit, ', direction ', &
                     r%angle(i), ' degrees'
             end do
+            if (r%largest_step > 0) write (unit, '(2x,a,i0,a,es12.5,1x,a,a,es12.5,a,es12.5,a)') &
+                'none started in step ', r%largest_step, ': largest probed tension ', &
+                r%largest_tension, model%stress_unit, ' at (', r%largest_x, ', ', r%largest_y, ')'
         end associate
     end subroutine print_initiations
 
@@ -553,7 +558,7 @@ contains
                     results%tips%k1(i), ', K_II = ', results%tips%k2(i), &
                     model%stress_unit//' '//model%length_unit//'^1/2'
                 if (results%tips%graded(i) == 1) write (unit, '(a)') '    (graded mesh at '// &
-                    'this tip: the tip element differs from its neighbour, K is less accurate)'
+                    'this tip: the elements near it differ in length, K is less accurate)'
             end do
             if (allocated(results%fields)) then
                 do i = 1, size(results%fields)

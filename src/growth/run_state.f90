@@ -7,7 +7,7 @@ module ddc_growth_run_state
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type, has_sources
     use ddc_model_results, only: model_results, growth_record, growth_step_limit, &
-        growth_end_names
+        growth_failed, growth_end_names
     use ddc_model_records, only: empty_growth_record
     use ddc_model_restart, only: restart_state
     use ddc_history_path, only: apply_load, path_times
@@ -106,9 +106,9 @@ contains
 
     !> A run resumed from the end of an earlier one (docs/theory/earth.md#what-a-step-hands-on): its
     !> final geometry, solution, records, tips, history and friction memory. It goes on in the load
-    !> step where the earlier run reached the step limit (start, after `first` growth steps of it),
-    !> or with the load step after the one where it arrested (first = 0). Error (exit 2)
-    !> when nothing is left to do.
+    !> step where the earlier run reached the step limit or stopped at a failed step (start, after
+    !> `first` growth steps of it), or with the load step after the one where it arrested (first =
+    !> 0). Error (exit 2) when nothing is left to do.
     subroutine resume_run(model, restart, loads, run, record, step, start, first, error)
         type(model_type), intent(in) :: model
         type(restart_state), intent(in) :: restart
@@ -144,9 +144,12 @@ contains
         if (history) done = size(restart%results%history%pivots)
         start = done
         first = 0
-        if (record%end_reason == growth_step_limit) then
-            ! Growth steps (evaluations) of the last load step so far
-            first = step - minval(record%step, record%load_step == done) + 1
+        if (record%end_reason == growth_step_limit .or. record%end_reason == growth_failed) then
+            ! Growth steps (evaluations) of the last load step so far (none when its first
+            ! one failed)
+            if (any(record%load_step == done)) then
+                first = step - minval(record%step, record%load_step == done) + 1
+            end if
             if (first >= model%growth%steps) call nothing_left('raise &growth steps to go on')
         else
             start = done + 1

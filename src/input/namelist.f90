@@ -10,14 +10,14 @@
 !> the variable.
 module ddc_input_namelist
     use ddc_kinds, only: wp
-    use ddc_error, only: error_type, set_error, exit_bad_input
+    use ddc_error, only: error_type, set_error
     use ddc_model_capabilities, only: run_refusal, operator_hierarchical
     use ddc_model_types, only: model_type, condition_contact, symmetry_none, symmetry_names, &
         symmetry_x, domain_half_plane, domain_bimaterial, strength_law_count
     use ddc_model_laws, only: strength_law, strength_laws, set_law
     use ddc_text, only: itoa, rtoa, prefix_lines
     use ddc_version, only: with_hmatrix
-    use ddc_input_text_file, only: read_text_file, folder_of
+    use ddc_input_text_file, only: read_text_file, open_namelist, folder_of
     use ddc_mesh_geometry, only: allocate_elements, compute_geometry
     use ddc_mesh_polyline, only: crossing_fraction, split_at_height, snap_to_height
     use ddc_mesh_checks, only: check_elements
@@ -62,8 +62,7 @@ contains
         type(message_list) :: messages
         type(fracture_input), allocatable :: fractures(:)
         type(observation_input), allocatable :: observations(:)
-        integer :: unit, stat, nobs
-        character(len=512) :: iomsg
+        integer :: unit, nobs
 
         call read_text_file(path, text, error)
         if (allocated(error)) return
@@ -73,20 +72,17 @@ contains
         messages%text = ''
 
         call scan_groups(text, path, groups, nobs, messages)
-        if (groups(g_model)%count == 0) then
+        ! A misspelled group was reported as unknown: its absence is no news.
+        if (groups(g_model)%count == 0 .and. .not. groups(g_model)%misspelled) then
             call add(messages, path//': the &model group is missing (it gives youngs_modulus'// &
                      ' and poissons_ratio)')
         end if
-        if (groups(g_fracture)%count == 0) then
+        if (groups(g_fracture)%count == 0 .and. .not. groups(g_fracture)%misspelled) then
             call add(messages, path//': no &fracture group: a model needs at least one fracture')
         end if
 
-        open (newunit=unit, file=path, status='old', action='read', form='formatted', &
-              iostat=stat, iomsg=iomsg)
-        if (stat /= 0) then
-            call set_error(error, exit_bad_input, path//': cannot open: '//trim(iomsg))
-            return
-        end if
+        call open_namelist(path, text, unit, error)
+        if (allocated(error)) return
         allocate (observations(nobs))
         call read_model_group(unit, text, path, groups(g_model), model, messages)
         call read_material_groups(unit, text, path, groups(g_material), model, messages)

@@ -77,6 +77,8 @@ module ddc_input_namelist_groups
         integer, allocatable :: starts(:), ends(:)
         !> Index in the model's observation list (grids, lines, points only)
         integer, allocatable :: slot(:)
+        !> An unknown group's name is this one's, misspelled (its absence is no news then)
+        logical :: misspelled = .false.
     end type group_record
 
     !> Violations found so far, one per line.
@@ -168,12 +170,17 @@ contains
                     current = 0
                     g = group_index(name)
                     if (g == 0) then
-                        known = '&'//trim(namelist_groups(1)%name)
+                        known = 'known groups: &'//trim(namelist_groups(1)%name)
                         do k = 2, size(namelist_groups)
                             known = known//', &'//trim(namelist_groups(k)%name)
                         end do
+                        k = nearest_group(name)
+                        if (k > 0) then
+                            groups(k)%misspelled = .true.
+                            known = 'did you mean &'//trim(namelist_groups(k)%name)//'?; '//known
+                        end if
                         call add(messages, path//' line '//itoa(line)//': &'//name// &
-                                 ' is not a ddc2d group; known groups: '//known)
+                                 ' is not a ddc2d group; '//known)
                     else
                         nfound = nfound + 1
                         found_group(nfound) = g
@@ -293,5 +300,41 @@ contains
             end if
         end do
     end function group_index
+
+    !> The known group whose name differs from `name` by at most two letters (inserted,
+    !> deleted or changed: &fractures, &modle), 0 when none does.
+    pure integer function nearest_group(name)
+        character(len=*), intent(in) :: name
+        integer :: g, best, distance
+
+        nearest_group = 0
+        best = 3
+        do g = 1, size(namelist_groups)
+            distance = edit_distance(name, trim(namelist_groups(g)%name))
+            if (distance < best) then
+                best = distance
+                nearest_group = g
+            end if
+        end do
+    end function nearest_group
+
+    !> The number of letters to insert, delete or change to make a into b (Levenshtein).
+    pure integer function edit_distance(a, b)
+        character(len=*), intent(in) :: a, b
+        integer :: row(0:len(b)), i, j, diagonal, above
+
+        row = [(j, j = 0, len(b))]
+        do i = 1, len(a)
+            diagonal = row(0)
+            row(0) = i
+            do j = 1, len(b)
+                above = row(j)
+                row(j) = min(row(j) + 1, row(j - 1) + 1, &
+                             diagonal + merge(0, 1, a(i:i) == b(j:j)))
+                diagonal = above
+            end do
+        end do
+        edit_distance = row(len(b))
+    end function edit_distance
 
 end module ddc_input_namelist_groups

@@ -15,7 +15,7 @@ module ddc_input_sweep
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type, load_path_names, source_overpressure
-    use ddc_input_text_file, only: read_text_file
+    use ddc_input_text_file, only: read_text_file, open_namelist
     use ddc_text, only: itoa, rtoa, lower, add_message, messages_error, join_integers
     use ddc_input_namelist_groups, only: group_line
     use ddc_input_namelist_diagnosis, only: group_problem
@@ -76,12 +76,8 @@ contains
         values_4 = unset_real
         values_5 = unset_real
         values_6 = unset_real
-        open (newunit=unit, file=path, status='old', action='read', form='formatted', &
-              iostat=stat, iomsg=iomsg)
-        if (stat /= 0) then
-            call set_error(error, exit_bad_input, path//': cannot open: '//trim(iomsg))
-            return
-        end if
+        call open_namelist(path, text, unit, error)
+        if (allocated(error)) return
         read (unit, nml=sweep, iostat=stat, iomsg=iomsg)
         close (unit)
         if (stat /= 0) then

@@ -71,8 +71,8 @@ module ddc_output_hdf5
     !> Codings stored as attributes of the integer datasets
     character(len=*), parameter :: condition_coding = '1 traction, 2 displacement, ' &
         //'3 mixed_us_sn, 4 mixed_ss_un, 5 contact, 6 prescribed_dd'
-    character(len=*), parameter :: graded_coding = '0 tip element as long as its ' &
-        //'neighbour, 1 graded mesh at the tip (K less accurate)'
+    character(len=*), parameter :: graded_coding = '0 the elements near the tip as long '// &
+        'as the tip element, 1 graded mesh at the tip (K less accurate)'
     character(len=*), parameter :: near_coding = '0 clear, 1 within one element length ' &
         //'of an element centre (reduced accuracy), 2 on an element or at an element end ' &
         //'(value NaN)'

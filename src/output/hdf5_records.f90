@@ -111,6 +111,9 @@ contains
             call write_attribute(group, 'steps_taken', record%steps_taken, writer%error)
             call write_attribute(group, 'end_reason', trim(growth_end_names(record%end_reason)), &
                                  writer%error)
+            ! Only a run that stopped at a failed step has it.
+            if (allocated(record%failure)) call write_attribute(group, 'failure', &
+                                                                record%failure, writer%error)
             call write_attribute(group, 'reason_coding', reason_coding(), writer%error)
         end associate
         call close_group(writer%group, writer%error)

@@ -14,9 +14,10 @@
 !>   along the axis at remote_angle degrees counter-clockwise from +x, s3 across it; the
 !>   ones not swept keep the base model's values (s1 its most compressive principal
 !>   stress, the angle in (-90, 90]); not combinable with sxx, syy, sxy;
-!> - mu, sf, pressure: on every element of every fracture;
-!> - fracture(K)%mu, fracture(K)%sf, fracture(K)%pressure: on every element of fracture K
-!>   (1-based, in input order);
+!> - mu, sf, pressure and the strength laws (each law of ddc_model_laws by its name:
+!>   tensile_strength, slip_weakening_distance ...): on every element of every fracture;
+!> - fracture(K)%mu, fracture(K)%sf, fracture(K)%pressure, fracture(K)%<law>: on every
+!>   element of fracture K (1-based, in input order);
 !> - new_mu, new_sf and the strength laws of new elements (new_<name> of each law of
 !>   ddc_model_laws: new_tensile_strength ...): what the new contact elements of a growth run
 !>   take;
@@ -28,9 +29,9 @@ module ddc_sweep_tasks
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type, growth_options, domain_half_plane, no_residual_drop, &
-        strength_law_count, injection_source, source_overpressure
+        strength_law_count, injection_source, source_overpressure, condition_contact
     use ddc_model_laws, only: strength_law, strength_laws, law_values, new_law_bound, &
-        at_most_rule
+        at_most_rule, law_index, set_law
     use ddc_text, only: itoa, lower, short_real, add_message, messages_error
     use ddc_model_limits, only: range_problem, quantity_any, quantity_youngs_modulus, &
         quantity_poissons_ratio, quantity_non_negative, quantity_positive
@@ -58,18 +59,19 @@ module ddc_sweep_tasks
                           target_syy = 4, target_sxy = 5, target_s1 = 6, target_s3 = 7, &
                           target_angle = 8, target_mu = 9, target_sf = 10, target_pressure = 11, &
                           target_new_mu = 12, target_new_sf = 13
-    !> A strength law of new elements, new_<name> (which one: sweep_definition's laws)
-    integer, parameter :: target_new_law = 14
+    !> A strength law of new elements, new_<name>, and one of the fractures' elements,
+    !> <name> (which one: sweep_definition's laws)
+    integer, parameter :: target_new_law = 14, target_law = 15
     !> The flow (docs/injection.md): the value of &injection sources of one kind (all, or
     !> injection(K): sweep_definition's sources), the hydraulic properties of the elements
     !> that conduct (all, or fracture(K)'s)
-    integer, parameter :: target_overpressure = 15, target_rate = 16, &
-                          target_diffusivity = 17, target_transmissivity = 18
+    integer, parameter :: target_overpressure = 16, target_rate = 17, &
+                          target_diffusivity = 18, target_transmissivity = 19
     !> Names of the flow targets, indexed by target (per source: injection(K)%<name>, per
     !> fracture: fracture(K)%<name>)
     character(len=*), parameter :: flow_names(target_overpressure:target_transmissivity) = &
         [character(len=14) :: 'overpressure', 'rate', 'diffusivity', 'transmissivity']
-    !> Names of the targets but target_new_law, indexed by target (per fracture:
+    !> Names of the targets but the laws' and the flow's, indexed by target (per fracture:
     !> fracture(K)%<name>)
     character(len=*), parameter :: target_names(13) = [character(len=14) :: 'youngs_modulus', &
         'poissons_ratio', 'sxx', 'syy', 'sxy', 'remote_s1', 'remote_s3', 'remote_angle', 'mu', &
@@ -89,7 +91,8 @@ module ddc_sweep_tasks
         integer, allocatable :: fractures(:)
         !> Source of each injection(K)%... parameter (1-based), 0 for all, shape (np)
         integer, allocatable :: sources(:)
-        !> Law of each parameter of target_new_law (its place in ddc_model_laws' list), 0 for
+        !> Law of each parameter of target_new_law or target_law (its place in ddc_model_laws'
+        !> list), 0 for
         !> the others, shape (np)
         integer, allocatable :: laws(:)
         !> Number of values of each parameter, shape (np)
@@ -118,7 +121,7 @@ contains
         integer, intent(out) :: fracture
         !> Source number for injection(K)%..., 0 otherwise
         integer, intent(out) :: source
-        !> The law of new_<name> (its place in ddc_model_laws' list), 0 otherwise
+        !> The law of new_<name> or <name> (its place in ddc_model_laws' list), 0 otherwise
         integer, intent(out) :: law
         !> Why the name is bad, '' when it is good
         character(len=:), allocatable, intent(out) :: problem
@@ -148,12 +151,15 @@ contains
                 return
             end if
             if (all(key /= [character(len=14) :: 'mu', 'sf', 'pressure', 'diffusivity', &
-                                                 'transmissivity'])) then
+                                                 'transmissivity']) .and. law_index(key) == 0) then
                 problem = "'"//trim(name)//"': a fracture's sweep parameters are mu, sf, "// &
-                          'pressure, diffusivity and transmissivity'
+                          'pressure, diffusivity, transmissivity and the strength laws ('// &
+                          law_names('')//')'
                 return
             end if
         end if
+        law = law_index(key)
+        if (law > 0) target = target_law
         do i = 1, size(target_names)
             if (key == trim(target_names(i))) target = i
         end do
@@ -230,26 +236,35 @@ contains
     !> The list of parameter names, for messages.
     function parameter_help() result(help)
         character(len=:), allocatable :: help
+        help = 'youngs_modulus, poissons_ratio, sxx, syy, sxy, remote_s1, remote_s3, '// &
+            'remote_angle, mu, sf, pressure, '//law_names('')//', fracture(K)%mu, '// &
+            'fracture(K)%sf, fracture(K)%pressure, fracture(K)%<law> (each of those), '// &
+            'new_mu, new_sf, '//law_names('new_')//' (&growth), overpressure, rate, '// &
+            'injection(K)%overpressure, injection(K)%rate (&injection), diffusivity, '// &
+            'transmissivity, fracture(K)%diffusivity, fracture(K)%transmissivity'
+    end function parameter_help
+
+    !> 'tensile_strength, sf_residual, ...': the names of the strength laws, each after
+    !> prefix.
+    function law_names(prefix) result(names)
+        character(len=*), intent(in) :: prefix
+        character(len=:), allocatable :: names
         type(strength_law) :: laws(strength_law_count)
         integer :: k
 
-        help = 'youngs_modulus, poissons_ratio, sxx, syy, sxy, remote_s1, remote_s3, '// &
-            'remote_angle, mu, sf, pressure, fracture(K)%mu, fracture(K)%sf, '// &
-            'fracture(K)%pressure, new_mu, new_sf'
         laws = strength_laws()
+        names = ''
         do k = 1, size(laws)
-            help = help//', new_'//laws(k)%name
+            if (k > 1) names = names//', '
+            names = names//prefix//laws(k)%name
         end do
-        help = help//' (&growth), overpressure, rate, injection(K)%overpressure, '// &
-            'injection(K)%rate (&injection), diffusivity, transmissivity, '// &
-            'fracture(K)%diffusivity, fracture(K)%transmissivity'
-    end function parameter_help
+    end function law_names
 
     !> Check a value of a parameter; problem is '' when it is acceptable.
     function check_value(target, law, value) result(problem)
-        !> target_youngs ... target_new_law
+        !> target_youngs ... target_transmissivity
         integer, intent(in) :: target
-        !> The law of target_new_law (its place in ddc_model_laws' list)
+        !> The law of target_new_law or target_law (its place in ddc_model_laws' list)
         integer, intent(in) :: law
         !> The value
         real(wp), intent(in) :: value
@@ -264,7 +279,7 @@ contains
             problem = range_problem(quantity_poissons_ratio, value)
         case (target_mu, target_sf, target_new_mu, target_new_sf)
             problem = range_problem(quantity_non_negative, value)
-        case (target_new_law)
+        case (target_new_law, target_law)
             laws = strength_laws()
             problem = range_problem(laws(law)%quantity, value)
         case (target_diffusivity, target_transmissivity)
@@ -367,7 +382,9 @@ contains
         ! The elements that conduct in the base model: a swept diffusivity or transmissivity
         ! keeps the others (barriers) as they are.
         logical, allocatable :: conducts(:)
-        integer :: p, first, last, q
+        type(strength_law) :: laws(strength_law_count)
+        integer, allocatable :: rows(:)
+        integer :: p, first, last, q, i
 
         conducts = model%elements%diffusivity > 0.0_wp .and. &
                    model%elements%transmissivity > 0.0_wp
@@ -402,6 +419,13 @@ contains
             case (target_transmissivity)
                 where (conducts(first:last)) model%elements%transmissivity(first:last) = &
                     values(p)
+            case (target_law)
+                ! The laws act on contact elements alone (&fracture gives them to no other).
+                laws = strength_laws()
+                rows = pack([(i, i = first, last)], &
+                            model%elements%condition(first:last) == condition_contact)
+                call set_law(model%elements, laws(sweep%laws(p))%name, rows, &
+                             spread(values(p), 1, size(rows)))
             case default
                 ! the remote stress: task_stress
             end select
@@ -573,10 +597,11 @@ contains
     end function half_plane_problem
 
     !> A swept mu below the mu_dynamic, or a swept sf below the sf_residual, that the base
-    !> model gives an element: one model with these values is refused (the friction or
-    !> cohesion after slip above the intact one is a mistake), so a sweep must not lower
-    !> the residual to the swept value, or turn the weakening off, without a word. The
-    !> first such element's fracture and values, '' when there is none.
+    !> model (or the sweep) gives an element, or a swept mu_dynamic or sf_residual above its
+    !> mu or sf: one model with these values is refused (the friction or cohesion after slip
+    !> above the intact one is a mistake), so a sweep must not lower the residual to the
+    !> swept value, or turn the weakening off, without a word. The first such element's
+    !> fracture and values, '' when there is none.
     function weakening_problem(model, sweep, values) result(problem)
         !> The base model (read and checked)
         type(model_type), intent(in) :: model
@@ -587,14 +612,16 @@ contains
         !> The problem, '' when there is none
         character(len=:), allocatable :: problem
         real(wp), allocatable :: mu(:), sf(:), given(:, :)
-        ! The parameter that set each element's mu and sf (0: the base model's value)
-        integer, allocatable :: mu_from(:), sf_from(:)
+        ! The parameter that set each element's mu, sf and laws (0: the base model's value)
+        integer, allocatable :: mu_from(:), sf_from(:), law_from(:, :)
         type(strength_law) :: laws(strength_law_count)
         integer :: p, first, last, k
 
         mu = model%elements%mu
         sf = model%elements%sf
+        given = law_values(model%elements)
         allocate (mu_from(size(mu)), sf_from(size(sf)), source=0)
+        allocate (law_from(size(mu), strength_law_count), source=0)
         do p = 1, size(values)
             call element_range(model, sweep, p, first, last)
             select case (sweep%targets(p))
@@ -604,19 +631,24 @@ contains
             case (target_sf)
                 sf(first:last) = values(p)
                 sf_from(first:last) = p
+            case (target_law)
+                associate (contact => model%elements%condition(first:last) == &
+                           condition_contact)
+                    where (contact) given(first:last, sweep%laws(p)) = values(p)
+                    where (contact) law_from(first:last, sweep%laws(p)) = p
+                end associate
             case default
                 ! not a strength parameter
             end select
         end do
         laws = strength_laws()
-        given = law_values(model%elements)
         problem = ''
         do k = 1, size(laws)
             select case (laws(k)%at_most)
             case ('sf')
-                problem = above_intact(given(:, k), sf, sf_from, laws(k))
+                problem = above_intact(given(:, k), sf, law_from(:, k), sf_from, laws(k))
             case ('mu')
-                problem = above_intact(given(:, k), mu, mu_from, laws(k))
+                problem = above_intact(given(:, k), mu, law_from(:, k), mu_from, laws(k))
             case default
                 ! no Coulomb value it may not exceed
             end select
@@ -625,25 +657,33 @@ contains
 
     contains
 
-        !> The first swept element whose given residual (below no_residual_drop, the mark
-        !> of none) exceeds its swept intact value.
-        function above_intact(residual, intact, from, law) result(problem)
+        !> The first element with a swept residual or intact value whose residual (below
+        !> no_residual_drop, the mark of none) exceeds its intact value.
+        function above_intact(residual, intact, residual_from, from, law) result(problem)
             real(wp), intent(in) :: residual(:), intact(:)
-            integer, intent(in) :: from(:)
+            integer, intent(in) :: residual_from(:), from(:)
             type(strength_law), intent(in) :: law
-            character(len=:), allocatable :: problem
+            character(len=:), allocatable :: problem, fracture
             integer :: j, f
 
             problem = ''
-            j = findloc(from > 0 .and. residual < no_residual_drop .and. residual > intact, &
-                        .true., 1)
+            j = findloc((from > 0 .or. residual_from > 0) .and. residual < no_residual_drop &
+                        .and. residual > intact, .true., 1)
             if (j == 0) return
             f = model%elements%fracture_id(j)
-            problem = trim(sweep%names(from(j)))//' = '//short_real(values(from(j)))// &
-                ' is below '//law%name//' = '//short_real(residual(j))//' of fracture '// &
-                itoa(f)//' '//model%fractures(f)%name//' ('//at_most_rule(law)// &
-                '; one model with these values is refused too): sweep values of at least '// &
-                short_real(residual(j))//', or lower '//law%name
+            fracture = ' of fracture '//itoa(f)//' '//model%fractures(f)%name//' ('// &
+                at_most_rule(law)//'; one model with these values is refused too)'
+            if (from(j) > 0) then
+                problem = trim(sweep%names(from(j)))//' = '//short_real(values(from(j)))// &
+                    ' is below '//law%name//' = '//short_real(residual(j))//fracture// &
+                    ': sweep values of at least '//short_real(residual(j))//', or lower '// &
+                    law%name
+            else
+                problem = trim(sweep%names(residual_from(j)))//' = '// &
+                    short_real(residual(j))//' is above '//law%at_most//' = '// &
+                    short_real(intact(j))//fracture//': sweep values of at most '// &
+                    short_real(intact(j))//', or raise '//law%at_most
+            end if
         end function above_intact
 
     end function weakening_problem

@@ -15,7 +15,9 @@ the swept parameters (from the /sweep group, in &sweep order) and the results
 and, when the tasks grow fractures (a ``&growth`` group; the columns of the first task's
 file name the fractures):
 
-* ``growth_steps``: steps in which a tip grew; ``end_reason``: ``arrested`` or ``step_limit``;
+* ``growth_steps``: steps in which a tip grew; ``growth_start``: the load step (1-based, 1
+  without a load path) in which a tip first grew or a new fracture started, 0 when none did;
+  ``end_reason``: ``arrested``, ``step_limit`` or ``failed``;
 * ``grown_length_<fracture>``: length grown at both tips of each fracture [length unit];
 * ``k_eq_ratio``: the largest K_eq / toughness of the last step's records (below 1: every
   tip left is subcritical);
@@ -62,7 +64,7 @@ from .reader import (
 
 RESULTS = ("peak_slip", "peak_opening", "stick", "slip", "open", "max_abs_k1", "max_abs_k2")
 #: Columns of a growth run besides its grown_length_<fracture> (see growth_summary)
-GROWTH_RESULTS = ("growth_steps", "end_reason", "k_eq_ratio")
+GROWTH_RESULTS = ("growth_steps", "growth_start", "end_reason", "k_eq_ratio")
 GROWN_LENGTH = "grown_length_"
 #: Columns of a task with fluid sources besides its per-fracture ones (injection_summary)
 INJECTION_RESULTS = ("injected_volume",)
@@ -72,17 +74,22 @@ INJECTION_FRACTURE_RESULTS = {"slipping_length_": ("slipping_length", "length"),
                               "front_half_length_": (None, "length"),
                               "moment_": ("moment", "moment")}
 TASK_FILE = re.compile(r"(?P<stem>.+)_task(?P<task>\d+)\.h5$")
-#: Unit of each column: 'length', 'stress', 'k' (stress length^0.5), 'area' (length^2),
-#: 'moment' (stress length^2), 'diffusivity' (length^2 / time), 'transmissivity' (length^3 /
-#: (stress time)), a literal unit, or '' (counts, dimensionless parameters). Per-fracture
-#: and per-source parameters fracture(K)%<name>, injection(K)%<name> take the unit of <name>.
+#: Unit of each column: 'length', 'stress', 'k' (stress length^0.5), 'stiffness' (stress /
+#: length), 'area' (length^2), 'moment' (stress length^2), 'diffusivity' (length^2 / time),
+#: 'transmissivity' (length^3 / (stress time)), a literal unit, or '' (counts, dimensionless
+#: parameters). Per-fracture and per-source parameters fracture(K)%<name>,
+#: injection(K)%<name> take the unit of <name>, the laws of new elements new_<name> that of
+#: <name>.
 COLUMN_UNITS = {"peak_slip": "length", "peak_opening": "length", "max_abs_k1": "k",
                 "max_abs_k2": "k", "youngs_modulus": "stress", "sxx": "stress",
                 "syy": "stress", "sxy": "stress", "remote_s1": "stress",
                 "remote_s3": "stress", "remote_angle": "deg", "sf": "stress",
                 "pressure": "stress", "overpressure": "stress", "rate": "diffusivity",
                 "diffusivity": "diffusivity", "transmissivity": "transmissivity",
-                "injected_volume": "area"}
+                "injected_volume": "area", "tensile_strength": "stress",
+                "sf_residual": "stress", "slip_weakening_distance": "length",
+                "opening_weakening_distance": "length", "shear_stiffness": "stiffness",
+                "normal_stiffness": "stiffness"}
 
 
 def column_units(columns, length_unit, stress_unit, time_unit=""):
@@ -90,11 +97,13 @@ def column_units(columns, length_unit, stress_unit, time_unit=""):
     named = {"length": length_unit, "stress": stress_unit,
              "k": f"{stress_unit} {length_unit}^0.5".strip(), "area": f"{length_unit}^2",
              "moment": f"{stress_unit} {length_unit}^2",
+             "stiffness": f"{stress_unit}/{length_unit}",
              "diffusivity": f"{length_unit}^2/{time_unit}",
              "transmissivity": f"{length_unit}^3/({stress_unit} {time_unit})"}
     units = {}
     for column in columns:
-        kind = COLUMN_UNITS.get(column.split("%")[-1], "")
+        name = column.split("%")[-1]
+        kind = COLUMN_UNITS.get(name.removeprefix("new_"), "")
         if column.startswith(GROWN_LENGTH):
             kind = "length"
         for prefix, (_, unit) in INJECTION_FRACTURE_RESULTS.items():
@@ -156,7 +165,8 @@ def growth_summary(growth, fractures):
     attrs = growth["attrs"]
     last = growth["step"] == np.max(growth["step"]) if growth["step"].size else []
     k_eq = growth["k_eq"][last] if growth["step"].size else np.array([])
-    results = {"growth_steps": int(attrs["steps_taken"]), "end_reason": str(attrs["end_reason"]),
+    results = {"growth_steps": int(attrs["steps_taken"]), "growth_start": growth_start(growth),
+               "end_reason": str(attrs["end_reason"]),
                "k_eq_ratio": float(np.max(k_eq)) / float(attrs["toughness"]) if k_eq.size
                else float("nan")}
     for index, fracture in enumerate(fractures, start=1):
@@ -178,6 +188,16 @@ def injection_summary(history, fractures):
                 value = history[key][-1, index]
             results[prefix + fracture["name"]] = float(value)
     return results
+
+
+def growth_start(growth):
+    """The load step (1-based; 1 without a load path) of the first growth step in which a
+    tip grew (its record's length > 0) or a new fracture started; 0 when none did."""
+    load_step = growth.get("load_step", np.ones_like(growth["step"]))
+    starts = list(load_step[growth["length"] > 0])
+    if "initiations" in growth:
+        starts += list(growth["initiations"]["load_step"])
+    return int(min(starts)) if starts else 0
 
 
 def is_result(column):
@@ -284,7 +304,7 @@ def main(argv=None):
     parser.add_argument("folder", help="folder of the task outputs")
     parser.add_argument("--plot", metavar="RESULT",
                         help=f"result to plot: {', '.join(RESULTS)}, and of growth runs "
-                        f"growth_steps, k_eq_ratio, {GROWN_LENGTH}<fracture>")
+                        f"growth_steps, growth_start, k_eq_ratio, {GROWN_LENGTH}<fracture>")
     parser.add_argument("--against", metavar="PARAM", help="swept parameter on the x axis")
     parser.add_argument("--format", default="png", choices=("png", "pdf", "svg"))
     args = parser.parse_args(argv)

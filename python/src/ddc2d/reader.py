@@ -95,6 +95,9 @@ GROWTH_WORK_DATASETS = ("efficiency",)
 #: /growth/trials datasets of the work criterion, one value per trial kink.
 GROWTH_TRIAL_DATASETS = ("trial_step", "trial_record", "trial_angle", "trial_efficiency",
                          "trial_state")
+#: Datasets of /growth/initiations (&initiation), one value per new fracture started.
+INITIATION_DATASETS = ("kind", "step", "load_step", "fracture_id", "parent", "element", "flaw",
+                       "side", "x", "y", "probe_x", "probe_y", "tension", "angle")
 #: Datasets of /growth/initiations/flaw_trials (criterion 'work' with flaw points), one value
 #: per trial of a flaw's first crack.
 FLAW_TRIAL_DATASETS = ("step", "flaw", "angle", "efficiency", "state")
@@ -482,8 +485,10 @@ def read_growth(path: FilePath, handle: h5py.Group) -> dict[str, Any] | None:
     the work criterion also ``efficiency`` and ``trials`` (dict of GROWTH_TRIAL_DATASETS, one
     value per trial kink), and with flaw points ``flaw_trials`` (dict of FLAW_TRIAL_DATASETS,
     one value per trial of a flaw's first crack) and ``flaw_starts`` (``flaw``, ``step`` and
-    ``angle`` of every flaw that started, from /growth/initiations); None when the file has
-    no /growth."""
+    ``angle`` of every flaw that started, from /growth/initiations); with &initiation
+    ``initiations`` (dict of INITIATION_DATASETS, one value per new fracture, and ``attrs``:
+    its settings and, when a check started nothing, ``largest_tension`` with its
+    ``largest_tension_x``, ``_y`` and ``_step``); None when the file has no /growth."""
     if "growth" not in handle:
         return None
     group = handle["growth"]
@@ -499,6 +504,11 @@ def read_growth(path: FilePath, handle: h5py.Group) -> dict[str, Any] | None:
     if "trials" in group:
         growth["trials"] = {key: np.asarray(group["trials"][key][()]).ravel()
                             for key in GROWTH_TRIAL_DATASETS}
+    if "initiations" in group:
+        rows = group["initiations"]
+        growth["initiations"] = {key: np.asarray(rows[key][()]).ravel()
+                                 for key in INITIATION_DATASETS}
+        growth["initiations"]["attrs"] = decoded_attrs(rows.attrs)
     if "initiations/flaw_trials" in group:
         trials = group["initiations/flaw_trials"]
         growth["flaw_trials"] = {key: np.asarray(trials[key][()]).ravel()
