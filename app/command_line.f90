@@ -73,7 +73,9 @@ contains
                'be written too: ddc2d creates no folders); 4 internal error (a bug in'//nl// &
                'ddc2d); 5 the model is too large for the memory here (the machine or its'//nl// &
                'cgroup, e.g. Slurm --mem): the message gives the estimate, what is'//nl// &
-               'available and how many elements fit. A failed run leaves no output file.'
+               'available and how many elements fit; 6 a growth run stopped at a step'//nl// &
+               'whose solve failed: the steps before it are written (end_reason failed)'//nl// &
+               'and --resume goes on from them. A failed run leaves no other output file.'
     end function usage_text
 
     !> The i-th argument as a deferred-length string.

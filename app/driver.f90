@@ -7,7 +7,7 @@ module ddc_app_driver
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit, int64
     use, intrinsic :: iso_c_binding, only: c_int
     use ddc_kinds, only: wp
-    use ddc_error, only: error_type, set_error, exit_success, exit_bad_input
+    use ddc_error, only: error_type, set_error, exit_success, exit_bad_input, exit_stopped_early
     use ddc_version, only: program_name, program_version, git_commit
     use ddc_model_types, only: model_type
     use ddc_model_results, only: model_results
@@ -34,7 +34,7 @@ module ddc_app_driver
     implicit none
     private
 
-    public :: go_on, prepare_run, error_status, publish_results, exit_program
+    public :: go_on, prepare_run, error_status, publish_results, finish_run, exit_program
 
     !> The status of a step after which the program goes on
     integer, parameter :: go_on = -1
@@ -295,6 +295,30 @@ contains
             ': warning: ', warnings)
         status = exit_success
     end subroutine publish_results
+
+    !> After the solve: the results published, also those of a run that stopped early
+    !> (exit_stopped_early: the steps it completed), then its error printed.
+    subroutine finish_run(options, model, results, error, status)
+        !> The parsed command line
+        type(command_line_options), intent(in) :: options
+        !> The model solved
+        type(model_type), intent(in) :: model
+        !> Its results
+        type(model_results), intent(inout) :: results
+        !> The solve's error, if any
+        type(error_type), allocatable, intent(in) :: error
+        !> The exit status of the program
+        integer, intent(out) :: status
+
+        if (allocated(error)) then
+            if (error%code /= exit_stopped_early) then
+                status = error_status(error)
+                return
+            end if
+        end if
+        call publish_results(options, model, results, status)
+        if (status == exit_success .and. allocated(error)) status = error_status(error)
+    end subroutine finish_run
 
     !> Flush and exit with the given status.
     subroutine exit_program(status)

@@ -5,7 +5,7 @@ program ddc2d
     use ddc_model_types, only: model_type
     use ddc_model_results, only: model_results
     use ddc_app_command_line, only: command_line_options
-    use ddc_app_driver, only: go_on, prepare_run, error_status, publish_results, exit_program
+    use ddc_app_driver, only: go_on, prepare_run, finish_run, exit_program
     use ddc_app_solve, only: solve_on_one_process
     implicit none
 
@@ -18,8 +18,6 @@ program ddc2d
     call prepare_run(options, model, status)
     if (status /= go_on) call exit_program(status)
     call solve_on_one_process(options, model, results, error)
-    status = error_status(error)
-    if (status /= go_on) call exit_program(status)
-    call publish_results(options, model, results, status)
+    call finish_run(options, model, results, error, status)
     call exit_program(status)
 end program ddc2d

@@ -4,12 +4,12 @@
 !> distributed. Every error ends every process with the same exit status after one message
 !> from the root. With app/ the only place that prints errors and sets the exit status.
 program ddc2d
-    use ddc_error, only: error_type
+    use ddc_error, only: error_type, exit_stopped_early
     use ddc_model_types, only: model_type
     use ddc_model_results, only: model_results
     use ddc_run_model, only: run_model
     use ddc_app_command_line, only: command_line_options
-    use ddc_app_driver, only: go_on, prepare_run, error_status, publish_results, exit_program
+    use ddc_app_driver, only: go_on, prepare_run, error_status, finish_run, exit_program
     use ddc_app_solve, only: solve_on_one_process
     use ddc_parallel_context, only: parallel_context, root, start_parallel, open_grid, &
         stop_parallel
@@ -24,7 +24,7 @@ program ddc2d
     type(command_line_options) :: options
     type(model_type) :: model
     type(model_results) :: results
-    type(error_type), allocatable :: error
+    type(error_type), allocatable :: error, stopped
     integer :: status, on_every
     logical :: distributed
 
@@ -49,13 +49,17 @@ program ddc2d
         call run_model(model, results, error, engine)
     else if (context%rank == root) then
         call solve_on_one_process(options, model, results, error)
+        ! A run that stopped early has results to publish: not an error of every process.
+        if (allocated(error)) then
+            if (error%code == exit_stopped_early) call move_alloc(error, stopped)
+        end if
     end if
     call stop_on(error)
     if (context%rank == root) then
         results%solver%processes = context%processes
         results%solver%process_grid = [context%rows, context%columns]
         results%solver%block_size = model%block_size
-        call publish_results(options, model, results, status)
+        call finish_run(options, model, results, stopped, status)
     end if
     call share(context, status)
     call leave(status)

@@ -5,7 +5,7 @@ module ddc_app_report
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type, rigid_joint, tensile_cap, condition_names, &
         observation_kind_names, symmetry_none, symmetry_names, domain_names, &
-        domain_half_plane, load_path_names, &
+        domain_half_plane, domain_bimaterial, load_path_names, source_overpressure, &
         growth_tips_names, growth_criterion_names, growth_criterion_work, strength_law_count
     use ddc_model_laws, only: strength_law, strength_laws
     use ddc_model_records, only: units_one, units_text
@@ -15,6 +15,7 @@ module ddc_app_report
     use ddc_model_plausibility, only: plausibility_notes, depth_range
     use ddc_model_strength_fronts, only: instant_drop_notes, cohesive_zone_warnings
     use ddc_model_loads, only: work_threshold_of
+    use ddc_model_medium, only: medium_of, upper_remote_stress
     use ddc_growth_summary, only: tip_summary, summarize_tips, linked_fracture
     use ddc_app_report_cycle, only: print_cycle_options, print_cycle_summary
     use ddc_contact_options, only: lcp_method_names, open_cohesion_names
@@ -47,10 +48,27 @@ contains
         gradient = ' '//model%stress_unit//'/'//model%length_unit
         call depth_range(model, deepest, highest)
         write (unit, '(a)') 'ddc2d model: '//model%title
-        write (unit, '(a)') '  youngs_modulus = '//short_real(model%youngs_modulus)//stress// &
-            ', poissons_ratio = '//short_real(model%poissons_ratio)
+        if (model%elements%domain == domain_bimaterial) then
+            write (unit, '(a)') '  lower material: youngs_modulus = '// &
+                short_real(model%youngs_modulus)//stress//', poissons_ratio = '// &
+                short_real(model%poissons_ratio)
+            write (unit, '(a)') '  upper material: youngs_modulus = '// &
+                short_real(model%upper_youngs_modulus)//stress//', poissons_ratio = '// &
+                short_real(model%upper_poissons_ratio)
+        else
+            write (unit, '(a)') '  youngs_modulus = '//short_real(model%youngs_modulus)// &
+                stress//', poissons_ratio = '//short_real(model%poissons_ratio)
+        end if
         if (model%elements%domain == domain_half_plane) then
             write (unit, '(a)') '  domain: half_plane (free surface y = 0, the body y < 0)'
+        else if (model%elements%domain == domain_bimaterial) then
+            associate (upper => upper_remote_stress(medium_of(model), &
+                                                    [model%sxx, model%syy, model%sxy]))
+                write (unit, '(a)') '  domain: bimaterial (two bonded half-planes, interface '// &
+                    'y = '//short_real(model%interface_y)//'; the remote stress below is '// &
+                    "the lower material's, the upper one's sxx = "//short_real(upper(1))// &
+                    stress//')'
+            end associate
         else
             write (unit, '(a)') '  domain: '//trim(domain_names(model%elements%domain))
         end if
@@ -98,6 +116,8 @@ contains
         if (model%growth%active) call print_growth_options(unit, model)
         if (model%cycle%active) call print_cycle_options(unit, model)
         write (unit, '(a)') '  output: '//model%output_file
+        if (allocated(model%resumed_from)) write (unit, '(a)') '  resumed from '// &
+            model%resumed_from//' (written '//model%resumed_from_created//')'
         notes = plausibility_notes(model, units_given)
         if (len(notes) > 0) write (unit, '(a)') prefix_lines('note: ', notes)
         notes = instant_drop_notes(model)
@@ -218,6 +238,14 @@ contains
                 end do
                 write (unit, '(a)') ''
             end do
+            if (allocated(model%load_path%time)) then
+                write (unit, '(a)', advance='no') '    time at the vertices:'
+                do v = 1, size(model%load_path%time)
+                    write (unit, '(a)', advance='no') ' '//short_real(model%load_path%time(v))
+                end do
+                write (unit, '(a)') ' '//model%time_unit
+            end if
+            if (allocated(model%injections)) call print_injections()
             ! Said here, before a user relies on --resume to go on with the path
             if (.not. model%growth%active .and. (any(model%elements%shear_stiffness < &
                 rigid_joint) .or. any(model%elements%normal_stiffness < rigid_joint))) then
@@ -225,6 +253,29 @@ contains
                     'joints'' memory is their plastic slip, which the result file does not hold'
             end if
         end subroutine print_load_path
+
+        !> One line per fluid source.
+        subroutine print_injections()
+            integer :: k
+            character(len=:), allocatable :: what, when
+
+            do k = 1, size(model%injections)
+                associate (s => model%injections(k))
+                    if (s%kind == source_overpressure) then
+                        what = 'overpressure '//short_real(s%value)//' '//model%stress_unit
+                    else
+                        what = 'rate '//short_real(s%value)//' '//model%length_unit//'^2/'// &
+                            model%time_unit
+                    end if
+                    when = ''
+                    if (s%start /= -huge(1.0_wp)) when = ' from '//short_real(s%start)
+                    if (s%stop /= huge(1.0_wp)) when = when//' until '//short_real(s%stop)
+                    write (unit, '(a)') '    injection '//s%name//' on '// &
+                        model%fractures(s%fracture_id)%name//' at ('//short_real(s%x)//', '// &
+                        short_real(s%y)//'): '//what//when
+                end associate
+            end do
+        end subroutine print_injections
 
     end subroutine print_model_summary
 
@@ -341,6 +392,9 @@ contains
                     '), tension ', r%tension(i), model%stress_unit, ', direction ', &
                     r%angle(i), ' degrees'
             end do
+            if (r%largest_step > 0) write (unit, '(2x,a,i0,a,es12.5,1x,a,a,es12.5,a,es12.5,a)') &
+                'none started in step ', r%largest_step, ': largest probed tension ', &
+                r%largest_tension, model%stress_unit, ' at (', r%largest_x, ', ', r%largest_y, ')'
         end associate
     end subroutine print_initiations
 
@@ -506,7 +560,7 @@ contains
                     results%tips%k1(i), ', K_II = ', results%tips%k2(i), &
                     model%stress_unit//' '//model%length_unit//'^1/2'
                 if (results%tips%graded(i) == 1) write (unit, '(a)') '    (graded mesh at '// &
-                    'this tip: the tip element differs from its neighbour, K is less accurate)'
+                    'this tip: the elements near it differ in length, K is less accurate)'
             end do
             if (allocated(results%fields)) then
                 do i = 1, size(results%fields)

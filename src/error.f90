@@ -6,7 +6,7 @@ module ddc_error
 
     public :: error_type, set_error, set_internal_error
     public :: exit_success, exit_solver_failure, exit_bad_input, exit_io_failure
-    public :: exit_internal_error, exit_out_of_memory
+    public :: exit_internal_error, exit_out_of_memory, exit_stopped_early
 
     !> The run succeeded.
     integer, parameter :: exit_success = 0
@@ -21,11 +21,14 @@ module ddc_error
     !> The model is too large for the memory of this machine (or its cgroup): it would run
     !> with more memory, unchanged
     integer, parameter :: exit_out_of_memory = 5
+    !> A run of steps (fracture growth) stopped at a step whose solve failed: the steps it
+    !> completed are written, the failure recorded, and --resume can go on from them
+    integer, parameter :: exit_stopped_early = 6
 
     !> An error: the exit code it maps to and one sentence for the user.
     type :: error_type
         !> Exit code (exit_solver_failure, exit_bad_input, exit_io_failure,
-        !> exit_internal_error or exit_out_of_memory)
+        !> exit_internal_error, exit_out_of_memory or exit_stopped_early)
         integer :: code = exit_bad_input
         !> Message for the user, naming file, group and variable where it applies
         character(len=:), allocatable :: message

@@ -15,7 +15,8 @@
 module ddc_api_library
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_success, exit_solver_failure, &
-        exit_bad_input, exit_io_failure, exit_internal_error, exit_out_of_memory
+        exit_bad_input, exit_io_failure, exit_internal_error, exit_out_of_memory, &
+        exit_stopped_early
     use ddc_text, only: itoa, rtoa, add_message, messages_error, find_name, quoted_list, lower
     use ddc_model_types, only: model_type, fracture_type, condition_names, condition_contact
     use ddc_model_results, only: model_results, state_free, state_stick, state_slip, &
@@ -37,7 +38,7 @@ module ddc_api_library
 
     public :: wp, error_type
     public :: exit_success, exit_solver_failure, exit_bad_input, exit_io_failure
-    public :: exit_internal_error, exit_out_of_memory
+    public :: exit_internal_error, exit_out_of_memory, exit_stopped_early
     public :: state_free, state_stick, state_slip, state_open, state_names
     public :: ddc_model, ddc_result
     public :: new_model, add_fracture, set_remote_stress, read_model, solve
@@ -114,6 +115,7 @@ contains
         model%model%title = text_or(title, 'library model')
         model%model%length_unit = text_or(length_unit, 'm')
         model%model%stress_unit = text_or(stress_unit, 'MPa')
+        model%model%time_unit = 's'
         model%model%youngs_modulus = youngs_modulus
         model%model%poissons_ratio = poissons_ratio
         model%model%solver = solver_options()
@@ -247,7 +249,8 @@ contains
     !> Solve the model as the program does: by growing its fractures (&growth), along its
     !> loading history (&load_path), or in one solve. The model is not changed. Errors:
     !> exit_bad_input (no fracture, elements that overlap or cross, no model),
-    !> exit_solver_failure, exit_out_of_memory.
+    !> exit_solver_failure, exit_out_of_memory, exit_stopped_early (a growth step failed:
+    !> result holds the steps before it, as the program writes them).
     subroutine solve(model, result, error)
         !> The model
         type(ddc_model), intent(in) :: model

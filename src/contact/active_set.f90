@@ -22,6 +22,18 @@
 !> repeat with period two (a cycle), when the iteration limit is reached or when a reduced
 !> system is numerically singular, and says why; the caller then falls back to Lemke.
 !>
+!> Where it is the last resort (escape), a cycle is not the end yet. The two states of the
+!> cycle differ on a few elements whose conditions no state of theirs meets while the others
+!> keep theirs: the way out needs other elements to change, ones that no condition of their
+!> own tells to (seen at tails branching off a fault at 30 degrees: the fault element beside
+!> each must close where the cycle keeps it open). They are among those whose DDs change most
+!> between the two states of the cycle (the response to the cycling elements): every set of
+!> the escape_candidates elements of largest response (in binary order: the first, the
+!> second, both, the third, ...) is switched between open and closed (closed sticking) in
+!> each of the two states of the cycle in turn, and the iteration goes on from there (each
+!> try with the iteration limit of its own) until one converges or every try has failed
+!> (at most 14).
+!>
 !> Loading history (docs/theory/earth.md#loading-histories): given the total slip ds_previous of the
 !> step before, a sticking element keeps it (stick = no slip increment: Ds = ds_previous), the
 !> slip increment Ds - ds_previous opposes the shear traction and Signorini acts on the
@@ -64,6 +76,8 @@ module ddc_contact_active_set
     !> Largest residual of the unknowns' rows, relative to the stress scale, accepted from a
     !> solve through a low-rank update [-]
     real(wp), parameter :: update_tol = 1.0e-11_wp
+    !> Elements of largest response tried by the escape from a cycle (module header)
+    integer, parameter :: escape_candidates = 3
 
     !> What the method keeps between solves on the same A (the steps of a loading history):
     !> the DDs held at non-zero values by the states (the previous slip of sticking
@@ -102,7 +116,7 @@ contains
     !> Solve the contact conditions on the stiffness system, t = S_r + A D.
     subroutine solve_contact_active_set(a, s_r_s, s_r_np, mu, sf, sigma0, res, &
                                         max_iterations, work, start_open, start_shear, &
-                                        ds_previous, work_bytes)
+                                        ds_previous, work_bytes, escape)
         !> Influence matrix ordered [s; n], 2n x 2n [stress / length]
         class(stiffness_operator), intent(inout) :: a
         !> Remote shear traction and effective normal traction (s_n + p) on each element,
@@ -126,14 +140,17 @@ contains
         real(wp), intent(in), optional :: ds_previous(:)
         !> Memory left for the reduced system and its updates (default: no limit) [bytes]
         real(wp), intent(in), optional :: work_bytes
+        !> The method is the last resort: a cycle is left by the tries of the module header
+        !> before it gives up (default .false.)
+        logical, intent(in), optional :: escape
 
-        real(wp), allocatable :: t(:), dd(:), held(:)
-        logical, allocatable :: open_old(:)
-        integer, allocatable :: shear_old(:)
+        real(wp), allocatable :: t(:), dd(:), held(:), dd_before(:)
+        logical, allocatable :: open_old(:), cycle_open(:, :)
+        integer, allocatable :: shear_old(:), cycle_shear(:, :), candidates(:)
         real(wp) :: c, tol_s, tol_d, limit
-        integer :: n, n2, i, unknowns
+        integer :: n, n2, i, unknowns, iterations, tries
         integer(int64) :: t0, t1, rate
-        logical :: changed, cycling
+        logical :: changed, cycling, escaping
         type(error_type), allocatable :: singular
 
         n = size(mu)
@@ -155,13 +172,23 @@ contains
         allocate (open_old(n), shear_old(n))
         open_old = .not. res%open
         shear_old = shear_stick
+        escaping = .false.
+        if (present(escape)) escaping = escape
+        dd = 0.0_wp
+        allocate (dd_before(n2), source=0.0_wp)
+        tries = 0
+        iterations = 0
 
         do
-            if (res%iterations >= max_iterations) then
-                res%reason = 'no convergence within '//itoa(max_iterations)//' iterations'
+            if (iterations >= max_iterations) then
+                if (next_try()) cycle
+                res%reason = 'no convergence within '//itoa(max_iterations)//' iterations'// &
+                    tries_text()
                 return
             end if
             res%iterations = res%iterations + 1
+            iterations = iterations + 1
+            if (escaping) dd_before = dd
             call system_clock(t0, rate)
             call solve_states(a, s_r_s, s_r_np, mu, sf, held, sigma0, limit, res, work, dd, &
                               t, unknowns, singular)
@@ -193,11 +220,69 @@ contains
                 return
             end if
             if (cycling) then
+                if (escaping .and. .not. allocated(candidates)) call keep_cycle()
+                if (next_try()) cycle
                 res%reason = 'the element states cycle (period 2) after '// &
-                    itoa(res%iterations)//' iterations'
+                    itoa(res%iterations)//' iterations'//tries_text()
                 return
             end if
         end do
+
+    contains
+
+        !> The first cycle's two states (the new ones and those just solved) and the elements
+        !> outside it whose DDs changed most between their solutions, largest first (ties to
+        !> the lower index; none that did not change).
+        subroutine keep_cycle()
+            real(wp), allocatable :: response(:)
+            integer :: k, best
+
+            cycle_open = reshape([res%open, open_old], [n, 2])
+            cycle_shear = reshape([res%shear_state, shear_old], [n, 2])
+            response = abs(dd(1:n) - dd_before(1:n)) + abs(dd(n + 1:n2) - dd_before(n + 1:n2))
+            where ((res%open .neqv. open_old) .or. res%shear_state /= shear_old) response = 0.0_wp
+            allocate (candidates(0))
+            do k = 1, escape_candidates
+                best = maxloc(response, 1)
+                if (.not. response(best) > 0.0_wp) exit
+                candidates = [candidates, best]
+                response(best) = 0.0_wp
+            end do
+        end subroutine keep_cycle
+
+        !> Start the next try out of the kept cycle: the candidates of set (tries + 1) / 2 (its
+        !> bits) switched between open and closed in the cycle's first state (odd tries) or
+        !> second (even); .false. when no try is left.
+        logical function next_try()
+            integer :: k, b, j
+
+            next_try = .false.
+            if (.not. allocated(candidates)) return
+            if (tries >= 2 * (2**size(candidates) - 1)) return
+            tries = tries + 1
+            next_try = .true.
+            k = 2 - mod(tries, 2)
+            res%open = cycle_open(:, k)
+            res%shear_state = cycle_shear(:, k)
+            do b = 1, size(candidates)
+                if (.not. btest((tries + 1) / 2, b - 1)) cycle
+                j = candidates(b)
+                res%open(j) = .not. res%open(j)
+                if (.not. res%open(j)) res%shear_state(j) = shear_stick
+            end do
+            open_old = .not. res%open
+            shear_old = shear_stick
+            iterations = 0
+        end function next_try
+
+        !> ' (2 tries out of a cycle failed too)' after failed tries, else ''.
+        function tries_text() result(text)
+            character(len=:), allocatable :: text
+
+            text = ''
+            if (tries > 0) text = ' ('//itoa(tries)//' tries out of a cycle failed too)'
+        end function tries_text
+
     end subroutine solve_contact_active_set
 
     !> New states of one element from its DDs and tractions; changed is set when the

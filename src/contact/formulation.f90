@@ -16,6 +16,10 @@
 !> - 'auto': 'newton' above auto_newton_min_elements contact elements, else 'lemke'; when
 !>   that Lemke solve fails (a ray: M is not copositive-plus, seen at acute branches), the
 !>   Newton method is tried before the solve is reported as failed.
+!> The Newton method that is the last resort (after Lemke failed under 'newton' or 'auto', or
+!> without the dense matrix) tries to leave a cycle of its states before it gives up
+!> (ddc_contact_active_set's escape); where Lemke follows it does not, so that a problem
+!> Lemke solves keeps Lemke's solution.
 !>
 !> A failed LAPACK call, an LCP that no method solves, a failed certificate or a large
 !> residual is an error (exit_solver_failure), never a result.
@@ -74,7 +78,7 @@ module ddc_contact_formulation
         exit_out_of_memory, exit_solver_failure
     use ddc_text, only: bytes_text, itoa, rtoa
     use ddc_contact_memory, only: lemke_bytes
-    use ddc_contact_options, only: solver_options, lcp_auto, lcp_newton, cohesion_lost
+    use ddc_contact_options, only: solver_options, lcp_auto, lcp_newton, lcp_lemke, cohesion_lost
     use ddc_contact_certificate, only: certify_complementarity, default_certificate_tolerance
     use ddc_contact_fault_law, only: fault_law
     use ddc_contact_states, only: state_stick, state_open
@@ -343,8 +347,6 @@ contains
                 res%residual_scale_floor = 0.0_wp
                 if (any(t_cap > 0.0_wp)) res%residual_scale_floor = &
                     max(norm2([problem%shear, problem%normal]), norm2(t_cap))
-                ! The reduced systems hold mu in their slip rows: no factors of another mu.
-                if (weakening) call stiffness%discard_factors()
                 call solve_by_method(s, warm, sf_in, srn_in, newton)
                 if (allocated(error)) then
                     if (rounds > 1) then
@@ -417,7 +419,7 @@ contains
             logical :: exceeded
 
             if (newton) then
-                call solve_once_newton(s, srn_in, sf_in, reason, exceeded)
+                call solve_once_newton(s, srn_in, sf_in, .not. present(a), reason, exceeded)
                 if (exceeded) then
                     call set_error(error, exit_out_of_memory, 'contact: '//reason)
                 else if (len(reason) > 0 .and. .not. present(a)) then
@@ -432,13 +434,12 @@ contains
             end if
             if (newton .or. allocated(error)) return
             call solve_once_lemke(s, warm, sf_in, srn_in, law%mu_in_force)
-            if (.not. (allocated(error) .and. options%lcp_method == lcp_auto .and. &
-                       len(res%fallback) == 0)) return
+            if (.not. allocated(error) .or. options%lcp_method == lcp_lemke) return
             ! M is not copositive-plus: Lemke can end on a ray where the contact problem has
-            ! a solution (seen at acute fault branches). 'auto' then asks the Newton method,
-            ! whose answer is checked the same way, and keeps it for the rounds after
-            ! cohesion is lost.
-            call solve_once_newton(s, srn_in, sf_in, reason, exceeded)
+            ! a solution (seen at acute fault branches). The Newton method is then asked
+            ! again, as the last resort (it leaves cycles), its answer checked the same way,
+            ! and kept for the rounds after cohesion is lost.
+            call solve_once_newton(s, srn_in, sf_in, .true., reason, exceeded)
             if (exceeded) then
                 reason = error%message//' (the Newton method then stopped: '//reason//')'
                 deallocate (error)
@@ -449,7 +450,9 @@ contains
                 res%fallback = 'lemke failed: '//error%message
                 deallocate (error)
             else
-                error%message = error%message//' (the Newton method failed too: '//reason//')'
+                error%message = error%message//' (the Newton method failed too: '//reason// &
+                    '); frictional contact may have no solution here, as at a branch at a '// &
+                    'small angle (docs/contact-and-strength.md#junctions)'
             end if
         end subroutine solve_by_method
 
@@ -493,11 +496,13 @@ contains
 
         !> One solve by the active-set Newton method (no inverse of A), certified as the
         !> equivalent LCP. reason is empty on success, else why Lemke must take over.
-        subroutine solve_once_newton(s, s_r_n, sf, reason, exceeded)
+        subroutine solve_once_newton(s, s_r_n, sf, last_resort, reason, exceeded)
             !> The session: its states are the warm start and take this solve's
             type(contact_session), intent(inout) :: s
             !> Resolved normal traction and cohesion of the shifted law [stress], shape (n)
             real(wp), intent(in) :: s_r_n(:), sf(:)
+            !> No method follows: a cycle of the states is not the end yet
+            logical, intent(in) :: last_resort
             character(len=:), allocatable, intent(out) :: reason
             !> The states asked for a reduced system larger than the memory left (reason says
             !> so): no other method can take over (Lemke needs more)
@@ -520,11 +525,11 @@ contains
                 if (allocated(s%open)) then
                     call solve_contact_active_set(stiffness, s_r_s, s_r_n + p, mu, sf, &
                         res%stress_scale, next, limit, s%newton, s%open, s%shear_state, &
-                        ds_previous=held, work_bytes=options%work_bytes)
+                        ds_previous=held, work_bytes=options%work_bytes, escape=last_resort)
                 else
                     call solve_contact_active_set(stiffness, s_r_s, s_r_n + p, mu, sf, &
                         res%stress_scale, next, limit, s%newton, ds_previous=held, &
-                        work_bytes=options%work_bytes)
+                        work_bytes=options%work_bytes, escape=last_resort)
                 end if
                 exceeded = next%memory_exceeded
                 res%iterations = res%iterations + next%iterations

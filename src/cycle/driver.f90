@@ -158,8 +158,7 @@ contains
                     y = [y, model%observations(i)%y]
                 end do
             end if
-            loop%stations = new_stations(model%elements, op%contact, shear_modulus_of(model), &
-                                         model%poissons_ratio, x, y)
+            loop%stations = new_stations(medium_of(model), op%contact, x, y)
             loop%pair = dormand_prince()
             allocate (loop%stages(2 * m, loop%pair%stages), loop%first(2 * m))
             ! Slip errors relative to L, state errors absolute (docs/theory/cycles.md#error-control)

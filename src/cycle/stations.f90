@@ -12,6 +12,7 @@
 module ddc_cycle_stations
     use ddc_kinds, only: wp
     use ddc_model_types, only: element_set, domain_half_plane
+    use ddc_model_medium, only: elastic_medium
     use ddc_influence_kernel, only: dd_kernel, face_negative
     use ddc_influence_assembly, only: kernel_function, select_kernel, image_transform, &
         image_transforms, kernel_with_images
@@ -72,13 +73,11 @@ contains
     end function planar_to_surface
 
     !> The points (x, y) of a run on the rate-and-state elements `rows`.
-    function new_stations(elements, rows, shear_modulus, nu, x, y) result(stations)
-        !> The elements, geometry computed
-        type(element_set), intent(in) :: elements
+    function new_stations(medium, rows, x, y) result(stations)
+        !> The elements in the rock, geometry computed
+        type(elastic_medium), intent(in) :: medium
         !> The rate-and-state elements, shape (m)
         integer, intent(in) :: rows(:)
-        !> Shear modulus [stress unit] and Poisson's ratio [-]
-        real(wp), intent(in) :: shear_modulus, nu
         !> The points [length unit], shape (p)
         real(wp), intent(in) :: x(:), y(:)
         type(station_set) :: stations
@@ -92,19 +91,19 @@ contains
         stations%p = size(x)
         allocate (stations%gx(size(x), size(rows)), stations%gy(size(x), size(rows)))
         allocate (stations%rx(size(x)), stations%ry(size(x)), source=0.0_wp)
-        call select_kernel(elements, .true., general, kernel)
-        images = image_transforms(elements%symmetry)
+        call select_kernel(medium, .true., general, kernel)
+        images = image_transforms(medium%elements%symmetry)
         do j = 1, size(rows)
             do i = 1, size(x)
-                k = kernel_with_images(kernel, x(i), y(i), elements, rows(j), images, &
-                                       shear_modulus, nu, face_negative)
+                k = kernel_with_images(kernel, x(i), y(i), medium, rows(j), images, &
+                                       face_negative)
                 stations%gx(i, j) = k%ux(1)
                 stations%gy(i, j) = k%uy(1)
             end do
         end do
-        if (.not. planar_to_surface(elements, rows)) return
-        associate (first => rows(1), c => elements%cos_beta(rows(1)), &
-                   s => elements%sin_beta(rows(1)))
+        if (.not. planar_to_surface(medium%elements, rows)) return
+        associate (first => rows(1), c => medium%elements%cos_beta(rows(1)), &
+                   s => medium%elements%sin_beta(rows(1)), elements => medium%elements)
             do i = 1, size(x)
                 ! Positive side: n . (p - m) > 0, with n = (-sin, cos)
                 side = -s * (x(i) - elements%x_mid(first)) + c * (y(i) - elements%y_mid(first))

@@ -24,7 +24,10 @@
 !>
 !> The run ends when no tip is critical any more, or none of the critical ones grew in a
 !> step (arrested: the next step would repeat it), or after `steps` steps (step_limit);
-!> fields, tips and the summary are those of the final geometry.
+!> fields, tips and the summary are those of the final geometry. When the solve of a step
+!> fails (no method solves its contact problem, or its memory runs out) the run ends before
+!> that step (failed): its results are those of the steps completed, the failure is recorded
+!> with them, and the error (exit_stopped_early) says which step and fracture failed.
 !>
 !> Under a loading history (docs/theory/growth.md#growth-along-a-loading-history) every load step is
 !> solved from the friction memory of the one before (ddc_growth_solver keeps it), its fractures are
@@ -42,13 +45,14 @@ module ddc_growth_driver
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use ddc_kinds, only: wp
     use ddc_constants, only: pi
-    use ddc_error, only: error_type, set_internal_error, set_error, exit_bad_input
-    use ddc_model_types, only: model_type, growth_options, initiation_options
+    use ddc_error, only: error_type, set_internal_error, set_error, exit_bad_input, &
+        exit_solver_failure, exit_out_of_memory, exit_stopped_early
+    use ddc_model_types, only: model_type, growth_options, initiation_options, has_sources
     use ddc_model_initiations, only: initiation_record
     use ddc_growth_initiation, only: start_fracture
     use ddc_model_results, only: model_results, growth_record, growth_grew, growth_subcritical, &
         growth_corrector_failed, growth_closed, growth_waiting, growth_arrested, &
-        growth_step_limit
+        growth_step_limit, growth_failed
     use ddc_model_restart, only: restart_state
     use ddc_growth_run_state, only: reason_stopped, step_tips, growth_state, start_run, resume_run
     use ddc_mesh_checks, only: check_elements
@@ -57,12 +61,13 @@ module ddc_growth_driver
     use ddc_growth_criterion, only: assess_tip, kink_angles, most_critical, searched_tip, &
         picks_by_k
     use ddc_growth_kinks, only: kink, step_kinks, grow_paths
-    use ddc_growth_extension, only: tip_path, make_path, tip_element
+    use ddc_growth_extension, only: tip_path, make_path, tip_element, tip_end_begin
     use ddc_growth_clearance, only: check_paths, path_clear, ends_on_link
     use ddc_growth_tips, only: growing_tip, fracture_tip, increment_for
     use ddc_growth_work, only: append_table, append_trials
     use ddc_growth_load_steps, only: follow_growth, record_load_step, finish_load_steps
     use ddc_history_path, only: path_loads, apply_load, load_text
+    use ddc_flow_injection, only: follow_flow, injected
     use ddc_progress, only: report_progress, hold_progress, release_progress
     use ddc_text, only: itoa, rtoa, seconds_text
     implicit none
@@ -99,12 +104,14 @@ contains
         type(model_type), intent(inout) :: model
         !> The final geometry's results, results%growth and results%history
         type(model_results), intent(out) :: results
-        !> Set when a solve fails (naming the step) or a contract is broken
+        !> Set when a solve fails (naming the step) or a contract is broken; a failed growth
+        !> step is exit_stopped_early, with results of the steps before it
         type(error_type), allocatable, intent(out) :: error
         !> Called after every growth step
         procedure(growth_progress), optional :: progress
         !> The end of an earlier run of the model to go on from (--resume)
         type(restart_state), intent(in), optional :: restart
+        type(error_type), allocatable :: failure
         type(growth_state) :: run
         type(growth_record) :: record
         type(initiation_record) :: initiations
@@ -141,10 +148,13 @@ contains
         do load_step = start, size(loads, 2)
             if (history) then
                 where = 'load step '//itoa(load_step)//' of '//itoa(size(loads, 2))//' ('// &
-                    load_text(loads(:, load_step), model%load_path%varies)//')'
+                    step_text(load_step)//')'
                 if (.not. solved) then
                     run%work = apply_load(run%work, loads(:, load_step))
-                    call solve_loaded(run%solver, run%work, run%current, error)
+                    if (has_sources(model)) call follow_flow(run%flow, run%work, &
+                                                             run%times(load_step), error)
+                    if (.not. allocated(error)) call solve_loaded(run%solver, run%work, &
+                                                                  run%current, error)
                     if (allocated(error)) then
                         error%message = where//': '//error%message//'; no result is written'
                         return
@@ -159,15 +169,31 @@ contains
             first = 0
             if (allocated(error)) then
                 if (history) error%message = where//': '//error%message
-                return
+                if (error%code /= exit_solver_failure .and. &
+                    error%code /= exit_out_of_memory) then
+                    return
+                end if
+                ! The run ends before the failed step; what it completed is its result.
+                call move_alloc(error, failure)
+                record%end_reason = growth_failed
+                record%failure = failure%message
             end if
             if (history) then
-                call record_load_step(run%history, run%work, run%current, loads(:, load_step), &
-                                      error)
+                if (has_sources(model)) then
+                    call record_load_step(run%history, run%work, run%current, &
+                                          loads(:, load_step), error, run%times(load_step), &
+                                          injected(run%flow))
+                else if (allocated(run%times)) then
+                    call record_load_step(run%history, run%work, run%current, &
+                                          loads(:, load_step), error, run%times(load_step))
+                else
+                    call record_load_step(run%history, run%work, run%current, &
+                                          loads(:, load_step), error)
+                end if
                 if (allocated(error)) return
                 call report_load_step(record%steps_taken - steps_before)
             end if
-            if (record%end_reason == growth_step_limit) exit
+            if (record%end_reason == growth_step_limit .or. allocated(failure)) exit
         end do
 
         model%elements = run%work%elements
@@ -193,8 +219,28 @@ contains
         if (model%initiation%active) results%initiations = initiations
         call system_clock(t_end)
         results%solver%seconds_total = real(t_end - t_start, wp) / real(rate, wp)
+        if (allocated(failure)) then
+            call set_error(error, exit_stopped_early, failure%message//'; the run stopped '// &
+                'there: the result holds the '//itoa(record%steps_taken)//' growth step(s) '// &
+                'before it (end_reason failed)')
+            if (.not. model%initiation%active) error%message = error%message// &
+                ', and --resume goes on from them'
+        end if
 
     contains
+
+        !> 'syy = -60' or 't = 2.5 s, syy = -60': what load step k is.
+        function step_text(k) result(text)
+            integer, intent(in) :: k
+            character(len=:), allocatable :: text
+
+            if (allocated(run%times)) then
+                text = load_text(loads(:, k), model%load_path%varies, run%times(k), &
+                                 model%time_unit)
+            else
+                text = load_text(loads(:, k), model%load_path%varies)
+            end if
+        end function step_text
 
         !> 'load step 3 of 20 (syy = -60): 2 growth steps, 1.2 grown, 3.5 s' (time since the start).
         subroutine report_load_step(steps_grown)
@@ -271,7 +317,10 @@ contains
                     ! The most critical tip closed: the next one waiting tries in this step.
                     where (run%now%reason == growth_waiting) run%now%reason = growth_grew
                 end do
-                if (allocated(error)) exit
+                if (allocated(error)) then
+                    call name_growing_tips(error%message)
+                    exit
+                end if
             end if
             if (started) grown = grown + 1
             call release_progress()
@@ -290,6 +339,29 @@ contains
         call release_progress()
 
     contains
+
+        !> 'growth step 6 (growing: fault begin, fault_tail1 end): ...' from a message that
+        !> starts 'growth step 6'.
+        subroutine name_growing_tips(message)
+            character(len=:), allocatable, intent(inout) :: message
+            character(len=:), allocatable :: prefix, names
+            integer :: i
+
+            prefix = 'growth step '//itoa(next)
+            if (index(message, prefix) /= 1) return
+            names = ''
+            do i = 1, size(run%tips)
+                associate (reason => run%now%reason(i))
+                    if (.not. (reason == growth_grew .or. reason == growth_corrector_failed &
+                               .or. ends_on_link(reason))) cycle
+                end associate
+                if (len(names) > 0) names = names//', '
+                names = names//fracture_label(run%work, run%tips(i)%fracture)// &
+                    trim(merge(' begin', ' end  ', run%tips(i)%end == tip_end_begin))
+            end do
+            if (len(names) > 0) message = prefix//' (growing: '//names//')'// &
+                message(len(prefix) + 1:)
+        end subroutine name_growing_tips
 
         !> Tell the caller how the step went.
         subroutine report(growing)
@@ -399,6 +471,17 @@ contains
             run%now%k2_after(t) = run%current%tips%k2(k)
         end do
     end subroutine grow_step
+
+    !> A fracture's name, or 'fracture <f>' when it has none.
+    pure function fracture_label(work, f) result(label)
+        type(model_type), intent(in) :: work
+        integer, intent(in) :: f
+        character(len=:), allocatable :: label
+
+        label = 'fracture '//itoa(f)
+        if (.not. allocated(work%fractures(f)%name)) return
+        if (len_trim(work%fractures(f)%name) > 0) label = trim(work%fractures(f)%name)
+    end function fracture_label
 
     !> The element length a tip keeps after growing by kink k: 0 (its new tip element's)
     !> after a whole increment, the increment's element length after a shorter kink (whose

@@ -6,7 +6,7 @@
 module ddc_growth_influence
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use ddc_kinds, only: wp
-    use ddc_model_types, only: element_set
+    use ddc_model_medium, only: elastic_medium
     use ddc_influence_assembly, only: fill_influence_block
     use ddc_solve_elastic, only: row_kinds
     implicit none
@@ -48,31 +48,29 @@ contains
     !> (unless `placed`: the matrix holds it there already, from an earlier trial of the
     !> same step), the rows and columns of the new elements computed. Every row is a traction
     !> row or as row_kinds says of the element's condition.
-    subroutine grow_influence(old, moved_to, elements, shear_modulus, nu, placed, grown, finite)
+    subroutine grow_influence(old, moved_to, medium, placed, grown, finite)
         !> Influence matrix of the model before growing, [s; n], shape (2 n_old, 2 n_old)
         !> [stress / length]
         real(wp), intent(in) :: old(:, :)
         !> The index in the grown model of each old element, shape (n_old)
         integer, intent(in) :: moved_to(:)
-        !> Elements of the grown model, geometry computed
-        type(element_set), intent(in) :: elements
-        !> Shear modulus [stress unit] and Poisson's ratio [-]
-        real(wp), intent(in) :: shear_modulus, nu
+        !> The medium of the grown model, element geometry computed
+        type(elastic_medium), intent(in) :: medium
         !> grown holds the old block at the places of moved_to already
         logical, intent(in) :: placed
         !> Influence matrix of the grown model, [s; n], shape (2n, 2n) [stress / length]
         real(wp), intent(inout) :: grown(:, :)
         !> Every new entry is finite
         logical, intent(out) :: finite
-        integer :: fresh(elements%n - size(moved_to)), every(elements%n)
+        integer :: fresh(medium%elements%n - size(moved_to)), every(medium%elements%n)
         integer, allocatable :: place(:), shear_row(:), normal_row(:)
         integer :: n, i, l
 
-        n = elements%n
+        n = medium%elements%n
         fresh = new_elements(moved_to, n)
         every = [(i, i = 1, n)]
         allocate (shear_row(n), normal_row(n))
-        call row_kinds(elements%condition, shear_row, normal_row)
+        call row_kinds(medium%elements%condition, shear_row, normal_row)
         if (.not. placed) then
             place = unknown_map(moved_to, n)
             ! Each thread owns whole columns: disjoint writes.
@@ -83,10 +81,10 @@ contains
             !$omp end parallel do
         end if
         ! The new elements' columns (every row), then their rows against the old columns.
-        call fill_influence_block(elements, shear_modulus, nu, shear_row, normal_row, every, &
-                                  every, n + every, fresh, fresh, n + fresh, grown)
-        call fill_influence_block(elements, shear_modulus, nu, shear_row, normal_row, fresh, &
-                                  fresh, n + fresh, moved_to, moved_to, n + moved_to, grown)
+        call fill_influence_block(medium, shear_row, normal_row, every, every, n + every, fresh, &
+                                  fresh, n + fresh, grown)
+        call fill_influence_block(medium, shear_row, normal_row, fresh, fresh, n + fresh, &
+                                  moved_to, moved_to, n + moved_to, grown)
         finite = all(ieee_is_finite(grown(:, [fresh, n + fresh]))) .and. &
             all(ieee_is_finite(grown([fresh, n + fresh], :)))
     end subroutine grow_influence

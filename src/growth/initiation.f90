@@ -14,6 +14,8 @@
 !>   orientations reaches the work threshold, in that orientation.
 !> A new fracture whose elements would cross another element is not started; the next place
 !> is tried.
+!> When a check starts nothing, the largest tension it probed and where are kept (the last
+!> such check's, in /growth/initiations): how far the rock was from a new fracture.
 !> One new fracture starts per check (growth step): the one furthest past its threshold (the
 !> largest score: tension / tensile strength, or a flaw's efficiency / work threshold under
 !> 'work'); ties (within 1e-9 of the score, so that round-off does not decide) go to tails
@@ -33,7 +35,7 @@ module ddc_growth_initiation
         tip_set
     use ddc_model_initiations, only: initiation_record, initiation_tail, initiation_flaw, &
         append_initiation, empty_initiation_record
-    use ddc_model_loads, only: shear_modulus_of
+    use ddc_model_medium, only: medium_of
     use ddc_mesh_checks, only: check_elements
     use ddc_post_fields, only: evaluate_field
     use ddc_growth_extension, only: tip_end_begin, tip_end_end
@@ -123,7 +125,10 @@ contains
         n = run%work%elements%n
         do
             i = first_over(found, usable)
-            if (i == 0) return
+            if (i == 0) then
+                call keep_largest(found, step, record)
+                return
+            end if
             first = found(i)
             if (first%kind == initiation_tail) then
                 ! The crack runs perpendicular to the maximum tension.
@@ -225,9 +230,9 @@ contains
         ! Contiguous copies of the probe points (components of found are strided)
         px = [(found(k)%probe(1), k = 1, m)]
         py = [(found(k)%probe(2), k = 1, m)]
-        call evaluate_field(work%elements, shear_modulus_of(work), work%poissons_ratio, &
-                            [work%sxx, work%syy, work%sxy], current%elements%ds, &
-                            current%elements%dn, px, py, field, work%stress_gradient)
+        call evaluate_field(medium_of(work), [work%sxx, work%syy, work%sxy], &
+                            current%elements%ds, current%elements%dn, px, py, field, &
+                            work%stress_gradient)
         allocate (keep(m))
         keep = field%flag /= point_on_element
         do k = 1, m
@@ -249,6 +254,30 @@ contains
         pressure = work%pore_fluid(1) + work%pore_fluid(2) * point(2)
         felt = stress + [pressure, pressure, 0.0_wp]
     end function effective
+
+    !> The largest tension of a check that started nothing (ties within tie_tolerance of it
+    !> in the order of the tie rule), its step and probe point, into the record; nothing
+    !> without probes.
+    pure subroutine keep_largest(found, step, record)
+        type(initiation_candidate), intent(in) :: found(:)
+        integer, intent(in) :: step
+        type(initiation_record), intent(inout) :: record
+        real(wp) :: tolerance
+        integer :: k, i
+
+        if (size(found) == 0) return
+        tolerance = tie_tolerance * maxval(abs(found%tension))
+        k = 1
+        do i = 2, size(found)
+            if (found(i)%tension > found(k)%tension + tolerance .or. &
+                (found(i)%tension >= found(k)%tension - tolerance .and. &
+                 ranks_before(found(i), found(k)))) k = i
+        end do
+        record%largest_step = step
+        record%largest_tension = found(k)%tension
+        record%largest_x = found(k)%probe(1)
+        record%largest_y = found(k)%probe(2)
+    end subroutine keep_largest
 
     !> The maximum principal stress (tension positive) of (sxx, syy, sxy) and its unit
     !> direction (the one of the two opposite ones with a non-negative x, or +y).
@@ -313,10 +342,11 @@ contains
                          same_point * distance)
     end function started_at
 
-    !> Whether a vertex is in a tip's zone: closer to it than its next growth increment, or
-    !> than the probe distance. The tip's own growth decides there (its next kink reaches that
-    !> far), and a probe there would sample the tip's singular field, which puts the start
-    !> next to the tip however fine the mesh.
+    !> Whether a vertex is in a tip's zone: not further from it than its next growth
+    !> increment, or than the probe distance. The tip's own growth decides there (its next kink
+    !> reaches that far), and a probe there would sample the tip's singular field, which puts
+    !> the start next to the tip however fine the mesh. A vertex on the zone's edge (the old
+    !> tip one increment behind, up to round-off) is in it.
     pure logical function near_tip(work, tips, growth, vertex, distance)
         type(model_type), intent(in) :: work
         type(tip_set), intent(in) :: tips
@@ -329,8 +359,8 @@ contains
         do k = 1, tips%n
             call increment_for(growth, 2.0_wp * work%elements%half_length(tips%element(k)), &
                                increment, pieces, element_length)
-            if (hypot(tips%x(k) - vertex(1), tips%y(k) - vertex(2)) < &
-                max(increment, distance)) near_tip = .true.
+            if (hypot(tips%x(k) - vertex(1), tips%y(k) - vertex(2)) <= &
+                max(increment, distance) + same_point * distance) near_tip = .true.
         end do
     end function near_tip
 

@@ -21,6 +21,8 @@ module ddc_growth_load_steps
     use ddc_growth_extension, only: tip_element, tip_end_begin, tip_end_end
     use ddc_model_restart, only: restart_state
     use ddc_growth_tips, only: growing_tip, locate_tip
+    use ddc_model_loads, only: shear_modulus_of
+    use ddc_history_fronts, only: record_fronts
     implicit none
     private
 
@@ -36,12 +38,14 @@ module ddc_growth_load_steps
         integer :: k = 0
         !> The row of each element of the current geometry (0: made since), shape (n)
         integer, allocatable :: lineage(:)
+        !> The path has a time axis; the model fluid sources (their columns are recorded)
+        logical :: time = .false., flow = .false.
     end type load_step_history
 
 contains
 
     !> Room for the columns of `steps` load steps of the input geometry `work`.
-    subroutine start_load_steps(history, work, steps, error)
+    subroutine start_load_steps(history, work, steps, error, time, flow)
         !> The history (fresh)
         type(load_step_history), intent(out) :: history
         !> The input geometry
@@ -50,10 +54,20 @@ contains
         integer, intent(in) :: steps
         !> Set when the history does not fit in memory
         type(error_type), allocatable, intent(out) :: error
+        !> The path has a time axis; the model has fluid sources
+        logical, intent(in) :: time, flow
         integer :: i
 
         history%lineage = [(i, i = 1, work%elements%n)]
-        call lay_out(history%h, work%elements%n, 2 * size(work%fractures), steps, 0, error)
+        history%time = time
+        history%flow = flow
+        if (flow) then
+            call lay_out(history%h, work%elements%n, 2 * size(work%fractures), steps, 0, &
+                         error, time=time, fractures=size(work%fractures))
+        else
+            call lay_out(history%h, work%elements%n, 2 * size(work%fractures), steps, 0, &
+                         error, time=time)
+        end if
     end subroutine start_load_steps
 
     !> Room for `steps` load steps and the first `done` columns of an earlier run that ended
@@ -124,7 +138,7 @@ contains
 
     !> The column of the load step that just ended: the current geometry `work` at `load`,
     !> solved in `current`.
-    subroutine record_load_step(history, work, current, load, error)
+    subroutine record_load_step(history, work, current, load, error, time, volume)
         !> The history
         type(load_step_history), intent(inout) :: history
         !> The current geometry and its solution at the step's load
@@ -134,6 +148,9 @@ contains
         real(wp), intent(in) :: load(:)
         !> Set when the history does not fit in memory
         type(error_type), allocatable, intent(out) :: error
+        !> The step's time [time unit] (a path with a time axis) and the volume the fluid
+        !> sources let in by then [length^2] (a model with sources)
+        real(wp), intent(in), optional :: time, volume
         integer :: k, f, end, i, t
 
         call follow_rows(history, 2 * size(work%fractures), error)
@@ -156,6 +173,12 @@ contains
             h%certificate_min_w(k) = s%certificate_min_w
             h%certificate_max_complementarity(k) = s%certificate_max_complementarity
             h%equilibrium_residual(k) = s%equilibrium_residual
+            if (present(time)) h%time(k) = time
+            if (present(volume)) then
+                h%pressure(:, k) = work%elements%flow_pressure
+                h%injected_volume(k) = volume
+                call record_fronts(work, shear_modulus_of(work), k, h)
+            end if
             ! K of every fracture end that is a tip now (NaN for one that is not)
             h%k1(:, k) = ieee_value(1.0_wp, ieee_quiet_nan)
             h%k2(:, k) = h%k1(:, k)
@@ -235,14 +258,19 @@ contains
             if (size(lineage) == size(h%ds, 1) .and. ends == size(h%k1, 1)) then
                 if (all(lineage == [(i, i = 1, size(lineage))])) return
             end if
-            call lay_out(h, size(lineage), ends, size(h%ds, 2), history%k, error, lineage)
+            if (history%flow) then
+                call lay_out(h, size(lineage), ends, size(h%ds, 2), history%k, error, lineage, &
+                             fractures=ends / 2)
+            else
+                call lay_out(h, size(lineage), ends, size(h%ds, 2), history%k, error, lineage)
+            end if
             lineage = [(i, i = 1, size(lineage))]
         end associate
     end subroutine follow_rows
 
     !> Lay the columns out anew (ddc_model_records' lay_out_history, with the columns of
     !> growth along a load path); error: they do not fit.
-    subroutine lay_out(h, rows, ends, steps, kept, error, origin)
+    subroutine lay_out(h, rows, ends, steps, kept, error, origin, time, fractures)
         !> The columns
         type(history_record), intent(inout) :: h
         !> Element rows, fracture ends, steps, steps kept
@@ -251,9 +279,15 @@ contains
         type(error_type), allocatable, intent(inout) :: error
         !> The row each element row takes (0: none; default its own), shape (rows)
         integer, intent(in), optional :: origin(:)
+        !> Lay out the column of a time axis too (default: when there)
+        logical, intent(in), optional :: time
+        !> Lay out the columns of fluid sources, for this many fractures (default: when
+        !> there, for as many as before)
+        integer, intent(in), optional :: fractures
         integer :: stat
 
-        call lay_out_history(h, rows, ends, steps, kept, stat, origin, growth=.true.)
+        call lay_out_history(h, rows, ends, steps, kept, stat, origin, growth=.true., &
+                             time=time, fractures=fractures)
         if (stat /= 0) call allocation_failed(error, 'the history of '//itoa(rows)// &
                                               ' elements at '//itoa(steps)//' load steps', &
                                               real_bytes * 5.0_wp * real(rows, wp) * &

@@ -5,12 +5,13 @@
 module ddc_growth_run_state
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
-    use ddc_model_types, only: model_type
+    use ddc_model_types, only: model_type, has_sources
     use ddc_model_results, only: model_results, growth_record, growth_step_limit, &
-        growth_end_names
+        growth_failed, growth_end_names
     use ddc_model_records, only: empty_growth_record
     use ddc_model_restart, only: restart_state
-    use ddc_history_path, only: apply_load
+    use ddc_history_path, only: apply_load, path_times
+    use ddc_flow_injection, only: flow_tracker, follow_flow
     use ddc_growth_solver, only: growth_solver, solve_input, restore_memory
     use ddc_growth_clearance, only: tip_link
     use ddc_growth_work, only: trial_table
@@ -62,6 +63,10 @@ module ddc_growth_run_state
         type(step_tips) :: now
         !> The loading history's columns (a run under a load path)
         type(load_step_history) :: history
+        !> With fluid sources: the pressure that diffuses on the growing geometry, and the
+        !> time of every load step [time unit], shape (load steps)
+        type(flow_tracker) :: flow
+        real(wp), allocatable :: times(:)
     end type growth_state
 
 contains
@@ -78,6 +83,11 @@ contains
         history = allocated(model%load_path%vertex)
         run%work = model
         if (history) run%work = apply_load(model, loads(:, 1))
+        if (allocated(model%load_path%time)) run%times = path_times(model%load_path)
+        if (has_sources(model)) then
+            call follow_flow(run%flow, run%work, run%times(1), error)
+            if (allocated(error)) return
+        end if
         ! Trial solves need no fields: they are evaluated once, on the final geometry.
         if (allocated(run%work%observations)) deallocate (run%work%observations)
         allocate (run%work%observations(0), run%created(run%work%elements%n))
@@ -90,14 +100,15 @@ contains
             return
         end if
         run%tips = find_growing_tips(run%work, run%current%tips, model%growth%fracture_grows)
-        if (history) call start_load_steps(run%history, run%work, size(loads, 2), error)
+        if (history) call start_load_steps(run%history, run%work, size(loads, 2), error, &
+                                           allocated(run%times), has_sources(model))
     end subroutine start_run
 
     !> A run resumed from the end of an earlier one (docs/theory/earth.md#what-a-step-hands-on): its
     !> final geometry, solution, records, tips, history and friction memory. It goes on in the load
-    !> step where the earlier run reached the step limit (start, after `first` growth steps of it),
-    !> or with the load step after the one where it arrested (first = 0). Error (exit 2)
-    !> when nothing is left to do.
+    !> step where the earlier run reached the step limit or stopped at a failed step (start, after
+    !> `first` growth steps of it), or with the load step after the one where it arrested (first =
+    !> 0). Error (exit 2) when nothing is left to do.
     subroutine resume_run(model, restart, loads, run, record, step, start, first, error)
         type(model_type), intent(in) :: model
         type(restart_state), intent(in) :: restart
@@ -110,6 +121,14 @@ contains
         logical :: history
 
         history = allocated(model%load_path%vertex)
+        if (has_sources(model)) then
+            call set_error(error, exit_bad_input, '--resume: a growth run with fluid '// &
+                           'sources (&injection) cannot be resumed (the pressure that '// &
+                           'diffused into the grown elements is not in the file): run it '// &
+                           'again from the start')
+            return
+        end if
+        if (allocated(model%load_path%time)) run%times = path_times(model%load_path)
         call resumed_geometry(model, restart, run%work, run%created, error)
         if (allocated(error)) return
         deallocate (run%work%observations)
@@ -125,9 +144,12 @@ contains
         if (history) done = size(restart%results%history%pivots)
         start = done
         first = 0
-        if (record%end_reason == growth_step_limit) then
-            ! Growth steps (evaluations) of the last load step so far
-            first = step - minval(record%step, record%load_step == done) + 1
+        if (record%end_reason == growth_step_limit .or. record%end_reason == growth_failed) then
+            ! Growth steps (evaluations) of the last load step so far (none when its first
+            ! one failed)
+            if (any(record%load_step == done)) then
+                first = step - minval(record%step, record%load_step == done) + 1
+            end if
             if (first >= model%growth%steps) call nothing_left('raise &growth steps to go on')
         else
             start = done + 1

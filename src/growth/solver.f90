@@ -40,7 +40,6 @@ module ddc_growth_solver
     use ddc_text, only: itoa
     use ddc_model_types, only: model_type, condition_contact, rigid_joint
     use ddc_model_results, only: model_results, solver_record
-    use ddc_model_loads, only: shear_modulus_of
     use ddc_influence_assembly, only: assemble_influence
     use ddc_solve_elastic, only: row_kinds
     use ddc_model_element_laws, only: fault_law_of
@@ -351,12 +350,10 @@ contains
         integer, allocatable :: shear_row(:), normal_row(:)
         logical :: grow, placed, finite
         integer :: n, stat
-        real(wp) :: g
         integer(int64) :: t0, t1, rate
 
         call system_clock(t0, rate)
         n = model%elements%n
-        g = shear_modulus_of(model)
         ! A linking step splits base elements (moved_to 0): its trials are assembled whole
         ! and factorized anew.
         grow = solver%kept .and. size(moved_to) > 0 .and. allocated(solver%base_open)
@@ -377,8 +374,8 @@ contains
             end if
         end if
         if (grow) then
-            call grow_influence(solver%base_matrix, moved_to, model%elements, g, &
-                                model%poissons_ratio, placed, solver%matrix, finite)
+            call grow_influence(solver%base_matrix, moved_to, medium_of(model), placed, &
+                                solver%matrix, finite)
             solver%layout = moved_to
             call kept_stiffness(solver, stiffness)
             call share_factors(solver, stiffness%factors, solver%base_factors)
@@ -391,8 +388,7 @@ contains
         else
             allocate (shear_row(n), normal_row(n))
             call row_kinds(model%elements%condition, shear_row, normal_row)
-            call assemble_influence(model%elements, g, model%poissons_ratio, shear_row, &
-                                    normal_row, solver%matrix)
+            call assemble_influence(medium_of(model), shear_row, normal_row, solver%matrix)
             if (allocated(solver%layout)) deallocate (solver%layout)
             call kept_stiffness(solver, stiffness)
             stiffness%factors = no_factors
@@ -512,8 +508,7 @@ contains
             results%elements%tensile_in_force = law%tensile_in_force
             results%elements%mu_in_force = law%mu_in_force
         end if
-        call find_tips(model%elements, shear_modulus_of(model), model%poissons_ratio, &
-                       solution%ds, solution%dn, results%tips)
+        call find_tips(medium_of(model), solution%ds, solution%dn, results%tips)
     end subroutine solve_contact_on
 
 end module ddc_growth_solver

@@ -19,30 +19,27 @@
 !> nu cancel in f). On a straight line the shear kernel equals the normal one, so f serves
 !> K_II too. A zone of equal elements gives f = 1 exactly, without a solve.
 !>
-!> The zone: the tip's fracture elements from the tip inward (while they share vertices),
-!> at most max_zone of them, up to the last element i whose start s_i = l_1 + ... + l_(i-1)
-!> is below zone_reach times the largest length among l_1 ... l_i.
+!> The zone (ddc_post_tips's walk_tip_zone and zone_size): the tip's fracture elements from
+!> the tip inward (while they share vertices), at most max_zone of them, up to the last element
+!> i whose start s_i = l_1 + ... + l_(i-1) is below 8 times the largest length among
+!> l_1 ... l_i.
 module ddc_growth_tip_zone
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
     use ddc_model_types, only: model_type
     use ddc_model_results, only: tip_set
     use ddc_linalg_lu, only: lu_factor, lu_solve
+    use ddc_post_tips, only: walk_tip_zone, zone_size, max_zone
     implicit none
     private
 
-    public :: calibrate_tips, graded_factor, zone_size
+    public :: calibrate_tips, graded_factor
 
-    !> Reach of the zone in lengths of its largest element, and its most elements
-    real(wp), parameter :: zone_reach = 8.0_wp
-    integer, parameter :: max_zone = 64
     !> Relative difference of lengths that counts as equal
     real(wp), parameter :: equal_tolerance = 1.0e-9_wp
-    !> Relative margin that keeps ties (a zone bound, a padding count at n + 1/2) from
-    !> depending on round-off, so that point-symmetric tips get the same zone and factor
+    !> Relative margin that keeps a padding count at n + 1/2 from depending on round-off, so
+    !> that point-symmetric tips get the same factor
     real(wp), parameter :: tie_tolerance = 1.0e-6_wp
-    !> A zone whose direction turns more than this [cos] is not straight (10 degrees)
-    real(wp), parameter :: straight_cos = 0.98480775301220806_wp
 
 contains
 
@@ -63,7 +60,7 @@ contains
         logical :: truncated
 
         do k = 1, tips%n
-            call walk_zone(model, tips%element(k), tips%side(k), lengths, straight)
+            call walk_tip_zone(model%elements, tips%element(k), tips%side(k), lengths, straight)
             m = zone_size(lengths)
             truncated = m == size(lengths) .and. size(lengths) < max_zone
             if (all(abs(lengths(1:m) - lengths(1)) <= equal_tolerance * lengths(1))) cycle
@@ -74,74 +71,6 @@ contains
             tips%graded(k) = merge(1, 0, truncated .or. .not. all(straight(1:m)))
         end do
     end subroutine calibrate_tips
-
-    !> The lengths of the elements from a tip inward along its fracture (at most max_zone,
-    !> while consecutive elements share a vertex), and whether each keeps the tip element's
-    !> direction within 10 degrees.
-    pure subroutine walk_zone(model, element, side, lengths, straight)
-        type(model_type), intent(in) :: model
-        !> Tip element and its tip end (tip_set%side: 1 begin, 2 end)
-        integer, intent(in) :: element, side
-        real(wp), allocatable, intent(out) :: lengths(:)
-        logical, allocatable, intent(out) :: straight(:)
-        integer :: i, next, step
-
-        associate (e => model%elements)
-            ! At an end tip the fracture runs on through lower indices, at a begin tip higher.
-            step = merge(-1, 1, side == 2)
-            allocate (lengths(0), straight(0))
-            i = element
-            do
-                lengths = [lengths, 2.0_wp * e%half_length(i)]
-                straight = [straight, e%cos_beta(i) * e%cos_beta(element) + &
-                            e%sin_beta(i) * e%sin_beta(element) >= straight_cos]
-                if (size(lengths) == max_zone) exit
-                next = i + step
-                if (next < 1 .or. next > e%n) exit
-                if (e%fracture_id(next) /= e%fracture_id(i)) exit
-                if (.not. joined(i, next)) exit
-                i = next
-            end do
-        end associate
-
-    contains
-
-        !> Element a's inner end is element b's outer end (the fracture is one polyline).
-        pure logical function joined(a, b)
-            integer, intent(in) :: a, b
-            real(wp) :: tolerance
-
-            associate (e => model%elements)
-                tolerance = 1.0e-8_wp * (e%half_length(a) + e%half_length(b))
-                if (step == -1) then
-                    joined = abs(e%x_begin(a) - e%x_end(b)) <= tolerance .and. &
-                             abs(e%y_begin(a) - e%y_end(b)) <= tolerance
-                else
-                    joined = abs(e%x_end(a) - e%x_begin(b)) <= tolerance .and. &
-                             abs(e%y_end(a) - e%y_begin(b)) <= tolerance
-                end if
-            end associate
-        end function joined
-
-    end subroutine walk_zone
-
-    !> Number of elements of the zone of lengths l_1 (tip), l_2, ...: up to the last i with
-    !> l_1 + ... + l_(i-1) < zone_reach max(l_1 ... l_i) (a start at the bound, as in a zone
-    !> of equal elements, counts as beyond it whatever its round-off).
-    pure integer function zone_size(lengths)
-        real(wp), intent(in) :: lengths(:)
-        real(wp) :: start, largest
-        integer :: i
-
-        zone_size = 1
-        start = 0.0_wp
-        largest = 0.0_wp
-        do i = 1, size(lengths)
-            largest = max(largest, lengths(i))
-            if (start < (1.0_wp - tie_tolerance) * zone_reach * largest) zone_size = i
-            start = start + lengths(i)
-        end do
-    end function zone_size
 
     !> f = K_5(uniform) / K_5(zone) of the module's header, for the zone's lengths l_1 (tip),
     !> l_2, ...; 1 for equal lengths.

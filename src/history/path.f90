@@ -10,7 +10,7 @@ module ddc_history_path
     implicit none
     private
 
-    public :: path_step_count, path_loads, load_at, apply_load, load_text
+    public :: path_step_count, path_loads, path_times, load_at, apply_load, load_text
 
 contains
 
@@ -41,6 +41,27 @@ contains
             end do
         end do
     end function path_loads
+
+    !> The time of every step of a path with a time axis, the steps of a leg evenly spaced
+    !> (its last on the leg's end), shape (path_step_count(path)) [time unit].
+    pure function path_times(path) result(times)
+        !> The path (path%time allocated)
+        type(load_path_type), intent(in) :: path
+        real(wp), allocatable :: times(:)
+        integer :: leg, j, k
+
+        allocate (times(path_step_count(path)))
+        times(1) = path%time(1)
+        k = 1
+        do leg = 1, size(path%steps)
+            do j = 1, path%steps(leg)
+                k = k + 1
+                times(k) = path%time(leg) + (path%time(leg + 1) - path%time(leg)) * &
+                    real(j, wp) / real(path%steps(leg), wp)
+                if (j == path%steps(leg)) times(k) = path%time(leg + 1)
+            end do
+        end do
+    end function path_times
 
     !> The load after j of steps increments from vertex a to vertex b (b itself at j = steps).
     pure function load_at(a, b, j, steps) result(load)
@@ -77,15 +98,20 @@ contains
     end function apply_load
 
     !> 'sxy = 10, p0 = 3' for the quantities a path varies (all seven when none is marked).
-    function load_text(load, varies) result(text)
+    !> With a time: 't = 2.5 s' first, and only the quantities the path varies.
+    function load_text(load, varies, time, time_unit) result(text)
         real(wp), intent(in) :: load(:)
         logical, intent(in) :: varies(:)
+        !> The step's time and the time unit's name (a path with a time axis)
+        real(wp), intent(in), optional :: time
+        character(len=*), intent(in), optional :: time_unit
         character(len=:), allocatable :: text
         integer :: i
 
         text = ''
+        if (present(time) .and. present(time_unit)) text = 't = '//rtoa(time)//' '//time_unit
         do i = 1, size(load)
-            if (.not. varies(i) .and. any(varies)) cycle
+            if (.not. varies(i) .and. (any(varies) .or. present(time))) cycle
             if (len(text) > 0) text = text//', '
             text = text//trim(load_path_names(i))//' = '//rtoa(load(i))
         end do

@@ -39,7 +39,7 @@
 module ddc_history_solve
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
-    use ddc_model_types, only: model_type, condition_contact
+    use ddc_model_types, only: model_type, condition_contact, has_sources
     use ddc_model_results, only: model_results, history_record, element_results, &
         solver_record
     use ddc_model_records, only: lay_out_history
@@ -51,7 +51,9 @@ module ddc_history_solve
     use ddc_model_element_laws, only: strengths_change
     use ddc_solve_operator, only: elastic_load
     use ddc_post_tips, only: find_tips
-    use ddc_history_path, only: path_loads, apply_load, load_text
+    use ddc_history_path, only: path_loads, path_times, apply_load, load_text
+    use ddc_flow_injection, only: pressure_history
+    use ddc_history_fronts, only: record_fronts, report_jumps
     use ddc_run_contact_run, only: contact_run, contact_step
     use ddc_run_model, only: finish_model, model_load
     use ddc_progress, only: report_progress
@@ -101,7 +103,7 @@ contains
         type(history_record) :: h
         type(step_totals) :: totals
         type(element_results) :: solved
-        real(wp), allocatable :: loads(:, :)
+        real(wp), allocatable :: loads(:, :), times(:), flow_pressure(:, :), volume(:)
         real(wp) :: sigma0, scale
         integer :: n, k, nsteps, done
         integer(int64) :: t_start, t1, rate
@@ -112,6 +114,12 @@ contains
         n = model%elements%n
         loads = path_loads(model%load_path)
         nsteps = size(loads, 2)
+        if (allocated(model%load_path%time)) times = path_times(model%load_path)
+        if (has_sources(model)) then
+            allocate (flow_pressure(n, nsteps), volume(nsteps))
+            call pressure_history(model, times, flow_pressure, volume, error)
+            if (allocated(error)) return
+        end if
         call run%prepare(medium_of(model), model%solver, error)
         if (allocated(error)) return
         call run%take_steps(max_pivots, max_iterations)
@@ -124,32 +132,38 @@ contains
         end do
         call run%set_stress_scale(sigma0)
         ! The tips, found once (their geometry); their K at every step.
-        call find_tips(model%elements, run%medium%shear_modulus, model%poissons_ratio, &
-                       spread(0.0_wp, 1, n), spread(0.0_wp, 1, n), results%tips)
+        call find_tips(run%medium, spread(0.0_wp, 1, n), spread(0.0_wp, 1, n), results%tips)
         done = 0
         if (present(restart)) call resume_steps(run, restart, nsteps, h, done, error)
         if (.not. allocated(error)) call allocate_history(h, n, results%tips%n, nsteps, &
             done, strengths_change(model%elements, model%solver), error)
+        if (.not. allocated(error)) call lay_out_time(h, model, n, nsteps, done, error)
         if (allocated(error)) return
         h%load = loads
+        if (allocated(times)) h%time = times
+        if (allocated(volume)) then
+            h%pressure = flow_pressure
+            h%injected_volume = volume
+        end if
         call system_clock(totals%t0)
         do k = done + 1, nsteps
             call run%step(load_at(k), solution, error)
             if (allocated(error)) then
                 error%message = 'loading history: step '//itoa(k)//' of '//itoa(nsteps)// &
-                    ' ('//load_text(loads(:, k), model%load_path%varies)//') failed: '// &
+                    ' ('//step_text(k)//') failed: '// &
                     error%message//'; no result is written'
                 return
             end if
             call record_step(run, load_at(k), solution, k, h, solved, error)
             if (allocated(error)) return
+            if (allocated(volume)) call record_fronts(model, run%medium%shear_modulus, k, h)
+            if (allocated(volume)) call report_jumps(model, times, k, h)
             call totals%add(solution%contact, k)
             call run%tip_k(load_at(k), solved, model%growth%active, results%tips, &
                            h%k1(:, k), h%k2(:, k))
             call system_clock(t1)
-            call report_progress(step_line(k, nsteps, loads(:, k), model%load_path%varies, &
-                                           solution%contact, real(t1 - t_start, wp) / &
-                                           real(rate, wp)))
+            call report_progress(step_line(k, nsteps, step_text(k), solution%contact, &
+                                           real(t1 - t_start, wp) / real(rate, wp)))
         end do
 
         ! The last step: tractions, face displacements, tips and fields for its DDs.
@@ -169,11 +183,29 @@ contains
 
     contains
 
+        !> 'sxy = 10' or 't = 2.5 s, sxy = 10': what step j is.
+        function step_text(j) result(text)
+            integer, intent(in) :: j
+            character(len=:), allocatable :: text
+
+            if (allocated(times)) then
+                text = load_text(loads(:, j), model%load_path%varies, times(j), &
+                                 model%time_unit)
+            else
+                text = load_text(loads(:, j), model%load_path%varies)
+            end if
+        end function step_text
+
         !> The load of step j.
         type(elastic_load) function load_at(j)
             integer, intent(in) :: j
 
-            load_at = model_load(apply_load(model, loads(:, j)))
+            type(model_type) :: loaded
+
+            loaded = apply_load(model, loads(:, j))
+            ! The pressure that diffused from the sources acts inside the contact elements.
+            if (allocated(flow_pressure)) loaded%elements%flow_pressure = flow_pressure(:, j)
+            load_at = model_load(loaded)
         end function load_at
 
         !> The elastic DDs of the joints at the last step (0 on the other elements).
@@ -195,6 +227,27 @@ contains
         end subroutine record_elastic_dds
 
     end subroutine solve_history
+
+    !> Room for the columns of a time axis and of the fluid sources, where the model has
+    !> them (the first `kept` steps kept).
+    subroutine lay_out_time(h, model, n, nsteps, kept, error)
+        type(history_record), intent(inout) :: h
+        type(model_type), intent(in) :: model
+        integer, intent(in) :: n, nsteps, kept
+        type(error_type), allocatable, intent(out) :: error
+        integer :: stat
+
+        if (.not. allocated(model%load_path%time)) return
+        if (has_sources(model)) then
+            call lay_out_history(h, n, size(h%k1, 1), nsteps, kept, stat, time=.true., &
+                                 fractures=size(model%fractures))
+        else
+            call lay_out_history(h, n, size(h%k1, 1), nsteps, kept, stat, time=.true.)
+        end if
+        if (stat /= 0) call allocation_failed(error, 'the flow history of '//itoa(n)// &
+                                              ' elements at '//itoa(nsteps)//' steps', &
+                                              real_bytes * real(n, wp) * real(nsteps, wp))
+    end subroutine lay_out_time
 
     !> A load path needs contact elements (without them the response is elastic).
     subroutine check_path(model, error)
@@ -370,15 +423,15 @@ contains
     !> 'step 12 of 101 (sxy = 10): newton, 1 iteration, 0.53 s' (the time since the start);
     !> 'newton, 9 iterations in 3 solves' where the strength fixed point (slip weakening,
     !> strength loss) solved more than once.
-    function step_line(k, nsteps, load, varies, res, seconds) result(line)
+    function step_line(k, nsteps, what, res, seconds) result(line)
         integer, intent(in) :: k, nsteps
-        real(wp), intent(in) :: load(:), seconds
-        logical, intent(in) :: varies(:)
+        !> What the step is (load_text)
+        character(len=*), intent(in) :: what
+        real(wp), intent(in) :: seconds
         type(contact_result), intent(in) :: res
         character(len=:), allocatable :: line
 
-        line = 'step '//itoa(k)//' of '//itoa(nsteps)//' ('//load_text(load, varies)//'): '// &
-            res%method
+        line = 'step '//itoa(k)//' of '//itoa(nsteps)//' ('//what//'): '//res%method
         if (res%method == 'newton') then
             line = line//', '//itoa(res%iterations)//' iteration'
             if (res%iterations /= 1) line = line//'s'

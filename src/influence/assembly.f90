@@ -5,9 +5,11 @@
 !> (displacement of the negative face of element i in its s, n frame) or an identity row
 !> (the DD of element i itself: prescribed DDs).
 !>
-!> The kernel (full plane or half-plane, docs/theory/kernels.md#the-half-plane-kernel) is chosen
-!> once per model by select_kernel and passed down as a procedure argument: the loops hold no
-!> branch on it.
+!> The kernel of the medium (full plane, half-plane:
+!> docs/theory/kernels.md#the-half-plane-kernel, or two bonded half-planes:
+!> docs/theory/bimaterial.md) is chosen once per model by select_kernel and passed down as a
+!> procedure argument: the loops hold no branch on it. Every kernel takes the medium, whose
+!> materials it needs.
 !>
 !> Two paths fill the matrix. The general one evaluates the whole kernel (displacement and
 !> stress, any domain) at every pair. The full-plane path fills the traction rows, by far
@@ -26,10 +28,12 @@
 module ddc_influence_assembly
     use ddc_kinds, only: wp
     use ddc_model_types, only: element_set, symmetry_options, symmetry_x, symmetry_y, &
-        symmetry_both, domain_half_plane
+        symmetry_both, domain_half_plane, domain_bimaterial, domain_full_plane
+    use ddc_model_medium, only: elastic_medium
     use ddc_influence_kernel, only: dd_kernel, dd_kernel_global, dd_stress_global, &
         face_negative
     use ddc_influence_kernel_half_plane, only: dd_kernel_half_plane
+    use ddc_influence_kernel_bimaterial, only: dd_kernel_bimaterial
     use ddc_constants, only: pi
     implicit none
     private
@@ -38,18 +42,20 @@ module ddc_influence_assembly
     public :: row_traction, row_displacement, row_identity
     public :: image_transform, image_transforms, image_of, kernel_with_images
     public :: segment_kernel_with_images, resolved_tractions
-    public :: kernel_function, select_kernel
+    public :: kernel_function, select_kernel, full_plane_kernel
 
     abstract interface
-        !> Interface of a kernel: dd_kernel_global or dd_kernel_half_plane.
-        pure function kernel_function(x, y, xm, ym, a, cosb, sinb, shear_modulus, nu, face) &
-            result(k)
-            import :: wp, dd_kernel
+        !> Interface of a kernel of a medium: full_plane_kernel, full_plane_stress,
+        !> half_plane_kernel or bimaterial_kernel.
+        pure function kernel_function(x, y, xm, ym, a, cosb, sinb, medium, face) result(k)
+            import :: wp, dd_kernel, elastic_medium
             implicit none
             !> Observation point, element midpoint, half-length [length unit]
             real(wp), intent(in) :: x, y, xm, ym, a
-            !> Element direction cosines, shear modulus [stress unit], Poisson's ratio [-]
-            real(wp), intent(in) :: cosb, sinb, shear_modulus, nu
+            !> Element direction cosines
+            real(wp), intent(in) :: cosb, sinb
+            !> The medium (its materials)
+            type(elastic_medium), intent(in) :: medium
             !> Face reported for a point on the element itself
             integer, intent(in) :: face
             !> Global-frame displacement and stress per unit Ds (1) and Dn (2)
@@ -81,31 +87,82 @@ module ddc_influence_assembly
 
 contains
 
-    !> Whether the general path (the kernel pair by pair) serves, and its kernel: always in
-    !> the half plane (the fast paths are full-plane only), in the full plane when asked.
-    subroutine select_kernel(elements, general, use_general, kernel, stress_only)
-        !> Elements (their domain is used)
-        type(element_set), intent(in) :: elements
+    !> Whether the general path (the kernel pair by pair) serves, and its kernel: always
+    !> outside the full plane (the fast paths are full-plane only), in the full plane when
+    !> asked.
+    subroutine select_kernel(medium, general, use_general, kernel, stress_only)
+        !> The medium (the domain of its elements is used)
+        type(elastic_medium), intent(in) :: medium
         !> Take the general path even in the full plane (tests; absent: false)
         logical, intent(in), optional :: general
         !> Whether the general path serves
         logical, intent(out) :: use_general
-        !> Associated with dd_kernel_half_plane or dd_kernel_global
+        !> Associated with the kernel of the medium's domain
         procedure(kernel_function), pointer, intent(out) :: kernel
-        !> The caller needs stresses only: in the full plane dd_stress_global (absent: false)
+        !> The caller needs stresses only: in the full plane full_plane_stress (absent: false)
         logical, intent(in), optional :: stress_only
 
-        use_general = elements%domain == domain_half_plane
+        use_general = medium%elements%domain /= domain_full_plane
         if (present(general)) use_general = use_general .or. general
-        if (elements%domain == domain_half_plane) then
-            kernel => dd_kernel_half_plane
-        else
-            kernel => dd_kernel_global
+        select case (medium%elements%domain)
+        case (domain_half_plane)
+            kernel => half_plane_kernel
+        case (domain_bimaterial)
+            kernel => bimaterial_kernel
+        case default
+            kernel => full_plane_kernel
             if (present(stress_only)) then
-                if (stress_only) kernel => dd_stress_global
+                if (stress_only) kernel => full_plane_stress
             end if
-        end if
+        end select
     end subroutine select_kernel
+
+    !> The full-plane kernel (dd_kernel_global) in the medium's material.
+    pure function full_plane_kernel(x, y, xm, ym, a, cosb, sinb, medium, face) result(k)
+        real(wp), intent(in) :: x, y, xm, ym, a, cosb, sinb
+        type(elastic_medium), intent(in) :: medium
+        integer, intent(in) :: face
+        type(dd_kernel) :: k
+
+        k = dd_kernel_global(x, y, xm, ym, a, cosb, sinb, medium%shear_modulus, &
+                             medium%poissons_ratio, face)
+    end function full_plane_kernel
+
+    !> The stress part of the full-plane kernel (dd_stress_global) in the medium's material.
+    pure function full_plane_stress(x, y, xm, ym, a, cosb, sinb, medium, face) result(k)
+        real(wp), intent(in) :: x, y, xm, ym, a, cosb, sinb
+        type(elastic_medium), intent(in) :: medium
+        integer, intent(in) :: face
+        type(dd_kernel) :: k
+
+        k = dd_stress_global(x, y, xm, ym, a, cosb, sinb, medium%shear_modulus, &
+                             medium%poissons_ratio, face)
+    end function full_plane_stress
+
+    !> The half-plane kernel (dd_kernel_half_plane) in the medium's material.
+    pure function half_plane_kernel(x, y, xm, ym, a, cosb, sinb, medium, face) result(k)
+        real(wp), intent(in) :: x, y, xm, ym, a, cosb, sinb
+        type(elastic_medium), intent(in) :: medium
+        integer, intent(in) :: face
+        type(dd_kernel) :: k
+
+        k = dd_kernel_half_plane(x, y, xm, ym, a, cosb, sinb, medium%shear_modulus, &
+                                 medium%poissons_ratio, face)
+    end function half_plane_kernel
+
+    !> The kernel of two bonded half-planes (dd_kernel_bimaterial): the medium's lower and
+    !> upper material, its interface.
+    pure function bimaterial_kernel(x, y, xm, ym, a, cosb, sinb, medium, face) result(k)
+        real(wp), intent(in) :: x, y, xm, ym, a, cosb, sinb
+        type(elastic_medium), intent(in) :: medium
+        integer, intent(in) :: face
+        type(dd_kernel) :: k
+
+        k = dd_kernel_bimaterial(x, y, xm, ym, a, cosb, sinb, &
+                                 [medium%shear_modulus, medium%upper%shear_modulus], &
+                                 [medium%poissons_ratio, medium%upper%poissons_ratio], &
+                                 medium%interface_y, face)
+    end function bimaterial_kernel
 
     !> The images implied by a symmetry option: none, one (x or y) or three (both).
     pure function image_transforms(symmetry) result(images)
@@ -166,34 +223,33 @@ contains
     end subroutine mirror_segment
 
     !> Global-frame kernel of element j plus its images at (x, y), per unit Ds and Dn of j.
-    pure function kernel_with_images(kernel, x, y, elements, j, images, shear_modulus, nu, &
-                                     face) result(k)
+    pure function kernel_with_images(kernel, x, y, medium, j, images, face) result(k)
         !> The kernel of the model (from select_kernel)
         procedure(kernel_function) :: kernel
         !> Point [length unit]
         real(wp), intent(in) :: x, y
-        !> Elements with geometry computed
-        type(element_set), intent(in) :: elements
+        !> The medium, element geometry computed
+        type(elastic_medium), intent(in) :: medium
         !> Element index
         integer, intent(in) :: j
         !> Image transforms from image_transforms (empty without symmetry)
         type(image_transform), intent(in) :: images(:)
-        !> Shear modulus [stress unit] and Poisson's ratio [-]
-        real(wp), intent(in) :: shear_modulus, nu
         !> Face reported for a point on an element (face_negative or face_positive)
         integer, intent(in) :: face
         !> Displacement and stress per unit Ds (index 1) and Dn (index 2) of element j
         type(dd_kernel) :: k
 
-        k = segment_kernel_with_images(kernel, x, y, elements%x_mid(j), elements%y_mid(j), &
-                                       elements%half_length(j), elements%cos_beta(j), &
-                                       elements%sin_beta(j), images, shear_modulus, nu, face)
+        associate (e => medium%elements)
+            k = segment_kernel_with_images(kernel, x, y, e%x_mid(j), e%y_mid(j), &
+                                           e%half_length(j), e%cos_beta(j), e%sin_beta(j), &
+                                           images, medium, face)
+        end associate
     end function kernel_with_images
 
     !> Global-frame kernel at (x, y) of a constant-DD segment plus its images, per unit Ds
     !> and Dn of the segment.
     pure function segment_kernel_with_images(kernel, x, y, xm, ym, a, cosb, sinb, images, &
-                                             shear_modulus, nu, face) result(k)
+                                             medium, face) result(k)
         !> The kernel of the model (from select_kernel)
         procedure(kernel_function) :: kernel
         !> Point, segment midpoint and half-length [length unit]
@@ -202,8 +258,8 @@ contains
         real(wp), intent(in) :: cosb, sinb
         !> Image transforms from image_transforms (empty without symmetry)
         type(image_transform), intent(in) :: images(:)
-        !> Shear modulus [stress unit] and Poisson's ratio [-]
-        real(wp), intent(in) :: shear_modulus, nu
+        !> The medium (its materials)
+        type(elastic_medium), intent(in) :: medium
         !> Face reported for a point on the segment (face_negative or face_positive)
         integer, intent(in) :: face
         !> Displacement and stress per unit Ds (index 1) and Dn (index 2)
@@ -212,14 +268,14 @@ contains
         real(wp) :: xi, yi, ci, si, f(2)
         integer :: t
 
-        k = kernel(x, y, xm, ym, a, cosb, sinb, shear_modulus, nu, face)
+        k = kernel(x, y, xm, ym, a, cosb, sinb, medium, face)
         do t = 1, size(images)
             xi = xm
             yi = ym
             ci = cosb
             si = sinb
             call mirror_segment(images(t), xi, yi, ci, si)
-            ki = kernel(x, y, xi, yi, a, ci, si, shear_modulus, nu, face)
+            ki = kernel(x, y, xi, yi, a, ci, si, medium, face)
             f = [images(t)%sign_s, 1.0_wp]
             k%ux = k%ux + f * ki%ux
             k%uy = k%uy + f * ki%uy
@@ -245,26 +301,24 @@ contains
 
     !> Influence of element j (and its images) on the midpoint of element i, resolved in
     !> i's s, n frame.
-    pure function pair_at_midpoint(kernel, elements, i, j, images, shear_modulus, nu) result(p)
+    pure function pair_at_midpoint(kernel, medium, i, j, images) result(p)
         !> The kernel of the model (from select_kernel)
         procedure(kernel_function) :: kernel
-        !> Elements with geometry computed
-        type(element_set), intent(in) :: elements
+        !> The medium, element geometry computed
+        type(elastic_medium), intent(in) :: medium
         !> Receiver and source element
         integer, intent(in) :: i, j
         !> Image transforms from image_transforms (empty without symmetry)
         type(image_transform), intent(in) :: images(:)
-        !> Shear modulus [stress unit] and Poisson's ratio [-]
-        real(wp), intent(in) :: shear_modulus, nu
         !> Tractions and negative-face displacements per unit Ds and Dn of j
         type(pair_influence) :: p
         type(dd_kernel) :: k
         real(wp) :: c, s
 
-        k = kernel_with_images(kernel, elements%x_mid(i), elements%y_mid(i), elements, j, &
-                               images, shear_modulus, nu, face_negative)
-        c = elements%cos_beta(i)
-        s = elements%sin_beta(i)
+        k = kernel_with_images(kernel, medium%elements%x_mid(i), medium%elements%y_mid(i), &
+                               medium, j, images, face_negative)
+        c = medium%elements%cos_beta(i)
+        s = medium%elements%sin_beta(i)
         call resolved_tractions(k, c, s, p%ts, p%tn)
         p%us = k%ux * c + k%uy * s
         p%un = -k%ux * s + k%uy * c
@@ -272,12 +326,9 @@ contains
 
     !> Fill the 2n x 2n influence matrix; each row is a traction, displacement or identity
     !> row.
-    subroutine assemble_influence(elements, shear_modulus, nu, shear_row, normal_row, matrix, &
-                                  general)
-        !> Elements with geometry computed
-        type(element_set), intent(in) :: elements
-        !> Shear modulus [stress unit] and Poisson's ratio [-]
-        real(wp), intent(in) :: shear_modulus, nu
+    subroutine assemble_influence(medium, shear_row, normal_row, matrix, general)
+        !> The medium, element geometry computed
+        type(elastic_medium), intent(in) :: medium
         !> Kind of the shear row and of the normal row of each element, shape (n)
         integer, intent(in) :: shear_row(:), normal_row(:)
         !> Influence matrix, shape (2n, 2n)
@@ -287,13 +338,13 @@ contains
         integer, allocatable :: every(:)
         integer :: i
 
-        allocate (every(elements%n))
-        do i = 1, elements%n
+        allocate (every(medium%elements%n))
+        do i = 1, medium%elements%n
             every(i) = i
         end do
-        call fill_influence_block(elements, shear_modulus, nu, shear_row, normal_row, every, &
-                                  every, elements%n + every, every, every, elements%n + every, &
-                                  matrix, general)
+        call fill_influence_block(medium, shear_row, normal_row, every, every, &
+                                  medium%elements%n + every, every, every, &
+                                  medium%elements%n + every, matrix, general)
     end subroutine assemble_influence
 
     !> Fill any block of the influence matrix: the rows of some elements against the DDs of
@@ -303,13 +354,10 @@ contains
     !> block(row_s(k), col_s(l)); row_n and col_n place the normal rows and the Dn columns. A
     !> place 0 means that row or column is not in the block; entries nowhere placed are left
     !> as they are. Each pair of elements is evaluated once, whatever the ordering.
-    subroutine fill_influence_block(elements, shear_modulus, nu, shear_row, normal_row, &
-                                    row_element, row_s, row_n, col_element, col_s, col_n, block, &
-                                    general)
-        !> Elements with geometry computed
-        type(element_set), intent(in) :: elements
-        !> Shear modulus [stress unit] and Poisson's ratio [-]
-        real(wp), intent(in) :: shear_modulus, nu
+    subroutine fill_influence_block(medium, shear_row, normal_row, row_element, row_s, row_n, &
+                                    col_element, col_s, col_n, block, general)
+        !> The medium, element geometry computed
+        type(elastic_medium), intent(in) :: medium
         !> Kind of the shear row and of the normal row of each element, shape (n)
         integer, intent(in) :: shear_row(:), normal_row(:)
         !> Elements whose rows are in the block, shape (r)
@@ -329,25 +377,24 @@ contains
         procedure(kernel_function), pointer :: kernel
         logical :: use_general
 
-        call select_kernel(elements, general, use_general, kernel)
+        call select_kernel(medium, general, use_general, kernel)
         if (use_general) then
-            call fill_with(kernel, elements, image_transforms(elements%symmetry), shear_modulus, &
-                           nu, shear_row, normal_row, row_element, row_s, row_n, col_element, &
-                           col_s, col_n, block)
+            call fill_with(kernel, medium, image_transforms(medium%elements%symmetry), shear_row, &
+                           normal_row, row_element, row_s, row_n, col_element, col_s, col_n, &
+                           block)
         else
-            call fill_full_plane(elements, image_transforms(elements%symmetry), shear_modulus, &
-                                 nu, shear_row, normal_row, row_element, row_s, row_n, &
-                                 col_element, col_s, col_n, block)
+            call fill_full_plane(medium, image_transforms(medium%elements%symmetry), shear_row, &
+                                 normal_row, row_element, row_s, row_n, col_element, col_s, &
+                                 col_n, block)
         end if
     end subroutine fill_influence_block
 
     !> fill_influence_block with the kernel and the image transforms given.
-    subroutine fill_with(kernel, elements, images, shear_modulus, nu, shear_row, normal_row, &
-                         row_element, row_s, row_n, col_element, col_s, col_n, block)
+    subroutine fill_with(kernel, medium, images, shear_row, normal_row, row_element, row_s, &
+                         row_n, col_element, col_s, col_n, block)
         procedure(kernel_function) :: kernel
-        type(element_set), intent(in) :: elements
+        type(elastic_medium), intent(in) :: medium
         type(image_transform), intent(in) :: images(:)
-        real(wp), intent(in) :: shear_modulus, nu
         integer, intent(in) :: shear_row(:), normal_row(:)
         integer, intent(in) :: row_element(:), row_s(:), row_n(:)
         integer, intent(in) :: col_element(:), col_s(:), col_n(:)
@@ -356,15 +403,15 @@ contains
 
         ! Each thread owns whole columns (those of col_element(l)): disjoint writes.
         !$omp parallel do default(none) schedule(static) private(i, j, k, l) &
-        !$omp shared(elements, shear_modulus, nu, shear_row, normal_row, row_element, row_s, &
-        !$omp        row_n, col_element, col_s, col_n, block, images)
+        !$omp shared(medium, shear_row, normal_row, row_element, row_s, row_n, col_element, &
+        !$omp        col_s, col_n, block, images)
         do l = 1, size(col_element)
             j = col_element(l)
             do k = 1, size(row_element)
                 i = row_element(k)
-                call place_pair(pair_at_midpoint(kernel, elements, i, j, images, &
-                                                 shear_modulus, nu), i == j, shear_row(i), &
-                                normal_row(i), row_s(k), row_n(k), col_s(l), col_n(l), block)
+                call place_pair(pair_at_midpoint(kernel, medium, i, j, images), i == j, &
+                                shear_row(i), normal_row(i), row_s(k), row_n(k), col_s(l), &
+                                col_n(l), block)
             end do
         end do
         !$omp end parallel do
@@ -409,11 +456,10 @@ contains
     !> The full-plane path: the traction rows of each source column from traction_column
     !> (the receivers' geometry gathered once; each thread owns whole columns), the other
     !> rows from the general kernel.
-    subroutine fill_full_plane(elements, images, shear_modulus, nu, shear_row, normal_row, &
-                               row_element, row_s, row_n, col_element, col_s, col_n, block)
-        type(element_set), intent(in) :: elements
+    subroutine fill_full_plane(medium, images, shear_row, normal_row, row_element, row_s, &
+                               row_n, col_element, col_s, col_n, block)
+        type(elastic_medium), intent(in) :: medium
         type(image_transform), intent(in) :: images(:)
-        real(wp), intent(in) :: shear_modulus, nu
         integer, intent(in) :: shear_row(:), normal_row(:)
         integer, intent(in) :: row_element(:), row_s(:), row_n(:)
         integer, intent(in) :: col_element(:), col_s(:), col_n(:)
@@ -421,13 +467,16 @@ contains
         real(wp), allocatable :: xr(:), yr(:), cr(:), sr(:), ts_s(:), tn_s(:), ts_n(:), tn_n(:)
         integer, allocatable :: traction_s(:), traction_n(:), other(:)
         real(wp) :: xm, ym, cosb, sinb
+        real(wp) :: shear_modulus, nu
         integer :: i, j, k, l, t, r
 
+        shear_modulus = medium%shear_modulus
+        nu = medium%poissons_ratio
         r = size(row_element)
-        xr = elements%x_mid(row_element)
-        yr = elements%y_mid(row_element)
-        cr = elements%cos_beta(row_element)
-        sr = elements%sin_beta(row_element)
+        xr = medium%elements%x_mid(row_element)
+        yr = medium%elements%y_mid(row_element)
+        cr = medium%elements%cos_beta(row_element)
+        sr = medium%elements%sin_beta(row_element)
         ! Receivers whose shear / normal row is a traction row in the block, and the others.
         traction_s = pack([(k, k = 1, r)], row_s > 0 .and. shear_row(row_element) == row_traction)
         traction_n = pack([(k, k = 1, r)], row_n > 0 .and. normal_row(row_element) == &
@@ -435,7 +484,7 @@ contains
         other = pack([(k, k = 1, r)], shear_row(row_element) /= row_traction .or. &
                      normal_row(row_element) /= row_traction)
         !$omp parallel default(none) private(i, j, k, l, t, xm, ym, cosb, sinb, ts_s, tn_s, &
-        !$omp     ts_n, tn_n) shared(elements, images, shear_modulus, nu, shear_row, normal_row, &
+        !$omp     ts_n, tn_n) shared(medium, images, shear_modulus, nu, shear_row, normal_row, &
         !$omp     row_element, row_s, row_n, col_element, col_s, col_n, block, xr, yr, cr, sr, &
         !$omp     traction_s, traction_n, other, r)
         allocate (ts_s(r), tn_s(r), ts_n(r), tn_n(r))
@@ -446,12 +495,13 @@ contains
             tn_s = 0.0_wp
             ts_n = 0.0_wp
             tn_n = 0.0_wp
-            call traction_column(elements%x_mid(j), elements%y_mid(j), elements%half_length(j), &
-                elements%cos_beta(j), elements%sin_beta(j), 1.0_wp, xr, yr, cr, sr, &
-                shear_modulus, nu, ts_s, tn_s, ts_n, tn_n)
+            call traction_column(medium%elements%x_mid(j), medium%elements%y_mid(j), &
+                medium%elements%half_length(j), medium%elements%cos_beta(j), &
+                medium%elements%sin_beta(j), 1.0_wp, xr, yr, cr, sr, shear_modulus, nu, ts_s, &
+                tn_s, ts_n, tn_n)
             do t = 1, size(images)
-                call image_of(elements, j, images(t), xm, ym, cosb, sinb)
-                call traction_column(xm, ym, elements%half_length(j), cosb, sinb, &
+                call image_of(medium%elements, j, images(t), xm, ym, cosb, sinb)
+                call traction_column(xm, ym, medium%elements%half_length(j), cosb, sinb, &
                     images(t)%sign_s, xr, yr, cr, sr, shear_modulus, nu, ts_s, tn_s, ts_n, tn_n)
             end do
             if (col_s(l) > 0) block(row_s(traction_s), col_s(l)) = ts_s(traction_s)
@@ -460,10 +510,9 @@ contains
             if (col_n(l) > 0) block(row_n(traction_n), col_n(l)) = tn_n(traction_n)
             do k = 1, size(other)
                 i = row_element(other(k))
-                call place_pair(pair_at_midpoint(dd_kernel_global, elements, i, j, images, &
-                                                 shear_modulus, nu), i == j, shear_row(i), &
-                                normal_row(i), row_s(other(k)), row_n(other(k)), col_s(l), &
-                                col_n(l), block)
+                call place_pair(pair_at_midpoint(full_plane_kernel, medium, i, j, images), &
+                                i == j, shear_row(i), normal_row(i), row_s(other(k)), &
+                                row_n(other(k)), col_s(l), col_n(l), block)
             end do
         end do
         !$omp end do

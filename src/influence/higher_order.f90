@@ -22,6 +22,7 @@
 !> point on its line grows as the inverse of the distance to its end).
 module ddc_influence_higher_order
     use ddc_kinds, only: wp
+    use ddc_model_medium, only: elastic_medium
     use ddc_influence_kernel, only: face_negative
     use ddc_influence_assembly, only: kernel_function, image_transform, &
         segment_kernel_with_images, resolved_tractions
@@ -154,13 +155,13 @@ contains
 
     !> Shear (row 1) and normal (row 2) traction at a receiver, on the plane (cr, sr), per
     !> unit nodal value: column 2 (k - 1) + c for node k and DD c (1 Ds, 2 Dn).
-    pure subroutine element_tractions(kernel, images, shear_modulus, nu, element, s_self, x, &
-                                      y, cr, sr, block)
+    pure subroutine element_tractions(kernel, images, medium, element, s_self, x, y, cr, sr, &
+                                      block)
         !> The model's kernel and image transforms (ddc_influence_assembly)
         procedure(kernel_function) :: kernel
         type(image_transform), intent(in) :: images(:)
-        !> Shear modulus [stress unit] and Poisson's ratio [-]
-        real(wp), intent(in) :: shear_modulus, nu
+        !> The medium (its materials)
+        type(elastic_medium), intent(in) :: medium
         !> The source element
         type(weighted_element), intent(in) :: element
         !> The receiver's arc length from the element's begin where it lies on the element
@@ -233,7 +234,7 @@ contains
             call resolved_tractions(segment_kernel_with_images(kernel, x, y, &
                 0.5_wp * (a(1) + e(1)), 0.5_wp * (a(2) + e(2)), half_length, &
                 (e(1) - a(1)) / (2.0_wp * half_length), (e(2) - a(2)) / (2.0_wp * half_length), &
-                images, shear_modulus, nu, face_negative), cr, sr, ts, tn)
+                images, medium, face_negative), cr, sr, ts, tn)
         end subroutine segment_tractions
     end subroutine element_tractions
 

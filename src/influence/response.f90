@@ -11,7 +11,7 @@
 !> general kernel over every pair within round-off (suite `kernel`).
 module ddc_influence_response
     use ddc_kinds, only: wp
-    use ddc_model_types, only: element_set
+    use ddc_model_medium, only: elastic_medium
     use ddc_linalg_lapack, only: dgemv
     use ddc_influence_assembly, only: image_transform, image_transforms, kernel_function, &
         select_kernel, pair_influence, pair_at_midpoint, row_traction, row_displacement
@@ -25,13 +25,10 @@ module ddc_influence_response
 contains
 
     !> Induced tractions and negative-face displacements at every element midpoint.
-    subroutine midpoint_response(elements, shear_modulus, nu, matrix, shear_row, normal_row, &
-                                 ds, dn, shear_traction, normal_traction, us_minus, un_minus, &
-                                 general)
-        !> Elements with geometry computed
-        type(element_set), intent(in) :: elements
-        !> Shear modulus [stress unit] and Poisson's ratio [-]
-        real(wp), intent(in) :: shear_modulus, nu
+    subroutine midpoint_response(medium, matrix, shear_row, normal_row, ds, dn, shear_traction, &
+                                 normal_traction, us_minus, un_minus, general)
+        !> The medium, element geometry computed
+        type(elastic_medium), intent(in) :: medium
         !> The influence matrix assembled with these row kinds (assemble_influence), shape
         !> (2n, 2n)
         real(wp), intent(in) :: matrix(:, :)
@@ -50,14 +47,13 @@ contains
         integer :: n, i
         logical :: reference
 
-        n = elements%n
+        n = medium%elements%n
         if (n == 0) return
         allocate (ts(n), tn(n), us(n), un(n))
         reference = .false.
         if (present(general)) reference = general
         if (reference) then
-            call kernel_sums(elements, shear_modulus, nu, ds, dn, [(i, i = 1, n)], ts, tn, us, &
-                             un, general=.true.)
+            call kernel_sums(medium, ds, dn, [(i, i = 1, n)], ts, tn, us, un, general=.true.)
             shear_traction = ts
             normal_traction = tn
             us_minus = us
@@ -69,7 +65,7 @@ contains
         call dgemv('N', 2 * n, 2 * n, 1.0_wp, matrix, 2 * n, dd, 1, 0.0_wp, y, 1)
         ! Every element misses something from its rows (the face displacement of a traction
         ! row, the traction of the others); the kernel sums give both at the price of one.
-        call kernel_sums(elements, shear_modulus, nu, ds, dn, [(i, i = 1, n)], ts, tn, us, un)
+        call kernel_sums(medium, ds, dn, [(i, i = 1, n)], ts, tn, us, un)
         shear_traction = merge(y(1:n), ts, shear_row == row_traction)
         normal_traction = merge(y(n + 1:), tn, normal_row == row_traction)
         us_minus = merge(y(1:n), us, shear_row == row_displacement)
@@ -78,12 +74,10 @@ contains
 
     !> Induced tractions at the midpoints of the listed (distinct) elements: from their rows
     !> of the assembled matrix where those are traction rows, else from the general kernel.
-    subroutine listed_tractions(elements, shear_modulus, nu, matrix, shear_row, normal_row, &
-                                list, ds, dn, shear_traction, normal_traction)
-        !> Elements with geometry computed
-        type(element_set), intent(in) :: elements
-        !> Shear modulus [stress unit] and Poisson's ratio [-]
-        real(wp), intent(in) :: shear_modulus, nu
+    subroutine listed_tractions(medium, matrix, shear_row, normal_row, list, ds, dn, &
+                                shear_traction, normal_traction)
+        !> The medium, element geometry computed
+        type(elastic_medium), intent(in) :: medium
         !> The influence matrix assembled with these row kinds, shape (2n, 2n)
         real(wp), intent(in) :: matrix(:, :)
         !> Kind of the shear row and of the normal row of each element, shape (n)
@@ -98,11 +92,10 @@ contains
         integer, allocatable :: other(:)
         integer :: n, k, i
 
-        n = elements%n
+        n = medium%elements%n
         allocate (ts(n), tn(n), us(n), un(n))
         other = pack(list, shear_row(list) /= row_traction .or. normal_row(list) /= row_traction)
-        if (size(other) > 0) call kernel_sums(elements, shear_modulus, nu, ds, dn, other, ts, &
-                                              tn, us, un)
+        if (size(other) > 0) call kernel_sums(medium, ds, dn, other, ts, tn, us, un)
         do k = 1, size(list)
             i = list(k)
             if (shear_row(i) == row_traction) then
@@ -123,12 +116,10 @@ contains
     !> Induced tractions and negative-face displacements at the element midpoints from the
     !> kernel alone, without a matrix: at every element, or at the elements first, first + 1,
     !> ... (one per output value; a distributed run splits the elements).
-    subroutine kernel_response(elements, shear_modulus, nu, ds, dn, shear_traction, &
-                               normal_traction, us_minus, un_minus, first)
-        !> Elements with geometry computed
-        type(element_set), intent(in) :: elements
-        !> Shear modulus [stress unit] and Poisson's ratio [-]
-        real(wp), intent(in) :: shear_modulus, nu
+    subroutine kernel_response(medium, ds, dn, shear_traction, normal_traction, us_minus, &
+                               un_minus, first)
+        !> The medium, element geometry computed
+        type(elastic_medium), intent(in) :: medium
         !> Displacement discontinuities of every element [length unit], shape (n)
         real(wp), intent(in) :: ds(:), dn(:)
         !> Induced shear and normal traction [stress unit], shape (m) (n without first)
@@ -147,8 +138,10 @@ contains
         do k = 1, size(range)
             range(k) = offset + k
         end do
-        allocate (ts(elements%n), tn(elements%n), us(elements%n), un(elements%n))
-        call kernel_sums(elements, shear_modulus, nu, ds, dn, range, ts, tn, us, un)
+        associate (n => medium%elements%n)
+            allocate (ts(n), tn(n), us(n), un(n))
+        end associate
+        call kernel_sums(medium, ds, dn, range, ts, tn, us, un)
         shear_traction = ts(range)
         normal_traction = tn(range)
         us_minus = us(range)
@@ -158,32 +151,31 @@ contains
     !> Tractions and face displacements at the midpoints of the listed (distinct) elements,
     !> entries of the element-indexed outputs: the fused full-plane sum, or (half-plane, or
     !> general) the general kernel pair by pair.
-    subroutine kernel_sums(elements, shear_modulus, nu, ds, dn, list, ts, tn, us, un, general)
-        type(element_set), intent(in) :: elements
-        real(wp), intent(in) :: shear_modulus, nu, ds(:), dn(:)
+    subroutine kernel_sums(medium, ds, dn, list, ts, tn, us, un, general)
+        type(elastic_medium), intent(in) :: medium
+        real(wp), intent(in) :: ds(:), dn(:)
         integer, intent(in) :: list(:)
         real(wp), intent(inout) :: ts(:), tn(:), us(:), un(:)
         logical, intent(in), optional :: general
         procedure(kernel_function), pointer :: kernel
         logical :: use_general
 
-        call select_kernel(elements, general, use_general, kernel)
+        call select_kernel(medium, general, use_general, kernel)
         if (use_general) then
-            call sums_with(kernel, elements, image_transforms(elements%symmetry), &
-                           shear_modulus, nu, ds, dn, list, ts, tn, us, un)
+            call sums_with(kernel, medium, image_transforms(medium%elements%symmetry), ds, dn, &
+                           list, ts, tn, us, un)
         else
-            call fused_sums(elements, image_transforms(elements%symmetry), shear_modulus, nu, &
-                            ds, dn, list, ts, tn, us, un)
+            call fused_sums(medium, image_transforms(medium%elements%symmetry), ds, dn, list, ts, &
+                            tn, us, un)
         end if
     end subroutine kernel_sums
 
     !> The general kernel pair by pair (every pair, images included) at the listed midpoints.
-    subroutine sums_with(kernel, elements, images, shear_modulus, nu, ds, dn, list, ts, tn, &
-                         us, un)
+    subroutine sums_with(kernel, medium, images, ds, dn, list, ts, tn, us, un)
         procedure(kernel_function) :: kernel
-        type(element_set), intent(in) :: elements
+        type(elastic_medium), intent(in) :: medium
         type(image_transform), intent(in) :: images(:)
-        real(wp), intent(in) :: shear_modulus, nu, ds(:), dn(:)
+        real(wp), intent(in) :: ds(:), dn(:)
         integer, intent(in) :: list(:)
         real(wp), intent(inout) :: ts(:), tn(:), us(:), un(:)
         type(pair_influence) :: p
@@ -191,12 +183,12 @@ contains
         integer :: k, i, j
 
         !$omp parallel do default(none) schedule(dynamic, 4) private(k, i, j, p, acc) &
-        !$omp shared(elements, images, shear_modulus, nu, ds, dn, list, ts, tn, us, un)
+        !$omp shared(medium, images, ds, dn, list, ts, tn, us, un)
         do k = 1, size(list)
             i = list(k)
             acc = 0.0_wp
-            do j = 1, elements%n
-                p = pair_at_midpoint(kernel, elements, i, j, images, shear_modulus, nu)
+            do j = 1, medium%elements%n
+                p = pair_at_midpoint(kernel, medium, i, j, images)
                 acc(1) = acc(1) + p%ts(1) * ds(j) + p%ts(2) * dn(j)
                 acc(2) = acc(2) + p%tn(1) * ds(j) + p%tn(2) * dn(j)
                 acc(3) = acc(3) + p%us(1) * ds(j) + p%us(2) * dn(j)
@@ -214,26 +206,28 @@ contains
     !> each listed midpoint, resolved in the element's frame, plus the element's own part:
     !> its negative face moves by half its DD (C&S: u(-) - u(+) = D) and its midpoint
     !> carries the traction G / (pi (1 - nu) a) D of its own DD.
-    subroutine fused_sums(elements, images, shear_modulus, nu, ds, dn, list, ts, tn, us, un)
-        type(element_set), intent(in) :: elements
+    subroutine fused_sums(medium, images, ds, dn, list, ts, tn, us, un)
+        type(elastic_medium), intent(in) :: medium
         type(image_transform), intent(in) :: images(:)
-        real(wp), intent(in) :: shear_modulus, nu, ds(:), dn(:)
+        real(wp), intent(in) :: ds(:), dn(:)
         integer, intent(in) :: list(:)
         real(wp), intent(inout) :: ts(:), tn(:), us(:), un(:)
         type(source_table) :: src
-        real(wp) :: u(2), stress(3), c, s, own
+        real(wp) :: u(2), stress(3), c, s, own, shear_modulus, nu
         integer :: k, i
 
-        call build_sources(elements, images, ds, dn, src)
+        shear_modulus = medium%shear_modulus
+        nu = medium%poissons_ratio
+        call build_sources(medium%elements, images, ds, dn, src)
         !$omp parallel do default(none) schedule(static) private(k, i, u, stress, c, s, own) &
-        !$omp shared(elements, src, shear_modulus, nu, ds, dn, list, ts, tn, us, un)
+        !$omp shared(medium, src, shear_modulus, nu, ds, dn, list, ts, tn, us, un)
         do k = 1, size(list)
             i = list(k)
-            call superpose(src, shear_modulus, nu, elements%x_mid(i), elements%y_mid(i), i, u, &
-                           stress)
-            c = elements%cos_beta(i)
-            s = elements%sin_beta(i)
-            own = shear_modulus / (pi * (1.0_wp - nu) * elements%half_length(i))
+            call superpose(src, shear_modulus, nu, medium%elements%x_mid(i), &
+                           medium%elements%y_mid(i), i, u, stress)
+            c = medium%elements%cos_beta(i)
+            s = medium%elements%sin_beta(i)
+            own = shear_modulus / (pi * (1.0_wp - nu) * medium%elements%half_length(i))
             ts(i) = -(stress(1) - stress(2)) * s * c + stress(3) * (c**2 - s**2) + own * ds(i)
             tn(i) = stress(1) * s**2 - 2.0_wp * stress(3) * s * c + stress(2) * c**2 + own * dn(i)
             us(i) = u(1) * c + u(2) * s + 0.5_wp * ds(i)

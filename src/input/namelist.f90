@@ -10,25 +10,29 @@
 !> the variable.
 module ddc_input_namelist
     use ddc_kinds, only: wp
-    use ddc_error, only: error_type, set_error, exit_bad_input
+    use ddc_error, only: error_type, set_error
     use ddc_model_capabilities, only: run_refusal, operator_hierarchical
     use ddc_model_types, only: model_type, condition_contact, symmetry_none, symmetry_names, &
-        symmetry_x, domain_half_plane, strength_law_count
+        symmetry_x, domain_half_plane, domain_bimaterial, strength_law_count
     use ddc_model_laws, only: strength_law, strength_laws, set_law
     use ddc_model_rate_state, only: set_rate_state
     use ddc_text, only: itoa, rtoa, prefix_lines
     use ddc_version, only: with_hmatrix
-    use ddc_input_text_file, only: read_text_file, folder_of
+    use ddc_input_text_file, only: read_text_file, open_namelist, folder_of
     use ddc_mesh_geometry, only: allocate_elements, compute_geometry
+    use ddc_mesh_polyline, only: crossing_fraction, split_at_height, snap_to_height
     use ddc_mesh_checks, only: check_elements
     use ddc_input_namelist_groups, only: namelist_groups, group_record, message_list, add, &
         scan_groups, g_model, g_remote_stress, g_fracture, g_grid, g_line, g_points, g_solver, &
-        g_output, g_symmetry, g_pore_fluid, g_load_path, g_growth
+        g_output, g_symmetry, g_pore_fluid, g_load_path, g_growth, g_injection, g_material, &
+        g_initiation
     use ddc_input_namelist_growth, only: read_growth_group
     use ddc_input_namelist_initiation, only: read_initiation_group, check_flaw_points
+    use ddc_input_namelist_injection, only: read_injection_groups, check_injection_points
+    use ddc_input_namelist_values, only: text_length
     use ddc_input_namelist_settings, only: read_model_group, read_remote_stress_group, &
         read_pore_fluid_group, read_solver_group, read_symmetry_group, read_output_group, &
-        read_load_path_group
+        read_load_path_group, read_material_groups
     use ddc_input_namelist_fracture, only: fracture_input, read_fracture_groups
     use ddc_input_namelist_cycle, only: read_cycle_group
     use ddc_contact_options, only: matrix_hierarchical, k_higher_order
@@ -38,6 +42,10 @@ module ddc_input_namelist
     private
 
     public :: read_namelist_model
+
+    !> An element that crosses the interface of two bonded half-planes closer to an end
+    !> than this fraction of its length is refused (split there, it would leave a sliver)
+    real(wp), parameter :: split_tolerance = 1.0e-6_wp
 
 contains
 
@@ -56,8 +64,7 @@ contains
         type(message_list) :: messages
         type(fracture_input), allocatable :: fractures(:)
         type(observation_input), allocatable :: observations(:)
-        integer :: unit, stat, nobs
-        character(len=512) :: iomsg
+        integer :: unit, nobs
 
         call read_text_file(path, text, error)
         if (allocated(error)) return
@@ -67,22 +74,20 @@ contains
         messages%text = ''
 
         call scan_groups(text, path, groups, nobs, messages)
-        if (groups(g_model)%count == 0) then
+        ! A misspelled group was reported as unknown: its absence is no news.
+        if (groups(g_model)%count == 0 .and. .not. groups(g_model)%misspelled) then
             call add(messages, path//': the &model group is missing (it gives youngs_modulus'// &
                      ' and poissons_ratio)')
         end if
-        if (groups(g_fracture)%count == 0) then
+        if (groups(g_fracture)%count == 0 .and. .not. groups(g_fracture)%misspelled) then
             call add(messages, path//': no &fracture group: a model needs at least one fracture')
         end if
 
-        open (newunit=unit, file=path, status='old', action='read', form='formatted', &
-              iostat=stat, iomsg=iomsg)
-        if (stat /= 0) then
-            call set_error(error, exit_bad_input, path//': cannot open: '//trim(iomsg))
-            return
-        end if
+        call open_namelist(path, text, unit, error)
+        if (allocated(error)) return
         allocate (observations(nobs))
         call read_model_group(unit, text, path, groups(g_model), model, messages)
+        call read_material_groups(unit, text, path, groups(g_material), model, messages)
         call read_remote_stress_group(unit, text, path, groups(g_remote_stress), model, messages)
         call read_fracture_groups(unit, text, path, dir, groups(g_fracture), fractures, messages)
         call read_grid_groups(unit, text, path, groups(g_grid), observations, messages)
@@ -100,11 +105,15 @@ contains
                                       fractures%condition == condition_contact), model, messages)
         call read_growth_group(unit, text, path, groups, fractures, model, messages)
         call read_initiation_group(unit, text, path, groups, model, messages)
+        call read_injection_groups(unit, text, path, groups(g_injection), &
+                                   names_of(fractures), model, messages)
         call read_cycle_group(unit, text, path, groups, fractures, model, messages)
         close (unit)
 
         call check_names(path, fractures, observations, messages)
         call check_half_plane(path, model, fractures, observations, messages)
+        call snap_to_interface(model, fractures)
+        call check_bimaterial(path, model, fractures, groups, messages)
         if (messages%n > 0) then
             call set_error(error, messages%code, messages%text)
             return
@@ -112,6 +121,7 @@ contains
 
         call build_model(fractures, observations, model)
         call check_flaw_points(path, groups, model, messages)
+        call check_injection_points(path, groups(g_injection), model, messages)
         call check_matrix(path, model, messages)
         call check_k_method(path, model, messages)
         if (messages%n > 0) then
@@ -123,6 +133,18 @@ contains
             error%message = prefix_lines(path//': ', error%message)
         end if
     end subroutine read_namelist_model
+
+    !> The fractures' names ('' for a group that was not read).
+    pure function names_of(fractures) result(names)
+        type(fracture_input), intent(in) :: fractures(:)
+        character(len=text_length) :: names(size(fractures))
+        integer :: k
+
+        names = ''
+        do k = 1, size(fractures)
+            if (allocated(fractures(k)%name)) names(k) = fractures(k)%name
+        end do
+    end function names_of
 
     !> matrix = 'hierarchical' on a model a hierarchical matrix does not solve
     !> (run_refusal: docs/theory/hierarchical.md#what-it-solves), or in a build
@@ -212,6 +234,95 @@ contains
         end do
     end subroutine check_half_plane
 
+    !> Rules of two bonded half-planes
+    !> (docs/theory/bimaterial.md#elements-and-points-at-the-interface): symmetry about a
+    !> vertical line only (a line y = ysym would mirror one material into the other), no
+    !> element crossing the interface within split_tolerance of its length from an end (it
+    !> is split there), no growth or new fractures yet.
+    subroutine check_bimaterial(path, model, fractures, groups, messages)
+        character(len=*), intent(in) :: path
+        type(model_type), intent(in) :: model
+        type(fracture_input), intent(in) :: fractures(:)
+        type(group_record), intent(in) :: groups(:)
+        type(message_list), intent(inout) :: messages
+        character(len=:), allocatable :: prefix
+        integer :: k, i
+
+        if (model%elements%domain /= domain_bimaterial) return
+        prefix = path//": &model domain = 'bimaterial': "
+        if (model%elements%symmetry%kind /= symmetry_none .and. &
+            model%elements%symmetry%kind /= symmetry_x) then
+            call add(messages, prefix//"&symmetry kind = '"// &
+                     trim(symmetry_names(model%elements%symmetry%kind))//"' is not "// &
+                     "available with two materials; only kind = 'x' (a vertical line)")
+        end if
+        if (groups(g_growth)%count > 0 .or. groups(g_initiation)%count > 0) then
+            call add(messages, prefix//'&growth and &initiation are not available yet '// &
+                     'with two materials (a tip that reaches the interface needs a rule to '// &
+                     'cross or deflect: docs/theory/bimaterial.md#growth)')
+        end if
+        do k = 1, size(fractures)
+            if (.not. fractures(k)%valid) cycle
+            associate (t => crossing_fraction(fractures(k)%y_begin, fractures(k)%y_end, &
+                                              model%interface_y))
+                i = findloc(t >= 0.0_wp .and. min(t, 1.0_wp - t) < split_tolerance, .true., 1)
+                if (i > 0) then
+                    call add(messages, path//': '//fractures(k)%label//': element '//itoa(i)// &
+                             ' crosses the interface y = '//rtoa(model%interface_y)// &
+                             ' at a fraction '//rtoa(t(i))//' of its length: put its end '// &
+                             'on the interface, or farther from it')
+                end if
+            end associate
+        end do
+    end subroutine check_bimaterial
+
+    !> Two bonded half-planes: element ends within a few rounding steps of the largest
+    !> coordinate from the interface are put on it (a vertex meant to lie there but made by
+    !> dividing a polyline's segment is off by its rounding).
+    subroutine snap_to_interface(model, fractures)
+        type(model_type), intent(in) :: model
+        type(fracture_input), intent(inout) :: fractures(:)
+        real(wp) :: scale
+        integer :: k
+
+        if (model%elements%domain /= domain_bimaterial) return
+        scale = abs(model%interface_y)
+        do k = 1, size(fractures)
+            if (.not. fractures(k)%valid) cycle
+            associate (f => fractures(k))
+                scale = max(scale, maxval(abs(f%x_begin)), maxval(abs(f%y_begin)), &
+                            maxval(abs(f%x_end)), maxval(abs(f%y_end)))
+            end associate
+        end do
+        do k = 1, size(fractures)
+            if (.not. fractures(k)%valid) cycle
+            call snap_to_height(fractures(k)%y_begin, model%interface_y, &
+                                16.0_wp * epsilon(scale) * scale)
+            call snap_to_height(fractures(k)%y_end, model%interface_y, &
+                                16.0_wp * epsilon(scale) * scale)
+        end do
+    end subroutine snap_to_interface
+
+    !> Split the elements of two bonded half-planes that cross the interface
+    !> (split_at_height): both parts keep the element's values.
+    pure subroutine split_at_interface(fracture, interface_y)
+        type(fracture_input), intent(inout) :: fracture
+        real(wp), intent(in) :: interface_y
+        integer, allocatable :: source(:)
+
+        call split_at_height(fracture%x_begin, fracture%y_begin, fracture%x_end, &
+                             fracture%y_end, interface_y, source)
+        if (size(source) == size(fracture%mu)) return
+        fracture%mu = fracture%mu(source)
+        fracture%sf = fracture%sf(source)
+        fracture%pressure = fracture%pressure(source)
+        fracture%bc_s = fracture%bc_s(source)
+        fracture%bc_n = fracture%bc_n(source)
+        fracture%laws = fracture%laws(source, :)
+        fracture%diffusivity = fracture%diffusivity(source)
+        fracture%transmissivity = fracture%transmissivity(source)
+    end subroutine split_at_interface
+
     !> Reject duplicate names of fractures and of observation sets, and bad set names.
     subroutine check_names(path, fractures, observations, messages)
         character(len=*), intent(in) :: path
@@ -252,7 +363,7 @@ contains
 
     !> Put the validated fractures and observation sets into the model.
     subroutine build_model(fractures, observations, model)
-        type(fracture_input), intent(in) :: fractures(:)
+        type(fracture_input), intent(inout) :: fractures(:)
         type(observation_input), intent(in) :: observations(:)
         type(model_type), intent(inout) :: model
         type(strength_law) :: laws(strength_law_count)
@@ -261,6 +372,9 @@ contains
         laws = strength_laws()
         n = 0
         do k = 1, size(fractures)
+            if (model%elements%domain == domain_bimaterial) then
+                call split_at_interface(fractures(k), model%interface_y)
+            end if
             n = n + size(fractures(k)%x_begin)
         end do
         call allocate_elements(model%elements, n)
@@ -283,6 +397,8 @@ contains
             model%elements%mu(first:last) = fractures(k)%mu
             model%elements%sf(first:last) = fractures(k)%sf
             model%elements%pressure(first:last) = fractures(k)%pressure
+            model%elements%diffusivity(first:last) = fractures(k)%diffusivity
+            model%elements%transmissivity(first:last) = fractures(k)%transmissivity
             do j = 1, size(laws)
                 call set_law(model%elements, laws(j)%name, [(i, i = first, last)], &
                              fractures(k)%laws(:, j))

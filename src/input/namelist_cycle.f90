@@ -5,7 +5,8 @@
 !> &growth or &load_path, and an initial state on every rate-and-state element.
 module ddc_input_namelist_cycle
     use ddc_kinds, only: wp
-    use ddc_model_types, only: model_type, condition_rate_state, condition_contact
+    use ddc_model_types, only: model_type, condition_rate_state, condition_contact, &
+        domain_bimaterial
     use ddc_model_cycles, only: state_law_names, radiation_damping_of
     use ddc_model_rate_state, only: rs_v_init, rs_tau0
     use ddc_model_loads, only: shear_modulus_of
@@ -165,6 +166,9 @@ contains
                                                      'with &growth')
             if (groups(g_load_path)%count > 0) call add(messages, prefix//'does not '// &
                 'combine with &load_path (the loading is back-slip at plate_rate)')
+            if (model%elements%domain == domain_bimaterial) call add(messages, prefix// &
+                "does not combine with domain = 'bimaterial' (one material: radiation "// &
+                'damping and back-slip take one shear modulus)')
             do k = 1, size(fractures)
                 if (.not. fractures(k)%valid) cycle
                 if (fractures(k)%condition /= condition_rate_state) cycle

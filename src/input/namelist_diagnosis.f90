@@ -1,6 +1,8 @@
 !> What is wrong with a namelist group that gfortran could not read: our own reading of the
 !> group's text against its variables in the table (ddc_input_namelist_groups) finds an
-!> unknown variable or a value of the wrong type and names it, with gfortran's iomsg.
+!> unknown variable, a value of the wrong type, a quote left open (the quoted text runs into
+!> the next variable) or a decimal comma (50000,5: gfortran takes the 5 for a name) and
+!> names it, with gfortran's iomsg.
 module ddc_input_namelist_diagnosis
     use ddc_kinds, only: wp
     use ddc_text, only: newline, lower, find_name
@@ -61,8 +63,8 @@ contains
     end subroutine report_malformed
 
     !> Message for a group that exists but could not be read: our own diagnosis of the
-    !> group text (unknown variable, value of the wrong type), with gfortran's iomsg unless
-    !> the diagnosis is an unknown variable.
+    !> group text (unknown variable, value of the wrong type, open quote, decimal comma),
+    !> with gfortran's iomsg unless the diagnosis is an unknown variable.
     function malformed_message(prefix, stat, iomsg, spec, group_text) result(message)
         !> "file: &group k (line n): "
         character(len=*), intent(in) :: prefix
@@ -76,6 +78,7 @@ contains
         character(len=:), allocatable :: message, problem
 
         problem = diagnose_group(group_text, spec)
+        if (len(problem) == 0 .and. is_overflow(iomsg)) problem = decimal_comma(group_text, iomsg)
         if (index(problem, 'unknown variable') == 1) then
             ! gfortran names the object it was reading before the unknown name: not said.
             message = prefix//problem//'; the variables of this group are: '//spec_names(spec)
@@ -111,6 +114,67 @@ contains
         if (at == 0 .or. at + len(mark) > len_trim(iomsg)) return
         overflow = scan(iomsg(at + len(mark):at + len(mark)), '0123456789+-.') == 1
     end function is_overflow
+
+    !> 'youngs_modulus = 50000,5 has a decimal comma: write 50000.5 ...' when the value
+    !> gfortran took for a name (is_overflow) is the digits after a comma inside a number
+    !> given to a variable; '' otherwise (values beyond an array's end).
+    function decimal_comma(group_text, iomsg) result(problem)
+        character(len=*), intent(in) :: group_text, iomsg
+        character(len=:), allocatable :: problem, digits
+        character(len=*), parameter :: mark = 'Cannot match namelist object name '
+        character(len=*), parameter :: number = '0123456789.+-eEdD'
+        character(len=*), parameter :: blank = ' '//achar(9)//achar(10)//achar(13)
+        integer :: at, comma, first, last, equals, name_start
+
+        problem = ''
+        at = index(iomsg, mark) + len(mark)
+        digits = trim(iomsg(at:))
+        if (verify(digits, '0123456789') /= 0) return
+        comma = index(group_text, ','//digits)
+        do while (comma > 1)
+            last = comma + len(digits)
+            first = comma
+            do while (first > 1)
+                if (index(number, group_text(first - 1:first - 1)) == 0) exit
+                first = first - 1
+            end do
+            equals = first - 1
+            do while (equals > 1)
+                if (index(blank, group_text(equals:equals)) == 0) exit
+                equals = equals - 1
+            end do
+            if (first < comma .and. is_separated(last + 1) .and. group_text(equals:equals) == '=') &
+                then
+                name_start = equals - 1
+                do while (name_start > 1)
+                    if (index(blank, group_text(name_start:name_start)) == 0) exit
+                    name_start = name_start - 1
+                end do
+                do while (name_start > 1)
+                    if (.not. is_name_character(group_text(name_start - 1:name_start - 1))) exit
+                    name_start = name_start - 1
+                end do
+                problem = trim(group_text(name_start:equals - 1))//' = '// &
+                    group_text(first:last)//' has a decimal comma: write '// &
+                    group_text(first:comma - 1)//'.'//digits//' (a comma separates values)'
+                return
+            end if
+            at = index(group_text(comma + 1:), ','//digits)
+            if (at == 0) exit
+            comma = comma + at
+        end do
+
+    contains
+
+        !> Position k ends the digits: a blank, separator, the group's end or its text's.
+        pure logical function is_separated(k)
+            integer, intent(in) :: k
+
+            is_separated = k > len(group_text)
+            if (.not. is_separated) is_separated = index(blank//',/!', group_text(k:k)) > 0
+        end function is_separated
+
+    end function decimal_comma
 
     !> After a failed read (the file position is then unreliable), diagnose the text of
     !> the remaining occurrences of a repeated group without reading them.
@@ -194,6 +258,8 @@ contains
                 end do
                 token = group_text(i:min(j, n))
                 i = j + 1
+                problem = open_quote(token, j > n, current, spec)
+                if (len(problem) > 0) return
             else
                 j = i
                 do while (j <= n)
@@ -273,6 +339,49 @@ contains
             end select
         end do
     end function diagnose_group
+
+    !> A quoted value of variable `current` that is not closed: at the group's end
+    !> (unclosed), or where the quoted text runs into a variable of the group (name = 'fault,
+    !> x = ...: the quote after fault is missing, so the text runs on to the next quote); ''
+    !> otherwise.
+    function open_quote(token, unclosed, current, spec) result(problem)
+        !> The quoted value, from its opening quote
+        character(len=*), intent(in) :: token
+        !> No closing quote before the group's end
+        logical, intent(in) :: unclosed
+        !> The variable it is given to, and the variables of the group ("name:c x:r")
+        character(len=*), intent(in) :: current, spec
+        character(len=:), allocatable :: problem
+        integer :: at, name_end, name_start, next
+
+        problem = ''
+        at = index(token, '=')
+        do while (at > 0)
+            name_end = at - 1
+            do while (name_end > 1)
+                if (token(name_end:name_end) /= ' ') exit
+                name_end = name_end - 1
+            end do
+            name_start = name_end
+            do while (name_start > 2)
+                if (.not. is_name_character(token(name_start - 1:name_start - 1))) exit
+                name_start = name_start - 1
+            end do
+            if (name_start > 1 .and. is_identifier(token(name_start:name_end))) then
+                if (spec_type(spec, lower(token(name_start:name_end))) /= ' ') then
+                    problem = current//' = '//token(1:name_start - 1)//'...: a quote is '// &
+                        'not closed: the quoted text runs into '//token(name_start:name_end)// &
+                        ' = (close the quote)'
+                    return
+                end if
+            end if
+            next = index(token(at + 1:), '=')
+            if (next == 0) exit
+            at = at + next
+        end do
+        if (unclosed) problem = current//' = '//token(1:min(len(token), 24))//'...: a '// &
+            'quote is not closed before the end of the group (close the quote)'
+    end function open_quote
 
     !> "name, x, n" from the spec "name:c x:r n:i".
     function spec_names(spec) result(names)

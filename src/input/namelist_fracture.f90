@@ -8,7 +8,8 @@ module ddc_input_namelist_fracture
         strength_law_count, condition_rate_state
     use ddc_model_rate_state, only: rate_state_value, rate_state_count, rate_state_values
     use ddc_model_laws, only: strength_law, strength_laws, at_most_rule
-    use ddc_model_limits, only: range_problem, quantity_non_negative, within_limits
+    use ddc_model_limits, only: range_problem, quantity_non_negative, quantity_positive, &
+        within_limits
     use ddc_text, only: itoa, rtoa, lower, find_name, quoted_list, prefix_lines, counted
     use ddc_input_text_file, only: resolve
     use ddc_input_csv, only: read_csv
@@ -51,6 +52,9 @@ module ddc_input_namelist_fracture
         !> The values of rate-and-state elements, column k value k of the list
         !> (ddc_model_rate_state; 0 for other conditions), shape (elements, rate_state_count)
         real(wp), allocatable :: rate_state(:, :)
+        !> Hydraulic diffusivity and transmissivity (0 where not given: no flow), shape
+        !> (elements)
+        real(wp), allocatable :: diffusivity(:), transmissivity(:)
     end type fracture_input
 
 contains
@@ -68,6 +72,8 @@ contains
         type(message_list), intent(inout) :: messages
         character(len=text_length) :: name, condition, elements_file
         real(wp), allocatable :: x(:), y(:), mu(:), sf(:), pressure(:), bc_s(:), bc_n(:)
+        real(wp), allocatable :: diffusivity(:), transmissivity(:), seg_diffusivity(:), &
+            seg_transmissivity(:)
         ! The strength laws' variables
         real(wp), allocatable :: tensile_strength(:), sf_residual(:), mu_dynamic(:), &
             slip_weakening_distance(:), shear_stiffness(:), normal_stiffness(:), &
@@ -93,11 +99,12 @@ contains
         integer, allocatable :: counts(:), row_lines(:)
         type(error_type), allocatable :: csv_error
         integer :: stat, k, i, j, nx, ny, ne, nmu, nsf, npr, nbs, nbn, nseg, nbefore, cond
+        integer :: ndiff, ntrans, hydraulic_column
         logical :: from_csv, geometry_ok
         namelist /fracture/ name, x, y, elements, mu, sf, pressure, condition, bc_s, bc_n, &
             elements_file, tensile_strength, sf_residual, mu_dynamic, slip_weakening_distance, &
-            shear_stiffness, normal_stiffness, opening_weakening_distance, a, b, dc, f0, v0, &
-            v_init, sigma0, tau0
+            shear_stiffness, normal_stiffness, opening_weakening_distance, diffusivity, &
+            transmissivity, a, b, dc, f0, v0, v_init, sigma0, tau0
 
         allocate (fractures(info%count))
         if (info%count == 0) return
@@ -114,7 +121,9 @@ contains
                   normal_stiffness(max_vertices), opening_weakening_distance(max_vertices), &
                   a(max_vertices), b(max_vertices), dc(max_vertices), f0(max_vertices), &
                   v0(max_vertices), v_init(max_vertices), sigma0(max_vertices), &
-                  tau0(max_vertices))
+                  tau0(max_vertices), diffusivity(max_vertices), transmissivity(max_vertices))
+        ! The CSV's optional columns: the laws, then the hydraulic properties.
+        hydraulic_column = law_column + size(laws)
         rewind (unit)
         do k = 1, info%count
             name = ''
@@ -142,6 +151,8 @@ contains
             v_init = unset_real
             sigma0 = unset_real
             tau0 = unset_real
+            diffusivity = unset_real
+            transmissivity = unset_real
             elements = unset_integer
             read (unit, nml=fracture, iostat=stat, iomsg=iomsg)
             if (stat /= 0) then
@@ -161,6 +172,14 @@ contains
             npr = count_given(pressure, 'pressure', prefix, messages)
             nbs = count_given(bc_s, 'bc_s', prefix, messages)
             nbn = count_given(bc_n, 'bc_n', prefix, messages)
+            ndiff = count_given(diffusivity, 'diffusivity', prefix, messages)
+            ntrans = count_given(transmissivity, 'transmissivity', prefix, messages)
+            call check_range(diffusivity(1:ndiff), 'diffusivity', quantity_positive, prefix, &
+                             messages)
+            call check_range(transmissivity(1:ntrans), 'transmissivity', quantity_positive, &
+                             prefix, messages)
+            if ((ndiff > 0) .neqv. (ntrans > 0)) call add(messages, prefix//'give both '// &
+                'diffusivity and transmissivity (a fracture without them does not conduct)')
             ! In the order of the list of the laws (the CTest architecture holds it to that)
             law_values = reshape([tensile_strength, sf_residual, mu_dynamic, &
                                   slip_weakening_distance, opening_weakening_distance, &
@@ -195,12 +214,18 @@ contains
                              'them in the group as well')
                 end if
                 csv_path = resolve(dir, trim(adjustl(elements_file)))
+                if (ndiff > 0 .or. ntrans > 0) then
+                    call add(messages, prefix//'diffusivity and transmissivity come from '// &
+                             'elements_file; do not give them in the group as well')
+                end if
                 if (cond == condition_rate_state) then
                     call read_rate_state_csv()
                 else
                     call read_csv(csv_path, [character(len=8) :: 'x_begin', 'y_begin', &
                                   'x_end', 'y_end', 'mu', 'sf', 'pressure'], rows, csv_error, &
-                                  row_lines, law_names, csv_given, most_rows=max_elements)
+                                  row_lines, [character(len=text_length) :: law_names, &
+                                  'diffusivity', 'transmissivity'], csv_given, &
+                                  most_rows=max_elements)
                 end if
                 if (allocated(csv_error)) then
                     call add(messages, prefix_lines(prefix//'elements_file: ', csv_error%message))
@@ -216,6 +241,7 @@ contains
                         call check_rate_state_rows()
                     else
                         call check_contact_rows()
+                        call check_hydraulic_rows()
                     end if
                 end if
             else
@@ -330,6 +356,12 @@ contains
                         seg_rs(:, j) = broadcast(rs_values(1:nrs(j), j), nseg, 0.0_wp)
                     end if
                 end do
+                if (check_length(ndiff, nseg, 'diffusivity', prefix, messages)) then
+                    seg_diffusivity = broadcast(diffusivity(1:ndiff), nseg, 0.0_wp)
+                end if
+                if (check_length(ntrans, nseg, 'transmissivity', prefix, messages)) then
+                    seg_transmissivity = broadcast(transmissivity(1:ntrans), nseg, 0.0_wp)
+                end if
             end if
             if (messages%n > nbefore) cycle
 
@@ -350,6 +382,8 @@ contains
                 end do
                 fractures(k)%bc_s = seg_bc_s
                 fractures(k)%bc_n = seg_bc_n
+                allocate (fractures(k)%diffusivity(nseg), fractures(k)%transmissivity(nseg), &
+                          source=0.0_wp)
             else if (from_csv) then
                 fractures(k)%x_begin = rows(1, :)
                 fractures(k)%y_begin = rows(2, :)
@@ -358,7 +392,9 @@ contains
                 fractures(k)%mu = rows(5, :)
                 fractures(k)%sf = rows(6, :)
                 fractures(k)%pressure = rows(7, :)
-                fractures(k)%laws = transpose(rows(law_column + 1:, :))
+                fractures(k)%laws = transpose(rows(law_column + 1:hydraulic_column, :))
+                fractures(k)%diffusivity = rows(hydraulic_column + 1, :)
+                fractures(k)%transmissivity = rows(hydraulic_column + 2, :)
                 fractures(k)%bc_s = seg_bc_s
                 fractures(k)%bc_n = seg_bc_n
                 allocate (fractures(k)%rate_state(nseg, rate_state_count), source=0.0_wp)
@@ -379,6 +415,8 @@ contains
                 do j = 1, rate_state_count
                     fractures(k)%rate_state(:, j) = expand_per_segment(seg_rs(:, j), counts)
                 end do
+                fractures(k)%diffusivity = expand_per_segment(seg_diffusivity, counts)
+                fractures(k)%transmissivity = expand_per_segment(seg_transmissivity, counts)
             end if
         end do
 
@@ -463,6 +501,30 @@ contains
                 end if
             end do
         end subroutine check_rate_state_group
+        !> The CSV's hydraulic columns: both or neither, positive; 0 (no flow) when absent.
+        subroutine check_hydraulic_rows()
+            integer :: c, row
+            character(len=*), parameter :: names(2) = ['diffusivity   ', 'transmissivity']
+
+            if (csv_given(size(laws) + 1) .neqv. csv_given(size(laws) + 2)) then
+                call add(messages, prefix//'elements_file '//csv_path//': give both '// &
+                         'diffusivity and transmissivity columns, or neither')
+            end if
+            do c = 1, 2
+                if (.not. csv_given(size(laws) + c)) then
+                    rows(hydraulic_column + c, :) = 0.0_wp
+                    cycle
+                end if
+                do row = 1, nseg
+                    if (len(range_problem(quantity_positive, rows(hydraulic_column + c, &
+                                                                   row))) == 0) cycle
+                    call add(messages, prefix//'elements_file '//csv_path//' line '// &
+                             itoa(row_lines(row))//': '//trim(names(c))//' = '// &
+                             rtoa(rows(hydraulic_column + c, row))//' '// &
+                             range_problem(quantity_positive, rows(hydraulic_column + c, row)))
+                end do
+            end do
+        end subroutine check_hydraulic_rows
 
         !> Law l in CSV row i is within its range, and not above the Coulomb value it may not
         !> exceed (law%at_most: sf_residual <= sf, mu_dynamic <= mu).

@@ -17,7 +17,7 @@ module ddc_input_namelist_groups
     public :: scan_groups, group_line, group_label, group_prefix, is_name_character
     public :: g_model, g_remote_stress, g_fracture, g_grid, g_line, g_points, g_solver, &
         g_output, g_symmetry, g_sweep, g_pore_fluid, g_load_path, g_growth
-    public :: g_initiation, g_cycle
+    public :: g_initiation, g_injection, g_material, g_cycle
 
     !> One namelist group: its name, whether it may appear more than once, and its variables
     !> with their types ("name:c x:r n:i": c text, r real, i integer)
@@ -31,18 +31,18 @@ module ddc_input_namelist_groups
     integer, parameter :: g_model = 1, g_remote_stress = 2, g_fracture = 3, g_grid = 4, &
                           g_line = 5, g_points = 6, g_solver = 7, g_output = 8, g_symmetry = 9, &
                           g_sweep = 10, g_pore_fluid = 11, g_load_path = 12, g_growth = 13
-    integer, parameter :: g_initiation = 14, g_cycle = 15
+    integer, parameter :: g_initiation = 14, g_injection = 15, g_material = 16, g_cycle = 17
 
     !> Every group ddc2d knows (&sweep is read by ddc_input_sweep; the model reader skips it)
-    type(group_spec), parameter :: namelist_groups(15) = [ &
+    type(group_spec), parameter :: namelist_groups(17) = [ &
         group_spec('model', .false., 'title:c youngs_modulus:r poissons_ratio:r '// &
-                   'length_unit:c stress_unit:c time_unit:c domain:c'), &
+                   'length_unit:c stress_unit:c time_unit:c domain:c interface_y:r'), &
         group_spec('remote_stress', .false., 'sxx:r syy:r sxy:r dsxx_dy:r dsyy_dy:r dsxy_dy:r'), &
         group_spec('fracture', .true., 'name:c x:r y:r elements:i mu:r sf:r pressure:r '// &
                    'condition:c bc_s:r bc_n:r elements_file:c tensile_strength:r '// &
                    'sf_residual:r mu_dynamic:r slip_weakening_distance:r shear_stiffness:r '// &
-                   'normal_stiffness:r opening_weakening_distance:r a:r b:r dc:r f0:r v0:r '// &
-                   'v_init:r sigma0:r tau0:r'), &
+                   'normal_stiffness:r opening_weakening_distance:r diffusivity:r '// &
+                   'transmissivity:r a:r b:r dc:r f0:r v0:r v_init:r sigma0:r tau0:r'), &
         group_spec('grid', .true., 'name:c xmin:r xmax:r nx:i ymin:r ymax:r ny:i'), &
         group_spec('line', .true., 'name:c x_begin:r y_begin:r x_end:r y_end:r points:i'), &
         group_spec('points', .true., 'name:c file:c'), &
@@ -54,7 +54,7 @@ module ddc_input_namelist_groups
                    'values_3:r values_4:r values_5:r values_6:r'), &
         group_spec('pore_fluid', .false., 'p0:r dp_dy:r'), &
         group_spec('load_path', .false., 'sxx:r syy:r sxy:r dsxx_dy:r dsyy_dy:r dsxy_dy:r '// &
-                   'p0:r steps:i'), &
+                   'p0:r steps:i time:r'), &
         group_spec('growth', .false., 'steps:i toughness:r increment:r element_length:r '// &
                    'tips:c fractures:c criterion:c max_corrections:i new_mu:r new_sf:r '// &
                    'angle_range:r angle_step:r work_threshold:r '// &
@@ -63,6 +63,9 @@ module ddc_input_namelist_groups
                    'new_shear_stiffness:r new_normal_stiffness:r'), &
         group_spec('initiation', .false., 'tensile_strength:r probe_distance:r flaw_x:r '// &
                    'flaw_y:r flaw_length:r'), &
+        group_spec('injection', .true., 'name:c fracture:c x:r y:r overpressure:r rate:r '// &
+                   'start:r stop:r'), &
+        group_spec('material', .true., 'name:c youngs_modulus:r poissons_ratio:r'), &
         group_spec('cycle', .false., 'end_time:r tolerance:r shear_wave_speed:r '// &
                    'radiation_damping:r plate_rate:r seismic_threshold:r state_law:c '// &
                    'output_interval:r event_output_interval:r profile_spacing:r '// &
@@ -78,6 +81,8 @@ module ddc_input_namelist_groups
         integer, allocatable :: starts(:), ends(:)
         !> Index in the model's observation list (grids, lines, points only)
         integer, allocatable :: slot(:)
+        !> An unknown group's name is this one's, misspelled (its absence is no news then)
+        logical :: misspelled = .false.
     end type group_record
 
     !> Violations found so far, one per line.
@@ -169,12 +174,17 @@ contains
                     current = 0
                     g = group_index(name)
                     if (g == 0) then
-                        known = '&'//trim(namelist_groups(1)%name)
+                        known = 'known groups: &'//trim(namelist_groups(1)%name)
                         do k = 2, size(namelist_groups)
                             known = known//', &'//trim(namelist_groups(k)%name)
                         end do
+                        k = nearest_group(name)
+                        if (k > 0) then
+                            groups(k)%misspelled = .true.
+                            known = 'did you mean &'//trim(namelist_groups(k)%name)//'?; '//known
+                        end if
                         call add(messages, path//' line '//itoa(line)//': &'//name// &
-                                 ' is not a ddc2d group; known groups: '//known)
+                                 ' is not a ddc2d group; '//known)
                     else
                         nfound = nfound + 1
                         found_group(nfound) = g
@@ -294,5 +304,41 @@ contains
             end if
         end do
     end function group_index
+
+    !> The known group whose name differs from `name` by at most two letters (inserted,
+    !> deleted or changed: &fractures, &modle), 0 when none does.
+    pure integer function nearest_group(name)
+        character(len=*), intent(in) :: name
+        integer :: g, best, distance
+
+        nearest_group = 0
+        best = 3
+        do g = 1, size(namelist_groups)
+            distance = edit_distance(name, trim(namelist_groups(g)%name))
+            if (distance < best) then
+                best = distance
+                nearest_group = g
+            end if
+        end do
+    end function nearest_group
+
+    !> The number of letters to insert, delete or change to make a into b (Levenshtein).
+    pure integer function edit_distance(a, b)
+        character(len=*), intent(in) :: a, b
+        integer :: row(0:len(b)), i, j, diagonal, above
+
+        row = [(j, j = 0, len(b))]
+        do i = 1, len(a)
+            diagonal = row(0)
+            row(0) = i
+            do j = 1, len(b)
+                above = row(j)
+                row(j) = min(row(j) + 1, row(j - 1) + 1, &
+                             diagonal + merge(0, 1, a(i:i) == b(j:j)))
+                diagonal = above
+            end do
+        end do
+        edit_distance = row(len(b))
+    end function edit_distance
 
 end module ddc_input_namelist_groups

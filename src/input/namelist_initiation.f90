@@ -58,7 +58,7 @@ contains
             end if
             prefix = group_prefix(path, g_initiation, info, 1)
         end associate
-        if (groups(g_growth)%count == 0) then
+        if (groups(g_growth)%count == 0 .and. .not. groups(g_growth)%misspelled) then
             call add(messages, prefix//'needs &growth: new fractures grow as fractures do')
         end if
         associate (o => model%initiation)

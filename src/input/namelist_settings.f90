@@ -1,18 +1,19 @@
 !> The groups of a namelist input file that describe the whole model rather than one of
-!> its parts (docs/input-reference.md): &model, &remote_stress, &pore_fluid, &solver,
-!> &symmetry, &output and &load_path. Each sets its defaults, then reads its group if
-!> present and checks every value.
+!> its parts (docs/input-reference.md): &model, &material, &remote_stress, &pore_fluid,
+!> &solver, &symmetry, &output and &load_path. Each sets its defaults, then reads its group
+!> if present and checks every value.
 module ddc_input_namelist_settings
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
     use ddc_model_types, only: model_type, symmetry_none, symmetry_names, domain_names, &
-        domain_half_plane, load_path_names, default_block_size
+        domain_half_plane, domain_bimaterial, load_path_names, default_block_size
     use ddc_model_limits, only: quantity_youngs_modulus, quantity_poissons_ratio
     use ddc_contact_options, only: parse_solver_options, option_code, k_method_names, k_auto
     use ddc_text, only: itoa, rtoa, lower, find_name, quoted_list, prefix_lines, counted
     use ddc_input_text_file, only: base_name, resolve
     use ddc_input_namelist_groups, only: group_record, message_list, add, group_prefix, &
-        g_model, g_remote_stress, g_pore_fluid, g_solver, g_symmetry, g_output, g_load_path
+        g_model, g_remote_stress, g_pore_fluid, g_solver, g_symmetry, g_output, g_load_path, &
+        g_material
     use ddc_input_namelist_diagnosis, only: report_malformed
     use ddc_input_namelist_values, only: unset_real, unset_integer, text_length, check_scalar, &
         count_given, count_given_integers
@@ -21,6 +22,7 @@ module ddc_input_namelist_settings
 
     public :: read_model_group, read_remote_stress_group, read_pore_fluid_group
     public :: read_solver_group, read_symmetry_group, read_output_group, read_load_path_group
+    public :: read_material_groups
 
     !> Largest number of vertices of a &load_path, and of steps along it
     integer, parameter :: max_path_vertices = 10000, max_path_steps = 1000000
@@ -28,7 +30,7 @@ module ddc_input_namelist_settings
 contains
 
     !> &model title, youngs_modulus, poissons_ratio, length_unit, stress_unit, time_unit,
-    !> domain / (the units are labels, stored in the output)
+    !> domain, interface_y / (the units are labels, stored in the output)
     subroutine read_model_group(unit, text, path, info, the_model, messages)
         integer, intent(in) :: unit
         character(len=*), intent(in) :: text
@@ -37,12 +39,12 @@ contains
         type(model_type), intent(inout) :: the_model
         type(message_list), intent(inout) :: messages
         character(len=text_length) :: title, length_unit, stress_unit, time_unit, domain
-        real(wp) :: youngs_modulus, poissons_ratio
+        real(wp) :: youngs_modulus, poissons_ratio, interface_y
         character(len=512) :: iomsg
         character(len=:), allocatable :: prefix
         integer :: stat
         namelist /model/ title, youngs_modulus, poissons_ratio, length_unit, stress_unit, &
-            time_unit, domain
+            time_unit, domain, interface_y
 
         the_model%title = base_name(path, .false.)
         the_model%length_unit = 'm'
@@ -56,6 +58,7 @@ contains
         stress_unit = 'MPa'
         time_unit = 's'
         domain = 'full_plane'
+        interface_y = unset_real
         rewind (unit)
         read (unit, nml=model, iostat=stat, iomsg=iomsg)
         if (stat /= 0) then
@@ -84,11 +87,98 @@ contains
             the_model%elements%domain = stat
         end if
 
+        if (the_model%elements%domain == domain_bimaterial) then
+            ! The two materials come from the &material groups.
+            if (youngs_modulus /= unset_real .or. poissons_ratio /= unset_real) then
+                call add(messages, prefix//"youngs_modulus and poissons_ratio are not given "// &
+                         "with domain = 'bimaterial': the two &material groups (name = "// &
+                         "'upper' and 'lower') give them")
+            end if
+            if (check_scalar(interface_y, 'interface_y', .false., prefix, messages)) then
+                the_model%interface_y = interface_y
+            end if
+            return
+        end if
+        if (interface_y /= unset_real) then
+            call add(messages, prefix//"interface_y is given, but domain = '"// &
+                     trim(domain_names(the_model%elements%domain))//"': the interface is "// &
+                     "that of domain = 'bimaterial'")
+        end if
         if (check_scalar(youngs_modulus, 'youngs_modulus', .true., prefix, messages, &
                          quantity_youngs_modulus)) the_model%youngs_modulus = youngs_modulus
         if (check_scalar(poissons_ratio, 'poissons_ratio', .true., prefix, messages, &
                          quantity_poissons_ratio)) the_model%poissons_ratio = poissons_ratio
     end subroutine read_model_group
+
+    !> &material name, youngs_modulus, poissons_ratio / (two of them, name = 'upper' and
+    !> 'lower', with &model domain = 'bimaterial' and only then): the materials above and
+    !> below the interface (docs/theory/bimaterial.md).
+    subroutine read_material_groups(unit, text, path, info, model, messages)
+        integer, intent(in) :: unit
+        character(len=*), intent(in) :: text
+        character(len=*), intent(in) :: path
+        type(group_record), intent(in) :: info
+        type(model_type), intent(inout) :: model
+        type(message_list), intent(inout) :: messages
+        character(len=*), parameter :: material_names(2) = [character(len=5) :: 'lower', &
+            'upper']
+        character(len=text_length) :: name
+        real(wp) :: youngs_modulus, poissons_ratio
+        character(len=512) :: iomsg
+        character(len=:), allocatable :: prefix
+        integer :: stat, k, which, line(2)
+        logical :: ok
+        namelist /material/ name, youngs_modulus, poissons_ratio
+
+        if (model%elements%domain /= domain_bimaterial) then
+            if (info%count > 0) call add(messages, group_prefix(path, g_material, info, 1)// &
+                "&material is for &model domain = 'bimaterial' (two bonded half-planes); "// &
+                "one material is &model's youngs_modulus and poissons_ratio")
+            return
+        end if
+        line = 0
+        rewind (unit)
+        do k = 1, info%count
+            name = ''
+            youngs_modulus = unset_real
+            poissons_ratio = unset_real
+            read (unit, nml=material, iostat=stat, iomsg=iomsg)
+            if (stat /= 0) then
+                call report_malformed(text, path, g_material, info, k, stat, iomsg, messages)
+                return
+            end if
+            prefix = group_prefix(path, g_material, info, k)
+            which = find_name(lower(trim(adjustl(name))), material_names)
+            if (which == 0) then
+                call add(messages, prefix//"name = '"//trim(adjustl(name))//"' is not one of "// &
+                         quoted_list(material_names)//' (the material below and above '// &
+                         'interface_y)')
+                cycle
+            end if
+            if (line(which) > 0) then
+                call add(messages, prefix//"name = '"//trim(material_names(which))// &
+                         "' is given already (line "//itoa(line(which))//')')
+                cycle
+            end if
+            line(which) = info%lines(k)
+            ok = check_scalar(youngs_modulus, 'youngs_modulus', .true., prefix, messages, &
+                              quantity_youngs_modulus)
+            ok = check_scalar(poissons_ratio, 'poissons_ratio', .true., prefix, messages, &
+                              quantity_poissons_ratio) .and. ok
+            if (.not. ok) cycle
+            if (which == 1) then
+                model%youngs_modulus = youngs_modulus
+                model%poissons_ratio = poissons_ratio
+            else
+                model%upper_youngs_modulus = youngs_modulus
+                model%upper_poissons_ratio = poissons_ratio
+            end if
+        end do
+        do which = 1, 2
+            if (line(which) == 0) call add(messages, path//": &model domain = 'bimaterial' "// &
+                "needs a &material group with name = '"//trim(material_names(which))//"'")
+        end do
+    end subroutine read_material_groups
 
     !> &remote_stress sxx, syy, sxy, dsxx_dy, dsyy_dy, dsxy_dy / (tension positive, default 0;
     !> the stress at depth y is s + ds_dy * y)
@@ -304,11 +394,11 @@ contains
         if (len_trim(file) > 0) model%output_file = resolve(dir, trim(adjustl(file)))
     end subroutine read_output_group
 
-    !> &load_path sxx, syy, sxy, dsxx_dy, dsyy_dy, dsxy_dy, p0, steps /
+    !> &load_path sxx, syy, sxy, dsxx_dy, dsyy_dy, dsxy_dy, p0, steps, time /
     !> (docs/loading-histories.md#the-input; optional): the load at the path's vertices (the first
     !> is the starting state), each quantity either absent (held at its &remote_stress or
-    !> &pore_fluid value) or given at every vertex, and steps(l) increments on leg l. Needs contact
-    !> elements.
+    !> &pore_fluid value) or given at every vertex, steps(l) increments on leg l, and the time of
+    !> each vertex (strictly increasing; a path may give times alone). Needs contact elements.
     subroutine read_load_path_group(unit, text, path, info, has_contact, model, messages)
         integer, intent(in) :: unit
         character(len=*), intent(in) :: text
@@ -319,18 +409,19 @@ contains
         type(model_type), intent(inout) :: model
         type(message_list), intent(inout) :: messages
         real(wp), allocatable :: sxx(:), syy(:), sxy(:), dsxx_dy(:), dsyy_dy(:), dsxy_dy(:), &
-                                 p0(:), values(:, :), fixed(:)
+                                 p0(:), time(:), values(:, :), fixed(:)
         integer, allocatable :: steps(:)
         character(len=512) :: iomsg
         character(len=:), allocatable :: prefix
-        integer :: stat, nlegs, nv, q, given
+        integer :: stat, nlegs, nv, q, given, ntime
         logical :: ok
-        namelist /load_path/ sxx, syy, sxy, dsxx_dy, dsyy_dy, dsxy_dy, p0, steps
+        namelist /load_path/ sxx, syy, sxy, dsxx_dy, dsyy_dy, dsxy_dy, p0, steps, time
 
         if (info%count == 0) return
         allocate (sxx(max_path_vertices), syy(max_path_vertices), sxy(max_path_vertices), &
                   dsxx_dy(max_path_vertices), dsyy_dy(max_path_vertices), &
-                  dsxy_dy(max_path_vertices), p0(max_path_vertices), steps(max_path_vertices))
+                  dsxy_dy(max_path_vertices), p0(max_path_vertices), steps(max_path_vertices), &
+                  time(max_path_vertices))
         sxx = unset_real
         syy = unset_real
         sxy = unset_real
@@ -338,6 +429,7 @@ contains
         dsyy_dy = unset_real
         dsxy_dy = unset_real
         p0 = unset_real
+        time = unset_real
         steps = unset_integer
         rewind (unit)
         read (unit, nml=load_path, iostat=stat, iomsg=iomsg)
@@ -383,9 +475,23 @@ contains
                 model%load_path%vertex(q, :) = values(1:nv, q)
             end if
         end do
-        if (given == 0) then
+        ntime = count_given(time, 'time', prefix, messages)
+        if (ntime > 0 .and. ntime /= nv .and. nlegs > 0) then
+            call add(messages, prefix//'time has '//counted(ntime, 'value', 'values')// &
+                     '; give one per vertex: '//itoa(nv)//' (one more than steps)')
+            ok = .false.
+        else if (ntime > 1) then
+            if (any(time(2:ntime) <= time(1:ntime - 1))) then
+                call add(messages, prefix//'time('//itoa(findloc(time(2:ntime) <= &
+                         time(1:ntime - 1), .true., 1) + 1)//') = '// &
+                         rtoa(time(findloc(time(2:ntime) <= time(1:ntime - 1), .true., 1) + &
+                         1))//' is not after the time before it: times must increase')
+                ok = .false.
+            end if
+        end if
+        if (given == 0 .and. ntime == 0) then
             call add(messages, prefix//'give the load at each vertex: at least one of sxx, '// &
-                     'syy, sxy, dsxx_dy, dsyy_dy, dsxy_dy, p0')
+                     'syy, sxy, dsxx_dy, dsyy_dy, dsxy_dy, p0 (or the time of each vertex)')
             ok = .false.
         end if
         if (.not. has_contact) then
@@ -402,6 +508,7 @@ contains
         end if
         if (ok) then
             model%load_path%steps = steps(1:nlegs)
+            if (ntime > 0) model%load_path%time = time(1:nv)
         else
             deallocate (model%load_path%vertex)
         end if

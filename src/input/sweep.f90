@@ -14,14 +14,15 @@
 module ddc_input_sweep
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
-    use ddc_model_types, only: model_type, load_path_names
-    use ddc_input_text_file, only: read_text_file
+    use ddc_model_types, only: model_type, load_path_names, source_overpressure
+    use ddc_input_text_file, only: read_text_file, open_namelist
     use ddc_text, only: itoa, rtoa, lower, add_message, messages_error, join_integers
     use ddc_input_namelist_groups, only: group_line
     use ddc_input_namelist_diagnosis, only: group_problem
     use ddc_sweep_tasks, only: sweep_definition, combine_names, combine_product, combine_zip, &
         max_parameters, max_tasks, parse_parameter, check_value, target_sxx, target_syy, &
-        target_sxy, target_s1, target_s3, target_angle
+        target_sxy, target_s1, target_s3, target_angle, target_overpressure, target_rate, &
+        target_diffusivity, target_transmissivity
     implicit none
     private
 
@@ -75,12 +76,8 @@ contains
         values_4 = unset_real
         values_5 = unset_real
         values_6 = unset_real
-        open (newunit=unit, file=path, status='old', action='read', form='formatted', &
-              iostat=stat, iomsg=iomsg)
-        if (stat /= 0) then
-            call set_error(error, exit_bad_input, path//': cannot open: '//trim(iomsg))
-            return
-        end if
+        call open_namelist(path, text, unit, error)
+        if (allocated(error)) return
         read (unit, nml=sweep, iostat=stat, iomsg=iomsg)
         close (unit)
         if (stat /= 0) then
@@ -93,9 +90,10 @@ contains
                         [max_values, max_parameters])
         messages = ''
         nbad = 0
-        call build(prefix, combine, parameters, lists, size(model%fractures), definition, &
-                   messages, nbad)
+        call build(prefix, combine, parameters, lists, size(model%fractures), &
+                   source_count(model), definition, messages, nbad)
         if (nbad == 0) call check_load_path(prefix, model, definition, messages, nbad)
+        if (nbad == 0) call check_flow(prefix, model, definition, messages, nbad)
         if (nbad > 0) call messages_error(messages, nbad, 'problems', error)
         definition%where = prefix
     end subroutine read_sweep
@@ -128,14 +126,81 @@ contains
         end do
     end subroutine check_load_path
 
+    !> Number of &injection sources of a model.
+    pure integer function source_count(model)
+        type(model_type), intent(in) :: model
+
+        source_count = 0
+        if (allocated(model%injections)) source_count = size(model%injections)
+    end function source_count
+
+    !> A swept overpressure or rate needs a source of that kind (source K of that kind, for
+    !> injection(K)%...), a swept diffusivity or transmissivity elements that conduct (of
+    !> fracture K, for fracture(K)%...): the model would not use the value otherwise.
+    subroutine check_flow(prefix, model, definition, messages, nbad)
+        character(len=*), intent(in) :: prefix
+        type(model_type), intent(in) :: model
+        type(sweep_definition), intent(in) :: definition
+        character(len=:), allocatable, intent(inout) :: messages
+        integer, intent(inout) :: nbad
+        character(len=:), allocatable :: named, kind
+        logical :: conducts(model%elements%n), pressure(source_count(model))
+        integer :: p, k, first, last
+
+        conducts = model%elements%diffusivity > 0.0_wp .and. &
+                   model%elements%transmissivity > 0.0_wp
+        do k = 1, size(pressure)
+            pressure(k) = model%injections(k)%kind == source_overpressure
+        end do
+        do p = 1, size(definition%targets)
+            named = prefix//'parameters('//itoa(p)//") = '"//trim(definition%names(p))//"': "
+            select case (definition%targets(p))
+            case (target_overpressure, target_rate)
+                kind = 'a rate'
+                if (definition%targets(p) == target_overpressure) kind = 'an overpressure'
+                k = definition%sources(p)
+                if (k > 0) then
+                    if (pressure(k) .neqv. definition%targets(p) == target_overpressure) then
+                        call add_message(messages, nbad, named//'&injection '//itoa(k)// &
+                                         " '"//model%injections(k)%name//"' does not give "//kind)
+                    end if
+                else if (.not. any(pressure .eqv. &
+                                   definition%targets(p) == target_overpressure)) then
+                    call add_message(messages, nbad, named//'no &injection gives '//kind)
+                end if
+            case (target_diffusivity, target_transmissivity)
+                first = 1
+                last = model%elements%n
+                k = definition%fractures(p)
+                if (k > 0) then
+                    first = model%fractures(k)%first_element
+                    last = model%fractures(k)%last_element
+                end if
+                if (.not. any(conducts(first:last))) then
+                    if (k > 0) then
+                        call add_message(messages, nbad, named//'fracture '//itoa(k)//" '"// &
+                            model%fractures(k)%name//"' does not conduct: give it "// &
+                            'diffusivity and transmissivity in &fracture')
+                    else
+                        call add_message(messages, nbad, named//'no fracture conducts: '// &
+                            'give diffusivity and transmissivity in &fracture')
+                    end if
+                end if
+            case default
+                ! not a flow parameter
+            end select
+        end do
+    end subroutine check_flow
+
     !> Validate the group's values and build the sweep from them.
-    subroutine build(prefix, combine, parameters, lists, nfractures, definition, messages, &
-                     nbad)
+    subroutine build(prefix, combine, parameters, lists, nfractures, nsources, definition, &
+                     messages, nbad)
         character(len=*), intent(in) :: prefix, combine
         character(len=*), intent(in) :: parameters(:)
         !> Value lists as read, column p for parameter p, unset_real where not given
         real(wp), intent(in) :: lists(:, :)
-        integer, intent(in) :: nfractures
+        !> Number of fractures and of &injection sources of the base model
+        integer, intent(in) :: nfractures, nsources
         type(sweep_definition), intent(inout) :: definition
         character(len=:), allocatable, intent(inout) :: messages
         integer, intent(inout) :: nbad
@@ -166,7 +231,7 @@ contains
                              'is empty but a later name is given; give the names without gaps')
         end if
         allocate (definition%names(np), definition%targets(np), definition%fractures(np), &
-                  definition%laws(np))
+                  definition%sources(np), definition%laws(np))
         do p = 1, size(parameters)
             counts(p) = count_values(lists(:, p), 'values_'//itoa(p), prefix, messages, nbad)
             if (p > np) then
@@ -176,8 +241,9 @@ contains
             end if
             name = lower(trim(adjustl(parameters(p))))
             definition%names(p) = name
-            call parse_parameter(name, nfractures, definition%targets(p), &
-                                 definition%fractures(p), definition%laws(p), problem)
+            call parse_parameter(name, nfractures, nsources, definition%targets(p), &
+                                 definition%fractures(p), definition%sources(p), &
+                                 definition%laws(p), problem)
             if (len(problem) > 0) then
                 call add_message(messages, nbad, prefix//'parameters('//itoa(p)//'): '//problem)
                 cycle
@@ -185,6 +251,7 @@ contains
             do q = 1, p - 1
                 if (definition%targets(q) == definition%targets(p) .and. &
                     definition%fractures(q) == definition%fractures(p) .and. &
+                    definition%sources(q) == definition%sources(p) .and. &
                     definition%laws(q) == definition%laws(p)) then
                     call add_message(messages, nbad, prefix//'parameters('//itoa(p)//") = '"// &
                         name//"' repeats parameters("//itoa(q)//'); sweep each parameter once')

@@ -7,7 +7,7 @@ module ddc_input_text_file
     implicit none
     private
 
-    public :: read_text_file, base_name, folder_of, resolve
+    public :: read_text_file, open_namelist, base_name, folder_of, resolve
 
 contains
 
@@ -66,6 +66,36 @@ contains
             call set_error(error, exit_bad_input, path//': not a text file (contains NUL bytes)')
         end if
     end subroutine read_text_file
+
+    !> Open a namelist file for the reads of its groups: the file itself, or, when its last
+    !> line has no final newline (as some editors and scripts write it), a scratch copy that
+    !> has one: gfortran reports the end of the file in a group that ends there, though it
+    !> read the group.
+    subroutine open_namelist(path, text, unit, error)
+        !> Path of the file, as given by the user
+        character(len=*), intent(in) :: path
+        !> Its content (read_text_file: not empty)
+        character(len=*), intent(in) :: text
+        !> The unit to read the groups from
+        integer, intent(out) :: unit
+        !> Allocated (exit_bad_input) when it cannot be opened
+        type(error_type), allocatable, intent(out) :: error
+        integer :: stat
+        character(len=512) :: message
+
+        if (text(len(text):) == achar(10)) then
+            open (newunit=unit, file=path, status='old', action='read', form='formatted', &
+                  iostat=stat, iomsg=message)
+        else
+            open (newunit=unit, status='scratch', action='readwrite', form='formatted', &
+                  iostat=stat, iomsg=message)
+            ! A record of its own: the text's lines, then the newline the file lacks.
+            if (stat == 0) write (unit, '(a)', iostat=stat, iomsg=message) text
+            if (stat == 0) rewind (unit, iostat=stat, iomsg=message)
+        end if
+        if (stat /= 0) call set_error(error, exit_bad_input, path//': cannot open: '// &
+                                      trim(message))
+    end subroutine open_namelist
 
     !> The file name of a path, with or without its extension.
     pure function base_name(path, keep_extension) result(name)

@@ -181,6 +181,7 @@ contains
 
         model%length_unit = 'm'
         model%stress_unit = 'Pa'
+        model%time_unit = 's'
         model%output_file = base_name(path, .false.)//'.h5'
 
         call check_elements(model%elements, model%fractures, error)

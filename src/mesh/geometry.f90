@@ -22,7 +22,8 @@ contains
 
     !> Allocate every per-element array of an element set (those of the geometry too) for
     !> n elements; values unset, but the strength laws beyond Coulomb at their defaults (no
-    !> tensile strength, no drops, rigid contact) and no rate-and-state values (0).
+    !> tensile strength, no drops, rigid contact), no flow (diffusivity and transmissivity 0)
+    !> and no rate-and-state values (0).
     subroutine allocate_elements(elements, n)
         !> The set to allocate (its arrays unallocated)
         type(element_set), intent(inout) :: elements
@@ -35,6 +36,9 @@ contains
         call for_each_element_array(elements, allocation)
         call default_strength_laws(elements, spread(.true., 1, n))
         call clear_rate_state(elements)
+        elements%diffusivity = 0.0_wp
+        elements%transmissivity = 0.0_wp
+        elements%flow_pressure = 0.0_wp
     end subroutine allocate_elements
 
     !> Allocate one real array for the set's elements.

@@ -7,7 +7,8 @@ module ddc_mesh_polyline
     implicit none
     private
 
-    public :: polyline_elements, expand_per_segment
+    public :: polyline_elements, expand_per_segment, crossing_fraction, split_at_height
+    public :: snap_to_height
 
 contains
 
@@ -68,5 +69,68 @@ contains
             first = first + counts(segment)
         end do
     end function expand_per_segment
+
+    !> A height within tolerance of the line y = y_line put on it (exactly y_line).
+    elemental subroutine snap_to_height(y, y_line, tolerance)
+        !> The height [length unit]
+        real(wp), intent(inout) :: y
+        !> Height of the line, tolerance [length unit]
+        real(wp), intent(in) :: y_line, tolerance
+
+        if (abs(y - y_line) <= tolerance) y = y_line
+    end subroutine snap_to_height
+
+    !> Where an element from (yb) to (ye) crosses the line y = y_line, as the fraction of
+    !> the way from its begin; -1 when it does not cross it (both ends on one side, or an
+    !> end on the line).
+    elemental real(wp) function crossing_fraction(yb, ye, y_line) result(t)
+        !> Heights of the element's begin and end, of the line [length unit]
+        real(wp), intent(in) :: yb, ye, y_line
+
+        t = -1.0_wp
+        if ((yb - y_line) * (ye - y_line) < 0.0_wp) t = (y_line - yb) / (ye - yb)
+    end function crossing_fraction
+
+    !> Split every element that crosses the line y = y_line into two that meet on it
+    !> (exactly at y_line), in place; source(k) is the element the new element k comes from.
+    pure subroutine split_at_height(x_begin, y_begin, x_end, y_end, y_line, source)
+        !> Element end points [length unit], shape (n) on entry, (n + crossings) on return
+        real(wp), allocatable, intent(inout) :: x_begin(:), y_begin(:), x_end(:), y_end(:)
+        !> Height of the line [length unit]
+        real(wp), intent(in) :: y_line
+        !> The element each element comes from, shape (n + crossings)
+        integer, allocatable, intent(out) :: source(:)
+        real(wp) :: t(size(y_begin))
+        real(wp), allocatable :: xb(:), yb(:), xe(:), ye(:)
+        real(wp) :: x_cross
+        integer :: i, k
+
+        t = crossing_fraction(y_begin, y_end, y_line)
+        allocate (source(size(t) + count(t >= 0.0_wp)))
+        allocate (xb(size(source)), yb(size(source)), xe(size(source)), ye(size(source)))
+        k = 0
+        do i = 1, size(t)
+            k = k + 1
+            source(k) = i
+            xb(k) = x_begin(i)
+            yb(k) = y_begin(i)
+            xe(k) = x_end(i)
+            ye(k) = y_end(i)
+            if (t(i) < 0.0_wp) cycle
+            x_cross = x_begin(i) + t(i) * (x_end(i) - x_begin(i))
+            xe(k) = x_cross
+            ye(k) = y_line
+            k = k + 1
+            source(k) = i
+            xb(k) = x_cross
+            yb(k) = y_line
+            xe(k) = x_end(i)
+            ye(k) = y_end(i)
+        end do
+        call move_alloc(xb, x_begin)
+        call move_alloc(yb, y_begin)
+        call move_alloc(xe, x_end)
+        call move_alloc(ye, y_end)
+    end subroutine split_at_height
 
 end module ddc_mesh_polyline

@@ -17,7 +17,7 @@ module ddc_model_fingerprint
     use ddc_kinds, only: wp
     use ddc_contact_options, only: k_auto
     use ddc_model_types, only: model_type, growth_criterion_work, element_set, &
-        element_array_action, for_each_element_array
+        element_array_action, for_each_element_array, domain_bimaterial
     implicit none
     private
 
@@ -82,6 +82,7 @@ contains
         ! Not hashed: model%growth%steps, model%load_path%steps, model%load_path%vertex
         ! Not hashed: model%load_path%varies (a resumed run may go further)
         ! Not hashed: model%cycle%active (the options below are hashed when it holds)
+        ! Not hashed: model%load_path%time (as the vertices: a resumed run may go further)
         ! Not hashed: model%solver%work_bytes (this machine's memory, not the model)
         ! Not hashed: model%solver%matrix (it changes a result within hmatrix_tolerance
         ! only: a loading history may go on from its file on either matrix), and so its
@@ -92,11 +93,30 @@ contains
         call add_reals(hash, [model%youngs_modulus, model%poissons_ratio])
         call add_text(hash, model%length_unit)
         call add_text(hash, model%stress_unit)
+        ! Only where not the default: the fingerprints of earlier models stay as they were.
+        if (allocated(model%time_unit)) then
+            if (model%time_unit /= 's') call add_text(hash, model%time_unit)
+        end if
+        if (allocated(model%injections)) then
+            do i = 1, size(model%injections)
+                call add_text(hash, model%injections(i)%name)
+                call add_integers(hash, [model%injections(i)%fracture_id, &
+                                         model%injections(i)%kind])
+                call add_reals(hash, [model%injections(i)%x, model%injections(i)%y, &
+                                      model%injections(i)%value, model%injections(i)%start, &
+                                      model%injections(i)%stop])
+            end do
+        end if
         call add_reals(hash, [model%sxx, model%syy, model%sxy])
         call add_reals(hash, model%stress_gradient)
         call add_reals(hash, model%pore_fluid)
         call add_integers(hash, [model%elements%n, model%elements%domain, &
                                  model%elements%symmetry%kind])
+        ! Only in two bonded half-planes: the other models keep their fingerprints.
+        if (model%elements%domain == domain_bimaterial) then
+            call add_reals(hash, [model%interface_y, model%upper_youngs_modulus, &
+                                  model%upper_poissons_ratio])
+        end if
         call add_reals(hash, [model%elements%symmetry%xsym, model%elements%symmetry%ysym])
         elements = model%elements
         call for_each_element_array(elements, hash)

@@ -44,6 +44,10 @@ module ddc_model_initiations
         !> its elements (the trial states of the tips' searches), shape (t)
         integer, allocatable :: trial_step(:), trial_flaw(:), trial_state(:)
         real(wp), allocatable :: trial_angle(:), trial_efficiency(:)
+        !> The last check that started nothing: its growth step (0: none, or no probe), the
+        !> largest tension probed in it [stress unit] and that probe point [length unit]
+        integer :: largest_step = 0
+        real(wp) :: largest_tension = 0.0_wp, largest_x = 0.0_wp, largest_y = 0.0_wp
     end type initiation_record
 
 contains

@@ -8,7 +8,8 @@ module ddc_model_loads
     implicit none
     private
 
-    public :: shear_modulus_of, resolve_remote_stress, total_pressure, work_threshold_of
+    public :: shear_modulus_of, resolve_remote_stress, total_pressure, static_pressure, &
+        work_threshold_of
 
 contains
 
@@ -58,9 +59,9 @@ contains
         end associate
     end subroutine resolve_remote_stress
 
-    !> Fluid pressure inside every contact element: its own pressure plus the pore fluid
-    !> p0 + dp_dy * y at its midpoint (docs/theory/earth.md#pore-fluid-and-effective-stress); other
-    !> elements keep their value.
+    !> Fluid pressure inside every contact element: its own pressure, the pore fluid's and
+    !> the pressure the fluid sources diffused into it (docs/injection.md); other elements
+    !> keep their value.
     pure function total_pressure(elements, pore_fluid) result(pressure)
         !> Elements with geometry computed
         type(element_set), intent(in) :: elements
@@ -69,9 +70,25 @@ contains
         !> Total pressure, compression positive [stress unit], shape (n)
         real(wp) :: pressure(elements%n)
 
+        pressure = static_pressure(elements, pore_fluid)
+        where (elements%condition == condition_contact) &
+            pressure = pressure + elements%flow_pressure
+    end function total_pressure
+
+    !> The pressure that does not change in time: every contact element's own pressure plus
+    !> the pore fluid p0 + dp_dy * y at its midpoint
+    !> (docs/theory/earth.md#pore-fluid-and-effective-stress); other elements keep their value.
+    pure function static_pressure(elements, pore_fluid) result(pressure)
+        !> Elements with geometry computed
+        type(element_set), intent(in) :: elements
+        !> Pore fluid (p0 [stress unit], dp_dy [stress unit / length unit])
+        real(wp), intent(in) :: pore_fluid(2)
+        !> Pressure, compression positive [stress unit], shape (n)
+        real(wp) :: pressure(elements%n)
+
         pressure = elements%pressure
         where (elements%condition == condition_contact) &
             pressure = pressure + pore_fluid(1) + pore_fluid(2) * elements%y_mid
-    end function total_pressure
+    end function static_pressure
 
 end module ddc_model_loads

@@ -4,7 +4,9 @@
 !> - a pore pressure p0 + dp_dy y that is negative somewhere in the model (hydrostatic is
 !>   dp_dy < 0);
 !> - a tensile strength above the Coulomb apex sf/mu, which the law caps there (with the
-!>   default sf = 0 a fracture then has no tensile strength at all);
+!>   default sf = 0 a fracture then has no tensile strength at all), of a fracture or of the
+!>   new contact elements of growth (&growth new_tensile_strength against new_sf, new_mu or
+!>   the values of the tip elements they grow from);
 !> - a slip_weakening_distance on a fracture none of whose elements with it has a friction
 !>   or cohesion that drops (mu_dynamic not below mu, sf_residual not below sf): it does
 !>   nothing (where some elements weaken, the others, say a weak centre without cohesion,
@@ -20,6 +22,7 @@ module ddc_model_plausibility
     use ddc_model_types, only: model_type, domain_half_plane, condition_contact, tensile_cap, &
         condition_traction, condition_mixed_us_sn, condition_mixed_ss_un
     use ddc_model_loads, only: resolve_remote_stress, total_pressure
+    use ddc_model_laws, only: law_index
     use ddc_text, only: short_real, newline, itoa
     implicit none
     private
@@ -77,6 +80,7 @@ contains
             call capped_tensile_strength(k)
             call idle_weakening_distance(k)
         end do
+        if (model%growth%active) call capped_new_tensile_strength()
         if (units_given) call strain_range()
 
     contains
@@ -143,6 +147,50 @@ contains
                 end associate
             end associate
         end subroutine capped_tensile_strength
+
+        !> &growth new_tensile_strength where the cap at the apex sf/mu of the new contact
+        !> elements lowers it: their sf and mu are new_sf, new_mu where given, else those of
+        !> the tip elements they grow from.
+        subroutine capped_new_tensile_strength()
+            real(wp) :: t, t_in, low, high
+            character(len=:), allocatable :: names
+            integer :: law, f, end, tip, named
+
+            law = law_index('tensile_strength')
+            if (.not. model%growth%override_law(law)) return
+            t = model%growth%new_law(law)
+            low = huge(1.0_wp)
+            high = -huge(1.0_wp)
+            names = ''
+            named = 0
+            do f = 1, size(model%fractures)
+                if (.not. model%growth%fracture_grows(f)) cycle
+                do end = 1, 2
+                    tip = merge(model%fractures(f)%first_element, &
+                                model%fractures(f)%last_element, end == 1)
+                    if (model%elements%condition(tip) /= condition_contact) cycle
+                    t_in = tensile_cap(t, merge(model%growth%new_sf, model%elements%sf(tip), &
+                                                model%growth%override_sf), &
+                                       merge(model%growth%new_mu, model%elements%mu(tip), &
+                                             model%growth%override_mu))
+                    if (.not. t_in < t) cycle
+                    low = min(low, t_in)
+                    high = max(high, t_in)
+                    if (named /= f) then
+                        if (named > 0) names = names//', '
+                        names = names//model%fractures(f)%name
+                        named = f
+                    end if
+                end do
+            end do
+            if (len(names) == 0) return
+            call add('&growth: new_tensile_strength '//short_real(t)//' '// &
+                     model%stress_unit//' is above the Coulomb apex sf/mu of the new '// &
+                     'contact elements of '//names//' (new_sf, new_mu, or the values of '// &
+                     'their tip element) and is capped there to '//short_real(low)//' .. '// &
+                     short_real(high)//' '//model%stress_unit//' (where the shear strength '// &
+                     'sf - mu T vanishes); a tensile strength T needs sf >= mu T (give new_sf)')
+        end subroutine capped_new_tensile_strength
 
         !> Fracture k's slip_weakening_distance where no element that has it weakens:
         !> neither mu_dynamic is below mu nor sf_residual below sf on any of them.

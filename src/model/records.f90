@@ -25,9 +25,10 @@ module ddc_model_records
     public :: column_loads, column_element_steps, column_tip_steps, column_steps, &
         column_growth_steps, column_growing_tips, column_growing_tip_steps, column_records, &
         column_path_records, column_elements, column_strength_steps, column_work_records, &
-        column_trials
+        column_trials, column_time_steps, column_flow_element_steps, column_flow_steps, &
+        column_fracture_steps
     public :: units_none, units_length, units_stress, units_k, units_degree, units_one, units_work
-    public :: units_stiffness, units_text
+    public :: units_stiffness, units_time, units_area, units_moment, units_text
     public :: state_coding
 
     !> Kinds of history columns, by their shape: the load (one row per quantity of
@@ -47,13 +48,20 @@ module ddc_model_records
     !> Growth record columns of the work criterion only: one value per record (k, in /growth);
     !> one per trial (t, in /growth/trials)
     integer, parameter :: column_work_records = 12, column_trials = 13
+    !> History columns of a path with a time axis only: one value per step (k); of a model
+    !> with fluid sources only (docs/injection.md#output): per element (n, k), per step
+    !> (k), per fracture (fractures, k)
+    integer, parameter :: column_time_steps = 14, column_flow_element_steps = 15, &
+                          column_flow_steps = 16, column_fracture_steps = 17
 
     !> What the values of a column (or of a strength law, ddc_model_laws) measure, for its
     !> units attribute: nothing (integers and strings), length, stress, stress intensity
     !> (stress * length**0.5), angle in degrees, a ratio, work per length (stress * length),
-    !> a joint stiffness (stress / length)
+    !> a joint stiffness (stress / length), time, a volume per unit length out of the plane
+    !> (length^2), a seismic moment per unit length out of the plane (stress * length^2)
     integer, parameter :: units_none = 0, units_length = 1, units_stress = 2, units_k = 3, &
-                          units_degree = 4, units_one = 5, units_work = 6, units_stiffness = 7
+                          units_degree = 4, units_one = 5, units_work = 6, units_stiffness = 7, &
+                          units_time = 8, units_area = 9, units_moment = 10
 
     !> Coding of the element states (/elements/state and the history's)
     character(len=*), parameter :: state_coding = '0 free (TWODD-style condition), ' &
@@ -165,6 +173,10 @@ module ddc_model_records
         logical :: growth = .false.
         !> Lay out the columns of the strengths in force that are not there yet
         logical :: strengths = .false.
+        !> Lay out the columns of a time axis, of the fluid sources (rows of the fracture
+        !> columns: fractures), that are not there yet
+        logical :: time = .false., flow = .false.
+        integer :: fractures = 0
         !> The stat of an allocation that failed (0: none)
         integer :: stat = 0
     contains
@@ -202,6 +214,19 @@ contains
                                   history%sf_in_force)
         call action%on_real_table(column('tensile_strength_in_force', column_strength_steps, &
                                          units_stress), history%tensile_strength_in_force)
+        call action%on_reals(column('time', column_time_steps, units_time), history%time)
+        call action%on_real_table(column('pressure', column_flow_element_steps, units_stress), &
+                                  history%pressure)
+        call action%on_reals(column('injected_volume', column_flow_steps, units_area), &
+                             history%injected_volume)
+        call action%on_real_table(column('slipping_length', column_fracture_steps, &
+                                         units_length), history%slipping_length)
+        call action%on_real_table(column('front_begin', column_fracture_steps, units_length), &
+                                  history%front_begin)
+        call action%on_real_table(column('front_end', column_fracture_steps, units_length), &
+                                  history%front_end)
+        call action%on_real_table(column('moment', column_fracture_steps, units_moment), &
+                                  history%moment)
         call action%on_real_table(column('k1', column_tip_steps, units_k), history%k1)
         call action%on_real_table(column('k2', column_tip_steps, units_k), history%k2)
         call action%on_strings(column('method', column_steps), history%method)
@@ -266,13 +291,15 @@ contains
                                        coding='0 the input, k growth step k'), record%created_step)
     end subroutine for_each_growth_column
 
-    !> The units attribute of values that measure `units` (units_none ... units_stiffness) in
+    !> The units attribute of values that measure `units` (units_none ... units_area) in
     !> a model of these unit names; '' for units_none.
-    pure function units_text(units, stress, length) result(text)
+    pure function units_text(units, stress, length, time) result(text)
         !> What the values measure
         integer, intent(in) :: units
         !> The model's stress and length unit names
         character(len=*), intent(in) :: stress, length
+        !> The model's time unit name (default 's')
+        character(len=*), intent(in), optional :: time
         character(len=:), allocatable :: text
 
         select case (units)
@@ -290,6 +317,13 @@ contains
             text = stress//' '//length
         case (units_stiffness)
             text = stress//'/'//length
+        case (units_time)
+            text = 's'
+            if (present(time)) text = time
+        case (units_area)
+            text = length//'^2'
+        case (units_moment)
+            text = stress//' '//length//'^2'
         case default
             text = ''
         end select
@@ -345,7 +379,7 @@ contains
     !> (the growth record gives them at the end); those of the strengths in force when there
     !> or asked for. Values not kept are NaN, 0 or blank.
     subroutine lay_out_history(history, rows, tips, steps, kept, stat, origin, growth, &
-                               strengths)
+                               strengths, time, fractures)
         !> The history
         type(history_record), intent(inout) :: history
         !> Rows of the element columns and of the tip columns, steps of every column
@@ -360,6 +394,11 @@ contains
         logical, intent(in), optional :: growth
         !> Lay out the columns of the strengths in force too (default: when there)
         logical, intent(in), optional :: strengths
+        !> Lay out the column of a time axis too (default: when there)
+        logical, intent(in), optional :: time
+        !> Lay out the columns of the fluid sources too, for this many fractures (default:
+        !> when there)
+        integer, intent(in), optional :: fractures
         type(record_layout) :: layout
         integer :: i
 
@@ -374,6 +413,13 @@ contains
         end if
         if (present(growth)) layout%growth = growth
         if (present(strengths)) layout%strengths = strengths
+        if (present(time)) layout%time = time
+        if (present(fractures)) then
+            layout%flow = .true.
+            layout%fractures = fractures
+        else if (allocated(history%moment)) then
+            layout%fractures = size(history%moment, 1)
+        end if
         call for_each_history_column(history, layout)
         stat = layout%stat
     end subroutine lay_out_history
@@ -403,6 +449,10 @@ contains
             lays_out = there .or. layout%growth
         case (column_strength_steps)
             lays_out = there .or. layout%strengths
+        case (column_time_steps)
+            lays_out = there .or. layout%time
+        case (column_flow_element_steps, column_flow_steps, column_fracture_steps)
+            lays_out = there .or. layout%flow
         case default
             lays_out = .true.
         end select
@@ -419,8 +469,10 @@ contains
         select case (column%kind)
         case (column_loads)
             table_rows = size(load_path_names)
-        case (column_element_steps, column_strength_steps)
+        case (column_element_steps, column_strength_steps, column_flow_element_steps)
             table_rows = layout%rows
+        case (column_fracture_steps)
+            table_rows = layout%fractures
         case default
             table_rows = layout%tips
         end select
@@ -549,7 +601,8 @@ contains
         integer :: origin(rows)
         integer :: i
 
-        if (column%kind == column_element_steps .or. column%kind == column_strength_steps) then
+        if (column%kind == column_element_steps .or. column%kind == column_strength_steps .or. &
+            column%kind == column_flow_element_steps) then
             origin = layout%origin
         else
             ! Rows added since (the ends of fractures started inside the rock) have none

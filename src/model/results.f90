@@ -13,7 +13,7 @@ module ddc_model_results
     public :: growth_grew, growth_subcritical, growth_intersection, growth_surface, &
         growth_corrector_failed, growth_linked, growth_closed, growth_waiting, &
         growth_enclosing, growth_reason_names
-    public :: growth_arrested, growth_step_limit, growth_end_names
+    public :: growth_arrested, growth_step_limit, growth_failed, growth_end_names
     public :: trial_stuck, trial_slipping, trial_opening, trial_blocked, trial_state_coding
     public :: state_free, state_stick, state_slip, state_open, state_names, state_not_grown
     public :: point_clear, point_near, point_on_element
@@ -50,8 +50,9 @@ module ddc_model_results
         'corrector failed (grew at mts_angle)', 'linked (ends on another fracture)', &
         'closed (the kink closes, K_I = 0)', 'waiting (critical, not the most critical)', &
         'enclosing (a link would enclose a block)']
-    !> Why a growth run ended: no tip can grow any more, or the step limit was reached
-    integer, parameter :: growth_arrested = 1, growth_step_limit = 2
+    !> Why a growth run ended: no tip can grow any more, the step limit was reached, or the
+    !> solve of a step failed (the run stopped before it: exit_stopped_early)
+    integer, parameter :: growth_arrested = 1, growth_step_limit = 2, growth_failed = 3
     !> State of a work criterion trial's new elements: none opens or slips (no candidate); some
     !> slip, none opens; some open; the trial's path does not keep clear of the other elements
     !> (not solved, no candidate)
@@ -62,8 +63,8 @@ module ddc_model_results
         '0 stuck (no candidate), 1 slipping, 2 opening, 3 blocked (the path does not keep '// &
         'clear; not solved)'
     !> Names of the end reasons, indexed by end reason
-    character(len=*), parameter :: growth_end_names(2) = [character(len=10) :: &
-        'arrested', 'step_limit']
+    character(len=*), parameter :: growth_end_names(3) = [character(len=10) :: &
+        'arrested', 'step_limit', 'failed']
 
     !> Per-element results, shape (n) for every array.
     type :: element_results
@@ -98,7 +99,8 @@ module ddc_model_results
         integer, allocatable :: fracture_id(:), element(:)
         !> Stress intensity factors [stress unit * length unit**0.5]
         real(wp), allocatable :: k1(:), k2(:)
-        !> 1 when the tip element's length differs from its neighbour's by more than 1 %
+        !> 1 when an element of the tip's zone differs in length from the tip element by more
+        !> than 1 % (ddc_post_tips)
         !> (the K formula assumes equal elements: K is less accurate there), else 0
         integer, allocatable :: graded(:)
         !> The end of its element the tip is: 1 begin, 2 end
@@ -197,6 +199,19 @@ module ddc_model_results
         !> [length unit], shape (tips, k)
         integer, allocatable :: element_count(:), tip_fracture_id(:), tip_end(:)
         real(wp), allocatable :: grown_length(:, :)
+        !> The time of each step, where the path has a time axis [time unit], shape (k)
+        real(wp), allocatable :: time(:)
+        !> With fluid sources (docs/injection.md#output; not allocated otherwise): the
+        !> pressure change that diffused into each element [stress unit], shape (n, k); the
+        !> volume injected by then, per unit length out of the plane [length^2], shape (k);
+        !> of each fracture, the length of its slipping elements, where its slipping patch
+        !> begins and ends (arc length from its first vertex to the outer ends of its
+        !> outermost slipping elements; NaN when none slips) [length unit], and its seismic
+        !> moment per unit length out of the plane (G times its slip's integral) [stress unit
+        !> length unit], shape (fractures, k)
+        real(wp), allocatable :: pressure(:, :), injected_volume(:)
+        real(wp), allocatable :: slipping_length(:, :), front_begin(:, :), front_end(:, :), &
+            moment(:, :)
     end type history_record
 
     !> A fracture growth run (docs/fracture-growth.md#output): one record per tip per step, in step
@@ -236,8 +251,10 @@ module ddc_model_results
         real(wp), allocatable :: trial_angle(:), trial_efficiency(:)
         !> Steps in which at least one tip grew
         integer :: steps_taken = 0
-        !> growth_arrested or growth_step_limit
+        !> growth_arrested, growth_step_limit or growth_failed
         integer :: end_reason = growth_arrested
+        !> Why the step after the last one failed (growth_failed; else unallocated)
+        character(len=:), allocatable :: failure
         !> Growth step that created each element of the final geometry (0: the input's),
         !> shape (n)
         integer, allocatable :: created_step(:)

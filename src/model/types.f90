@@ -19,10 +19,11 @@ module ddc_model_types
     public :: model_type, element_set, fracture_type, observation_set
     public :: symmetry_options, symmetry_none, symmetry_x, symmetry_y, symmetry_both
     public :: symmetry_names, sweep_task_record, load_path_type, load_path_names
+    public :: injection_source, source_overpressure, source_rate, has_sources
     public :: condition_traction, condition_displacement, condition_mixed_us_sn
     public :: condition_mixed_ss_un, condition_contact, condition_prescribed_dd, condition_names
     public :: condition_rate_state
-    public :: domain_full_plane, domain_half_plane, domain_names
+    public :: domain_full_plane, domain_half_plane, domain_bimaterial, domain_names
     public :: observation_grid, observation_line, observation_points, observation_kind_names
     public :: growth_options, growth_tips_all, growth_tips_most_critical, growth_tips_names
     public :: growth_criterion_mts, growth_criterion_work, growth_criterion_names
@@ -46,11 +47,12 @@ module ddc_model_types
         'traction', 'displacement', 'mixed_us_sn', 'mixed_ss_un', 'contact', 'prescribed_dd', &
         'rate_state']
 
-    !> Elastic domain: the full plane, or the half-plane y < 0 with a free surface y = 0
-    integer, parameter :: domain_full_plane = 1, domain_half_plane = 2
+    !> Elastic domain: the full plane, the half-plane y < 0 with a free surface y = 0, or two
+    !> bonded half-planes of different materials (docs/theory/bimaterial.md)
+    integer, parameter :: domain_full_plane = 1, domain_half_plane = 2, domain_bimaterial = 3
     !> Input names of the domains, indexed by domain
-    character(len=*), parameter :: domain_names(2) = [character(len=10) :: &
-        'full_plane', 'half_plane']
+    character(len=*), parameter :: domain_names(3) = [character(len=10) :: &
+        'full_plane', 'half_plane', 'bimaterial']
 
     !> Block size of the distributed matrices of the MPI build (&solver block_size)
     integer, parameter :: default_block_size = 64
@@ -116,6 +118,14 @@ module ddc_model_types
         !> positive) and shear traction tau0 [stress unit]
         real(wp), allocatable :: rs_a(:), rs_b(:), rs_dc(:), rs_f0(:), rs_v0(:), rs_v_init(:), &
             rs_sigma0(:), rs_tau0(:)
+        !> Flow along the fractures (docs/injection.md): hydraulic diffusivity alpha [length^2 /
+        !> time unit] and transmissivity T [length^3 / (stress unit time unit)]; 0: the
+        !> element does not conduct
+        real(wp), allocatable :: diffusivity(:), transmissivity(:)
+        !> The pressure change that diffused into the element from the fluid sources by the
+        !> current time [stress unit] (0 without sources; a contact element's pore pressure
+        !> rises by it); a new element of a growth run takes its tip element's
+        real(wp), allocatable :: flow_pressure(:)
         !> Derived geometry: midpoint, half-length [length unit], cos and sin of the
         !> element angle beta (counter-clockwise from +x)
         real(wp), allocatable :: x_mid(:), y_mid(:), half_length(:)
@@ -123,7 +133,8 @@ module ddc_model_types
         !> Symmetry lines whose implicit image elements every influence sum includes (set by
         !> the input readers; none by default)
         type(symmetry_options) :: symmetry
-        !> domain_full_plane or domain_half_plane: the kernel of every influence sum
+        !> domain_full_plane, domain_half_plane or domain_bimaterial: the kernel of every
+        !> influence sum
         integer :: domain = domain_full_plane
     end type element_set
 
@@ -135,9 +146,9 @@ module ddc_model_types
         procedure(act_on_reals), deferred :: on_reals
         !> Act on one integer per-element array
         procedure(act_on_integers), deferred :: on_integers
-        !> Act on one real per-element array added later (a law, the rate-and-state values)
-        !> whose default 0 leaves earlier models as they were (on_reals unless the action
-        !> says otherwise)
+        !> Act on one real per-element array added later whose default 0 leaves the model as
+        !> it was (a strength law, the hydraulic properties, the rate-and-state values;
+        !> on_reals unless the action says otherwise)
         procedure :: on_later_law => act_on_later_law
     end type element_array_action
 
@@ -209,6 +220,27 @@ module ddc_model_types
     character(len=*), parameter :: load_path_names(7) = [character(len=7) :: &
         'sxx', 'syy', 'sxy', 'dsxx_dy', 'dsyy_dy', 'dsxy_dy', 'p0']
 
+    !> Kinds of fluid source (&injection): a pressure change held at a point, a volume rate
+    !> into the network at a point
+    integer, parameter :: source_overpressure = 1, source_rate = 2
+
+    !> A fluid source at a point of a fracture (&injection; docs/injection.md).
+    type :: injection_source
+        !> Name given by the user, or injection_<k>
+        character(len=:), allocatable :: name
+        !> The fracture (1-based) and the point on it [length unit]
+        integer :: fracture_id = 0
+        real(wp) :: x = 0.0_wp, y = 0.0_wp
+        !> source_overpressure or source_rate
+        integer :: kind = source_rate
+        !> The pressure change held [stress unit], or the rate per unit length out of the
+        !> plane [length^2 / time unit] (negative: production)
+        real(wp) :: value = 0.0_wp
+        !> When it acts [time unit]: from start (default: the path's first time) until stop
+        !> (default: never stops; a stopped source is shut in: no flux at its point)
+        real(wp) :: start = -huge(1.0_wp), stop = huge(1.0_wp)
+    end type injection_source
+
     !> A loading history (&load_path; docs/theory/earth.md#loading-histories): the load at the
     !> path's vertices (the first is the starting state) and the increments on each leg.
     type :: load_path_type
@@ -218,6 +250,9 @@ module ddc_model_types
         real(wp), allocatable :: vertex(:, :)
         !> Number of increments on each leg, shape (vertices - 1)
         integer, allocatable :: steps(:)
+        !> The time of each vertex, strictly increasing [time unit], shape (vertices); not
+        !> allocated when the path has no time axis (its steps spaced evenly on each leg)
+        real(wp), allocatable :: time(:)
         !> Which quantities were given per vertex, shape (7)
         logical :: varies(7) = .false.
     end type load_path_type
@@ -296,8 +331,14 @@ module ddc_model_types
     type :: model_type
         !> Title of the model
         character(len=:), allocatable :: title
-        !> Young's modulus [stress unit] and Poisson's ratio [-]
+        !> Young's modulus [stress unit] and Poisson's ratio [-] (of the lower material in two
+        !> bonded half-planes)
         real(wp) :: youngs_modulus = 0.0_wp, poissons_ratio = 0.0_wp
+        !> Two bonded half-planes (elements%domain == domain_bimaterial): the material above
+        !> the interface y = interface_y [length unit], its Young's modulus [stress unit]
+        !> and Poisson's ratio [-]
+        real(wp) :: interface_y = 0.0_wp
+        real(wp) :: upper_youngs_modulus = 0.0_wp, upper_poissons_ratio = 0.0_wp
         !> Unit names, stored in the output (labels only: ddc2d converts nothing)
         character(len=:), allocatable :: length_unit, stress_unit, time_unit
         !> Remote stress, tension positive [stress unit]
@@ -327,6 +368,9 @@ module ddc_model_types
         type(sweep_task_record) :: sweep
         !> Loading history; vertex not allocated when the model has none (one state)
         type(load_path_type) :: load_path
+        !> Fluid sources on the fractures (&injection; none: allocated with size 0 or not
+        !> allocated)
+        type(injection_source), allocatable :: injections(:)
         !> Fracture growth; inactive unless the input has &growth
         type(growth_options) :: growth
         !> New fractures inside the rock, when it grows
@@ -343,6 +387,15 @@ module ddc_model_types
     end type model_type
 
 contains
+
+    !> Whether a model has fluid sources (&injection).
+    pure logical function has_sources(model)
+        !> The model
+        type(model_type), intent(in) :: model
+
+        has_sources = .false.
+        if (allocated(model%injections)) has_sources = size(model%injections) > 0
+    end function has_sources
 
     !> A real per-element array of a law added later: by default like any other.
     subroutine act_on_later_law(action, values)
@@ -390,6 +443,9 @@ contains
         call action%on_later_law(elements%rs_v_init)
         call action%on_later_law(elements%rs_sigma0)
         call action%on_later_law(elements%rs_tau0)
+        call action%on_later_law(elements%diffusivity)
+        call action%on_later_law(elements%transmissivity)
+        call action%on_later_law(elements%flow_pressure)
         call action%on_reals(elements%x_mid)
         call action%on_reals(elements%y_mid)
         call action%on_reals(elements%half_length)

@@ -40,9 +40,9 @@ module ddc_output_hdf5
     use ddc_error, only: error_type, set_internal_error
     use ddc_version, only: program_name, program_version, git_commit
     use ddc_model_types, only: model_type, observation_grid, observation_kind_names, &
-        symmetry_names, domain_names, strength_law_count
+        symmetry_names, domain_names, strength_law_count, domain_bimaterial
     use ddc_model_laws, only: strength_law, strength_laws, law_values, acting_values
-    use ddc_model_loads, only: total_pressure, shear_modulus_of
+    use ddc_model_loads, only: static_pressure, shear_modulus_of
     use ddc_model_fingerprint, only: recorded_fingerprint
     use ddc_model_results, only: model_results, state_free, state_stick, state_slip, &
         state_open
@@ -52,6 +52,7 @@ module ddc_output_hdf5
         explain_write_failure
     use ddc_output_hdf5_handles, only: h5_object, open_session, close_session, create_file, &
         close_file, create_group, close_group
+    use ddc_output_hdf5_injections, only: write_injections
     use ddc_output_hdf5_initiations, only: write_initiations
     use ddc_output_hdf5_records, only: write_history, write_growth, write_growth_elements
     use ddc_output_hdf5_cycle, only: write_cycle, write_rate_state
@@ -76,8 +77,8 @@ module ddc_output_hdf5
         //'3 mixed_us_sn, 4 mixed_ss_un, 5 contact, 6 prescribed_dd'
     !> What a cycle model's coding adds (the files of other models stay as they were)
     character(len=*), parameter :: rate_state_coding = ', 7 rate_state'
-    character(len=*), parameter :: graded_coding = '0 tip element as long as its ' &
-        //'neighbour, 1 graded mesh at the tip (K less accurate)'
+    character(len=*), parameter :: graded_coding = '0 the elements near the tip as long '// &
+        'as the tip element, 1 graded mesh at the tip (K less accurate)'
     character(len=*), parameter :: near_coding = '0 clear, 1 within one element length ' &
         //'of an element centre (reduced accuracy), 2 on an element or at an element end ' &
         //'(value NaN)'
@@ -113,6 +114,7 @@ contains
             call write_root_attributes(root, model, provenance, error)
             call write_elements(root, model, results, error)
             call write_fractures(root, model, error)
+            call write_injections(root, model, error)
             call write_tips(root, model, results, error)
             call write_fields(root, model, results, error)
             ! The file's own writing time: everything written before the solver record.
@@ -205,6 +207,8 @@ contains
         end if
         call write_attribute(root, 'length_unit', allocated_text(model%length_unit), error)
         call write_attribute(root, 'stress_unit', allocated_text(model%stress_unit), error)
+        if (allocated(model%load_path%time)) call write_attribute(root, 'time_unit', &
+            allocated_text(model%time_unit), error)
         call write_attribute(root, 'youngs_modulus', model%youngs_modulus, error)
         call write_attribute(root, 'poissons_ratio', model%poissons_ratio, error)
         call write_attribute(root, 'shear_modulus', shear_modulus_of(model), error)
@@ -219,9 +223,16 @@ contains
                              trim(symmetry_names(model%elements%symmetry%kind)), error)
         call write_attribute(root, 'symmetry_lines', [model%elements%symmetry%xsym, &
                                                       model%elements%symmetry%ysym], error)
-        ! 'full_plane' or 'half_plane' (free surface y = 0), d(sxx, syy, sxy)/dy and the pore
-        ! fluid (p0, dp_dy): docs/output-reference.md#layout
+        ! 'full_plane', 'half_plane' (free surface y = 0) or 'bimaterial' (with the interface
+        ! and the upper material; youngs_modulus, poissons_ratio and shear_modulus are then
+        ! the lower one's), d(sxx, syy, sxy)/dy and the pore fluid (p0, dp_dy):
+        ! docs/output-reference.md#layout
         call write_attribute(root, 'domain', trim(domain_names(model%elements%domain)), error)
+        if (model%elements%domain == domain_bimaterial) then
+            call write_attribute(root, 'interface_y', model%interface_y, error)
+            call write_attribute(root, 'upper_youngs_modulus', model%upper_youngs_modulus, error)
+            call write_attribute(root, 'upper_poissons_ratio', model%upper_poissons_ratio, error)
+        end if
         call write_attribute(root, 'remote_stress_gradient', model%stress_gradient, error)
         call write_attribute(root, 'pore_fluid', model%pore_fluid, error)
         call write_attribute(root, 'model_fingerprint', recorded_fingerprint(model), error)
@@ -240,7 +251,7 @@ contains
         type(model_results), intent(in) :: results
         type(error_type), allocatable, intent(inout) :: error
         type(h5_object) :: group
-        character(len=:), allocatable :: length, stress, given
+        character(len=:), allocatable :: length, stress, given, time
 
         length = allocated_text(model%length_unit)
         stress = allocated_text(model%stress_unit)
@@ -276,8 +287,9 @@ contains
             call write_int_1d(group, 'state', r%state, error, state_coding)
             call write_real_1d(group, 'mu', e%mu, '1', error)
             call write_real_1d(group, 'sf', e%sf, stress, error)
-            ! Contact elements: the given pressure plus the pore fluid
-            call write_real_1d(group, 'pressure', total_pressure(e, model%pore_fluid), stress, &
+            ! Contact elements: the given pressure plus the pore fluid (what diffused from
+            ! fluid sources changes in time: /history/pressure)
+            call write_real_1d(group, 'pressure', static_pressure(e, model%pore_fluid), stress, &
                                error)
             ! Strength beyond Coulomb as it acts, and what was left of it at the end.
             call write_strength_laws(group, model, stress, length, error)
@@ -292,6 +304,15 @@ contains
             if (allocated(r%ds_elastic)) then
                 call write_real_1d(group, 'ds_elastic', r%ds_elastic, length, error)
                 call write_real_1d(group, 'dn_elastic', r%dn_elastic, length, error)
+            end if
+            ! Flow along the fractures: the hydraulic properties, where some element conducts
+            ! (the closed forms ddc2d-plot draws need them).
+            if (any(e%diffusivity > 0.0_wp)) then
+                time = allocated_text(model%time_unit)
+                call write_real_1d(group, 'diffusivity', e%diffusivity, length//'^2/'//time, &
+                                   error)
+                call write_real_1d(group, 'transmissivity', e%transmissivity, &
+                                   length//'^3/('//stress//' '//time//')', error)
             end if
             call write_growth_elements(group, model, results%growth, error)
             if (model%cycle%active) call write_rate_state(group, model, error)

@@ -69,6 +69,13 @@ contains
             call write_attribute(group, 'flaw_length', o%flaw_length, error)
             call write_attribute(group, 'flaws', size(o%flaw_x), error)
         end associate
+        ! How close the last check that started nothing came (it has no row).
+        if (record%largest_step > 0) then
+            call write_attribute(group, 'largest_tension', record%largest_tension, error)
+            call write_attribute(group, 'largest_tension_x', record%largest_x, error)
+            call write_attribute(group, 'largest_tension_y', record%largest_y, error)
+            call write_attribute(group, 'largest_tension_step', record%largest_step, error)
+        end if
         call close_group(group, error)
     end subroutine write_initiations
 

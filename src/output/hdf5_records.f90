@@ -26,7 +26,7 @@ module ddc_output_hdf5_records
         !> The group the datasets go to, and /growth/trials (criterion 'work')
         type(h5_object) :: group, trials
         !> Unit names of the model
-        character(len=:), allocatable :: length, stress
+        character(len=:), allocatable :: length, stress, time
         !> Which load quantities the load path varies (load_path_names), shape (7)
         logical :: varies(size(load_path_names)) = .false.
         !> The model has a load path
@@ -111,6 +111,9 @@ contains
             call write_attribute(group, 'steps_taken', record%steps_taken, writer%error)
             call write_attribute(group, 'end_reason', trim(growth_end_names(record%end_reason)), &
                                  writer%error)
+            ! Only a run that stopped at a failed step has it.
+            if (allocated(record%failure)) call write_attribute(group, 'failure', &
+                                                                record%failure, writer%error)
             call write_attribute(group, 'reason_coding', reason_coding(), writer%error)
         end associate
         call close_group(writer%group, writer%error)
@@ -149,6 +152,7 @@ contains
 
         writer%length = allocated_text(model%length_unit)
         writer%stress = allocated_text(model%stress_unit)
+        writer%time = allocated_text(model%time_unit)
         writer%load_path = allocated(model%load_path%vertex)
         writer%varies = model%load_path%varies
     end subroutine set_up
@@ -190,7 +194,7 @@ contains
         type(record_column), intent(in) :: column
         character(len=:), allocatable :: units
 
-        units = units_text(column%units, writer%stress, writer%length)
+        units = units_text(column%units, writer%stress, writer%length, writer%time)
     end function units_of
 
     !> A real column of one value per step or record.

@@ -13,7 +13,8 @@ module ddc_output_restart_read
     use ddc_model_records, only: record_column, record_column_action, &
         for_each_history_column, for_each_growth_column, column_loads, column_growth_steps, &
         column_growing_tips, column_growing_tip_steps, column_records, column_path_records, &
-        column_elements, column_strength_steps, column_work_records, column_trials
+        column_elements, column_strength_steps, column_work_records, column_trials, &
+        column_time_steps, column_flow_element_steps, column_flow_steps, column_fracture_steps
     use ddc_output_hdf5_read, only: read_real_dataset, read_int_dataset, read_string_dataset, &
         read_dataset_dims, read_string_attribute, read_int_attribute, read_real_attribute, &
         has_dataset
@@ -189,8 +190,8 @@ contains
 
     !> Whether the reader reads a column: every column a resumed run goes on from (the loads
     !> follow from the model's path, the tips that may grow and their grown length from the
-    !> growth record), those of growth along a load path and of the strengths in force when
-    !> the file has them.
+    !> growth record), those of growth along a load path, of the strengths in force, of time
+    !> and of the fluid sources when the file has them.
     logical function reads(reader, column)
         !> The reader
         type(restart_reader), intent(in) :: reader
@@ -203,7 +204,8 @@ contains
         case (column_loads, column_growing_tips, column_growing_tip_steps)
             reads = .false.
         case (column_growth_steps, column_path_records, column_strength_steps, &
-              column_work_records, column_trials)
+              column_work_records, column_trials, column_time_steps, &
+              column_flow_element_steps, column_flow_steps, column_fracture_steps)
             reads = has_dataset(reader%path, dataset_of(column))
         case default
             reads = .true.

@@ -4,9 +4,8 @@
 !> row; 2i: Dn and the normal row), so that with an even block size the four entries of a
 !> pair of elements lie on one process and each pair is evaluated once.
 module ddc_parallel_assembly
-    use ddc_kinds, only: wp
     use ddc_error, only: error_type
-    use ddc_model_types, only: element_set
+    use ddc_model_medium, only: elastic_medium
     use ddc_influence_assembly, only: fill_influence_block
     use ddc_parallel_context, only: parallel_context
     use ddc_parallel_matrix, only: distributed_matrix, create_matrix, global_rows, &
@@ -35,14 +34,11 @@ contains
     end function normal_unknown
 
     !> Assemble the 2n x 2n system of the model, rows as the row kinds say (collective).
-    subroutine assemble_distributed(context, elements, shear_modulus, nu, shear_row, &
-                                    normal_row, matrix, error)
+    subroutine assemble_distributed(context, medium, shear_row, normal_row, matrix, error)
         !> The processes and their grid
         type(parallel_context), intent(in) :: context
-        !> Elements with geometry computed
-        type(element_set), intent(in) :: elements
-        !> Shear modulus [stress unit] and Poisson's ratio [-]
-        real(wp), intent(in) :: shear_modulus, nu
+        !> The medium, element geometry computed
+        type(elastic_medium), intent(in) :: medium
         !> Kind of the shear row and of the normal row of each element, shape (n)
         integer, intent(in) :: shear_row(:), normal_row(:)
         !> The system, interleaved
@@ -52,13 +48,12 @@ contains
         integer, allocatable :: row_element(:), row_s(:), row_n(:)
         integer, allocatable :: col_element(:), col_s(:), col_n(:)
 
-        call create_matrix(context, 2 * elements%n, 2 * elements%n, matrix, error)
+        call create_matrix(context, 2 * medium%elements%n, 2 * medium%elements%n, matrix, error)
         if (allocated(error)) return
         call local_elements(global_rows(context, matrix), row_element, row_s, row_n)
         call local_elements(global_columns(context, matrix), col_element, col_s, col_n)
-        call fill_influence_block(elements, shear_modulus, nu, shear_row, normal_row, &
-                                  row_element, row_s, row_n, col_element, col_s, col_n, &
-                                  matrix%a)
+        call fill_influence_block(medium, shear_row, normal_row, row_element, row_s, row_n, &
+                                  col_element, col_s, col_n, matrix%a)
     end subroutine assemble_distributed
 
     !> The elements of some local rows (or columns) in interleaved order, and the local

@@ -35,6 +35,9 @@ contains
 
         call share(context, model%youngs_modulus)
         call share(context, model%poissons_ratio)
+        call share(context, model%interface_y)
+        call share(context, model%upper_youngs_modulus)
+        call share(context, model%upper_poissons_ratio)
         call share(context, model%sxx)
         call share(context, model%syy)
         call share(context, model%sxy)

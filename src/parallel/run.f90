@@ -5,7 +5,6 @@
 module ddc_parallel_run
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
-    use ddc_model_types, only: element_set
     use ddc_model_medium, only: elastic_medium
     use ddc_model_results, only: field_result
     use ddc_solve_operator, only: elastic_operator
@@ -46,20 +45,20 @@ contains
     end subroutine distributed_make_operator
 
     !> Each process computes the responses of its share of the elements; all get them all.
-    subroutine distributed_response(this, elements, shear_modulus, nu, ds, dn, &
-                                    shear_traction, normal_traction, us_minus, un_minus)
+    subroutine distributed_response(this, medium, ds, dn, shear_traction, normal_traction, &
+                                    us_minus, un_minus)
         class(distributed_engine), intent(inout) :: this
-        type(element_set), intent(in) :: elements
-        real(wp), intent(in) :: shear_modulus, nu
+        type(elastic_medium), intent(in) :: medium
         real(wp), intent(in) :: ds(:), dn(:)
         real(wp), intent(out) :: shear_traction(:), normal_traction(:)
         real(wp), intent(out) :: us_minus(:), un_minus(:)
         real(wp), allocatable :: ts(:), tn(:), us(:), un(:)
         integer :: first, last
 
-        call split_range(elements%n, this%context%processes, this%context%rank, first, last)
+        call split_range(medium%elements%n, this%context%processes, this%context%rank, first, &
+                         last)
         allocate (ts(first:last), tn(first:last), us(first:last), un(first:last))
-        call kernel_response(elements, shear_modulus, nu, ds, dn, ts, tn, us, un, first)
+        call kernel_response(medium, ds, dn, ts, tn, us, un, first)
         call gather_on_all(this%context, ts, shear_traction)
         call gather_on_all(this%context, tn, normal_traction)
         call gather_on_all(this%context, us, us_minus)
@@ -67,11 +66,10 @@ contains
     end subroutine distributed_response
 
     !> Each process evaluates its share of the points; the root gets them all.
-    subroutine distributed_field(this, elements, shear_modulus, nu, remote, ds, dn, x, y, &
-                                 field, gradient)
+    subroutine distributed_field(this, medium, remote, ds, dn, x, y, field, gradient)
         class(distributed_engine), intent(inout) :: this
-        type(element_set), intent(in) :: elements
-        real(wp), intent(in) :: shear_modulus, nu, remote(3)
+        type(elastic_medium), intent(in) :: medium
+        real(wp), intent(in) :: remote(3)
         real(wp), intent(in) :: ds(:), dn(:)
         real(wp), intent(in) :: x(:), y(:)
         type(field_result), intent(out) :: field
@@ -80,8 +78,8 @@ contains
         integer :: first, last
 
         call split_range(size(x), this%context%processes, this%context%rank, first, last)
-        call evaluate_field(elements, shear_modulus, nu, remote, ds, dn, x(first:last), &
-                            y(first:last), part, gradient)
+        call evaluate_field(medium, remote, ds, dn, x(first:last), y(first:last), part, &
+                            gradient)
         call gather_on_root(this%context, part%ux, field%ux)
         call gather_on_root(this%context, part%uy, field%uy)
         call gather_on_root(this%context, part%sxx, field%sxx)

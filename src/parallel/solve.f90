@@ -64,9 +64,8 @@ contains
         allocate (distributed_stiffness :: operator%stiffness)
         select type (s => operator%stiffness)
         type is (distributed_stiffness)
-            call assemble_stiffness(context, medium%elements, medium%shear_modulus, &
-                                    medium%poissons_ratio, operator%shear_row, &
-                                    operator%normal_row, s, error)
+            call assemble_stiffness(context, medium, operator%shear_row, operator%normal_row, &
+                                    s, error)
             if (allocated(error)) return
             operator%contact = s%contact_elements
             operator%free = s%free_elements

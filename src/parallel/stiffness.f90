@@ -17,7 +17,8 @@ module ddc_parallel_stiffness
     use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
-    use ddc_model_types, only: element_set, condition_contact
+    use ddc_model_types, only: condition_contact
+    use ddc_model_medium, only: elastic_medium
     use ddc_contact_stiffness, only: stiffness_operator, reduced_system
     use ddc_contact_counts, only: factor_counts
     use ddc_parallel_context, only: parallel_context
@@ -61,14 +62,11 @@ module ddc_parallel_stiffness
 contains
 
     !> Assemble the model's system on the processes and index its unknowns (collective).
-    subroutine assemble_stiffness(context, elements, shear_modulus, nu, shear_row, normal_row, &
-                                  stiffness, error)
+    subroutine assemble_stiffness(context, medium, shear_row, normal_row, stiffness, error)
         !> The processes and their grid
         type(parallel_context), intent(in) :: context
-        !> Elements with geometry computed
-        type(element_set), intent(in) :: elements
-        !> Shear modulus [stress unit] and Poisson's ratio [-]
-        real(wp), intent(in) :: shear_modulus, nu
+        !> The medium, element geometry computed
+        type(elastic_medium), intent(in) :: medium
         !> Kind of the shear row and of the normal row of each element, shape (n)
         integer, intent(in) :: shear_row(:), normal_row(:)
         !> The operator
@@ -78,10 +76,9 @@ contains
         integer :: i, nf
 
         stiffness%context = context
-        call assemble_distributed(context, elements, shear_modulus, nu, shear_row, normal_row, &
-                                  stiffness%system, error)
+        call assemble_distributed(context, medium, shear_row, normal_row, stiffness%system, error)
         if (allocated(error)) return
-        associate (every => [(i, i = 1, elements%n)])
+        associate (every => [(i, i = 1, medium%elements%n)], elements => medium%elements)
             stiffness%contact_elements = pack(every, elements%condition == condition_contact)
             stiffness%free_elements = pack(every, elements%condition /= condition_contact)
         end associate
@@ -91,7 +88,7 @@ contains
         allocate (stiffness%free_unknowns(2 * nf))
         stiffness%free_unknowns(1::2) = shear_unknown(stiffness%free_elements)
         stiffness%free_unknowns(2::2) = normal_unknown(stiffness%free_elements)
-        allocate (stiffness%is_contact(2 * elements%n), source=.false.)
+        allocate (stiffness%is_contact(2 * medium%elements%n), source=.false.)
         stiffness%is_contact(stiffness%contact_unknowns) = .true.
         allocate (stiffness%free_dd(2 * nf), source=0.0_wp)
     end subroutine assemble_stiffness

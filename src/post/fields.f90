@@ -9,6 +9,7 @@ module ddc_post_fields
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use ddc_kinds, only: wp
     use ddc_model_types, only: element_set
+    use ddc_model_medium, only: elastic_medium, remote_stress_at
     use ddc_model_results, only: field_result, point_clear, point_on_element
     use ddc_influence_kernel, only: dd_kernel, face_positive
     use ddc_influence_assembly, only: image_transform, image_transforms, image_of, &
@@ -43,14 +44,13 @@ contains
     !> Fields at the points (x, y): displacement relative to the far field and total stress.
     !> With symmetry (elements%symmetry) the images of every element contribute and count
     !> for the flags. In a half-plane (elements%domain) a point on the free surface y = 0 is
-    !> an ordinary point unless it lies on an element end.
-    subroutine evaluate_field(elements, shear_modulus, nu, remote, ds, dn, x, y, field, &
-                              gradient, general)
-        !> Elements with geometry computed
-        type(element_set), intent(in) :: elements
-        !> Shear modulus [stress unit] and Poisson's ratio [-]
-        real(wp), intent(in) :: shear_modulus, nu
-        !> Remote stress (sxx, syy, sxy) [stress unit] (at y = 0 when a gradient is given)
+    !> an ordinary point unless it lies on an element end; in two bonded half-planes a point
+    !> takes the stress of its material (a point on the interface the lower one's).
+    subroutine evaluate_field(medium, remote, ds, dn, x, y, field, gradient, general)
+        !> The medium, element geometry computed
+        type(elastic_medium), intent(in) :: medium
+        !> Remote stress (sxx, syy, sxy) [stress unit] (at y = 0 when a gradient is given; the
+        !> lower material's in two bonded half-planes)
         real(wp), intent(in) :: remote(3)
         !> Displacement discontinuities [length unit], shape (n)
         real(wp), intent(in) :: ds(:), dn(:)
@@ -68,11 +68,12 @@ contains
 
         g = 0.0_wp
         if (present(gradient)) g = gradient
-        call select_kernel(elements, general, use_general, kernel)
+        call select_kernel(medium, general, use_general, kernel)
         if (use_general) then
-            call field_with(kernel, elements, shear_modulus, nu, remote, g, ds, dn, x, y, field)
+            call field_with(kernel, medium, remote, g, ds, dn, x, y, field)
         else
-            call field_full_plane(elements, shear_modulus, nu, remote, g, ds, dn, x, y, field)
+            call field_full_plane(medium%elements, medium%shear_modulus, medium%poissons_ratio, &
+                                  remote, g, ds, dn, x, y, field)
         end if
     end subroutine evaluate_field
 
@@ -111,11 +112,10 @@ contains
     end subroutine field_full_plane
 
     !> evaluate_field with the kernel and the gradient given.
-    subroutine field_with(kernel, elements, shear_modulus, nu, remote, gradient, ds, dn, x, y, &
-                          field)
+    subroutine field_with(kernel, medium, remote, gradient, ds, dn, x, y, field)
         procedure(kernel_function) :: kernel
-        type(element_set), intent(in) :: elements
-        real(wp), intent(in) :: shear_modulus, nu, remote(3), gradient(3)
+        type(elastic_medium), intent(in) :: medium
+        real(wp), intent(in) :: remote(3), gradient(3)
         real(wp), intent(in) :: ds(:), dn(:)
         real(wp), intent(in) :: x(:), y(:)
         type(field_result), intent(out) :: field
@@ -125,17 +125,16 @@ contains
         integer :: ip, j, np, flag
 
         np = size(x)
-        images = image_transforms(elements%symmetry)
+        images = image_transforms(medium%elements%symmetry)
         allocate (field%ux(np), field%uy(np), field%sxx(np), field%syy(np), field%sxy(np), &
                   field%flag(np))
         nan = ieee_value(1.0_wp, ieee_quiet_nan)
         !$omp parallel do default(none) schedule(dynamic, 16) private(ip, j, k, acc, flag) &
-        !$omp shared(elements, shear_modulus, nu, remote, gradient, ds, dn, x, y, field, np, &
-        !$omp        nan, images)
+        !$omp shared(medium, remote, gradient, ds, dn, x, y, field, np, nan, images)
         do ip = 1, np
             field%flag(ip) = point_clear
-            do j = 1, elements%n
-                flag = element_flag(x(ip), y(ip), elements, j, images)
+            do j = 1, medium%elements%n
+                flag = element_flag(x(ip), y(ip), medium%elements, j, images)
                 field%flag(ip) = max(field%flag(ip), flag)
                 if (flag == point_on_element) exit
             end do
@@ -143,10 +142,9 @@ contains
                 call store_point(field, ip, spread(nan, 1, 5))
                 cycle
             end if
-            acc = [0.0_wp, 0.0_wp, remote + gradient * y(ip)]
-            do j = 1, elements%n
-                k = kernel_with_images(kernel, x(ip), y(ip), elements, j, images, &
-                                       shear_modulus, nu, face_positive)
+            acc = [0.0_wp, 0.0_wp, remote_stress_at(medium, remote, gradient, y(ip))]
+            do j = 1, medium%elements%n
+                k = kernel_with_images(kernel, x(ip), y(ip), medium, j, images, face_positive)
                 acc(1) = acc(1) + k%ux(1) * ds(j) + k%ux(2) * dn(j)
                 acc(2) = acc(2) + k%uy(1) * ds(j) + k%uy(2) * dn(j)
                 acc(3) = acc(3) + k%sxx(1) * ds(j) + k%sxx(2) * dn(j)

@@ -18,6 +18,8 @@ module ddc_post_higher_order_k
     use ddc_error, only: error_type
     use ddc_model_types, only: element_set, condition_contact, condition_traction, rigid_joint
     use ddc_model_results, only: tip_set
+    use ddc_model_medium, only: elastic_medium, elastic_material, element_material, &
+        remote_stress_at
     use ddc_contact_states, only: state_stick, state_slip
     use ddc_allocation, only: allocation_failed, real_bytes
     use ddc_influence_kernel, only: dd_kernel, face_negative
@@ -99,11 +101,9 @@ contains
     end subroutine uses_higher_order
 
     !> Assemble the traction rows of the re-solve of the fractures with tips.
-    subroutine prepare_higher_order(elements, shear_modulus, nu, tips, solver, error)
-        !> Elements with geometry computed
-        type(element_set), intent(in) :: elements
-        !> Shear modulus [stress unit] and Poisson's ratio [-]
-        real(wp), intent(in) :: shear_modulus, nu
+    subroutine prepare_higher_order(medium, tips, solver, error)
+        !> The medium, element geometry computed
+        type(elastic_medium), intent(in) :: medium
         !> The tips (ddc_post_tips)
         type(tip_set), intent(in) :: tips
         !> The re-solve, its traction rows assembled (factorized by higher_order_k)
@@ -112,7 +112,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         integer :: k, m, stat
 
-        associate (s => solver)
+        associate (s => solver, elements => medium%elements)
             s%solved = pack([(k, k = 1, elements%n)], re_solved(elements, tips))
             allocate (s%local(elements%n), source=0)
             s%local(s%solved) = [(k, k = 1, size(s%solved))]
@@ -126,20 +126,18 @@ contains
                     itoa(size(s%solved))//' elements', 2.0_wp * real_bytes * real(m, wp)**2)
                 return
             end if
-            call assemble(elements, shear_modulus, nu, s%solved, s%weighted, s%traction)
+            call assemble(medium, s%solved, s%weighted, s%traction)
         end associate
     end subroutine prepare_higher_order
 
     !> K_I and K_II of the re-solved tips for one solution of the model; the other tips'
     !> values are left as given.
-    subroutine higher_order_k(solver, elements, shear_modulus, nu, ds, dn, shear_traction, &
-                              normal_traction, mu, remote, gradient, state, tips, k1, k2, error)
+    subroutine higher_order_k(solver, medium, ds, dn, shear_traction, normal_traction, mu, &
+                              remote, gradient, state, tips, k1, k2, error)
         !> The re-solve (prepare_higher_order); factorized again where the conditions changed
         type(higher_order_solver), intent(inout) :: solver
-        !> Elements with geometry computed
-        type(element_set), intent(in) :: elements
-        !> Shear modulus [stress unit] and Poisson's ratio [-]
-        real(wp), intent(in) :: shear_modulus, nu
+        !> The medium, element geometry computed
+        type(elastic_medium), intent(in) :: medium
         !> The solve's DDs [length unit] and total midpoint tractions [stress unit], shape (n)
         real(wp), intent(in) :: ds(:), dn(:), shear_traction(:), normal_traction(:)
         !> Friction in force [-], shape (n)
@@ -159,7 +157,7 @@ contains
         integer :: k, l, i, node, row
 
         allocate (rows(5, size(solver%solved)))
-        rows = row_conditions(elements, ds, shear_traction, mu, state, solver%solved)
+        rows = row_conditions(medium%elements, ds, shear_traction, mu, state, solver%solved)
         if (.not. allocated(solver%rows)) then
             call factorize(solver, rows, error)
         else if (any(rows /= solver%rows)) then
@@ -167,8 +165,8 @@ contains
         end if
         if (allocated(error)) return
         allocate (r(size(solver%lu, 1)), q(size(solver%lu, 1), 1))
-        call load_of(elements, shear_modulus, nu, ds, dn, shear_traction, normal_traction, &
-                     remote, gradient, solver%solved, solver%local, solver%weighted, r)
+        call load_of(medium, ds, dn, shear_traction, normal_traction, remote, gradient, &
+                     solver%solved, solver%local, solver%weighted, r)
         ! Each row's condition holds for the solve's values on its element.
         do l = 1, size(solver%solved)
             i = solver%solved(l)
@@ -183,7 +181,8 @@ contains
         do k = 1, tips%n
             l = solver%local(tips%element(k))
             if (l == 0) cycle
-            call tip_k(shear_modulus, nu, solver, q(:, 1), tips, k, k1(k), k2(k))
+            call tip_k(element_material(medium, tips%element(k)), solver, q(:, 1), tips, k, &
+                       k1(k), k2(k))
             ! A DD held at zero on the tip element has no K (exactly: the factorization's
             ! pivots may leave rounding in it).
             if (rows(1, l) == 0.0_wp) k2(k) = 0.0_wp
@@ -426,9 +425,8 @@ contains
     end function sampled_curvature
 
     !> The re-solve's matrix: tractions at the nodes per unit nodal DD.
-    subroutine assemble(elements, shear_modulus, nu, solved, weighted, matrix)
-        type(element_set), intent(in) :: elements
-        real(wp), intent(in) :: shear_modulus, nu
+    subroutine assemble(medium, solved, weighted, matrix)
+        type(elastic_medium), intent(in) :: medium
         integer, intent(in) :: solved(:)
         type(weighted_element), intent(in) :: weighted(:)
         real(wp), intent(out) :: matrix(:, :)
@@ -438,11 +436,11 @@ contains
         real(wp) :: x, y, c, s, s_self, block(2, per_element)
         integer :: l, node, row, m
 
-        call select_kernel(elements, .true., use_general, kernel, stress_only=.true.)
-        images = image_transforms(elements%symmetry)
+        call select_kernel(medium, .true., use_general, kernel, stress_only=.true.)
+        images = image_transforms(medium%elements%symmetry)
         ! Each thread owns the rows of its receiving elements.
         !$omp parallel do default(none) schedule(dynamic) private(l, node, row, m, x, y, c, s, &
-        !$omp     s_self, block) shared(elements, shear_modulus, nu, solved, weighted, matrix, &
+        !$omp     s_self, block) shared(medium, solved, weighted, matrix, &
         !$omp     kernel, images)
         do l = 1, size(solved)
             do node = 1, 3
@@ -451,8 +449,8 @@ contains
                 do m = 1, size(solved)
                     s_self = merge(0.5_wp * weighted(l)%length * (1.0_wp + node_xi(node)), &
                                    -1.0_wp, m == l)
-                    call element_tractions(kernel, images, shear_modulus, nu, weighted(m), &
-                                           s_self, x, y, c, s, block)
+                    call element_tractions(kernel, images, medium, weighted(m), s_self, x, y, c, &
+                                           s, block)
                     matrix(row + 1:row + 2, per_element * (m - 1) + 1:per_element * m) = block
                 end do
             end do
@@ -462,10 +460,9 @@ contains
 
     !> The re-solve's right-hand side: at each node the solve's traction on its element,
     !> less the remote stress there and the share of the elements not re-solved.
-    subroutine load_of(elements, shear_modulus, nu, ds, dn, shear_traction, normal_traction, &
-                       remote, gradient, solved, local, weighted, rhs)
-        type(element_set), intent(in) :: elements
-        real(wp), intent(in) :: shear_modulus, nu
+    subroutine load_of(medium, ds, dn, shear_traction, normal_traction, remote, gradient, &
+                       solved, local, weighted, rhs)
+        type(elastic_medium), intent(in) :: medium
         real(wp), intent(in) :: ds(:), dn(:), shear_traction(:), normal_traction(:)
         real(wp), intent(in) :: remote(3), gradient(3)
         integer, intent(in) :: solved(:), local(:)
@@ -478,10 +475,10 @@ contains
         real(wp) :: x, y, c, s, ts(2), tn(2), stress(3)
         integer :: l, i, node, row, j
 
-        call select_kernel(elements, .true., use_general, kernel, stress_only=.true.)
-        images = image_transforms(elements%symmetry)
+        call select_kernel(medium, .true., use_general, kernel, stress_only=.true.)
+        images = image_transforms(medium%elements%symmetry)
         !$omp parallel do default(none) schedule(dynamic) private(l, i, node, row, j, x, y, c, &
-        !$omp     s, ts, tn, stress, kj) shared(elements, shear_modulus, nu, ds, dn, &
+        !$omp     s, ts, tn, stress, kj) shared(medium, ds, dn, &
         !$omp     shear_traction, normal_traction, remote, gradient, solved, local, weighted, &
         !$omp     rhs, kernel, images)
         do l = 1, size(solved)
@@ -489,15 +486,14 @@ contains
             do node = 1, 3
                 row = per_element * (l - 1) + 2 * (node - 1)
                 call node_point(weighted(l), node, x, y, c, s)
-                stress = remote + gradient * y
+                stress = remote_stress_at(medium, remote, gradient, y)
                 rhs(row + 1) = shear_traction(i) - &
                                (-(stress(1) - stress(2)) * s * c + stress(3) * (c**2 - s**2))
                 rhs(row + 2) = normal_traction(i) - &
                                (stress(1) * s**2 - 2.0_wp * stress(3) * s * c + stress(2) * c**2)
-                do j = 1, elements%n
+                do j = 1, medium%elements%n
                     if (local(j) > 0) cycle
-                    kj = kernel_with_images(kernel, x, y, elements, j, images, shear_modulus, &
-                                            nu, face_negative)
+                    kj = kernel_with_images(kernel, x, y, medium, j, images, face_negative)
                     call resolved_tractions(kj, c, s, ts, tn)
                     rhs(row + 1) = rhs(row + 1) - ts(1) * ds(j) - ts(2) * dn(j)
                     rhs(row + 2) = rhs(row + 2) - tn(1) * ds(j) - tn(2) * dn(j)
@@ -518,8 +514,9 @@ contains
 
     !> K of tip k from the re-solve's nodal DDs q (in the frame of the fracture's tangent at
     !> the tip).
-    pure subroutine tip_k(shear_modulus, nu, solver, q, tips, k, k1, k2)
-        real(wp), intent(in) :: shear_modulus, nu
+    pure subroutine tip_k(material, solver, q, tips, k, k1, k2)
+        !> The material of the tip element
+        type(elastic_material), intent(in) :: material
         type(higher_order_solver), intent(in) :: solver
         real(wp), intent(in) :: q(:)
         type(tip_set), intent(in) :: tips
@@ -547,7 +544,8 @@ contains
         end associate
         ! The opening 4 (1 - nu) / G K sqrt(r / (2 pi)) behind a tip, with D = -opening;
         ! + 0 turns -0 into 0.
-        factor = -shear_modulus * sqrt(2.0_wp * pi / h) / (4.0_wp * (1.0_wp - nu))
+        factor = -material%shear_modulus * sqrt(2.0_wp * pi / h) / &
+                 (4.0_wp * (1.0_wp - material%poissons_ratio))
         k1 = factor * limit(2) + 0.0_wp
         k2 = factor * limit(1) + 0.0_wp
     end subroutine tip_k

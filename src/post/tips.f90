@@ -4,17 +4,29 @@ module ddc_post_tips
     use ddc_model_types, only: element_set, symmetry_x, symmetry_y, symmetry_both, &
         domain_half_plane
     use ddc_model_results, only: tip_set
+    use ddc_model_medium, only: elastic_medium, elastic_material, element_material
     use ddc_sorting, only: sorted_order, first_at_least
     implicit none
     private
 
     public :: find_tips, stress_intensity, tip_chain, end_neighbours, end_on_mirror
+    public :: walk_tip_zone, zone_size, max_zone
 
     !> End points closer than this fraction of the shorter element's length are shared.
     real(wp), parameter :: shared_end_tolerance = 1.0e-8_wp
-    !> A tip element longer or shorter than its neighbour by more than this fraction makes
-    !> the tip graded
+    !> An element of the tip zone longer or shorter than the tip element (or the tip
+    !> element's neighbour) by more than this fraction makes the tip graded
     real(wp), parameter :: graded_tolerance = 1.0e-2_wp
+    !> The tip zone (docs/theory/tips.md#k-from-the-tip-element): the elements from the tip
+    !> inward whose start lies within zone_reach lengths of the largest element so far, at
+    !> most max_zone of them
+    real(wp), parameter :: zone_reach = 8.0_wp
+    integer, parameter :: max_zone = 64
+    !> Relative margin that keeps a start at the zone's bound (a zone of equal elements) from
+    !> depending on round-off
+    real(wp), parameter :: zone_tie_tolerance = 1.0e-6_wp
+    !> A zone whose direction turns more than this [cos] is not straight (10 degrees)
+    real(wp), parameter :: straight_cos = 0.98480775301220806_wp
 
     !> The ends of every element sorted by x, for finding the elements at a point.
     type :: end_index
@@ -186,19 +198,30 @@ contains
     end subroutine end_point
 
     !> Tips (element ends shared with no other element) with K_I and K_II from the tip
-    !> element's DDs: K = -G D / (2 (1 - nu) sqrt(h)), h the tip element's half-length.
-    subroutine find_tips(elements, shear_modulus, nu, ds, dn, tips)
-        !> Elements with geometry computed
-        type(element_set), intent(in) :: elements
-        !> Shear modulus [stress unit] and Poisson's ratio [-]
-        real(wp), intent(in) :: shear_modulus, nu
+    !> element's DDs: K = -G D / (2 (1 - nu) sqrt(h)), h the tip element's half-length, G
+    !> and nu those of the tip element's material.
+    subroutine find_tips(medium, ds, dn, tips)
+        !> The medium, element geometry computed
+        type(elastic_medium), intent(in) :: medium
         !> Displacement discontinuities [length unit], shape (n)
         real(wp), intent(in) :: ds(:), dn(:)
         !> The tips found, in element order (begin before end)
         type(tip_set), intent(out) :: tips
+
+        call locate_tips(medium%elements, tips)
+        call stress_intensity(medium, tips%element, ds, dn, tips%k1, tips%k2)
+        tips%k_method = 'tip_element'
+    end subroutine find_tips
+
+    !> The tips of the elements, K allocated.
+    subroutine locate_tips(elements, tips)
+        type(element_set), intent(in) :: elements
+        type(tip_set), intent(out) :: tips
         logical :: is_tip(2, elements%n)
         type(end_index) :: index
         integer :: i, side, k, neighbour
+        real(wp), allocatable :: lengths(:)
+        logical, allocatable :: straight(:)
 
         index = index_ends(elements)
         !$omp parallel do default(none) private(i, side) shared(elements, index, is_tip)
@@ -228,43 +251,117 @@ contains
                 tips%fracture_id(k) = elements%fracture_id(i)
                 tips%element(k) = i
                 tips%side(k) = side
-                ! The neighbour shares the tip element's other end.
+                ! The neighbour shares the tip element's other end; the zone runs on along the
+                ! fracture (a change of length several elements in changes K too).
                 neighbour = element_at_end(elements, index, i, 3 - side)
                 tips%graded(k) = 0
                 if (neighbour > 0) then
                     if (abs(elements%half_length(neighbour) - elements%half_length(i)) > &
                         graded_tolerance * elements%half_length(i)) tips%graded(k) = 1
                 end if
+                call walk_tip_zone(elements, i, side, lengths, straight)
+                if (any(abs(lengths(1:zone_size(lengths)) - lengths(1)) > &
+                        graded_tolerance * lengths(1))) tips%graded(k) = 1
             end do
         end do
-        call stress_intensity(elements, shear_modulus, nu, tips%element, ds, dn, tips%k1, &
-                              tips%k2)
-        tips%k_method = 'tip_element'
-    end subroutine find_tips
+    end subroutine locate_tips
 
     !> K_I and K_II of tips from their elements' DDs: K = -G D / (2 (1 - nu) sqrt(h)), h the
-    !> tip element's half-length.
-    pure subroutine stress_intensity(elements, shear_modulus, nu, element, ds, dn, k1, k2)
-        !> Elements with geometry computed
-        type(element_set), intent(in) :: elements
-        !> Shear modulus [stress unit] and Poisson's ratio [-]
-        real(wp), intent(in) :: shear_modulus, nu
+    !> tip element's half-length, G and nu those of its material.
+    pure subroutine stress_intensity(medium, element, ds, dn, k1, k2)
+        !> The medium, element geometry computed
+        type(elastic_medium), intent(in) :: medium
         !> Tip element of each tip, shape (tips)
         integer, intent(in) :: element(:)
         !> Displacement discontinuities of every element [length unit], shape (n)
         real(wp), intent(in) :: ds(:), dn(:)
         !> Stress intensity factors [stress unit * length unit**0.5], shape (tips)
         real(wp), intent(out) :: k1(:), k2(:)
+        type(elastic_material) :: material
         real(wp) :: factor
         integer :: k, i
 
         do k = 1, size(element)
             i = element(k)
-            factor = -shear_modulus / (2.0_wp * (1.0_wp - nu) * sqrt(elements%half_length(i)))
+            material = element_material(medium, i)
+            factor = -material%shear_modulus / (2.0_wp * (1.0_wp - material%poissons_ratio) * &
+                                                sqrt(medium%elements%half_length(i)))
             ! + 0 turns the -0 of an unloaded mode into 0 for printing.
             k1(k) = factor * dn(i) + 0.0_wp
             k2(k) = factor * ds(i) + 0.0_wp
         end do
     end subroutine stress_intensity
+
+    !> The lengths of the elements from a tip inward along its fracture (at most max_zone,
+    !> while consecutive elements share a vertex), and whether each keeps the tip element's
+    !> direction within 10 degrees.
+    pure subroutine walk_tip_zone(elements, element, side, lengths, straight)
+        !> Elements with geometry computed
+        type(element_set), intent(in) :: elements
+        !> Tip element and its tip end (tip_set%side: 1 begin, 2 end)
+        integer, intent(in) :: element, side
+        !> Lengths [length unit], from the tip element inward
+        real(wp), allocatable, intent(out) :: lengths(:)
+        !> Whether each keeps the tip element's direction
+        logical, allocatable, intent(out) :: straight(:)
+        integer :: i, next, step
+
+        associate (e => elements)
+            ! At an end tip the fracture runs on through lower indices, at a begin tip higher.
+            step = merge(-1, 1, side == 2)
+            allocate (lengths(0), straight(0))
+            i = element
+            do
+                lengths = [lengths, 2.0_wp * e%half_length(i)]
+                straight = [straight, e%cos_beta(i) * e%cos_beta(element) + &
+                            e%sin_beta(i) * e%sin_beta(element) >= straight_cos]
+                if (size(lengths) == max_zone) exit
+                next = i + step
+                if (next < 1 .or. next > e%n) exit
+                if (e%fracture_id(next) /= e%fracture_id(i)) exit
+                if (.not. joined(i, next)) exit
+                i = next
+            end do
+        end associate
+
+    contains
+
+        !> Element a's inner end is element b's outer end (the fracture is one polyline).
+        pure logical function joined(a, b)
+            integer, intent(in) :: a, b
+            real(wp) :: tolerance
+
+            associate (e => elements)
+                tolerance = 1.0e-8_wp * (e%half_length(a) + e%half_length(b))
+                if (step == -1) then
+                    joined = abs(e%x_begin(a) - e%x_end(b)) <= tolerance .and. &
+                             abs(e%y_begin(a) - e%y_end(b)) <= tolerance
+                else
+                    joined = abs(e%x_end(a) - e%x_begin(b)) <= tolerance .and. &
+                             abs(e%y_end(a) - e%y_begin(b)) <= tolerance
+                end if
+            end associate
+        end function joined
+
+    end subroutine walk_tip_zone
+
+    !> Number of elements of the zone of lengths l_1 (tip), l_2, ...: up to the last i with
+    !> l_1 + ... + l_(i-1) < zone_reach max(l_1 ... l_i) (a start at the bound, as in a zone
+    !> of equal elements, counts as beyond it whatever its round-off).
+    pure integer function zone_size(lengths)
+        !> Lengths of the elements from the tip inward [length unit]
+        real(wp), intent(in) :: lengths(:)
+        real(wp) :: start, largest
+        integer :: i
+
+        zone_size = 1
+        start = 0.0_wp
+        largest = 0.0_wp
+        do i = 1, size(lengths)
+            largest = max(largest, lengths(i))
+            if (start < (1.0_wp - zone_tie_tolerance) * zone_reach * largest) zone_size = i
+            start = start + lengths(i)
+        end do
+    end function zone_size
 
 end module ddc_post_tips

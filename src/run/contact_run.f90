@@ -18,8 +18,8 @@
 module ddc_run_contact_run
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
-    use ddc_model_types, only: element_set
-    use ddc_model_medium, only: elastic_medium
+    use ddc_model_types, only: domain_bimaterial
+    use ddc_model_medium, only: elastic_medium, upper_remote_stress
     use ddc_model_results, only: solver_record, state_free, tip_set, element_results
     use ddc_model_loads, only: resolve_remote_stress, total_pressure
     use ddc_contact_options, only: solver_options, matrix_hierarchical
@@ -98,22 +98,38 @@ module ddc_run_contact_run
 
 contains
 
-    !> The load of elements at a remote stress and pore fluid: the stress resolved on each
-    !> element, the contact elements' own pressure plus the pore fluid's.
-    pure function load_of(elements, remote, gradient, pore_fluid) result(load)
-        !> The elements, geometry computed
-        type(element_set), intent(in) :: elements
+    !> The load of a medium's elements at a remote stress and pore fluid: the stress resolved
+    !> on each element (in two bonded half-planes, the stress of its material:
+    !> upper_remote_stress), the contact elements' own pressure plus the pore fluid's.
+    pure function load_of(medium, remote, gradient, pore_fluid) result(load)
+        !> The medium, element geometry computed
+        type(elastic_medium), intent(in) :: medium
         !> Remote stress sxx, syy, sxy at y = 0 [stress unit] and d/dy of it [stress unit /
-        !> length unit]
+        !> length unit] (the lower material's)
         real(wp), intent(in) :: remote(3), gradient(3)
         !> Pore pressure p0 at y = 0 [stress unit] and its gradient d/dy [stress / length]
         real(wp), intent(in) :: pore_fluid(2)
         type(elastic_load) :: load
+        real(wp) :: upper(3), upper_gradient(3)
+        real(wp), allocatable :: shear(:), normal(:)
 
-        allocate (load%shear(elements%n), load%normal(elements%n))
-        call resolve_remote_stress(elements, remote(1), remote(2), remote(3), load%shear, &
-                                   load%normal, gradient)
-        load%pressure = total_pressure(elements, pore_fluid)
+        associate (elements => medium%elements)
+            allocate (load%shear(elements%n), load%normal(elements%n))
+            call resolve_remote_stress(elements, remote(1), remote(2), remote(3), load%shear, &
+                                       load%normal, gradient)
+            if (elements%domain == domain_bimaterial) then
+                upper = upper_remote_stress(medium, remote)
+                upper_gradient = upper_remote_stress(medium, gradient)
+                allocate (shear(elements%n), normal(elements%n))
+                call resolve_remote_stress(elements, upper(1), upper(2), upper(3), shear, &
+                                           normal, upper_gradient)
+                where (elements%y_mid > medium%interface_y)
+                    load%shear = shear
+                    load%normal = normal
+                end where
+            end if
+            load%pressure = total_pressure(elements, pore_fluid)
+        end associate
         load%remote = remote
         load%gradient = gradient
     end function load_of
@@ -396,15 +412,13 @@ contains
         real(wp), allocatable :: k1_high(:), k2_high(:), mu(:)
 
         associate (m => this%medium)
-            call stress_intensity(m%elements, m%shear_modulus, m%poissons_ratio, &
-                                  tips%element, solved%ds, solved%dn, k1, k2)
+            call stress_intensity(m, tips%element, solved%ds, solved%dn, k1, k2)
             if (.not. this%k_decided) then
                 this%k_decided = .true.
                 call uses_higher_order(this%options%k_method, growth, m%elements, tips, &
                                        this%higher_order, this%tip_element_reason)
                 if (this%higher_order) then
-                    call prepare_higher_order(m%elements, m%shear_modulus, &
-                                              m%poissons_ratio, tips, this%k_solver, failed)
+                    call prepare_higher_order(m, tips, this%k_solver, failed)
                     call note_failure()
                 end if
             end if
@@ -416,8 +430,7 @@ contains
                 end if
                 k1_high = k1
                 k2_high = k2
-                call higher_order_k(this%k_solver, m%elements, m%shear_modulus, &
-                                    m%poissons_ratio, solved%ds, solved%dn, &
+                call higher_order_k(this%k_solver, m, solved%ds, solved%dn, &
                                     solved%shear_traction, solved%normal_traction, mu, &
                                     load%remote, load%gradient, solved%state, tips, k1_high, &
                                     k2_high, failed)

@@ -6,7 +6,6 @@
 module ddc_run_engine
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
-    use ddc_model_types, only: element_set
     use ddc_model_medium, only: elastic_medium
     use ddc_model_results, only: field_result
     use ddc_solve_operator, only: elastic_operator
@@ -44,16 +43,14 @@ module ddc_run_engine
         end subroutine operator_interface
 
         !> Induced tractions and negative-face displacements at every element midpoint.
-        subroutine response_interface(this, elements, shear_modulus, nu, ds, dn, &
-                                      shear_traction, normal_traction, us_minus, un_minus)
-            import :: model_engine, element_set, wp
+        subroutine response_interface(this, medium, ds, dn, shear_traction, normal_traction, &
+                                      us_minus, un_minus)
+            import :: model_engine, elastic_medium, wp
             implicit none
             !> The engine
             class(model_engine), intent(inout) :: this
-            !> Elements with geometry computed
-            type(element_set), intent(in) :: elements
-            !> Shear modulus [stress unit] and Poisson's ratio [-]
-            real(wp), intent(in) :: shear_modulus, nu
+            !> The medium, element geometry computed
+            type(elastic_medium), intent(in) :: medium
             !> Displacement discontinuities [length unit], shape (n)
             real(wp), intent(in) :: ds(:), dn(:)
             !> Induced shear and normal traction [stress unit], shape (n)
@@ -63,16 +60,13 @@ module ddc_run_engine
         end subroutine response_interface
 
         !> Fields at observation points (ddc_post_fields' evaluate_field).
-        subroutine field_interface(this, elements, shear_modulus, nu, remote, ds, dn, x, y, &
-                                   field, gradient)
-            import :: model_engine, element_set, field_result, wp
+        subroutine field_interface(this, medium, remote, ds, dn, x, y, field, gradient)
+            import :: model_engine, elastic_medium, field_result, wp
             implicit none
             !> The engine
             class(model_engine), intent(inout) :: this
-            !> Elements with geometry computed
-            type(element_set), intent(in) :: elements
-            !> Shear modulus [stress unit] and Poisson's ratio [-]
-            real(wp), intent(in) :: shear_modulus, nu
+            !> The medium, element geometry computed
+            type(elastic_medium), intent(in) :: medium
             !> Remote stress (sxx, syy, sxy) at y = 0 [stress unit]
             real(wp), intent(in) :: remote(3)
             !> Displacement discontinuities [length unit], shape (n)

@@ -8,8 +8,7 @@ module ddc_run_model
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type, domain_half_plane
     use ddc_model_results, only: model_results
-    use ddc_model_loads, only: shear_modulus_of
-    use ddc_model_medium, only: medium_of
+    use ddc_model_medium, only: elastic_medium, medium_of
     use ddc_contact_fault_law, only: fault_law
     use ddc_influence_response, only: midpoint_response, kernel_response
     use ddc_solve_elastic, only: row_kinds
@@ -131,7 +130,7 @@ contains
         type(model_type), intent(in) :: model
         type(elastic_load) :: load
 
-        load = load_of(model%elements, [model%sxx, model%syy, model%sxy], &
+        load = load_of(medium_of(model), [model%sxx, model%syy, model%sxy], &
                        model%stress_gradient, model%pore_fluid)
     end function model_load
 
@@ -156,17 +155,17 @@ contains
         type(contact_run), intent(inout), optional, target :: run
         type(contact_run), target :: k_only
         type(contact_run), pointer :: k_run
+        type(elastic_medium) :: medium
         integer, allocatable :: shear_row(:), normal_row(:)
         type(error_type), allocatable :: failed
         real(wp), pointer, contiguous :: whole(:, :)
         real(wp), allocatable :: k1(:), k2(:)
-        real(wp) :: g, nu, t0
+        real(wp) :: t0
         integer :: n
 
         t0 = wall_seconds()
         n = model%elements%n
-        g = shear_modulus_of(model)
-        nu = model%poissons_ratio
+        medium = medium_of(model)
         results%solver%threads = 1
         !$ results%solver%threads = omp_get_max_threads()
         whole => null()
@@ -176,40 +175,38 @@ contains
         associate (e => results%elements)
             allocate (e%shear_traction(n), e%normal_traction(n), e%us_minus(n), e%un_minus(n))
             if (present(engine)) then
-                call engine%midpoint_response(model%elements, g, nu, e%ds, e%dn, &
-                                              e%shear_traction, e%normal_traction, e%us_minus, &
-                                              e%un_minus)
+                call engine%midpoint_response(medium, e%ds, e%dn, e%shear_traction, &
+                                              e%normal_traction, e%us_minus, e%un_minus)
             else if (present(matrix) .or. associated(whole)) then
                 allocate (shear_row(n), normal_row(n))
                 call row_kinds(model%elements%condition, shear_row, normal_row)
                 if (present(matrix)) then
-                    call midpoint_response(model%elements, g, nu, matrix, shear_row, &
-                                           normal_row, e%ds, e%dn, e%shear_traction, &
-                                           e%normal_traction, e%us_minus, e%un_minus)
+                    call midpoint_response(medium, matrix, shear_row, normal_row, e%ds, e%dn, &
+                                           e%shear_traction, e%normal_traction, e%us_minus, &
+                                           e%un_minus)
                 else
-                    call midpoint_response(model%elements, g, nu, whole, shear_row, &
-                                           normal_row, e%ds, e%dn, e%shear_traction, &
-                                           e%normal_traction, e%us_minus, e%un_minus)
+                    call midpoint_response(medium, whole, shear_row, normal_row, e%ds, e%dn, &
+                                           e%shear_traction, e%normal_traction, e%us_minus, &
+                                           e%un_minus)
                 end if
             else
                 ! A hierarchical solve keeps no dense matrix: products with hierarchical
                 ! ones, or the kernel sums where hmat-oss fails.
-                call hierarchical_response(model%elements, g, nu, e%ds, e%dn, model%solver, &
-                                           e%shear_traction, e%normal_traction, e%us_minus, &
-                                           e%un_minus, failed)
-                if (allocated(failed)) call kernel_response(model%elements, g, nu, e%ds, &
-                    e%dn, e%shear_traction, e%normal_traction, e%us_minus, e%un_minus)
+                call hierarchical_response(medium, e%ds, e%dn, model%solver, e%shear_traction, &
+                                           e%normal_traction, e%us_minus, e%un_minus, failed)
+                if (allocated(failed)) call kernel_response(medium, e%ds, e%dn, &
+                    e%shear_traction, e%normal_traction, e%us_minus, e%un_minus)
             end if
             e%shear_traction = e%shear_traction + load%shear
             e%normal_traction = e%normal_traction + load%normal
             ! ds = us(-) - us(+), dn = un(-) - un(+)
             e%us_plus = e%us_minus - e%ds
             e%un_plus = e%un_minus - e%dn
-            call find_tips(model%elements, g, nu, e%ds, e%dn, results%tips)
+            call find_tips(medium, e%ds, e%dn, results%tips)
             if (present(run)) then
                 k_run => run
             else
-                call k_only%start(medium_of(model), model%solver)
+                call k_only%start(medium, model%solver)
                 k_run => k_only
             end if
             allocate (k1(results%tips%n), k2(results%tips%n))
@@ -233,10 +230,12 @@ contains
         !> The engine of a distributed run (default: the work is done in this process)
         class(model_engine), intent(inout), optional :: engine
         type(error_type), allocatable :: failed
+        type(elastic_medium) :: medium
         real(wp) :: t0
         integer :: i
 
         t0 = wall_seconds()
+        medium = medium_of(model)
         if (allocated(results%fields)) deallocate (results%fields)
         if (allocated(model%observations)) then
             allocate (results%fields(size(model%observations)))
@@ -247,22 +246,17 @@ contains
             associate (remote => [model%sxx, model%syy, model%sxy], o => model%observations(i), &
                        e => results%elements)
                 if (present(engine)) then
-                    call engine%evaluate_field(model%elements, shear_modulus_of(model), &
-                                               model%poissons_ratio, remote, e%ds, e%dn, o%x, &
-                                               o%y, results%fields(i), model%stress_gradient)
+                    call engine%evaluate_field(medium, remote, e%ds, e%dn, o%x, o%y, &
+                                               results%fields(i), model%stress_gradient)
                 else if (results%solver%hierarchical) then
                     ! Products with a compressed field matrix, or the sums where hmat-oss
                     ! fails.
-                    call hierarchical_field(model%elements, shear_modulus_of(model), &
-                                            model%poissons_ratio, remote, &
-                                            model%stress_gradient, e%ds, e%dn, o%x, o%y, &
-                                            model%solver, results%fields(i), failed)
-                    if (allocated(failed)) call evaluate_field(model%elements, &
-                        shear_modulus_of(model), model%poissons_ratio, remote, e%ds, e%dn, &
+                    call hierarchical_field(medium, remote, model%stress_gradient, e%ds, e%dn, &
+                                            o%x, o%y, model%solver, results%fields(i), failed)
+                    if (allocated(failed)) call evaluate_field(medium, remote, e%ds, e%dn, &
                         o%x, o%y, results%fields(i), model%stress_gradient)
                 else
-                    call evaluate_field(model%elements, shear_modulus_of(model), &
-                                        model%poissons_ratio, remote, e%ds, e%dn, o%x, o%y, &
+                    call evaluate_field(medium, remote, e%ds, e%dn, o%x, o%y, &
                                         results%fields(i), model%stress_gradient)
                 end if
                 if (reports_phases(model%elements%n) .or. real(model%elements%n, wp) * &

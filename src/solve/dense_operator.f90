@@ -95,8 +95,7 @@ contains
                 return
             end if
             call row_kinds(elements%condition, op%shear_row, op%normal_row)
-            call assemble_influence(elements, medium%shear_modulus, medium%poissons_ratio, &
-                                    op%shear_row, op%normal_row, matrix)
+            call assemble_influence(medium, op%shear_row, op%normal_row, matrix)
             call system_clock(t1)
             record%seconds_assembly = real(t1 - t0, wp) / real(rate, wp)
             if (reports_phases(n)) call report_progress('assembly done in '// &
@@ -337,9 +336,8 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         if (this%nf == 0) return
-        call listed_tractions(medium%elements, medium%shear_modulus, medium%poissons_ratio, &
-                              this%system, this%shear_row, this%normal_row, this%free, ds, dn, &
-                              shear_traction, normal_traction)
+        call listed_tractions(medium, this%system, this%shear_row, this%normal_row, this%free, &
+                              ds, dn, shear_traction, normal_traction)
     end subroutine dense_free_tractions
 
     !> t = t + A(rows, columns) dd from the rows and columns of A in memory.

@@ -6,6 +6,7 @@ module ddc_solve_elastic
     use ddc_error, only: error_type, set_error, set_internal_error, exit_solver_failure
     use ddc_model_types, only: element_set, condition_displacement, condition_mixed_us_sn, &
         condition_mixed_ss_un, condition_contact, condition_prescribed_dd
+    use ddc_model_medium, only: elastic_medium
     use ddc_influence_assembly, only: assemble_influence, row_traction, row_displacement, &
         row_identity
     use ddc_linalg_lu, only: lu_factor, lu_solve, influence_hint, residual_tol
@@ -64,13 +65,10 @@ contains
     end function given_values
 
     !> Solve for Ds, Dn of elements whose conditions are all TWODD-style (no contact).
-    subroutine solve_elastic(elements, shear_modulus, nu, remote_shear, remote_normal, &
-                             ds, dn, residual, seconds_assembly, seconds_factorization, matrix, &
-                             error)
-        !> Elements with geometry computed
-        type(element_set), intent(in) :: elements
-        !> Shear modulus [stress unit] and Poisson's ratio [-]
-        real(wp), intent(in) :: shear_modulus, nu
+    subroutine solve_elastic(medium, remote_shear, remote_normal, ds, dn, residual, &
+                             seconds_assembly, seconds_factorization, matrix, error)
+        !> The medium, element geometry computed
+        type(elastic_medium), intent(in) :: medium
         !> Remote stress resolved on each element [stress unit], shape (n)
         real(wp), intent(in) :: remote_shear(:), remote_normal(:)
         !> Displacement discontinuities [length unit], shape (n)
@@ -90,8 +88,8 @@ contains
         integer :: n, i, stat
         integer(int64) :: t0, t1, t2, rate
 
-        n = elements%n
-        if (any(elements%condition == condition_contact)) then
+        n = medium%elements%n
+        if (any(medium%elements%condition == condition_contact)) then
             call set_internal_error(error, 'solve_elastic', 'called with contact elements')
             return
         end if
@@ -105,10 +103,10 @@ contains
                                    2.0_wp * real_bytes * (2.0_wp * real(n, wp))**2)
             return
         end if
-        call row_kinds(elements%condition, shear_row, normal_row)
-        call assemble_influence(elements, shear_modulus, nu, shear_row, normal_row, matrix)
-        rhs(:, 1) = given_values(elements, shear_row, normal_row, remote_shear, remote_normal, &
-                                 [(i, i = 1, n)])
+        call row_kinds(medium%elements%condition, shear_row, normal_row)
+        call assemble_influence(medium, shear_row, normal_row, matrix)
+        rhs(:, 1) = given_values(medium%elements, shear_row, normal_row, remote_shear, &
+                                 remote_normal, [(i, i = 1, n)])
         call system_clock(t1)
         if (reports_phases(n)) call report_progress('assembly done in '// &
             seconds_text(real(t1 - t0, wp) / real(rate, wp))//' ('//itoa(2 * n)//' x '// &

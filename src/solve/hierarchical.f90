@@ -8,6 +8,7 @@ module ddc_solve_hierarchical
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, set_internal_error, exit_solver_failure
     use ddc_model_types, only: element_set, condition_contact
+    use ddc_model_medium, only: elastic_medium, remote_stress_at
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use ddc_influence_assembly, only: fill_influence_block, row_traction, row_displacement, &
         image_transform, image_transforms, kernel_with_images, kernel_function, select_kernel
@@ -39,8 +40,7 @@ module ddc_solve_hierarchical
     !> The influence matrix of a set of elements, unknowns [Ds(1:n); Dn(1:n)] and rows
     !> [shear rows; normal rows] as in ddc_influence_assembly.
     type, extends(block_source) :: influence_source
-        type(element_set), pointer :: elements => null()
-        real(wp) :: shear_modulus = 0.0_wp, nu = 0.0_wp
+        type(elastic_medium), pointer :: medium => null()
         integer, allocatable :: shear_row(:), normal_row(:)
     contains
         procedure :: fill => fill_influence
@@ -49,8 +49,7 @@ module ddc_solve_hierarchical
     !> Displacement (ux, uy) and stress (sxx, syy, sxy) at observation points per unit DD:
     !> row 5 (p - 1) + q is quantity q at point p, columns [Ds; Dn] of the elements.
     type, extends(block_source) :: field_source
-        type(element_set), pointer :: elements => null()
-        real(wp) :: shear_modulus = 0.0_wp, nu = 0.0_wp
+        type(elastic_medium), pointer :: medium => null()
         real(wp), allocatable :: x(:), y(:)
         !> Flag of each point (a point on an element gets no kernel: it is NaN there)
         integer, allocatable :: flag(:)
@@ -63,13 +62,11 @@ module ddc_solve_hierarchical
 contains
 
     !> Solve for Ds, Dn of elements whose conditions are all TWODD-style (no contact).
-    subroutine solve_hierarchical(elements, shear_modulus, nu, remote_shear, remote_normal, &
-                                  options, ds, dn, residual, compression_ratio, &
-                                  seconds_assembly, seconds_factorization, error)
-        !> Elements with geometry computed
-        type(element_set), intent(in), target :: elements
-        !> Shear modulus [stress unit] and Poisson's ratio [-]
-        real(wp), intent(in) :: shear_modulus, nu
+    subroutine solve_hierarchical(medium, remote_shear, remote_normal, options, ds, dn, &
+                                  residual, compression_ratio, seconds_assembly, &
+                                  seconds_factorization, error)
+        !> The medium, element geometry computed
+        type(elastic_medium), intent(in), target :: medium
         !> Remote stress resolved on each element [stress unit], shape (n)
         real(wp), intent(in) :: remote_shear(:), remote_normal(:)
         !> The hmatrix_ settings of &solver
@@ -90,20 +87,20 @@ contains
         integer :: n, i, step
         integer(int64) :: t0, t1, t2, rate
 
-        n = elements%n
-        if (any(elements%condition == condition_contact)) then
+        n = medium%elements%n
+        if (any(medium%elements%condition == condition_contact)) then
             call set_internal_error(error, 'solve_hierarchical', 'called with contact elements')
             return
         end if
         call system_clock(t0, rate)
-        source = new_influence_source(elements, shear_modulus, nu)
-        points = unknown_points(elements)
+        source = new_influence_source(medium)
+        points = unknown_points(medium%elements)
         call matrix%assemble(points, source, settings_of(options), error)
         if (allocated(error)) return
         compression_ratio = matrix%stored_fraction()
         allocate (rhs(2 * n, 1), correction(2 * n, 1), product(2 * n))
-        rhs(:, 1) = given_values(elements, source%shear_row, source%normal_row, remote_shear, &
-                                 remote_normal, [(i, i = 1, n)])
+        rhs(:, 1) = given_values(medium%elements, source%shear_row, source%normal_row, &
+                                 remote_shear, remote_normal, [(i, i = 1, n)])
         call system_clock(t1)
         call report_assembly(n, real(t1 - t0, wp) / real(rate, wp), compression_ratio)
 
@@ -150,10 +147,9 @@ contains
     !> ddc_influence_response's kernel_response) by products with two hierarchical matrices,
     !> one of traction rows and one of displacement rows: O(N log N) instead of the O(N^2)
     !> sums, to product_refinement times hmatrix_tolerance.
-    subroutine hierarchical_response(elements, shear_modulus, nu, ds, dn, options, &
-                                     shear_traction, normal_traction, us_minus, un_minus, error)
-        type(element_set), intent(in), target :: elements
-        real(wp), intent(in) :: shear_modulus, nu
+    subroutine hierarchical_response(medium, ds, dn, options, shear_traction, normal_traction, &
+                                     us_minus, un_minus, error)
+        type(elastic_medium), intent(in), target :: medium
         real(wp), intent(in) :: ds(:), dn(:)
         type(solver_options), intent(in) :: options
         real(wp), intent(out) :: shear_traction(:), normal_traction(:)
@@ -165,9 +161,9 @@ contains
         real(wp), allocatable :: points(:, :), product(:)
         integer :: n, kind
 
-        n = elements%n
-        source = new_influence_source(elements, shear_modulus, nu)
-        points = unknown_points(elements)
+        n = medium%elements%n
+        source = new_influence_source(medium)
+        points = unknown_points(medium%elements)
         allocate (product(2 * n))
         do kind = 1, 2
             source%shear_row = merge(row_traction, row_displacement, kind == 1)
@@ -191,10 +187,8 @@ contains
     !> elements' part by the product with a rectangular hierarchical matrix (O((P + N)
     !> log) instead of O(P N)), to product_refinement times hmatrix_tolerance; the flags
     !> from the cell index of the elements (ddc_influence_superposition).
-    subroutine hierarchical_field(elements, shear_modulus, nu, remote, gradient, ds, dn, x, y, &
-                                  options, field, error)
-        type(element_set), intent(in), target :: elements
-        real(wp), intent(in) :: shear_modulus, nu
+    subroutine hierarchical_field(medium, remote, gradient, ds, dn, x, y, options, field, error)
+        type(elastic_medium), intent(in), target :: medium
         !> Remote stress and its gradient d/dy [stress unit], [stress unit / length unit]
         real(wp), intent(in) :: remote(3), gradient(3)
         real(wp), intent(in) :: ds(:), dn(:)
@@ -208,7 +202,7 @@ contains
         type(source_table) :: cells
         type(hmatrix) :: matrix
         real(wp), allocatable :: rows(:, :), product(:)
-        real(wp) :: nan
+        real(wp) :: nan, stress(3)
         logical :: use_general
         integer :: np, ip
 
@@ -216,14 +210,12 @@ contains
         allocate (field%ux(np), field%uy(np), field%sxx(np), field%syy(np), field%sxy(np), &
                   field%flag(np))
         if (np == 0) return
-        source%elements => elements
-        source%shear_modulus = shear_modulus
-        source%nu = nu
+        source%medium => medium
         source%x = x
         source%y = y
-        source%images = image_transforms(elements%symmetry)
-        call select_kernel(elements, .true., use_general, source%kernel)
-        call build_sources(elements, source%images, ds, dn, cells)
+        source%images = image_transforms(medium%elements%symmetry)
+        call select_kernel(medium, .true., use_general, source%kernel)
+        call build_sources(medium%elements, source%images, ds, dn, cells)
         allocate (source%flag(np))
         !$omp parallel do default(none) private(ip) shared(cells, x, y, source, np)
         do ip = 1, np
@@ -234,14 +226,14 @@ contains
         allocate (rows(2, 5 * np), product(5 * np))
         rows(1, :) = [(x((ip + 4) / 5), ip = 1, 5 * np)]
         rows(2, :) = [(y((ip + 4) / 5), ip = 1, 5 * np)]
-        call matrix%assemble_rectangular(rows, unknown_points(elements), source, &
+        call matrix%assemble_rectangular(rows, unknown_points(medium%elements), source, &
                                          settings_of(options, product_refinement), error)
         if (allocated(error)) return
         call matrix%multiply([ds, dn], product, error)
         if (allocated(error)) return
         nan = ieee_value(1.0_wp, ieee_quiet_nan)
-        !$omp parallel do default(none) private(ip) shared(y, field, product, remote, &
-        !$omp    gradient, nan, np)
+        !$omp parallel do default(none) private(ip, stress) shared(medium, y, field, product, &
+        !$omp    remote, gradient, nan, np)
         do ip = 1, np
             if (field%flag(ip) == point_on_element) then
                 field%ux(ip) = nan
@@ -250,11 +242,12 @@ contains
                 field%syy(ip) = nan
                 field%sxy(ip) = nan
             else
+                stress = remote_stress_at(medium, remote, gradient, y(ip))
                 field%ux(ip) = product(5 * ip - 4)
                 field%uy(ip) = product(5 * ip - 3)
-                field%sxx(ip) = product(5 * ip - 2) + remote(1) + gradient(1) * y(ip)
-                field%syy(ip) = product(5 * ip - 1) + remote(2) + gradient(2) * y(ip)
-                field%sxy(ip) = product(5 * ip) + remote(3) + gradient(3) * y(ip)
+                field%sxx(ip) = product(5 * ip - 2) + stress(1)
+                field%syy(ip) = product(5 * ip - 1) + stress(2)
+                field%sxy(ip) = product(5 * ip) + stress(3)
             end if
         end do
         !$omp end parallel do
@@ -270,7 +263,7 @@ contains
         real(wp) :: values(5, 2)
         integer :: n, kk, l, point, element, last_point, last_element
 
-        n = source%elements%n
+        n = source%medium%elements%n
         last_point = 0
         last_element = 0
         ! Columns outer, rows inner: a point's five rows lie together, so each pair of
@@ -283,8 +276,7 @@ contains
                     values = 0.0_wp
                 else if (point /= last_point .or. element /= last_element) then
                     k = kernel_with_images(source%kernel, source%x(point), source%y(point), &
-                                           source%elements, element, source%images, &
-                                           source%shear_modulus, source%nu, face_positive)
+                                           source%medium, element, source%images, face_positive)
                     values(:, 1) = [k%ux(1), k%uy(1), k%sxx(1), k%syy(1), k%sxy(1)]
                     values(:, 2) = [k%ux(2), k%uy(2), k%sxx(2), k%syy(2), k%sxy(2)]
                     last_point = point
@@ -317,17 +309,17 @@ contains
         if (present(finer)) settings%tolerance = finer * settings%tolerance
     end function settings_of
 
-    !> The influence matrix of the elements, rows as their conditions say (row_kinds).
-    function new_influence_source(elements, shear_modulus, nu) result(source)
-        type(element_set), intent(in), target :: elements
-        real(wp), intent(in) :: shear_modulus, nu
+    !> The influence matrix of the medium's elements, rows as their conditions say
+    !> (row_kinds).
+    function new_influence_source(medium) result(source)
+        type(elastic_medium), intent(in), target :: medium
         type(influence_source) :: source
 
-        source%elements => elements
-        source%shear_modulus = shear_modulus
-        source%nu = nu
-        allocate (source%shear_row(elements%n), source%normal_row(elements%n))
-        call row_kinds(elements%condition, source%shear_row, source%normal_row)
+        source%medium => medium
+        associate (n => medium%elements%n)
+            allocate (source%shear_row(n), source%normal_row(n))
+        end associate
+        call row_kinds(medium%elements%condition, source%shear_row, source%normal_row)
     end function new_influence_source
 
     !> Where the unknowns [Ds; Dn] sit: both at their element's midpoint, shape (2, 2n).
@@ -348,7 +340,7 @@ contains
         integer :: row_element(size(rows)), row_s(size(rows)), row_n(size(rows))
         integer :: col_element(size(cols)), col_s(size(cols)), col_n(size(cols))
 
-        n = source%elements%n
+        n = source%medium%elements%n
         ! Unknown u <= n is Ds of element u, else Dn of element u - n: each row (column) of
         ! the block is one element's shear or normal row (Ds or Dn column), the other 0.
         do k = 1, size(rows)
@@ -362,9 +354,8 @@ contains
             col_n(k) = merge(0, k, cols(k) <= n)
         end do
         block = 0.0_wp
-        call fill_influence_block(source%elements, source%shear_modulus, source%nu, &
-                                  source%shear_row, source%normal_row, row_element, row_s, &
-                                  row_n, col_element, col_s, col_n, block)
+        call fill_influence_block(source%medium, source%shear_row, source%normal_row, &
+                                  row_element, row_s, row_n, col_element, col_s, col_n, block)
     end subroutine fill_influence
 
 end module ddc_solve_hierarchical

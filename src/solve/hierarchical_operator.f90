@@ -8,7 +8,7 @@ module ddc_solve_hierarchical_operator
     use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_internal_error
-    use ddc_model_types, only: element_set, condition_contact
+    use ddc_model_types, only: condition_contact
     use ddc_model_medium, only: elastic_medium
     use ddc_model_results, only: solver_record
     use ddc_contact_options, only: solver_options
@@ -25,8 +25,8 @@ module ddc_solve_hierarchical_operator
 
     !> A medium's operator on hierarchical matrices.
     type, extends(elastic_operator) :: hierarchical_operator
-        !> The elements the compressed A points at: a copy that lives as long as it does
-        type(element_set), pointer :: kept => null()
+        !> The medium the compressed A points at: a copy that lives as long as it does
+        type(elastic_medium), pointer :: kept => null()
         !> The hmatrix_ settings of &solver (the solves without contact elements)
         type(solver_options) :: options
         !> The shear columns of A alone, compressed (prepare_shear_products)
@@ -71,12 +71,11 @@ contains
                 return
             end if
             call system_clock(t0, rate)
-            allocate (op%kept, source=elements)
+            allocate (op%kept, source=medium)
             allocate (hierarchical_stiffness :: op%stiffness)
             select type (s => op%stiffness)
             type is (hierarchical_stiffness)
-                call new_hierarchical_stiffness(op%kept, medium%shear_modulus, &
-                                                medium%poissons_ratio, options, s, error)
+                call new_hierarchical_stiffness(op%kept, options, s, error)
                 call system_clock(t1)
                 record%seconds_assembly = real(t1 - t0, wp) / real(rate, wp)
                 record%counts%seconds = 0.0_wp
@@ -123,8 +122,7 @@ contains
             call set_internal_error(error, 'hierarchical_complete', 'a load of another medium')
             return
         end if
-        call solve_hierarchical(medium%elements, medium%shear_modulus, medium%poissons_ratio, &
-                                load%shear, load%normal, this%options, ds, dn, &
+        call solve_hierarchical(medium, load%shear, load%normal, this%options, ds, dn, &
                                 record%equilibrium_residual, record%compression_ratio, &
                                 record%seconds_assembly, record%counts%seconds, error)
     end subroutine hierarchical_complete
@@ -142,7 +140,7 @@ contains
         type is (hierarchical_stiffness)
             allocate (this%shear)
             ! The entries of A: its column u <= nc is the Ds of contact element u.
-            rows = unknown_points(this%kept)
+            rows = unknown_points(this%kept%elements)
             columns = rows(:, :this%nc)
             call this%shear%assemble_rectangular(rows, columns, s%source, &
                                                  settings_of(this%options), failed)

@@ -12,7 +12,7 @@ module ddc_solve_hierarchical_stiffness
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
-    use ddc_model_types, only: element_set
+    use ddc_model_medium, only: elastic_medium
     use ddc_linalg_hmatrix, only: hmatrix, block_source, hmatrix_settings
     use ddc_contact_options, only: solver_options
     use ddc_contact_stiffness, only: stiffness_operator, reduced_system, action_solved, &
@@ -60,10 +60,8 @@ contains
 
     !> The operator of the elements (all contact elements: traction rows), A assembled with
     !> the hmatrix_ settings of &solver.
-    subroutine new_hierarchical_stiffness(elements, shear_modulus, nu, options, stiffness, &
-                                          error)
-        type(element_set), intent(in), target :: elements
-        real(wp), intent(in) :: shear_modulus, nu
+    subroutine new_hierarchical_stiffness(medium, options, stiffness, error)
+        type(elastic_medium), intent(in), target :: medium
         type(solver_options), intent(in) :: options
         type(hierarchical_stiffness), intent(out) :: stiffness
         type(error_type), allocatable, intent(out) :: error
@@ -71,12 +69,12 @@ contains
         integer :: i, n
 
         allocate (stiffness%source, stiffness%a, stiffness%factors)
-        stiffness%source = new_influence_source(elements, shear_modulus, nu)
+        stiffness%source = new_influence_source(medium)
         stiffness%settings = settings_of(options)
-        call stiffness%a%assemble(unknown_points(elements), stiffness%source, &
+        call stiffness%a%assemble(unknown_points(medium%elements), stiffness%source, &
                                   stiffness%settings, error)
         if (allocated(error)) return
-        n = elements%n
+        n = medium%elements%n
         do i = 1, n
             call stiffness%source%fill([i, n + i], [i, n + i], own)
             stiffness%diagonal = max(stiffness%diagonal, abs(own(1, 1)), abs(own(2, 2)))
@@ -141,7 +139,7 @@ contains
             source%unknown = system%unknown
             source%partner = system%partner
             source%coef = system%coef
-            points = unknown_points(this%source%elements)
+            points = unknown_points(this%source%medium%elements)
             points = points(:, system%unknown)
             call this%factors%assemble(points, source, this%settings, singular)
             if (.not. allocated(singular)) call this%factors%factor(singular)
@@ -165,7 +163,8 @@ contains
             this%counts%reuses = this%counts%reuses + 1
             this%action = action_reused
         end if
-        allocate (rhs(m, 1), full(2 * this%source%elements%n), t(2 * this%source%elements%n))
+        allocate (rhs(m, 1), full(2 * this%source%medium%elements%n), &
+                  t(2 * this%source%medium%elements%n))
         rhs(:, 1) = system%rhs
         call this%factors%solve(rhs, singular)
         if (allocated(singular)) return

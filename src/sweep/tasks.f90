@@ -14,22 +14,27 @@
 !>   along the axis at remote_angle degrees counter-clockwise from +x, s3 across it; the
 !>   ones not swept keep the base model's values (s1 its most compressive principal
 !>   stress, the angle in (-90, 90]); not combinable with sxx, syy, sxy;
-!> - mu, sf, pressure: on every element of every fracture;
-!> - fracture(K)%mu, fracture(K)%sf, fracture(K)%pressure: on every element of fracture K
-!>   (1-based, in input order);
+!> - mu, sf, pressure and the strength laws (each law of ddc_model_laws by its name:
+!>   tensile_strength, slip_weakening_distance ...): on every element of every fracture;
+!> - fracture(K)%mu, fracture(K)%sf, fracture(K)%pressure, fracture(K)%<law>: on every
+!>   element of fracture K (1-based, in input order);
 !> - new_mu, new_sf and the strength laws of new elements (new_<name> of each law of
 !>   ddc_model_laws: new_tensile_strength ...): what the new contact elements of a growth run
-!>   take.
+!>   take;
+!> - overpressure, rate: of every &injection source of that kind; injection(K)%overpressure,
+!>   injection(K)%rate: of source K (1-based, input order);
+!> - diffusivity, transmissivity: of every element that conducts; fracture(K)%diffusivity,
+!>   fracture(K)%transmissivity: of the elements of fracture K that conduct.
 module ddc_sweep_tasks
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type, growth_options, domain_half_plane, no_residual_drop, &
-        strength_law_count
+        strength_law_count, injection_source, source_overpressure, condition_contact
     use ddc_model_laws, only: strength_law, strength_laws, law_values, new_law_bound, &
-        at_most_rule
+        at_most_rule, law_index, set_law
     use ddc_text, only: itoa, lower, short_real, add_message, messages_error
     use ddc_model_limits, only: range_problem, quantity_any, quantity_youngs_modulus, &
-        quantity_poissons_ratio, quantity_non_negative
+        quantity_poissons_ratio, quantity_non_negative, quantity_positive
     implicit none
     private
 
@@ -38,6 +43,7 @@ module ddc_sweep_tasks
     public :: parse_parameter, check_value, task_values, task_label, task_file_name
     public :: check_task, apply_task, task_problem, check_tasks
     public :: target_sxx, target_syy, target_sxy, target_s1, target_s3, target_angle
+    public :: target_overpressure, target_rate, target_diffusivity, target_transmissivity
 
     !> How the value lists make tasks
     integer, parameter :: combine_product = 1, combine_zip = 2
@@ -53,9 +59,19 @@ module ddc_sweep_tasks
                           target_syy = 4, target_sxy = 5, target_s1 = 6, target_s3 = 7, &
                           target_angle = 8, target_mu = 9, target_sf = 10, target_pressure = 11, &
                           target_new_mu = 12, target_new_sf = 13
-    !> A strength law of new elements, new_<name> (which one: sweep_definition's laws)
-    integer, parameter :: target_new_law = 14
-    !> Names of the targets but target_new_law, indexed by target (per fracture:
+    !> A strength law of new elements, new_<name>, and one of the fractures' elements,
+    !> <name> (which one: sweep_definition's laws)
+    integer, parameter :: target_new_law = 14, target_law = 15
+    !> The flow (docs/injection.md): the value of &injection sources of one kind (all, or
+    !> injection(K): sweep_definition's sources), the hydraulic properties of the elements
+    !> that conduct (all, or fracture(K)'s)
+    integer, parameter :: target_overpressure = 16, target_rate = 17, &
+                          target_diffusivity = 18, target_transmissivity = 19
+    !> Names of the flow targets, indexed by target (per source: injection(K)%<name>, per
+    !> fracture: fracture(K)%<name>)
+    character(len=*), parameter :: flow_names(target_overpressure:target_transmissivity) = &
+        [character(len=14) :: 'overpressure', 'rate', 'diffusivity', 'transmissivity']
+    !> Names of the targets but the laws' and the flow's, indexed by target (per fracture:
     !> fracture(K)%<name>)
     character(len=*), parameter :: target_names(13) = [character(len=14) :: 'youngs_modulus', &
         'poissons_ratio', 'sxx', 'syy', 'sxy', 'remote_s1', 'remote_s3', 'remote_angle', 'mu', &
@@ -73,7 +89,10 @@ module ddc_sweep_tasks
         integer, allocatable :: targets(:)
         !> Fracture of each per-fracture parameter (1-based), 0 for all, shape (np)
         integer, allocatable :: fractures(:)
-        !> Law of each parameter of target_new_law (its place in ddc_model_laws' list), 0 for
+        !> Source of each injection(K)%... parameter (1-based), 0 for all, shape (np)
+        integer, allocatable :: sources(:)
+        !> Law of each parameter of target_new_law or target_law (its place in ddc_model_laws'
+        !> list), 0 for
         !> the others, shape (np)
         integer, allocatable :: laws(:)
         !> Number of values of each parameter, shape (np)
@@ -88,38 +107,39 @@ module ddc_sweep_tasks
 
 contains
 
-    !> Parse a parameter name: its target, fracture and law; problem is '' when the name is
-    !> good.
-    subroutine parse_parameter(name, nfractures, target, fracture, law, problem)
+    !> Parse a parameter name: its target, fracture, source and law; problem is '' when the
+    !> name is good.
+    subroutine parse_parameter(name, nfractures, nsources, target, fracture, source, law, &
+                               problem)
         !> The name as written (case and blanks do not matter)
         character(len=*), intent(in) :: name
-        !> Number of fractures of the base model
-        integer, intent(in) :: nfractures
-        !> target_youngs ... target_new_law; 0 when the name is bad
+        !> Number of fractures and of &injection sources of the base model
+        integer, intent(in) :: nfractures, nsources
+        !> target_youngs ... target_transmissivity; 0 when the name is bad
         integer, intent(out) :: target
         !> Fracture number for fracture(K)%..., 0 otherwise
         integer, intent(out) :: fracture
-        !> The law of new_<name> (its place in ddc_model_laws' list), 0 otherwise
+        !> Source number for injection(K)%..., 0 otherwise
+        integer, intent(out) :: source
+        !> The law of new_<name> or <name> (its place in ddc_model_laws' list), 0 otherwise
         integer, intent(out) :: law
         !> Why the name is bad, '' when it is good
         character(len=:), allocatable, intent(out) :: problem
         type(strength_law) :: laws(strength_law_count)
         character(len=:), allocatable :: key
-        integer :: close_paren, stat, i
+        integer :: stat, i
 
         key = squeeze(lower(name))
         target = 0
         fracture = 0
+        source = 0
         law = 0
         problem = ''
-        if (index(key, 'fracture(') == 1) then
-            close_paren = index(key, ')%')
-            stat = 1
-            if (close_paren > 10) then
-                if (verify(key(10:close_paren - 1), '0123456789') == 0) then
-                    read (key(10:close_paren - 1), *, iostat=stat) fracture
-                end if
-            end if
+        if (index(key, 'injection(') == 1) then
+            call parse_source(name, key, nsources, source, problem)
+            if (len(problem) > 0) return
+        else if (index(key, 'fracture(') == 1) then
+            call group_number(key, 'fracture', fracture, stat)
             if (stat /= 0) then
                 problem = "'"//trim(name)//"' is not a sweep parameter: write fracture(K)%mu"// &
                           ' with K the fracture number (1-based)'
@@ -130,15 +150,21 @@ contains
                           ' fracture(s); K must be 1 to '//itoa(nfractures)
                 return
             end if
-            key = key(close_paren + 2:)
-            if (key /= 'mu' .and. key /= 'sf' .and. key /= 'pressure') then
-                problem = "'"//trim(name)//"': a fracture's sweep parameters are mu, sf "// &
-                          'and pressure'
+            if (all(key /= [character(len=14) :: 'mu', 'sf', 'pressure', 'diffusivity', &
+                                                 'transmissivity']) .and. law_index(key) == 0) then
+                problem = "'"//trim(name)//"': a fracture's sweep parameters are mu, sf, "// &
+                          'pressure, diffusivity, transmissivity and the strength laws ('// &
+                          law_names('')//')'
                 return
             end if
         end if
+        law = law_index(key)
+        if (law > 0) target = target_law
         do i = 1, size(target_names)
             if (key == trim(target_names(i))) target = i
+        end do
+        do i = lbound(flow_names, 1), ubound(flow_names, 1)
+            if (key == trim(flow_names(i))) target = i
         end do
         laws = strength_laws()
         do i = 1, size(laws)
@@ -153,27 +179,92 @@ contains
         end if
     end subroutine parse_parameter
 
+    !> injection(K)%overpressure or injection(K)%rate (key, lower case without blanks): K (1
+    !> to nsources) in source and key the name after the %; problem is '' when it is good.
+    subroutine parse_source(name, key, nsources, source, problem)
+        !> The name as written, for the message
+        character(len=*), intent(in) :: name
+        !> The name squeezed; on return the part after the %
+        character(len=:), allocatable, intent(inout) :: key
+        !> Number of &injection sources of the base model
+        integer, intent(in) :: nsources
+        !> K, 0 when the name is bad
+        integer, intent(out) :: source
+        !> Why the name is bad, '' when it is good
+        character(len=:), allocatable, intent(out) :: problem
+        integer :: stat
+
+        problem = ''
+        call group_number(key, 'injection', source, stat)
+        if (stat /= 0) then
+            problem = "'"//trim(name)//"' is not a sweep parameter: write "// &
+                      'injection(K)%overpressure with K the &injection group (1-based)'
+        else if (source < 1 .or. source > nsources) then
+            problem = "'"//trim(name)//"': the model has "//itoa(nsources)// &
+                      ' &injection group(s); K must be 1 to '//itoa(nsources)
+        else if (key /= 'overpressure' .and. key /= 'rate') then
+            problem = "'"//trim(name)//"': a source's sweep parameters are overpressure "// &
+                      'and rate'
+        end if
+    end subroutine parse_source
+
+    !> K of a name <group>(K)%<rest> (key, lower case without blanks, starting with
+    !> '<group>('): stat 0, k = K and key the rest when K is a number; stat nonzero else.
+    subroutine group_number(key, group, k, stat)
+        !> The name; on return the part after the % when K is a number
+        character(len=:), allocatable, intent(inout) :: key
+        !> The group's name
+        character(len=*), intent(in) :: group
+        !> K, 0 when it is no number
+        integer, intent(out) :: k
+        !> 0 when K is a number
+        integer, intent(out) :: stat
+        integer :: first, close_paren
+
+        k = 0
+        stat = 1
+        first = len(group) + 2
+        close_paren = index(key, ')%')
+        if (close_paren > first) then
+            if (verify(key(first:close_paren - 1), '0123456789') == 0) then
+                read (key(first:close_paren - 1), *, iostat=stat) k
+            end if
+        end if
+        if (stat == 0) key = key(close_paren + 2:)
+    end subroutine group_number
+
     !> The list of parameter names, for messages.
     function parameter_help() result(help)
         character(len=:), allocatable :: help
+        help = 'youngs_modulus, poissons_ratio, sxx, syy, sxy, remote_s1, remote_s3, '// &
+            'remote_angle, mu, sf, pressure, '//law_names('')//', fracture(K)%mu, '// &
+            'fracture(K)%sf, fracture(K)%pressure, fracture(K)%<law> (each of those), '// &
+            'new_mu, new_sf, '//law_names('new_')//' (&growth), overpressure, rate, '// &
+            'injection(K)%overpressure, injection(K)%rate (&injection), diffusivity, '// &
+            'transmissivity, fracture(K)%diffusivity, fracture(K)%transmissivity'
+    end function parameter_help
+
+    !> 'tensile_strength, sf_residual, ...': the names of the strength laws, each after
+    !> prefix.
+    function law_names(prefix) result(names)
+        character(len=*), intent(in) :: prefix
+        character(len=:), allocatable :: names
         type(strength_law) :: laws(strength_law_count)
         integer :: k
 
-        help = 'youngs_modulus, poissons_ratio, sxx, syy, sxy, remote_s1, remote_s3, '// &
-            'remote_angle, mu, sf, pressure, fracture(K)%mu, fracture(K)%sf, '// &
-            'fracture(K)%pressure, new_mu, new_sf'
         laws = strength_laws()
+        names = ''
         do k = 1, size(laws)
-            help = help//', new_'//laws(k)%name
+            if (k > 1) names = names//', '
+            names = names//prefix//laws(k)%name
         end do
-        help = help//' (&growth)'
-    end function parameter_help
+    end function law_names
 
     !> Check a value of a parameter; problem is '' when it is acceptable.
     function check_value(target, law, value) result(problem)
-        !> target_youngs ... target_new_law
+        !> target_youngs ... target_transmissivity
         integer, intent(in) :: target
-        !> The law of target_new_law (its place in ddc_model_laws' list)
+        !> The law of target_new_law or target_law (its place in ddc_model_laws' list)
         integer, intent(in) :: law
         !> The value
         real(wp), intent(in) :: value
@@ -188,9 +279,11 @@ contains
             problem = range_problem(quantity_poissons_ratio, value)
         case (target_mu, target_sf, target_new_mu, target_new_sf)
             problem = range_problem(quantity_non_negative, value)
-        case (target_new_law)
+        case (target_new_law, target_law)
             laws = strength_laws()
             problem = range_problem(laws(law)%quantity, value)
+        case (target_diffusivity, target_transmissivity)
+            problem = range_problem(quantity_positive, value)
         case default
             problem = range_problem(quantity_any, value)
         end select
@@ -286,8 +379,15 @@ contains
         !> Task number, checked with check_task
         integer, intent(in) :: task
         real(wp) :: values(size(sweep%names)), stress(3)
-        integer :: p, first, last, q
+        ! The elements that conduct in the base model: a swept diffusivity or transmissivity
+        ! keeps the others (barriers) as they are.
+        logical, allocatable :: conducts(:)
+        type(strength_law) :: laws(strength_law_count)
+        integer, allocatable :: rows(:)
+        integer :: p, first, last, q, i
 
+        conducts = model%elements%diffusivity > 0.0_wp .and. &
+                   model%elements%transmissivity > 0.0_wp
         values = task_values(sweep, task)
         stress = task_stress(model, sweep, values)
         model%sxx = stress(1)
@@ -311,6 +411,21 @@ contains
                 model%elements%sf(first:last) = values(p)
             case (target_pressure)
                 model%elements%pressure(first:last) = values(p)
+            case (target_overpressure, target_rate)
+                call set_sources(model%injections, sweep%targets(p), sweep%sources(p), &
+                                 values(p))
+            case (target_diffusivity)
+                where (conducts(first:last)) model%elements%diffusivity(first:last) = values(p)
+            case (target_transmissivity)
+                where (conducts(first:last)) model%elements%transmissivity(first:last) = &
+                    values(p)
+            case (target_law)
+                ! The laws act on contact elements alone (&fracture gives them to no other).
+                laws = strength_laws()
+                rows = pack([(i, i = first, last)], &
+                            model%elements%condition(first:last) == condition_contact)
+                call set_law(model%elements, laws(sweep%laws(p))%name, rows, &
+                             spread(values(p), 1, size(rows)))
             case default
                 ! the remote stress: task_stress
             end select
@@ -322,6 +437,26 @@ contains
         model%sweep%values = values
         model%output_file = task_file_name(model%output_file, task, sweep%tasks)
     end subroutine apply_task
+
+    !> Set the value of the sources of a swept overpressure or rate: source `source` (0: every
+    !> source of that kind).
+    pure subroutine set_sources(sources, target, source, value)
+        !> The model's sources
+        type(injection_source), intent(inout) :: sources(:)
+        !> target_overpressure or target_rate
+        integer, intent(in) :: target
+        !> The source (1-based), 0 for all of that kind
+        integer, intent(in) :: source
+        !> The task's value
+        real(wp), intent(in) :: value
+        integer :: k
+
+        do k = 1, size(sources)
+            if (source /= 0 .and. k /= source) cycle
+            if ((sources(k)%kind == source_overpressure) .eqv. &
+                (target == target_overpressure)) sources(k)%value = value
+        end do
+    end subroutine set_sources
 
     !> The elements parameter p of the sweep sets: those of its fracture, or all.
     pure subroutine element_range(model, sweep, p, first, last)
@@ -462,10 +597,11 @@ contains
     end function half_plane_problem
 
     !> A swept mu below the mu_dynamic, or a swept sf below the sf_residual, that the base
-    !> model gives an element: one model with these values is refused (the friction or
-    !> cohesion after slip above the intact one is a mistake), so a sweep must not lower
-    !> the residual to the swept value, or turn the weakening off, without a word. The
-    !> first such element's fracture and values, '' when there is none.
+    !> model (or the sweep) gives an element, or a swept mu_dynamic or sf_residual above its
+    !> mu or sf: one model with these values is refused (the friction or cohesion after slip
+    !> above the intact one is a mistake), so a sweep must not lower the residual to the
+    !> swept value, or turn the weakening off, without a word. The first such element's
+    !> fracture and values, '' when there is none.
     function weakening_problem(model, sweep, values) result(problem)
         !> The base model (read and checked)
         type(model_type), intent(in) :: model
@@ -476,14 +612,16 @@ contains
         !> The problem, '' when there is none
         character(len=:), allocatable :: problem
         real(wp), allocatable :: mu(:), sf(:), given(:, :)
-        ! The parameter that set each element's mu and sf (0: the base model's value)
-        integer, allocatable :: mu_from(:), sf_from(:)
+        ! The parameter that set each element's mu, sf and laws (0: the base model's value)
+        integer, allocatable :: mu_from(:), sf_from(:), law_from(:, :)
         type(strength_law) :: laws(strength_law_count)
         integer :: p, first, last, k
 
         mu = model%elements%mu
         sf = model%elements%sf
+        given = law_values(model%elements)
         allocate (mu_from(size(mu)), sf_from(size(sf)), source=0)
+        allocate (law_from(size(mu), strength_law_count), source=0)
         do p = 1, size(values)
             call element_range(model, sweep, p, first, last)
             select case (sweep%targets(p))
@@ -493,19 +631,24 @@ contains
             case (target_sf)
                 sf(first:last) = values(p)
                 sf_from(first:last) = p
+            case (target_law)
+                associate (contact => model%elements%condition(first:last) == &
+                           condition_contact)
+                    where (contact) given(first:last, sweep%laws(p)) = values(p)
+                    where (contact) law_from(first:last, sweep%laws(p)) = p
+                end associate
             case default
                 ! not a strength parameter
             end select
         end do
         laws = strength_laws()
-        given = law_values(model%elements)
         problem = ''
         do k = 1, size(laws)
             select case (laws(k)%at_most)
             case ('sf')
-                problem = above_intact(given(:, k), sf, sf_from, laws(k))
+                problem = above_intact(given(:, k), sf, law_from(:, k), sf_from, laws(k))
             case ('mu')
-                problem = above_intact(given(:, k), mu, mu_from, laws(k))
+                problem = above_intact(given(:, k), mu, law_from(:, k), mu_from, laws(k))
             case default
                 ! no Coulomb value it may not exceed
             end select
@@ -514,25 +657,33 @@ contains
 
     contains
 
-        !> The first swept element whose given residual (below no_residual_drop, the mark
-        !> of none) exceeds its swept intact value.
-        function above_intact(residual, intact, from, law) result(problem)
+        !> The first element with a swept residual or intact value whose residual (below
+        !> no_residual_drop, the mark of none) exceeds its intact value.
+        function above_intact(residual, intact, residual_from, from, law) result(problem)
             real(wp), intent(in) :: residual(:), intact(:)
-            integer, intent(in) :: from(:)
+            integer, intent(in) :: residual_from(:), from(:)
             type(strength_law), intent(in) :: law
-            character(len=:), allocatable :: problem
+            character(len=:), allocatable :: problem, fracture
             integer :: j, f
 
             problem = ''
-            j = findloc(from > 0 .and. residual < no_residual_drop .and. residual > intact, &
-                        .true., 1)
+            j = findloc((from > 0 .or. residual_from > 0) .and. residual < no_residual_drop &
+                        .and. residual > intact, .true., 1)
             if (j == 0) return
             f = model%elements%fracture_id(j)
-            problem = trim(sweep%names(from(j)))//' = '//short_real(values(from(j)))// &
-                ' is below '//law%name//' = '//short_real(residual(j))//' of fracture '// &
-                itoa(f)//' '//model%fractures(f)%name//' ('//at_most_rule(law)// &
-                '; one model with these values is refused too): sweep values of at least '// &
-                short_real(residual(j))//', or lower '//law%name
+            fracture = ' of fracture '//itoa(f)//' '//model%fractures(f)%name//' ('// &
+                at_most_rule(law)//'; one model with these values is refused too)'
+            if (from(j) > 0) then
+                problem = trim(sweep%names(from(j)))//' = '//short_real(values(from(j)))// &
+                    ' is below '//law%name//' = '//short_real(residual(j))//fracture// &
+                    ': sweep values of at least '//short_real(residual(j))//', or lower '// &
+                    law%name
+            else
+                problem = trim(sweep%names(residual_from(j)))//' = '// &
+                    short_real(residual(j))//' is above '//law%at_most//' = '// &
+                    short_real(intact(j))//fracture//': sweep values of at most '// &
+                    short_real(intact(j))//', or raise '//law%at_most
+            end if
         end function above_intact
 
     end function weakening_problem

@@ -35,6 +35,7 @@ MODELS = {
     "cohesion_lost": DATA / "mpi" / "kinked_cohesion_lost.nml",  # open_cohesion = 'lost'
     "twodd_symmetry": DATA / "mpi" / "twodd_symmetry.nml",  # TWODD conditions, x = 0 plane
     "half_plane": DATA / "mpi" / "half_plane.nml",  # contact and prescribed DDs
+    "bimaterial": DATA / "mpi" / "bimaterial.nml",  # two materials, contact and traction
 }
 PROCESSES = (1, 2, 4)
 RESIDUAL_LIMIT = 1e-8  # the equilibrium check of every solution (ddc_linalg_lu residual_tol)

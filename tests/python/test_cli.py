@@ -142,7 +142,8 @@ def test_duplicate_fracture_is_bad_input(tmp_path):
     assert leftovers(tmp_path) == []
 
 
-BAD_FILES = sorted(p for folder in ("input", "half_plane", "history", "growth", "cycle")
+BAD_FILES = sorted(p for folder in ("input", "half_plane", "history", "growth", "bimaterial",
+                                    "cycle")
                    for p in (REPO_ROOT / "tests" / "data" / folder).glob("bad_*.nml"))
 
 

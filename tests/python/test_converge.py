@@ -1,6 +1,6 @@
 """ddc2d-converge (ddc2d.converge): the refined namelists, the verdicts on synthetic
-sequences, two studies against what is known of them, the keys of STUDY.json and the
-refusals of what cannot be refined.
+sequences, two studies against what is known of them, an injection's fronts under refined
+elements and time steps, the keys of STUDY.json and the refusals of what cannot be refined.
 
 The studies: the paper's fault (input/paper_fault_slip.nml, 500 elements: K_II =
 dtau sqrt(pi a) with dtau = 54.13 - 1 - 0.6 * 81.25 = 4.38 MPa, a = 1 m) and the README's
@@ -205,6 +205,60 @@ def test_strong_patch_failure_load_is_not_converging(tmp_path, capsys):
     assert first["verdict"] == CONVERGED
     assert "quantum" not in result["quantities"]["k2/fault/end"]
     assert (out / "convergence.png").read_bytes()[:4] == b"\x89PNG"
+
+
+#: A fault under T = 0.5 with an overpressure held at its middle (tests/python/
+#: test_injection.py's, coarse): its patch grows as 0.7916 sqrt(4 t), to 1.0013 at t = 0.4.
+#: The source lies on an element end at every level (an even number of elements), so that
+#: it holds the two elements there at every level (docs/error-estimates.md#an-injection).
+INJECTION = """\
+&model youngs_modulus = 30000.0, poissons_ratio = 0.25, time_unit = 'h' /
+&remote_stress syy = -10.0, sxy = 4.5 /
+&fracture name = 'fault', x = -4.0, 4.0, y = 0.0, 0.0, elements = 40, mu = 0.6, sf = 0.0,
+          diffusivity = 1.0, transmissivity = 1.0 /
+&injection name = 'well', fracture = 'fault', x = 0.0, y = 0.0, overpressure = 5.0 /
+&load_path time = 0.0, 0.4, steps = 2 /
+&solver k_method = 'tip_element' /
+"""
+
+
+def test_an_injection_refines_elements_and_time_steps_for_its_fronts(tmp_path, capsys):
+    model = tmp_path / "injection.nml"
+    model.write_text(INJECTION)
+    out = tmp_path / "study"
+    status = cli.main([str(model), "-o", str(out), "--exe", str(ddc2d_exe())])
+    printed = capsys.readouterr()
+    assert status == 0, printed.err
+    assert "first_slip_load/fault [time]" in printed.out
+    # The time steps halve with the elements: the same times, twice the steps.
+    for level, (elements, steps) in enumerate([(40, 2), (80, 4), (160, 8)]):
+        text = (out / f"injection_level{level}.nml").read_text()
+        assert f"elements = {elements}," in text and f"steps = {steps} /" in text
+        assert "time = 0.0, 0.4," in text
+    result = json.loads((out / "STUDY.json").read_text())
+    assert result["refined"] == ["elements", "steps"]
+    quantities = result["quantities"]
+    element = [0.2, 0.1, 0.05]
+    exact = 0.791607 * math.sqrt(4.0 * 0.4)  # lambda(0.5) sqrt(4 alpha t)
+    half = quantities["front_half_length/fault"]
+    assert half["quantum"] == pytest.approx(element, rel=1e-9)
+    for value, quantum in zip(half["values"], element):
+        assert abs(value - exact) <= quantum  # within one element, as a front measures
+    assert half["verdict"] in (CONVERGED, CONVERGING) and half["extrapolated"] is None
+    for key in ("front_begin/fault", "front_end/fault"):
+        assert quantities[key]["quantum"] == pytest.approx(element, rel=1e-9)
+    # Symmetric about the source at 4 from the fault's first vertex.
+    ends = np.array(quantities["front_end/fault"]["values"])
+    begins = np.array(quantities["front_begin/fault"]["values"])
+    np.testing.assert_allclose(0.5 * (ends + begins), 4.0, atol=1e-12)
+    # The source's element slips from the first step: at t = 0, to one time step.
+    first = quantities["first_slip_load/fault"]
+    assert first["load"] == "time" and first["values"] == [0.0, 0.0, 0.0]
+    assert first["quantum"] == pytest.approx([0.2, 0.1, 0.05], rel=1e-9)
+    # The moment and the volume converge at first order, as the front does.
+    for key in ("moment/fault", "injected_volume"):
+        assert quantities[key]["verdict"] == CONVERGING and "quantum" not in quantities[key]
+        assert 0.8 < quantities[key]["order"] < 1.5, quantities[key]
 
 
 @pytest.mark.parametrize("text, args, message", [

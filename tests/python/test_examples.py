@@ -10,8 +10,10 @@ it shows (states, which tips slip more), so that a figure in the gallery (docs/g
 silently turn into something else.
 """
 
+import os
 import re
 import subprocess
+import sys
 
 import h5py
 import numpy as np
@@ -376,7 +378,69 @@ def check_slip_weakening_thrust(f):
     assert np.nanmax(f["fields/surface/uy"][()]) > 0.5
 
 
+def check_injection_well(f):
+    """The fault sticks until day 22, then slips around the junction with the fracture; the
+    patch reaches the fault's top (its first vertex, 2 km depth) on day 25 and spans 1050 m
+    of the 1155 m fault on day 30, with up to 14.7 mm of normal slip; the fracture never
+    slips."""
+    h, e = f["history"], f["elements"]
+    time, state = h["time"][()], h["state"][()]
+    fault, fracture = (slice(first - 1, last) for first, last in
+                       zip(f["fractures/first_element"][()], f["fractures/last_element"][()]))
+    slipping = np.any(state[:, fault] == STATE_CODES["slip"], axis=1)
+    assert abs(time[np.argmax(slipping)] - 22.0) < 1e-9 and np.all(slipping[22:])
+    # Where it starts: 50 m (10 elements) around the junction, half the fault's length down.
+    half = 0.5 * np.sum(2.0 * e["half_length"][fault])
+    first = np.argmax(slipping)
+    assert h["front_begin"][first, 0] < half < h["front_end"][first, 0]
+    assert 45.0 < h["slipping_length"][first, 0] < 55.0
+    top = np.flatnonzero(h["front_begin"][:, 0] == 0.0)
+    assert abs(time[top[0]] - 25.0) < 1e-9 and np.all(np.diff(top) == 1)
+    assert 1045.0 < h["slipping_length"][-1, 0] < 1055.0 and 1154.0 < 2 * half < 1156.0
+    assert np.all(state[:, fracture] == STATE_CODES["stick"])
+    assert abs(h["pressure"][first, fault][115] - 2.1) < 0.05  # at the junction
+    ds = e["ds"][fault]
+    assert np.all(ds <= 0.0) and abs(ds.min() + 0.0147) < 0.0002  # normal slip
+
+
+def test_layered_k_approach_script(tmp_path):
+    """examples/layered/k_approach.py (docs/layered-rock.md#what-to-expect) at two gaps: K_I
+    at the upper tip rises as it nears a softer bed, falls as it nears a stiffer one."""
+    script = REPO_ROOT / "examples" / "layered" / "k_approach.py"
+    done = subprocess.run([sys.executable, str(script), "--gaps", "0.5", "0.12", "--output",
+                           str(tmp_path / "k.png")],
+                          capture_output=True, text=True, timeout=300, cwd=tmp_path,
+                          env=dict(os.environ, DDC2D_EXE=str(ddc2d_exe())))
+    assert done.returncode == 0, done.stderr
+    rows = [line.split() for line in done.stdout.splitlines()[2:4]]
+    stiff_below = [float(row[1]) for row in rows]
+    soft_below = [float(row[3]) for row in rows]
+    assert 1.0 < stiff_below[0] < stiff_below[1], done.stdout
+    assert 1.0 > soft_below[0] > soft_below[1], done.stdout
+    assert (tmp_path / "k.png").stat().st_size > 0
+
+
+def check_crack_toward_soft_layer(f):
+    """The tip near the soft bed has the larger K_I, both above the one material's."""
+    y, k1 = f["tips/y"][()], f["tips/k1"][()]
+    griffith = 10.0 * np.sqrt(np.pi)
+    upper, lower = k1[np.argmax(y)], k1[np.argmin(y)]
+    assert upper > 1.4 * griffith and griffith < lower < upper, (upper, lower)
+
+
+def check_fault_across_layers(f):
+    """Split at the interface; every element slips, more in the soft upper bed."""
+    e = f["elements"]
+    y, ds = e["y_mid"][()], e["ds"][()]
+    assert y.size == 42 and np.any(e["y_end"][()] == 0.0)
+    _all(f, "fault", "slip")
+    assert np.max(np.abs(ds[y > 0])) > 1.5 * np.max(np.abs(ds[y < 0])), ds
+
+
 EXPECTED = {
+    "crack_toward_soft_layer": check_crack_toward_soft_layer,
+    "fault_across_layers": check_fault_across_layers,
+    "injection_well_normal_fault": check_injection_well,
     "strong_patch_progressive_failure": check_progressive_failure,
     "joint_set_pressurized_crack": check_joint_set,
     "slip_weakening_thrust": check_slip_weakening_thrust,

@@ -122,14 +122,28 @@ def test_benchmark_contact_models_match_the_dense_solve(tmp_path, case):
 
 
 @pytest.mark.parametrize("example", ["branching_fault", "intersecting_faults",
-                                     "thrust_fault_surface", "buried_dipping_fault_slip"])
+                                     "thrust_fault_surface", "buried_dipping_fault_slip",
+                                     "crack_toward_soft_layer"])
 def test_example_faults_match_the_dense_solve(tmp_path, example):
-    """Examples in the full plane and in the half-plane (a thrust fault with pore pressure
-    to the surface, a buried fault of given slip), the contact ones by the Newton method on
-    both paths (the dense path's 'auto' takes Lemke below 300 contact elements, which may
-    choose other states where the contact problem has more than one solution)."""
+    """Examples in the full plane, in the half-plane (a thrust fault with pore pressure
+    to the surface, a buried fault of given slip) and in two bonded half-planes (a crack
+    near the interface), the contact ones by the Newton method on both paths (the dense
+    path's 'auto' takes Lemke below 300 contact elements, which may choose other states
+    where the contact problem has more than one solution)."""
     text = (REPO_ROOT / "input" / f"{example}.nml").read_text()
     assert_same_results(*solve_both(tmp_path, example, text, both=", lcp_method = 'newton'"))
+
+
+def test_two_materials_match_the_dense_solve(tmp_path):
+    """The frictional fault across the interface of two bonded half-planes
+    (input/fault_across_layers.nml) at 401 elements, without its fields: the kernel of two
+    materials is compressed as the others are; the same states, DDs and K within RELATIVE."""
+    text = (REPO_ROOT / "input" / "fault_across_layers.nml").read_text()
+    text = "".join(line + "\n" for line in text.splitlines()
+                   if not line.startswith(("&grid", "&line")))
+    text = text.replace("elements = 41", "elements = 401")
+    assert_same_results(*solve_both(tmp_path, "layers", text,
+                                    both=", lcp_method = 'newton', k_method = 'tip_element'"))
 
 
 def test_loading_history_matches_the_dense_solve(tmp_path):

@@ -34,7 +34,7 @@ import h5py
 import numpy as np
 import pytest
 
-from conftest import PLOT_SCRIPT, ddc2d_exe
+from conftest import PLOT_SCRIPT, REPO_ROOT, ddc2d_exe
 from ddc2d.plot import figures as plot_figures
 from ddc2d.reader import load_result
 from ddc2d.richardson import extrapolate
@@ -165,11 +165,20 @@ def test_tail_runs_perpendicular_to_the_tension(folder, field20):
 
 
 def test_nothing_starts_above_the_largest_tension(folder, field20):
-    """tensile_strength 0.1 % above the largest probed tension: nothing; 0.1 % below: one."""
+    """tensile_strength 0.1 % above the largest probed tension: nothing, and the file keeps
+    that tension and its probe point (the first of equal ones, as the tie rule orders them);
+    0.1 % below: one."""
     largest = max(p[3] for p in field20)
     assert largest > 0.0
-    above = initiations(run(folder, "above", tail_model(20, 1.001 * largest)))
+    out = run(folder, "above", tail_model(20, 1.001 * largest))
+    above = initiations(out)
     assert above["kind"].size == 0, "nothing starts above the largest probed tension"
+    first = next(p for p in field20 if p[3] >= largest * (1.0 - 1e-9))
+    kept = load_result(out)["growth"]["initiations"]["attrs"]
+    assert kept["largest_tension"] == pytest.approx(largest, rel=1e-9)
+    assert (kept["largest_tension_x"], kept["largest_tension_y"]) == \
+        pytest.approx(first[1:3], abs=1e-12)
+    assert kept["largest_tension_step"] == 1
     below = initiations(run(folder, "below", tail_model(20, 0.999 * largest)))
     assert below["kind"].size == 1
 
@@ -282,6 +291,73 @@ def test_resume_is_refused(folder):
     assert done.returncode == 2, done.stdout + done.stderr
     lines = done.stderr.strip().splitlines()
     assert len(lines) == 1 and "&initiation" in lines[0], done.stderr
+
+
+def test_a_vertex_one_increment_from_a_tip_is_in_its_zone(folder):
+    """An increment of 0.4 m, four elements of the 20: the vertices 0.4 m from the tips lie on
+    the edge of the tips' zones, and the edge belongs to the zone whatever the round-off. The
+    tail starts at the largest tension outside the zones, the vertices 0.5 m from the centre
+    (it started at 0.6 m, in the tip's singular field)."""
+    text = (HEADER + FAULT.format(n=20) + GROWTH.replace(f"increment = {INCREMENT}",
+                                                         "increment = 0.4")
+            + f"&initiation tensile_strength = 1.0, probe_distance = {PROBE} /\n")
+    rows = initiations(run(folder, "zone_edge", text))
+    assert rows["kind"].tolist() == [1], "one tail starts"
+    assert abs(rows["x"][0]) == pytest.approx(0.5, abs=1e-12), rows["x"]
+
+
+WEDGE = REPO_ROOT / "tests" / "data" / "growth" / "tail_wedge.nml"
+
+
+def test_tails_at_a_narrow_wedge_are_solved(folder):
+    """tests/data/growth/tail_wedge.nml: the tails of steps 5 and 6 start at fault vertices at
+    about 30 degrees to the fault, where Lemke ends on a ray and the Newton method's states
+    cycle; its way out of the cycle solves them (docs/contact-and-strength.md#junctions). All
+    6 steps run, each starting a tail, the last at the end of the fault's grown part; the
+    final solve is Newton's after Lemke failed, in equilibrium."""
+    done = subprocess.run([str(ddc2d_exe()), str(WEDGE), "-o", str(folder / "wedge.h5")],
+                          capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, done.stdout + done.stderr
+    rows = initiations(folder / "wedge.h5")
+    assert rows["step"].tolist() == [1, 2, 3, 4, 5, 6]
+    np.testing.assert_allclose(rows["x"][4:], [-1.72811, 1.72835], atol=1e-5)
+    np.testing.assert_allclose(rows["y"][4:], [1.04984, -1.54986], atol=1e-5)
+    with h5py.File(folder / "wedge.h5", "r") as f:
+        solver = f["solver"].attrs
+        assert f["growth"].attrs["steps_taken"] == 6
+        assert solver["method"] == b"newton"
+        assert solver["fallback"].startswith(b"lemke failed: contact: LCP: Lemke ended on a ray")
+        assert solver["equilibrium_residual"] < 1e-10
+
+
+def test_a_failed_growth_step_keeps_the_steps_before(folder):
+    """The same model with Lemke alone: step 5's solve fails (a ray). The run writes the 4
+    steps before it, complete, with /growth end_reason 'failed' and the failure, and exits
+    with status 6; the message names the step and the new fracture. A run with &initiation
+    is not resumed, failed or not."""
+    model = folder / "wedge_lemke.nml"
+    model.write_text(WEDGE.read_text() + "&solver lcp_method = 'lemke' /\n")
+    out = folder / "wedge_lemke.h5"
+    done = subprocess.run([str(ddc2d_exe()), str(model), "-o", str(out)], capture_output=True,
+                          text=True, timeout=600)
+    assert done.returncode == 6, done.stdout + done.stderr
+    message = done.stderr.strip().splitlines()
+    assert len(message) == 1, done.stderr
+    assert message[0].startswith("ddc2d: error: growth step 5, new fracture 'fault_tail5': "
+                                 "contact: LCP: Lemke ended on a ray"), message[0]
+    assert "the result holds the 4 growth step(s) before it (end_reason failed)" in message[0]
+    assert f"wrote {out}" in done.stdout
+    with h5py.File(out, "r") as f:
+        growth = f["growth"].attrs
+        assert f.attrs["complete"] == 1
+        assert growth["end_reason"] == b"failed" and growth["steps_taken"] == 4
+        assert growth["failure"].startswith(b"growth step 5, new fracture 'fault_tail5'")
+        assert f["growth/step"][()].max() == 4
+    assert initiations(out)["step"].tolist() == [1, 2, 3, 4]
+    resumed = subprocess.run([str(ddc2d_exe()), str(model), "--resume", str(out), "-o",
+                              str(folder / "wedge_resumed.h5")], capture_output=True, text=True,
+                             timeout=600)
+    assert resumed.returncode == 2 and "&initiation" in resumed.stderr, resumed.stderr
 
 
 # A flaw under the work criterion: a crack of FLAW_LENGTH centred on the origin, the only other

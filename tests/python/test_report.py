@@ -143,6 +143,22 @@ def test_a_capped_tensile_strength_is_echoed_in_force_with_a_note(tmp_path):
     assert "on 10 of 10 elements and is capped there to 0 .. 0 MPa" in notes(done)[0]
 
 
+def test_a_capped_tensile_strength_of_new_elements_has_a_note(tmp_path):
+    # &growth new_tensile_strength = 2 with new_sf = 0: the apex of every new element is 0,
+    # which takes the whole tensile strength; with the tip elements' sf = 3, mu = 0.5 (apex 6)
+    # it holds as given.
+    growth = ("&fracture name = 'joint', x = -1, 1, y = 0, 0, elements = 10, mu = 0.5, sf = 3 /\n"
+              "&growth steps = 1, toughness = 100, new_tensile_strength = 2{new_sf} /\n")
+    text = TENSILE.split("&fracture")[0] + growth
+    done = solve(tmp_path, text.format(new_sf=", new_sf = 0"))
+    assert notes(done) == [
+        ("note: &growth: new_tensile_strength 2 MPa is above the Coulomb apex sf/mu of the new "
+         "contact elements of joint (new_sf, new_mu, or the values of their tip element) and is "
+         "capped there to 0 .. 0 MPa (where the shear strength sf - mu T vanishes); a tensile "
+         "strength T needs sf >= mu T (give new_sf)")]
+    assert notes(solve(tmp_path, text.format(new_sf=""))) == []
+
+
 def instant_tensile_note(k, name):
     return (f"note: fracture {k} {name}: the tensile strength drops at once on opening "
             "(opening_weakening_distance = 0) on 10 of 10 elements: the stress at a slip or "

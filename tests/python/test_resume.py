@@ -287,9 +287,12 @@ def test_a_resumed_run_equals_the_uninterrupted_one(tmp_path, whole_run, old_tex
     assert "largest relative difference" in report
     with h5py.File(tmp_path / "old.h5") as old, h5py.File(tmp_path / "new.h5") as new, \
             h5py.File(whole) as uninterrupted:
-        # The resumed result names the file it continued and when that was written.
+        # The resumed result names the file it continued and when that was written, and so
+        # does the run's log.
         assert new.attrs["resumed_from"] == b"old.h5"
         assert new.attrs["resumed_from_created"] == old.attrs["created"]
+        assert f"  resumed from old.h5 (written {old.attrs['created'].decode()})" in \
+            done.stdout.splitlines()
         assert "resumed_from" not in uninterrupted.attrs
         # The earlier run did less: the resumed one went on.
         if "growth" in new:
@@ -298,6 +301,25 @@ def test_a_resumed_run_equals_the_uninterrupted_one(tmp_path, whole_run, old_tex
             assert new["history/pivots"].size > old["history/pivots"].size
     # The Python reader shows it with the rest of the provenance.
     assert ddc2d.open_result(tmp_path / "new.h5").provenance["resumed_from"] == "old.h5"
+
+
+def test_a_run_that_stopped_at_a_failed_step_goes_on(tmp_path, whole_run):
+    """A growth run whose step failed (exit status 6) ends as a step limit does: its file, the
+    steps before the failure with /growth end_reason 'failed' and the failure, goes on where
+    it stopped and gives the uninterrupted run. (Here the file of a run stopped by the step
+    limit, marked failed as such a run marks it.)"""
+    text = GROWTH.format(steps=4)
+    earlier_run(tmp_path, GROWTH.format(steps=2))
+    with h5py.File(tmp_path / "old.h5", "r+") as f:
+        assert f["growth"].attrs["steps_taken"] == 2
+        f["growth"].attrs["end_reason"] = np.bytes_("failed")
+        f["growth"].attrs["failure"] = np.bytes_("growth step 3: contact: ...")
+    done = resume(tmp_path, text, "old.h5")
+    assert done.returncode == 0, done.stderr
+    problems, _ = compare_results.compare(whole_run(text), tmp_path / "new.h5", rtol=1e-12)
+    assert not problems, problems
+    with h5py.File(tmp_path / "new.h5") as f:
+        assert "failure" not in f["growth"].attrs
 
 
 def test_a_run_that_arrests_at_once_when_resumed(tmp_path, whole_run):

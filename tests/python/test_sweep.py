@@ -286,7 +286,8 @@ def test_every_task_of_a_growth_sweep_grows_and_is_collected(tmp_path):
         rows = [{name.split(" [")[0]: value for name, value in row.items()}
                 for row in csv.DictReader(handle)]
         header = handle.seek(0) or next(csv.reader(handle))
-    assert header[-4:] == ["growth_steps", "end_reason", "k_eq_ratio", "grown_length_flaw [m]"]
+    assert header[-5:] == ["growth_steps", "growth_start", "end_reason", "k_eq_ratio",
+                           "grown_length_flaw [m]"]
     for row, task in zip(rows, range(3)):
         with h5py.File(runs / f"wings_task{task:04d}.h5", "r") as f:
             growth = f["growth"]
@@ -302,6 +303,8 @@ def test_every_task_of_a_growth_sweep_grows_and_is_collected(tmp_path):
     # and its tips are critical, but their whole kinks close: they grow by shorter ones, so
     # less; at 65 degrees it sticks.
     assert [row["growth_steps"] for row in rows] == ["3", "3", "0"]
+    # At a fixed load growth starts in load step 1, or not at all.
+    assert [row["growth_start"] for row in rows] == ["1", "1", "0"]
     assert 0 < float(rows[0]["grown_length_flaw"]) < float(rows[1]["grown_length_flaw"])
     assert float(rows[1]["grown_length_flaw"]) == pytest.approx(1.2, rel=1e-6)
     assert float(rows[0]["k_eq_ratio"]) > 1.0 and int(rows[0]["slip"]) == 20
@@ -310,6 +313,20 @@ def test_every_task_of_a_growth_sweep_grows_and_is_collected(tmp_path):
         assert [v.decode() for v in f["end_reason"][()]] == [r["end_reason"] for r in rows]
         assert f["grown_length_flaw"].attrs["units"] == "m"
     assert (runs / "wings_grown_length_flaw_vs_remote_angle.png").stat().st_size > 5000
+
+
+def test_growth_start_is_the_first_load_step_with_growth():
+    """growth_start: the load step of the first record that grew (length > 0), or of the
+    first new fracture started inside the rock, whichever is earlier; 0 without either; 1
+    at a fixed load (no load_step column)."""
+    growth = {"step": np.array([1, 1, 2, 2, 3, 3]), "load_step": np.array([1, 1, 2, 3, 3, 4]),
+              "length": np.array([0.0, 0.0, 0.0, 0.1, 0.1, 0.0])}
+    assert collect_sweep.growth_start(growth) == 3
+    assert collect_sweep.growth_start({**growth, "initiations": {"load_step": np.array([2])}}) \
+        == 2
+    assert collect_sweep.growth_start({**growth, "length": np.zeros(6)}) == 0
+    fixed = {key: value for key, value in growth.items() if key != "load_step"}
+    assert collect_sweep.growth_start(fixed) == 1
 
 
 HALF_PLANE = """&model youngs_modulus = 40000, poissons_ratio = 0.25, domain = 'half_plane' /
@@ -424,3 +441,117 @@ def test_sweep_refusal_follows_the_value_in_force(tmp_path):
     assert ("task 0 (fracture(1)%mu = 0.6, mu = 0.3): mu = 0.3 is below mu_dynamic = 0.4 of "
             "fracture 1 weak") in done.stderr
     assert "task 1 " not in done.stderr
+
+
+FLOW = """&model youngs_modulus = 30000.0, poissons_ratio = 0.25, length_unit = 'm',
+       stress_unit = 'MPa', time_unit = 'h' /
+&remote_stress syy = -10.0, sxy = 4.5 /
+&fracture name = 'fault', x = -4.0, 4.0, y = 0.0, 0.0, elements = 40, mu = 0.6, sf = 0.0,
+          diffusivity = 1.0, transmissivity = 1.0 /
+&fracture name = 'dry', x = -4.0, 4.0, y = 3.0, 3.0, elements = 4, mu = 0.6 /
+&injection name = 'well', fracture = 'fault', x = 0.0, y = 0.0, overpressure = 5.0 /
+&load_path time = 0.0, 0.4, steps = 2 /
+"""
+
+
+def test_sweep_of_injection_and_hydraulic_parameters(tmp_path):
+    # docs/sweeps-and-slurm.md#the-parameters: a source's overpressure and a fracture's
+    # transmissivity, each task's values in its model, and collect-sweep's injection columns.
+    sweep = tmp_path / "flow.nml"
+    sweep.write_text(FLOW + "&sweep parameters = 'overpressure', 'fracture(1)%transmissivity', "
+                     "values_1 = 4.0, 5.0, values_2 = 1.0, 2.0 /\n")
+    runs = tmp_path / "runs"
+    runs.mkdir()
+    volume = {}
+    for task, (overpressure, transmissivity) in enumerate([(4, 1), (4, 2), (5, 1), (5, 2)]):
+        done = run([sweep, "--task", str(task), "-o", runs / "flow.h5"], tmp_path)
+        assert done.returncode == 0, done.stderr
+        with h5py.File(runs / f"flow_task{task:04d}.h5", "r") as f:
+            assert f["injection/overpressure"][0] == overpressure
+            fid = f["elements/fracture_id"][()]
+            assert np.all(f["elements/transmissivity"][()][fid == 1] == transmissivity)
+            assert np.all(f["elements/diffusivity"][()][fid == 1] == 1.0)
+            assert np.all(f["elements/transmissivity"][()][fid == 2] == 0.0)  # dry: no flow
+            volume[overpressure, transmissivity] = f["history/injected_volume"][-1]
+    # The pressure diffuses with alpha alone and scales with the overpressure; the stored
+    # volume is (T / alpha) times its integral: the values act as the model's own would.
+    assert volume[4, 2] == pytest.approx(2.0 * volume[4, 1], rel=1e-9)
+    assert volume[5, 1] == pytest.approx(1.25 * volume[4, 1], rel=1e-9)
+    done = subprocess.run([sys.executable, str(COLLECT), str(runs)], capture_output=True,
+                          text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    with open(runs / "flow_summary.csv") as handle:
+        header = next(csv.reader(handle))
+        rows = [dict(zip(header, row)) for row in csv.reader(handle)]
+    assert header[:3] == ["task", "overpressure [MPa]", "fracture(1)%transmissivity [m^3/(MPa h)]"]
+    assert header[10:] == ["injected_volume [m^2]", "slipping_length_fault [m]",
+                           "front_half_length_fault [m]", "moment_fault [MPa m^2]",
+                           "slipping_length_dry [m]", "front_half_length_dry [m]",
+                           "moment_dry [MPa m^2]"]
+    for row, task in zip(rows, range(4)):
+        with h5py.File(runs / f"flow_task{task:04d}.h5", "r") as f:
+            h = f["history"]
+            assert float(row["injected_volume [m^2]"]) == h["injected_volume"][-1]
+            assert float(row["slipping_length_fault [m]"]) == h["slipping_length"][-1, 0]
+            assert float(row["front_half_length_fault [m]"]) == pytest.approx(
+                0.5 * (h["front_end"][-1, 0] - h["front_begin"][-1, 0]), rel=1e-15)
+            assert float(row["moment_fault [MPa m^2]"]) == h["moment"][-1, 0]
+        assert np.isnan(float(row["front_half_length_dry [m]"]))  # the dry one sticks
+        assert float(row["moment_dry [MPa m^2]"]) == 0.0
+
+
+@pytest.mark.parametrize("parameter, value, message", [
+    ("rate", 1.0, "parameters(1) = 'rate': no &injection gives a rate"),
+    ("injection(1)%rate", 1.0, "'injection(1)%rate': &injection 1 'well' does not give a rate"),
+    ("injection(2)%overpressure", 1.0, "has 1 &injection group(s); K must be 1 to 1"),
+    ("injection(a)%overpressure", 1.0, "write injection(K)%overpressure with K"),
+    ("injection(1)%mu", 1.0, "a source's sweep parameters are overpressure and rate"),
+    ("fracture(2)%diffusivity", 1.0, "'fracture(2)%diffusivity': fracture 2 'dry' does not"),
+    ("fracture(1)%storativity", 1.0, "are mu, sf, pressure, diffusivity, transmissivity and the"),
+    ("transmissivity", 0.0, "values_1(1) = 0.00000: transmissivity must be positive"),
+])
+def test_bad_flow_sweeps_exit_2(tmp_path, parameter, value, message):
+    sweep = tmp_path / "flow.nml"
+    sweep.write_text(FLOW + f"&sweep parameters = '{parameter}', values_1 = {value} /\n")
+    done = run([sweep, "--list"], tmp_path)
+    assert done.returncode == 2, done.stdout
+    assert message in done.stderr and done.stderr.count("ddc2d: error:") == 1, done.stderr
+
+
+def test_a_swept_source_value_reaches_its_source_only(tmp_path):
+    sweep = tmp_path / "two.nml"
+    sweep.write_text(FLOW + "&injection name = 'sink', fracture = 'fault', x = 2.1, y = 0.0, "
+                     "rate = -0.1 /\n&sweep parameters = 'injection(2)%rate', 'overpressure', "
+                     "values_1 = -0.2, values_2 = 3.0 /\n")
+    done = run([sweep, "--task", "0", "-o", "two.h5"], tmp_path)
+    assert done.returncode == 0, done.stderr
+    with h5py.File(tmp_path / "two_task0000.h5", "r") as f:
+        assert list(f["injection/overpressure"][()][:1]) == [3.0]
+        assert list(f["injection/rate"][()][1:]) == [-0.2]
+        assert np.isnan(f["injection/rate"][0]) and np.isnan(f["injection/overpressure"][1])
+
+
+def test_the_strength_laws_of_the_fractures_are_swept(tmp_path):
+    """A fracture's own strength laws are sweep parameters as the new_* ones of &growth are:
+    <law> on the contact elements of every fracture, fracture(K)%<law> on fracture K's; a task
+    whose mu_dynamic would exceed mu is refused as one model is."""
+    sweep = tmp_path / "laws.nml"
+    sweep.write_text(WEAKENING + "&sweep parameters = 'slip_weakening_distance', "
+                     "'fracture(1)%mu_dynamic', combine = 'zip', values_1 = 5e-5, 2e-4, "
+                     "values_2 = 0.45, 0.7 /\n")
+    done = run([sweep, "--list"], tmp_path)
+    assert done.returncode == 2
+    assert ("task 1 (slip_weakening_distance = 0.0002, fracture(1)%mu_dynamic = 0.7): "
+            "fracture(1)%mu_dynamic = 0.7 is above mu = 0.6 of fracture 1 weak") in done.stderr
+    assert "task 0 " not in done.stderr
+    done = run([sweep, "--task", "0", "-o", "out.h5"], tmp_path)
+    assert done.returncode == 0, done.stderr
+    with h5py.File(tmp_path / "out_task0000.h5", "r") as f:
+        elements = f["elements"]
+        weak = elements["fracture_id"][()] == 1
+        assert np.all(elements["slip_weakening_distance"][()] == 5e-5)
+        assert np.all(elements["mu_dynamic"][()][weak] == 0.45)
+        # The plain fracture keeps its friction: no mu_dynamic given is mu's.
+        assert np.all(elements["mu_dynamic"][()][~weak] == 0.6)
+        assert f["sweep"].attrs["parameters"] == b"slip_weakening_distance, fracture(1)%mu_dynamic"
+

@@ -15,15 +15,23 @@ the swept parameters (from the /sweep group, in &sweep order) and the results
 and, when the tasks grow fractures (a ``&growth`` group; the columns of the first task's
 file name the fractures):
 
-* ``growth_steps``: steps in which a tip grew; ``end_reason``: ``arrested`` or ``step_limit``;
+* ``growth_steps``: steps in which a tip grew; ``growth_start``: the load step (1-based, 1
+  without a load path) in which a tip first grew or a new fracture started, 0 when none did;
+  ``end_reason``: ``arrested``, ``step_limit`` or ``failed``;
 * ``grown_length_<fracture>``: length grown at both tips of each fracture [length unit];
 * ``k_eq_ratio``: the largest K_eq / toughness of the last step's records (below 1: every
-  tip left is subcritical).
+  tip left is subcritical);
+
+and, when the tasks have fluid sources (&injection), at the path's last step:
+
+* ``injected_volume``: the volume the sources let in [length^2];
+* ``slipping_length_<fracture>``, ``front_half_length_<fracture>`` (NaN where nothing
+  slips) and ``moment_<fracture>`` of every fracture [length, length, stress length^2].
 
 The CSV header gives each column's unit in brackets as the tips table of ddc2d-plot does
 (``peak_slip [m]``, ``remote_angle [deg]``, ``max_abs_k1 [MPa m^0.5]``; none for counts and
-dimensionless parameters such as mu), from the root attributes length_unit and stress_unit
-of the task files; the plot's axes are labelled the same way.
+dimensionless parameters such as mu), from the root attributes length_unit, stress_unit
+and time_unit of the task files; the plot's axes are labelled the same way.
 
 Tasks without a complete output are listed on standard error (run the sweep again: only
 they run). With --plot, also writes ``DIR/<stem>_<RESULT>_vs_<PARAM>.<fmt>``: RESULT against
@@ -49,34 +57,58 @@ from .reader import (
     read_elements,
     read_fractures,
     read_growth,
+    read_history,
     read_sweep,
     read_tips,
 )
 
 RESULTS = ("peak_slip", "peak_opening", "stick", "slip", "open", "max_abs_k1", "max_abs_k2")
 #: Columns of a growth run besides its grown_length_<fracture> (see growth_summary)
-GROWTH_RESULTS = ("growth_steps", "end_reason", "k_eq_ratio")
+GROWTH_RESULTS = ("growth_steps", "growth_start", "end_reason", "k_eq_ratio")
 GROWN_LENGTH = "grown_length_"
+#: Columns of a task with fluid sources besides its per-fracture ones (injection_summary)
+INJECTION_RESULTS = ("injected_volume",)
+#: The per-fracture columns of a task with fluid sources, <prefix><fracture>: the /history
+#: dataset of each prefix and the unit kind of its column
+INJECTION_FRACTURE_RESULTS = {"slipping_length_": ("slipping_length", "length"),
+                              "front_half_length_": (None, "length"),
+                              "moment_": ("moment", "moment")}
 TASK_FILE = re.compile(r"(?P<stem>.+)_task(?P<task>\d+)\.h5$")
-#: Unit of each column: 'length', 'stress', 'k' (stress length^0.5), a literal unit, or ''
-#: (counts, dimensionless parameters). Per-fracture parameters fracture(K)%<name> take the
-#: unit of <name>.
+#: Unit of each column: 'length', 'stress', 'k' (stress length^0.5), 'stiffness' (stress /
+#: length), 'area' (length^2), 'moment' (stress length^2), 'diffusivity' (length^2 / time),
+#: 'transmissivity' (length^3 / (stress time)), a literal unit, or '' (counts, dimensionless
+#: parameters). Per-fracture and per-source parameters fracture(K)%<name>,
+#: injection(K)%<name> take the unit of <name>, the laws of new elements new_<name> that of
+#: <name>.
 COLUMN_UNITS = {"peak_slip": "length", "peak_opening": "length", "max_abs_k1": "k",
                 "max_abs_k2": "k", "youngs_modulus": "stress", "sxx": "stress",
                 "syy": "stress", "sxy": "stress", "remote_s1": "stress",
                 "remote_s3": "stress", "remote_angle": "deg", "sf": "stress",
-                "pressure": "stress"}
+                "pressure": "stress", "overpressure": "stress", "rate": "diffusivity",
+                "diffusivity": "diffusivity", "transmissivity": "transmissivity",
+                "injected_volume": "area", "tensile_strength": "stress",
+                "sf_residual": "stress", "slip_weakening_distance": "length",
+                "opening_weakening_distance": "length", "shear_stiffness": "stiffness",
+                "normal_stiffness": "stiffness"}
 
 
-def column_units(columns, length_unit, stress_unit):
+def column_units(columns, length_unit, stress_unit, time_unit=""):
     """The unit of every column (see COLUMN_UNITS), '' for none."""
     named = {"length": length_unit, "stress": stress_unit,
-             "k": f"{stress_unit} {length_unit}^0.5".strip()}
+             "k": f"{stress_unit} {length_unit}^0.5".strip(), "area": f"{length_unit}^2",
+             "moment": f"{stress_unit} {length_unit}^2",
+             "stiffness": f"{stress_unit}/{length_unit}",
+             "diffusivity": f"{length_unit}^2/{time_unit}",
+             "transmissivity": f"{length_unit}^3/({stress_unit} {time_unit})"}
     units = {}
     for column in columns:
-        kind = COLUMN_UNITS.get(column.split("%")[-1], "")
+        name = column.split("%")[-1]
+        kind = COLUMN_UNITS.get(name.removeprefix("new_"), "")
         if column.startswith(GROWN_LENGTH):
             kind = "length"
+        for prefix, (_, unit) in INJECTION_FRACTURE_RESULTS.items():
+            if column.startswith(prefix):
+                kind = unit
         units[column] = named.get(kind, kind)
     return units
 
@@ -97,9 +129,14 @@ def read_task(path):
             elements = read_elements(path, f)
             results = summary(elements, read_tips(path, f))
             growth = read_growth(path, f)
+            fractures = read_fractures(path, f, elements)
             if growth is not None:
-                results.update(growth_summary(growth, read_fractures(path, f, elements)))
-            units = (attr_text(f.attrs, "length_unit"), attr_text(f.attrs, "stress_unit"))
+                results.update(growth_summary(growth, fractures))
+            if "injection" in f:
+                history = read_history(path, f, elements["ds"].size)
+                results.update(injection_summary(history, fractures))
+            units = (attr_text(f.attrs, "length_unit"), attr_text(f.attrs, "stress_unit"),
+                     attr_text(f.attrs, "time_unit"))
             return sweep["task"], sweep["tasks"], sweep["parameters"], results, units
     except (OSError, KeyError, ResultError):
         return None
@@ -128,7 +165,8 @@ def growth_summary(growth, fractures):
     attrs = growth["attrs"]
     last = growth["step"] == np.max(growth["step"]) if growth["step"].size else []
     k_eq = growth["k_eq"][last] if growth["step"].size else np.array([])
-    results = {"growth_steps": int(attrs["steps_taken"]), "end_reason": str(attrs["end_reason"]),
+    results = {"growth_steps": int(attrs["steps_taken"]), "growth_start": growth_start(growth),
+               "end_reason": str(attrs["end_reason"]),
                "k_eq_ratio": float(np.max(k_eq)) / float(attrs["toughness"]) if k_eq.size
                else float("nan")}
     for index, fracture in enumerate(fractures, start=1):
@@ -137,9 +175,35 @@ def growth_summary(growth, fractures):
     return results
 
 
+def injection_summary(history, fractures):
+    """The injection columns of one task from its /history (read_history) and fractures:
+    the path's last step."""
+    results = {"injected_volume": float(history["injected_volume"][-1])}
+    for index, fracture in enumerate(fractures):
+        for prefix, (key, _) in INJECTION_FRACTURE_RESULTS.items():
+            if key is None:  # the half-length, from the fronts
+                value = 0.5 * (history["front_end"][-1, index]
+                               - history["front_begin"][-1, index])
+            else:
+                value = history[key][-1, index]
+            results[prefix + fracture["name"]] = float(value)
+    return results
+
+
+def growth_start(growth):
+    """The load step (1-based; 1 without a load path) of the first growth step in which a
+    tip grew (its record's length > 0) or a new fracture started; 0 when none did."""
+    load_step = growth.get("load_step", np.ones_like(growth["step"]))
+    starts = list(load_step[growth["length"] > 0])
+    if "initiations" in growth:
+        starts += list(growth["initiations"]["load_step"])
+    return int(min(starts)) if starts else 0
+
+
 def is_result(column):
     """Whether a summary column is a result (else the task number or a swept parameter)."""
-    return column in RESULTS or column in GROWTH_RESULTS or column.startswith(GROWN_LENGTH)
+    return (column in RESULTS or column in GROWTH_RESULTS or column in INJECTION_RESULTS
+            or column.startswith((GROWN_LENGTH, *INJECTION_FRACTURE_RESULTS)))
 
 
 def collect(folder):
@@ -240,7 +304,7 @@ def main(argv=None):
     parser.add_argument("folder", help="folder of the task outputs")
     parser.add_argument("--plot", metavar="RESULT",
                         help=f"result to plot: {', '.join(RESULTS)}, and of growth runs "
-                        f"growth_steps, k_eq_ratio, {GROWN_LENGTH}<fracture>")
+                        f"growth_steps, growth_start, k_eq_ratio, {GROWN_LENGTH}<fracture>")
     parser.add_argument("--against", metavar="PARAM", help="swept parameter on the x axis")
     parser.add_argument("--format", default="png", choices=("png", "pdf", "svg"))
     args = parser.parse_args(argv)

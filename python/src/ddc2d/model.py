@@ -24,8 +24,8 @@ from .reader import FilePath
 SINGLE_GROUPS = ("remote_stress", "pore_fluid", "solver", "symmetry", "load_path", "sweep",
                  "growth")
 #: The order of the groups in the file: as in docs/input-reference.md.
-GROUP_ORDER = ("model", "remote_stress", "pore_fluid", "fracture", "grid", "line", "points",
-               "solver", "symmetry", "load_path", "sweep", "growth")
+GROUP_ORDER = ("model", "material", "remote_stress", "pore_fluid", "fracture", "grid", "line",
+               "points", "solver", "symmetry", "load_path", "injection", "sweep", "growth")
 #: Namelist lines are kept under this width (values wrap onto continuation lines).
 LINE_WIDTH = 90
 
@@ -70,12 +70,15 @@ def namelist_group(group: str, variables: Mapping[str, Any]) -> str:
 class Model:
     """A ddc2d model: the &model group and the groups added by the methods below."""
 
-    def __init__(self, youngs_modulus: float, poissons_ratio: float, **model: Any) -> None:
+    def __init__(self, youngs_modulus: float | None, poissons_ratio: float | None,
+                 **model: Any) -> None:
         """`youngs_modulus`, `poissons_ratio` and the other &model variables (title,
-        length_unit, stress_unit, domain)."""
+        length_unit, stress_unit, domain, interface_y); with domain = 'bimaterial' the two
+        are None and material() gives each half-plane's."""
         self.groups: list[tuple[str, dict[str, Any]]] = [
-            ("model", {"youngs_modulus": youngs_modulus, "poissons_ratio": poissons_ratio,
-                       **model})]
+            ("model", {k: v for k, v in {"youngs_modulus": youngs_modulus,
+                                         "poissons_ratio": poissons_ratio, **model}.items()
+                       if v is not None})]
         #: Point sets of &points: the name -> (x, y), written to CSV files by write().
         self.point_sets: dict[str, tuple[list[float], list[float]]] = {}
 
@@ -84,6 +87,12 @@ class Model:
             self.groups = [(g, v) for g, v in self.groups if g != group]
         self.groups.append((group, {k: v for k, v in variables.items() if v is not None}))
         return self
+
+    def material(self, name: str, youngs_modulus: float, poissons_ratio: float) -> Self:
+        """&material: the material 'upper' or 'lower' of two bonded half-planes
+        (domain = 'bimaterial')."""
+        return self._add("material", {"name": name, "youngs_modulus": youngs_modulus,
+                                      "poissons_ratio": poissons_ratio})
 
     def remote_stress(self, sxx: float = 0.0, syy: float = 0.0, sxy: float = 0.0,
                       **gradients: float) -> Self:
@@ -131,8 +140,17 @@ class Model:
         return self._add("symmetry", values)
 
     def load_path(self, steps: int | Iterable[int], **loads: Any) -> Self:
-        """&load_path: steps per leg and the loads at every vertex (sxx, ..., p0)."""
+        """&load_path: steps per leg and the loads at every vertex (sxx, ..., p0) and
+        their times (time)."""
         return self._add("load_path", {"steps": steps, **loads})
+
+    def injection(self, fracture: str, x: float, y: float, name: str | None = None,
+                  **values: Any) -> Self:
+        """&injection: a fluid source at (x, y) on the fracture named `fracture`, with
+        overpressure or rate, and start, stop (one group per source; the path needs times:
+        load_path(time=...))."""
+        return self._add("injection", {"name": name, "fracture": fracture, "x": x, "y": y,
+                                       **values})
 
     def growth(self, steps: int, toughness: float, **values: Any) -> Self:
         """&growth: most steps, toughness K_Ic and increment, element_length, tips, ..."""

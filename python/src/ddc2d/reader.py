@@ -10,9 +10,9 @@ Used by ddc2d.open_result, ``ddc2d-plot``, ``collect-sweep``, ``compare-twodd``,
   inverses ``STATE_CODES``, ``CONDITION_CODES`` are what ddc2d writes, for files without the
   attribute and for tools that read single datasets;
 * the groups of a result: ``load_result`` reads a whole file, ``read_elements``,
-  ``read_fractures``, ``read_tips``, ``read_fields``, ``read_history``, ``read_growth``,
-  ``read_cycle``, ``read_solver`` and ``read_sweep`` one group of an open file;
-  ``is_complete`` tells a finished file;
+  ``read_fractures``, ``read_tips``, ``read_fields``, ``read_history``,
+  ``read_injection``, ``read_growth``, ``read_cycle``, ``read_solver`` and ``read_sweep``
+  one group of an open file; ``is_complete`` tells a finished file;
 * the tie rule of every default that picks "the largest" or "the first": ``index_of_extreme``
   and ``is_tie`` (values within ``TIE_RTOL`` = 1e-9 relative count as equal, the lowest index
   wins), so that a choice never depends on last-bit rounding (symmetric models, other BLAS
@@ -76,6 +76,14 @@ HISTORY_STRING_DATASETS = ("method", "fallback")
 #: /history datasets of fracture growth along a load path, read when present
 #: (docs/fracture-growth.md#output).
 HISTORY_GROWTH_DATASETS = ("element_count", "grown_length", "tip_fracture_id", "tip_end")
+#: /history datasets of a load path with a time axis (time) and of fluid sources
+#: (docs/injection.md#output: pressure per element; injected volume per step; slipping
+#: length, front positions and moment per fracture), read when present.
+HISTORY_FLOW_DATASETS = ("time", "pressure", "injected_volume", "slipping_length",
+                         "front_begin", "front_end", "moment")
+#: /injection datasets (docs/output-reference.md), one value per fluid source: overpressure
+#: NaN for a rate source, rate NaN for a pressure source, start and stop NaN where not given.
+INJECTION_DATASETS = ("fracture_id", "x", "y", "overpressure", "rate", "start", "stop")
 #: /growth datasets (fracture growth; docs/fracture-growth.md#output), one value per record
 #: (tip and step).
 GROWTH_DATASETS = ("step", "fracture_id", "end", "x", "y", "k1", "k2", "k_eq", "mts_angle",
@@ -87,6 +95,9 @@ GROWTH_WORK_DATASETS = ("efficiency",)
 #: /growth/trials datasets of the work criterion, one value per trial kink.
 GROWTH_TRIAL_DATASETS = ("trial_step", "trial_record", "trial_angle", "trial_efficiency",
                          "trial_state")
+#: Datasets of /growth/initiations (&initiation), one value per new fracture started.
+INITIATION_DATASETS = ("kind", "step", "load_step", "fracture_id", "parent", "element", "flaw",
+                       "side", "x", "y", "probe_x", "probe_y", "tension", "angle")
 #: Datasets of /growth/initiations/flaw_trials (criterion 'work' with flaw points), one value
 #: per trial of a flaw's first crack.
 FLAW_TRIAL_DATASETS = ("step", "flaw", "angle", "efficiency", "state")
@@ -250,9 +261,10 @@ def load_result(path: FilePath) -> Loaded:
     ``tips`` (dict of 1-D arrays x, y, fracture_id, element, k1, k2 and ``k_unit``; empty
     arrays without /tips), ``remote_stress`` ((sxx, syy, sxy) or None),
     ``remote_stress_gradient`` ((dsxx_dy, dsyy_dy, dsxy_dy)) and ``pore_fluid`` ((p0,
-    dp_dy)), zeros when the file predates them, ``codings`` (read_codings), ``history``
-    (see read_history; None without /history), ``growth`` (see read_growth; None without
-    /growth) and ``cycle`` (see read_cycle; None without /cycle).
+    dp_dy)), zeros when the file predates them, ``time_unit`` ('' without a time axis),
+    ``codings`` (read_codings), ``history`` (see read_history; None without /history),
+    ``injection`` (see read_injection; None without fluid sources), ``growth`` (see
+    read_growth; None without /growth) and ``cycle`` (see read_cycle; None without /cycle).
     Raises ResultError with a message naming the file and the problem.
     """
     path = Path(path)
@@ -284,6 +296,7 @@ def _read_open_file(path: Path, handle: h5py.File) -> Loaded:
         "title": attr_text(handle.attrs, "title"),
         "length_unit": attr_text(handle.attrs, "length_unit"),
         "stress_unit": attr_text(handle.attrs, "stress_unit"),
+        "time_unit": attr_text(handle.attrs, "time_unit"),
         "complete": is_complete(handle.attrs, when_missing=True),
         "elements": elements,
         "fractures": read_fractures(path, handle, elements),
@@ -294,6 +307,7 @@ def _read_open_file(path: Path, handle: h5py.File) -> Loaded:
         "pore_fluid": read_root_reals(path, handle, "pore_fluid", 2),
         "codings": read_codings(handle),
         "history": read_history(path, handle, count),
+        "injection": read_injection(path, handle),
         "growth": read_growth(path, handle),
         "cycle": read_cycle(path, handle),
     }
@@ -437,7 +451,10 @@ def read_history(path: FilePath, handle: h5py.Group, count: int) -> dict[str, An
     ``fallback``: one str per step; with
     fracture growth ``element_count`` (steps,), ``grown_length`` (steps, tips),
     ``tip_fracture_id``, ``tip_end`` (tips,), and element rows NaN (state -1) before an
-    element was made), or None when the file has no loading history."""
+    element was made; with a time axis ``time`` (steps,) and with fluid sources
+    ``pressure`` (steps, elements), ``injected_volume`` (steps,), ``slipping_length``,
+    ``front_begin``, ``front_end``, ``moment`` (steps, fractures)), or None when the file
+    has no loading history."""
     if "history" not in handle:
         return None
     group = handle["history"]
@@ -445,7 +462,7 @@ def read_history(path: FilePath, handle: h5py.Group, count: int) -> dict[str, An
         "loads": {k: np.asarray(group[k][()]) for k in HISTORY_LOADS if k in group}}
     for key in HISTORY_DATASETS:
         history[key] = np.asarray(group[key][()])
-    for key in HISTORY_STEP_DATASETS + HISTORY_GROWTH_DATASETS:
+    for key in HISTORY_STEP_DATASETS + HISTORY_GROWTH_DATASETS + HISTORY_FLOW_DATASETS:
         if key in group:
             history[key] = np.asarray(group[key][()])
     for key in HISTORY_STRING_DATASETS:
@@ -457,6 +474,21 @@ def read_history(path: FilePath, handle: h5py.Group, count: int) -> dict[str, An
     return history
 
 
+def read_injection(path: FilePath, handle: h5py.Group) -> dict[str, Any] | None:
+    """/injection, the fluid sources, as a dict: ``name`` (a list of str) and the 1-D arrays
+    of INJECTION_DATASETS, one value per source (``fracture_id`` 1-based); None when the
+    file has no fluid sources."""
+    if "injection" not in handle:
+        return None
+    group = handle["injection"]
+    sources: dict[str, Any] = {"name": [decode(v) for v in np.ravel(group["name"][()])]}
+    for key in INJECTION_DATASETS:
+        sources[key] = np.asarray(group[key][()]).ravel()
+        if sources[key].size != len(sources["name"]):
+            raise ResultError(f"'{path}': /injection datasets differ in length")
+    return sources
+
+
 def read_growth(path: FilePath, handle: h5py.Group) -> dict[str, Any] | None:
     """/growth of a fracture growth run as a dict: every dataset of GROWTH_DATASETS (1-D,
     one value per record: one record per tip per step), ``attrs`` (strings decoded: toughness,
@@ -464,8 +496,10 @@ def read_growth(path: FilePath, handle: h5py.Group) -> dict[str, Any] | None:
     the work criterion also ``efficiency`` and ``trials`` (dict of GROWTH_TRIAL_DATASETS, one
     value per trial kink), and with flaw points ``flaw_trials`` (dict of FLAW_TRIAL_DATASETS,
     one value per trial of a flaw's first crack) and ``flaw_starts`` (``flaw``, ``step`` and
-    ``angle`` of every flaw that started, from /growth/initiations); None when the file has
-    no /growth."""
+    ``angle`` of every flaw that started, from /growth/initiations); with &initiation
+    ``initiations`` (dict of INITIATION_DATASETS, one value per new fracture, and ``attrs``:
+    its settings and, when a check started nothing, ``largest_tension`` with its
+    ``largest_tension_x``, ``_y`` and ``_step``); None when the file has no /growth."""
     if "growth" not in handle:
         return None
     group = handle["growth"]
@@ -481,6 +515,11 @@ def read_growth(path: FilePath, handle: h5py.Group) -> dict[str, Any] | None:
     if "trials" in group:
         growth["trials"] = {key: np.asarray(group["trials"][key][()]).ravel()
                             for key in GROWTH_TRIAL_DATASETS}
+    if "initiations" in group:
+        rows = group["initiations"]
+        growth["initiations"] = {key: np.asarray(rows[key][()]).ravel()
+                                 for key in INITIATION_DATASETS}
+        growth["initiations"]["attrs"] = decoded_attrs(rows.attrs)
     if "initiations/flaw_trials" in group:
         trials = group["initiations/flaw_trials"]
         growth["flaw_trials"] = {key: np.asarray(trials[key][()]).ravel()

@@ -26,6 +26,11 @@ HISTORY_ELEMENT_DATASETS = ("ds", "dn", "state", "shear_traction", "normal_tract
                             "mu_in_force", "sf_in_force", "tensile_strength_in_force")
 #: Datasets of /history with one value per step and tip.
 HISTORY_TIP_DATASETS = ("k1", "k2", "grown_length")
+#: Datasets of /history with one value per step and fracture (fluid sources:
+#: docs/injection.md#output).
+HISTORY_FRACTURE_DATASETS = ("slipping_length", "front_begin", "front_end", "moment")
+#: Datasets of /history with one value per step besides the loads and the time.
+HISTORY_STEP_VARIABLES = ("injected_volume",)
 #: The name of the loading history in ``Result.to_xarray``.
 HISTORY = "history"
 
@@ -63,7 +68,7 @@ class Result:
     Attributes (arrays are numpy arrays; element and tip numbers in the file are 1-based):
 
     * ``path``, ``title``, ``complete`` (False when the run did not finish),
-      ``length_unit``, ``stress_unit``;
+      ``length_unit``, ``stress_unit``, ``time_unit`` ('' without a time axis);
     * ``provenance``: every root attribute (strings decoded): program, version,
       git_commit, created, input_file, the material, the remote stress, ...;
     * ``input_text``: the namelist file the run read, as it was;
@@ -74,6 +79,8 @@ class Result:
       and the arrays x, y, ux, uy, sxx, syy, sxy, near_element);
     * ``history``: the loading history (loads, ds, dn, state shaped (steps, elements),
       ...) or None; ``growth``: the growth records (one per tip per step) or None;
+    * ``injection``: the fluid sources (name, fracture_id, x, y, overpressure, rate, start,
+      stop; one value per source) or None;
       ``cycle``: an earthquake-cycle run (rows, recorded elements, points, events:
       ddc2d.reader.read_cycle) or None;
     * ``units``: dataset path -> unit ('elements/ds' -> 'm'); ``unit(path)`` reads it;
@@ -86,6 +93,7 @@ class Result:
         self.complete: bool = loaded["complete"]
         self.length_unit: str = loaded["length_unit"]
         self.stress_unit: str = loaded["stress_unit"]
+        self.time_unit: str = loaded["time_unit"]
         self.provenance: dict[str, Any] = loaded["attrs"]
         self.input_text: str = loaded["attrs"].get("input_text", "")
         self.elements: Arrays = loaded["elements"]
@@ -94,6 +102,7 @@ class Result:
         self.fields: dict[str, dict[str, Any]] = loaded["fields"]
         self.history: dict[str, Any] | None = loaded["history"]
         self.growth: dict[str, Any] | None = loaded["growth"]
+        self.injection: dict[str, Any] | None = loaded["injection"]
         self.cycle: dict[str, Any] | None = loaded["cycle"]
         self.codings: dict[str, Coding] = loaded["codings"]
         self.units = units
@@ -132,7 +141,11 @@ class Result:
         (step, element) and K on (step, tip), steps and elements numbered from 1 as in the
         file, with the loads as coordinates along ``step``; the strengths in force
         (mu_in_force, sf_in_force, tensile_strength_in_force) where the file holds them.
-        Every variable carries its
+        A path with a time axis has ``time`` as a coordinate along ``step`` too
+        (``.swap_dims(step="time")`` puts the steps on it); with fluid sources ``pressure``
+        is on (step, element), ``injected_volume`` on step, and slipping_length,
+        front_begin, front_end and moment on (step, fracture), the fractures numbered from 1
+        with their names as the coordinate ``fracture_name``. Every variable carries its
         ``units`` attribute."""
         if name is None:
             names = list(self.fields) + ([HISTORY] if self.history is not None else [])
@@ -181,14 +194,19 @@ class Result:
                                   "element": ("element", np.arange(1, elements + 1))}
         for load, values in history["loads"].items():
             coords[load] = ("step", values, {"units": self.unit(f"history/{load}")})
+        if "time" in history:
+            coords["time"] = ("step", history["time"], {"units": self.unit("history/time")})
+        if any(key in history for key in HISTORY_FRACTURE_DATASETS):
+            coords["fracture"] = ("fracture", np.arange(1, len(self.fractures) + 1))
+            coords["fracture_name"] = ("fracture", [f["name"] for f in self.fractures])
         variables: dict[str, Any] = {}
-        for key in HISTORY_ELEMENT_DATASETS:
-            if key in history:
-                variables[key] = (("step", "element"), history[key],
-                                  {"units": self.unit(f"history/{key}")})
-        for key in HISTORY_TIP_DATASETS:
-            if key in history and np.ndim(history[key]) == 2:
-                variables[key] = (("step", "tip"), history[key],
-                                  {"units": self.unit(f"history/{key}")})
+        for dims, keys in ((("step", "element"), HISTORY_ELEMENT_DATASETS + ("pressure",)),
+                           (("step", "tip"), HISTORY_TIP_DATASETS),
+                           (("step", "fracture"), HISTORY_FRACTURE_DATASETS),
+                           (("step",), HISTORY_STEP_VARIABLES)):
+            for key in keys:
+                if key in history and np.ndim(history[key]) == len(dims):
+                    variables[key] = (dims, history[key],
+                                      {"units": self.unit(f"history/{key}")})
         return xr.Dataset(variables, coords=coords,
                           attrs={"name": HISTORY, "source": str(self.path)})

@@ -51,6 +51,7 @@ contains
         model%poissons_ratio = nu
         model%length_unit = 'm'
         model%stress_unit = 'MPa'
+        model%time_unit = 's'
         model%solver = solver_options()
         call allocate_elements(model%elements, sum(counts))
         call polyline_elements(x, y, counts, model%elements%x_begin, model%elements%y_begin, &

@@ -6,10 +6,11 @@
                    [--slurm [sbatch options...]] [--collect]
 
 Runs the model at its own resolution and refined N - 1 times (default 3 levels; each
-level halves every element, the growth increment and element length, and the load steps),
-prints the table of the quantities with their observed order, extrapolated value, error
-estimate and verdict, and writes the levels, STUDY.json and convergence.png into DIR
-(default <model stem>_converge/ in the current folder).
+level halves every element, the growth increment and element length, and the load steps,
+the time steps of a path with a time axis too), prints the table of the quantities with
+their observed order, extrapolated value, error estimate and verdict, and writes the
+levels, STUDY.json and convergence.png into DIR (default <model stem>_converge/ in the
+current folder).
 
 --slurm writes the levels and submits them as a Slurm job array (other options go to
 sbatch as #SBATCH lines, as with submit-sweep) and prints the job id; once it has

@@ -6,9 +6,9 @@ syntax); a refined copy is the original text with those spans replaced, so comme
 layout and every other value stay as the user wrote them. Refined per level k (factor
 2^k): every `&fracture elements` value multiplied, `&growth increment` and
 `element_length` divided and `&growth steps` multiplied (the same grown length needs
-twice the steps), `&load_path steps` multiplied. `&points file` becomes absolute, since
-the refined files are written elsewhere. What cannot be refined raises RefineError
-naming the variable.
+twice the steps), `&load_path steps` multiplied (with a time axis: each time step halved,
+the times kept). `&points file` becomes absolute, since the refined files are written
+elsewhere. What cannot be refined raises RefineError naming the variable.
 """
 
 import re

@@ -1,7 +1,8 @@
 """The quantities a user reports, gathered from one ddc2d result (ddc2d.reader's dict).
 
 Keys name the quantity, the fracture and the tip or point: `peak_slip/fault`,
-`k2/fault/end`, `grown_length/flaw/begin`, `sxx/above/3`. Each value is a Quantity: the
+`k2/fault/end`, `grown_length/flaw/begin`, `front_half_length/fault`, `sxx/above/3`.
+Each value is a Quantity: the
 number and, for quantities that move in steps of the discretization, their quantum (one
 element length, one growth increment, one load step); None for smooth ones.
 
@@ -143,11 +144,14 @@ def growth_quantities(result):
 
 def _load_axis(history):
     """The name and values of the load that varies along the path (the first that does,
-    in ddc2d's order), or None when none varies."""
+    in ddc2d's order); the time where none does and the path has a time axis (an
+    injection at constant stress); None else."""
     for name, values in history["loads"].items():
         values = np.asarray(values, dtype=float)
         if values.size and np.ptp(values) > 0.0:
             return name, values
+    if "time" in history:
+        return "time", np.asarray(history["time"], dtype=float)
     return None
 
 
@@ -188,6 +192,47 @@ def load_path_quantities(result):
     return out, loads
 
 
+def _front_quantum(lengths, arc, front, outward):
+    """The step a front at arc length `front` moves in: the longer of the element it ends
+    (the outermost that slips) and the next one outward (`outward` +1 towards the
+    fracture's end, -1 towards its first vertex), which it would take next."""
+    ends = np.concatenate([[0.0], arc])
+    k = int(np.argmin(np.abs(ends - front)))  # the front is the element end ends[k]
+    inner = k - 1 if outward > 0 else k  # the element whose outer end it is
+    pair = [j for j in (inner, inner + outward) if 0 <= j < lengths.size]
+    return float(np.max(lengths[pair]))
+
+
+def injection_quantities(result):
+    """With fluid sources, at the path's last step: the slipping patch of every fracture
+    that has one, its half-length (half the distance between its fronts) and where it
+    begins and ends along the fracture (/history front_begin, front_end: the outer ends of
+    the outermost elements that slip or open), quantised: the fronts move by whole
+    elements, the quantum of each the longer of its element and the next one outward (of
+    the half-length the larger of the two fronts'); the fracture's seismic moment (smooth,
+    where it has one) and the injected volume (smooth)."""
+    history, out = result["history"], {}
+    if history is None or "front_begin" not in history:
+        return out
+    all_lengths = _lengths(result["elements"])
+    for index, fracture in enumerate(result["fractures"]):
+        name = fracture["label"]
+        begin, end = (float(history[key][-1, index]) for key in ("front_begin", "front_end"))
+        if math.isfinite(begin):
+            lengths = all_lengths[fracture["first"] - 1:fracture["last"]]
+            arc = np.cumsum(lengths)
+            quanta = (_front_quantum(lengths, arc, begin, -1),
+                      _front_quantum(lengths, arc, end, +1))
+            out[f"front_half_length/{name}"] = Quantity(0.5 * (end - begin), max(quanta))
+            out[f"front_begin/{name}"] = Quantity(begin, quanta[0])
+            out[f"front_end/{name}"] = Quantity(end, quanta[1])
+        moment = float(history["moment"][-1, index])
+        if moment != 0.0:
+            out[f"moment/{name}"] = Quantity(moment)
+    out["injected_volume"] = Quantity(float(history["injected_volume"][-1]))
+    return out
+
+
 def field_quantities(result):
     """Displacements and stresses at every point of the &points and &line sets (points on
     an element, NaN, are left out)."""
@@ -207,5 +252,6 @@ def gather(result):
     (key -> e.g. 'sxy')."""
     path, loads = load_path_quantities(result)
     quantities = {**fracture_quantities(result), **tip_quantities(result),
-                  **growth_quantities(result), **path, **field_quantities(result)}
+                  **growth_quantities(result), **path, **injection_quantities(result),
+                  **field_quantities(result)}
     return quantities, loads

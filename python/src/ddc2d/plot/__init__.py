@@ -8,8 +8,9 @@ ddc2d.run goes where they take a `result`):
     plot_profile(result, fracture, profile).savefig("slip.png")
     plot_map(result, "map", "max_shear").savefig("map.png")
 
-ddc2d.plot.data prepares what every figure shows (no matplotlib), ddc2d.plot.figures
-draws it, and ddc2d.plot.cli is the command ddc2d-plot.
+ddc2d.plot.data prepares what every figure shows (no matplotlib; ddc2d.plot.injection
+those of a fluid injection), ddc2d.plot.figures draws it, and ddc2d.plot.cli is the
+command ddc2d-plot.
 """
 
 from .data import QUANTITIES, Receiver, fracture_profiles, grid_fields, grid_quantity
@@ -17,10 +18,13 @@ from .figures import (
     plot_cycle_events,
     plot_cycle_rate,
     plot_cycle_slip,
+    plot_fronts,
     plot_growth,
     plot_growth_history,
     plot_history,
+    plot_injection,
     plot_map,
+    plot_moment,
     plot_observation_line,
     plot_overview,
     plot_profile,
@@ -30,6 +34,6 @@ from .figures import (
 
 __all__ = ["QUANTITIES", "Receiver", "fracture_profiles", "grid_fields", "grid_quantity",
            "plot_cycle_events", "plot_cycle_rate", "plot_cycle_slip",
-           "plot_growth", "plot_growth_history", "plot_history", "plot_map",
-           "plot_observation_line", "plot_overview", "plot_profile", "plot_surface",
-           "save_figure"]
+           "plot_fronts", "plot_growth", "plot_growth_history", "plot_history",
+           "plot_injection", "plot_map", "plot_moment", "plot_observation_line",
+           "plot_overview", "plot_profile", "plot_surface", "save_figure"]

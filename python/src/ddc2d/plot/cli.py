@@ -4,6 +4,7 @@
                [--clim MIN MAX] [--receiver ANGLE_DEG] [--friction MU]
                [--sense auto|right|left|reverse|normal] [--dpi DPI]
                [--history-elements K[,K...]] [--history-steps K[,K...]]
+               [--injection-times T[,T...]]
 
 Q is one of sxx, syy, sxy, mean, max_shear, coulomb, induced_sxx, induced_syy,
 induced_sxy, induced_mean, displacement, or 'all'.
@@ -42,6 +43,15 @@ The name part of a file is left out when it repeats the kind (a grid named 'map'
   state, an arrow per leg showing the way the path runs; and the slip profiles (against
   the distance along each fracture; a profile equal to an earlier one says so) at chosen
   steps (1-based; default: the path's vertices);
+  (a path with a time axis along which no load changes runs along its time);
+* ``<stem>_front.<fmt>``, ``<stem>_injection.<fmt>`` and ``<stem>_moment.<fmt>`` for a
+  result with fluid sources (/injection; docs/plotting.md#fluid-injection): the slip
+  fronts of every fracture that slips against sqrt(t - t0), measured from the fracture's
+  source (from its first vertex without one), with the self-similar closed form where it
+  applies (ddc2d.plot.injection.closed_form_front says when, and the heading why not); the
+  pressure change and the slip along every fracture the pressure reaches or that slips at
+  chosen times (the step nearest each; default: 4 times evenly spaced in sqrt(t - t0));
+  the seismic moment of every fracture that slips against the injected volume;
 * ``<stem>_history_strengths.<fmt>`` for a loading history that records the strengths in
   force (a law beyond Coulomb's): the friction, cohesion and tensile strength in force at
   the same elements against the load parameter;
@@ -84,6 +94,7 @@ Prints the tips table, then the path of every file written, one per line. Exit s
 import argparse
 import sys
 from collections.abc import Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -115,6 +126,7 @@ from .data import (
     tips_csv,
     tips_text,
 )
+from .injection import has_injection, profile_steps
 
 PROGRAM = "ddc2d-plot"
 EXIT_OK = 0
@@ -122,6 +134,21 @@ EXIT_BAD_INPUT = 2
 EXIT_IO_FAILURE = 3
 #: Slip senses of a Coulomb receiver (--sense).
 SENSE_CHOICES = ("auto", "right", "left", "reverse", "normal")
+#: The names of the figures (and tables) of the whole result, after <stem>_: a fracture,
+#: grid or line whose name would give one of them gets a longer name (figure_base).
+FIXED_NAMES = ("profiles", "history", "tips", "growth", "growth_history", "growth_trials",
+               "flaw_trials", "history_strengths", "front", "injection", "moment", "cycle_slip",
+               "cycle_rate", "cycle_events")
+
+
+@dataclass
+class Chosen:
+    """What the figures of a result draw at: the history's elements and steps (0-based;
+    None without a history) and the steps of the injection profiles (None without fluid
+    sources)."""
+
+    history: tuple[list[int], list[int]] | None = None
+    injection: list[int] | None = None
 
 
 # --------------------------------------------------------------------------- command line
@@ -145,6 +172,16 @@ def _index_list(text: str) -> list[int]:
         return [int(item) for item in text.split(",")]
     except ValueError:
         raise argparse.ArgumentTypeError(f"'{text}' is not a list of integers") from None
+
+
+def _time_list(text: str) -> list[float]:
+    try:
+        times = [float(item) for item in text.split(",")]
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a list of times") from None
+    if not all(np.isfinite(times)):
+        raise argparse.ArgumentTypeError(f"'{text}': the times must be finite")
+    return times
 
 
 def parse_arguments(argv: Sequence[str] | None) -> argparse.Namespace:
@@ -187,6 +224,10 @@ def parse_arguments(argv: Sequence[str] | None) -> argparse.Namespace:
     parser.add_argument("--history-steps", type=_index_list, metavar="K[,K...]",
                         help="loading history: steps (1-based) whose slip profiles are drawn "
                         "(default: the path's vertices)")
+    parser.add_argument("--injection-times", type=_time_list, metavar="T[,T...]",
+                        help="fluid injection: times (in the model's time unit) whose "
+                        "pressure and slip profiles are drawn, each at the step nearest to "
+                        "it (default: 4 times evenly spaced in sqrt(t - t0))")
     args = parser.parse_args(argv)
     if args.clim is not None and not (np.all(np.isfinite(args.clim))
                                       and args.clim[0] < args.clim[1]):
@@ -228,19 +269,22 @@ def main(argv: Sequence[str] | None = None) -> int:
     return EXIT_OK
 
 
-def _read(args: argparse.Namespace
-          ) -> tuple[Loaded, dict[str, Receiver | None], tuple[list[int], list[int]] | None]:
+def _read(args: argparse.Namespace) -> tuple[Loaded, dict[str, Receiver | None], Chosen]:
     """The loaded result, the Receiver of each grid (None without a Coulomb map) and the
-    history's chosen elements and steps (None without a history); every map's data is
-    computed once here, so that a file that cannot be drawn fails before anything is
-    written (ResultError)."""
+    steps and elements chosen (Chosen); every map's data is computed once here, so that a
+    file that cannot be drawn fails before anything is written (ResultError)."""
     result = load_result(args.result)
     receivers = {name: _receiver(result, args, result["fields"][name])
                  for name in grid_fields(result)}
-    chosen = None
+    chosen = Chosen()
     if result["history"] is not None:
-        chosen = history_choices(result["history"], args.history_elements,
-                                 args.history_steps)
+        chosen.history = history_choices(result["history"], args.history_elements,
+                                         args.history_steps)
+    if has_injection(result):
+        chosen.injection = profile_steps(result, args.injection_times)
+    elif args.injection_times is not None:
+        raise ResultError(f"'{args.result}' has no fluid sources: --injection-times "
+                          "needs a result with &injection")
     for name in grid_fields(result):
         try:
             for quantity in args.quantity:
@@ -255,10 +299,7 @@ def _read(args: argparse.Namespace
 def _figures(result, receivers, chosen, args, out_dir, stem):
     """(Figure maker, path without extension) of every figure of the result, in the order
     they are written; a maker is called only when its figure is written."""
-    used = {f"{stem}_profiles", f"{stem}_history", f"{stem}_tips", f"{stem}_growth",
-            f"{stem}_growth_history", f"{stem}_growth_trials", f"{stem}_flaw_trials",
-            f"{stem}_history_strengths", f"{stem}_cycle_slip", f"{stem}_cycle_rate",
-            f"{stem}_cycle_events"}
+    used = {f"{stem}_{name}" for name in FIXED_NAMES}
     for fracture, profile in fracture_profiles(result):
         yield (lambda f=fracture, p=profile: figures.plot_profile(result, f, p),
                figure_base(out_dir, stem, "profile", fracture["label"], used))
@@ -280,11 +321,17 @@ def _figures(result, receivers, chosen, args, out_dir, stem):
             continue
         yield (lambda n=name: figures.plot_observation_line(result, n),
                figure_base(out_dir, stem, field["kind"], name, used))
-    if chosen is not None:
-        yield (lambda: figures.plot_history(result, *chosen)), out_dir / f"{stem}_history"
+    if chosen.history is not None:
+        yield ((lambda: figures.plot_history(result, *chosen.history)),
+               out_dir / f"{stem}_history")
         if "mu_in_force" in result["history"]:
-            yield ((lambda: figures.plot_history_strengths(result, chosen[0])),
+            yield ((lambda: figures.plot_history_strengths(result, chosen.history[0])),
                    out_dir / f"{stem}_history_strengths")
+    if chosen.injection is not None:
+        yield (lambda: figures.plot_fronts(result)), out_dir / f"{stem}_front"
+        yield ((lambda: figures.plot_injection(result, chosen.injection)),
+               out_dir / f"{stem}_injection")
+        yield (lambda: figures.plot_moment(result)), out_dir / f"{stem}_moment"
     if result["growth"] is not None:
         yield (lambda: figures.plot_growth(result)), out_dir / f"{stem}_growth"
         if "trials" in result["growth"]:
@@ -300,9 +347,8 @@ def _figures(result, receivers, chosen, args, out_dir, stem):
         yield (lambda: figures.plot_cycle_events(result)), out_dir / f"{stem}_cycle_events"
 
 
-def _write_all(result: Loaded, receivers: dict[str, Receiver | None],
-               chosen: tuple[list[int], list[int]] | None, args: argparse.Namespace,
-               out_dir: Path) -> list[Path]:
+def _write_all(result: Loaded, receivers: dict[str, Receiver | None], chosen: Chosen,
+               args: argparse.Namespace, out_dir: Path) -> list[Path]:
     """Write every figure and the tips tables; returns the paths written (OSError when
     one cannot be written)."""
     stem = Path(args.result).stem

@@ -135,15 +135,22 @@ def heading(result, text):
 
 def history_parameter(history):
     """(name, values) of the load quantity with the largest range along the path; of
-    ranges equal within the tie rule (reader.index_of_extreme), the first in file order."""
+    ranges equal within the tie rule (reader.index_of_extreme), the first in file order.
+    A path with a time axis along which no load changes (an injection at constant stress)
+    runs along its time: ('time', the time of each step)."""
     names = list(history["loads"])
-    name = names[index_of_extreme([np.ptp(history["loads"][k]) for k in names])]
+    ranges = [np.ptp(history["loads"][k]) for k in names]
+    if "time" in history and not any(r > 0.0 for r in ranges):
+        return "time", history["time"]
+    name = names[index_of_extreme(ranges)]
     return name, history["loads"][name]
 
 
 def history_unit(result, name):
-    """The unit of history load quantity `name`: the stress unit, per length unit for a
-    gradient (a name starting with 'd')."""
+    """The unit of history quantity `name` (history_parameter): the time unit of 'time';
+    else the stress unit, per length unit for a gradient (a name starting with 'd')."""
+    if name == "time":
+        return result["time_unit"]
     return result["stress_unit"] + ("/" + result["length_unit"] if name.startswith("d")
                                     else "")
 
@@ -439,10 +446,19 @@ def has_dd(result, key):
 
 
 def is_cross_section(result):
-    """True when y is the vertical of the model: a half-plane, or a stress or pore
-    pressure that changes with y (gravity); otherwise a map view."""
-    return (result["attrs"].get("domain") == "half_plane"
+    """True when y is the vertical of the model: a half-plane, layers (two bonded
+    half-planes), or a stress or pore pressure that changes with y (gravity); otherwise a
+    map view."""
+    return (result["attrs"].get("domain") in ("half_plane", "bimaterial")
             or any(result["remote_stress_gradient"]) or result["pore_fluid"][1] != 0.0)
+
+
+def interface_height(result):
+    """The height y of the interface of two bonded half-planes (domain 'bimaterial'), None
+    in any other domain."""
+    if result["attrs"].get("domain") != "bimaterial":
+        return None
+    return float(result["attrs"]["interface_y"])
 
 
 def direction_sense(sx, sy):
@@ -614,30 +630,62 @@ def resolved_traction(sxx, syy, sxy, angle_deg):
 
 class Background:
     """The stress without the fractures at height y: remote + gradient * y (root
-    attributes remote_stress and remote_stress_gradient)."""
+    attributes remote_stress and remote_stress_gradient); in two bonded half-planes
+    (domain 'bimaterial') above the interface the upper material's (upper_remote)."""
 
-    def __init__(self, remote, gradient=(0.0, 0.0, 0.0)):
+    def __init__(self, remote, gradient=(0.0, 0.0, 0.0), upper=None):
+        """upper: (interface_y, remote, gradient) of the upper material of two bonded
+        half-planes, None in one material."""
         self.remote = tuple(float(v) for v in remote)
         self.gradient = tuple(float(v) for v in gradient)
+        self.upper = upper
 
     @classmethod
     def of_result(cls, result):
         """The background of a loaded result; None without remote_stress."""
         if result["remote_stress"] is None:
             return None
-        return cls(result["remote_stress"], result["remote_stress_gradient"])
+        upper = None
+        if interface_height(result) is not None:
+            upper = (interface_height(result), upper_remote(result, result["remote_stress"]),
+                     upper_remote(result, result["remote_stress_gradient"]))
+        return cls(result["remote_stress"], result["remote_stress_gradient"], upper)
 
     def stress(self, y=0.0):
         """(sxx, syy, sxy) at height y (scalars or arrays like y)."""
-        return tuple(r + g * np.asarray(y, dtype=float) for r, g in
-                     zip(self.remote, self.gradient))
+        y = np.asarray(y, dtype=float)
+        lower = tuple(r + g * y for r, g in zip(self.remote, self.gradient))
+        if self.upper is None:
+            return lower
+        interface, remote, gradient = self.upper
+        return tuple(np.where(y > interface, r + g * y, value)
+                     for value, r, g in zip(lower, remote, gradient))
 
     def varies(self, quantity):
-        """True when the background value of a stress quantity changes with y."""
+        """True when the background value of a stress quantity changes with y (or across
+        the interface of two bonded half-planes)."""
+        if self.upper is not None:
+            below, above = (stress_quantity(*self.stress(self.upper[0] + d), quantity)
+                            for d in (-1.0, 1.0))
+            if self.gradient != (0.0, 0.0, 0.0) or float(below) != float(above):
+                return True
         g = dict(zip(("sxx", "syy", "sxy"), self.gradient))
         if quantity == "mean":
             return g["sxx"] + g["syy"] != 0.0
         return g.get(quantity, 0.0) != 0.0
+
+
+def upper_remote(result, lower):
+    """The remote stress (or its gradient) of the upper material of two bonded half-planes
+    from the lower one's (docs/theory/bimaterial.md#remote-stress): syy and sxy as given,
+    sxx such that the plane-strain exx is continuous across the interface."""
+    attrs = result["attrs"]
+    g_lower, nu_lower = float(attrs["shear_modulus"]), float(attrs["poissons_ratio"])
+    nu_upper = float(attrs["upper_poissons_ratio"])
+    g_upper = float(attrs["upper_youngs_modulus"]) / (2.0 * (1.0 + nu_upper))
+    sxx, syy, sxy = (float(v) for v in lower)
+    return ((g_upper / g_lower * ((1 - nu_lower) * sxx - nu_lower * syy) + nu_upper * syy)
+            / (1 - nu_upper), syy, sxy)
 
 
 def stress_quantity(sxx, syy, sxy, name):

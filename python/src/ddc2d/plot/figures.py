@@ -37,6 +37,7 @@ from .data import (
     distance_along,
     element_segments,
     flaw_trial_curves,
+    fracture_profile,
     fracture_profiles,
     grid_quantity,
     growth_abscissa,
@@ -45,6 +46,7 @@ from .data import (
     heading,
     history_parameter,
     history_unit,
+    interface_height,
     is_cross_section,
     joint_parts,
     leg_arrows,
@@ -62,6 +64,16 @@ from .data import (
     strength_panels,
     trial_curves,
     unit_label,
+)
+from .injection import (
+    closed_form_front,
+    front_series,
+    moment_series,
+    pressure_profile,
+    profile_fractures,
+    source_positions,
+    start_time,
+    time_label,
 )
 
 #: Marker of each element state, by its name in the coding of /elements/state.
@@ -142,6 +154,128 @@ def plot_history(result: ResultData, elements: Sequence[int], steps: Sequence[in
         ax.axhline(0.0, color="0.7", linewidth=0.5)
         ax.grid(True, linewidth=0.3)
     fig.suptitle(heading(result, f"loading history ({slip.shape[0]} steps)"))
+    return fig
+
+
+def plot_fronts(result: ResultData) -> Figure:
+    """The slip fronts of a fluid injection (docs/plotting.md#fluid-injection): for every
+    fracture whose patch slips or opens, where it begins and ends (/history front_begin,
+    front_end) against sqrt(t - t0), t0 the first source's start, measured from the
+    fracture's first source (its first vertex without one: front_series); the closed form
+    +-lambda sqrt(4 alpha (t - t0)) dotted where it applies (closed_form_front), else the
+    heading says why not. Returns the Figure."""
+    series = front_series(result)
+    form, why = closed_form_front(result)
+    t0 = start_time(result)
+    root = np.sqrt(np.clip(np.asarray(result["history"]["time"], dtype=float) - t0, 0.0, None))
+    fig, axes = plt.subplots(max(1, len(series)), 1, sharex=True, squeeze=False,
+                             figsize=(7, 2.4 + 2.4 * max(1, len(series))),
+                             constrained_layout=True)
+    length = unit_label(result["length_unit"])
+    for ax, item in zip(axes[:, 0], series):
+        for key, colour, style in (("end", "C0", "-"), ("begin", "C1", "--")):
+            ax.plot(root, item[key], color=colour, linestyle=style, marker="o", markersize=3,
+                    linewidth=1.0, label=f"front at its {key}", gid=f"front_{key}:{item['name']}")
+        if form is not None and form["fracture"] == item["fracture"]:
+            reach = form["factor"] * np.sqrt(4.0 * form["diffusivity"]) * root
+            for sign, label in ((1.0, r"closed form $\pm\lambda\sqrt{4\alpha t}$"),
+                                (-1.0, "_closed form")):
+                ax.plot(root, sign * reach, color="black", linestyle=":", linewidth=1.0,
+                        label=label, gid="closed_form")
+        where = (f"from the source '{item['source']}'" if item["source"] is not None
+                 else "from its first vertex")
+        ax.set_ylabel(f"along '{item['name']}'\n{where}{length}")
+        ax.grid(True, linewidth=0.3)
+        ax.legend(fontsize="small", loc="best")
+    if not series:
+        axes[0, 0].text(0.5, 0.5, "no fracture slips", transform=axes[0, 0].transAxes,
+                        ha="center", va="center")
+    axes[-1, 0].set_xlabel(time_label(result, t0))
+    text = "slip fronts: outer ends of the outermost elements that slip or open"
+    if form is not None:
+        text += (f"\nclosed form: T = {form['parameter']:.4g}, lambda(T) = "
+                 f"{form['factor']:.4g}, alpha = {form['diffusivity']:g}")
+    else:
+        text += f"\nno closed form: {why}"
+    fig.suptitle(heading(result, text))
+    return fig
+
+
+def plot_injection(result: ResultData, steps: Sequence[int]) -> Figure:
+    """The pressure change (/history/pressure) and the slip (-Ds) along each fracture the
+    pressure reaches or that slips (profile_fractures) at steps (from 0), one column per
+    fracture, against the distance from its first vertex; the sources as vertical lines,
+    and the closed form's pressure dp erfc(|s - s0| / sqrt(4 alpha (t - t0))) dotted where
+    the front's closed form applies (closed_form_front). Returns the Figure."""
+    history = result["history"]
+    fractures = profile_fractures(result, list(steps))
+    form, _ = closed_form_front(result)
+    sources = list(zip(source_positions(result), result["injection"]["name"]))
+    fig, axes = plt.subplots(2, len(fractures), sharex="col", squeeze=False,
+                             figsize=(1.5 + 4.5 * len(fractures), 6.5),
+                             constrained_layout=True)
+    time_unit = result["time_unit"]
+    for column, index in enumerate(fractures):
+        fracture = result["fractures"][index]
+        name = fracture["name"] or fracture["label"]
+        part = slice(fracture["first"] - 1, fracture["last"])
+        distance = fracture_profile(result["elements"], fracture["first"],
+                                    fracture["last"])["distance"]
+        ax_pressure, ax_slip = axes[:, column]
+        for i, k in enumerate(steps):
+            style = {"color": f"C{i % 10}", "linestyle": LINESTYLES[i % len(LINESTYLES)],
+                     "linewidth": 1.0}
+            label = f"t = {history['time'][k]:g}" + (f" {time_unit}" if time_unit else "")
+            ax_pressure.plot(distance, history["pressure"][k, part], label=label,
+                             gid=f"pressure:{name}:step_{k + 1}", **style)
+            ax_slip.plot(distance, -history["ds"][k, part], label=label,
+                         gid=f"slip:{name}:step_{k + 1}", **style)
+            if form is not None and form["fracture"] == index:
+                ax_pressure.plot(distance, pressure_profile(result, form, distance, k),
+                                 color="black", linestyle=":", linewidth=0.8,
+                                 label="closed form" if i == 0 else "_closed form",
+                                 gid=f"closed_form:step_{k + 1}")
+        for (where, arc), source in sources:
+            if where == index:
+                for ax in (ax_pressure, ax_slip):
+                    ax.axvline(arc, color="0.5", linewidth=0.8, linestyle="-.",
+                               label=f"source '{source}'", gid=f"source:{source}")
+        ax_pressure.set_title(f"'{name}'", fontsize="medium")
+        ax_pressure.set_ylabel("pressure change" + unit_label(result["stress_unit"]))
+        ax_slip.set_ylabel("slip $-D_s$" + unit_label(result["length_unit"]))
+        ax_slip.set_xlabel("distance from its first vertex" + unit_label(result["length_unit"]))
+        for ax in (ax_pressure, ax_slip):
+            ax.axhline(0.0, color="0.7", linewidth=0.5)
+            ax.grid(True, linewidth=0.3)
+        ax_pressure.legend(fontsize="small", loc="best")
+    fig.suptitle(heading(result, "pressure and slip along the fractures at chosen times"))
+    return fig
+
+
+def plot_moment(result: ResultData) -> Figure:
+    """The seismic moment of every fracture that slips (/history/moment) against the volume
+    the sources let in (/history/injected_volume), both per unit length out of the plane, a
+    point per step. Returns the Figure."""
+    history = result["history"]
+    length, stress = result["length_unit"], result["stress_unit"]
+    fig, ax = plt.subplots(figsize=(6.5, 4.5), constrained_layout=True)
+    series = moment_series(result)
+    for i, (index, name) in enumerate(series):
+        ax.plot(history["injected_volume"], history["moment"][:, index], marker="o",
+                markersize=3, linewidth=1.0, color=f"C{i % 10}",
+                linestyle=LINESTYLES[i % len(LINESTYLES)], label=name, gid=f"moment:{name}")
+    if series:
+        ax.legend(fontsize="small", loc="best", title="fracture")
+    else:
+        ax.text(0.5, 0.5, "no fracture slips", transform=ax.transAxes, ha="center",
+                va="center")
+    ax.set_xlabel("injected volume per unit length" + unit_label(f"{length}^2" if length
+                                                                 else ""))
+    ax.set_ylabel("seismic moment per unit length"
+                  + unit_label(f"{stress} {length}^2".strip() if length else stress))
+    ax.grid(True, linewidth=0.3)
+    fig.suptitle(heading(result, f"moment against injected volume "
+                                 f"({history['moment'].shape[0]} steps)"))
     return fig
 
 
@@ -595,6 +729,10 @@ def plot_map(result: ResultData, name: str, quantity: str,
                       shading="nearest", cmap="Greys", vmin=0.0, vmax=1.0,
                       alpha=NEAR_GROWN_ALPHA, gid="near_grown")
     grown = _draw_elements(ax, result["elements"])
+    interface = interface_height(result)
+    if interface is not None:
+        ax.axhline(interface, color="saddlebrown", linestyle="--", linewidth=1.0,
+                   gid="interface")
     if quantity == "displacement":
         _draw_vectors(ax, field, x, y, values)
     ax.set_xlim(xlim)  # the view is the grid; elements beyond it are clipped

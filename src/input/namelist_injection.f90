@@ -1,0 +1,153 @@
+!> The &injection groups of a namelist input file (docs/injection.md#the-input): fluid
+!> sources at points of the fractures, one group per source. Each holds a pressure change
+!> (overpressure) or a volume rate (rate) at its point from its start time until its stop
+!> time (a shut-in). The sources need a loading history with a time axis, and a fracture
+!> that conducts at their point (checked once the elements exist: check_injection_points).
+module ddc_input_namelist_injection
+    use ddc_kinds, only: wp
+    use ddc_model_types, only: model_type, source_overpressure, source_rate
+    use ddc_text, only: rtoa, lower
+    use ddc_mesh_ends, only: elements_at_point
+    use ddc_input_namelist_groups, only: group_record, message_list, add, group_label, &
+        g_injection
+    use ddc_input_namelist_diagnosis, only: report_malformed
+    use ddc_input_namelist_values, only: unset_real, check_scalar, text_length, default_name
+    implicit none
+    private
+
+    public :: read_injection_groups, check_injection_points
+
+contains
+
+    !> &injection name, fracture, x, y, overpressure, rate, start, stop / (repeated, one per
+    !> source). Read after the fractures (their names) and the load path (its times).
+    subroutine read_injection_groups(unit, text, path, info, fracture_names, model, messages)
+        !> Unit of the open input file
+        integer, intent(in) :: unit
+        !> Text and path of the input file
+        character(len=*), intent(in) :: text, path
+        !> Where the groups occur
+        type(group_record), intent(in) :: info
+        !> Names of the fractures, in order, shape (fractures)
+        character(len=*), intent(in) :: fracture_names(:)
+        !> model%injections is set (size 0 without a group)
+        type(model_type), intent(inout) :: model
+        !> Violations are added here
+        type(message_list), intent(inout) :: messages
+        character(len=text_length) :: name, fracture
+        real(wp) :: x, y, overpressure, rate, start, stop
+        character(len=512) :: iomsg
+        character(len=:), allocatable :: prefix
+        integer :: stat, k, j
+        namelist /injection/ name, fracture, x, y, overpressure, rate, start, stop
+
+        allocate (model%injections(info%count))
+        if (info%count == 0) return
+        rewind (unit)
+        do k = 1, info%count
+            name = ''
+            fracture = ''
+            x = unset_real
+            y = unset_real
+            overpressure = unset_real
+            rate = unset_real
+            start = unset_real
+            stop = unset_real
+            read (unit, nml=injection, iostat=stat, iomsg=iomsg)
+            if (stat /= 0) then
+                call report_malformed(text, path, g_injection, info, k, stat, iomsg, messages)
+                exit
+            end if
+            prefix = path//': '//group_label(g_injection, k, info%lines(k), &
+                                              trim(adjustl(name)))//': '
+            associate (s => model%injections(k))
+                s%name = default_name(name, 'injection', k)
+                s%fracture_id = findloc([(lower(trim(adjustl(fracture_names(j)))) == &
+                                         lower(trim(adjustl(fracture))), j = 1, &
+                                         size(fracture_names))], .true., 1)
+                if (len_trim(fracture) == 0) then
+                    call add(messages, prefix//'fracture is required: the name of the '// &
+                             'fracture the source is on')
+                else if (s%fracture_id == 0) then
+                    call add(messages, prefix//"fracture = '"//trim(adjustl(fracture))// &
+                             "' names no &fracture")
+                end if
+                if (check_scalar(x, 'x', .true., prefix, messages)) s%x = x
+                if (check_scalar(y, 'y', .true., prefix, messages)) s%y = y
+                if ((overpressure == unset_real) .eqv. (rate == unset_real)) then
+                    call add(messages, prefix//'give either overpressure (a pressure change '// &
+                             'held at the point) or rate (a volume rate into it), one of them')
+                else if (overpressure /= unset_real) then
+                    s%kind = source_overpressure
+                    if (check_scalar(overpressure, 'overpressure', .true., prefix, messages)) then
+                        s%value = overpressure
+                    end if
+                else
+                    s%kind = source_rate
+                    if (check_scalar(rate, 'rate', .true., prefix, messages)) s%value = rate
+                end if
+                if (check_scalar(start, 'start', .false., prefix, messages)) s%start = start
+                if (check_scalar(stop, 'stop', .false., prefix, messages)) s%stop = stop
+                call check_times(s%start, s%stop)
+            end associate
+        end do
+
+    contains
+
+        !> A time axis, a start at or after its first time, a stop after the start.
+        subroutine check_times(start_time, stop_time)
+            real(wp), intent(in) :: start_time, stop_time
+
+            if (.not. allocated(model%load_path%time)) then
+                call add(messages, prefix//'a source needs a time axis: &load_path time, '// &
+                         'one time per vertex')
+                return
+            end if
+            associate (first => model%load_path%time(1))
+                if (start_time /= -huge(1.0_wp) .and. start_time < first) then
+                    call add(messages, prefix//'start = '//rtoa(start_time)//' is before '// &
+                             'the first time of &load_path ('//rtoa(first)//')')
+                end if
+                if (stop_time <= max(start_time, first)) then
+                    call add(messages, prefix//'stop = '//rtoa(stop_time)//' is not after '// &
+                             'the start ('//rtoa(max(start_time, first))//')')
+                end if
+            end associate
+        end subroutine check_times
+    end subroutine read_injection_groups
+
+    !> Every source's point lies on its fracture, on elements that conduct (diffusivity
+    !> and transmissivity given).
+    subroutine check_injection_points(path, info, model, messages)
+        !> Path of the input file
+        character(len=*), intent(in) :: path
+        !> Where the groups occur
+        type(group_record), intent(in) :: info
+        !> The model, its elements' geometry computed
+        type(model_type), intent(in) :: model
+        !> Violations are added here
+        type(message_list), intent(inout) :: messages
+        integer, allocatable :: at(:)
+        character(len=:), allocatable :: prefix
+        integer :: k
+
+        do k = 1, size(model%injections)
+            associate (s => model%injections(k), e => model%elements)
+                prefix = path//': '//group_label(g_injection, k, info%lines(k), s%name)//': '
+                at = elements_at_point(e, s%fracture_id, s%x, s%y)
+                if (size(at) == 0) then
+                    call add(messages, prefix//'x, y = '//rtoa(s%x)//', '//rtoa(s%y)// &
+                             ' is not on fracture '''// &
+                             model%fractures(s%fracture_id)%name//'''')
+                else if (any(.not. (e%diffusivity(at) > 0.0_wp .and. &
+                                    e%transmissivity(at) > 0.0_wp))) then
+                    call add(messages, prefix//'fracture '''// &
+                             model%fractures(s%fracture_id)%name//''' does not conduct at '// &
+                             'x, y = '//rtoa(s%x)//', '//rtoa(s%y)//': give its '// &
+                             'diffusivity and transmissivity')
+                end if
+            end associate
+        end do
+    end subroutine check_injection_points
+
+end module ddc_input_namelist_injection
