@@ -157,6 +157,22 @@ def test_a_checkpoint_is_not_complete_and_goes_on(tmp_path):
     assert load_result(tmp_path / "on.h5")["cycle"]["attrs"]["end_reason"] == "end_time"
 
 
+def test_a_sweep_of_a_cycle_model_runs_each_task_as_its_model(tmp_path):
+    # docs/sweeps-and-slurm.md: a stiffer rock loads the slider faster, so the task of the
+    # larger modulus has its first event earlier; each task equals its model run alone.
+    base = SLIDER.format(end=5e8, law="aging")
+    (tmp_path / "sweep.nml").write_text(base + "&sweep parameters = 'youngs_modulus', "
+                                        "values_1 = 60000, 75000 /\n")
+    for task in (0, 1):
+        run(["sweep.nml", "--task", str(task), "-o", "sweep.h5"], tmp_path)
+    tasks = [load_result(tmp_path / f"sweep_task000{k}.h5")["cycle"] for k in (0, 1)]
+    alone = solved(tmp_path, base, "alone")
+    assert tasks[1]["event_start"][0] < tasks[0]["event_start"][0]
+    assert np.allclose(tasks[1]["event_start"], alone["event_start"], rtol=1e-12, atol=0.0)
+    with h5py.File(tmp_path / "sweep_task0000.h5") as f:
+        assert f.attrs["youngs_modulus"] == 60000.0 and f["sweep"].attrs["task"] == 0
+
+
 def test_seas_files(tmp_path):
     (tmp_path / "surface.csv").write_text("x,y\n-2000,0\n1,0\n-1,0\n3200,0\n")
     text = ddc2d.seas.bp3_namelist(cell=200.0, scale=0.1, years=0.5,
