@@ -62,9 +62,9 @@ configure_file(${PROJECT_SOURCE_DIR}/packaging/ddc2d.pc.in
 install(FILES ${PROJECT_BINARY_DIR}/package/ddc2d.pc
         DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
 
-# The example inputs of input/ (they name no other file).
+# The example inputs of input/, with the files they name (input/seas: the surface stations).
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/input/ DESTINATION ${CMAKE_INSTALL_DATADIR}/ddc2d/examples
-        FILES_MATCHING PATTERN "*.nml")
+        FILES_MATCHING PATTERN "*.nml" PATTERN "*.csv")
 
 # Lmod: share/modulefiles/ddc2d/<version>.lua (`module use P/share/modulefiles; module load
 # ddc2d`), which finds the prefix as many folders up from itself as it lies below it.

@@ -112,8 +112,11 @@ def test_installed_files(prefix):
     for name in ("ddc2d-config.cmake", "ddc2d-config-version.cmake", "ddc2d-targets.cmake"):
         assert (package / name).is_file(), f"lib/cmake/ddc2d/{name} not installed"
     assert (prefix / "lib" / "pkgconfig" / "ddc2d.pc").is_file()
-    inputs = sorted(p.name for p in (REPO_ROOT / "input").glob("*.nml"))
-    examples = sorted(p.name for p in (prefix / "share" / "ddc2d" / "examples").iterdir())
+    # Every file of input/, its folders (input/seas) included
+    inputs = sorted(p.relative_to(REPO_ROOT / "input").as_posix()
+                    for p in (REPO_ROOT / "input").rglob("*") if p.is_file())
+    shared = prefix / "share" / "ddc2d" / "examples"
+    examples = sorted(p.relative_to(shared).as_posix() for p in shared.rglob("*") if p.is_file())
     assert examples == inputs, "share/ddc2d/examples differs from input/"
     assert list((prefix / "share" / "modulefiles" / "ddc2d").glob("*.lua"))
 

@@ -30,7 +30,7 @@ import pytest
 import ddc2d.plot.cli
 import ddc2d.seas
 from conftest import REPO_ROOT, ddc2d_exe
-from ddc2d.reader import load_result
+from ddc2d.reader import load_result, parse_coding
 from spring_slider import CS, DC, ETA, F0, NU, SIGMA, SLIDER, V0, VP, B, E, spring_slider
 
 
@@ -171,6 +171,8 @@ def test_a_sweep_of_a_cycle_model_runs_each_task_as_its_model(tmp_path):
     assert np.allclose(tasks[1]["event_start"], alone["event_start"], rtol=1e-12, atol=0.0)
     with h5py.File(tmp_path / "sweep_task0000.h5") as f:
         assert f.attrs["youngs_modulus"] == 60000.0 and f["sweep"].attrs["task"] == 0
+        # The condition coding of a cycle model names its rate-and-state elements.
+        assert parse_coding(f["elements/condition"].attrs["coding"])[7] == "rate_state"
 
 
 def test_seas_files(tmp_path):

@@ -2,7 +2,8 @@
 repository also scripts/benchmark.py.
 
     benchmark.py --exe PATH --sizes 250,500,1000
-                 --case straight|mixed|history|fields|growth|growth-work|growth-history
+                 --case straight|mixed|history|fields|growth|growth-work|growth-history|
+                        injection
                  --json FILE [--threads T[,T...]] [--lcp-method auto|lemke|newton] [--grid NX]
                  [--steps K] [--compare-lemke] [--lu-exe PATH] [--workdir DIR]
                  [--mpi P [--mpiexec PATH] [--block-size NB]]
@@ -49,6 +50,11 @@ Cases (CASES: a model builder per case; a new case adds one):
             critical. One set of kept factors serves every load step (a new load changes the
             right-hand side, not the matrix). Measured against LU(2 N_final) like the growth
             case; the record adds ``steps`` (load steps) too.
+  injection  fluid injection into a fault (docs/injection.md): a 2 m fault of N elements that
+            conducts (diffusivity and transmissivity 1e-3), at sxy / syy = 0.45 under mu = 0.6,
+            with an overpressure of 5 MPa held at its middle; K steps to 60 s (--steps,
+            default 200). One matrix and one set of factors serve every step: a step changes
+            the pressures, so the loads, alone. Measured against LU(2 N) like the history case.
 
 The case ``bp3`` is an earthquake-cycle run (docs/earthquake-cycles.md#bp3-qd): the SCEC
 SEAS benchmark BP3-QD, thrust at 60 degrees (ddc2d.seas.bp3_namelist; --cell, default 25 m;
@@ -121,9 +127,10 @@ from .reader import SOLVER_PHASES, read_history, read_solver
 
 #: Default grid (GRID x GRID points) of each case
 DEFAULT_GRID = {"straight": 100, "mixed": 100, "history": 0, "fields": 500, "growth": 0,
-                "growth-work": 0, "growth-history": 0}
+                "growth-work": 0, "growth-history": 0, "injection": 0}
 #: Default --steps of each case that has steps
-DEFAULT_STEPS = {"history": 100, "growth": 25, "growth-work": 25, "growth-history": 20}
+DEFAULT_STEPS = {"history": 100, "growth": 25, "growth-work": 25, "growth-history": 20,
+                 "injection": 200}
 #: The growth cases (a record adds the growth summary)
 GROWTH_CASES = ("growth", "growth-work", "growth-history")
 #: New elements per tip and growth step of the growth case
@@ -216,6 +223,24 @@ def growth_history_model(n, grid, steps=20):
             + f"&load_path syy = -2.0, -100.0, steps = {steps} /\n")
 
 
+def injection_model(n, grid, steps=200):
+    """A 2 m fault of n elements that conducts, an overpressure of 5 MPa held at its middle
+    from time 0 (docs/injection.md), `steps` steps to 60 s: the pressure diffuses about
+    0.5 m each way and the slipping patch follows it."""
+    return (
+        "&model title = 'benchmark: injection into a fault', youngs_modulus = 30000.0,\n"
+        "       poissons_ratio = 0.25, length_unit = 'm', stress_unit = 'MPa',\n"
+        "       time_unit = 's' /\n"
+        "&remote_stress syy = -10.0, sxy = 4.5 /\n"
+        f"&fracture name = 'fault', x = -1.0, 1.0, y = 0.0, 0.0, elements = {n},\n"
+        "          condition = 'contact', mu = 0.6, sf = 0.0, diffusivity = 1.0e-3,\n"
+        "          transmissivity = 1.0e-3 /\n"
+        "&injection name = 'well', fracture = 'fault', x = 1.0e-9, y = 0.0,\n"
+        "           overpressure = 5.0 /\n"
+        f"&load_path time = 0.0, 60.0, steps = {steps} /\n"
+        + grid_group(grid))
+
+
 #: The model of each case: n elements, a grid of nx x nx points (0: none), steps.
 CASES = {
     "straight": lambda n, grid, steps: straight_model(n, grid),
@@ -225,6 +250,7 @@ CASES = {
     "growth": growth_model,
     "growth-work": growth_work_model,
     "growth-history": growth_history_model,
+    "injection": injection_model,
 }
 
 
