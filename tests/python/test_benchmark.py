@@ -112,6 +112,18 @@ def test_benchmark_growth_history(tmp_path):
     assert r["total_over_lu"] == r["seconds"]["total"] / r["lu_reference_seconds"]
 
 
+def test_benchmark_injection(tmp_path):
+    # The injection case on 40 elements, 10 steps: the patch around the held overpressure
+    # slips and grows; the record has the steps.
+    stdout, records = run_benchmark(tmp_path, "--case", "injection", "--steps", "10",
+                                    sizes="40")
+    assert "11 steps" in stdout
+    (r,) = records
+    assert r["case"] == "injection" and r["steps"] == 11
+    assert 0 < r["states"]["slip"] < r["n"] and r["states"]["open"] == 0
+    assert r["total_over_lu"] == r["seconds"]["total"] / r["lu_reference_seconds"]
+
+
 def test_benchmark_growth(tmp_path):
     # 80 and 100 elements: on fewer, the increment of 20 elements (over 1 m) makes the first
     # kink a closed one, which does not grow (docs/theory/growth.md#closed-kinks).
