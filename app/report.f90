@@ -11,7 +11,8 @@ module ddc_app_report
     use ddc_model_records, only: units_one, units_text
     use ddc_model_results, only: model_results, state_names, point_near, point_on_element, &
         growth_reason_names, growth_end_names, growth_subcritical, growth_intersection, &
-        growth_surface, growth_linked, growth_closed, growth_waiting, growth_enclosing
+        growth_surface, growth_linked, growth_closed, growth_waiting, growth_enclosing, &
+        growth_interface
     use ddc_model_plausibility, only: plausibility_notes, depth_range
     use ddc_model_strength_fronts, only: instant_drop_notes, cohesive_zone_warnings
     use ddc_model_loads, only: work_threshold_of
@@ -504,6 +505,8 @@ contains
             text = 'closed: the kink closes (K_I = 0)'
         case (growth_enclosing)
             text = 'enclosing: a link would enclose a block'
+        case (growth_interface)
+            text = 'interface: stopped before the interface of the two materials'
         case (growth_waiting)
             text = 'step limit (critical, waiting for a more critical tip)'
         case default

@@ -28,9 +28,9 @@
 !> undetermined.
 module ddc_growth_clearance
     use ddc_kinds, only: wp
-    use ddc_model_types, only: model_type, domain_half_plane
+    use ddc_model_types, only: model_type, domain_half_plane, domain_bimaterial
     use ddc_model_results, only: growth_intersection, growth_surface, growth_linked, &
-        growth_enclosing
+        growth_enclosing, growth_interface
     use ddc_growth_extension, only: tip_path, tip_element, tip_end_begin, path_element_length, &
         element_split, outward_direction
     use ddc_mesh_segments, only: segment_distance, point_segment_distance, crossing_fraction, &
@@ -76,8 +76,9 @@ contains
     !> For every active path: path_clear when its new elements keep clear of every element of the
     !> model and of every other active path, growth_intersection when they do not,
     !> growth_surface when (in a half-plane) they keep clear of every element but not of
-    !> the surface. The first new element may meet the tip element only at the tip: its
-    !> far end must keep clear of the tip element. With `links`, a path that meets an element
+    !> the surface, growth_interface when (with two materials) they keep clear of every
+    !> element but not of the interface. The first new element may meet the tip element only
+    !> at the tip: its far end must keep clear of the tip element. With `links`, a path that meets an element
     !> of another fracture links (growth_linked, its link in links) unless the link is
     !> refused (growth_enclosing when the fractures are connected already, else
     !> growth_intersection), and one that does not keep clear of the surface breaks through
@@ -109,7 +110,13 @@ contains
             used(p) = paths(p)
             call hits_model(model, paths(p), clearance(p), hit)
             if (hit == 0) then
-                ! Clear of the elements: in a half-plane, maybe not of the surface.
+                ! Clear of the elements: with two materials, maybe not of the interface.
+                if (model%elements%domain == domain_bimaterial) then
+                    if (.not. clear_of_interface(paths(p), model%interface_y, &
+                                                 clearance(p))) problem(p) = growth_interface
+                    cycle
+                end if
+                ! In a half-plane, maybe not of the surface.
                 if (model%elements%domain /= domain_half_plane) cycle
                 if (all(paths(p)%y(1:) <= -clearance(p))) cycle
                 problem(p) = growth_surface
@@ -172,6 +179,25 @@ contains
         end function earlier
 
     end subroutine check_paths
+
+    !> Whether a path keeps at least `clearance` from the interface y = interface_y of two
+    !> bonded half-planes with its new points, on its tip's side: a tip stops before the
+    !> interface, as crossing or deflecting into it needs a rule of its own
+    !> (docs/theory/bimaterial.md#growth). A tip on the interface keeps clear of it in no
+    !> direction.
+    pure logical function clear_of_interface(path, interface_y, clearance)
+        !> The path
+        type(tip_path), intent(in) :: path
+        !> Height of the interface [length unit]
+        real(wp), intent(in) :: interface_y
+        !> The clearance of its new elements [length unit]
+        real(wp), intent(in) :: clearance
+        real(wp) :: side
+
+        side = sign(1.0_wp, path%y(0) - interface_y)
+        clear_of_interface = abs(path%y(0) - interface_y) > near_tolerance * clearance .and. &
+                             all(side * (path%y(1:path%n) - interface_y) >= clearance)
+    end function clear_of_interface
 
     !> Whether fractures a and b are connected: by chains of fractures that share an element
     !> end (within 1e-8 of the shorter element's length, as the tips are found) or that

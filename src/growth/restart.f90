@@ -19,7 +19,7 @@ module ddc_growth_restart
     use ddc_model_types, only: model_type, rigid_joint
     use ddc_model_laws, only: law_index
     use ddc_model_results, only: growth_intersection, growth_surface, growth_linked, &
-        growth_enclosing, growth_grew, growth_corrector_failed
+        growth_enclosing, growth_interface, growth_grew, growth_corrector_failed
     use ddc_model_restart, only: restart_state
     use ddc_mesh_geometry, only: compute_geometry
     use ddc_growth_extension, only: inherit_values, tip_element
@@ -144,7 +144,7 @@ contains
                                .true., 1, back=.true.)
                 tips(i)%stopped = any(g%reason(last) == [growth_intersection, &
                                                          growth_surface, growth_linked, &
-                                                         growth_enclosing])
+                                                         growth_enclosing, growth_interface])
                 grew = g%fracture_id == tips(i)%fracture .and. g%end == tips(i)%end .and. &
                        (g%reason == growth_grew .or. g%reason == growth_corrector_failed)
                 tips(i)%element_length = resumed_element_length(model%growth, 2.0_wp * &

@@ -13,7 +13,8 @@ module ddc_input_namelist
     use ddc_error, only: error_type, set_error
     use ddc_model_capabilities, only: run_refusal, operator_hierarchical
     use ddc_model_types, only: model_type, condition_contact, symmetry_none, symmetry_names, &
-        symmetry_x, domain_half_plane, domain_bimaterial, strength_law_count
+        symmetry_x, domain_half_plane, domain_bimaterial, strength_law_count, &
+        growth_criterion_work
     use ddc_model_laws, only: strength_law, strength_laws, set_law
     use ddc_model_rate_state, only: set_rate_state
     use ddc_text, only: itoa, rtoa, prefix_lines
@@ -238,7 +239,8 @@ contains
     !> (docs/theory/bimaterial.md#elements-and-points-at-the-interface): symmetry about a
     !> vertical line only (a line y = ysym would mirror one material into the other), no
     !> element crossing the interface within split_tolerance of its length from an end (it
-    !> is split there), no growth or new fractures yet.
+    !> is split there), growth by MTS only (a tip stops before the interface) and no new
+    !> fractures yet.
     subroutine check_bimaterial(path, model, fractures, groups, messages)
         character(len=*), intent(in) :: path
         type(model_type), intent(in) :: model
@@ -256,10 +258,15 @@ contains
                      trim(symmetry_names(model%elements%symmetry%kind))//"' is not "// &
                      "available with two materials; only kind = 'x' (a vertical line)")
         end if
-        if (groups(g_growth)%count > 0 .or. groups(g_initiation)%count > 0) then
-            call add(messages, prefix//'&growth and &initiation are not available yet '// &
-                     'with two materials (a tip that reaches the interface needs a rule to '// &
-                     'cross or deflect: docs/theory/bimaterial.md#growth)')
+        if (groups(g_initiation)%count > 0) then
+            call add(messages, prefix//'&initiation is not available yet with two '// &
+                     'materials (docs/theory/bimaterial.md#growth)')
+        end if
+        if (groups(g_growth)%count > 0 .and. &
+            model%growth%criterion == growth_criterion_work) then
+            call add(messages, prefix//"&growth criterion = 'work' is not available yet "// &
+                     "with two materials (its threshold takes one material): use 'mts' "// &
+                     '(docs/theory/bimaterial.md#growth)')
         end if
         do k = 1, size(fractures)
             if (.not. fractures(k)%valid) cycle

@@ -12,7 +12,7 @@ module ddc_model_results
     public :: history_record, growth_record
     public :: growth_grew, growth_subcritical, growth_intersection, growth_surface, &
         growth_corrector_failed, growth_linked, growth_closed, growth_waiting, &
-        growth_enclosing, growth_reason_names
+        growth_enclosing, growth_interface, growth_reason_names
     public :: growth_arrested, growth_step_limit, growth_failed, growth_end_names
     public :: trial_stuck, trial_slipping, trial_opening, trial_blocked, trial_state_coding
     public :: state_free, state_stick, state_slip, state_open, state_names, state_not_grown
@@ -40,16 +40,18 @@ module ddc_model_results
     !> docs/theory/growth.md#linking-and-stops); its kink closes (K_I = 0 on the new tip: it does
     !> not grow in this step); it is critical but waits (tips = 'most_critical' and another tip
     !> is more critical); it stopped for good because linking to the fracture its path meets
-    !> would enclose a block (the two are connected already)
+    !> would enclose a block (the two are connected already); it stopped for good before the
+    !> interface of two bonded half-planes (its path would cross it or come close)
     integer, parameter :: growth_grew = 0, growth_subcritical = 1, growth_intersection = 2, &
                           growth_surface = 3, growth_corrector_failed = 4, growth_linked = 5, &
-                          growth_closed = 6, growth_waiting = 7, growth_enclosing = 8
+                          growth_closed = 6, growth_waiting = 7, growth_enclosing = 8, &
+                          growth_interface = 9
     !> Names of the reasons, indexed by reason
-    character(len=*), parameter :: growth_reason_names(0:8) = [character(len=48) :: &
+    character(len=*), parameter :: growth_reason_names(0:9) = [character(len=48) :: &
         'grew', 'subcritical', 'intersection', 'surface', &
         'corrector failed (grew at mts_angle)', 'linked (ends on another fracture)', &
         'closed (the kink closes, K_I = 0)', 'waiting (critical, not the most critical)', &
-        'enclosing (a link would enclose a block)']
+        'enclosing (a link would enclose a block)', 'interface (stopped before it)']
     !> Why a growth run ended: no tip can grow any more, the step limit was reached, or the
     !> solve of a step failed (the run stopped before it: exit_stopped_early)
     integer, parameter :: growth_arrested = 1, growth_step_limit = 2, growth_failed = 3

@@ -105,7 +105,8 @@ GROWTH_MARKERS = {"grew": ("o", "grew"), "subcritical": ("o", "subcritical"),
                   "corrector": ("s", "grew at the MTS angle"),
                   "linked": ("P", "stopped: linked"), "closed": ("v", "closed (K_I = 0)"),
                   "waiting": ("D", "waiting"),
-                  "enclosing": ("x", "stopped: enclosing")}
+                  "enclosing": ("x", "stopped: enclosing"),
+                  "interface": ("h", "stopped: interface")}
 OTHER_REASON_MARKER = "*"
 #: Vertical distance between the end-reason texts of curves ending at one place [points],
 #: and how near (a fraction of the data's span on each axis) such ends count as one place.
