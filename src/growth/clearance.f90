@@ -78,8 +78,9 @@ contains
     !> growth_surface when (in a half-plane) they keep clear of every element but not of
     !> the surface, growth_interface when (with two materials) they keep clear of every
     !> element but not of the interface. The first new element may meet the tip element only
-    !> at the tip: its far end must keep clear of the tip element. With `links`, a path that meets an element
-    !> of another fracture links (growth_linked, its link in links) unless the link is
+    !> at the tip: its far end must keep clear of the tip element. With `links`, a path that
+    !> meets an element of another fracture links (growth_linked, its link in links) unless
+    !> the link is
     !> refused (growth_enclosing when the fractures are connected already, else
     !> growth_intersection), and one that does not keep clear of the surface breaks through
     !> it (growth_surface, its link in links) unless that link is refused
