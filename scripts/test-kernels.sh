@@ -18,8 +18,11 @@
 # what the same run stored), python_comp2ddm (workbooks to namelists; the paper's model it
 # solves is solved under every kernel by the contact suite and python_examples), python_venv
 # (the scripts from a plain shell), python_figures (where a figure's parts lie on its
-# canvas) and python_converge (verdicts of refinement studies at 1e-3 and wider; the models
-# it refines are solved under every kernel by the contact suite and python_examples): nothing they check depends on the last bits of a solve. Needs a configured and
+# canvas), python_converge (verdicts of refinement studies at 1e-3 and wider; the models
+# it refines are solved under every kernel by the contact suite and python_examples),
+# python_memory (the memory estimate against what a process may allocate, and the refusal
+# of a model too large) and python_benchmark (the benchmark's records and timings): nothing
+# they check depends on the last bits of a solve. Needs a configured and
 # built debug preset (scripts/test.sh makes it). Exits non-zero when a kernel cannot be
 # forced or a test fails.
 set -euo pipefail
@@ -38,7 +41,7 @@ kernel_in_use() {
     fi | sed -n 's/^Core: //p'
 }
 
-left_out='^(python_robustness|python_robustness_huge|python_plot|python_comp2ddm|python_venv|python_figures|python_converge)$'
+left_out='^(python_robustness|python_robustness_huge|python_plot|python_comp2ddm|python_venv|python_figures|python_converge|python_memory|python_benchmark)$'
 requested=("$@")
 ((${#requested[@]} > 0)) || requested=(native Nehalem Sandybridge Haswell)
 done_cores=("$(OPENBLAS_VERBOSE=2 "$exe" --version 2>&1 >/dev/null | sed -n 's/^Core: //p')")
