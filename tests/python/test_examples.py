@@ -428,6 +428,20 @@ def check_crack_toward_soft_layer(f):
     assert upper > 1.4 * griffith and griffith < lower < upper, (upper, lower)
 
 
+def check_crack_grows_to_soft_layer(f):
+    """The upper tip stops before the interface (reason 9, 0.05 m below it) with the larger
+    K_I, above the one material's for the grown crack; the lower tip grows to the step
+    limit."""
+    g = f["growth"]
+    stops = np.flatnonzero(g["reason"][()] == 9)
+    assert stops.size == 1 and g["y"][stops[0]] == pytest.approx(-0.05, abs=1e-9)
+    assert decode(g.attrs["end_reason"]) == "step_limit"
+    y, k1 = f["tips/y"][()], f["tips/k1"][()]
+    upper, lower = k1[np.argmax(y)], k1[np.argmin(y)]
+    griffith = 10.0 * np.sqrt(np.pi * 0.5 * (y.max() - y.min()))
+    assert upper > 1.5 * griffith and griffith < lower < upper, (upper, lower, griffith)
+
+
 def check_fault_across_layers(f):
     """Split at the interface; every element slips, more in the soft upper bed."""
     e = f["elements"]
@@ -439,6 +453,7 @@ def check_fault_across_layers(f):
 
 EXPECTED = {
     "crack_toward_soft_layer": check_crack_toward_soft_layer,
+    "crack_grows_to_soft_layer": check_crack_grows_to_soft_layer,
     "fault_across_layers": check_fault_across_layers,
     "injection_well_normal_fault": check_injection_well,
     "strong_patch_progressive_failure": check_progressive_failure,
