@@ -3,37 +3,19 @@
 !> end lies on (a T-junction). Pressure that flows along fractures passes where ends meet.
 module ddc_mesh_ends
     use ddc_kinds, only: wp
-    use ddc_model_types, only: element_set
+    use ddc_model_types, only: element_set, element_end
     use ddc_sorting, only: sorted_order, first_at_least
     use ddc_mesh_segments, only: point_segment_distance
     implicit none
     private
 
-    public :: end_groups, end_on_interior, end_coordinates, meeting_tolerance
+    public :: end_groups, end_on_interior, meeting_tolerance
     public :: elements_at_point
 
     !> Ends closer than this fraction of the shorter element's length meet
     real(wp), parameter :: meeting_tolerance = 1.0e-8_wp
 
 contains
-
-    !> x and y of end `side` (1 begin, 2 end) of element i.
-    pure subroutine end_coordinates(elements, i, side, x, y)
-        !> Elements with geometry computed
-        type(element_set), intent(in) :: elements
-        !> Element and end (1 begin, 2 end)
-        integer, intent(in) :: i, side
-        !> The end point [length unit]
-        real(wp), intent(out) :: x, y
-
-        if (side == 1) then
-            x = elements%x_begin(i)
-            y = elements%y_begin(i)
-        else
-            x = elements%x_end(i)
-            y = elements%y_end(i)
-        end if
-    end subroutine end_coordinates
 
     !> The group of every element end: ends that meet (directly or through other ends) share
     !> a group number, an end that meets no other has a group of its own. Groups are
@@ -119,7 +101,7 @@ contains
         real(wp) :: x, y, tol
         integer :: j
 
-        call end_coordinates(elements, i, side, x, y)
+        call element_end(elements, i, side, x, y)
         host = 0
         distance = 0.0_wp
         do j = 1, elements%n

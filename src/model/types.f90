@@ -30,7 +30,7 @@ module ddc_model_types
     public :: initiation_options
     public :: strength_law_count
     public :: default_block_size, no_residual_drop, rigid_joint, tensile_cap
-    public :: element_array_action, for_each_element_array, select_elements
+    public :: element_array_action, for_each_element_array, select_elements, element_end
 
     !> Boundary conditions; 1-4 are the TWODD KODE values.
     integer, parameter :: condition_traction = 1
@@ -387,6 +387,24 @@ module ddc_model_types
     end type model_type
 
 contains
+
+    !> x and y of end `side` (1 begin, 2 end) of element i.
+    pure subroutine element_end(elements, i, side, x, y)
+        !> Elements with geometry computed
+        type(element_set), intent(in) :: elements
+        !> Element and end (1 begin, 2 end)
+        integer, intent(in) :: i, side
+        !> The end point [length unit]
+        real(wp), intent(out) :: x, y
+
+        if (side == 1) then
+            x = elements%x_begin(i)
+            y = elements%y_begin(i)
+        else
+            x = elements%x_end(i)
+            y = elements%y_end(i)
+        end if
+    end subroutine element_end
 
     !> Whether a model has fluid sources (&injection).
     pure logical function has_sources(model)

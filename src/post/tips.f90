@@ -2,7 +2,7 @@
 module ddc_post_tips
     use ddc_kinds, only: wp
     use ddc_model_types, only: element_set, symmetry_x, symmetry_y, symmetry_both, &
-        domain_half_plane
+        domain_half_plane, element_end
     use ddc_model_results, only: tip_set
     use ddc_model_medium, only: elastic_medium, elastic_material, element_material
     use ddc_sorting, only: sorted_order, first_at_least
@@ -61,7 +61,7 @@ contains
         integer, intent(in) :: i, side
         real(wp) :: x, y
 
-        call end_point(elements, i, side, x, y)
+        call element_end(elements, i, side, x, y)
         end_is_shared = .true.
         if (end_on_mirror(elements, i, side)) return
         if (elements%domain == domain_half_plane .and. &
@@ -76,7 +76,7 @@ contains
         integer, intent(in) :: i, side
         real(wp) :: x, y, tol
 
-        call end_point(elements, i, side, x, y)
+        call element_end(elements, i, side, x, y)
         tol = shared_end_tolerance * 2.0_wp * elements%half_length(i)
         associate (sym => elements%symmetry)
             end_on_mirror = ((sym%kind == symmetry_x .or. sym%kind == symmetry_both) .and. &
@@ -109,7 +109,7 @@ contains
         integer :: k, e, j, n
 
         n = elements%n
-        call end_point(elements, i, side, x, y)
+        call element_end(elements, i, side, x, y)
         ! Every pair tolerance is at most half this window (it takes the shorter element).
         window = shared_end_tolerance * 4.0_wp * elements%half_length(i)
         first = 0
@@ -120,7 +120,7 @@ contains
             e = index%end(k)
             j = modulo(e - 1, n) + 1
             if (j == i) cycle
-            call end_point(elements, j, merge(1, 2, e <= n), xe, ye)
+            call element_end(elements, j, merge(1, 2, e <= n), xe, ye)
             tol = shared_end_tolerance * 2.0_wp * &
                   min(elements%half_length(i), elements%half_length(j))
             if (hypot(xe - x, ye - y) > tol) cycle
@@ -181,21 +181,6 @@ contains
         chain = path(:m)
         near_side = sides(:m)
     end subroutine tip_chain
-
-    !> End `side` (1 begin, 2 end) of element i.
-    pure subroutine end_point(elements, i, side, x, y)
-        type(element_set), intent(in) :: elements
-        integer, intent(in) :: i, side
-        real(wp), intent(out) :: x, y
-
-        if (side == 1) then
-            x = elements%x_begin(i)
-            y = elements%y_begin(i)
-        else
-            x = elements%x_end(i)
-            y = elements%y_end(i)
-        end if
-    end subroutine end_point
 
     !> Tips (element ends shared with no other element) with K_I and K_II from the tip
     !> element's DDs: K = -G D / (2 (1 - nu) sqrt(h)), h the tip element's half-length, G
