@@ -81,3 +81,19 @@ def test_a_resumed_run_keeps_the_stopped_tip(tmp_path):
     assert list(more["growth"]["reason"]) == list(whole["growth"]["reason"])
     for key in ("y_end", "ds", "dn"):
         assert largest_gap(more["elements"][key], whole["elements"][key]) < 1e-12, key
+
+
+def test_the_stop_closes_on_the_interface_as_the_increment_shrinks(tmp_path):
+    # The stopped tip lies within one increment and the clearance (half an element) of the
+    # interface, so it comes closer as the increment (and its elements) are refined.
+    gaps = []
+    for increment in (0.1, 0.05, 0.025):
+        text = two_materials(10000.0, steps=80).replace(
+            "increment = 0.1", f"increment = {increment}, element_length = {increment / 2}")
+        with h5py.File(solve_text(tmp_path, f"inc{increment}", text), "r") as f:
+            stops = np.flatnonzero(f["growth/reason"][()] == 9)
+            assert stops.size == 1
+            gap = INTERFACE - f["growth/y"][stops[0]]
+        assert increment / 4 <= gap < increment + increment / 4, (increment, gap)
+        gaps.append(gap)
+    assert gaps[2] < gaps[0], gaps
