@@ -6,13 +6,14 @@ module ddc_app_report
     use ddc_model_types, only: model_type, rigid_joint, tensile_cap, condition_names, &
         observation_kind_names, symmetry_none, symmetry_names, domain_names, &
         domain_half_plane, domain_bimaterial, load_path_names, source_overpressure, &
-        growth_tips_names, growth_criterion_names, growth_criterion_work, strength_law_count
+        growth_tips_names, growth_criterion_names, growth_criterion_work, strength_law_count, &
+        work_mode_names, angle_search_names, work_mode_any
     use ddc_model_laws, only: strength_law, strength_laws
     use ddc_model_records, only: units_one, units_text
     use ddc_model_results, only: model_results, state_names, point_near, point_on_element, &
         growth_reason_names, growth_end_names, growth_subcritical, growth_intersection, &
         growth_surface, growth_linked, growth_closed, growth_waiting, growth_enclosing, &
-        growth_interface
+        growth_interface, growth_grew
     use ddc_model_plausibility, only: plausibility_notes, depth_range
     use ddc_model_strength_fronts, only: instant_drop_notes, cohesive_zone_warnings
     use ddc_model_loads, only: work_threshold_of
@@ -319,6 +320,8 @@ contains
             if (g%criterion == growth_criterion_work) then
                 write (unit, '(a,g0,a,g0,a)') '    angle_range = ', g%angle_range, &
                     ' degrees, angle_step = ', g%angle_step, ' degrees'
+                write (unit, '(a)') "    work_mode = '"//trim(work_mode_names(g%work_mode))// &
+                    "', angle_search = '"//trim(angle_search_names(g%angle_search))//"'"
                 if (g%work_threshold > 0.0_wp) then
                     write (unit, '(a,g0,1x,a)') '    work_threshold = ', g%work_threshold, &
                         model%stress_unit//' '//model%length_unit
@@ -444,9 +447,32 @@ contains
                 tips(i)%last_k_eq / model%growth%toughness, &
                 stop_text(tips(i)%last_reason)//ends_on(tips(i))
         end do
+        call print_friction_note()
         if (allocated(results%history%element_count)) call print_load_steps()
 
     contains
+
+        !> Under 'work': a note when kinks grew with most of their work done through slip of
+        !> frictional faces (docs/fracture-growth.md#growth-by-the-work-criterion).
+        subroutine print_friction_note()
+            logical, allocatable :: frictional(:)
+
+            if (.not. allocated(results%growth%slip_share)) return
+            associate (g => results%growth)
+                if (size(g%slip_share) /= size(g%reason)) return
+                frictional = g%reason == growth_grew .and. g%slip_share > 0.5_wp
+                if (.not. any(frictional)) return
+                write (unit, '(a)') '  note: '//itoa(count(frictional))//' of '// &
+                    itoa(count(g%reason == growth_grew))//' kinks grew with most of their '// &
+                    'work change done through slip of frictional faces (/growth/slip_share '// &
+                    'up to '//short_real(0.01_wp * nint(100 * maxval(g%slip_share, &
+                    mask=frictional)))//'): there the efficiency is work of the loads that '// &
+                    'friction partly dissipates, not twice an energy release rate'// &
+                    trim(merge(" (work_mode = 'opening' grows only kinks that open)", &
+                               '                                                   ', &
+                               model%growth%work_mode == work_mode_any))
+            end associate
+        end subroutine print_friction_note
 
         !> Per load step of a loading history: the load and each tip that grew, by how much.
         subroutine print_load_steps()

@@ -423,6 +423,7 @@ contains
             run%now%reason(t) = kinks%tip(i)%reason
             run%now%solves(t) = kinks%tip(i)%solves
             run%now%efficiency(t) = kinks%tip(i)%efficiency
+            run%now%slip_share(t) = kinks%tip(i)%slip_share
             if (kinks%tip(i)%reason == growth_grew .or. &
                 kinks%tip(i)%reason == growth_corrector_failed) then
                 grown = grown + 1
@@ -508,7 +509,8 @@ contains
         n = size(tips)
         allocate (now%k1(n), now%k2(n), now%k_eq(n), now%theta(n), now%x(n), now%y(n), &
                   now%element(n), now%reason(n), now%angle(n), now%length(n), &
-                  now%k2_after(n), now%solves(n), now%link(n), now%efficiency(n))
+                  now%k2_after(n), now%solves(n), now%link(n), now%efficiency(n), &
+                  now%slip_share(n))
         now%angle = ieee_value(1.0_wp, ieee_quiet_nan)
         now%k2_after = now%angle
         now%k1 = 0.0_wp
@@ -520,6 +522,7 @@ contains
         now%element = 0
         now%length = 0.0_wp
         now%efficiency = 0.0_wp
+        now%slip_share = 0.0_wp
         now%solves = 0
         now%reason = reason_stopped
         do i = 1, n
@@ -676,6 +679,7 @@ contains
         record%length = [record%length, pack(now%length, keep)]
         record%reason = [record%reason, pack(now%reason, keep)]
         record%efficiency = [record%efficiency, pack(now%efficiency, keep)]
+        record%slip_share = [record%slip_share, pack(now%slip_share, keep)]
         ! Contiguous copies of the strided components (no temporaries)
         if (allocated(now%trials%fracture)) call append_trials(record, step, &
             [(tips(i)%fracture, i = 1, size(tips))], [(tips(i)%end, i = 1, size(tips))], keep, &

@@ -4,7 +4,8 @@
 !> axis, every angle_step; a crack and its reverse are one), each solved with contact by the
 !> growth solver (a bordered update of the kept factors), with its efficiency
 !> E = (W_ext(trial) - W_ext(before)) / flaw_length (ddc_growth_work). A trial whose new
-!> elements neither open nor slip, or that would cross an element, is no candidate. The best
+!> elements neither open nor slip (under work_mode = 'opening': none of which opens), or
+!> that would cross an element, is no candidate. The best
 !> candidate is refined as a tip's kink is (ddc_growth_angle_search), the grid wrapping round
 !> at +-90 degrees. Every trial goes to the run's initiation record.
 module ddc_growth_flaw_search
@@ -14,14 +15,14 @@ module ddc_growth_flaw_search
     use ddc_error, only: error_type
     use ddc_text, only: itoa
     use ddc_model_types, only: model_type, growth_options, initiation_options
-    use ddc_model_results, only: model_results, trial_blocked, trial_opening, trial_slipping
+    use ddc_model_results, only: model_results, trial_blocked
     use ddc_model_initiations, only: initiation_record, initiation_flaw, append_flaw_trial
     use ddc_mesh_checks, only: check_elements
     use ddc_growth_solver, only: growth_solver, solve_grown
     use ddc_growth_work, only: external_work
     use ddc_growth_new_fracture, only: flaw_path, add_fracture
     use ddc_growth_angle_search, only: trial_point, best_candidate, parabola_vertex, &
-        narrow_bracket, new_elements_state, refine_tolerance, max_refinements
+        narrow_bracket, judge_trial, refine_tolerance, max_refinements
     implicit none
     private
 
@@ -133,11 +134,9 @@ contains
                                 ' trial '//itoa(solves)//': '//error%message
                 return
             end if
-            point_tried%efficiency = (external_work(trial, solved%elements%ds, &
-                                                    solved%elements%dn) - w_before) / &
-                                     hypot(xs(size(xs)) - xs(1), ys(size(ys)) - ys(1))
-            state = new_elements_state(trial, solved, origin)
-            point_tried%candidate = state == trial_opening .or. state == trial_slipping
+            call judge_trial(trial, solved, origin, before%elements%ds, w_before, &
+                             hypot(xs(size(xs)) - xs(1), ys(size(ys)) - ys(1)), &
+                             growth%work_mode, point_tried, state)
             call append_flaw_trial(record, step, flaw, orientation_degrees(theta), &
                                    point_tried%efficiency, state)
         end subroutine try_orientation

@@ -35,6 +35,9 @@ module ddc_growth_kinks
         !> The work criterion's efficiency at the applied angle [stress unit * length unit]
         !> (out; 0 under another criterion)
         real(wp) :: efficiency = 0.0_wp
+        !> The share of that trial's work change done through slip of frictional faces, new and
+        !> old [-] (out; NaN without a candidate, 0 under another criterion)
+        real(wp) :: slip_share = 0.0_wp
         !> growth_grew, growth_corrector_failed, growth_intersection, growth_surface (broke
         !> through the free surface), growth_linked, growth_closed or growth_enclosing (out)
         integer :: reason = growth_grew

@@ -46,6 +46,9 @@ module ddc_growth_run_state
         !> The work criterion: each tip's efficiency at its applied angle [stress unit * length
         !> unit] (NaN without a candidate trial, 0 under another criterion), and the step's trials
         real(wp), allocatable :: efficiency(:)
+        !> The share of its work change done through slip of frictional faces [-] (NaN as
+        !> efficiency)
+        real(wp), allocatable :: slip_share(:)
         type(trial_table) :: trials
     end type step_tips
 

@@ -1,10 +1,13 @@
 !> The search of the work criterion (docs/theory/growth.md#the-work-criterion): every growing tip
-!> tries kinks of its increment at the trial angles (-angle_range .. +angle_range about its
-!> direction, every angle_step), one tip's kink at a time, each solved with contact by the growth
-!> solver (a bordered update of the kept factors where the model is on the kept path). A trial's
-!> efficiency is E = (W_ext(trial) - W_ext(before)) / increment (ddc_growth_work); a trial whose
-!> new elements neither open nor slip, or whose path does not keep clear, is no candidate. The
-!> best candidate is refined between its neighbours by successive parabolas through the best
+!> tries kinks of its increment within -angle_range .. +angle_range about its direction, one
+!> tip's kink at a time, each solved with contact by the growth solver (a bordered update of the
+!> kept factors where the model is on the kept path). The search climbs every angle_step from
+!> the kinked-crack estimate of the best angle (and from straight ahead under work_mode = 'any')
+!> and tries every angle_step of the range only when that finds no candidate, or under
+!> angle_search = 'grid'. A trial's efficiency is E = (W_ext(trial) - W_ext(before)) / increment
+!> (ddc_growth_work); a trial whose new elements neither open nor slip (under work_mode =
+!> 'opening': none of which opens), or whose path does not keep clear, is no candidate.
+!> The best candidate is refined between its neighbours by successive parabolas through the best
 !> three trials until the next vertex lies within half the resolution (0.25 degree) of the best.
 !> A tip without a candidate is closed; one whose best E reaches the threshold grows at its
 !> angle; with tips = 'most_critical' only the largest E / threshold grows (the others that
@@ -15,9 +18,10 @@ module ddc_growth_trials
     use ddc_constants, only: pi
     use ddc_error, only: error_type
     use ddc_text, only: itoa
-    use ddc_model_types, only: model_type, growth_options, growth_tips_most_critical
+    use ddc_model_types, only: model_type, growth_options, growth_tips_most_critical, &
+        work_mode_any, angle_search_seeded
     use ddc_model_results, only: model_results, growth_grew, growth_subcritical, &
-        growth_closed, growth_waiting, trial_slipping, trial_opening, trial_blocked
+        growth_closed, growth_waiting, trial_blocked, trial_slipping
     use ddc_growth_solver, only: growth_solver, solve_grown
     use ddc_growth_extension, only: tip_path, make_path, extend_model, element_split
     use ddc_growth_clearance, only: check_paths, path_clear, link_parts
@@ -25,7 +29,7 @@ module ddc_growth_trials
     use ddc_model_loads, only: work_threshold_of
     use ddc_growth_work, only: external_work, add_trial
     use ddc_growth_angle_search, only: trial_point, best_candidate, parabola_vertex, &
-        narrow_bracket, new_elements_state, refine_tolerance, max_refinements
+        narrow_bracket, judge_trial, kink_estimate, refine_tolerance, max_refinements
     implicit none
     private
 
@@ -33,6 +37,8 @@ module ddc_growth_trials
 
     !> One degree [rad]
     real(wp), parameter :: degree = pi / 180.0_wp
+    !> Trial angles closer than this are one trial [rad]
+    real(wp), parameter :: same_angle = 1.0e-9_wp
 
 contains
 
@@ -63,7 +69,8 @@ contains
         kinks%current = .false.
         ratio = -huge(1.0_wp)
         do i = 1, size(kinks%tip)
-            call search_tip(solver, model, created, options, w_before, kinks, i, error)
+            call search_tip(solver, model, before%elements%ds, created, options, w_before, &
+                            kinks, i, error)
             if (allocated(error)) return
             associate (k => kinks%tip(i))
                 if (k%reason == growth_closed) cycle
@@ -81,11 +88,17 @@ contains
         end do
     end subroutine search_kinks
 
-    !> The trials of tip i: the grid, then the refinement of the best candidate; the tip's
-    !> angle and efficiency are the best candidate's (reason growth_closed without one).
-    subroutine search_tip(solver, model, created, options, w_before, kinks, i, error)
+    !> The trials of tip i (angle_search = 'seeded'): a climb from each seed, the kinked-crack
+    !> estimate of the best angle and, under work_mode = 'any' where it lies more than a step
+    !> from it, straight ahead (where slipping kinks do most work); the whole grid when no
+    !> climb finds a candidate, and always under angle_search = 'grid'. A trial solved once
+    !> is not solved again. The tip's angle, efficiency and slip share are the best
+    !> candidate's (reason growth_closed without one).
+    subroutine search_tip(solver, model, base_ds, created, options, w_before, kinks, i, error)
         type(growth_solver), intent(inout) :: solver
         type(model_type), intent(in) :: model
+        !> The shear DDs of its solution [length unit], shape (n)
+        real(wp), intent(in) :: base_ds(:)
         integer, intent(in) :: created(:)
         type(growth_options), intent(in) :: options
         !> W_ext of the model before growing [stress unit * length unit]
@@ -93,35 +106,119 @@ contains
         type(step_kinks), intent(inout) :: kinks
         integer, intent(in) :: i
         type(error_type), allocatable, intent(out) :: error
-        real(wp), allocatable :: angles(:)
-        type(trial_point), allocatable :: grid(:)
-        type(trial_point) :: best
-        integer :: j, b
+        type(trial_point), allocatable :: solved(:)
+        integer, allocatable :: solved_state(:)
+        type(trial_point) :: best, found
+        real(wp) :: range, step, seed
+        integer :: state
 
-        call trial_angles(options%angle_range * degree, options%angle_step * degree, angles)
-        allocate (grid(size(angles)))
+        range = options%angle_range * degree
+        step = options%angle_step * degree
+        allocate (solved(0), solved_state(0))
         kinks%tip(i)%solves = 0
-        do j = 1, size(angles)
-            call try_angle(angles(j), grid(j), error)
+        best%candidate = .false.
+        if (options%angle_search == angle_search_seeded) then
+            seed = kink_estimate(kinks%tip(i)%k1, kinks%tip(i)%k2, range)
+            call climb(seed, best, error)
             if (allocated(error)) return
-        end do
-        if (.not. any(grid%candidate)) then
+            if (options%work_mode == work_mode_any .and. abs(seed) > step) then
+                call trial(0.0_wp, found, error, state)
+                if (allocated(error)) return
+                if (state == trial_slipping) then
+                    call climb(0.0_wp, found, error)
+                    if (allocated(error)) return
+                    if (found%candidate) then
+                        if (.not. best%candidate .or. found%efficiency > best%efficiency) &
+                            best = found
+                    end if
+                end if
+            end if
+        end if
+        if (.not. best%candidate) then
+            call search_grid(best, error)
+            if (allocated(error)) return
+        end if
+        if (.not. best%candidate) then
             kinks%tip(i)%reason = growth_closed
             kinks%tip(i)%efficiency = ieee_value(1.0_wp, ieee_quiet_nan)
+            kinks%tip(i)%slip_share = ieee_value(1.0_wp, ieee_quiet_nan)
             return
-        end if
-        b = best_candidate(grid)
-        best = grid(b)
-        if (b > 1 .and. b < size(grid)) then
-            if (grid(b - 1)%candidate .and. grid(b + 1)%candidate) then
-                call refine(grid(b - 1), grid(b), grid(b + 1), best, error)
-                if (allocated(error)) return
-            end if
         end if
         kinks%tip(i)%theta = best%angle
         kinks%tip(i)%efficiency = best%efficiency
+        kinks%tip(i)%slip_share = best%slip_share
 
     contains
+
+        !> From the seed and its neighbours a step either way, step on towards the best
+        !> candidate until it lies between two trials (or at the range), then refine it;
+        !> best%candidate is false when the three trials about the seed have none.
+        subroutine climb(seed, best, error)
+            real(wp), intent(in) :: seed
+            type(trial_point), intent(out) :: best
+            type(error_type), allocatable, intent(out) :: error
+            type(trial_point) :: l, m, r
+            integer :: b
+
+            best%candidate = .false.
+            call trial(seed, m, error)
+            if (allocated(error)) return
+            call trial(max(seed - step, -range), l, error)
+            if (allocated(error)) return
+            call trial(min(seed + step, range), r, error)
+            if (allocated(error)) return
+            do
+                b = best_candidate([l, m, r])
+                if (b == 0) return
+                if (b == 1 .and. l%angle > -range) then
+                    r = m
+                    m = l
+                    call trial(max(m%angle - step, -range), l, error)
+                else if (b == 3 .and. r%angle < range) then
+                    l = m
+                    m = r
+                    call trial(min(m%angle + step, range), r, error)
+                else
+                    exit
+                end if
+                if (allocated(error)) return
+            end do
+            select case (b)
+            case (1)
+                best = l
+            case (2)
+                best = m
+                if (l%candidate .and. r%candidate) call refine(l, m, r, best, error)
+            case default
+                best = r
+            end select
+        end subroutine climb
+
+        !> Every trial angle of the range, then the refinement of the best candidate between
+        !> its neighbours.
+        subroutine search_grid(best, error)
+            type(trial_point), intent(out) :: best
+            type(error_type), allocatable, intent(out) :: error
+            real(wp), allocatable :: angles(:)
+            type(trial_point), allocatable :: grid(:)
+            integer :: j, b
+
+            best%candidate = .false.
+            call trial_angles(range, step, angles)
+            allocate (grid(size(angles)))
+            do j = 1, size(angles)
+                call trial(angles(j), grid(j), error)
+                if (allocated(error)) return
+            end do
+            b = best_candidate(grid)
+            if (b == 0) return
+            best = grid(b)
+            if (b > 1 .and. b < size(grid)) then
+                if (grid(b - 1)%candidate .and. grid(b + 1)%candidate) then
+                    call refine(grid(b - 1), grid(b), grid(b + 1), best, error)
+                end if
+            end if
+        end subroutine search_grid
 
         !> Successive parabolas through the best trial m and its neighbours l < m < r
         !> (each a candidate): the vertex is solved when it lies more than refine_tolerance
@@ -142,7 +239,7 @@ contains
             do n = 1, max_refinements
                 call parabola_vertex(l, m, r, vertex, found)
                 if (.not. found .or. abs(vertex - m%angle) <= refine_tolerance) exit
-                call try_angle(vertex, v, error)
+                call trial(vertex, v, error)
                 if (allocated(error)) return
                 if (.not. v%candidate) exit
                 call narrow_bracket(l, m, r, v)
@@ -150,17 +247,42 @@ contains
             best = m
         end subroutine refine
 
-        !> Solve the tip's kink at angle theta (the step's links held) and record the trial.
-        subroutine try_angle(theta, point, error)
+        !> The trial at angle theta: the one solved already, else solved now; and the state
+        !> of its new elements.
+        subroutine trial(theta, point, error, state)
             real(wp), intent(in) :: theta
             type(trial_point), intent(out) :: point
+            type(error_type), allocatable, intent(out) :: error
+            integer, intent(out), optional :: state
+            integer :: j, found_state
+
+            do j = 1, size(solved)
+                if (abs(solved(j)%angle - theta) <= same_angle) then
+                    point = solved(j)
+                    if (present(state)) state = solved_state(j)
+                    return
+                end if
+            end do
+            call try_angle(theta, point, found_state, error)
+            if (allocated(error)) return
+            solved = [solved, point]
+            solved_state = [solved_state, found_state]
+            if (present(state)) state = found_state
+        end subroutine trial
+
+        !> Solve the tip's kink at angle theta (the step's links held) and record the trial.
+        subroutine try_angle(theta, point, state, error)
+            real(wp), intent(in) :: theta
+            type(trial_point), intent(out) :: point
+            integer, intent(out) :: state
             type(error_type), allocatable, intent(out) :: error
             type(tip_path) :: path(1)
             type(tip_path), allocatable :: link_paths(:)
             type(element_split), allocatable :: splits(:)
-            integer :: problem(1), state
+            integer :: problem(1)
 
             point%angle = theta
+            state = trial_blocked
             associate (k => kinks%tip(i))
                 path(1) = make_path(model, k%fracture, k%end, theta, k%length, k%pieces)
                 call check_paths(model, path, [.true.], problem, fixed=kinks%fixed)
@@ -182,11 +304,8 @@ contains
                                     itoa(k%solves)//': '//error%message
                     return
                 end if
-                point%efficiency = (external_work(kinks%trial, kinks%solved%elements%ds, &
-                                                  kinks%solved%elements%dn) - w_before) / &
-                                   k%length
-                state = new_elements_state(kinks%trial, kinks%solved, kinks%origin)
-                point%candidate = state == trial_opening .or. state == trial_slipping
+                call judge_trial(kinks%trial, kinks%solved, kinks%origin, base_ds, w_before, &
+                                 k%length, options%work_mode, point, state)
                 call add_trial(kinks%trials, k%fracture, k%end, theta, point%efficiency, state)
             end associate
         end subroutine try_angle

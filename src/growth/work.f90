@@ -21,7 +21,7 @@ module ddc_growth_work
     implicit none
     private
 
-    public :: external_work, trial_table, add_trial, append_table, append_trials
+    public :: external_work, slip_work, trial_table, add_trial, append_table, append_trials
 
     !> The trials of the work criterion (k trials): the tip (fracture, end), its angle
     !> [rad], efficiency [stress unit * length unit] (NaN when blocked) and state, shape (k).
@@ -40,6 +40,31 @@ contains
         real(wp), intent(in) :: ds(:), dn(:)
         real(wp) :: load_s(model%elements%n), load_n(model%elements%n)
 
+        call work_loads(model, load_s, load_n)
+        work = -sum(2.0_wp * model%elements%half_length * (load_s * ds + load_n * dn))
+    end function external_work
+
+    !> The shear part of W_ext on the elements of mask: the work of their slip
+    !> [stress unit * length unit].
+    pure real(wp) function slip_work(model, ds, mask) result(work)
+        !> The model (geometry computed)
+        type(model_type), intent(in) :: model
+        !> Its shear DDs [length unit], shape (n)
+        real(wp), intent(in) :: ds(:)
+        !> The elements counted, shape (n)
+        logical, intent(in) :: mask(:)
+        real(wp) :: load_s(model%elements%n), load_n(model%elements%n)
+
+        call work_loads(model, load_s, load_n)
+        work = -sum(2.0_wp * model%elements%half_length * load_s * ds, mask=mask)
+    end function slip_work
+
+    !> The loads (l_s, l_n) that do work through each element's DDs [stress unit]: 0 on
+    !> displacement and prescribed-DD rows.
+    pure subroutine work_loads(model, load_s, load_n)
+        type(model_type), intent(in) :: model
+        real(wp), intent(out) :: load_s(:), load_n(:)
+
         call resolve_remote_stress(model%elements, model%sxx, model%syy, model%sxy, load_s, &
                                    load_n, model%stress_gradient)
         associate (e => model%elements)
@@ -56,9 +81,8 @@ contains
             elsewhere (e%condition /= condition_contact)
                 load_n = 0.0_wp
             end where
-            work = -sum(2.0_wp * e%half_length * (load_s * ds + load_n * dn))
         end associate
-    end function external_work
+    end subroutine work_loads
 
     !> Append one trial to a table (allocated on first use).
     pure subroutine add_trial(table, fracture, end, angle, efficiency, state)

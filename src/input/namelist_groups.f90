@@ -57,7 +57,7 @@ module ddc_input_namelist_groups
                    'p0:r steps:i time:r'), &
         group_spec('growth', .false., 'steps:i toughness:r increment:r element_length:r '// &
                    'tips:c fractures:c criterion:c max_corrections:i new_mu:r new_sf:r '// &
-                   'angle_range:r angle_step:r work_threshold:r '// &
+                   'angle_range:r angle_step:r work_threshold:r work_mode:c angle_search:c '// &
                    'new_tensile_strength:r new_sf_residual:r new_mu_dynamic:r '// &
                    'new_slip_weakening_distance:r new_opening_weakening_distance:r '// &
                    'new_shear_stiffness:r new_normal_stiffness:r'), &

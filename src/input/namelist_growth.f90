@@ -6,7 +6,8 @@
 module ddc_input_namelist_growth
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type, growth_options, growth_tips_names, &
-        growth_criterion_names, symmetry_none, strength_law_count
+        growth_criterion_names, symmetry_none, strength_law_count, work_mode_names, &
+        angle_search_names
     use ddc_model_laws, only: strength_law, strength_laws, new_law_bound, at_most_rule
     use ddc_model_limits, only: quantity_positive, quantity_non_negative
     use ddc_text, only: itoa, rtoa, lower, find_name, quoted_list
@@ -28,7 +29,8 @@ module ddc_input_namelist_growth
 contains
 
     !> &growth steps, toughness, increment, element_length, tips, fractures, criterion,
-    !> max_corrections, new_mu, new_sf, angle_range, angle_step, work_threshold, the strength
+    !> max_corrections, new_mu, new_sf, angle_range, angle_step, work_threshold, work_mode,
+    !> angle_search, the strength
     !> laws of new elements (new_<name> of each law of ddc_model_laws) / (optional). Read
     !> after every other group: the fracture names and the other groups are checked
     !> against it.
@@ -51,7 +53,7 @@ contains
         real(wp) :: new_tensile_strength, new_sf_residual, new_mu_dynamic, &
             new_slip_weakening_distance, new_opening_weakening_distance, new_shear_stiffness, &
             new_normal_stiffness
-        character(len=text_length) :: tips, criterion
+        character(len=text_length) :: tips, criterion, work_mode, angle_search
         character(len=name_length), allocatable :: fractures(:)
         character(len=512) :: iomsg
         character(len=:), allocatable :: prefix
@@ -60,7 +62,7 @@ contains
             criterion, max_corrections, new_mu, new_sf, angle_range, angle_step, &
             work_threshold, new_tensile_strength, new_sf_residual, new_mu_dynamic, &
             new_slip_weakening_distance, new_opening_weakening_distance, new_shear_stiffness, &
-            new_normal_stiffness
+            new_normal_stiffness, work_mode, angle_search
 
         associate (info => groups(g_growth))
             if (info%count == 0) return
@@ -78,6 +80,8 @@ contains
             angle_range = 90.0_wp
             angle_step = 5.0_wp
             work_threshold = unset_real
+            work_mode = 'any'
+            angle_search = 'seeded'
             new_tensile_strength = unset_real
             new_sf_residual = unset_real
             new_mu_dynamic = unset_real
@@ -122,20 +126,14 @@ contains
             call check_new_laws([new_tensile_strength, new_sf_residual, new_mu_dynamic, &
                                  new_slip_weakening_distance, new_opening_weakening_distance, &
                                  new_shear_stiffness, new_normal_stiffness], prefix, g, messages)
-            k = find_name(lower(trim(adjustl(tips))), growth_tips_names)
-            if (k == 0) then
-                call add(messages, prefix//"tips = '"//trim(adjustl(tips))//"' is not one of "// &
-                         quoted_list(growth_tips_names))
-            else
-                g%tips = k
-            end if
-            k = find_name(lower(trim(adjustl(criterion))), growth_criterion_names)
-            if (k == 0) then
-                call add(messages, prefix//"criterion = '"//trim(adjustl(criterion))// &
-                         "' is not one of "//quoted_list(growth_criterion_names))
-            else
-                g%criterion = k
-            end if
+            k = choice('tips', tips, growth_tips_names)
+            if (k > 0) g%tips = k
+            k = choice('criterion', criterion, growth_criterion_names)
+            if (k > 0) g%criterion = k
+            k = choice('work_mode', work_mode, work_mode_names)
+            if (k > 0) g%work_mode = k
+            k = choice('angle_search', angle_search, angle_search_names)
+            if (k > 0) g%angle_search = k
             if (max_corrections < 0 .or. max_corrections > max_corrector_solves) then
                 call add(messages, prefix//'max_corrections = '//itoa(max_corrections)// &
                          ' must lie in 0 .. '//itoa(max_corrector_solves)// &
@@ -147,6 +145,18 @@ contains
         call check_work_search(prefix, angle_range, angle_step, work_threshold, model, &
                                messages)
         call select_fractures(fractures, known, prefix, model%growth%fracture_grows, messages)
+
+    contains
+
+        !> The index of a choice's value among its names (any case), or 0 with a message.
+        integer function choice(name, value, names) result(k)
+            character(len=*), intent(in) :: name, value
+            character(len=*), intent(in) :: names(:)
+
+            k = find_name(lower(trim(adjustl(value))), names)
+            if (k == 0) call add(messages, prefix//name//" = '"//trim(adjustl(value))// &
+                                 "' is not one of "//quoted_list(names))
+        end function choice
     end subroutine read_growth_group
 
     !> The trial angles and threshold of criterion = 'work': 0 < angle_range < 180,

@@ -17,7 +17,8 @@ module ddc_model_fingerprint
     use ddc_kinds, only: wp
     use ddc_contact_options, only: k_auto
     use ddc_model_types, only: model_type, growth_criterion_work, element_set, &
-        element_array_action, for_each_element_array, domain_bimaterial
+        element_array_action, for_each_element_array, domain_bimaterial, work_mode_any, &
+        angle_search_seeded
     implicit none
     private
 
@@ -151,6 +152,11 @@ contains
         if (model%growth%criterion == growth_criterion_work) then
             call add_reals(hash, [model%growth%angle_range, model%growth%angle_step, &
                                   model%growth%work_threshold])
+            ! Only when not the defaults: earlier work models keep their fingerprints.
+            if (model%growth%work_mode /= work_mode_any .or. &
+                model%growth%angle_search /= angle_search_seeded) then
+                call add_integers(hash, [model%growth%work_mode, model%growth%angle_search])
+            end if
         end if
         ! Only when given: the fingerprints of models without them stay as they were.
         if (any(model%growth%override_law)) then

@@ -279,6 +279,8 @@ contains
                                 record%reason)
         call action%on_reals(column('efficiency', column_work_records, units_work), &
                              record%efficiency)
+        call action%on_reals(column('slip_share', column_work_records, units_one), &
+                             record%slip_share)
         call action%on_integers(column('trial_step', column_trials), record%trial_step)
         call action%on_integers(column('trial_record', column_trials), record%trial_record)
         call action%on_reals(column('trial_angle', column_trials, units_degree), &

@@ -245,6 +245,9 @@ module ddc_model_results
         !> Criterion 'work' only: the efficiency dW_ext / dA at the applied angle (of the best
         !> trial; NaN when no trial opened or slipped) [stress unit * length unit], shape (k)
         real(wp), allocatable :: efficiency(:)
+        !> Criterion 'work' only: the share of that trial's work change done through the slip
+        !> of frictional faces (new and old) [-] (NaN when no trial opened or slipped), shape (k)
+        real(wp), allocatable :: slip_share(:)
         !> Criterion 'work' only, every trial (t trials, in /growth/trials): its growth step,
         !> record (1-based index of the tip's record), angle [degree], efficiency [stress unit
         !> * length unit] (NaN when not solved) and the state of its new elements

@@ -27,6 +27,8 @@ module ddc_model_types
     public :: observation_grid, observation_line, observation_points, observation_kind_names
     public :: growth_options, growth_tips_all, growth_tips_most_critical, growth_tips_names
     public :: growth_criterion_mts, growth_criterion_work, growth_criterion_names
+    public :: work_mode_any, work_mode_opening, work_mode_names
+    public :: angle_search_seeded, angle_search_grid, angle_search_names
     public :: initiation_options
     public :: strength_law_count
     public :: default_block_size, no_residual_drop, rigid_joint, tensile_cap
@@ -269,6 +271,16 @@ module ddc_model_types
     !> Input names of the criteria, indexed by criterion
     character(len=*), parameter :: growth_criterion_names(2) = [character(len=4) :: 'mts', &
         'work']
+    !> Which trials of the work criterion are candidates (&growth work_mode): those whose new
+    !> elements open or slip, or only those whose new elements open
+    integer, parameter :: work_mode_any = 1, work_mode_opening = 2
+    character(len=*), parameter :: work_mode_names(2) = [character(len=7) :: 'any', 'opening']
+    !> How the work criterion searches a tip's angles (&growth angle_search): from the
+    !> kinked-crack estimate of the best angle (docs/theory/growth.md#the-work-criterion), or
+    !> every trial angle of the range
+    integer, parameter :: angle_search_seeded = 1, angle_search_grid = 2
+    character(len=*), parameter :: angle_search_names(2) = [character(len=6) :: 'seeded', &
+        'grid']
     !> Number of the strength laws beyond Coulomb, the per-element arrays of element_set that
     !> for_each_law (ddc_model_laws) lists; the CTest architecture holds the two equal
     integer, parameter :: strength_law_count = 7
@@ -294,6 +306,8 @@ module ddc_model_types
         !> direction every angle_step [degree]; a tip grows when its efficiency reaches
         !> work_threshold [stress unit * length unit] (default 2 K_Ic^2 (1 - nu^2) / E)
         real(wp) :: angle_range = 90.0_wp, angle_step = 5.0_wp, work_threshold = 0.0_wp
+        !> work_mode_any or work_mode_opening; angle_search_seeded or angle_search_grid
+        integer :: work_mode = work_mode_any, angle_search = angle_search_seeded
         !> Largest number of solves of the local-symmetry corrector per step (0: no
         !> corrector, tips grow at the MTS angle)
         integer :: max_corrections = 8

@@ -6,7 +6,7 @@ module ddc_output_hdf5_records
     use ddc_error, only: error_type
     use ddc_text, only: allocated_text
     use ddc_model_types, only: model_type, load_path_names, growth_tips_names, &
-        growth_criterion_names, growth_criterion_work
+        growth_criterion_names, growth_criterion_work, work_mode_names, angle_search_names
     use ddc_model_results, only: history_record, growth_record, growth_end_names
     use ddc_model_loads, only: work_threshold_of
     use ddc_model_records, only: record_column, record_column_action, &
@@ -93,6 +93,10 @@ contains
             call create_group(writer%group, 'trials', writer%trials, writer%error)
             call write_attribute(writer%group, 'work_threshold', work_threshold_of( &
                 model%growth, model%youngs_modulus, model%poissons_ratio), writer%error)
+            call write_attribute(writer%group, 'work_mode', &
+                                 trim(work_mode_names(model%growth%work_mode)), writer%error)
+            call write_attribute(writer%group, 'angle_search', &
+                                 trim(angle_search_names(model%growth%angle_search)), writer%error)
         end if
         columns = record
         call for_each_growth_column(columns, writer)

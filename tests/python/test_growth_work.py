@@ -139,8 +139,97 @@ def test_one_and_two_threads_agree(tmp_path):
         np.testing.assert_array_equal(a["trials"][key], b["trials"][key])
 
 
+SLIDING_FLAW = """\
+&model youngs_modulus = 50000.0, poissons_ratio = 0.25 /
+&remote_stress sxx = -2.0, syy = -100.0 /
+&fracture name = 'flaw', x = -0.70710678, 0.70710678, y = -0.70710678, 0.70710678,
+          elements = 20, condition = 'contact', mu = 0.6, sf = 1.0 /
+&growth steps = 2, toughness = 2.0, new_sf = 0.0, criterion = 'work', {options} /
+"""
+
+INCLINED_CRACK = crack_model("sxx = 0.5e-3, syy = 0.5e-3, sxy = 0.5e-3", 40,
+                             "{options}").replace("tips = 'most_critical', ", "")
+
+# Each model, and the largest share of the grid's trials the seeded search may take: the
+# climbs take 3 trials and one per angle step walked (measured 0.16, 0.28, 0.58, 0.39: the
+# sliding flaw's efficiency rises from the estimate's 70 degrees to the slipping kinks near
+# 9, and under 'opening' the climb walks to the last kink that opens near 20).
+SEARCHED_MODELS = {
+    "inclined crack in tension": (INCLINED_CRACK, 0.25),
+    "frictional fault": (FAULT.replace("angle_range = 85", "angle_range = 85, {options}"), 0.35),
+    "sliding flaw, any": (SLIDING_FLAW.replace("{options}", "work_mode = 'any', {options}"),
+                          0.65),
+    "sliding flaw, opening": (SLIDING_FLAW.replace("{options}",
+                                                   "work_mode = 'opening', {options}"), 0.5),
+}
+
+
+@pytest.mark.parametrize("name", SEARCHED_MODELS)
+def test_seeded_search_chooses_the_grid_angles_in_fewer_trials(tmp_path, name):
+    # The climb from the kinked-crack estimate (and from straight ahead under 'any') against
+    # every angle of the range: the same reasons, angles within the angle step (5 degrees),
+    # and fewer trials.
+    text, largest_share = SEARCHED_MODELS[name]
+    found = {}
+    for search in ("seeded", "grid"):
+        (tmp_path / search).mkdir()
+        done, out = run(tmp_path / search, text.replace("{options}",
+                                                         f"angle_search = '{search}'"))
+        assert done.returncode == 0, done.stdout + done.stderr
+        found[search] = growth_of(out)
+    seeded, grid = found["seeded"], found["grid"]
+    np.testing.assert_array_equal(seeded["reason"], grid["reason"])
+    assert np.all(np.abs(seeded["angle"] - grid["angle"]) <= 5.0), (seeded["angle"],
+                                                                    grid["angle"])
+    assert (len(seeded["trials"]["trial_angle"])
+            <= largest_share * len(grid["trials"]["trial_angle"]))
+
+
+def test_mode_one_crack_takes_three_trials_per_tip(tmp_path):
+    # The estimate is straight ahead; its neighbours a step either way bracket it, and the
+    # parabola's vertex lies on it: no fourth solve.
+    done, out = run(tmp_path, crack_model("syy = 1.0e-3", 40, "tips = 'all'")
+                    .replace("tips = 'most_critical', ", ""))
+    assert done.returncode == 0, done.stdout + done.stderr
+    trials = growth_of(out)["trials"]
+    for record in (1, 2):
+        angles = trials["trial_angle"][trials["trial_record"] == record]
+        np.testing.assert_allclose(np.sort(angles), [-5.0, 0.0, 5.0], atol=1e-12)
+
+
+def test_opening_mode_grows_opening_kinks_and_any_mode_notes_friction(tmp_path):
+    # The sliding flaw's most productive kink slips on its frictional new faces under 'any'
+    # (the note says so, /growth/slip_share above 1/2); under 'opening' the chosen kink opens.
+    chosen_state = {}
+    for mode in ("any", "opening"):
+        (tmp_path / mode).mkdir()
+        done, out = run(tmp_path / mode,
+                        SLIDING_FLAW.replace("{options}", f"work_mode = '{mode}'"))
+        assert done.returncode == 0, done.stdout + done.stderr
+        g = growth_of(out)
+        with h5py.File(out, "r") as f:
+            share = f["growth/slip_share"][()]
+            assert f["growth"].attrs["work_mode"].decode() == mode
+        trials = g["trials"]
+        states = []
+        for record, angle in enumerate(g["angle"], start=1):
+            mine = (trials["trial_record"] == record) & np.isclose(trials["trial_angle"], angle,
+                                                                   rtol=0, atol=1e-9)
+            states.append(int(trials["trial_state"][mine][0]))
+        chosen_state[mode] = states
+        notes = [line for line in done.stdout.splitlines() if "slip of frictional faces" in line]
+        assert np.all(share > 0.5)
+        assert len(notes) == 1 and notes[0].strip().startswith("note: 4 of 4 kinks"), notes
+        assert ("work_mode = 'opening' grows" in notes[0]) == (mode == "any"), notes[0]
+    assert chosen_state["any"] == [1, 1, 1, 1]
+    assert chosen_state["opening"] == [2, 2, 2, 2]
+
+
 @pytest.mark.parametrize("setting, message", [
     ("criterion = 'works'", "criterion = 'works' is not one of 'mts', 'work'"),
+    ("criterion = 'work', work_mode = 'wings'", "work_mode = 'wings' is not one of 'any', 'opening'"),
+    ("criterion = 'work', angle_search = 'full'",
+     "angle_search = 'full' is not one of 'seeded', 'grid'"),
     ("criterion = 'work', angle_range = 180", "angle_range = 180.000 must lie in (0, 180)"),
     ("criterion = 'work', angle_range = 0", "angle_range = 0.00000 must lie in (0, 180)"),
     ("criterion = 'work', angle_step = 0", "angle_step = 0.00000 must be positive"),
@@ -184,6 +273,7 @@ def test_echo_names_the_trial_angles_and_threshold(tmp_path, criterion):
         angle_range, rest = echoed(done.stdout, "angle_range")
         assert angle_range == 30.0 and rest.startswith(" degrees, angle_step = "), rest
         assert echoed(done.stdout, "angle_step")[0] == 7.5
+        assert "    work_mode = 'any', angle_search = 'seeded'" in done.stdout.splitlines()
         threshold, rest = echoed(done.stdout, "work_threshold")
         if given:
             assert threshold == 0.25 and "default" not in rest

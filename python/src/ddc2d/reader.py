@@ -91,7 +91,7 @@ GROWTH_DATASETS = ("step", "fracture_id", "end", "x", "y", "k1", "k2", "k_eq", "
 #: /growth datasets of fracture growth along a load path only, one value per record.
 GROWTH_PATH_DATASETS = ("load_step",)
 #: /growth datasets of the work criterion only, one value per record.
-GROWTH_WORK_DATASETS = ("efficiency",)
+GROWTH_WORK_DATASETS = ("efficiency", "slip_share")
 #: /growth/trials datasets of the work criterion, one value per trial kink.
 GROWTH_TRIAL_DATASETS = ("trial_step", "trial_record", "trial_angle", "trial_efficiency",
                          "trial_state")
@@ -493,9 +493,9 @@ def read_growth(path: FilePath, handle: h5py.Group) -> dict[str, Any] | None:
     """/growth of a fracture growth run as a dict: every dataset of GROWTH_DATASETS (1-D,
     one value per record: one record per tip per step), ``attrs`` (strings decoded: toughness,
     end_reason, ...) and ``reasons`` (code -> name, from the attribute reason_coding); under
-    the work criterion also ``efficiency`` and ``trials`` (dict of GROWTH_TRIAL_DATASETS, one
-    value per trial kink), and with flaw points ``flaw_trials`` (dict of FLAW_TRIAL_DATASETS,
-    one value per trial of a flaw's first crack) and ``flaw_starts`` (``flaw``, ``step`` and
+    the work criterion also ``efficiency``, ``slip_share`` and ``trials`` (dict of
+    GROWTH_TRIAL_DATASETS, one value per trial kink), and with flaw points ``flaw_trials``
+    (dict of FLAW_TRIAL_DATASETS, one value per trial of a flaw's first crack) and ``flaw_starts`` (``flaw``, ``step`` and
     ``angle`` of every flaw that started, from /growth/initiations); with &initiation
     ``initiations`` (dict of INITIATION_DATASETS, one value per new fracture, and ``attrs``:
     its settings and, when a check started nothing, ``largest_tension`` with its

@@ -379,10 +379,12 @@ def _trials_figure(result, curves, xlabel, ylabel, title):
     candidates joined, the stuck trials as crosses, the chosen one filled, the work threshold
     dashed."""
     unit = f"{result['stress_unit']} {result['length_unit']}".strip()
+    # Under work_mode = 'opening' only opening trials (state 2) are candidates.
+    opening_only = result["growth"]["attrs"].get("work_mode") == "opening"
     fig, ax = plt.subplots(figsize=(6.5, 4.5), constrained_layout=True)
     for index, curve in enumerate(curves):
         colour = f"C{index % 10}"
-        candidate = np.isin(curve["state"], (1, 2))
+        candidate = np.isin(curve["state"], (2,) if opening_only else (1, 2))
         ax.plot(curve["angle"], np.where(candidate, curve["efficiency"], np.nan), marker=".",
                 linewidth=1.0, color=colour, linestyle=LINESTYLES[index % len(LINESTYLES)],
                 label=curve["label"], gid=f"efficiency:{curve['label']}")
