@@ -88,11 +88,12 @@ contains
         end do
     end subroutine search_kinks
 
-    !> The trials of tip i (angle_search = 'seeded'): a climb from each seed, the kinked-crack
-    !> estimate of the best angle and, under work_mode = 'any' where it lies more than a step
-    !> from it, straight ahead (where slipping kinks do most work); the whole grid when no
-    !> climb finds a candidate, and always under angle_search = 'grid'. A trial solved once
-    !> is not solved again. The tip's angle, efficiency and slip share are the best
+    !> The trials of tip i (angle_search = 'seeded'): under work_mode = 'any', where the
+    !> kinked-crack estimate of the best angle lies more than a step from straight ahead and
+    !> the straight kink slips, a climb from straight ahead (slipping kinks do most work near
+    !> the plane); then a climb from the estimate, which stops early where it would walk into
+    !> the first one's maximum. The whole grid when no climb finds a candidate, and always
+    !> under angle_search = 'grid'. A trial solved once is not solved again. The tip's angle, efficiency and slip share are the best
     !> candidate's (reason growth_closed without one).
     subroutine search_tip(solver, model, base_ds, created, options, w_before, kinks, i, error)
         type(growth_solver), intent(inout) :: solver
@@ -119,19 +120,18 @@ contains
         best%candidate = .false.
         if (options%angle_search == angle_search_seeded) then
             seed = kink_estimate(kinks%tip(i)%k1, kinks%tip(i)%k2, range)
-            call climb(seed, best, error)
-            if (allocated(error)) return
             if (options%work_mode == work_mode_any .and. abs(seed) > step) then
                 call trial(0.0_wp, found, error, state)
                 if (allocated(error)) return
                 if (state == trial_slipping) then
-                    call climb(0.0_wp, found, error)
+                    call climb(0.0_wp, best, error)
                     if (allocated(error)) return
-                    if (found%candidate) then
-                        if (.not. best%candidate .or. found%efficiency > best%efficiency) &
-                            best = found
-                    end if
                 end if
+            end if
+            call climb(seed, found, error, best)
+            if (allocated(error)) return
+            if (found%candidate) then
+                if (.not. best%candidate .or. found%efficiency > best%efficiency) best = found
             end if
         end if
         if (.not. best%candidate) then
@@ -152,11 +152,15 @@ contains
 
         !> From the seed and its neighbours a step either way, step on towards the best
         !> candidate until it lies between two trials (or at the range), then refine it;
-        !> best%candidate is false when the three trials about the seed have none.
-        subroutine climb(seed, best, error)
+        !> best%candidate is false when the three trials about the seed have none. Given a
+        !> rival (an earlier climb's candidate), the climb stops without a candidate when the
+        !> three trials about the seed are all below the rival and their best points the
+        !> walk towards it: it would end in the rival's maximum.
+        subroutine climb(seed, best, error, rival)
             real(wp), intent(in) :: seed
             type(trial_point), intent(out) :: best
             type(error_type), allocatable, intent(out) :: error
+            type(trial_point), intent(in), optional :: rival
             type(trial_point) :: l, m, r
             integer :: b
 
@@ -167,6 +171,9 @@ contains
             if (allocated(error)) return
             call trial(min(seed + step, range), r, error)
             if (allocated(error)) return
+            if (present(rival)) then
+                if (heads_below(l, m, r, rival)) return
+            end if
             do
                 b = best_candidate([l, m, r])
                 if (b == 0) return
@@ -193,6 +200,21 @@ contains
                 best = r
             end select
         end subroutine climb
+
+        !> Whether the walk from l, m, r heads towards the rival's angle from a best trial below
+        !> the rival's efficiency (l or r the best candidate, the rival a candidate).
+        pure logical function heads_below(l, m, r, rival)
+            type(trial_point), intent(in) :: l, m, r, rival
+
+            heads_below = .false.
+            if (.not. rival%candidate) return
+            select case (best_candidate([l, m, r]))
+            case (1)
+                heads_below = l%efficiency < rival%efficiency .and. rival%angle < m%angle
+            case (3)
+                heads_below = r%efficiency < rival%efficiency .and. rival%angle > m%angle
+            end select
+        end function heads_below
 
         !> Every trial angle of the range, then the refinement of the best candidate between
         !> its neighbours.

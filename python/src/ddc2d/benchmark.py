@@ -37,11 +37,11 @@ Cases (CASES: a model builder per case; a new case adds one):
             ``n_final``, ``growth_steps``, ``solves`` (from the progress lines) and
             ``end_reason``.
   growth-work  the growth case with criterion = 'work' (docs/theory/growth.md#the-work-criterion:
-            37 trial kinks from -90 to 90 degrees per tip and step, each solved with contact
-            by updating the kept factors, the best refined). Measured against LU(2 N_final)
+            the seeded search's trial kinks, each solved with contact by updating the kept
+            factors, the best refined). Measured against LU(2 N_final)
             and against the growth case's run of the same model (MTS with the corrector),
             run in the same call: the record adds ``mts`` (its seconds, solves, growth steps,
-            N_final), ``over_mts`` (total / the MTS run's total; target at most 10) and
+            N_final), ``over_mts`` (total / the MTS run's total; target at most 5) and
             ``solves_per_step``, ``updates_per_step`` (low-rank updates per growth step).
   growth-history  the growth case's flaw along a loading history
             (docs/theory/growth.md#growth-along-a-loading-history): syy rises from -2 to
@@ -210,8 +210,8 @@ def growth_model(n, grid, steps=25):
 
 
 def growth_work_model(n, grid, steps=25):
-    """The growth case's flaw grown by the work criterion (37 trial angles per tip and step:
-    the defaults angle_range = 90, angle_step = 5)."""
+    """The growth case's flaw grown by the work criterion (its default search: the climbs
+    from the kinked-crack estimate and straight ahead, every angle_step = 5 degrees)."""
     return growth_model(n, grid, steps).replace("new_sf = 0.0,",
                                                 "new_sf = 0.0, criterion = 'work',")
 
