@@ -183,9 +183,8 @@ contains
 
     !> Shorter kinks for the next round (docs/theory/growth.md#closed-kinks): a kink that
     !> closed, or a shortened kink whose open new tip has K_I below the toughness, is halved
-    !> (the first time, shortened to the tip's last shorter kink of the load step where that
-    !> is shorter) and corrected again from its MTS angle while it stays at least
-    !> min_kink_fraction of its new elements' length; the other kinks keep their angles and are no longer
+    !> and corrected again from its MTS angle while it stays at least min_kink_fraction of
+    !> its new elements' length; the other kinks keep their angles and are no longer
     !> corrected. True when any kink was shortened.
     logical function shorten_kinks(tips, iteration, toughness) result(shortened)
         !> The step's growing tips
@@ -212,9 +211,7 @@ contains
                 iteration(i)%correcting = .false.
                 cycle
             end if
-            ! The first shortening goes straight to the tip's last shorter kink of the load
-            ! step: the kinks between were tried in the step before and were not taken.
-            tips(i)%length = min(0.5_wp * tips(i)%length, tips(i)%shorter_length)
+            tips(i)%length = 0.5_wp * tips(i)%length
             tips(i)%pieces = max(1, nint(tips(i)%length / tips(i)%element_length))
             call start_kinks(tips(i:i), toughness, iteration(i:i))
         end do

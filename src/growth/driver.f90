@@ -290,8 +290,6 @@ contains
         logical :: started
 
         record%end_reason = growth_step_limit
-        ! A load step's kinks are tried from its increments (a resumed one keeps its tips').
-        if (first == 0) run%tips%kink_length = 0.0_wp
         do s = first + 1, options%steps
             ! A step number is used up only when a tip grows; the records of a check in which
             ! none grew carry the number the next growth step will have.
@@ -432,9 +430,6 @@ contains
                 run%now%angle(t) = kinks%tip(i)%theta
                 run%now%length(t) = kinks%tip(i)%length
                 run%tips(t)%element_length = regular_length(kinks%tip(i))
-                run%tips(t)%kink_length = 0.0_wp
-                if (kinks%tip(i)%length < kinks%tip(i)%full_length) &
-                    run%tips(t)%kink_length = kinks%tip(i)%length
             else if (ends_on_link(kinks%tip(i)%reason)) then
                 grown = grown + 1
                 run%tips(t)%stopped = .true.
@@ -651,7 +646,6 @@ contains
         call increment_of(options, work, tip, now%element(i), k%length, k%pieces, &
                           k%element_length)
         k%full_length = k%length
-        if (tip%kink_length > 0.0_wp) k%shorter_length = tip%kink_length
     end function tip_kink
 
     !> Append the step's records: one per tip that could still grow at the step's start.

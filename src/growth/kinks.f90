@@ -28,10 +28,6 @@ module ddc_growth_kinks
         integer :: pieces = 1
         !> Length of the increment, and of its elements [length unit]
         real(wp) :: full_length = 0.0_wp, element_length = 0.0_wp
-        !> Where the kink as long as the increment is not taken, the length the
-        !> local-symmetry corrector tries next: the tip's last kink of the load step shorter
-        !> than its increment (huge: none, the halved increment) [length unit]
-        real(wp) :: shorter_length = huge(1.0_wp)
         !> The applied angle [rad] (out)
         real(wp) :: theta = 0.0_wp
         !> Solves this tip took part in (out)

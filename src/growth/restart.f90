@@ -19,7 +19,7 @@ module ddc_growth_restart
     use ddc_model_types, only: model_type, rigid_joint
     use ddc_model_laws, only: law_index
     use ddc_model_results, only: growth_intersection, growth_surface, growth_linked, &
-        growth_enclosing, growth_interface, growth_grew, growth_corrector_failed, growth_record
+        growth_enclosing, growth_interface, growth_grew, growth_corrector_failed
     use ddc_model_restart, only: restart_state
     use ddc_mesh_geometry, only: compute_geometry
     use ddc_growth_extension, only: inherit_values, tip_element
@@ -29,7 +29,7 @@ module ddc_growth_restart
     implicit none
     private
 
-    public :: resumed_geometry, resumed_tips, resumed_strengths, resume_kink_lengths
+    public :: resumed_geometry, resumed_tips, resumed_strengths
 
 contains
 
@@ -153,33 +153,6 @@ contains
             end do
         end associate
     end function resumed_tips
-
-    !> growing_tip%kink_length of resumed tips that go on in the load step load_step: the
-    !> length of a tip's last kink when that was shorter than its increment (element_length
-    !> set: resumed_tips) and grew in this load step.
-    pure subroutine resume_kink_lengths(tips, growth, load_step)
-        !> The resumed tips (resumed_tips)
-        type(growing_tip), intent(inout) :: tips(:)
-        !> The earlier run's growth record
-        type(growth_record), intent(in) :: growth
-        !> The load step the run goes on in
-        integer, intent(in) :: load_step
-        integer :: i, last
-
-        do i = 1, size(tips)
-            if (tips(i)%element_length <= 0.0_wp) cycle
-            last = findloc(growth%fracture_id == tips(i)%fracture .and. &
-                           growth%end == tips(i)%end .and. &
-                           (growth%reason == growth_grew .or. &
-                            growth%reason == growth_corrector_failed), .true., 1, back=.true.)
-            if (last == 0) cycle
-            ! Without a load path every record is of the one load step.
-            if (size(growth%load_step) == size(growth%step)) then
-                if (growth%load_step(last) /= load_step) cycle
-            end if
-            tips(i)%kink_length = growth%length(last)
-        end do
-    end subroutine resume_kink_lengths
 
     !> The fault law of the earlier run's final geometry with its strength state: the
     !> strengths in force of the file (the given ones where the file holds none) and the

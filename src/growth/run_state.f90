@@ -17,8 +17,7 @@ module ddc_growth_run_state
     use ddc_growth_work, only: trial_table
     use ddc_growth_tips, only: growing_tip, find_growing_tips
     use ddc_growth_load_steps, only: load_step_history, start_load_steps, resume_load_steps
-    use ddc_growth_restart, only: resumed_geometry, resumed_tips, resumed_strengths, &
-        resume_kink_lengths
+    use ddc_growth_restart, only: resumed_geometry, resumed_tips, resumed_strengths
     implicit none
     private
 
@@ -155,7 +154,6 @@ contains
                 first = step - minval(record%step, record%load_step == done) + 1
             end if
             if (first >= model%growth%steps) call nothing_left('raise &growth steps to go on')
-            if (first > 0) call resume_kink_lengths(run%tips, record, done)
         else
             start = done + 1
             if (start > size(loads, 2)) then

@@ -27,11 +27,6 @@ module ddc_growth_tips
         !> Length of the elements it grows by after a kink shorter than the increment (whose
         !> element may be shorter) [length unit]; 0: its tip element's length
         real(wp) :: element_length = 0.0_wp
-        !> The kink shorter than its increment that it last grew by in this load step [length
-        !> unit]; 0: none. Where its next increment is not taken, the search of shorter kinks
-        !> goes on from that length, not from the halved increment: at one load a tip's kinks
-        !> shorten as it nears its stable length (docs/theory/growth.md#shorter-kinks)
-        real(wp) :: kink_length = 0.0_wp
     end type growing_tip
 
 contains
