@@ -6,6 +6,7 @@
 !> (ddc_output_hdf5). The file was checked before (app/resume_check: complete, same version and
 !> model), so a dataset that is missing here is an error of the file.
 module ddc_output_restart_read
+    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_io_failure
     use ddc_model_results, only: growth_record, solver_record, growth_end_names
@@ -171,9 +172,15 @@ contains
         ! Without a load path the file has no load_step: every record is of load step 1.
         if (.not. allocated(record%load_step)) allocate (record%load_step(size(record%step)), &
                                                          source=1)
-        ! Under another criterion than 'work' the file has no efficiency and no trials.
+        ! Under another criterion than 'work' the file has no efficiency and no trials (and a
+        ! file of 'work' written before 2026-12-06 no slip share: NaN, not known).
         if (.not. allocated(record%efficiency)) allocate (record%efficiency(size(record%step)), &
                                                           source=0.0_wp)
+        if (.not. allocated(record%slip_share)) then
+            allocate (record%slip_share(size(record%step)), source=0.0_wp)
+            if (has_dataset(reader%path, '/growth/efficiency')) &
+                record%slip_share = ieee_value(1.0_wp, ieee_quiet_nan)
+        end if
         if (.not. allocated(record%trial_step)) allocate (record%trial_step(0), &
             record%trial_record(0), record%trial_state(0), record%trial_angle(0), &
             record%trial_efficiency(0))
