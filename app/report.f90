@@ -453,14 +453,16 @@ contains
     contains
 
         !> Under 'work': a note when kinks grew with most of their work done through slip of
-        !> frictional faces (docs/fracture-growth.md#growth-by-the-work-criterion).
+        !> frictional faces (docs/fracture-growth.md#the-work-criterion).
         subroutine print_friction_note()
             logical, allocatable :: frictional(:)
 
             if (.not. allocated(results%growth%slip_share)) return
             associate (g => results%growth)
                 if (size(g%slip_share) /= size(g%reason)) return
-                frictional = g%reason == growth_grew .and. g%slip_share > 0.5_wp
+                ! Only a tip that grew has a share (NaN where no trial counted)
+                frictional = g%reason == growth_grew
+                where (frictional) frictional = g%slip_share > 0.5_wp
                 if (.not. any(frictional)) return
                 write (unit, '(a)') '  note: '//itoa(count(frictional))//' of '// &
                     itoa(count(g%reason == growth_grew))//' kinks grew with most of their '// &

@@ -93,8 +93,8 @@ contains
     !> the straight kink slips, a climb from straight ahead (slipping kinks do most work near
     !> the plane); then a climb from the estimate, which stops early where it would walk into
     !> the first one's maximum. The whole grid when no climb finds a candidate, and always
-    !> under angle_search = 'grid'. A trial solved once is not solved again. The tip's angle, efficiency and slip share are the best
-    !> candidate's (reason growth_closed without one).
+    !> under angle_search = 'grid'. A trial solved once is not solved again. The tip's angle,
+    !> efficiency and slip share are the best candidate's (reason growth_closed without one).
     subroutine search_tip(solver, model, base_ds, created, options, w_before, kinks, i, error)
         type(growth_solver), intent(inout) :: solver
         type(model_type), intent(in) :: model
@@ -213,6 +213,9 @@ contains
                 heads_below = l%efficiency < rival%efficiency .and. rival%angle < m%angle
             case (3)
                 heads_below = r%efficiency < rival%efficiency .and. rival%angle > m%angle
+            case default
+                ! m is the best, or none is a candidate: the climb stays or ends here
+                heads_below = .false.
             end select
         end function heads_below
 

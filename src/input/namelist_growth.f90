@@ -60,9 +60,10 @@ contains
         integer :: stat, k
         namelist /growth/ steps, toughness, increment, element_length, tips, fractures, &
             criterion, max_corrections, new_mu, new_sf, angle_range, angle_step, &
-            work_threshold, new_tensile_strength, new_sf_residual, new_mu_dynamic, &
-            new_slip_weakening_distance, new_opening_weakening_distance, new_shear_stiffness, &
-            new_normal_stiffness, work_mode, angle_search
+            work_threshold, work_mode, angle_search, new_tensile_strength, new_sf_residual, &
+            new_mu_dynamic, new_slip_weakening_distance, new_opening_weakening_distance, &
+            new_shear_stiffness, &
+            new_normal_stiffness
 
         associate (info => groups(g_growth))
             if (info%count == 0) return

@@ -178,8 +178,9 @@ contains
                                                           source=0.0_wp)
         if (.not. allocated(record%slip_share)) then
             allocate (record%slip_share(size(record%step)), source=0.0_wp)
-            if (has_dataset(reader%path, '/growth/efficiency')) &
+            if (has_dataset(reader%path, '/growth/efficiency')) then
                 record%slip_share = ieee_value(1.0_wp, ieee_quiet_nan)
+            end if
         end if
         if (.not. allocated(record%trial_step)) allocate (record%trial_step(0), &
             record%trial_record(0), record%trial_state(0), record%trial_angle(0), &

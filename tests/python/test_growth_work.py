@@ -227,7 +227,8 @@ def test_opening_mode_grows_opening_kinks_and_any_mode_notes_friction(tmp_path):
 
 @pytest.mark.parametrize("setting, message", [
     ("criterion = 'works'", "criterion = 'works' is not one of 'mts', 'work'"),
-    ("criterion = 'work', work_mode = 'wings'", "work_mode = 'wings' is not one of 'any', 'opening'"),
+    ("criterion = 'work', work_mode = 'wings'",
+     "work_mode = 'wings' is not one of 'any', 'opening'"),
     ("criterion = 'work', angle_search = 'full'",
      "angle_search = 'full' is not one of 'seeded', 'grid'"),
     ("criterion = 'work', angle_range = 180", "angle_range = 180.000 must lie in (0, 180)"),

@@ -495,8 +495,9 @@ def read_growth(path: FilePath, handle: h5py.Group) -> dict[str, Any] | None:
     end_reason, ...) and ``reasons`` (code -> name, from the attribute reason_coding); under
     the work criterion also ``efficiency``, ``slip_share`` and ``trials`` (dict of
     GROWTH_TRIAL_DATASETS, one value per trial kink), and with flaw points ``flaw_trials``
-    (dict of FLAW_TRIAL_DATASETS, one value per trial of a flaw's first crack) and ``flaw_starts`` (``flaw``, ``step`` and
-    ``angle`` of every flaw that started, from /growth/initiations); with &initiation
+    (dict of FLAW_TRIAL_DATASETS, one value per trial of a flaw's first crack) and
+    ``flaw_starts`` (``flaw``, ``step`` and ``angle`` of every flaw that started, from
+    /growth/initiations); with &initiation
     ``initiations`` (dict of INITIATION_DATASETS, one value per new fracture, and ``attrs``:
     its settings and, when a check started nothing, ``largest_tension`` with its
     ``largest_tension_x``, ``_y`` and ``_step``); None when the file has no /growth."""
