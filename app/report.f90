@@ -2,6 +2,7 @@
 !> implausible input, and a summary of the results.
 module ddc_app_report
     use, intrinsic :: iso_fortran_env, only: output_unit
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type, rigid_joint, tensile_cap, condition_names, &
         observation_kind_names, symmetry_none, symmetry_names, domain_names, &
@@ -460,14 +461,15 @@ contains
             if (.not. allocated(results%growth%slip_share)) return
             associate (g => results%growth)
                 if (size(g%slip_share) /= size(g%reason)) return
-                ! Only a tip that grew has a share (NaN where no trial counted)
-                frictional = g%reason == growth_grew
+                ! Only a tip that grew has a share (NaN where no trial counted, and in the
+                ! records of a file written before the share, which a run resumed)
+                frictional = g%reason == growth_grew .and. .not. ieee_is_nan(g%slip_share)
                 where (frictional) frictional = g%slip_share > 0.5_wp
                 if (.not. any(frictional)) return
                 write (unit, '(a)') '  note: '//itoa(count(frictional))//' of '// &
                     itoa(count(g%reason == growth_grew))//' kinks grew with most of their '// &
                     'work change done through slip of frictional faces (/growth/slip_share '// &
-                    'up to '//short_real(0.01_wp * nint(100 * maxval(g%slip_share, &
+                    'up to '//short_real(0.01_wp * anint(100 * maxval(g%slip_share, &
                     mask=frictional)))//'): there the efficiency is work of the loads that '// &
                     'friction partly dissipates, not twice an energy release rate'// &
                     trim(merge(" (work_mode = 'opening' grows only kinks that open)", &

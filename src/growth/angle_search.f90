@@ -147,24 +147,26 @@ contains
     !> energy release rate of an infinitesimal kink whose K are the parent tip's stress
     !> factors at the kink angle (Nuismer 1975), a closed kink releasing only its shear:
     !> the maximum of max(k_tt, 0)^2 + k_rt^2 on a 0.01 degree grid (the first of equal
-    !> ones); 0 when both K vanish.
+    !> ones), with max(K_I, 0) as the MTS angle takes it (faces pressed into each other
+    !> open nothing); 0 when both K vanish.
     pure real(wp) function kink_estimate(k1, k2, range) result(theta)
         !> The tip's K_I and K_II [stress unit * length unit**0.5]
         real(wp), intent(in) :: k1, k2
         !> The largest kink angle either way [rad]
         real(wp), intent(in) :: range
-        real(wp) :: t, c, s, k_tt, k_rt, g, best
+        real(wp) :: t, c, s, k_tt, k_rt, g, best, k1_open
         integer :: j, n
 
         theta = 0.0_wp
         best = 0.0_wp
+        k1_open = max(k1, 0.0_wp)
         n = floor(range / estimate_spacing)
         do j = -n - 1, n + 1
             t = max(-range, min(range, j * estimate_spacing))
             c = cos(0.5_wp * t)
             s = sin(t)
-            k_tt = c * (k1 * c**2 - 1.5_wp * k2 * s)
-            k_rt = 0.5_wp * c * (k1 * s + k2 * (3.0_wp * cos(t) - 1.0_wp))
+            k_tt = c * (k1_open * c**2 - 1.5_wp * k2 * s)
+            k_rt = 0.5_wp * c * (k1_open * s + k2 * (3.0_wp * cos(t) - 1.0_wp))
             g = max(k_tt, 0.0_wp)**2 + k_rt**2
             if (g > best) then
                 best = g

@@ -61,7 +61,8 @@ contains
             theta = mts_angle(k1, k2)
             k_eq = equivalent_k(k1, k2, theta)
         case (growth_criterion_work)
-            ! K_eq at the MTS angle for the record; the search starts straight ahead.
+            ! K_eq at the MTS angle for the record; no predictor (the search starts from the
+            ! kinked-crack estimate, ddc_growth_trials).
             k_eq = equivalent_k(k1, k2, mts_angle(k1, k2))
         case default
             call unknown_criterion('assess_tip', options%criterion, error)

@@ -91,9 +91,10 @@ contains
     !> The trials of tip i (angle_search = 'seeded'): under work_mode = 'any', where the
     !> kinked-crack estimate of the best angle lies more than a step from straight ahead and
     !> the straight kink slips, a climb from straight ahead (slipping kinks do most work near
-    !> the plane); then a climb from the estimate, which stops early where it would walk into
-    !> the first one's maximum. The whole grid when no climb finds a candidate, and always
-    !> under angle_search = 'grid'. A trial solved once is not solved again. The tip's angle,
+    !> the plane); then a climb from the estimate, which stops early where it heads for the
+    !> first one's maximum from below it; a straight kink that opens is climbed from last,
+    !> where it beats what the climbs found. The whole grid when no climb finds a candidate,
+    !> and always under angle_search = 'grid'. A trial solved once is not solved again. The tip's angle,
     !> efficiency and slip share are the best candidate's (reason growth_closed without one).
     subroutine search_tip(solver, model, base_ds, created, options, w_before, kinks, i, error)
         type(growth_solver), intent(inout) :: solver
@@ -109,9 +110,10 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(trial_point), allocatable :: solved(:)
         integer, allocatable :: solved_state(:)
-        type(trial_point) :: best, found
+        type(trial_point) :: best, found, straight
         real(wp) :: range, step, seed
         integer :: state
+        logical :: climbed
 
         range = options%angle_range * degree
         step = options%angle_step * degree
@@ -120,18 +122,27 @@ contains
         best%candidate = .false.
         if (options%angle_search == angle_search_seeded) then
             seed = kink_estimate(kinks%tip(i)%k1, kinks%tip(i)%k2, range)
+            straight%candidate = .false.
+            climbed = .false.
             if (options%work_mode == work_mode_any .and. abs(seed) > step) then
-                call trial(0.0_wp, found, error, state)
+                call trial(0.0_wp, straight, error, state)
                 if (allocated(error)) return
                 if (state == trial_slipping) then
                     call climb(0.0_wp, best, error)
                     if (allocated(error)) return
+                    climbed = .true.
                 end if
             end if
             call climb(seed, found, error, best)
             if (allocated(error)) return
-            if (found%candidate) then
-                if (.not. best%candidate .or. found%efficiency > best%efficiency) best = found
+            call keep_better(found)
+            ! A straight kink that opens and beats the estimate's maximum is climbed from too.
+            if (straight%candidate .and. .not. climbed) then
+                if (.not. best%candidate .or. straight%efficiency > best%efficiency) then
+                    call climb(0.0_wp, found, error)
+                    if (allocated(error)) return
+                    call keep_better(found)
+                end if
             end if
         end if
         if (.not. best%candidate) then
@@ -149,6 +160,18 @@ contains
         kinks%tip(i)%slip_share = best%slip_share
 
     contains
+
+        !> best becomes the found candidate where that is better.
+        subroutine keep_better(found)
+            type(trial_point), intent(in) :: found
+
+            if (.not. found%candidate) return
+            if (.not. best%candidate) then
+                best = found
+            else if (found%efficiency > best%efficiency) then
+                best = found
+            end if
+        end subroutine keep_better
 
         !> From the seed and its neighbours a step either way, step on towards the best
         !> candidate until it lies between two trials (or at the range), then refine it;

@@ -17,8 +17,7 @@ module ddc_model_fingerprint
     use ddc_kinds, only: wp
     use ddc_contact_options, only: k_auto
     use ddc_model_types, only: model_type, growth_criterion_work, element_set, &
-        element_array_action, for_each_element_array, domain_bimaterial, work_mode_any, &
-        angle_search_seeded
+        element_array_action, for_each_element_array, domain_bimaterial
     implicit none
     private
 
@@ -152,11 +151,9 @@ contains
         if (model%growth%criterion == growth_criterion_work) then
             call add_reals(hash, [model%growth%angle_range, model%growth%angle_step, &
                                   model%growth%work_threshold])
-            ! Only when not the defaults: earlier work models keep their fingerprints.
-            if (model%growth%work_mode /= work_mode_any .or. &
-                model%growth%angle_search /= angle_search_seeded) then
-                call add_integers(hash, [model%growth%work_mode, model%growth%angle_search])
-            end if
+            ! Always: a result of the search before angle_search (every angle of the range)
+            ! is not resumed by the seeded search.
+            call add_integers(hash, [model%growth%work_mode, model%growth%angle_search])
         end if
         ! Only when given: the fingerprints of models without them stay as they were.
         if (any(model%growth%override_law)) then

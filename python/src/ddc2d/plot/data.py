@@ -261,7 +261,7 @@ def trial_curves(result):
     """The trial kinks of a work-criterion growth run (/growth/trials), one dict per tip and
     step in record order: ``label`` ('step <k>, <fracture> <end>'), ``step``, ``record``
     (0-based index of the tip's /growth record), ``angle`` and ``efficiency`` of its solved
-    trials sorted by angle (refinement trials among the grid's), ``state`` (the codes of
+    trials sorted by angle (refinement trials among the search's), ``state`` (the codes of
     /growth/trials/trial_state) and ``chosen`` (the applied angle, NaN when the tip did not
     grow). Empty without trials."""
     growth = result["growth"]

@@ -353,7 +353,7 @@ def plot_growth_history(result: ResultData) -> Figure:
 def plot_growth_trials(result: ResultData) -> Figure:
     """The efficiency dW_ext / da of every trial kink against its angle (criterion 'work':
     docs/theory/growth.md#the-work-criterion), one line per tip and step (the refinement's
-    trials among the grid's), the trials that neither open nor slip as crosses, the applied
+    trials among the search's), the trials that neither open nor slip as crosses, the applied
     angle as a filled marker and the threshold as a dashed line. Returns the Figure."""
     curves = trial_curves(result)
     fig = _trials_figure(result, curves, "trial angle [degree]", "efficiency dW_ext/da",
