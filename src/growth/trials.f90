@@ -94,8 +94,9 @@ contains
     !> the plane); then a climb from the estimate, which stops early where it heads for the
     !> first one's maximum from below it; a straight kink that opens is climbed from last,
     !> where it beats what the climbs found. The whole grid when no climb finds a candidate,
-    !> and always under angle_search = 'grid'. A trial solved once is not solved again. The tip's angle,
-    !> efficiency and slip share are the best candidate's (reason growth_closed without one).
+    !> and always under angle_search = 'grid'. A trial solved once is not solved again. The
+    !> tip's angle, efficiency and slip share are the best candidate's (reason growth_closed
+    !> without one).
     subroutine search_tip(solver, model, base_ds, created, options, w_before, kinks, i, error)
         type(growth_solver), intent(inout) :: solver
         type(model_type), intent(in) :: model
