@@ -1,7 +1,7 @@
 !> The pieces of the work criterion's angle searches (docs/theory/growth.md#the-work-criterion)
 !> that a tip's kink search (ddc_growth_trials) and a flaw's first crack (ddc_growth_flaw_search)
 !> share: a solved trial and how it is judged (efficiency, state, candidate under the work
-!> mode, the share of its work from slip of frictional new faces), the best candidate of a
+!> mode, the share of its work from slip of frictional faces), the best candidate of a
 !> grid, the successive-parabola refinement's vertex and bracket, and the kinked-crack
 !> estimate of a tip's best angle that seeds its search.
 module ddc_growth_angle_search
@@ -120,7 +120,7 @@ contains
         !> trial_stuck, trial_slipping or trial_opening
         integer, intent(out) :: state
         logical :: contact(size(origin)), rubbing(size(origin))
-        real(wp) :: change, ds_before(size(origin))
+        real(wp) :: change, slip_change(size(origin))
         integer :: k
 
         change = external_work(grown, solved%elements%ds, solved%elements%dn) - w_before
@@ -133,12 +133,12 @@ contains
             point%slip_share = 0.0_wp
             if (change > 0.0_wp) then
                 rubbing = contact .and. s%state == state_slip .and. grown%elements%mu > 0.0_wp
-                ds_before = 0.0_wp
+                ! The slip each element adds to its base element's (all of a new one's)
+                slip_change = s%ds
                 do k = 1, size(origin)
-                    if (origin(k) > 0) ds_before(k) = base_ds(origin(k))
+                    if (origin(k) > 0) slip_change(k) = s%ds(k) - base_ds(origin(k))
                 end do
-                point%slip_share = (slip_work(grown, s%ds, rubbing) - &
-                                    slip_work(grown, ds_before, rubbing)) / change
+                point%slip_share = slip_work(grown, slip_change, rubbing) / change
             end if
         end associate
     end subroutine judge_trial

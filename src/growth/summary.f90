@@ -3,7 +3,7 @@
 !> the growth record, and the fracture a linked tip ends on from the final geometry.
 module ddc_growth_summary
     use ddc_kinds, only: wp
-    use ddc_model_types, only: model_type
+    use ddc_model_types, only: model_type, element_end
     use ddc_model_results, only: growth_record, growth_grew, growth_corrector_failed
     use ddc_growth_clearance, only: ends_on_link
     use ddc_growth_extension, only: tip_element, tip_end_begin
@@ -72,15 +72,9 @@ contains
         real(wp) :: x, y
         integer :: k
 
-        k = tip_element(model, fracture, end)
+        call element_end(model%elements, tip_element(model, fracture, end), &
+                         merge(1, 2, end == tip_end_begin), x, y)
         associate (e => model%elements)
-            if (end == tip_end_begin) then
-                x = e%x_begin(k)
-                y = e%y_begin(k)
-            else
-                x = e%x_end(k)
-                y = e%y_end(k)
-            end if
             linked_fracture = 0
             do k = 1, e%n
                 if (e%fracture_id(k) == fracture) cycle

@@ -313,6 +313,42 @@ def test_trials_figure_draws_the_stored_trials(tmp_path):
         plot_figures.plt.close(fig)
 
 
+def test_the_search_starts_from_the_estimate_of_the_open_part_of_k(tmp_path):
+    # A traction crack pressed shut (K_I = -K_II < 0): the estimate takes max(K_I, 0), as
+    # the MTS angle does, so the first trial is the pure mode II kink at -70.53 degrees
+    # (with the negative K_I it would be near -5). Under 'opening' no straight trial comes
+    # first.
+    text = ("&model youngs_modulus = 1.0, poissons_ratio = 0.25 /\n"
+            "&remote_stress syy = -1.0e-3, sxy = 1.0e-3 /\n"
+            "&fracture name = 'crack', x = -1, 1, y = 0, 0, elements = 20, "
+            "condition = 'traction', bc_s = 0, bc_n = 0 /\n"
+            "&growth steps = 1, toughness = 1.0e-6, increment = 0.1, criterion = 'work', "
+            "work_mode = 'opening' /\n")
+    done, out = run(tmp_path, text)
+    assert done.returncode == 0, done.stdout + done.stderr
+    g = growth_of(out)
+    assert g["k1"][0] < 0.0 and g["k2"][0] == pytest.approx(-g["k1"][0], rel=1e-2)
+    trials = g["trials"]
+    for record in (1, 2):
+        first = trials["trial_angle"][trials["trial_record"] == record][0]
+        assert abs(abs(first) - 70.53) < 0.01, first
+
+
+def test_a_grid_search_result_is_not_resumed_by_the_seeded_search(tmp_path):
+    # angle_search is in the model's fingerprint: its steps were searched another way.
+    (tmp_path / "grid").mkdir()
+    done, old = run(tmp_path / "grid", FAULT.replace("angle_range = 85",
+                                                      "angle_range = 85, angle_search = 'grid'"))
+    assert done.returncode == 0, done.stderr
+    (tmp_path / "two.nml").write_text(FAULT.replace("steps = 1,", "steps = 2,"))
+    resumed = subprocess.run([str(ddc2d_exe()), str(tmp_path / "two.nml"), "--resume", str(old),
+                              "-o", str(tmp_path / "resumed.h5")], capture_output=True,
+                             text=True, timeout=600)
+    assert resumed.returncode == 2
+    assert "is the result of another model" in resumed.stderr, resumed.stderr
+    assert not (tmp_path / "resumed.h5").exists()
+
+
 def test_resumed_run_goes_on_with_its_trials(tmp_path):
     # Two steps at once, and one step resumed for a second: the same records and trials
     # (the resumed run factorizes its first solve anew: equal within round-off).
