@@ -181,12 +181,11 @@ contains
         call update_paths(model, kinks, iteration, paths)
     end subroutine correct_round
 
-    !> Shorter kinks for the next round (docs/theory/growth.md#shorter-kinks): a kink that
-    !> closed is halved and corrected again from its MTS angle while it stays at least
-    !> min_kink_fraction of its new elements' length; the other kinks keep their angles and
-    !> are no longer corrected. An open kink is taken whole at every length, as the
-    !> increment's is, so a coarser increment never searches the lengths below a finer one's
-    !> open kink. True when any kink was shortened.
+    !> Shorter kinks for the next round (docs/theory/growth.md#closed-kinks): a kink that
+    !> closed, or a shortened kink whose open new tip has K_I below the toughness, is halved
+    !> and corrected again from its MTS angle while it stays at least min_kink_fraction of
+    !> its new elements' length; the other kinks keep their angles and are no longer
+    !> corrected. True when any kink was shortened.
     logical function shorten_kinks(tips, iteration, toughness) result(shortened)
         !> The step's growing tips
         type(kink), intent(inout) :: tips(:)
@@ -198,10 +197,11 @@ contains
         integer :: i
 
         do i = 1, size(tips)
-            associate (k => tips(i))
-                again(i) = k%reason == growth_closed .and. &
-                           0.5_wp * k%length >= min_kink_fraction * k%element_length * &
-                           (1.0_wp - length_tolerance)
+            associate (k => tips(i), s => iteration(i))
+                again(i) = 0.5_wp * k%length >= min_kink_fraction * k%element_length * &
+                           (1.0_wp - length_tolerance) .and. &
+                           (k%reason == growth_closed .or. &
+                            (s%active .and. shortened(k) .and. s%k1 < toughness))
             end associate
         end do
         shortened = any(again)
@@ -373,6 +373,14 @@ contains
             if (ends_on_link(problem(i))) kinks%tip(i)%link = links(i)
         end do
     end subroutine update_paths
+
+    !> The kink is shorter than the increment.
+    pure logical function shortened(k)
+        !> The kink
+        type(kink), intent(in) :: k
+
+        shortened = k%length < (1.0_wp - length_tolerance) * k%full_length
+    end function shortened
 
     !> K_I and K_II of a kink's new tip in the grown model, and whether that tip is closed (a
     !> contact element that is not open, or another condition with K_I <= 0).
