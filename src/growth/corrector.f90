@@ -4,16 +4,17 @@
 !> (wings zig-zag and never arrest). The applied angle is corrected until the new tip has
 !> |K_II| <= tolerance (principle of local symmetry): secant iterations on K_II(theta), all
 !> growing tips corrected together, one solve of the whole model per iteration.
-!> A tip grows only as an opening-mode crack (docs/theory/growth.md#closed-kinks): when the kink at
-!> its MTS angle is closed (K_I = 0 on the new tip) it does not grow in this step (reason
+!> A tip grows only as an opening-mode crack (docs/theory/growth.md#closed-kinks): when even its
+!> shortest kink is closed (K_I = 0 on the new tip) it does not grow in this step (reason
 !> growth_closed); when a corrected trial closes, the angle goes back halfway to the last
 !> open trial (the secant may overshoot into a closing kink; giving up there would stop
-!> the tip at a corrector artefact). A tip not converged within the solve budget grows at
-!> its MTS angle (reason growth_corrector_failed; that trial was open). A corrected path
-!> that meets another fracture links (ddc_growth_clearance, reason growth_linked), one that
-!> reaches the free surface breaks through it (reason growth_surface); every
-!> later trial of the step holds the step's links, so the other tips are corrected against
-!> the linked network.
+!> the tip at a corrector artefact). A kink whose new tip is not critical is shortened to
+!> the tip's stable length (docs/theory/growth.md#shorter-kinks). A tip not converged within
+!> the solve budget grows at its MTS angle (reason growth_corrector_failed; that trial was
+!> open). A corrected path that meets another fracture links (ddc_growth_clearance, reason
+!> growth_linked), one that reaches the free surface breaks through it (reason
+!> growth_surface); every later trial of the step holds the step's links, so the other tips
+!> are corrected against the linked network.
 module ddc_growth_corrector
     use ddc_kinds, only: wp
     use ddc_constants, only: pi
@@ -47,6 +48,9 @@ module ddc_growth_corrector
     real(wp), parameter :: min_kink_fraction = 1.0_wp / 64.0_wp
     !> Relative tolerance on kink lengths (halved lengths compared with the shortest)
     real(wp), parameter :: length_tolerance = 1.0e-9_wp
+    !> The length search ends at an open kink whose new tip's K_I is within this fraction
+    !> below the toughness (the tip then stops just past its stable length)
+    real(wp), parameter :: stable_tolerance = 1.0e-3_wp
 
     !> The corrector's iteration on one kink (the kink holds its angle and reason).
     type :: secant
@@ -65,6 +69,24 @@ module ddc_growth_corrector
         logical :: tip_open = .false., mts_closed = .false.
         integer :: halvings = 0
     end type secant
+
+    !> The search of a kink's length between the longest kink known critical and the shortest
+    !> known not to be (docs/theory/growth.md#shorter-kinks): Illinois regula falsi on
+    !> K_I - K_Ic against sqrt(length) while the longer end is open, bisection while it is
+    !> closed.
+    type :: length_search
+        !> The longest kink whose new tip is critical (0: none), K_I - K_Ic there
+        !> [stress unit * length unit**0.5] (at 0 the infinitesimal kink's K_eq - K_Ic) and its
+        !> corrected angle [rad]
+        real(wp) :: lo = 0.0_wp, f_lo = 0.0_wp, theta_lo = 0.0_wp
+        !> The shortest kink whose new tip is not critical (huge: none), K_I - K_Ic there and
+        !> its angle; whether that kink is open (else closed, f_hi not used)
+        real(wp) :: hi = huge(1.0_wp), f_hi = 0.0_wp, theta_hi = 0.0_wp
+        logical :: hi_open = .false.
+        !> The end the last two trials replaced (-1 lo, 1 hi, 0 none): Illinois halves the
+        !> other end's value when one end is replaced twice running
+        integer :: side = 0
+    end type length_search
 
 contains
 
@@ -89,7 +111,9 @@ contains
         !> Set when a solve fails
         type(error_type), allocatable, intent(out) :: error
         type(secant) :: iteration(size(kinks%tip))
+        type(length_search) :: search(size(kinks%tip))
         type(tip_path) :: paths(size(kinks%tip))
+        logical :: searching, moved
         integer :: i
 
         call start_kinks(kinks%tip, options%toughness, iteration)
@@ -97,13 +121,17 @@ contains
         if (options%max_corrections == 0) return
         do i = 1, size(kinks%tip)
             paths(i) = kink_path(model, kinks%tip(i))
+            search(i)%f_lo = kinks%tip(i)%k_eq - options%toughness
         end do
         do
             call correct_round(solver, model, created, options, kinks, iteration, paths, error)
             if (allocated(error)) return
-            if (.not. shorten_kinks(kinks%tip, iteration, options%toughness)) exit
-            kinks%current = .false.
+            call search_lengths(kinks%tip, iteration, search, options%toughness, searching, &
+                                moved)
+            if (moved) kinks%current = .false.
+            if (.not. (searching .or. moved)) exit
             call update_paths(model, kinks, iteration, paths)
+            if (.not. searching) exit
         end do
         call open_above_toughness(kinks, options%toughness)
     end subroutine correct_kinks
@@ -181,41 +209,132 @@ contains
         call update_paths(model, kinks, iteration, paths)
     end subroutine correct_round
 
-    !> Shorter kinks for the next round (docs/theory/growth.md#closed-kinks): a kink that
-    !> closed, or a shortened kink whose open new tip has K_I below the toughness, is halved
-    !> and corrected again from its MTS angle while it stays at least min_kink_fraction of
-    !> its new elements' length; the other kinks keep their angles and are no longer
-    !> corrected. True when any kink was shortened.
-    logical function shorten_kinks(tips, iteration, toughness) result(shortened)
+    !> The next round's kink lengths (docs/theory/growth.md#shorter-kinks). A kink whose new
+    !> tip is critical at the increment is taken; otherwise its length is searched between
+    !> the longest kink known critical and the shortest known not to be, down to
+    !> min_kink_fraction of its new elements' length, and the tip grows by the kink that ends
+    !> the search: the open one just past the stable length (K_I of its new tip within
+    !> stable_tolerance below the toughness, or the bracket shorter than the shortest kink),
+    !> else the longest critical one, else nothing (closed). The kinks not searched keep
+    !> their angles and are no longer corrected. `searching`: some kink takes a new length and
+    !> is corrected again from its MTS angle; `moved`: some kink went back to a length solved
+    !> before.
+    subroutine search_lengths(tips, iteration, search, toughness, searching, moved)
         !> The step's growing tips
         type(kink), intent(inout) :: tips(:)
         !> Their iteration, shape (size(tips))
         type(secant), intent(inout) :: iteration(:)
+        !> Their length searches, shape (size(tips))
+        type(length_search), intent(inout) :: search(:)
         !> Fracture toughness [stress unit * length unit**0.5]
         real(wp), intent(in) :: toughness
+        logical, intent(out) :: searching, moved
         logical :: again(size(tips))
+        real(wp) :: next
         integer :: i
 
+        again = .false.
+        moved = .false.
         do i = 1, size(tips)
-            associate (k => tips(i), s => iteration(i))
-                again(i) = 0.5_wp * k%length >= min_kink_fraction * k%element_length * &
-                           (1.0_wp - length_tolerance) .and. &
-                           (k%reason == growth_closed .or. &
-                            (s%active .and. shortened(k) .and. s%k1 < toughness))
+            associate (k => tips(i), s => iteration(i), b => search(i))
+                if (k%reason == growth_closed) then
+                    call replace_hi(b, k%length, .false., 0.0_wp, k%theta)
+                else if (.not. s%active) then
+                    cycle  ! stopped by its path (a link, the surface, another fracture)
+                else if (s%k1 >= toughness) then
+                    if (k%length >= (1.0_wp - length_tolerance) * k%full_length) cycle
+                    call replace_lo(b, k%length, s%k1 - toughness, k%theta)
+                else
+                    call replace_hi(b, k%length, .true., s%k1 - toughness, k%theta)
+                    if (s%k1 >= (1.0_wp - stable_tolerance) * toughness) cycle
+                end if
+                if (b%hi - b%lo > min_kink_fraction * k%element_length * &
+                    (1.0_wp + length_tolerance)) then
+                    next = max(next_length(b), shortest_kink(k))
+                    again(i) = .true.
+                else if (b%hi_open) then
+                    call take_kink(k, b%hi, b%theta_hi, moved)
+                else if (b%lo > 0.0_wp) then
+                    call take_kink(k, b%lo, b%theta_lo, moved)
+                else
+                    k%reason = growth_closed
+                end if
+                if (again(i)) then
+                    k%length = next
+                    k%pieces = max(1, nint(k%length / k%element_length))
+                end if
             end associate
         end do
-        shortened = any(again)
-        if (.not. shortened) return
+        searching = any(again)
         do i = 1, size(tips)
-            if (.not. again(i)) then
+            if (again(i)) then
+                call start_kinks(tips(i:i), toughness, iteration(i:i))
+            else
                 iteration(i)%correcting = .false.
-                cycle
             end if
-            tips(i)%length = 0.5_wp * tips(i)%length
-            tips(i)%pieces = max(1, nint(tips(i)%length / tips(i)%element_length))
-            call start_kinks(tips(i:i), toughness, iteration(i:i))
         end do
-    end function shorten_kinks
+    end subroutine search_lengths
+
+    !> The next length to try: halfway while the longer end is closed, else Illinois regula
+    !> falsi on K_I - K_Ic against sqrt(length) (K_I of a short kink falls about as the
+    !> square root of its length), kept a tenth of the bracket from its ends.
+    pure real(wp) function next_length(b)
+        !> The length search
+        type(length_search), intent(in) :: b
+        real(wp) :: x_lo, x_hi, x
+
+        if (.not. b%hi_open .or. b%f_lo <= b%f_hi) then
+            next_length = 0.5_wp * (b%lo + b%hi)
+            return
+        end if
+        x_lo = sqrt(b%lo)
+        x_hi = sqrt(b%hi)
+        x = x_lo + (x_hi - x_lo) * b%f_lo / (b%f_lo - b%f_hi)
+        x = max(x_lo + 0.1_wp * (x_hi - x_lo), min(x_hi - 0.1_wp * (x_hi - x_lo), x))
+        next_length = x**2
+    end function next_length
+
+    !> A critical kink: the new shorter end of the search.
+    pure subroutine replace_lo(b, length, f, theta)
+        type(length_search), intent(inout) :: b
+        real(wp), intent(in) :: length, f, theta
+
+        if (b%side == -1) b%f_hi = 0.5_wp * b%f_hi
+        b%side = -1
+        b%lo = length
+        b%f_lo = f
+        b%theta_lo = theta
+    end subroutine replace_lo
+
+    !> A kink that is closed or not critical: the new longer end of the search.
+    pure subroutine replace_hi(b, length, open, f, theta)
+        type(length_search), intent(inout) :: b
+        real(wp), intent(in) :: length, f, theta
+        logical, intent(in) :: open
+
+        if (b%side == 1) b%f_lo = 0.5_wp * b%f_lo
+        b%side = 1
+        b%hi = length
+        b%hi_open = open
+        b%f_hi = f
+        b%theta_hi = theta
+    end subroutine replace_hi
+
+    !> The search ends with the kink of this length and angle (moved: it is not the one
+    !> solved last).
+    pure subroutine take_kink(k, length, theta, moved)
+        type(kink), intent(inout) :: k
+        real(wp), intent(in) :: length, theta
+        logical, intent(inout) :: moved
+
+        if (abs(k%length - length) > length_tolerance * length .or. k%theta /= theta) then
+            moved = .true.
+        end if
+        k%length = length
+        k%pieces = max(1, nint(k%length / k%element_length))
+        k%theta = theta
+        k%reason = growth_grew
+    end subroutine take_kink
 
     !> The kinks at their predictor (MTS) angles, growing, and the start of their iteration:
     !> the first-order slope dK_II/dtheta (K_eq when that is not clearly positive) and the
@@ -296,10 +415,12 @@ contains
                     ! A corrected trial closed: halve the way back to the last open trial.
                     k%theta = 0.5_wp * (k%theta + s%theta_prev)
                     changed = .true.
-                else if (closed .and. s%tip_open .and. s%halvings < max_halvings) then
-                    ! An open tip whose kink closes (the remote compression across a finite
-                    ! kink beats the tip's tension): search the open angles nearer straight
-                    ! ahead for local symmetry.
+                else if (closed .and. s%tip_open .and. s%halvings < max_halvings .and. &
+                         k%length < 2.0_wp * shortest_kink(k)) then
+                    ! An open tip whose shortest kink closes (the remote compression across
+                    ! a finite kink beats the tip's tension): search the open angles nearer
+                    ! straight ahead. A longer kink that closes is shortened first: a short
+                    ! enough kink at the MTS angle opens (Cotterell & Rice).
                     s%mts_closed = .true.
                     s%halvings = s%halvings + 1
                     k%theta = 0.5_wp * k%theta
@@ -381,6 +502,15 @@ contains
 
         shortened = k%length < (1.0_wp - length_tolerance) * k%full_length
     end function shortened
+
+    !> The shortest kink a length search tries [length unit]: min_kink_fraction of the tip's
+    !> new elements' length (less a rounding tolerance).
+    pure real(wp) function shortest_kink(k)
+        !> The kink
+        type(kink), intent(in) :: k
+
+        shortest_kink = min_kink_fraction * k%element_length * (1.0_wp - length_tolerance)
+    end function shortest_kink
 
     !> K_I and K_II of a kink's new tip in the grown model, and whether that tip is closed (a
     !> contact element that is not open, or another condition with K_I <= 0).

@@ -98,7 +98,8 @@ def test_tensile_strength_on_new_elements_slows_growth(tmp_path):
 
 
 def test_new_elements_take_the_tip_law_as_given_and_carry_its_state(tmp_path):
-    path = run(tmp_path, "fault", FAULT.format(p0=30.0, steps=2, growth=2, extra=""))
+    # Three growth steps: the tails' new elements slip and weaken from the third on.
+    path = run(tmp_path, "fault", FAULT.format(p0=30.0, steps=2, growth=3, extra=""))
     with h5py.File(path, "r") as f:
         e = {k: v[:] for k, v in f["elements"].items()}
     new = e["created_step"] > 0
@@ -114,7 +115,7 @@ def test_new_elements_take_the_tip_law_as_given_and_carry_its_state(tmp_path):
     assert np.all((sf_in >= 0.2 - 1e-12) & (sf_in <= 2.0 + 1e-12))
     assert np.any(mu_in < 0.6 - 1e-3) and np.any(sf_in < 2.0 - 1e-3)
     extra = ", new_mu_dynamic = 0.5, new_slip_weakening_distance = 2e-4"
-    override = run(tmp_path, "override", FAULT.format(p0=30.0, steps=2, growth=2, extra=extra))
+    override = run(tmp_path, "override", FAULT.format(p0=30.0, steps=2, growth=3, extra=extra))
     with h5py.File(override, "r") as f:
         e = {k: v[:] for k, v in f["elements"].items()}
     new = e["created_step"] > 0
