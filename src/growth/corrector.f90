@@ -120,6 +120,12 @@ contains
         kinks%current = .false.
         if (options%max_corrections == 0) return
         do i = 1, size(kinks%tip)
+            associate (k => kinks%tip(i))
+                if (k%first_length > 0.0_wp) then
+                    k%length = k%first_length
+                    k%pieces = max(1, nint(k%length / k%element_length))
+                end if
+            end associate
             paths(i) = kink_path(model, kinks%tip(i))
             search(i)%f_lo = kinks%tip(i)%k_eq - options%toughness
         end do
@@ -250,7 +256,7 @@ contains
                 end if
                 if (b%hi - b%lo > min_kink_fraction * k%element_length * &
                     (1.0_wp + length_tolerance)) then
-                    next = max(next_length(b), shortest_kink(k))
+                    next = max(next_length(b, k%full_length), shortest_kink(k))
                     again(i) = .true.
                 else if (b%hi_open) then
                     call take_kink(k, b%hi, b%theta_hi, moved)
@@ -275,14 +281,21 @@ contains
         end do
     end subroutine search_lengths
 
-    !> The next length to try: halfway while the longer end is closed, else Illinois regula
-    !> falsi on K_I - K_Ic against sqrt(length) (K_I of a short kink falls about as the
-    !> square root of its length), kept a tenth of the bracket from its ends.
-    pure real(wp) function next_length(b)
+    !> The next length to try: twice the critical one (at most the increment) while no kink
+    !> is known not to be critical, halfway while the longer end is closed, else Illinois
+    !> regula falsi on K_I - K_Ic against sqrt(length) (K_I of a short kink falls about as
+    !> the square root of its length), kept a tenth of the bracket from its ends.
+    pure real(wp) function next_length(b, full_length)
         !> The length search
         type(length_search), intent(in) :: b
+        !> The increment [length unit]
+        real(wp), intent(in) :: full_length
         real(wp) :: x_lo, x_hi, x
 
+        if (b%hi > full_length) then
+            next_length = min(full_length, 2.0_wp * b%lo)
+            return
+        end if
         if (.not. b%hi_open .or. b%f_lo <= b%f_hi) then
             next_length = 0.5_wp * (b%lo + b%hi)
             return

@@ -430,6 +430,7 @@ contains
                 run%now%angle(t) = kinks%tip(i)%theta
                 run%now%length(t) = kinks%tip(i)%length
                 run%tips(t)%element_length = regular_length(kinks%tip(i))
+                run%tips(t)%kink_length = kinks%tip(i)%length
             else if (ends_on_link(kinks%tip(i)%reason)) then
                 grown = grown + 1
                 run%tips(t)%stopped = .true.
@@ -646,6 +647,7 @@ contains
         call increment_of(options, work, tip, now%element(i), k%length, k%pieces, &
                           k%element_length)
         k%full_length = k%length
+        if (tip%kink_length > 0.0_wp) k%first_length = min(k%length, 2.0_wp * tip%kink_length)
     end function tip_kink
 
     !> Append the step's records: one per tip that could still grow at the step's start.

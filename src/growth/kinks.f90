@@ -28,6 +28,9 @@ module ddc_growth_kinks
         integer :: pieces = 1
         !> Length of the increment, and of its elements [length unit]
         real(wp) :: full_length = 0.0_wp, element_length = 0.0_wp
+        !> The length the local-symmetry corrector tries first: twice the tip's last kink, at
+        !> most the increment [length unit]; 0: the increment
+        real(wp) :: first_length = 0.0_wp
         !> The applied angle [rad] (out)
         real(wp) :: theta = 0.0_wp
         !> Solves this tip took part in (out)

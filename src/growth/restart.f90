@@ -150,6 +150,8 @@ contains
                 tips(i)%element_length = resumed_element_length(model%growth, 2.0_wp * &
                     model%elements%half_length(tip_element(model, tips(i)%fracture, &
                                                            tips(i)%end)), pack(g%length, grew))
+                if (any(grew)) tips(i)%kink_length = g%length(findloc(grew, .true., 1, &
+                                                                      back=.true.))
             end do
         end associate
     end function resumed_tips

@@ -27,6 +27,9 @@ module ddc_growth_tips
         !> Length of the elements it grows by after a kink shorter than the increment (whose
         !> element may be shorter) [length unit]; 0: its tip element's length
         real(wp) :: element_length = 0.0_wp
+        !> Length of the kink it last grew by [length unit]; 0: none yet. Its next length
+        !> search starts from twice that (docs/theory/growth.md#shorter-kinks)
+        real(wp) :: kink_length = 0.0_wp
     end type growing_tip
 
 contains

@@ -106,8 +106,10 @@ def test_benchmark_growth_history(tmp_path):
     assert r["case"] == "growth-history" and r["method"] == "newton"
     assert r["steps"] == 4 and r["end_reason"] == "arrested"
     assert r["growth_steps"] >= 1 and r["n_final"] > r["n"]
-    # Every new element is one of the 20 per tip and growth step that grew.
-    assert (r["n_final"] - r["n"]) % 20 == 0
+    # The two point-symmetric tips grow alike, by at most an increment of 20 elements per
+    # growth step (a kink shortened to the stable length has fewer).
+    new = r["n_final"] - r["n"]
+    assert new % 2 == 0 and new <= 2 * 20 * r["growth_steps"], (new, r["growth_steps"])
     assert sum(r["states"].values()) == r["n_final"]
     assert r["total_over_lu"] == r["seconds"]["total"] / r["lu_reference_seconds"]
 

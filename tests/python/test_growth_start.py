@@ -23,8 +23,8 @@ increments 0.2 and 0.1 m (the 0.2 m kink is closed or not critical in most load 
   wherever they opened, the 0.1 m wings stopped down to 0.54);
 - the grown length at every load step is the same for both increments within twice the
   search's resolution (1/64 of the 0.05 m elements);
-- the 0.2 m run takes at most 25 % more solves than the 0.1 m run (a closed kink as long as
-  the increment in a search; 8 % measured). With the halving search of before the 0.2 m run
+- the 0.2 m run takes no more solves than the 0.1 m run (290 against 338: each search
+  starts from twice the tip's last kink). With the halving search of before the 0.2 m run
   took 993 solves against 256."""
 
 import math
@@ -171,6 +171,6 @@ def test_the_grown_length_per_load_does_not_depend_on_the_increment(wings):
     np.testing.assert_allclose(grown[COARSE], grown[FINE], rtol=0, atol=2 * WING_ELEMENT / 64)
 
 
-def test_a_coarser_increment_costs_about_what_a_finer_one_does(wings):
+def test_a_coarser_increment_costs_no_more_than_a_finer_one(wings):
     coarse, fine = wings[COARSE][1], wings[FINE][1]
-    assert fine > 0 and coarse <= 1.25 * fine, (coarse, fine)
+    assert fine > 0 and coarse <= fine, (coarse, fine)
