@@ -508,14 +508,6 @@ contains
         end do
     end subroutine update_paths
 
-    !> The kink is shorter than the increment.
-    pure logical function shortened(k)
-        !> The kink
-        type(kink), intent(in) :: k
-
-        shortened = k%length < (1.0_wp - length_tolerance) * k%full_length
-    end function shortened
-
     !> The shortest kink a length search tries [length unit]: min_kink_fraction of the tip's
     !> new elements' length (less a rounding tolerance).
     pure real(wp) function shortest_kink(k)

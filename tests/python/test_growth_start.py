@@ -27,6 +27,7 @@ increments 0.2 and 0.1 m (the 0.2 m kink is closed or not critical in most load 
   starts from twice the tip's last kink). With the halving search of before the 0.2 m run
   took 993 solves against 256."""
 
+import itertools
 import math
 import re
 import subprocess
@@ -153,8 +154,9 @@ def test_tips_stop_at_their_stable_length(wings, increment):
     stopped = 0
     for end in (0, 1):
         rows = np.flatnonzero(g["end"] == end)
-        for before, after in zip(rows[:-1], rows[1:]):
-            grew_then_stopped = (g["reason"][before] in GREW and g["reason"][after] == SUBCRITICAL
+        for before, after in itertools.pairwise(rows):
+            grew_then_stopped = (g["reason"][before] in GREW
+                                 and g["reason"][after] == SUBCRITICAL
                                  and g["load_step"][before] == g["load_step"][after])
             if grew_then_stopped:
                 stopped += 1
