@@ -9,7 +9,8 @@ module ddc_input_namelist_growth
         growth_criterion_names, symmetry_none, strength_law_count, work_mode_names, &
         angle_search_names
     use ddc_model_laws, only: strength_law, strength_laws, new_law_bound, at_most_rule
-    use ddc_model_limits, only: quantity_positive, quantity_non_negative
+    use ddc_model_limits, only: quantity_positive, quantity_non_negative, within_limits, &
+        limits_text
     use ddc_text, only: itoa, rtoa, lower, find_name, quoted_list
     use ddc_input_namelist_groups, only: group_record, message_list, add, group_prefix, &
         g_growth, g_symmetry
@@ -170,13 +171,18 @@ contains
         type(model_type), intent(inout) :: model
         type(message_list), intent(inout) :: messages
 
-        if (.not. (angle_range > 0.0_wp .and. angle_range < 180.0_wp)) then
+        ! NaN and Inf first: an ordered comparison with NaN traps where invalid operations do.
+        if (.not. within_limits(angle_range)) then
+            call add(messages, prefix//'angle_range = '//rtoa(angle_range)//limits_text)
+        else if (.not. (angle_range > 0.0_wp .and. angle_range < 180.0_wp)) then
             call add(messages, prefix//'angle_range = '//rtoa(angle_range)// &
                      ' must lie in (0, 180) degrees')
         else
             model%growth%angle_range = angle_range
         end if
-        if (.not. (angle_step > 0.0_wp)) then
+        if (.not. within_limits(angle_step)) then
+            call add(messages, prefix//'angle_step = '//rtoa(angle_step)//limits_text)
+        else if (.not. (angle_step > 0.0_wp)) then
             call add(messages, prefix//'angle_step = '//rtoa(angle_step)// &
                      ' must be positive [degree]')
         else

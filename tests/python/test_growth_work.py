@@ -235,6 +235,9 @@ def test_opening_mode_grows_opening_kinks_and_any_mode_notes_friction(tmp_path):
     ("criterion = 'work', angle_range = 0", "angle_range = 0.00000 must lie in (0, 180)"),
     ("criterion = 'work', angle_step = 0", "angle_step = 0.00000 must be positive"),
     ("criterion = 'work', angle_step = -5", "angle_step = -5.00000 must be positive"),
+    # Not finite: reported, not compared (Debug traps an ordered comparison with NaN).
+    ("criterion = 'work', angle_step = NaN", "angle_step = NaN is not a finite number"),
+    ("criterion = 'work', angle_range = -Inf", "angle_range = -Inf is not a finite number"),
 ])
 def test_bad_work_input(tmp_path, setting, message):
     text = ("&model youngs_modulus = 1.0, poissons_ratio = 0.25 /\n&remote_stress syy = 1 /\n"
