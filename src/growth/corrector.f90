@@ -83,8 +83,8 @@ module ddc_growth_corrector
         !> its angle; whether that kink is open (else closed, f_hi not used)
         real(wp) :: hi = huge(1.0_wp), f_hi = 0.0_wp, theta_hi = 0.0_wp
         logical :: hi_open = .false.
-        !> The end the last two trials replaced (-1 lo, 1 hi, 0 none): Illinois halves the
-        !> other end's value when one end is replaced twice running
+        !> The end the last trial replaced (-1 lo, 1 hi, 0 none): Illinois halves the other
+        !> end's value when one end is replaced twice running with both ends open
         integer :: side = 0
     end type length_search
 
@@ -134,7 +134,7 @@ contains
             if (allocated(error)) return
             call search_lengths(kinks%tip, iteration, search, options%toughness, searching, &
                                 moved)
-            if (moved) kinks%current = .false.
+            if (searching .or. moved) kinks%current = .false.
             if (.not. (searching .or. moved)) exit
             call update_paths(model, kinks, iteration, paths)
             if (.not. searching) exit
@@ -245,8 +245,10 @@ contains
             associate (k => tips(i), s => iteration(i), b => search(i))
                 if (k%reason == growth_closed) then
                     call replace_hi(b, k%length, .false., 0.0_wp, k%theta)
-                else if (.not. s%active) then
-                    cycle  ! stopped by its path (a link, the surface, another fracture)
+                else if (.not. s%active .or. k%reason == growth_corrector_failed) then
+                    ! Stopped by its path (a link, the surface, another fracture), or not
+                    ! corrected within the solves: it grows at its MTS angle at this length.
+                    cycle
                 else if (s%k1 >= toughness) then
                     if (k%length >= (1.0_wp - length_tolerance) * k%full_length) cycle
                     call replace_lo(b, k%length, s%k1 - toughness, k%theta)
@@ -260,8 +262,10 @@ contains
                     again(i) = .true.
                 else if (b%hi_open) then
                     call take_kink(k, b%hi, b%theta_hi, moved)
+                    s%active = .true.  ! its kink is part of every later trial
                 else if (b%lo > 0.0_wp) then
                     call take_kink(k, b%lo, b%theta_lo, moved)
+                    s%active = .true.
                 else
                     k%reason = growth_closed
                 end if
@@ -312,7 +316,7 @@ contains
         type(length_search), intent(inout) :: b
         real(wp), intent(in) :: length, f, theta
 
-        if (b%side == -1) b%f_hi = 0.5_wp * b%f_hi
+        if (b%side == -1 .and. b%hi_open) b%f_hi = 0.5_wp * b%f_hi
         b%side = -1
         b%lo = length
         b%f_lo = f
@@ -325,7 +329,7 @@ contains
         real(wp), intent(in) :: length, f, theta
         logical, intent(in) :: open
 
-        if (b%side == 1) b%f_lo = 0.5_wp * b%f_lo
+        if (b%side == 1 .and. b%hi_open .and. open) b%f_lo = 0.5_wp * b%f_lo
         b%side = 1
         b%hi = length
         b%hi_open = open
@@ -429,7 +433,8 @@ contains
                     k%theta = 0.5_wp * (k%theta + s%theta_prev)
                     changed = .true.
                 else if (closed .and. s%tip_open .and. s%halvings < max_halvings .and. &
-                         k%length < 2.0_wp * shortest_kink(k)) then
+                         k%length <= (1.0_wp + 2.0_wp * length_tolerance) * &
+                         shortest_kink(k)) then
                     ! An open tip whose shortest kink closes (the remote compression across
                     ! a finite kink beats the tip's tension): search the open angles nearer
                     ! straight ahead. A longer kink that closes is shortened first: a short
