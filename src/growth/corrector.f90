@@ -86,6 +86,8 @@ module ddc_growth_corrector
         !> The end the last trial replaced (-1 lo, 1 hi, 0 none): Illinois halves the other
         !> end's value when one end is replaced twice running with both ends open
         integer :: side = 0
+        !> The search has ended: the kink keeps its length in the step's later rounds
+        logical :: done = .false.
     end type length_search
 
 contains
@@ -236,13 +238,15 @@ contains
         real(wp), intent(in) :: toughness
         logical, intent(out) :: searching, moved
         logical :: again(size(tips))
-        real(wp) :: next
         integer :: i
 
         again = .false.
         moved = .false.
         do i = 1, size(tips)
             associate (k => tips(i), s => iteration(i), b => search(i))
+                ! An ended search was not tried again: its last values are not new.
+                if (b%done) cycle
+                b%done = .true.
                 if (k%reason == growth_closed) then
                     call replace_hi(b, k%length, .false., 0.0_wp, k%theta)
                 else if (.not. s%active .or. k%reason == growth_corrector_failed) then
@@ -258,8 +262,10 @@ contains
                 end if
                 if (b%hi - b%lo > min_kink_fraction * k%element_length * &
                     (1.0_wp + length_tolerance)) then
-                    next = max(next_length(b, k%full_length), shortest_kink(k))
+                    k%length = max(next_length(b, k%full_length), shortest_kink(k))
+                    k%pieces = max(1, nint(k%length / k%element_length))
                     again(i) = .true.
+                    b%done = .false.
                 else if (b%hi_open) then
                     call take_kink(k, b%hi, b%theta_hi, moved)
                     s%active = .true.  ! its kink is part of every later trial
@@ -268,10 +274,6 @@ contains
                     s%active = .true.
                 else
                     k%reason = growth_closed
-                end if
-                if (again(i)) then
-                    k%length = next
-                    k%pieces = max(1, nint(k%length / k%element_length))
                 end if
             end associate
         end do
