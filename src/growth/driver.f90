@@ -42,7 +42,6 @@
 !> next load step.
 module ddc_growth_driver
     use, intrinsic :: iso_fortran_env, only: int64
-    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use ddc_kinds, only: wp
     use ddc_constants, only: pi
     use ddc_error, only: error_type, set_internal_error, set_error, exit_bad_input, &
@@ -50,8 +49,8 @@ module ddc_growth_driver
     use ddc_model_types, only: model_type, growth_options, initiation_options, has_sources
     use ddc_model_initiations, only: initiation_record
     use ddc_growth_initiation, only: start_fracture
-    use ddc_model_results, only: model_results, growth_record, growth_grew, growth_subcritical, &
-        growth_corrector_failed, growth_closed, growth_waiting, growth_arrested, &
+    use ddc_model_results, only: model_results, tip_records, growth_record, growth_grew, &
+        growth_subcritical, growth_corrector_failed, growth_closed, growth_waiting, growth_arrested, &
         growth_step_limit, growth_failed
     use ddc_model_restart, only: restart_state
     use ddc_growth_run_state, only: reason_stopped, step_tips, growth_state, start_run, resume_run
@@ -64,7 +63,8 @@ module ddc_growth_driver
     use ddc_growth_extension, only: tip_path, make_path, tip_element, tip_end_begin
     use ddc_growth_clearance, only: check_paths, path_clear, ends_on_link
     use ddc_growth_tips, only: growing_tip, fracture_tip, increment_for
-    use ddc_growth_work, only: append_table, append_trials
+    use ddc_growth_work, only: append_trials
+    use ddc_model_records, only: append_tip_rows, append_trial_rows, lay_out_tip_rows
     use ddc_growth_load_steps, only: follow_growth, record_load_step, finish_load_steps
     use ddc_history_path, only: path_loads, apply_load, load_text
     use ddc_flow_injection, only: follow_flow, injected
@@ -77,6 +77,8 @@ module ddc_growth_driver
 
     !> The solver's progress lines within a growth step are shown once it has run this long [s]
     real(wp), parameter :: progress_hold_seconds = 5.0_wp
+    !> Degrees per radian: the records' angles are in degrees
+    real(wp), parameter :: degrees = 180.0_wp / pi
 
     abstract interface
         !> Told after every growth step (the program prints a line and flushes it).
@@ -324,7 +326,7 @@ contains
             end if
             if (started) grown = grown + 1
             call release_progress()
-            call append_records(record, next, load_step, run%tips, run%now)
+            call append_records(record, next, load_step, run%now)
             if (grown == 0) then
                 ! Along a load path the load step's end line tells it; without one the check
                 ! that ends the run is shown.
@@ -408,7 +410,7 @@ contains
         do i = 1, size(linked)
             t = linked(i)
             grown = grown + 1
-            run%now%angle(t) = run%now%link(t)%theta
+            run%now%angle(t) = run%now%link(t)%theta * degrees
             run%now%length(t) = run%now%link(t)%length
         end do
         allocate (kinks%tip(size(which)))
@@ -417,24 +419,24 @@ contains
         end do
         call kink_angles(run%solver, run%work, run%current, run%created, options, kinks, error)
         if (allocated(error)) return
-        call append_table(run%now%trials, kinks%trials)
+        call append_trial_rows(run%now%trials, kinks%trials)
         do i = 1, size(which)
             t = which(i)
             run%now%reason(t) = kinks%tip(i)%reason
-            run%now%solves(t) = kinks%tip(i)%solves
+            run%now%corrections(t) = kinks%tip(i)%solves
             run%now%efficiency(t) = kinks%tip(i)%efficiency
             run%now%slip_share(t) = kinks%tip(i)%slip_share
             if (kinks%tip(i)%reason == growth_grew .or. &
                 kinks%tip(i)%reason == growth_corrector_failed) then
                 grown = grown + 1
-                run%now%angle(t) = kinks%tip(i)%theta
+                run%now%angle(t) = kinks%tip(i)%theta * degrees
                 run%now%length(t) = kinks%tip(i)%length
                 run%tips(t)%element_length = regular_length(kinks%tip(i))
                 run%tips(t)%kink_length = kinks%tip(i)%length
             else if (ends_on_link(kinks%tip(i)%reason)) then
                 grown = grown + 1
                 run%tips(t)%stopped = .true.
-                run%now%angle(t) = kinks%tip(i)%link%theta
+                run%now%angle(t) = kinks%tip(i)%link%theta * degrees
                 run%now%length(t) = kinks%tip(i)%link%length
             else if (kinks%tip(i)%reason /= growth_closed) then
                 run%tips(t)%stopped = .true.
@@ -508,12 +510,10 @@ contains
         integer :: i, n, t
 
         n = size(tips)
-        allocate (now%k1(n), now%k2(n), now%k_eq(n), now%theta(n), now%x(n), now%y(n), &
-                  now%element(n), now%reason(n), now%angle(n), now%length(n), &
-                  now%k2_after(n), now%solves(n), now%link(n), now%efficiency(n), &
-                  now%slip_share(n))
-        now%angle = ieee_value(1.0_wp, ieee_quiet_nan)
-        now%k2_after = now%angle
+        call lay_out_tip_rows(now%tip_records, n)
+        allocate (now%theta(n), now%element(n), now%link(n))
+        now%fracture_id = tips%fracture
+        now%end = tips%end
         now%k1 = 0.0_wp
         now%k2 = 0.0_wp
         now%k_eq = 0.0_wp
@@ -524,7 +524,6 @@ contains
         now%length = 0.0_wp
         now%efficiency = 0.0_wp
         now%slip_share = 0.0_wp
-        now%solves = 0
         now%reason = reason_stopped
         do i = 1, n
             if (tips(i)%stopped) cycle
@@ -537,6 +536,7 @@ contains
             now%k2(i) = current%tips%k2(t)
             call assess_tip(options, now%k1(i), now%k2(i), now%theta(i), now%k_eq(i), error)
             if (allocated(error)) return
+            now%mts_angle(i) = now%theta(i) * degrees
             now%reason(i) = merge(growth_grew, growth_subcritical, &
                                   searched_tip(options, now%k_eq(i)))
         end do
@@ -640,6 +640,7 @@ contains
 
         k%fracture = tip%fracture
         k%end = tip%end
+        k%tip = i
         k%k1 = now%k1(i)
         k%k2 = now%k2(i)
         k%k_eq = now%k_eq(i)
@@ -650,42 +651,21 @@ contains
         if (tip%kink_length > 0.0_wp) k%first_length = min(k%length, 2.0_wp * tip%kink_length)
     end function tip_kink
 
-    !> Append the step's records: one per tip that could still grow at the step's start.
-    subroutine append_records(record, step, load_step, tips, now)
+    !> Append the step's records: one per tip that could still grow at the step's start, and
+    !> the step's trials.
+    subroutine append_records(record, step, load_step, now)
         type(growth_record), intent(inout) :: record
         integer, intent(in) :: step, load_step
-        type(growing_tip), intent(in) :: tips(:)
         type(step_tips), intent(in) :: now
-        logical :: keep(size(tips))
-        integer :: n, i, tip_values(size(tips))
-        real(wp), parameter :: degrees = 180.0_wp / pi
+        type(tip_records) :: rows
+        logical :: keep(size(now%reason))
 
         keep = now%reason /= reason_stopped
-        n = count(keep)
-        record%step = [record%step, spread(step, 1, n)]
-        record%load_step = [record%load_step, spread(load_step, 1, n)]
-        ! Components of tips are strided: copied here, not as temporaries of pack
-        tip_values = tips%fracture
-        record%fracture_id = [record%fracture_id, pack(tip_values, keep)]
-        tip_values = tips%end
-        record%end = [record%end, pack(tip_values, keep)]
-        record%x = [record%x, pack(now%x, keep)]
-        record%y = [record%y, pack(now%y, keep)]
-        record%k1 = [record%k1, pack(now%k1, keep)]
-        record%k2 = [record%k2, pack(now%k2, keep)]
-        record%k_eq = [record%k_eq, pack(now%k_eq, keep)]
-        record%mts_angle = [record%mts_angle, pack(now%theta * degrees, keep)]
-        record%angle = [record%angle, pack(now%angle * degrees, keep)]
-        record%corrections = [record%corrections, pack(now%solves, keep)]
-        record%k2_after = [record%k2_after, pack(now%k2_after, keep)]
-        record%length = [record%length, pack(now%length, keep)]
-        record%reason = [record%reason, pack(now%reason, keep)]
-        record%efficiency = [record%efficiency, pack(now%efficiency, keep)]
-        record%slip_share = [record%slip_share, pack(now%slip_share, keep)]
-        ! Contiguous copies of the strided components (no temporaries)
-        if (allocated(now%trials%fracture)) call append_trials(record, step, &
-            [(tips(i)%fracture, i = 1, size(tips))], [(tips(i)%end, i = 1, size(tips))], keep, &
-            now%trials)
+        rows = now%tip_records
+        rows%step = spread(step, 1, size(keep))
+        rows%load_step = spread(load_step, 1, size(keep))
+        call append_tip_rows(record%tip_records, rows, keep)
+        if (allocated(now%trials%step)) call append_trials(record, keep, now%trials)
     end subroutine append_records
 
 end module ddc_growth_driver

@@ -16,7 +16,8 @@ module ddc_growth_flaw_search
     use ddc_text, only: itoa
     use ddc_model_types, only: model_type, growth_options, initiation_options
     use ddc_model_results, only: model_results, trial_blocked
-    use ddc_model_initiations, only: initiation_record, initiation_flaw, append_flaw_trial
+    use ddc_model_initiations, only: initiation_record, initiation_flaw
+    use ddc_model_trial_records, only: add_trial
     use ddc_mesh_checks, only: check_elements
     use ddc_growth_solver, only: growth_solver, solve_grown
     use ddc_growth_work, only: external_work
@@ -121,8 +122,8 @@ contains
                               trial)
             call check_elements(trial%elements, trial%fractures, crossing)
             if (allocated(crossing)) then
-                call append_flaw_trial(record, step, flaw, orientation_degrees(theta), &
-                                       point_tried%efficiency, trial_blocked)
+                call add_trial(record%trials, step, flaw, orientation_degrees(theta), &
+                               point_tried%efficiency, trial_blocked)
                 return
             end if
             origin = [(i, i = 1, work%elements%n), spread(0, 1, size(xs) - 1)]
@@ -137,8 +138,8 @@ contains
             call judge_trial(trial, solved, origin, before%elements%ds, w_before, &
                              hypot(xs(size(xs)) - xs(1), ys(size(ys)) - ys(1)), &
                              growth%work_mode, point_tried, state)
-            call append_flaw_trial(record, step, flaw, orientation_degrees(theta), &
-                                   point_tried%efficiency, state)
+            call add_trial(record%trials, step, flaw, orientation_degrees(theta), &
+                           point_tried%efficiency, state)
         end subroutine try_orientation
 
     end subroutine search_flaw

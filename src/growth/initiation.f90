@@ -33,8 +33,8 @@ module ddc_growth_initiation
         fracture_type, condition_contact
     use ddc_model_results, only: model_results, field_result, point_on_element, &
         tip_set
-    use ddc_model_initiations, only: initiation_record, initiation_tail, initiation_flaw, &
-        append_initiation, empty_initiation_record
+    use ddc_model_initiations, only: initiation_record, initiation_tail, initiation_flaw
+    use ddc_model_records, only: append_initiation, empty_initiation_record
     use ddc_model_medium, only: medium_of
     use ddc_mesh_checks, only: check_elements
     use ddc_post_fields, only: evaluate_field
@@ -164,12 +164,36 @@ contains
         run%work = trial
         run%current = solved
         call add_tips(run, f)
-        call append_initiation(record, first%kind, step, load_step, f, first%parent, &
-                               first%element, first%flaw, first%side, first%point, &
-                               first%probe, first%tension, &
-                               atan2(along(2), along(1)) * 180.0_wp / pi, first%efficiency)
+        call append_initiation(record, initiation_row(first, step, load_step, f, &
+                                                      atan2(along(2), along(1)) * 180.0_wp / pi))
         started = .true.
     end subroutine start_fracture
+
+    !> The row of /growth/initiations of a candidate that started new fracture f in this step,
+    !> in the direction `angle` [degree].
+    function initiation_row(first, step, load_step, f, angle) result(row)
+        type(initiation_candidate), intent(in) :: first
+        integer, intent(in) :: step, load_step, f
+        real(wp), intent(in) :: angle
+        type(initiation_record) :: row
+
+        call empty_initiation_record(row, 1)
+        row%kind(1) = first%kind
+        row%step(1) = step
+        row%load_step(1) = load_step
+        row%fracture_id(1) = f
+        row%parent(1) = first%parent
+        row%element(1) = first%element
+        row%flaw(1) = first%flaw
+        row%side(1) = first%side
+        row%x(1) = first%point(1)
+        row%y(1) = first%point(2)
+        row%probe_x(1) = first%probe(1)
+        row%probe_y(1) = first%probe(2)
+        row%tension(1) = first%tension
+        row%angle(1) = angle
+        row%efficiency(1) = first%efficiency
+    end function initiation_row
 
     !> Every probe of the current solution (both sides of both ends of every contact element
     !> that are not a fracture tip and have not started a tail, and every flaw point that has

@@ -8,7 +8,7 @@ module ddc_growth_kinks
     use ddc_model_results, only: model_results, growth_grew, growth_corrector_failed
     use ddc_growth_extension, only: tip_path, make_path, extend_model, element_split
     use ddc_growth_clearance, only: tip_link, link_parts, ends_on_link
-    use ddc_growth_work, only: trial_table
+    use ddc_model_trial_records, only: trial_records
     implicit none
     private
 
@@ -16,8 +16,9 @@ module ddc_growth_kinks
 
     !> A growing tip of the step as the growth criterion turns it.
     type :: kink
-        !> Fracture (1-based) and end (tip_end_begin, tip_end_end) of the tip
-        integer :: fracture = 0, end = 0
+        !> Fracture (1-based) and end (tip_end_begin, tip_end_end) of the tip, and its index
+        !> among the run's growing tips
+        integer :: fracture = 0, end = 0, tip = 0
         !> K_I, K_II and K_eq of the tip before growing [stress unit * length unit**0.5]
         real(wp) :: k1 = 0.0_wp, k2 = 0.0_wp, k_eq = 0.0_wp
         !> The criterion's kink angle from the tip's K (the predictor, the MTS angle) [rad]
@@ -72,7 +73,7 @@ module ddc_growth_kinks
         !> model is still to be built (grow_paths) and solved
         logical :: current = .false.
         !> The work criterion's trials of the step (out; not allocated under another)
-        type(trial_table) :: trials
+        type(trial_records) :: trials
     end type step_kinks
 
 contains

@@ -6,15 +6,15 @@ module ddc_growth_run_state
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type, has_sources
-    use ddc_model_results, only: model_results, growth_record, growth_step_limit, &
+    use ddc_model_results, only: model_results, tip_records, growth_record, growth_step_limit, &
         growth_failed, growth_end_names
+    use ddc_model_trial_records, only: trial_records
     use ddc_model_records, only: empty_growth_record
     use ddc_model_restart, only: restart_state
     use ddc_history_path, only: apply_load, path_times
     use ddc_flow_injection, only: flow_tracker, follow_flow
     use ddc_growth_solver, only: growth_solver, solve_input, restore_memory
     use ddc_growth_clearance, only: tip_link
-    use ddc_growth_work, only: trial_table
     use ddc_growth_tips, only: growing_tip, find_growing_tips
     use ddc_growth_load_steps, only: load_step_history, start_load_steps, resume_load_steps
     use ddc_growth_restart, only: resumed_geometry, resumed_tips, resumed_strengths
@@ -27,29 +27,17 @@ module ddc_growth_run_state
     !> reasons of ddc_model_results, growth_grew ... growth_waiting, are not negative)
     integer, parameter :: reason_stopped = -1
 
-    !> One step's view of the tips that may still grow, shape (tips) for every array.
-    type :: step_tips
-        !> K_I, K_II, K_eq [stress unit * length unit**0.5], the criterion's kink angle (MTS)
-        !> [rad]
-        real(wp), allocatable :: k1(:), k2(:), k_eq(:), theta(:)
-        !> Tip position [length unit]
-        real(wp), allocatable :: x(:), y(:)
+    !> One step's view of the tips that may still grow: a row per tip (recorded unless its
+    !> reason is reason_stopped), shape (tips) for every array.
+    type, extends(tip_records) :: step_tips
+        !> The criterion's kink angle (MTS) [rad] (mts_angle: the same in degrees)
+        real(wp), allocatable :: theta(:)
         !> Element of the tip in the current geometry
         integer, allocatable :: element(:)
-        !> The reason of the tip's record (growth_grew ... growth_waiting), or reason_stopped
-        integer, allocatable :: reason(:)
-        !> Applied angle [rad], solves, length grown, K_II after growing
-        real(wp), allocatable :: angle(:), length(:), k2_after(:)
-        integer, allocatable :: solves(:)
         !> The link of a tip that links in this step (reason growth_linked)
         type(tip_link), allocatable :: link(:)
-        !> The work criterion: each tip's efficiency at its applied angle [stress unit * length
-        !> unit] (NaN without a candidate trial, 0 under another criterion), and the step's trials
-        real(wp), allocatable :: efficiency(:)
-        !> The share of its work change done through slip of frictional faces [-] (NaN as
-        !> efficiency)
-        real(wp), allocatable :: slip_share(:)
-        type(trial_table) :: trials
+        !> The work criterion's trials of the step (owner: the tip)
+        type(trial_records) :: trials
     end type step_tips
 
     !> What a growth run carries from one step to the next.

@@ -27,7 +27,8 @@ module ddc_growth_trials
     use ddc_growth_clearance, only: check_paths, path_clear, link_parts
     use ddc_growth_kinks, only: step_kinks, step_links
     use ddc_model_loads, only: work_threshold_of
-    use ddc_growth_work, only: external_work, add_trial
+    use ddc_growth_work, only: external_work
+    use ddc_model_trial_records, only: add_trial
     use ddc_growth_angle_search, only: trial_point, best_candidate, parabola_vertex, &
         narrow_bracket, judge_trial, kink_estimate, refine_tolerance, max_refinements
     implicit none
@@ -37,6 +38,8 @@ module ddc_growth_trials
 
     !> One degree [rad]
     real(wp), parameter :: degree = pi / 180.0_wp
+    !> Degrees per radian (the trials' angles are recorded in degrees)
+    real(wp), parameter :: to_degrees = 180.0_wp / pi
     !> Trial angles closer than this are one trial [rad]
     real(wp), parameter :: same_angle = 1.0e-9_wp
 
@@ -337,8 +340,8 @@ contains
                 call check_paths(model, path, [.true.], problem, fixed=kinks%fixed)
                 if (problem(1) /= path_clear) then
                     point%efficiency = ieee_value(1.0_wp, ieee_quiet_nan)
-                    call add_trial(kinks%trials, k%fracture, k%end, theta, point%efficiency, &
-                                   trial_blocked)
+                    call add_trial(kinks%trials, kinks%step, k%tip, theta * to_degrees, &
+                                   point%efficiency, trial_blocked)
                     return
                 end if
                 call link_parts(step_links(kinks), link_paths, splits)
@@ -355,7 +358,8 @@ contains
                 end if
                 call judge_trial(kinks%trial, kinks%solved, kinks%origin, base_ds, w_before, &
                                  k%length, options%work_mode, point, state)
-                call add_trial(kinks%trials, k%fracture, k%end, theta, point%efficiency, state)
+                call add_trial(kinks%trials, kinks%step, k%tip, theta * to_degrees, &
+                               point%efficiency, state)
             end associate
         end subroutine try_angle
 

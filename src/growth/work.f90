@@ -9,26 +9,19 @@
 !> (l_n > 0, D_n < 0) or a crack slipping under its shear load gives W_ext > 0. Displacement
 !> and prescribed-DD rows do no work at fixed load and do not count.
 !>
-!> Beside it the trials of one growth step (trial_table) and how they join the growth record
-!> (/growth/trials).
+!> Beside it how the trials of one growth step join the growth record (/growth/trials).
 module ddc_growth_work
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type, condition_contact, condition_traction, &
         condition_mixed_us_sn, condition_mixed_ss_un
-    use ddc_constants, only: pi
     use ddc_model_results, only: growth_record
+    use ddc_model_trial_records, only: trial_records
+    use ddc_model_records, only: append_trial_rows
     use ddc_model_loads, only: resolve_remote_stress, total_pressure
     implicit none
     private
 
-    public :: external_work, slip_work, trial_table, add_trial, append_table, append_trials
-
-    !> The trials of the work criterion (k trials): the tip (fracture, end), its angle
-    !> [rad], efficiency [stress unit * length unit] (NaN when blocked) and state, shape (k).
-    type :: trial_table
-        integer, allocatable :: fracture(:), end(:), state(:)
-        real(wp), allocatable :: angle(:), efficiency(:)
-    end type trial_table
+    public :: external_work, slip_work, append_trials
 
 contains
 
@@ -84,75 +77,26 @@ contains
         end associate
     end subroutine work_loads
 
-    !> Append one trial to a table (allocated on first use).
-    pure subroutine add_trial(table, fracture, end, angle, efficiency, state)
-        !> The table
-        type(trial_table), intent(inout) :: table
-        !> The tip: fracture (1-based) and end
-        integer, intent(in) :: fracture, end
-        !> Trial angle [rad] and efficiency [stress unit * length unit]
-        real(wp), intent(in) :: angle, efficiency
-        !> trial_stuck ... trial_blocked
-        integer, intent(in) :: state
-
-        if (.not. allocated(table%fracture)) then
-            allocate (table%fracture(0), table%end(0), table%state(0), table%angle(0), &
-                      table%efficiency(0))
-        end if
-        table%fracture = [table%fracture, fracture]
-        table%end = [table%end, end]
-        table%state = [table%state, state]
-        table%angle = [table%angle, angle]
-        table%efficiency = [table%efficiency, efficiency]
-    end subroutine add_trial
-
-    !> Append a search's trials to the step's (a step may search more than once: with
-    !> tips = 'most_critical' the next waiting tip is tried when the first did not grow).
-    pure subroutine append_table(table, found)
-        !> The step's trials
-        type(trial_table), intent(inout) :: table
-        !> One search's trials
-        type(trial_table), intent(in) :: found
-        integer :: j
-
-        if (.not. allocated(found%fracture)) return
-        do j = 1, size(found%fracture)
-            call add_trial(table, found%fracture(j), found%end(j), found%angle(j), &
-                           found%efficiency(j), found%state(j))
-        end do
-    end subroutine append_table
-
-    !> The step's trials in the growth record, each with its tip's record: the tips' records
-    !> of the step are the record's last count(keep), in the order of the tips.
-    pure subroutine append_trials(record, step, fracture, end, keep, trials)
-        !> The run's growth record, the step's records appended already
+    !> The step's trials in the growth record, each owned by its tip's record: the step's
+    !> records are the last ones, one per tip that keep marks.
+    subroutine append_trials(record, keep, trials)
+        !> The growth record, the step's records appended
         type(growth_record), intent(inout) :: record
-        !> The growth step
-        integer, intent(in) :: step
-        !> Fracture and end of every tip that may grow, and which have a record in this step,
-        !> shape (tips)
-        integer, intent(in) :: fracture(:), end(:)
+        !> Which of the step's tips have a record, shape (tips)
         logical, intent(in) :: keep(:)
-        !> The step's trials
-        type(trial_table), intent(in) :: trials
-        integer :: first, j, i, tip_record(size(trials%fracture))
-        real(wp), parameter :: degrees = 180.0_wp / pi
+        !> The step's trials (owner: the tip)
+        type(trial_records), intent(in) :: trials
+        type(trial_records) :: rows
+        integer :: first, j
 
         first = size(record%step) - count(keep)
-        tip_record = 0
-        do j = 1, size(tip_record)
-            do i = 1, size(fracture)
-                if (keep(i) .and. fracture(i) == trials%fracture(j) .and. &
-                    end(i) == trials%end(j)) then
-                    tip_record(j) = first + count(keep(1:i))
-                end if
-            end do
+        rows = trials
+        do j = 1, size(rows%owner)
+            associate (tip => trials%owner(j))
+                rows%owner(j) = merge(first + count(keep(1:tip)), 0, keep(tip))
+            end associate
         end do
-        record%trial_step = [record%trial_step, spread(step, 1, size(tip_record))]
-        record%trial_record = [record%trial_record, tip_record]
-        record%trial_angle = [record%trial_angle, trials%angle * degrees]
-        record%trial_efficiency = [record%trial_efficiency, trials%efficiency]
-        record%trial_state = [record%trial_state, trials%state]
+        call append_trial_rows(record%trials, rows)
     end subroutine append_trials
 
 end module ddc_growth_work

@@ -14,14 +14,18 @@ module ddc_model_records
     use ddc_kinds, only: wp
     use ddc_text, only: itoa
     use ddc_model_types, only: load_path_names
-    use ddc_model_results, only: history_record, growth_record, state_not_grown, &
+    use ddc_model_results, only: history_record, tip_records, growth_record, state_not_grown, &
         growth_reason_names, trial_state_coding
+    use ddc_model_trial_records, only: trial_records
+    use ddc_model_initiations, only: initiation_record
     implicit none
     private
 
     public :: record_column, record_column_action
-    public :: for_each_history_column, for_each_growth_column
-    public :: lay_out_history, empty_growth_record, reason_coding
+    public :: for_each_history_column, for_each_growth_column, for_each_initiation_column
+    public :: lay_out_history, empty_growth_record, reason_coding, trial_dataset
+    public :: lay_out_tip_rows, append_tip_rows, append_trial_rows, append_initiation, &
+        empty_initiation_record
     public :: column_loads, column_element_steps, column_tip_steps, column_steps, &
         column_growth_steps, column_growing_tips, column_growing_tip_steps, column_records, &
         column_path_records, column_elements, column_strength_steps, column_work_records, &
@@ -68,6 +72,9 @@ module ddc_model_records
         //'1 stick, 2 slip, 3 open'
     !> Coding of the tip ends
     character(len=*), parameter :: tip_end_coding = '0 begin tip, 1 end tip'
+    !> Coding of the side a new fracture starts on
+    character(len=*), parameter :: side_coding = '+1 the side of the element normal '// &
+                                  '(-sin beta, cos beta), -1 the other, 0 a flaw'
 
     !> One column of a record: what the file needs of it and its kind.
     type :: record_column
@@ -187,6 +194,41 @@ module ddc_model_records
         procedure :: on_strings => lay_out_strings
     end type record_layout
 
+    !> The values of one column, kept by column_collector
+    type :: real_values
+        character(len=:), allocatable :: name
+        real(wp), allocatable :: values(:)
+    end type real_values
+    type :: integer_values
+        character(len=:), allocatable :: name
+        integer, allocatable :: values(:)
+    end type integer_values
+
+    !> Collects the values of every 1-D column of rows it is handed (those keep marks; all
+    !> when keep is unallocated), in the list's order, for column_appender.
+    type, extends(record_column_action) :: column_collector
+        logical, allocatable :: keep(:)
+        type(real_values), allocatable :: reals(:)
+        type(integer_values), allocatable :: integers(:)
+        !> A column it was handed that is not of rows (none in a list of rows)
+        character(len=:), allocatable :: refused
+    contains
+        procedure :: on_reals => collect_reals
+        procedure :: on_integers => collect_integers
+        procedure :: on_real_table => refuse_real_table
+        procedure :: on_integer_table => refuse_integer_table
+        procedure :: on_strings => refuse_strings
+    end type column_collector
+
+    !> Appends the collected values to the columns it is handed, in the list's order (a
+    !> column collected unallocated is left as it is).
+    type, extends(column_collector) :: column_appender
+        integer :: real_at = 0, integer_at = 0
+    contains
+        procedure :: on_reals => append_reals
+        procedure :: on_integers => append_integers
+    end type column_appender
+
 contains
 
     !> The one list of the columns of a history_record (docs/loading-histories.md#output,
@@ -253,45 +295,162 @@ contains
     end subroutine for_each_history_column
 
     !> The one list of the columns of a growth_record (docs/fracture-growth.md#output): the action
-    !> gets each column once, in the order of the file's datasets. A new column is declared in the
-    !> type and listed here; the CTest architecture fails when a component is missing.
+    !> gets each column once, in the order of the file's datasets: the tips' rows, the trials
+    !> (/growth/trials, named by trial_dataset), the step that made each element.
     subroutine for_each_growth_column(record, action)
         !> The record whose columns the action gets
         type(growth_record), intent(inout) :: record
         !> What to do with each column
         class(record_column_action), intent(inout) :: action
 
-        call action%on_integers(column('step', column_records), record%step)
-        call action%on_integers(column('load_step', column_path_records), record%load_step)
-        call action%on_integers(column('fracture_id', column_records), record%fracture_id)
-        call action%on_integers(column('end', column_records, coding=tip_end_coding), record%end)
-        call action%on_reals(column('x', column_records, units_length), record%x)
-        call action%on_reals(column('y', column_records, units_length), record%y)
-        call action%on_reals(column('k1', column_records, units_k), record%k1)
-        call action%on_reals(column('k2', column_records, units_k), record%k2)
-        call action%on_reals(column('k_eq', column_records, units_k), record%k_eq)
-        call action%on_reals(column('mts_angle', column_records, units_degree), record%mts_angle)
-        call action%on_reals(column('angle', column_records, units_degree), record%angle)
-        call action%on_integers(column('corrections', column_records), record%corrections)
-        call action%on_reals(column('k2_after', column_records, units_k), record%k2_after)
-        call action%on_reals(column('length', column_records, units_length), record%length)
-        call action%on_integers(column('reason', column_records, coding=reason_coding()), &
-                                record%reason)
-        call action%on_reals(column('efficiency', column_work_records, units_work), &
-                             record%efficiency)
-        call action%on_reals(column('slip_share', column_work_records, units_one), &
-                             record%slip_share)
-        call action%on_integers(column('trial_step', column_trials), record%trial_step)
-        call action%on_integers(column('trial_record', column_trials), record%trial_record)
-        call action%on_reals(column('trial_angle', column_trials, units_degree), &
-                             record%trial_angle)
-        call action%on_reals(column('trial_efficiency', column_trials, units_work), &
-                             record%trial_efficiency)
-        call action%on_integers(column('trial_state', column_trials, coding=trial_state_coding), &
-                                record%trial_state)
+        call for_each_tip_column(record%tip_records, action)
+        call for_each_trial_column(record%trials, action)
         call action%on_integers(column('created_step', column_elements, &
                                        coding='0 the input, k growth step k'), record%created_step)
     end subroutine for_each_growth_column
+
+    !> The one list of the columns of tip rows (/growth): the action gets each column once, in
+    !> the order of the file's datasets. A new column is declared in the type and listed here;
+    !> the CTest architecture fails when a component is missing.
+    subroutine for_each_tip_column(rows, action)
+        !> The rows whose columns the action gets
+        type(tip_records), intent(inout) :: rows
+        !> What to do with each column
+        class(record_column_action), intent(inout) :: action
+
+        call action%on_integers(column('step', column_records), rows%step)
+        call action%on_integers(column('load_step', column_path_records), rows%load_step)
+        call action%on_integers(column('fracture_id', column_records), rows%fracture_id)
+        call action%on_integers(column('end', column_records, coding=tip_end_coding), rows%end)
+        call action%on_reals(column('x', column_records, units_length), rows%x)
+        call action%on_reals(column('y', column_records, units_length), rows%y)
+        call action%on_reals(column('k1', column_records, units_k), rows%k1)
+        call action%on_reals(column('k2', column_records, units_k), rows%k2)
+        call action%on_reals(column('k_eq', column_records, units_k), rows%k_eq)
+        call action%on_reals(column('mts_angle', column_records, units_degree), rows%mts_angle)
+        call action%on_reals(column('angle', column_records, units_degree), rows%angle)
+        call action%on_integers(column('corrections', column_records), rows%corrections)
+        call action%on_reals(column('k2_after', column_records, units_k), rows%k2_after)
+        call action%on_reals(column('length', column_records, units_length), rows%length)
+        call action%on_integers(column('reason', column_records, coding=reason_coding()), &
+                                rows%reason)
+        call action%on_reals(column('efficiency', column_work_records, units_work), &
+                             rows%efficiency)
+        call action%on_reals(column('slip_share', column_work_records, units_one), &
+                             rows%slip_share)
+    end subroutine for_each_tip_column
+
+    !> The one list of the columns of trials (named in the file by trial_dataset).
+    subroutine for_each_trial_column(trials, action)
+        !> The trials whose columns the action gets
+        type(trial_records), intent(inout) :: trials
+        !> What to do with each column
+        class(record_column_action), intent(inout) :: action
+
+        call action%on_integers(column('step', column_trials), trials%step)
+        call action%on_integers(column('owner', column_trials), trials%owner)
+        call action%on_reals(column('angle', column_trials, units_degree), trials%angle)
+        call action%on_reals(column('efficiency', column_trials, units_work), trials%efficiency)
+        call action%on_integers(column('state', column_trials, coding=trial_state_coding), &
+                                trials%state)
+    end subroutine for_each_trial_column
+
+    !> The one list of the columns of /growth/initiations: the action gets each column once, in
+    !> the order of the file's datasets; the flaws' trials go to flaw_trials.
+    subroutine for_each_initiation_column(record, action)
+        !> The record whose columns the action gets
+        type(initiation_record), intent(inout) :: record
+        !> What to do with each column
+        class(record_column_action), intent(inout) :: action
+
+        call action%on_integers(column('kind', column_records, coding='1 tail, 2 flaw'), &
+                                record%kind)
+        call action%on_integers(column('step', column_records), record%step)
+        call action%on_integers(column('load_step', column_records), record%load_step)
+        call action%on_integers(column('fracture_id', column_records), record%fracture_id)
+        call action%on_integers(column('parent', column_records, coding='0 none (a flaw)'), &
+                                record%parent)
+        call action%on_integers(column('element', column_records, coding='0 none (a flaw)'), &
+                                record%element)
+        call action%on_integers(column('flaw', column_records, coding='0 none (a tail)'), &
+                                record%flaw)
+        call action%on_integers(column('side', column_records, coding=side_coding), record%side)
+        call action%on_reals(column('x', column_records, units_length), record%x)
+        call action%on_reals(column('y', column_records, units_length), record%y)
+        call action%on_reals(column('probe_x', column_records, units_length), record%probe_x)
+        call action%on_reals(column('probe_y', column_records, units_length), record%probe_y)
+        call action%on_reals(column('tension', column_records, units_stress), record%tension)
+        call action%on_reals(column('angle', column_records, units_degree), record%angle)
+        call action%on_reals(column('efficiency', column_work_records, units_work), &
+                             record%efficiency)
+        call for_each_trial_column(record%trials, action)
+    end subroutine for_each_initiation_column
+
+    !> The dataset of a trial column in the file: in /growth/trials 'trial_' and the column's
+    !> name (the owner 'trial_record'), in flaw_trials the name (the owner 'flaw').
+    pure function trial_dataset(name, in_growth) result(dataset)
+        !> The column's name (for_each_trial_column)
+        character(len=*), intent(in) :: name
+        !> Whether it is /growth/trials (else /growth/initiations/flaw_trials)
+        logical, intent(in) :: in_growth
+        character(len=:), allocatable :: dataset
+
+        dataset = name
+        if (name == 'owner') dataset = merge('record', 'flaw  ', in_growth)
+        if (in_growth) dataset = 'trial_'//trim(dataset)
+        dataset = trim(dataset)
+    end function trial_dataset
+
+    !> Append the rows of `rows` that keep marks to `record`, every column.
+    subroutine append_tip_rows(record, rows, keep)
+        !> The record (its columns allocated)
+        type(tip_records), intent(inout) :: record
+        !> The rows, every column allocated
+        type(tip_records), intent(in) :: rows
+        !> Which rows to append, shape (rows)
+        logical, intent(in) :: keep(:)
+        type(tip_records) :: kept
+        type(column_collector) :: collector
+        type(column_appender) :: appender
+
+        kept = rows
+        collector%keep = keep
+        call for_each_tip_column(kept, collector)
+        call hand_over(collector, appender)
+        call for_each_tip_column(record, appender)
+    end subroutine append_tip_rows
+
+    !> Append every trial of `trials` to `record` (its columns allocated by the first).
+    subroutine append_trial_rows(record, trials)
+        !> The trials appended to
+        type(trial_records), intent(inout) :: record
+        !> The trials appended, every column allocated
+        type(trial_records), intent(in) :: trials
+        type(trial_records) :: rows
+        type(column_collector) :: collector
+        type(column_appender) :: appender
+
+        rows = trials
+        call for_each_trial_column(rows, collector)
+        call hand_over(collector, appender)
+        call for_each_trial_column(record, appender)
+    end subroutine append_trial_rows
+
+    !> Append the new fracture `row` (a record of one row, trials unallocated) to `record`.
+    subroutine append_initiation(record, row)
+        !> The record (its columns allocated by the first)
+        type(initiation_record), intent(inout) :: record
+        !> The new fracture
+        type(initiation_record), intent(in) :: row
+        type(initiation_record) :: rows
+        type(column_collector) :: collector
+        type(column_appender) :: appender
+
+        rows = row
+        call for_each_initiation_column(rows, collector)
+        call hand_over(collector, appender)
+        call for_each_initiation_column(record, appender)
+    end subroutine append_initiation
 
     !> The units attribute of values that measure `units` (units_none ... units_area) in
     !> a model of these unit names; '' for units_none.
@@ -434,6 +593,36 @@ contains
 
         call for_each_growth_column(record, layout)
     end subroutine empty_growth_record
+
+    !> n rows of every tip column: reals NaN, integers 0.
+    subroutine lay_out_tip_rows(rows, n)
+        !> The rows
+        type(tip_records), intent(out) :: rows
+        !> How many
+        integer, intent(in) :: n
+        type(record_layout) :: layout
+
+        layout%steps = n
+        call for_each_tip_column(rows, layout)
+        if (layout%stat /= 0) error stop 'lay_out_tip_rows: out of memory'
+    end subroutine lay_out_tip_rows
+
+    !> An initiation record without rows, or of n rows (reals NaN, integers 0); its trials
+    !> unallocated (the flaws' searches allocate them).
+    subroutine empty_initiation_record(record, n)
+        !> The record
+        type(initiation_record), intent(out) :: record
+        !> Number of rows (absent: none)
+        integer, intent(in), optional :: n
+        type(record_layout) :: layout
+
+        if (present(n)) layout%steps = n
+        call for_each_initiation_column(record, layout)
+        if (layout%stat /= 0) error stop 'empty_initiation_record: out of memory'
+        if (allocated(record%trials%step)) deallocate (record%trials%step, &
+            record%trials%owner, record%trials%angle, record%trials%efficiency, &
+            record%trials%state)
+    end subroutine empty_initiation_record
 
     !> Whether the layout lays out a column (allocated or not).
     pure logical function lays_out(layout, column, there)
@@ -611,5 +800,142 @@ contains
             origin = [(merge(i, 0, i <= held), i = 1, rows)]
         end if
     end function origin_of
+
+    !> The collected columns to the appender.
+    subroutine hand_over(collector, appender)
+        !> The collector (emptied)
+        type(column_collector), intent(inout) :: collector
+        !> The appender
+        type(column_appender), intent(inout) :: appender
+
+        if (allocated(collector%refused)) error stop 'append: a list of rows has a table'
+        if (.not. allocated(collector%reals)) allocate (collector%reals(0))
+        if (.not. allocated(collector%integers)) allocate (collector%integers(0))
+        call move_alloc(collector%reals, appender%reals)
+        call move_alloc(collector%integers, appender%integers)
+    end subroutine hand_over
+
+    !> Keep the rows of a real column that the collector keeps.
+    subroutine collect_reals(action, column, values)
+        !> The collector
+        class(column_collector), intent(inout) :: action
+        !> The column
+        type(record_column), intent(in) :: column
+        !> Its values
+        real(wp), allocatable, intent(inout) :: values(:)
+        type(real_values) :: kept
+
+        if (.not. allocated(action%reals)) allocate (action%reals(0))
+        kept%name = column%name
+        if (allocated(values)) then
+            kept%values = values
+            if (allocated(action%keep)) kept%values = pack(values, action%keep)
+        end if
+        action%reals = [action%reals, kept]
+    end subroutine collect_reals
+
+    !> Keep the rows of an integer column that the collector keeps.
+    subroutine collect_integers(action, column, values)
+        !> The collector
+        class(column_collector), intent(inout) :: action
+        !> The column
+        type(record_column), intent(in) :: column
+        !> Its values
+        integer, allocatable, intent(inout) :: values(:)
+        type(integer_values) :: kept
+
+        if (.not. allocated(action%integers)) allocate (action%integers(0))
+        kept%name = column%name
+        if (allocated(values)) then
+            kept%values = values
+            if (allocated(action%keep)) kept%values = pack(values, action%keep)
+        end if
+        action%integers = [action%integers, kept]
+    end subroutine collect_integers
+
+    !> Append the next collected real column (the same list: the same name).
+    subroutine append_reals(action, column, values)
+        !> The appender
+        class(column_appender), intent(inout) :: action
+        !> The column
+        type(record_column), intent(in) :: column
+        !> Its values
+        real(wp), allocatable, intent(inout) :: values(:)
+
+        action%real_at = action%real_at + 1
+        associate (rows => action%reals(action%real_at))
+            if (rows%name /= column%name) error stop 'append: the columns of two lists'
+            if (.not. allocated(rows%values)) return
+            if (.not. allocated(values)) allocate (values(0))
+            values = [values, rows%values]
+        end associate
+    end subroutine append_reals
+
+    !> Append the next collected integer column (the same list: the same name).
+    subroutine append_integers(action, column, values)
+        !> The appender
+        class(column_appender), intent(inout) :: action
+        !> The column
+        type(record_column), intent(in) :: column
+        !> Its values
+        integer, allocatable, intent(inout) :: values(:)
+
+        action%integer_at = action%integer_at + 1
+        associate (rows => action%integers(action%integer_at))
+            if (rows%name /= column%name) error stop 'append: the columns of two lists'
+            if (.not. allocated(rows%values)) return
+            if (.not. allocated(values)) allocate (values(0))
+            values = [values, rows%values]
+        end associate
+    end subroutine append_integers
+
+    !> A column that is not one value per row (a list of rows has none): noted, and the
+    !> append stops (collected).
+    subroutine refuse(action, column, there)
+        !> The collector
+        class(column_collector), intent(inout) :: action
+        !> The column, and whether it is allocated
+        type(record_column), intent(in) :: column
+        logical, intent(in) :: there
+
+        action%refused = column%name//trim(merge(' (allocated)', '            ', there))
+    end subroutine refuse
+
+    !> Rows have 1-D columns only.
+    subroutine refuse_real_table(action, column, values)
+        !> The collector
+        class(column_collector), intent(inout) :: action
+        !> The column
+        type(record_column), intent(in) :: column
+        !> Its values
+        real(wp), allocatable, intent(inout) :: values(:, :)
+
+        call refuse(action, column, allocated(values))
+    end subroutine refuse_real_table
+
+    !> Rows have 1-D columns only.
+    subroutine refuse_integer_table(action, column, values)
+        !> The collector
+        class(column_collector), intent(inout) :: action
+        !> The column
+        type(record_column), intent(in) :: column
+        !> Its values
+        integer, allocatable, intent(inout) :: values(:, :)
+
+        call refuse(action, column, allocated(values))
+    end subroutine refuse_integer_table
+
+    !> Rows have no string columns.
+    ! allow(C072): the strings have the lengths of history_record
+    subroutine refuse_strings(action, column, values)
+        !> The collector
+        class(column_collector), intent(inout) :: action
+        !> The column
+        type(record_column), intent(in) :: column
+        !> Its values
+        character(len=*), allocatable, intent(inout) :: values(:)
+
+        call refuse(action, column, allocated(values))
+    end subroutine refuse_strings
 
 end module ddc_model_records

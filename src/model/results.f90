@@ -4,12 +4,13 @@ module ddc_model_results
     use ddc_contact_states, only: state_stick, state_slip, state_open
     use ddc_contact_counts, only: factor_counts
     use ddc_model_initiations, only: initiation_record
+    use ddc_model_trial_records, only: trial_records
     use ddc_model_cycles, only: cycle_record
     implicit none
     private
 
     public :: element_results, tip_set, field_result, solver_record, model_results
-    public :: history_record, growth_record
+    public :: history_record, tip_records, growth_record
     public :: growth_grew, growth_subcritical, growth_intersection, growth_surface, &
         growth_corrector_failed, growth_linked, growth_closed, growth_waiting, &
         growth_enclosing, growth_interface, growth_reason_names
@@ -216,44 +217,48 @@ module ddc_model_results
             moment(:, :)
     end type history_record
 
-    !> A fracture growth run (docs/fracture-growth.md#output): one record per tip per step, in step
-    !> order and within a step in the order of fractures, begin tip before end tip (k records); not
-    !> allocated when the model does not grow. Its columns are listed in ddc_model_records'
-    !> for_each_growth_column.
-    type :: growth_record
-        !> Growth step, fracture (1-based) and end (0 begin tip, 1 end tip), shape (k)
+    !> What each tip did in a growth step (docs/fracture-growth.md#output): one row per tip
+    !> that could still grow, shape (k) for every array. A growth step's view of its tips
+    !> (ddc_growth_run_state's step_tips) and a run's record (growth_record) are such rows; a
+    !> new quantity is one component here and one line of ddc_model_records'
+    !> for_each_tip_column, which lays out, appends, writes and reads every column.
+    type :: tip_records
+        !> Growth step, fracture (1-based) and end (0 begin tip, 1 end tip)
         integer, allocatable :: step(:), fracture_id(:), end(:)
-        !> Load step of a loading history (1 without one), shape (k)
+        !> Load step of a loading history (1 without one)
         integer, allocatable :: load_step(:)
-        !> Tip position before growing [length unit], shape (k)
+        !> Tip position before growing [length unit]
         real(wp), allocatable :: x(:), y(:)
         !> K_I, K_II of the tip and K_eq at the MTS angle (K_I taken as max(K_I, 0))
-        !> [stress unit * length unit**0.5], shape (k)
+        !> [stress unit * length unit**0.5]
         real(wp), allocatable :: k1(:), k2(:), k_eq(:)
         !> MTS angle and applied angle, counter-clockwise from the tip's outward direction
-        !> [degree] (applied: NaN when the tip did not grow), shape (k)
+        !> [degree] (applied: NaN when the tip did not grow)
         real(wp), allocatable :: mts_angle(:), angle(:)
-        !> Solves of the local-symmetry corrector this tip took part in, shape (k)
+        !> Solves of the local-symmetry corrector this tip took part in
         integer, allocatable :: corrections(:)
         !> K_II of the new tip on the grown geometry (NaN when the tip did not grow)
-        !> [stress unit * length unit**0.5], shape (k)
+        !> [stress unit * length unit**0.5]
         real(wp), allocatable :: k2_after(:)
-        !> Length grown [length unit] (0 when the tip did not grow), shape (k)
+        !> Length grown [length unit] (0 when the tip did not grow)
         real(wp), allocatable :: length(:)
-        !> growth_grew ... growth_waiting, shape (k)
+        !> growth_grew ... growth_waiting
         integer, allocatable :: reason(:)
         !> Criterion 'work' only: the efficiency dW_ext / dA at the applied angle (of the best
-        !> trial; NaN when no trial opened or slipped) [stress unit * length unit], shape (k)
+        !> trial; NaN when no trial opened or slipped) [stress unit * length unit]
         real(wp), allocatable :: efficiency(:)
         !> Criterion 'work' only: the share of that trial's work change done through the slip
-        !> of frictional faces (new and old) [-] (NaN when no trial opened or slipped), shape (k)
+        !> of frictional faces (new and old) [-] (NaN when no trial opened or slipped)
         real(wp), allocatable :: slip_share(:)
-        !> Criterion 'work' only, every trial (t trials, in /growth/trials): its growth step,
-        !> record (1-based index of the tip's record), angle [degree], efficiency [stress unit
-        !> * length unit] (NaN when not solved) and the state of its new elements
-        !> (ddc_growth_work's trial states), shape (t)
-        integer, allocatable :: trial_step(:), trial_record(:), trial_state(:)
-        real(wp), allocatable :: trial_angle(:), trial_efficiency(:)
+    end type tip_records
+
+    !> A fracture growth run (docs/fracture-growth.md#output): one row per tip per step, in step
+    !> order and within a step in the order of fractures, begin tip before end tip (k rows); not
+    !> allocated when the model does not grow. Its columns are listed in ddc_model_records'
+    !> for_each_growth_column.
+    type, extends(tip_records) :: growth_record
+        !> Criterion 'work' only, every trial (in /growth/trials); owner: the tip's record
+        type(trial_records) :: trials
         !> Steps in which at least one tip grew
         integer :: steps_taken = 0
         !> growth_arrested, growth_step_limit or growth_failed

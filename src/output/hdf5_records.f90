@@ -11,7 +11,8 @@ module ddc_output_hdf5_records
     use ddc_model_loads, only: work_threshold_of
     use ddc_model_records, only: record_column, record_column_action, &
         for_each_history_column, for_each_growth_column, reason_coding, column_loads, &
-        column_path_records, column_elements, column_work_records, column_trials, units_text
+        column_path_records, column_elements, column_work_records, column_trials, units_text, &
+        trial_dataset
     use ddc_output_hdf5_handles, only: h5_object, create_group, close_group
     use ddc_output_hdf5_write, only: write_real_1d, write_int_1d, write_real_dataset, &
         write_int_dataset, write_string_1d, write_attribute
@@ -19,6 +20,7 @@ module ddc_output_hdf5_records
     private
 
     public :: write_history, write_growth, write_growth_elements
+    public :: column_writer, set_up
 
     !> Writes each column it is handed into a group: every allocated column of the group's
     !> kinds.
@@ -35,6 +37,9 @@ module ddc_output_hdf5_records
         logical :: elements = .false.
         !> Write the work criterion's columns (the trials into group trials)
         logical :: work = .false.
+        !> The trials are the tips' (/growth/trials), not the flaws' (ddc_model_records'
+        !> trial_dataset)
+        logical :: tip_trials = .false.
         !> Set when a write fails
         type(error_type), allocatable :: error
     contains
@@ -89,6 +94,7 @@ contains
         if (allocated(error)) return
         call set_up(writer, model)
         writer%work = model%growth%criterion == growth_criterion_work
+        writer%tip_trials = .true.
         if (writer%work) then
             call create_group(writer%group, 'trials', writer%trials, writer%error)
             call write_attribute(writer%group, 'work_threshold', work_threshold_of( &
@@ -190,6 +196,18 @@ contains
         if (column%kind == column_trials) group = writer%trials
     end function group_of
 
+    !> The dataset of a column in its group.
+    pure function dataset_of(writer, column) result(name)
+        !> The writer
+        type(column_writer), intent(in) :: writer
+        !> The column
+        type(record_column), intent(in) :: column
+        character(len=:), allocatable :: name
+
+        name = column%name
+        if (column%kind == column_trials) name = trial_dataset(column%name, writer%tip_trials)
+    end function dataset_of
+
     !> The units attribute of a real column.
     pure function units_of(writer, column) result(units)
         !> The writer
@@ -211,7 +229,7 @@ contains
         real(wp), allocatable, intent(inout) :: values(:)
 
         if (.not. writes(action, column, allocated(values))) return
-        call write_real_1d(group_of(action, column), column%name, values, &
+        call write_real_1d(group_of(action, column), dataset_of(action, column), values, &
                            units_of(action, column), action%error)
     end subroutine write_reals
 
@@ -225,8 +243,8 @@ contains
         integer, allocatable, intent(inout) :: values(:)
 
         if (.not. writes(action, column, allocated(values))) return
-        call write_int_1d(group_of(action, column), column%name, values, action%error, &
-                          column%coding)
+        call write_int_1d(group_of(action, column), dataset_of(action, column), values, &
+                          action%error, column%coding)
     end subroutine write_integers
 
     !> A real column of rows and steps; the load: one dataset per quantity the path varies

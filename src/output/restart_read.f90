@@ -15,7 +15,8 @@ module ddc_output_restart_read
         for_each_history_column, for_each_growth_column, column_loads, column_growth_steps, &
         column_growing_tips, column_growing_tip_steps, column_records, column_path_records, &
         column_elements, column_strength_steps, column_work_records, column_trials, &
-        column_time_steps, column_flow_element_steps, column_flow_steps, column_fracture_steps
+        column_time_steps, column_flow_element_steps, column_flow_steps, column_fracture_steps, &
+        trial_dataset
     use ddc_output_hdf5_read, only: read_real_dataset, read_int_dataset, read_string_dataset, &
         read_dataset_dims, read_string_attribute, read_int_attribute, read_real_attribute, &
         has_dataset
@@ -182,9 +183,9 @@ contains
                 record%slip_share = ieee_value(1.0_wp, ieee_quiet_nan)
             end if
         end if
-        if (.not. allocated(record%trial_step)) allocate (record%trial_step(0), &
-            record%trial_record(0), record%trial_state(0), record%trial_angle(0), &
-            record%trial_efficiency(0))
+        if (.not. allocated(record%trials%step)) allocate (record%trials%step(0), &
+            record%trials%owner(0), record%trials%state(0), record%trials%angle(0), &
+            record%trials%efficiency(0))
         call read_int_attribute(reader%path, '/growth', 'steps_taken', record%steps_taken, &
                                 reader%error)
         if (allocated(reader%error)) return
@@ -232,7 +233,7 @@ contains
         case (column_records, column_path_records, column_work_records)
             dataset = '/growth/'//column%name
         case (column_trials)
-            dataset = '/growth/trials/'//column%name
+            dataset = '/growth/trials/'//trial_dataset(column%name, .true.)
         case default
             dataset = '/history/'//column%name
         end select

@@ -47,10 +47,13 @@
     error, not silently one of the others), and no other file of src/growth/ reads
     `%criterion`.
 11. No column of a run's records is forgotten on its way to the file and back: every array
-    component of `history_record` and `growth_record` (src/model/results.f90) is in its one
-    list, `for_each_history_column` or `for_each_growth_column` (src/model/records.f90),
-    under its own name; the routines that handle every column (the layout of a record, the
-    HDF5 writer, the restart reader) go through the list; and the dataset lists of
+    component of `history_record`, `tip_records`, `growth_record` (src/model/results.f90),
+    `trial_records` (src/model/trial_records.f90) and `initiation_record`
+    (src/model/initiations.f90) is in its one list (`for_each_history_column`,
+    `for_each_tip_column`, ..., src/model/records.f90) under its own name, and a record's
+    part with a list of its own (growth_record's tip rows and trials) is handed to that list;
+    the routines that handle every column (the layout of a record, its appends, the HDF5
+    writers, the restart reader) go through the list; and the dataset lists of
     python/src/ddc2d/reader.py name exactly the datasets the lists give /history and /growth.
 12. The recipes of docs/ARCHITECTURE.md name what exists: every file of src/, app/,
     tests/ or scripts/ they name is there, and every procedure, type or list they name
@@ -508,20 +511,38 @@ def check_lcp_solvers(root, problems):
                             f"({' -> '.join(chain)}); the solvers take plain arrays")
 
 
-# The records' columns (check 11): (type, its list, how the list names a component).
-RECORD_TYPES = "src/model/results.f90"
+# The records' columns (check 11): (type, its file, its list, how the list names a component).
 RECORD_LISTS = "src/model/records.f90"
-RECORDS = [("history_record", "for_each_history_column", "history%"),
-           ("growth_record", "for_each_growth_column", "record%")]
+RECORDS = [("history_record", "src/model/results.f90", "for_each_history_column", "history%"),
+           ("tip_records", "src/model/results.f90", "for_each_tip_column", "rows%"),
+           ("growth_record", "src/model/results.f90", "for_each_growth_column", "record%"),
+           ("trial_records", "src/model/trial_records.f90", "for_each_trial_column", "trials%"),
+           ("initiation_record", "src/model/initiations.f90", "for_each_initiation_column",
+            "record%")]
+# A record's part that has a list of its own, and the list that must hand it to that list:
+# (list, the part as it names it, the part's list).
+RECORD_PARTS = [("for_each_growth_column", "record%tip_records", "for_each_tip_column"),
+                ("for_each_growth_column", "record%trials", "for_each_trial_column"),
+                ("for_each_initiation_column", "record%trials", "for_each_trial_column")]
 # The routines that handle every column of a record, and the list each goes through.
 THROUGH_RECORD_LISTS = [("src/model/records.f90", "lay_out_history", "for_each_history_column"),
                         ("src/model/records.f90", "empty_growth_record",
                          "for_each_growth_column"),
+                        ("src/model/records.f90", "lay_out_tip_rows", "for_each_tip_column"),
+                        ("src/model/records.f90", "append_tip_rows", "for_each_tip_column"),
+                        ("src/model/records.f90", "append_trial_rows",
+                         "for_each_trial_column"),
+                        ("src/model/records.f90", "empty_initiation_record",
+                         "for_each_initiation_column"),
+                        ("src/model/records.f90", "append_initiation",
+                         "for_each_initiation_column"),
                         ("src/output/hdf5_records.f90", "write_history",
                          "for_each_history_column"),
                         ("src/output/hdf5_records.f90", "write_growth", "for_each_growth_column"),
                         ("src/output/hdf5_records.f90", "write_growth_elements",
                          "for_each_growth_column"),
+                        ("src/output/hdf5_initiations.f90", "write_initiations",
+                         "for_each_initiation_column"),
                         ("src/output/restart_read.f90", "read_restart",
                          "for_each_history_column"),
                         ("src/output/restart_read.f90", "read_growth", "for_each_growth_column")]
@@ -538,10 +559,17 @@ PYTHON_LISTS = [("HISTORY_GROWTH_DATASETS", "for_each_history_column",
                 ("HISTORY_FLOW_DATASETS", "for_each_history_column",
                  {"column_time_steps", "column_flow_element_steps", "column_flow_steps",
                   "column_fracture_steps"}),
-                ("GROWTH_PATH_DATASETS", "for_each_growth_column", {"column_path_records"}),
-                ("GROWTH_DATASETS", "for_each_growth_column", {"column_records"}),
-                ("GROWTH_WORK_DATASETS", "for_each_growth_column", {"column_work_records"}),
-                ("GROWTH_TRIAL_DATASETS", "for_each_growth_column", {"column_trials"})]
+                ("GROWTH_PATH_DATASETS", "for_each_tip_column", {"column_path_records"}),
+                ("GROWTH_DATASETS", "for_each_tip_column", {"column_records"}),
+                ("GROWTH_WORK_DATASETS", "for_each_tip_column", {"column_work_records"}),
+                ("GROWTH_TRIAL_DATASETS", "for_each_trial_column", {"column_trials"}),
+                ("INITIATION_DATASETS", "for_each_initiation_column", {"column_records"}),
+                ("FLAW_TRIAL_DATASETS", "for_each_trial_column", {"column_trials"})]
+# The datasets of a trial column (ddc_model_records' trial_dataset): in /growth/trials,
+# in /growth/initiations/flaw_trials.
+TRIAL_DATASETS = {"GROWTH_TRIAL_DATASETS": lambda name: "trial_" + ("record" if name == "owner"
+                                                                    else name),
+                  "FLAW_TRIAL_DATASETS": lambda name: "flaw" if name == "owner" else name}
 REST = ("HISTORY_DATASETS", "HISTORY_STEP_DATASETS")
 # Columns that are not datasets of their group: the load (one dataset per quantity, the
 # Python list HISTORY_LOADS against load_path_names) and /elements/created_step (read_elements
@@ -568,12 +596,11 @@ def list_entries(root, name, problems):
 
 def check_record_lists(root, problems):
     """Every column of the records is in its list under its own name (check 11)."""
-    types = (root / RECORD_TYPES).read_text()
     entries = {}
-    for record, name, prefix in RECORDS:
-        components = type_components(types, record)
+    for record, file, name, prefix in RECORDS:
+        components = type_components((root / file).read_text(), record)
         if components is None:
-            problems.append(f"{RECORD_TYPES}: no type {record}")
+            problems.append(f"{file}: no type {record}")
             continue
         entries[name] = list_entries(root, name, problems)
         listed = {}
@@ -588,8 +615,13 @@ def check_record_lists(root, problems):
                                 f"'{column}' (a column is named after its component)")
         for component, array, _ in components:
             if array and component not in listed:
-                problems.append(f"{RECORD_TYPES}: the column {component} of {record} is "
+                problems.append(f"{file}: the column {component} of {record} is "
                                 f"missing from {name}, so it is not laid out, written or read")
+    for name, part, visitor in RECORD_PARTS:
+        text = routine(root, RECORD_LISTS, name, problems)
+        call = rf"call\s+{visitor}\s*\(\s*{re.escape(part)}\s*,"
+        if text is not None and not re.search(call, strip_comments(text), re.IGNORECASE):
+            problems.append(f"{RECORD_LISTS}: {name} does not hand {part} to {visitor}")
     for file, name, visitor in THROUGH_RECORD_LISTS:
         text = routine(root, file, name, problems)
         if text is not None and not names_in(strip_comments(text), visitor):
@@ -624,7 +656,8 @@ def check_python_lists(root, entries, problems):
         return
     rest = set()
     for constant, name, kinds in PYTHON_LISTS:
-        expected = {column for shape, column, kind, _, _ in entries.get(name, [])
+        dataset = TRIAL_DATASETS.get(constant, lambda column: column)
+        expected = {dataset(column) for shape, column, kind, _, _ in entries.get(name, [])
                     if kind.lower() in kinds or shape.lower() in kinds}
         compare_names(f"{PYTHON_READER}: {constant}", lists[constant], expected,
                       f"the columns of {name} it holds", problems)

@@ -289,14 +289,39 @@ def test_growth_column_missing_from_its_list_fails(tree, capsys):
     edit(tree / "src/model/results.f90", "        integer, allocatable :: reason(:)\n",
          "        integer, allocatable :: reason(:)\n        integer, allocatable :: planted(:)\n")
     expect_violation(tree, capsys, "src/model/results.f90: the column planted of "
-                     "growth_record is missing from for_each_growth_column")
+                     "tip_records is missing from for_each_tip_column")
 
 
 def test_column_under_another_name_fails(tree, capsys):
-    edit(tree / "src/model/records.f90", "column('k_eq', column_records, units_k), record%k_eq",
-         "column('k_eqq', column_records, units_k), record%k_eq")
-    expect_violation(tree, capsys, "src/model/records.f90: for_each_growth_column names the "
-                     "column record%k_eq 'k_eqq'")
+    edit(tree / "src/model/records.f90", "column('k_eq', column_records, units_k), rows%k_eq",
+         "column('k_eqq', column_records, units_k), rows%k_eq")
+    expect_violation(tree, capsys, "src/model/records.f90: for_each_tip_column names the "
+                     "column rows%k_eq 'k_eqq'")
+
+
+def test_initiation_and_trial_columns_fail_off_their_lists(tree, capsys):
+    edit(tree / "src/model/initiations.f90", "        real(wp), allocatable :: tension(:)\n",
+         "        real(wp), allocatable :: tension(:), planted(:)\n")
+    expect_violation(tree, capsys, "src/model/initiations.f90: the column planted of "
+                     "initiation_record is missing from for_each_initiation_column")
+    edit(tree / "src/model/trial_records.f90", "        integer, allocatable :: state(:)\n",
+         "        integer, allocatable :: state(:), planted(:)\n")
+    expect_violation(tree, capsys, "src/model/trial_records.f90: the column planted of "
+                     "trial_records is missing from for_each_trial_column")
+
+
+def test_record_part_not_handed_to_its_list_fails(tree, capsys):
+    edit(tree / "src/model/records.f90",
+         "        call for_each_trial_column(record%trials, action)\n"
+         "        call action%on_integers(column('created_step'",
+         "        call action%on_integers(column('created_step'")
+    expect_violation(tree, capsys, "src/model/records.f90: for_each_growth_column does not hand "
+                     "record%trials to for_each_trial_column")
+
+
+def test_trial_datasets_off_the_python_lists_fail(tree, capsys):
+    edit(tree / "python/src/ddc2d/reader.py", '"step", "flaw", "angle"', '"step", "owner", "angle"')
+    expect_violation(tree, capsys, "python/src/ddc2d/reader.py: FLAW_TRIAL_DATASETS lacks 'flaw'")
 
 
 def test_routine_around_a_record_list_fails(tree, capsys):
@@ -314,7 +339,7 @@ def test_python_dataset_lists_off_the_record_lists_fail(tree, capsys):
     expect_violation(tree, capsys, "python/src/ddc2d/reader.py: HISTORY_GROWTH_DATASETS lacks "
                      "'tip_end', one of the columns of for_each_history_column it holds")
     expect_violation(tree, capsys, "python/src/ddc2d/reader.py: GROWTH_DATASETS names 'planted', "
-                     "which is not one of the columns of for_each_growth_column it holds")
+                     "which is not one of the columns of for_each_tip_column it holds")
 
 
 def test_python_loads_off_load_path_names_fail(tree, capsys):
