@@ -28,7 +28,7 @@ module ddc_contact_reduced_factors
     use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
     use ddc_error, only: error_type
-    use ddc_linalg_lapack, only: dgemm
+    use ddc_linalg_lapack, only: dgemm, dtrmm, dtrsm, dlaswp
     use ddc_linalg_lu, only: lu_factor, lu_solve
     use ddc_contact_counts, only: factor_counts
     implicit none
@@ -75,8 +75,15 @@ module ddc_contact_reduced_factors
         !> complement S = D - C W, shape (na, na)
         real(wp), allocatable :: y0(:, :), w(:, :), c_t(:, :), schur(:, :)
         integer, allocatable :: y0_of(:), schur_ipiv(:)
+        !> The coefficient of each column of C^T, shape (na) (its unknown is y0_of's), and
+        !> S before its factorization, shape (na, na)
+        real(wp), allocatable :: c_t_coef(:), schur_plain(:, :)
         !> What the last set_system did (action_*)
         integer :: action = 0
+        !> The base's factors were bordered (extend_base) since its last factorization: a
+        !> system solved with them as they are is reported as updated, so that its caller
+        !> checks the solution against the unfactored matrix
+        logical :: bordered = .false.
         !> New factorizations, low-rank updates and reuses of unchanged factors, the wall
         !> time of the factorizations and updates and the flops of the factorizations
         type(factor_counts) :: counts
@@ -107,7 +114,7 @@ contains
         call system_clock(t0, rate)
         if (sys%mb >= 0 .and. same_system(sys, unknown, coef)) then
             ! The current system again (unchanged states): its factors or update as they are.
-            sys%action = action_reused
+            sys%action = merge(action_updated, action_reused, sys%bordered)
             sys%counts%reuses = sys%counts%reuses + 1
             return
         end if
@@ -136,7 +143,7 @@ contains
                 sys%position = base_at(unknown)
                 sys%nr = 0
                 sys%na = 0
-                sys%action = action_reused
+                sys%action = merge(action_updated, action_reused, sys%bordered)
                 sys%counts%reuses = sys%counts%reuses + 1
                 return
             end if
@@ -161,11 +168,13 @@ contains
         update_limit = max(min_update_rank, size(sys%unknown) / update_fraction)
     end function update_limit
 
-    !> Factorize anew an update more than half full (2 (nr + na) > update_limit); a smaller
-    !> one is carried on, leaving half for the unknowns the next systems add (a growth run:
-    !> the accepted geometry's). A singular system is left to the next set_system.
+    !> Make an update more than half full (2 (nr + na) > update_limit) the base: its added
+    !> unknowns join the base's factors by bordering (extend_base), or, where that cannot be
+    !> done, the system is factorized anew; a smaller update is carried on, leaving half for
+    !> the unknowns the next systems add (a growth run: the accepted geometry's). A singular
+    !> system is left to the next set_system.
     subroutine refactor_full_update(sys, a, counts)
-        !> The factors (set_system done); refactored, or forgotten when singular
+        !> The factors (set_system done); extended or refactored, or forgotten when singular
         type(reduced_factors), intent(inout) :: sys
         !> Influence matrix of the current system [s; n], shape (2n, 2n) [stress / length]
         real(wp), intent(in) :: a(:, :)
@@ -175,6 +184,8 @@ contains
         integer, allocatable :: unknown(:), partner(:)
         real(wp), allocatable :: coef(:)
         real(wp) :: seconds, flops
+        integer :: factorizations
+        logical :: extended
 
         if (sys%mb < 0) return
         if (2 * (sys%nr + sys%na) <= update_limit(sys)) return
@@ -183,14 +194,106 @@ contains
         coef = sys%coef
         seconds = sys%counts%seconds
         flops = sys%counts%flops
-        call forget_factors(sys)
-        call set_system(sys, a, unknown, partner, coef, &
-                        'the reduced system of the accepted geometry', singular)
+        factorizations = sys%counts%factorizations
+        call extend_base(sys, a, extended)
+        if (extended) then
+            ! The changed rows, if any, form the update of the extended base.
+            call set_system(sys, a, unknown, partner, coef, &
+                            'the reduced system of the accepted geometry', singular)
+        else
+            call forget_factors(sys)
+            call set_system(sys, a, unknown, partner, coef, &
+                            'the reduced system of the accepted geometry', singular)
+        end if
         if (allocated(singular)) call forget_factors(sys)
-        counts%factorizations = counts%factorizations + 1
+        counts%factorizations = counts%factorizations + sys%counts%factorizations - &
+            factorizations
         counts%seconds = counts%seconds + sys%counts%seconds - seconds
         counts%flops = counts%flops + sys%counts%flops - flops
     end subroutine refactor_full_update
+
+    !> The base extended by the added unknowns of the current update, without a new
+    !> factorization: with P L U = J (the base) and the added unknowns' columns B and rows C
+    !> on the base (base coefficients) and block D,
+    !>     [J B; C D] = diag(P, P_S) [L 0; X L_S] [U Y; 0 U_S],
+    !> Y = L^-1 P^T B = U Y0 (Y0 = J^-1 B, kept by border), X = P_S^T C U^-1 and
+    !> P_S L_S U_S = S0 = D - C Y0: O(mb^2 na) instead of O((mb + na)^3). The current
+    !> unknowns become the extended base's (the changed rows are the caller's to update).
+    !> ok is false, and the factors are as they were, when there is nothing to extend or S0
+    !> is numerically singular.
+    subroutine extend_base(sys, a, ok)
+        type(reduced_factors), intent(inout) :: sys
+        real(wp), intent(in) :: a(:, :)
+        logical, intent(out) :: ok
+        type(error_type), allocatable :: singular, ill_conditioned
+        real(wp), allocatable :: lu(:, :), s0(:, :), t(:, :), ca(:)
+        integer, allocatable :: at(:), ga(:), pa(:), ipiv_s(:)
+        integer :: mb, na, m, q, k, l
+        integer(int64) :: t0, t1, rate
+
+        ok = .false.
+        mb = sys%mb
+        na = sys%na
+        if (mb <= 0 .or. na == 0 .or. .not. allocated(sys%y0) .or. &
+            .not. allocated(sys%c_t)) return
+        call system_clock(t0, rate)
+        m = mb + na
+        ! The added unknowns in the order of their columns (positions mb + 1 .. mb + na).
+        allocate (at(m))
+        at(sys%position) = [(k, k = 1, size(sys%position))]
+        ga = sys%unknown(at(mb + 1:))
+        pa = sys%partner(at(mb + 1:))
+        ca = sys%coef(at(mb + 1:))
+        ! S0 = D - C Y0, factorized
+        allocate (s0(na, na), ipiv_s(na))
+        do q = 1, na
+            s0(:, q) = a(ga, ga(q)) + ca * a(pa, ga(q))
+        end do
+        call dgemm('T', 'N', na, na, mb, -1.0_wp, sys%c_t, mb, sys%y0, mb, 1.0_wp, s0, na)
+        call lu_factor(s0, ipiv_s, 'the bordered base', singular, &
+                       ill_conditioned=ill_conditioned)
+        if (allocated(singular) .or. allocated(ill_conditioned)) return
+        allocate (lu(m, m))
+        !$omp parallel do default(none) schedule(static) private(l) shared(lu, sys, mb)
+        do l = 1, mb
+            lu(1:mb, l) = sys%factors(:, l)
+        end do
+        !$omp end parallel do
+        ! Y = U Y0
+        lu(1:mb, mb + 1:) = sys%y0
+        call dtrmm('L', 'U', 'N', 'N', mb, na, 1.0_wp, sys%factors, mb, lu(1, mb + 1), m)
+        ! X = P_S^T (U^-T C^T)^T
+        t = sys%c_t
+        call dtrsm('L', 'U', 'T', 'N', mb, na, 1.0_wp, sys%factors, mb, t, mb)
+        lu(mb + 1:, 1:mb) = transpose(t)
+        call dlaswp(mb, lu(mb + 1, 1), m, 1, na, ipiv_s, 1)
+        lu(mb + 1:, mb + 1:) = s0
+        do q = 1, na
+            s0(q, 1) = a(ga(q), ga(q)) + ca(q) * a(pa(q), ga(q))
+        end do
+        sys%base_diag = [sys%base_diag, s0(:, 1)]
+        call move_alloc(lu, sys%factors)
+        sys%ipiv = [sys%ipiv, mb + ipiv_s]
+        sys%base_unknown = [sys%base_unknown, ga]
+        sys%base_partner = [sys%base_partner, pa]
+        sys%base_coef = [sys%base_coef, ca]
+        sys%mb = m
+        sys%unknown = sys%base_unknown
+        sys%partner = sys%base_partner
+        sys%coef = sys%base_coef
+        sys%position = [(k, k = 1, m)]
+        sys%nr = 0
+        sys%na = 0
+        call drop_update(sys)
+        sys%bordered = .true.
+        sys%counts%borderings = sys%counts%borderings + 1
+        ok = .true.
+        call system_clock(t1)
+        sys%counts%seconds = sys%counts%seconds + &
+            real(t1 - t0, wp) / real(max(rate, 1_int64), wp)
+        sys%counts%flops = sys%counts%flops + 2.0_wp * real(mb, wp)**2 * real(na, wp) + &
+            2.0_wp * real(na, wp)**2 * real(mb, wp) + 2.0_wp / 3.0_wp * real(na, wp)**3
+    end subroutine extend_base
 
     !> What the last set_system did: action_factorized, action_updated, action_reused (or 0).
     pure integer function last_action(sys)
@@ -297,7 +400,8 @@ contains
         if (allocated(sys%delta_t)) deallocate (sys%delta_t, sys%capacitance, &
                                                 sys%capacitance_ipiv)
         if (allocated(sys%w)) deallocate (sys%w)
-        if (allocated(sys%c_t)) deallocate (sys%c_t, sys%schur, sys%schur_ipiv)
+        if (allocated(sys%c_t)) deallocate (sys%c_t, sys%c_t_coef, sys%schur, sys%schur_ipiv, &
+                                            sys%schur_plain)
     end subroutine drop_update
 
     !> Whether the unknowns and coefficients are those of the current system (exactly:
@@ -338,6 +442,7 @@ contains
         sys%na = 0
         call drop_update(sys)
         sys%action = action_factorized
+        sys%bordered = .false.
         sys%counts%factorizations = sys%counts%factorizations + 1
         if (allocated(sys%factors)) deallocate (sys%factors)
         allocate (sys%factors(m, m))
@@ -397,7 +502,7 @@ contains
             call change_rows(sys, a, changed, row_coef, ok)
             if (.not. ok) return
         end if
-        call border(sys, a, added, ok)
+        call border(sys, a, added, same_rows, ok)
         if (.not. ok) return
         sys%action = action_updated
         sys%counts%updates = sys%counts%updates + 1
@@ -493,23 +598,34 @@ contains
     !> the base coefficients, kept for as long as the unknown stays added) and dB = B - B0
     !> (non-zero on the changed rows only), W = Y0 + Z (I + Delta Z)^-1 (dB - Delta Y0),
     !> O(mb nr na) when the changed rows change instead of O(mb^2 na).
-    subroutine border(sys, a, added, ok)
+    subroutine border(sys, a, added, same_rows, ok)
         type(reduced_factors), intent(inout) :: sys
         real(wp), intent(in) :: a(:, :)
         integer, intent(in) :: added(:)
+        !> The changed rows are the last update's: W keeps the columns it had
+        logical, intent(in) :: same_rows
         logical, intent(out) :: ok
         type(error_type), allocatable :: singular, ill_conditioned
         integer, allocatable :: ga(:), pa(:), fresh(:), column_of(:)
-        real(wp), allocatable :: ca(:), y0(:, :), yf(:, :), t(:, :)
-        integer :: mb, nr, na, q, r, p, g, l, l0
+        real(wp), allocatable :: ca(:), y0(:, :), yf(:, :), t(:, :), c_t_before(:, :), &
+            coef_before(:), s_before(:, :)
+        integer, allocatable :: of_before(:), new(:), old(:)
+        integer :: mb, nr, na, q, r, p, g, l, l0, k
 
         ok = .true.
         mb = sys%mb
         nr = sys%nr
         na = size(added)
-        ! W and C^T are formed anew: free them before the new Y0 is.
+        ! W is formed anew: free it before the new Y0 is. C^T keeps the columns of the
+        ! unknowns added before with the same coefficients (their rows of A on the base).
         if (allocated(sys%w)) deallocate (sys%w)
-        if (allocated(sys%c_t)) deallocate (sys%c_t, sys%schur, sys%schur_ipiv)
+        if (allocated(sys%c_t)) then
+            call move_alloc(sys%c_t, c_t_before)
+            call move_alloc(sys%c_t_coef, coef_before)
+            call move_alloc(sys%schur_plain, s_before)
+            deallocate (sys%schur, sys%schur_ipiv)
+        end if
+        if (allocated(sys%y0_of)) of_before = sys%y0_of
         ga = sys%unknown(added)
         pa = sys%partner(added)
         ca = sys%coef(added)
@@ -552,10 +668,23 @@ contains
         end if
         sys%na = na
         allocate (sys%c_t(mb, na), sys%schur(na, na), sys%schur_ipiv(na))
+        sys%c_t_coef = ca
+        column_of = 0
+        if (allocated(c_t_before) .and. allocated(of_before)) then
+            do q = 1, na
+                k = findloc(of_before, ga(q), 1)
+                if (k > 0) then
+                    if (coef_before(k) == ca(q)) column_of(q) = k
+                end if
+                if (column_of(q) > 0) sys%c_t(:, q) = c_t_before(:, column_of(q))
+            end do
+        end if
+        fresh = pack([(q, q = 1, na)], column_of == 0)
         ! In blocks of base rows: C^T is written by columns while the block's columns of A
         ! stay in cache (row by row, each row of C^T would touch na cache lines).
         do l0 = 1, mb, gather_block
-            do q = 1, na
+            do k = 1, size(fresh)
+                q = fresh(k)
                 do l = l0, min(mb, l0 + gather_block - 1)
                     g = sys%base_unknown(l)
                     sys%c_t(l, q) = a(ga(q), g) + ca(q) * a(pa(q), g)
@@ -565,12 +694,41 @@ contains
         do q = 1, na
             sys%schur(:, q) = a(ga, ga(q)) + ca * a(pa, ga(q))
         end do
-        if (na == 0) return
-        call dgemm('T', 'N', na, na, mb, -1.0_wp, sys%c_t, mb, sys%w, mb, 1.0_wp, &
-                   sys%schur, na)
+        if (na == 0) then
+            allocate (sys%schur_plain(0, 0))
+            return
+        end if
+        ! S = D - C W. With the same changed rows W keeps its columns: the entries of two
+        ! unknowns added before (with their coefficients) are the last S's, and only the
+        ! rows and columns of the others are formed, O(na nn mb) instead of O(na^2 mb).
+        if (.not. (same_rows .and. allocated(s_before))) column_of = 0
+        new = pack([(q, q = 1, na)], column_of == 0)
+        old = pack([(q, q = 1, na)], column_of > 0)
+        if (size(old) > 0) then
+            sys%schur(old, old) = s_before(column_of(old), column_of(old))
+            call subtract_products(sys%c_t(:, new), sys%w(:, old), new, old)
+        end if
+        call subtract_products(sys%c_t, sys%w(:, new), [(q, q = 1, na)], new)
+        sys%schur_plain = sys%schur
         call lu_factor(sys%schur, sys%schur_ipiv, 'the update', singular, &
                        ill_conditioned=ill_conditioned)
         ok = .not. (allocated(singular) .or. allocated(ill_conditioned))
+
+    contains
+
+        !> S(rows, columns) = S(rows, columns) - c^T w (c the columns of C^T of the rows, w
+        !> the columns of W).
+        subroutine subtract_products(c, w, rows, columns)
+            real(wp), intent(in) :: c(:, :), w(:, :)
+            integer, intent(in) :: rows(:), columns(:)
+            real(wp) :: block(size(rows), size(columns))
+
+            if (size(rows) == 0 .or. size(columns) == 0) return
+            block = sys%schur(rows, columns)
+            call dgemm('T', 'N', size(rows), size(columns), mb, -1.0_wp, c, mb, w, mb, &
+                       1.0_wp, block, size(rows))
+            sys%schur(rows, columns) = block
+        end subroutine subtract_products
     end subroutine border
 
     !> Y = K^-1 Y: the base factors corrected for the changed rows (Woodbury).

@@ -50,8 +50,8 @@ module ddc_growth_driver
     use ddc_model_initiations, only: initiation_record
     use ddc_growth_initiation, only: start_fracture
     use ddc_model_results, only: model_results, tip_records, growth_record, growth_grew, &
-        growth_subcritical, growth_corrector_failed, growth_closed, growth_waiting, growth_arrested, &
-        growth_step_limit, growth_failed
+        growth_subcritical, growth_corrector_failed, growth_closed, growth_waiting, &
+        growth_arrested, growth_step_limit, growth_failed
     use ddc_model_restart, only: restart_state
     use ddc_growth_run_state, only: reason_stopped, step_tips, growth_state, start_run, resume_run
     use ddc_mesh_checks, only: check_elements

@@ -85,7 +85,8 @@ module ddc_growth_solver
         integer, allocatable :: layout(:)
         type(contact_run) :: run
         !> The LU factors of the run's factors are a copy of base_factors' (or these of
-        !> those), neither factorized anew since: factorizations counted by both then
+        !> those), neither factorized anew nor bordered since: factorizations and borderings
+        !> counted by both then
         logical :: lu_shared = .false.
         integer :: shared_factorizations = 0
         !> Sums over every solve of the run: phase times and counts
@@ -277,10 +278,10 @@ contains
         call kept_stiffness(solver, stiffness)
         made = counts_of(stiffness%factors)
         call copy_factors(to, from, same_lu=solver%lu_shared .and. &
-                          made%factorizations == solver%shared_factorizations)
+                          made%factorizations + made%borderings == solver%shared_factorizations)
         made = counts_of(stiffness%factors)
         solver%lu_shared = .true.
-        solver%shared_factorizations = made%factorizations
+        solver%shared_factorizations = made%factorizations + made%borderings
     end subroutine share_factors
 
     !> The results of the final geometry (the last accepted one): tractions, face

@@ -6,7 +6,7 @@ module ddc_linalg_lapack
     implicit none
     private
 
-    public :: dgetrf, dgetrs, dgetri, dgecon, dlange, dgemv, dger, dgemm
+    public :: dgetrf, dgetrs, dgetri, dgecon, dlange, dgemv, dger, dgemm, dtrmm, dtrsm, dlaswp
 
     interface
         !> LU factorization with partial pivoting of a general m x n matrix (LAPACK)
@@ -86,6 +86,32 @@ module ddc_linalg_lapack
             real(wp), intent(in) :: alpha, beta, a(lda, *), b(ldb, *)
             real(wp), intent(inout) :: c(ldc, *)
         end subroutine dgemm
+        !> B = alpha op(A) B or alpha B op(A), A triangular (BLAS level 3)
+        subroutine dtrmm(side, uplo, transa, diag, m, n, alpha, a, lda, b, ldb)
+            import :: wp
+            implicit none
+            character, intent(in) :: side, uplo, transa, diag
+            integer, intent(in) :: m, n, lda, ldb
+            real(wp), intent(in) :: alpha, a(lda, *)
+            real(wp), intent(inout) :: b(ldb, *)
+        end subroutine dtrmm
+        !> Solve op(A) X = alpha B or X op(A) = alpha B, A triangular; X overwrites B (BLAS
+        !> level 3)
+        subroutine dtrsm(side, uplo, transa, diag, m, n, alpha, a, lda, b, ldb)
+            import :: wp
+            implicit none
+            character, intent(in) :: side, uplo, transa, diag
+            integer, intent(in) :: m, n, lda, ldb
+            real(wp), intent(in) :: alpha, a(lda, *)
+            real(wp), intent(inout) :: b(ldb, *)
+        end subroutine dtrsm
+        !> The row interchanges ipiv(k1:k2) applied to the columns of A in turn (LAPACK)
+        subroutine dlaswp(n, a, lda, k1, k2, ipiv, incx)
+            import :: wp
+            implicit none
+            integer, intent(in) :: n, lda, k1, k2, incx, ipiv(*)
+            real(wp), intent(inout) :: a(lda, *)
+        end subroutine dlaswp
     end interface
 
 end module ddc_linalg_lapack
