@@ -150,11 +150,13 @@ contains
         real(wp) :: c, tol_s, tol_d, limit
         integer :: n, n2, i, unknowns, iterations, tries
         integer(int64) :: t0, t1, rate
-        logical :: changed, cycling, escaping
+        logical :: changed, cycling, escaping, complete, unchecked
         type(error_type), allocatable :: singular
 
         n = size(mu)
         n2 = 2 * n
+        complete = .false.
+        unchecked = .false.
         c = a%max_diagonal()
         if (.not. c > 0.0_wp) c = 1.0_wp
         tol_s = state_tol * sigma0
@@ -180,24 +182,27 @@ contains
         iterations = 0
 
         do
-            if (iterations >= max_iterations) then
+            if (iterations >= max_iterations .and. .not. complete) then
                 if (next_try()) cycle
                 res%reason = 'no convergence within '//itoa(max_iterations)//' iterations'// &
                     tries_text()
                 return
             end if
-            res%iterations = res%iterations + 1
-            iterations = iterations + 1
-            if (escaping) dd_before = dd
+            ! The pass that completes a converged iteration's tractions is not one more.
+            if (.not. complete) then
+                res%iterations = res%iterations + 1
+                iterations = iterations + 1
+                if (escaping) dd_before = dd
+            end if
             call system_clock(t0, rate)
-            call solve_states(a, s_r_s, s_r_np, mu, sf, held, sigma0, limit, res, work, dd, &
-                              t, unknowns, singular)
+            call solve_states(a, s_r_s, s_r_np, mu, sf, held, sigma0, limit, complete, res, &
+                              work, dd, t, unknowns, unchecked, singular)
             if (allocated(singular)) then
                 res%reason = singular%message
                 return
             end if
             call system_clock(t1)
-            if (reports_phases(n)) call report_progress('newton iteration '// &
+            if (reports_phases(n) .and. .not. complete) call report_progress('newton iteration '// &
                 itoa(res%iterations)//': '//itoa(unknowns)//' unknowns, '// &
                 action_name(a%action)//', '// &
                 seconds_text(real(t1 - t0, wp) / real(max(rate, 1_int64), wp)))
@@ -215,10 +220,17 @@ contains
                     tol_d, open_old(i), shear_old(i), changed, cycling)
             end do
             if (.not. changed) then
+                ! Decided from the rows that decide the states: the same states once more,
+                ! with t on every row (and a solve through an update checked).
+                if (.not. complete) then
+                    complete = .true.
+                    cycle
+                end if
                 res%converged = .true.
                 res%reason = ''
                 return
             end if
+            complete = .false.
             if (cycling) then
                 if (escaping .and. .not. allocated(candidates)) call keep_cycle()
                 if (next_try()) cycle
@@ -333,16 +345,25 @@ contains
     !> elements, Dn = 0 on closed ones), and t = S + A dd with A dd in res%ad; unknowns is
     !> the size of the reduced system. singular is allocated when the reduced system is
     !> (numerically) singular.
-    subroutine solve_states(a, s_r_s, s_r_np, mu, sf, held, sigma0, work_bytes, res, work, &
-                            dd, t, unknowns, singular)
+    subroutine solve_states(a, s_r_s, s_r_np, mu, sf, held, sigma0, work_bytes, complete, &
+                            res, work, dd, t, unknowns, unchecked, singular)
         class(stiffness_operator), intent(inout) :: a
         real(wp), intent(in) :: s_r_s(:), s_r_np(:), mu(:), sf(:), held(:), sigma0
         !> Memory left for the reduced system and its updates [bytes]
         real(wp), intent(in) :: work_bytes
+        !> Complete the last pass: dd is the solution of these states already, t is wanted on
+        !> every row from A dd (else the states are solved for, and A dd is formed on the rows
+        !> the states are decided from only, the unknowns' rows being what they impose)
+        logical, intent(in) :: complete
         type(active_set_result), intent(inout) :: res
         type(active_set_workspace), intent(inout) :: work
-        real(wp), intent(out) :: dd(:), t(:)
+        !> DDs [Ds; Dn]: the solution (in: the last one, read to complete it)
+        real(wp), intent(inout) :: dd(:)
+        real(wp), intent(out) :: t(:)
         integer, intent(out) :: unknowns
+        !> A solve through an update not yet checked against A (set here by an incomplete
+        !> one, cleared by the check of a complete one)
+        logical, intent(inout) :: unchecked
         type(error_type), allocatable, intent(out) :: singular
         type(reduced_system) :: system
         real(wp), allocatable :: x(:), fixed(:), s(:)
@@ -384,14 +405,20 @@ contains
         end if
         allocate (x(m))
         subject = 'the reduced system of iteration '//itoa(res%iterations)
-        ! Asked even without unknowns: an operator with unknowns of its own updates them.
-        call a%solve_reduced(system, x, subject, singular, res%seconds_factorization, &
-                             res%factorization_flops)
-        if (allocated(singular)) return
+        if (complete) then
+            ! The states' solution is dd already: its tractions on every row.
+            x = dd(system%unknown)
+        else
+            ! Asked even without unknowns: an operator with unknowns of its own updates them.
+            call a%solve_reduced(system, x, subject, singular, res%seconds_factorization, &
+                                 res%factorization_flops)
+            if (allocated(singular)) return
+        end if
         call tractions(x)
+        if (a%action == action_updated .and. m > 0) unchecked = .true.
         ! A solve through a low-rank update must meet the unknowns' equations against the
-        ! unfactored A; else factorize anew and solve again.
-        if (a%action == action_updated .and. m > 0) then
+        ! unfactored A (complete tractions); else factorize anew and solve again.
+        if (complete .and. unchecked .and. m > 0) then
             if (.not. maxval(abs(t(system%unknown) + system%coef * t(system%partner) - &
                                  target())) <= update_tol * sigma0) then
                 call a%discard_factors()
@@ -401,18 +428,45 @@ contains
                 call tractions(x)
             end if
         end if
+        if (complete) unchecked = .false.
 
     contains
 
-        !> dd from the fixed DDs and the solution, A dd and t = S_r + A dd.
+        !> dd from the fixed DDs and the solution, A dd and t = S_r + A dd: complete, or on
+        !> the rows the states are decided from (those of no unknown, and the partner rows),
+        !> the unknowns' rows then what they impose.
         subroutine tractions(solution)
             real(wp), intent(in) :: solution(:)
+            logical, allocatable :: needed(:)
+            real(wp), allocatable :: imposed(:), sr(:)
+            integer :: k, g, p
 
             dd = fixed
             dd(system%unknown) = solution
             res%ad = 0.0_wp
-            call a%multiply(dd, res%ad)
+            if (complete) then
+                call a%multiply(dd, res%ad)
+                t = [s_r_s, s_r_np] + res%ad
+                return
+            end if
+            allocate (needed(2 * n), source=.true.)
+            needed(system%unknown) = .false.
+            needed(pack(system%partner, system%partner /= system%unknown .and. &
+                        system%coef /= 0.0_wp)) = .true.
+            call a%multiply_rows(dd, needed, res%ad)
             t = [s_r_s, s_r_np] + res%ad
+            imposed = target()
+            do k = 1, m
+                g = system%unknown(k)
+                p = system%partner(k)
+                if (p == g) then
+                    t(g) = imposed(k) / (1.0_wp + system%coef(k))
+                else
+                    t(g) = imposed(k) - system%coef(k) * t(p)
+                end if
+            end do
+            sr = [s_r_s, s_r_np]
+            res%ad(system%unknown) = t(system%unknown) - sr(system%unknown)
         end subroutine tractions
 
         !> What each unknown's row imposes: sign Sf on a slip row (the friction part is

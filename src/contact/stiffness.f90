@@ -60,6 +60,8 @@ module ddc_contact_stiffness
         procedure(logical_query), deferred :: all_finite
         !> t = t + A dd
         procedure(multiply_interface), deferred :: multiply
+        !> t = t + A dd on the rows needed at least (default: every row)
+        procedure :: multiply_rows => multiply_every_row
         !> Solve a reduced system
         procedure(solve_interface), deferred :: solve_reduced
         !> Drop kept factors: the next reduced solve factorizes anew (default: nothing kept)
@@ -131,6 +133,7 @@ module ddc_contact_stiffness
         procedure :: max_entry => dense_max_entry
         procedure :: all_finite => dense_all_finite
         procedure :: multiply => dense_multiply
+        procedure :: multiply_rows => dense_multiply_rows
         procedure :: solve_reduced => dense_solve_reduced
         procedure :: discard_factors => dense_discard_factors
     end type dense_stiffness
@@ -143,6 +146,21 @@ contains
 
         this%action = action_solved
     end subroutine keep_nothing
+
+    !> t = t + A dd on every row (an operator that has no cheaper way to the rows needed).
+    subroutine multiply_every_row(this, dd, needed, t)
+        !> The matrix
+        class(stiffness_operator), intent(in) :: this
+        !> DDs [Ds; Dn] [length], shape (2n)
+        real(wp), intent(in) :: dd(:)
+        !> The rows needed, shape (2n)
+        logical, intent(in) :: needed(:)
+        !> Tractions [stress], shape (2n): A dd is added on every row
+        real(wp), intent(inout) :: t(:)
+
+        if (size(needed) /= size(t)) error stop 'multiply_rows: needed and t differ in size'
+        call this%multiply(dd, t)
+    end subroutine multiply_every_row
 
     !> The name of a reduced solve's action, for progress lines.
     pure function action_name(action) result(name)
@@ -208,6 +226,44 @@ contains
         n2 = size(this%a, 1)
         call dgemv('N', n2, n2, 1.0_wp, this%a, n2, dd, 1, 1.0_wp, t, 1)
     end subroutine dense_multiply
+
+    !> t = t + A dd on the runs of rows needed (a run is a block of A's rows: its columns'
+    !> pieces are contiguous), runs closer than run_gap rows joined; on every row when
+    !> most are needed.
+    subroutine dense_multiply_rows(this, dd, needed, t)
+        class(dense_stiffness), intent(in) :: this
+        real(wp), intent(in) :: dd(:)
+        logical, intent(in) :: needed(:)
+        real(wp), intent(inout) :: t(:)
+        integer, parameter :: run_gap = 16
+        real(wp), pointer, contiguous :: entries(:)
+        integer :: n2, first, last, next
+
+        n2 = size(this%a, 1)
+        ! A as one vector: a run's block starts at its first row of column 1.
+        entries(1:size(this%a)) => this%a
+        if (4 * count(needed) > 3 * n2) then
+            call dense_multiply(this, dd, t)
+            return
+        end if
+        first = findloc(needed, .true., 1)
+        do while (first > 0)
+            ! The run ends where no row is needed for run_gap rows.
+            last = first
+            do
+                next = findloc(needed(last + 1:min(n2, last + run_gap)), .true., 1)
+                if (next == 0) exit
+                last = last + next
+            end do
+            call dgemv('N', last - first + 1, n2, 1.0_wp, entries(first:), n2, dd, 1, 1.0_wp, &
+                       t(first:last), 1)
+            first = 0
+            if (last < n2) then
+                first = findloc(needed(last + 1:), .true., 1)
+                if (first > 0) first = first + last
+            end if
+        end do
+    end subroutine dense_multiply_rows
 
     !> Solve J x = rhs with the kept factors: reused, updated or new (set_system).
     subroutine dense_solve_reduced(this, system, x, subject, singular, seconds, flops)
