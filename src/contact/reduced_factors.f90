@@ -184,7 +184,7 @@ contains
         integer, allocatable :: unknown(:), partner(:)
         real(wp), allocatable :: coef(:)
         real(wp) :: seconds, flops
-        integer :: factorizations
+        integer :: factorizations, borderings
         logical :: extended
 
         if (sys%mb < 0) return
@@ -195,6 +195,7 @@ contains
         seconds = sys%counts%seconds
         flops = sys%counts%flops
         factorizations = sys%counts%factorizations
+        borderings = sys%counts%borderings
         call extend_base(sys, a, extended)
         if (extended) then
             ! The changed rows, if any, form the update of the extended base.
@@ -208,6 +209,7 @@ contains
         if (allocated(singular)) call forget_factors(sys)
         counts%factorizations = counts%factorizations + sys%counts%factorizations - &
             factorizations
+        counts%borderings = counts%borderings + sys%counts%borderings - borderings
         counts%seconds = counts%seconds + sys%counts%seconds - seconds
         counts%flops = counts%flops + sys%counts%flops - flops
     end subroutine refactor_full_update

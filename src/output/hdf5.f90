@@ -508,6 +508,7 @@ contains
             call write_attribute(solver, 'factorizations', s%counts%factorizations, error)
             call write_attribute(solver, 'low_rank_updates', s%counts%updates, error)
             call write_attribute(solver, 'factorization_reuses', s%counts%reuses, error)
+            call write_attribute(solver, 'factorization_borderings', s%counts%borderings, error)
             call write_attribute(solver, 'factorization_flops', s%counts%flops, error)
             call write_attribute(solver, 'threads', s%threads, error)
             call write_attribute(solver, 'blas', provenance%blas, error)

@@ -513,6 +513,7 @@ def benchmark_one(exe, lu_exe, n, case, threads, method, grid, workdir, steps=10
         "factorizations": int(attrs.get("factorizations", 0)),
         "low_rank_updates": int(attrs.get("low_rank_updates", 0)),
         "factorization_reuses": int(attrs.get("factorization_reuses", 0)),
+        "factorization_borderings": int(attrs.get("factorization_borderings", 0)),
         "states": {s: int(np.sum(final == code)) for s, code in (("stick", 1), ("slip", 2),
                                                                  ("open", 3))},
         "factorization_flops": flops,
