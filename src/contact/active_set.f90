@@ -414,7 +414,7 @@ contains
                                  res%factorization_flops)
             if (allocated(singular)) return
         end if
-        call tractions(x)
+        call tractions(x, complete, .false.)
         if (a%action == action_updated .and. m > 0) unchecked = .true.
         ! A solve through a low-rank update must meet the unknowns' equations against the
         ! unfactored A (complete tractions); else factorize anew and solve again.
@@ -425,36 +425,46 @@ contains
                 call a%solve_reduced(system, x, subject, singular, &
                                      res%seconds_factorization, res%factorization_flops)
                 if (allocated(singular)) return
-                call tractions(x)
+                call tractions(x, .false., .true.)
             end if
         end if
         if (complete) unchecked = .false.
 
     contains
 
-        !> dd from the fixed DDs and the solution, A dd and t = S_r + A dd: complete, or on
-        !> the rows the states are decided from (those of no unknown, and the partner rows),
-        !> the unknowns' rows then what they impose.
-        subroutine tractions(solution)
+        !> dd from the fixed DDs and the solution, A dd and t = S_r + A dd: on the rows the
+        !> states are decided from (those of no unknown, and the partner rows of friction), the
+        !> unknowns' rows then what they impose; with `rest`, the other rows of that same dd
+        !> added (the product complete); with `whole`, every row anew.
+        subroutine tractions(solution, rest, whole)
             real(wp), intent(in) :: solution(:)
+            logical, intent(in) :: rest, whole
             logical, allocatable :: needed(:)
             real(wp), allocatable :: imposed(:), sr(:)
             integer :: k, g, p
 
             dd = fixed
             dd(system%unknown) = solution
-            res%ad = 0.0_wp
-            if (complete) then
+            sr = [s_r_s, s_r_np]
+            if (whole) then
+                res%ad = 0.0_wp
                 call a%multiply(dd, res%ad)
-                t = [s_r_s, s_r_np] + res%ad
+                t = sr + res%ad
                 return
             end if
             allocate (needed(2 * n), source=.true.)
             needed(system%unknown) = .false.
             needed(pack(system%partner, system%partner /= system%unknown .and. &
                         system%coef /= 0.0_wp)) = .true.
+            if (rest) then
+                where (.not. needed) res%ad = 0.0_wp
+                call a%multiply_rows(dd, .not. needed, res%ad)
+                t = sr + res%ad
+                return
+            end if
+            res%ad = 0.0_wp
             call a%multiply_rows(dd, needed, res%ad)
-            t = [s_r_s, s_r_np] + res%ad
+            t = sr + res%ad
             imposed = target()
             do k = 1, m
                 g = system%unknown(k)
@@ -465,7 +475,6 @@ contains
                     t(g) = imposed(k) - system%coef(k) * t(p)
                 end if
             end do
-            sr = [s_r_s, s_r_np]
             res%ad(system%unknown) = t(system%unknown) - sr(system%unknown)
         end subroutine tractions
 

@@ -60,7 +60,8 @@ module ddc_contact_stiffness
         procedure(logical_query), deferred :: all_finite
         !> t = t + A dd
         procedure(multiply_interface), deferred :: multiply
-        !> t = t + A dd on the rows needed at least (default: every row)
+        !> t = t + A dd on the rows needed, the others left as they are (default: from the
+        !> whole product)
         procedure :: multiply_rows => multiply_every_row
         !> Solve a reduced system
         procedure(solve_interface), deferred :: solve_reduced
@@ -147,7 +148,8 @@ contains
         this%action = action_solved
     end subroutine keep_nothing
 
-    !> t = t + A dd on every row (an operator that has no cheaper way to the rows needed).
+    !> t = t + A dd on the rows needed, from the whole product (an operator that has no
+    !> cheaper way to them).
     subroutine multiply_every_row(this, dd, needed, t)
         !> The matrix
         class(stiffness_operator), intent(in) :: this
@@ -155,11 +157,13 @@ contains
         real(wp), intent(in) :: dd(:)
         !> The rows needed, shape (2n)
         logical, intent(in) :: needed(:)
-        !> Tractions [stress], shape (2n): A dd is added on every row
+        !> Tractions [stress], shape (2n): A dd is added on the rows needed
         real(wp), intent(inout) :: t(:)
+        real(wp) :: product(size(t))
 
-        if (size(needed) /= size(t)) error stop 'multiply_rows: needed and t differ in size'
-        call this%multiply(dd, t)
+        product = 0.0_wp
+        call this%multiply(dd, product)
+        where (needed) t = t + product
     end subroutine multiply_every_row
 
     !> The name of a reduced solve's action, for progress lines.
@@ -228,8 +232,8 @@ contains
     end subroutine dense_multiply
 
     !> t = t + A dd on the runs of rows needed (a run is a block of A's rows: its columns'
-    !> pieces are contiguous), runs closer than run_gap rows joined; on every row when
-    !> most are needed.
+    !> pieces are contiguous), runs closer than run_gap rows joined, the rows between them
+    !> left as they are; from the whole product when most rows are needed.
     subroutine dense_multiply_rows(this, dd, needed, t)
         class(dense_stiffness), intent(in) :: this
         real(wp), intent(in) :: dd(:)
@@ -237,15 +241,17 @@ contains
         real(wp), intent(inout) :: t(:)
         integer, parameter :: run_gap = 16
         real(wp), pointer, contiguous :: entries(:)
+        real(wp), allocatable :: product(:)
         integer :: n2, first, last, next
 
         n2 = size(this%a, 1)
-        ! A as one vector: a run's block starts at its first row of column 1.
-        entries(1:size(this%a)) => this%a
         if (4 * count(needed) > 3 * n2) then
-            call dense_multiply(this, dd, t)
+            call multiply_every_row(this, dd, needed, t)
             return
         end if
+        ! A as one vector: a run's block starts at its first row of column 1.
+        entries(1:size(this%a)) => this%a
+        allocate (product(n2), source=0.0_wp)
         first = findloc(needed, .true., 1)
         do while (first > 0)
             ! The run ends where no row is needed for run_gap rows.
@@ -255,14 +261,15 @@ contains
                 if (next == 0) exit
                 last = last + next
             end do
-            call dgemv('N', last - first + 1, n2, 1.0_wp, entries(first:), n2, dd, 1, 1.0_wp, &
-                       t(first:last), 1)
+            call dgemv('N', last - first + 1, n2, 1.0_wp, entries(first:), n2, dd, 1, 0.0_wp, &
+                       product(first:last), 1)
             first = 0
             if (last < n2) then
                 first = findloc(needed(last + 1:), .true., 1)
                 if (first > 0) first = first + last
             end if
         end do
+        where (needed) t = t + product
     end subroutine dense_multiply_rows
 
     !> Solve J x = rhs with the kept factors: reused, updated or new (set_system).
