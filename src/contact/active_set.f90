@@ -415,7 +415,7 @@ contains
             if (allocated(singular)) return
         end if
         call tractions(x, complete, .false.)
-        if (a%action == action_updated .and. m > 0) unchecked = .true.
+        if (.not. complete .and. a%action == action_updated .and. m > 0) unchecked = .true.
         ! A solve through a low-rank update must meet the unknowns' equations against the
         ! unfactored A (complete tractions); else factorize anew and solve again.
         if (complete .and. unchecked .and. m > 0) then

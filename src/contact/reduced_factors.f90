@@ -196,16 +196,12 @@ contains
         flops = sys%counts%flops
         factorizations = sys%counts%factorizations
         borderings = sys%counts%borderings
+        ! Extended, the changed rows (if any) form the update of the new base; else the
+        ! system is factorized anew.
         call extend_base(sys, a, extended)
-        if (extended) then
-            ! The changed rows, if any, form the update of the extended base.
-            call set_system(sys, a, unknown, partner, coef, &
-                            'the reduced system of the accepted geometry', singular)
-        else
-            call forget_factors(sys)
-            call set_system(sys, a, unknown, partner, coef, &
-                            'the reduced system of the accepted geometry', singular)
-        end if
+        if (.not. extended) call forget_factors(sys)
+        call set_system(sys, a, unknown, partner, coef, &
+                        'the reduced system of the accepted geometry', singular)
         if (allocated(singular)) call forget_factors(sys)
         counts%factorizations = counts%factorizations + sys%counts%factorizations - &
             factorizations
@@ -228,7 +224,7 @@ contains
         real(wp), intent(in) :: a(:, :)
         logical, intent(out) :: ok
         type(error_type), allocatable :: singular, ill_conditioned
-        real(wp), allocatable :: lu(:, :), s0(:, :), t(:, :), ca(:)
+        real(wp), allocatable :: lu(:, :), s0(:, :), t(:, :), ca(:), d_diag(:)
         integer, allocatable :: at(:), ga(:), pa(:), ipiv_s(:)
         integer :: mb, na, m, q, k, l
         integer(int64) :: t0, t1, rate
@@ -246,11 +242,12 @@ contains
         ga = sys%unknown(at(mb + 1:))
         pa = sys%partner(at(mb + 1:))
         ca = sys%coef(at(mb + 1:))
-        ! S0 = D - C Y0, factorized
+        ! S0 = D - C Y0, factorized; D's diagonal joins the base's
         allocate (s0(na, na), ipiv_s(na))
         do q = 1, na
             s0(:, q) = a(ga, ga(q)) + ca * a(pa, ga(q))
         end do
+        d_diag = [(s0(q, q), q = 1, na)]
         call dgemm('T', 'N', na, na, mb, -1.0_wp, sys%c_t, mb, sys%y0, mb, 1.0_wp, s0, na)
         call lu_factor(s0, ipiv_s, 'the bordered base', singular, &
                        ill_conditioned=ill_conditioned)
@@ -270,10 +267,7 @@ contains
         lu(mb + 1:, 1:mb) = transpose(t)
         call dlaswp(mb, lu(mb + 1, 1), m, 1, na, ipiv_s, 1)
         lu(mb + 1:, mb + 1:) = s0
-        do q = 1, na
-            s0(q, 1) = a(ga(q), ga(q)) + ca(q) * a(pa(q), ga(q))
-        end do
-        sys%base_diag = [sys%base_diag, s0(:, 1)]
+        sys%base_diag = [sys%base_diag, d_diag]
         call move_alloc(lu, sys%factors)
         sys%ipiv = [sys%ipiv, mb + ipiv_s]
         sys%base_unknown = [sys%base_unknown, ga]

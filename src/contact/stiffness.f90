@@ -159,9 +159,9 @@ contains
         logical, intent(in) :: needed(:)
         !> Tractions [stress], shape (2n): A dd is added on the rows needed
         real(wp), intent(inout) :: t(:)
-        real(wp) :: product(size(t))
+        real(wp), allocatable :: product(:)
 
-        product = 0.0_wp
+        allocate (product(size(t)), source=0.0_wp)
         call this%multiply(dd, product)
         where (needed) t = t + product
     end subroutine multiply_every_row

@@ -395,10 +395,14 @@ contains
         logical, intent(in) :: in_growth
         character(len=:), allocatable :: dataset
 
-        dataset = name
-        if (name == 'owner') dataset = merge('record', 'flaw  ', in_growth)
-        if (in_growth) dataset = 'trial_'//trim(dataset)
-        dataset = trim(dataset)
+        if (name /= 'owner') then
+            dataset = name
+        else if (in_growth) then
+            dataset = 'record'
+        else
+            dataset = 'flaw'
+        end if
+        if (in_growth) dataset = 'trial_'//dataset
     end function trial_dataset
 
     !> Append the rows of `rows` that keep marks to `record`, every column.
