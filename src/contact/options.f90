@@ -12,7 +12,7 @@ module ddc_contact_options
     public :: lcp_auto, lcp_lemke, lcp_newton, lcp_method_names
     public :: cohesion_kept, cohesion_lost, open_cohesion_names
     public :: matrix_auto, matrix_dense, matrix_hierarchical, matrix_names
-    public :: k_auto, k_higher_order, k_tip_element, k_method_names
+    public :: k_auto, k_higher_order, k_tip_element, k_method_names, default_k_zone_elements
 
     !> LCP methods: 'auto' (Newton from auto_newton_min_elements contact elements on, else
     !> Lemke), 'lemke' (the paper's LCP, the reference), 'newton' (active set)
@@ -40,6 +40,10 @@ module ddc_contact_options
     !> higher-order re-solve up to higher_order_max_elements elements re-solved, without
     !> growth; else the tip element), 'higher_order', 'tip_element'
     integer, parameter :: k_auto = 1, k_higher_order = 2, k_tip_element = 3
+    !> Elements of a tip's zone in the local re-solve for K (docs/theory/tips.md
+    !> #the-size-of-the-zones: K within 1e-5 of the closed forms, at most 2e-6 on straight
+    !> and graded cracks)
+    integer, parameter :: default_k_zone_elements = 32
     !> Input names of the K methods, indexed by code
     character(len=*), parameter :: k_method_names(3) = [character(len=12) :: &
         'auto', 'higher_order', 'tip_element']
@@ -64,6 +68,8 @@ module ddc_contact_options
         real(wp) :: hmatrix_eta = 2.0_wp
         !> k_auto, k_higher_order or k_tip_element
         integer :: k_method = k_auto
+        !> Elements of a tip's zone in the local re-solve for K
+        integer :: k_zone_elements = default_k_zone_elements
     end type solver_options
 
 contains

@@ -47,7 +47,8 @@ module ddc_input_namelist_groups
         group_spec('line', .true., 'name:c x_begin:r y_begin:r x_end:r y_end:r points:i'), &
         group_spec('points', .true., 'name:c file:c'), &
         group_spec('solver', .false., 'lcp_method:c open_cohesion:c block_size:i matrix:c '// &
-                  'hmatrix_tolerance:r hmatrix_leaf_size:i hmatrix_eta:r k_method:c'), &
+                  'hmatrix_tolerance:r hmatrix_leaf_size:i hmatrix_eta:r k_method:c '// &
+                  'k_zone_elements:i'), &
         group_spec('output', .false., 'file:c'), &
         group_spec('symmetry', .false., 'kind:c xsym:r ysym:r'), &
         group_spec('sweep', .false., 'combine:c parameters:c values_1:r values_2:r '// &

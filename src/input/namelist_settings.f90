@@ -8,7 +8,8 @@ module ddc_input_namelist_settings
     use ddc_model_types, only: model_type, symmetry_none, symmetry_names, domain_names, &
         domain_half_plane, domain_bimaterial, load_path_names, default_block_size
     use ddc_model_limits, only: quantity_youngs_modulus, quantity_poissons_ratio
-    use ddc_contact_options, only: parse_solver_options, option_code, k_method_names, k_auto
+    use ddc_contact_options, only: parse_solver_options, option_code, k_method_names, k_auto, &
+        default_k_zone_elements
     use ddc_text, only: itoa, rtoa, lower, find_name, quoted_list, prefix_lines, counted
     use ddc_input_text_file, only: base_name, resolve
     use ddc_input_namelist_groups, only: group_record, message_list, add, group_prefix, &
@@ -271,16 +272,17 @@ contains
         character(len=512) :: iomsg
         character(len=:), allocatable :: prefix
         type(error_type), allocatable :: problems
-        integer :: stat, block_size, hmatrix_leaf_size
+        integer :: stat, block_size, hmatrix_leaf_size, k_zone_elements
         real(wp) :: hmatrix_tolerance, hmatrix_eta
         namelist /solver/ lcp_method, open_cohesion, block_size, matrix, hmatrix_tolerance, &
-            hmatrix_leaf_size, hmatrix_eta, k_method
+            hmatrix_leaf_size, hmatrix_eta, k_method, k_zone_elements
 
         if (info%count == 0) return
         lcp_method = 'auto'
         open_cohesion = 'kept'
         matrix = 'auto'
         k_method = 'auto'
+        k_zone_elements = default_k_zone_elements
         block_size = default_block_size
         hmatrix_tolerance = model%solver%hmatrix_tolerance
         hmatrix_leaf_size = model%solver%hmatrix_leaf_size
@@ -299,6 +301,12 @@ contains
             model%solver%k_method = k_auto
             call add(messages, prefix//"k_method = '"//trim(adjustl(k_method))// &
                      "' is not one of 'auto', 'higher_order', 'tip_element'")
+        end if
+        if (k_zone_elements < 2) then
+            call add(messages, prefix//'k_zone_elements = '//itoa(k_zone_elements)// &
+                     ' must be at least 2')
+        else
+            model%solver%k_zone_elements = k_zone_elements
         end if
         if (block_size < 1) then
             call add(messages, prefix//'block_size = '//itoa(block_size)//' must be at least 1')

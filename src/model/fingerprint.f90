@@ -15,7 +15,7 @@
 module ddc_model_fingerprint
     use, intrinsic :: iso_fortran_env, only: int8, int64
     use ddc_kinds, only: wp
-    use ddc_contact_options, only: k_auto
+    use ddc_contact_options, only: k_auto, default_k_zone_elements
     use ddc_model_types, only: model_type, growth_criterion_work, element_set, &
         element_array_action, for_each_element_array, domain_bimaterial
     implicit none
@@ -138,6 +138,9 @@ contains
                                  model%block_size])
         ! The K method where it is given (the default leaves earlier fingerprints as they were).
         if (model%solver%k_method /= k_auto) call add_integers(hash, [model%solver%k_method])
+        if (model%solver%k_zone_elements /= default_k_zone_elements) then
+            call add_integers(hash, [model%solver%k_zone_elements])
+        end if
         call add_integers(hash, merge(1, 0, [allocated(model%load_path%vertex), &
                                              model%growth%active]))
         call add_reals(hash, [model%growth%toughness, model%growth%increment, &

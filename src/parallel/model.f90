@@ -50,6 +50,7 @@ contains
         call share(context, model%solver%lcp_method)
         call share(context, model%solver%open_cohesion)
         call share(context, model%solver%k_method)
+        call share(context, model%solver%k_zone_elements)
         ! Root only: model%solver%work_bytes (the root's memory check sets it for the
         ! fallback from Newton to Lemke, which a distributed solve does not have).
         ! Root only: model%solver%matrix (hierarchical is refused with more than one

@@ -1,17 +1,20 @@
-!> K_I and K_II by a higher-order re-solve (docs/theory/tips.md#k-from-a-higher-order-re-solve).
+!> K_I and K_II by a local higher-order re-solve (docs/theory/tips.md#the-local-re-solve).
 !>
-!> The traction and contact elements of the fractures that have tips are solved again with
-!> higher-order elements (ddc_influence_higher_order: quadratic, square-root weighted over
-!> the first half of each tip's chain, circular arcs where the polyline samples a curve),
-!> the other elements acting with their constant DDs. Each re-solved element keeps its
-!> condition in the solve (row_conditions) at each of its three nodes, with the solve's
-!> values on the element: a traction element its tractions, a closed contact element its
-!> DD or joint law and the Coulomb law where it slips. Where the tractions are prescribed
-!> this is the model itself, solved to higher order. K comes from the limit of D / sqrt(r)
-!> at each tip, in the frame of the fracture's tangent there. The traction rows depend on
-!> the geometry alone and are assembled once (prepare_higher_order); the system is
-!> factorized again only when the conditions change (higher_order_k, once per step of a
-!> loading history).
+!> A zone of the first zone_elements traction or contact elements from each tip is solved
+!> again with higher-order elements (ddc_influence_higher_order: quadratic, square-root
+!> weighted over the first half of each tip's zone, circular arcs where the polyline
+!> samples a curve); the traction and contact elements outside the zones act with their
+!> recovered DDs (ddc_post_outer_recovery), the other elements with their constant DDs.
+!> Each re-solved element keeps its condition in the solve (row_conditions) at each of its
+!> three nodes, with the solve's values on the element: a traction element its tractions, a
+!> closed contact element its DD or joint law and the Coulomb law where it slips. K comes
+!> from the limit of D / sqrt(r) at each tip, in the frame of the fracture's tangent there.
+!> The zones' traction rows depend on the geometry alone and are assembled once
+!> (prepare_higher_order); the system is factorized again only when the conditions change.
+!>
+!> The elements outside the zones are the solve's: outer_correction gives the traction the
+!> higher-order zones and the recovered DDs add at their midpoints to the constant elements'
+!> (the caller solves the model again with it, ddc_run_contact_run, until K stops moving).
 module ddc_post_higher_order_k
     use ddc_kinds, only: wp
     use ddc_constants, only: pi
@@ -28,6 +31,8 @@ module ddc_post_higher_order_k
     use ddc_influence_higher_order, only: weighted_element, arc_element, node_xi, &
         nodal_basis, element_tractions, weight_at, point_at
     use ddc_post_tips, only: tip_chain, end_neighbours, end_on_mirror
+    use ddc_post_outer_recovery, only: outer_recovery, recover_outer, recovered_tractions, &
+        halves_tractions, near_lengths, next_recovered, straight_reach, curved_reach
     use ddc_linalg_lu, only: lu_factor, lu_solve
     use ddc_contact_options, only: k_higher_order, k_tip_element
     use ddc_text, only: itoa
@@ -35,12 +40,20 @@ module ddc_post_higher_order_k
     private
 
     public :: higher_order_solver, prepare_higher_order, higher_order_k, uses_higher_order
+    public :: outer_correction
 
-    !> k_method = 'auto' re-solves at most this many elements (two dense matrices of 6
-    !> unknowns per element, the traction rows and the factors: 576 MB here)
+    !> k_method = 'auto' re-solves at most this many elements in all the zones (two dense
+    !> matrices of 6 unknowns per element, the traction rows and the factors: 576 MB here)
     integer, parameter :: higher_order_max_elements = 1000
     !> Unknowns per element: three nodes, two DDs
     integer, parameter :: per_element = 6
+    !> Gauss-Legendre points and weights on [-1, 1] (the mean DD of a re-solved element)
+    real(wp), parameter :: gauss_x(8) = [-0.9602898564975363_wp, -0.7966664774136267_wp, &
+        -0.5255324099163290_wp, -0.1834346424956498_wp, 0.1834346424956498_wp, &
+        0.5255324099163290_wp, 0.7966664774136267_wp, 0.9602898564975363_wp]
+    real(wp), parameter :: gauss_w(8) = [0.1012285362903763_wp, 0.2223810344533745_wp, &
+        0.3137066458778873_wp, 0.3626837833783620_wp, 0.3626837833783620_wp, &
+        0.3137066458778873_wp, 0.2223810344533745_wp, 0.1012285362903763_wp]
     !> A vertex that turns by more than this [rad] is a kink, not a sample of a curve
     real(wp), parameter :: max_curve_turn = 0.35_wp
     !> The curvatures at two vertices of a sampled curve agree within this fraction
@@ -60,14 +73,20 @@ module ddc_post_higher_order_k
         !> pivots); rows unallocated before the first
         real(wp), allocatable :: lu(:, :), rows(:, :)
         integer, allocatable :: ipiv(:)
+        !> The traction and contact elements outside the zones, recovered
+        type(outer_recovery) :: outer
+        !> The nodal DDs of the last re-solve [length unit], shape (6 re-solved)
+        real(wp), allocatable :: nodal(:)
     end type higher_order_solver
 
 contains
 
     !> Whether K comes from the higher-order re-solve, and why not where it does not.
-    pure subroutine uses_higher_order(k_method, growth, elements, tips, uses, why_not)
+    pure subroutine uses_higher_order(k_method, zone, growth, elements, tips, uses, why_not)
         !> &solver k_method (k_auto, k_higher_order or k_tip_element)
         integer, intent(in) :: k_method
+        !> Elements of a tip's zone
+        integer, intent(in) :: zone
         !> Whether the model grows its fractures
         logical, intent(in) :: growth
         !> Elements with geometry computed
@@ -89,34 +108,41 @@ contains
         else if (growth) then
             why_not = 'growth calibrates the tip element'
         else
-            n = count(re_solved(elements, tips))
+            n = count(re_solved(elements, tips, zone))
             uses = n > 0 .and. (k_method == k_higher_order .or. n <= higher_order_max_elements)
             if (n == 0) then
                 why_not = 'no tip on a traction or contact element'
             else if (.not. uses) then
-                why_not = itoa(n)//' elements to re-solve, above '// &
+                why_not = itoa(n)//' elements in the zones, above '// &
                     itoa(higher_order_max_elements)//" (k_method = 'higher_order' asks for it)"
             end if
         end if
     end subroutine uses_higher_order
 
-    !> Assemble the traction rows of the re-solve of the fractures with tips.
-    subroutine prepare_higher_order(medium, tips, solver, error)
+    !> Assemble the traction rows of the zones' re-solve and recover the elements outside
+    !> them.
+    subroutine prepare_higher_order(medium, tips, zone, solver, error)
         !> The medium, element geometry computed
         type(elastic_medium), intent(in) :: medium
         !> The tips (ddc_post_tips)
         type(tip_set), intent(in) :: tips
+        !> Elements of a tip's zone
+        integer, intent(in) :: zone
         !> The re-solve, its traction rows assembled (factorized by higher_order_k)
         type(higher_order_solver), intent(out) :: solver
         !> Allocated when the matrices do not fit in memory
         type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: curvature(:)
         integer :: k, m, stat
 
         associate (s => solver, elements => medium%elements)
-            s%solved = pack([(k, k = 1, elements%n)], re_solved(elements, tips))
+            s%solved = pack([(k, k = 1, elements%n)], re_solved(elements, tips, zone))
             allocate (s%local(elements%n), source=0)
             s%local(s%solved) = [(k, k = 1, size(s%solved))]
-            s%weighted = tip_weighted_elements(elements, tips, s%solved, s%local)
+            curvature = sampled_curvature(elements)
+            s%weighted = tip_weighted_elements(elements, tips, curvature, s%solved, s%local)
+            s%outer = recover_outer(medium, curvature, serves(elements), s%local > 0, &
+                                    max_curve_turn)
             m = per_element * size(s%solved)
             allocate (s%traction(m, m), stat=stat)
             if (stat == 0) allocate (s%lu(m, m), stat=stat)
@@ -127,6 +153,7 @@ contains
                 return
             end if
             call assemble(medium, s%solved, s%weighted, s%traction)
+            call add_recovered_neighbours(medium, s)
         end associate
     end subroutine prepare_higher_order
 
@@ -165,8 +192,8 @@ contains
         end if
         if (allocated(error)) return
         allocate (r(size(solver%lu, 1)), q(size(solver%lu, 1), 1))
-        call load_of(medium, ds, dn, shear_traction, normal_traction, remote, gradient, &
-                     solver%solved, solver%local, solver%weighted, r)
+        call load_of(medium, solver, outside_zones(solver, ds), outside_zones(solver, dn), &
+                     shear_traction, normal_traction, remote, gradient, r)
         ! Each row's condition holds for the solve's values on its element.
         do l = 1, size(solver%solved)
             i = solver%solved(l)
@@ -178,6 +205,7 @@ contains
             end do
         end do
         call lu_solve(solver%lu, solver%ipiv, q)
+        solver%nodal = q(:, 1)
         do k = 1, tips%n
             l = solver%local(tips%element(k))
             if (l == 0) cycle
@@ -260,46 +288,52 @@ contains
         if (allocated(error)) deallocate (solver%rows)
     end subroutine factorize
 
-    !> The traction and contact elements of the fractures whose tips are on such elements,
-    !> and of the chains from those tips.
-    pure function re_solved(elements, tips) result(mask)
+    !> The zones: the first `zone` traction or contact elements of the chain from each tip on
+    !> such an element.
+    pure function re_solved(elements, tips, zone) result(mask)
         type(element_set), intent(in) :: elements
         type(tip_set), intent(in) :: tips
+        integer, intent(in) :: zone
         logical :: mask(elements%n)
-        logical :: kind_serves(elements%n), tip_serves(tips%n)
+        logical :: kind_serves(elements%n)
         integer, allocatable :: chain(:), near_side(:)
         integer :: k, i
 
-        kind_serves = elements%condition == condition_traction .or. &
-                      elements%condition == condition_contact
-        tip_serves = kind_serves(tips%element)
-        do i = 1, elements%n
-            mask(i) = kind_serves(i) .and. &
-                      any(tip_serves .and. tips%fracture_id == elements%fracture_id(i))
-        end do
+        kind_serves = serves(elements)
+        mask = .false.
         do k = 1, tips%n
-            if (.not. tip_serves(k)) cycle
+            if (.not. kind_serves(tips%element(k))) cycle
             call tip_chain(elements, tips%element(k), tips%side(k), chain, near_side)
-            do i = 1, size(chain)
+            do i = 1, min(zone, size(chain))
                 if (.not. kind_serves(chain(i))) exit
                 mask(chain(i)) = .true.
             end do
         end do
     end function re_solved
 
+    !> Whether each element is of a kind the re-solve serves: traction and contact elements.
+    pure function serves(elements)
+        type(element_set), intent(in) :: elements
+        logical :: serves(elements%n)
+
+        serves = elements%condition == condition_traction .or. &
+                 elements%condition == condition_contact
+    end function serves
+
     !> The re-solved elements as arcs (sampled_curvature), with a square-root weight on the
     !> first half of each tip's chain (a zone of fixed size, so the DD over the weight is
     !> smooth).
-    function tip_weighted_elements(elements, tips, solved, local) result(weighted)
+    pure function tip_weighted_elements(elements, tips, curvature, solved, local) &
+        result(weighted)
         type(element_set), intent(in) :: elements
         type(tip_set), intent(in) :: tips
+        real(wp), intent(in) :: curvature(:)
         integer, intent(in) :: solved(:), local(:)
         type(weighted_element) :: weighted(size(solved))
         integer, allocatable :: chain(:), near_side(:)
-        real(wp) :: curvature(elements%n), reach, r_near, length
+        real(wp) :: reach, r_near, length
         integer :: k, c, i, l
 
-        curvature = sampled_curvature(elements)
         do l = 1, size(solved)
             i = solved(l)
             weighted(l) = arc_element(elements%x_begin(i), elements%y_begin(i), &
@@ -458,50 +492,280 @@ contains
         !$omp end parallel do
     end subroutine assemble
 
-    !> The re-solve's right-hand side: at each node the solve's traction on its element,
-    !> less the remote stress there and the share of the elements not re-solved.
-    subroutine load_of(medium, ds, dn, shear_traction, normal_traction, remote, gradient, &
-                       solved, local, weighted, rhs)
+    !> Add to the zones' traction rows the share of the re-solved elements' midpoint DDs
+    !> (their middle nodal values) in the recovered DDs of the elements beside the zones.
+    subroutine add_recovered_neighbours(medium, solver)
         type(elastic_medium), intent(in) :: medium
+        type(higher_order_solver), intent(inout) :: solver
+        procedure(kernel_function), pointer :: kernel
+        type(image_transform), allocatable :: images(:)
+        logical :: use_general
+        real(wp) :: unit_dd(medium%elements%n), zero(medium%elements%n), x, y, c, s, t(2, 2)
+        integer :: k, p, j, l, node, row, col
+
+        call select_kernel(medium, .true., use_general, kernel, stress_only=.true.)
+        images = image_transforms(medium%elements%symmetry)
+        zero = 0.0_wp
+        do k = 1, size(solver%outer%element)
+            do p = 1, 3
+                j = solver%outer%stencil(p, k)
+                if (j == 0) cycle
+                if (solver%local(j) == 0) cycle
+                ! The middle node's columns of zone element j.
+                col = per_element * (solver%local(j) - 1) + 2
+                unit_dd = 0.0_wp
+                unit_dd(j) = 1.0_wp
+                do l = 1, size(solver%solved)
+                    do node = 1, 3
+                        row = per_element * (l - 1) + 2 * (node - 1)
+                        call node_point(solver%weighted(l), node, x, y, c, s)
+                        call recovered_tractions(solver%outer, kernel, images, medium, k, &
+                                                 unit_dd, zero, x, y, c, s, -1.0_wp, .false., &
+                                                 t(1, 1), t(2, 1))
+                        call recovered_tractions(solver%outer, kernel, images, medium, k, &
+                                                 zero, unit_dd, x, y, c, s, -1.0_wp, .false., &
+                                                 t(1, 2), t(2, 2))
+                        solver%traction(row + 1:row + 2, col + 1:col + 2) = &
+                            solver%traction(row + 1:row + 2, col + 1:col + 2) + t
+                    end do
+                end do
+            end do
+        end do
+    end subroutine add_recovered_neighbours
+
+    !> The re-solve's right-hand side: at each node the solve's traction on its element,
+    !> less the remote stress there and the share of the elements not re-solved (the
+    !> recovered ones with their recovered DDs).
+    subroutine load_of(medium, solver, ds, dn, shear_traction, normal_traction, remote, &
+                       gradient, rhs)
+        type(elastic_medium), intent(in) :: medium
+        type(higher_order_solver), intent(in) :: solver
+        !> Midpoint DDs (midpoint_values) and the solve's total tractions, shape (n)
         real(wp), intent(in) :: ds(:), dn(:), shear_traction(:), normal_traction(:)
         real(wp), intent(in) :: remote(3), gradient(3)
-        integer, intent(in) :: solved(:), local(:)
-        type(weighted_element), intent(in) :: weighted(:)
         real(wp), intent(out) :: rhs(:)
         procedure(kernel_function), pointer :: kernel
         type(image_transform), allocatable :: images(:)
         type(dd_kernel) :: kj
         logical :: use_general
-        real(wp) :: x, y, c, s, ts(2), tn(2), stress(3)
+        real(wp) :: x, y, c, s, ts(2), tn(2), stress(3), t_s, t_n
         integer :: l, i, node, row, j
 
         call select_kernel(medium, .true., use_general, kernel, stress_only=.true.)
         images = image_transforms(medium%elements%symmetry)
         !$omp parallel do default(none) schedule(dynamic) private(l, i, node, row, j, x, y, c, &
-        !$omp     s, ts, tn, stress, kj) shared(medium, ds, dn, &
-        !$omp     shear_traction, normal_traction, remote, gradient, solved, local, weighted, &
-        !$omp     rhs, kernel, images)
-        do l = 1, size(solved)
-            i = solved(l)
+        !$omp     s, ts, tn, stress, kj, t_s, t_n) shared(medium, solver, ds, dn, &
+        !$omp     shear_traction, normal_traction, remote, gradient, rhs, kernel, images)
+        do l = 1, size(solver%solved)
+            i = solver%solved(l)
             do node = 1, 3
                 row = per_element * (l - 1) + 2 * (node - 1)
-                call node_point(weighted(l), node, x, y, c, s)
+                call node_point(solver%weighted(l), node, x, y, c, s)
                 stress = remote_stress_at(medium, remote, gradient, y)
                 rhs(row + 1) = shear_traction(i) - &
                                (-(stress(1) - stress(2)) * s * c + stress(3) * (c**2 - s**2))
                 rhs(row + 2) = normal_traction(i) - &
                                (stress(1) * s**2 - 2.0_wp * stress(3) * s * c + stress(2) * c**2)
                 do j = 1, medium%elements%n
-                    if (local(j) > 0) cycle
-                    kj = kernel_with_images(kernel, x, y, medium, j, images, face_negative)
-                    call resolved_tractions(kj, c, s, ts, tn)
-                    rhs(row + 1) = rhs(row + 1) - ts(1) * ds(j) - ts(2) * dn(j)
-                    rhs(row + 2) = rhs(row + 2) - tn(1) * ds(j) - tn(2) * dn(j)
+                    if (solver%local(j) > 0) cycle
+                    if (solver%outer%place(j) > 0) then
+                        call recovered_tractions(solver%outer, kernel, images, medium, &
+                                                 solver%outer%place(j), ds, dn, x, y, c, s, &
+                                                 -1.0_wp, .false., t_s, t_n)
+                    else
+                        kj = kernel_with_images(kernel, x, y, medium, j, images, face_negative)
+                        call resolved_tractions(kj, c, s, ts, tn)
+                        t_s = ts(1) * ds(j) + ts(2) * dn(j)
+                        t_n = tn(1) * ds(j) + tn(2) * dn(j)
+                    end if
+                    rhs(row + 1) = rhs(row + 1) - t_s
+                    rhs(row + 2) = rhs(row + 2) - t_n
                 end do
             end do
         end do
         !$omp end parallel do
     end subroutine load_of
+
+    !> The DDs of the elements outside the zones, zero on the re-solved ones (whose share
+    !> in the recovered DDs of their neighbours is in the zones' matrix).
+    pure function outside_zones(solver, dd) result(values)
+        type(higher_order_solver), intent(in) :: solver
+        real(wp), intent(in) :: dd(:)
+        real(wp) :: values(size(dd))
+
+        values = dd
+        values(solver%solved) = 0.0_wp
+    end function outside_zones
+
+    !> The midpoint DD (component 1 Ds, 2 Dn) of every element: the solve's, and on a
+    !> re-solved element the last re-solve's (the neighbours' recovered DDs pass through it).
+    pure function midpoint_values(solver, dd, component) result(values)
+        type(higher_order_solver), intent(in) :: solver
+        real(wp), intent(in) :: dd(:)
+        integer, intent(in) :: component
+        real(wp) :: values(size(dd))
+        integer :: l
+
+        values = dd
+        if (.not. allocated(solver%nodal)) return
+        ! The weight is 1 at the midpoint, the middle node.
+        do l = 1, size(solver%solved)
+            values(solver%solved(l)) = solver%nodal(per_element * (l - 1) + 2 + component)
+        end do
+    end function midpoint_values
+
+    !> The traction the zones' higher-order DDs (of the last re-solve) and the recovered DDs
+    !> add at the midpoints of the recovered elements to that of the constant elements of the
+    !> solve: at each, the recovered neighbours' along the fracture and every re-solved
+    !> element's, less their constant DDs' (zero elsewhere). Solving the model again under
+    !> its load plus this traction gives the elements outside the zones the higher-order
+    !> response of the zones and of their own recovered DDs.
+    subroutine outer_correction(solver, medium, ds, dn, shear, normal)
+        !> The re-solve, after higher_order_k
+        type(higher_order_solver), intent(in) :: solver
+        !> The medium, element geometry computed
+        type(elastic_medium), intent(in) :: medium
+        !> The solve's DDs [length unit], shape (n)
+        real(wp), intent(in) :: ds(:), dn(:)
+        !> Shear and normal traction to add to the load [stress unit], shape (n)
+        real(wp), intent(out) :: shear(:), normal(:)
+        procedure(kernel_function), pointer :: kernel
+        type(image_transform), allocatable :: images(:)
+        logical :: use_general
+        real(wp) :: vs(size(ds)), vn(size(dn)), moments(2, 2, size(solver%solved))
+        real(wp) :: block(2, per_element)
+        real(wp) :: x, y, c, s, t(2), chord(4)
+        integer :: k, i, j, l, col, side, leave, step, reach, next, next_leave
+
+        call select_kernel(medium, .true., use_general, kernel, stress_only=.true.)
+        images = image_transforms(medium%elements%symmetry)
+        vs = midpoint_values(solver, ds, 1)
+        vn = midpoint_values(solver, dn, 2)
+        do l = 1, size(solver%solved)
+            moments(:, :, l) = dd_moments(solver%weighted(l), &
+                                          solver%nodal(per_element * (l - 1) + 1:per_element * l))
+        end do
+        shear = 0.0_wp
+        normal = 0.0_wp
+        !$omp parallel do default(none) schedule(dynamic) private(k, i, j, l, col, x, y, c, &
+        !$omp     s, t, chord, block, side, leave, step, reach, next, next_leave) &
+        !$omp     shared(solver, medium, kernel, images, ds, dn, vs, vn, moments, shear, normal)
+        do k = 1, size(solver%outer%element)
+            i = solver%outer%element(k)
+            ! The higher-order DDs act at the midpoint of i's arc, the constant ones of the
+            ! solve at its chord's, where its rows are.
+            associate (arc => solver%outer%arc(k), el => medium%elements)
+                call point_at(arc, 0.5_wp * arc%length, x, y, c, s)
+                chord = [el%x_mid(i), el%y_mid(i), el%cos_beta(i), el%sin_beta(i)]
+                ! The element itself and its recovered neighbours: recovered less constant.
+                call add_recovered(i, i, [x, y, c, s], chord, 0.5_wp * arc%length, .true.)
+                reach = merge(straight_reach, curved_reach, arc%curvature == 0.0_wp)
+                do side = 1, 2
+                    j = i
+                    leave = side
+                    do step = 1, reach
+                        call next_recovered(solver%outer, j, leave, i, next, next_leave)
+                        if (next == 0) exit
+                        j = next
+                        leave = next_leave
+                        call add_recovered(i, j, [x, y, c, s], chord, -1.0_wp, .false.)
+                    end do
+                end do
+            end associate
+            ! The zones: higher-order less constant; far, a constant DD of the mean.
+            do l = 1, size(solver%solved)
+                j = solver%solved(l)
+                if (solver%weighted(l)%curvature == 0.0_wp .and. midpoint_distance(medium, i, j) &
+                    > near_lengths * solver%weighted(l)%length) then
+                    t = halves_tractions(kernel, images, medium, solver%weighted(l), &
+                                         moments(:, 1, l), moments(:, 2, l), x, y, c, s)
+                else
+                    call element_tractions(kernel, images, medium, solver%weighted(l), -1.0_wp, &
+                                           x, y, c, s, block)
+                    col = per_element * (l - 1)
+                    t = matmul(block, solver%nodal(col + 1:col + per_element))
+                end if
+                t = t - constant_tractions(j, chord, ds(j), dn(j))
+                shear(i) = shear(i) + t(1)
+                normal(i) = normal(i) + t(2)
+            end do
+        end do
+        !$omp end parallel do
+
+    contains
+
+        !> Add to receiver i's correction recovered element j's traction at the point and
+        !> plane `arc_point` less its constant DD's at `chord_point`; `at` is j's arc length
+        !> at the receiver where it is i itself (else negative). (The receiver comes as
+        !> arguments: the caller's copies are private to its thread.)
+        subroutine add_recovered(i, j, arc_point, chord_point, at, exact)
+            integer, intent(in) :: i, j
+            real(wp), intent(in) :: arc_point(4), chord_point(4), at
+            logical, intent(in) :: exact
+            real(wp) :: t(2)
+
+            call recovered_tractions(solver%outer, kernel, images, medium, &
+                                     solver%outer%place(j), vs, vn, arc_point(1), arc_point(2), &
+                                     arc_point(3), arc_point(4), at, exact, t(1), t(2))
+            t = t - constant_tractions(j, chord_point, ds(j), dn(j))
+            shear(i) = shear(i) + t(1)
+            normal(i) = normal(i) + t(2)
+        end subroutine add_recovered
+
+        !> Shear and normal traction of element j's constant DD (a_s, a_n) at the point
+        !> receiver(1:2) on the plane of direction cosines receiver(3:4).
+        pure function constant_tractions(j, receiver, a_s, a_n) result(t)
+            integer, intent(in) :: j
+            real(wp), intent(in) :: receiver(4), a_s, a_n
+            real(wp) :: t(2)
+            type(dd_kernel) :: kj
+            real(wp) :: ts(2), tn(2)
+
+            kj = kernel_with_images(kernel, receiver(1), receiver(2), medium, j, images, &
+                                    face_negative)
+            call resolved_tractions(kj, receiver(3), receiver(4), ts, tn)
+            t = [ts(1) * a_s + ts(2) * a_n, tn(1) * a_s + tn(2) * a_n]
+        end function constant_tractions
+    end subroutine outer_correction
+
+    !> The distance between the midpoints of elements i and j [length unit].
+    pure real(wp) function midpoint_distance(medium, i, j)
+        type(elastic_medium), intent(in) :: medium
+        integer, intent(in) :: i, j
+
+        associate (e => medium%elements)
+            midpoint_distance = hypot(e%x_mid(i) - e%x_mid(j), e%y_mid(i) - e%y_mid(j))
+        end associate
+    end function midpoint_distance
+
+    !> The mean DD (Ds, Dn) of a re-solved element with nodal values q [length unit], and its
+    !> first moment about the midpoint along the element [length unit**3]: Gauss-Legendre on
+    !> each half in t^2 from its outer end, where a square-root weight is smooth.
+    pure function dd_moments(element, q) result(moments)
+        type(weighted_element), intent(in) :: element
+        real(wp), intent(in) :: q(:)
+        !> (:, 1) the mean, (:, 2) the moment
+        real(wp) :: moments(2, 2)
+        real(wp) :: h, t, at, w, dw, n(3), dn(3), f(2)
+        integer :: half, g
+
+        h = 0.5_wp * element%length
+        moments = 0.0_wp
+        do half = 1, 2
+            do g = 1, size(gauss_x)
+                t = 0.5_wp * (gauss_x(g) + 1.0_wp)
+                ! arc length from the element's begin; d(at)/dt = 2 h t
+                at = h * t**2
+                if (half == 2) at = element%length - at
+                call weight_at(element, at, w, dw)
+                call nodal_basis(at / h - 1.0_wp, n, dn)
+                f = gauss_w(g) * h * t * w * [sum(n * q(1:per_element:2)), &
+                                              sum(n * q(2:per_element:2))]
+                moments(:, 1) = moments(:, 1) + f / element%length
+                moments(:, 2) = moments(:, 2) + f * (at - h)
+            end do
+        end do
+    end function dd_moments
 
     !> Node `node` of a re-solved element [length unit] and the tangent there.
     pure subroutine node_point(element, node, x, y, c, s)

@@ -17,7 +17,7 @@
 !> A run is not copied: its operator points into memory the run owns.
 module ddc_run_contact_run
     use ddc_kinds, only: wp
-    use ddc_error, only: error_type
+    use ddc_error, only: error_type, set_error, exit_solver_failure
     use ddc_model_types, only: domain_bimaterial
     use ddc_model_medium, only: elastic_medium, upper_remote_stress
     use ddc_model_results, only: solver_record, state_free, tip_set, element_results
@@ -35,11 +35,19 @@ module ddc_run_contact_run
     use ddc_solve_joints, only: joint_load, joint_dds
     use ddc_post_tips, only: stress_intensity
     use ddc_post_higher_order_k, only: higher_order_solver, prepare_higher_order, &
-        higher_order_k, uses_higher_order
+        higher_order_k, uses_higher_order, outer_correction
+    use ddc_text, only: itoa
+    use ddc_linalg_anderson, only: anderson_mixer
     implicit none
     private
 
     public :: contact_run, contact_step, load_of, record_contact
+
+    !> The local re-solve's coupling to the elements outside its zones stops when K moves by
+    !> less than this fraction of the largest |K| from one solve to the next, or fails after
+    !> max_coupling_solves solves
+    real(wp), parameter :: coupling_tolerance = 1.0e-9_wp
+    integer, parameter :: max_coupling_solves = 60
 
     !> The solution of one step.
     type :: contact_step
@@ -80,6 +88,8 @@ module ddc_run_contact_run
         logical :: higher_order = .false., k_decided = .false.
         type(higher_order_solver) :: k_solver
         character(len=:), allocatable :: tip_element_reason
+        !> A step was solved on this run (the local re-solve solves the model again)
+        logical :: stepped = .false.
     contains
         procedure :: start
         procedure :: prepare
@@ -93,6 +103,7 @@ module ddc_run_contact_run
         procedure :: law_in_force
         procedure :: free_tractions
         procedure :: tip_k
+        procedure :: couple_outer
         procedure :: finish
     end type contact_run
 
@@ -352,6 +363,7 @@ contains
             call op%complete(this%medium, load, [res%ds, res%dn], kept, solution%ds, &
                              solution%dn, rec, error)
         end associate
+        this%stepped = .not. allocated(error)
     end subroutine step
 
     !> The fault law of every element with the values in force the steps left on the
@@ -415,11 +427,19 @@ contains
             call stress_intensity(m, tips%element, solved%ds, solved%dn, k1, k2)
             if (.not. this%k_decided) then
                 this%k_decided = .true.
-                call uses_higher_order(this%options%k_method, growth, m%elements, tips, &
-                                       this%higher_order, this%tip_element_reason)
+                call uses_higher_order(this%options%k_method, this%options%k_zone_elements, &
+                                       growth, m%elements, tips, this%higher_order, &
+                                       this%tip_element_reason)
                 if (this%higher_order) then
-                    call prepare_higher_order(m, tips, this%k_solver, failed)
+                    call prepare_higher_order(m, tips, this%options%k_zone_elements, &
+                                              this%k_solver, failed)
                     call note_failure()
+                end if
+                if (this%higher_order .and. size(this%k_solver%outer%element) > 0 .and. &
+                    .not. this%stepped) then
+                    this%higher_order = .false.
+                    this%tip_element_reason = 'the elements outside the zones of the '// &
+                        're-solve were not solved by this run'
                 end if
             end if
             if (this%higher_order) then
@@ -434,6 +454,8 @@ contains
                                     solved%shear_traction, solved%normal_traction, mu, &
                                     load%remote, load%gradient, solved%state, tips, k1_high, &
                                     k2_high, failed)
+                if (.not. allocated(failed) .and. size(this%k_solver%outer%element) > 0) &
+                    call this%couple_outer(load, solved, mu, tips, k1_high, k2_high, failed)
                 call note_failure()
             end if
             if (this%higher_order) then
@@ -455,6 +477,76 @@ contains
             this%tip_element_reason = 'the higher-order re-solve failed: '//failed%message
         end subroutine note_failure
     end subroutine tip_k
+
+    !> The local re-solve coupled to the elements outside its zones: the model solved again
+    !> under its load plus the traction the zones' higher-order DDs and the recovered DDs
+    !> add at their midpoints (outer_correction), then the zones re-solved, until K stops
+    !> moving (docs/theory/tips.md#the-local-re-solve). The run's friction memory and
+    !> strengths are left as the step left them.
+    subroutine couple_outer(this, load, solved, mu, tips, k1, k2, error)
+        !> The run (stepped)
+        class(contact_run), intent(inout) :: this
+        !> The load the DDs were solved for
+        type(elastic_load), intent(in) :: load
+        !> The step's DDs, states and total midpoint tractions
+        type(element_results), intent(in) :: solved
+        !> Friction in force [-], shape (n)
+        real(wp), intent(in) :: mu(:)
+        !> The tips
+        type(tip_set), intent(in) :: tips
+        !> K of the re-solve with the step's DDs outside the zones on entry, coupled on exit
+        !> [stress unit * length unit**0.5], shape (tips)
+        real(wp), intent(inout) :: k1(:), k2(:)
+        !> Set when a solve fails or K does not settle
+        type(error_type), allocatable, intent(out) :: error
+        type(elastic_load) :: shifted
+        type(contact_step) :: trial
+        type(fault_law) :: law
+        type(anderson_mixer) :: mixer
+        real(wp), allocatable :: held(:), shear_traction(:), normal_traction(:), shift(:)
+        real(wp), allocatable :: k1_next(:), k2_next(:), correction(:)
+        real(wp) :: scale, change
+        integer :: n, solves
+
+        n = this%medium%elements%n
+        shear_traction = solved%shear_traction
+        normal_traction = solved%normal_traction
+        scale = maxval(hypot(k1, k2))
+        allocate (shift(2 * n), correction(2 * n))
+        call outer_correction(this%k_solver, this%medium, solved%ds, solved%dn, shift(:n), &
+                              shift(n + 1:))
+        shifted = load
+        do solves = 1, max_coupling_solves
+            shifted%shear = load%shear + shift(:n)
+            shifted%normal = load%normal + shift(n + 1:)
+            held = this%held
+            law = this%law
+            call this%step(shifted, trial, error)
+            this%held = held
+            this%law = law
+            if (allocated(error)) return
+            associate (op => this%operator)
+                shear_traction(op%contact) = trial%contact%shear_traction
+                normal_traction(op%contact) = trial%contact%normal_traction
+            end associate
+            k1_next = k1
+            k2_next = k2
+            call higher_order_k(this%k_solver, this%medium, trial%ds, trial%dn, shear_traction, &
+                                normal_traction, mu, load%remote, load%gradient, trial%state, &
+                                tips, k1_next, k2_next, error)
+            if (allocated(error)) return
+            change = maxval(abs([k1_next - k1, k2_next - k2]))
+            k1 = k1_next
+            k2 = k2_next
+            if (change <= coupling_tolerance * scale) return
+            call outer_correction(this%k_solver, this%medium, trial%ds, trial%dn, &
+                                  correction(:n), correction(n + 1:))
+            call mixer%next(shift, correction)
+        end do
+        call set_error(error, exit_solver_failure, 'K still moved by '// &
+                       itoa(nint(change / scale * 1.0e9_wp))//'e-9 of its largest value after '// &
+                       itoa(max_coupling_solves)//' solves')
+    end subroutine couple_outer
 
     !> Free what the run holds.
     subroutine finish(this)
