@@ -647,8 +647,10 @@ contains
         character(len=*), intent(in) :: k_method
         character(len=:), allocatable :: text
 
-        if (k_method == 'higher_order') then
-            text = 'higher-order re-solve (docs/theory/tips.md#k-from-a-higher-order-re-solve)'
+        if (index(k_method, 'higher_order') == 1) then
+            ! 'higher_order' and what its coupling left, in brackets
+            text = 'local higher-order re-solve'//k_method(len('higher_order') + 1:)// &
+                   ' (docs/theory/tips.md#the-local-re-solve)'
         else
             ! 'tip_element' and its reason in brackets
             text = 'tip element'//k_method(len('tip_element') + 1:)// &

@@ -135,6 +135,9 @@ module ddc_contact_formulation
         !> Largest number of solves of the strength fixed point (default
         !> 2n + 1 + max_weakening_solves)
         integer, allocatable :: max_solves
+        !> A Newton failure falls back to Lemke (else it is the solve's failure: a solve
+        !> whose failure its caller can take, as the K re-solve's)
+        logical :: fall_back = .true.
     end type contact_limits
 
     !> What successive solves on the same contact elements (the steps of a loading history)
@@ -422,7 +425,8 @@ contains
                 call solve_once_newton(s, srn_in, sf_in, .not. present(a), reason, exceeded)
                 if (exceeded) then
                     call set_error(error, exit_out_of_memory, 'contact: '//reason)
-                else if (len(reason) > 0 .and. .not. present(a)) then
+                else if (len(reason) > 0 .and. &
+                         (.not. present(a) .or. .not. s%limits%fall_back)) then
                     call set_error(error, exit_solver_failure, 'contact: '//reason)
                 else if (len(reason) > 0) then
                     ! Lemke's memory, not the Newton factors beside it.

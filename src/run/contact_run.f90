@@ -46,7 +46,7 @@ module ddc_run_contact_run
     !> The local re-solve's coupling to the elements outside its zones stops when K moves by
     !> less than this fraction of the largest |K| from one solve to the next, or fails after
     !> max_coupling_solves solves
-    real(wp), parameter :: coupling_tolerance = 1.0e-9_wp
+    real(wp), parameter :: coupling_tolerance = 1.0e-8_wp
     integer, parameter :: max_coupling_solves = 60
 
     !> The solution of one step.
@@ -90,6 +90,13 @@ module ddc_run_contact_run
         character(len=:), allocatable :: tip_element_reason
         !> A step was solved on this run (the local re-solve solves the model again)
         logical :: stepped = .false.
+        !> Solutions whose K the local re-solve gave, those where its coupling to the elements
+        !> outside the zones stopped early (K its last iterate), and why the last one did
+        integer :: k_evaluations = 0, k_unsettled = 0
+        character(len=:), allocatable :: unsettled_reason
+        !> The local re-solve's last converged traction on the elements outside its zones
+        !> ([shear; normal], shape (2 n)): the next step of a history starts from it
+        real(wp), allocatable :: k_shift(:)
     contains
         procedure :: start
         procedure :: prepare
@@ -454,15 +461,25 @@ contains
                                     solved%shear_traction, solved%normal_traction, mu, &
                                     load%remote, load%gradient, solved%state, tips, k1_high, &
                                     k2_high, failed)
-                if (.not. allocated(failed) .and. size(this%k_solver%outer%element) > 0) &
-                    call this%couple_outer(load, solved, mu, tips, k1_high, k2_high, failed)
                 call note_failure()
+            end if
+            if (this%higher_order .and. size(this%k_solver%outer%element) > 0) then
+                this%k_evaluations = this%k_evaluations + 1
+                call this%couple_outer(load, solved, mu, tips, k1_high, k2_high, failed)
+                if (allocated(failed)) then
+                    this%k_unsettled = this%k_unsettled + 1
+                    this%unsettled_reason = failed%message
+                end if
             end if
             if (this%higher_order) then
                 k1 = k1_high
                 k2 = k2_high
                 where (this%k_solver%local(tips%element) > 0) tips%graded = 0
                 tips%k_method = 'higher_order'
+                if (this%k_unsettled > 0) tips%k_method = tips%k_method// &
+                    ' (the coupling to the elements outside the zones stopped early at '// &
+                    itoa(this%k_unsettled)//' of '//itoa(this%k_evaluations)// &
+                    ' solutions, K there its last iterate: '//this%unsettled_reason//')'
             else if (len(this%tip_element_reason) > 0) then
                 tips%k_method = 'tip_element ('//this%tip_element_reason//')'
             end if
@@ -502,6 +519,8 @@ contains
         type(elastic_load) :: shifted
         type(contact_step) :: trial
         type(fault_law) :: law
+        logical, allocatable :: open(:)
+        integer, allocatable :: shear_state(:), basis(:)
         type(anderson_mixer) :: mixer
         real(wp), allocatable :: held(:), shear_traction(:), normal_traction(:), shift(:)
         real(wp), allocatable :: k1_next(:), k2_next(:), correction(:)
@@ -512,18 +531,32 @@ contains
         shear_traction = solved%shear_traction
         normal_traction = solved%normal_traction
         scale = maxval(hypot(k1, k2))
-        allocate (shift(2 * n), correction(2 * n))
-        call outer_correction(this%k_solver, this%medium, solved%ds, solved%dn, shift(:n), &
-                              shift(n + 1:))
+        allocate (correction(2 * n))
+        if (allocated(this%k_shift)) then
+            shift = this%k_shift
+        else
+            allocate (shift(2 * n))
+            call outer_correction(this%k_solver, this%medium, solved%ds, solved%dn, shift(:n), &
+                                  shift(n + 1:))
+        end if
         shifted = load
         do solves = 1, max_coupling_solves
             shifted%shear = load%shear + shift(:n)
             shifted%normal = load%normal + shift(n + 1:)
+            ! The solve leaves the memory, strengths and warm start as the step left them.
             held = this%held
             law = this%law
+            if (allocated(this%session%open)) open = this%session%open
+            if (allocated(this%session%shear_state)) shear_state = this%session%shear_state
+            if (allocated(this%session%basis)) basis = this%session%basis
+            this%session%limits%fall_back = .false.
             call this%step(shifted, trial, error)
+            this%session%limits%fall_back = .true.
             this%held = held
             this%law = law
+            if (allocated(open)) this%session%open = open
+            if (allocated(shear_state)) this%session%shear_state = shear_state
+            if (allocated(basis)) this%session%basis = basis
             if (allocated(error)) return
             associate (op => this%operator)
                 shear_traction(op%contact) = trial%contact%shear_traction
@@ -538,7 +571,11 @@ contains
             change = maxval(abs([k1_next - k1, k2_next - k2]))
             k1 = k1_next
             k2 = k2_next
-            if (change <= coupling_tolerance * scale) return
+            ! K of the step's own DDs is no iterate: two solves at least.
+            if (solves > 1 .and. change <= coupling_tolerance * scale) then
+                this%k_shift = shift
+                return
+            end if
             call outer_correction(this%k_solver, this%medium, trial%ds, trial%dn, &
                                   correction(:n), correction(n + 1:))
             call mixer%next(shift, correction)
