@@ -71,8 +71,9 @@ contains
         integer :: m, k, i
 
         associate (e => medium%elements)
+            m = count(serves .and. .not. in_zone)
+            allocate (outer%element(m))
             outer%element = pack([(i, i = 1, e%n)], serves .and. .not. in_zone)
-            m = size(outer%element)
             allocate (outer%place(e%n), source=0)
             outer%place(outer%element) = [(k, k = 1, m)]
             allocate (outer%arc(m), outer%stencil(3, m), outer%weight(3, 3, m), &

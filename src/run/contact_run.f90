@@ -38,6 +38,7 @@ module ddc_run_contact_run
         higher_order_k, uses_higher_order, outer_correction
     use ddc_text, only: itoa
     use ddc_linalg_anderson, only: anderson_mixer
+    use ddc_contact_counts, only: factor_counts
     implicit none
     private
 
@@ -76,6 +77,10 @@ module ddc_run_contact_run
         !> Total (plastic) slip of the contact elements before the next step [length unit],
         !> shape (nc)
         real(wp), allocatable :: held(:)
+        !> The slip and fault law in force before the last step (the K re-solve solves it
+        !> again from them)
+        real(wp), allocatable :: held_before(:)
+        type(fault_law) :: law_before
         !> Joint compliance of the contact elements (elastic joints), shape (2 nc)
         real(wp), allocatable :: compliance(:)
         !> What the steps share: states, factors, Lemke's LCP and basis (growth's kept path
@@ -352,6 +357,8 @@ contains
                                                             shift(1:nc), shift(nc + 1:))
                 problem%shear = shift(1:nc)
                 problem%normal = shift(nc + 1:)
+                this%held_before = this%held
+                this%law_before = this%law
                 problem%ds_previous = this%held
                 if (allocated(this%stress_scale)) problem%stress_scale = this%stress_scale
                 call solve_contact_with(op%stiffness, problem, this%law, this%options, res, &
@@ -442,8 +449,7 @@ contains
                                               this%k_solver, failed)
                     call note_failure()
                 end if
-                if (this%higher_order .and. size(this%k_solver%outer%element) > 0 .and. &
-                    .not. this%stepped) then
+                if (coupled() .and. .not. this%stepped) then
                     this%higher_order = .false.
                     this%tip_element_reason = 'the elements outside the zones of the '// &
                         're-solve were not solved by this run'
@@ -463,7 +469,7 @@ contains
                                     k2_high, failed)
                 call note_failure()
             end if
-            if (this%higher_order .and. size(this%k_solver%outer%element) > 0) then
+            if (coupled()) then
                 this%k_evaluations = this%k_evaluations + 1
                 call this%couple_outer(load, solved, mu, tips, k1_high, k2_high, failed)
                 if (allocated(failed)) then
@@ -486,6 +492,12 @@ contains
         end associate
 
     contains
+
+        !> Whether the re-solve serves and has elements outside its zones to couple.
+        logical function coupled()
+            coupled = this%higher_order
+            if (coupled) coupled = size(this%k_solver%outer%element) > 0
+        end function coupled
 
         !> A re-solve that fails leaves the run's K method the tip element's.
         subroutine note_failure()
@@ -519,17 +531,16 @@ contains
         type(elastic_load) :: shifted
         type(contact_step) :: trial
         type(fault_law) :: law
-        logical, allocatable :: open(:)
-        integer, allocatable :: shear_state(:), basis(:)
         type(anderson_mixer) :: mixer
+        type(factor_counts) :: counts
         real(wp), allocatable :: held(:), shear_traction(:), normal_traction(:), shift(:)
         real(wp), allocatable :: k1_next(:), k2_next(:), correction(:)
         real(wp) :: scale, change
         integer :: n, solves
 
         n = this%medium%elements%n
-        shear_traction = solved%shear_traction
-        normal_traction = solved%normal_traction
+        allocate (shear_traction, source=solved%shear_traction)
+        allocate (normal_traction, source=solved%normal_traction)
         scale = maxval(hypot(k1, k2))
         allocate (correction(2 * n))
         if (allocated(this%k_shift)) then
@@ -543,20 +554,22 @@ contains
         do solves = 1, max_coupling_solves
             shifted%shear = load%shear + shift(:n)
             shifted%normal = load%normal + shift(n + 1:)
-            ! The solve leaves the memory, strengths and warm start as the step left them.
+            ! Solved again from the memory and strengths the step started from, which are
+            ! then left as the step left them; the counts of the solver's work are the
+            ! steps' alone.
             held = this%held
             law = this%law
-            if (allocated(this%session%open)) open = this%session%open
-            if (allocated(this%session%shear_state)) shear_state = this%session%shear_state
-            if (allocated(this%session%basis)) basis = this%session%basis
+            counts = this%operator%stiffness%counts
+            if (allocated(this%held_before)) then
+                this%held = this%held_before
+                this%law = this%law_before
+            end if
             this%session%limits%fall_back = .false.
             call this%step(shifted, trial, error)
             this%session%limits%fall_back = .true.
+            this%operator%stiffness%counts = counts
             this%held = held
             this%law = law
-            if (allocated(open)) this%session%open = open
-            if (allocated(shear_state)) this%session%shear_state = shear_state
-            if (allocated(basis)) this%session%basis = basis
             if (allocated(error)) return
             associate (op => this%operator)
                 shear_traction(op%contact) = trial%contact%shear_traction
