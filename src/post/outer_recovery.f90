@@ -226,10 +226,13 @@ contains
                 hypot(x - e%x_mid(i), y - e%y_mid(i)) > near_lengths * outer%arc(k)%length) then
                 ! The quadratic's mean, 3/8, 1/4, 3/8 of the nodal values, and its first
                 ! moment, (L/2)^2 (q3 - q1) / 2.
-                t = halves_tractions(kernel, images, medium, outer%arc(k), &
-                                     0.375_wp * (nodal(1:2) + nodal(5:6)) + 0.25_wp * nodal(3:4), &
-                                     0.125_wp * outer%arc(k)%length**2 * (nodal(5:6) - nodal(1:2)), &
-                                     x, y, c, s)
+                associate (length => outer%arc(k)%length)
+                    t = halves_tractions(kernel, images, medium, outer%arc(k), &
+                                         0.375_wp * (nodal(1:2) + nodal(5:6)) + &
+                                         0.25_wp * nodal(3:4), &
+                                         0.125_wp * length**2 * (nodal(5:6) - nodal(1:2)), &
+                                         x, y, c, s)
+                end associate
                 ts = t(1)
                 tn = t(2)
                 return

@@ -559,7 +559,7 @@ contains
             ! steps' alone.
             held = this%held
             law = this%law
-            counts = this%operator%stiffness%counts
+            if (allocated(this%operator%stiffness)) counts = this%operator%stiffness%counts
             if (allocated(this%held_before)) then
                 this%held = this%held_before
                 this%law = this%law_before
@@ -567,13 +567,15 @@ contains
             this%session%limits%fall_back = .false.
             call this%step(shifted, trial, error)
             this%session%limits%fall_back = .true.
-            this%operator%stiffness%counts = counts
+            if (allocated(this%operator%stiffness)) this%operator%stiffness%counts = counts
             this%held = held
             this%law = law
             if (allocated(error)) return
             associate (op => this%operator)
-                shear_traction(op%contact) = trial%contact%shear_traction
-                normal_traction(op%contact) = trial%contact%normal_traction
+                if (op%nc > 0) then
+                    shear_traction(op%contact) = trial%contact%shear_traction
+                    normal_traction(op%contact) = trial%contact%normal_traction
+                end if
             end associate
             k1_next = k1
             k2_next = k2

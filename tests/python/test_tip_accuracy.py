@@ -1,8 +1,9 @@
 """Accuracy of K (docs/theory/tips.md): the higher-order re-solve (the default) against
-closed forms on straight, graded and circular-arc cracks, its order of convergence there
-and on models without a closed form; and the tip element's K (k_method = 'tip_element')
-on the arcs as the guide documents it, with the Richardson value of three meshes
-(ddc2d.richardson)."""
+closed forms on straight, graded, circular-arc and frictional cracks: re-solved whole, its
+order of convergence; by its local zones coupled to the rest (the default on larger
+cracks), its error at any size; on models without a closed form, its convergence; and the
+tip element's K (k_method = 'tip_element') on the arcs as the guide documents it, with the
+Richardson value of three meshes (ddc2d.richardson)."""
 
 import math
 import re
@@ -25,9 +26,15 @@ def polyline(x, y, extra="condition = 'traction', bc_s = 0.0, bc_n = 0.0"):
     return f"&fracture name = 'crack', x = {xs}, y = {ys}, elements = 1, {extra} /\n"
 
 
-def solve_k(folder, stem, text, k_method="auto"):
-    """K_I, K_II of every tip and the /tips k_method attribute."""
-    text += f"&solver k_method = '{k_method}' /\n"
+#: A zone larger than any crack here: the whole crack re-solved
+WHOLE = 1000
+
+
+def solve_k(folder, stem, text, k_method="auto", zone=None):
+    """K_I, K_II of every tip and the /tips k_method attribute (zones of `zone` elements,
+    default the program's)."""
+    zone_text = f", k_zone_elements = {zone}" if zone else ""
+    text += f"&solver k_method = '{k_method}'{zone_text} /\n"
     with h5py.File(solve_text(folder, stem, text), "r") as f:
         return f["tips/k1"][()], f["tips/k2"][()], f["tips"].attrs["k_method"].decode()
 
@@ -55,22 +62,23 @@ def order_of(errors):
     return np.log2(errors[:-1] / errors[1:])
 
 
-# Half-angle [degrees], meshes [chords], the largest relative error of K_I, K_II allowed on
-# the middle mesh (the issue's 50 and 145 chords; measured 4e-7 and 1e-6, 1.1e-6 and
-# 1.8e-7).
+# Half-angle [degrees], meshes [chords] of the arcs re-solved whole (the largest relative
+# error of K_I, K_II on the middle mesh, the issue's 50 and 145 chords: measured 4e-7 and
+# 1e-6, 1.1e-6 and 1.8e-7).
 ARCS = {90: (25, 50, 100), 145: (73, 145, 290)}
 
 
 @pytest.fixture(scope="module", params=sorted(ARCS), ids=lambda a: f"{a}deg")
 def arc_errors(request, tmp_path_factory):
     """K_I, |K_II| / closed form - 1 at both tips on the arc's meshes, shape
-    (mesh, mode, tip), by the re-solve."""
+    (mesh, mode, tip), by the re-solve of the whole arc."""
     half_angle = request.param
     folder = tmp_path_factory.mktemp("arc")
     exact = arc_crack_k(math.radians(half_angle), RADIUS, TENSION)
     errors = []
     for n in ARCS[half_angle]:
-        k1, k2, method = solve_k(folder, f"arc{n}", arc_text(math.radians(half_angle), n))
+        k1, k2, method = solve_k(folder, f"arc{n}", arc_text(math.radians(half_angle), n),
+                                 zone=WHOLE)
         assert method == "higher_order"
         errors.append((k1 / exact[0] - 1.0, np.abs(k2) / exact[1] - 1.0))
     return np.array(errors)
@@ -87,6 +95,49 @@ def test_arc_k_converges_at_least_as_one_over_n_squared(arc_errors):
     """Observed orders of K_I and K_II over the three meshes (measured 3.0-3.3)."""
     for mode in (0, 1):
         assert np.all(order_of(arc_errors[:, mode, 0]) > 2.5)
+
+
+def frictional_text(n):
+    """A straight crack of half-length 1 in n contact elements (mu 0.6) under sxx = syy =
+    -50, sxy = 40: every element slips, K_II = 10 sqrt(pi), K_I = 0."""
+    x = np.linspace(-1.0, 1.0, n + 1)
+    return (HEAD + "&remote_stress sxx = -50.0, syy = -50.0, sxy = 40.0 /\n"
+            + polyline(x, 0.0 * x, "condition = 'contact', mu = 0.6"))
+
+
+def straight_text(x):
+    return HEAD + "&remote_stress sxx = 0.0, syy = 1.0, sxy = 0.5 /\n" + polyline(x, 0.0 * x)
+
+
+# The local re-solve (zones of the default 32 elements, coupled to the rest): crack and
+# closed-form K_I, K_II. Measured largest errors: 1.6e-8, 3.9e-7, 2.5e-7, 6.5e-7, 2.7e-7,
+# 1.0e-5, 2.3e-6, 1.6e-8 (docs/theory/tips.md#the-size-of-the-zones).
+SQRT_PI = math.sqrt(math.pi)
+LOCAL = {
+    "straight_100": (lambda: straight_text(np.linspace(-1.0, 1.0, 101)), (SQRT_PI, 0.5 * SQRT_PI)),
+    "straight_400": (lambda: straight_text(np.linspace(-1.0, 1.0, 401)), (SQRT_PI, 0.5 * SQRT_PI)),
+    "graded_100": (lambda: straight_text(graded_x(100)), (SQRT_PI, 0.5 * SQRT_PI)),
+    "arc90_100": (lambda: arc_text(math.radians(90), 100), arc_crack_k(math.radians(90))),
+    "arc90_200": (lambda: arc_text(math.radians(90), 200), arc_crack_k(math.radians(90))),
+    "arc145_145": (lambda: arc_text(math.radians(145), 145), arc_crack_k(math.radians(145))),
+    "arc145_290": (lambda: arc_text(math.radians(145), 290), arc_crack_k(math.radians(145))),
+    "frictional_100": (lambda: frictional_text(100), (0.0, 10.0 * SQRT_PI)),
+}
+
+
+@pytest.mark.parametrize("case", sorted(LOCAL))
+def test_local_re_solve_within_2e_5(tmp_path, case):
+    """Cracks longer than two zones: K by the zones coupled to the rest within 2e-5 of the
+    closed forms (the issue asks for 1e-4), at both tips; K_I of the closed frictional
+    crack 0."""
+    make_text, exact = LOCAL[case]
+    k1, k2, method = solve_k(tmp_path, case, make_text())
+    assert method == "higher_order"
+    if exact[0] == 0.0:
+        assert np.all(k1 == 0.0)
+    else:
+        assert np.max(np.abs(k1 / exact[0] - 1.0)) < 2e-5
+    assert np.max(np.abs(np.abs(k2) / exact[1] - 1.0)) < 2e-5
 
 
 @pytest.mark.parametrize("graded", [False, True], ids=["equal", "graded_3_to_1"])
@@ -143,17 +194,22 @@ def test_example_k_converges(tmp_path, example, tip, factors, tolerance):
     1.9e-4, 2.8e-5, 3.5e-8), and the differences shrink at least fourfold (measured 6.9,
     6.5, 17) where the tip element's K on the joint set moves by 1.5 % between the
     example's mesh and one twice as fine. (The joint set's coarser meshes, a quarter of the
-    example's, are not yet converged in the joints' states: K moves by 2e-4 twice.)"""
+    example's, are not yet converged in the joints' states: K moves by 2e-4 twice.) The
+    fractures are re-solved whole there (the convergence of the re-solve's elements); the
+    default zones on the finest mesh give |K| within `tolerance` of that."""
     values = []
     for factor in factors:
         k1, k2, method = solve_k(tmp_path, f"level{factor}", scaled(example, factor),
-                                 "higher_order")
+                                 "higher_order", zone=WHOLE)
         assert method == "higher_order"
         values.append(math.hypot(k1[tip], k2[tip]))
     values = np.array(values)
     differences = np.abs(np.diff(values)) / values[-1]
     assert differences[0] < tolerance
     assert differences[1] < differences[0] / 4
+    k1, k2, method = solve_k(tmp_path, "zones", scaled(example, factors[-1]), "higher_order")
+    assert method == "higher_order"
+    assert math.hypot(k1[tip], k2[tip]) / values[-1] - 1.0 == pytest.approx(0.0, abs=tolerance)
 
 
 # The tip element's K on the arcs (k_method = 'tip_element'): the documented relative
