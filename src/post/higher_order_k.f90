@@ -19,7 +19,8 @@ module ddc_post_higher_order_k
     use ddc_kinds, only: wp
     use ddc_constants, only: pi
     use ddc_error, only: error_type
-    use ddc_model_types, only: element_set, condition_contact, condition_traction, rigid_joint
+    use ddc_model_types, only: element_set, condition_contact, condition_traction, rigid_joint, &
+        domain_bimaterial
     use ddc_model_results, only: tip_set
     use ddc_model_medium, only: elastic_medium, elastic_material, element_material, &
         remote_stress_at
@@ -54,6 +55,9 @@ module ddc_post_higher_order_k
     real(wp), parameter :: gauss_w(8) = [0.1012285362903763_wp, 0.2223810344533745_wp, &
         0.3137066458778873_wp, 0.3626837833783620_wp, 0.3626837833783620_wp, &
         0.3137066458778873_wp, 0.2223810344533745_wp, 0.1012285362903763_wp]
+    !> A vertex that turns by more than this [rad] off a sampled curve is a corner of the
+    !> fracture, where a zone of the re-solve is centred
+    real(wp), parameter :: kink_turn = 1.0e-6_wp
     !> A vertex that turns by more than this [rad] is a kink, not a sample of a curve
     real(wp), parameter :: max_curve_turn = 0.35_wp
     !> The curvatures at two vertices of a sampled curve agree within this fraction
@@ -82,15 +86,15 @@ module ddc_post_higher_order_k
 contains
 
     !> Whether K comes from the higher-order re-solve, and why not where it does not.
-    pure subroutine uses_higher_order(k_method, zone, growth, elements, tips, uses, why_not)
+    pure subroutine uses_higher_order(k_method, zone, growth, medium, tips, uses, why_not)
         !> &solver k_method (k_auto, k_higher_order or k_tip_element)
         integer, intent(in) :: k_method
         !> Elements of a tip's zone
         integer, intent(in) :: zone
         !> Whether the model grows its fractures
         logical, intent(in) :: growth
-        !> Elements with geometry computed
-        type(element_set), intent(in) :: elements
+        !> The medium, element geometry computed
+        type(elastic_medium), intent(in) :: medium
         !> The tips (ddc_post_tips)
         type(tip_set), intent(in) :: tips
         !> Whether the re-solve serves
@@ -108,7 +112,7 @@ contains
         else if (growth) then
             why_not = 'growth calibrates the tip element'
         else
-            n = count(re_solved(elements, tips, zone))
+            n = count(re_solved(medium, tips, zone))
             uses = n > 0 .and. (k_method == k_higher_order .or. n <= higher_order_max_elements)
             if (n == 0) then
                 why_not = 'no tip on a traction or contact element'
@@ -136,7 +140,7 @@ contains
         integer :: k, m, stat
 
         associate (s => solver, elements => medium%elements)
-            s%solved = pack([(k, k = 1, elements%n)], re_solved(elements, tips, zone))
+            s%solved = pack([(k, k = 1, elements%n)], re_solved(medium, tips, zone))
             allocate (s%local(elements%n), source=0)
             s%local(s%solved) = [(k, k = 1, size(s%solved))]
             curvature = sampled_curvature(elements)
@@ -289,26 +293,80 @@ contains
     end subroutine factorize
 
     !> The zones: the first `zone` traction or contact elements of the chain from each tip on
-    !> such an element.
-    pure function re_solved(elements, tips, zone) result(mask)
-        type(element_set), intent(in) :: elements
+    !> such an element, and the first zone / 2 from each corner of a fracture with tips
+    !> (where its DD is not smooth: a kink, a junction, a crack mouth at a free surface, a
+    !> crossing of the interface of two materials).
+    pure function re_solved(medium, tips, zone) result(mask)
+        type(elastic_medium), intent(in) :: medium
         type(tip_set), intent(in) :: tips
         integer, intent(in) :: zone
-        logical :: mask(elements%n)
-        logical :: kind_serves(elements%n)
-        integer, allocatable :: chain(:), near_side(:)
-        integer :: k, i
+        logical :: mask(medium%elements%n)
+        logical :: kind_serves(medium%elements%n), with_tips(medium%elements%n)
+        logical :: is_tip(2, medium%elements%n)
+        integer :: neighbour(2, medium%elements%n), neighbour_side(2, medium%elements%n)
+        integer :: k, i, side
+        real(wp) :: curvature(medium%elements%n)
 
+        associate (elements => medium%elements)
         kind_serves = serves(elements)
+        curvature = sampled_curvature(elements)
         mask = .false.
+        is_tip = .false.
         do k = 1, tips%n
-            if (.not. kind_serves(tips%element(k))) cycle
-            call tip_chain(elements, tips%element(k), tips%side(k), chain, near_side)
-            do i = 1, min(zone, size(chain))
-                if (.not. kind_serves(chain(i))) exit
-                mask(chain(i)) = .true.
+            is_tip(tips%side(k), tips%element(k)) = .true.
+            if (kind_serves(tips%element(k))) call mark(tips%element(k), tips%side(k), zone)
+        end do
+        do i = 1, elements%n
+            with_tips(i) = any(kind_serves(tips%element) .and. &
+                               tips%fracture_id == elements%fracture_id(i))
+        end do
+        call end_neighbours(elements, neighbour, neighbour_side)
+        do i = 1, elements%n
+            if (.not. (kind_serves(i) .and. with_tips(i))) cycle
+            do side = 1, 2
+                if (is_tip(side, i)) cycle
+                if (neighbour(side, i) > 0) then
+                    if (.not. kink(i, side)) cycle
+                end if
+                call mark(i, side, max(zone / 2, 1))
             end do
         end do
+        end associate
+
+    contains
+
+        !> Mark the first `count` elements of the chain from end `side` of element i.
+        pure subroutine mark(i, side, count)
+            integer, intent(in) :: i, side, count
+            integer, allocatable :: chain(:), near_side(:)
+            integer :: c
+
+            call tip_chain(medium%elements, i, side, chain, near_side)
+            do c = 1, min(count, size(chain))
+                if (.not. kind_serves(chain(c))) exit
+                mask(chain(c)) = .true.
+            end do
+        end subroutine mark
+
+        !> Whether the polyline turns at end `side` of element i other than on a sampled curve
+        !> (whose elements both have a curvature: sampled_curvature).
+        pure logical function kink(i, side)
+            integer, intent(in) :: i, side
+            real(wp) :: a(2), b(2)
+            integer :: j
+
+            j = neighbour(side, i)
+            associate (e => medium%elements)
+                a = [e%cos_beta(i), e%sin_beta(i)] * merge(1.0_wp, -1.0_wp, side == 2)
+                b = [e%cos_beta(j), e%sin_beta(j)] * &
+                    merge(1.0_wp, -1.0_wp, neighbour_side(side, i) == 1)
+                kink = abs(atan2(a(1) * b(2) - a(2) * b(1), dot_product(a, b))) > kink_turn &
+                       .and. (curvature(i) == 0.0_wp .or. curvature(j) == 0.0_wp)
+                ! Two materials meet there.
+                if (e%domain == domain_bimaterial) kink = kink .or. &
+                    (e%y_mid(i) > medium%interface_y .neqv. e%y_mid(j) > medium%interface_y)
+            end associate
+        end function kink
     end function re_solved
 
     !> Whether each element is of a kind the re-solve serves: traction and contact elements.

@@ -77,10 +77,11 @@ module ddc_run_contact_run
         !> Total (plastic) slip of the contact elements before the next step [length unit],
         !> shape (nc)
         real(wp), allocatable :: held(:)
-        !> The slip and fault law in force before the last step (the K re-solve solves it
-        !> again from them)
-        real(wp), allocatable :: held_before(:)
-        type(fault_law) :: law_before
+        !> The slip and fault law in force before the last step, and those of the model with
+        !> the K re-solve's higher-order zones after its last coupled solution (its own
+        !> friction memory: in a history, the slip it kept when the step's elements stick)
+        real(wp), allocatable :: held_before(:), k_held(:)
+        type(fault_law) :: law_before, k_law
         !> Joint compliance of the contact elements (elastic joints), shape (2 nc)
         real(wp), allocatable :: compliance(:)
         !> What the steps share: states, factors, Lemke's LCP and basis (growth's kept path
@@ -442,7 +443,7 @@ contains
             if (.not. this%k_decided) then
                 this%k_decided = .true.
                 call uses_higher_order(this%options%k_method, this%options%k_zone_elements, &
-                                       growth, m%elements, tips, this%higher_order, &
+                                       growth, m, tips, this%higher_order, &
                                        this%tip_element_reason)
                 if (this%higher_order) then
                     call prepare_higher_order(m, tips, this%options%k_zone_elements, &
@@ -530,10 +531,11 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(elastic_load) :: shifted
         type(contact_step) :: trial
-        type(fault_law) :: law
+        type(fault_law) :: law, coupled_law
         type(anderson_mixer) :: mixer
         type(factor_counts) :: counts
-        real(wp), allocatable :: held(:), shear_traction(:), normal_traction(:), shift(:)
+        real(wp), allocatable :: held(:), coupled_held(:), shear_traction(:), &
+            normal_traction(:), shift(:)
         real(wp), allocatable :: k1_next(:), k2_next(:), correction(:)
         real(wp) :: scale, change
         integer :: n, solves
@@ -554,13 +556,16 @@ contains
         do solves = 1, max_coupling_solves
             shifted%shear = load%shear + shift(:n)
             shifted%normal = load%normal + shift(n + 1:)
-            ! Solved again from the memory and strengths the step started from, which are
-            ! then left as the step left them; the counts of the solver's work are the
-            ! steps' alone.
+            ! Solved again from the memory and strengths of the model with higher-order zones
+            ! (at the first solution, those the step started from); the run's are then left
+            ! as the step left them, and the counts of the solver's work are the steps' alone.
             held = this%held
             law = this%law
             if (allocated(this%operator%stiffness)) counts = this%operator%stiffness%counts
-            if (allocated(this%held_before)) then
+            if (allocated(this%k_held)) then
+                this%held = this%k_held
+                this%law = this%k_law
+            else if (allocated(this%held_before)) then
                 this%held = this%held_before
                 this%law = this%law_before
             end if
@@ -568,6 +573,8 @@ contains
             call this%step(shifted, trial, error)
             this%session%limits%fall_back = .true.
             if (allocated(this%operator%stiffness)) this%operator%stiffness%counts = counts
+            coupled_held = this%held
+            coupled_law = this%law
             this%held = held
             this%law = law
             if (allocated(error)) return
@@ -589,6 +596,8 @@ contains
             ! K of the step's own DDs is no iterate: two solves at least.
             if (solves > 1 .and. change <= coupling_tolerance * scale) then
                 this%k_shift = shift
+                call move_alloc(coupled_held, this%k_held)
+                this%k_law = coupled_law
                 return
             end if
             call outer_correction(this%k_solver, this%medium, trial%ds, trial%dn, &
