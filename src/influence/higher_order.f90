@@ -30,7 +30,7 @@ module ddc_influence_higher_order
     private
 
     public :: weighted_element, arc_element, node_xi, nodal_basis, weight_at, point_at
-    public :: element_tractions
+    public :: element_tractions, gauss_8_x, gauss_8_w
 
     !> Positions of the three nodes, in half-lengths from the midpoint
     real(wp), parameter :: node_xi(3) = [-2.0_wp / 3.0_wp, 0.0_wp, 2.0_wp / 3.0_wp]

@@ -30,7 +30,8 @@ module ddc_post_higher_order_k
     use ddc_influence_assembly, only: kernel_function, select_kernel, image_transform, &
         image_transforms, kernel_with_images, resolved_tractions
     use ddc_influence_higher_order, only: weighted_element, arc_element, node_xi, &
-        nodal_basis, element_tractions, weight_at, point_at
+        nodal_basis, element_tractions, weight_at, point_at, gauss_x => gauss_8_x, &
+        gauss_w => gauss_8_w
     use ddc_post_tips, only: tip_chain, end_neighbours, end_on_mirror
     use ddc_post_outer_recovery, only: outer_recovery, recover_outer, recovered_tractions, &
         halves_tractions, near_lengths, next_recovered, straight_reach, curved_reach
@@ -48,13 +49,6 @@ module ddc_post_higher_order_k
     integer, parameter :: higher_order_max_elements = 1000
     !> Unknowns per element: three nodes, two DDs
     integer, parameter :: per_element = 6
-    !> Gauss-Legendre points and weights on [-1, 1] (the mean DD of a re-solved element)
-    real(wp), parameter :: gauss_x(8) = [-0.9602898564975363_wp, -0.7966664774136267_wp, &
-        -0.5255324099163290_wp, -0.1834346424956498_wp, 0.1834346424956498_wp, &
-        0.5255324099163290_wp, 0.7966664774136267_wp, 0.9602898564975363_wp]
-    real(wp), parameter :: gauss_w(8) = [0.1012285362903763_wp, 0.2223810344533745_wp, &
-        0.3137066458778873_wp, 0.3626837833783620_wp, 0.3626837833783620_wp, &
-        0.3137066458778873_wp, 0.2223810344533745_wp, 0.1012285362903763_wp]
     !> A vertex that turns by more than this [rad] off a sampled curve is a corner of the
     !> fracture, where a zone of the re-solve is centred
     real(wp), parameter :: kink_turn = 1.0e-6_wp
