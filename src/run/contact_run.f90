@@ -36,7 +36,7 @@ module ddc_run_contact_run
     use ddc_post_tips, only: stress_intensity
     use ddc_post_higher_order_k, only: higher_order_solver, prepare_higher_order, &
         higher_order_k, uses_higher_order, outer_correction
-    use ddc_text, only: itoa
+    use ddc_text, only: itoa, rtoa
     use ddc_linalg_anderson, only: anderson_mixer
     use ddc_contact_counts, only: factor_counts
     implicit none
@@ -604,8 +604,8 @@ contains
                                   correction(:n), correction(n + 1:))
             call mixer%next(shift, correction)
         end do
-        call set_error(error, exit_solver_failure, 'K still moved by '// &
-                       itoa(nint(change / scale * 1.0e9_wp))//'e-9 of its largest value after '// &
+        call set_error(error, exit_solver_failure, 'K still moved by '//rtoa(change)// &
+                       ' (its largest value '//rtoa(scale)//') after '// &
                        itoa(max_coupling_solves)//' solves')
     end subroutine couple_outer
 
