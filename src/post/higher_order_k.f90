@@ -32,7 +32,7 @@ module ddc_post_higher_order_k
     use ddc_influence_higher_order, only: weighted_element, arc_element, node_xi, &
         nodal_basis, element_tractions, weight_at, point_at, gauss_x => gauss_8_x, &
         gauss_w => gauss_8_w
-    use ddc_post_tips, only: tip_chain, end_neighbours, end_on_mirror
+    use ddc_post_tips, only: tip_chain, end_neighbours, end_on_mirror, end_turn
     use ddc_post_outer_recovery, only: outer_recovery, recover_outer, recovered_tractions, &
         halves_tractions, near_lengths, next_recovered, straight_reach, curved_reach
     use ddc_linalg_lu, only: lu_factor, lu_solve
@@ -346,15 +346,11 @@ contains
         !> (whose elements both have a curvature: sampled_curvature).
         pure logical function kink(i, side)
             integer, intent(in) :: i, side
-            real(wp) :: a(2), b(2)
             integer :: j
 
             j = neighbour(side, i)
             associate (e => medium%elements)
-                a = [e%cos_beta(i), e%sin_beta(i)] * merge(1.0_wp, -1.0_wp, side == 2)
-                b = [e%cos_beta(j), e%sin_beta(j)] * &
-                    merge(1.0_wp, -1.0_wp, neighbour_side(side, i) == 1)
-                kink = abs(atan2(a(1) * b(2) - a(2) * b(1), dot_product(a, b))) > kink_turn &
+                kink = abs(end_turn(e, i, side, j, neighbour_side(side, i))) > kink_turn &
                        .and. (curvature(i) == 0.0_wp .or. curvature(j) == 0.0_wp)
                 ! Two materials meet there.
                 if (e%domain == domain_bimaterial) kink = kink .or. &
@@ -592,7 +588,7 @@ contains
                        gradient, rhs)
         type(elastic_medium), intent(in) :: medium
         type(higher_order_solver), intent(in) :: solver
-        !> Midpoint DDs (midpoint_values) and the solve's total tractions, shape (n)
+        !> DDs outside the zones (outside_zones) and the solve's total tractions, shape (n)
         real(wp), intent(in) :: ds(:), dn(:), shear_traction(:), normal_traction(:)
         real(wp), intent(in) :: remote(3), gradient(3)
         real(wp), intent(out) :: rhs(:)

@@ -20,7 +20,7 @@ module ddc_post_outer_recovery
         segment_kernel_with_images, resolved_tractions
     use ddc_influence_higher_order, only: weighted_element, arc_element, node_xi, &
         element_tractions, point_at
-    use ddc_post_tips, only: end_neighbours
+    use ddc_post_tips, only: end_neighbours, end_turn
     implicit none
     private
 
@@ -83,7 +83,8 @@ contains
                 i = outer%element(k)
                 outer%arc(k) = arc_element(e%x_begin(i), e%y_begin(i), e%x_end(i), e%y_end(i), &
                                            curvature(i))
-                call stencil_of(i, outer%stencil(:, k), outer%weight(:, :, k))
+                call stencil_of(i, 0.5_wp * outer%arc(k)%length, outer%stencil(:, k), &
+                                outer%weight(:, :, k))
             end do
         end associate
 
@@ -95,7 +96,6 @@ contains
             integer, intent(in) :: i, side
             integer, intent(out) :: j, j_side
             real(wp), intent(out) :: distance
-            real(wp) :: a(2), b(2)
 
             associate (e => medium%elements)
                 j = outer%neighbour(side, i)
@@ -103,11 +103,7 @@ contains
                 distance = 0.0_wp
                 if (j == 0) return
                 j_side = outer%neighbour_side(side, i)
-                ! Directions along the walk: i toward `side`, j away from the shared end.
-                a = [e%cos_beta(i), e%sin_beta(i)] * merge(1.0_wp, -1.0_wp, side == 2)
-                b = [e%cos_beta(j), e%sin_beta(j)] * merge(1.0_wp, -1.0_wp, j_side == 1)
-                if (.not. serves(j) .or. &
-                    abs(atan2(a(1) * b(2) - a(2) * b(1), dot_product(a, b))) > max_turn) then
+                if (.not. serves(j) .or. abs(end_turn(e, i, side, j, j_side)) > max_turn) then
                     j = 0
                     return
                 end if
@@ -117,12 +113,14 @@ contains
 
         !> The midpoints the DD of element i passes through and their weights at its nodes:
         !> both neighbours where they continue it, else two on one side, else fewer.
-        pure subroutine stencil_of(i, stencil, weight)
+        pure subroutine stencil_of(i, h, stencil, weight)
             integer, intent(in) :: i
+            !> Half the arc length of element i
+            real(wp), intent(in) :: h
             integer, intent(out) :: stencil(3)
             real(wp), intent(out) :: weight(3, 3)
             integer :: near(2), near_side(2), far(2), far_side(2), side, count
-            real(wp) :: d_near(2), d_far(2), position(3), at, h
+            real(wp) :: d_near(2), d_far(2), position(3), at
             integer :: node, p, q
 
             do side = 1, 2
@@ -155,7 +153,6 @@ contains
                     end if
                 end do
             end if
-            h = 0.5_wp * outer_length(i)
             weight = 0.0_wp
             do node = 1, 3
                 at = node_xi(node) * h
@@ -169,17 +166,6 @@ contains
             end do
         end subroutine stencil_of
 
-        !> The arc length of element i.
-        pure real(wp) function outer_length(i)
-            integer, intent(in) :: i
-            type(weighted_element) :: arc
-
-            associate (e => medium%elements)
-                arc = arc_element(e%x_begin(i), e%y_begin(i), e%x_end(i), e%y_end(i), &
-                                  curvature(i))
-            end associate
-            outer_length = arc%length
-        end function outer_length
 
     end function recover_outer
 

@@ -9,7 +9,7 @@ module ddc_post_tips
     implicit none
     private
 
-    public :: find_tips, stress_intensity, tip_chain, end_neighbours, end_on_mirror
+    public :: find_tips, stress_intensity, tip_chain, end_neighbours, end_on_mirror, end_turn
     public :: walk_tip_zone, zone_size, max_zone
 
     !> End points closer than this fraction of the shorter element's length are shared.
@@ -151,6 +151,18 @@ contains
             end do
         end do
     end subroutine end_neighbours
+
+    !> The angle [rad] by which the fracture turns from element i, left by its end `side`,
+    !> into element j, entered by its end j_side (positive counter-clockwise).
+    pure real(wp) function end_turn(elements, i, side, j, j_side)
+        type(element_set), intent(in) :: elements
+        integer, intent(in) :: i, side, j, j_side
+        real(wp) :: a(2), b(2)
+
+        a = [elements%cos_beta(i), elements%sin_beta(i)] * merge(1.0_wp, -1.0_wp, side == 2)
+        b = [elements%cos_beta(j), elements%sin_beta(j)] * merge(1.0_wp, -1.0_wp, j_side == 1)
+        end_turn = atan2(a(1) * b(2) - a(2) * b(1), dot_product(a, b))
+    end function end_turn
 
     !> The chain of elements from a tip inward: the tip element, then each element that
     !> alone shares the previous one's inner end, up to a junction, the fracture's other
