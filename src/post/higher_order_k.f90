@@ -33,9 +33,11 @@ module ddc_post_higher_order_k
         nodal_basis, element_tractions, weight_at, point_at, gauss_x => gauss_8_x, &
         gauss_w => gauss_8_w
     use ddc_post_tips, only: tip_chain, end_neighbours, end_on_mirror, end_turn
-    use ddc_post_outer_recovery, only: outer_recovery, recover_outer, recovered_tractions, &
-        halves_tractions, near_lengths, next_recovered, straight_reach, curved_reach
+    use ddc_post_outer_recovery, only: outer_recovery, recover_outer, recovered_block, &
+        stencil_blocks, halves_kernels, halves_block, near_lengths, next_recovered, &
+        straight_reach, curved_reach
     use ddc_linalg_lu, only: lu_factor, lu_solve
+    use ddc_linalg_block_rows, only: block_row, row_builder, row_times
     use ddc_contact_options, only: k_higher_order, k_tip_element
     use ddc_text, only: itoa
     implicit none
@@ -56,6 +58,12 @@ module ddc_post_higher_order_k
     real(wp), parameter :: max_curve_turn = 0.35_wp
     !> The curvatures at two vertices of a sampled curve agree within this fraction
     real(wp), parameter :: curvature_agreement = 0.5_wp
+    !> The rows of the zones' load and of the outer correction are kept where they take at
+    !> most this many bytes, else gathered again at each product [bytes]
+    real(wp), parameter :: kept_rows_max_bytes = 256.0_wp * 1024.0_wp**2
+    !> The two linear maps of the coupling: the tractions at the zones' nodes from the DDs
+    !> outside them, and the outer correction
+    integer, parameter :: zone_load = 1, correction = 2
 
     !> The re-solve of one geometry and its tips.
     type :: higher_order_solver
@@ -73,6 +81,15 @@ module ddc_post_higher_order_k
         integer, allocatable :: ipiv(:)
         !> The traction and contact elements outside the zones, recovered
         type(outer_recovery) :: outer
+        !> The weights of each re-solved element's three nodal values in its mean DD [-] and
+        !> in its first moment about the midpoint [length unit**2], shape (3, re-solved)
+        real(wp), allocatable :: mean_weight(:, :), moment_weight(:, :)
+        !> The rows of the zones' load (one per node of the zones, in the order of the
+        !> unknowns; columns the model's elements) and of the outer correction (one per
+        !> recovered element; columns the model's elements, then the zones' nodes), each
+        !> block per unit pair of DDs (Ds, Dn); kept where they fit (kept_rows_max_bytes)
+        logical :: rows_kept = .false.
+        type(block_row), allocatable :: zone_rows(:), correction_rows(:)
         !> The nodal DDs of the last re-solve [length unit], shape (6 re-solved)
         real(wp), allocatable :: nodal(:)
     end type higher_order_solver
@@ -119,7 +136,7 @@ contains
 
     !> Assemble the traction rows of the zones' re-solve and recover the elements outside
     !> them.
-    subroutine prepare_higher_order(medium, tips, zone, solver, error)
+    subroutine prepare_higher_order(medium, tips, zone, solver, error, max_kept_bytes)
         !> The medium, element geometry computed
         type(elastic_medium), intent(in) :: medium
         !> The tips (ddc_post_tips)
@@ -130,6 +147,9 @@ contains
         type(higher_order_solver), intent(out) :: solver
         !> Allocated when the matrices do not fit in memory
         type(error_type), allocatable, intent(out) :: error
+        !> Keep the rows of the coupling where they take at most this many bytes [bytes]
+        !> (default kept_rows_max_bytes)
+        real(wp), intent(in), optional :: max_kept_bytes
         real(wp), allocatable :: curvature(:)
         integer :: k, m, stat
 
@@ -152,6 +172,13 @@ contains
             end if
             call assemble(medium, s%solved, s%weighted, s%traction)
             call add_recovered_neighbours(medium, s)
+            call moment_weights(s%weighted, s%mean_weight, s%moment_weight)
+            if (present(max_kept_bytes)) then
+                s%rows_kept = kept_rows_bytes(medium, s) <= max_kept_bytes
+            else
+                s%rows_kept = kept_rows_bytes(medium, s) <= kept_rows_max_bytes
+            end if
+            if (s%rows_kept) call keep_rows(medium, s)
         end associate
     end subroutine prepare_higher_order
 
@@ -190,8 +217,7 @@ contains
         end if
         if (allocated(error)) return
         allocate (r(size(solver%lu, 1)), q(size(solver%lu, 1), 1))
-        call load_of(medium, solver, outside_zones(solver, ds), outside_zones(solver, dn), &
-                     shear_traction, normal_traction, remote, gradient, r)
+        call load_of(medium, solver, ds, dn, shear_traction, normal_traction, remote, gradient, r)
         ! Each row's condition holds for the solve's values on its element.
         do l = 1, size(solver%solved)
             i = solver%solved(l)
@@ -548,33 +574,28 @@ contains
         procedure(kernel_function), pointer :: kernel
         type(image_transform), allocatable :: images(:)
         logical :: use_general
-        real(wp) :: unit_dd(medium%elements%n), zero(medium%elements%n), x, y, c, s, t(2, 2)
+        real(wp) :: x, y, c, s, blocks(2, 2, 3)
         integer :: k, p, j, l, node, row, col
 
         call select_kernel(medium, .true., use_general, kernel, stress_only=.true.)
         images = image_transforms(medium%elements%symmetry)
-        zero = 0.0_wp
         do k = 1, size(solver%outer%element)
-            do p = 1, 3
-                j = solver%outer%stencil(p, k)
-                if (j == 0) cycle
-                if (solver%local(j) == 0) cycle
-                ! The middle node's columns of zone element j.
-                col = per_element * (solver%local(j) - 1) + 2
-                unit_dd = 0.0_wp
-                unit_dd(j) = 1.0_wp
-                do l = 1, size(solver%solved)
-                    do node = 1, 3
-                        row = per_element * (l - 1) + 2 * (node - 1)
-                        call node_point(solver%weighted(l), node, x, y, c, s)
-                        call recovered_tractions(solver%outer, kernel, images, medium, k, &
-                                                 unit_dd, zero, x, y, c, s, -1.0_wp, .false., &
-                                                 t(1, 1), t(2, 1))
-                        call recovered_tractions(solver%outer, kernel, images, medium, k, &
-                                                 zero, unit_dd, x, y, c, s, -1.0_wp, .false., &
-                                                 t(1, 2), t(2, 2))
+            if (all(solver%local(pack(solver%outer%stencil(:, k), &
+                                      solver%outer%stencil(:, k) > 0)) == 0)) cycle
+            do l = 1, size(solver%solved)
+                do node = 1, 3
+                    row = per_element * (l - 1) + 2 * (node - 1)
+                    call node_point(solver%weighted(l), node, x, y, c, s)
+                    blocks = stencil_blocks(solver%outer, k, recovered_block(solver%outer, &
+                        kernel, images, medium, k, x, y, c, s, -1.0_wp, .false.))
+                    do p = 1, 3
+                        j = solver%outer%stencil(p, k)
+                        if (j == 0) cycle
+                        if (solver%local(j) == 0) cycle
+                        ! The middle node's columns of zone element j.
+                        col = per_element * (solver%local(j) - 1) + 2
                         solver%traction(row + 1:row + 2, col + 1:col + 2) = &
-                            solver%traction(row + 1:row + 2, col + 1:col + 2) + t
+                            solver%traction(row + 1:row + 2, col + 1:col + 2) + blocks(:, :, p)
                     end do
                 end do
             end do
@@ -583,91 +604,57 @@ contains
 
     !> The re-solve's right-hand side: at each node the solve's traction on its element,
     !> less the remote stress there and the share of the elements not re-solved (the
-    !> recovered ones with their recovered DDs).
+    !> recovered ones with their recovered DDs: the zones' load rows).
     subroutine load_of(medium, solver, ds, dn, shear_traction, normal_traction, remote, &
                        gradient, rhs)
         type(elastic_medium), intent(in) :: medium
         type(higher_order_solver), intent(in) :: solver
-        !> DDs outside the zones (outside_zones) and the solve's total tractions, shape (n)
+        !> The solve's DDs and total tractions, shape (n)
         real(wp), intent(in) :: ds(:), dn(:), shear_traction(:), normal_traction(:)
         real(wp), intent(in) :: remote(3), gradient(3)
         real(wp), intent(out) :: rhs(:)
-        procedure(kernel_function), pointer :: kernel
-        type(image_transform), allocatable :: images(:)
-        type(dd_kernel) :: kj
-        logical :: use_general
-        real(wp) :: x, y, c, s, ts(2), tn(2), stress(3), t_s, t_n
-        integer :: l, i, node, row, j
+        real(wp) :: x, y, c, s, stress(3), outside(2, 3 * size(solver%solved))
+        integer :: l, i, node, row
 
-        call select_kernel(medium, .true., use_general, kernel, stress_only=.true.)
-        images = image_transforms(medium%elements%symmetry)
-        !$omp parallel do default(none) schedule(dynamic) private(l, i, node, row, j, x, y, c, &
-        !$omp     s, ts, tn, stress, kj, t_s, t_n) shared(medium, solver, ds, dn, &
-        !$omp     shear_traction, normal_traction, remote, gradient, rhs, kernel, images)
+        call rows_times(solver, medium, zone_load, pairs(ds, dn), outside)
         do l = 1, size(solver%solved)
             i = solver%solved(l)
             do node = 1, 3
                 row = per_element * (l - 1) + 2 * (node - 1)
                 call node_point(solver%weighted(l), node, x, y, c, s)
                 stress = remote_stress_at(medium, remote, gradient, y)
-                rhs(row + 1) = shear_traction(i) - &
+                rhs(row + 1) = shear_traction(i) - outside(1, 3 * (l - 1) + node) - &
                                (-(stress(1) - stress(2)) * s * c + stress(3) * (c**2 - s**2))
-                rhs(row + 2) = normal_traction(i) - &
+                rhs(row + 2) = normal_traction(i) - outside(2, 3 * (l - 1) + node) - &
                                (stress(1) * s**2 - 2.0_wp * stress(3) * s * c + stress(2) * c**2)
-                do j = 1, medium%elements%n
-                    if (solver%local(j) > 0) cycle
-                    if (solver%outer%place(j) > 0) then
-                        call recovered_tractions(solver%outer, kernel, images, medium, &
-                                                 solver%outer%place(j), ds, dn, x, y, c, s, &
-                                                 -1.0_wp, .false., t_s, t_n)
-                    else
-                        kj = kernel_with_images(kernel, x, y, medium, j, images, face_negative)
-                        call resolved_tractions(kj, c, s, ts, tn)
-                        t_s = ts(1) * ds(j) + ts(2) * dn(j)
-                        t_n = tn(1) * ds(j) + tn(2) * dn(j)
-                    end if
-                    rhs(row + 1) = rhs(row + 1) - t_s
-                    rhs(row + 2) = rhs(row + 2) - t_n
-                end do
             end do
         end do
-        !$omp end parallel do
     end subroutine load_of
 
-    !> The DDs of the elements outside the zones, zero on the re-solved ones (whose share
-    !> in the recovered DDs of their neighbours is in the zones' matrix).
-    pure function outside_zones(solver, dd) result(values)
-        type(higher_order_solver), intent(in) :: solver
-        real(wp), intent(in) :: dd(:)
-        real(wp) :: values(size(dd))
+    !> The DDs (Ds, Dn) of every element as pairs, shape (2, n), and after them the zones'
+    !> nodal values where given, shape (2, n + 3 re-solved).
+    pure function pairs(ds, dn, nodal) result(x)
+        real(wp), intent(in) :: ds(:), dn(:)
+        real(wp), intent(in), optional :: nodal(:)
+        real(wp), allocatable :: x(:, :)
+        integer :: n
 
-        values = dd
-        values(solver%solved) = 0.0_wp
-    end function outside_zones
-
-    !> The midpoint DD (component 1 Ds, 2 Dn) of every element: the solve's, and on a
-    !> re-solved element the last re-solve's (the neighbours' recovered DDs pass through it).
-    pure function midpoint_values(solver, dd, component) result(values)
-        type(higher_order_solver), intent(in) :: solver
-        real(wp), intent(in) :: dd(:)
-        integer, intent(in) :: component
-        real(wp) :: values(size(dd))
-        integer :: l
-
-        values = dd
-        if (.not. allocated(solver%nodal)) return
-        ! The weight is 1 at the midpoint, the middle node.
-        do l = 1, size(solver%solved)
-            values(solver%solved(l)) = solver%nodal(per_element * (l - 1) + 2 + component)
-        end do
-    end function midpoint_values
+        n = size(ds)
+        if (present(nodal)) then
+            allocate (x(2, n + size(nodal) / 2))
+            x(:, n + 1:) = reshape(nodal, [2, size(nodal) / 2])
+        else
+            allocate (x(2, n))
+        end if
+        x(1, :n) = ds
+        x(2, :n) = dn
+    end function pairs
 
     !> The traction the zones' higher-order DDs (of the last re-solve) and the recovered DDs
     !> add at the midpoints of the recovered elements to that of the constant elements of the
-    !> solve: at each, the recovered neighbours' along the fracture and every re-solved
-    !> element's, less their constant DDs' (zero elsewhere). Solving the model again under
-    !> its load plus this traction gives the elements outside the zones the higher-order
-    !> response of the zones and of their own recovered DDs.
+    !> solve (the correction rows, correction_row). Solving the model again under its load
+    !> plus this traction gives the elements outside the zones the higher-order response of
+    !> the zones and of their own recovered DDs.
     subroutine outer_correction(solver, medium, ds, dn, shear, normal)
         !> The re-solve, after higher_order_k
         type(higher_order_solver), intent(in) :: solver
@@ -677,104 +664,287 @@ contains
         real(wp), intent(in) :: ds(:), dn(:)
         !> Shear and normal traction to add to the load [stress unit], shape (n)
         real(wp), intent(out) :: shear(:), normal(:)
-        procedure(kernel_function), pointer :: kernel
-        type(image_transform), allocatable :: images(:)
-        logical :: use_general
-        real(wp) :: vs(size(ds)), vn(size(dn)), moments(2, 2, size(solver%solved))
-        real(wp) :: block(2, per_element)
-        real(wp) :: x, y, c, s, t(2), chord(4)
-        integer :: k, i, j, l, col, side, leave, step, reach, next, next_leave
+        real(wp) :: t(2, size(solver%outer%element))
 
-        call select_kernel(medium, .true., use_general, kernel, stress_only=.true.)
-        images = image_transforms(medium%elements%symmetry)
-        vs = midpoint_values(solver, ds, 1)
-        vn = midpoint_values(solver, dn, 2)
-        do l = 1, size(solver%solved)
-            moments(:, :, l) = dd_moments(solver%weighted(l), &
-                                          solver%nodal(per_element * (l - 1) + 1:per_element * l))
-        end do
+        call rows_times(solver, medium, correction, pairs(ds, dn, solver%nodal), t)
         shear = 0.0_wp
         normal = 0.0_wp
-        !$omp parallel do default(none) schedule(dynamic) private(k, i, j, l, col, x, y, c, &
-        !$omp     s, t, chord, block, side, leave, step, reach, next, next_leave) &
-        !$omp     shared(solver, medium, kernel, images, ds, dn, vs, vn, moments, shear, normal)
-        do k = 1, size(solver%outer%element)
-            i = solver%outer%element(k)
-            ! The higher-order DDs act at the midpoint of i's arc, the constant ones of the
-            ! solve at its chord's, where its rows are.
-            associate (arc => solver%outer%arc(k), el => medium%elements)
-                call point_at(arc, 0.5_wp * arc%length, x, y, c, s)
-                chord = [el%x_mid(i), el%y_mid(i), el%cos_beta(i), el%sin_beta(i)]
-                ! The element itself and its recovered neighbours: recovered less constant.
-                call add_recovered(i, i, [x, y, c, s], chord, 0.5_wp * arc%length, .true.)
-                reach = merge(straight_reach, curved_reach, arc%curvature == 0.0_wp)
-                do side = 1, 2
-                    j = i
-                    leave = side
-                    do step = 1, reach
-                        call next_recovered(solver%outer, j, leave, i, next, next_leave)
-                        if (next == 0) exit
-                        j = next
-                        leave = next_leave
-                        call add_recovered(i, j, [x, y, c, s], chord, -1.0_wp, .false.)
-                    end do
-                end do
-            end associate
-            ! The zones: higher-order less constant; far, a constant DD of the mean.
-            do l = 1, size(solver%solved)
-                j = solver%solved(l)
-                if (solver%weighted(l)%curvature == 0.0_wp .and. midpoint_distance(medium, i, j) &
-                    > near_lengths * solver%weighted(l)%length) then
-                    t = halves_tractions(kernel, images, medium, solver%weighted(l), &
-                                         moments(:, 1, l), moments(:, 2, l), x, y, c, s)
-                else
-                    call element_tractions(kernel, images, medium, solver%weighted(l), -1.0_wp, &
-                                           x, y, c, s, block)
-                    col = per_element * (l - 1)
-                    t = matmul(block, solver%nodal(col + 1:col + per_element))
-                end if
-                t = t - constant_tractions(j, chord, ds(j), dn(j))
-                shear(i) = shear(i) + t(1)
-                normal(i) = normal(i) + t(2)
+        shear(solver%outer%element) = t(1, :)
+        normal(solver%outer%element) = t(2, :)
+    end subroutine outer_correction
+
+    !> Row r of the zones' load: the tractions at node r of the zones (in the order of the
+    !> unknowns) per unit DD of the elements outside the zones, the recovered ones through
+    !> their stencils (less the re-solved elements' share in them, which is in the zones'
+    !> matrix: add_recovered_neighbours).
+    subroutine zone_load_row(solver, medium, kernel, images, r, builder)
+        type(higher_order_solver), intent(in) :: solver
+        type(elastic_medium), intent(in) :: medium
+        procedure(kernel_function) :: kernel
+        type(image_transform), intent(in) :: images(:)
+        integer, intent(in) :: r
+        type(row_builder), intent(inout) :: builder
+        real(wp) :: x, y, c, s, blocks(2, 2, 3)
+        integer :: j, k, p
+
+        call node_point(solver%weighted((r - 1) / 3 + 1), r - 3 * ((r - 1) / 3), x, y, c, s)
+        do j = 1, medium%elements%n
+            if (solver%local(j) > 0) cycle
+            k = solver%outer%place(j)
+            if (k == 0) then
+                call builder%add(j, constant_block(kernel, images, medium, j, [x, y, c, s]))
+                cycle
+            end if
+            blocks = stencil_blocks(solver%outer, k, recovered_block(solver%outer, kernel, &
+                                    images, medium, k, x, y, c, s, -1.0_wp, .false.))
+            do p = 1, 3
+                if (solver%outer%stencil(p, k) == 0) cycle
+                if (solver%local(solver%outer%stencil(p, k)) > 0) cycle
+                call builder%add(solver%outer%stencil(p, k), blocks(:, :, p))
             end do
         end do
-        !$omp end parallel do
+    end subroutine zone_load_row
+
+    !> Row k of the outer correction, at recovered element k: the traction its recovered
+    !> neighbours along the fracture and every re-solved element add at the midpoint of its
+    !> arc, less their constant DDs' at the midpoint of its chord (where its rows are);
+    !> columns the model's elements, then the zones' nodes (a recovered DD passes through
+    !> the middle node of a re-solved neighbour). Far from a straight re-solved element, its
+    !> two halves with its mean DD and first moment serve.
+    subroutine correction_row(solver, medium, kernel, images, k, builder)
+        type(higher_order_solver), intent(in) :: solver
+        type(elastic_medium), intent(in) :: medium
+        procedure(kernel_function) :: kernel
+        type(image_transform), intent(in) :: images(:)
+        integer, intent(in) :: k
+        type(row_builder), intent(inout) :: builder
+        real(wp) :: arc_point(4), chord(4), block(2, per_element)
+        integer :: i, j, l, node, side, leave, step, reach, next, next_leave, n
+
+        n = medium%elements%n
+        i = solver%outer%element(k)
+        associate (arc => solver%outer%arc(k), el => medium%elements)
+            call point_at(arc, 0.5_wp * arc%length, arc_point(1), arc_point(2), arc_point(3), &
+                          arc_point(4))
+            chord = [el%x_mid(i), el%y_mid(i), el%cos_beta(i), el%sin_beta(i)]
+            ! The element itself and its recovered neighbours: recovered less constant.
+            call add_recovered(i, 0.5_wp * arc%length, .true.)
+            reach = merge(straight_reach, curved_reach, arc%curvature == 0.0_wp)
+        end associate
+        do side = 1, 2
+            j = i
+            leave = side
+            do step = 1, reach
+                call next_recovered(solver%outer, j, leave, i, next, next_leave)
+                if (next == 0) exit
+                j = next
+                leave = next_leave
+                call add_recovered(j, -1.0_wp, .false.)
+            end do
+        end do
+        ! The zones: higher-order less constant.
+        do l = 1, size(solver%solved)
+            j = solver%solved(l)
+            associate (zone_element => solver%weighted(l))
+                if (zone_element%curvature == 0.0_wp .and. midpoint_distance(medium, i, j) > &
+                    near_lengths * zone_element%length) then
+                    block = halves_block(halves_kernels(kernel, images, medium, zone_element, &
+                                                        arc_point(1), arc_point(2), &
+                                                        arc_point(3), arc_point(4)), &
+                                         zone_element%length, solver%mean_weight(:, l), &
+                                         solver%moment_weight(:, l))
+                else
+                    call element_tractions(kernel, images, medium, zone_element, -1.0_wp, &
+                                           arc_point(1), arc_point(2), arc_point(3), &
+                                           arc_point(4), block)
+                end if
+            end associate
+            do node = 1, 3
+                call builder%add(n + 3 * (l - 1) + node, block(:, 2 * node - 1:2 * node))
+            end do
+            call builder%add(j, -constant_block(kernel, images, medium, j, chord))
+        end do
 
     contains
 
-        !> Add to receiver i's correction recovered element j's traction at the point and
-        !> plane `arc_point` less its constant DD's at `chord_point`; `at` is j's arc length
-        !> at the receiver where it is i itself (else negative). (The receiver comes as
-        !> arguments: the caller's copies are private to its thread.)
-        subroutine add_recovered(i, j, arc_point, chord_point, at, exact)
-            integer, intent(in) :: i, j
-            real(wp), intent(in) :: arc_point(4), chord_point(4), at
-            logical, intent(in) :: exact
-            real(wp) :: t(2)
-
-            call recovered_tractions(solver%outer, kernel, images, medium, &
-                                     solver%outer%place(j), vs, vn, arc_point(1), arc_point(2), &
-                                     arc_point(3), arc_point(4), at, exact, t(1), t(2))
-            t = t - constant_tractions(j, chord_point, ds(j), dn(j))
-            shear(i) = shear(i) + t(1)
-            normal(i) = normal(i) + t(2)
-        end subroutine add_recovered
-
-        !> Shear and normal traction of element j's constant DD (a_s, a_n) at the point
-        !> receiver(1:2) on the plane of direction cosines receiver(3:4).
-        pure function constant_tractions(j, receiver, a_s, a_n) result(t)
+        !> Add recovered element j's traction at the arc's midpoint less its constant DD's at
+        !> the chord's; `at` is j's arc length at the receiver where it is i itself (else
+        !> negative).
+        subroutine add_recovered(j, at, exact)
             integer, intent(in) :: j
-            real(wp), intent(in) :: receiver(4), a_s, a_n
-            real(wp) :: t(2)
-            type(dd_kernel) :: kj
-            real(wp) :: ts(2), tn(2)
+            real(wp), intent(in) :: at
+            logical, intent(in) :: exact
+            real(wp) :: blocks(2, 2, 3)
+            integer :: p, jp, kj
 
-            kj = kernel_with_images(kernel, receiver(1), receiver(2), medium, j, images, &
-                                    face_negative)
-            call resolved_tractions(kj, receiver(3), receiver(4), ts, tn)
-            t = [ts(1) * a_s + ts(2) * a_n, tn(1) * a_s + tn(2) * a_n]
-        end function constant_tractions
-    end subroutine outer_correction
+            kj = solver%outer%place(j)
+            blocks = stencil_blocks(solver%outer, kj, recovered_block(solver%outer, kernel, &
+                                    images, medium, kj, arc_point(1), arc_point(2), &
+                                    arc_point(3), arc_point(4), at, exact))
+            do p = 1, 3
+                jp = solver%outer%stencil(p, kj)
+                if (jp == 0) cycle
+                ! A re-solved element's midpoint value is its middle node's.
+                if (solver%local(jp) > 0) jp = n + 3 * (solver%local(jp) - 1) + 2
+                call builder%add(jp, blocks(:, :, p))
+            end do
+            call builder%add(j, -constant_block(kernel, images, medium, j, chord))
+        end subroutine add_recovered
+    end subroutine correction_row
+
+    !> Shear and normal traction at the point receiver(1:2) on the plane of direction
+    !> cosines receiver(3:4) per unit constant DD of element j, shape (2, 2) (rows t_s, t_n;
+    !> columns Ds, Dn).
+    pure function constant_block(kernel, images, medium, j, receiver) result(block)
+        procedure(kernel_function) :: kernel
+        type(image_transform), intent(in) :: images(:)
+        type(elastic_medium), intent(in) :: medium
+        integer, intent(in) :: j
+        real(wp), intent(in) :: receiver(4)
+        real(wp) :: block(2, 2)
+        type(dd_kernel) :: kj
+
+        kj = kernel_with_images(kernel, receiver(1), receiver(2), medium, j, images, &
+                                face_negative)
+        call resolved_tractions(kj, receiver(3), receiver(4), block(1, :), block(2, :))
+    end function constant_block
+
+    !> Row r of the zones' load (which = zone_load) or of the outer correction.
+    subroutine gather_row(solver, medium, kernel, images, which, r, builder)
+        type(higher_order_solver), intent(in) :: solver
+        type(elastic_medium), intent(in) :: medium
+        procedure(kernel_function) :: kernel
+        type(image_transform), intent(in) :: images(:)
+        integer, intent(in) :: which, r
+        type(row_builder), intent(inout) :: builder
+
+        if (which == zone_load) then
+            call zone_load_row(solver, medium, kernel, images, r, builder)
+        else
+            call correction_row(solver, medium, kernel, images, r, builder)
+        end if
+    end subroutine gather_row
+
+    !> The rows of the zones' load (which = zone_load) or of the outer correction times the
+    !> pairs x (pairs): from the kept rows, else each row gathered again.
+    subroutine rows_times(solver, medium, which, x, y)
+        type(higher_order_solver), intent(in) :: solver
+        type(elastic_medium), intent(in) :: medium
+        integer, intent(in) :: which
+        real(wp), intent(in) :: x(:, :)
+        !> shape (2, rows)
+        real(wp), intent(out) :: y(:, :)
+        procedure(kernel_function), pointer :: kernel
+        type(image_transform), allocatable :: images(:)
+        type(row_builder) :: builder
+        logical :: use_general
+        integer :: r
+
+        ! Kept rows: a product too short for threads (whose wait after a parallel region
+        ! would slow the BLAS threads of the solves between the products).
+        if (solver%rows_kept) then
+            do r = 1, size(y, 2)
+                if (which == zone_load) then
+                    y(:, r) = row_times(solver%zone_rows(r), x)
+                else
+                    y(:, r) = row_times(solver%correction_rows(r), x)
+                end if
+            end do
+            return
+        end if
+        call select_kernel(medium, .true., use_general, kernel, stress_only=.true.)
+        images = image_transforms(medium%elements%symmetry)
+        !$omp parallel default(none) private(r, builder) &
+        !$omp     shared(solver, medium, kernel, images, which, x, y)
+        call builder%start(row_columns(medium, solver))
+        !$omp do schedule(dynamic)
+        do r = 1, size(y, 2)
+            call gather_row(solver, medium, kernel, images, which, r, builder)
+            call builder%apply(x, y(:, r))
+        end do
+        !$omp end do
+        !$omp end parallel
+    end subroutine rows_times
+
+    !> Gather and keep the rows of the zones' load and of the outer correction.
+    subroutine keep_rows(medium, solver)
+        type(elastic_medium), intent(in) :: medium
+        type(higher_order_solver), intent(inout) :: solver
+        procedure(kernel_function), pointer :: kernel
+        type(image_transform), allocatable :: images(:)
+        type(row_builder) :: builder
+        logical :: use_general
+        integer :: r
+
+        call select_kernel(medium, .true., use_general, kernel, stress_only=.true.)
+        images = image_transforms(medium%elements%symmetry)
+        allocate (solver%zone_rows(3 * size(solver%solved)), &
+                  solver%correction_rows(size(solver%outer%element)))
+        !$omp parallel default(none) private(r, builder) shared(solver, medium, kernel, images)
+        call builder%start(row_columns(medium, solver))
+        !$omp do schedule(dynamic)
+        do r = 1, size(solver%zone_rows)
+            call gather_row(solver, medium, kernel, images, zone_load, r, builder)
+            call builder%take(solver%zone_rows(r))
+        end do
+        !$omp end do
+        !$omp do schedule(dynamic)
+        do r = 1, size(solver%correction_rows)
+            call gather_row(solver, medium, kernel, images, correction, r, builder)
+            call builder%take(solver%correction_rows(r))
+        end do
+        !$omp end do
+        !$omp end parallel
+    end subroutine keep_rows
+
+    !> The columns of the rows: the model's elements, then the zones' nodes.
+    pure integer function row_columns(medium, solver)
+        type(elastic_medium), intent(in) :: medium
+        type(higher_order_solver), intent(in) :: solver
+
+        row_columns = medium%elements%n + 3 * size(solver%solved)
+    end function row_columns
+
+    !> An upper estimate of the bytes of the kept rows: a zone node's row has a block per
+    !> element outside the zones; a recovered element's, one per neighbour within reach on
+    !> each side, its own and its stencil's ends, and four per re-solved element.
+    pure real(wp) function kept_rows_bytes(medium, solver) result(bytes)
+        type(elastic_medium), intent(in) :: medium
+        type(higher_order_solver), intent(in) :: solver
+        real(wp), parameter :: per_block = 4.0_wp * real_bytes + 4.0_wp
+        real(wp) :: zone_blocks, correction_blocks
+        integer :: n, k, reach
+
+        n = medium%elements%n
+        zone_blocks = 3.0_wp * size(solver%solved) * real(n - size(solver%solved), wp)
+        correction_blocks = 0.0_wp
+        do k = 1, size(solver%outer%element)
+            reach = merge(straight_reach, curved_reach, solver%outer%arc(k)%curvature == 0.0_wp)
+            correction_blocks = correction_blocks + min(n, 2 * reach + 3) + &
+                                4.0_wp * size(solver%solved)
+        end do
+        bytes = per_block * (zone_blocks + correction_blocks)
+    end function kept_rows_bytes
+
+    !> The weights of each re-solved element's nodal values in its mean DD and first moment
+    !> (dd_moments of a unit value at each node; the same for both components).
+    pure subroutine moment_weights(weighted, mean_weight, moment_weight)
+        type(weighted_element), intent(in) :: weighted(:)
+        real(wp), allocatable, intent(out) :: mean_weight(:, :), moment_weight(:, :)
+        real(wp) :: unit(per_element), moments(2, 2)
+        integer :: l, node
+
+        allocate (mean_weight(3, size(weighted)), moment_weight(3, size(weighted)))
+        do l = 1, size(weighted)
+            do node = 1, 3
+                unit = 0.0_wp
+                unit(2 * node - 1) = 1.0_wp
+                moments = dd_moments(weighted(l), unit)
+                mean_weight(node, l) = moments(1, 1)
+                moment_weight(node, l) = moments(1, 2)
+            end do
+        end do
+    end subroutine moment_weights
 
     !> The distance between the midpoints of elements i and j [length unit].
     pure real(wp) function midpoint_distance(medium, i, j)

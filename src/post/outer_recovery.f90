@@ -24,8 +24,8 @@ module ddc_post_outer_recovery
     implicit none
     private
 
-    public :: outer_recovery, recover_outer, recovered_tractions, halves_tractions, near_lengths
-    public :: next_recovered
+    public :: outer_recovery, recover_outer, recovered_block, stencil_blocks, halves_kernels
+    public :: halves_block, near_lengths, next_recovered
 
     !> A source nearer than this many of its lengths acts with its recovered DD, a farther
     !> one as two constant halves with the recovered DD's means over them
@@ -36,6 +36,10 @@ module ddc_post_outer_recovery
     !> falling as the cube of the distance), and on a curved one (whose arc and chord
     !> midpoints see the whole fracture's constant DDs differently)
     integer, parameter, public :: straight_reach = 64, curved_reach = 4096
+    !> The mean of a quadratic through nodes at -2/3, 0, 2/3 of the half-length, as the
+    !> weights of the nodal values, and its first moment about the midpoint per length**2
+    real(wp), parameter :: quadratic_mean(3) = [0.375_wp, 0.25_wp, 0.375_wp]
+    real(wp), parameter :: quadratic_moment(3) = [-0.125_wp, 0.0_wp, 0.125_wp]
 
     !> The recovered elements of one geometry.
     type :: outer_recovery
@@ -169,11 +173,11 @@ contains
 
     end function recover_outer
 
-    !> Shear and normal traction at a receiver from recovered element k with the midpoint
-    !> values of every element: its recovered DD where the receiver is near it (or always,
-    !> where asked), else a constant DD of its midpoint value.
-    pure subroutine recovered_tractions(outer, kernel, images, medium, k, ds, dn, x, y, c, s, &
-                                        s_self, exact, ts, tn)
+    !> Shear and normal traction at a receiver per unit nodal DD of recovered element k,
+    !> shape (2, 6) (rows t_s, t_n; columns Ds, Dn at each node): of its recovered DD where
+    !> the receiver is near it (or always, where asked), else of its two halves.
+    pure function recovered_block(outer, kernel, images, medium, k, x, y, c, s, s_self, &
+                                  exact) result(block)
         !> The recovery
         type(outer_recovery), intent(in) :: outer
         !> The model's kernel and image transforms (ddc_influence_assembly)
@@ -183,8 +187,6 @@ contains
         type(elastic_medium), intent(in) :: medium
         !> The recovered element
         integer, intent(in) :: k
-        !> Midpoint DDs of every element [length unit], shape (n)
-        real(wp), intent(in) :: ds(:), dn(:)
         !> Receiver [length unit] and its plane's direction cosines
         real(wp), intent(in) :: x, y, c, s
         !> The receiver's arc length from the element's begin where it lies on the element,
@@ -192,69 +194,61 @@ contains
         real(wp), intent(in) :: s_self
         !> Use the recovered DD at any distance
         logical, intent(in) :: exact
-        !> Shear and normal traction [stress unit]
-        real(wp), intent(out) :: ts, tn
-        real(wp) :: block(2, 6), nodal(6), t(2)
-        integer :: i, p, j
+        real(wp) :: block(2, 6)
+        integer :: i
 
         i = outer%element(k)
-        ! A DD's components in its element's frame are those in any neighbour's, whichever
-        ! way the neighbour runs (both the frame and the faces turn).
-        nodal = 0.0_wp
-        do p = 1, 3
-            j = outer%stencil(p, k)
-            if (j == 0) cycle
-            nodal(1:5:2) = nodal(1:5:2) + outer%weight(:, p, k) * ds(j)
-            nodal(2:6:2) = nodal(2:6:2) + outer%weight(:, p, k) * dn(j)
-        end do
-        associate (e => medium%elements)
-            if (.not. exact .and. s_self < 0.0_wp .and. outer%arc(k)%curvature == 0.0_wp .and. &
-                hypot(x - e%x_mid(i), y - e%y_mid(i)) > near_lengths * outer%arc(k)%length) then
-                ! The quadratic's mean, 3/8, 1/4, 3/8 of the nodal values, and its first
-                ! moment, (L/2)^2 (q3 - q1) / 2.
-                associate (length => outer%arc(k)%length)
-                    t = halves_tractions(kernel, images, medium, outer%arc(k), &
-                                         0.375_wp * (nodal(1:2) + nodal(5:6)) + &
-                                         0.25_wp * nodal(3:4), &
-                                         0.125_wp * length**2 * (nodal(5:6) - nodal(1:2)), &
-                                         x, y, c, s)
-                end associate
-                ts = t(1)
-                tn = t(2)
+        associate (e => medium%elements, arc => outer%arc(k))
+            if (.not. exact .and. s_self < 0.0_wp .and. arc%curvature == 0.0_wp .and. &
+                hypot(x - e%x_mid(i), y - e%y_mid(i)) > near_lengths * arc%length) then
+                block = halves_block(halves_kernels(kernel, images, medium, arc, x, y, c, s), &
+                                     arc%length, quadratic_mean, quadratic_moment * arc%length**2)
                 return
             end if
         end associate
         call element_tractions(kernel, images, medium, outer%arc(k), s_self, x, y, c, s, block)
-        ts = sum(block(1, :) * nodal)
-        tn = sum(block(2, :) * nodal)
-    end subroutine recovered_tractions
+    end function recovered_block
 
-    !> Shear and normal traction at a receiver far from an element, of two constant
-    !> segments on the chords of its halves whose DDs have the element's mean and first
-    !> moment (the field's two leading terms away from it) [stress unit].
-    pure function halves_tractions(kernel, images, medium, element, mean, moment, x, y, c, &
-                                   s) result(t)
+    !> A recovered element's block per unit nodal DD (recovered_block) as blocks per unit
+    !> midpoint DD of the elements of its stencil, shape (2, 2, 3) (rows t_s, t_n; columns
+    !> Ds, Dn; zero where the stencil has no element).
+    pure function stencil_blocks(outer, k, nodal_block) result(blocks)
+        type(outer_recovery), intent(in) :: outer
+        integer, intent(in) :: k
+        real(wp), intent(in) :: nodal_block(2, 6)
+        real(wp) :: blocks(2, 2, 3)
+        integer :: p, node
+
+        ! A DD's components in its element's frame are those in any neighbour's, whichever
+        ! way the neighbour runs (both the frame and the faces turn).
+        blocks = 0.0_wp
+        do p = 1, 3
+            if (outer%stencil(p, k) == 0) cycle
+            do node = 1, 3
+                blocks(:, :, p) = blocks(:, :, p) + outer%weight(node, p, k) * &
+                                  nodal_block(:, 2 * node - 1:2 * node)
+            end do
+        end do
+    end function stencil_blocks
+
+    !> Shear and normal traction at a receiver far from an element per unit DD of each of two
+    !> constant segments on the chords of its halves, shape (2, 2, 2) (rows t_s, t_n;
+    !> columns Ds, Dn; the half).
+    pure function halves_kernels(kernel, images, medium, element, x, y, c, s) result(blocks)
         procedure(kernel_function) :: kernel
         type(image_transform), intent(in) :: images(:)
         type(elastic_medium), intent(in) :: medium
         type(weighted_element), intent(in) :: element
-        !> Mean DD (Ds, Dn) [length unit] and first moment about the midpoint along the
-        !> element [length unit**3]
-        real(wp), intent(in) :: mean(2), moment(2)
         !> Receiver [length unit] and its plane's direction cosines
         real(wp), intent(in) :: x, y, c, s
-        real(wp) :: t(2)
+        real(wp) :: blocks(2, 2, 2)
         type(dd_kernel) :: kh
-        real(wp) :: p(2, 3), cs(2), ts(2), tn(2), half, means(2, 2)
+        real(wp) :: p(2, 3), cs(2), half
         integer :: h
 
-        ! Halves of length L / 2 at -L/4 and L/4: m2 - m1 = 8 moment / L^2.
-        means(:, 1) = mean - 4.0_wp * moment / element%length**2
-        means(:, 2) = mean + 4.0_wp * moment / element%length**2
         p(:, 1) = [element%xb, element%yb]
         call point_at(element, 0.5_wp * element%length, p(1, 2), p(2, 2), cs(1), cs(2))
         call point_at(element, element%length, p(1, 3), p(2, 3), cs(1), cs(2))
-        t = 0.0_wp
         do h = 1, 2
             half = 0.5_wp * norm2(p(:, h + 1) - p(:, h))
             kh = segment_kernel_with_images(kernel, x, y, 0.5_wp * (p(1, h) + p(1, h + 1)), &
@@ -262,10 +256,27 @@ contains
                                             (p(1, h + 1) - p(1, h)) / (2.0_wp * half), &
                                             (p(2, h + 1) - p(2, h)) / (2.0_wp * half), images, &
                                             medium, face_negative)
-            call resolved_tractions(kh, c, s, ts, tn)
-            t = t + [sum(ts * means(:, h)), sum(tn * means(:, h))]
+            call resolved_tractions(kh, c, s, blocks(1, :, h), blocks(2, :, h))
         end do
-    end function halves_tractions
+    end function halves_kernels
+
+    !> The block per unit nodal DD, shape (2, 6), of an element acting as two constant halves
+    !> (halves_kernels) whose DDs have its mean and first moment about the midpoint, given
+    !> as the weights of the three nodal values in them [-] and [length unit**2].
+    pure function halves_block(halves, length, mean_weight, moment_weight) result(block)
+        real(wp), intent(in) :: halves(2, 2, 2), length, mean_weight(3), moment_weight(3)
+        real(wp) :: block(2, 6)
+        real(wp) :: share(3, 2)
+        integer :: node
+
+        ! Halves of length L / 2 at -L/4 and L/4: m2 - m1 = 8 moment / L^2.
+        share(:, 1) = mean_weight - 4.0_wp * moment_weight / length**2
+        share(:, 2) = mean_weight + 4.0_wp * moment_weight / length**2
+        do node = 1, 3
+            block(:, 2 * node - 1:2 * node) = share(node, 1) * halves(:, :, 1) + &
+                                              share(node, 2) * halves(:, :, 2)
+        end do
+    end function halves_block
 
     !> The next recovered element along the fracture from element j, leaving it by its end
     !> `side` (0 where none: a junction, a zone, a tip or back at `first`), and the end
