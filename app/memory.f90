@@ -11,7 +11,7 @@ module ddc_app_memory
     use ddc_version, only: with_hmatrix
     use ddc_model_types, only: model_type
     use ddc_model_capabilities, only: run_refusal, operator_hierarchical
-    use ddc_run_memory, only: memory_need, estimate_memory, check_memory, &
+    use ddc_run_memory, only: memory_need, estimate_memory, add_k_resolve, check_memory, &
         hierarchical_min_elements
     use ddc_contact_options, only: matrix_dense, matrix_hierarchical
     use ddc_run_available_memory, only: available_memory, no_limit
@@ -39,6 +39,9 @@ contains
         there = 'no limit found'
         if (available < no_limit) there = bytes_text(available)//' available ('//source//')'
         call choose_matrix(unit, model, need, available)
+        call add_k_resolve(model, need)
+        if (need%k_bytes > 0.0_wp) there = bytes_text(need%k_bytes)//' of it for K''s '// &
+            'local re-solve; '//there
         if (need%worst_bytes > need%bytes) then
             ! The Newton method from its starting states, and at its largest beside it.
             write (unit, '(a)') '  memory: about '//bytes_text(need%bytes)//' needed ('// &

@@ -44,6 +44,7 @@ module ddc_post_higher_order_k
     private
 
     public :: higher_order_solver, prepare_higher_order, higher_order_k, uses_higher_order
+    public :: higher_order_bytes
     public :: outer_correction
 
     !> k_method = 'auto' re-solves at most this many elements in all the zones (two dense
@@ -174,9 +175,11 @@ contains
             call add_recovered_neighbours(medium, s)
             call moment_weights(s%weighted, s%mean_weight, s%moment_weight)
             if (present(max_kept_bytes)) then
-                s%rows_kept = kept_rows_bytes(medium, s) <= max_kept_bytes
+                s%rows_kept = rows_bytes(elements%n, size(s%solved), s%outer%arc%curvature) &
+                              <= max_kept_bytes
             else
-                s%rows_kept = kept_rows_bytes(medium, s) <= kept_rows_max_bytes
+                s%rows_kept = rows_bytes(elements%n, size(s%solved), s%outer%arc%curvature) &
+                              <= kept_rows_max_bytes
             end if
             if (s%rows_kept) call keep_rows(medium, s)
         end associate
@@ -905,26 +908,45 @@ contains
         row_columns = medium%elements%n + 3 * size(solver%solved)
     end function row_columns
 
-    !> An upper estimate of the bytes of the kept rows: a zone node's row has a block per
-    !> element outside the zones; a recovered element's, one per neighbour within reach on
-    !> each side, its own and its stencil's ends, and four per re-solved element.
-    pure real(wp) function kept_rows_bytes(medium, solver) result(bytes)
+    !> The memory the re-solve of the given zones takes [bytes]: the zones' traction rows
+    !> and their factorized system, and the coupling's rows where they are kept.
+    pure real(wp) function higher_order_bytes(medium, tips, zone) result(bytes)
+        !> The medium, element geometry computed
         type(elastic_medium), intent(in) :: medium
-        type(higher_order_solver), intent(in) :: solver
-        real(wp), parameter :: per_block = 4.0_wp * real_bytes + 4.0_wp
-        real(wp) :: zone_blocks, correction_blocks
-        integer :: n, k, reach
+        !> The tips (ddc_post_tips)
+        type(tip_set), intent(in) :: tips
+        !> Elements of a tip's zone
+        integer, intent(in) :: zone
+        logical :: in_zone(medium%elements%n)
+        real(wp) :: rows
+        integer :: nz
 
-        n = medium%elements%n
-        zone_blocks = 3.0_wp * size(solver%solved) * real(n - size(solver%solved), wp)
+        in_zone = re_solved(medium, tips, zone)
+        nz = count(in_zone)
+        bytes = 2.0_wp * real_bytes * real(per_element * nz, wp)**2
+        rows = rows_bytes(medium%elements%n, nz, pack(sampled_curvature(medium%elements), &
+                                                        serves(medium%elements) .and. .not. in_zone))
+        if (rows <= kept_rows_max_bytes) bytes = bytes + rows
+    end function higher_order_bytes
+
+    !> An upper estimate of the bytes of the kept rows for n elements, nz of them in zones,
+    !> and the curvatures of the recovered ones: a zone node's row has a block per element
+    !> outside the zones; a recovered element's, one per neighbour within reach on each
+    !> side, its own and its stencil's ends, and four per re-solved element.
+    pure real(wp) function rows_bytes(n, nz, recovered_curvature) result(bytes)
+        integer, intent(in) :: n, nz
+        real(wp), intent(in) :: recovered_curvature(:)
+        real(wp), parameter :: per_block = 4.0_wp * real_bytes + 4.0_wp
+        real(wp) :: correction_blocks
+        integer :: k, reach
+
         correction_blocks = 0.0_wp
-        do k = 1, size(solver%outer%element)
-            reach = merge(straight_reach, curved_reach, solver%outer%arc(k)%curvature == 0.0_wp)
-            correction_blocks = correction_blocks + min(n, 2 * reach + 3) + &
-                                4.0_wp * size(solver%solved)
+        do k = 1, size(recovered_curvature)
+            reach = merge(straight_reach, curved_reach, recovered_curvature(k) == 0.0_wp)
+            correction_blocks = correction_blocks + min(n, 2 * reach + 3) + 4.0_wp * nz
         end do
-        bytes = per_block * (zone_blocks + correction_blocks)
-    end function kept_rows_bytes
+        bytes = per_block * (3.0_wp * nz * real(n - nz, wp) + correction_blocks)
+    end function rows_bytes
 
     !> The weights of each re-solved element's nodal values in its mean DD and first moment
     !> (dd_moments of a unit value at each node; the same for both components).

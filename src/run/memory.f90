@@ -20,7 +20,9 @@
 !>   (a finite shear_stiffness or normal_stiffness, ddc_solve_joints) hold A_j (2nc)^2
 !>   beside A, and build it with two more such matrices, C + K^-1 and the load map;
 !> - the model and its results, 50 reals per element and 13 per observation point;
-!> - the program itself (libraries, buffers), 20 MB.
+!> - the program itself (libraries, buffers), 20 MB;
+!> - K's local re-solve where it serves (add_k_resolve: the zones' matrices and the
+!>   coupling's kept rows, ddc_post_higher_order_k), held from the first solve on.
 !> The Newton method is estimated twice: from the states its solve starts from (those of
 !> the remote stress alone: slip where the shear traction exceeds the strength, open where
 !> the effective normal traction is tensile; a one-shot solve without TWODD-style elements,
@@ -45,10 +47,14 @@ module ddc_run_memory
     use ddc_contact_result, only: contact_stress_scale
     use ddc_model_element_laws, only: strengths_change
     use ddc_model_loads, only: resolve_remote_stress, total_pressure
+    use ddc_model_medium, only: elastic_medium, medium_of
+    use ddc_model_results, only: tip_set
+    use ddc_post_tips, only: find_tips
+    use ddc_post_higher_order_k, only: uses_higher_order, higher_order_bytes
     implicit none
     private
 
-    public :: memory_need, estimate_memory, check_memory, elements_that_fit
+    public :: memory_need, estimate_memory, add_k_resolve, check_memory, elements_that_fit
     public :: hierarchical_min_elements
 
     !> The program's own memory: libraries, OpenBLAS and HDF5 buffers [bytes]
@@ -89,6 +95,8 @@ module ddc_run_memory
         real(wp) :: fallback_bytes = 0.0_wp
         !> Memory held while the contact method works, outside its own work [bytes]
         real(wp) :: held_bytes = 0.0_wp
+        !> The share of K's local re-solve in each of the above [bytes] (add_k_resolve)
+        real(wp) :: k_bytes = 0.0_wp
     end type memory_need
 
 contains
@@ -104,6 +112,35 @@ contains
                        count(model%elements%condition == condition_contact), &
                        first_unknowns(model))
     end function estimate_memory
+
+    !> Add the memory of K's local re-solve where it will serve: the zones' matrices and the
+    !> coupling's kept rows, allocated after the first solve and held from then on (the
+    !> tips and zones of the input geometry).
+    subroutine add_k_resolve(model, need)
+        !> The model, element geometry computed
+        type(model_type), intent(in) :: model
+        !> The estimate of the solve (estimate_memory); k_bytes set
+        type(memory_need), intent(inout) :: need
+        type(elastic_medium) :: medium
+        type(tip_set) :: tips
+        real(wp), allocatable :: zero(:)
+        character(len=:), allocatable :: why_not
+        logical :: uses
+
+        if (.not. allocated(model%elements%cos_beta) .or. model%elements%n == 0) return
+        medium = medium_of(model)
+        allocate (zero(model%elements%n), source=0.0_wp)
+        call find_tips(medium, zero, zero, tips)
+        call uses_higher_order(model%solver%k_method, model%solver%k_zone_elements, &
+                               model%growth%active, medium, tips, uses, why_not)
+        if (.not. uses) return
+        need%k_bytes = higher_order_bytes(medium, tips, model%solver%k_zone_elements)
+        need%bytes = need%bytes + need%k_bytes
+        need%worst_bytes = need%worst_bytes + need%k_bytes
+        need%held_bytes = need%held_bytes + need%k_bytes
+        if (need%fallback_bytes > 0.0_wp) need%fallback_bytes = need%fallback_bytes + &
+                                                                need%k_bytes
+    end subroutine add_k_resolve
 
     !> The unknowns of the Newton method's first reduced system: states from the remote
     !> stress on the contact elements (ddc_contact_active_set); -1 when the solve starts
@@ -306,7 +343,8 @@ contains
         call set_error(error, exit_out_of_memory, itoa(model%elements%n)//' elements need '// &
             'about '//bytes_text(need%bytes)//' of memory with the '//need%method// &
             ' method, but about '//bytes_text(available)//' is available here ('//source// &
-            '); about '//itoa(elements_that_fit(model, available))//' elements fit. Use a '// &
+            '); about '//itoa(elements_that_fit(model, available - need%k_bytes))// &
+            ' elements fit. Use a '// &
             'machine with more memory (on Slurm: sbatch --mem), or fewer elements; see '// &
             'the size guide in docs/performance.md#size-guide')
     end subroutine check_memory
