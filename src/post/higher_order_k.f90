@@ -924,8 +924,9 @@ contains
         in_zone = re_solved(medium, tips, zone)
         nz = count(in_zone)
         bytes = 2.0_wp * real_bytes * real(per_element * nz, wp)**2
-        rows = rows_bytes(medium%elements%n, nz, pack(sampled_curvature(medium%elements), &
-                                                        serves(medium%elements) .and. .not. in_zone))
+        rows = rows_bytes(medium%elements%n, nz, &
+                          pack(sampled_curvature(medium%elements), &
+                               serves(medium%elements) .and. .not. in_zone))
         if (rows <= kept_rows_max_bytes) bytes = bytes + rows
     end function higher_order_bytes
 
