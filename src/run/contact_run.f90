@@ -45,7 +45,9 @@ module ddc_run_contact_run
     public :: contact_run, contact_step, load_of, record_contact
 
     !> The local re-solve's coupling to the elements outside its zones stops when K moves by
-    !> less than this fraction of the largest |K| from one solve to the next, or fails after
+    !> less than this fraction of the largest |K| from one solve to the next, or when the
+    !> traction it added gives itself back within this fraction of its largest value (the
+    !> fixed point: a stuck fault's DDs do not answer it at all), or fails after
     !> max_coupling_solves solves
     real(wp), parameter :: coupling_tolerance = 1.0e-8_wp
     integer, parameter :: max_coupling_solves = 60
@@ -593,20 +595,32 @@ contains
             change = maxval(abs([k1_next - k1, k2_next - k2]))
             k1 = k1_next
             k2 = k2_next
-            ! K of the step's own DDs is no iterate: two solves at least.
+            ! K of the step's own DDs is no iterate: two solves at least, unless the solve's
+            ! traction gives itself back.
             if (solves > 1 .and. change <= coupling_tolerance * scale) then
-                this%k_shift = shift
-                call move_alloc(coupled_held, this%k_held)
-                this%k_law = coupled_law
+                call keep_coupled()
                 return
             end if
             call outer_correction(this%k_solver, this%medium, trial%ds, trial%dn, &
                                   correction(:n), correction(n + 1:))
+            if (maxval(abs(correction - shift)) <= coupling_tolerance * maxval(abs(shift))) then
+                call keep_coupled()
+                return
+            end if
             call mixer%next(shift, correction)
         end do
         call set_error(error, exit_solver_failure, 'K still moved by '//rtoa(change)// &
                        ' (its largest value '//rtoa(scale)//') after '// &
                        itoa(max_coupling_solves)//' solves')
+
+    contains
+
+        !> The next step's coupling starts from this one's traction, memory and strengths.
+        subroutine keep_coupled()
+            this%k_shift = shift
+            call move_alloc(coupled_held, this%k_held)
+            this%k_law = coupled_law
+        end subroutine keep_coupled
     end subroutine couple_outer
 
     !> Free what the run holds.
