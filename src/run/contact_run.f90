@@ -103,8 +103,10 @@ module ddc_run_contact_run
         integer :: k_evaluations = 0, k_unsettled = 0
         character(len=:), allocatable :: unsettled_reason
         !> The local re-solve's last converged traction on the elements outside its zones
-        !> ([shear; normal], shape (2 n)): the next step of a history starts from it
-        real(wp), allocatable :: k_shift(:)
+        !> ([shear; normal], shape (2 n)) and the one before, with the loads they were found
+        !> for (load_values): the next step of a history starts from their extrapolation
+        !> to its load
+        real(wp), allocatable :: k_shift(:), k_shift_before(:), k_load(:), k_load_before(:)
     contains
         procedure :: start
         procedure :: prepare
@@ -548,7 +550,8 @@ contains
         scale = maxval(hypot(k1, k2))
         allocate (correction(2 * n))
         if (allocated(this%k_shift)) then
-            shift = this%k_shift
+            shift = this%k_shift + along_load(load_values(load), this%k_load, &
+                this%k_load_before) * (this%k_shift - this%k_shift_before)
         else
             allocate (shift(2 * n))
             call outer_correction(this%k_solver, this%medium, solved%ds, solved%dn, shift(:n), &
@@ -617,11 +620,43 @@ contains
 
         !> The next step's coupling starts from this one's traction, memory and strengths.
         subroutine keep_coupled()
+            if (allocated(this%k_shift)) then
+                call move_alloc(this%k_shift, this%k_shift_before)
+                call move_alloc(this%k_load, this%k_load_before)
+            else
+                this%k_shift_before = shift
+                this%k_load_before = load_values(load)
+            end if
             this%k_shift = shift
+            this%k_load = load_values(load)
             call move_alloc(coupled_held, this%k_held)
             this%k_law = coupled_law
         end subroutine keep_coupled
     end subroutine couple_outer
+
+    !> A load's values as one vector: the tractions and pressures on the elements, the
+    !> remote stress and its gradient.
+    pure function load_values(load) result(values)
+        type(elastic_load), intent(in) :: load
+        real(wp), allocatable :: values(:)
+
+        values = [load%shear, load%normal, load%remote, load%gradient]
+        if (allocated(load%pressure)) values = [values, load%pressure]
+    end function load_values
+
+    !> How far a load is along the last change of load, from `last` (in units of the change
+    !> from `before` to `last`; its projection, 0 where the load did not change): the
+    !> coupled traction of a step whose states are those of the last two is theirs
+    !> extrapolated so far (it is linear in the load then).
+    pure real(wp) function along_load(values, last, before)
+        real(wp), intent(in) :: values(:), last(:), before(:)
+        real(wp) :: step
+
+        along_load = 0.0_wp
+        if (size(values) /= size(last)) return
+        step = sum((last - before)**2)
+        if (step > 0.0_wp) along_load = sum((values - last) * (last - before)) / step
+    end function along_load
 
     !> Free what the run holds.
     subroutine finish(this)

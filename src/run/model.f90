@@ -107,11 +107,32 @@ contains
             if (reports_phases(n)) call report_progress('solved ('//rec%method//') in '// &
                 seconds_text(wall_seconds() - t_start))
         end associate
-        call finish_model(model, load, results, run=run, engine=engine)
-        ! Freeing the influence matrix (32 n^2 bytes) ends the phase of its last use.
-        t_free = wall_seconds()
-        call run%finish()
-        results%solver%seconds_fields = results%solver%seconds_fields + wall_seconds() - t_free
+        if (frees_before_responses(run, present(engine))) then
+            ! The midpoint responses of a hierarchical solve assemble matrices of their own:
+            ! the run's are freed first, so that the peak holds one set; K (whose local
+            ! re-solve solves the model again) comes first, from the run's tractions.
+            t_free = wall_seconds()
+            allocate (results%elements%shear_traction(n), results%elements%normal_traction(n))
+            call run%free_tractions(load, solution, results%elements%shear_traction, &
+                                    results%elements%normal_traction, error)
+            if (allocated(error)) then
+                call run%finish()
+                return
+            end if
+            call find_tips_and_k(run, medium_of(model), model, load, results)
+            deallocate (results%elements%shear_traction, results%elements%normal_traction)
+            call run%finish()
+            t_free = wall_seconds() - t_free
+            call finish_model(model, load, results, engine=engine, tips_found=.true.)
+            results%solver%seconds_fields = results%solver%seconds_fields + t_free
+        else
+            call finish_model(model, load, results, run=run, engine=engine)
+            ! Freeing the influence matrix (32 n^2 bytes) ends the phase of its last use.
+            t_free = wall_seconds()
+            call run%finish()
+            results%solver%seconds_fields = results%solver%seconds_fields + wall_seconds() - &
+                                            t_free
+        end if
         if (.not. allocated(law%shear_stiffness)) then
             continue
         else if (law%has_joints()) then
@@ -123,6 +144,36 @@ contains
         end if
         results%solver%seconds_total = wall_seconds() - t_start
     end subroutine run_model
+
+    !> Whether the run's operator is freed before the midpoint responses: a hierarchical
+    !> operator of contact elements alone (its own tractions are those of its solution), in
+    !> this process.
+    logical function frees_before_responses(run, with_engine)
+        type(contact_run), intent(in) :: run
+        logical, intent(in) :: with_engine
+
+        frees_before_responses = .false.
+        if (with_engine .or. .not. allocated(run%operator)) return
+        frees_before_responses = .not. associated(run%operator%whole) .and. &
+                                 run%operator%nf == 0 .and. run%operator%nc > 0
+    end function frees_before_responses
+
+    !> The tips of solved DDs and their K by the run's K method (the run at the load the DDs
+    !> were solved for; the elements' DDs, states, tractions and friction in force set).
+    subroutine find_tips_and_k(run, medium, model, load, results)
+        type(contact_run), intent(inout) :: run
+        type(elastic_medium), intent(in) :: medium
+        type(model_type), intent(in) :: model
+        type(elastic_load), intent(in) :: load
+        type(model_results), intent(inout) :: results
+        real(wp), allocatable :: k1(:), k2(:)
+
+        call find_tips(medium, results%elements%ds, results%elements%dn, results%tips)
+        allocate (k1(results%tips%n), k2(results%tips%n))
+        call run%tip_k(load, results%elements, model%growth%active, results%tips, k1, k2)
+        results%tips%k1 = k1
+        results%tips%k2 = k2
+    end subroutine find_tips_and_k
 
     !> The load of a model at its remote stress and pore fluid.
     pure function model_load(model) result(load)
@@ -139,7 +190,7 @@ contains
     !> in memory: the run's or the given one, ddc_influence_response; from the engine; or
     !> from hierarchical matrices), tips with K by the run's K method, and the fields; the
     !> time goes to results%solver%seconds_fields, and the number of threads is recorded.
-    subroutine finish_model(model, load, results, matrix, engine, run)
+    subroutine finish_model(model, load, results, matrix, engine, run, tips_found)
         !> The model at the load the DDs were solved for
         type(model_type), intent(in) :: model
         !> That load
@@ -153,14 +204,16 @@ contains
         class(model_engine), intent(inout), optional :: engine
         !> The contact run of the solve: its matrix and its K method
         type(contact_run), intent(inout), optional, target :: run
+        !> results%tips are found and have their K (find_tips_and_k; default: not yet)
+        logical, intent(in), optional :: tips_found
         type(contact_run), target :: k_only
         type(contact_run), pointer :: k_run
         type(elastic_medium) :: medium
         integer, allocatable :: shear_row(:), normal_row(:)
         type(error_type), allocatable :: failed
         real(wp), pointer, contiguous :: whole(:, :)
-        real(wp), allocatable :: k1(:), k2(:)
         real(wp) :: t0
+        logical :: found
         integer :: n
 
         t0 = wall_seconds()
@@ -202,17 +255,17 @@ contains
             ! ds = us(-) - us(+), dn = un(-) - un(+)
             e%us_plus = e%us_minus - e%ds
             e%un_plus = e%un_minus - e%dn
-            call find_tips(medium, e%ds, e%dn, results%tips)
-            if (present(run)) then
-                k_run => run
-            else
-                call k_only%start(medium, model%solver)
-                k_run => k_only
+            found = .false.
+            if (present(tips_found)) found = tips_found
+            if (.not. found) then
+                if (present(run)) then
+                    k_run => run
+                else
+                    call k_only%start(medium, model%solver)
+                    k_run => k_only
+                end if
+                call find_tips_and_k(k_run, medium, model, load, results)
             end if
-            allocate (k1(results%tips%n), k2(results%tips%n))
-            call k_run%tip_k(load, e, model%growth%active, results%tips, k1, k2)
-            results%tips%k1 = k1
-            results%tips%k2 = k2
             if (reports_phases(n)) call report_progress('tractions, face displacements '// &
                 'and tips done in '//seconds_text(wall_seconds() - t0))
         end associate
