@@ -176,19 +176,25 @@ contains
         integer, allocatable, intent(out) :: chain(:), near_side(:)
         type(end_index) :: index
         integer :: path(elements%n), sides(elements%n), m, next, next_side, count
+        logical :: on_path(elements%n)
 
         index = index_ends(elements)
         m = 1
         path(1) = element
         sides(1) = side
+        on_path = .false.
+        on_path(element) = .true.
         do while (m < elements%n)
             call elements_at_end(elements, index, path(m), 3 - sides(m), next, next_side, &
                                  count)
             if (count /= 1) exit
-            if (any(path(:m) == next)) exit
+            ! A closed loop ends where it began (marked: a search of the path would be
+            ! quadratic in a long chain).
+            if (on_path(next)) exit
             m = m + 1
             path(m) = next
             sides(m) = next_side
+            on_path(next) = .true.
         end do
         chain = path(:m)
         near_side = sides(:m)
