@@ -151,7 +151,8 @@ contains
         !> Keep the rows of the coupling where they take at most this many bytes [bytes]
         !> (default kept_rows_max_bytes)
         real(wp), intent(in), optional :: max_kept_bytes
-        real(wp), allocatable :: curvature(:)
+        real(wp), allocatable :: curvature(:), recovered_curvature(:)
+        real(wp) :: limit
         integer :: k, m, stat
 
         associate (s => solver, elements => medium%elements)
@@ -174,13 +175,10 @@ contains
             call assemble(medium, s%solved, s%weighted, s%traction)
             call add_recovered_neighbours(medium, s)
             call moment_weights(s%weighted, s%mean_weight, s%moment_weight)
-            if (present(max_kept_bytes)) then
-                s%rows_kept = rows_bytes(elements%n, size(s%solved), s%outer%arc%curvature) &
-                              <= max_kept_bytes
-            else
-                s%rows_kept = rows_bytes(elements%n, size(s%solved), s%outer%arc%curvature) &
-                              <= kept_rows_max_bytes
-            end if
+            limit = kept_rows_max_bytes
+            if (present(max_kept_bytes)) limit = max_kept_bytes
+            recovered_curvature = curvature(s%outer%element)
+            s%rows_kept = rows_bytes(elements%n, size(s%solved), recovered_curvature) <= limit
             if (s%rows_kept) call keep_rows(medium, s)
         end associate
     end subroutine prepare_higher_order
@@ -806,10 +804,13 @@ contains
         real(wp), intent(in) :: receiver(4)
         real(wp) :: block(2, 2)
         type(dd_kernel) :: kj
+        real(wp) :: ts(2), tn(2)
 
         kj = kernel_with_images(kernel, receiver(1), receiver(2), medium, j, images, &
                                 face_negative)
-        call resolved_tractions(kj, receiver(3), receiver(4), block(1, :), block(2, :))
+        call resolved_tractions(kj, receiver(3), receiver(4), ts, tn)
+        block(1, :) = ts
+        block(2, :) = tn
     end function constant_block
 
     !> Row r of the zones' load (which = zone_load) or of the outer correction.

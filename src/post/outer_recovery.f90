@@ -243,7 +243,7 @@ contains
         real(wp), intent(in) :: x, y, c, s
         real(wp) :: blocks(2, 2, 2)
         type(dd_kernel) :: kh
-        real(wp) :: p(2, 3), cs(2), half
+        real(wp) :: p(2, 3), cs(2), half, ts(2), tn(2)
         integer :: h
 
         p(:, 1) = [element%xb, element%yb]
@@ -256,7 +256,9 @@ contains
                                             (p(1, h + 1) - p(1, h)) / (2.0_wp * half), &
                                             (p(2, h + 1) - p(2, h)) / (2.0_wp * half), images, &
                                             medium, face_negative)
-            call resolved_tractions(kh, c, s, blocks(1, :, h), blocks(2, :, h))
+            call resolved_tractions(kh, c, s, ts, tn)
+            blocks(1, :, h) = ts
+            blocks(2, :, h) = tn
         end do
     end function halves_kernels
 
