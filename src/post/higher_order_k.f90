@@ -333,6 +333,7 @@ contains
         curvature = sampled_curvature(elements)
         mask = .false.
         is_tip = .false.
+        call end_neighbours(elements, neighbour, neighbour_side)
         do k = 1, tips%n
             is_tip(tips%side(k), tips%element(k)) = .true.
             if (kind_serves(tips%element(k))) call mark(tips%element(k), tips%side(k), zone)
@@ -341,7 +342,6 @@ contains
             with_tips(i) = any(kind_serves(tips%element) .and. &
                                tips%fracture_id == elements%fracture_id(i))
         end do
-        call end_neighbours(elements, neighbour, neighbour_side)
         do i = 1, elements%n
             if (.not. (kind_serves(i) .and. with_tips(i))) cycle
             do side = 1, 2
@@ -356,16 +356,22 @@ contains
 
     contains
 
-        !> Mark the first `count` elements of the chain from end `side` of element i.
+        !> Mark the first `count` elements of the chain from end `side` of element i (each
+        !> on through its other end to the neighbour that alone shares it, as tip_chain, but
+        !> no farther than asked: a walk per corner).
         pure subroutine mark(i, side, count)
             integer, intent(in) :: i, side, count
-            integer, allocatable :: chain(:), near_side(:)
-            integer :: c
+            integer :: c, j, j_side, next
 
-            call tip_chain(medium%elements, i, side, chain, near_side)
-            do c = 1, min(count, size(chain))
-                if (.not. kind_serves(chain(c))) exit
-                mask(chain(c)) = .true.
+            j = i
+            j_side = side
+            do c = 1, min(count, medium%elements%n)
+                if (.not. kind_serves(j)) exit
+                mask(j) = .true.
+                next = neighbour(3 - j_side, j)
+                if (next == 0) exit
+                j_side = neighbour_side(3 - j_side, j)
+                j = next
             end do
         end subroutine mark
 

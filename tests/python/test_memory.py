@@ -141,11 +141,13 @@ def test_the_echoed_need_is_the_peak_memory_within_25_percent(tmp_path, case):
 
 
 def test_a_hierarchical_solve_peaks_within_25_percent_of_its_echoed_need(tmp_path):
-    # The benchmark's straight fault at N = 4000 on a hierarchical matrix: the run's
+    # The benchmark's straight fault at N = 8000 on a hierarchical matrix: the run's
     # compressed operator and H-LU factors are freed before the midpoint responses assemble
-    # their own matrices (when both were held, the peak was about twice the need).
-    stdout, peak = run_with_peak(tmp_path, benchmark.CASES["straight"](4000, 0, 0)
-                                 + "&solver matrix = 'hierarchical' /\n")
+    # their own matrices (when both were held, the peak was 193 MB against 133 MB echoed;
+    # 117 MB since). K from the tip element: the solve's own memory (the K re-solve's share
+    # is tested on the dense models above, where it is smaller than the solve's).
+    stdout, peak = run_with_peak(tmp_path, benchmark.CASES["straight"](8000, 0, 0)
+                                 + "&solver matrix = 'hierarchical', k_method = 'tip_element' /\n")
     match = re.search(r"^  memory: about ([0-9.]+) (kB|MB|GB|TB) needed \(newton, hierarchical "
                       r"matrix\)", stdout, re.MULTILINE)
     assert match, stdout
