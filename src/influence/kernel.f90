@@ -12,7 +12,7 @@ module ddc_influence_kernel
     private
 
     public :: dd_kernel_at, dd_kernel_global, dd_stress_global, kernel_functions
-    public :: face_negative, face_positive
+    public :: face_negative, face_positive, global_stress
 
     !> On the element itself (y = 0, |x| < a) the displacement jumps: which face to report
     integer, parameter :: face_negative = -1, face_positive = +1

@@ -15,6 +15,7 @@ module ddc_influence_response
     use ddc_linalg_lapack, only: dgemv
     use ddc_influence_assembly, only: image_transform, image_transforms, kernel_function, &
         select_kernel, pair_influence, pair_at_midpoint, row_traction, row_displacement
+    use ddc_influence_body, only: body_induced_at
     use ddc_influence_superposition, only: source_table, build_sources, superpose
     use ddc_constants, only: pi
     implicit none
@@ -168,6 +169,7 @@ contains
             call fused_sums(medium, image_transforms(medium%elements%symmetry), ds, dn, list, ts, &
                             tn, us, un)
         end if
+        if (allocated(medium%body)) call body_induced_at(medium, ds, dn, list, ts, tn, us, un)
     end subroutine kernel_sums
 
     !> The general kernel pair by pair (every pair, images included) at the listed midpoints.

@@ -26,10 +26,11 @@ module ddc_input_namelist
     use ddc_input_namelist_groups, only: namelist_groups, group_record, message_list, add, &
         scan_groups, g_model, g_remote_stress, g_fracture, g_grid, g_line, g_points, g_solver, &
         g_output, g_symmetry, g_pore_fluid, g_load_path, g_growth, g_injection, g_material, &
-        g_initiation
+        g_initiation, g_body
     use ddc_input_namelist_growth, only: read_growth_group
     use ddc_input_namelist_initiation, only: read_initiation_group, check_flaw_points
     use ddc_input_namelist_injection, only: read_injection_groups, check_injection_points
+    use ddc_input_namelist_body, only: read_body_group, check_body_model
     use ddc_input_namelist_values, only: text_length
     use ddc_input_namelist_settings, only: read_model_group, read_remote_stress_group, &
         read_pore_fluid_group, read_solver_group, read_symmetry_group, read_output_group, &
@@ -80,8 +81,10 @@ contains
             call add(messages, path//': the &model group is missing (it gives youngs_modulus'// &
                      ' and poissons_ratio)')
         end if
-        if (groups(g_fracture)%count == 0 .and. .not. groups(g_fracture)%misspelled) then
-            call add(messages, path//': no &fracture group: a model needs at least one fracture')
+        if (groups(g_fracture)%count == 0 .and. .not. groups(g_fracture)%misspelled .and. &
+            groups(g_body)%count == 0) then
+            call add(messages, path//': no &fracture group: a model needs at least one '// &
+                     'fracture (or a finite body, &body)')
         end if
 
         call open_namelist(path, text, unit, error)
@@ -109,6 +112,7 @@ contains
         call read_injection_groups(unit, text, path, groups(g_injection), &
                                    names_of(fractures), model, messages)
         call read_cycle_group(unit, text, path, groups, fractures, model, messages)
+        call read_body_group(unit, text, path, groups(g_body), model, messages)
         close (unit)
 
         call check_names(path, fractures, observations, messages)
@@ -125,6 +129,7 @@ contains
         call check_injection_points(path, groups(g_injection), model, messages)
         call check_matrix(path, model, messages)
         call check_k_method(path, model, messages)
+        call check_body_model(path, model, messages)
         if (messages%n > 0) then
             call set_error(error, messages%code, messages%text)
             return

@@ -17,7 +17,7 @@ module ddc_input_namelist_groups
     public :: scan_groups, group_line, group_label, group_prefix, is_name_character
     public :: g_model, g_remote_stress, g_fracture, g_grid, g_line, g_points, g_solver, &
         g_output, g_symmetry, g_sweep, g_pore_fluid, g_load_path, g_growth
-    public :: g_initiation, g_injection, g_material, g_cycle
+    public :: g_initiation, g_injection, g_material, g_cycle, g_body
 
     !> One namelist group: its name, whether it may appear more than once, and its variables
     !> with their types ("name:c x:r n:i": c text, r real, i integer)
@@ -32,9 +32,10 @@ module ddc_input_namelist_groups
                           g_line = 5, g_points = 6, g_solver = 7, g_output = 8, g_symmetry = 9, &
                           g_sweep = 10, g_pore_fluid = 11, g_load_path = 12, g_growth = 13
     integer, parameter :: g_initiation = 14, g_injection = 15, g_material = 16, g_cycle = 17
+    integer, parameter :: g_body = 18
 
     !> Every group ddc2d knows (&sweep is read by ddc_input_sweep; the model reader skips it)
-    type(group_spec), parameter :: namelist_groups(17) = [ &
+    type(group_spec), parameter :: namelist_groups(18) = [ &
         group_spec('model', .false., 'title:c youngs_modulus:r poissons_ratio:r '// &
                    'length_unit:c stress_unit:c time_unit:c domain:c interface_y:r'), &
         group_spec('remote_stress', .false., 'sxx:r syy:r sxy:r dsxx_dy:r dsyy_dy:r dsxy_dy:r'), &
@@ -70,7 +71,9 @@ module ddc_input_namelist_groups
         group_spec('cycle', .false., 'end_time:r tolerance:r shear_wave_speed:r '// &
                    'radiation_damping:r plate_rate:r seismic_threshold:r state_law:c '// &
                    'output_interval:r event_output_interval:r profile_spacing:r '// &
-                   'checkpoint_interval:r')]
+                   'checkpoint_interval:r'), &
+        group_spec('body', .false., 'x:r y:r elements:i condition:c bc_s:r bc_n:r '// &
+                   'bc_s_end:r bc_n_end:r')]
 
     !> Where the occurrences of one group are in the file.
     type :: group_record

@@ -6,7 +6,8 @@ module ddc_linalg_lapack
     implicit none
     private
 
-    public :: dgetrf, dgetrs, dgetri, dgecon, dlange, dgemv, dger, dgemm, dtrmm, dtrsm, dlaswp
+    public :: dgetrf, dgetrs, dgetri, dgecon, dlange, dgemv, dger, dgemm, dtrmm, dtrsm, dlaswp, &
+        dsyev
 
     interface
         !> LU factorization with partial pivoting of a general m x n matrix (LAPACK)
@@ -86,6 +87,16 @@ module ddc_linalg_lapack
             real(wp), intent(in) :: alpha, beta, a(lda, *), b(ldb, *)
             real(wp), intent(inout) :: c(ldc, *)
         end subroutine dgemm
+        !> Eigenvalues (ascending) and, with jobz = 'V', eigenvectors of a symmetric matrix
+        subroutine dsyev(jobz, uplo, n, a, lda, w, work, lwork, info)
+            import :: wp
+            implicit none
+            character, intent(in) :: jobz, uplo
+            integer, intent(in) :: n, lda, lwork
+            real(wp), intent(inout) :: a(lda, *)
+            real(wp), intent(out) :: w(*), work(*)
+            integer, intent(out) :: info
+        end subroutine dsyev
         !> B = alpha op(A) B or alpha B op(A), A triangular (BLAS level 3)
         subroutine dtrmm(side, uplo, transa, diag, m, n, alpha, a, lda, b, ldb)
             import :: wp

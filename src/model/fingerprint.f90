@@ -107,6 +107,19 @@ contains
                                       model%injections(i)%stop])
             end do
         end if
+        ! Only with a finite body: the other models keep their fingerprints.
+        if (allocated(model%body)) then
+            call add_reals(hash, [model%body%x, model%body%y, model%body%bc_s, model%body%bc_n, &
+                                  model%body%bc_s_end, model%body%bc_n_end])
+            call add_integers(hash, [model%body%elements, model%body%condition])
+        end if
+        ! Not hashed: model%body%orientation, model%body%xm, model%body%ym, model%body%a
+        ! Not hashed: model%body%cosb, model%body%sinb, model%body%side, model%body%node_x
+        ! Not hashed: model%body%node_y, model%body%given_s, model%body%given_n (the
+        ! geometry and values at the nodes follow from the sides hashed above)
+        ! Not hashed: model%body%factors, model%body%pivots, model%body%loaded
+        ! Not hashed: model%body%free_motions, model%body%left_null, model%body%left_null_gram
+        ! (the solved system, made before a solve)
         call add_reals(hash, [model%sxx, model%syy, model%sxy])
         call add_reals(hash, model%stress_gradient)
         call add_reals(hash, model%pore_fluid)

@@ -8,6 +8,7 @@ module ddc_model_medium
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type, element_set, domain_bimaterial
     use ddc_model_loads, only: shear_modulus_of
+    use ddc_model_body, only: finite_body
     implicit none
     private
 
@@ -35,6 +36,9 @@ module ddc_model_medium
         type(elastic_material) :: upper
         !> Two bonded half-planes: the height of the interface [length unit]
         real(wp) :: interface_y = 0.0_wp
+        !> The finite body the elements lie in, its system solved
+        !> (ddc_influence_body%prepare_body); unallocated in an infinite medium
+        type(finite_body), allocatable :: body
     end type elastic_medium
 
 contains
@@ -54,6 +58,7 @@ contains
                                             model%upper_poissons_ratio)
             medium%interface_y = model%interface_y
         end if
+        if (allocated(model%body)) medium%body = model%body
     end function medium_of
 
     !> The medium of other elements in the same rock.
@@ -69,6 +74,7 @@ contains
         other%poissons_ratio = medium%poissons_ratio
         other%upper = medium%upper
         other%interface_y = medium%interface_y
+        if (allocated(medium%body)) other%body = medium%body
     end function with_elements
 
     !> The material at height y: the upper one above the interface of two bonded

@@ -17,7 +17,7 @@ module ddc_model_results
     public :: growth_arrested, growth_step_limit, growth_failed, growth_end_names
     public :: trial_stuck, trial_slipping, trial_opening, trial_blocked, trial_state_coding
     public :: state_free, state_stick, state_slip, state_open, state_names, state_not_grown
-    public :: point_clear, point_near, point_on_element
+    public :: point_clear, point_near, point_on_element, point_outside_body
 
     !> Element states; free = a TWODD-style condition, not a contact element
     !> (stick, slip and open are the contact solvers' codes, ddc_contact_states)
@@ -30,8 +30,10 @@ module ddc_model_results
 
     !> Observation point flags: clear of every element; within one element length of an
     !> element centre (TWODD skips these; accuracy reduced); on an element or at its end
-    !> (field discontinuous or singular there: values are NaN)
+    !> (field discontinuous or singular there: values are NaN); outside a finite body or on
+    !> its boundary (no rock: NaN)
     integer, parameter :: point_clear = 0, point_near = 1, point_on_element = 2
+    integer, parameter :: point_outside_body = 3
 
     !> Why a tip did or did not grow in a growth step
     !> (docs/theory/growth.md#why-a-tip-does-not-grow): it grew (the corrector converged, or is
@@ -119,7 +121,7 @@ module ddc_model_results
         real(wp), allocatable :: ux(:), uy(:)
         !> Total stress (remote plus induced), tension positive [stress unit]
         real(wp), allocatable :: sxx(:), syy(:), sxy(:)
-        !> point_clear, point_near or point_on_element
+        !> point_clear, point_near, point_on_element or point_outside_body
         integer, allocatable :: flag(:)
     end type field_result
 

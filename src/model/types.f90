@@ -13,6 +13,7 @@ module ddc_model_types
     ! and its cap on the tensile strength, for what the echo reports in force.
     use ddc_contact_fault_law, only: no_residual_drop, rigid_joint, tensile_cap
     use ddc_model_cycles, only: cycle_options
+    use ddc_model_body, only: finite_body
     implicit none
     private
 
@@ -367,6 +368,8 @@ module ddc_model_types
         type(element_set) :: elements
         !> The fractures, in element order
         type(fracture_type), allocatable :: fractures(:)
+        !> The finite body the fractures lie in (&body); unallocated for an infinite plane
+        type(finite_body), allocatable :: body
         !> Observation sets for field output
         type(observation_set), allocatable :: observations(:)
         !> Solver options

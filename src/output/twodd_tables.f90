@@ -19,7 +19,8 @@ module ddc_output_twodd_tables
     use ddc_error, only: error_type, set_error, exit_io_failure
     use ddc_model_types, only: model_type, symmetry_x, symmetry_y, symmetry_both, &
         condition_mixed_ss_un, condition_contact, condition_prescribed_dd
-    use ddc_model_results, only: model_results, point_near, point_on_element, state_names
+    use ddc_model_results, only: model_results, point_near, point_on_element, state_names, &
+        point_outside_body
     use ddc_output_atomic, only: partial_name, publish_file, remove_file, resolve_target, &
         explain_write_failure
     use ddc_constants, only: pi
@@ -257,6 +258,8 @@ contains
             text = '  *'
         case (point_on_element)
             text = ' **'
+        case (point_outside_body)
+            text = ' --'
         case default
             text = ''
         end select

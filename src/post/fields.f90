@@ -4,13 +4,16 @@
 !> symmetry images (ddc_influence_superposition: geometry and DDs precomputed, one pass for
 !> the point's flag, one for its values); in the half-plane (and for tests) the general
 !> kernel is summed pair by pair. Both paths flag points the same way (point_flag) and give
-!> the same values within round-off (suite `fields`).
+!> the same values within round-off (suite `fields`). Inside a finite body its boundary's
+!> sources add their field; outside it there is no rock.
 module ddc_post_fields
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use ddc_kinds, only: wp
     use ddc_model_types, only: element_set
     use ddc_model_medium, only: elastic_medium, remote_stress_at
-    use ddc_model_results, only: field_result, point_clear, point_on_element
+    use ddc_model_results, only: field_result, point_clear, point_on_element, point_outside_body
+    use ddc_model_body, only: inside_body
+    use ddc_influence_body, only: body_state, body_field_at
     use ddc_influence_kernel, only: dd_kernel, face_positive
     use ddc_influence_assembly, only: image_transform, image_transforms, image_of, &
         kernel_with_images, kernel_function, select_kernel
@@ -75,7 +78,40 @@ contains
             call field_full_plane(medium%elements, medium%shear_modulus, medium%poissons_ratio, &
                                   remote, g, ds, dn, x, y, field)
         end if
+        if (allocated(medium%body)) call add_body_field(medium, ds, dn, x, y, field)
     end subroutine evaluate_field
+
+    !> The field of a finite body's boundary added at the points inside it; the points
+    !> outside it (or on its boundary, within 1e-9 of its size) NaN, flag point_outside_body.
+    subroutine add_body_field(medium, ds, dn, x, y, field)
+        type(elastic_medium), intent(in) :: medium
+        real(wp), intent(in) :: ds(:), dn(:), x(:), y(:)
+        type(field_result), intent(inout) :: field
+        real(wp), allocatable :: z(:)
+        real(wp) :: values(5), nan, tolerance
+        integer :: ip
+
+        allocate (z(size(medium%body%loaded)))
+        z = body_state(medium, ds, dn)
+        nan = ieee_value(1.0_wp, ieee_quiet_nan)
+        associate (body => medium%body)
+            tolerance = 1.0e-9_wp * max(maxval(body%x) - minval(body%x), &
+                                        maxval(body%y) - minval(body%y))
+        end associate
+        !$omp parallel do default(none) schedule(dynamic, 16) private(ip, values) &
+        !$omp shared(medium, z, x, y, field, nan, tolerance)
+        do ip = 1, size(x)
+            if (.not. inside_body(medium%body, x(ip), y(ip), tolerance)) then
+                field%flag(ip) = point_outside_body
+                call store_point(field, ip, spread(nan, 1, 5))
+            else if (field%flag(ip) /= point_on_element) then
+                values = body_field_at(medium, z, x(ip), y(ip), .true.)
+                call store_point(field, ip, [field%ux(ip), field%uy(ip), field%sxx(ip), &
+                                             field%syy(ip), field%sxy(ip)] + values)
+            end if
+        end do
+        !$omp end parallel do
+    end subroutine add_body_field
 
     !> The full-plane path: per point, the worst flag over every source, then (off the
     !> elements) the fused sum of displacement and stress.

@@ -123,6 +123,9 @@ contains
             why_not = "&solver k_method = 'tip_element'"
         else if (growth) then
             why_not = 'growth calibrates the tip element'
+        else if (allocated(medium%body)) then
+            ! The zones' loads sum the kernel of the infinite plane.
+            why_not = 'the fractures lie in a finite body'
         else
             n = count(re_solved(medium, tips, zone))
             uses = n > 0 .and. (k_method == k_higher_order .or. n <= higher_order_max_elements)

@@ -28,6 +28,7 @@ module ddc_run_contact_run
         new_matrix
     use ddc_contact_fault_law, only: fault_law
     use ddc_solve_operator, only: elastic_operator, elastic_load, free_part
+    use ddc_influence_body, only: body_load
     use ddc_solve_dense_operator, only: dense_operator, new_dense_operator
     use ddc_solve_hierarchical_operator, only: hierarchical_operator, &
         new_hierarchical_operator
@@ -139,7 +140,7 @@ contains
         real(wp), intent(in) :: pore_fluid(2)
         type(elastic_load) :: load
         real(wp) :: upper(3), upper_gradient(3)
-        real(wp), allocatable :: shear(:), normal(:)
+        real(wp), allocatable :: shear(:), normal(:), us(:), un(:)
 
         associate (elements => medium%elements)
             allocate (load%shear(elements%n), load%normal(elements%n))
@@ -157,6 +158,13 @@ contains
                 end where
             end if
             load%pressure = total_pressure(elements, pore_fluid)
+            if (allocated(medium%body)) then
+                allocate (shear(elements%n), normal(elements%n), us(elements%n), &
+                          un(elements%n))
+                call body_load(medium, shear, normal, us, un)
+                load%shear = load%shear + shear
+                load%normal = load%normal + normal
+            end if
         end associate
         load%remote = remote
         load%gradient = gradient

@@ -11,6 +11,7 @@ module ddc_run_model
     use ddc_model_medium, only: elastic_medium, medium_of
     use ddc_contact_fault_law, only: fault_law
     use ddc_influence_response, only: midpoint_response, kernel_response
+    use ddc_influence_body, only: prepare_body, body_load
     use ddc_solve_elastic, only: row_kinds
     use ddc_solve_hierarchical, only: hierarchical_response, hierarchical_field
     use ddc_solve_joints, only: elastic_dds
@@ -62,6 +63,7 @@ contains
         type(elastic_load) :: load
         class(elastic_operator), allocatable :: operator
         type(fault_law) :: law
+        type(elastic_medium) :: medium
         real(wp) :: t_start, t_free
         integer :: n
 
@@ -74,18 +76,22 @@ contains
             return
         end if
         n = model%elements%n
+        medium = medium_of(model)
+        if (allocated(medium%body)) then
+            call prepare_body(medium%body, medium%shear_modulus, medium%poissons_ratio, error)
+            if (allocated(error)) return
+        end if
         if (present(engine)) then
-            call engine%make_operator(medium_of(model), operator, error)
-            if (.not. allocated(error)) call run%prepare(medium_of(model), model%solver, &
-                                                         error, operator)
+            call engine%make_operator(medium, operator, error)
+            if (.not. allocated(error)) call run%prepare(medium, model%solver, error, operator)
         else
-            call run%prepare(medium_of(model), model%solver, error)
+            call run%prepare(medium, model%solver, error)
         end if
         if (allocated(error)) then
             call run%finish()
             return
         end if
-        load = model_load(model)
+        load = model_load(model, medium)
         if (present(ds_previous)) call run%hold(ds_previous, strengths)
         call run%step(load, solution, error)
         if (allocated(error)) then
@@ -119,14 +125,15 @@ contains
                 call run%finish()
                 return
             end if
-            call find_tips_and_k(run, medium_of(model), model, load, results)
+            call find_tips_and_k(run, medium, model, load, results)
             deallocate (results%elements%shear_traction, results%elements%normal_traction)
             call run%finish()
             t_free = wall_seconds() - t_free
-            call finish_model(model, load, results, engine=engine, tips_found=.true.)
+            call finish_model(model, load, results, engine=engine, tips_found=.true., &
+                              prepared=medium)
             results%solver%seconds_fields = results%solver%seconds_fields + t_free
         else
-            call finish_model(model, load, results, run=run, engine=engine)
+            call finish_model(model, load, results, run=run, engine=engine, prepared=medium)
             ! Freeing the influence matrix (32 n^2 bytes) ends the phase of its last use.
             t_free = wall_seconds()
             call run%finish()
@@ -175,14 +182,22 @@ contains
         results%tips%k2 = k2
     end subroutine find_tips_and_k
 
-    !> The load of a model at its remote stress and pore fluid.
-    pure function model_load(model) result(load)
+    !> The load of a model at its remote stress and pore fluid (and its finite body's given
+    !> values: the medium prepared for it).
+    pure function model_load(model, prepared) result(load)
         !> The model
         type(model_type), intent(in) :: model
+        !> Its medium, a finite body's system solved (default: medium_of the model)
+        type(elastic_medium), intent(in), optional :: prepared
         type(elastic_load) :: load
 
-        load = load_of(medium_of(model), [model%sxx, model%syy, model%sxy], &
-                       model%stress_gradient, model%pore_fluid)
+        if (present(prepared)) then
+            load = load_of(prepared, [model%sxx, model%syy, model%sxy], &
+                           model%stress_gradient, model%pore_fluid)
+        else
+            load = load_of(medium_of(model), [model%sxx, model%syy, model%sxy], &
+                           model%stress_gradient, model%pore_fluid)
+        end if
     end function model_load
 
     !> The results that follow from the DDs of a solved model (results%elements%ds, dn,
@@ -190,7 +205,7 @@ contains
     !> in memory: the run's or the given one, ddc_influence_response; from the engine; or
     !> from hierarchical matrices), tips with K by the run's K method, and the fields; the
     !> time goes to results%solver%seconds_fields, and the number of threads is recorded.
-    subroutine finish_model(model, load, results, matrix, engine, run, tips_found)
+    subroutine finish_model(model, load, results, matrix, engine, run, tips_found, prepared)
         !> The model at the load the DDs were solved for
         type(model_type), intent(in) :: model
         !> That load
@@ -206,6 +221,8 @@ contains
         type(contact_run), intent(inout), optional, target :: run
         !> results%tips are found and have their K (find_tips_and_k; default: not yet)
         logical, intent(in), optional :: tips_found
+        !> The model's medium, a finite body's system solved (default: medium_of the model)
+        type(elastic_medium), intent(in), optional :: prepared
         type(contact_run), target :: k_only
         type(contact_run), pointer :: k_run
         type(elastic_medium) :: medium
@@ -218,7 +235,11 @@ contains
 
         t0 = wall_seconds()
         n = model%elements%n
-        medium = medium_of(model)
+        if (present(prepared)) then
+            medium = prepared
+        else
+            medium = medium_of(model)
+        end if
         results%solver%threads = 1
         !$ results%solver%threads = omp_get_max_threads()
         whole => null()
@@ -252,6 +273,7 @@ contains
             end if
             e%shear_traction = e%shear_traction + load%shear
             e%normal_traction = e%normal_traction + load%normal
+            if (allocated(medium%body)) call add_body_displacement(medium, e%us_minus, e%un_minus)
             ! ds = us(-) - us(+), dn = un(-) - un(+)
             e%us_plus = e%us_minus - e%ds
             e%un_plus = e%un_minus - e%dn
@@ -269,26 +291,44 @@ contains
             if (reports_phases(n)) call report_progress('tractions, face displacements '// &
                 'and tips done in '//seconds_text(wall_seconds() - t0))
         end associate
-        call evaluate_fields(model, results, engine)
+        call evaluate_fields(model, results, engine, medium)
         results%solver%seconds_fields = wall_seconds() - t0
     end subroutine finish_model
 
+    !> Adds the displacement of a finite body's given values (every fracture closed) to the
+    !> face displacements along s and n of the elements.
+    pure subroutine add_body_displacement(medium, us, un)
+        type(elastic_medium), intent(in) :: medium
+        real(wp), intent(inout) :: us(:), un(:)
+        real(wp), dimension(size(us)) :: shear, normal, us_body, un_body
+
+        call body_load(medium, shear, normal, us_body, un_body)
+        us = us + us_body
+        un = un + un_body
+    end subroutine add_body_displacement
+
     !> The fields at every observation set of the model for the DDs in results (allocates
     !> results%fields, one per observation set).
-    subroutine evaluate_fields(model, results, engine)
+    subroutine evaluate_fields(model, results, engine, prepared)
         !> The solved model
         type(model_type), intent(in) :: model
         !> Its element results; the fields are set
         type(model_results), intent(inout) :: results
         !> The engine of a distributed run (default: the work is done in this process)
         class(model_engine), intent(inout), optional :: engine
+        !> The model's medium, a finite body's system solved (default: medium_of the model)
+        type(elastic_medium), intent(in), optional :: prepared
         type(error_type), allocatable :: failed
         type(elastic_medium) :: medium
         real(wp) :: t0
         integer :: i
 
         t0 = wall_seconds()
-        medium = medium_of(model)
+        if (present(prepared)) then
+            medium = prepared
+        else
+            medium = medium_of(model)
+        end if
         if (allocated(results%fields)) deallocate (results%fields)
         if (allocated(model%observations)) then
             allocate (results%fields(size(model%observations)))

@@ -13,6 +13,7 @@ module ddc_solve_dense_operator
     use ddc_model_types, only: condition_contact
     use ddc_model_medium, only: elastic_medium
     use ddc_model_results, only: solver_record
+    use ddc_influence_body, only: body_matrix_correction
     use ddc_influence_assembly, only: assemble_influence
     use ddc_influence_response, only: listed_tractions
     use ddc_solve_elastic, only: row_kinds, given_values
@@ -96,6 +97,8 @@ contains
             end if
             call row_kinds(elements%condition, op%shear_row, op%normal_row)
             call assemble_influence(medium, op%shear_row, op%normal_row, matrix)
+            if (allocated(medium%body)) call body_matrix_correction(medium, op%shear_row, &
+                                                                    op%normal_row, matrix)
             call system_clock(t1)
             record%seconds_assembly = real(t1 - t0, wp) / real(rate, wp)
             if (reports_phases(n)) call report_progress('assembly done in '// &

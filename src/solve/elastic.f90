@@ -9,6 +9,7 @@ module ddc_solve_elastic
     use ddc_model_medium, only: elastic_medium
     use ddc_influence_assembly, only: assemble_influence, row_traction, row_displacement, &
         row_identity
+    use ddc_influence_body, only: body_matrix_correction
     use ddc_linalg_lu, only: lu_factor, lu_solve, influence_hint, residual_tol
     use ddc_text, only: rtoa, itoa, seconds_text
     use ddc_progress, only: report_progress, reports_phases
@@ -105,6 +106,8 @@ contains
         end if
         call row_kinds(medium%elements%condition, shear_row, normal_row)
         call assemble_influence(medium, shear_row, normal_row, matrix)
+        if (allocated(medium%body)) call body_matrix_correction(medium, shear_row, normal_row, &
+                                                                matrix)
         rhs(:, 1) = given_values(medium%elements, shear_row, normal_row, remote_shear, &
                                  remote_normal, [(i, i = 1, n)])
         call system_clock(t1)

@@ -411,7 +411,8 @@ def check_shared(root, problems):
 
 # The fingerprint (check 8): the routine that hashes, the files of the types it covers.
 FINGERPRINT = ("src/model/fingerprint.f90", "hash_model")
-HASHED_TYPE_FILES = ("src/model/types.f90", "src/contact/options.f90", "src/model/cycles.f90")
+HASHED_TYPE_FILES = ("src/model/types.f90", "src/contact/options.f90", "src/model/cycles.f90",
+                     "src/model/body.f90")
 NOT_HASHED = re.compile(r"!\s*not hashed:\s*([\w%]+(?:\s*,\s*[\w%]+)*)", re.IGNORECASE)
 
 
