@@ -411,32 +411,36 @@ contains
         end if
     end subroutine check_equilibrium
 
-    !> The traction on every node's equations of the fractures' DDs, shape (nz + free).
-    pure function fracture_traction_at_nodes(medium, ds, dn) result(t)
+    !> The traction on every node's equations per unit DD of each fracture element (columns
+    !> 1:n Ds, n+1:2n Dn), shape (nz + free, 2n): C.
+    function fracture_columns(medium) result(c)
         type(elastic_medium), intent(in) :: medium
-        real(wp), intent(in) :: ds(:), dn(:)
-        real(wp) :: t(size(medium%body%loaded))
+        real(wp), allocatable :: c(:, :)
         type(dd_kernel) :: k
-        real(wp) :: stress(3)
-        integer :: row, j, e
+        integer :: row, j, e, n
 
-        t = 0.0_wp
-        associate (body => medium%body, el => medium%elements)
-            do row = 1, size(body%node_x)
-                stress = 0.0_wp
-                do j = 1, el%n
-                    k = dd_kernel_global(body%node_x(row), body%node_y(row), el%x_mid(j), &
-                                         el%y_mid(j), el%half_length(j), el%cos_beta(j), &
-                                         el%sin_beta(j), medium%shear_modulus, &
-                                         medium%poissons_ratio, face_positive)
-                    stress = stress + [k%sxx(1), k%syy(1), k%sxy(1)] * ds(j) + &
-                             [k%sxx(2), k%syy(2), k%sxy(2)] * dn(j)
-                end do
-                e = (row - 1) / body_nodes + 1
-                t(2 * row - 1:2 * row) = on_plane(stress, body%cosb(e), body%sinb(e))
+        n = medium%elements%n
+        allocate (c(size(medium%body%loaded), 2 * n))
+        c = 0.0_wp
+        !$omp parallel do default(none) schedule(dynamic, 8) private(row, j, e, k) &
+        !$omp shared(medium, c, n)
+        do row = 1, size(medium%body%node_x)
+            e = (row - 1) / body_nodes + 1
+            do j = 1, n
+                k = dd_kernel_global(medium%body%node_x(row), medium%body%node_y(row), &
+                                     medium%elements%x_mid(j), medium%elements%y_mid(j), &
+                                     medium%elements%half_length(j), &
+                                     medium%elements%cos_beta(j), medium%elements%sin_beta(j), &
+                                     medium%shear_modulus, medium%poissons_ratio, face_positive)
+                c(2 * row - 1:2 * row, j) = on_plane([k%sxx(1), k%syy(1), k%sxy(1)], &
+                                                     medium%body%cosb(e), medium%body%sinb(e))
+                c(2 * row - 1:2 * row, n + j) = on_plane([k%sxx(2), k%syy(2), k%sxy(2)], &
+                                                         medium%body%cosb(e), &
+                                                         medium%body%sinb(e))
             end do
-        end associate
-    end function fracture_traction_at_nodes
+        end do
+        !$omp end parallel do
+    end function fracture_columns
 
     !> The body's unknowns (and its free motions' multipliers) with the fractures' DDs ds, dn:
     !> z = loaded - S^-1 C d.
@@ -446,7 +450,7 @@ contains
         real(wp) :: z(size(medium%body%loaded))
         real(wp), allocatable :: rhs(:, :)
 
-        rhs = reshape(fracture_traction_at_nodes(medium, ds, dn), [size(medium%body%loaded), 1])
+        rhs = matmul(fracture_columns(medium), reshape([ds, dn], [2 * size(ds), 1]))
         call solve_body(medium%body, rhs)
         z = medium%body%loaded - rhs(:, 1)
     end function body_state
@@ -527,21 +531,13 @@ contains
         type(elastic_medium), intent(in) :: medium
         integer, intent(in) :: shear_row(:), normal_row(:)
         real(wp), intent(inout) :: matrix(:, :)
-        real(wp), allocatable :: rows(:, :), given(:), solved(:, :), unit_dd(:)
-        integer :: n, j, nz
+        real(wp), allocatable :: rows(:, :), given(:), solved(:, :)
+        integer :: n, nz
 
         n = medium%elements%n
         nz = body_unknowns(medium%body)
         call fracture_rows(medium, shear_row, normal_row, rows, given)
-        allocate (solved(size(medium%body%loaded), 2 * n), unit_dd(2 * n))
-        !$omp parallel do default(none) schedule(dynamic, 4) private(j, unit_dd) &
-        !$omp shared(n, medium, solved)
-        do j = 1, 2 * n
-            unit_dd = 0.0_wp
-            unit_dd(j) = 1.0_wp
-            solved(:, j) = fracture_traction_at_nodes(medium, unit_dd(1:n), unit_dd(n + 1:))
-        end do
-        !$omp end parallel do
+        solved = fracture_columns(medium)
         call solve_body(medium%body, solved)
         call dgemm('N', 'N', 2 * n, 2 * n, nz, -1.0_wp, rows, 2 * n, solved, &
                    size(solved, 1), 1.0_wp, matrix, size(matrix, 1))

@@ -82,6 +82,9 @@ module ddc_output_hdf5
     character(len=*), parameter :: near_coding = '0 clear, 1 within one element length ' &
         //'of an element centre (reduced accuracy), 2 on an element or at an element end ' &
         //'(value NaN)'
+    !> The same in a finite body, whose outside has no rock
+    character(len=*), parameter :: near_coding_body = near_coding//', 3 outside the body '// &
+        'or on its boundary (value NaN)'
 
 contains
 
@@ -476,8 +479,13 @@ contains
                     call write_real_dataset(set, 'sxx', f%sxx, dims, stress, error)
                     call write_real_dataset(set, 'syy', f%syy, dims, stress, error)
                     call write_real_dataset(set, 'sxy', f%sxy, dims, stress, error)
-                    call write_int_dataset(set, 'near_element', f%flag, dims, error, &
-                        near_coding)
+                    if (allocated(model%body)) then
+                        call write_int_dataset(set, 'near_element', f%flag, dims, error, &
+                                               near_coding_body)
+                    else
+                        call write_int_dataset(set, 'near_element', f%flag, dims, error, &
+                                               near_coding)
+                    end if
                     call close_group(set, error)
                 end associate
                 if (allocated(error)) exit

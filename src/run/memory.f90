@@ -47,6 +47,7 @@ module ddc_run_memory
     use ddc_contact_result, only: contact_stress_scale
     use ddc_model_element_laws, only: strengths_change
     use ddc_model_loads, only: resolve_remote_stress, total_pressure
+    use ddc_model_body, only: body_nodes
     use ddc_model_medium, only: elastic_medium, medium_of
     use ddc_model_results, only: tip_set
     use ddc_post_tips, only: find_tips
@@ -187,7 +188,8 @@ contains
                 points = points + real(size(model%observations(k)%x), wp)
             end do
         end if
-        fixed = program_bytes + real_bytes * (element_reals * n + point_reals * points)
+        fixed = program_bytes + real_bytes * (element_reals * n + point_reals * points) + &
+                body_bytes(model, n)
         history = ''
         if (allocated(model%load_path%vertex)) then
             history = ' (loading history)'
@@ -243,6 +245,22 @@ contains
             need%worst_bytes = need%bytes
         end if
     end function need_of
+
+    !> A finite body's part (ddc_influence_body): its bordered equations, factorized, in
+    !> each of the two copies of the medium a solve holds (its own and its run's), and the
+    !> fractures' rows of the body beside the body's answer to their DDs while the
+    !> influence matrix takes them.
+    pure real(wp) function body_bytes(model, n)
+        type(model_type), intent(in) :: model
+        !> Number of fracture elements
+        real(wp), intent(in) :: n
+        real(wp) :: nz
+
+        body_bytes = 0.0_wp
+        if (.not. allocated(model%body)) return
+        nz = 2.0_wp * real(body_nodes * sum(model%body%elements), wp)
+        body_bytes = real_bytes * (2.0_wp * (nz + 3.0_wp)**2 + 4.0_wp * n * nz)
+    end function body_bytes
 
     !> The peak of a hierarchical solve of n elements (ddc_solve_hierarchical): the
     !> compressed matrix and its H-LU factors beside it, hmatrix_reals reals per unknown

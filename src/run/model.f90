@@ -236,63 +236,73 @@ contains
         t0 = wall_seconds()
         n = model%elements%n
         if (present(prepared)) then
-            medium = prepared
+            call finish_in(prepared)
         else
             medium = medium_of(model)
+            call finish_in(medium)
         end if
-        results%solver%threads = 1
-        !$ results%solver%threads = omp_get_max_threads()
-        whole => null()
-        if (present(run) .and. .not. present(matrix)) then
-            if (allocated(run%operator)) whole => run%operator%whole
-        end if
-        associate (e => results%elements)
-            allocate (e%shear_traction(n), e%normal_traction(n), e%us_minus(n), e%un_minus(n))
-            if (present(engine)) then
-                call engine%midpoint_response(medium, e%ds, e%dn, e%shear_traction, &
-                                              e%normal_traction, e%us_minus, e%un_minus)
-            else if (present(matrix) .or. associated(whole)) then
-                allocate (shear_row(n), normal_row(n))
-                call row_kinds(model%elements%condition, shear_row, normal_row)
-                if (present(matrix)) then
-                    call midpoint_response(medium, matrix, shear_row, normal_row, e%ds, e%dn, &
-                                           e%shear_traction, e%normal_traction, e%us_minus, &
-                                           e%un_minus)
-                else
-                    call midpoint_response(medium, whole, shear_row, normal_row, e%ds, e%dn, &
-                                           e%shear_traction, e%normal_traction, e%us_minus, &
-                                           e%un_minus)
-                end if
-            else
-                ! A hierarchical solve keeps no dense matrix: products with hierarchical
-                ! ones, or the kernel sums where hmat-oss fails.
-                call hierarchical_response(medium, e%ds, e%dn, model%solver, e%shear_traction, &
-                                           e%normal_traction, e%us_minus, e%un_minus, failed)
-                if (allocated(failed)) call kernel_response(medium, e%ds, e%dn, &
-                    e%shear_traction, e%normal_traction, e%us_minus, e%un_minus)
+
+    contains
+
+        !> The work, in the medium m (the prepared one, not copied: a finite body's
+        !> factors are large).
+        subroutine finish_in(m)
+            type(elastic_medium), intent(in) :: m
+
+            results%solver%threads = 1
+            !$ results%solver%threads = omp_get_max_threads()
+            whole => null()
+            if (present(run) .and. .not. present(matrix)) then
+                if (allocated(run%operator)) whole => run%operator%whole
             end if
-            e%shear_traction = e%shear_traction + load%shear
-            e%normal_traction = e%normal_traction + load%normal
-            if (allocated(medium%body)) call add_body_displacement(medium, e%us_minus, e%un_minus)
-            ! ds = us(-) - us(+), dn = un(-) - un(+)
-            e%us_plus = e%us_minus - e%ds
-            e%un_plus = e%un_minus - e%dn
-            found = .false.
-            if (present(tips_found)) found = tips_found
-            if (.not. found) then
-                if (present(run)) then
-                    k_run => run
+            associate (e => results%elements)
+                allocate (e%shear_traction(n), e%normal_traction(n), e%us_minus(n), e%un_minus(n))
+                if (present(engine)) then
+                    call engine%midpoint_response(m, e%ds, e%dn, e%shear_traction, &
+                                                  e%normal_traction, e%us_minus, e%un_minus)
+                else if (present(matrix) .or. associated(whole)) then
+                    allocate (shear_row(n), normal_row(n))
+                    call row_kinds(model%elements%condition, shear_row, normal_row)
+                    if (present(matrix)) then
+                        call midpoint_response(m, matrix, shear_row, normal_row, e%ds, e%dn, &
+                                               e%shear_traction, e%normal_traction, e%us_minus, &
+                                               e%un_minus)
+                    else
+                        call midpoint_response(m, whole, shear_row, normal_row, e%ds, e%dn, &
+                                               e%shear_traction, e%normal_traction, e%us_minus, &
+                                               e%un_minus)
+                    end if
                 else
-                    call k_only%start(medium, model%solver)
-                    k_run => k_only
+                    ! A hierarchical solve keeps no dense matrix: products with hierarchical
+                    ! ones, or the kernel sums where hmat-oss fails.
+                    call hierarchical_response(m, e%ds, e%dn, model%solver, e%shear_traction, &
+                                               e%normal_traction, e%us_minus, e%un_minus, failed)
+                    if (allocated(failed)) call kernel_response(m, e%ds, e%dn, &
+                        e%shear_traction, e%normal_traction, e%us_minus, e%un_minus)
                 end if
-                call find_tips_and_k(k_run, medium, model, load, results)
-            end if
-            if (reports_phases(n)) call report_progress('tractions, face displacements '// &
-                'and tips done in '//seconds_text(wall_seconds() - t0))
-        end associate
-        call evaluate_fields(model, results, engine, medium)
-        results%solver%seconds_fields = wall_seconds() - t0
+                e%shear_traction = e%shear_traction + load%shear
+                e%normal_traction = e%normal_traction + load%normal
+                if (allocated(m%body)) call add_body_displacement(m, e%us_minus, e%un_minus)
+                ! ds = us(-) - us(+), dn = un(-) - un(+)
+                e%us_plus = e%us_minus - e%ds
+                e%un_plus = e%un_minus - e%dn
+                found = .false.
+                if (present(tips_found)) found = tips_found
+                if (.not. found) then
+                    if (present(run)) then
+                        k_run => run
+                    else
+                        call k_only%start(m, model%solver)
+                        k_run => k_only
+                    end if
+                    call find_tips_and_k(k_run, m, model, load, results)
+                end if
+                if (reports_phases(n)) call report_progress('tractions, face displacements '// &
+                    'and tips done in '//seconds_text(wall_seconds() - t0))
+            end associate
+            call evaluate_fields(model, results, engine, m)
+            results%solver%seconds_fields = wall_seconds() - t0
+        end subroutine finish_in
     end subroutine finish_model
 
     !> Adds the displacement of a finite body's given values (every fracture closed) to the
@@ -325,39 +335,48 @@ contains
 
         t0 = wall_seconds()
         if (present(prepared)) then
-            medium = prepared
+            call fields_in(prepared)
         else
             medium = medium_of(model)
+            call fields_in(medium)
         end if
-        if (allocated(results%fields)) deallocate (results%fields)
-        if (allocated(model%observations)) then
-            allocate (results%fields(size(model%observations)))
-        else
-            allocate (results%fields(0))
-        end if
-        do i = 1, size(results%fields)
-            associate (remote => [model%sxx, model%syy, model%sxy], o => model%observations(i), &
-                       e => results%elements)
-                if (present(engine)) then
-                    call engine%evaluate_field(medium, remote, e%ds, e%dn, o%x, o%y, &
-                                               results%fields(i), model%stress_gradient)
-                else if (results%solver%hierarchical) then
-                    ! Products with a compressed field matrix, or the sums where hmat-oss
-                    ! fails.
-                    call hierarchical_field(medium, remote, model%stress_gradient, e%ds, e%dn, &
-                                            o%x, o%y, model%solver, results%fields(i), failed)
-                    if (allocated(failed)) call evaluate_field(medium, remote, e%ds, e%dn, &
-                        o%x, o%y, results%fields(i), model%stress_gradient)
-                else
-                    call evaluate_field(medium, remote, e%ds, e%dn, o%x, o%y, &
-                                        results%fields(i), model%stress_gradient)
-                end if
-                if (reports_phases(model%elements%n) .or. real(model%elements%n, wp) * &
-                    real(size(o%x), wp) >= field_report_pairs) call report_progress('field '// &
-                    o%name//' ('//itoa(size(o%x))//' points) done after '// &
-                    seconds_text(wall_seconds() - t0))
-            end associate
-        end do
+
+    contains
+
+        !> The work, in the medium m (the prepared one, not copied).
+        subroutine fields_in(m)
+            type(elastic_medium), intent(in) :: m
+
+            if (allocated(results%fields)) deallocate (results%fields)
+            if (allocated(model%observations)) then
+                allocate (results%fields(size(model%observations)))
+            else
+                allocate (results%fields(0))
+            end if
+            do i = 1, size(results%fields)
+                associate (remote => [model%sxx, model%syy, model%sxy], o => model%observations(i), &
+                           e => results%elements)
+                    if (present(engine)) then
+                        call engine%evaluate_field(m, remote, e%ds, e%dn, o%x, o%y, &
+                                                   results%fields(i), model%stress_gradient)
+                    else if (results%solver%hierarchical) then
+                        ! Products with a compressed field matrix, or the sums where hmat-oss
+                        ! fails.
+                        call hierarchical_field(m, remote, model%stress_gradient, e%ds, e%dn, &
+                                                o%x, o%y, model%solver, results%fields(i), failed)
+                        if (allocated(failed)) call evaluate_field(m, remote, e%ds, e%dn, &
+                            o%x, o%y, results%fields(i), model%stress_gradient)
+                    else
+                        call evaluate_field(m, remote, e%ds, e%dn, o%x, o%y, &
+                                            results%fields(i), model%stress_gradient)
+                    end if
+                    if (reports_phases(model%elements%n) .or. real(model%elements%n, wp) * &
+                        real(size(o%x), wp) >= field_report_pairs) call report_progress('field '// &
+                        o%name//' ('//itoa(size(o%x))//' points) done after '// &
+                        seconds_text(wall_seconds() - t0))
+                end associate
+            end do
+        end subroutine fields_in
     end subroutine evaluate_fields
 
 end module ddc_run_model

@@ -1,0 +1,155 @@
+"""Finite bodies (docs/finite-bodies.md) through the command line, with the executable under
+test (DDC2D_EXE, see conftest.py).
+
+- The 10 m square of the issue, 40 elements per side, under pressure, under u = eps x and
+  under both: the interior stress is uniform, at the centre and 1.4 m from a corner, to
+  1e-9 (quadratic elements hold a uniform state exactly; the constant elements of a
+  TWODD-style boundary were 2.9 % off at the centre).
+- A crack, and a frictional fault, in a square whose sides carry the tractions of the same
+  fracture's solution in the infinite plane: the body gives that solution back, its DDs
+  converging at order 2 as the sides are refined (the tractions are linear along each side).
+- Bad input: one message naming &body, exit 2, no result file.
+"""
+
+import subprocess
+
+import h5py
+import numpy as np
+import pytest
+
+from conftest import ddc2d_exe, solve_text
+
+MODEL = "&model youngs_modulus = 25000, poissons_ratio = 0.25 /\n"
+PROBES = "x,y\n0,0\n-3.6,-3.6\n3.6,-3.6\n3.6,3.6\n-3.6,3.6\n6,0\n"
+EPS = 1.0e-3
+
+
+def square_sides(values):
+    """&body of the square (-5..5)^2 counter-clockwise, 40 elements per side, with the
+    given per-side entries (a dict of namelist text)."""
+    entries = ", ".join(f"{name} = {text}" for name, text in values.items())
+    return ("&body x = -5, 5, 5, -5,  y = -5, -5, 5, 5,  elements = 40, "
+            f"{entries} /\n")
+
+
+LOADINGS = {
+    # every side: normal traction -10
+    "traction": (square_sides({"condition": "'traction'", "bc_n": "-10"}), -10.0,
+                 -10.0 * 0.5 / (2 * 10000.0)),
+    # u = eps x: along s from the side's first vertex to its next, and along the outward n
+    "displacement": (square_sides({
+        "condition": "'displacement'",
+        "bc_s": f"{-5 * EPS}, {-5 * EPS}, {-5 * EPS}, {-5 * EPS}",
+        "bc_s_end": f"{5 * EPS}, {5 * EPS}, {5 * EPS}, {5 * EPS}",
+        "bc_n": f"{5 * EPS}"}), 2 * 10000.0 * EPS / 0.5, EPS),
+    # the normal displacement given, no shear traction
+    "mixed": (square_sides({"condition": "'mixed_ss_un'", "bc_n": f"{5 * EPS}"}),
+              2 * 10000.0 * EPS / 0.5, EPS),
+}
+
+
+@pytest.mark.parametrize("loading", sorted(LOADINGS))
+def test_uniform_states_of_the_square(tmp_path, loading):
+    body, stress, strain = LOADINGS[loading]
+    (tmp_path / "probes.csv").write_text(PROBES)
+    result = solve_text(tmp_path, "square", MODEL + body +
+                        "&points name = 'probes', file = 'probes.csv' /\n")
+    with h5py.File(result) as f:
+        g = f["fields/probes"]
+        x, y, flag = g["x"][:], g["y"][:], g["near_element"][:]
+        inside = flag != 3
+        assert list(flag) == [0, 0, 0, 0, 0, 3]
+        assert np.all(np.isnan(g["sxx"][:][~inside]))
+        for name, expected in (("sxx", stress), ("syy", stress), ("sxy", 0.0)):
+            np.testing.assert_allclose(g[name][:][inside], expected, rtol=0,
+                                       atol=1e-9 * abs(stress), err_msg=name)
+        np.testing.assert_allclose(g["ux"][:][inside], strain * x[inside], rtol=0,
+                                   atol=1e-9 * abs(strain) * 5)
+        np.testing.assert_allclose(g["uy"][:][inside], strain * y[inside], rtol=0,
+                                   atol=1e-9 * abs(strain) * 5)
+        assert "3 outside the body" in g["near_element"].attrs["coding"].decode()
+
+
+def square_vertices(half, per_side):
+    """Vertices of the square (-half..half)^2, counter-clockwise, per_side per side."""
+    t = np.linspace(-half, half, per_side + 1)[:-1]
+    x = np.concatenate([t, np.full(per_side, half), -t, np.full(per_side, -half)])
+    y = np.concatenate([np.full(per_side, -half), t, np.full(per_side, half), -t])
+    return x, y
+
+
+def numbers(values):
+    return ", ".join(f"{v:.17g}" for v in values)
+
+
+FRACTURES = {
+    "crack": ("&fracture name = 'crack', x = -1, 1, y = 0, 0, elements = 20, "
+              "condition = 'traction' /\n", "sxx = 0, syy = 10, sxy = 5"),
+    "fault": ("&fracture name = 'fault', x = -1, 1, y = -0.3, 0.3, elements = 20, "
+              "mu = 0.6 /\n", "sxx = -20, syy = -10, sxy = 8"),
+}
+
+
+@pytest.mark.parametrize("kind", sorted(FRACTURES))
+def test_body_gives_back_the_infinite_plane(tmp_path, kind):
+    fracture, remote = FRACTURES[kind]
+    errors = []
+    for per_side in (8, 16):
+        x, y = square_vertices(4.0, per_side)
+        np.savetxt(tmp_path / "vertices.csv", np.c_[x, y], delimiter=",", header="x,y",
+                   comments="")
+        plane = solve_text(tmp_path, f"plane{per_side}", MODEL + fracture +
+                           f"&remote_stress {remote} /\n"
+                           "&points name = 'v', file = 'vertices.csv' /\n")
+        with h5py.File(plane) as f:
+            stress = np.array([[f["fields/v/sxx"][:], f["fields/v/sxy"][:]],
+                               [f["fields/v/sxy"][:], f["fields/v/syy"][:]]])
+            dd = np.concatenate([f["elements/ds"][:], f["elements/dn"][:]])
+            state = f["elements/state"][:]
+        # Each side's traction at its first vertex and at its next, along s and outward n
+        sides = {"bc_s": [], "bc_n": [], "bc_s_end": [], "bc_n_end": []}
+        for k in range(len(x)):
+            j = (k + 1) % len(x)
+            s = np.array([x[j] - x[k], y[j] - y[k]]) / np.hypot(x[j] - x[k], y[j] - y[k])
+            n = np.array([s[1], -s[0]])
+            for end, vertex in (("", k), ("_end", j)):
+                t = stress[:, :, vertex] @ n
+                sides["bc_s" + end].append(t @ s)
+                sides["bc_n" + end].append(t @ n)
+        body = (f"&body x = {numbers(x)}, y = {numbers(y)}, elements = 1, "
+                "condition = 'traction', " +
+                ", ".join(f"{name} = {numbers(v)}" for name, v in sides.items()) + " /\n")
+        inside = solve_text(tmp_path, f"body{per_side}", MODEL + fracture + body)
+        with h5py.File(inside) as f:
+            body_dd = np.concatenate([f["elements/ds"][:], f["elements/dn"][:]])
+            assert list(f["elements/state"][:]) == list(state)
+        errors.append(np.abs(body_dd - dd).max() / np.abs(dd).max())
+    assert errors[1] < 1e-3, errors
+    assert np.log2(errors[0] / errors[1]) > 1.9, errors
+
+
+BAD = {
+    "two vertices": ("&body x = 0, 1, y = 0, 0, elements = 4 /\n", "at least 3 vertices"),
+    "crossing sides": ("&body x = 0, 1, 1, 0, y = 0, 1, 0, 1, elements = 4 /\n",
+                       "cross"),
+    "unknown condition": (square_sides({"condition": "'contact'"}), "condition(1)"),
+    "fracture outside": (square_sides({"bc_n": "-1"}) +
+                         "&fracture x = 4, 6, y = 0, 0, elements = 4, mu = 0.6 /\n", "not inside"),
+    "remote stress": (square_sides({"bc_n": "-1"}) + "&remote_stress syy = -1 /\n",
+                      "&remote_stress"),
+    "unbalanced": (square_sides({"bc_n": "-10, 0, 0, 0"}), "not in equilibrium"),
+    "growth": (square_sides({"bc_n": "-1"}) +
+               "&fracture x = -1, 1, y = 0, 0, elements = 4, condition = 'traction' /\n"
+               "&growth steps = 2, toughness = 1 /\n", "&growth"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(BAD))
+def test_bad_body_input(tmp_path, case):
+    text, words = BAD[case]
+    (tmp_path / "bad.nml").write_text(MODEL + text)
+    done = subprocess.run([str(ddc2d_exe()), "bad.nml", "-o", "bad.h5"], cwd=tmp_path,
+                          capture_output=True, text=True, timeout=300)
+    assert done.returncode == 2, done.stdout + done.stderr
+    assert "&body" in done.stderr and words in done.stderr, done.stderr
+    assert not (tmp_path / "bad.h5").exists()
