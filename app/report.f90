@@ -12,6 +12,7 @@ module ddc_app_report
     use ddc_model_laws, only: strength_law, strength_laws
     use ddc_model_records, only: units_one, units_text
     use ddc_model_results, only: model_results, state_names, point_near, point_on_element, &
+        point_outside_body, &
         growth_reason_names, growth_end_names, growth_subcritical, growth_intersection, &
         growth_surface, growth_linked, growth_closed, growth_waiting, growth_enclosing, &
         growth_interface, growth_grew
@@ -98,6 +99,11 @@ contains
         end if
         write (unit, '(a)') '  symmetry: '//trim(symmetry_names(model%elements%symmetry%kind))// &
             trim(symmetry_lines())
+        if (allocated(model%body)) then
+            write (unit, '(a)') '  body: '//itoa(size(model%body%x))//' sides, '// &
+                itoa(sum(model%body%elements))//' elements of three nodes '// &
+                '(docs/finite-bodies.md)'
+        end if
         do i = 1, size(model%fractures)
             first = model%fractures(i)%first_element
             write (unit, '(a,i0,a,a,a,i0,a,a)') '  fracture ', i, ' ', model%fractures(i)%name, &
@@ -581,9 +587,12 @@ contains
                 if (count(e%state == state) > 0) write (unit, '(2x,a,a,i0)') &
                     trim(state_names(state)), ' elements: ', count(e%state == state)
             end do
-            write (unit, '(a,es12.5,1x,a)') '  peak |ds| = ', maxval(abs(e%ds)), model%length_unit
-            write (unit, '(a,es12.5,1x,a)') '  peak opening = ', max(0.0_wp, maxval(-e%dn)), &
-                model%length_unit
+            if (size(e%ds) > 0) then
+                write (unit, '(a,es12.5,1x,a)') '  peak |ds| = ', maxval(abs(e%ds)), &
+                    model%length_unit
+                write (unit, '(a,es12.5,1x,a)') '  peak opening = ', max(0.0_wp, maxval(-e%dn)), &
+                    model%length_unit
+            end if
             if (results%tips%n > 0 .and. allocated(results%tips%k_method)) then
                 write (unit, '(a)') '  K: '//k_method_text(results%tips%k_method)
             end if
@@ -602,7 +611,7 @@ contains
                             o%name//': '//itoa(size(flag))//' points, '// &
                             itoa(count(flag == point_on_element))//' on an element (NaN), '// &
                             itoa(count(flag == point_near))//' within one element length '// &
-                            'of an element centre (reduced accuracy)'
+                            'of an element centre (reduced accuracy)'//trim(outside_text(flag))
                     end associate
                 end do
             end if
@@ -657,5 +666,15 @@ contains
                    ' (docs/theory/tips.md#k-from-the-tip-element)'
         end if
     end function k_method_text
+
+    !> ', n outside the body (NaN)' where points lie outside a finite body, else ''.
+    function outside_text(flag) result(text)
+        integer, intent(in) :: flag(:)
+        character(len=:), allocatable :: text
+
+        text = ''
+        if (any(flag == point_outside_body)) text = ', '//itoa(count(flag == &
+            point_outside_body))//' outside the body or on its boundary (NaN)'
+    end function outside_text
 
 end module ddc_app_report

@@ -24,6 +24,7 @@ module ddc_influence_body
         condition_mixed_ss_un
     use ddc_model_body, only: finite_body, body_nodes
     use ddc_model_medium, only: elastic_medium
+    use ddc_model_results, only: boundary_results
     use ddc_influence_kernel, only: dd_kernel, dd_kernel_global, face_positive
     use ddc_influence_kernel_polynomial, only: nodal_sources, node_fields, &
         local_node_fields, node_weights, body_node_xi
@@ -34,7 +35,7 @@ module ddc_influence_body
     private
 
     public :: prepare_body, body_matrix_correction, body_load, body_state, body_field_at
-    public :: body_induced_at, body_unknowns
+    public :: body_induced_at, body_unknowns, boundary_values
 
     !> Kinds of a node's source component
     integer, parameter :: source_dd = 1, source_load = 2
@@ -590,4 +591,50 @@ contains
             end do
         end associate
     end subroutine body_induced_at
+    !> The boundary after a solve with the fractures' DDs ds, dn: each node's displacement
+    !> and traction along s and the outward n (given or solved) and each side's net force.
+    subroutine boundary_values(medium, ds, dn, boundary)
+        type(elastic_medium), intent(in) :: medium
+        real(wp), intent(in) :: ds(:), dn(:)
+        type(boundary_results), intent(out) :: boundary
+        real(wp) :: z(size(medium%body%loaded)), value
+        real(wp), allocatable :: u(:, :), t(:, :)
+        integer :: i, c, e
+
+        z = body_state(medium, ds, dn)
+        associate (body => medium%body)
+            allocate (u(2, size(body%node_x)), t(2, size(body%node_x)))
+            do i = 1, size(body%node_x)
+                do c = 1, 2
+                    value = z(2 * (i - 1) + c)
+                    if (displacement_given(body, i, c)) then
+                        u(c, i) = given_value(body, i, c)
+                        t(c, i) = value
+                    else
+                        u(c, i) = value
+                        t(c, i) = given_value(body, i, c)
+                    end if
+                end do
+            end do
+            boundary%x = body%node_x
+            boundary%y = body%node_y
+            boundary%side = [((body%side((i - 1) / body_nodes + 1)), i = 1, size(body%node_x))]
+            boundary%us = u(1, :)
+            boundary%un = u(2, :)
+            boundary%ts = t(1, :)
+            boundary%tn = t(2, :)
+            allocate (boundary%force_x(size(body%x)), boundary%force_y(size(body%x)))
+            boundary%force_x = 0.0_wp
+            boundary%force_y = 0.0_wp
+            do i = 1, size(body%node_x)
+                e = boundary%side(i)
+                associate (f => node_weight(body, i) * (t(1, i) * direction_of(body, i, 1) + &
+                                                        t(2, i) * direction_of(body, i, 2)))
+                    boundary%force_x(e) = boundary%force_x(e) + f(1)
+                    boundary%force_y(e) = boundary%force_y(e) + f(2)
+                end associate
+            end do
+        end associate
+    end subroutine boundary_values
+
 end module ddc_influence_body

@@ -10,6 +10,7 @@ module ddc_model_results
     private
 
     public :: element_results, tip_set, field_result, solver_record, model_results
+    public :: boundary_results
     public :: history_record, tip_records, growth_record
     public :: growth_grew, growth_subcritical, growth_intersection, growth_surface, &
         growth_corrector_failed, growth_linked, growth_closed, growth_waiting, &
@@ -273,6 +274,18 @@ module ddc_model_results
     end type growth_record
 
     !> Everything a solve produces.
+    !> A finite body's boundary after a solve: every node's displacement and traction along
+    !> its side (s) and the outward normal (n), given or solved, and each side's net force.
+    type :: boundary_results
+        !> Node positions [length unit] and sides, shape (nodes)
+        real(wp), allocatable :: x(:), y(:)
+        integer, allocatable :: side(:)
+        !> Displacement [length unit] and traction on the body [stress unit], shape (nodes)
+        real(wp), allocatable :: us(:), un(:), ts(:), tn(:)
+        !> Net force on each side, x and y [stress unit x length unit], shape (sides)
+        real(wp), allocatable :: force_x(:), force_y(:)
+    end type boundary_results
+
     type :: model_results
         type(element_results) :: elements
         type(tip_set) :: tips
@@ -287,6 +300,8 @@ module ddc_model_results
         type(initiation_record) :: initiations
         !> Earthquake cycles, when the model has &cycle (cycle%elements allocated)
         type(cycle_record) :: cycle
+        !> The boundary of the finite body, when the model has one (x allocated)
+        type(boundary_results) :: boundary
     end type model_results
 
 end module ddc_model_results

@@ -44,8 +44,8 @@ module ddc_output_hdf5
     use ddc_model_laws, only: strength_law, strength_laws, law_values, acting_values
     use ddc_model_loads, only: static_pressure, shear_modulus_of
     use ddc_model_fingerprint, only: recorded_fingerprint
-    use ddc_model_results, only: model_results, state_free, state_stick, state_slip, &
-        state_open
+    use ddc_model_results, only: model_results, boundary_results, state_free, state_stick, &
+        state_slip, state_open
     use ddc_model_records, only: state_coding, units_text
     use ddc_contact_options, only: lcp_method_names, open_cohesion_names
     use ddc_output_atomic, only: partial_name, publish_file, remove_file, resolve_target, &
@@ -120,6 +120,8 @@ contains
             call write_injections(root, model, error)
             call write_tips(root, model, results, error)
             call write_fields(root, model, results, error)
+            if (allocated(results%boundary%x)) call write_boundary(root, model, &
+                                                                   results%boundary, error)
             ! The file's own writing time: everything written before the solver record.
             call system_clock(now)
             call write_solver(root, results, provenance, real(now - start, wp) / &
@@ -442,6 +444,33 @@ contains
         end associate
         call close_group(group, error)
     end subroutine write_tips
+
+    !> /body: a finite body's boundary, node by node and side by side.
+    subroutine write_boundary(root, model, boundary, error)
+        type(h5_object), intent(in) :: root
+        type(model_type), intent(in) :: model
+        type(boundary_results), intent(in) :: boundary
+        type(error_type), allocatable, intent(inout) :: error
+        type(h5_object) :: group
+        character(len=:), allocatable :: length, stress
+
+        length = allocated_text(model%length_unit)
+        stress = allocated_text(model%stress_unit)
+        call create_group(root, 'body', group, error)
+        if (allocated(error)) return
+        call write_real_1d(group, 'x', boundary%x, length, error)
+        call write_real_1d(group, 'y', boundary%y, length, error)
+        call write_int_1d(group, 'side', boundary%side, error)
+        call write_real_1d(group, 'us', boundary%us, length, error)
+        call write_real_1d(group, 'un', boundary%un, length, error)
+        call write_real_1d(group, 'ts', boundary%ts, stress, error)
+        call write_real_1d(group, 'tn', boundary%tn, stress, error)
+        call write_real_1d(group, 'side_force_x', boundary%force_x, stress//' '//length, error)
+        call write_real_1d(group, 'side_force_y', boundary%force_y, stress//' '//length, error)
+        call write_real_1d(group, 'vertex_x', model%body%x, length, error)
+        call write_real_1d(group, 'vertex_y', model%body%y, length, error)
+        call close_group(group, error)
+    end subroutine write_boundary
 
     !> /fields/<name> for every observation set; grids as (nx, ny) Fortran arrays.
     subroutine write_fields(root, model, results, error)

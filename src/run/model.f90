@@ -11,7 +11,7 @@ module ddc_run_model
     use ddc_model_medium, only: elastic_medium, medium_of
     use ddc_contact_fault_law, only: fault_law
     use ddc_influence_response, only: midpoint_response, kernel_response
-    use ddc_influence_body, only: prepare_body, body_load
+    use ddc_influence_body, only: prepare_body, body_load, boundary_values
     use ddc_solve_elastic, only: row_kinds
     use ddc_solve_hierarchical, only: hierarchical_response, hierarchical_field
     use ddc_solve_joints, only: elastic_dds
@@ -282,7 +282,10 @@ contains
                 end if
                 e%shear_traction = e%shear_traction + load%shear
                 e%normal_traction = e%normal_traction + load%normal
-                if (allocated(m%body)) call add_body_displacement(m, e%us_minus, e%un_minus)
+                if (allocated(m%body)) then
+                    call add_body_displacement(m, e%us_minus, e%un_minus)
+                    call boundary_values(m, e%ds, e%dn, results%boundary)
+                end if
                 ! ds = us(-) - us(+), dn = un(-) - un(+)
                 e%us_plus = e%us_minus - e%ds
                 e%un_plus = e%un_minus - e%dn

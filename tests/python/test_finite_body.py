@@ -82,11 +82,12 @@ def numbers(values):
     return ", ".join(f"{v:.17g}" for v in values)
 
 
+CRACK = ("&fracture name = 'crack', x = -1, 1, y = 0, 0, elements = 20, "
+         "condition = 'traction' /\n")
+FAULT = "&fracture name = 'fault', x = -1, 1, y = -0.3, 0.3, elements = 20, mu = 0.6 /\n"
 FRACTURES = {
-    "crack": ("&fracture name = 'crack', x = -1, 1, y = 0, 0, elements = 20, "
-              "condition = 'traction' /\n", "sxx = 0, syy = 10, sxy = 5"),
-    "fault": ("&fracture name = 'fault', x = -1, 1, y = -0.3, 0.3, elements = 20, "
-              "mu = 0.6 /\n", "sxx = -20, syy = -10, sxy = 8"),
+    "crack": (CRACK, "sxx = 0, syy = 10, sxy = 5"),
+    "fault": (FAULT, "sxx = -20, syy = -10, sxy = 8"),
 }
 
 
@@ -153,3 +154,35 @@ def test_bad_body_input(tmp_path, case):
     assert done.returncode == 2, done.stdout + done.stderr
     assert "&body" in done.stderr and words in done.stderr, done.stderr
     assert not (tmp_path / "bad.h5").exists()
+
+
+def test_sample_between_platens(tmp_path):
+    """A sample squeezed between platens (normal displacement given on the ends, no shear
+    traction there: free to slide sideways) with a frictional flaw: the ends carry equal
+    and opposite forces, /body holds every node, the map draws the outline."""
+    from ddc2d.plot.figures import plot_map
+    from ddc2d.reader import load_result
+
+    text = (MODEL +
+            "&body x = -0.05, 0.05, 0.05, -0.05,  y = -0.1, -0.1, 0.1, 0.1,\n"
+            "      elements = 10, 20, 10, 20,\n"
+            "      condition = 'mixed_ss_un', 'traction', 'mixed_ss_un', 'traction',\n"
+            "      bc_n = -1.0e-4, 0, -1.0e-4, 0 /\n"
+            "&fracture name = 'flaw', x = -0.01, 0.01, y = -0.01, 0.01, elements = 20, "
+            "mu = 0.6 /\n"
+            "&grid name = 'map', xmin = -0.06, xmax = 0.06, nx = 13, ymin = -0.11, "
+            "ymax = 0.11, ny = 12 /\n")
+    result = solve_text(tmp_path, "sample", text)
+    with h5py.File(result) as f:
+        body = f["body"]
+        assert body["x"].shape == (3 * 60,)
+        force_y = body["side_force_y"][:]
+        # the platens push: a compressive load near E' strain times the width, balanced
+        assert force_y[0] > 0 and abs(force_y[0] + force_y[2]) < 1e-9 * force_y[0]
+        strain = 2e-4 / 0.2
+        assert 0.8 < force_y[0] / (25000 / (1 - 0.25**2) * strain * 0.1) < 1.0
+        np.testing.assert_allclose(body["side_force_x"][:], 0, atol=1e-9 * force_y[0])
+        assert np.count_nonzero(f["fields/map/near_element"][:] == 3) > 0
+        assert set(f["elements/state"][:]) <= {1, 2}
+    figure = plot_map(load_result(result), "map", "max_shear")
+    assert any(artist.get_gid() == "body" for artist in figure.axes[0].patches)

@@ -310,6 +310,7 @@ def _read_open_file(path: Path, handle: h5py.File) -> Loaded:
         "injection": read_injection(path, handle),
         "growth": read_growth(path, handle),
         "cycle": read_cycle(path, handle),
+        "body": read_body(path, handle),
     }
 
 
@@ -487,6 +488,22 @@ def read_injection(path: FilePath, handle: h5py.Group) -> dict[str, Any] | None:
         if sources[key].size != len(sources["name"]):
             raise ResultError(f"'{path}': /injection datasets differ in length")
     return sources
+
+
+BODY_DATASETS = ("x", "y", "side", "us", "un", "ts", "tn", "side_force_x", "side_force_y",
+                 "vertex_x", "vertex_y")
+
+
+def read_body(path: FilePath, handle: h5py.Group) -> dict[str, Any] | None:
+    """/body, the boundary of a finite body (docs/output-reference.md#body), as a dict of
+    1-D arrays (BODY_DATASETS); None when the model has no body."""
+    if "body" not in handle:
+        return None
+    group = handle["body"]
+    missing = [key for key in BODY_DATASETS if key not in group]
+    if missing:
+        raise ResultError(f"'{path}': /body lacks {', '.join(missing)}")
+    return {key: np.asarray(group[key][()]).ravel() for key in BODY_DATASETS}
 
 
 def read_growth(path: FilePath, handle: h5py.Group) -> dict[str, Any] | None:

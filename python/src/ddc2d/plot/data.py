@@ -453,6 +453,18 @@ def is_cross_section(result):
             or any(result["remote_stress_gradient"]) or result["pore_fluid"][1] != 0.0)
 
 
+def body_outline(result):
+    """The vertices (x, y) of a finite body's polygon, None without a body (or for a
+    result read before bodies existed)."""
+    try:
+        body = result["body"]
+    except KeyError:
+        return None
+    if body is None:
+        return None
+    return body["vertex_x"], body["vertex_y"]
+
+
 def interface_height(result):
     """The height y of the interface of two bonded half-planes (domain 'bimaterial'), None
     in any other domain."""

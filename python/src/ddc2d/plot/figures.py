@@ -30,6 +30,7 @@ from .data import (
     Receiver,
     along_fractures,
     as_grid,
+    body_outline,
     cycle_catalogue,
     cycle_slip_lines,
     cycle_years,
@@ -732,6 +733,9 @@ def plot_map(result: ResultData, name: str, quantity: str,
                       shading="nearest", cmap="Greys", vmin=0.0, vmax=1.0,
                       alpha=NEAR_GROWN_ALPHA, gid="near_grown")
     grown = _draw_elements(ax, result["elements"])
+    outline = body_outline(result)
+    if outline is not None:  # the finite body's outline: no rock beyond it
+        ax.fill(*outline, fill=False, edgecolor="black", linewidth=1.5, gid="body")
     interface = interface_height(result)
     if interface is not None:
         ax.axhline(interface, color="saddlebrown", linestyle="--", linewidth=1.0,
