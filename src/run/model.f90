@@ -357,8 +357,8 @@ contains
                 allocate (results%fields(0))
             end if
             do i = 1, size(results%fields)
-                associate (remote => [model%sxx, model%syy, model%sxy], o => model%observations(i), &
-                           e => results%elements)
+                associate (remote => [model%sxx, model%syy, model%sxy], &
+                           o => model%observations(i), e => results%elements)
                     if (present(engine)) then
                         call engine%evaluate_field(m, remote, e%ds, e%dn, o%x, o%y, &
                                                    results%fields(i), model%stress_gradient)
