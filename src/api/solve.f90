@@ -6,7 +6,7 @@ module ddc_api_solve
     use ddc_model_types, only: model_type
     use ddc_model_results, only: model_results
     use ddc_model_restart, only: restart_state
-    use ddc_run_model, only: run_model
+    use ddc_run_model, only: run_model, prepare_model_body
     use ddc_history_solve, only: solve_history
     use ddc_growth_driver, only: grow_fractures, growth_progress
     use ddc_cycle_driver, only: run_cycles, cycle_writer
@@ -34,6 +34,8 @@ contains
         !> Writes the result file of a cycle run so far (its checkpoints, a run that stops)
         procedure(cycle_writer), optional :: writer
 
+        call prepare_model_body(model, error)
+        if (allocated(error)) return
         if (model%growth%active) then
             call grow_fractures(model, results, error, progress, restart)
         else if (model%cycle%active) then

@@ -29,6 +29,7 @@
 module ddc_growth_clearance
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type, domain_half_plane, domain_bimaterial
+    use ddc_model_body, only: inside_body
     use ddc_model_results, only: growth_intersection, growth_surface, growth_linked, &
         growth_enclosing, growth_interface
     use ddc_growth_extension, only: tip_path, tip_element, tip_end_begin, path_element_length, &
@@ -74,7 +75,8 @@ module ddc_growth_clearance
 contains
 
     !> For every active path: path_clear when its new elements keep clear of every element of the
-    !> model and of every other active path, growth_intersection when they do not,
+    !> model (and of a finite body's boundary) and of every other active path,
+    !> growth_intersection when they do not,
     !> growth_surface when (in a half-plane) they keep clear of every element but not of
     !> the surface, growth_interface when (with two materials) they keep clear of every
     !> element but not of the interface. The first new element may meet the tip element only
@@ -111,6 +113,14 @@ contains
             used(p) = paths(p)
             call hits_model(model, paths(p), clearance(p), hit)
             if (hit == 0) then
+                ! Clear of the elements: in a finite body, maybe not of its boundary (the
+                ! tip stops there).
+                if (allocated(model%body)) then
+                    if (.not. clear_of_body(model, paths(p), clearance(p))) then
+                        problem(p) = growth_intersection
+                    end if
+                    cycle
+                end if
                 ! Clear of the elements: with two materials, maybe not of the interface.
                 if (model%elements%domain == domain_bimaterial) then
                     if (.not. clear_of_interface(paths(p), model%interface_y, &
@@ -602,5 +612,22 @@ contains
 
         ends_on_link = reason == growth_linked .or. reason == growth_surface
     end function ends_on_link
+
+    !> Whether every new vertex of a path lies inside the model's finite body, farther than
+    !> the clearance from its boundary.
+    pure logical function clear_of_body(model, path, clearance)
+        type(model_type), intent(in) :: model
+        type(tip_path), intent(in) :: path
+        real(wp), intent(in) :: clearance
+        integer :: k
+
+        clear_of_body = .true.
+        do k = 1, ubound(path%x, 1)
+            if (.not. inside_body(model%body, path%x(k), path%y(k), clearance)) then
+                clear_of_body = .false.
+                return
+            end if
+        end do
+    end function clear_of_body
 
 end module ddc_growth_clearance

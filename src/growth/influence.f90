@@ -8,6 +8,7 @@ module ddc_growth_influence
     use ddc_kinds, only: wp
     use ddc_model_medium, only: elastic_medium
     use ddc_influence_assembly, only: fill_influence_block
+    use ddc_influence_body, only: body_block_correction
     use ddc_solve_elastic, only: row_kinds
     implicit none
     private
@@ -85,6 +86,11 @@ contains
                                   fresh, n + fresh, grown)
         call fill_influence_block(medium, shear_row, normal_row, fresh, fresh, n + fresh, &
                                   moved_to, moved_to, n + moved_to, grown)
+        if (allocated(medium%body)) then
+            ! In a finite body the new rows and columns take the body's answer too.
+            call body_block_correction(medium, shear_row, normal_row, every, fresh, grown)
+            call body_block_correction(medium, shear_row, normal_row, fresh, moved_to, grown)
+        end if
         finite = all(ieee_is_finite(grown(:, [fresh, n + fresh]))) .and. &
             all(ieee_is_finite(grown([fresh, n + fresh], :)))
     end subroutine grow_influence

@@ -41,6 +41,7 @@ module ddc_growth_solver
     use ddc_model_types, only: model_type, condition_contact, rigid_joint
     use ddc_model_results, only: model_results, solver_record
     use ddc_influence_assembly, only: assemble_influence
+    use ddc_influence_body, only: body_matrix_correction
     use ddc_solve_elastic, only: row_kinds
     use ddc_model_element_laws, only: fault_law_of
     use ddc_contact_options, only: lcp_auto, lcp_newton
@@ -390,6 +391,8 @@ contains
             allocate (shear_row(n), normal_row(n))
             call row_kinds(model%elements%condition, shear_row, normal_row)
             call assemble_influence(medium_of(model), shear_row, normal_row, solver%matrix)
+            if (allocated(model%body)) call body_matrix_correction(medium_of(model), shear_row, &
+                                                                   normal_row, solver%matrix)
             if (allocated(solver%layout)) deallocate (solver%layout)
             call kept_stiffness(solver, stiffness)
             stiffness%factors = no_factors

@@ -34,7 +34,8 @@ module ddc_influence_body
     implicit none
     private
 
-    public :: prepare_body, body_matrix_correction, body_load, body_state, body_field_at
+    public :: prepare_body, body_matrix_correction, body_block_correction, body_load, body_state
+    public :: body_field_at
     public :: body_induced_at, body_unknowns, boundary_values
 
     !> Kinds of a node's source component
@@ -416,36 +417,47 @@ contains
         end if
     end subroutine check_equilibrium
 
-    !> The traction on every node's equations per unit DD of each fracture element (columns
-    !> 1:n Ds, n+1:2n Dn), shape (nz + free, 2n): C.
-    function fracture_columns(medium) result(c)
+    !> The traction on every node's equations per unit DD of the listed fracture elements
+    !> (columns 1:m their Ds, m+1:2m their Dn), shape (nz + free, 2m): C.
+    subroutine fracture_columns(medium, list, c)
         type(elastic_medium), intent(in) :: medium
-        real(wp), allocatable :: c(:, :)
+        integer, intent(in) :: list(:)
+        real(wp), allocatable, intent(out) :: c(:, :)
         type(dd_kernel) :: k
-        integer :: row, j, e, n
+        integer :: row, l, j, e, m
 
-        n = medium%elements%n
-        allocate (c(size(medium%body%loaded), 2 * n))
+        m = size(list)
+        allocate (c(size(medium%body%loaded), 2 * m))
         c = 0.0_wp
-        !$omp parallel do default(none) schedule(dynamic, 8) private(row, j, e, k) &
-        !$omp shared(medium, c, n)
+        !$omp parallel do default(none) schedule(dynamic, 8) private(row, l, j, e, k) &
+        !$omp shared(medium, c, m, list)
         do row = 1, size(medium%body%node_x)
             e = (row - 1) / body_nodes + 1
-            do j = 1, n
+            do l = 1, m
+                j = list(l)
                 k = dd_kernel_global(medium%body%node_x(row), medium%body%node_y(row), &
                                      medium%elements%x_mid(j), medium%elements%y_mid(j), &
                                      medium%elements%half_length(j), &
                                      medium%elements%cos_beta(j), medium%elements%sin_beta(j), &
                                      medium%shear_modulus, medium%poissons_ratio, face_positive)
-                c(2 * row - 1:2 * row, j) = on_plane([k%sxx(1), k%syy(1), k%sxy(1)], &
+                c(2 * row - 1:2 * row, l) = on_plane([k%sxx(1), k%syy(1), k%sxy(1)], &
                                                      medium%body%cosb(e), medium%body%sinb(e))
-                c(2 * row - 1:2 * row, n + j) = on_plane([k%sxx(2), k%syy(2), k%sxy(2)], &
+                c(2 * row - 1:2 * row, m + l) = on_plane([k%sxx(2), k%syy(2), k%sxy(2)], &
                                                          medium%body%cosb(e), &
                                                          medium%body%sinb(e))
             end do
         end do
         !$omp end parallel do
-    end function fracture_columns
+    end subroutine fracture_columns
+
+    !> Every element's index, 1 to n.
+    pure function every_element(medium) result(list)
+        type(elastic_medium), intent(in) :: medium
+        integer :: list(medium%elements%n)
+        integer :: i
+
+        list = [(i, i = 1, medium%elements%n)]
+    end function every_element
 
     !> The body's unknowns (and its free motions' multipliers) with the fractures' DDs ds, dn:
     !> z = loaded - S^-1 C d.
@@ -453,9 +465,10 @@ contains
         type(elastic_medium), intent(in) :: medium
         real(wp), intent(in) :: ds(:), dn(:)
         real(wp) :: z(size(medium%body%loaded))
-        real(wp), allocatable :: rhs(:, :)
+        real(wp), allocatable :: rhs(:, :), c(:, :)
 
-        rhs = matmul(fracture_columns(medium), reshape([ds, dn], [2 * size(ds), 1]))
+        call fracture_columns(medium, every_element(medium), c)
+        rhs = matmul(c, reshape([ds, dn], [2 * size(ds), 1]))
         call solve_body(medium%body, rhs)
         z = medium%body%loaded - rhs(:, 1)
     end function body_state
@@ -476,31 +489,29 @@ contains
         values = values + matmul(columns, z(1:size(columns, 2)))
     end function body_field_at
 
-    !> The body's rows of the fractures per unit body unknown, rows 1:n and n+1:2n by the
-    !> fractures' row kinds (the traction along s, n at the midpoint, or the displacement;
-    !> 0 for an identity row), and the same of the given values, shape (2n, nz) and (2n).
-    subroutine fracture_rows(medium, shear_row, normal_row, rows, given)
+    !> The body's rows of the listed fracture elements per unit body unknown, rows 1:m and
+    !> m+1:2m by the elements' row kinds (the traction along s, n at the midpoint, or the
+    !> displacement; 0 for an identity row), shape (2m, nz): E.
+    subroutine fracture_rows(medium, shear_row, normal_row, list, rows)
         type(elastic_medium), intent(in) :: medium
-        integer, intent(in) :: shear_row(:), normal_row(:)
-        real(wp), allocatable, intent(out) :: rows(:, :), given(:)
+        integer, intent(in) :: shear_row(:), normal_row(:), list(:)
+        real(wp), allocatable, intent(out) :: rows(:, :)
         real(wp), allocatable :: columns(:, :)
-        real(wp) :: values(5)
-        integer :: n, i
+        real(wp) :: given(5)
+        integer :: m, l, i
 
-        n = medium%elements%n
-        allocate (rows(2 * n, body_unknowns(medium%body)), given(2 * n))
+        m = size(list)
+        allocate (rows(2 * m, body_unknowns(medium%body)))
         allocate (columns(5, body_unknowns(medium%body)))
-        !$omp parallel do default(none) schedule(dynamic, 4) private(i, columns, values) &
-        !$omp shared(n, medium, rows, given, shear_row, normal_row)
-        do i = 1, n
+        !$omp parallel do default(none) schedule(dynamic, 4) private(l, i, columns, given) &
+        !$omp shared(m, medium, rows, shear_row, normal_row, list)
+        do l = 1, m
+            i = list(l)
             call unit_fields(medium%body, medium%shear_modulus, medium%poissons_ratio, &
                              medium%elements%x_mid(i), medium%elements%y_mid(i), 0, columns, &
-                             values)
+                             given)
             call kind_rows(columns, medium%elements%cos_beta(i), medium%elements%sin_beta(i), &
-                           shear_row(i), normal_row(i), rows(i, :), rows(n + i, :))
-            call kind_rows(reshape(values, [5, 1]), medium%elements%cos_beta(i), &
-                           medium%elements%sin_beta(i), shear_row(i), normal_row(i), &
-                           given(i:i), given(n + i:n + i))
+                           shear_row(i), normal_row(i), rows(l, :), rows(m + l, :))
         end do
         !$omp end parallel do
     end subroutine fracture_rows
@@ -536,17 +547,41 @@ contains
         type(elastic_medium), intent(in) :: medium
         integer, intent(in) :: shear_row(:), normal_row(:)
         real(wp), intent(inout) :: matrix(:, :)
-        real(wp), allocatable :: rows(:, :), given(:), solved(:, :)
-        integer :: n, nz
+        real(wp), allocatable :: rows(:, :), solved(:, :)
+        integer :: n
 
         n = medium%elements%n
-        nz = body_unknowns(medium%body)
-        call fracture_rows(medium, shear_row, normal_row, rows, given)
-        solved = fracture_columns(medium)
+        call fracture_rows(medium, shear_row, normal_row, every_element(medium), rows)
+        call fracture_columns(medium, every_element(medium), solved)
         call solve_body(medium%body, solved)
-        call dgemm('N', 'N', 2 * n, 2 * n, nz, -1.0_wp, rows, 2 * n, solved, &
-                   size(solved, 1), 1.0_wp, matrix, size(matrix, 1))
+        call dgemm('N', 'N', 2 * n, 2 * n, body_unknowns(medium%body), -1.0_wp, rows, 2 * n, &
+                   solved, size(solved, 1), 1.0_wp, matrix, size(matrix, 1))
     end subroutine body_matrix_correction
+
+    !> body_matrix_correction on the rows of the elements `row_list` and the columns of the
+    !> elements `column_list` only ([s; n] indices of the whole matrix): the new rows and
+    !> columns of a grown model.
+    subroutine body_block_correction(medium, shear_row, normal_row, row_list, column_list, &
+                                     matrix)
+        type(elastic_medium), intent(in) :: medium
+        integer, intent(in) :: shear_row(:), normal_row(:), row_list(:), column_list(:)
+        real(wp), intent(inout) :: matrix(:, :)
+        real(wp), allocatable :: rows(:, :), solved(:, :), block(:, :)
+        integer :: n
+
+        if (size(row_list) == 0 .or. size(column_list) == 0) return
+        n = medium%elements%n
+        call fracture_rows(medium, shear_row, normal_row, row_list, rows)
+        call fracture_columns(medium, column_list, solved)
+        call solve_body(medium%body, solved)
+        allocate (block(2 * size(row_list), 2 * size(column_list)))
+        call dgemm('N', 'N', size(block, 1), size(block, 2), body_unknowns(medium%body), &
+                   1.0_wp, rows, size(rows, 1), solved, size(solved, 1), 0.0_wp, block, &
+                   size(block, 1))
+        associate (r => [row_list, n + row_list], c => [column_list, n + column_list])
+            matrix(r, c) = matrix(r, c) - block
+        end associate
+    end subroutine body_block_correction
 
     !> The traction along s and n and the displacement at the fractures' midpoints of the body
     !> under its given values, every fracture closed: what the body adds to their load.

@@ -183,7 +183,7 @@ contains
 
     !> What a finite body solves (docs/finite-bodies.md#what-a-body-solves): fractures
     !> strictly inside it, of conditions traction, contact or prescribed DD, in the full
-    !> plane, without remote stress, symmetry, loading history, growth, cycles or
+    !> plane, without remote stress, symmetry, loading history, initiation, cycles or
     !> hierarchical matrices.
     subroutine check_body_model(path, model, messages)
         character(len=*), intent(in) :: path
@@ -209,9 +209,9 @@ contains
         if (allocated(model%load_path%time) .or. allocated(model%load_path%steps)) then
             call add(messages, prefix//'a finite body is solved at one load: no &load_path yet')
         end if
-        if (model%growth%active) then
-            call add(messages, prefix//'a finite body does not grow its fractures yet: no '// &
-                     '&growth')
+        if (model%initiation%active) then
+            call add(messages, prefix//'no &initiation in a finite body yet (its fractures '// &
+                     'grow from their tips: &growth)')
         end if
         if (model%cycle%active) call add(messages, prefix//'no &cycle in a finite body')
         if (model%solver%matrix == matrix_hierarchical) then

@@ -9,6 +9,7 @@ module ddc_run_model
     use ddc_model_types, only: model_type, domain_half_plane
     use ddc_model_results, only: model_results
     use ddc_model_medium, only: elastic_medium, medium_of
+    use ddc_model_loads, only: shear_modulus_of
     use ddc_contact_fault_law, only: fault_law
     use ddc_influence_response, only: midpoint_response, kernel_response
     use ddc_influence_body, only: prepare_body, body_load, boundary_values
@@ -26,6 +27,7 @@ module ddc_run_model
     private
 
     public :: run_model, finish_model, evaluate_fields, model_load, wall_seconds
+    public :: prepare_model_body
 
     !> A field of at least this many point-element pairs reports its end (progress)
     real(wp), parameter :: field_report_pairs = 1.0e8_wp
@@ -78,7 +80,8 @@ contains
         n = model%elements%n
         medium = medium_of(model)
         if (allocated(medium%body)) then
-            call prepare_body(medium%body, medium%shear_modulus, medium%poissons_ratio, error)
+            if (.not. allocated(medium%body%factors)) call prepare_body(medium%body, &
+                medium%shear_modulus, medium%poissons_ratio, error)
             if (allocated(error)) return
         end if
         if (present(engine)) then
@@ -151,6 +154,18 @@ contains
         end if
         results%solver%seconds_total = wall_seconds() - t_start
     end subroutine run_model
+
+    !> A finite body's equations solved once for the whole run (a growth run's geometries
+    !> share them: the body does not change); nothing without a body.
+    subroutine prepare_model_body(model, error)
+        !> The model; model%body's system is set
+        type(model_type), intent(inout) :: model
+        !> Set when the body's equations cannot be solved or its tractions do not balance
+        type(error_type), allocatable, intent(out) :: error
+
+        if (.not. allocated(model%body)) return
+        call prepare_body(model%body, shear_modulus_of(model), model%poissons_ratio, error)
+    end subroutine prepare_model_body
 
     !> Whether the run's operator is freed before the midpoint responses: a hierarchical
     !> operator of contact elements alone (its own tractions are those of its solution), in

@@ -139,9 +139,11 @@ BAD = {
     "remote stress": (square_sides({"bc_n": "-1"}) + "&remote_stress syy = -1 /\n",
                       "&remote_stress"),
     "unbalanced": (square_sides({"bc_n": "-10, 0, 0, 0"}), "not in equilibrium"),
-    "growth": (square_sides({"bc_n": "-1"}) +
-               "&fracture x = -1, 1, y = 0, 0, elements = 4, condition = 'traction' /\n"
-               "&growth steps = 2, toughness = 1 /\n", "&growth"),
+    "initiation": (square_sides({"bc_n": "-1"}) +
+                   "&fracture x = -1, 1, y = 0, 0, elements = 4, mu = 0.6 /\n"
+                   "&growth steps = 2, toughness = 1 /\n"
+                   "&initiation tensile_strength = 10, probe_distance = 0.1 /\n",
+                   "&initiation"),
 }
 
 
@@ -186,3 +188,35 @@ def test_sample_between_platens(tmp_path):
         assert set(f["elements/state"][:]) <= {1, 2}
     figure = plot_map(load_result(result), "map", "max_shear")
     assert any(artist.get_gid() == "body" for artist in figure.axes[0].patches)
+
+
+GROWTH = ("&fracture name = 'flaw', x = -0.70710678, 0.70710678, y = -0.70710678, "
+          "0.70710678, elements = 10, mu = 0.6, sf = 1.0 /\n"
+          "&growth steps = 5, toughness = 2.0, increment = 0.2, new_sf = 0.0 /\n")
+GROWTH_MODEL = "&model youngs_modulus = 50000.0, poissons_ratio = 0.25 /\n"
+
+
+def test_growth_in_larger_bodies_tends_to_the_plane(tmp_path):
+    """Wings off a 2 m sliding flaw, 5 steps, in squares of half-size 10, 20 and 40 m whose
+    sides carry the remote stress of the infinite plane's model: the wings' tips and their
+    K_I after growing tend to the plane's as the square grows, the difference falling as the
+    square of the flaw's size over the body's (the body's effect on the flaw)."""
+    plane = solve_text(tmp_path, "plane", GROWTH_MODEL +
+                       "&remote_stress sxx = -2.0, syy = -100.0 /\n" + GROWTH)
+    with h5py.File(plane) as f:
+        tips = np.concatenate([f["tips/x"][:], f["tips/y"][:]])
+        k1 = f["tips/k1"][:]
+    tip_differences, k_differences = [], []
+    for half in (10, 20, 40):
+        body = (f"&body x = -{half}, {half}, {half}, -{half}, y = -{half}, -{half}, {half}, "
+                f"{half}, elements = 10, bc_n = -100, -2, -100, -2 /\n")
+        result = solve_text(tmp_path, f"body{half}", GROWTH_MODEL + body + GROWTH)
+        with h5py.File(result) as f:
+            assert f["growth/step"][:].max() == 5
+            tip_differences.append(np.abs(np.concatenate([f["tips/x"][:], f["tips/y"][:]])
+                                          - tips).max())
+            k_differences.append(np.abs(f["tips/k1"][:] - k1).max())
+    for differences in (tip_differences, k_differences):
+        ratios = np.array(differences[:-1]) / np.array(differences[1:])
+        assert np.all(ratios > 3.5), differences
+    assert k_differences[-1] < 0.01 * abs(k1).max()
