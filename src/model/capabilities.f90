@@ -47,6 +47,8 @@ contains
                     call add('fracture growth (&growth)')
                 else if (elastic(e%shear_stiffness) .or. elastic(e%normal_stiffness)) then
                     call add('elastic joints')
+                else if (allocated(model%body)) then
+                    call add('a finite body (&body)')
                 end if
             case (operator_distributed)
                 if (model%solver%lcp_method == lcp_lemke) call add("&solver lcp_method = "// &
@@ -62,6 +64,7 @@ contains
                     'distributed)')
                 if (model%cycle%active) call add('&cycle (earthquake cycles are not '// &
                     'distributed)')
+                if (allocated(model%body)) call add('&body (a finite body is not distributed)')
             case default
                 ! A dense operator in this process solves every model.
                 continue
