@@ -52,7 +52,7 @@ contains
 
     !> Which source carries the unknown of component c (1: s, 2: n) of node i, and its factor
     !> per unit unknown (the unknown is the displacement or the traction along the side's s
-    !> and outward n; docs/theory/finite-bodies.md#the-sources).
+    !> and outward n; docs/theory/finite-bodies.md#the-rock-outside-at-rest).
     pure subroutine unknown_source(body, i, c, kind, factor)
         type(finite_body), intent(in) :: body
         integer, intent(in) :: i, c

@@ -495,7 +495,7 @@ BODY_DATASETS = ("x", "y", "side", "us", "un", "ts", "tn", "side_force_x", "side
 
 
 def read_body(path: FilePath, handle: h5py.Group) -> dict[str, Any] | None:
-    """/body, the boundary of a finite body (docs/output-reference.md#body), as a dict of
+    """/body, the boundary of a finite body (docs/finite-bodies.md#output), as a dict of
     1-D arrays (BODY_DATASETS); None when the model has no body."""
     if "body" not in handle:
         return None
