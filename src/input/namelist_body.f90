@@ -144,14 +144,16 @@ contains
     end subroutine read_body_group
 
     !> The polygon is simple: no side of zero length, no two sides crossing or touching
-    !> except neighbours at their common vertex.
+    !> except neighbours at their common vertex, an area (vertices on one line enclose none).
     subroutine check_polygon(body, prefix, messages)
         type(finite_body), intent(in) :: body
         character(len=*), intent(in) :: prefix
         type(message_list), intent(inout) :: messages
         integer :: i, j, m
+        real(wp) :: extent
 
         m = size(body%x)
+        extent = max(maxval(body%x) - minval(body%x), maxval(body%y) - minval(body%y))
         do i = 1, m
             if (hypot(body%x(next(i)) - body%x(i), body%y(next(i)) - body%y(i)) == 0.0_wp) then
                 call add(messages, prefix//'side '//itoa(i)//' has zero length (a repeated '// &
@@ -171,6 +173,11 @@ contains
                 end if
             end do
         end do
+        if (abs(sum(body%x * cshift(body%y, 1) - cshift(body%x, 1) * body%y)) <= &
+            1.0e-12_wp * extent**2) then
+            call add(messages, prefix//'x, y enclose no area: the body needs vertices off '// &
+                     'one line')
+        end if
 
     contains
 

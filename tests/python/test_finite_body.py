@@ -131,6 +131,7 @@ def test_body_gives_back_the_infinite_plane(tmp_path, kind):
 
 BAD = {
     "two vertices": ("&body x = 0, 1, y = 0, 0, elements = 4 /\n", "at least 3 vertices"),
+    "no area": ("&body x = 0, 1, 2, y = 0, 1, 2, elements = 4 /\n", "enclose no area"),
     "crossing sides": ("&body x = 0, 1, 1, 0, y = 0, 1, 0, 1, elements = 4 /\n",
                        "cross"),
     "unknown condition": (square_sides({"condition": "'contact'"}), "condition(1)"),
