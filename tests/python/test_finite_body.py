@@ -221,3 +221,21 @@ def test_growth_in_larger_bodies_tends_to_the_plane(tmp_path):
         ratios = np.array(differences[:-1]) / np.array(differences[1:])
         assert np.all(ratios > 3.5), differences
     assert k_differences[-1] < 0.01 * abs(k1).max()
+
+
+def test_wing_stops_short_of_the_boundary(tmp_path):
+    """The gallery's sample with its flaw moved up near the top platen: the upper wing
+    reaches the platen and stops there (reason intersection), inside the sample, less than
+    one increment (3 mm) from it; the lower wing arrests."""
+    from conftest import REPO_ROOT
+
+    text = (REPO_ROOT / "input" / "gypsum_sample_wing_cracks.nml").read_text()
+    text = text.replace("y = -0.00449, 0.00449,", "y = 0.04051, 0.04949,")
+    result = solve_text(tmp_path, "near", text)
+    with h5py.File(result) as f:
+        g = f["growth"]
+        upper = np.flatnonzero(g["end"][:] == 1)  # the flaw's end: its upper tip
+        assert g["reason"][:][upper[-1]] == 2
+        assert 0.0762 - 0.003 < f["tips/y"][:].max() < 0.0762
+        lower = np.flatnonzero(g["end"][:] == 0)
+        assert g["reason"][:][lower[-1]] == 1
