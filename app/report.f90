@@ -284,6 +284,11 @@ contains
                         short_real(s%y)//'): '//what//when
                 end associate
             end do
+            if (model%fluid%active) write (unit, '(a)') '    coupled flow (&fluid): '// &
+                'viscosity '//short_real(model%fluid%viscosity)//' '//model%stress_unit// &
+                ' '//model%time_unit//', compressibility '// &
+                short_real(model%fluid%compressibility)//' 1/'//model%stress_unit// &
+                ', leak-off coefficient '//short_real(model%fluid%leak_off_coefficient)
         end subroutine print_injections
 
     end subroutine print_model_summary

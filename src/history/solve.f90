@@ -53,6 +53,8 @@ module ddc_history_solve
     use ddc_post_tips, only: find_tips
     use ddc_history_path, only: path_loads, path_times, apply_load, load_text
     use ddc_flow_injection, only: pressure_history
+    use ddc_flow_lubrication, only: lubrication_flow, along_flux, element_values
+    use ddc_history_coupled_flow, only: start_coupled_flow, coupled_flow_step
     use ddc_history_fronts, only: record_fronts, report_jumps
     use ddc_run_contact_run, only: contact_run, contact_step
     use ddc_run_model, only: finish_model, model_load
@@ -104,6 +106,9 @@ contains
         type(step_totals) :: totals
         type(element_results) :: solved
         real(wp), allocatable :: loads(:, :), times(:), flow_pressure(:, :), volume(:)
+        real(wp), allocatable :: ds_before(:)
+        type(lubrication_flow) :: flow
+        logical :: coupled
         real(wp) :: sigma0, scale
         integer :: n, k, nsteps, done
         integer(int64) :: t_start, t1, rate
@@ -115,22 +120,35 @@ contains
         loads = path_loads(model%load_path)
         nsteps = size(loads, 2)
         if (allocated(model%load_path%time)) times = path_times(model%load_path)
-        if (has_sources(model)) then
+        coupled = model%fluid%active
+        if (coupled) then
+            ! Found step by step, with the contact solution (coupled_flow_step).
+            allocate (flow_pressure(n, nsteps), source=0.0_wp)
+            allocate (volume(nsteps), source=0.0_wp)
+        else if (has_sources(model)) then
             allocate (flow_pressure(n, nsteps), volume(nsteps))
             call pressure_history(model, times, flow_pressure, volume, error)
             if (allocated(error)) return
         end if
+        if (coupled .and. present(restart)) then
+            call set_error(error, exit_bad_input, '--resume: a run of coupled flow (&fluid) '// &
+                           'cannot be resumed (the file does not hold the fluid''s state)')
+            return
+        end if
         call run%prepare(medium_of(model), model%solver, error)
         if (allocated(error)) return
         call run%take_steps(max_pivots, max_iterations)
-        ! One stress scale for every step's certificate: that of the largest load.
-        sigma0 = 0.0_wp
-        do k = 1, nsteps
-            call run%stress_scale_of(load_at(k), scale, error)
-            if (allocated(error)) return
-            sigma0 = max(sigma0, scale)
-        end do
-        call run%set_stress_scale(sigma0)
+        ! One stress scale for every step's certificate: that of the largest load (with
+        ! coupled flow, unknown before the step: each step takes its own).
+        if (.not. coupled) then
+            sigma0 = 0.0_wp
+            do k = 1, nsteps
+                call run%stress_scale_of(load_at(k), scale, error)
+                if (allocated(error)) return
+                sigma0 = max(sigma0, scale)
+            end do
+            call run%set_stress_scale(sigma0)
+        end if
         ! The tips, found once (their geometry); their K at every step.
         call find_tips(run%medium, spread(0.0_wp, 1, n), spread(0.0_wp, 1, n), results%tips)
         done = 0
@@ -141,13 +159,24 @@ contains
         if (allocated(error)) return
         h%load = loads
         if (allocated(times)) h%time = times
-        if (allocated(volume)) then
+        if (allocated(volume) .and. .not. coupled) then
             h%pressure = flow_pressure
             h%injected_volume = volume
         end if
+        if (coupled) then
+            call start_coupled_flow(run, model, load_at(1), times(1), flow, error)
+            if (allocated(error)) return
+            allocate (ds_before(n), source=0.0_wp)
+        end if
         call system_clock(totals%t0)
         do k = done + 1, nsteps
-            call run%step(load_at(k), solution, error)
+            if (coupled) then
+                call coupled_flow_step(run, load_at(k), times(k), flow, ds_before, solution, &
+                                       h%flow_iterations(k), h%flow_residual(k), error)
+                if (.not. allocated(error)) call record_flow(k)
+            else
+                call run%step(load_at(k), solution, error)
+            end if
             if (allocated(error)) then
                 error%message = 'loading history: step '//itoa(k)//' of '//itoa(nsteps)// &
                     ' ('//step_text(k)//') failed: '// &
@@ -182,6 +211,24 @@ contains
         results%solver%seconds_total = real(t1 - t_start, wp) / real(rate, wp)
 
     contains
+
+        !> Step j's flow: its pressure (which loads the step from now on), apertures, fluxes
+        !> and volumes.
+        subroutine record_flow(j)
+            integer, intent(in) :: j
+
+            flow_pressure(:, j) = element_values(flow, flow%p, n, 0.0_wp)
+            h%pressure(:, j) = flow_pressure(:, j)
+            h%aperture(:, j) = element_values(flow, flow%aperture, n, 0.0_wp)
+            h%flux(:, j) = element_values(flow, along_flux(flow), n, 0.0_wp)
+            h%injected_volume(j) = sum(flow%sources%volume)
+            h%stored_volume(j) = sum(flow%stored) - flow%stored_initial
+            h%leaked_volume(j) = flow%leaked
+            h%fluid_efficiency(j) = 0.0_wp
+            if (h%injected_volume(j) /= 0.0_wp) h%fluid_efficiency(j) = &
+                h%stored_volume(j) / h%injected_volume(j)
+            ds_before = solution%ds
+        end subroutine record_flow
 
         !> 'sxy = 10' or 't = 2.5 s, sxy = 10': what step j is.
         function step_text(j) result(text)
@@ -240,7 +287,7 @@ contains
         if (.not. allocated(model%load_path%time)) return
         if (has_sources(model)) then
             call lay_out_history(h, n, size(h%k1, 1), nsteps, kept, stat, time=.true., &
-                                 fractures=size(model%fractures))
+                                 fractures=size(model%fractures), coupled=model%fluid%active)
         else
             call lay_out_history(h, n, size(h%k1, 1), nsteps, kept, stat, time=.true.)
         end if

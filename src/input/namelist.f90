@@ -26,10 +26,11 @@ module ddc_input_namelist
     use ddc_input_namelist_groups, only: namelist_groups, group_record, message_list, add, &
         scan_groups, g_model, g_remote_stress, g_fracture, g_grid, g_line, g_points, g_solver, &
         g_output, g_symmetry, g_pore_fluid, g_load_path, g_growth, g_injection, g_material, &
-        g_initiation, g_body
+        g_initiation, g_body, g_fluid
     use ddc_input_namelist_growth, only: read_growth_group
     use ddc_input_namelist_initiation, only: read_initiation_group, check_flaw_points
-    use ddc_input_namelist_injection, only: read_injection_groups, check_injection_points
+    use ddc_input_namelist_injection, only: read_injection_groups, check_injection_points, &
+        read_fluid_group, check_fluid_model
     use ddc_input_namelist_body, only: read_body_group, check_body_model
     use ddc_input_namelist_values, only: text_length
     use ddc_input_namelist_settings, only: read_model_group, read_remote_stress_group, &
@@ -113,6 +114,7 @@ contains
                                    names_of(fractures), model, messages)
         call read_cycle_group(unit, text, path, groups, fractures, model, messages)
         call read_body_group(unit, text, path, groups(g_body), model, messages)
+        call read_fluid_group(unit, text, path, groups(g_fluid), model, messages)
         close (unit)
 
         call check_names(path, fractures, observations, messages)
@@ -127,6 +129,7 @@ contains
         call build_model(fractures, observations, model)
         call check_flaw_points(path, groups, model, messages)
         call check_injection_points(path, groups(g_injection), model, messages)
+        call check_fluid_model(path, groups, model, messages)
         call check_matrix(path, model, messages)
         call check_k_method(path, model, messages)
         call check_body_model(path, model, messages)
@@ -411,6 +414,7 @@ contains
             model%elements%pressure(first:last) = fractures(k)%pressure
             model%elements%diffusivity(first:last) = fractures(k)%diffusivity
             model%elements%transmissivity(first:last) = fractures(k)%transmissivity
+            model%elements%residual_aperture(first:last) = fractures(k)%residual_aperture
             do j = 1, size(laws)
                 call set_law(model%elements, laws(j)%name, [(i, i = first, last)], &
                              fractures(k)%laws(:, j))

@@ -18,7 +18,7 @@ module ddc_input_namelist_fracture
     use ddc_input_namelist_diagnosis, only: report_malformed
     use ddc_input_namelist_values, only: unset_real, unset_integer, text_length, count_given, &
         count_given_integers, check_length, check_range, broadcast, broadcast_integers, &
-        default_name
+        default_name, check_scalar
     implicit none
     private
 
@@ -55,6 +55,9 @@ module ddc_input_namelist_fracture
         !> Hydraulic diffusivity and transmissivity (0 where not given: no flow), shape
         !> (elements)
         real(wp), allocatable :: diffusivity(:), transmissivity(:)
+        !> Aperture of the closed faces for coupled flow (&fluid) [length unit]; 0: the
+        !> fracture does not conduct
+        real(wp) :: residual_aperture = 0.0_wp
     end type fracture_input
 
 contains
@@ -62,7 +65,7 @@ contains
     !> &fracture name, x, y, elements, mu, sf, pressure, condition, bc_s, bc_n,
     !> elements_file, tensile_strength, sf_residual, mu_dynamic, slip_weakening_distance,
     !> shear_stiffness, normal_stiffness, opening_weakening_distance, a, b, dc, f0, v0, v_init,
-    !> sigma0, tau0 / (repeated, one per fracture)
+    !> sigma0, tau0, residual_aperture / (repeated, one per fracture)
     subroutine read_fracture_groups(unit, text, path, dir, info, fractures, messages)
         integer, intent(in) :: unit
         character(len=*), intent(in) :: text
@@ -100,11 +103,12 @@ contains
         type(error_type), allocatable :: csv_error
         integer :: stat, k, i, j, nx, ny, ne, nmu, nsf, npr, nbs, nbn, nseg, nbefore, cond
         integer :: ndiff, ntrans, hydraulic_column
+        real(wp) :: residual_aperture
         logical :: from_csv, geometry_ok
         namelist /fracture/ name, x, y, elements, mu, sf, pressure, condition, bc_s, bc_n, &
             elements_file, tensile_strength, sf_residual, mu_dynamic, slip_weakening_distance, &
             shear_stiffness, normal_stiffness, opening_weakening_distance, diffusivity, &
-            transmissivity, a, b, dc, f0, v0, v_init, sigma0, tau0
+            transmissivity, a, b, dc, f0, v0, v_init, sigma0, tau0, residual_aperture
 
         allocate (fractures(info%count))
         if (info%count == 0) return
@@ -153,6 +157,7 @@ contains
             tau0 = unset_real
             diffusivity = unset_real
             transmissivity = unset_real
+            residual_aperture = unset_real
             elements = unset_integer
             read (unit, nml=fracture, iostat=stat, iomsg=iomsg)
             if (stat /= 0) then
@@ -180,6 +185,10 @@ contains
                              prefix, messages)
             if ((ndiff > 0) .neqv. (ntrans > 0)) call add(messages, prefix//'give both '// &
                 'diffusivity and transmissivity (a fracture without them does not conduct)')
+            if (check_scalar(residual_aperture, 'residual_aperture', .false., prefix, messages, &
+                             quantity_non_negative)) then
+                fractures(k)%residual_aperture = residual_aperture
+            end if
             ! In the order of the list of the laws (the CTest architecture holds it to that)
             law_values = reshape([tensile_strength, sf_residual, mu_dynamic, &
                                   slip_weakening_distance, opening_weakening_distance, &

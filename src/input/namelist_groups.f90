@@ -17,7 +17,7 @@ module ddc_input_namelist_groups
     public :: scan_groups, group_line, group_label, group_prefix, is_name_character
     public :: g_model, g_remote_stress, g_fracture, g_grid, g_line, g_points, g_solver, &
         g_output, g_symmetry, g_sweep, g_pore_fluid, g_load_path, g_growth
-    public :: g_initiation, g_injection, g_material, g_cycle, g_body
+    public :: g_initiation, g_injection, g_material, g_cycle, g_body, g_fluid
 
     !> One namelist group: its name, whether it may appear more than once, and its variables
     !> with their types ("name:c x:r n:i": c text, r real, i integer)
@@ -32,10 +32,10 @@ module ddc_input_namelist_groups
                           g_line = 5, g_points = 6, g_solver = 7, g_output = 8, g_symmetry = 9, &
                           g_sweep = 10, g_pore_fluid = 11, g_load_path = 12, g_growth = 13
     integer, parameter :: g_initiation = 14, g_injection = 15, g_material = 16, g_cycle = 17
-    integer, parameter :: g_body = 18
+    integer, parameter :: g_body = 18, g_fluid = 19
 
     !> Every group ddc2d knows (&sweep is read by ddc_input_sweep; the model reader skips it)
-    type(group_spec), parameter :: namelist_groups(18) = [ &
+    type(group_spec), parameter :: namelist_groups(19) = [ &
         group_spec('model', .false., 'title:c youngs_modulus:r poissons_ratio:r '// &
                    'length_unit:c stress_unit:c time_unit:c domain:c interface_y:r'), &
         group_spec('remote_stress', .false., 'sxx:r syy:r sxy:r dsxx_dy:r dsyy_dy:r dsxy_dy:r'), &
@@ -43,7 +43,8 @@ module ddc_input_namelist_groups
                    'condition:c bc_s:r bc_n:r elements_file:c tensile_strength:r '// &
                    'sf_residual:r mu_dynamic:r slip_weakening_distance:r shear_stiffness:r '// &
                    'normal_stiffness:r opening_weakening_distance:r diffusivity:r '// &
-                   'transmissivity:r a:r b:r dc:r f0:r v0:r v_init:r sigma0:r tau0:r'), &
+                   'transmissivity:r a:r b:r dc:r f0:r v0:r v_init:r sigma0:r tau0:r '// &
+                   'residual_aperture:r'), &
         group_spec('grid', .true., 'name:c xmin:r xmax:r nx:i ymin:r ymax:r ny:i'), &
         group_spec('line', .true., 'name:c x_begin:r y_begin:r x_end:r y_end:r points:i'), &
         group_spec('points', .true., 'name:c file:c'), &
@@ -73,7 +74,8 @@ module ddc_input_namelist_groups
                    'output_interval:r event_output_interval:r profile_spacing:r '// &
                    'checkpoint_interval:r'), &
         group_spec('body', .false., 'x:r y:r elements:i condition:c bc_s:r bc_n:r '// &
-                   'bc_s_end:r bc_n_end:r')]
+                   'bc_s_end:r bc_n_end:r'), &
+        group_spec('fluid', .false., 'viscosity:r compressibility:r leak_off_coefficient:r')]
 
     !> Where the occurrences of one group are in the file.
     type :: group_record

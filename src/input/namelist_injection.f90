@@ -3,19 +3,26 @@
 !> (overpressure) or a volume rate (rate) at its point from its start time until its stop
 !> time (a shut-in). The sources need a loading history with a time axis, and a fracture
 !> that conducts at their point (checked once the elements exist: check_injection_points).
+!> The &fluid group makes the flow follow the opening (docs/fluid-driven-fractures.md): the
+!> fluid's viscosity, compressibility and leak-off (read_fluid_group), and the model it
+!> needs (check_fluid_model).
 module ddc_input_namelist_injection
     use ddc_kinds, only: wp
-    use ddc_model_types, only: model_type, source_overpressure, source_rate
+    use ddc_model_types, only: model_type, source_overpressure, source_rate, &
+        condition_contact, symmetry_none, rigid_joint
+    use ddc_model_limits, only: quantity_positive, quantity_non_negative
+    use ddc_contact_options, only: matrix_hierarchical
     use ddc_text, only: rtoa, lower
     use ddc_mesh_ends, only: elements_at_point
     use ddc_input_namelist_groups, only: group_record, message_list, add, group_label, &
-        g_injection
+        group_prefix, g_injection, g_fluid
     use ddc_input_namelist_diagnosis, only: report_malformed
     use ddc_input_namelist_values, only: unset_real, check_scalar, text_length, default_name
     implicit none
     private
 
-    public :: read_injection_groups, check_injection_points
+    public :: read_injection_groups, check_injection_points, read_fluid_group, &
+        check_fluid_model
 
 contains
 
@@ -117,7 +124,7 @@ contains
     end subroutine read_injection_groups
 
     !> Every source's point lies on its fracture, on elements that conduct (diffusivity
-    !> and transmissivity given).
+    !> and transmissivity given; with &fluid a residual aperture).
     subroutine check_injection_points(path, info, model, messages)
         !> Path of the input file
         character(len=*), intent(in) :: path
@@ -139,6 +146,11 @@ contains
                     call add(messages, prefix//'x, y = '//rtoa(s%x)//', '//rtoa(s%y)// &
                              ' is not on fracture '''// &
                              model%fractures(s%fracture_id)%name//'''')
+                else if (model%fluid%active) then
+                    if (any(.not. e%residual_aperture(at) > 0.0_wp)) call add(messages, &
+                        prefix//'fracture '''//model%fractures(s%fracture_id)%name// &
+                        ''' does not conduct at x, y = '//rtoa(s%x)//', '//rtoa(s%y)// &
+                        ': give its residual_aperture (&fluid)')
                 else if (any(.not. (e%diffusivity(at) > 0.0_wp .and. &
                                     e%transmissivity(at) > 0.0_wp))) then
                     call add(messages, prefix//'fracture '''// &
@@ -149,5 +161,121 @@ contains
             end associate
         end do
     end subroutine check_injection_points
+
+    !> &fluid viscosity, compressibility, leak_off_coefficient / (at most once).
+    subroutine read_fluid_group(unit, text, path, info, model, messages)
+        !> Unit of the open input file
+        integer, intent(in) :: unit
+        !> Text and path of the input file
+        character(len=*), intent(in) :: text, path
+        !> Where the group occurs
+        type(group_record), intent(in) :: info
+        !> model%fluid is set
+        type(model_type), intent(inout) :: model
+        !> Violations are added here
+        type(message_list), intent(inout) :: messages
+        real(wp) :: viscosity, compressibility, leak_off_coefficient
+        character(len=512) :: iomsg
+        character(len=:), allocatable :: prefix
+        integer :: stat
+        namelist /fluid/ viscosity, compressibility, leak_off_coefficient
+
+        if (info%count == 0) return
+        viscosity = unset_real
+        compressibility = unset_real
+        leak_off_coefficient = 0.0_wp
+        rewind (unit)
+        read (unit, nml=fluid, iostat=stat, iomsg=iomsg)
+        if (stat /= 0) then
+            call report_malformed(text, path, g_fluid, info, 1, stat, iomsg, messages)
+            return
+        end if
+        prefix = group_prefix(path, g_fluid, info, 1)
+        model%fluid%active = .true.
+        if (check_scalar(viscosity, 'viscosity', .true., prefix, messages, &
+                         quantity_positive)) model%fluid%viscosity = viscosity
+        ! A closed fracture's faces do not move: its fluid is stored by compression alone.
+        if (check_scalar(compressibility, 'compressibility', .true., prefix, messages, &
+                         quantity_positive)) model%fluid%compressibility = compressibility
+        if (check_scalar(leak_off_coefficient, 'leak_off_coefficient', .false., prefix, &
+                         messages, quantity_non_negative)) then
+            model%fluid%leak_off_coefficient = leak_off_coefficient
+        end if
+        if (.not. allocated(model%load_path%time)) call add(messages, prefix// &
+            'coupled flow needs a time axis: &load_path time, one time per vertex')
+    end subroutine read_fluid_group
+
+    !> What coupled flow needs of the model once its elements exist: sources; conducting
+    !> elements that are contact elements; no diffusivity or transmissivity (the flow
+    !> follows from the aperture); none of the features it does not combine with. Without
+    !> &fluid, no residual aperture.
+    subroutine check_fluid_model(path, groups, model, messages)
+        !> Path of the input file
+        character(len=*), intent(in) :: path
+        !> Where every group occurs
+        type(group_record), intent(in) :: groups(:)
+        !> The model, its elements' geometry computed
+        type(model_type), intent(in) :: model
+        !> Violations are added here
+        type(message_list), intent(inout) :: messages
+        character(len=:), allocatable :: prefix
+        integer :: k
+
+        associate (e => model%elements)
+            if (.not. model%fluid%active) then
+                do k = 1, size(model%fractures)
+                    associate (f => model%fractures(k))
+                        if (any(e%residual_aperture(f%first_element:f%last_element) > &
+                                0.0_wp)) call add(messages, path//': &fracture '''//f%name// &
+                            ''': residual_aperture is for flow coupled to the opening: '// &
+                            'give the fluid (&fluid viscosity, compressibility)')
+                    end associate
+                end do
+                return
+            end if
+            prefix = group_prefix(path, g_fluid, groups(g_fluid), 1)
+            do k = 1, size(model%fractures)
+                associate (f => model%fractures(k))
+                    if (any(e%diffusivity(f%first_element:f%last_element) > 0.0_wp)) then
+                        call add(messages, prefix//'&fracture '''//f%name//''' gives '// &
+                                 'diffusivity and transmissivity: with &fluid the flow '// &
+                                 'follows from the aperture; give residual_aperture instead')
+                    end if
+                    if (any(e%residual_aperture(f%first_element:f%last_element) > 0.0_wp &
+                            .and. e%condition(f%first_element:f%last_element) /= &
+                            condition_contact)) then
+                        call add(messages, prefix//'&fracture '''//f%name//''': only '// &
+                                 'contact elements conduct (residual_aperture on a '// &
+                                 'TWODD-style condition)')
+                    end if
+                end associate
+            end do
+            if (.not. any(e%residual_aperture > 0.0_wp)) call add(messages, prefix// &
+                'no fracture conducts: give &fracture residual_aperture')
+        end associate
+        if (groups(g_injection)%count == 0) call add(messages, prefix//'coupled flow '// &
+            'needs a source: &injection rate or overpressure')
+        call refuse(model%growth%active, '&growth (fluid-driven growth is not available yet)')
+        call refuse(model%initiation%active, '&initiation')
+        call refuse(model%cycle%active, '&cycle')
+        call refuse(allocated(model%body), '&body')
+        call refuse(model%elements%symmetry%kind /= symmetry_none, &
+                    '&symmetry (give the whole model)')
+        call refuse(model%solver%matrix == matrix_hierarchical, &
+                    "&solver matrix = 'hierarchical' (coupled flow takes dense matrices)")
+        call refuse(any(model%elements%shear_stiffness < rigid_joint .or. &
+                        model%elements%normal_stiffness < rigid_joint), &
+                    'elastic joints (shear_stiffness, normal_stiffness)')
+
+    contains
+
+        subroutine refuse(condition, what)
+            logical, intent(in) :: condition
+            character(len=*), intent(in) :: what
+
+            if (condition) call add(messages, prefix//'coupled flow does not combine with '// &
+                                    what)
+        end subroutine refuse
+    end subroutine check_fluid_model
 
 end module ddc_input_namelist_injection

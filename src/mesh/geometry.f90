@@ -22,8 +22,8 @@ contains
 
     !> Allocate every per-element array of an element set (those of the geometry too) for
     !> n elements; values unset, but the strength laws beyond Coulomb at their defaults (no
-    !> tensile strength, no drops, rigid contact), no flow (diffusivity and transmissivity 0)
-    !> and no rate-and-state values (0).
+    !> tensile strength, no drops, rigid contact), no flow (diffusivity, transmissivity and
+    !> residual aperture 0) and no rate-and-state values (0).
     subroutine allocate_elements(elements, n)
         !> The set to allocate (its arrays unallocated)
         type(element_set), intent(inout) :: elements
@@ -39,6 +39,7 @@ contains
         elements%diffusivity = 0.0_wp
         elements%transmissivity = 0.0_wp
         elements%flow_pressure = 0.0_wp
+        elements%residual_aperture = 0.0_wp
     end subroutine allocate_elements
 
     !> Allocate one real array for the set's elements.

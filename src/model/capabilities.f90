@@ -49,6 +49,8 @@ contains
                     call add('elastic joints')
                 else if (allocated(model%body)) then
                     call add('a finite body (&body)')
+                else if (model%fluid%active) then
+                    call add('coupled flow (&fluid: its Jacobian reads the dense matrix)')
                 end if
             case (operator_distributed)
                 if (model%solver%lcp_method == lcp_lemke) call add("&solver lcp_method = "// &

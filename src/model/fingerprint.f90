@@ -107,6 +107,11 @@ contains
                                       model%injections(i)%stop])
             end do
         end if
+        ! Only with coupled flow: the other models keep their fingerprints.
+        if (model%fluid%active) then
+            call add_reals(hash, [model%fluid%viscosity, model%fluid%compressibility, &
+                                  model%fluid%leak_off_coefficient])
+        end if
         ! Only with a finite body: the other models keep their fingerprints.
         if (allocated(model%body)) then
             call add_reals(hash, [model%body%x, model%body%y, model%body%bc_s, model%body%bc_n, &

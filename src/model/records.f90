@@ -30,9 +30,9 @@ module ddc_model_records
         column_growth_steps, column_growing_tips, column_growing_tip_steps, column_records, &
         column_path_records, column_elements, column_strength_steps, column_work_records, &
         column_trials, column_time_steps, column_flow_element_steps, column_flow_steps, &
-        column_fracture_steps
+        column_fracture_steps, column_coupled_element_steps, column_coupled_steps
     public :: units_none, units_length, units_stress, units_k, units_degree, units_one, units_work
-    public :: units_stiffness, units_time, units_area, units_moment, units_text
+    public :: units_stiffness, units_time, units_area, units_moment, units_text, units_flux
     public :: state_coding
 
     !> Kinds of history columns, by their shape: the load (one row per quantity of
@@ -56,16 +56,18 @@ module ddc_model_records
     !> with fluid sources only (docs/injection.md#output): per element (n, k), per step
     !> (k), per fracture (fractures, k)
     integer, parameter :: column_time_steps = 14, column_flow_element_steps = 15, &
-                          column_flow_steps = 16, column_fracture_steps = 17
+                          column_flow_steps = 16, column_fracture_steps = 17, &
+                          column_coupled_element_steps = 18, column_coupled_steps = 19
 
     !> What the values of a column (or of a strength law, ddc_model_laws) measure, for its
     !> units attribute: nothing (integers and strings), length, stress, stress intensity
     !> (stress * length**0.5), angle in degrees, a ratio, work per length (stress * length),
     !> a joint stiffness (stress / length), time, a volume per unit length out of the plane
-    !> (length^2), a seismic moment per unit length out of the plane (stress * length^2)
+    !> (length^2), a seismic moment per unit length out of the plane (stress * length^2), a
+    !> flux per unit length out of the plane (length^2 / time)
     integer, parameter :: units_none = 0, units_length = 1, units_stress = 2, units_k = 3, &
                           units_degree = 4, units_one = 5, units_work = 6, units_stiffness = 7, &
-                          units_time = 8, units_area = 9, units_moment = 10
+                          units_time = 8, units_area = 9, units_moment = 10, units_flux = 11
 
     !> Coding of the element states (/elements/state and the history's)
     character(len=*), parameter :: state_coding = '0 free (TWODD-style condition), ' &
@@ -184,6 +186,8 @@ module ddc_model_records
         !> columns: fractures), that are not there yet
         logical :: time = .false., flow = .false.
         integer :: fractures = 0
+        !> Lay out the columns of coupled flow (&fluid) that are not there yet
+        logical :: coupled = .false.
         !> The stat of an allocation that failed (0: none)
         integer :: stat = 0
     contains
@@ -261,6 +265,20 @@ contains
                                   history%pressure)
         call action%on_reals(column('injected_volume', column_flow_steps, units_area), &
                              history%injected_volume)
+        call action%on_real_table(column('aperture', column_coupled_element_steps, &
+                                         units_length), history%aperture)
+        call action%on_real_table(column('flux', column_coupled_element_steps, units_flux), &
+                                  history%flux)
+        call action%on_reals(column('stored_volume', column_coupled_steps, units_area), &
+                             history%stored_volume)
+        call action%on_reals(column('leaked_volume', column_coupled_steps, units_area), &
+                             history%leaked_volume)
+        call action%on_reals(column('fluid_efficiency', column_coupled_steps, units_one), &
+                             history%fluid_efficiency)
+        call action%on_integers(column('flow_iterations', column_coupled_steps), &
+                                history%flow_iterations)
+        call action%on_reals(column('flow_residual', column_coupled_steps, units_one), &
+                             history%flow_residual)
         call action%on_real_table(column('slipping_length', column_fracture_steps, &
                                          units_length), history%slipping_length)
         call action%on_real_table(column('front_begin', column_fracture_steps, units_length), &
@@ -489,6 +507,9 @@ contains
             text = length//'^2'
         case (units_moment)
             text = stress//' '//length//'^2'
+        case (units_flux)
+            text = length//'^2/s'
+            if (present(time)) text = length//'^2/'//time
         case default
             text = ''
         end select
@@ -544,7 +565,7 @@ contains
     !> (the growth record gives them at the end); those of the strengths in force when there
     !> or asked for. Values not kept are NaN, 0 or blank.
     subroutine lay_out_history(history, rows, tips, steps, kept, stat, origin, growth, &
-                               strengths, time, fractures)
+                               strengths, time, fractures, coupled)
         !> The history
         type(history_record), intent(inout) :: history
         !> Rows of the element columns and of the tip columns, steps of every column
@@ -564,6 +585,8 @@ contains
         !> Lay out the columns of the fluid sources too, for this many fractures (default:
         !> when there)
         integer, intent(in), optional :: fractures
+        !> Lay out the columns of coupled flow too (default: when there)
+        logical, intent(in), optional :: coupled
         type(record_layout) :: layout
         integer :: i
 
@@ -579,6 +602,7 @@ contains
         if (present(growth)) layout%growth = growth
         if (present(strengths)) layout%strengths = strengths
         if (present(time)) layout%time = time
+        if (present(coupled)) layout%coupled = coupled
         if (present(fractures)) then
             layout%flow = .true.
             layout%fractures = fractures
@@ -648,6 +672,8 @@ contains
             lays_out = there .or. layout%time
         case (column_flow_element_steps, column_flow_steps, column_fracture_steps)
             lays_out = there .or. layout%flow
+        case (column_coupled_element_steps, column_coupled_steps)
+            lays_out = there .or. layout%coupled
         case default
             lays_out = .true.
         end select
@@ -664,7 +690,8 @@ contains
         select case (column%kind)
         case (column_loads)
             table_rows = size(load_path_names)
-        case (column_element_steps, column_strength_steps, column_flow_element_steps)
+        case (column_element_steps, column_strength_steps, column_flow_element_steps, &
+              column_coupled_element_steps)
             table_rows = layout%rows
         case (column_fracture_steps)
             table_rows = layout%fractures
@@ -797,7 +824,8 @@ contains
         integer :: i
 
         if (column%kind == column_element_steps .or. column%kind == column_strength_steps .or. &
-            column%kind == column_flow_element_steps) then
+            column%kind == column_flow_element_steps .or. &
+            column%kind == column_coupled_element_steps) then
             origin = layout%origin
         else
             ! Rows added since (the ends of fractures started inside the rock) have none

@@ -216,6 +216,17 @@ module ddc_model_results
         !> moment per unit length out of the plane (G times its slip's integral) [stress unit
         !> length unit], shape (fractures, k)
         real(wp), allocatable :: pressure(:, :), injected_volume(:)
+        !> With coupled flow (&fluid; docs/fluid-driven-fractures.md#output; not allocated
+        !> otherwise): the hydraulic aperture of each element (0 where it does not conduct)
+        !> [length unit] and the flux along it at its midpoint (first vertex to last) [length^2
+        !> / time unit], shape (n, k); the fluid stored beyond the start's and the volume
+        !> leaked off by then [length^2], their ratio stored / injected, the iterations of
+        !> the step's coupled solve and the volume it left unbalanced as a fraction of the
+        !> injected volume, shape (k)
+        real(wp), allocatable :: aperture(:, :), flux(:, :)
+        real(wp), allocatable :: stored_volume(:), leaked_volume(:), fluid_efficiency(:)
+        integer, allocatable :: flow_iterations(:)
+        real(wp), allocatable :: flow_residual(:)
         real(wp), allocatable :: slipping_length(:, :), front_begin(:, :), front_end(:, :), &
             moment(:, :)
     end type history_record

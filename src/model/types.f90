@@ -20,7 +20,7 @@ module ddc_model_types
     public :: model_type, element_set, fracture_type, observation_set
     public :: symmetry_options, symmetry_none, symmetry_x, symmetry_y, symmetry_both
     public :: symmetry_names, sweep_task_record, load_path_type, load_path_names
-    public :: injection_source, source_overpressure, source_rate, has_sources
+    public :: injection_source, source_overpressure, source_rate, has_sources, fluid_options
     public :: condition_traction, condition_displacement, condition_mixed_us_sn
     public :: condition_mixed_ss_un, condition_contact, condition_prescribed_dd, condition_names
     public :: condition_rate_state
@@ -125,6 +125,10 @@ module ddc_model_types
         !> time unit] and transmissivity T [length^3 / (stress unit time unit)]; 0: the
         !> element does not conduct
         real(wp), allocatable :: diffusivity(:), transmissivity(:)
+        !> Flow coupled to opening (&fluid; docs/fluid-driven-fractures.md): the aperture of
+        !> the closed faces, through which fluid flows and where it is stored [length unit];
+        !> 0: the element does not conduct
+        real(wp), allocatable :: residual_aperture(:)
         !> The pressure change that diffused into the element from the fluid sources by the
         !> current time [stress unit] (0 without sources; a contact element's pore pressure
         !> rises by it); a new element of a growth run takes its tip element's
@@ -243,6 +247,17 @@ module ddc_model_types
         !> (default: never stops; a stopped source is shut in: no flux at its point)
         real(wp) :: start = -huge(1.0_wp), stop = huge(1.0_wp)
     end type injection_source
+
+    !> The fluid that flows through the fractures it opens (&fluid;
+    !> docs/fluid-driven-fractures.md): with it the sources' pressure follows lubrication
+    !> flow coupled to the opening instead of diffusing on fixed fractures.
+    type :: fluid_options
+        !> The model has &fluid
+        logical :: active = .false.
+        !> Dynamic viscosity [stress unit time unit], compressibility [1 / stress unit] and
+        !> Carter's leak-off coefficient [length unit / time unit^(1/2)] (0: no leak-off)
+        real(wp) :: viscosity = 0.0_wp, compressibility = 0.0_wp, leak_off_coefficient = 0.0_wp
+    end type fluid_options
 
     !> A loading history (&load_path; docs/theory/earth.md#loading-histories): the load at the
     !> path's vertices (the first is the starting state) and the increments on each leg.
@@ -388,6 +403,8 @@ module ddc_model_types
         !> Fluid sources on the fractures (&injection; none: allocated with size 0 or not
         !> allocated)
         type(injection_source), allocatable :: injections(:)
+        !> The fluid of coupled flow (&fluid); inactive without the group
+        type(fluid_options) :: fluid
         !> Fracture growth; inactive unless the input has &growth
         type(growth_options) :: growth
         !> New fractures inside the rock, when it grows
@@ -481,6 +498,7 @@ contains
         call action%on_later_law(elements%diffusivity)
         call action%on_later_law(elements%transmissivity)
         call action%on_later_law(elements%flow_pressure)
+        call action%on_later_law(elements%residual_aperture)
         call action%on_reals(elements%x_mid)
         call action%on_reals(elements%y_mid)
         call action%on_reals(elements%half_length)

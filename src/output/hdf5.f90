@@ -319,6 +319,8 @@ contains
                 call write_real_1d(group, 'transmissivity', e%transmissivity, &
                                    length//'^3/('//stress//' '//time//')', error)
             end if
+            if (model%fluid%active) call write_real_1d(group, 'residual_aperture', &
+                                                       e%residual_aperture, length, error)
             call write_growth_elements(group, model, results%growth, error)
             if (model%cycle%active) call write_rate_state(group, model, error)
         end associate

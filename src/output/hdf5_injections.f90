@@ -1,6 +1,7 @@
 !> /injection (docs/injection.md#output): the model's fluid sources, one row each
 !> (name, fracture, point, overpressure or rate, start and stop), for the tools that plot what
-!> they did.
+!> they did; with coupled flow (&fluid) its attributes viscosity, compressibility and
+!> leak_off_coefficient.
 module ddc_output_hdf5_injections
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use ddc_kinds, only: wp
@@ -8,7 +9,8 @@ module ddc_output_hdf5_injections
     use ddc_text, only: allocated_text
     use ddc_model_types, only: model_type, source_overpressure
     use ddc_output_hdf5_handles, only: h5_object, create_group, close_group
-    use ddc_output_hdf5_write, only: write_real_1d, write_int_1d, write_string_1d
+    use ddc_output_hdf5_write, only: write_real_1d, write_int_1d, write_string_1d, &
+        write_attribute
     implicit none
     private
 
@@ -65,6 +67,12 @@ contains
             call write_real_1d(group, 'stop', merge(s%stop, ieee_nan(), &
                                s%stop /= huge(1.0_wp)), time, error)
         end associate
+        if (model%fluid%active) then
+            call write_attribute(group, 'viscosity', model%fluid%viscosity, error)
+            call write_attribute(group, 'compressibility', model%fluid%compressibility, error)
+            call write_attribute(group, 'leak_off_coefficient', &
+                                 model%fluid%leak_off_coefficient, error)
+        end if
         call close_group(group, error)
 
     contains

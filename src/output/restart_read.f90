@@ -16,6 +16,7 @@ module ddc_output_restart_read
         column_growing_tips, column_growing_tip_steps, column_records, column_path_records, &
         column_elements, column_strength_steps, column_work_records, column_trials, &
         column_time_steps, column_flow_element_steps, column_flow_steps, column_fracture_steps, &
+        column_coupled_element_steps, column_coupled_steps, &
         trial_dataset
     use ddc_output_hdf5_read, only: read_real_dataset, read_int_dataset, read_string_dataset, &
         read_dataset_dims, read_string_attribute, read_int_attribute, read_real_attribute, &
@@ -214,7 +215,8 @@ contains
             reads = .false.
         case (column_growth_steps, column_path_records, column_strength_steps, &
               column_work_records, column_trials, column_time_steps, &
-              column_flow_element_steps, column_flow_steps, column_fracture_steps)
+              column_flow_element_steps, column_flow_steps, column_fracture_steps, &
+              column_coupled_element_steps, column_coupled_steps)
             reads = has_dataset(reader%path, dataset_of(column))
         case default
             reads = .true.

@@ -1,0 +1,314 @@
+!> One step of flow coupled to opening (docs/theory/fluid-driven-fractures.md#the-coupled-step):
+!> the pressure change of the conducting cells and the contact solution of the model that
+!> it loads, found together. The lubrication balance of every cell (ddc_flow_lubrication) is
+!> a function of the pressure through the openings the contact run solves for it; Newton's
+!> method on the pressure, each iterate one contact solve from the step's starting memory
+!> (the friction memory and strengths in force of the step before), its Jacobian the
+!> balance's for the openings' response of the open cells: the inverse of their block of
+!> the contact stiffness (the other elements held), a quasi-Newton step where states
+!> change. A step that does not lower the balance is halved. The step is converged when
+!> the volume left unbalanced is below balance_tolerance of the volume injected, or within
+!> the rounding of its terms where no step lowers it any more.
+module ddc_history_coupled_flow
+    use ddc_kinds, only: wp
+    use ddc_error, only: error_type, set_error, exit_solver_failure
+    use ddc_text, only: itoa, rtoa
+    use ddc_contact_states, only: state_open
+    use ddc_contact_fault_law, only: fault_law
+    use ddc_solve_operator, only: elastic_load
+    use ddc_run_contact_run, only: contact_run, contact_step
+    use ddc_linalg_lu, only: lu_factor, lu_solve
+    use ddc_model_types, only: model_type
+    use ddc_flow_lubrication, only: lubrication_flow, start_lubrication, cell_balance, &
+        balance_jacobian, take_lubrication_step, held_pressure
+    implicit none
+    private
+
+    public :: start_coupled_flow, coupled_flow_step
+
+    !> The volume a converged step leaves unbalanced (the sum of the cells' |balance|), as
+    !> a fraction of the volume injected by its end; and what it may leave, as a multiple
+    !> of the balances' rounding, where no Newton step lowers it any more (a fluid of low
+    !> viscosity: the fluxes through the connections are large terms that cancel)
+    real(wp), parameter :: balance_tolerance = 1.0e-10_wp, rounding_cells = 1.0e3_wp
+    !> Newton iterations of a step, and halvings of one iteration's step
+    integer, parameter :: max_iterations = 40, max_halvings = 8
+    !> Open sets tried for one Newton step; sub-steps a step may be cut into
+    integer, parameter :: max_guesses = 6, max_pieces = 64
+
+contains
+
+    !> The flow at rest at the first time: the openings of the equilibrium without it (a
+    !> solve that leaves the run's memory as it was).
+    subroutine start_coupled_flow(run, model, load, time, flow, error)
+        !> The prepared run, before its first step
+        type(contact_run), intent(inout) :: run
+        !> The model (&fluid, &injection)
+        type(model_type), intent(in) :: model
+        !> The load of the first step without the flow's pressure
+        type(elastic_load), intent(in) :: load
+        !> The first time [time unit]
+        real(wp), intent(in) :: time
+        !> The flow at rest
+        type(lubrication_flow), intent(out) :: flow
+        !> Set when the solve fails
+        type(error_type), allocatable, intent(out) :: error
+        type(contact_step) :: solution
+        type(fault_law) :: law
+
+        law = run%law_in_force()
+        call run%step(load, solution, error)
+        if (allocated(error)) return
+        call start_lubrication(model%elements, model%fluid, model%injections, time, &
+                               -solution%dn, flow)
+        call run%hold(spread(0.0_wp, 1, model%elements%n), law)
+    end subroutine start_coupled_flow
+
+    !> The step to t_new: pressure and contact solution together; the flow moves on to
+    !> t_new and the run's memory is the solution's. A step whose Newton iteration does not
+    !> settle is taken again in 2, 4, ... sub-steps (at most max_pieces): the shorter the
+    !> step, the more the storage outweighs the change of the flow with the aperture.
+    subroutine coupled_flow_step(run, load, t_new, flow, ds_before, solution, iterations, &
+                                 unbalanced, error)
+        !> The prepared run, its memory that of the step before
+        type(contact_run), intent(inout) :: run
+        !> The step's load without the flow's pressure
+        type(elastic_load), intent(in) :: load
+        !> The step's time [time unit]
+        real(wp), intent(in) :: t_new
+        !> The flow at the step before; at t_new on return
+        type(lubrication_flow), intent(inout) :: flow
+        !> The total slip of every element the step before left [length unit], shape (n)
+        real(wp), intent(in) :: ds_before(:)
+        !> The step's contact solution
+        type(contact_step), intent(out) :: solution
+        !> Newton iterations taken, over the sub-steps
+        integer, intent(out) :: iterations
+        !> The largest volume a sub-step left unbalanced, as a fraction of the volume injected
+        real(wp), intent(out) :: unbalanced
+        !> Set when a contact solve fails or the step does not converge
+        type(error_type), allocatable, intent(out) :: error
+        type(lubrication_flow) :: start
+        type(fault_law) :: law_start
+        real(wp), allocatable :: ds(:)
+        real(wp) :: t_start, t_piece, piece_unbalanced
+        integer :: pieces, j, piece_iterations
+        logical :: converged
+
+        start = flow
+        law_start = run%law_in_force()
+        t_start = flow%time
+        pieces = 1
+        do
+            iterations = 0
+            unbalanced = 0.0_wp
+            ds = ds_before
+            do j = 1, pieces
+                t_piece = t_start + (t_new - t_start) * real(j, wp) / real(pieces, wp)
+                if (j == pieces) t_piece = t_new
+                call solve_step(run, load, t_piece, flow, ds, solution, piece_iterations, &
+                                piece_unbalanced, converged, error)
+                if (allocated(error)) return
+                iterations = iterations + piece_iterations
+                unbalanced = max(unbalanced, piece_unbalanced)
+                if (.not. converged) exit
+                ds = solution%ds
+            end do
+            if (converged) return
+            if (pieces >= max_pieces) then
+                call set_error(error, exit_solver_failure, 'coupled flow: the step to time '// &
+                               rtoa(t_new)//' did not converge in '//itoa(max_pieces)// &
+                               ' sub-steps (the volume left unbalanced is '// &
+                               rtoa(piece_unbalanced)//' of the injected); try shorter '// &
+                               'time steps')
+                return
+            end if
+            pieces = 2 * pieces
+            flow = start
+            call run%hold(ds_before, law_start)
+        end do
+    end subroutine coupled_flow_step
+
+    !> One backward Euler step to t_new by Newton's method (the module's comment); not
+    !> converged after max_iterations.
+    subroutine solve_step(run, load, t_new, flow, ds_before, solution, iterations, &
+                          unbalanced, converged, error)
+        type(contact_run), intent(inout) :: run
+        type(elastic_load), intent(in) :: load
+        real(wp), intent(in) :: t_new
+        type(lubrication_flow), intent(inout) :: flow
+        real(wp), intent(in) :: ds_before(:)
+        type(contact_step), intent(out) :: solution
+        integer, intent(out) :: iterations
+        real(wp), intent(out) :: unbalanced
+        !> The step converged (the flow moved on to t_new)
+        logical, intent(out) :: converged
+        type(error_type), allocatable, intent(out) :: error
+        type(fault_law) :: law_before
+        type(error_type), allocatable :: ill_conditioned
+        real(wp), dimension(flow%network%cells) :: p, trial, residual, value, opening
+        real(wp) :: dp(flow%network%cells, 1), injected
+        real(wp), allocatable :: jacobian(:, :), response(:, :)
+        integer, allocatable :: pivots(:)
+        logical :: held(flow%network%cells)
+        real(wp) :: norm, trial_norm, factor, stress_scale, rounding
+        real(wp), dimension(flow%network%cells) :: trial_residual, first_step
+        real(wp) :: first_factor
+        type(contact_step) :: trial_solution
+        logical, dimension(flow%network%cells) :: guess, trial_open
+        integer :: halving, attempt
+        logical :: stalled
+
+        law_before = run%law_in_force()
+        associate (e => flow%network%element)
+            stress_scale = max(maxval(abs(load%normal(e))), maxval(abs(load%shear(e))), &
+                               maxval(abs(load%pressure(e))), tiny(1.0_wp))
+        end associate
+        call held_pressure(flow, t_new, held, value)
+        p = merge(value, flow%p, held)
+        converged = .false.
+        call evaluate(p, solution, residual, norm)
+        if (allocated(error)) return
+        stalled = .false.
+        allocate (jacobian(size(p), size(p)), pivots(size(p)))
+        do iterations = 0, max_iterations
+            unbalanced = norm / volume_scale()
+            if (unbalanced <= balance_tolerance) exit
+            ! No step lowers the balance any more, and what is left is rounding.
+            if (stalled .and. norm <= rounding_cells * rounding) exit
+            if (iterations == max_iterations) return
+            ! The open cells of the linearization: the iterate's, then, while a step does
+            ! not lower the balance, those of the step's end (an active set that settles).
+            guess = solution%state(flow%network%element) == state_open
+            opening = -solution%dn(flow%network%element)
+            do attempt = 1, max_guesses
+                call newton_step(guess)
+                if (allocated(error)) return
+                ! The iterate's own step: the one to halve when no guess lowers the balance.
+                if (attempt == 1) then
+                    first_step = dp(:, 1)
+                    first_factor = factor
+                end if
+                call evaluate(trial, trial_solution, trial_residual, trial_norm)
+                if (allocated(error)) return
+                if (trial_norm < norm) exit
+                trial_open = trial_solution%state(flow%network%element) == state_open
+                if (all(trial_open .eqv. guess)) exit
+                guess = trial_open
+            end do
+            if (.not. trial_norm < norm) then
+                factor = first_factor
+                do halving = 1, max_halvings
+                    factor = 0.5_wp * factor
+                    trial = p + factor * first_step
+                    call evaluate(trial, trial_solution, trial_residual, trial_norm)
+                    if (allocated(error)) return
+                    if (trial_norm < norm) exit
+                end do
+            end if
+            solution = trial_solution
+            residual = trial_residual
+            stalled = .not. trial_norm < norm
+            p = trial
+            norm = trial_norm
+        end do
+        call take_lubrication_step(flow, t_new, p, -solution%dn(flow%network%element))
+        converged = .true.
+
+    contains
+
+        !> The Newton step from p for the cells open in `open_cells`, into dp, factor and
+        !> trial (a trust region: no cell's pressure moves by more than the stresses at
+        !> stake; from closed cells that store little, Newton's step would overshoot by
+        !> orders).
+        subroutine newton_step(open_cells)
+            logical, intent(in) :: open_cells(:)
+
+            call opening_response(run, flow, open_cells, response, error)
+            if (allocated(error)) return
+            call balance_jacobian(flow, t_new, p, opening, open_cells, response, jacobian)
+            ! Closed cells of a small residual aperture store and pass little: an ill-
+            ! conditioned Jacobian still gives the step (the balance judges it).
+            call lu_factor(jacobian, pivots, 'the coupled flow''s Jacobian', error, &
+                           ill_conditioned=ill_conditioned)
+            if (allocated(error)) return
+            dp(:, 1) = -residual
+            call lu_solve(jacobian, pivots, dp)
+            factor = min(1.0_wp, max(stress_scale, maxval(abs(p))) / maxval(abs(dp)))
+            trial = p + factor * dp(:, 1)
+        end subroutine newton_step
+
+        !> The contact solution for pressure q from the step's starting memory, the cells'
+        !> balance and the volume it leaves (held cells apart).
+        subroutine evaluate(q, solved, balance, volume)
+            real(wp), intent(in) :: q(:)
+            type(contact_step), intent(out) :: solved
+            real(wp), intent(out) :: balance(:), volume
+            type(elastic_load) :: loaded
+            real(wp) :: leak(size(q))
+
+            loaded = load
+            associate (e => flow%network%element)
+                loaded%pressure(e) = loaded%pressure(e) + q
+            end associate
+            call run%hold(ds_before, law_before)
+            call run%step(loaded, solved, error)
+            if (allocated(error)) then
+                error%message = 'coupled flow, time '//rtoa(t_new)//': '//error%message
+                return
+            end if
+            call cell_balance(flow, t_new, q, -solved%dn(flow%network%element), balance, leak, &
+                              injected, rounding)
+            volume = sum(abs(balance), mask=.not. held)
+        end subroutine evaluate
+
+        !> What the step must balance: the volume injected by its end, at least 1e-3 of the
+        !> fluid stored at the start (rounding in the storage of a network at rest).
+        real(wp) function volume_scale()
+            volume_scale = max(sum(abs(flow%sources%volume)) + abs(injected), &
+                               1.0e-3_wp * flow%stored_initial)
+        end function volume_scale
+    end subroutine solve_step
+
+    !> d opening / d p of the open cells: the normal-normal block of the inverse of their
+    !> block of the contact stiffness A ([s; n] over the contact elements); zero for the
+    !> other cells.
+    subroutine opening_response(run, flow, open_cells, response, error)
+        type(contact_run), intent(in) :: run
+        type(lubrication_flow), intent(in) :: flow
+        !> Whether each cell is open, shape (cells)
+        logical, intent(in) :: open_cells(:)
+        real(wp), allocatable, intent(out) :: response(:, :)
+        type(error_type), allocatable, intent(out) :: error
+        integer, allocatable :: contact_of(:), opened(:), rows(:), pivots(:)
+        real(wp), allocatable :: block(:, :), columns(:, :)
+        integer :: nc, m, i
+
+        allocate (response(flow%network%cells, flow%network%cells), source=0.0_wp)
+        associate (op => run%operator, e => flow%network%element)
+            if (.not. associated(op%matrix)) then
+                call set_error(error, exit_solver_failure, 'coupled flow needs the dense '// &
+                               'contact stiffness')
+                return
+            end if
+            nc = op%nc
+            allocate (contact_of(size(flow%network%cell)), source=0)
+            contact_of(op%contact) = [(i, i = 1, nc)]
+            opened = pack([(i, i = 1, flow%network%cells)], open_cells)
+            m = size(opened)
+            if (m == 0) return
+            rows = [contact_of(e(opened)), nc + contact_of(e(opened))]
+            block = op%matrix(rows, rows)
+            allocate (columns(2 * m, m), source=0.0_wp)
+            allocate (pivots(2 * m))
+            do i = 1, m
+                columns(m + i, i) = 1.0_wp
+            end do
+            call lu_factor(block, pivots, 'the open cells'' contact stiffness', error)
+            if (allocated(error)) return
+            call lu_solve(block, pivots, columns)
+            response(opened, opened) = columns(m + 1:, :)
+        end associate
+    end subroutine opening_response
+
+end module ddc_history_coupled_flow
