@@ -217,7 +217,8 @@ contains
         do i = 1, size(opening)
             if (.not. opening(i) > 0.0_wp) cycle
             t0 = min(flow%wet_since(i), flow%time)
-            leak(i) = 4.0_wp * flow%fluid%leak_off_coefficient * flow%network%half_length(i) &
+            ! 2 C_L / sqrt(t - t0) over the cell's length 2 h, integrated over the step.
+            leak(i) = 8.0_wp * flow%fluid%leak_off_coefficient * flow%network%half_length(i) &
                 * (sqrt(t_new - t0) - sqrt(flow%time - t0))
         end do
     end function leaked_in_step

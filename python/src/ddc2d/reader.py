@@ -81,6 +81,11 @@ HISTORY_GROWTH_DATASETS = ("element_count", "grown_length", "tip_fracture_id", "
 #: length, front positions and moment per fracture), read when present.
 HISTORY_FLOW_DATASETS = ("time", "pressure", "injected_volume", "slipping_length",
                          "front_begin", "front_end", "moment")
+#: /history datasets of flow coupled to the opening (&fluid; docs/fluid-driven-fractures.md
+#: #output): aperture and flux per element; stored and leaked volume, fluid efficiency,
+#: iterations and unbalanced volume of the coupled solve per step; read when present.
+HISTORY_COUPLED_DATASETS = ("aperture", "flux", "stored_volume", "leaked_volume",
+                            "fluid_efficiency", "flow_iterations", "flow_residual")
 #: /injection datasets (docs/output-reference.md), one value per fluid source: overpressure
 #: NaN for a rate source, rate NaN for a pressure source, start and stop NaN where not given.
 INJECTION_DATASETS = ("fracture_id", "x", "y", "overpressure", "rate", "start", "stop")
@@ -454,8 +459,10 @@ def read_history(path: FilePath, handle: h5py.Group, count: int) -> dict[str, An
     ``tip_fracture_id``, ``tip_end`` (tips,), and element rows NaN (state -1) before an
     element was made; with a time axis ``time`` (steps,) and with fluid sources
     ``pressure`` (steps, elements), ``injected_volume`` (steps,), ``slipping_length``,
-    ``front_begin``, ``front_end``, ``moment`` (steps, fractures)), or None when the file
-    has no loading history."""
+    ``front_begin``, ``front_end``, ``moment`` (steps, fractures); with coupled flow
+    ``aperture``, ``flux`` (steps, elements), ``stored_volume``, ``leaked_volume``,
+    ``fluid_efficiency``, ``flow_iterations``, ``flow_residual`` (steps,)), or None when the
+    file has no loading history."""
     if "history" not in handle:
         return None
     group = handle["history"]
@@ -463,7 +470,8 @@ def read_history(path: FilePath, handle: h5py.Group, count: int) -> dict[str, An
         "loads": {k: np.asarray(group[k][()]) for k in HISTORY_LOADS if k in group}}
     for key in HISTORY_DATASETS:
         history[key] = np.asarray(group[key][()])
-    for key in HISTORY_STEP_DATASETS + HISTORY_GROWTH_DATASETS + HISTORY_FLOW_DATASETS:
+    for key in (HISTORY_STEP_DATASETS + HISTORY_GROWTH_DATASETS + HISTORY_FLOW_DATASETS
+                + HISTORY_COUPLED_DATASETS):
         if key in group:
             history[key] = np.asarray(group[key][()])
     for key in HISTORY_STRING_DATASETS:

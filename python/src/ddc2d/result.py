@@ -30,7 +30,8 @@ HISTORY_TIP_DATASETS = ("k1", "k2", "grown_length")
 #: docs/injection.md#output).
 HISTORY_FRACTURE_DATASETS = ("slipping_length", "front_begin", "front_end", "moment")
 #: Datasets of /history with one value per step besides the loads and the time.
-HISTORY_STEP_VARIABLES = ("injected_volume",)
+HISTORY_STEP_VARIABLES = ("injected_volume", "stored_volume", "leaked_volume",
+                          "fluid_efficiency", "flow_iterations", "flow_residual")
 #: The name of the loading history in ``Result.to_xarray``.
 HISTORY = "history"
 
@@ -145,7 +146,9 @@ class Result:
         (``.swap_dims(step="time")`` puts the steps on it); with fluid sources ``pressure``
         is on (step, element), ``injected_volume`` on step, and slipping_length,
         front_begin, front_end and moment on (step, fracture), the fractures numbered from 1
-        with their names as the coordinate ``fracture_name``. Every variable carries its
+        with their names as the coordinate ``fracture_name``; with coupled flow (&fluid)
+        ``aperture`` and ``flux`` on (step, element), the volumes, ``fluid_efficiency``,
+        ``flow_iterations`` and ``flow_residual`` on step. Every variable carries its
         ``units`` attribute."""
         if name is None:
             names = list(self.fields) + ([HISTORY] if self.history is not None else [])
@@ -200,7 +203,8 @@ class Result:
             coords["fracture"] = ("fracture", np.arange(1, len(self.fractures) + 1))
             coords["fracture_name"] = ("fracture", [f["name"] for f in self.fractures])
         variables: dict[str, Any] = {}
-        for dims, keys in ((("step", "element"), HISTORY_ELEMENT_DATASETS + ("pressure",)),
+        for dims, keys in ((("step", "element"),
+                            HISTORY_ELEMENT_DATASETS + ("pressure", "aperture", "flux")),
                            (("step", "tip"), HISTORY_TIP_DATASETS),
                            (("step", "fracture"), HISTORY_FRACTURE_DATASETS),
                            (("step",), HISTORY_STEP_VARIABLES)):
