@@ -19,7 +19,7 @@ module ddc_flow_diffusion
     use ddc_error, only: error_type, set_error, exit_solver_failure
     use ddc_text, only: itoa, rtoa
     use ddc_model_types, only: source_overpressure
-    use ddc_flow_network, only: flow_network
+    use ddc_flow_network, only: flow_network, net_outflow
     implicit none
     private
 
@@ -163,7 +163,7 @@ contains
                 end if
             end associate
         end do
-        ap = laplacian(network, state%p)
+        ap = net_outflow(network, state%p)
         rhs = network%storage / dt * state%p - (1.0_wp - theta) * ap + &
             (1.0_wp - theta) * rate_old + theta * rate_new
         p_new = state%p
@@ -174,7 +174,8 @@ contains
             return
         end if
         ! Volumes: a rate source's exactly, a pressure source's the flux that held its cells.
-        flux = network%storage / dt * (p_new - state%p) + theta * laplacian(network, p_new) + &
+        flux = network%storage / dt * (p_new - state%p) + &
+            theta * net_outflow(network, p_new) + &
             (1.0_wp - theta) * ap
         do k = 1, size(state%sources)
             associate (s => state%sources(k))
@@ -221,23 +222,6 @@ contains
             end associate
         end do
     end subroutine rates
-
-    !> A p: the net flux out of each cell [length^2 / time unit].
-    pure function laplacian(network, p) result(ap)
-        type(flow_network), intent(in) :: network
-        real(wp), intent(in) :: p(:)
-        real(wp) :: ap(size(p)), f
-        integer :: c
-
-        ap = 0.0_wp
-        do c = 1, size(network%conductance)
-            associate (a => network%pair(1, c), b => network%pair(2, c))
-                f = network%conductance(c) * (p(a) - p(b))
-                ap(a) = ap(a) + f
-                ap(b) = ap(b) - f
-            end associate
-        end do
-    end function laplacian
 
     !> Solve (M / dt + theta A) p = rhs for the free cells, the held ones at their value in
     !> p (on entry the start of the iteration), by preconditioned conjugate gradients.
@@ -286,7 +270,7 @@ contains
             real(wp), intent(in) :: x(:)
             real(wp) :: y(size(x))
 
-            y = network%storage / dt * x + theta * laplacian(network, x)
+            y = network%storage / dt * x + theta * net_outflow(network, x)
         end function operator_of
     end subroutine solve_free
 

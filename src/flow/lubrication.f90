@@ -21,7 +21,7 @@ module ddc_flow_lubrication
     use ddc_kinds, only: wp
     use ddc_model_types, only: element_set, injection_source, fluid_options, &
         source_overpressure
-    use ddc_flow_network, only: flow_network, build_network
+    use ddc_flow_network, only: flow_network, build_network, net_outflow
     use ddc_flow_diffusion, only: flow_source
     use ddc_flow_sources, only: network_sources
     implicit none
@@ -240,23 +240,6 @@ contains
             end associate
         end do
     end function rate_volume
-
-    !> sum_j c_ij (p_i - p_j): the net flux out of each cell [length^2 / time unit].
-    pure function net_outflow(network, p) result(out)
-        type(flow_network), intent(in) :: network
-        real(wp), intent(in) :: p(:)
-        real(wp) :: out(size(p)), f
-        integer :: c
-
-        out = 0.0_wp
-        do c = 1, size(network%conductance)
-            associate (a => network%pair(1, c), b => network%pair(2, c))
-                f = network%conductance(c) * (p(a) - p(b))
-                out(a) = out(a) + f
-                out(b) = out(b) - f
-            end associate
-        end do
-    end function net_outflow
 
     !> The Jacobian of cell_balance in the pressure, for the response of the open cells'
     !> openings to the pressure (d opening_i / d p_j; zero rows for closed cells): storage,

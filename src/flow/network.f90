@@ -17,7 +17,7 @@ module ddc_flow_network
     implicit none
     private
 
-    public :: flow_network, build_network, set_conductance
+    public :: flow_network, build_network, set_conductance, net_outflow
 
     !> The cells, their storage and their connections.
     type :: flow_network
@@ -183,5 +183,22 @@ contains
             end associate
         end do
     end subroutine set_conductance
+
+    !> sum_j c_ij (p_i - p_j), A p: the net flux out of each cell [length^2 / time unit].
+    pure function net_outflow(network, p) result(out)
+        type(flow_network), intent(in) :: network
+        real(wp), intent(in) :: p(:)
+        real(wp) :: out(size(p)), f
+        integer :: c
+
+        out = 0.0_wp
+        do c = 1, size(network%conductance)
+            associate (a => network%pair(1, c), b => network%pair(2, c))
+                f = network%conductance(c) * (p(a) - p(b))
+                out(a) = out(a) + f
+                out(b) = out(b) - f
+            end associate
+        end do
+    end function net_outflow
 
 end module ddc_flow_network

@@ -2,13 +2,15 @@
 !> the pressure change of the conducting cells and the contact solution of the model that
 !> it loads, found together. The lubrication balance of every cell (ddc_flow_lubrication) is
 !> a function of the pressure through the openings the contact run solves for it; Newton's
-!> method on the pressure, each iterate one contact solve from the step's starting memory
-!> (the friction memory and strengths in force of the step before), its Jacobian the
-!> balance's for the openings' response of the open cells: the inverse of their block of
-!> the contact stiffness (the other elements held), a quasi-Newton step where states
-!> change. A step that does not lower the balance is halved. The step is converged when
-!> the volume left unbalanced is below balance_tolerance of the volume injected, or within
-!> the rounding of its terms where no step lowers it any more.
+!> method on the pressure (docs/theory/fluid-driven-fractures.md#newtons-method-on-the-pressure),
+!> each iterate one contact solve from the step's starting memory (the friction memory and
+!> strengths in force of the step before), its Jacobian the balance's for the response of
+!> the open cells' openings (the inverse of their block of the contact stiffness, the other
+!> elements held). Where a step does not lower the balance, the open set of its end is tried
+!> next, then the iterate's own step is halved; a step that does not settle is taken again
+!> in sub-steps. The step is converged when the volume left unbalanced is below
+!> balance_tolerance of the volume injected, or within the rounding of its terms where no
+!> step lowers it any more.
 module ddc_history_coupled_flow
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_solver_failure

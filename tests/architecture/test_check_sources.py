@@ -385,8 +385,9 @@ def test_strength_law_off_what_holds_it_fails(tree, capsys):
          "        allocate (law%planted, source=given_or(planted, 0.0_wp))\n"
          "        allocate (law%sf_in_force, source=sf)\n")
     edit(tree / "src/input/namelist_fracture.f90",
-         "            transmissivity, a, b, dc, f0, v0, v_init, sigma0, tau0\n",
-         "            transmissivity, a, b, dc, f0, v0, v_init, sigma0, tau0, planted\n")
+         "            transmissivity, a, b, dc, f0, v0, v_init, sigma0, tau0, residual_aperture\n",
+         "            transmissivity, a, b, dc, f0, v0, v_init, sigma0, tau0, residual_aperture, "
+         "planted\n")
     edit(tree / "src/input/namelist_fracture.f90", "shear_stiffness, normal_stiffness], &",
          "shear_stiffness, normal_stiffness, planted], &")
     edit(tree / "src/input/namelist_growth.f90",
@@ -395,7 +396,7 @@ def test_strength_law_off_what_holds_it_fails(tree, capsys):
     edit(tree / "src/input/namelist_growth.f90", "new_shear_stiffness, new_normal_stiffness], ",
          "new_shear_stiffness, new_normal_stiffness, new_planted], ")
     groups = tree / "src/input/namelist_groups.f90"
-    edit(groups, "v_init:r sigma0:r tau0:r'", "v_init:r sigma0:r tau0:r planted:r'")
+    edit(groups, "'residual_aperture:r'", "'residual_aperture:r planted:r'")
     edit(groups, "'new_shear_stiffness:r new_normal_stiffness:r'",
          "'new_shear_stiffness:r new_normal_stiffness:r new_planted:r'")
     status, out = run_checks(tree, capsys)

@@ -208,13 +208,16 @@ def plot_injection(result: ResultData, steps: Sequence[int]) -> Figure:
     pressure reaches or that slips (profile_fractures) at steps (from 0), one column per
     fracture, against the distance from its first vertex; the sources as vertical lines,
     and the closed form's pressure dp erfc(|s - s0| / sqrt(4 alpha (t - t0))) dotted where
-    the front's closed form applies (closed_form_front). Returns the Figure."""
+    the front's closed form applies (closed_form_front). With coupled flow (&fluid) a third
+    row: the hydraulic aperture (/history/aperture). Returns the Figure."""
     history = result["history"]
     fractures = profile_fractures(result, list(steps))
     form, _ = closed_form_front(result)
     sources = list(zip(source_positions(result), result["injection"]["name"]))
-    fig, axes = plt.subplots(2, len(fractures), sharex="col", squeeze=False,
-                             figsize=(1.5 + 4.5 * len(fractures), 6.5),
+    coupled = "aperture" in history
+    rows = 3 if coupled else 2
+    fig, axes = plt.subplots(rows, len(fractures), sharex="col", squeeze=False,
+                             figsize=(1.5 + 4.5 * len(fractures), 3.25 * rows),
                              constrained_layout=True)
     time_unit = result["time_unit"]
     for column, index in enumerate(fractures):
@@ -223,7 +226,7 @@ def plot_injection(result: ResultData, steps: Sequence[int]) -> Figure:
         part = slice(fracture["first"] - 1, fracture["last"])
         distance = fracture_profile(result["elements"], fracture["first"],
                                     fracture["last"])["distance"]
-        ax_pressure, ax_slip = axes[:, column]
+        ax_pressure, ax_slip = axes[:2, column]
         for i, k in enumerate(steps):
             style = {"color": f"C{i % 10}", "linestyle": LINESTYLES[i % len(LINESTYLES)],
                      "linewidth": 1.0}
@@ -232,6 +235,9 @@ def plot_injection(result: ResultData, steps: Sequence[int]) -> Figure:
                              gid=f"pressure:{name}:step_{k + 1}", **style)
             ax_slip.plot(distance, -history["ds"][k, part], label=label,
                          gid=f"slip:{name}:step_{k + 1}", **style)
+            if coupled:
+                axes[2, column].plot(distance, history["aperture"][k, part], label=label,
+                                     gid=f"aperture:{name}:step_{k + 1}", **style)
             if form is not None and form["fracture"] == index:
                 ax_pressure.plot(distance, pressure_profile(result, form, distance, k),
                                  color="black", linestyle=":", linewidth=0.8,
@@ -239,14 +245,17 @@ def plot_injection(result: ResultData, steps: Sequence[int]) -> Figure:
                                  gid=f"closed_form:step_{k + 1}")
         for (where, arc), source in sources:
             if where == index:
-                for ax in (ax_pressure, ax_slip):
+                for ax in axes[:, column]:
                     ax.axvline(arc, color="0.5", linewidth=0.8, linestyle="-.",
                                label=f"source '{source}'", gid=f"source:{source}")
         ax_pressure.set_title(f"'{name}'", fontsize="medium")
         ax_pressure.set_ylabel("pressure change" + unit_label(result["stress_unit"]))
         ax_slip.set_ylabel("slip $-D_s$" + unit_label(result["length_unit"]))
-        ax_slip.set_xlabel("distance from its first vertex" + unit_label(result["length_unit"]))
-        for ax in (ax_pressure, ax_slip):
+        if coupled:
+            axes[2, column].set_ylabel("hydraulic aperture" + unit_label(result["length_unit"]))
+        axes[-1, column].set_xlabel("distance from its first vertex"
+                                    + unit_label(result["length_unit"]))
+        for ax in axes[:, column]:
             ax.axhline(0.0, color="0.7", linewidth=0.5)
             ax.grid(True, linewidth=0.3)
         ax_pressure.legend(fontsize="small", loc="best")

@@ -1,0 +1,104 @@
+"""Flow coupled to opening (docs/fluid-driven-fractures.md) against closed forms.
+
+- A 2 m crack under 1 MPa of confinement filled at 1e-4 m^2/s by a fluid of negligible
+  viscosity: the pressure is uniform and the crack's volume that of a pressurized crack,
+  2 pi (p - s) l^2 / E' (with the fluid's compression and the residual aperture's). The
+  row is the net pressure at 10 s; constant elements hold too little volume near the
+  tips, so it converges at order 1 in the elements.
+- A fault held closed (normal stress 10 MPa) with an overpressure of 1 MPa held at its
+  middle: linear diffusion of diffusivity w_res^2 / (12 eta c), the pressure
+  dp erfc(|s| / sqrt(4 alpha t)); the row is the pressure 1 m from the source at 1 s,
+  of order 1 in the time step (backward Euler).
+"""
+
+import math
+
+from ddc2d.richardson import extrapolate
+
+E, NU = 30000.0, 0.25
+E_PRIME = E / (1.0 - NU**2)
+
+
+def crack_text(elements):
+    return f"""\
+&model youngs_modulus = {E}, poissons_ratio = {NU} /
+&remote_stress sxx = -1.0, syy = -1.0 /
+&fracture name = 'crack', x = -1.0, 1.0, y = 0.0, 0.0, elements = {elements}, mu = 0.6,
+          residual_aperture = 1.0e-5 /
+&fluid viscosity = 1.0e-12, compressibility = 1.0e-4 /
+&injection name = 'well', fracture = 'crack', x = 0.0, y = 0.0, rate = 1.0e-4 /
+&load_path time = 0.0, 10.0, steps = 10 /
+&solver k_method = 'tip_element' /
+"""
+
+
+def uniform_pressure(volume):
+    """p with 2 pi (p - 1) / E' (1 + c p) + 2 w_res c p = volume (l = 1 m)."""
+    low, high = 1.0, 1.0e4
+    for _ in range(200):
+        p = 0.5 * (low + high)
+        excess = 2.0 * math.pi * (p - 1.0) / E_PRIME * (1.0 + 1.0e-4 * p) + \
+            2.0e-5 * 1.0e-4 * p - volume
+        low, high = (p, high) if excess < 0.0 else (low, p)
+    return 0.5 * (low + high)
+
+
+def test_crack_of_inviscid_fluid(solve, record, tmp_path):
+    levels = (40, 80, 160)
+    values = []
+    for n in levels:
+        model = tmp_path / f"crack{n}.nml"
+        model.write_text(crack_text(n))
+        history = solve(model, f"crack{n}").history
+        values.append(float(history["pressure"][-1].mean()) - 1.0)
+    exact = uniform_pressure(1.0e-3) - 1.0
+    order = extrapolate(values).order
+    row = record(id="fluid-crack-uniform-pressure",
+                 benchmark="2 m crack under 1 MPa filled at 1e-4 m^2/s by a fluid of "
+                 "negligible viscosity (1e-12 MPa s), 10 s",
+                 reference="pressurized crack: V = 2 pi (p - s) l^2 / E' at the fluid's "
+                 "density", quantity="net pressure p - s at 10 s [MPa]", value=values[-1],
+                 reference_value=exact, tolerance=1e-2,
+                 mesh=f"{levels[-1]} elements (levels {', '.join(map(str, levels))})",
+                 order=order)
+    assert row["passed"], row
+    assert 0.9 < order < 1.1, values
+
+
+def fault_text(steps):
+    return f"""\
+&model youngs_modulus = {E}, poissons_ratio = {NU} /
+&remote_stress syy = -10.0, sxy = 2.0 /
+&fracture name = 'fault', x = -20.0, 20.0, y = 0.0, 0.0, elements = 401, mu = 0.6,
+          residual_aperture = 1.0e-5 /
+&fluid viscosity = 1.0e-9, compressibility = 1.0e-3 /
+&injection name = 'well', fracture = 'fault', x = 0.0, y = 0.0, overpressure = 1.0 /
+&load_path time = 0.0, 1.0, steps = {steps} /
+&solver k_method = 'tip_element' /
+"""
+
+
+def test_closed_fault_diffusion(solve, record, tmp_path):
+    alpha = 1.0e-10 / (12.0e-9 * 1.0e-3)
+    levels = (10, 20, 40)
+    values = []
+    for steps in levels:
+        model = tmp_path / f"fault{steps}.nml"
+        model.write_text(fault_text(steps))
+        result = solve(model, f"fault{steps}")
+        # Element 211 has its midpoint at x = 1.0 (401 elements of 0.0998 m).
+        x = 0.5 * (result.elements["x_begin"][210] + result.elements["x_end"][210])
+        values.append(float(result.history["pressure"][-1][210]))
+    exact = math.erfc(abs(x) / math.sqrt(4.0 * alpha))
+    order = extrapolate(values).order
+    row = record(id="fluid-closed-fault-diffusion",
+                 benchmark="fault held closed (10 MPa), residual aperture 10 um, water "
+                 "(1e-9 MPa s, c = 1e-3 / MPa), 1 MPa held at its middle",
+                 reference="linear diffusion, alpha = w^2 / (12 eta c): dp erfc(|s| / "
+                 "sqrt(4 alpha t))", quantity=f"pressure at s = {x:.3f} m, t = 1 s [MPa]",
+                 value=values[-1], reference_value=exact, tolerance=5e-3,
+                 tolerance_kind="absolute",
+                 mesh=f"401 elements, {levels[-1]} time steps (levels "
+                      f"{', '.join(map(str, levels))})", order=order)
+    assert row["passed"], row
+    assert 0.85 < order < 1.15, values
