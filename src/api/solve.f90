@@ -8,6 +8,7 @@ module ddc_api_solve
     use ddc_model_restart, only: restart_state
     use ddc_run_model, only: run_model, prepare_model_body
     use ddc_history_solve, only: solve_history
+    use ddc_history_fluid_growth, only: solve_fluid_growth
     use ddc_growth_driver, only: grow_fractures, growth_progress
     use ddc_cycle_driver, only: run_cycles, cycle_writer
     implicit none
@@ -36,7 +37,9 @@ contains
 
         call prepare_model_body(model, error)
         if (allocated(error)) return
-        if (model%growth%active) then
+        if (model%growth%active .and. model%fluid%active) then
+            call solve_fluid_growth(model, results, error)
+        else if (model%growth%active) then
             call grow_fractures(model, results, error, progress, restart)
         else if (model%cycle%active) then
             if (present(restart)) then

@@ -28,7 +28,7 @@ module ddc_flow_lubrication
     private
 
     public :: lubrication_flow, start_lubrication, cell_balance, balance_jacobian, &
-        take_lubrication_step, held_pressure, along_flux, element_values
+        take_lubrication_step, held_pressure, along_flux, element_values, carry_lubrication
 
     !> The flow and its state at one time.
     type :: lubrication_flow
@@ -86,6 +86,47 @@ contains
         flow%stored = stored_volume(flow, flow%p, flow%aperture)
         flow%stored_initial = sum(flow%stored)
     end subroutine start_lubrication
+
+    !> The flow of a geometry grown from the flow's (fluid-driven growth): each element that
+    !> was there keeps its cell's pressure, aperture, storage and leak-off clock; a new
+    !> element is rock just broken, its residual aperture holding the rock's fluid at rest
+    !> (pressure change 0; counted in the fluid stored at the start). The sources keep their
+    !> times and volumes.
+    subroutine carry_lubrication(flow, elements, injections, origin, grown)
+        !> The flow on the geometry before
+        type(lubrication_flow), intent(in) :: flow
+        !> The grown elements, geometry computed
+        type(element_set), intent(in) :: elements
+        !> The sources (&injection)
+        type(injection_source), intent(in) :: injections(:)
+        !> The element before of each grown element (0: new), shape (n)
+        integer, intent(in) :: origin(:)
+        !> The flow on the grown geometry, at the flow's time
+        type(lubrication_flow), intent(out) :: grown
+        integer :: i, k, before
+
+        call start_lubrication(elements, flow%fluid, injections, flow%time, &
+                               spread(0.0_wp, 1, elements%n), grown)
+        grown%stored_initial = flow%stored_initial
+        grown%leaked = flow%leaked
+        do i = 1, grown%network%cells
+            before = origin(grown%network%element(i))
+            if (before > 0) then
+                k = flow%network%cell(before)
+                grown%p(i) = flow%p(k)
+                grown%aperture(i) = flow%aperture(k)
+                grown%stored(i) = flow%stored(k)
+                grown%wet_since(i) = flow%wet_since(k)
+            else
+                grown%stored_initial = grown%stored_initial + grown%stored(i)
+            end if
+        end do
+        call set_conductance(grown, grown%network, grown%aperture)
+        do k = 1, size(flow%sources)
+            grown%sources(k)%start = flow%sources(k)%start
+            grown%sources(k)%volume = flow%sources(k)%volume
+        end do
+    end subroutine carry_lubrication
 
     !> w_res + max(opening, 0) of each cell.
     pure function hydraulic_aperture(flow, opening) result(aperture)

@@ -9,8 +9,8 @@
 !> elements held). Where a step does not lower the balance, the open set of its end is tried
 !> next, then the iterate's own step is halved; a step that does not settle is taken again
 !> in sub-steps. The step is converged when the volume left unbalanced is below
-!> balance_tolerance of the volume injected, or within the rounding of its terms where no
-!> step lowers it any more.
+!> balance_tolerance of the volume injected, or, where no step lowers it any more, within
+!> the rounding of its terms or below stalled_tolerance of the volume injected.
 module ddc_history_coupled_flow
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_solver_failure
@@ -26,13 +26,24 @@ module ddc_history_coupled_flow
     implicit none
     private
 
-    public :: start_coupled_flow, coupled_flow_step
+    public :: start_coupled_flow, coupled_flow_step, response_cache
+
+    !> The open cells' response d opening / d p last made on a geometry, and the open set it
+    !> is for (a fixed geometry and open set give the same response: the steps of a history
+    !> and the trials of a growth step share it)
+    type :: response_cache
+        logical, allocatable :: open(:)
+        real(wp), allocatable :: response(:, :)
+    end type response_cache
 
     !> The volume a converged step leaves unbalanced (the sum of the cells' |balance|), as
     !> a fraction of the volume injected by its end; and what it may leave, as a multiple
     !> of the balances' rounding, where no Newton step lowers it any more (a fluid of low
     !> viscosity: the fluxes through the connections are large terms that cancel)
     real(wp), parameter :: balance_tolerance = 1.0e-10_wp, rounding_cells = 1.0e3_wp
+    !> What a step may leave unbalanced where no Newton step lowers it any more or the
+    !> iterations are spent, as a fraction of the volume injected
+    real(wp), parameter :: stalled_tolerance = 1.0e-8_wp
     !> Newton iterations of a step, and halvings of one iteration's step
     integer, parameter :: max_iterations = 40, max_halvings = 8
     !> Open sets tried for one Newton step; sub-steps a step may be cut into
@@ -71,7 +82,7 @@ contains
     !> settle is taken again in 2, 4, ... sub-steps (at most max_pieces): the shorter the
     !> step, the more the storage outweighs the change of the flow with the aperture.
     subroutine coupled_flow_step(run, load, t_new, flow, ds_before, solution, iterations, &
-                                 unbalanced, error)
+                                 unbalanced, error, cache)
         !> The prepared run, its memory that of the step before
         type(contact_run), intent(inout) :: run
         !> The step's load without the flow's pressure
@@ -90,6 +101,10 @@ contains
         real(wp), intent(out) :: unbalanced
         !> Set when a contact solve fails or the step does not converge
         type(error_type), allocatable, intent(out) :: error
+        !> The responses of this geometry made so far (one of its own when absent)
+        type(response_cache), intent(inout), optional, target :: cache
+        type(response_cache), target :: own_cache
+        type(response_cache), pointer :: responses
         type(lubrication_flow) :: start
         type(fault_law) :: law_start
         real(wp), allocatable :: ds(:)
@@ -97,6 +112,8 @@ contains
         integer :: pieces, j, piece_iterations
         logical :: converged
 
+        responses => own_cache
+        if (present(cache)) responses => cache
         start = flow
         law_start = run%law_in_force()
         t_start = flow%time
@@ -109,7 +126,7 @@ contains
                 t_piece = t_start + (t_new - t_start) * real(j, wp) / real(pieces, wp)
                 if (j == pieces) t_piece = t_new
                 call solve_step(run, load, t_piece, flow, ds, solution, piece_iterations, &
-                                piece_unbalanced, converged, error)
+                                piece_unbalanced, converged, responses, error)
                 if (allocated(error)) return
                 iterations = iterations + piece_iterations
                 unbalanced = max(unbalanced, piece_unbalanced)
@@ -134,7 +151,7 @@ contains
     !> One backward Euler step to t_new by Newton's method (the module's comment); not
     !> converged after max_iterations.
     subroutine solve_step(run, load, t_new, flow, ds_before, solution, iterations, &
-                          unbalanced, converged, error)
+                          unbalanced, converged, cache, error)
         type(contact_run), intent(inout) :: run
         type(elastic_load), intent(in) :: load
         real(wp), intent(in) :: t_new
@@ -145,12 +162,13 @@ contains
         real(wp), intent(out) :: unbalanced
         !> The step converged (the flow moved on to t_new)
         logical, intent(out) :: converged
+        type(response_cache), intent(inout) :: cache
         type(error_type), allocatable, intent(out) :: error
         type(fault_law) :: law_before
         type(error_type), allocatable :: ill_conditioned
         real(wp), dimension(flow%network%cells) :: p, trial, residual, value, opening
         real(wp) :: dp(flow%network%cells, 1), injected
-        real(wp), allocatable :: jacobian(:, :), response(:, :)
+        real(wp), allocatable :: jacobian(:, :)
         integer, allocatable :: pivots(:)
         logical :: held(flow%network%cells)
         real(wp) :: norm, trial_norm, factor, stress_scale, rounding
@@ -176,8 +194,11 @@ contains
         do iterations = 0, max_iterations
             unbalanced = norm / volume_scale()
             if (unbalanced <= balance_tolerance) exit
-            ! No step lowers the balance any more, and what is left is rounding.
-            if (stalled .and. norm <= rounding_cells * rounding) exit
+            ! No step lowers the balance any more (or the iterations are spent), and what is
+            ! left is rounding, or below the volume a step may leave (a fluid of low
+            ! viscosity: large flux terms cancel).
+            if ((stalled .or. iterations == max_iterations) .and. &
+                (norm <= rounding_cells * rounding .or. unbalanced <= stalled_tolerance)) exit
             if (iterations == max_iterations) return
             ! The open cells of the linearization: the iterate's, then, while a step does
             ! not lower the balance, those of the step's end (an active set that settles).
@@ -226,9 +247,13 @@ contains
         subroutine newton_step(open_cells)
             logical, intent(in) :: open_cells(:)
 
-            call opening_response(run, flow, open_cells, response, error)
-            if (allocated(error)) return
-            call balance_jacobian(flow, t_new, p, opening, open_cells, response, jacobian)
+            if (.not. known(open_cells)) then
+                call opening_response(run, flow, open_cells, cache%response, error)
+                if (allocated(error)) return
+                cache%open = open_cells
+            end if
+            call balance_jacobian(flow, t_new, p, opening, open_cells, cache%response, &
+                                  jacobian)
             ! Closed cells of a small residual aperture store and pass little: an ill-
             ! conditioned Jacobian still gives the step (the balance judges it).
             call lu_factor(jacobian, pivots, 'the coupled flow''s Jacobian', error, &
@@ -239,6 +264,16 @@ contains
             factor = min(1.0_wp, max(stress_scale, maxval(abs(p))) / maxval(abs(dp)))
             trial = p + factor * dp(:, 1)
         end subroutine newton_step
+
+        !> Whether the cache holds the response of these open cells.
+        logical function known(open_cells)
+            logical, intent(in) :: open_cells(:)
+
+            known = .false.
+            if (.not. allocated(cache%open)) return
+            if (size(cache%open) /= size(open_cells)) return
+            known = all(cache%open .eqv. open_cells)
+        end function known
 
         !> The contact solution for pressure q from the step's starting memory, the cells'
         !> balance and the volume it leaves (held cells apart).

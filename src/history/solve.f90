@@ -54,7 +54,7 @@ module ddc_history_solve
     use ddc_history_path, only: path_loads, path_times, apply_load, load_text
     use ddc_flow_injection, only: pressure_history
     use ddc_flow_lubrication, only: lubrication_flow, along_flux, element_values
-    use ddc_history_coupled_flow, only: start_coupled_flow, coupled_flow_step
+    use ddc_history_coupled_flow, only: start_coupled_flow, coupled_flow_step, response_cache
     use ddc_history_fronts, only: record_fronts, report_jumps
     use ddc_run_contact_run, only: contact_run, contact_step
     use ddc_run_model, only: finish_model, model_load
@@ -108,6 +108,7 @@ contains
         real(wp), allocatable :: loads(:, :), times(:), flow_pressure(:, :), volume(:)
         real(wp), allocatable :: ds_before(:)
         type(lubrication_flow) :: flow
+        type(response_cache) :: responses
         logical :: coupled
         real(wp) :: sigma0, scale
         integer :: n, k, nsteps, done
@@ -172,7 +173,8 @@ contains
         do k = done + 1, nsteps
             if (coupled) then
                 call coupled_flow_step(run, load_at(k), times(k), flow, ds_before, solution, &
-                                       h%flow_iterations(k), h%flow_residual(k), error)
+                                       h%flow_iterations(k), h%flow_residual(k), error, &
+                                       responses)
                 if (.not. allocated(error)) call record_flow(k)
             else
                 call run%step(load_at(k), solution, error)

@@ -9,7 +9,7 @@
 module ddc_input_namelist_injection
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type, source_overpressure, source_rate, &
-        condition_contact, symmetry_none, rigid_joint
+        condition_contact, symmetry_none, rigid_joint, growth_criterion_mts
     use ddc_model_limits, only: quantity_positive, quantity_non_negative
     use ddc_contact_options, only: matrix_hierarchical
     use ddc_text, only: rtoa, lower
@@ -255,7 +255,8 @@ contains
         end associate
         if (groups(g_injection)%count == 0) call add(messages, prefix//'coupled flow '// &
             'needs a source: &injection rate or overpressure')
-        call refuse(model%growth%active, '&growth (fluid-driven growth is not available yet)')
+        call refuse(model%growth%active .and. model%growth%criterion /= growth_criterion_mts, &
+                    "&growth criterion = 'work' (fluid-driven growth takes K_I = K_Ic)")
         call refuse(model%initiation%active, '&initiation')
         call refuse(model%cycle%active, '&cycle')
         call refuse(allocated(model%body), '&body')

@@ -1,0 +1,546 @@
+!> Fluid-driven growth (docs/theory/fluid-driven-fractures.md#fluid-driven-growth): fractures
+!> that lengthen as the fluid the sources inject fills them. Each growth step adds one element
+!> straight ahead of every growing tip (the length fixed), and the time it takes is solved
+!> for: the time at which the largest K_I of the growing tips, after a coupled step of the
+!> flow and the contact run from the state before (ddc_history_coupled_flow), reaches the
+!> toughness. The geometry grows on a run of its own (prepare), the flow carried over
+!> (carry_lubrication: a new element is rock just broken, its residual aperture at rest). The
+!> first step finds the time at which the initial fractures start to grow. The run ends after
+!> &growth steps, or when the time passes the path's last.
+module ddc_history_fluid_growth
+    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+    use ddc_kinds, only: wp
+    use ddc_constants, only: pi
+    use ddc_error, only: error_type, set_error, exit_solver_failure
+    use ddc_text, only: itoa, rtoa
+    use ddc_model_types, only: model_type, element_set, select_elements
+    use ddc_mesh_geometry, only: compute_geometry
+    use ddc_mesh_segments, only: classify_pair, pair_cross, pair_t_first_end, far_apart, &
+        crossing_fraction, point_segment_distance
+    use ddc_model_results, only: model_results, history_record, tip_set, state_not_grown
+    use ddc_model_records, only: lay_out_history
+    use ddc_model_medium, only: medium_of
+    use ddc_solve_operator, only: elastic_load
+    use ddc_contact_fault_law, only: fault_law
+    use ddc_post_tips, only: find_tips
+    use ddc_history_path, only: path_loads, path_times, apply_load
+    use ddc_run_contact_run, only: contact_run, contact_step
+    use ddc_run_model, only: finish_model, model_load
+    use ddc_flow_lubrication, only: lubrication_flow, carry_lubrication, along_flux, &
+        element_values
+    use ddc_history_coupled_flow, only: start_coupled_flow, coupled_flow_step, response_cache
+    use ddc_progress, only: report_progress
+    implicit none
+    private
+
+    public :: solve_fluid_growth
+
+    !> K_I within this fraction of the toughness ends the search for a step's time
+    real(wp), parameter :: toughness_tolerance = 1.0e-6_wp
+    !> Trials of the search for a step's time
+    integer, parameter :: max_secant = 100
+
+    !> One recorded growth step on its geometry.
+    type :: growth_column
+        real(wp) :: time = 0.0_wp
+        !> Every element's values, shape (n of the step)
+        real(wp), allocatable :: ds(:), dn(:), pressure(:), aperture(:), flux(:)
+        integer, allocatable :: state(:)
+        !> The final geometry's element of each element of the step, shape (n of the step)
+        integer, allocatable :: final(:)
+        !> K of every tip of the step's geometry; where each growing tip's front is and where
+        !> its fracture ends [length unit], shape (growing tips)
+        real(wp), allocatable :: k1(:), k2(:), front_x(:), front_y(:), end_x(:), end_y(:)
+        real(wp) :: injected = 0.0_wp, stored = 0.0_wp, leaked = 0.0_wp, unbalanced = 0.0_wp
+        integer :: iterations = 0, elements = 0
+    end type growth_column
+
+contains
+
+    !> Grow the model's fractures by the fluid of its sources.
+    subroutine solve_fluid_growth(model, results, error)
+        !> A validated model with &fluid, &growth, sources and a time axis; the final
+        !> geometry on return
+        type(model_type), intent(inout) :: model
+        !> The last step's results and the history of every step
+        type(model_results), intent(out) :: results
+        !> Set when a solve fails
+        type(error_type), allocatable, intent(out) :: error
+        type(contact_run), allocatable :: run
+        type(lubrication_flow) :: flow
+        type(contact_step) :: solution
+        type(growth_column), allocatable :: columns(:)
+        type(elastic_load) :: load
+        real(wp), allocatable :: loads(:, :), times(:), ds(:)
+        integer, allocatable :: origin(:), begin_grows(:), end_grows(:)
+        real(wp) :: t_end, dt_guess, time, t_before
+        integer :: step, k
+        logical, allocatable :: fracture_grows(:)
+
+        loads = path_loads(model%load_path)
+        times = path_times(model%load_path)
+        t_end = times(size(times))
+        model = apply_load(model, loads(:, 1))
+        call growing_ends(model, begin_grows, end_grows)
+        allocate (run)
+        call run%prepare(medium_of(model), model%solver, error)
+        if (allocated(error)) return
+        call run%take_steps()
+        load = model_load(model)
+        call start_coupled_flow(run, model, load, times(1), flow, error)
+        if (allocated(error)) return
+        allocate (ds(model%elements%n), source=0.0_wp)
+        allocate (columns(0))
+        dt_guess = (t_end - times(1)) / real(max(model%growth%steps, 1), wp)
+        t_before = times(1)
+        allocate (fracture_grows(size(model%fractures)), source=.true.)
+        if (allocated(model%growth%fracture_grows)) fracture_grows = model%growth%fracture_grows
+        do step = 0, model%growth%steps
+            if (step > 0) then
+                ! Every tip stopped on another fracture: nothing grows any more.
+                if (size(begin_grows) + size(end_grows) == 0) exit
+                call grow_ends(model, begin_grows, end_grows, origin)
+                call run%finish()
+                deallocate (run)
+                allocate (run)
+                call run%prepare(medium_of(model), model%solver, error)
+                if (allocated(error)) return
+                call run%take_steps()
+                load = model_load(model)
+                block
+                    type(lubrication_flow) :: before
+
+                    before = flow
+                    call carry_lubrication(before, model%elements, model%injections, origin, &
+                                           flow)
+                end block
+                ds = carried(ds, origin)
+                call run%hold(ds)
+                do k = 1, size(columns)
+                    columns(k)%final = position_of(columns(k)%final, origin)
+                end do
+            end if
+            call reach_toughness(run, load, flow, ds, dt_guess, model%growth%toughness, &
+                                 fracture_grows, begin_grows, end_grows, solution, columns, &
+                                 error)
+            if (allocated(error)) then
+                error%message = 'fluid-driven growth, step '//itoa(step)//': '// &
+                    error%message//'; no result is written'
+                return
+            end if
+            time = flow%time
+            dt_guess = max(time - t_before, epsilon(1.0_wp) * abs(time))
+            t_before = time
+            ds = solution%ds
+            call report_progress('growth step '//itoa(step)//': t = '//rtoa(time)//', '// &
+                                 itoa(model%elements%n)//' elements')
+            if (time > t_end) exit
+        end do
+        call finish_results()
+
+    contains
+
+        !> The last step's element results, tips and fields, and the history.
+        subroutine finish_results()
+            type(tip_set) :: tips
+            logical, allocatable :: grows(:)
+
+            results%elements%ds = solution%ds
+            results%elements%dn = solution%dn
+            results%elements%state = solution%state
+            call finish_model(model, load, results, run=run)
+            call find_tips(run%medium, solution%ds, solution%dn, tips)
+            grows = fracture_grows(tips%fracture_id)
+            call history_of(columns, model, loads(:, 1), pack(tips%fracture_id, grows), &
+                            pack(tips%side - 1, grows), results%history)
+            call run%finish()
+        end subroutine finish_results
+
+    end subroutine solve_fluid_growth
+
+    !> Find the time, after flow%time, at which the largest K_I of the growing tips reaches
+    !> the toughness; the flow and the run move on to it, and the step is recorded.
+    subroutine reach_toughness(run, load, flow, ds, dt_guess, toughness, fracture_grows, &
+                               begin_grows, end_grows, solution, columns, error)
+        type(contact_run), intent(inout) :: run
+        type(elastic_load), intent(in) :: load
+        type(lubrication_flow), intent(inout) :: flow
+        real(wp), intent(in) :: ds(:), dt_guess, toughness
+        !> Whether each fracture grows, shape (fractures); the fractures whose beginning and
+        !> whose end still grow
+        logical, intent(in) :: fracture_grows(:)
+        integer, intent(in) :: begin_grows(:), end_grows(:)
+        type(contact_step), intent(out) :: solution
+        type(growth_column), allocatable, intent(inout) :: columns(:)
+        type(error_type), allocatable, intent(out) :: error
+        type(lubrication_flow) :: start, trial
+        type(fault_law) :: law
+        real(wp) :: t0, t_lo, t_hi, f_lo, f_hi, t, f, unbalanced
+        integer :: iterations, count, side, evaluations
+        type(tip_set) :: tips
+        type(response_cache) :: cache
+
+        start = flow
+        law = run%law_in_force()
+        evaluations = 0
+        t0 = flow%time
+        ! The step's start as if K_I were 0 there: no solve without time for the fluid to
+        ! flow (a tip just linked to another fracture pulls it open before fluid can enter).
+        t_lo = t0
+        f_lo = -toughness
+        t = t0
+        ! Secant steps from the step's start and its guess; regula falsi (Illinois)
+        ! once the root is bracketed, doubling the step while it is not.
+        t_hi = t0 + dt_guess
+        f_hi = excess(t_hi)
+        if (allocated(error)) return
+        side = 0
+        do count = 1, max_secant
+            if (abs(f_hi) <= toughness_tolerance * toughness) then
+                t = t_hi
+                exit
+            end if
+            if (f_hi < 0.0_wp) then
+                ! Not bracketed yet: the secant's extrapolation, at most a doubling.
+                t = t_hi + min((t_hi - t_lo) * (-f_hi) / (f_hi - f_lo), t_hi - t0)
+                if (.not. f_hi > f_lo) t = t_hi + (t_hi - t0)
+                t_lo = t_hi
+                f_lo = f_hi
+                t_hi = t
+                f_hi = excess(t_hi)
+                if (allocated(error)) return
+                cycle
+            end if
+            t = (t_lo * f_hi - t_hi * f_lo) / (f_hi - f_lo)
+            f = excess(t)
+            if (allocated(error)) return
+            if (abs(f) <= toughness_tolerance * toughness) exit
+            if (f < 0.0_wp) then
+                t_lo = t
+                f_lo = f
+                if (side == -1) f_hi = 0.5_wp * f_hi
+                side = -1
+            else
+                t_hi = t
+                f_hi = f
+                if (side == 1) f_lo = 0.5_wp * f_lo
+                side = 1
+            end if
+        end do
+        if (count > max_secant) then
+            call set_error(error, exit_solver_failure, 'the time at which K_I reaches '// &
+                           'the toughness was not found in '//itoa(max_secant)// &
+                           ' trials')
+            return
+        end if
+        ! The trial kept is the last one solved: solve the root again when it was not.
+        if (trial%time /= t) f = excess(t)
+        if (allocated(error)) return
+        flow = trial
+        call record(t)
+
+    contains
+
+        !> max K_I of the growing tips minus the toughness after the coupled step to time.
+        real(wp) function excess(time)
+            real(wp), intent(in) :: time
+
+            trial = start
+            call run%hold(ds, law)
+            excess = -huge(1.0_wp)
+            call coupled_flow_step(run, load, time, trial, ds, solution, iterations, &
+                                   unbalanced, error, cache)
+            if (allocated(error)) return
+            evaluations = evaluations + 1
+            call find_tips(run%medium, solution%ds, solution%dn, tips)
+            excess = maxval(tips%k1, mask=growing(tips)) - toughness
+        end function excess
+
+        !> Whether each tip still grows.
+        function growing(found) result(grows)
+            type(tip_set), intent(in) :: found
+            logical :: grows(found%n)
+            integer :: j
+
+            do j = 1, found%n
+                if (found%side(j) == 1) then
+                    grows(j) = any(begin_grows == found%fracture_id(j))
+                else
+                    grows(j) = any(end_grows == found%fracture_id(j))
+                end if
+            end do
+        end function growing
+
+        subroutine record(time)
+            real(wp), intent(in) :: time
+            type(growth_column) :: column
+            integer :: n, i
+
+            n = run%medium%elements%n
+            column%time = time
+            column%ds = solution%ds
+            column%dn = solution%dn
+            column%state = solution%state
+            column%pressure = element_values(flow, flow%p, n, 0.0_wp)
+            column%aperture = element_values(flow, flow%aperture, n, 0.0_wp)
+            column%flux = element_values(flow, along_flux(flow), n, 0.0_wp)
+            column%final = [(i, i = 1, n)]
+            column%k1 = tips%k1
+            column%k2 = tips%k2
+            call locate_fronts(run, solution, tips, fracture_grows, growing(tips), toughness, &
+                               column%front_x, column%front_y)
+            column%end_x = pack(tips%x, fracture_grows(tips%fracture_id))
+            column%end_y = pack(tips%y, fracture_grows(tips%fracture_id))
+            column%injected = sum(flow%sources%volume)
+            column%stored = sum(flow%stored) - flow%stored_initial
+            column%leaked = flow%leaked
+            column%iterations = iterations
+            column%unbalanced = unbalanced
+            column%elements = n
+            columns = [columns, column]
+        end subroutine record
+    end subroutine reach_toughness
+
+    !> Where the front of each tip of a growing fracture is: the tip asymptote of the
+    !> toughness, w = sqrt(32 / pi) (K_Ic / E') sqrt(r), through the tip element's opening at
+    !> its midpoint puts the front r from the midpoint, along the element
+    !> (docs/theory/fluid-driven-fractures.md#the-fluid-driven-tip); a tip that stopped on
+    !> another fracture is its end.
+    subroutine locate_fronts(run, solution, tips, fracture_grows, growing, toughness, x, y)
+        type(contact_run), intent(in) :: run
+        type(contact_step), intent(in) :: solution
+        type(tip_set), intent(in) :: tips
+        logical, intent(in) :: fracture_grows(:), growing(:)
+        real(wp), intent(in) :: toughness
+        real(wp), allocatable, intent(out) :: x(:), y(:)
+        real(wp) :: e_prime, r, direction
+        integer :: k, i
+
+        allocate (x(0), y(0))
+        associate (m => run%medium, e => run%medium%elements)
+            e_prime = 2.0_wp * m%shear_modulus / (1.0_wp - m%poissons_ratio)
+            do k = 1, tips%n
+                if (.not. fracture_grows(tips%fracture_id(k))) cycle
+                if (.not. growing(k)) then
+                    x = [x, tips%x(k)]
+                    y = [y, tips%y(k)]
+                    cycle
+                end if
+                i = tips%element(k)
+                r = (max(-solution%dn(i), 0.0_wp) * e_prime / (sqrt(32.0_wp / pi) * &
+                                                                toughness))**2
+                ! From the midpoint toward the tip's end (side 2: the element's direction).
+                direction = merge(1.0_wp, -1.0_wp, tips%side(k) == 2)
+                x = [x, e%x_mid(i) + direction * r * e%cos_beta(i)]
+                y = [y, e%y_mid(i) + direction * r * e%sin_beta(i)]
+            end do
+        end associate
+    end subroutine locate_fronts
+
+    !> The fractures whose ends grow: their first element grows at its beginning, their last
+    !> at its end (fractures &growth names; all without the list).
+    subroutine growing_ends(model, begin_grows, end_grows)
+        type(model_type), intent(in) :: model
+        integer, allocatable, intent(out) :: begin_grows(:), end_grows(:)
+        integer :: k
+        logical :: grows(size(model%fractures))
+
+        grows = .true.
+        if (allocated(model%growth%fracture_grows)) grows = model%growth%fracture_grows
+        begin_grows = pack([(k, k = 1, size(model%fractures))], grows)
+        end_grows = begin_grows
+    end subroutine growing_ends
+
+    !> One element straight ahead of each growing end, of the tip element's length; origin
+    !> is the element before of each element (0: new). A new element that would cross
+    !> another fracture ends on it, and that end grows no more: the fluid enters the other
+    !> fracture there where it conducts (an end on an element's interior connects them).
+    subroutine grow_ends(model, begin_grows, end_grows, origin)
+        type(model_type), intent(inout) :: model
+        integer, allocatable, intent(inout) :: begin_grows(:), end_grows(:)
+        integer, allocatable, intent(out) :: origin(:)
+        type(element_set) :: grown
+        integer, allocatable :: pick(:)
+        integer :: k, first, last, i, m
+        real(wp) :: dx, dy
+        logical :: stopped
+
+        allocate (pick(0), origin(0))
+        do k = 1, size(model%fractures)
+            first = model%fractures(k)%first_element
+            last = model%fractures(k)%last_element
+            if (any(begin_grows == k)) then
+                pick = [pick, first]
+                origin = [origin, 0]
+            end if
+            pick = [pick, [(i, i = first, last)]]
+            origin = [origin, [(i, i = first, last)]]
+            if (any(end_grows == k)) then
+                pick = [pick, last]
+                origin = [origin, 0]
+            end if
+        end do
+        call select_elements(model%elements, pick, grown)
+        m = 0
+        do k = 1, size(model%fractures)
+            first = model%fractures(k)%first_element
+            last = model%fractures(k)%last_element
+            model%fractures(k)%first_element = m + 1
+            if (any(begin_grows == k)) then
+                m = m + 1
+                dx = model%elements%x_end(first) - model%elements%x_begin(first)
+                dy = model%elements%y_end(first) - model%elements%y_begin(first)
+                grown%x_end(m) = model%elements%x_begin(first)
+                grown%y_end(m) = model%elements%y_begin(first)
+                grown%x_begin(m) = grown%x_end(m) - dx
+                grown%y_begin(m) = grown%y_end(m) - dy
+                call stop_at_fractures(model, k, grown%x_end(m), grown%y_end(m), &
+                                       grown%x_begin(m), grown%y_begin(m), stopped)
+                if (stopped) begin_grows = pack(begin_grows, begin_grows /= k)
+            end if
+            m = m + last - first + 1
+            if (any(end_grows == k)) then
+                m = m + 1
+                dx = model%elements%x_end(last) - model%elements%x_begin(last)
+                dy = model%elements%y_end(last) - model%elements%y_begin(last)
+                grown%x_begin(m) = model%elements%x_end(last)
+                grown%y_begin(m) = model%elements%y_end(last)
+                grown%x_end(m) = grown%x_begin(m) + dx
+                grown%y_end(m) = grown%y_begin(m) + dy
+                call stop_at_fractures(model, k, grown%x_begin(m), grown%y_begin(m), &
+                                       grown%x_end(m), grown%y_end(m), stopped)
+                if (stopped) end_grows = pack(end_grows, end_grows /= k)
+            end if
+            model%fractures(k)%last_element = m
+        end do
+        call compute_geometry(grown)
+        model%elements = grown
+    end subroutine grow_ends
+
+    !> A new element from (x0, y0) to (x1, y1) of fracture k that would cross or reach an
+    !> element of another fracture ends on the first it meets instead.
+    pure subroutine stop_at_fractures(model, k, x0, y0, x1, y1, stopped)
+        type(model_type), intent(in) :: model
+        integer, intent(in) :: k
+        real(wp), intent(in) :: x0, y0
+        real(wp), intent(inout) :: x1, y1
+        logical, intent(out) :: stopped
+        real(wp) :: nearest, fraction, tolerance
+        integer :: j, kind
+
+        nearest = 1.0_wp
+        tolerance = 1.0e-8_wp * hypot(x1 - x0, y1 - y0)
+        associate (e => model%elements)
+            do j = 1, e%n
+                if (e%fracture_id(j) == k) cycle
+                if (far_apart(x0, y0, x1, y1, e%x_begin(j), e%y_begin(j), e%x_end(j), &
+                              e%y_end(j), tolerance)) cycle
+                kind = classify_pair(x0, y0, x1, y1, e%x_begin(j), e%y_begin(j), e%x_end(j), &
+                                     e%y_end(j), tolerance)
+                if (kind /= pair_cross .and. kind /= pair_t_first_end) cycle
+                fraction = crossing_fraction(x0, y0, x1, y1, e%x_begin(j), e%y_begin(j), &
+                                             e%x_end(j), e%y_end(j))
+                nearest = min(nearest, fraction)
+            end do
+        end associate
+        stopped = nearest < 1.0_wp .or. any_end_on_other()
+        x1 = x0 + nearest * (x1 - x0)
+        y1 = y0 + nearest * (y1 - y0)
+
+    contains
+
+        !> The new element's far end lies on another fracture (pair_t_first_end at 1).
+        pure logical function any_end_on_other()
+            integer :: i
+
+            any_end_on_other = .false.
+            associate (e => model%elements)
+                do i = 1, e%n
+                    if (e%fracture_id(i) == k) cycle
+                    if (point_segment_distance(x1, y1, e%x_begin(i), e%y_begin(i), &
+                                               e%x_end(i), e%y_end(i)) <= tolerance) then
+                        any_end_on_other = .true.
+                    end if
+                end do
+            end associate
+        end function any_end_on_other
+    end subroutine stop_at_fractures
+
+    !> Values of the elements before on the grown geometry (0 on new elements).
+    pure function carried(values, origin) result(grown)
+        real(wp), intent(in) :: values(:)
+        integer, intent(in) :: origin(:)
+        real(wp) :: grown(size(origin))
+
+        grown = 0.0_wp
+        where (origin > 0) grown = values(max(origin, 1))
+    end function carried
+
+    !> Where each element before went (its index on the grown geometry).
+    pure function position_of(before, origin) result(after)
+        integer, intent(in) :: before(:), origin(:)
+        integer :: after(size(before)), where_now(maxval(origin)), i
+
+        where_now = 0
+        do i = 1, size(origin)
+            if (origin(i) > 0) where_now(origin(i)) = i
+        end do
+        after = where_now(before)
+    end function position_of
+
+    !> /history of the steps on the final geometry's rows (NaN and state_not_grown before an
+    !> element was made), K of the growing tips.
+    subroutine history_of(columns, model, load, growing_fracture, growing_end, h)
+        type(growth_column), intent(in) :: columns(:)
+        type(model_type), intent(in) :: model
+        !> The load of the path's first vertex (the growth's)
+        real(wp), intent(in) :: load(:)
+        !> The fracture and end (0 begin, 1 end) of each growing tip, shape (growing tips)
+        integer, intent(in) :: growing_fracture(:), growing_end(:)
+        type(history_record), intent(out) :: h
+        integer :: n, steps, k, stat, tips
+        real(wp) :: nan
+
+        nan = ieee_value(1.0_wp, ieee_quiet_nan)
+        n = model%elements%n
+        steps = size(columns)
+        call lay_out_history(h, n, size(columns(steps)%k1), steps, 0, stat, growth=.true., &
+                             time=.true., fractures=size(model%fractures), coupled=.true.)
+        tips = size(columns(1)%front_x)
+        allocate (h%grown_length(tips, steps))
+        h%tip_fracture_id = growing_fracture
+        h%tip_end = growing_end
+        h%ds = nan
+        h%dn = nan
+        h%state = state_not_grown
+        h%pressure = nan
+        h%aperture = nan
+        h%flux = nan
+        do k = 1, steps
+            associate (c => columns(k), f => columns(k)%final)
+                h%time(k) = c%time
+                h%load(:, k) = load
+                h%ds(f, k) = c%ds
+                h%dn(f, k) = c%dn
+                h%state(f, k) = c%state
+                h%pressure(f, k) = c%pressure
+                h%aperture(f, k) = c%aperture
+                h%flux(f, k) = c%flux
+                h%k1(:, k) = c%k1
+                h%k2(:, k) = c%k2
+                h%injected_volume(k) = c%injected
+                h%stored_volume(k) = c%stored
+                h%leaked_volume(k) = c%leaked
+                h%fluid_efficiency(k) = 0.0_wp
+                if (c%injected /= 0.0_wp) h%fluid_efficiency(k) = c%stored / c%injected
+                h%flow_iterations(k) = c%iterations
+                h%flow_residual(k) = c%unbalanced
+                h%element_count(k) = c%elements
+                ! From the fracture's end as given to the front, straight ahead.
+                h%grown_length(:, k) = hypot(c%front_x - columns(1)%end_x, &
+                                             c%front_y - columns(1)%end_y)
+            end associate
+        end do
+    end subroutine history_of
+
+end module ddc_history_fluid_growth
