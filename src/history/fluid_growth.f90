@@ -19,11 +19,11 @@ module ddc_history_fluid_growth
         crossing_fraction, point_segment_distance
     use ddc_model_results, only: model_results, history_record, tip_set, state_not_grown
     use ddc_model_records, only: lay_out_history
-    use ddc_model_medium, only: medium_of
+    use ddc_model_medium, only: medium_of, elastic_medium
     use ddc_solve_operator, only: elastic_load
     use ddc_contact_fault_law, only: fault_law
     use ddc_post_tips, only: find_tips
-    use ddc_history_path, only: path_loads, path_times, apply_load
+    use ddc_history_path, only: path_loads, apply_load
     use ddc_run_contact_run, only: contact_run, contact_step
     use ddc_run_model, only: finish_model, model_load
     use ddc_flow_lubrication, only: lubrication_flow, carry_lubrication, along_flux, &
@@ -48,9 +48,12 @@ module ddc_history_fluid_growth
         integer, allocatable :: state(:)
         !> The final geometry's element of each element of the step, shape (n of the step)
         integer, allocatable :: final(:)
-        !> K of every tip of the step's geometry; where each growing tip's front is and where
-        !> its fracture ends [length unit], shape (growing tips)
-        real(wp), allocatable :: k1(:), k2(:), front_x(:), front_y(:), end_x(:), end_y(:)
+        !> K of every tip of the step's geometry, its fracture and side (1 begin, 2 end)
+        real(wp), allocatable :: k1(:), k2(:)
+        integer, allocatable :: tip_fracture(:), tip_side(:)
+        !> Where the front of each end of a growing fracture is, and where the end is
+        !> [length unit], shape (growing ends: begin and end of each growing fracture)
+        real(wp), allocatable :: front_x(:), front_y(:), end_x(:), end_y(:)
         real(wp) :: injected = 0.0_wp, stored = 0.0_wp, leaked = 0.0_wp, unbalanced = 0.0_wp
         integer :: iterations = 0, elements = 0
     end type growth_column
@@ -71,15 +74,17 @@ contains
         type(contact_step) :: solution
         type(growth_column), allocatable :: columns(:)
         type(elastic_load) :: load
-        real(wp), allocatable :: loads(:, :), times(:), ds(:)
+        real(wp), allocatable :: loads(:, :), ds(:)
         integer, allocatable :: origin(:), begin_grows(:), end_grows(:)
-        real(wp) :: t_end, dt_guess, time, t_before
+        real(wp) :: t_start, t_end, dt_guess, time, t_before
         integer :: step, k
         logical, allocatable :: fracture_grows(:)
 
         loads = path_loads(model%load_path)
-        times = path_times(model%load_path)
-        t_end = times(size(times))
+        associate (vertex_times => model%load_path%time)
+            t_start = vertex_times(1)
+            t_end = vertex_times(size(vertex_times))
+        end associate
         model = apply_load(model, loads(:, 1))
         call growing_ends(model, begin_grows, end_grows)
         allocate (run)
@@ -87,12 +92,12 @@ contains
         if (allocated(error)) return
         call run%take_steps()
         load = model_load(model)
-        call start_coupled_flow(run, model, load, times(1), flow, error)
+        call start_coupled_flow(run, model, load, t_start, flow, error)
         if (allocated(error)) return
         allocate (ds(model%elements%n), source=0.0_wp)
         allocate (columns(0))
-        dt_guess = (t_end - times(1)) / real(max(model%growth%steps, 1), wp)
-        t_before = times(1)
+        dt_guess = (t_end - t_start) / real(max(model%growth%steps, 1), wp)
+        t_before = t_start
         allocate (fracture_grows(size(model%fractures)), source=.true.)
         if (allocated(model%growth%fracture_grows)) fracture_grows = model%growth%fracture_grows
         do step = 0, model%growth%steps
@@ -142,17 +147,16 @@ contains
 
         !> The last step's element results, tips and fields, and the history.
         subroutine finish_results()
-            type(tip_set) :: tips
-            logical, allocatable :: grows(:)
+            integer, allocatable :: grown(:)
 
             results%elements%ds = solution%ds
             results%elements%dn = solution%dn
             results%elements%state = solution%state
             call finish_model(model, load, results, run=run)
-            call find_tips(run%medium, solution%ds, solution%dn, tips)
-            grows = fracture_grows(tips%fracture_id)
-            call history_of(columns, model, loads(:, 1), pack(tips%fracture_id, grows), &
-                            pack(tips%side - 1, grows), results%history)
+            grown = pack([(k, k = 1, size(fracture_grows))], fracture_grows)
+            call history_of(columns, model, loads(:, 1), results%tips, &
+                            [(grown(k / 2 + 1), k = 0, 2 * size(grown) - 1)], &
+                            [(modulo(k, 2), k = 0, 2 * size(grown) - 1)], results%history)
             call run%finish()
         end subroutine finish_results
 
@@ -287,10 +291,10 @@ contains
             column%final = [(i, i = 1, n)]
             column%k1 = tips%k1
             column%k2 = tips%k2
-            call locate_fronts(run, solution, tips, fracture_grows, growing(tips), toughness, &
-                               column%front_x, column%front_y)
-            column%end_x = pack(tips%x, fracture_grows(tips%fracture_id))
-            column%end_y = pack(tips%y, fracture_grows(tips%fracture_id))
+            column%tip_fracture = tips%fracture_id
+            column%tip_side = tips%side
+            call locate_fronts(run%medium, solution%dn, fracture_grows, begin_grows, end_grows, &
+                               toughness, column)
             column%injected = sum(flow%sources%volume)
             column%stored = sum(flow%stored) - flow%stored_initial
             column%leaked = flow%leaked
@@ -301,40 +305,71 @@ contains
         end subroutine record
     end subroutine reach_toughness
 
-    !> Where the front of each tip of a growing fracture is: the tip asymptote of the
+    !> Where the front of each end of a growing fracture is: the tip asymptote of the
     !> toughness, w = sqrt(32 / pi) (K_Ic / E') sqrt(r), through the tip element's opening at
     !> its midpoint puts the front r from the midpoint, along the element
-    !> (docs/theory/fluid-driven-fractures.md#the-fluid-driven-tip); a tip that stopped on
-    !> another fracture is its end.
-    subroutine locate_fronts(run, solution, tips, fracture_grows, growing, toughness, x, y)
-        type(contact_run), intent(in) :: run
-        type(contact_step), intent(in) :: solution
-        type(tip_set), intent(in) :: tips
-        logical, intent(in) :: fracture_grows(:), growing(:)
+    !> (docs/theory/fluid-driven-fractures.md#the-fluid-driven-tip); an end that stopped on
+    !> another fracture is its own front.
+    pure subroutine locate_fronts(medium, dn, fracture_grows, begin_grows, end_grows, &
+                                  toughness, column)
+        type(elastic_medium), intent(in) :: medium
+        !> Normal DD of every element [length unit]
+        real(wp), intent(in) :: dn(:)
+        logical, intent(in) :: fracture_grows(:)
+        integer, intent(in) :: begin_grows(:), end_grows(:)
         real(wp), intent(in) :: toughness
-        real(wp), allocatable, intent(out) :: x(:), y(:)
-        real(wp) :: e_prime, r, direction
-        integer :: k, i
+        !> Its front_x, front_y, end_x, end_y are set
+        type(growth_column), intent(inout) :: column
+        real(wp) :: e_prime, r, direction, x, y
+        integer :: k, side, i
 
-        allocate (x(0), y(0))
-        associate (m => run%medium, e => run%medium%elements)
-            e_prime = 2.0_wp * m%shear_modulus / (1.0_wp - m%poissons_ratio)
-            do k = 1, tips%n
-                if (.not. fracture_grows(tips%fracture_id(k))) cycle
-                if (.not. growing(k)) then
-                    x = [x, tips%x(k)]
-                    y = [y, tips%y(k)]
-                    cycle
-                end if
-                i = tips%element(k)
-                r = (max(-solution%dn(i), 0.0_wp) * e_prime / (sqrt(32.0_wp / pi) * &
-                                                                toughness))**2
-                ! From the midpoint toward the tip's end (side 2: the element's direction).
-                direction = merge(1.0_wp, -1.0_wp, tips%side(k) == 2)
-                x = [x, e%x_mid(i) + direction * r * e%cos_beta(i)]
-                y = [y, e%y_mid(i) + direction * r * e%sin_beta(i)]
+        allocate (column%front_x(0), column%front_y(0), column%end_x(0), column%end_y(0))
+        e_prime = 2.0_wp * medium%shear_modulus / (1.0_wp - medium%poissons_ratio)
+        associate (e => medium%elements)
+            do k = 1, size(fracture_grows)
+                if (.not. fracture_grows(k)) cycle
+                do side = 1, 2
+                    if (side == 1) then
+                        i = medium_fracture_first(k)
+                        x = e%x_begin(i)
+                        y = e%y_begin(i)
+                    else
+                        i = medium_fracture_last(k)
+                        x = e%x_end(i)
+                        y = e%y_end(i)
+                    end if
+                    column%end_x = [column%end_x, x]
+                    column%end_y = [column%end_y, y]
+                    if ((side == 1 .and. any(begin_grows == k)) .or. &
+                        (side == 2 .and. any(end_grows == k))) then
+                        r = (max(-dn(i), 0.0_wp) * e_prime / (sqrt(32.0_wp / pi) * &
+                                                               toughness))**2
+                        ! From the midpoint toward the end (side 2: the element's direction).
+                        direction = merge(1.0_wp, -1.0_wp, side == 2)
+                        x = e%x_mid(i) + direction * r * e%cos_beta(i)
+                        y = e%y_mid(i) + direction * r * e%sin_beta(i)
+                    end if
+                    column%front_x = [column%front_x, x]
+                    column%front_y = [column%front_y, y]
+                end do
             end do
         end associate
+
+    contains
+
+        !> The first and last element of fracture k (its elements are consecutive).
+        pure integer function medium_fracture_first(fracture)
+            integer, intent(in) :: fracture
+
+            medium_fracture_first = findloc(medium%elements%fracture_id, fracture, 1)
+        end function medium_fracture_first
+
+        pure integer function medium_fracture_last(fracture)
+            integer, intent(in) :: fracture
+
+            medium_fracture_last = findloc(medium%elements%fracture_id, fracture, 1, &
+                                           back=.true.)
+        end function medium_fracture_last
     end subroutine locate_fronts
 
     !> The fractures whose ends grow: their first element grows at its beginning, their last
@@ -490,21 +525,25 @@ contains
 
     !> /history of the steps on the final geometry's rows (NaN and state_not_grown before an
     !> element was made), K of the growing tips.
-    subroutine history_of(columns, model, load, growing_fracture, growing_end, h)
+    subroutine history_of(columns, model, load, final_tips, growing_fracture, growing_end, h)
         type(growth_column), intent(in) :: columns(:)
         type(model_type), intent(in) :: model
         !> The load of the path's first vertex (the growth's)
         real(wp), intent(in) :: load(:)
-        !> The fracture and end (0 begin, 1 end) of each growing tip, shape (growing tips)
+        !> The final geometry's tips: the rows of K (NaN where a step's geometry had no such
+        !> tip)
+        type(tip_set), intent(in) :: final_tips
+        !> The fracture and end (0 begin, 1 end) of each end of a growing fracture, shape
+        !> (growing ends)
         integer, intent(in) :: growing_fracture(:), growing_end(:)
         type(history_record), intent(out) :: h
-        integer :: n, steps, k, stat, tips
+        integer :: n, steps, k, stat, tips, row, j
         real(wp) :: nan
 
         nan = ieee_value(1.0_wp, ieee_quiet_nan)
         n = model%elements%n
         steps = size(columns)
-        call lay_out_history(h, n, size(columns(steps)%k1), steps, 0, stat, growth=.true., &
+        call lay_out_history(h, n, final_tips%n, steps, 0, stat, growth=.true., &
                              time=.true., fractures=size(model%fractures), coupled=.true.)
         tips = size(columns(1)%front_x)
         allocate (h%grown_length(tips, steps))
@@ -516,6 +555,8 @@ contains
         h%pressure = nan
         h%aperture = nan
         h%flux = nan
+        h%k1 = nan
+        h%k2 = nan
         do k = 1, steps
             associate (c => columns(k), f => columns(k)%final)
                 h%time(k) = c%time
@@ -526,8 +567,14 @@ contains
                 h%pressure(f, k) = c%pressure
                 h%aperture(f, k) = c%aperture
                 h%flux(f, k) = c%flux
-                h%k1(:, k) = c%k1
-                h%k2(:, k) = c%k2
+                do row = 1, final_tips%n
+                    do j = 1, size(c%k1)
+                        if (c%tip_fracture(j) /= final_tips%fracture_id(row) .or. &
+                            c%tip_side(j) /= final_tips%side(row)) cycle
+                        h%k1(row, k) = c%k1(j)
+                        h%k2(row, k) = c%k2(j)
+                    end do
+                end do
                 h%injected_volume(k) = c%injected
                 h%stored_volume(k) = c%stored
                 h%leaked_volume(k) = c%leaked

@@ -1,0 +1,164 @@
+"""Fluid-driven growth (docs/fluid-driven-fractures.md#hydraulic-fractures): &growth with
+&fluid grows the fractures by one element per tip and step, the time it takes solved for
+(K_I of the growing tips reaches the toughness), the front located by the toughness
+asymptote.
+
+A KGD fracture in the toughness regime (K_m >= 4) against its closed form: half-length,
+net pressure and opening at the source converge to it as the wings gain elements; K_I is
+the toughness at every step; the volume is conserved. A hydraulic fracture that reaches a
+fault stops on it and the fluid enters the fault. &growth criterion = 'work' is refused.
+"""
+
+import math
+import subprocess
+
+import h5py
+import numpy as np
+import pytest
+
+from conftest import ddc2d_exe
+
+E, NU = 30000.0, 0.25
+E_PRIME = E / (1.0 - NU**2)
+TOUGHNESS, RATE, VISCOSITY = 1.0, 1.0e-4, 1.0e-12
+
+KGD = f"""\
+&model youngs_modulus = {E}, poissons_ratio = {NU} /
+&remote_stress sxx = -1.0, syy = -1.0 /
+&fracture name = 'crack', x = -0.1, 0.1, y = 0.0, 0.0, elements = 8, mu = 0.6,
+          residual_aperture = 1.0e-6 /
+&fluid viscosity = {VISCOSITY}, compressibility = 1.0e-4 /
+&injection name = 'well', fracture = 'crack', x = 0.0, y = 0.0, rate = {RATE} /
+&load_path time = 0.0, 100.0, steps = 1 /
+&growth steps = 60, toughness = {TOUGHNESS} /
+&solver k_method = 'tip_element' /
+"""
+
+
+def run(args, cwd):
+    return subprocess.run([str(ddc2d_exe()), *map(str, args)], cwd=cwd, capture_output=True,
+                          text=True, timeout=900)
+
+
+def solve(folder, name, text):
+    (folder / f"{name}.nml").write_text(text)
+    done = run([f"{name}.nml"], folder)
+    assert done.returncode == 0, done.stdout + done.stderr
+    return folder / f"{name}.h5"
+
+
+def toughness_solution(t):
+    """KGD, toughness-dominated: half-length, net pressure, opening at the source."""
+    length = (E_PRIME * RATE * t / (2.0 * math.sqrt(math.pi) * TOUGHNESS))**(2.0 / 3.0)
+    pressure = TOUGHNESS / math.sqrt(math.pi * length)
+    return length, pressure, 4.0 * pressure * length / E_PRIME
+
+
+def kgd_errors(path, initial_half_length):
+    """Per step: elements per wing and the relative errors of the half-length (to the
+    front), the net pressure and the opening at the source."""
+    rows = []
+    with h5py.File(path) as f:
+        history = f["history"]
+        elements = f["elements"]
+        middle = np.argsort(np.abs(0.5 * (elements["x_begin"][()] + elements["x_end"][()])))[:2]
+        for k, t in enumerate(history["time"][()]):
+            length, pressure, opening = toughness_solution(t)
+            front = initial_half_length + history["grown_length"][k]
+            rows.append((history["element_count"][k] // 2,
+                         front.mean() / length - 1.0,
+                         (history["pressure"][k][middle].mean() - 1.0) / pressure - 1.0,
+                         -history["dn"][k][middle].mean() / opening - 1.0))
+    return np.array(rows)
+
+
+@pytest.fixture(scope="module")
+def kgd(tmp_path_factory):
+    return solve(tmp_path_factory.mktemp("kgd"), "kgd", KGD)
+
+
+def test_kgd_in_the_toughness_regime(kgd):
+    # The dimensionless toughness K_m = K' (1 / (E'^3 12 eta Q0))^(1/4): toughness regime.
+    k_prime = 4.0 * math.sqrt(2.0 / math.pi) * TOUGHNESS
+    assert k_prime * (1.0 / (E_PRIME**3 * 12.0 * VISCOSITY * RATE))**0.25 >= 4.0
+    errors = kgd_errors(kgd, 0.1)
+    wings, length, pressure, opening = errors.T
+    assert wings[0] == 4 and np.all(np.diff(wings) == 1)
+    # Within 2.1, 6.3 and 2.8 % at 4 elements per wing; 0.55, 1.5 and 0.75 % at 20; all
+    # shrinking as the wings gain elements (first order).
+    assert abs(length[0]) < 0.021 and abs(pressure[0]) < 0.065 and abs(opening[0]) < 0.028
+    at20 = np.flatnonzero(wings == 20)[0]
+    assert abs(length[at20]) < 0.0055 and abs(pressure[at20]) < 0.0155
+    assert abs(opening[at20]) < 0.0075
+    for error in (length, pressure, opening):
+        assert np.all(np.diff(np.abs(error)) < 1e-9)
+    assert abs(length[-1]) < 0.0035 and abs(pressure[-1]) < 0.01 and abs(opening[-1]) < 0.0045
+
+
+def test_kgd_steps(kgd):
+    with h5py.File(kgd) as f:
+        history = f["history"]
+        time = history["time"][()]
+        assert np.all(np.diff(time) > 0.0)
+        # Every step: K_I of both tips is the toughness, the fronts symmetric.
+        assert history["k1"][()] == pytest.approx(np.full((len(time), 2), TOUGHNESS),
+                                                 rel=2e-6)
+        grown = history["grown_length"][()]
+        assert grown[:, 0] == pytest.approx(grown[:, 1], rel=1e-9)
+        # One element per step; the front's place in the tip element moves with K_I within
+        # its tolerance (1e-6 of the toughness).
+        assert np.diff(grown[:, 0]) == pytest.approx(np.full(len(time) - 1, 0.025), abs=1e-7)
+        assert list(history["tip_end"][()]) == [0, 1]
+        # Rows of elements made later hold the fill values before.
+        state = history["state"][()]
+        assert np.all((state[0] == -1) == np.isnan(history["aperture"][0]))
+        assert np.count_nonzero(state[0] >= 0) == 8
+        # The volume injected is stored.
+        injected = history["injected_volume"][()]
+        assert injected == pytest.approx(RATE * time, rel=1e-12)
+        assert np.max(np.abs(injected - history["stored_volume"][()]) / injected) < 1e-8
+
+
+FAULT = """\
+&model youngs_modulus = 30000.0, poissons_ratio = 0.25 /
+&remote_stress sxx = -1.0, syy = -3.0, sxy = 0.5 /
+&fracture name = 'fault', x = -1.0, 1.0, y = 0.0, 0.0, elements = 40, mu = 0.6,
+          residual_aperture = 1.0e-5 /
+&fracture name = 'hydrofracture', x = 0.0, 0.0, y = 0.15, 0.35, elements = 8, mu = 0.6,
+          residual_aperture = 1.0e-6 /
+&fluid viscosity = 1.0e-9, compressibility = 1.0e-3 /
+&injection name = 'well', fracture = 'hydrofracture', x = 0.0, y = 0.25, rate = 1.0e-4 /
+&load_path time = 0.0, 100.0, steps = 1 /
+&growth steps = 8, toughness = 1.0, fractures = 'hydrofracture' /
+&solver k_method = 'tip_element' /
+"""
+
+
+def test_a_hydraulic_fracture_that_reaches_a_fault_feeds_it(tmp_path):
+    path = solve(tmp_path, "fault", FAULT)
+    with h5py.File(path) as f:
+        history = f["history"]
+        elements = f["elements"]
+        # Its lower end reaches the fault in step 6 and stops on it; the upper one grows on.
+        grown = history["grown_length"][()]
+        assert list(history["element_count"][()]) == [48, 50, 52, 54, 56, 58, 60, 61, 62]
+        assert grown[6:, 0] == pytest.approx(0.15, abs=1e-12)
+        assert np.all(np.diff(grown[:, 1]) > 0.0)
+        hydro = elements["fracture_id"][()] == 2
+        assert np.min(elements["y_begin"][()][hydro]) == pytest.approx(0.0, abs=1e-12)
+        # The fluid entered the fault: before the link it held none, after it every cell.
+        fault = elements["fracture_id"][()] == 1
+        pressure = history["pressure"][()]
+        assert np.all(pressure[5][fault] == 0.0)
+        assert np.all(pressure[-1][fault] > 0.0)
+        injected = history["injected_volume"][()]
+        assert np.max(np.abs(injected - history["stored_volume"][()]) / injected) < 1e-8
+
+
+def test_the_work_criterion_is_refused(tmp_path):
+    (tmp_path / "bad.nml").write_text(KGD.replace("toughness = 1.0 /",
+                                                  "toughness = 1.0, criterion = 'work' /"))
+    done = run(["bad.nml"], tmp_path)
+    assert done.returncode == 2, done.stdout + done.stderr
+    assert "coupled flow does not combine with &growth criterion = 'work'" in done.stderr
+    assert not (tmp_path / "bad.h5").exists()
