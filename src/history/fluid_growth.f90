@@ -9,6 +9,7 @@
 !> &growth steps, or when the time passes the path's last.
 module ddc_history_fluid_growth
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+    use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
     use ddc_constants, only: pi
     use ddc_error, only: error_type, set_error, exit_solver_failure
@@ -79,7 +80,9 @@ contains
         real(wp) :: t_start, t_end, dt_guess, time, t_before
         integer :: step, k
         logical, allocatable :: fracture_grows(:)
+        integer(int64) :: t_begin, t_done, rate
 
+        call system_clock(t_begin, rate)
         loads = path_loads(model%load_path)
         associate (vertex_times => model%load_path%time)
             t_start = vertex_times(1)
@@ -158,6 +161,10 @@ contains
                             [(grown(k / 2 + 1), k = 0, 2 * size(grown) - 1)], &
                             [(modulo(k, 2), k = 0, 2 * size(grown) - 1)], results%history)
             call run%finish()
+            ! The run's time: every step's preparation and trials (the record of the
+            ! solver is the last step's).
+            call system_clock(t_done)
+            results%solver%seconds_total = real(t_done - t_begin, wp) / real(rate, wp)
         end subroutine finish_results
 
     end subroutine solve_fluid_growth
@@ -397,7 +404,6 @@ contains
         type(element_set) :: grown
         integer, allocatable :: pick(:)
         integer :: k, first, last, i, m
-        real(wp) :: dx, dy
         logical :: stopped
 
         allocate (pick(0), origin(0))
@@ -423,33 +429,42 @@ contains
             model%fractures(k)%first_element = m + 1
             if (any(begin_grows == k)) then
                 m = m + 1
-                dx = model%elements%x_end(first) - model%elements%x_begin(first)
-                dy = model%elements%y_end(first) - model%elements%y_begin(first)
                 grown%x_end(m) = model%elements%x_begin(first)
                 grown%y_end(m) = model%elements%y_begin(first)
-                grown%x_begin(m) = grown%x_end(m) - dx
-                grown%y_begin(m) = grown%y_end(m) - dy
-                call stop_at_fractures(model, k, grown%x_end(m), grown%y_end(m), &
-                                       grown%x_begin(m), grown%y_begin(m), stopped)
+                call ahead(first, -1.0_wp, grown%x_end(m), grown%y_end(m), grown%x_begin(m), &
+                           grown%y_begin(m))
                 if (stopped) begin_grows = pack(begin_grows, begin_grows /= k)
             end if
             m = m + last - first + 1
             if (any(end_grows == k)) then
                 m = m + 1
-                dx = model%elements%x_end(last) - model%elements%x_begin(last)
-                dy = model%elements%y_end(last) - model%elements%y_begin(last)
                 grown%x_begin(m) = model%elements%x_end(last)
                 grown%y_begin(m) = model%elements%y_end(last)
-                grown%x_end(m) = grown%x_begin(m) + dx
-                grown%y_end(m) = grown%y_begin(m) + dy
-                call stop_at_fractures(model, k, grown%x_begin(m), grown%y_begin(m), &
-                                       grown%x_end(m), grown%y_end(m), stopped)
+                call ahead(last, 1.0_wp, grown%x_begin(m), grown%y_begin(m), grown%x_end(m), &
+                           grown%y_end(m))
                 if (stopped) end_grows = pack(end_grows, end_grows /= k)
             end if
             model%fractures(k)%last_element = m
         end do
         call compute_geometry(grown)
         model%elements = grown
+
+    contains
+
+        !> The far end (x1, y1) of the new element from the end (x0, y0) of tip element i, as
+        !> long as it and along it (direction 1) or against it (-1); stopped where it meets
+        !> another fracture.
+        subroutine ahead(i, direction, x0, y0, x1, y1)
+            integer, intent(in) :: i
+            real(wp), intent(in) :: direction, x0, y0
+            real(wp), intent(out) :: x1, y1
+
+            associate (e => model%elements)
+                x1 = x0 + direction * (e%x_end(i) - e%x_begin(i))
+                y1 = y0 + direction * (e%y_end(i) - e%y_begin(i))
+            end associate
+            call stop_at_fractures(model, k, x0, y0, x1, y1, stopped)
+        end subroutine ahead
     end subroutine grow_ends
 
     !> A new element from (x0, y0) to (x1, y1) of fracture k that would cross or reach an

@@ -9,7 +9,7 @@
 module ddc_input_namelist_injection
     use ddc_kinds, only: wp
     use ddc_model_types, only: model_type, source_overpressure, source_rate, &
-        condition_contact, symmetry_none, rigid_joint, growth_criterion_mts
+        condition_contact, symmetry_none, rigid_joint, growth_criterion_mts, growth_tips_all
     use ddc_model_limits, only: quantity_positive, quantity_non_negative
     use ddc_contact_options, only: matrix_hierarchical
     use ddc_text, only: rtoa, lower
@@ -257,6 +257,12 @@ contains
             'needs a source: &injection rate or overpressure')
         call refuse(model%growth%active .and. model%growth%criterion /= growth_criterion_mts, &
                     "&growth criterion = 'work' (fluid-driven growth takes K_I = K_Ic)")
+        call refuse(model%growth%increment > 0.0_wp .or. model%growth%element_length > 0.0_wp, &
+                    '&growth increment or element_length (fluid-driven growth adds one '// &
+                    'element of the tip element''s length per step)')
+        call refuse(model%growth%tips /= growth_tips_all, &
+                    "&growth tips = 'most_critical' (every tip whose K_I reaches the "// &
+                    'toughness grows)')
         call refuse(model%initiation%active, '&initiation')
         call refuse(model%cycle%active, '&cycle')
         call refuse(allocated(model%body), '&body')

@@ -126,6 +126,18 @@ def test_benchmark_injection(tmp_path):
     assert r["total_over_lu"] == r["seconds"]["total"] / r["lu_reference_seconds"]
 
 
+def test_benchmark_kgd(tmp_path):
+    # The KGD case ending with 30 elements after 5 growth steps (20 at the start): every
+    # element open, one history row per step and the initial one; the total time is the
+    # whole run's.
+    stdout, records = run_benchmark(tmp_path, "--case", "kgd", "--steps", "5", sizes="30")
+    assert "6 steps" in stdout
+    (r,) = records
+    assert r["case"] == "kgd" and r["steps"] == 6 and r["n"] == 30
+    assert r["states"]["open"] == 30
+    assert r["seconds"]["total"] > r["seconds"]["lcp"]
+
+
 def test_benchmark_growth(tmp_path):
     # 80 and 100 elements: on fewer, the increment of 20 elements (over 1 m) makes the first
     # kink a closed one, which does not grow (docs/theory/growth.md#closed-kinks).

@@ -238,8 +238,8 @@ def test_output_and_python(cracks):
      "with &fluid the flow follows from the aperture"),
     (("residual_aperture = 1.0e-5 /", "/"), "does not conduct"),
     (("&load_path time = 0.0, 10.0, steps = 10 /",
-      "&load_path time = 0.0, 10.0, steps = 10 /\n&growth steps = 3, toughness = 1.0 /"),
-     "coupled flow does not combine with &growth"),
+      ("&load_path time = 0.0, 10.0, steps = 10 /\n&growth steps = 3, toughness = 1.0, "
+       "increment = 0.1 /")), "coupled flow does not combine with &growth increment"),
     (("&fluid viscosity = 1.0e-12, compressibility = 1.0e-4, leak_off_coefficient = 0.0 /",
       ""), "residual_aperture is for flow coupled to the opening"),
 ])

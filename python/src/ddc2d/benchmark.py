@@ -3,7 +3,7 @@ repository also scripts/benchmark.py.
 
     benchmark.py --exe PATH --sizes 250,500,1000
                  --case straight|mixed|history|fields|growth|growth-work|growth-history|
-                        injection
+                        injection|kgd
                  --json FILE [--threads T[,T...]] [--lcp-method auto|lemke|newton] [--grid NX]
                  [--steps K] [--compare-lemke] [--lu-exe PATH] [--workdir DIR]
                  [--mpi P [--mpiexec PATH] [--block-size NB]]
@@ -55,6 +55,13 @@ Cases (CASES: a model builder per case; a new case adds one):
             with an overpressure of 5 MPa held at its middle; K steps to 60 s (--steps,
             default 200). One matrix and one set of factors serve every step: a step changes
             the pressures, so the loads, alone. Measured against LU(2 N) like the history case.
+
+  kgd       a KGD hydraulic fracture (docs/fluid-driven-fractures.md#hydraulic-fractures) in
+            the toughness regime that ends with N elements after K growth steps (--steps,
+            default 100), one element of 0.0125 m per wing and step: every step prepares the
+            grown geometry's run and solves for the time at which K_I reaches the toughness,
+            each trial a coupled step of flow and contact. Measured against LU(2 N) of the
+            final geometry.
 
 The case ``bp3`` is an earthquake-cycle run (docs/earthquake-cycles.md#bp3-qd): the SCEC
 SEAS benchmark BP3-QD, thrust at 60 degrees (ddc2d.seas.bp3_namelist; --cell, default 25 m;
@@ -127,10 +134,10 @@ from .reader import SOLVER_PHASES, read_history, read_solver
 
 #: Default grid (GRID x GRID points) of each case
 DEFAULT_GRID = {"straight": 100, "mixed": 100, "history": 0, "fields": 500, "growth": 0,
-                "growth-work": 0, "growth-history": 0, "injection": 0}
+                "growth-work": 0, "growth-history": 0, "injection": 0, "kgd": 0}
 #: Default --steps of each case that has steps
 DEFAULT_STEPS = {"history": 100, "growth": 25, "growth-work": 25, "growth-history": 20,
-                 "injection": 200}
+                 "injection": 200, "kgd": 100}
 #: The growth cases (a record adds the growth summary)
 GROWTH_CASES = ("growth", "growth-work", "growth-history")
 #: New elements per tip and growth step of the growth case
@@ -241,6 +248,28 @@ def injection_model(n, grid, steps=200):
         + grid_group(grid))
 
 
+def kgd_model(n, grid, steps=100):
+    """A KGD hydraulic fracture (docs/fluid-driven-fractures.md#hydraulic-fractures) that
+    ends with n elements after `steps` growth steps (one element of 0.0125 m per wing and
+    step) in the toughness regime: a rate of 1e-4 m^2/s into its middle."""
+    start = n - 2 * steps
+    if start < 4:
+        raise ValueError(f"--case kgd: {n} elements leave {start} at the start of {steps} "
+                         "growth steps; give more elements or fewer steps")
+    half = 0.5 * 0.0125 * start
+    return (
+        "&model title = 'benchmark: KGD hydraulic fracture', youngs_modulus = 30000.0,\n"
+        "       poissons_ratio = 0.25, length_unit = 'm', stress_unit = 'MPa' /\n"
+        "&remote_stress sxx = -1.0, syy = -1.0 /\n"
+        f"&fracture name = 'crack', x = {-half!r}, {half!r}, y = 0.0, 0.0, elements = {start},\n"
+        "          mu = 0.6, residual_aperture = 1.0e-6 /\n"
+        "&fluid viscosity = 1.0e-12, compressibility = 1.0e-4 /\n"
+        "&injection name = 'well', fracture = 'crack', x = 0.0, y = 0.0, rate = 1.0e-4 /\n"
+        "&load_path time = 0.0, 1.0e4, steps = 1 /\n"
+        f"&growth steps = {steps}, toughness = 1.0 /\n"
+        + grid_group(grid))
+
+
 #: The model of each case: n elements, a grid of nx x nx points (0: none), steps.
 CASES = {
     "straight": lambda n, grid, steps: straight_model(n, grid),
@@ -251,6 +280,7 @@ CASES = {
     "growth-work": growth_work_model,
     "growth-history": growth_history_model,
     "injection": injection_model,
+    "kgd": kgd_model,
 }
 
 
