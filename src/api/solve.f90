@@ -2,7 +2,7 @@
 !> fracture growth, a loading history, earthquake cycles or one solve, continued from an
 !> earlier run's end when a restart state is given (--resume).
 module ddc_api_solve
-    use ddc_error, only: error_type
+    use ddc_error, only: error_type, set_error, exit_bad_input
     use ddc_model_types, only: model_type
     use ddc_model_results, only: model_results
     use ddc_model_restart, only: restart_state
@@ -38,6 +38,12 @@ contains
         call prepare_model_body(model, error)
         if (allocated(error)) return
         if (model%growth%active .and. model%fluid%active) then
+            if (present(restart)) then
+                call set_error(error, exit_bad_input, '--resume: a hydraulic fracture '// &
+                               '(&growth with &fluid) cannot be resumed (the file does '// &
+                               'not hold the fluid''s state)')
+                return
+            end if
             call solve_fluid_growth(model, results, error)
         else if (model%growth%active) then
             call grow_fractures(model, results, error, progress, restart)

@@ -1,7 +1,7 @@
 !> /injection (docs/injection.md#output): the model's fluid sources, one row each
 !> (name, fracture, point, overpressure or rate, start and stop), for the tools that plot what
 !> they did; with coupled flow (&fluid) its attributes viscosity, compressibility and
-!> leak_off_coefficient.
+!> leak_off_coefficient, and with fluid-driven growth toughness.
 module ddc_output_hdf5_injections
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use ddc_kinds, only: wp
@@ -72,6 +72,9 @@ contains
             call write_attribute(group, 'compressibility', model%fluid%compressibility, error)
             call write_attribute(group, 'leak_off_coefficient', &
                                  model%fluid%leak_off_coefficient, error)
+            ! A hydraulic fracture: the toughness its tips grow at (its closed forms).
+            if (model%growth%active) call write_attribute(group, 'toughness', &
+                                                          model%growth%toughness, error)
         end if
         call close_group(group, error)
 

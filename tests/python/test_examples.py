@@ -10,6 +10,7 @@ it shows (states, which tips slip more), so that a figure in the gallery (docs/g
 silently turn into something else.
 """
 
+import math
 import os
 import re
 import subprocess
@@ -478,6 +479,22 @@ def check_fault_across_layers(f):
     assert np.max(np.abs(ds[y > 0])) > 1.5 * np.max(np.abs(ds[y < 0])), ds
 
 
+def check_kgd(f):
+    """61 steps to 64 elements per wing, every element open; the half-length to the fronts
+    within 0.3 % and the net pressure at the well within 0.7 % of the toughness solution."""
+    h = f["history"]
+    t = h["time"][-1]
+    e_prime = 30000.0 / (1.0 - 0.25**2)
+    length = (e_prime * 1.0e-4 * t / (2.0 * math.sqrt(math.pi)))**(2.0 / 3.0)
+    assert h["time"].shape == (61,) and h["element_count"][-1] == 128
+    _all(f, "crack", "open")
+    assert abs((0.1 + h["grown_length"][-1].mean()) / length - 1.0) < 0.003
+    x = f["elements/x_mid"][()]
+    well = np.argsort(np.abs(x))[:2]
+    net = h["pressure"][-1][well].mean() - 1.0
+    assert abs(net * math.sqrt(math.pi * length) - 1.0) < 0.007
+
+
 EXPECTED = {
     "crack_toward_soft_layer": check_crack_toward_soft_layer,
     "crack_grows_to_soft_layer": check_crack_grows_to_soft_layer,
@@ -497,6 +514,7 @@ EXPECTED = {
     "fault_grown_with_strength_laws": check_grown_strength_laws,
     "echelon_cracks_linking": check_echelon_linking,
     "hydraulic_fracture_toward_fault": check_hydraulic_fracture,
+    "hydraulic_fracture_kgd": check_kgd,
     "joint_growing_to_surface": check_joint_to_surface,
     "segmented_right_step": check_right_step,
     "segmented_left_step": check_left_step,

@@ -11,12 +11,13 @@ fault stops on it and the fluid enters the fault. &growth criterion = 'work' is 
 
 import math
 import subprocess
+import sys
 
 import h5py
 import numpy as np
 import pytest
 
-from conftest import ddc2d_exe
+from conftest import PLOT_SCRIPT, ddc2d_exe
 
 E, NU = 30000.0, 0.25
 E_PRIME = E / (1.0 - NU**2)
@@ -117,6 +118,33 @@ def test_kgd_steps(kgd):
         injected = history["injected_volume"][()]
         assert injected == pytest.approx(RATE * time, rel=1e-12)
         assert np.max(np.abs(injected - history["stored_volume"][()]) / injected) < 1e-8
+
+
+def test_the_figure_against_the_closed_forms(kgd, tmp_path):
+    import matplotlib.pyplot as plt
+
+    from ddc2d.plot import figures
+    from ddc2d.reader import load_result
+
+    figure = figures.plot_hydraulic_fracture(load_result(kgd))
+    lines = {line.get_gid(): line for ax in figure.axes for line in ax.get_lines()}
+    errors = kgd_errors(kgd, 0.1)
+    time = lines["half_length:crack"].get_xdata()
+    for column, key in enumerate(("half_length", "net_pressure", "opening"), start=1):
+        drawn = lines[f"{key}:crack"].get_ydata()
+        closed = lines[f"toughness_{key}:crack"].get_ydata()
+        # The points are the run's, the dashed line the toughness solution.
+        assert drawn / closed - 1.0 == pytest.approx(errors[:, column], abs=1e-12)
+    length, _, _ = toughness_solution(time[-1])
+    assert lines["toughness_half_length:crack"].get_ydata()[-1] == pytest.approx(length)
+    # The viscosity solution of this fluid lies far above: the toughness regime.
+    assert np.all(lines["viscosity_half_length:crack"].get_ydata()
+                  > lines["toughness_half_length:crack"].get_ydata())
+    plt.close(figure)
+    done = subprocess.run([sys.executable, str(PLOT_SCRIPT), str(kgd), "-o", str(tmp_path)],
+                          capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, done.stderr
+    assert (tmp_path / "kgd_hydraulic_fracture.png").is_file()
 
 
 FAULT = """\

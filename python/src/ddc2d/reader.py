@@ -89,6 +89,9 @@ HISTORY_COUPLED_DATASETS = ("aperture", "flux", "stored_volume", "leaked_volume"
 #: /injection datasets (docs/output-reference.md), one value per fluid source: overpressure
 #: NaN for a rate source, rate NaN for a pressure source, start and stop NaN where not given.
 INJECTION_DATASETS = ("fracture_id", "x", "y", "overpressure", "rate", "start", "stop")
+#: /injection attributes of coupled flow (&fluid; with fluid-driven growth the toughness),
+#: read into ``fluid`` where present.
+FLUID_ATTRIBUTES = ("viscosity", "compressibility", "leak_off_coefficient", "toughness")
 #: /growth datasets (fracture growth; docs/fracture-growth.md#output), one value per record
 #: (tip and step).
 GROWTH_DATASETS = ("step", "fracture_id", "end", "x", "y", "k1", "k2", "k_eq", "mts_angle",
@@ -485,8 +488,9 @@ def read_history(path: FilePath, handle: h5py.Group, count: int) -> dict[str, An
 
 def read_injection(path: FilePath, handle: h5py.Group) -> dict[str, Any] | None:
     """/injection, the fluid sources, as a dict: ``name`` (a list of str) and the 1-D arrays
-    of INJECTION_DATASETS, one value per source (``fracture_id`` 1-based); None when the
-    file has no fluid sources."""
+    of INJECTION_DATASETS, one value per source (``fracture_id`` 1-based), and ``fluid``,
+    the attributes of FLUID_ATTRIBUTES the file holds (a dict, empty without &fluid); None
+    when the file has no fluid sources."""
     if "injection" not in handle:
         return None
     group = handle["injection"]
@@ -495,6 +499,9 @@ def read_injection(path: FilePath, handle: h5py.Group) -> dict[str, Any] | None:
         sources[key] = np.asarray(group[key][()]).ravel()
         if sources[key].size != len(sources["name"]):
             raise ResultError(f"'{path}': /injection datasets differ in length")
+    # Coupled flow (&fluid): the fluid, and a hydraulic fracture's toughness.
+    sources["fluid"] = {key: float(np.ravel(group.attrs[key])[0]) for key in FLUID_ATTRIBUTES
+                        if key in group.attrs}
     return sources
 
 

@@ -22,6 +22,7 @@ from .figures import (
     plot_growth,
     plot_growth_history,
     plot_history,
+    plot_hydraulic_fracture,
     plot_injection,
     plot_map,
     plot_moment,
@@ -35,5 +36,6 @@ from .figures import (
 __all__ = ["QUANTITIES", "Receiver", "fracture_profiles", "grid_fields", "grid_quantity",
            "plot_cycle_events", "plot_cycle_rate", "plot_cycle_slip",
            "plot_fronts", "plot_growth", "plot_growth_history", "plot_history",
-           "plot_injection", "plot_map", "plot_moment", "plot_observation_line",
-           "plot_overview", "plot_profile", "plot_surface", "save_figure"]
+           "plot_hydraulic_fracture", "plot_injection", "plot_map", "plot_moment",
+           "plot_observation_line", "plot_overview", "plot_profile", "plot_surface",
+           "save_figure"]

@@ -126,6 +126,8 @@ from .data import (
     tips_csv,
     tips_text,
 )
+from .hydraulic import fracture_series as hydraulic_series
+from .hydraulic import is_hydraulic_fracture
 from .injection import has_injection, profile_steps
 
 PROGRAM = "ddc2d-plot"
@@ -138,7 +140,7 @@ SENSE_CHOICES = ("auto", "right", "left", "reverse", "normal")
 #: grid or line whose name would give one of them gets a longer name (figure_base).
 FIXED_NAMES = ("profiles", "history", "tips", "growth", "growth_history", "growth_trials",
                "flaw_trials", "history_strengths", "front", "injection", "moment", "cycle_slip",
-               "cycle_rate", "cycle_events")
+               "cycle_rate", "cycle_events", "hydraulic_fracture")
 
 
 @dataclass
@@ -341,6 +343,9 @@ def _figures(result, receivers, chosen, args, out_dir, stem):
             yield ((lambda: figures.plot_flaw_trials(result)), out_dir / f"{stem}_flaw_trials")
     if result["history"] is not None and "grown_length" in result["history"]:
         yield (lambda: figures.plot_growth_history(result)), out_dir / f"{stem}_growth_history"
+    if is_hydraulic_fracture(result) and hydraulic_series(result):
+        yield ((lambda: figures.plot_hydraulic_fracture(result)),
+               out_dir / f"{stem}_hydraulic_fracture")
     if result["cycle"] is not None:
         yield (lambda: figures.plot_cycle_slip(result)), out_dir / f"{stem}_cycle_slip"
         yield (lambda: figures.plot_cycle_rate(result)), out_dir / f"{stem}_cycle_rate"

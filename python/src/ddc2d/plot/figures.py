@@ -20,6 +20,7 @@ from matplotlib.ticker import MaxNLocator
 
 from ..files import atomic_path
 from ..reader import ResultData, coding_of
+from . import hydraulic
 from .data import (
     COLORBAR_LABELS,
     LINE_PANELS,
@@ -260,6 +261,42 @@ def plot_injection(result: ResultData, steps: Sequence[int]) -> Figure:
             ax.grid(True, linewidth=0.3)
         ax_pressure.legend(fontsize="small", loc="best")
     fig.suptitle(heading(result, "pressure and slip along the fractures at chosen times"))
+    return fig
+
+
+def plot_hydraulic_fracture(result: ResultData) -> Figure:
+    """A hydraulic fracture (fluid-driven growth): the half-length to the fronts, the net
+    pressure and the opening at the source of each growing fracture that holds a source
+    against time on log-log axes, a point per growth step, with the KGD closed forms of the
+    total rate: the toughness-dominated solution (dashed) and the viscosity-dominated
+    half-length (dotted). Returns the Figure."""
+    series = hydraulic.fracture_series(result)
+    fig, axes = plt.subplots(1, 3, figsize=(13.5, 4.5), constrained_layout=True)
+    time_unit = result["time_unit"]
+    length, stress = result["length_unit"], result["stress_unit"]
+    quantities = (("half_length", "half-length to the fronts", length),
+                  ("net_pressure", "net pressure at the source", stress),
+                  ("opening", "opening at the source", length))
+    for i, fracture in enumerate(series):
+        forms = hydraulic.closed_forms(result, fracture["time"])
+        for ax, (key, label, unit) in zip(axes, quantities):
+            ax.loglog(fracture["time"], fracture[key], marker="o", markersize=2.5,
+                      linewidth=0.0, color=f"C{i % 10}", label=f"'{fracture['name']}'",
+                      gid=f"{key}:{fracture['name']}")
+            if f"toughness_{key}" in forms:
+                ax.loglog(fracture["time"], forms[f"toughness_{key}"], color="black",
+                          linestyle="--", linewidth=0.9, label="toughness-dominated",
+                          gid=f"toughness_{key}:{fracture['name']}")
+            if f"viscosity_{key}" in forms:
+                ax.loglog(fracture["time"], forms[f"viscosity_{key}"], color="0.4",
+                          linestyle=":", linewidth=0.9, label="viscosity-dominated",
+                          gid=f"viscosity_{key}:{fracture['name']}")
+            ax.set_ylabel(label + unit_label(unit))
+    for ax in axes:
+        ax.set_xlabel("time" + unit_label(time_unit))
+        ax.grid(True, which="both", linewidth=0.3)
+    axes[0].legend(fontsize="small", loc="best")
+    fig.suptitle(heading(result, "hydraulic fracture against the KGD closed forms"))
     return fig
 
 
