@@ -7,7 +7,7 @@ module ddc_input_namelist_settings
     use ddc_error, only: error_type
     use ddc_model_types, only: model_type, symmetry_none, symmetry_names, domain_names, &
         domain_half_plane, domain_bimaterial, load_path_names, default_block_size
-    use ddc_model_limits, only: quantity_youngs_modulus, quantity_poissons_ratio
+    use ddc_model_limits, only: quantity_youngs_modulus, quantity_poissons_ratio, within_limits
     use ddc_contact_options, only: parse_solver_options, option_code, k_method_names, k_auto, &
         default_k_zone_elements
     use ddc_text, only: itoa, rtoa, lower, find_name, quoted_list, prefix_lines, counted
@@ -422,7 +422,7 @@ contains
         character(len=512) :: iomsg
         character(len=:), allocatable :: prefix
         integer :: stat, nlegs, nv, q, given, ntime
-        logical :: ok
+        logical :: ok, finite
         namelist /load_path/ sxx, syy, sxy, dsxx_dy, dsyy_dy, dsxy_dy, p0, steps, time
 
         if (info%count == 0) return
@@ -484,11 +484,15 @@ contains
             end if
         end do
         ntime = count_given(time, 'time', prefix, messages)
+        ! A NaN or Inf has its message from count_given; the path is not used then.
+        finite = all(within_limits(time(1:ntime))) .and. &
+            all(within_limits(values(1:nv, :)) .or. values(1:nv, :) == unset_real)
+        ok = ok .and. finite
         if (ntime > 0 .and. ntime /= nv .and. nlegs > 0) then
             call add(messages, prefix//'time has '//counted(ntime, 'value', 'values')// &
                      '; give one per vertex: '//itoa(nv)//' (one more than steps)')
             ok = .false.
-        else if (ntime > 1) then
+        else if (ntime > 1 .and. finite) then
             if (any(time(2:ntime) <= time(1:ntime - 1))) then
                 call add(messages, prefix//'time('//itoa(findloc(time(2:ntime) <= &
                          time(1:ntime - 1), .true., 1) + 1)//') = '// &
