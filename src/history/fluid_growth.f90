@@ -187,13 +187,12 @@ contains
         type(lubrication_flow) :: start, trial
         type(fault_law) :: law
         real(wp) :: t0, t_lo, t_hi, f_lo, f_hi, t, f, unbalanced
-        integer :: iterations, count, side, evaluations
+        integer :: iterations, count, side
         type(tip_set) :: tips
         type(response_cache) :: cache
 
         start = flow
         law = run%law_in_force()
-        evaluations = 0
         t0 = flow%time
         ! The step's start as if K_I were 0 there: no solve without time for the fluid to
         ! flow (a tip just linked to another fracture pulls it open before fluid can enter).
@@ -262,7 +261,6 @@ contains
             call coupled_flow_step(run, load, time, trial, ds, solution, iterations, &
                                    unbalanced, error, cache)
             if (allocated(error)) return
-            evaluations = evaluations + 1
             call find_tips(run%medium, solution%ds, solution%dn, tips)
             excess = maxval(tips%k1, mask=growing(tips)) - toughness
         end function excess

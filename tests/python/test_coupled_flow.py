@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 
 import ddc2d
-from conftest import ddc2d_exe
+from conftest import ddc2d_exe, solve_text
 
 E, NU = 30000.0, 0.25
 E_PRIME = E / (1.0 - NU**2)
@@ -28,13 +28,6 @@ E_PRIME = E / (1.0 - NU**2)
 def run(args, cwd):
     return subprocess.run([str(ddc2d_exe()), *map(str, args)], cwd=cwd, capture_output=True,
                           text=True, timeout=900)
-
-
-def solve(folder, name, text):
-    (folder / f"{name}.nml").write_text(text)
-    done = run([f"{name}.nml"], folder)
-    assert done.returncode == 0, done.stdout + done.stderr
-    return folder / f"{name}.h5"
 
 
 def crack(elements, leak_off=0.0):
@@ -78,7 +71,7 @@ def assert_volume_conserved(history):
 @pytest.fixture(scope="module")
 def cracks(tmp_path_factory):
     folder = tmp_path_factory.mktemp("cracks")
-    return {n: solve(folder, f"crack{n}", crack(n)) for n in (20, 40, 80)}
+    return {n: solve_text(folder, f"crack{n}", crack(n)) for n in (20, 40, 80)}
 
 
 def test_a_crack_holds_the_pressure_of_its_volume(cracks):
@@ -111,7 +104,7 @@ def test_a_crack_holds_the_pressure_of_its_volume(cracks):
 
 
 def test_carter_leak_off_of_a_crack_open_from_the_start(tmp_path):
-    path = solve(tmp_path, "leaky", crack(40, leak_off=1.0e-6))
+    path = solve_text(tmp_path, "leaky", crack(40, leak_off=1.0e-6))
     with h5py.File(path) as f:
         history = f["history"]
         assert_volume_conserved(history)
@@ -147,7 +140,7 @@ def test_a_closed_fault_diffuses_the_pressure(tmp_path):
     alpha = 1.0e-10 / (12.0e-9 * 1.0e-3)
     worst = {}
     for steps in (10, 20, 40):
-        path = solve(tmp_path, f"closed{steps}", closed_fault(steps))
+        path = solve_text(tmp_path, f"closed{steps}", closed_fault(steps))
         with h5py.File(path) as f:
             history = f["history"]
             elements = f["elements"]
@@ -176,7 +169,7 @@ OPENING_FAULT = """\
 
 
 def test_a_fault_opens_where_the_pressure_exceeds_its_normal_stress(tmp_path):
-    path = solve(tmp_path, "opening", OPENING_FAULT)
+    path = solve_text(tmp_path, "opening", OPENING_FAULT)
     with h5py.File(path) as f:
         history = f["history"]
         elements = f["elements"]

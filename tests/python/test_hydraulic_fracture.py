@@ -17,7 +17,7 @@ import h5py
 import numpy as np
 import pytest
 
-from conftest import PLOT_SCRIPT, ddc2d_exe
+from conftest import PLOT_SCRIPT, ddc2d_exe, solve_text
 
 E, NU = 30000.0, 0.25
 E_PRIME = E / (1.0 - NU**2)
@@ -39,13 +39,6 @@ KGD = f"""\
 def run(args, cwd):
     return subprocess.run([str(ddc2d_exe()), *map(str, args)], cwd=cwd, capture_output=True,
                           text=True, timeout=900)
-
-
-def solve(folder, name, text):
-    (folder / f"{name}.nml").write_text(text)
-    done = run([f"{name}.nml"], folder)
-    assert done.returncode == 0, done.stdout + done.stderr
-    return folder / f"{name}.h5"
 
 
 def toughness_solution(t):
@@ -75,7 +68,7 @@ def kgd_errors(path, initial_half_length):
 
 @pytest.fixture(scope="module")
 def kgd(tmp_path_factory):
-    return solve(tmp_path_factory.mktemp("kgd"), "kgd", KGD)
+    return solve_text(tmp_path_factory.mktemp("kgd"), "kgd", KGD)
 
 
 def test_kgd_in_the_toughness_regime(kgd):
@@ -163,7 +156,7 @@ FAULT = """\
 
 
 def test_a_hydraulic_fracture_that_reaches_a_fault_feeds_it(tmp_path):
-    path = solve(tmp_path, "fault", FAULT)
+    path = solve_text(tmp_path, "fault", FAULT)
     with h5py.File(path) as f:
         history = f["history"]
         elements = f["elements"]
