@@ -11,7 +11,6 @@ module ddc_history_fluid_growth
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
-    use ddc_constants, only: pi
     use ddc_error, only: error_type, set_error, exit_solver_failure
     use ddc_text, only: itoa, rtoa
     use ddc_model_types, only: model_type, element_set, select_elements
@@ -30,6 +29,7 @@ module ddc_history_fluid_growth
     use ddc_flow_lubrication, only: lubrication_flow, carry_lubrication, along_flux, &
         element_values
     use ddc_history_coupled_flow, only: start_coupled_flow, coupled_flow_step, response_cache
+    use ddc_flow_tip_asymptote, only: apparent_toughness, front_distance
     use ddc_progress, only: report_progress
     implicit none
     private
@@ -38,6 +38,8 @@ module ddc_history_fluid_growth
 
     !> K_I within this fraction of the toughness ends the search for a step's time
     real(wp), parameter :: toughness_tolerance = 1.0e-6_wp
+    !> A bracket of the step's time this fraction of the step wide holds a jump of K_I
+    real(wp), parameter :: jump_tolerance = 1.0e-9_wp
     !> Trials of the search for a step's time
     integer, parameter :: max_secant = 100
 
@@ -129,8 +131,8 @@ contains
                 end do
             end if
             call reach_toughness(run, load, flow, ds, dt_guess, model%growth%toughness, &
-                                 fracture_grows, begin_grows, end_grows, solution, columns, &
-                                 error)
+                                 step > 0, fracture_grows, begin_grows, end_grows, solution, &
+                                 columns, error)
             if (allocated(error)) then
                 error%message = 'fluid-driven growth, step '//itoa(step)//': '// &
                     error%message//'; no result is written'
@@ -171,12 +173,14 @@ contains
 
     !> Find the time, after flow%time, at which the largest K_I of the growing tips reaches
     !> the toughness; the flow and the run move on to it, and the step is recorded.
-    subroutine reach_toughness(run, load, flow, ds, dt_guess, toughness, fracture_grows, &
-                               begin_grows, end_grows, solution, columns, error)
+    subroutine reach_toughness(run, load, flow, ds, dt_guess, toughness, advancing, &
+                               fracture_grows, begin_grows, end_grows, solution, columns, error)
         type(contact_run), intent(inout) :: run
         type(elastic_load), intent(in) :: load
         type(lubrication_flow), intent(inout) :: flow
         real(wp), intent(in) :: ds(:), dt_guess, toughness
+        !> Whether the fronts moved on by their tip elements at this step (not at the first)
+        logical, intent(in) :: advancing
         !> Whether each fracture grows, shape (fractures); the fractures whose beginning and
         !> whose end still grow
         logical, intent(in) :: fracture_grows(:)
@@ -186,18 +190,19 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(lubrication_flow) :: start, trial
         type(fault_law) :: law
-        real(wp) :: t0, t_lo, t_hi, f_lo, f_hi, t, f, unbalanced
-        integer :: iterations, count, side
+        real(wp) :: t0, t_lo, t_hi, f_lo, f_hi, t, f, unbalanced, e_prime
+        integer :: iterations, count, side, same_side
         type(tip_set) :: tips
         type(response_cache) :: cache
 
         start = flow
         law = run%law_in_force()
         t0 = flow%time
+        e_prime = 2.0_wp * run%medium%shear_modulus / (1.0_wp - run%medium%poissons_ratio)
         ! The step's start as if K_I were 0 there: no solve without time for the fluid to
         ! flow (a tip just linked to another fracture pulls it open before fluid can enter).
         t_lo = t0
-        f_lo = -toughness
+        f_lo = -1.0_wp
         t = t0
         ! Secant steps from the step's start and its guess; regula falsi (Illinois)
         ! once the root is bracketed, doubling the step while it is not.
@@ -205,8 +210,9 @@ contains
         f_hi = excess(t_hi)
         if (allocated(error)) return
         side = 0
+        same_side = 0
         do count = 1, max_secant
-            if (abs(f_hi) <= toughness_tolerance * toughness) then
+            if (abs(f_hi) <= toughness_tolerance) then
                 t = t_hi
                 exit
             end if
@@ -221,19 +227,29 @@ contains
                 if (allocated(error)) return
                 cycle
             end if
+            ! K_I that jumps past the toughness (a tip element that opens at once) leaves a
+            ! bracket that shrinks onto the jump: the step ends on its far side.
+            if (t_hi - t_lo <= jump_tolerance * (t_hi - t0)) then
+                t = t_hi
+                exit
+            end if
             t = (t_lo * f_hi - t_hi * f_lo) / (f_hi - f_lo)
+            ! Three trials on one side: Illinois' halving has not caught up; bisect.
+            if (same_side >= 3) t = 0.5_wp * (t_lo + t_hi)
             f = excess(t)
             if (allocated(error)) return
-            if (abs(f) <= toughness_tolerance * toughness) exit
+            if (abs(f) <= toughness_tolerance) exit
             if (f < 0.0_wp) then
                 t_lo = t
                 f_lo = f
                 if (side == -1) f_hi = 0.5_wp * f_hi
+                same_side = merge(same_side + 1, 1, side == -1)
                 side = -1
             else
                 t_hi = t
                 f_hi = f
                 if (side == 1) f_lo = 0.5_wp * f_lo
+                same_side = merge(same_side + 1, 1, side == 1)
                 side = 1
             end if
         end do
@@ -251,9 +267,12 @@ contains
 
     contains
 
-        !> max K_I of the growing tips minus the toughness after the coupled step to time.
+        !> The largest K_I / K_app - 1 of the growing tips after the coupled step to time,
+        !> K_app the apparent toughness of the fronts' velocity over the step.
         real(wp) function excess(time)
             real(wp), intent(in) :: time
+            real(wp), allocatable :: ratio(:)
+            integer :: j, i
 
             trial = start
             call run%hold(ds, law)
@@ -262,7 +281,15 @@ contains
                                    unbalanced, error, cache)
             if (allocated(error)) return
             call find_tips(run%medium, solution%ds, solution%dn, tips)
-            excess = maxval(tips%k1, mask=growing(tips)) - toughness
+            allocate (ratio(tips%n))
+            do j = 1, tips%n
+                i = tips%element(j)
+                associate (h => run%medium%elements%half_length(i))
+                    ratio(j) = tips%k1(j) / apparent_toughness(toughness, e_prime, &
+                        flow%fluid%viscosity, front_velocity(h, time - t0, advancing), h)
+                end associate
+            end do
+            excess = maxval(ratio, mask=growing(tips)) - 1.0_wp
         end function excess
 
         !> Whether each tip still grows.
@@ -299,7 +326,7 @@ contains
             column%tip_fracture = tips%fracture_id
             column%tip_side = tips%side
             call locate_fronts(run%medium, solution%dn, fracture_grows, begin_grows, end_grows, &
-                               toughness, column)
+                               toughness, flow%fluid%viscosity, time - t0, advancing, column)
             column%injected = sum(flow%sources%volume)
             column%stored = sum(flow%stored) - flow%stored_initial
             column%leaked = flow%leaked
@@ -311,18 +338,21 @@ contains
     end subroutine reach_toughness
 
     !> Where the front of each end of a growing fracture is: the tip asymptote of the
-    !> toughness, w = sqrt(32 / pi) (K_Ic / E') sqrt(r), through the tip element's opening at
-    !> its midpoint puts the front r from the midpoint, along the element
+    !> toughness and the front's velocity through the tip element's opening at its midpoint
+    !> puts the front r from the midpoint, along the element
     !> (docs/theory/fluid-driven-fractures.md#the-fluid-driven-tip); an end that stopped on
     !> another fracture is its own front.
     pure subroutine locate_fronts(medium, dn, fracture_grows, begin_grows, end_grows, &
-                                  toughness, column)
+                                  toughness, viscosity, elapsed, advancing, column)
         type(elastic_medium), intent(in) :: medium
         !> Normal DD of every element [length unit]
         real(wp), intent(in) :: dn(:)
         logical, intent(in) :: fracture_grows(:)
         integer, intent(in) :: begin_grows(:), end_grows(:)
-        real(wp), intent(in) :: toughness
+        real(wp), intent(in) :: toughness, viscosity
+        !> The step's time [time unit]; whether the fronts moved on by their tip elements
+        real(wp), intent(in) :: elapsed
+        logical, intent(in) :: advancing
         !> Its front_x, front_y, end_x, end_y are set
         type(growth_column), intent(inout) :: column
         real(wp) :: e_prime, r, direction, x, y
@@ -347,8 +377,8 @@ contains
                     column%end_y = [column%end_y, y]
                     if ((side == 1 .and. any(begin_grows == k)) .or. &
                         (side == 2 .and. any(end_grows == k))) then
-                        r = (max(-dn(i), 0.0_wp) * e_prime / (sqrt(32.0_wp / pi) * &
-                                                               toughness))**2
+                        r = front_distance(-dn(i), toughness, e_prime, viscosity, &
+                                           front_velocity(e%half_length(i), elapsed, advancing))
                         ! From the midpoint toward the end (side 2: the element's direction).
                         direction = merge(1.0_wp, -1.0_wp, side == 2)
                         x = e%x_mid(i) + direction * r * e%cos_beta(i)
@@ -376,6 +406,17 @@ contains
                                            back=.true.)
         end function medium_fracture_last
     end subroutine locate_fronts
+
+    !> How fast a front moved on over a step of the time elapsed: by the length of its tip
+    !> element, which is new when the fronts advanced (the front keeps its place beyond
+    !> the tip element's end); 0 at the first step.
+    pure real(wp) function front_velocity(half_length, elapsed, advancing)
+        real(wp), intent(in) :: half_length, elapsed
+        logical, intent(in) :: advancing
+
+        front_velocity = 0.0_wp
+        if (advancing) front_velocity = 2.0_wp * half_length / elapsed
+    end function front_velocity
 
     !> The fractures whose ends grow: their first element grows at its beginning, their last
     !> at its end (fractures &growth names; all without the list).

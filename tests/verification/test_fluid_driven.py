@@ -166,3 +166,85 @@ def test_kgd_toughness_regime(solve, record, tmp_path):
                  "the start, one more per step; worst of the last decade within the "
                  "tolerance too, of the first within 3e-2)"))
     assert all(row["passed"] for row in rows), rows
+
+
+WATER, VISCOUS_TOUGHNESS = 1.0e-9, 1.0e-3
+
+
+def viscous_kgd_text(elements, steps):
+    """A KGD fracture in the viscosity regime (water, K_Ic = 1e-3 MPa m^1/2: K_m = 0.0013):
+    0.25 m with `elements`, one more per wing and step."""
+    return f"""\
+&model youngs_modulus = {E}, poissons_ratio = {NU} /
+&remote_stress sxx = -1.0, syy = -1.0 /
+&fracture name = 'crack', x = -0.125, 0.125, y = 0.0, 0.0, elements = {elements}, mu = 0.6,
+          residual_aperture = 1.0e-7 /
+&fluid viscosity = {WATER}, compressibility = 1.0e-4 /
+&injection name = 'well', fracture = 'crack', x = 0.0, y = 0.0, rate = {KGD_RATE} /
+&load_path time = 0.0, 100.0, steps = 1 /
+&growth steps = {steps}, toughness = {VISCOUS_TOUGHNESS} /
+&solver k_method = 'tip_element' /
+"""
+
+
+def viscosity_solution(t):
+    """KGD, viscosity-dominated, zero toughness (Adachi & Detournay 2002): half-length
+    0.6152 (E' Q0^3 t^4 / mu')^(1/6), opening at the source gamma (A0 + A1 + 4 B) eps L with
+    their series' gamma = 0.6152, A0 = 3^(1/2), A1 = -0.156, B = 0.0663."""
+    mu_prime = 12.0 * WATER
+    length = 0.6152 * (E_PRIME * KGD_RATE**3 * t**4 / mu_prime)**(1.0 / 6.0)
+    omega0 = 0.6152 * (math.sqrt(3.0) - 0.156 + 4.0 * 0.0663)
+    return length, omega0 * (mu_prime * KGD_RATE**3 * t**2 / E_PRIME)**(1.0 / 6.0)
+
+
+def viscous_errors(result):
+    """Per step: time, elements per wing, errors of the half-length and of the opening at
+    the source."""
+    history = result.history
+    time = history["time"]
+    x = 0.5 * (result.elements["x_begin"] + result.elements["x_end"])
+    source = np.argsort(np.abs(x))[:2]
+    length, opening = viscosity_solution(time)
+    return (time, history["element_count"] // 2,
+            (0.125 + history["grown_length"].mean(axis=1)) / length - 1.0,
+            -history["dn"][:, source].mean(axis=1) / opening - 1.0)
+
+
+def test_kgd_viscosity_regime(solve, record, tmp_path):
+    k_prime = 4.0 * math.sqrt(2.0 / math.pi) * VISCOUS_TOUGHNESS
+    assert k_prime * (1.0 / (E_PRIME**3 * 12.0 * WATER * KGD_RATE))**0.25 <= 0.1
+    runs = {}
+    for elements, steps in ((10, 32), (20, 205), (40, 124)):
+        model = tmp_path / f"viscous{elements}.nml"
+        model.write_text(viscous_kgd_text(elements, steps))
+        runs[elements] = viscous_errors(solve(model, f"viscous{elements}"))
+    time, wings, length_error, opening_error = runs[20]
+    # Two decades in time; the last one starts with 66 elements per wing.
+    assert time[-1] / time[0] > 100.0
+    last_decade = time >= time[-1] / 10.0
+    assert wings[last_decade][0] >= 20
+    # The mesh: the errors at t = 1.25 s shrink as the start's elements double.
+    at = [np.interp(1.25, runs[n][0], np.abs(runs[n][k])) for n in (10, 20, 40) for k in (2, 3)]
+    assert at[0] > at[2] > at[4] and at[1] > at[3] > at[5], at
+    rows = []
+    for name, error, reference, tolerance, quantity in (
+            ("half-length", length_error, viscosity_solution(time)[0], 3e-2,
+             "half-length l to the front [m]"),
+            ("opening", opening_error, viscosity_solution(time)[1], 5e-2,
+             "opening at the source [m]")):
+        assert np.max(np.abs(error[last_decade])) <= tolerance, (name, error)
+        rows.append(record(
+            id=f"fluid-kgd-viscosity-{name}",
+            benchmark="KGD fracture, viscosity regime (K_m = 0.0013): E' = 32000 MPa, water "
+            "(1e-9 MPa s), K_Ic = 1e-3 MPa m^1/2, Q0 = 1e-4 m^2/s, two decades in time",
+            reference="Adachi & Detournay (2002): l = 0.6152 (E' Q0^3 t^4 / (12 eta))^(1/6), "
+            "w0 = 1.133 (12 eta Q0^3 t^2 / E')^(1/6)", quantity=f"{quantity} at t = "
+            f"{time[-1]:.3f} s", value=float((1.0 + error[-1]) * reference[-1]),
+            reference_value=float(reference[-1]), tolerance=tolerance,
+            mesh=f"{wings[-1]} elements per wing at the end (10 at the start, one more per "
+                 "step; worst of the last decade within the tolerance; at t = 1.25 s "
+                 f"{100 * at[0 if name == 'half-length' else 1]:.2f} / "
+                 f"{100 * at[2 if name == 'half-length' else 3]:.2f} / "
+                 f"{100 * at[4 if name == 'half-length' else 5]:.2f} % with 5 / 10 / 20 "
+                 "elements per wing at the start)"))
+    assert all(row["passed"] for row in rows), rows
