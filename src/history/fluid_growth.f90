@@ -191,7 +191,8 @@ contains
         type(lubrication_flow) :: start, trial
         type(fault_law) :: law
         real(wp) :: t0, t_lo, t_hi, f_lo, f_hi, t, f, unbalanced, e_prime
-        integer :: iterations, count, side, same_side
+        real(wp) :: widths(2)
+        integer :: iterations, count, side
         type(tip_set) :: tips
         type(response_cache) :: cache
 
@@ -210,7 +211,7 @@ contains
         f_hi = excess(t_hi)
         if (allocated(error)) return
         side = 0
-        same_side = 0
+        widths = huge(1.0_wp)
         do count = 1, max_secant
             if (abs(f_hi) <= toughness_tolerance) then
                 t = t_hi
@@ -234,8 +235,10 @@ contains
                 exit
             end if
             t = (t_lo * f_hi - t_hi * f_lo) / (f_hi - f_lo)
-            ! Three trials on one side: Illinois' halving has not caught up; bisect.
-            if (same_side >= 3) t = 0.5_wp * (t_lo + t_hi)
+            ! A bracket that two trials have not halved: regula falsi stalls on a steep
+            ! or jumping K_I; bisect.
+            if (t_hi - t_lo > 0.5_wp * widths(2)) t = 0.5_wp * (t_lo + t_hi)
+            widths = [t_hi - t_lo, widths(1)]
             f = excess(t)
             if (allocated(error)) return
             if (abs(f) <= toughness_tolerance) exit
@@ -243,13 +246,11 @@ contains
                 t_lo = t
                 f_lo = f
                 if (side == -1) f_hi = 0.5_wp * f_hi
-                same_side = merge(same_side + 1, 1, side == -1)
                 side = -1
             else
                 t_hi = t
                 f_hi = f
                 if (side == 1) f_lo = 0.5_wp * f_lo
-                same_side = merge(same_side + 1, 1, side == 1)
                 side = 1
             end if
         end do

@@ -154,7 +154,7 @@ def viscosity_solution(t):
     opening at the source, w0 = gamma (A0 + A1 + 4 B) eps L with gamma = 0.6152, A0 = 3^(1/2),
     A1 = -0.156, B = 0.0663 (their series' coefficients)."""
     mu_prime = 12.0 * WATER
-    length = 0.6152 * (E_PRIME * RATE**3 * t**4 / mu_prime)**(1.0 / 6.0)
+    length = 0.61524 * (E_PRIME * RATE**3 * t**4 / mu_prime)**(1.0 / 6.0)
     omega0 = 0.6152 * (math.sqrt(3.0) - 0.156 + 4.0 * 0.0663)
     return length, omega0 * (mu_prime * RATE**3 * t**2 / E_PRIME)**(1.0 / 6.0)
 
@@ -192,6 +192,19 @@ def test_kgd_in_the_viscosity_regime(tmp_path):
     assert np.all(np.diff(np.abs(length_error[1:])) < 1e-9)
     assert np.all(np.diff(np.abs(opening_error)) < 1e-9)
     assert abs(length_error[-1]) < 0.015 and abs(opening_error[-1]) < 0.016
+    # The figure draws the viscosity solution's half-length and opening (dotted).
+    import matplotlib.pyplot as plt
+
+    from ddc2d.plot import figures
+    from ddc2d.reader import load_result
+
+    figure = figures.plot_hydraulic_fracture(load_result(path))
+    lines = {line.get_gid(): line for ax in figure.axes for line in ax.get_lines()}
+    for key, error in (("half_length", length_error), ("opening", opening_error)):
+        drawn = lines[f"{key}:crack"].get_ydata()
+        assert drawn / lines[f"viscosity_{key}:crack"].get_ydata() - 1.0 == pytest.approx(
+            error, rel=1e-9, abs=1e-12)
+    plt.close(figure)
 
 
 def test_the_figure_against_the_closed_forms(kgd, tmp_path):

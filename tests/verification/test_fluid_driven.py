@@ -189,10 +189,10 @@ def viscous_kgd_text(elements, steps):
 
 def viscosity_solution(t):
     """KGD, viscosity-dominated, zero toughness (Adachi & Detournay 2002): half-length
-    0.6152 (E' Q0^3 t^4 / mu')^(1/6), opening at the source gamma (A0 + A1 + 4 B) eps L with
+    0.61524 (E' Q0^3 t^4 / mu')^(1/6), opening at the source gamma (A0 + A1 + 4 B) eps L with
     their series' gamma = 0.6152, A0 = 3^(1/2), A1 = -0.156, B = 0.0663."""
     mu_prime = 12.0 * WATER
-    length = 0.6152 * (E_PRIME * KGD_RATE**3 * t**4 / mu_prime)**(1.0 / 6.0)
+    length = 0.61524 * (E_PRIME * KGD_RATE**3 * t**4 / mu_prime)**(1.0 / 6.0)
     omega0 = 0.6152 * (math.sqrt(3.0) - 0.156 + 4.0 * 0.0663)
     return length, omega0 * (mu_prime * KGD_RATE**3 * t**2 / E_PRIME)**(1.0 / 6.0)
 
@@ -237,7 +237,7 @@ def test_kgd_viscosity_regime(solve, record, tmp_path):
             id=f"fluid-kgd-viscosity-{name}",
             benchmark="KGD fracture, viscosity regime (K_m = 0.0013): E' = 32000 MPa, water "
             "(1e-9 MPa s), K_Ic = 1e-3 MPa m^1/2, Q0 = 1e-4 m^2/s, two decades in time",
-            reference="Adachi & Detournay (2002): l = 0.6152 (E' Q0^3 t^4 / (12 eta))^(1/6), "
+            reference="Adachi & Detournay (2002): l = 0.61524 (E' Q0^3 t^4 / (12 eta))^(1/6), "
             "w0 = 1.133 (12 eta Q0^3 t^2 / E')^(1/6)", quantity=f"{quantity} at t = "
             f"{time[-1]:.3f} s", value=float((1.0 + error[-1]) * reference[-1]),
             reference_value=float(reference[-1]), tolerance=tolerance,

@@ -269,7 +269,7 @@ def plot_hydraulic_fracture(result: ResultData) -> Figure:
     pressure and the opening at the source of each growing fracture that holds a source
     against time on log-log axes, a point per growth step, with the KGD closed forms of the
     total rate: the toughness-dominated solution (dashed) and the viscosity-dominated
-    half-length (dotted). Returns the Figure."""
+    half-length and opening (dotted). Returns the Figure."""
     series = hydraulic.fracture_series(result)
     fig, axes = plt.subplots(1, 3, figsize=(13.5, 4.5), constrained_layout=True)
     time_unit = result["time_unit"]

@@ -2,7 +2,7 @@
 the half-length of each growing fracture (to its fronts), the net pressure and the opening
 at its source against time, and the closed forms of the plane-strain fluid-driven fracture
 (KGD) from a constant rate: the toughness-dominated solution (where the file holds the
-toughness) and the viscosity-dominated half-length of Adachi & Detournay (2002)."""
+toughness) and the viscosity-dominated solution of Adachi & Detournay (2002)."""
 
 import math
 from typing import Any
@@ -13,6 +13,10 @@ from ..reader import ResultData
 
 #: The viscosity-dominated KGD half-length: l = VISCOSITY_FACTOR (E' Q0^3 t^4 / (12 eta))^(1/6)
 VISCOSITY_FACTOR = 0.61524
+#: Its opening at the source: w0 = VISCOSITY_OPENING (12 eta Q0^3 t^2 / E')^(1/6), from
+#: Adachi & Detournay's series: gamma (A0 + A1 + 4 B) with gamma = 0.6152, A0 = 3^(1/2),
+#: A1 = -0.156, B = 0.0663
+VISCOSITY_OPENING = 0.6152 * (math.sqrt(3.0) - 0.156 + 4.0 * 0.0663)
 
 
 def is_hydraulic_fracture(result: ResultData) -> bool:
@@ -75,7 +79,8 @@ def confinement_excess(result: ResultData, at: np.ndarray) -> float:
 def closed_forms(result: ResultData, time: np.ndarray) -> dict[str, np.ndarray]:
     """The KGD closed forms at `time` for the total rate of the rate sources (none where a
     source holds a pressure): ``toughness_*`` (half_length, net_pressure, opening) where the
-    file holds the toughness, ``viscosity_half_length`` where it holds the viscosity."""
+    file holds the toughness, ``viscosity_*`` (half_length, opening) where it holds the
+    viscosity."""
     sources = result["injection"]
     fluid = sources.get("fluid", {})
     if np.any(np.isfinite(sources["overpressure"])):
@@ -91,6 +96,9 @@ def closed_forms(result: ResultData, time: np.ndarray) -> dict[str, np.ndarray]:
         forms.update(toughness_half_length=length, toughness_net_pressure=pressure,
                      toughness_opening=4.0 * pressure * length / e_prime)
     if "viscosity" in fluid:
+        mu_prime = 12.0 * float(fluid["viscosity"])
         forms["viscosity_half_length"] = VISCOSITY_FACTOR * (
-            e_prime * rate**3 * t**4 / (12.0 * float(fluid["viscosity"])))**(1.0 / 6.0)
+            e_prime * rate**3 * t**4 / mu_prime)**(1.0 / 6.0)
+        forms["viscosity_opening"] = VISCOSITY_OPENING * (
+            mu_prime * rate**3 * t**2 / e_prime)**(1.0 / 6.0)
     return forms
