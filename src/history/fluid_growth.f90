@@ -11,7 +11,7 @@ module ddc_history_fluid_growth
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
-    use ddc_error, only: error_type, set_error, exit_solver_failure
+    use ddc_error, only: error_type, set_error, exit_solver_failure, exit_stopped_early
     use ddc_text, only: itoa, rtoa
     use ddc_model_types, only: model_type, element_set, select_elements
     use ddc_mesh_geometry, only: compute_geometry
@@ -74,9 +74,11 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(contact_run), allocatable :: run
         type(lubrication_flow) :: flow
-        type(contact_step) :: solution
-        type(growth_column), allocatable :: columns(:)
+        type(contact_step) :: solution, kept_solution
+        type(growth_column), allocatable :: columns(:), kept_columns(:)
+        type(model_type) :: kept_model
         type(elastic_load) :: load
+        character(len=:), allocatable :: failure
         real(wp), allocatable :: loads(:, :), ds(:)
         integer, allocatable :: origin(:), begin_grows(:), end_grows(:)
         real(wp) :: t_start, t_end, dt_guess, time, t_before
@@ -134,10 +136,21 @@ contains
                                  step > 0, fracture_grows, begin_grows, end_grows, solution, &
                                  columns, error)
             if (allocated(error)) then
-                error%message = 'fluid-driven growth, step '//itoa(step)//': '// &
-                    error%message//'; no result is written'
-                return
+                error%message = 'fluid-driven growth, step '//itoa(step)//': '//error%message
+                if (step == 0) then
+                    error%message = error%message//'; no result is written'
+                    return
+                end if
+                ! The steps completed are the result: back to the last one's geometry.
+                call move_alloc(error%message, failure)
+                deallocate (error)
+                call restore_last_step(error)
+                if (allocated(error)) return
+                exit
             end if
+            kept_model = model
+            kept_columns = columns
+            kept_solution = solution
             time = flow%time
             dt_guess = max(time - t_before, epsilon(1.0_wp) * abs(time))
             t_before = time
@@ -147,8 +160,31 @@ contains
             if (time > t_end) exit
         end do
         call finish_results()
+        if (allocated(failure)) then
+            call set_error(error, exit_stopped_early, failure//'; the run stopped there: '// &
+                           'the result holds the '//itoa(size(columns))//' step(s) before '// &
+                           'it (root attribute stopped)')
+            results%stopped = error%message
+        end if
 
     contains
+
+        !> The model, the run and the records of the last step completed.
+        subroutine restore_last_step(error)
+            type(error_type), allocatable, intent(out) :: error
+
+            model = kept_model
+            columns = kept_columns
+            solution = kept_solution
+            call run%finish()
+            deallocate (run)
+            allocate (run)
+            call run%prepare(medium_of(model), model%solver, error)
+            if (allocated(error)) return
+            call run%take_steps()
+            call run%hold(solution%ds)
+            load = model_load(model)
+        end subroutine restore_last_step
 
         !> The last step's element results, tips and fields, and the history.
         subroutine finish_results()
@@ -157,6 +193,7 @@ contains
             results%elements%ds = solution%ds
             results%elements%dn = solution%dn
             results%elements%state = solution%state
+            results%solver = run%record_of(solution)
             call finish_model(model, load, results, run=run)
             grown = pack([(k, k = 1, size(fracture_grows))], fracture_grows)
             call history_of(columns, model, loads(:, 1), results%tips, &

@@ -313,6 +313,9 @@ module ddc_model_results
         type(cycle_record) :: cycle
         !> The boundary of the finite body, when the model has one (x allocated)
         type(boundary_results) :: boundary
+        !> Why a run that records its steps in /history alone (a hydraulic fracture) stopped
+        !> before its end; not allocated when it ran to its end
+        character(len=:), allocatable :: stopped
     end type model_results
 
 end module ddc_model_results

@@ -135,6 +135,9 @@ contains
                                                                        results%initiations, error)
             if (allocated(results%cycle%elements)) call write_cycle(root, model, results%cycle, &
                                                                     error)
+            ! A run that stopped early says so beside its complete record of the steps it made.
+            if (allocated(results%stopped)) call write_attribute(root, 'stopped', &
+                                                                 results%stopped, error)
             call write_attribute(root, 'complete', 1, error)
             call close_file(root, error)
         end if

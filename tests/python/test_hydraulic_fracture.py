@@ -12,6 +12,7 @@ is refused.
 """
 
 import math
+import re
 import subprocess
 import sys
 
@@ -266,6 +267,51 @@ def test_a_hydraulic_fracture_that_reaches_a_fault_feeds_it(tmp_path):
         pressure = history["pressure"][()]
         assert np.all(pressure[5][fault] == 0.0)
         assert np.all(pressure[-1][fault] > 0.0)
+        injected = history["injected_volume"][()]
+        assert np.max(np.abs(injected - history["stored_volume"][()]) / injected) < 1e-8
+
+
+# A hydraulic fracture at 30 degrees to a fault (the gallery's stresses scaled down): the
+# step whose new element would end on the fault does not converge (the closed frictional
+# junction of a narrow wedge, docs/contact-and-strength.md#junctions).
+NARROW_JUNCTION = """\
+&model youngs_modulus = 30000.0, poissons_ratio = 0.25 /
+&remote_stress sxx = -2.875, syy = -1.625, sxy = 1.0826 /
+&fracture name = 'fault', x = -1.0, 1.0, y = 0.0, 0.0, elements = 40, mu = 0.7, sf = 0.02,
+          residual_aperture = 1.0e-5 /
+&fracture name = 'hydrofracture', x = -0.1732, 0.0, y = 0.2, 0.1, elements = 8, mu = 0.6,
+          residual_aperture = 1.0e-5 /
+&fluid viscosity = 1.0e-9, compressibility = 1.0e-3 /
+&injection name = 'well', fracture = 'hydrofracture', x = -0.0866, y = 0.15, rate = 1.0e-4 /
+&load_path time = 0.0, 100.0, steps = 1 /
+&growth steps = 12, toughness = 1.0, fractures = 'hydrofracture' /
+&solver k_method = 'tip_element' /
+"""
+
+
+def test_a_run_that_fails_keeps_the_steps_it_made(tmp_path):
+    (tmp_path / "junction.nml").write_text(NARROW_JUNCTION)
+    done = run(["junction.nml"], tmp_path)
+    # Exit 6: stopped early, the steps before the failure in the file, which says so.
+    assert done.returncode == 6, done.stdout + done.stderr
+    found = re.search(r"fluid-driven growth, step (\d+): .*the run stopped there: the result "
+                      r"holds the (\d+) step\(s\) before it", done.stderr)
+    assert found, done.stderr
+    failed, kept = int(found.group(1)), int(found.group(2))
+    assert kept == failed >= 1
+    with h5py.File(tmp_path / "junction.h5") as f:
+        assert f.attrs["complete"] == 1
+        assert "the run stopped there" in f.attrs["stopped"].decode()
+        history = f["history"]
+        time = history["time"][()]
+        assert len(time) == kept and np.all(np.diff(time) > 0.0)
+        # The final geometry is the last step's: its elements, every one made by then.
+        elements = f["elements"]
+        assert history["element_count"][-1] == len(elements["x_begin"])
+        assert np.all(history["state"][-1] >= 0)
+        # The hydraulic fracture has not reached the fault yet.
+        hydro = elements["fracture_id"][()] == 2
+        assert np.min(elements["y_end"][()][hydro]) > 0.0
         injected = history["injected_volume"][()]
         assert np.max(np.abs(injected - history["stored_volume"][()]) / injected) < 1e-8
 
