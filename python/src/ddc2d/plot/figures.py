@@ -292,6 +292,13 @@ def plot_hydraulic_fracture(result: ResultData) -> Figure:
                           linestyle=":", linewidth=0.9, label="viscosity-dominated",
                           gid=f"viscosity_{key}:{fracture['name']}")
             ax.set_ylabel(label + unit_label(unit))
+    # The axes span the run's points: a regime's solution far from them (the toughness
+    # solution of a fracture in the viscosity regime) leaves the view, not squeezes it.
+    for ax, (key, _, _) in zip(axes, quantities):
+        values = np.concatenate([np.asarray(f[key], dtype=float) for f in series] or [[]])
+        values = values[np.isfinite(values) & (values > 0.0)]
+        if values.size:
+            ax.set_ylim(values.min() / 3.0, values.max() * 3.0)
     for ax in axes:
         ax.set_xlabel("time" + unit_label(time_unit))
         ax.grid(True, which="both", linewidth=0.3)
