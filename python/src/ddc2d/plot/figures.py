@@ -295,7 +295,9 @@ def plot_hydraulic_fracture(result: ResultData) -> Figure:
     # The axes span the run's points: a regime's solution far from them (the toughness
     # solution of a fracture in the viscosity regime) leaves the view, not squeezes it.
     for ax, (key, _, _) in zip(axes, quantities):
-        values = np.concatenate([np.asarray(f[key], dtype=float) for f in series] or [[]])
+        if not series:
+            continue
+        values = np.concatenate([np.asarray(f[key], dtype=float) for f in series])
         values = values[np.isfinite(values) & (values > 0.0)]
         if values.size:
             ax.set_ylim(values.min() / 3.0, values.max() * 3.0)
