@@ -112,13 +112,8 @@ contains
                 ! Every tip stopped on another fracture: nothing grows any more.
                 if (size(begin_grows) + size(end_grows) == 0) exit
                 call grow_ends(model, begin_grows, end_grows, origin)
-                call run%finish()
-                deallocate (run)
-                allocate (run)
-                call run%prepare(medium_of(model), model%solver, error)
+                call run_on_the_geometry(error)
                 if (allocated(error)) return
-                call run%take_steps()
-                load = model_load(model)
                 block
                     type(lubrication_flow) :: before
 
@@ -176,15 +171,23 @@ contains
             model = kept_model
             columns = kept_columns
             solution = kept_solution
+            call run_on_the_geometry(error)
+            if (allocated(error)) return
+            call run%hold(solution%ds)
+        end subroutine restore_last_step
+
+        !> A new run (matrix and factors) and load on the model's geometry.
+        subroutine run_on_the_geometry(error)
+            type(error_type), allocatable, intent(out) :: error
+
             call run%finish()
             deallocate (run)
             allocate (run)
             call run%prepare(medium_of(model), model%solver, error)
             if (allocated(error)) return
             call run%take_steps()
-            call run%hold(solution%ds)
             load = model_load(model)
-        end subroutine restore_last_step
+        end subroutine run_on_the_geometry
 
         !> The last step's element results, tips and fields, and the history.
         subroutine finish_results()

@@ -27,17 +27,24 @@ E_PRIME = E / (1.0 - NU**2)
 # Far into the toughness regime (K_m = 23), where the closed form (zero viscosity) holds.
 TOUGHNESS, RATE, VISCOSITY = 1.0, 1.0e-4, 1.0e-14
 
-KGD = f"""\
+
+
+def kgd_text(half_length, elements, residual_aperture, viscosity, toughness):
+    """A KGD fracture of `elements` from the well at its middle, 60 growth steps."""
+    return f"""\
 &model youngs_modulus = {E}, poissons_ratio = {NU} /
 &remote_stress sxx = -1.0, syy = -1.0 /
-&fracture name = 'crack', x = -0.1, 0.1, y = 0.0, 0.0, elements = 8, mu = 0.6,
-          residual_aperture = 1.0e-6 /
-&fluid viscosity = {VISCOSITY}, compressibility = 1.0e-4 /
+&fracture name = 'crack', x = {-half_length}, {half_length}, y = 0.0, 0.0,
+          elements = {elements}, mu = 0.6, residual_aperture = {residual_aperture} /
+&fluid viscosity = {viscosity}, compressibility = 1.0e-4 /
 &injection name = 'well', fracture = 'crack', x = 0.0, y = 0.0, rate = {RATE} /
 &load_path time = 0.0, 100.0, steps = 1 /
-&growth steps = 60, toughness = {TOUGHNESS} /
+&growth steps = 60, toughness = {toughness} /
 &solver k_method = 'tip_element' /
 """
+
+
+KGD = kgd_text(0.1, 8, 1.0e-6, VISCOSITY, TOUGHNESS)
 
 
 def run(args, cwd):
@@ -137,17 +144,7 @@ def test_kgd_steps(kgd):
 
 VISCOUS_TOUGHNESS, WATER = 1.0e-3, 1.0e-9
 
-VISCOUS_KGD = f"""\
-&model youngs_modulus = {E}, poissons_ratio = {NU} /
-&remote_stress sxx = -1.0, syy = -1.0 /
-&fracture name = 'crack', x = -0.125, 0.125, y = 0.0, 0.0, elements = 20, mu = 0.6,
-          residual_aperture = 1.0e-7 /
-&fluid viscosity = {WATER}, compressibility = 1.0e-4 /
-&injection name = 'well', fracture = 'crack', x = 0.0, y = 0.0, rate = {RATE} /
-&load_path time = 0.0, 100.0, steps = 1 /
-&growth steps = 60, toughness = {VISCOUS_TOUGHNESS} /
-&solver k_method = 'tip_element' /
-"""
+VISCOUS_KGD = kgd_text(0.125, 20, 1.0e-7, WATER, VISCOUS_TOUGHNESS)
 
 
 def viscosity_solution(t):
