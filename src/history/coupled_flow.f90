@@ -15,7 +15,8 @@ module ddc_history_coupled_flow
     use ddc_kinds, only: wp
     use ddc_error, only: error_type, set_error, exit_solver_failure
     use ddc_text, only: itoa, rtoa
-    use ddc_contact_states, only: state_open
+    use ddc_contact_states, only: state_open, state_slip
+    use ddc_contact_result, only: contact_result
     use ddc_contact_fault_law, only: fault_law
     use ddc_solve_operator, only: elastic_load
     use ddc_run_contact_run, only: contact_run, contact_step
@@ -28,11 +29,16 @@ module ddc_history_coupled_flow
 
     public :: start_coupled_flow, coupled_flow_step, response_cache
 
-    !> The open cells' response d opening / d p last made on a geometry, and the open set it
-    !> is for (a fixed geometry and open set give the same response: the steps of a history
-    !> and the trials of a growth step share it)
+    !> The open cells' response d opening / d p last made on a geometry, and the contact
+    !> elements' linearized states it is for (linear_states: a fixed geometry and states
+    !> give the same response: the steps of a history and the trials of a growth step share
+    !> it)
+    !> Linearized states of a contact element beside state_open: held (stuck, or a cell
+    !> taken as closed), slipping (times the sign of its shear traction)
+    integer, parameter :: linear_held = 0, linear_slip = 2
+
     type :: response_cache
-        logical, allocatable :: open(:)
+        integer, allocatable :: states(:)
         real(wp), allocatable :: response(:, :)
     end type response_cache
 
@@ -175,7 +181,7 @@ contains
         real(wp), dimension(flow%network%cells) :: trial_residual, first_step
         real(wp) :: first_factor
         type(contact_step) :: trial_solution
-        logical, dimension(flow%network%cells) :: guess, trial_open
+        integer, allocatable :: guess(:), trial_states(:)
         integer :: halving, attempt
         logical :: stalled
 
@@ -200,9 +206,10 @@ contains
             if ((stalled .or. iterations == max_iterations) .and. &
                 (norm <= rounding_cells * rounding .or. unbalanced <= stalled_tolerance)) exit
             if (iterations == max_iterations) return
-            ! The open cells of the linearization: the iterate's, then, while a step does
-            ! not lower the balance, those of the step's end (an active set that settles).
-            guess = solution%state(flow%network%element) == state_open
+            ! The states of the linearization: the iterate's, then, while a step does not
+            ! lower the balance, those of the step's end (an active set that settles).
+            guess = linear_states(run, flow, solution%state(flow%network%element) == &
+                                  state_open, solution%contact)
             opening = -solution%dn(flow%network%element)
             do attempt = 1, max_guesses
                 call newton_step(guess)
@@ -215,9 +222,10 @@ contains
                 call evaluate(trial, trial_solution, trial_residual, trial_norm)
                 if (allocated(error)) return
                 if (trial_norm < norm) exit
-                trial_open = trial_solution%state(flow%network%element) == state_open
-                if (all(trial_open .eqv. guess)) exit
-                guess = trial_open
+                trial_states = linear_states(run, flow, trial_solution%state( &
+                    flow%network%element) == state_open, trial_solution%contact)
+                if (all(trial_states == guess)) exit
+                guess = trial_states
             end do
             if (.not. trial_norm < norm) then
                 factor = first_factor
@@ -244,13 +252,16 @@ contains
         !> trial (a trust region: no cell's pressure moves by more than the stresses at
         !> stake; from closed cells that store little, Newton's step would overshoot by
         !> orders).
-        subroutine newton_step(open_cells)
-            logical, intent(in) :: open_cells(:)
+        subroutine newton_step(states)
+            !> The contact elements' linearized states (linear_states)
+            integer, intent(in) :: states(:)
+            logical :: open_cells(flow%network%cells)
 
-            if (.not. known(open_cells)) then
-                call opening_response(run, flow, open_cells, cache%response, error)
+            open_cells = states(contact_index(run, flow)) == state_open
+            if (.not. known(states)) then
+                call opening_response(run, flow, states, cache%response, error)
                 if (allocated(error)) return
-                cache%open = open_cells
+                cache%states = states
             end if
             call balance_jacobian(flow, t_new, p, opening, open_cells, cache%response, &
                                   jacobian)
@@ -265,14 +276,14 @@ contains
             trial = p + factor * dp(:, 1)
         end subroutine newton_step
 
-        !> Whether the cache holds the response of these open cells.
-        logical function known(open_cells)
-            logical, intent(in) :: open_cells(:)
+        !> Whether the cache holds the response of these linearized states.
+        logical function known(states)
+            integer, intent(in) :: states(:)
 
             known = .false.
-            if (.not. allocated(cache%open)) return
-            if (size(cache%open) /= size(open_cells)) return
-            known = all(cache%open .eqv. open_cells)
+            if (.not. allocated(cache%states)) return
+            if (size(cache%states) /= size(states)) return
+            known = all(cache%states == states)
         end function known
 
         !> The contact solution for pressure q from the step's starting memory, the cells'
@@ -307,44 +318,114 @@ contains
         end function volume_scale
     end subroutine solve_step
 
-    !> d opening / d p of the open cells: the normal-normal block of the inverse of their
-    !> block of the contact stiffness A ([s; n] over the contact elements); zero for the
-    !> other cells.
-    subroutine opening_response(run, flow, open_cells, response, error)
+    !> The index in the run's contact set of each cell's element, shape (cells).
+    function contact_index(run, flow) result(index)
         type(contact_run), intent(in) :: run
         type(lubrication_flow), intent(in) :: flow
-        !> Whether each cell is open, shape (cells)
+        integer :: index(flow%network%cells)
+        integer, allocatable :: contact_of(:)
+        integer :: i
+
+        allocate (contact_of(size(flow%network%cell)), source=0)
+        contact_of(run%operator%contact) = [(i, i = 1, run%operator%nc)]
+        index = contact_of(flow%network%element)
+    end function contact_index
+
+    !> The linearized state of every contact element (its index in the run's contact set):
+    !> open (the cells of open_cells, and contact elements outside the network that the
+    !> iterate leaves open), slipping forward or backward (the iterate's slipping elements
+    !> that are not taken as open: linear_slip times the sign of their shear traction), or
+    !> held (stuck, or a cell taken as closed).
+    function linear_states(run, flow, open_cells, contact) result(states)
+        type(contact_run), intent(in) :: run
+        type(lubrication_flow), intent(in) :: flow
+        !> Whether each cell is taken as open, shape (cells)
         logical, intent(in) :: open_cells(:)
+        !> The iterate's contact solution
+        type(contact_result), intent(in) :: contact
+        integer, allocatable :: states(:)
+        integer :: cell_of(flow%network%cells), i
+
+        allocate (states(run%operator%nc), source=linear_held)
+        where (contact%state == state_open) states = state_open
+        where (contact%state == state_slip) states = merge(linear_slip, -linear_slip, &
+                                                           contact%shear_traction >= 0.0_wp)
+        cell_of = contact_index(run, flow)
+        do i = 1, flow%network%cells
+            if (open_cells(i)) then
+                states(cell_of(i)) = state_open
+            else if (states(cell_of(i)) == state_open) then
+                states(cell_of(i)) = linear_held
+            end if
+        end do
+    end function linear_states
+
+    !> The open cells' opening response d opening_i / d p_j (shape (cells, cells)) of the
+    !> linearized contact problem: open elements free in shear and normal, their normal
+    !> traction -p; slipping ones free in shear, their shear traction on the friction line
+    !> ts = s mu (-tn - p) (s the sign of their shear traction); the others held. Where
+    !> cells slip beside open ones (a fracture's flank, a fault beside a junction) their slip
+    !> moves the openings too.
+    subroutine opening_response(run, flow, states, response, error)
+        type(contact_run), intent(in) :: run
+        type(lubrication_flow), intent(in) :: flow
+        !> The contact elements' linearized states (linear_states), shape (nc)
+        integer, intent(in) :: states(:)
         real(wp), allocatable, intent(out) :: response(:, :)
         type(error_type), allocatable, intent(out) :: error
-        integer, allocatable :: contact_of(:), opened(:), rows(:), pivots(:)
-        real(wp), allocatable :: block(:, :), columns(:, :)
-        integer :: nc, m, i
+        integer, allocatable :: opened(:), rows(:), pivots(:), free_shear(:), &
+            free_normal(:), cells(:), position(:)
+        integer :: cell_of(flow%network%cells)
+        real(wp), allocatable :: block(:, :), columns(:, :), mu(:)
+        type(fault_law) :: law
+        integer :: nc, m, i, j, k, r
+        logical, allocatable :: in_network(:)
 
         allocate (response(flow%network%cells, flow%network%cells), source=0.0_wp)
-        associate (op => run%operator, e => flow%network%element)
+        associate (op => run%operator)
             if (.not. associated(op%matrix)) then
                 call set_error(error, exit_solver_failure, 'coupled flow needs the dense '// &
                                'contact stiffness')
                 return
             end if
             nc = op%nc
-            allocate (contact_of(size(flow%network%cell)), source=0)
-            contact_of(op%contact) = [(i, i = 1, nc)]
-            opened = pack([(i, i = 1, flow%network%cells)], open_cells)
+            cell_of = contact_index(run, flow)
+            ! The open cells first, in cell order; then the other open and slipping elements.
+            opened = pack([(i, i = 1, flow%network%cells)], states(cell_of) == state_open)
             m = size(opened)
             if (m == 0) return
-            rows = [contact_of(e(opened)), nc + contact_of(e(opened))]
+            allocate (in_network(nc), source=.false.)
+            in_network(cell_of(opened)) = .true.
+            free_normal = [cell_of(opened), &
+                           pack([(i, i = 1, nc)], states == state_open .and. .not. in_network)]
+            free_shear = [free_normal, pack([(i, i = 1, nc)], abs(states) == linear_slip)]
+            rows = [free_shear, nc + free_normal]
             block = op%matrix(rows, rows)
-            allocate (columns(2 * m, m), source=0.0_wp)
-            allocate (pivots(2 * m))
-            do i = 1, m
-                columns(m + i, i) = 1.0_wp
+            law = run%law_in_force()
+            mu = law%mu
+            do r = size(free_normal) + 1, size(free_shear)
+                j = free_shear(r)
+                block(r, :) = block(r, :) + sign(mu(j), real(states(j), wp)) * &
+                              op%matrix(nc + j, rows)
             end do
+            ! A column per cell that is open or slips: a unit pressure change in it.
+            allocate (position(nc), source=0)
+            position(free_shear) = [(r, r = 1, size(free_shear))]
+            cells = pack([(i, i = 1, flow%network%cells)], position(cell_of) > 0)
+            allocate (columns(size(rows), size(cells)), source=0.0_wp)
+            do k = 1, size(cells)
+                j = cell_of(cells(k))
+                if (states(j) == state_open) then
+                    columns(size(free_shear) + position(j), k) = 1.0_wp
+                else
+                    columns(position(j), k) = sign(mu(j), real(states(j), wp))
+                end if
+            end do
+            allocate (pivots(size(rows)))
             call lu_factor(block, pivots, 'the open cells'' contact stiffness', error)
             if (allocated(error)) return
             call lu_solve(block, pivots, columns)
-            response(opened, opened) = columns(m + 1:, :)
+            response(opened, cells) = columns(size(free_shear) + 1:size(free_shear) + m, :)
         end associate
     end subroutine opening_response
 

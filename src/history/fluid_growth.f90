@@ -96,11 +96,11 @@ contains
         call growing_ends(model, begin_grows, end_grows)
         allocate (run)
         call run%prepare(medium_of(model), model%solver, error)
-        if (allocated(error)) return
+        if (failed()) return
         call run%take_steps()
         load = model_load(model)
         call start_coupled_flow(run, model, load, t_start, flow, error)
-        if (allocated(error)) return
+        if (failed()) return
         allocate (ds(model%elements%n), source=0.0_wp)
         allocate (columns(0))
         dt_guess = (t_end - t_start) / real(max(model%growth%steps, 1), wp)
@@ -113,7 +113,7 @@ contains
                 if (size(begin_grows) + size(end_grows) == 0) exit
                 call grow_ends(model, begin_grows, end_grows, origin)
                 call run_on_the_geometry(error)
-                if (allocated(error)) return
+                if (failed()) return
                 block
                     type(lubrication_flow) :: before
 
@@ -134,13 +134,13 @@ contains
                 error%message = 'fluid-driven growth, step '//itoa(step)//': '//error%message
                 if (step == 0) then
                     error%message = error%message//'; no result is written'
-                    return
+                    if (failed()) return
                 end if
                 ! The steps completed are the result: back to the last one's geometry.
                 call move_alloc(error%message, failure)
                 deallocate (error)
                 call restore_last_step(error)
-                if (allocated(error)) return
+                if (failed()) return
                 exit
             end if
             kept_model = model
@@ -163,6 +163,13 @@ contains
         end if
 
     contains
+
+        !> Whether the solve failed; the run's memory is released when it did (a run on no
+        !> geometry holds none).
+        logical function failed()
+            failed = allocated(error)
+            if (failed) call run%finish()
+        end function failed
 
         !> The model, the run and the records of the last step completed.
         subroutine restore_last_step(error)

@@ -481,19 +481,20 @@ def check_fault_across_layers(f):
 
 def check_kgd(f):
     """61 steps to 64 elements per wing, every element open; the half-length to the fronts
-    within 0.15 % and the net pressure at the well within 0.4 % of the toughness solution
-    (K_m = 23)."""
+    within 0.3 % and the net pressure at the well within 0.75 % of the toughness solution
+    (K_m = 7.2: the viscosity's share of the apparent toughness and of the pressure drop
+    moves the net pressure by 0.3 % from that of K_m = 23)."""
     h = f["history"]
     t = h["time"][-1]
     e_prime = 30000.0 / (1.0 - 0.25**2)
     length = (e_prime * 1.0e-4 * t / (2.0 * math.sqrt(math.pi)))**(2.0 / 3.0)
     assert h["time"].shape == (61,) and h["element_count"][-1] == 128
     _all(f, "crack", "open")
-    assert abs((0.1 + h["grown_length"][-1].mean()) / length - 1.0) < 0.002
+    assert abs((0.1 + h["grown_length"][-1].mean()) / length - 1.0) < 0.003
     x = f["elements/x_mid"][()]
     well = np.argsort(np.abs(x))[:2]
     net = h["pressure"][-1][well].mean() - 1.0
-    assert abs(net * math.sqrt(math.pi * length) - 1.0) < 0.005
+    assert abs(net * math.sqrt(math.pi * length) - 1.0) < 0.0075
 
 
 def check_kgd_viscous(f):

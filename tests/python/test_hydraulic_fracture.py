@@ -268,13 +268,11 @@ def test_a_hydraulic_fracture_that_reaches_a_fault_feeds_it(tmp_path):
         assert np.max(np.abs(injected - history["stored_volume"][()]) / injected) < 1e-8
 
 
-# A hydraulic fracture at 30 degrees to a fault (the gallery's stresses scaled down): the
-# step whose new element would end on the fault does not converge (the closed frictional
-# junction of a narrow wedge, docs/contact-and-strength.md#junctions).
+# A hydraulic fracture at 30 degrees to a fault (the gallery's stresses scaled down).
 NARROW_JUNCTION = """\
 &model youngs_modulus = 30000.0, poissons_ratio = 0.25 /
 &remote_stress sxx = -2.875, syy = -1.625, sxy = 1.0826 /
-&fracture name = 'fault', x = -1.0, 1.0, y = 0.0, 0.0, elements = 40, mu = 0.7, sf = 0.02,
+&fracture name = 'fault', x = -1.0, 1.0, y = 0.0, 0.0, elements = 40, mu = {mu}, sf = 0.02,
           residual_aperture = 1.0e-5 /
 &fracture name = 'hydrofracture', x = -0.1732, 0.0, y = 0.2, 0.1, elements = 8, mu = 0.6,
           residual_aperture = 1.0e-5 /
@@ -286,10 +284,36 @@ NARROW_JUNCTION = """\
 """
 
 
+def test_a_hydraulic_fracture_links_to_a_fault_at_a_narrow_angle(tmp_path):
+    # A strong fault (mu = 5): the lower tip ends on it at step 8 and stops, the fluid
+    # enters the fault and raises its pressure past its normal stress (1.625 MPa), and the
+    # fault's elements near the junction slip; the upper tip grows on. The coupled solve's
+    # Jacobian takes the slipping elements' response in (without it the step of the link
+    # does not converge).
+    path = solve_text(tmp_path, "strong", NARROW_JUNCTION.format(mu=5.0))
+    with h5py.File(path) as f:
+        history = f["history"]
+        elements = f["elements"]
+        assert list(history["element_count"][()]) == [48, 50, 52, 54, 56, 58, 60, 62, 64, 65,
+                                                      66, 67, 68]
+        hydro = elements["fracture_id"][()] == 2
+        assert np.min(elements["y_end"][()][hydro]) == pytest.approx(0.0, abs=1e-12)
+        fault = elements["fracture_id"][()] == 1
+        pressure = history["pressure"][()]
+        assert np.all(np.abs(pressure[:5][:, fault]) < 1e-9)
+        assert np.all(np.nanmax(pressure[8:][:, fault], axis=1) > 1.625)
+        state = history["state"][()]
+        assert np.count_nonzero(state[-1][fault] == 2) >= 5
+        injected = history["injected_volume"][()]
+        assert np.max(np.abs(injected - history["stored_volume"][()]) / injected) < 1e-8
+
+
 def test_a_run_that_fails_keeps_the_steps_it_made(tmp_path):
-    (tmp_path / "junction.nml").write_text(NARROW_JUNCTION)
+    # A fault of mu = 0.7 slips widely once the fluid enters it; a step after the link does
+    # not converge (the slip front moving through the step): exit 6, the steps before it
+    # kept in a file that says so.
+    (tmp_path / "junction.nml").write_text(NARROW_JUNCTION.format(mu=0.7))
     done = run(["junction.nml"], tmp_path)
-    # Exit 6: stopped early, the steps before the failure in the file, which says so.
     assert done.returncode == 6, done.stdout + done.stderr
     found = re.search(r"fluid-driven growth, step (\d+): .*the run stopped there: the result "
                       r"holds the (\d+) step\(s\) before it", done.stderr)
@@ -306,9 +330,6 @@ def test_a_run_that_fails_keeps_the_steps_it_made(tmp_path):
         elements = f["elements"]
         assert history["element_count"][-1] == len(elements["x_begin"])
         assert np.all(history["state"][-1] >= 0)
-        # The hydraulic fracture has not reached the fault yet.
-        hydro = elements["fracture_id"][()] == 2
-        assert np.min(elements["y_end"][()][hydro]) > 0.0
         injected = history["injected_volume"][()]
         assert np.max(np.abs(injected - history["stored_volume"][()]) / injected) < 1e-8
 
