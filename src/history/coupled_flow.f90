@@ -29,14 +29,14 @@ module ddc_history_coupled_flow
 
     public :: start_coupled_flow, coupled_flow_step, response_cache
 
-    !> The open cells' response d opening / d p last made on a geometry, and the contact
-    !> elements' linearized states it is for (linear_states: a fixed geometry and states
-    !> give the same response: the steps of a history and the trials of a growth step share
-    !> it)
     !> Linearized states of a contact element beside state_open: held (stuck, or a cell
     !> taken as closed), slipping (times the sign of its shear traction)
     integer, parameter :: linear_held = 0, linear_slip = 2
 
+    !> The open cells' response d opening / d p last made on a geometry, and the contact
+    !> elements' linearized states it is for (linear_states: a fixed geometry and states
+    !> give the same response: the steps of a history and the trials of a growth step share
+    !> it)
     type :: response_cache
         integer, allocatable :: states(:)
         real(wp), allocatable :: response(:, :)
