@@ -376,7 +376,7 @@ contains
         integer, allocatable :: opened(:), rows(:), pivots(:), free_shear(:), &
             free_normal(:), cells(:), position(:)
         integer :: cell_of(flow%network%cells)
-        real(wp), allocatable :: block(:, :), columns(:, :), mu(:)
+        real(wp), allocatable :: block(:, :), columns(:, :)
         type(fault_law) :: law
         integer :: nc, m, i, j, k, r
         logical, allocatable :: in_network(:)
@@ -402,13 +402,14 @@ contains
             rows = [free_shear, nc + free_normal]
             block = op%matrix(rows, rows)
             law = run%law_in_force()
-            mu = law%mu
             do r = size(free_normal) + 1, size(free_shear)
                 j = free_shear(r)
-                block(r, :) = block(r, :) + sign(mu(j), real(states(j), wp)) * &
+                block(r, :) = block(r, :) + sign(law%mu(j), real(states(j), wp)) * &
                               op%matrix(nc + j, rows)
             end do
-            ! A column per cell that is open or slips: a unit pressure change in it.
+            ! A column per cell that is open or slips: a unit pressure change in it. An open
+            ! element's normal row sits as far into the normal rows as its shear row into
+            ! the shear rows (free_normal begins free_shear).
             allocate (position(nc), source=0)
             position(free_shear) = [(r, r = 1, size(free_shear))]
             cells = pack([(i, i = 1, flow%network%cells)], position(cell_of) > 0)
@@ -418,7 +419,7 @@ contains
                 if (states(j) == state_open) then
                     columns(size(free_shear) + position(j), k) = 1.0_wp
                 else
-                    columns(position(j), k) = sign(mu(j), real(states(j), wp))
+                    columns(position(j), k) = sign(law%mu(j), real(states(j), wp))
                 end if
             end do
             allocate (pivots(size(rows)))

@@ -1,12 +1,13 @@
-!> Fluid-driven growth (docs/theory/fluid-driven-fractures.md#fluid-driven-growth): fractures
-!> that lengthen as the fluid the sources inject fills them. Each growth step adds one element
-!> straight ahead of every growing tip (the length fixed), and the time it takes is solved
-!> for: the time at which the largest K_I of the growing tips, after a coupled step of the
-!> flow and the contact run from the state before (ddc_history_coupled_flow), reaches the
-!> toughness. The geometry grows on a run of its own (prepare), the flow carried over
-!> (carry_lubrication: a new element is rock just broken, its residual aperture at rest). The
-!> first step finds the time at which the initial fractures start to grow. The run ends after
-!> &growth steps, or when the time passes the path's last.
+!> Fluid-driven growth (docs/theory/fluid-driven-fractures.md#fluid-driven-growth):
+!> fractures that lengthen as the fluid the sources inject fills them. Each growth step adds
+!> one element straight ahead of every growing tip (the length fixed), and the time it takes
+!> is solved for: the time at which the largest K_I of the growing tips, after a coupled
+!> step of the flow and the contact run from the state before (ddc_history_coupled_flow),
+!> reaches the apparent toughness of the front's velocity (ddc_flow_tip_asymptote). The
+!> geometry grows on a run of its own (prepare), the flow carried over (carry_lubrication: a
+!> new element is rock just broken, its residual aperture at rest). The first step finds the
+!> time at which the initial fractures start to grow. The run ends after &growth steps, or
+!> when the time passes the path's last.
 module ddc_history_fluid_growth
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use, intrinsic :: iso_fortran_env, only: int64
@@ -36,7 +37,7 @@ module ddc_history_fluid_growth
 
     public :: solve_fluid_growth
 
-    !> K_I within this fraction of the toughness ends the search for a step's time
+    !> K_I within this fraction of the apparent toughness ends the search for a step's time
     real(wp), parameter :: toughness_tolerance = 1.0e-6_wp
     !> A bracket of the step's time this fraction of the step wide holds a jump of K_I
     real(wp), parameter :: jump_tolerance = 1.0e-9_wp
@@ -75,7 +76,7 @@ contains
         type(contact_run), allocatable :: run
         type(lubrication_flow) :: flow
         type(contact_step) :: solution, kept_solution
-        type(growth_column), allocatable :: columns(:), kept_columns(:)
+        type(growth_column), allocatable :: columns(:)
         type(model_type) :: kept_model
         type(elastic_load) :: load
         character(len=:), allocatable :: failure
@@ -123,9 +124,6 @@ contains
                 end block
                 ds = carried(ds, origin)
                 call run%hold(ds)
-                do k = 1, size(columns)
-                    columns(k)%final = position_of(columns(k)%final, origin)
-                end do
             end if
             call reach_toughness(run, load, flow, ds, dt_guess, model%growth%toughness, &
                                  step > 0, fracture_grows, begin_grows, end_grows, solution, &
@@ -134,17 +132,24 @@ contains
                 error%message = 'fluid-driven growth, step '//itoa(step)//': '//error%message
                 if (step == 0) then
                     error%message = error%message//'; no result is written'
-                    if (failed()) return
+                    call run%finish()
+                    return
                 end if
-                ! The steps completed are the result: back to the last one's geometry.
+                ! The steps completed are the result: back to the last one's geometry (the
+                ! columns are still on it).
                 call move_alloc(error%message, failure)
                 deallocate (error)
                 call restore_last_step(error)
                 if (failed()) return
                 exit
             end if
+            ! The steps before hold their rows on the geometry before: on the grown one now.
+            if (step > 0) then
+                do k = 1, size(columns) - 1
+                    columns(k)%final = position_of(columns(k)%final, origin)
+                end do
+            end if
             kept_model = model
-            kept_columns = columns
             kept_solution = solution
             time = flow%time
             dt_guess = max(time - t_before, epsilon(1.0_wp) * abs(time))
@@ -171,12 +176,11 @@ contains
             if (failed) call run%finish()
         end function failed
 
-        !> The model, the run and the records of the last step completed.
+        !> The model, the run and the solution of the last step completed.
         subroutine restore_last_step(error)
             type(error_type), allocatable, intent(out) :: error
 
             model = kept_model
-            columns = kept_columns
             solution = kept_solution
             call run_on_the_geometry(error)
             if (allocated(error)) return
@@ -219,7 +223,7 @@ contains
     end subroutine solve_fluid_growth
 
     !> Find the time, after flow%time, at which the largest K_I of the growing tips reaches
-    !> the toughness; the flow and the run move on to it, and the step is recorded.
+    !> the apparent toughness; the flow and the run move on to it, and the step is recorded.
     subroutine reach_toughness(run, load, flow, ds, dt_guess, toughness, advancing, &
                                fracture_grows, begin_grows, end_grows, solution, columns, error)
         type(contact_run), intent(inout) :: run

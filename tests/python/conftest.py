@@ -207,6 +207,17 @@ def solve_text(folder, stem, text, timeout=300):
     return folder / f"{stem}.h5"
 
 
+def kgd_viscosity_solution(t, e_prime, viscosity, rate):
+    """KGD, viscosity-dominated, zero toughness (Adachi & Detournay 2002): the half-length
+    0.61524 (E' Q0^3 t^4 / mu')^(1/6) and the opening at the source gamma (A0 + A1 + 4 B)
+    (mu' Q0^3 t^2 / E')^(1/6), their series' gamma = 0.6152, A0 = 3^(1/2), A1 = -0.156,
+    B = 0.0663; mu' = 12 eta."""
+    mu_prime = 12.0 * viscosity
+    length = 0.61524 * (e_prime * rate**3 * t**4 / mu_prime)**(1.0 / 6.0)
+    omega0 = 0.6152 * (3.0**0.5 - 0.156 + 4.0 * 0.0663)
+    return length, omega0 * (mu_prime * rate**3 * t**2 / e_prime)**(1.0 / 6.0)
+
+
 def ddc2d_exe():
     """The ddc2d executable under test: $DDC2D_EXE, else the Debug build of scripts/test.sh.
 

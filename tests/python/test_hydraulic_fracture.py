@@ -20,7 +20,7 @@ import h5py
 import numpy as np
 import pytest
 
-from conftest import PLOT_SCRIPT, ddc2d_exe, solve_text
+from conftest import PLOT_SCRIPT, ddc2d_exe, kgd_viscosity_solution, solve_text
 
 E, NU = 30000.0, 0.25
 E_PRIME = E / (1.0 - NU**2)
@@ -147,16 +147,6 @@ VISCOUS_TOUGHNESS, WATER = 1.0e-3, 1.0e-9
 VISCOUS_KGD = kgd_text(0.125, 20, 1.0e-7, WATER, VISCOUS_TOUGHNESS)
 
 
-def viscosity_solution(t):
-    """KGD, viscosity-dominated, zero toughness (Adachi & Detournay 2002): half-length and
-    opening at the source, w0 = gamma (A0 + A1 + 4 B) eps L with gamma = 0.6152, A0 = 3^(1/2),
-    A1 = -0.156, B = 0.0663 (their series' coefficients)."""
-    mu_prime = 12.0 * WATER
-    length = 0.61524 * (E_PRIME * RATE**3 * t**4 / mu_prime)**(1.0 / 6.0)
-    omega0 = 0.6152 * (math.sqrt(3.0) - 0.156 + 4.0 * 0.0663)
-    return length, omega0 * (mu_prime * RATE**3 * t**2 / E_PRIME)**(1.0 / 6.0)
-
-
 def test_kgd_in_the_viscosity_regime(tmp_path):
     k_prime = 4.0 * math.sqrt(2.0 / math.pi) * VISCOUS_TOUGHNESS
     assert k_prime * (1.0 / (E_PRIME**3 * 12.0 * WATER * RATE))**0.25 <= 0.1
@@ -167,7 +157,7 @@ def test_kgd_in_the_viscosity_regime(tmp_path):
         middle = np.argsort(np.abs(0.5 * (elements["x_begin"][()] + elements["x_end"][()])))[:2]
         time = history["time"][()]
         wings = history["element_count"][()] // 2
-        length, opening = viscosity_solution(time)
+        length, opening = kgd_viscosity_solution(time, E_PRIME, WATER, RATE)
         length_error = (0.125 + history["grown_length"][()].mean(axis=1)) / length - 1.0
         opening_error = -history["dn"][()][:, middle].mean(axis=1) / opening - 1.0
         # K_I at every step is the apparent toughness of the front's velocity, which the
