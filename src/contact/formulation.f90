@@ -79,7 +79,6 @@ module ddc_contact_formulation
     use ddc_text, only: bytes_text, itoa, rtoa
     use ddc_contact_memory, only: lemke_bytes
     use ddc_contact_options, only: solver_options, lcp_auto, lcp_newton, lcp_lemke, cohesion_lost
-    use ddc_contact_certificate, only: certify_complementarity, default_certificate_tolerance
     use ddc_contact_fault_law, only: fault_law
     use ddc_contact_states, only: state_stick, state_open
     use ddc_contact_active_set, only: active_set_result, active_set_workspace, &
@@ -87,7 +86,7 @@ module ddc_contact_formulation
     use ddc_contact_stiffness, only: stiffness_operator, dense_stiffness
     use ddc_contact_counts, only: factor_counts
     use ddc_contact_result, only: contact_result, contact_stress_scale, problem_scales, &
-        block_scales, check_solution
+        check_solution, frictional_certificate
     use ddc_contact_paper_lcp, only: contact_lcp, build_contact_lcp, solve_paper_lcp, &
         set_lcp_friction
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -512,7 +511,7 @@ contains
             !> so): no other method can take over (Lemke needs more)
             logical, intent(out) :: exceeded
             type(active_set_result) :: next
-            real(wp), allocatable :: tau(:), z(:), w(:), zs(:), ws(:), snp(:), slip(:)
+            real(wp), allocatable :: snp(:)
             real(wp) :: dscale, stiffness_scale
             integer :: n, i
             character(len=:), allocatable :: failure
@@ -547,18 +546,11 @@ contains
                 s%open = next%open
                 s%shear_state = next%shear_state
 
-                ! z and w of the paper's LCP from the DDs and the tractions A D + S_r of the
-                ! unfactored A; the slip increment split as D_L - D_R with the smaller part zero.
-                slip = next%ds - held
-                associate (ss => next%shear, snf => next%normal_effective)
-                    tau = sf - mu * snf
-                    z = [-snf, tau - ss, max(slip, 0.0_wp)]
-                    w = [-next%dn, max(-slip, 0.0_wp), tau + ss]
-                end associate
+                ! Certified as the paper's LCP, from the DDs and the tractions A D + S_r of the
+                ! unfactored A.
                 dscale = max(res%dd_scale, maxval(abs(next%ds)), maxval(abs(next%dn)))
-                call block_scales(n, res%stress_scale, dscale, zs, ws)
-                res%certificate = certify_complementarity(z, w, zs, ws, &
-                                                          default_certificate_tolerance)
+                res%certificate = frictional_certificate(next%ds, next%dn, held, next%shear, &
+                    next%normal_effective, mu, sf, res%stress_scale, dscale)
 
                 ! The tractions the iteration imposed: S_n' = 0 on open elements, s_s = +-tau_s
                 ! on slipping ones; elsewhere those of A D + S_r.

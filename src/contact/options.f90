@@ -70,6 +70,10 @@ module ddc_contact_options
         integer :: k_method = k_auto
         !> Elements of a tip's zone in the local re-solve for K
         integer :: k_zone_elements = default_k_zone_elements
+        !> The local re-solve's K of a history step is its last two coupled solutions'
+        !> extrapolated to the step's load where they show it holds (tests compare it with
+        !> a coupling solved at every step)
+        logical :: k_extrapolation = .true.
     end type solver_options
 
 contains

@@ -11,7 +11,8 @@
 module ddc_contact_result
     use ddc_kinds, only: wp
     use ddc_contact_states, only: state_stick, state_slip, state_open
-    use ddc_contact_certificate, only: lcp_certificate
+    use ddc_contact_certificate, only: lcp_certificate, certify_complementarity, &
+        default_certificate_tolerance
     use ddc_contact_counts, only: factor_counts
     use ddc_linalg_lu, only: residual_tol
     implicit none
@@ -19,6 +20,7 @@ module ddc_contact_result
 
     public :: contact_result, state_dd_tol, state_stress_tol, residual_tol
     public :: contact_stress_scale, problem_scales, block_scales, check_solution
+    public :: frictional_certificate
 
     !> Relative tolerance on DDs for the state rule (times dd_scale) [-]
     real(wp), parameter :: state_dd_tol = 1.0e-9_wp
@@ -103,6 +105,32 @@ contains
         zs = [spread(stress, 1, 2 * n), spread(length, 1, n)]
         ws = [spread(length, 1, 2 * n), spread(stress, 1, n)]
     end subroutine block_scales
+
+    !> The certificate of a frictional contact solution given by its DDs and total tractions:
+    !> the paper's LCP's z = [-S_n', tau_s - s_s, slip+] and w = [-Dn, slip-, tau_s + s_s]
+    !> (tau_s = Sf - mu S_n', the slip an increment over the slip held, split as D_L - D_R
+    !> with the smaller part zero), whose relation w = M z + q holds when the tractions are
+    !> those of the DDs: the Newton method's solution, a history's coupled K solution
+    !> extrapolated along its load (ddc_run_coupled_k).
+    pure function frictional_certificate(ds, dn, held, shear, normal_effective, mu, sf, &
+                                         stress_scale, dd_scale) result(cert)
+        !> DDs and the slip held before [length], shear and effective normal traction (s_n + p)
+        !> [stress], friction [-] and cohesion [stress] of each element, shape (n)
+        real(wp), intent(in) :: ds(:), dn(:), held(:), shear(:), normal_effective(:), mu(:), &
+            sf(:)
+        !> Stress and displacement scale of the rows [stress], [length]
+        real(wp), intent(in) :: stress_scale, dd_scale
+        type(lcp_certificate) :: cert
+        real(wp) :: slip(size(ds)), tau(size(ds))
+        real(wp), allocatable :: zs(:), ws(:)
+
+        slip = ds - held
+        tau = sf - mu * normal_effective
+        call block_scales(size(ds), stress_scale, dd_scale, zs, ws)
+        cert = certify_complementarity([-normal_effective, tau - shear, max(slip, 0.0_wp)], &
+                                       [-dn, max(-slip, 0.0_wp), tau + shear], zs, ws, &
+                                       default_certificate_tolerance)
+    end function frictional_certificate
 
     !> Checks common to both methods on a recovered solution (res%ds, dn, tractions):
     !> the certificate passed and the DDs are in equilibrium with the tractions against the

@@ -76,6 +76,8 @@ contains
 
         ! Not hashed: model%title, model%output_file, model%input_file (names only)
         ! Not hashed: model%input_text (holds steps and the path; its parsed values count)
+        ! Not hashed: model%solver%k_extrapolation (not an input: the same K to the
+        ! coupling's tolerance either way)
         ! Not hashed: model%sweep (a record; --resume is refused for sweep tasks)
         ! Not hashed: model%fingerprint (this hash)
         ! Not hashed: model%resumed_from, model%resumed_from_created (a record of the run)

@@ -58,6 +58,8 @@ contains
         ! Root only: model%solver%hmatrix_tolerance (as matrix)
         ! Root only: model%solver%hmatrix_leaf_size (as matrix)
         ! Root only: model%solver%hmatrix_eta (as matrix)
+        ! Root only: model%solver%k_extrapolation (a loading history's, which a
+        ! distributed solve does not have).
         call share(context, model%block_size)
         call share_elements(context, model%elements)
 

@@ -40,6 +40,9 @@ module ddc_run_contact_run
     use ddc_text, only: itoa, rtoa
     use ddc_linalg_anderson, only: anderson_mixer
     use ddc_contact_counts, only: factor_counts
+    use ddc_contact_result, only: frictional_certificate
+    use ddc_contact_certificate, only: lcp_certificate
+    use ddc_run_coupled_k, only: coupled_solution, coupled_path
     implicit none
     private
 
@@ -103,11 +106,9 @@ module ddc_run_contact_run
         !> outside the zones stopped early (K its last iterate), and why the last one did
         integer :: k_evaluations = 0, k_unsettled = 0
         character(len=:), allocatable :: unsettled_reason
-        !> The local re-solve's last converged traction on the elements outside its zones
-        !> ([shear; normal], shape (2 n)) and the one before, with the loads they were found
-        !> for (load_values): the next step of a history starts from their extrapolation
-        !> to its load
-        real(wp), allocatable :: k_shift(:), k_shift_before(:), k_load(:), k_load_before(:)
+        !> The local re-solve's last two coupled solutions: the next step of a history starts
+        !> from their extrapolation to its load, and takes it where it holds
+        type(coupled_path) :: k_path
     contains
         procedure :: start
         procedure :: prepare
@@ -121,6 +122,7 @@ module ddc_run_contact_run
         procedure :: law_in_force
         procedure :: free_tractions
         procedure :: tip_k
+        procedure :: extrapolate_k
         procedure :: couple_outer
         procedure :: finish
     end type contact_run
@@ -449,6 +451,7 @@ contains
         real(wp), intent(out) :: k1(:), k2(:)
         type(error_type), allocatable :: failed
         real(wp), allocatable :: k1_high(:), k2_high(:), mu(:)
+        logical :: extrapolated
 
         associate (m => this%medium)
             call stress_intensity(m, tips%element, solved%ds, solved%dn, k1, k2)
@@ -468,7 +471,9 @@ contains
                         're-solve were not solved by this run'
                 end if
             end if
-            if (this%higher_order) then
+            extrapolated = .false.
+            if (coupled()) call this%extrapolate_k(load, k1_high, k2_high, extrapolated)
+            if (this%higher_order .and. .not. extrapolated) then
                 if (allocated(solved%mu_in_force)) then
                     mu = solved%mu_in_force
                 else
@@ -482,8 +487,8 @@ contains
                                     k2_high, failed)
                 call note_failure()
             end if
-            if (coupled()) then
-                this%k_evaluations = this%k_evaluations + 1
+            if (coupled()) this%k_evaluations = this%k_evaluations + 1
+            if (coupled() .and. .not. extrapolated) then
                 call this%couple_outer(load, solved, mu, tips, k1_high, k2_high, failed)
                 if (allocated(failed)) then
                     this%k_unsettled = this%k_unsettled + 1
@@ -519,6 +524,44 @@ contains
             this%tip_element_reason = 'the higher-order re-solve failed: '//failed%message
         end subroutine note_failure
     end subroutine tip_k
+
+    !> K of a history step by the local re-solve's last two coupled solutions extrapolated
+    !> to its load (ddc_run_coupled_k), where the fault law is Coulomb's (the equations then
+    !> linear while the states hold) and the extrapolated solution meets the contact
+    !> conditions to the contact solver's own certificate: no solve. The friction memory of
+    !> the model with higher-order zones moves on as a solve's would.
+    subroutine extrapolate_k(this, load, k1, k2, done)
+        !> The run (its re-solve coupled)
+        class(contact_run), intent(inout) :: this
+        !> The step's load
+        type(elastic_load), intent(in) :: load
+        !> K of the tips [stress unit * length unit**0.5], shape (tips), where done
+        real(wp), allocatable, intent(out) :: k1(:), k2(:)
+        !> Whether K was extrapolated
+        logical, intent(out) :: done
+        type(coupled_solution) :: candidate
+        type(lcp_certificate) :: certificate
+        real(wp), allocatable :: values(:)
+        real(wp) :: dd_scale
+
+        done = .false.
+        if (.not. this%options%k_extrapolation .or. .not. allocated(this%k_held)) return
+        if (this%law%beyond_coulomb()) return
+        values = load_values(load)
+        if (.not. this%k_path%extends(values)) return
+        candidate = this%k_path%at(values)
+        associate (contact => this%operator%contact, law => this%k_law, c => candidate)
+            dd_scale = max(c%dd_scale, maxval(abs([c%ds, c%dn, 0.0_wp])))
+            certificate = frictional_certificate(c%ds, c%dn, this%k_held, c%shear, &
+                c%normal + load%pressure(contact), law%mu_in_force, law%sf_in_force, &
+                c%stress_scale, dd_scale)
+        end associate
+        if (.not. certificate%passed) return
+        done = .true.
+        call move_alloc(candidate%k1, k1)
+        call move_alloc(candidate%k2, k2)
+        call move_alloc(candidate%ds, this%k_held)
+    end subroutine extrapolate_k
 
     !> The local re-solve coupled to the elements outside its zones: the model solved again
     !> under its load plus the traction the zones' higher-order DDs and the recovered DDs
@@ -557,9 +600,13 @@ contains
         allocate (normal_traction, source=solved%normal_traction)
         scale = maxval(hypot(k1, k2))
         allocate (correction(2 * n))
-        if (allocated(this%k_shift)) then
-            shift = this%k_shift + along_load(load_values(load), this%k_load, &
-                this%k_load_before) * (this%k_shift - this%k_shift_before)
+        if (allocated(this%k_path%before)) then
+            associate (path => this%k_path)
+                shift = path%last%shift + path%reach(load_values(load)) * &
+                    (path%last%shift - path%before%shift)
+            end associate
+        else if (allocated(this%k_path%last)) then
+            shift = this%k_path%last%shift
         else
             allocate (shift(2 * n))
             call outer_correction(this%k_solver, this%medium, solved%ds, solved%dn, shift(:n), &
@@ -626,17 +673,25 @@ contains
 
     contains
 
-        !> The next step's coupling starts from this one's traction, memory and strengths.
+        !> The next step's coupling starts from this one's solution, memory and strengths.
         subroutine keep_coupled()
-            if (allocated(this%k_shift)) then
-                call move_alloc(this%k_shift, this%k_shift_before)
-                call move_alloc(this%k_load, this%k_load_before)
-            else
-                this%k_shift_before = shift
-                this%k_load_before = load_values(load)
-            end if
-            this%k_shift = shift
-            this%k_load = load_values(load)
+            type(coupled_solution), allocatable :: solution
+
+            allocate (solution)
+            solution%load = load_values(load)
+            solution%shift = shift
+            associate (contact => this%operator%contact)
+                solution%ds = trial%ds(contact)
+                solution%dn = trial%dn(contact)
+                solution%state = trial%state(contact)
+                solution%shear = shear_traction(contact)
+                solution%normal = normal_traction(contact)
+            end associate
+            solution%k1 = k1
+            solution%k2 = k2
+            solution%stress_scale = trial%contact%stress_scale
+            solution%dd_scale = trial%contact%dd_scale
+            call this%k_path%keep(solution)
             call move_alloc(coupled_held, this%k_held)
             this%k_law = coupled_law
         end subroutine keep_coupled
@@ -651,20 +706,6 @@ contains
         values = [load%shear, load%normal, load%remote, load%gradient]
         if (allocated(load%pressure)) values = [values, load%pressure]
     end function load_values
-
-    !> How far a load is along the last change of load, from `last` (in units of the change
-    !> from `before` to `last`; its projection, 0 where the load did not change): the
-    !> coupled traction of a step whose states are those of the last two is theirs
-    !> extrapolated so far (it is linear in the load then).
-    pure real(wp) function along_load(values, last, before)
-        real(wp), intent(in) :: values(:), last(:), before(:)
-        real(wp) :: step
-
-        along_load = 0.0_wp
-        if (size(values) /= size(last)) return
-        step = sum((last - before)**2)
-        if (step > 0.0_wp) along_load = sum((values - last) * (last - before)) / step
-    end function along_load
 
     !> Free what the run holds.
     subroutine finish(this)
