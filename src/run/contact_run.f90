@@ -600,14 +600,8 @@ contains
         allocate (normal_traction, source=solved%normal_traction)
         scale = maxval(hypot(k1, k2))
         allocate (correction(2 * n))
-        if (allocated(this%k_path%before)) then
-            associate (path => this%k_path)
-                shift = path%last%shift + path%reach(load_values(load)) * &
-                    (path%last%shift - path%before%shift)
-            end associate
-        else if (allocated(this%k_path%last)) then
-            shift = this%k_path%last%shift
-        else
+        call this%k_path%start(load_values(load), solved%state(this%operator%contact), shift)
+        if (.not. allocated(shift)) then
             allocate (shift(2 * n))
             call outer_correction(this%k_solver, this%medium, solved%ds, solved%dn, shift(:n), &
                                   shift(n + 1:))

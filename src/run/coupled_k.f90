@@ -50,6 +50,7 @@ module ddc_run_coupled_k
         procedure :: reach
         procedure :: extends
         procedure :: at
+        procedure :: start
     end type coupled_path
 
 contains
@@ -134,5 +135,26 @@ contains
             solution%dd_scale = max(a%dd_scale, b%dd_scale)
         end associate
     end function at
+
+    !> The traction a step's coupling starts from: where the step's contact states are those
+    !> of the last coupled solution, its traction, extrapolated to the step's load where the
+    !> solution before has them too; else none (the step's own DDs give it: a traction of
+    !> other states would start the solves far from theirs).
+    pure subroutine start(this, load, state, shift)
+        !> The path
+        class(coupled_path), intent(in) :: this
+        !> The step's load values and its contact elements' states, shape (nc)
+        real(wp), intent(in) :: load(:)
+        integer, intent(in) :: state(:)
+        !> The traction, [shear; normal], shape (2 n) [stress]; unallocated where none
+        real(wp), allocatable, intent(out) :: shift(:)
+
+        if (.not. allocated(this%last)) return
+        if (any(state /= this%last%state)) return
+        shift = this%last%shift
+        if (.not. allocated(this%before)) return
+        if (all(this%before%state == this%last%state)) shift = shift + this%reach(load) * &
+            (this%last%shift - this%before%shift)
+    end subroutine start
 
 end module ddc_run_coupled_k
