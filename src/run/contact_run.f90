@@ -473,6 +473,13 @@ contains
             end if
             extrapolated = .false.
             if (coupled()) call this%extrapolate_k(load, k1_high, k2_high, extrapolated)
+            if (extrapolated) then
+                ! A tip outside the zones keeps the tip element's K of the step's own DDs.
+                where (this%k_solver%local(tips%element) == 0)
+                    k1_high = k1
+                    k2_high = k2
+                end where
+            end if
             if (this%higher_order .and. .not. extrapolated) then
                 if (allocated(solved%mu_in_force)) then
                     mu = solved%mu_in_force
