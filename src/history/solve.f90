@@ -204,6 +204,7 @@ contains
         call move_alloc(solved%dn, results%elements%dn)
         call move_alloc(solved%state, results%elements%state)
         call in_force_of(run, results%elements)
+        call run%k_memory(results%elements%ds, results%elements%ds_k_memory)
         call finish_model(model, load_at(nsteps), results, run=run)
         call totals%record(h, solution%contact, results%solver)
         if (allocated(run%operator%load_map)) call record_elastic_dds()
@@ -349,6 +350,7 @@ contains
                 law%slip_path = law%slip_path + abs(old%ds(:, j) - old%ds(:, j - 1))
             end do
             call run%hold(e%ds, law)
+            if (allocated(e%ds_k_memory)) call run%hold_k_memory(e%ds_k_memory)
         end associate
     end subroutine resume_steps
 

@@ -93,6 +93,10 @@ module ddc_model_results
         !> contact and TWODD-style elements; the plastic part is ds - ds_elastic) [length
         !> unit]; not allocated for a model without joints
         real(wp), allocatable :: ds_elastic(:), dn_elastic(:)
+        !> Slip of the model with the K re-solve's higher-order zones at the end of a
+        !> history (its own friction memory, which --resume restores: the steps' slip off
+        !> the contact elements) [length unit]; allocated where the re-solve was coupled
+        real(wp), allocatable :: ds_k_memory(:)
     end type element_results
 
     !> Crack tips: element ends shared with no other element.

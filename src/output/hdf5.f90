@@ -308,6 +308,9 @@ contains
             end if
             if (allocated(r%mu_in_force)) call write_real_1d(group, 'mu_in_force', &
                                                              r%mu_in_force, '1', error)
+            ! The K re-solve's own friction memory, for --resume.
+            if (allocated(r%ds_k_memory)) call write_real_1d(group, 'ds_k_memory', &
+                                                             r%ds_k_memory, length, error)
             ! Elastic joints: the elastic part of the DDs (the plastic part is the rest).
             if (allocated(r%ds_elastic)) then
                 call write_real_1d(group, 'ds_elastic', r%ds_elastic, length, error)

@@ -97,6 +97,8 @@ contains
             end if
             if (has_dataset(path, '/elements/mu_in_force')) call read_reals(reader, &
                 '/elements/mu_in_force', r%mu_in_force)
+            if (has_dataset(path, '/elements/ds_k_memory')) call read_reals(reader, &
+                '/elements/ds_k_memory', r%ds_k_memory)
         end associate
         associate (t => state%results%tips)
             call read_reals(reader, '/tips/x', t%x)

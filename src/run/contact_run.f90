@@ -123,6 +123,8 @@ module ddc_run_contact_run
         procedure :: free_tractions
         procedure :: tip_k
         procedure :: extrapolate_k
+        procedure :: k_memory
+        procedure :: hold_k_memory
         procedure :: couple_outer
         procedure :: finish
     end type contact_run
@@ -569,6 +571,34 @@ contains
         call move_alloc(candidate%k2, k2)
         call move_alloc(candidate%ds, this%k_held)
     end subroutine extrapolate_k
+
+    !> The friction memory of the model with the re-solve's higher-order zones, for a result
+    !> file (--resume): its slip on the contact elements, the steps' elsewhere; not allocated
+    !> where the re-solve was never coupled.
+    pure subroutine k_memory(this, ds, memory)
+        !> The run
+        class(contact_run), intent(in) :: this
+        !> The last step's slip of every element [length unit], shape (n)
+        real(wp), intent(in) :: ds(:)
+        !> The memory [length unit], shape (n)
+        real(wp), allocatable, intent(out) :: memory(:)
+
+        if (.not. allocated(this%k_held)) return
+        memory = ds
+        memory(this%operator%contact) = this%k_held
+    end subroutine k_memory
+
+    !> A resumed history's memory of the model with higher-order zones (k_memory of the
+    !> earlier run); its strengths start from those the steps hold.
+    pure subroutine hold_k_memory(this, memory)
+        !> The run (held: its law in force restored)
+        class(contact_run), intent(inout) :: this
+        !> The memory [length unit], shape (n)
+        real(wp), intent(in) :: memory(:)
+
+        this%k_held = memory(this%operator%contact)
+        this%k_law = this%law
+    end subroutine hold_k_memory
 
     !> The local re-solve coupled to the elements outside its zones: the model solved again
     !> under its load plus the traction the zones' higher-order DDs and the recovered DDs

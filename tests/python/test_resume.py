@@ -8,7 +8,9 @@ equals the uninterrupted one to 1e-12 (tests/compare_results.py: every array of 
 /tips, /fields, /history and /growth): growth along a load path resumed after a shorter path
 (the earlier run arrested) and after a step limit inside a load step, on the Lemke and on the
 kept Newton path; growth at a fixed load after a step limit; a loading history with residual
-cohesion and slip weakening (its memory: slip, strengths in force and slip path).
+cohesion and slip weakening (its memory: slip, strengths in force and slip path); a history
+whose K comes from the local re-solve coupled to the rest of the model (the memory of the
+model with higher-order zones).
 """
 
 import subprocess
@@ -260,6 +262,13 @@ WINGS_HALF = "&load_path syy = -5, -52.5, steps = 5 /\n"
 WEAKENING = (PLAIN.format(mu="0.6, sf = 1, sf_residual = 0.2, mu_dynamic = 0.45, "
                           "slip_weakening_distance = 1e-5")
              + "&load_path sxy = {path} /\n")
+# A fault longer than the K re-solve's two zones (32 elements each): K couples them to the
+# rest of the model, whose own friction memory the file keeps (/elements/ds_k_memory)
+COUPLED_K = ("&model youngs_modulus = 30000, poissons_ratio = 0.25 /\n"
+             "&remote_stress sxx = -50, syy = -50 /\n"
+             "&fracture x = -1, 1, y = 0, 0, elements = 100, mu = 0.6 /\n"
+             "&solver lcp_method = 'newton' /\n"
+             "&load_path sxy = {path} /\n")
 
 
 @pytest.mark.parametrize("old_text, new_text", [
@@ -276,6 +285,9 @@ WEAKENING = (PLAIN.format(mu="0.6, sf = 1, sf_residual = 0.2, mu_dynamic = 0.45,
      WINGS.format(steps=40, solver="").replace("syy = -5.0", "syy = -100.0")),
     # a loading history whose elements lose cohesion and weaken as they slip
     (WEAKENING.format(path="0, 6, steps = 4"), WEAKENING.format(path="0, 6, -6, steps = 4, 10")),
+    # a fault that slips, then sticks after the resume, its K by the coupled re-solve (the
+    # earlier run's memory of the model with higher-order zones restored; 2.3e-3 off before)
+    (COUPLED_K.format(path="0, 40, steps = 8"), COUPLED_K.format(path="0, 40, -40, steps = 8, 16")),
 ])
 def test_a_resumed_run_equals_the_uninterrupted_one(tmp_path, whole_run, old_text, new_text):
     earlier_run(tmp_path, old_text)
