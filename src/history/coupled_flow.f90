@@ -376,7 +376,7 @@ contains
         integer, allocatable :: opened(:), rows(:), pivots(:), free_shear(:), &
             free_normal(:), cells(:), position(:)
         integer :: cell_of(flow%network%cells)
-        real(wp), allocatable :: block(:, :), columns(:, :)
+        real(wp), allocatable :: block(:, :), columns(:, :), mu(:)
         type(fault_law) :: law
         integer :: nc, m, i, j, k, r
         logical, allocatable :: in_network(:)
@@ -401,10 +401,12 @@ contains
             free_shear = [free_normal, pack([(i, i = 1, nc)], abs(states) == linear_slip)]
             rows = [free_shear, nc + free_normal]
             block = op%matrix(rows, rows)
+            ! The friction in force of the contact elements (the law holds every element's).
             law = run%law_in_force()
+            mu = law%mu_in_force(op%contact)
             do r = size(free_normal) + 1, size(free_shear)
                 j = free_shear(r)
-                block(r, :) = block(r, :) + sign(law%mu(j), real(states(j), wp)) * &
+                block(r, :) = block(r, :) + sign(mu(j), real(states(j), wp)) * &
                               op%matrix(nc + j, rows)
             end do
             ! A column per cell that is open or slips: a unit pressure change in it. An open
@@ -419,7 +421,7 @@ contains
                 if (states(j) == state_open) then
                     columns(size(free_shear) + position(j), k) = 1.0_wp
                 else
-                    columns(position(j), k) = sign(law%mu(j), real(states(j), wp))
+                    columns(position(j), k) = sign(mu(j), real(states(j), wp))
                 end if
             end do
             allocate (pivots(size(rows)))
