@@ -51,11 +51,11 @@ module ddc_growth_solver
     use ddc_contact_stiffness, only: dense_stiffness
     use ddc_contact_reduced_factors, only: reduced_factors, renumber_factors, copy_factors, &
         refactor_full_update, counts_of
-    use ddc_post_tips, only: find_tips
     use ddc_growth_tip_zone, only: calibrate_tips
-    use ddc_run_model, only: run_model, finish_model, evaluate_fields, model_load
+    use ddc_run_model, only: run_model, finish_model, evaluate_fields, model_load, find_tips_and_k
     use ddc_run_contact_run, only: contact_run, contact_step
     use ddc_model_medium, only: medium_of
+    use ddc_solve_operator, only: elastic_load
     use ddc_solve_dense_operator, only: dense_operator
     use ddc_growth_influence, only: grow_influence, unknown_map
     implicit none
@@ -304,7 +304,8 @@ contains
         if (solver%kept) then
             ! finish_model computes the tractions anew, with the face displacements.
             deallocate (results%elements%shear_traction, results%elements%normal_traction)
-            call finish_model(model, model_load(model), results, matrix=solver%base_matrix)
+            call finish_model(model, model_load(model), results, matrix=solver%base_matrix, &
+                              tips_found=.true.)
         else
             call evaluate_fields(model, results)
         end if
@@ -489,11 +490,13 @@ contains
         type(model_results), intent(inout) :: results
         type(error_type), allocatable, intent(out) :: error
         type(contact_step) :: solution
+        type(elastic_load) :: load
         real(wp) :: seconds_assembly
 
         call solver%run%border(medium_of(model), model%solver, solver%matrix, checked)
         call solver%run%hold(held, law)
-        call solver%run%step(model_load(model), solution, error)
+        load = model_load(model)
+        call solver%run%step(load, solution, error)
         if (allocated(error)) return
         law = solver%run%law_in_force()
         seconds_assembly = results%solver%seconds_assembly
@@ -512,7 +515,7 @@ contains
             results%elements%tensile_in_force = law%tensile_in_force
             results%elements%mu_in_force = law%mu_in_force
         end if
-        call find_tips(medium_of(model), solution%ds, solution%dn, results%tips)
+        call find_tips_and_k(solver%run, solver%run%medium, model, load, results)
     end subroutine solve_contact_on
 
 end module ddc_growth_solver

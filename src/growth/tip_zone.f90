@@ -30,6 +30,7 @@ module ddc_growth_tip_zone
     use ddc_model_results, only: tip_set
     use ddc_linalg_lu, only: lu_factor, lu_solve
     use ddc_post_tips, only: walk_tip_zone, zone_size, max_zone
+    use ddc_post_higher_order_k, only: tips_re_solved
     implicit none
     private
 
@@ -46,6 +47,7 @@ contains
     !> Multiply K_I, K_II of every tip by its zone's graded_factor, and set `graded` where
     !> the calibration's assumption fails: a zone of unequal elements that is not straight,
     !> or that reaches the fracture's other end (or a junction) before its reach; else 0.
+    !> Tips whose K the higher-order re-solve gave need no calibration and keep theirs.
     subroutine calibrate_tips(model, tips, error)
         !> The solved model
         type(model_type), intent(in) :: model
@@ -55,11 +57,14 @@ contains
         type(error_type), allocatable, intent(out) :: error
         real(wp), allocatable :: lengths(:)
         logical, allocatable :: straight(:)
+        logical :: re_solved(tips%n)
         real(wp) :: f
         integer :: k, m
         logical :: truncated
 
+        re_solved = tips_re_solved(model%elements, tips)
         do k = 1, tips%n
+            if (re_solved(k)) cycle
             call walk_tip_zone(model%elements, tips%element(k), tips%side(k), lengths, straight)
             m = zone_size(lengths)
             truncated = m == size(lengths) .and. size(lengths) < max_zone

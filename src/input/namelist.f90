@@ -38,7 +38,7 @@ module ddc_input_namelist
         read_load_path_group, read_material_groups
     use ddc_input_namelist_fracture, only: fracture_input, read_fracture_groups
     use ddc_input_namelist_cycle, only: read_cycle_group
-    use ddc_contact_options, only: matrix_hierarchical, k_higher_order
+    use ddc_contact_options, only: matrix_hierarchical
     use ddc_input_namelist_observations, only: observation_input, read_grid_groups, &
         read_line_groups, read_points_groups
     implicit none
@@ -131,7 +131,6 @@ contains
         call check_injection_points(path, groups(g_injection), model, messages)
         call check_fluid_model(path, groups, model, messages)
         call check_matrix(path, model, messages)
-        call check_k_method(path, model, messages)
         call check_body_model(path, model, messages)
         if (messages%n > 0) then
             call set_error(error, messages%code, messages%text)
@@ -176,19 +175,6 @@ contains
         call add(messages, path//": &solver: matrix = 'hierarchical' does not solve "//what// &
                  " yet: use matrix = 'dense' or 'auto'")
     end subroutine check_matrix
-
-    !> k_method = 'higher_order' with growth is refused: a growth run calibrates the tip
-    !> element's K (docs/theory/tips.md#tips-of-grown-fractures).
-    subroutine check_k_method(path, model, messages)
-        character(len=*), intent(in) :: path
-        type(model_type), intent(in) :: model
-        type(message_list), intent(inout) :: messages
-
-        if (model%solver%k_method /= k_higher_order .or. .not. model%growth%active) return
-        call add(messages, path//": &solver: k_method = 'higher_order' does not serve "// &
-                 "&growth (a growth run calibrates the tip element's K: "// &
-                 "docs/theory/tips.md#tips-of-grown-fractures): use k_method = 'auto'")
-    end subroutine check_k_method
 
     !> Half-plane rules (docs/theory/earth.md#a-free-surface): every vertex and field point at
     !> y <= 0, no element on the surface, a remote stress that is traction-free at y = 0, symmetry

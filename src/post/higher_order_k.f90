@@ -44,6 +44,7 @@ module ddc_post_higher_order_k
     private
 
     public :: higher_order_solver, prepare_higher_order, higher_order_k, uses_higher_order
+    public :: tips_re_solved
     public :: higher_order_bytes
     public :: outer_correction
 
@@ -55,6 +56,10 @@ module ddc_post_higher_order_k
     !> A vertex that turns by more than this [rad] off a sampled curve is a corner of the
     !> fracture, where a zone of the re-solve is centred
     real(wp), parameter :: kink_turn = 1.0e-6_wp
+    !> A kink that turns by this much or more [rad] has a zone of half a tip's zone a side,
+    !> a smaller one in proportion, at least min_kink_zone elements (kink_zone; 20 degrees)
+    real(wp), parameter :: full_kink_turn = 0.35_wp
+    integer, parameter :: min_kink_zone = 2
     !> A vertex that turns by more than this [rad] is a kink, not a sample of a curve
     real(wp), parameter :: max_curve_turn = 0.35_wp
     !> The curvatures at two vertices of a sampled curve agree within this fraction
@@ -121,8 +126,10 @@ contains
         if (tips%n == 0) return
         if (k_method == k_tip_element) then
             why_not = "&solver k_method = 'tip_element'"
-        else if (growth) then
-            why_not = 'growth calibrates the tip element'
+        else if (growth .and. k_method /= k_higher_order) then
+            ! Every trial of a growth step would prepare its zones anew.
+            why_not = "growth calibrates the tip element (k_method = 'higher_order' asks "// &
+                "for the re-solve at every trial)"
         else if (allocated(medium%body)) then
             ! The zones' loads sum the kernel of the infinite plane.
             why_not = 'the fractures lie in a finite body'
@@ -351,8 +358,11 @@ contains
                 if (is_tip(side, i)) cycle
                 if (neighbour(side, i) > 0) then
                     if (.not. kink(i, side)) cycle
+                    call mark(i, side, kink_zone(zone, end_turn(elements, i, side, &
+                                                 neighbour(side, i), neighbour_side(side, i))))
+                else
+                    call mark(i, side, max(zone / 2, 1))
                 end if
-                call mark(i, side, max(zone / 2, 1))
             end do
         end do
         end associate
@@ -394,6 +404,37 @@ contains
             end associate
         end function kink
     end function re_solved
+
+    !> Elements a side of a kink's zone: half a tip's zone where the polyline turns by
+    !> full_kink_turn or more, in proportion to the turn below it, at least min_kink_zone
+    !> (and at most half a tip's zone).
+    !> The DD's departure from a smooth one at a kink grows with the turn; a growth path's
+    !> small kinks (a few degrees at every step) would otherwise put the whole path in zones.
+    pure integer function kink_zone(zone, turn)
+        !> Elements of a tip's zone
+        integer, intent(in) :: zone
+        !> The polyline's turn there [rad]
+        real(wp), intent(in) :: turn
+
+        kink_zone = max(min_kink_zone, nint(real(zone / 2, wp) * &
+                                            min(1.0_wp, abs(turn) / full_kink_turn)))
+        kink_zone = max(1, min(zone / 2, kink_zone))
+    end function kink_zone
+
+    !> The tips whose K the re-solve gave: where it served the solve (tips%k_method), those on
+    !> elements of a kind it re-solves; the others keep the tip element's K.
+    pure function tips_re_solved(elements, tips) result(mask)
+        type(element_set), intent(in) :: elements
+        type(tip_set), intent(in) :: tips
+        logical :: mask(tips%n)
+        logical :: kind_serves(elements%n)
+
+        mask = .false.
+        if (.not. allocated(tips%k_method)) return
+        if (index(tips%k_method, 'higher_order') /= 1) return
+        kind_serves = serves(elements)
+        mask = kind_serves(tips%element(1:tips%n))
+    end function tips_re_solved
 
     !> Whether each element is of a kind the re-solve serves: traction and contact elements.
     pure function serves(elements)

@@ -22,7 +22,7 @@ module ddc_run_contact_run
     use ddc_model_medium, only: elastic_medium, upper_remote_stress
     use ddc_model_results, only: solver_record, state_free, tip_set, element_results
     use ddc_model_loads, only: resolve_remote_stress, total_pressure
-    use ddc_contact_options, only: solver_options, matrix_hierarchical
+    use ddc_contact_options, only: solver_options, matrix_hierarchical, lcp_newton
     use ddc_contact_result, only: contact_result, contact_stress_scale
     use ddc_contact_formulation, only: solve_contact_with, contact_session, contact_problem, &
         new_matrix
@@ -277,7 +277,23 @@ contains
         call new_matrix(this%session, checked)
         this%law = fault_law_of(medium%elements, this%operator%contact)
         this%held = spread(0.0_wp, 1, this%operator%nc)
+        call forget_k(this)
     end subroutine border
+
+    !> K's re-solve of the geometry before (its zones, coupled solutions and memory) does
+    !> not serve a new one: the next tip_k decides and prepares anew.
+    pure subroutine forget_k(this)
+        class(contact_run), intent(inout) :: this
+        type(higher_order_solver) :: no_solver
+        type(coupled_path) :: no_path
+
+        this%k_decided = .false.
+        this%higher_order = .false.
+        this%stepped = .false.
+        this%k_solver = no_solver
+        this%k_path = no_path
+        if (allocated(this%k_held)) deallocate (this%k_held)
+    end subroutine forget_k
 
     !> The friction memory and strength state the next step starts from (a growth run's
     !> solves, a resumed history): the total slip of every element and, when given, the
@@ -630,7 +646,7 @@ contains
             normal_traction(:), shift(:)
         real(wp), allocatable :: k1_next(:), k2_next(:), correction(:)
         real(wp) :: scale, change
-        integer :: n, solves
+        integer :: n, solves, method
 
         n = this%medium%elements%n
         allocate (shear_traction, source=solved%shear_traction)
@@ -661,7 +677,10 @@ contains
                 this%law = this%law_before
             end if
             this%session%limits%fall_back = .false.
+            method = this%options%lcp_method
+            this%options%lcp_method = lcp_newton
             call this%step(shifted, trial, error)
+            this%options%lcp_method = method
             this%session%limits%fall_back = .true.
             if (allocated(this%operator%stiffness)) this%operator%stiffness%counts = counts
             coupled_held = this%held

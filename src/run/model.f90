@@ -27,7 +27,7 @@ module ddc_run_model
     private
 
     public :: run_model, finish_model, evaluate_fields, model_load, wall_seconds
-    public :: prepare_model_body
+    public :: prepare_model_body, find_tips_and_k
 
     !> A field of at least this many point-element pairs reports its end (progress)
     real(wp), parameter :: field_report_pairs = 1.0e8_wp

@@ -4,13 +4,16 @@ ddc2d-growth-convergence, in the repository also scripts/growth_convergence.py; 
 into results/ in the current folder unless told otherwise.
 
     growth_convergence.py [--exe DDC2D] [--work DIR] [--figure PNG] [--csv CSV]
-                          [--elements N[,N...]] [--increments D[,D...]] [--quick]
+                          [--elements N[,N...]] [--increments D[,D...]]
+                          [--k-method auto|higher_order|tip_element] [--quick]
 
 The model: a 2 m flaw at 45 degrees to sigma_1 (sxx = -5, syy = -100), frictional contact
 (mu 0.6, sf 0), N elements, &growth toughness 2, new_sf 0, at most 80 steps. For every N
 (default 40, 80) and increment (default 0.2, 0.1, 0.05, 0.025) one run with
-element_length = min(2/N, increment) (new elements never longer than the flaw's), in
-DIR (default results/growth-convergence), one thread; the program is --exe, else the
+element_length = min(2/N, increment) (new elements never longer than the flaw's) and K by
+--k-method (default 'auto': the calibrated tip element; 'higher_order': the local re-solve
+at every trial, docs/theory/tips.md#tips-of-grown-fractures), in DIR (default
+results/growth-convergence), one thread; the program is --exe, else the
 one ddc2d.run finds (ddc2d.paths.find_executable). From each result: the arrest length of
 a wing (sum of its increments), its final direction (last element, degrees from +x;
 sigma_1 is at 90), the first applied kink angle, the end reason and the steps.
@@ -72,12 +75,14 @@ def parse_list(text, kind):
     return values
 
 
-def run_case(exe, work, n, increment):
-    """Run one model; return its row of the table."""
+def run_case(exe, work, n, increment, k_method="auto"):
+    """Run one model (K by &solver k_method); return its row of the table."""
     element_length = min(2.0 / n, increment)
-    stem = f"wing_n{n}_d{increment:g}"
-    (work / f"{stem}.nml").write_text(MODEL.format(n=n, increment=increment,
-                                                   element_length=element_length))
+    stem = f"wing_n{n}_d{increment:g}" + ("" if k_method == "auto" else f"_{k_method}")
+    text = MODEL.format(n=n, increment=increment, element_length=element_length)
+    if k_method != "auto":
+        text += f"&solver k_method = '{k_method}' /\n"
+    (work / f"{stem}.nml").write_text(text)
     env = dict(os.environ, OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1")
     done = subprocess.run([str(exe), f"{stem}.nml", "-o", f"{stem}.h5"], cwd=work, env=env,
                           capture_output=True, text=True, timeout=600)
@@ -94,6 +99,7 @@ def run_case(exe, work, n, increment):
     path = np.column_stack([elements["x_end"], elements["y_end"]])[
         (elements["created_step"] > 0) & (elements["x_mid"] > 0)]
     return {"elements": n, "increment": increment, "element_length": element_length,
+            "k_method": k_method,
             "arrest_length": float(np.sum(growth["length"][end])),
             "final_direction": float(direction),
             "first_angle": float(abs(first[0])) if first.size else float("nan"),
@@ -172,6 +178,9 @@ def main(argv=None):
     parser.add_argument("--elements", type=lambda t: parse_list(t, int), default=[40, 80])
     parser.add_argument("--increments", type=lambda t: parse_list(t, float),
                         default=[0.2, 0.1, 0.05, 0.025])
+    parser.add_argument("--k-method", choices=("auto", "higher_order", "tip_element"),
+                        default="auto", help="&solver k_method of every run (default auto: "
+                        "the tip element, calibrated, in growth)")
     parser.add_argument("--quick", action="store_true", help="40 elements only")
     args = parser.parse_args(argv)
     args.exe = find_executable(args.exe)
@@ -184,7 +193,8 @@ def main(argv=None):
     try:
         for n in elements:
             for increment in args.increments:
-                rows.append(run_case(args.exe.resolve(), args.work, n, increment))
+                rows.append(run_case(args.exe.resolve(), args.work, n, increment,
+                                     args.k_method))
                 r = rows[-1]
                 print(f"N {n:4d}  increment {increment:7.4f}  element {r['element_length']:7.4f}"
                       f"  arrest {r['arrest_length']:7.4f} m  direction "
