@@ -11,7 +11,7 @@ module ddc_input_namelist_injection
     use ddc_model_types, only: model_type, source_overpressure, source_rate, &
         condition_contact, symmetry_none, rigid_joint, growth_criterion_mts, growth_tips_all
     use ddc_model_limits, only: quantity_positive, quantity_non_negative
-    use ddc_contact_options, only: matrix_hierarchical
+    use ddc_contact_options, only: matrix_hierarchical, k_higher_order
     use ddc_text, only: rtoa, lower
     use ddc_mesh_ends, only: elements_at_point
     use ddc_input_namelist_groups, only: group_record, message_list, add, group_label, &
@@ -263,6 +263,9 @@ contains
         call refuse(model%growth%tips /= growth_tips_all, &
                     "&growth tips = 'most_critical' (every tip whose K_I reaches the "// &
                     'toughness grows)')
+        call refuse(model%growth%active .and. model%solver%k_method == k_higher_order, &
+                    "&growth and &solver k_method = 'higher_order' (a fluid-driven tip "// &
+                    "meets the apparent toughness with the tip element's K_I)")
         call refuse(model%initiation%active, '&initiation')
         call refuse(model%cycle%active, '&cycle')
         call refuse(allocated(model%body), '&body')

@@ -677,6 +677,8 @@ contains
                 this%law = this%law_before
             end if
             this%session%limits%fall_back = .false.
+            ! By the Newton method from the step's states: Lemke would start afresh at every
+            ! solve of the coupling.
             method = this%options%lcp_method
             this%options%lcp_method = lcp_newton
             call this%step(shifted, trial, error)

@@ -233,6 +233,9 @@ def test_output_and_python(cracks):
     (("&load_path time = 0.0, 10.0, steps = 10 /",
       ("&load_path time = 0.0, 10.0, steps = 10 /\n&growth steps = 3, toughness = 1.0, "
        "increment = 0.1 /")), "coupled flow does not combine with &growth increment"),
+    (("&solver k_method = 'tip_element' /",
+      "&growth steps = 3, toughness = 1.0 /\n&solver k_method = 'higher_order' /"),
+     "coupled flow does not combine with &growth and &solver k_method = 'higher_order'"),
     (("&fluid viscosity = 1.0e-12, compressibility = 1.0e-4, leak_off_coefficient = 0.0 /",
       ""), "residual_aperture is for flow coupled to the opening"),
 ])
