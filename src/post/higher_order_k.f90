@@ -127,9 +127,8 @@ contains
         if (k_method == k_tip_element) then
             why_not = "&solver k_method = 'tip_element'"
         else if (growth .and. k_method /= k_higher_order) then
-            ! Every trial of a growth step would prepare its zones anew.
-            why_not = "growth calibrates the tip element (k_method = 'higher_order' asks "// &
-                "for the re-solve at every trial)"
+            ! Every trial of a growth step would prepare its zones anew: asked for only.
+            why_not = 'growth calibrates the tip element'
         else if (allocated(medium%body)) then
             ! The zones' loads sum the kernel of the infinite plane.
             why_not = 'the fractures lie in a finite body'
