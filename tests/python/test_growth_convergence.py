@@ -7,6 +7,7 @@ import csv
 import subprocess
 import sys
 
+import h5py
 import pytest
 
 from conftest import REPO_ROOT, SCRIPTS, ddc2d_exe
@@ -52,6 +53,22 @@ def test_default_output_is_results_in_the_current_folder(tmp_path):
     assert (results / "growth_convergence.png").read_bytes()[:4] == b"\x89PNG"
     assert (results / "growth-convergence" / "growth_convergence.csv").is_file()
     assert gallery.read_bytes() == before
+
+
+def test_k_method_reaches_every_run(tmp_path):
+    """--k-method higher_order: every run's namelist asks for it, its result says the
+    re-solve gave K, and the table has the column."""
+    done = subprocess.run([sys.executable, str(SCRIPT), "--exe", str(ddc2d_exe()), "--work",
+                           str(tmp_path / "runs"), "--figure", str(tmp_path / "study.png"),
+                           "--elements", "20", "--increments", "0.2", "--k-method",
+                           "higher_order"], capture_output=True, text=True, timeout=600)
+    assert done.returncode in (0, 1), done.stdout + done.stderr
+    with open(tmp_path / "runs" / "growth_convergence.csv") as f:
+        rows = list(csv.DictReader(f))
+    assert [r["k_method"] for r in rows] == ["higher_order"]
+    result = tmp_path / "runs" / "wing_n20_d0.2_higher_order.h5"
+    with h5py.File(result, "r") as f:
+        assert f["tips"].attrs["k_method"].decode() == "higher_order"
 
 
 def test_check_flags_what_the_targets_forbid():
