@@ -356,9 +356,7 @@ contains
             do side = 1, 2
                 if (is_tip(side, i)) cycle
                 if (neighbour(side, i) > 0) then
-                    if (.not. kink(i, side)) cycle
-                    call mark(i, side, kink_zone(zone, end_turn(elements, i, side, &
-                                                 neighbour(side, i), neighbour_side(side, i))))
+                    call mark(i, side, corner_zone(i, side))
                 else
                     call mark(i, side, max(zone / 2, 1))
                 end if
@@ -387,21 +385,31 @@ contains
             end do
         end subroutine mark
 
-        !> Whether the polyline turns at end `side` of element i other than on a sampled curve
-        !> (whose elements both have a curvature: sampled_curvature).
-        pure logical function kink(i, side)
+        !> Elements a side of the zone at end `side` of element i (which has a neighbour
+        !> there): kink_zone where the polyline turns other than on a sampled curve (whose
+        !> elements both have a curvature: sampled_curvature), half a tip's zone where two
+        !> materials meet, else 0.
+        pure integer function corner_zone(i, side)
             integer, intent(in) :: i, side
             integer :: j
+            real(wp) :: turn
 
             j = neighbour(side, i)
+            corner_zone = 0
             associate (e => medium%elements)
-                kink = abs(end_turn(e, i, side, j, neighbour_side(side, i))) > kink_turn &
-                       .and. (curvature(i) == 0.0_wp .or. curvature(j) == 0.0_wp)
-                ! Two materials meet there.
-                if (e%domain == domain_bimaterial) kink = kink .or. &
-                    (e%y_mid(i) > medium%interface_y .neqv. e%y_mid(j) > medium%interface_y)
+                turn = end_turn(e, i, side, j, neighbour_side(side, i))
+                if (abs(turn) > kink_turn .and. (curvature(i) == 0.0_wp .or. &
+                                                 curvature(j) == 0.0_wp)) then
+                    corner_zone = kink_zone(zone, turn)
+                end if
+                ! Two materials meet there: the DD is not smooth, whatever the turn.
+                if (e%domain == domain_bimaterial) then
+                    if (e%y_mid(i) > medium%interface_y .neqv. e%y_mid(j) > medium%interface_y) then
+                        corner_zone = max(zone / 2, 1)
+                    end if
+                end if
             end associate
-        end function kink
+        end function corner_zone
     end function re_solved
 
     !> Elements a side of a kink's zone: half a tip's zone where the polyline turns by
