@@ -74,3 +74,40 @@ def test_one_and_two_openblas_threads_agree_to_round_off(runs):
     found = differences(runs[2, 1, 1], runs[2, 2, 1])
     worst = max(found, key=found.get)
     assert found[worst] <= RTOL, f"{worst} differs by {found[worst]:.1e}"
+
+
+
+def waiting(tmp_path, **settings):
+    """How the OpenMP threads of a run of ddc2d on 2 threads wait: the spin count libgomp
+    took last (OMP_DISPLAY_ENV=verbose prints it at each start of the program) and the
+    echo's line, with OMP_WAIT_POLICY and GOMP_SPINCOUNT unset unless given."""
+    env = {k: v for k, v in os.environ.items()
+           if k not in ("OMP_WAIT_POLICY", "GOMP_SPINCOUNT")}
+    env.update(OMP_NUM_THREADS="2", OMP_DISPLAY_ENV="VERBOSE")
+    env.update(settings)
+    done = subprocess.run([str(ddc2d_exe()), str(MODELS["contact"]), "-o",
+                           str(tmp_path / "wait.h5")], cwd=tmp_path, env=env,
+                          capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, done.stdout + done.stderr
+    spins = [line.split("=")[1].strip().strip("'") for line in
+             (done.stdout + done.stderr).splitlines() if "GOMP_SPINCOUNT =" in line]
+    echo = [line.strip() for line in done.stdout.splitlines()
+            if line.startswith("  openmp:")]
+    assert len(echo) == 1, done.stdout
+    return spins, echo[0]
+
+
+def test_openmp_threads_wait_asleep_unless_the_user_chose(tmp_path):
+    # Run again once, the second time without spinning.
+    spins, echo = waiting(tmp_path)
+    assert len(spins) == 2 and spins[-1] == "0", spins
+    assert echo == ("openmp: 2 thread(s), waiting asleep (OMP_WAIT_POLICY=PASSIVE, set by "
+                    "ddc2d)")
+    spins, echo = waiting(tmp_path, OMP_WAIT_POLICY="ACTIVE")
+    assert len(spins) == 1 and int(spins[0]) > 0, spins
+    assert "OMP_WAIT_POLICY=ACTIVE" in echo and "as the user chose" in echo
+    spins, echo = waiting(tmp_path, GOMP_SPINCOUNT="1000")
+    assert spins == ["1000"], spins
+    # One thread has nothing to wait for: no second start.
+    spins, echo = waiting(tmp_path, OMP_NUM_THREADS="1")
+    assert len(spins) == 1 and echo == "openmp: 1 thread(s)"
