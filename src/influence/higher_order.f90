@@ -61,6 +61,8 @@ module ddc_influence_higher_order
         !> (positive turning counter-clockwise), arc length [length unit]
         real(wp) :: xb = 0.0_wp, yb = 0.0_wp, angle = 0.0_wp, curvature = 0.0_wp
         real(wp) :: length = 1.0_wp
+        !> cos and sin of the angle (point_at runs at every quadrature point)
+        real(wp) :: cos_angle = 1.0_wp, sin_angle = 0.0_wp
         !> Number of square-root factors of the weight (0, 1 or 2)
         integer :: factors = 0
         !> Factor f: r(s) = r0(f) + dr(f) s is the distance from its tip at s from the
@@ -93,6 +95,8 @@ contains
         element%length = chord
         if (half_turn /= 0.0_wp) element%length = 2.0_wp * half_turn / curvature
         element%angle = atan2(ye - yb, xe - xb) - half_turn
+        element%cos_angle = cos(element%angle)
+        element%sin_angle = sin(element%angle)
     end function arc_element
 
     !> The point at arc length s from the element's begin, and the tangent's direction
@@ -103,20 +107,33 @@ contains
         real(wp), intent(in) :: s
         !> Point [length unit] and tangent
         real(wp), intent(out) :: x, y, c, sn
-        real(wp) :: half, factor, mid_angle
+        real(wp) :: half, factor, cos_half, sin_half, cos_turn, sin_turn
 
         half = 0.5_wp * element%curvature * s
-        ! The chord from the begin: length s sin(half) / half, at the angle of its midpoint.
-        if (abs(half) > 1.0e-4_wp) then
-            factor = sin(half) / half
-        else
-            factor = 1.0_wp - half**2 / 6.0_wp
-        end if
-        mid_angle = element%angle + half
-        x = element%xb + s * factor * cos(mid_angle)
-        y = element%yb + s * factor * sin(mid_angle)
-        c = cos(element%angle + 2.0_wp * half)
-        sn = sin(element%angle + 2.0_wp * half)
+        associate (ca => element%cos_angle, sa => element%sin_angle)
+            if (half == 0.0_wp) then
+                x = element%xb + s * ca
+                y = element%yb + s * sa
+                c = ca
+                sn = sa
+                return
+            end if
+            ! The chord from the begin: length s sin(half) / half, at the angle of its
+            ! midpoint (angle + half); the tangent turns by 2 half.
+            sin_half = sin(half)
+            cos_half = cos(half)
+            if (abs(half) > 1.0e-4_wp) then
+                factor = sin_half / half
+            else
+                factor = 1.0_wp - half**2 / 6.0_wp
+            end if
+            x = element%xb + s * factor * (ca * cos_half - sa * sin_half)
+            y = element%yb + s * factor * (sa * cos_half + ca * sin_half)
+            cos_turn = cos_half**2 - sin_half**2
+            sin_turn = 2.0_wp * sin_half * cos_half
+            c = ca * cos_turn - sa * sin_turn
+            sn = sa * cos_turn + ca * sin_turn
+        end associate
     end subroutine point_at
 
     !> The quadratic basis functions through the nodes and their derivatives at xi.
@@ -172,8 +189,8 @@ contains
         !> Tractions per unit nodal value [stress unit / length unit], shape (2, 6)
         real(wp), intent(out) :: block(2, 6)
         type(quadrature_rule) :: rule
-        real(wp) :: ts(2), tn(2), h, t, xi, w, dw, n(3), dn(3), value, slope, b(2), turn
-        real(wp) :: p(2, 3), cb, sb, ct, st, seg_angle
+        real(wp) :: ts(2), tn(2), h, t, xi, w, dw, n(3), dn(3), value, slope, b(2)
+        real(wp) :: p(2, 3), cb, sb, ct, st, along(2), cos_turn, sin_turn
         integer :: g, node, c
 
         h = 0.5_wp * element%length
@@ -191,13 +208,15 @@ contains
             call point_at(element, t, p(1, 2), p(2, 2), ct, st)
             if (rule%side(g) < 0.0_wp) then
                 call segment_tractions(p(:, 1), p(:, 2), ts, tn)
-                seg_angle = atan2(p(2, 2) - p(2, 1), p(1, 2) - p(1, 1))
+                along = p(:, 2) - p(:, 1)
             else
                 call segment_tractions(p(:, 2), p(:, 3), ts, tn)
-                seg_angle = atan2(p(2, 3) - p(2, 2), p(1, 3) - p(1, 2))
+                along = p(:, 3) - p(:, 2)
             end if
-            ! The turn from the segment's frame to the arc's frame at t.
-            turn = element%angle + element%curvature * t - seg_angle
+            ! The turn from the segment's frame to the arc's frame at t (tangent ct, st).
+            along = along / hypot(along(1), along(2))
+            cos_turn = ct * along(1) + st * along(2)
+            sin_turn = st * along(1) - ct * along(2)
             xi = (t - h) / h
             call nodal_basis(xi, n, dn)
             call weight_at(element, t, w, dw)
@@ -212,7 +231,7 @@ contains
                     else
                         b = [-element%curvature * value, slope]
                     end if
-                    b = [cos(turn) * b(1) - sin(turn) * b(2), sin(turn) * b(1) + cos(turn) * b(2)]
+                    b = [cos_turn * b(1) - sin_turn * b(2), sin_turn * b(1) + cos_turn * b(2)]
                     b = rule%side(g) * rule%w(g) * b
                     block(1, 2 * (node - 1) + c) = block(1, 2 * (node - 1) + c) + &
                                                    b(1) * ts(1) + b(2) * ts(2)
