@@ -8,14 +8,21 @@
 module ddc_app_blas
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
     use ddc_version, only: program_name
-    use ddc_linalg_blas_library, only: blas_description, describe_blas, run_again_with
+    use ddc_linalg_blas_library, only: blas_description, describe_blas, run_again_with, &
+        set_blas_threads
+    use ddc_text, only: itoa
     use ddc_linalg_blas_kernel, only: cpu_description, describe_cpu, kernel_advice, &
         advise_kernel, kernel_choice, environment_value, isa_name, coretype_variable, &
         chosen_variable, advice_note, advice_rerun, advice_warn
     implicit none
     private
 
-    public :: check_blas_kernel
+    public :: check_blas_kernel, choose_blas_threads
+
+    !> Unknowns of a model below which OpenBLAS runs one thread (docs/performance.md#threads):
+    !> its solves are too short to share, and the second thread, waiting for a core (on a
+    !> loaded machine, or beside the OpenMP threads), slowed every one of them
+    integer, parameter :: shared_blas_min_unknowns = 4000
 
 contains
 
@@ -53,5 +60,26 @@ contains
         if (advice%action == advice_warn) write (error_unit, '(a)') program_name// &
             ': warning: '//advice%message
     end subroutine check_blas_kernel
+
+    !> One BLAS thread for a model of fewer than shared_blas_min_unknowns unknowns, unless
+    !> the user set the BLAS's threads (OPENBLAS_NUM_THREADS, GOTO_NUM_THREADS).
+    subroutine choose_blas_threads(unknowns, echo)
+        !> Unknowns of the model (two per element)
+        integer, intent(in) :: unknowns
+        !> The echo's line about the BLAS threads
+        character(len=:), allocatable, intent(out) :: echo
+        type(blas_description) :: blas
+
+        blas = describe_blas()
+        echo = '  blas threads: '//itoa(blas%threads)
+        if (len(environment_value('OPENBLAS_NUM_THREADS')) > 0 .or. &
+            len(environment_value('GOTO_NUM_THREADS')) > 0) then
+            echo = echo//' (OPENBLAS_NUM_THREADS)'
+        else if (blas%threads > 1 .and. unknowns < shared_blas_min_unknowns) then
+            if (set_blas_threads(1)) echo = '  blas threads: 1 ('//itoa(unknowns)// &
+                ' unknowns, below '//itoa(shared_blas_min_unknowns)// &
+                ': OPENBLAS_NUM_THREADS sets more)'
+        end if
+    end subroutine choose_blas_threads
 
 end module ddc_app_blas

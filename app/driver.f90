@@ -28,7 +28,7 @@ module ddc_app_driver
         print_progress
     use ddc_progress, only: set_progress_handler
     use ddc_app_memory, only: check_model_memory, result_file_bytes, table_file_bytes
-    use ddc_app_blas, only: check_blas_kernel
+    use ddc_app_blas, only: check_blas_kernel, choose_blas_threads
     use ddc_app_wait_policy, only: check_wait_policy
     use ddc_app_resume_check, only: check_resume_file
     use ddc_model_fingerprint, only: model_fingerprint
@@ -65,7 +65,7 @@ contains
         !> Number of processes of an MPI run (default 1)
         integer, intent(in), optional :: processes
         type(error_type), allocatable :: error
-        character(len=:), allocatable :: blas_echo, openmp_echo
+        character(len=:), allocatable :: blas_echo, openmp_echo, threads_echo
 
         ! A write beyond ulimit -f must fail and be reported, not kill us (SIGXFSZ).
         call ignore_file_size_signal()
@@ -138,8 +138,10 @@ contains
             status = error_status(error)
             if (status /= go_on) return
         end if
+        call choose_blas_threads(2 * model%elements%n, threads_echo)
         call print_model_summary(output_unit, model, units_given=.not. options%twodd)
         write (output_unit, '(a)') blas_echo
+        write (output_unit, '(a)') threads_echo
         write (output_unit, '(a)') openmp_echo
         call set_progress_handler(print_progress)
         if (present(processes)) then

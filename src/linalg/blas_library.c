@@ -1,4 +1,5 @@
-/* What Fortran cannot say: which BLAS this process runs, and a re-execution of the program.
+/* What Fortran cannot say: which BLAS this process runs, its threads, and a re-execution of
+ * the program.
  *
  * The queries of OpenBLAS (openblas_get_config, openblas_get_corename,
  * openblas_get_num_threads) and of BLIS (bli_info_get_version_str, bli_arch_query_id,
@@ -15,6 +16,7 @@
 extern char *openblas_get_config(void) __attribute__((weak));
 extern char *openblas_get_corename(void) __attribute__((weak));
 extern int openblas_get_num_threads(void) __attribute__((weak));
+extern void openblas_set_num_threads(int threads) __attribute__((weak));
 extern const char *bli_info_get_version_str(void) __attribute__((weak));
 extern int bli_arch_query_id(void) __attribute__((weak));
 extern const char *bli_arch_string(int id) __attribute__((weak));
@@ -49,6 +51,14 @@ int ddc2d_blas_query(char *library, int library_size, char *core, int core_size,
     copy_text(library, library_size, "");
     copy_text(core, core_size, "");
     return 0;
+}
+
+/* Tell the BLAS how many threads to run (OpenBLAS); returns 0 where it cannot be told. */
+int ddc2d_blas_set_threads(int threads)
+{
+    if (!openblas_set_num_threads) return 0;
+    openblas_set_num_threads(threads);
+    return 1;
 }
 
 /* Run this program again from the start with the same arguments (/proc/self/cmdline) and

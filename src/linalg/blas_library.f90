@@ -11,7 +11,7 @@ module ddc_linalg_blas_library
     implicit none
     private
 
-    public :: blas_description, describe_blas, run_again_with
+    public :: blas_description, describe_blas, run_again_with, set_blas_threads
     public :: blas_other, blas_openblas, blas_blis
 
     !> BLAS families: another BLAS (no query known), OpenBLAS, BLIS
@@ -47,6 +47,14 @@ module ddc_linalg_blas_library
             integer(c_int) :: family
         end function blas_query
 
+        function blas_set_threads(threads) bind(C, name='ddc2d_blas_set_threads') &
+            result(told)
+            import :: c_int
+            implicit none
+            integer(c_int), value :: threads
+            integer(c_int) :: told
+        end function blas_set_threads
+
         function reexec_with(name, value, marker, marker_value) &
             bind(C, name='ddc2d_reexec_with') result(status)
             import :: c_char, c_int
@@ -75,6 +83,14 @@ contains
         blas%dynamic = blas%family == blas_openblas .and. &
             index(' '//blas%library//' ', ' DYNAMIC_ARCH ') > 0
     end function describe_blas
+
+    !> Tell the BLAS how many threads to run; false where it cannot be told (not OpenBLAS).
+    logical function set_blas_threads(threads) result(told)
+        !> The threads, at least 1
+        integer, intent(in) :: threads
+
+        told = blas_set_threads(int(threads, c_int)) == 1
+    end function set_blas_threads
 
     !> Run this program again from the start, with the same arguments and name=value (and
     !> marker=marker_value) in its environment. Returns only when that cannot be done.

@@ -111,3 +111,38 @@ def test_openmp_threads_wait_asleep_unless_the_user_chose(tmp_path):
     # One thread has nothing to wait for: no second start.
     spins, echo = waiting(tmp_path, OMP_NUM_THREADS="1")
     assert len(spins) == 1 and echo == "openmp: 1 thread(s)"
+
+
+def blas_threads(tmp_path, model, **settings):
+    """The BLAS threads a run of ddc2d recorded (root attribute blas_threads) and its echo's
+    line about them, on 2 OpenMP threads with OPENBLAS_NUM_THREADS unset unless given."""
+    env = {k: v for k, v in os.environ.items()
+           if k not in ("OPENBLAS_NUM_THREADS", "GOTO_NUM_THREADS")}
+    env.update(OMP_NUM_THREADS="2")
+    env.update(settings)
+    out = tmp_path / "blas.h5"
+    done = subprocess.run([str(ddc2d_exe()), str(model), "-o", str(out)], cwd=tmp_path,
+                          env=env, capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, done.stdout + done.stderr
+    echo = [line.strip() for line in done.stdout.splitlines()
+            if line.startswith("  blas threads:")]
+    assert len(echo) == 1, done.stdout
+    with h5py.File(out, "r") as f:
+        return int(f.attrs["blas_threads"]), echo[0]
+
+
+def test_a_small_model_runs_one_blas_thread_unless_the_user_sets_them(tmp_path):
+    own = min(os.cpu_count(), 64)  # OpenBLAS's own count: the cores, at most MAX_THREADS
+    threads, echo = blas_threads(tmp_path, MODELS["contact"])
+    assert threads == 1, echo
+    assert own == 1 or "unknowns, below 4000" in echo, echo
+    threads, echo = blas_threads(tmp_path, MODELS["contact"], OPENBLAS_NUM_THREADS="2")
+    assert threads == 2 and echo == "blas threads: 2 (OPENBLAS_NUM_THREADS)"
+    # 2000 elements, 4000 unknowns: the BLAS's own count.
+    big = tmp_path / "big.nml"
+    big.write_text("&model youngs_modulus = 1.0e4, poissons_ratio = 0.25 /\n"
+                   "&remote_stress syy = 1.0 /\n"
+                   "&fracture x = -1.0, 1.0, y = 0.0, 0.0, elements = 2000, "
+                   "condition = 'traction' /\n")
+    threads, echo = blas_threads(tmp_path, big)
+    assert threads == own and echo == f"blas threads: {own}", echo
