@@ -199,7 +199,7 @@ contains
         call point_at(element, element%length, p(1, 3), p(2, 3), cb, sb)
         ! D(m) on the chord: the chord is parallel to the arc's tangent at m, and only node 2
         ! is 1 there (the weight is 1 at m).
-        call segment_tractions(p(:, 1), p(:, 3), ts, tn)
+        call segment_tractions(p(:, 1), p(:, 3), ts, tn, along)
         block(1, 3:4) = ts
         block(2, 3:4) = tn
         call build_rule(element, s_self, x, y, rule)
@@ -207,14 +207,11 @@ contains
             t = rule%t(g)
             call point_at(element, t, p(1, 2), p(2, 2), ct, st)
             if (rule%side(g) < 0.0_wp) then
-                call segment_tractions(p(:, 1), p(:, 2), ts, tn)
-                along = p(:, 2) - p(:, 1)
+                call segment_tractions(p(:, 1), p(:, 2), ts, tn, along)
             else
-                call segment_tractions(p(:, 2), p(:, 3), ts, tn)
-                along = p(:, 3) - p(:, 2)
+                call segment_tractions(p(:, 2), p(:, 3), ts, tn, along)
             end if
             ! The turn from the segment's frame to the arc's frame at t (tangent ct, st).
-            along = along / hypot(along(1), along(2))
             cos_turn = ct * along(1) + st * along(2)
             sin_turn = st * along(1) - ct * along(2)
             xi = (t - h) / h
@@ -243,17 +240,21 @@ contains
 
     contains
 
-        !> Tractions at the receiver per unit Ds, Dn of the constant segment from a to e.
-        pure subroutine segment_tractions(a, e, ts, tn)
+        !> Tractions at the receiver per unit Ds, Dn of the constant segment from a to e, and
+        !> the segment's direction.
+        pure subroutine segment_tractions(a, e, ts, tn, direction)
             real(wp), intent(in) :: a(2), e(2)
-            real(wp), intent(out) :: ts(2), tn(2)
-            real(wp) :: half_length
+            real(wp), intent(out) :: ts(2), tn(2), direction(2)
+            real(wp) :: length
 
-            half_length = 0.5_wp * hypot(e(1) - a(1), e(2) - a(2))
+            ! Not hypot: lengths of a model neither overflow nor underflow, and hypot's care
+            ! took an eighth of a growth run with the re-solve.
+            direction = e - a
+            length = sqrt(direction(1)**2 + direction(2)**2)
+            direction = direction / length
             call resolved_tractions(segment_kernel_with_images(kernel, x, y, &
-                0.5_wp * (a(1) + e(1)), 0.5_wp * (a(2) + e(2)), half_length, &
-                (e(1) - a(1)) / (2.0_wp * half_length), (e(2) - a(2)) / (2.0_wp * half_length), &
-                images, medium, face_negative), cr, sr, ts, tn)
+                0.5_wp * (a(1) + e(1)), 0.5_wp * (a(2) + e(2)), 0.5_wp * length, &
+                direction(1), direction(2), images, medium, face_negative), cr, sr, ts, tn)
         end subroutine segment_tractions
     end subroutine element_tractions
 
@@ -299,11 +300,11 @@ contains
 
         call point_at(element, a, pa(1), pa(2), c, s)
         call point_at(element, b, pb(1), pb(2), c, s)
-        length = hypot(pb(1) - pa(1), pb(2) - pa(2))
+        length = sqrt((pb(1) - pa(1))**2 + (pb(2) - pa(2))**2)
         along = ((x - pa(1)) * (pb(1) - pa(1)) + (y - pa(2)) * (pb(2) - pa(2))) / length
         across = (-(x - pa(1)) * (pb(2) - pa(2)) + (y - pa(2)) * (pb(1) - pa(1))) / length
         along = along - min(max(along, 0.0_wp), length)
-        distance_to = hypot(along, across)
+        distance_to = sqrt(along**2 + across**2)
     end function distance_to
 
     !> A principal-value window [s - d, s + d] about a receiver at s: Gauss points tau on
