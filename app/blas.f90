@@ -4,7 +4,8 @@
 !> anything is printed or read; the new process is told so by DDC2D_OPENBLAS_CHOSE and does not
 !> run itself again); the MPI program, whose processes the launcher started, warns with the
 !> variable to set. A kernel the user chose is respected (a note in the echo), a run that cannot
-!> be fixed warns on standard error.
+!> be fixed warns on standard error. And its threads: one for a model of fewer than 4000
+!> unknowns, unless the user set them (docs/performance.md#threads).
 module ddc_app_blas
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
     use ddc_version, only: program_name
@@ -71,6 +72,10 @@ contains
         type(blas_description) :: blas
 
         blas = describe_blas()
+        if (blas%threads == 0) then
+            echo = '  blas threads: unknown (not OpenBLAS)'
+            return
+        end if
         echo = '  blas threads: '//itoa(blas%threads)
         if (len(environment_value('OPENBLAS_NUM_THREADS')) > 0 .or. &
             len(environment_value('GOTO_NUM_THREADS')) > 0) then

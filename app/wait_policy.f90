@@ -1,11 +1,12 @@
 !> How the OpenMP threads wait for work (docs/performance.md#threads). OpenBLAS runs threads
 !> of its own beside OpenMP's; under libgomp's default an OpenMP thread spins for a while
 !> after each parallel region, on the core an OpenBLAS thread needs for the factorization or
-!> solve that follows. Growth runs and loading histories, which alternate short parallel
-!> loops and small solves, ran 2-4 times slower on 2 threads than on 1 that way. libgomp
-!> reads OMP_WAIT_POLICY once, when the program is loaded: the serial program with more
-!> than one thread runs itself again, once, with OMP_WAIT_POLICY=PASSIVE, before anything
-!> is printed or read (the new process is told so by DDC2D_SET_WAIT_POLICY). Not where the
+!> solve that follows. Growth runs, which alternate short parallel loops and small solves,
+!> ran 4 times slower on 2 threads than on 1 that way, and tens of times slower on a loaded
+!> machine (the other half of the remedy: ddc_app_blas's one BLAS thread for a small model).
+!> libgomp reads OMP_WAIT_POLICY once, when the program is loaded: the serial program with
+!> more than one thread runs itself again, once, with OMP_WAIT_POLICY=PASSIVE, before
+!> anything is printed or read (the new process is told so by DDC2D_SET_WAIT_POLICY). Not where the
 !> user chose (OMP_WAIT_POLICY or GOMP_SPINCOUNT set), in the MPI program (its launcher
 !> started its processes) or under valgrind (whose tool would be run again instead).
 module ddc_app_wait_policy
