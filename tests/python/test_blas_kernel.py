@@ -28,10 +28,13 @@ TEXT_ATTRIBUTES = ("blas", "blas_core", "blas_core_chosen_by", "compiler", "comp
 
 
 def run(tmp_path, env_changes, unset=()):
+    """ddc2d on the model with the environment changed; the OpenMP threads' waiting is set, so
+    that the program runs itself again for its BLAS kernel alone (tests/python/test_threads.py
+    checks the other start)."""
     (tmp_path / "fault.nml").write_text(MODEL)
     env = {k: v for k, v in os.environ.items()
            if k not in ("OPENBLAS_CORETYPE", "DDC2D_OPENBLAS_CHOSE", *unset)}
-    env.update(env_changes)
+    env.update({"OMP_WAIT_POLICY": "PASSIVE"}, **env_changes)
     return subprocess.run([str(ddc2d_exe()), "fault.nml", "-o", "out.h5"], cwd=tmp_path,
                           capture_output=True, text=True, timeout=120, env=env)
 
