@@ -50,13 +50,23 @@ contains
         if (len(environment_value(set_variable)) > 0 .and. policy == 'PASSIVE') then
             echo = echo//', waiting asleep (OMP_WAIT_POLICY=PASSIVE, set by ddc2d)'
         else if (len(policy) > 0 .or. len(spin) > 0) then
-            echo = echo//', waiting as the user chose ('//policy_variable//'='//policy// &
-                ', '//spin_variable//'='//spin//')'
+            echo = echo//', waiting as the user chose ('// &
+                trim(adjustl(setting(policy_variable, policy)//' '// &
+                             setting(spin_variable, spin)))//')'
         else
             echo = echo//', spinning after each parallel region (libgomp''s default; '// &
                 policy_variable//'=PASSIVE leaves the cores to the BLAS threads)'
         end if
     end subroutine check_wait_policy
+
+    !> name=value where the value is set, else ''.
+    pure function setting(name, value) result(text)
+        character(len=*), intent(in) :: name, value
+        character(len=:), allocatable :: text
+
+        text = ''
+        if (len(value) > 0) text = name//'='//value
+    end function setting
 
     !> Whether this process runs under valgrind (its preloaded core library).
     logical function under_valgrind()
