@@ -38,6 +38,8 @@ module ddc_post_higher_order_k
         straight_reach, curved_reach
     use ddc_linalg_lu, only: lu_factor, lu_solve
     use ddc_linalg_block_rows, only: block_row, row_builder, row_times
+    use ddc_linalg_low_rank, only: low_rank_block, add_low_rank_times
+    use ddc_post_far_rows, only: zone_cluster, zone_clusters, far_from, split_far
     use ddc_contact_options, only: k_higher_order, k_tip_element
     use ddc_text, only: itoa
     implicit none
@@ -67,6 +69,10 @@ module ddc_post_higher_order_k
     !> The rows of the zones' load and of the outer correction are kept where they take at
     !> most this many bytes, else gathered again at each product [bytes]
     real(wp), parameter :: kept_rows_max_bytes = 256.0_wp * 1024.0_wp**2
+    !> Receivers of the outer correction gathered at once (its rows whole at once while they
+    !> are kept), and columns of a zone's load in one low-rank block (the size of its dense
+    !> form)
+    integer, parameter :: receivers = 128, zone_columns = 1024
     !> The two linear maps of the coupling: the tractions at the zones' nodes from the DDs
     !> outside them, and the outer correction
     integer, parameter :: zone_load = 1, correction = 2
@@ -93,9 +99,11 @@ module ddc_post_higher_order_k
         !> The rows of the zones' load (one per node of the zones, in the order of the
         !> unknowns; columns the model's elements) and of the outer correction (one per
         !> recovered element; columns the model's elements, then the zones' nodes), each
-        !> block per unit pair of DDs (Ds, Dn); kept where they fit (kept_rows_max_bytes)
+        !> block per unit pair of DDs (Ds, Dn); kept where they fit (kept_rows_max_bytes),
+        !> their entries far from a zone as low-rank blocks (ddc_post_far_rows)
         logical :: rows_kept = .false.
         type(block_row), allocatable :: zone_rows(:), correction_rows(:)
+        type(low_rank_block), allocatable :: zone_far(:), correction_far(:)
         !> The nodal DDs of the last re-solve [length unit], shape (6 re-solved)
         real(wp), allocatable :: nodal(:)
     end type higher_order_solver
@@ -160,7 +168,7 @@ contains
         !> Keep the rows of the coupling where they take at most this many bytes [bytes]
         !> (default kept_rows_max_bytes)
         real(wp), intent(in), optional :: max_kept_bytes
-        real(wp), allocatable :: curvature(:), recovered_curvature(:)
+        real(wp), allocatable :: curvature(:)
         real(wp) :: limit
         integer :: k, m, stat
 
@@ -186,8 +194,7 @@ contains
             call moment_weights(s%weighted, s%mean_weight, s%moment_weight)
             limit = kept_rows_max_bytes
             if (present(max_kept_bytes)) limit = max_kept_bytes
-            recovered_curvature = curvature(s%outer%element)
-            s%rows_kept = rows_bytes(elements%n, size(s%solved), recovered_curvature) <= limit
+            s%rows_kept = rows_bytes(medium, s%local > 0, curvature) <= limit
             if (s%rows_kept) call keep_rows(medium, s)
         end associate
     end subroutine prepare_higher_order
@@ -904,13 +911,21 @@ contains
         ! Kept rows: a product too short for threads (whose wait after a parallel region
         ! would slow the BLAS threads of the solves between the products).
         if (solver%rows_kept) then
-            do r = 1, size(y, 2)
-                if (which == zone_load) then
+            if (which == zone_load) then
+                do r = 1, size(y, 2)
                     y(:, r) = row_times(solver%zone_rows(r), x)
-                else
+                end do
+                do r = 1, size(solver%zone_far)
+                    call add_low_rank_times(solver%zone_far(r), x, y)
+                end do
+            else
+                do r = 1, size(y, 2)
                     y(:, r) = row_times(solver%correction_rows(r), x)
-                end if
-            end do
+                end do
+                do r = 1, size(solver%correction_far)
+                    call add_low_rank_times(solver%correction_far(r), x, y)
+                end do
+            end if
             return
         end if
         call select_kernel(medium, .true., use_general, kernel, stress_only=.true.)
@@ -927,35 +942,93 @@ contains
         !$omp end parallel
     end subroutine rows_times
 
-    !> Gather and keep the rows of the zones' load and of the outer correction.
+    !> Gather and keep the rows of the zones' load and of the outer correction, their
+    !> entries far from a zone in low rank: the zones' load a cluster of zone elements at a
+    !> time (its nodes' rows), the correction a chunk of receivers at a time (whose rows hold
+    !> a block per zone element), so that only those rows are whole at once.
     subroutine keep_rows(medium, solver)
         type(elastic_medium), intent(in) :: medium
         type(higher_order_solver), intent(inout) :: solver
-        procedure(kernel_function), pointer :: kernel
-        type(image_transform), allocatable :: images(:)
-        type(row_builder) :: builder
-        logical :: use_general
-        integer :: r
+        type(zone_cluster), allocatable :: clusters(:)
+        logical, allocatable :: far(:), far_elements(:, :), columns(:)
+        integer, allocatable :: which(:), cluster_columns(:)
+        integer :: c, first, n, nz, l
 
-        call select_kernel(medium, .true., use_general, kernel, stress_only=.true.)
-        images = image_transforms(medium%elements%symmetry)
-        allocate (solver%zone_rows(3 * size(solver%solved)), &
-                  solver%correction_rows(size(solver%outer%element)))
-        !$omp parallel default(none) private(r, builder) shared(solver, medium, kernel, images)
-        call builder%start(row_columns(medium, solver))
-        !$omp do schedule(dynamic)
-        do r = 1, size(solver%zone_rows)
-            call gather_row(solver, medium, kernel, images, zone_load, r, builder)
-            call builder%take(solver%zone_rows(r))
+        n = medium%elements%n
+        nz = size(solver%solved)
+        clusters = zone_clusters(medium%elements, solver%solved)
+        allocate (far_elements(n, size(clusters)))
+        do c = 1, size(clusters)
+            far_elements(:, c) = far_from(clusters(c), medium%elements)
         end do
-        !$omp end do
-        !$omp do schedule(dynamic)
-        do r = 1, size(solver%correction_rows)
-            call gather_row(solver, medium, kernel, images, correction, r, builder)
-            call builder%take(solver%correction_rows(r))
+        allocate (solver%zone_rows(3 * nz), solver%correction_rows(size(solver%outer%element)), &
+                  solver%zone_far(0), solver%correction_far(0))
+        allocate (columns(row_columns(medium, solver)))
+        do c = 1, size(clusters)
+            which = [(3 * (clusters(c)%member(l) - 1) + [1, 2, 3], l = 1, &
+                      size(clusters(c)%member))]
+            call gather(zone_load, solver%zone_rows, which)
+            do first = 1, n, zone_columns
+                columns = .false.
+                columns(first:min(n, first + zone_columns - 1)) = &
+                    far_elements(first:min(n, first + zone_columns - 1), c)
+                call split(solver%zone_rows, which, columns, solver%zone_far)
+            end do
         end do
-        !$omp end do
-        !$omp end parallel
+        do first = 1, size(solver%correction_rows), receivers
+            which = [(l, l = first, min(size(solver%correction_rows), first + receivers - 1))]
+            call gather(correction, solver%correction_rows, which)
+            do c = 1, size(clusters)
+                ! A zone element's columns: its constant DD's and its nodes'.
+                cluster_columns = [solver%solved(clusters(c)%member), &
+                                   [(n + 3 * (clusters(c)%member(l) - 1) + [1, 2, 3], &
+                                     l = 1, size(clusters(c)%member))]]
+                columns = .false.
+                columns(cluster_columns) = .true.
+                far = far_elements(solver%outer%element(which), c)
+                call split(solver%correction_rows, pack(which, far), columns, &
+                           solver%correction_far)
+            end do
+        end do
+
+    contains
+
+        !> Gather rows `rows_of` of map `map`.
+        subroutine gather(map, rows, rows_of)
+            integer, intent(in) :: map
+            type(block_row), intent(inout) :: rows(:)
+            integer, intent(in) :: rows_of(:)
+            procedure(kernel_function), pointer :: kernel
+            type(image_transform), allocatable :: images(:)
+            type(row_builder) :: builder
+            logical :: use_general
+            integer :: k
+
+            call select_kernel(medium, .true., use_general, kernel, stress_only=.true.)
+            images = image_transforms(medium%elements%symmetry)
+            !$omp parallel default(none) private(k, builder) &
+            !$omp     shared(solver, medium, kernel, images, map, rows, rows_of)
+            call builder%start(row_columns(medium, solver))
+            !$omp do schedule(dynamic)
+            do k = 1, size(rows_of)
+                call gather_row(solver, medium, kernel, images, map, rows_of(k), builder)
+                call builder%take(rows(rows_of(k)))
+            end do
+            !$omp end do
+            !$omp end parallel
+        end subroutine gather
+
+        !> The far entries of the rows as a low-rank block where that is smaller.
+        subroutine split(rows, rows_of, far_columns, blocks)
+            type(block_row), intent(inout) :: rows(:)
+            integer, intent(in) :: rows_of(:)
+            logical, intent(in) :: far_columns(:)
+            type(low_rank_block), allocatable, intent(inout) :: blocks(:)
+            type(low_rank_block), allocatable :: block
+
+            call split_far(rows, rows_of, far_columns, block)
+            if (allocated(block)) blocks = [blocks, block]
+        end subroutine split
     end subroutine keep_rows
 
     !> The columns of the rows: the model's elements, then the zones' nodes.
@@ -982,29 +1055,63 @@ contains
         in_zone = re_solved(medium, tips, zone)
         nz = count(in_zone)
         bytes = 2.0_wp * real_bytes * real(per_element * nz, wp)**2
-        rows = rows_bytes(medium%elements%n, nz, &
-                          pack(sampled_curvature(medium%elements), &
-                               serves(medium%elements) .and. .not. in_zone))
+        rows = rows_bytes(medium, in_zone, sampled_curvature(medium%elements))
         if (rows <= kept_rows_max_bytes) bytes = bytes + rows
     end function higher_order_bytes
 
-    !> An upper estimate of the bytes of the kept rows for n elements, nz of them in zones,
-    !> and the curvatures of the recovered ones: a zone node's row has a block per element
-    !> outside the zones; a recovered element's, one per neighbour within reach on each
-    !> side, its own and its stencil's ends, and four per re-solved element.
-    pure real(wp) function rows_bytes(n, nz, recovered_curvature) result(bytes)
-        integer, intent(in) :: n, nz
-        real(wp), intent(in) :: recovered_curvature(:)
+    !> An upper estimate of the bytes of the kept rows and of the rows whole at once while
+    !> they are gathered (keep_rows): a zone node's row keeps a block per element outside
+    !> the zones not far from its cluster; a recovered element's, one per neighbour within
+    !> reach on each side, its own and its stencil's ends, and four per zone element of each
+    !> cluster it is not far from; the far entries' low-rank blocks are counted at rank
+    !> assumed_rank.
+    pure real(wp) function rows_bytes(medium, in_zone, curvature) result(bytes)
+        type(elastic_medium), intent(in) :: medium
+        !> Whether each element is re-solved, and its sampled curvature, shape (n)
+        logical, intent(in) :: in_zone(:)
+        real(wp), intent(in) :: curvature(:)
         real(wp), parameter :: per_block = 4.0_wp * real_bytes + 4.0_wp
-        real(wp) :: correction_blocks
-        integer :: k, reach
+        integer, parameter :: assumed_rank = 32
+        type(zone_cluster), allocatable :: clusters(:)
+        logical :: far(size(in_zone)), recovered(size(in_zone))
+        real(wp) :: blocks, low_rank, whole
+        integer :: n, nz, c, members, k, widest_band
 
-        correction_blocks = 0.0_wp
-        do k = 1, size(recovered_curvature)
-            reach = merge(straight_reach, curved_reach, recovered_curvature(k) == 0.0_wp)
-            correction_blocks = correction_blocks + min(n, 2 * reach + 3) + 4.0_wp * nz
+        n = size(in_zone)
+        nz = count(in_zone)
+        recovered = serves(medium%elements) .and. .not. in_zone
+        clusters = zone_clusters(medium%elements, pack([(k, k = 1, n)], in_zone))
+        blocks = 0.0_wp
+        low_rank = 0.0_wp
+        whole = 0.0_wp
+        do c = 1, size(clusters)
+            members = size(clusters(c)%member)
+            far = far_from(clusters(c), medium%elements)
+            blocks = blocks + 3.0_wp * members * count(.not. (far .or. in_zone)) + &
+                     4.0_wp * members * count(recovered .and. .not. far)
+            low_rank = low_rank + assumed_rank * ( &
+                ceiling(real(count(far), wp) / zone_columns) * (6.0_wp * members + 2.0_wp * &
+                        zone_columns) + &
+                ceiling(real(count(far .and. recovered), wp) / receivers) * &
+                        (2.0_wp * receivers + 8.0_wp * members))
+            whole = max(whole, 3.0_wp * members * (n - nz))
         end do
-        bytes = per_block * (3.0_wp * nz * real(n - nz, wp) + correction_blocks)
+        widest_band = 0
+        do k = 1, n
+            if (.not. recovered(k)) cycle
+            widest_band = max(widest_band, min(n, 2 * reach(k) + 3))
+            blocks = blocks + min(n, 2 * reach(k) + 3)
+        end do
+        whole = max(whole, receivers * (widest_band + 4.0_wp * nz))
+        bytes = per_block * (blocks + whole) + real_bytes * low_rank
+
+    contains
+
+        pure integer function reach(k)
+            integer, intent(in) :: k
+
+            reach = merge(straight_reach, curved_reach, curvature(k) == 0.0_wp)
+        end function reach
     end function rows_bytes
 
     !> The weights of each re-solved element's nodal values in its mean DD and first moment
