@@ -4,11 +4,15 @@
 !> partial pivoting, one row and one column of the block a rank) and checked against the
 !> whole block, which the caller has.
 module ddc_linalg_low_rank
+    use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
     implicit none
     private
 
     public :: low_rank_block, approximate, add_low_rank_times, low_rank_bytes
+
+    !> Probes of the remainder's check
+    integer, parameter :: probe_count = 8
 
     !> Rows and columns of a map of pairs (their places in y and x of add_low_rank_times) and
     !> the block's entries U V^T: U shape (2 rows, rank), V shape (2 columns, rank); the pair
@@ -22,8 +26,9 @@ contains
 
     !> U V^T within `tolerance` of the dense matrix a in the Frobenius norm, relative to a's:
     !> cross approximation until its own estimate of the remainder is below it, then the
-    !> remainder computed; where it is not below, the cross approximation goes on from the
-    !> remainder's largest entry. rank = min(m, n) at most (then exact).
+    !> remainder checked by its products with probes; where it is not below, the cross
+    !> approximation goes on from the row where they are largest. rank = min(m, n) at most
+    !> (then exact).
     subroutine approximate(a, tolerance, u, v)
         !> The block, shape (m, n)
         real(wp), intent(in) :: a(:, :)
@@ -34,12 +39,12 @@ contains
         real(wp), allocatable :: uu(:, :), vv(:, :), row(:), column(:)
         logical, allocatable :: used(:)
         real(wp) :: a_norm, approximation_norm2, step_norm, pivot
-        integer :: m, n, rank, i, j, at(2)
+        integer :: m, n, rank, i, j
         logical :: checked
 
         m = size(a, 1)
         n = size(a, 2)
-        allocate (uu(m, min(m, n)), vv(n, min(m, n)), source=0.0_wp)
+        allocate (uu(m, min(m, n)), vv(n, min(m, n)))
         allocate (used(m), source=.false.)
         a_norm = norm2(a)
         rank = 0
@@ -65,9 +70,8 @@ contains
                 sum(matmul(uu(:, rank), uu(:, :rank - 1)) * matmul(vv(:, rank), vv(:, :rank - 1)))
             checked = .false.
             if (step_norm <= tolerance * sqrt(max(approximation_norm2, 0.0_wp))) then
-                call check_remainder(checked, at)
+                call check_remainder(checked, i)
                 if (checked) exit
-                i = at(1)
             else
                 i = maxloc(abs(uu(:, rank)), 1, mask=.not. used)
                 if (i == 0) i = maxloc(abs(uu(:, rank)), 1)
@@ -78,16 +82,28 @@ contains
 
     contains
 
-        !> Whether the remainder is within the tolerance, and where its largest entry is.
+        !> Whether the remainder R is within the tolerance, from its products with
+        !> probe_count fixed vectors of +-1 w (the mean of |R w|^2 is |R|_F^2), and the row
+        !> where they are largest.
         subroutine check_remainder(within, largest)
             logical, intent(out) :: within
-            integer, intent(out) :: largest(2)
-            real(wp), allocatable :: remainder(:, :)
+            integer, intent(out) :: largest
+            real(wp) :: probes(n, probe_count), product(m, probe_count)
+            real(wp) :: projected(rank, probe_count)
+            integer(int64) :: state
+            integer :: k, p
 
-            allocate (remainder(m, n))
-            remainder = a - matmul(uu(:, :rank), transpose(vv(:, :rank)))
-            within = norm2(remainder) <= tolerance * a_norm
-            largest = maxloc(abs(remainder))
+            state = 12345_int64
+            do p = 1, probe_count
+                do k = 1, n
+                    state = modulo(1103515245_int64 * state + 12345_int64, 2147483648_int64)
+                    probes(k, p) = merge(1.0_wp, -1.0_wp, state >= 1073741824_int64)
+                end do
+            end do
+            projected = matmul(transpose(vv(:, :rank)), probes)
+            product = matmul(a, probes) - matmul(uu(:, :rank), projected)
+            within = sqrt(sum(product**2) / probe_count) <= tolerance * a_norm
+            largest = maxloc(sum(abs(product), 2), 1)
         end subroutine check_remainder
     end subroutine approximate
 

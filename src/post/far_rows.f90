@@ -11,7 +11,7 @@ module ddc_post_far_rows
     implicit none
     private
 
-    public :: zone_cluster, zone_clusters, far_from, split_far
+    public :: zone_cluster, zone_clusters, far_from, far_block, drop_far
 
     !> An element is far from a cluster where its nearest point is at least this many of the
     !> cluster's radii from the cluster's centre (the cross approximation's rank then grows
@@ -106,26 +106,27 @@ contains
               elements%half_length >= far_radii * cluster%radius
     end function far_from
 
-    !> The entries of rows `which` at the columns marked far as one low-rank block, taken out
-    !> of the rows where it is smaller than they were; `block` is unallocated where not.
-    subroutine split_far(rows, which, far, block)
+    !> The entries of rows `which` at the columns marked far as one low-rank block, where that
+    !> is smaller than they are; the rows are left as they are (drop_far).
+    subroutine far_block(rows, which, far, block, found)
         !> Every row of the map
-        type(block_row), intent(inout) :: rows(:)
+        type(block_row), intent(in) :: rows(:)
         !> The rows of the block
         integer, intent(in) :: which(:)
         !> The columns of the block, shape (columns)
         logical, intent(in) :: far(:)
-        type(low_rank_block), allocatable, intent(out) :: block
+        type(low_rank_block), intent(out) :: block
+        !> Whether the block is smaller than the entries (else it is empty)
+        logical, intent(out) :: found
         real(wp), allocatable :: dense(:, :), u(:, :), v(:, :)
         integer, allocatable :: place(:), columns(:)
         logical :: used(size(far))
         integer :: r, e, p, m, n
 
+        found = .false.
         used = .false.
         do r = 1, size(which)
-            associate (row => rows(which(r)))
-                used(row%column) = .true.
-            end associate
+            used(rows(which(r))%column) = .true.
         end do
         columns = pack([(e, e = 1, size(far))], used .and. far)
         m = 2 * size(which)
@@ -140,10 +141,7 @@ contains
         call approximate(dense, far_tolerance, u, v)
         ! As blocks of 2 x 2 with a column index, the entries took 4.5 reals each.
         if (size(u, 2) * (m + n) >= m * n) return
-        do r = 1, size(which)
-            call keep_near(rows(which(r)))
-        end do
-        allocate (block)
+        found = .true.
         block%row = which
         block%column = columns
         call move_alloc(u, block%u)
@@ -151,24 +149,8 @@ contains
 
     contains
 
-        !> The row without the block's entries, in arrays of its new size.
-        subroutine keep_near(row)
-            type(block_row), intent(inout) :: row
-            integer, allocatable :: near(:), column(:)
-            real(wp), allocatable :: entries(:, :, :)
-            integer :: k
-
-            near = pack([(k, k = 1, size(row%column))], place(row%column) == 0)
-            ! (explicit bounds: gfortran 12 gives a vector-subscripted source's lower bound 0)
-            allocate (column(size(near)), entries(2, 2, size(near)))
-            column = row%column(near)
-            entries = row%block(:, :, near)
-            call move_alloc(column, row%column)
-            call move_alloc(entries, row%block)
-        end subroutine keep_near
-
         !> The row's entries at the block's columns into its two rows of the dense block.
-        subroutine scatter(row, pair)
+        pure subroutine scatter(row, pair)
             type(block_row), intent(in) :: row
             real(wp), intent(inout) :: pair(:, :)
             integer :: k, at
@@ -178,6 +160,51 @@ contains
                 if (at > 0) pair(:, 2 * at - 1:2 * at) = row%block(:, :, k)
             end do
         end subroutine scatter
-    end subroutine split_far
+    end subroutine far_block
+
+    !> The rows without the entries the blocks hold (blocks of disjoint columns), each row
+    !> copied once into arrays of its new size.
+    subroutine drop_far(rows, blocks, columns)
+        type(block_row), intent(inout) :: rows(:)
+        type(low_rank_block), intent(in) :: blocks(:)
+        !> The columns of the map
+        integer, intent(in) :: columns
+        integer :: owner(columns), b, r
+        logical :: in_block(size(rows), size(blocks))
+
+        owner = 0
+        in_block = .false.
+        do b = 1, size(blocks)
+            owner(blocks(b)%column) = b
+            in_block(blocks(b)%row, b) = .true.
+        end do
+        do r = 1, size(rows)
+            if (any(in_block(r, :))) call keep_near(rows(r), in_block(r, :))
+        end do
+
+    contains
+
+        !> The row without the entries of the blocks it is in.
+        subroutine keep_near(row, its_blocks)
+            type(block_row), intent(inout) :: row
+            logical, intent(in) :: its_blocks(:)
+            integer, allocatable :: near(:), column(:)
+            real(wp), allocatable :: entries(:, :, :)
+            logical :: keep(size(row%column))
+            integer :: k
+
+            do k = 1, size(row%column)
+                keep(k) = owner(row%column(k)) == 0
+                if (.not. keep(k)) keep(k) = .not. its_blocks(owner(row%column(k)))
+            end do
+            near = pack([(k, k = 1, size(row%column))], keep)
+            ! (explicit bounds: gfortran 12 gives a vector-subscripted source's lower bound 0)
+            allocate (column(size(near)), entries(2, 2, size(near)))
+            column = row%column(near)
+            entries = row%block(:, :, near)
+            call move_alloc(column, row%column)
+            call move_alloc(entries, row%block)
+        end subroutine keep_near
+    end subroutine drop_far
 
 end module ddc_post_far_rows

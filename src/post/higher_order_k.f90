@@ -39,7 +39,7 @@ module ddc_post_higher_order_k
     use ddc_linalg_lu, only: lu_factor, lu_solve
     use ddc_linalg_block_rows, only: block_row, row_builder, row_times
     use ddc_linalg_low_rank, only: low_rank_block, add_low_rank_times
-    use ddc_post_far_rows, only: zone_cluster, zone_clusters, far_from, split_far
+    use ddc_post_far_rows, only: zone_cluster, zone_clusters, far_from, far_block, drop_far
     use ddc_contact_options, only: k_higher_order, k_tip_element
     use ddc_text, only: itoa
     implicit none
@@ -76,6 +76,12 @@ module ddc_post_higher_order_k
     !> The two linear maps of the coupling: the tractions at the zones' nodes from the DDs
     !> outside them, and the outer correction
     integer, parameter :: zone_load = 1, correction = 2
+
+    !> The rows of one low-rank block of a map being kept, and its columns, shape (columns).
+    type :: far_task
+        integer, allocatable :: which(:)
+        logical, allocatable :: far(:)
+    end type far_task
 
     !> The re-solve of one geometry and its tips.
     type :: higher_order_solver
@@ -950,48 +956,73 @@ contains
         type(elastic_medium), intent(in) :: medium
         type(higher_order_solver), intent(inout) :: solver
         type(zone_cluster), allocatable :: clusters(:)
-        logical, allocatable :: far(:), far_elements(:, :), columns(:)
-        integer, allocatable :: which(:), cluster_columns(:)
-        integer :: c, first, n, nz, l
+        type(far_task), allocatable :: tasks(:)
+        logical, allocatable :: far_elements(:, :)
+        integer, allocatable :: which(:)
+        integer :: c, first, n, l
 
         n = medium%elements%n
-        nz = size(solver%solved)
-        clusters = zone_clusters(medium%elements, solver%solved)
+        allocate (clusters, source=zone_clusters(medium%elements, solver%solved))
         allocate (far_elements(n, size(clusters)))
         do c = 1, size(clusters)
             far_elements(:, c) = far_from(clusters(c), medium%elements)
         end do
-        allocate (solver%zone_rows(3 * nz), solver%correction_rows(size(solver%outer%element)), &
-                  solver%zone_far(0), solver%correction_far(0))
-        allocate (columns(row_columns(medium, solver)))
+        allocate (solver%zone_rows(3 * size(solver%solved)), &
+                  solver%correction_rows(size(solver%outer%element)), solver%zone_far(0), &
+                  solver%correction_far(0))
         do c = 1, size(clusters)
             which = [(3 * (clusters(c)%member(l) - 1) + [1, 2, 3], l = 1, &
                       size(clusters(c)%member))]
             call gather(zone_load, solver%zone_rows, which)
-            do first = 1, n, zone_columns
-                columns = .false.
-                columns(first:min(n, first + zone_columns - 1)) = &
-                    far_elements(first:min(n, first + zone_columns - 1), c)
-                call split(solver%zone_rows, which, columns, solver%zone_far)
+            allocate (tasks((n - 1) / zone_columns + 1))
+            do l = 1, size(tasks)
+                call zone_task(far_elements(:, c), 1 + (l - 1) * zone_columns, tasks(l))
             end do
+            call compress(solver%zone_rows, tasks, solver%zone_far)
+            deallocate (tasks)
         end do
         do first = 1, size(solver%correction_rows), receivers
             which = [(l, l = first, min(size(solver%correction_rows), first + receivers - 1))]
             call gather(correction, solver%correction_rows, which)
+            allocate (tasks(size(clusters)))
             do c = 1, size(clusters)
-                ! A zone element's columns: its constant DD's and its nodes'.
-                cluster_columns = [solver%solved(clusters(c)%member), &
-                                   [(n + 3 * (clusters(c)%member(l) - 1) + [1, 2, 3], &
-                                     l = 1, size(clusters(c)%member))]]
-                columns = .false.
-                columns(cluster_columns) = .true.
-                far = far_elements(solver%outer%element(which), c)
-                call split(solver%correction_rows, pack(which, far), columns, &
-                           solver%correction_far)
+                call correction_task(clusters(c)%member, far_elements(:, c), tasks(c))
             end do
+            call compress(solver%correction_rows, tasks, solver%correction_far)
+            deallocate (tasks)
         end do
 
     contains
+
+        !> A cluster's nodes' rows (which) at the columns from `first` on far from it.
+        subroutine zone_task(far, first, task)
+            !> Whether each element is far from the cluster, shape (n)
+            logical, intent(in) :: far(:)
+            integer, intent(in) :: first
+            type(far_task), intent(out) :: task
+            integer :: last
+
+            last = min(n, first + zone_columns - 1)
+            task%which = which
+            allocate (task%far(row_columns(medium, solver)), source=.false.)
+            task%far(first:last) = far(first:last)
+        end subroutine zone_task
+
+        !> The receivers gathered (which) that are far from a cluster at its elements'
+        !> columns: their constant DDs' and their nodes'.
+        subroutine correction_task(member, far, task)
+            !> The cluster's zone elements
+            integer, intent(in) :: member(:)
+            !> Whether each element is far from the cluster, shape (n)
+            logical, intent(in) :: far(:)
+            type(far_task), intent(out) :: task
+            integer :: k
+
+            task%which = pack(which, far(solver%outer%element(which)))
+            allocate (task%far(row_columns(medium, solver)), source=.false.)
+            task%far(solver%solved(member)) = .true.
+            task%far([(n + 3 * (member(k) - 1) + [1, 2, 3], k = 1, size(member))]) = .true.
+        end subroutine correction_task
 
         !> Gather rows `rows_of` of map `map`.
         subroutine gather(map, rows, rows_of)
@@ -1018,17 +1049,26 @@ contains
             !$omp end parallel
         end subroutine gather
 
-        !> The far entries of the rows as a low-rank block where that is smaller.
-        subroutine split(rows, rows_of, far_columns, blocks)
+        !> The tasks' low-rank blocks (one thread a task), taken out of the rows and kept.
+        subroutine compress(rows, tasks, kept)
             type(block_row), intent(inout) :: rows(:)
-            integer, intent(in) :: rows_of(:)
-            logical, intent(in) :: far_columns(:)
-            type(low_rank_block), allocatable, intent(inout) :: blocks(:)
-            type(low_rank_block), allocatable :: block
+            type(far_task), intent(in) :: tasks(:)
+            type(low_rank_block), allocatable, intent(inout) :: kept(:)
+            type(low_rank_block), allocatable :: blocks(:)
+            logical :: found(size(tasks))
+            integer :: t
 
-            call split_far(rows, rows_of, far_columns, block)
-            if (allocated(block)) blocks = [blocks, block]
-        end subroutine split
+            allocate (blocks(size(tasks)))
+            !$omp parallel do default(none) schedule(dynamic) private(t) &
+            !$omp     shared(rows, tasks, blocks, found)
+            do t = 1, size(tasks)
+                call far_block(rows, tasks(t)%which, tasks(t)%far, blocks(t), found(t))
+            end do
+            !$omp end parallel do
+            blocks = pack(blocks, found)
+            call drop_far(rows, blocks, row_columns(medium, solver))
+            kept = [kept, blocks]
+        end subroutine compress
     end subroutine keep_rows
 
     !> The columns of the rows: the model's elements, then the zones' nodes.
