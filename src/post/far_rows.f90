@@ -11,15 +11,17 @@ module ddc_post_far_rows
     implicit none
     private
 
-    public :: zone_cluster, zone_clusters, far_from, far_block, drop_far
+    public :: zone_cluster, zone_clusters, far_from, beyond_band, far_block, drop_far
 
     !> An element is far from a cluster where its nearest point is at least this many of the
     !> cluster's radii from the cluster's centre (the cross approximation's rank then grows
     !> as the logarithm of the tolerance over that of this ratio)
     real(wp), parameter :: far_radii = 3.0_wp
-    !> A block's low-rank form is within this of its entries (Frobenius norm, relative):
-    !> far below the coupling's tolerance and K's accuracy
-    real(wp), parameter :: far_tolerance = 1.0e-12_wp
+    !> A block's low-rank form is within this of its entries (Frobenius norm, relative): far
+    !> below the coupling's tolerance and K's accuracy, above the kernels' own rounding (the
+    !> singular values of a far block at 16000 elements level off at 1e-13 to 4e-13 of the
+    !> largest, 5e-12 of the block together; 1e-12 took ranks of 150 where 10 serve)
+    real(wp), parameter :: far_tolerance = 1.0e-10_wp
 
     !> Zone elements that touch one another along their fractures.
     type :: zone_cluster
@@ -105,6 +107,43 @@ contains
         far = hypot(elements%x_mid - cluster%centre(1), elements%y_mid - cluster%centre(2)) - &
               elements%half_length >= far_radii * cluster%radius
     end function far_from
+
+    !> Whether each element is more steps along its fracture from the cluster than its reach
+    !> and two: beyond the band of neighbours whose recovered DDs its outer correction row
+    !> compares (ddc_post_higher_order_k correction_row), whose stencils may end in the
+    !> cluster's elements. A row's band ends abruptly: rows within it are not smooth in the
+    !> receiver, and stay whole.
+    pure function beyond_band(cluster, neighbour, reach, solved) result(beyond)
+        type(zone_cluster), intent(in) :: cluster
+        !> The neighbour of every element at each end (0: none), shape (2, n)
+        integer, intent(in) :: neighbour(:, :)
+        !> Each element's reach [elements], shape (n)
+        integer, intent(in) :: reach(:)
+        !> The zone elements (model numbering)
+        integer, intent(in) :: solved(:)
+        logical :: beyond(size(reach))
+        integer :: steps(size(reach)), queue(size(reach)), head, tail, j, side, next
+
+        steps = huge(1)
+        tail = size(cluster%member)
+        queue(:tail) = solved(cluster%member)
+        steps(queue(:tail)) = 0
+        head = 1
+        do while (head <= tail)
+            j = queue(head)
+            head = head + 1
+            if (steps(j) > maxval(reach) + 2) cycle
+            do side = 1, 2
+                next = neighbour(side, j)
+                if (next == 0) cycle
+                if (steps(next) <= steps(j) + 1) cycle
+                steps(next) = steps(j) + 1
+                tail = tail + 1
+                queue(tail) = next
+            end do
+        end do
+        beyond = steps > reach + 2
+    end function beyond_band
 
     !> The entries of rows `which` at the columns marked far as one low-rank block, where that
     !> is smaller than they are; the rows are left as they are (drop_far).

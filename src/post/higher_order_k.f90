@@ -39,7 +39,8 @@ module ddc_post_higher_order_k
     use ddc_linalg_lu, only: lu_factor, lu_solve
     use ddc_linalg_block_rows, only: block_row, row_builder, row_times
     use ddc_linalg_low_rank, only: low_rank_block, add_low_rank_times
-    use ddc_post_far_rows, only: zone_cluster, zone_clusters, far_from, far_block, drop_far
+    use ddc_post_far_rows, only: zone_cluster, zone_clusters, far_from, beyond_band, far_block, &
+        drop_far
     use ddc_contact_options, only: k_higher_order, k_tip_element
     use ddc_text, only: itoa
     implicit none
@@ -201,7 +202,7 @@ contains
             limit = kept_rows_max_bytes
             if (present(max_kept_bytes)) limit = max_kept_bytes
             s%rows_kept = rows_bytes(medium, s%local > 0, curvature) <= limit
-            if (s%rows_kept) call keep_rows(medium, s)
+            if (s%rows_kept) call keep_rows(medium, s, curvature)
         end associate
     end subroutine prepare_higher_order
 
@@ -952,21 +953,21 @@ contains
     !> entries far from a zone in low rank: the zones' load a cluster of zone elements at a
     !> time (its nodes' rows), the correction a chunk of receivers at a time (whose rows hold
     !> a block per zone element), so that only those rows are whole at once.
-    subroutine keep_rows(medium, solver)
+    subroutine keep_rows(medium, solver, curvature)
         type(elastic_medium), intent(in) :: medium
         type(higher_order_solver), intent(inout) :: solver
+        !> The sampled curvature of every element [1 / length unit], shape (n)
+        real(wp), intent(in) :: curvature(:)
         type(zone_cluster), allocatable :: clusters(:)
         type(far_task), allocatable :: tasks(:)
-        logical, allocatable :: far_elements(:, :)
+        logical, allocatable :: far_elements(:, :), far_receivers(:, :)
         integer, allocatable :: which(:)
         integer :: c, first, n, l
 
         n = medium%elements%n
         allocate (clusters, source=zone_clusters(medium%elements, solver%solved))
-        allocate (far_elements(n, size(clusters)))
-        do c = 1, size(clusters)
-            far_elements(:, c) = far_from(clusters(c), medium%elements)
-        end do
+        call far_parts(medium, clusters, solver%solved, solver%outer%neighbour, curvature, &
+                       far_elements, far_receivers)
         allocate (solver%zone_rows(3 * size(solver%solved)), &
                   solver%correction_rows(size(solver%outer%element)), solver%zone_far(0), &
                   solver%correction_far(0))
@@ -986,7 +987,7 @@ contains
             call gather(correction, solver%correction_rows, which)
             allocate (tasks(size(clusters)))
             do c = 1, size(clusters)
-                call correction_task(clusters(c)%member, far_elements(:, c), tasks(c))
+                call correction_task(clusters(c)%member, far_receivers(:, c), tasks(c))
             end do
             call compress(solver%correction_rows, tasks, solver%correction_far)
             deallocate (tasks)
@@ -1071,6 +1072,31 @@ contains
         end subroutine compress
     end subroutine keep_rows
 
+    !> For each cluster, the elements far from it (the zones' load's far columns) and the
+    !> receivers of the outer correction far from it and beyond their bands' reach of it
+    !> (its far rows), shape (n, clusters).
+    pure subroutine far_parts(medium, clusters, solved, neighbour, curvature, far_elements, &
+                              far_receivers)
+        type(elastic_medium), intent(in) :: medium
+        type(zone_cluster), intent(in) :: clusters(:)
+        !> The zone elements (model numbering)
+        integer, intent(in) :: solved(:)
+        !> The neighbour of every element at each end, shape (2, n)
+        integer, intent(in) :: neighbour(:, :)
+        real(wp), intent(in) :: curvature(:)
+        logical, allocatable, intent(out) :: far_elements(:, :), far_receivers(:, :)
+        integer :: reach(size(curvature)), c
+
+        reach = merge(straight_reach, curved_reach, curvature == 0.0_wp)
+        allocate (far_elements(size(curvature), size(clusters)), &
+                  far_receivers(size(curvature), size(clusters)))
+        do c = 1, size(clusters)
+            far_elements(:, c) = far_from(clusters(c), medium%elements)
+            far_receivers(:, c) = far_elements(:, c) .and. &
+                                  beyond_band(clusters(c), neighbour, reach, solved)
+        end do
+    end subroutine far_parts
+
     !> The columns of the rows: the model's elements, then the zones' nodes.
     pure integer function row_columns(medium, solver)
         type(elastic_medium), intent(in) :: medium
@@ -1113,27 +1139,35 @@ contains
         real(wp), parameter :: per_block = 4.0_wp * real_bytes + 4.0_wp
         integer, parameter :: assumed_rank = 32
         type(zone_cluster), allocatable :: clusters(:)
-        logical :: far(size(in_zone)), recovered(size(in_zone))
+        logical, allocatable :: far_elements(:, :), far_receivers(:, :)
+        logical :: recovered(size(in_zone))
+        integer :: neighbour(2, size(in_zone)), neighbour_side(2, size(in_zone))
+        integer, allocatable :: solved(:)
         real(wp) :: blocks, low_rank, whole
         integer :: n, nz, c, members, k, widest_band
 
         n = size(in_zone)
         nz = count(in_zone)
         recovered = serves(medium%elements) .and. .not. in_zone
-        clusters = zone_clusters(medium%elements, pack([(k, k = 1, n)], in_zone))
+        solved = pack([(k, k = 1, n)], in_zone)
+        clusters = zone_clusters(medium%elements, solved)
+        call end_neighbours(medium%elements, neighbour, neighbour_side)
+        call far_parts(medium, clusters, solved, neighbour, curvature, far_elements, &
+                       far_receivers)
         blocks = 0.0_wp
         low_rank = 0.0_wp
         whole = 0.0_wp
         do c = 1, size(clusters)
             members = size(clusters(c)%member)
-            far = far_from(clusters(c), medium%elements)
-            blocks = blocks + 3.0_wp * members * count(.not. (far .or. in_zone)) + &
-                     4.0_wp * members * count(recovered .and. .not. far)
-            low_rank = low_rank + assumed_rank * ( &
-                ceiling(real(count(far), wp) / zone_columns) * (6.0_wp * members + 2.0_wp * &
-                        zone_columns) + &
-                ceiling(real(count(far .and. recovered), wp) / receivers) * &
-                        (2.0_wp * receivers + 8.0_wp * members))
+            associate (far => far_elements(:, c), far_rows => far_receivers(:, c))
+                blocks = blocks + 3.0_wp * members * count(.not. (far .or. in_zone)) + &
+                         4.0_wp * members * count(recovered .and. .not. far_rows)
+                low_rank = low_rank + assumed_rank * ( &
+                    ceiling(real(count(far), wp) / zone_columns) * (6.0_wp * members + &
+                            2.0_wp * zone_columns) + &
+                    ceiling(real(count(far_rows .and. recovered), wp) / receivers) * &
+                            (2.0_wp * receivers + 8.0_wp * members))
+            end associate
             whole = max(whole, 3.0_wp * members * (n - nz))
         end do
         widest_band = 0
