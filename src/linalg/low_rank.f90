@@ -46,7 +46,8 @@ contains
         n = size(a, 2)
         allocate (uu(m, min(m, n)), vv(n, min(m, n)))
         allocate (used(m), source=.false.)
-        a_norm = norm2(a)
+        ! (not norm2: its scaling against overflow costs a division an entry)
+        a_norm = sqrt(sum(a**2))
         rank = 0
         approximation_norm2 = 0.0_wp
         i = maxloc(sum(abs(a), 2), 1)
@@ -65,7 +66,7 @@ contains
             rank = rank + 1
             uu(:, rank) = column
             vv(:, rank) = row / pivot
-            step_norm = norm2(uu(:, rank)) * norm2(vv(:, rank))
+            step_norm = sqrt(sum(uu(:, rank)**2) * sum(vv(:, rank)**2))
             approximation_norm2 = approximation_norm2 + step_norm**2 + 2.0_wp * &
                 sum(matmul(uu(:, rank), uu(:, :rank - 1)) * matmul(vv(:, rank), vv(:, :rank - 1)))
             checked = .false.
