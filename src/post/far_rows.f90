@@ -11,7 +11,7 @@ module ddc_post_far_rows
     implicit none
     private
 
-    public :: zone_cluster, zone_clusters, far_from, beyond_band, far_block, drop_far
+    public :: zone_cluster, zone_clusters, far_from, beyond_band, far_block, drop_far, append_near
 
     !> An element is far from a cluster where its nearest point is at least this many of the
     !> cluster's radii from the cluster's centre (the cross approximation's rank then grows
@@ -245,5 +245,28 @@ contains
             call move_alloc(entries, row%block)
         end subroutine keep_near
     end subroutine drop_far
+
+    !> A gathered piece of a row appended to the row, without its entries at the columns
+    !> taken (into a low-rank block).
+    pure subroutine append_near(row, piece, taken)
+        type(block_row), intent(inout) :: row
+        type(block_row), intent(in) :: piece
+        !> The columns taken, shape (columns)
+        logical, intent(in) :: taken(:)
+        integer, allocatable :: near(:), column(:)
+        real(wp), allocatable :: entries(:, :, :)
+        integer :: k, count
+
+        near = pack([(k, k = 1, size(piece%column))], .not. taken(piece%column))
+        count = size(row%column)
+        ! (explicit bounds: gfortran 12 gives a vector-subscripted source's lower bound 0)
+        allocate (column(count + size(near)), entries(2, 2, count + size(near)))
+        column(:count) = row%column
+        entries(:, :, :count) = row%block
+        column(count + 1:) = piece%column(near)
+        entries(:, :, count + 1:) = piece%block(:, :, near)
+        call move_alloc(column, row%column)
+        call move_alloc(entries, row%block)
+    end subroutine append_near
 
 end module ddc_post_far_rows
