@@ -952,19 +952,9 @@ contains
         ! would slow the BLAS threads of the solves between the products).
         if (solver%rows_kept) then
             if (which == zone_load) then
-                do r = 1, size(y, 2)
-                    y(:, r) = row_times(solver%zone_rows(r), x)
-                end do
-                do r = 1, size(solver%zone_far)
-                    call add_low_rank_times(solver%zone_far(r), x, y)
-                end do
+                call kept_times(solver%zone_rows, solver%zone_far)
             else
-                do r = 1, size(y, 2)
-                    y(:, r) = row_times(solver%correction_rows(r), x)
-                end do
-                do r = 1, size(solver%correction_far)
-                    call add_low_rank_times(solver%correction_far(r), x, y)
-                end do
+                call kept_times(solver%correction_rows, solver%correction_far)
                 if (.not. solver%bands_kept) call gathered_times([band_part, 0], y)
             end if
             return
@@ -973,6 +963,20 @@ contains
         call gathered_times([whole_row, 0], y)
 
     contains
+
+        !> y = the kept rows and low-rank blocks times x.
+        subroutine kept_times(rows, far)
+            type(block_row), intent(in) :: rows(:)
+            type(low_rank_block), intent(in) :: far(:)
+            integer :: b
+
+            do b = 1, size(y, 2)
+                y(:, b) = row_times(rows(b), x)
+            end do
+            do b = 1, size(far)
+                call add_low_rank_times(far(b), x, y)
+            end do
+        end subroutine kept_times
 
         !> y += the rows gathered again (their part given, gather_row), one at a time.
         subroutine gathered_times(part, y)
