@@ -1004,10 +1004,11 @@ contains
         end subroutine gathered_times
     end subroutine rows_times
 
-    !> Gather and keep the rows of the zones' load and of the outer correction, their
-    !> entries far from a zone in low rank: the zones' load a cluster of zone elements at a
-    !> time (its nodes' rows), the correction a chunk of receivers at a time (whose rows hold
-    !> a block per zone element), so that only those rows are whole at once.
+    !> Gather and keep the rows of the zones' load and of the outer correction (without the
+    !> bands where those are not kept), their entries far from a zone in low rank: the
+    !> zones' load a cluster's nodes' rows and zone_columns source elements at a time, the
+    !> correction a chunk of receivers at a time (whose rows hold a block per zone element),
+    !> so that only those pieces are whole at once.
     subroutine keep_rows(medium, solver, curvature)
         type(elastic_medium), intent(in) :: medium
         type(higher_order_solver), intent(inout) :: solver
