@@ -1,15 +1,15 @@
 !> Low-rank blocks of a linear map from pairs of values to pairs (ddc_linalg_block_rows): a
 !> block of rows and columns whose entries are smooth in both (the field of sources far from
 !> its receivers) held as U V^T, found by adaptive cross approximation (Bebendorf 2000:
-!> partial pivoting, one row and one column of the block a rank) and checked against the
-!> whole block, which the caller has.
+!> partial pivoting, one row and one column of the block a rank) and checked by products of
+!> the whole block, which the caller has, with probes.
 module ddc_linalg_low_rank
     use, intrinsic :: iso_fortran_env, only: int64
     use ddc_kinds, only: wp
     implicit none
     private
 
-    public :: low_rank_block, approximate, add_low_rank_times, low_rank_bytes
+    public :: low_rank_block, approximate, add_low_rank_times
 
     !> Probes of the remainder's check
     integer, parameter :: probe_count = 8
@@ -121,13 +121,5 @@ contains
         product = matmul(block%u, w)
         y(:, block%row) = y(:, block%row) + reshape(product, [2, size(block%row)])
     end subroutine add_low_rank_times
-
-    !> The bytes a block takes.
-    pure real(wp) function low_rank_bytes(block)
-        type(low_rank_block), intent(in) :: block
-
-        low_rank_bytes = 4.0_wp * (size(block%row) + size(block%column)) + &
-                         8.0_wp * (size(block%u) + size(block%v))
-    end function low_rank_bytes
 
 end module ddc_linalg_low_rank

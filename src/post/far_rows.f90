@@ -122,8 +122,9 @@ contains
         !> The zone elements (model numbering)
         integer, intent(in) :: solved(:)
         logical :: beyond(size(reach))
-        integer :: steps(size(reach)), queue(size(reach)), head, tail, j, side, next
+        integer :: steps(size(reach)), queue(size(reach)), head, tail, j, side, next, farthest
 
+        farthest = maxval(reach) + 2
         steps = huge(1)
         tail = size(cluster%member)
         queue(:tail) = solved(cluster%member)
@@ -132,7 +133,7 @@ contains
         do while (head <= tail)
             j = queue(head)
             head = head + 1
-            if (steps(j) > maxval(reach) + 2) cycle
+            if (steps(j) > farthest) cycle
             do side = 1, 2
                 next = neighbour(side, j)
                 if (next == 0) cycle
@@ -201,8 +202,8 @@ contains
         end subroutine scatter
     end subroutine far_block
 
-    !> The rows without the entries the blocks hold (blocks of disjoint columns), each row
-    !> copied once into arrays of its new size.
+    !> The rows without the entries the blocks hold (blocks of disjoint columns, rows among
+    !> these), each row copied once into arrays of its new size.
     subroutine drop_far(rows, blocks, columns)
         type(block_row), intent(inout) :: rows(:)
         type(low_rank_block), intent(in) :: blocks(:)

@@ -82,6 +82,14 @@ module ddc_post_higher_order_k
     !> outside them, and the outer correction
     integer, parameter :: zone_load = 1, correction = 2
 
+    !> The clusters of zone elements of one geometry and what is far from each, shape (n,
+    !> clusters): the elements (the zones' load's far columns) and the receivers of the
+    !> outer correction, also beyond their bands' reach of it (its far rows).
+    type :: zone_far_field
+        type(zone_cluster), allocatable :: clusters(:)
+        logical, allocatable :: far_elements(:, :), far_receivers(:, :)
+    end type zone_far_field
+
     !> The rows of one low-rank block of a map being kept, and its columns, shape (columns).
     type :: far_task
         integer, allocatable :: which(:)
@@ -184,6 +192,7 @@ contains
         !> (default kept_rows_max_bytes)
         real(wp), intent(in), optional :: max_kept_bytes
         real(wp), allocatable :: curvature(:)
+        type(zone_far_field) :: field
         real(wp) :: limit
         integer :: k, m, stat
 
@@ -209,10 +218,11 @@ contains
             call moment_weights(s%weighted, s%mean_weight, s%moment_weight)
             limit = kept_rows_max_bytes
             if (present(max_kept_bytes)) limit = max_kept_bytes
-            call rows_bytes(medium, s%local > 0, curvature, s%zones_bytes, s%bands_bytes)
+            field = far_field(medium, s%solved, s%outer%neighbour, curvature)
+            call rows_bytes(medium, s%local > 0, curvature, field, s%zones_bytes, s%bands_bytes)
             s%rows_kept = s%zones_bytes <= limit
             s%bands_kept = s%rows_kept .and. s%zones_bytes + s%bands_bytes <= limit
-            if (s%rows_kept) call keep_rows(medium, s, curvature)
+            if (s%rows_kept) call keep_rows(medium, s, field)
         end associate
     end subroutine prepare_higher_order
 
@@ -1009,36 +1019,32 @@ contains
     !> zones' load a cluster's nodes' rows and zone_columns source elements at a time, the
     !> correction a chunk of receivers at a time (whose rows hold a block per zone element),
     !> so that only those pieces are whole at once.
-    subroutine keep_rows(medium, solver, curvature)
+    subroutine keep_rows(medium, solver, field)
         type(elastic_medium), intent(in) :: medium
         type(higher_order_solver), intent(inout) :: solver
-        !> The sampled curvature of every element [1 / length unit], shape (n)
-        real(wp), intent(in) :: curvature(:)
-        type(zone_cluster), allocatable :: clusters(:)
+        !> The zones' clusters and what is far from each (far_field)
+        type(zone_far_field), intent(in) :: field
         type(far_task), allocatable :: tasks(:)
         type(block_row), allocatable :: piece(:)
         type(low_rank_block) :: block
-        logical, allocatable :: far_elements(:, :), far_receivers(:, :), far_columns(:)
+        logical, allocatable :: far_columns(:)
         integer, allocatable :: which(:)
         integer :: c, first, n, l, chunk
         logical :: found
 
         n = medium%elements%n
-        allocate (clusters, source=zone_clusters(medium%elements, solver%solved))
-        call far_parts(medium, clusters, solver%solved, solver%outer%neighbour, curvature, &
-                       far_elements, far_receivers)
         allocate (solver%zone_rows(3 * size(solver%solved)), &
                   solver%correction_rows(size(solver%outer%element)), solver%zone_far(0), &
                   solver%correction_far(0), piece(3 * size(solver%solved)))
         allocate (far_columns(row_columns(medium, solver)), source=.false.)
-        do c = 1, size(clusters)
-            which = [(3 * (clusters(c)%member(l) - 1) + [1, 2, 3], l = 1, &
-                      size(clusters(c)%member))]
+        do c = 1, size(field%clusters)
+            which = [(3 * (field%clusters(c)%member(l) - 1) + [1, 2, 3], l = 1, &
+                      size(field%clusters(c)%member))]
             do l = 1, size(which)
                 allocate (solver%zone_rows(which(l))%column(0), &
                           solver%zone_rows(which(l))%block(2, 2, 0))
             end do
-            far_columns(:n) = far_elements(:, c)
+            far_columns(:n) = field%far_elements(:, c)
             do first = 1, n, zone_columns
                 call gather(zone_load, piece, which, [first, min(n, first + zone_columns - 1)])
                 call far_block(piece, which, far_columns, block, found)
@@ -1055,11 +1061,13 @@ contains
             which = [(l, l = first, min(size(solver%correction_rows), first + chunk - 1))]
             call gather(correction, solver%correction_rows, which, &
                         [merge(whole_row, zones_part, solver%bands_kept), 0])
-            allocate (tasks(size(clusters)))
-            do c = 1, size(clusters)
-                call correction_task(clusters(c)%member, far_receivers(:, c), tasks(c))
+            allocate (tasks(size(field%clusters)))
+            do c = 1, size(field%clusters)
+                call correction_task(field%clusters(c)%member, field%far_receivers(:, c), &
+                                     tasks(c))
             end do
-            call compress(solver%correction_rows, tasks, solver%correction_far)
+            call compress(solver%correction_rows(which(1):which(size(which))), which(1), tasks, &
+                          solver%correction_far)
             deallocate (tasks)
         end do
 
@@ -1106,9 +1114,11 @@ contains
             !$omp end parallel
         end subroutine gather
 
-        !> The tasks' low-rank blocks (one thread a task), taken out of the rows and kept.
-        subroutine compress(rows, tasks, kept)
+        !> The tasks' low-rank blocks (one thread a task), taken out of the rows (those of the
+        !> chunk from row `first` on) and kept.
+        subroutine compress(rows, first, tasks, kept)
             type(block_row), intent(inout) :: rows(:)
+            integer, intent(in) :: first
             type(far_task), intent(in) :: tasks(:)
             type(low_rank_block), allocatable, intent(inout) :: kept(:)
             type(low_rank_block), allocatable :: blocks(:)
@@ -1117,41 +1127,43 @@ contains
 
             allocate (blocks(size(tasks)))
             !$omp parallel do default(none) schedule(dynamic) private(t) &
-            !$omp     shared(rows, tasks, blocks, found)
+            !$omp     shared(rows, first, tasks, blocks, found)
             do t = 1, size(tasks)
-                call far_block(rows, tasks(t)%which, tasks(t)%far, blocks(t), found(t))
+                call far_block(rows, tasks(t)%which - first + 1, tasks(t)%far, blocks(t), &
+                               found(t))
             end do
             !$omp end parallel do
             blocks = pack(blocks, found)
             call drop_far(rows, blocks, row_columns(medium, solver))
+            do t = 1, size(blocks)
+                blocks(t)%row = blocks(t)%row + first - 1
+            end do
             kept = [kept, blocks]
         end subroutine compress
     end subroutine keep_rows
 
-    !> For each cluster, the elements far from it (the zones' load's far columns) and the
-    !> receivers of the outer correction far from it and beyond their bands' reach of it
-    !> (its far rows), shape (n, clusters).
-    pure subroutine far_parts(medium, clusters, solved, neighbour, curvature, far_elements, &
-                              far_receivers)
+    !> The clusters of the zone elements `solved` and what is far from each.
+    pure function far_field(medium, solved, neighbour, curvature) result(field)
         type(elastic_medium), intent(in) :: medium
-        type(zone_cluster), intent(in) :: clusters(:)
         !> The zone elements (model numbering)
         integer, intent(in) :: solved(:)
         !> The neighbour of every element at each end, shape (2, n)
         integer, intent(in) :: neighbour(:, :)
+        !> The sampled curvature of every element [1 / length unit], shape (n)
         real(wp), intent(in) :: curvature(:)
-        logical, allocatable, intent(out) :: far_elements(:, :), far_receivers(:, :)
+        type(zone_far_field) :: field
         integer :: reach(size(curvature)), c
 
         reach = merge(straight_reach, curved_reach, curvature == 0.0_wp)
-        allocate (far_elements(size(curvature), size(clusters)), &
-                  far_receivers(size(curvature), size(clusters)))
-        do c = 1, size(clusters)
-            far_elements(:, c) = far_from(clusters(c), medium%elements)
-            far_receivers(:, c) = far_elements(:, c) .and. &
-                                  beyond_band(clusters(c), neighbour, reach, solved)
+        field%clusters = zone_clusters(medium%elements, solved)
+        allocate (field%far_elements(size(curvature), size(field%clusters)), &
+                  field%far_receivers(size(curvature), size(field%clusters)))
+        do c = 1, size(field%clusters)
+            field%far_elements(:, c) = far_from(field%clusters(c), medium%elements)
+            field%far_receivers(:, c) = field%far_elements(:, c) .and. &
+                beyond_band(field%clusters(c), neighbour, reach, solved)
         end do
-    end subroutine far_parts
+    end function far_field
 
     !> The receivers of the outer correction gathered at once, of `recovered`.
     pure integer function receivers(recovered)
@@ -1178,13 +1190,18 @@ contains
         !> Elements of a tip's zone
         integer, intent(in) :: zone
         logical :: in_zone(medium%elements%n)
+        integer :: neighbour(2, medium%elements%n), neighbour_side(2, medium%elements%n)
+        real(wp), allocatable :: curvature(:)
         real(wp) :: zones, bands
-        integer :: nz
+        integer :: nz, k
 
         in_zone = re_solved(medium, tips, zone)
         nz = count(in_zone)
         bytes = 2.0_wp * real_bytes * real(per_element * nz, wp)**2
-        call rows_bytes(medium, in_zone, sampled_curvature(medium%elements), zones, bands)
+        curvature = sampled_curvature(medium%elements)
+        call end_neighbours(medium%elements, neighbour, neighbour_side)
+        call rows_bytes(medium, in_zone, curvature, far_field(medium, pack([(k, k = 1, &
+                        medium%elements%n)], in_zone), neighbour, curvature), zones, bands)
         if (zones <= kept_rows_max_bytes) bytes = bytes + zones
         if (zones + bands <= kept_rows_max_bytes) bytes = bytes + bands
     end function higher_order_bytes
@@ -1195,21 +1212,19 @@ contains
     !> recovered element's, four per zone element of each cluster it is not far from, and
     !> its band one per neighbour within reach on each side, its own and its stencil's ends;
     !> the far entries' low-rank blocks are counted at rank assumed_rank.
-    pure subroutine rows_bytes(medium, in_zone, curvature, zones, bands)
+    pure subroutine rows_bytes(medium, in_zone, curvature, field, zones, bands)
         type(elastic_medium), intent(in) :: medium
         !> Whether each element is re-solved, and its sampled curvature, shape (n)
         logical, intent(in) :: in_zone(:)
         real(wp), intent(in) :: curvature(:)
+        !> The zones' clusters and what is far from each (far_field)
+        type(zone_far_field), intent(in) :: field
         !> The zones' parts and the bands [bytes]
         real(wp), intent(out) :: zones, bands
         real(wp), parameter :: per_block = 4.0_wp * real_bytes + 4.0_wp
         !> (measured 8 to 16 at 16000 elements, 8 to 35 on the benchmark's models)
         integer, parameter :: assumed_rank = 12
-        type(zone_cluster), allocatable :: clusters(:)
-        logical, allocatable :: far_elements(:, :), far_receivers(:, :)
         logical :: recovered(size(in_zone))
-        integer :: neighbour(2, size(in_zone)), neighbour_side(2, size(in_zone))
-        integer, allocatable :: solved(:)
         real(wp) :: blocks, low_rank, whole, band_blocks
         integer :: n, nz, c, members, k, widest_band, chunk
 
@@ -1217,17 +1232,12 @@ contains
         nz = count(in_zone)
         recovered = serves(medium%elements) .and. .not. in_zone
         chunk = receivers(count(recovered))
-        solved = pack([(k, k = 1, n)], in_zone)
-        clusters = zone_clusters(medium%elements, solved)
-        call end_neighbours(medium%elements, neighbour, neighbour_side)
-        call far_parts(medium, clusters, solved, neighbour, curvature, far_elements, &
-                       far_receivers)
         blocks = 0.0_wp
         low_rank = 0.0_wp
         whole = 0.0_wp
-        do c = 1, size(clusters)
-            members = size(clusters(c)%member)
-            associate (far => far_elements(:, c), far_rows => far_receivers(:, c))
+        do c = 1, size(field%clusters)
+            members = size(field%clusters(c)%member)
+            associate (far => field%far_elements(:, c), far_rows => field%far_receivers(:, c))
                 blocks = blocks + 3.0_wp * members * count(.not. (far .or. in_zone)) + &
                          4.0_wp * members * count(recovered .and. .not. far_rows)
                 low_rank = low_rank + assumed_rank * ( &
