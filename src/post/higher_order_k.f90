@@ -1027,7 +1027,7 @@ contains
         type(far_task), allocatable :: tasks(:)
         type(block_row), allocatable :: piece(:)
         type(low_rank_block) :: block
-        logical, allocatable :: far_columns(:)
+        logical, allocatable :: far_columns(:), taken(:)
         integer, allocatable :: which(:)
         integer :: c, first, n, l, chunk
         logical :: found
@@ -1048,9 +1048,11 @@ contains
             do first = 1, n, zone_columns
                 call gather(zone_load, piece, which, [first, min(n, first + zone_columns - 1)])
                 call far_block(piece, which, far_columns, block, found)
+                ! A recovered source's stencil may put a column in two pieces: the row then
+                ! holds it twice, and its product sums both.
+                taken = far_columns .and. found
                 do l = 1, size(which)
-                    call append_near(solver%zone_rows(which(l)), piece(which(l)), &
-                                     far_columns .and. found)
+                    call append_near(solver%zone_rows(which(l)), piece(which(l)), taken)
                     deallocate (piece(which(l))%column, piece(which(l))%block)
                 end do
                 if (found) solver%zone_far = [solver%zone_far, block]
