@@ -323,7 +323,8 @@ def test_wings_study_is_as_the_guide_shows(tmp_path, capsys):
     at the arrested tips, quantised by its last increment, lies below the toughness by less
     than one quantum at every level."""
     model = tmp_path / "wing.nml"
-    model.write_text(growth_convergence.MODEL.format(n=20, increment=0.1, element_length=0.1))
+    model.write_text(growth_convergence.MODEL.format(n=20, increment=0.1, element_length=0.1,
+                                                      steps=80))
     status = cli.main([str(model), "-o", str(tmp_path / "study"), "--exe", str(ddc2d_exe()),
                        "--threads", "1"])
     printed = capsys.readouterr().out

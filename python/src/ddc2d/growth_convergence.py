@@ -46,13 +46,13 @@ from .paths import find_executable
 from .reader import load_result
 
 #: The wing flaw of docs/theory/growth.md#convergence-with-the-increment
-#: ({n}, {increment}, {element_length}, {file} filled in).
+#: ({n}, {increment}, {element_length}, {steps} filled in).
 MODEL = """\
 &model title = 'wing n={n} d={increment}', youngs_modulus = 50000, poissons_ratio = 0.25 /
 &remote_stress sxx = -5, syy = -100 /
 &fracture name = 'flaw', x = -0.70710678, 0.70710678, y = -0.70710678, 0.70710678,
           elements = {n}, condition = 'contact', mu = 0.6, sf = 0 /
-&growth steps = 80, toughness = 2, new_sf = 0, increment = {increment},
+&growth steps = {steps}, toughness = 2, new_sf = 0, increment = {increment},
         element_length = {element_length} /
 """
 #: Angles of the first kink in pure mode II [degree]: maximum tangential stress, and local
@@ -75,11 +75,14 @@ def parse_list(text, kind):
     return values
 
 
-def run_case(exe, work, n, increment, k_method="auto"):
-    """Run one model (K by &solver k_method); return its row of the table."""
-    element_length = min(2.0 / n, increment)
-    stem = f"wing_n{n}_d{increment:g}" + ("" if k_method == "auto" else f"_{k_method}")
-    text = MODEL.format(n=n, increment=increment, element_length=element_length)
+def run_case(exe, work, n, increment, k_method="auto", steps=80, element_length=None):
+    """Run one model (K by &solver k_method; at most `steps` growth steps; new elements of
+    element_length, default min(2/n, increment)); return its row of the table."""
+    if element_length is None:
+        element_length = min(2.0 / n, increment)
+    stem = (f"wing_n{n}_d{increment:g}" + ("" if k_method == "auto" else f"_{k_method}")
+            + ("" if steps == 80 else f"_s{steps}_l{element_length:g}"))
+    text = MODEL.format(n=n, increment=increment, element_length=element_length, steps=steps)
     if k_method != "auto":
         text += f"&solver k_method = '{k_method}' /\n"
     (work / f"{stem}.nml").write_text(text)
