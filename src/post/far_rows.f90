@@ -12,6 +12,7 @@ module ddc_post_far_rows
     private
 
     public :: zone_cluster, zone_clusters, far_from, beyond_band, far_block, drop_far, append_near
+    public :: far_tolerance
 
     !> An element is far from a cluster where its nearest point is at least this many of the
     !> cluster's radii from the cluster's centre (the cross approximation's rank then grows

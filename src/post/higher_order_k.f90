@@ -38,9 +38,10 @@ module ddc_post_higher_order_k
         straight_reach, curved_reach
     use ddc_linalg_lu, only: lu_factor, lu_solve
     use ddc_linalg_block_rows, only: block_row, row_builder, row_times
-    use ddc_linalg_low_rank, only: low_rank_block, add_low_rank_times
+    use ddc_linalg_low_rank, only: low_rank_block, add_low_rank_times, pair_entries, &
+        approximate_entries
     use ddc_post_far_rows, only: zone_cluster, zone_clusters, far_from, beyond_band, far_block, &
-        drop_far, append_near
+        drop_far, append_near, far_tolerance
     use ddc_contact_options, only: k_higher_order, k_tip_element
     use ddc_text, only: itoa
     implicit none
@@ -50,6 +51,7 @@ module ddc_post_higher_order_k
     public :: tips_re_solved
     public :: higher_order_bytes
     public :: outer_correction
+    public :: on_demand_rows
 
     !> k_method = 'auto' re-solves at most this many elements in all the zones (two dense
     !> matrices of 6 unknowns per element, the traction rows and the factors: 576 MB here)
@@ -75,6 +77,13 @@ module ddc_post_higher_order_k
     !> then repeated in fewer blocks); and columns of a zone's load in one low-rank block
     !> (the size of its dense form)
     integer, parameter :: min_receivers = 128, max_receivers = 1024, zone_columns = 4096
+    !> A cluster with at least this many rows of the zones' load (two a node) has its far
+    !> block approximated from the entries it asks for (zone_load_entries); a smaller one's
+    !> rank is near its rows', and its rows are gathered whole
+    integer, parameter :: on_demand_rows = 96
+    !> Receivers of the outer correction in one block from entries on demand (its members'
+    !> columns are kept while it is approximated: 128 bytes a receiver and member)
+    integer, parameter :: on_demand_receivers = 8192
     !> The parts of a row of the outer correction: the whole row, the band of recovered
     !> neighbours alone, the zones' part alone
     integer, parameter :: whole_row = 0, band_part = 1, zones_part = 2
@@ -95,6 +104,52 @@ module ddc_post_higher_order_k
         integer, allocatable :: which(:)
         logical, allocatable :: far(:)
     end type far_task
+
+    !> The zones' load at one cluster's nodes from the elements far from it, computed on
+    !> demand: a pair of rows a node's two tractions (zone_load_row at the far columns alone),
+    !> a pair of columns a far element's two DDs (its constant DD's block, or its share in
+    !> the recovered DDs whose stencils hold it).
+    type, extends(pair_entries) :: zone_load_entries
+        type(higher_order_solver), pointer :: solver => null()
+        type(elastic_medium), pointer :: medium => null()
+        procedure(kernel_function), pointer, nopass :: kernel => null()
+        type(image_transform), allocatable :: images(:)
+        !> The rows of the zones' load (the cluster's nodes) and the far elements (the
+        !> columns)
+        integer, allocatable :: node_row(:), element(:)
+        !> Whether each element is a column, and its place among them, shape (n)
+        logical, allocatable :: far(:)
+        integer, allocatable :: place(:)
+        !> The recovered elements whose stencils hold element j (their places in the
+        !> recovery): holder(first(j):first(j + 1) - 1), shape (n + 1) and (:)
+        integer, allocatable :: first(:), holder(:)
+    contains
+        procedure :: row_pair => zone_load_row_pair
+        procedure :: column_pair => zone_load_column_pair
+    end type zone_load_entries
+
+    !> One zone element's columns of a correction block (correction_entries).
+    type :: member_columns
+        real(wp), allocatable :: values(:, :)
+    end type member_columns
+
+    !> The outer correction at the far receivers of one cluster from its zone elements,
+    !> computed on demand: a pair of rows a receiver's two tractions from every member (four
+    !> pairs of columns each: its three nodes' DDs and its constant DD), a pair of columns one
+    !> of a member's at every receiver; a member's four are computed together and kept.
+    type, extends(pair_entries) :: correction_entries
+        type(higher_order_solver), pointer :: solver => null()
+        type(elastic_medium), pointer :: medium => null()
+        procedure(kernel_function), pointer, nopass :: kernel => null()
+        type(image_transform), allocatable :: images(:)
+        !> The rows of the correction (receivers) and the cluster's zone elements
+        integer, allocatable :: receiver(:), member(:)
+        !> Each member's four pairs of columns, shape (2 receivers, 8) where computed
+        type(member_columns), allocatable :: computed(:)
+    contains
+        procedure :: row_pair => correction_row_pair
+        procedure :: column_pair => correction_column_pair
+    end type correction_entries
 
     !> The re-solve of one geometry and its tips.
     type :: higher_order_solver
@@ -127,6 +182,10 @@ module ddc_post_higher_order_k
         real(wp) :: zones_bytes = 0.0_wp, bands_bytes = 0.0_wp
         type(block_row), allocatable :: zone_rows(:), correction_rows(:)
         type(low_rank_block), allocatable :: zone_far(:), correction_far(:)
+        !> The clusters whose far blocks of the zones' load and of the outer correction came
+        !> from entries on demand (zone_load_entries, correction_entries; the others' from
+        !> their gathered rows)
+        integer :: far_loads_on_demand = 0, far_corrections_on_demand = 0
         !> The nodal DDs of the last re-solve [length unit], shape (6 re-solved)
         real(wp), allocatable :: nodal(:)
     end type higher_order_solver
@@ -769,7 +828,7 @@ contains
     !> unknowns) per unit DD of the elements outside the zones, the recovered ones through
     !> their stencils (less the re-solved elements' share in them, which is in the zones'
     !> matrix: add_recovered_neighbours).
-    subroutine zone_load_row(solver, medium, kernel, images, r, sources, builder)
+    subroutine zone_load_row(solver, medium, kernel, images, r, sources, builder, only)
         type(higher_order_solver), intent(in) :: solver
         type(elastic_medium), intent(in) :: medium
         procedure(kernel_function) :: kernel
@@ -779,26 +838,145 @@ contains
         !> stencil's columns)
         integer, intent(in) :: sources(2)
         type(row_builder), intent(inout) :: builder
+        !> The columns to gather, shape (n) (default all)
+        logical, intent(in), optional :: only(:)
         real(wp) :: x, y, c, s, blocks(2, 2, 3)
         integer :: j, k, p
+        logical :: takes(3)
 
         call node_point(solver%weighted((r - 1) / 3 + 1), r - 3 * ((r - 1) / 3), x, y, c, s)
         do j = sources(1), sources(2)
             if (solver%local(j) > 0) cycle
             k = solver%outer%place(j)
             if (k == 0) then
-                call builder%add(j, constant_block(kernel, images, medium, j, [x, y, c, s]))
+                if (wanted(j)) then
+                    call builder%add(j, constant_block(kernel, images, medium, j, [x, y, c, s]))
+                end if
                 cycle
             end if
+            do p = 1, 3
+                takes(p) = solver%outer%stencil(p, k) /= 0
+                if (takes(p)) takes(p) = solver%local(solver%outer%stencil(p, k)) == 0 .and. &
+                                         wanted(solver%outer%stencil(p, k))
+            end do
+            if (.not. any(takes)) cycle
             blocks = stencil_blocks(solver%outer, k, recovered_block(solver%outer, kernel, &
                                     images, medium, k, x, y, c, s, -1.0_wp, .false.))
             do p = 1, 3
-                if (solver%outer%stencil(p, k) == 0) cycle
-                if (solver%local(solver%outer%stencil(p, k)) > 0) cycle
-                call builder%add(solver%outer%stencil(p, k), blocks(:, :, p))
+                if (takes(p)) call builder%add(solver%outer%stencil(p, k), blocks(:, :, p))
             end do
         end do
+
+    contains
+
+        pure logical function wanted(column)
+            integer, intent(in) :: column
+
+            wanted = .true.
+            if (present(only)) wanted = only(column)
+        end function wanted
     end subroutine zone_load_row
+
+    !> Rows 2 i - 1 and 2 i of a cluster's far block of the zones' load: node_row(i)'s
+    !> tractions at the far columns, shape (2, 2 columns).
+    subroutine zone_load_row_pair(this, i, values)
+        class(zone_load_entries), intent(inout) :: this
+        integer, intent(in) :: i
+        real(wp), intent(out) :: values(:, :)
+        type(row_builder) :: builder
+        type(block_row) :: row
+        integer :: k, at
+
+        call builder%start(row_columns(this%medium, this%solver))
+        call zone_load_row(this%solver, this%medium, this%kernel, this%images, this%node_row(i), &
+                           [1, this%medium%elements%n], builder, this%far)
+        call builder%take(row)
+        values = 0.0_wp
+        do k = 1, size(row%column)
+            at = this%place(row%column(k))
+            values(:, 2 * at - 1:2 * at) = row%block(:, :, k)
+        end do
+    end subroutine zone_load_row_pair
+
+    !> Columns 2 i - 1 and 2 i of a cluster's far block of the zones' load: the tractions at
+    !> its nodes per unit DD of far element(i), shape (2 rows, 2): as zone_load_row gathers
+    !> them, by the sources whose blocks fall on it.
+    subroutine zone_load_column_pair(this, i, values)
+        class(zone_load_entries), intent(inout) :: this
+        integer, intent(in) :: i
+        real(wp), intent(out) :: values(:, :)
+        real(wp) :: x, y, c, s, block(2, 2), blocks(2, 2, 3)
+        integer :: e, row, r, h, k
+
+        e = this%element(i)
+        associate (solver => this%solver, outer => this%solver%outer)
+            do row = 1, size(this%node_row)
+                r = this%node_row(row)
+                call node_point(solver%weighted((r - 1) / 3 + 1), r - 3 * ((r - 1) / 3), x, y, &
+                                c, s)
+                block = 0.0_wp
+                if (outer%place(e) == 0) then
+                    block = constant_block(this%kernel, this%images, this%medium, e, [x, y, c, s])
+                end if
+                do h = this%first(e), this%first(e + 1) - 1
+                    k = this%holder(h)
+                    blocks = stencil_blocks(outer, k, recovered_block(outer, this%kernel, &
+                                            this%images, this%medium, k, x, y, c, s, -1.0_wp, &
+                                            .false.))
+                    block = block + blocks(:, :, findloc(outer%stencil(:, k), e, 1))
+                end do
+                values(2 * row - 1:2 * row, :) = block
+            end do
+        end associate
+    end subroutine zone_load_column_pair
+
+    !> Rows 2 i - 1 and 2 i of a cluster's far block of the outer correction: receiver(i)'s
+    !> tractions from each member's nodal DDs and (less) its constant DD, shape (2, 8 members).
+    subroutine correction_row_pair(this, i, values)
+        class(correction_entries), intent(inout) :: this
+        integer, intent(in) :: i
+        real(wp), intent(out) :: values(:, :)
+        real(wp) :: arc_point(4), chord(4), block(2, per_element), constant(2, 2)
+        integer :: q
+
+        call receiver_points(this%solver, this%medium, this%receiver(i), arc_point, chord)
+        do q = 1, size(this%member)
+            call zone_element_blocks(this%solver, this%medium, this%kernel, this%images, &
+                                     this%receiver(i), this%member(q), arc_point, chord, block, &
+                                     constant)
+            values(:, 8 * q - 7:8 * q - 2) = block
+            values(:, 8 * q - 1:8 * q) = -constant
+        end do
+    end subroutine correction_row_pair
+
+    !> Columns 2 i - 1 and 2 i of a cluster's far block of the outer correction, shape (2
+    !> receivers, 2): from its member's four pairs, computed at every receiver where they are
+    !> not yet.
+    subroutine correction_column_pair(this, i, values)
+        class(correction_entries), intent(inout) :: this
+        integer, intent(in) :: i
+        real(wp), intent(out) :: values(:, :)
+        real(wp) :: arc_point(4), chord(4), block(2, per_element), constant(2, 2)
+        integer :: q, r, p
+
+        q = (i - 1) / 4 + 1
+        p = i - 4 * (q - 1)
+        associate (columns => this%computed(q))
+            if (.not. allocated(columns%values)) then
+                allocate (columns%values(2 * size(this%receiver), 8))
+                do r = 1, size(this%receiver)
+                    call receiver_points(this%solver, this%medium, this%receiver(r), arc_point, &
+                                         chord)
+                    call zone_element_blocks(this%solver, this%medium, this%kernel, this%images, &
+                                             this%receiver(r), this%member(q), arc_point, chord, &
+                                             block, constant)
+                    columns%values(2 * r - 1:2 * r, :6) = block
+                    columns%values(2 * r - 1:2 * r, 7:) = -constant
+                end do
+            end if
+            values = columns%values(:, 2 * p - 1:2 * p)
+        end associate
+    end subroutine correction_column_pair
 
     !> Row k of the outer correction, at recovered element k: the traction its recovered
     !> neighbours along the fracture and every re-solved element add at the midpoint of its
@@ -806,7 +984,7 @@ contains
     !> columns the model's elements, then the zones' nodes (a recovered DD passes through
     !> the middle node of a re-solved neighbour). Far from a straight re-solved element, its
     !> two halves with its mean DD and first moment serve.
-    subroutine correction_row(solver, medium, kernel, images, k, part, builder)
+    subroutine correction_row(solver, medium, kernel, images, k, part, builder, omit)
         type(higher_order_solver), intent(in) :: solver
         type(elastic_medium), intent(in) :: medium
         procedure(kernel_function) :: kernel
@@ -815,17 +993,16 @@ contains
         !> whole_row, band_part (the element itself and its neighbours) or zones_part
         integer, intent(in) :: part
         type(row_builder), intent(inout) :: builder
-        real(wp) :: arc_point(4), chord(4), block(2, per_element)
+        !> The zone elements to leave out (their share in a low-rank block), shape
+        !> (re-solved) (default none)
+        logical, intent(in), optional :: omit(:)
+        real(wp) :: arc_point(4), chord(4), block(2, per_element), constant(2, 2)
         integer :: i, j, l, node, side, leave, step, reach, next, next_leave, n
 
         n = medium%elements%n
         i = solver%outer%element(k)
-        associate (arc => solver%outer%arc(k), el => medium%elements)
-            call point_at(arc, 0.5_wp * arc%length, arc_point(1), arc_point(2), arc_point(3), &
-                          arc_point(4))
-            chord = [el%x_mid(i), el%y_mid(i), el%cos_beta(i), el%sin_beta(i)]
-            reach = merge(straight_reach, curved_reach, arc%curvature == 0.0_wp)
-        end associate
+        call receiver_points(solver, medium, k, arc_point, chord)
+        reach = merge(straight_reach, curved_reach, solver%outer%arc(k)%curvature == 0.0_wp)
         if (part /= zones_part) call add_band()
         if (part /= band_part) call add_zones()
 
@@ -850,25 +1027,15 @@ contains
         !> The zones: higher-order less constant.
         subroutine add_zones()
             do l = 1, size(solver%solved)
-                j = solver%solved(l)
-                associate (zone_element => solver%weighted(l))
-                    if (zone_element%curvature == 0.0_wp .and. midpoint_distance(medium, i, j) > &
-                        near_lengths * zone_element%length) then
-                        block = halves_block(halves_kernels(kernel, images, medium, zone_element, &
-                                                            arc_point(1), arc_point(2), &
-                                                            arc_point(3), arc_point(4)), &
-                                             zone_element%length, solver%mean_weight(:, l), &
-                                             solver%moment_weight(:, l))
-                    else
-                        call element_tractions(kernel, images, medium, zone_element, -1.0_wp, &
-                                               arc_point(1), arc_point(2), arc_point(3), &
-                                               arc_point(4), block)
-                    end if
-                end associate
+                if (present(omit)) then
+                    if (omit(l)) cycle
+                end if
+                call zone_element_blocks(solver, medium, kernel, images, k, l, arc_point, chord, &
+                                         block, constant)
                 do node = 1, 3
                     call builder%add(n + 3 * (l - 1) + node, block(:, 2 * node - 1:2 * node))
                 end do
-                call builder%add(j, -constant_block(kernel, images, medium, j, chord))
+                call builder%add(solver%solved(l), -constant)
             end do
         end subroutine add_zones
 
@@ -897,6 +1064,63 @@ contains
         end subroutine add_recovered
     end subroutine correction_row
 
+    !> The receiver of row k of the outer correction: the midpoint of its arc and of its
+    !> chord, each with its plane's direction cosines.
+    pure subroutine receiver_points(solver, medium, k, arc_point, chord)
+        type(higher_order_solver), intent(in) :: solver
+        type(elastic_medium), intent(in) :: medium
+        integer, intent(in) :: k
+        real(wp), intent(out) :: arc_point(4), chord(4)
+        integer :: i
+
+        i = solver%outer%element(k)
+        associate (arc => solver%outer%arc(k), el => medium%elements)
+            call point_at(arc, 0.5_wp * arc%length, arc_point(1), arc_point(2), arc_point(3), &
+                          arc_point(4))
+            chord = [el%x_mid(i), el%y_mid(i), el%cos_beta(i), el%sin_beta(i)]
+        end associate
+    end subroutine receiver_points
+
+    !> Zone element l's share in row k of the outer correction: its higher-order block at
+    !> the arc's midpoint per unit nodal DD, shape (2, 6), and its constant DD's at the
+    !> chord's, shape (2, 2). Far from a straight zone element, its two halves with its mean
+    !> DD and first moment serve.
+    pure subroutine zone_element_blocks(solver, medium, kernel, images, k, l, arc_point, &
+                                        chord, block, constant)
+        type(higher_order_solver), intent(in) :: solver
+        type(elastic_medium), intent(in) :: medium
+        procedure(kernel_function) :: kernel
+        type(image_transform), intent(in) :: images(:)
+        integer, intent(in) :: k, l
+        real(wp), intent(in) :: arc_point(4), chord(4)
+        real(wp), intent(out) :: block(2, per_element), constant(2, 2)
+        real(wp) :: halves(2, 2, 2)
+        integer :: j
+
+        j = solver%solved(l)
+        associate (zone_element => solver%weighted(l))
+            if (zone_element%curvature == 0.0_wp .and. midpoint_distance(medium, &
+                solver%outer%element(k), j) > near_lengths * zone_element%length) then
+                halves = halves_kernels(kernel, images, medium, zone_element, arc_point(1), &
+                                        arc_point(2), arc_point(3), arc_point(4))
+                block = halves_block(halves, zone_element%length, solver%mean_weight(:, l), &
+                                     solver%moment_weight(:, l))
+                ! A straight receiver's chord midpoint is its arc's: the constant DD acts
+                ! there as its two halves together.
+                if (solver%outer%arc(k)%curvature == 0.0_wp) then
+                    constant = halves(:, :, 1) + halves(:, :, 2)
+                else
+                    constant = constant_block(kernel, images, medium, j, chord)
+                end if
+            else
+                call element_tractions(kernel, images, medium, zone_element, -1.0_wp, &
+                                       arc_point(1), arc_point(2), arc_point(3), arc_point(4), &
+                                       block)
+                constant = constant_block(kernel, images, medium, j, chord)
+            end if
+        end associate
+    end subroutine zone_element_blocks
+
     !> Shear and normal traction at the point receiver(1:2) on the plane of direction
     !> cosines receiver(3:4) per unit constant DD of element j, shape (2, 2) (rows t_s, t_n;
     !> columns Ds, Dn).
@@ -920,7 +1144,7 @@ contains
     !> Row r of the zones' load (which = zone_load) or of the outer correction, whole or the
     !> part given: of the zones' load, from the source elements part(1) to part(2) (default
     !> all); of the correction, part(1) (whole_row, band_part or zones_part).
-    subroutine gather_row(solver, medium, kernel, images, which, r, builder, part)
+    subroutine gather_row(solver, medium, kernel, images, which, r, builder, part, only, omit)
         type(higher_order_solver), intent(in) :: solver
         type(elastic_medium), intent(in) :: medium
         procedure(kernel_function) :: kernel
@@ -928,16 +1152,20 @@ contains
         integer, intent(in) :: which, r
         type(row_builder), intent(inout) :: builder
         integer, intent(in), optional :: part(2)
+        !> Of the zones' load: the columns to gather, shape (n) (default all)
+        logical, intent(in), optional :: only(:)
+        !> Of the correction: the zone elements to leave out, shape (re-solved) (default none)
+        logical, intent(in), optional :: omit(:)
 
         if (which == zone_load) then
             if (present(part)) then
-                call zone_load_row(solver, medium, kernel, images, r, part, builder)
+                call zone_load_row(solver, medium, kernel, images, r, part, builder, only)
             else
                 call zone_load_row(solver, medium, kernel, images, r, [1, medium%elements%n], &
                                    builder)
             end if
         else if (present(part)) then
-            call correction_row(solver, medium, kernel, images, r, part(1), builder)
+            call correction_row(solver, medium, kernel, images, r, part(1), builder, omit)
         else
             call correction_row(solver, medium, kernel, images, r, whole_row, builder)
         end if
@@ -1020,16 +1248,22 @@ contains
     !> correction a chunk of receivers at a time (whose rows hold a block per zone element),
     !> so that only those pieces are whole at once.
     subroutine keep_rows(medium, solver, field)
-        type(elastic_medium), intent(in) :: medium
-        type(higher_order_solver), intent(inout) :: solver
+        type(elastic_medium), intent(in), target :: medium
+        type(higher_order_solver), intent(inout), target :: solver
         !> The zones' clusters and what is far from each (far_field)
         type(zone_far_field), intent(in) :: field
         type(far_task), allocatable :: tasks(:)
         type(block_row), allocatable :: piece(:)
         type(low_rank_block) :: block
-        logical, allocatable :: far_columns(:), taken(:)
-        integer, allocatable :: which(:)
-        integer :: c, first, n, l, chunk
+        type(low_rank_block), allocatable :: on_demand(:)
+        !> A cluster's far blocks of the correction (one per on_demand_receivers receivers)
+        type :: cluster_blocks
+            type(low_rank_block), allocatable :: block(:)
+        end type cluster_blocks
+        type(cluster_blocks), allocatable :: corrections(:)
+        logical, allocatable :: far_columns(:), taken(:), approximated(:), corrected(:)
+        integer, allocatable :: which(:), first_holder(:), holder(:), cluster_of(:)
+        integer :: c, first, n, l, chunk, t
         logical :: found
 
         n = medium%elements%n
@@ -1037,9 +1271,27 @@ contains
                   solver%correction_rows(size(solver%outer%element)), solver%zone_far(0), &
                   solver%correction_far(0), piece(3 * size(solver%solved)))
         allocate (far_columns(row_columns(medium, solver)), source=.false.)
+        call stencil_holders(first_holder, holder)
+        allocate (on_demand(size(field%clusters)), approximated(size(field%clusters)))
+        approximated = .false.
+        !$omp parallel do default(shared) schedule(dynamic) private(c)
         do c = 1, size(field%clusters)
-            which = [(3 * (field%clusters(c)%member(l) - 1) + [1, 2, 3], l = 1, &
-                      size(field%clusters(c)%member))]
+            if (6 * size(field%clusters(c)%member) >= on_demand_rows) then
+                call approximate_far_load(c, on_demand(c), approximated(c))
+            end if
+        end do
+        !$omp end parallel do
+        solver%far_loads_on_demand = count(approximated)
+        do c = 1, size(field%clusters)
+            which = cluster_rows(c)
+            if (approximated(c)) then
+                ! The far block approximated: the rows gathered at the other columns alone.
+                solver%zone_far = [solver%zone_far, on_demand(c)]
+                far_columns = .false.
+                far_columns(on_demand(c)%column) = .true.
+                call gather(zone_load, solver%zone_rows, which, [1, n], .not. far_columns(:n))
+                cycle
+            end if
             do l = 1, size(which)
                 allocate (solver%zone_rows(which(l))%column(0), &
                           solver%zone_rows(which(l))%block(2, 2, 0))
@@ -1058,22 +1310,160 @@ contains
                 if (found) solver%zone_far = [solver%zone_far, block]
             end do
         end do
+        allocate (corrections(size(field%clusters)), corrected(size(field%clusters)), &
+                  cluster_of(size(solver%solved)))
+        corrected = .false.
+        !$omp parallel do default(shared) schedule(dynamic) private(c)
+        do c = 1, size(field%clusters)
+            if (6 * size(field%clusters(c)%member) >= on_demand_rows) then
+                call approximate_far_correction(c, corrections(c)%block, corrected(c))
+            end if
+        end do
+        !$omp end parallel do
+        solver%far_corrections_on_demand = count(corrected)
+        do c = 1, size(field%clusters)
+            cluster_of(field%clusters(c)%member) = c
+        end do
         chunk = receivers(size(solver%correction_rows))
         do first = 1, size(solver%correction_rows), chunk
             which = [(l, l = first, min(size(solver%correction_rows), first + chunk - 1))]
             call gather(correction, solver%correction_rows, which, &
-                        [merge(whole_row, zones_part, solver%bands_kept), 0])
-            allocate (tasks(size(field%clusters)))
+                        [merge(whole_row, zones_part, solver%bands_kept), 0], omit_far_of=corrected)
+            allocate (tasks(count(.not. corrected)))
+            t = 0
             do c = 1, size(field%clusters)
+                if (corrected(c)) cycle
+                t = t + 1
                 call correction_task(field%clusters(c)%member, field%far_receivers(:, c), &
-                                     tasks(c))
+                                     tasks(t))
             end do
             call compress(solver%correction_rows(which(1):which(size(which))), which(1), tasks, &
                           solver%correction_far)
             deallocate (tasks)
         end do
+        do c = 1, size(field%clusters)
+            if (corrected(c)) solver%correction_far = [solver%correction_far, corrections(c)%block]
+        end do
 
     contains
+
+        !> The rows of the zones' load of cluster c: its nodes'.
+        pure function cluster_rows(c) result(rows)
+            integer, intent(in) :: c
+            integer, allocatable :: rows(:)
+            integer :: k
+
+            associate (member => field%clusters(c)%member)
+                rows = [(3 * (member(k) - 1) + [1, 2, 3], k = 1, size(member))]
+            end associate
+        end function cluster_rows
+
+        !> The recovered elements whose stencils hold each element: holder(first(j):first(j +
+        !> 1) - 1) those of element j (their places in the recovery).
+        subroutine stencil_holders(first, holder)
+            integer, allocatable, intent(out) :: first(:), holder(:)
+            integer :: filled(n), k, p, j
+
+            allocate (first(n + 1), source=0)
+            associate (stencil => solver%outer%stencil)
+                do k = 1, size(stencil, 2)
+                    do p = 1, 3
+                        j = stencil(p, k)
+                        if (j > 0) first(j + 1) = first(j + 1) + 1
+                    end do
+                end do
+                first(1) = 1
+                do j = 1, n
+                    first(j + 1) = first(j + 1) + first(j)
+                end do
+                allocate (holder(first(n + 1) - 1))
+                filled = 0
+                do k = 1, size(stencil, 2)
+                    do p = 1, 3
+                        j = stencil(p, k)
+                        if (j == 0) cycle
+                        holder(first(j) + filled(j)) = k
+                        filled(j) = filled(j) + 1
+                    end do
+                end do
+            end associate
+        end subroutine stencil_holders
+
+        !> The far block of the zones' load of cluster c from the entries it asks for
+        !> (zone_load_entries); found where its low rank is smaller than the entries.
+        subroutine approximate_far_load(c, block, found)
+            integer, intent(in) :: c
+            type(low_rank_block), intent(out) :: block
+            logical, intent(out) :: found
+            type(zone_load_entries) :: entries
+            real(wp), allocatable :: u(:, :), v(:, :)
+            logical :: use_general
+            integer :: k
+
+            entries%solver => solver
+            entries%medium => medium
+            call select_kernel(medium, .true., use_general, entries%kernel, stress_only=.true.)
+            entries%images = image_transforms(medium%elements%symmetry)
+            entries%node_row = cluster_rows(c)
+            entries%far = field%far_elements(:, c) .and. solver%local == 0
+            entries%element = pack([(k, k = 1, n)], entries%far)
+            allocate (entries%place(n), source=0)
+            entries%place(entries%element) = [(k, k = 1, size(entries%element))]
+            entries%first = first_holder
+            entries%holder = holder
+            found = .false.
+            if (size(entries%element) == 0) return
+            call approximate_entries(entries, 2 * size(entries%node_row), &
+                                     2 * size(entries%element), far_tolerance, u, v)
+            found = allocated(u)
+            if (.not. found) return
+            block%row = entries%node_row
+            block%column = entries%element
+            call move_alloc(u, block%u)
+            call move_alloc(v, block%v)
+        end subroutine approximate_far_load
+
+        !> The far blocks of the outer correction of cluster c (a block per
+        !> on_demand_receivers of its far receivers) from the entries they ask for
+        !> (correction_entries); found where each one's low rank is smaller than its entries.
+        subroutine approximate_far_correction(c, blocks, found)
+            integer, intent(in) :: c
+            type(low_rank_block), allocatable, intent(out) :: blocks(:)
+            logical, intent(out) :: found
+            type(correction_entries) :: entries
+            type(low_rank_block) :: block
+            real(wp), allocatable :: u(:, :), v(:, :)
+            integer, allocatable :: far(:), columns(:)
+            logical :: use_general
+            integer :: k, l, start
+
+            entries%solver => solver
+            entries%medium => medium
+            call select_kernel(medium, .true., use_general, entries%kernel, stress_only=.true.)
+            entries%images = image_transforms(medium%elements%symmetry)
+            entries%member = field%clusters(c)%member
+            columns = [(n + 3 * (entries%member(l) - 1) + [1, 2, 3], &
+                        solver%solved(entries%member(l)), l = 1, size(entries%member))]
+            far = pack([(k, k = 1, size(solver%outer%element))], &
+                       field%far_receivers(solver%outer%element, c))
+            allocate (blocks(0))
+            found = .false.
+            if (size(far) == 0) return
+            do start = 1, size(far), on_demand_receivers
+                entries%receiver = far(start:min(size(far), start + on_demand_receivers - 1))
+                if (allocated(entries%computed)) deallocate (entries%computed)
+                allocate (entries%computed(size(entries%member)))
+                call approximate_entries(entries, 2 * size(entries%receiver), &
+                                         2 * size(columns), far_tolerance, u, v)
+                if (.not. allocated(u)) return
+                block%row = entries%receiver
+                block%column = columns
+                call move_alloc(u, block%u)
+                call move_alloc(v, block%v)
+                blocks = [blocks, block]
+            end do
+            found = .true.
+        end subroutine approximate_far_correction
 
         !> The receivers gathered (which) that are far from a cluster at its elements'
         !> columns: their constant DDs' and their nodes'.
@@ -1091,25 +1481,36 @@ contains
             task%far([(n + 3 * (member(k) - 1) + [1, 2, 3], k = 1, size(member))]) = .true.
         end subroutine correction_task
 
-        !> Gather rows `rows_of` of map `map`, their part given (gather_row).
-        subroutine gather(map, rows, rows_of, part)
+        !> Gather rows `rows_of` of map `map`, their part given (gather_row), of the zones'
+        !> load at the columns `only` (default all), of the correction without the zone
+        !> elements of the clusters marked in omit_far_of where the receiver is far from them
+        !> (default none).
+        subroutine gather(map, rows, rows_of, part, only, omit_far_of)
             integer, intent(in) :: map
             type(block_row), intent(inout) :: rows(:)
             integer, intent(in) :: rows_of(:), part(2)
+            logical, intent(in), optional :: only(:), omit_far_of(:)
             procedure(kernel_function), pointer :: kernel
             type(image_transform), allocatable :: images(:)
             type(row_builder) :: builder
-            logical :: use_general
+            logical :: use_general, omit(size(solver%solved))
             integer :: k
 
             call select_kernel(medium, .true., use_general, kernel, stress_only=.true.)
             images = image_transforms(medium%elements%symmetry)
-            !$omp parallel default(none) private(k, builder) &
-            !$omp     shared(solver, medium, kernel, images, map, rows, rows_of, part)
+            omit = .false.
+            !$omp parallel default(none) private(k, builder) firstprivate(omit) &
+            !$omp     shared(solver, medium, kernel, images, map, rows, rows_of, part, only, &
+            !$omp            omit_far_of, field, cluster_of)
             call builder%start(row_columns(medium, solver))
             !$omp do schedule(dynamic)
             do k = 1, size(rows_of)
-                call gather_row(solver, medium, kernel, images, map, rows_of(k), builder, part)
+                if (present(omit_far_of)) then
+                    omit = omit_far_of(cluster_of) .and. &
+                           field%far_receivers(solver%outer%element(rows_of(k)), cluster_of)
+                end if
+                call gather_row(solver, medium, kernel, images, map, rows_of(k), builder, part, &
+                                only, omit)
                 call builder%take(rows(rows_of(k)))
             end do
             !$omp end do
