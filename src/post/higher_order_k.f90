@@ -35,7 +35,7 @@ module ddc_post_higher_order_k
     use ddc_post_tips, only: tip_chain, end_neighbours, end_on_mirror, end_turn
     use ddc_post_outer_recovery, only: outer_recovery, recover_outer, recovered_block, &
         stencil_blocks, halves_kernels, halves_block, near_lengths, next_recovered, &
-        straight_reach, curved_reach
+        straight_reach, curved_reach, far_recovered_blocks
     use ddc_linalg_lu, only: lu_factor, lu_solve
     use ddc_linalg_block_rows, only: block_row, row_builder, row_times
     use ddc_linalg_low_rank, only: low_rank_block, add_low_rank_times, pair_entries, &
@@ -1046,13 +1046,27 @@ contains
             integer, intent(in) :: j
             real(wp), intent(in) :: at
             logical, intent(in) :: exact
-            real(wp) :: blocks(2, 2, 3)
+            real(wp) :: blocks(2, 2, 3), nodal(2, 6), constant(2, 2)
             integer :: p, jp, kj
+            logical :: far
 
             kj = solver%outer%place(j)
-            blocks = stencil_blocks(solver%outer, kj, recovered_block(solver%outer, kernel, &
-                                    images, medium, kj, arc_point(1), arc_point(2), &
-                                    arc_point(3), arc_point(4), at, exact))
+            far = .false.
+            if (.not. exact .and. at < 0.0_wp) then
+                call far_recovered_blocks(solver%outer, kernel, images, medium, kj, arc_point(1), &
+                                          arc_point(2), arc_point(3), arc_point(4), nodal, &
+                                          constant, far)
+            end if
+            if (.not. far) then
+                nodal = recovered_block(solver%outer, kernel, images, medium, kj, arc_point(1), &
+                                        arc_point(2), arc_point(3), arc_point(4), at, exact)
+            end if
+            ! A straight receiver's chord midpoint is its arc's: a far neighbour's constant
+            ! DD acts there as its two halves together.
+            if (.not. far .or. solver%outer%arc(k)%curvature /= 0.0_wp) then
+                constant = constant_block(kernel, images, medium, j, chord)
+            end if
+            blocks = stencil_blocks(solver%outer, kj, nodal)
             do p = 1, 3
                 jp = solver%outer%stencil(p, kj)
                 if (jp == 0) cycle
@@ -1060,7 +1074,7 @@ contains
                 if (solver%local(jp) > 0) jp = n + 3 * (solver%local(jp) - 1) + 2
                 call builder%add(jp, blocks(:, :, p))
             end do
-            call builder%add(j, -constant_block(kernel, images, medium, j, chord))
+            call builder%add(j, -constant)
         end subroutine add_recovered
     end subroutine correction_row
 

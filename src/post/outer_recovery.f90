@@ -25,7 +25,7 @@ module ddc_post_outer_recovery
     private
 
     public :: outer_recovery, recover_outer, recovered_block, stencil_blocks, halves_kernels
-    public :: halves_block, near_lengths, next_recovered
+    public :: halves_block, near_lengths, next_recovered, far_recovered_blocks
 
     !> A source nearer than this many of its lengths acts with its recovered DD, a farther
     !> one as two constant halves with the recovered DD's means over them
@@ -195,19 +195,46 @@ contains
         !> Use the recovered DD at any distance
         logical, intent(in) :: exact
         real(wp) :: block(2, 6)
+        real(wp) :: constant(2, 2)
+        logical :: far
+
+        if (.not. exact .and. s_self < 0.0_wp) then
+            call far_recovered_blocks(outer, kernel, images, medium, k, x, y, c, s, block, &
+                                      constant, far)
+            if (far) return
+        end if
+        call element_tractions(kernel, images, medium, outer%arc(k), s_self, x, y, c, s, block)
+    end function recovered_block
+
+    !> Where the receiver is far from straight recovered element k (beyond near_lengths of
+    !> its lengths from its midpoint): its block per unit nodal DD from its two halves
+    !> (recovered_block), and its constant DD's block at the same receiver (the two halves
+    !> together), shape (2, 2); else far = .false. and neither is set.
+    pure subroutine far_recovered_blocks(outer, kernel, images, medium, k, x, y, c, s, block, &
+                                         constant, far)
+        type(outer_recovery), intent(in) :: outer
+        procedure(kernel_function) :: kernel
+        type(image_transform), intent(in) :: images(:)
+        type(elastic_medium), intent(in) :: medium
+        integer, intent(in) :: k
+        !> Receiver [length unit] and its plane's direction cosines
+        real(wp), intent(in) :: x, y, c, s
+        real(wp), intent(out) :: block(2, 6), constant(2, 2)
+        logical, intent(out) :: far
+        real(wp) :: halves(2, 2, 2)
         integer :: i
 
         i = outer%element(k)
         associate (e => medium%elements, arc => outer%arc(k))
-            if (.not. exact .and. s_self < 0.0_wp .and. arc%curvature == 0.0_wp .and. &
-                hypot(x - e%x_mid(i), y - e%y_mid(i)) > near_lengths * arc%length) then
-                block = halves_block(halves_kernels(kernel, images, medium, arc, x, y, c, s), &
-                                     arc%length, quadratic_mean, quadratic_moment * arc%length**2)
-                return
-            end if
+            far = arc%curvature == 0.0_wp .and. &
+                  hypot(x - e%x_mid(i), y - e%y_mid(i)) > near_lengths * arc%length
+            if (.not. far) return
+            halves = halves_kernels(kernel, images, medium, arc, x, y, c, s)
+            block = halves_block(halves, arc%length, quadratic_mean, &
+                                 quadratic_moment * arc%length**2)
+            constant = halves(:, :, 1) + halves(:, :, 2)
         end associate
-        call element_tractions(kernel, images, medium, outer%arc(k), s_self, x, y, c, s, block)
-    end function recovered_block
+    end subroutine far_recovered_blocks
 
     !> A recovered element's block per unit nodal DD (recovered_block) as blocks per unit
     !> midpoint DD of the elements of its stencil, shape (2, 2, 3) (rows t_s, t_n; columns
