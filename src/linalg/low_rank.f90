@@ -171,8 +171,8 @@ contains
         integer :: rank, max_rank, i, j
         logical :: within
 
-        max_rank = (m * n) / (m + n)
-        allocate (uu(m, max_rank), vv(n, max_rank))
+        max_rank = int(int(m, int64) * n / (m + n))
+        allocate (uu(m, min(max_rank, 16)), vv(n, min(max_rank, 16)))
         allocate (rows%slot(m / 2), columns%slot(n / 2), source=0)
         used = .false.
         rank = 0
@@ -191,6 +191,7 @@ contains
                 cycle
             end if
             column = line_of(columns, j, m, .false.) - matmul(uu(:, :rank), vv(j, :rank))
+            if (rank == size(uu, 2)) call widen()
             call add_cross(uu, vv, rank, column, row / pivot, approximation_norm2, step_norm)
             if (step_norm <= tolerance * sqrt(max(approximation_norm2, 0.0_wp))) then
                 call check_remainder(within, i)
@@ -208,6 +209,18 @@ contains
         v = vv(:, :rank)
 
     contains
+
+        !> Room in U and V for twice the rank (at most max_rank): they grow as it does.
+        subroutine widen()
+            real(wp), allocatable :: wider(:, :)
+
+            allocate (wider(m, min(max_rank, 2 * rank)))
+            wider(:, :rank) = uu(:, :rank)
+            call move_alloc(wider, uu)
+            allocate (wider(n, min(max_rank, 2 * rank)))
+            wider(:, :rank) = vv(:, :rank)
+            call move_alloc(wider, vv)
+        end subroutine widen
 
         !> Row (is_row) or column i of the block, of `length` entries, from its pair in the
         !> cache (computed there where it is not yet).

@@ -1269,12 +1269,12 @@ contains
         type(far_task), allocatable :: tasks(:)
         type(block_row), allocatable :: piece(:)
         type(low_rank_block) :: block
-        type(low_rank_block), allocatable :: on_demand(:)
-        !> A cluster's far blocks of the correction (one per on_demand_receivers receivers)
+        !> A cluster's far blocks of the zones' load (one per zone_columns far elements) or
+        !> of the correction (one per on_demand_receivers receivers)
         type :: cluster_blocks
             type(low_rank_block), allocatable :: block(:)
         end type cluster_blocks
-        type(cluster_blocks), allocatable :: corrections(:)
+        type(cluster_blocks), allocatable :: loads(:), corrections(:)
         logical, allocatable :: far_columns(:), taken(:), approximated(:), corrected(:)
         integer, allocatable :: which(:), first_holder(:), holder(:), cluster_of(:)
         integer :: c, first, n, l, chunk, t
@@ -1286,12 +1286,12 @@ contains
                   solver%correction_far(0), piece(3 * size(solver%solved)))
         allocate (far_columns(row_columns(medium, solver)), source=.false.)
         call stencil_holders(first_holder, holder)
-        allocate (on_demand(size(field%clusters)), approximated(size(field%clusters)))
+        allocate (loads(size(field%clusters)), approximated(size(field%clusters)))
         approximated = .false.
         !$omp parallel do default(shared) schedule(dynamic) private(c)
         do c = 1, size(field%clusters)
             if (6 * size(field%clusters(c)%member) >= on_demand_rows) then
-                call approximate_far_load(c, on_demand(c), approximated(c))
+                call approximate_far_load(c, loads(c)%block, approximated(c))
             end if
         end do
         !$omp end parallel do
@@ -1299,10 +1299,12 @@ contains
         do c = 1, size(field%clusters)
             which = cluster_rows(c)
             if (approximated(c)) then
-                ! The far block approximated: the rows gathered at the other columns alone.
-                solver%zone_far = [solver%zone_far, on_demand(c)]
+                ! The far blocks approximated: the rows gathered at the other columns alone.
+                solver%zone_far = [solver%zone_far, loads(c)%block]
                 far_columns = .false.
-                far_columns(on_demand(c)%column) = .true.
+                do l = 1, size(loads(c)%block)
+                    far_columns(loads(c)%block(l)%column) = .true.
+                end do
                 call gather(zone_load, solver%zone_rows, which, [1, n], .not. far_columns(:n))
                 cycle
             end if
@@ -1403,38 +1405,48 @@ contains
             end associate
         end subroutine stencil_holders
 
-        !> The far block of the zones' load of cluster c from the entries it asks for
-        !> (zone_load_entries); found where its low rank is smaller than the entries.
-        subroutine approximate_far_load(c, block, found)
+        !> The far blocks of the zones' load of cluster c (a block per zone_columns of its far
+        !> elements) from the entries they ask for (zone_load_entries); found where each
+        !> one's low rank is smaller than its entries.
+        subroutine approximate_far_load(c, blocks, found)
             integer, intent(in) :: c
-            type(low_rank_block), intent(out) :: block
+            type(low_rank_block), allocatable, intent(out) :: blocks(:)
             logical, intent(out) :: found
             type(zone_load_entries) :: entries
+            type(low_rank_block) :: block
             real(wp), allocatable :: u(:, :), v(:, :)
+            integer, allocatable :: far(:)
             logical :: use_general
-            integer :: k
+            integer :: k, start, piece
 
             entries%solver => solver
             entries%medium => medium
             call select_kernel(medium, .true., use_general, entries%kernel, stress_only=.true.)
             entries%images = image_transforms(medium%elements%symmetry)
             entries%node_row = cluster_rows(c)
-            entries%far = field%far_elements(:, c) .and. solver%local == 0
-            entries%element = pack([(k, k = 1, n)], entries%far)
-            allocate (entries%place(n), source=0)
-            entries%place(entries%element) = [(k, k = 1, size(entries%element))]
             entries%first = first_holder
             entries%holder = holder
+            far = pack([(k, k = 1, n)], field%far_elements(:, c) .and. solver%local == 0)
+            allocate (blocks(0), entries%place(n), entries%far(n))
             found = .false.
-            if (size(entries%element) == 0) return
-            call approximate_entries(entries, 2 * size(entries%node_row), &
-                                     2 * size(entries%element), far_tolerance, u, v)
-            found = allocated(u)
-            if (.not. found) return
-            block%row = entries%node_row
-            block%column = entries%element
-            call move_alloc(u, block%u)
-            call move_alloc(v, block%v)
+            if (size(far) == 0) return
+            piece = even_piece(size(far), zone_columns)
+            do start = 1, size(far), piece
+                entries%element = far(start:min(size(far), start + piece - 1))
+                entries%far = .false.
+                entries%far(entries%element) = .true.
+                entries%place = 0
+                entries%place(entries%element) = [(k, k = 1, size(entries%element))]
+                call approximate_entries(entries, 2 * size(entries%node_row), &
+                                         2 * size(entries%element), far_tolerance, u, v)
+                if (.not. allocated(u)) return
+                block%row = entries%node_row
+                block%column = entries%element
+                call move_alloc(u, block%u)
+                call move_alloc(v, block%v)
+                blocks = [blocks, block]
+            end do
+            found = .true.
         end subroutine approximate_far_load
 
         !> The far blocks of the outer correction of cluster c (a block per
@@ -1449,7 +1461,7 @@ contains
             real(wp), allocatable :: u(:, :), v(:, :)
             integer, allocatable :: far(:), columns(:)
             logical :: use_general
-            integer :: k, l, start
+            integer :: k, l, start, piece
 
             entries%solver => solver
             entries%medium => medium
@@ -1463,8 +1475,9 @@ contains
             allocate (blocks(0))
             found = .false.
             if (size(far) == 0) return
-            do start = 1, size(far), on_demand_receivers
-                entries%receiver = far(start:min(size(far), start + on_demand_receivers - 1))
+            piece = even_piece(size(far), on_demand_receivers)
+            do start = 1, size(far), piece
+                entries%receiver = far(start:min(size(far), start + piece - 1))
                 if (allocated(entries%computed)) deallocate (entries%computed)
                 allocate (entries%computed(size(entries%member)))
                 call approximate_entries(entries, 2 * size(entries%receiver), &
@@ -1558,6 +1571,14 @@ contains
             kept = [kept, blocks]
         end subroutine compress
     end subroutine keep_rows
+
+    !> The length of each of the fewest equal pieces of `total` items with at most `most`
+    !> in each (the last may be shorter).
+    pure integer function even_piece(total, most)
+        integer, intent(in) :: total, most
+
+        even_piece = (total + (total + most - 1) / most - 1) / ((total + most - 1) / most)
+    end function even_piece
 
     !> The clusters of the zone elements `solved` and what is far from each.
     pure function far_field(medium, solved, neighbour, curvature) result(field)
