@@ -77,9 +77,10 @@ module ddc_post_higher_order_k
     !> then repeated in fewer blocks); and columns of a zone's load in one low-rank block
     !> (the size of its dense form)
     integer, parameter :: min_receivers = 128, max_receivers = 1024, zone_columns = 4096
-    !> A cluster with at least this many rows of the zones' load (two a node) has its far
-    !> block approximated from the entries it asks for (zone_load_entries); a smaller one's
-    !> rank is near its rows', and its rows are gathered whole
+    !> A cluster with at least this many rows of the zones' load (two a node: 16 zone
+    !> elements) has its far blocks, of the zones' load and of the outer correction,
+    !> approximated from the entries they ask for (zone_load_entries, correction_entries); a
+    !> smaller one's rank is near its rows' or columns', and its rows are gathered whole
     integer, parameter :: on_demand_rows = 96
     !> Receivers of the outer correction in one block from entries on demand (its members'
     !> columns are kept while it is approximated: 128 bytes a receiver and member)
