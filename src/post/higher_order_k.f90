@@ -1287,16 +1287,21 @@ contains
                   solver%correction_far(0), piece(3 * size(solver%solved)))
         allocate (far_columns(row_columns(medium, solver)), source=.false.)
         call stencil_holders(first_holder, holder)
-        allocate (loads(size(field%clusters)), approximated(size(field%clusters)))
+        allocate (loads(size(field%clusters)), approximated(size(field%clusters)), &
+                  corrections(size(field%clusters)), corrected(size(field%clusters)), &
+                  cluster_of(size(solver%solved)))
         approximated = .false.
+        corrected = .false.
         !$omp parallel do default(shared) schedule(dynamic) private(c)
         do c = 1, size(field%clusters)
             if (6 * size(field%clusters(c)%member) >= on_demand_rows) then
                 call approximate_far_load(c, loads(c)%block, approximated(c))
+                call approximate_far_correction(c, corrections(c)%block, corrected(c))
             end if
         end do
         !$omp end parallel do
         solver%far_loads_on_demand = count(approximated)
+        solver%far_corrections_on_demand = count(corrected)
         do c = 1, size(field%clusters)
             which = cluster_rows(c)
             if (approximated(c)) then
@@ -1327,17 +1332,6 @@ contains
                 if (found) solver%zone_far = [solver%zone_far, block]
             end do
         end do
-        allocate (corrections(size(field%clusters)), corrected(size(field%clusters)), &
-                  cluster_of(size(solver%solved)))
-        corrected = .false.
-        !$omp parallel do default(shared) schedule(dynamic) private(c)
-        do c = 1, size(field%clusters)
-            if (6 * size(field%clusters(c)%member) >= on_demand_rows) then
-                call approximate_far_correction(c, corrections(c)%block, corrected(c))
-            end if
-        end do
-        !$omp end parallel do
-        solver%far_corrections_on_demand = count(corrected)
         do c = 1, size(field%clusters)
             cluster_of(field%clusters(c)%member) = c
         end do
